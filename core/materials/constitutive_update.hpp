@@ -1,0 +1,2 @@
+// Definition of constitutive_update (declared in material.hpp).
+#pragma once

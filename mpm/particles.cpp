@@ -1,0 +1,56 @@
+#include "mpm/particles.hpp"
+
+#include <numeric>
+
+namespace afemp::mpm {
+
+namespace {
+template <class F>
+void for_each_array(Particles& p, F&& f) {
+  f(p.position); f(p.velocity); f(p.mass); f(p.volume); f(p.stress); f(p.strain);
+  f(p.plastic_strain); f(p.temperature); f(p.energy); f(p.body); f(p.material); f(p.id);
+}
+template <class F>
+void for_each_array(const Particles& p, F&& f) {
+  for_each_array(const_cast<Particles&>(p), [&](auto& a) { f(std::as_const(a)); });
+}
+}  // namespace
+
+void Particles::resize(std::size_t n) {
+  for_each_array(*this, [n](auto& a) { a.resize(n); });
+}
+
+void Particles::reserve(std::size_t n) {
+  for_each_array(*this, [n](auto& a) { a.reserve(n); });
+}
+
+void Particles::push_back(const Vec3& x, const Vec3& v, double m, double vol, double temp,
+                          std::int32_t body_id, std::int32_t material_id) {
+  id.push_back(static_cast<std::int32_t>(position.size()));
+  position.push_back(x);
+  velocity.push_back(v);
+  mass.push_back(m);
+  volume.push_back(vol);
+  stress.push_back({});
+  strain.push_back({});
+  plastic_strain.push_back(0.0);
+  temperature.push_back(temp);
+  energy.push_back(0.0);
+  body.push_back(body_id);
+  material.push_back(material_id);
+}
+
+void Particles::permute(const std::vector<std::int32_t>& perm) {
+  for_each_array(*this, [&perm](auto& a) {
+    auto copy = a;
+    for (std::size_t i = 0; i < perm.size(); ++i) a[i] = copy[static_cast<std::size_t>(perm[i])];
+  });
+}
+
+std::size_t Particles::bytes() const {
+  std::size_t total = 0;
+  for_each_array(*this, [&total](const auto& a) { total += a.capacity() * sizeof(a[0]); });
+  return total;
+}
+
+}  // namespace afemp::mpm

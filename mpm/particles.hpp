@@ -1,0 +1,43 @@
+// Material points as a structure of arrays (seed 001 §2.1: each point carries mass, volume,
+// velocity, stress and history). Points of one material are kept contiguous so that the
+// constitutive update runs per material batch.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "core/tensor.hpp"
+
+namespace afemp::mpm {
+
+using core::SymTensor;
+using core::Vec3;
+
+struct Particles {
+  std::vector<Vec3> position;
+  std::vector<Vec3> velocity;
+  std::vector<double> mass;
+  std::vector<double> volume;          // current volume; density = mass / volume
+  std::vector<SymTensor> stress;       // Cauchy stress
+  std::vector<SymTensor> strain;       // accumulated strain (sum of D dt)
+  std::vector<double> plastic_strain;  // equivalent plastic strain
+  std::vector<double> temperature;
+  std::vector<double> energy;          // specific internal energy (per unit mass)
+  std::vector<std::int32_t> body;
+  std::vector<std::int32_t> material;
+  std::vector<std::int32_t> id;        // stable id, unchanged by reordering
+
+  std::size_t size() const { return position.size(); }
+  void resize(std::size_t n);
+  void reserve(std::size_t n);
+  // Appends one point at rest-state (zero stress, strain, plastic strain, energy).
+  void push_back(const Vec3& x, const Vec3& v, double m, double vol, double temp,
+                 std::int32_t body_id, std::int32_t material_id);
+  // Reorders every array by perm: new[i] = old[perm[i]].
+  void permute(const std::vector<std::int32_t>& perm);
+  // Bytes held by the arrays (capacity), for memory estimates.
+  std::size_t bytes() const;
+};
+
+}  // namespace afemp::mpm
