@@ -1,21 +1,29 @@
 #include "core/error.hpp"
 
+#include <sstream>
+
 namespace afemp::core {
 
 namespace {
 std::string input_message(const SourceLocation& where, const std::string& key,
                           const std::string& message) {
-  std::string s = where.file.empty() ? std::string("<input>") : where.file;
-  if (where.line > 0) s += ":" + std::to_string(where.line);
-  s += ": ";
-  if (!key.empty()) s += "key '" + key + "': ";
-  return s + message;
+  // ostringstream rather than string concatenation: GCC 12 warns falsely (-Wrestrict) on
+  // the latter at -O3.
+  std::ostringstream s;
+  s << (where.file.empty() ? std::string("<input>") : where.file);
+  if (where.line > 0) s << ':' << where.line;
+  s << ": ";
+  if (!key.empty()) s << "key '" << key << "': ";
+  s << message;
+  return s.str();
 }
 
 std::string simulation_message(long step, double time, const std::string& entity,
                                const std::string& field, const std::string& detail) {
-  return "step " + std::to_string(step) + " (t = " + std::to_string(time) + "): " + entity +
-         ", field '" + field + "': " + detail;
+  std::ostringstream s;
+  s << "step " << step << " (t = " << time << "): " << entity << ", field '" << field
+    << "': " << detail;
+  return s.str();
 }
 }  // namespace
 

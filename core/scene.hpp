@@ -16,7 +16,11 @@
 namespace afemp::core {
 
 enum class UpdateScheme { USF, USL, MUSL };  // seed 000 eqs 25-27
-enum class FaceCondition { free, fixed, symmetric };
+// free: nothing; fixed: all velocity components zero (the material sticks);
+// symmetric: normal component zero (a symmetry plane; tension is carried across it);
+// wall: a rigid frictionless wall the material may not cross but may leave (the normal
+// component is zeroed only at nodes whose updated velocity points into the wall).
+enum class FaceCondition { free, fixed, symmetric, wall };
 enum class Face { xmin = 0, xmax, ymin, ymax, zmin, zmax };
 
 const char* to_string(UpdateScheme s);

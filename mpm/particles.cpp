@@ -1,6 +1,6 @@
 #include "mpm/particles.hpp"
 
-#include <numeric>
+#include <utility>
 
 namespace afemp::mpm {
 

@@ -1,2 +1,56 @@
-// Definition of constitutive_update (declared in material.hpp).
+// Definition of constitutive_update (declared in material.hpp, which includes this file at its
+// end: include material.hpp, not this header). Seed 001 eq 2-41 with the energy equation
+// de = (s_mid : de_dev - p_mid tr(d eps)) / rho solved in closed form with p = a(mu) + b(mu) e.
 #pragma once
+
+#include <type_traits>
+
+namespace afemp::core {
+
+template <class Strength, class Eos>
+inline PointUpdate constitutive_update(const Material& material, const Strength& strength,
+                                       const Eos& eos, bool thermal, PointState& point,
+                                       const SymTensor& d_eps, double dt) {
+  const double p_old = pressure(point.stress);
+  const SymTensor s_old = point.stress.deviator();
+  const SymTensor de_dev = d_eps.deviator();
+  const double d_vol = d_eps.trace();  // dV / V over the increment
+  const double rho = point.density;
+  // Work per unit mass uses the volume the increment acts on: the solvers update volume as
+  // V_new = V_old (1 + tr d eps), so sigma : d eps V_old / m = sigma : d eps / rho_old, which
+  // makes the volumetric work exact over a compress-release cycle (second order overall).
+  const double rho_work = rho * (1.0 + d_vol);
+
+  SymTensor s_new = s_old;
+  const StrengthContext context{material.shear_modulus(), point.plastic_strain,
+                                point.temperature, dt};
+  const DeviatoricResult r = strength.update(s_new, de_dev, context);
+  point.plastic_strain += r.plastic_strain_increment;
+  const double plastic_work = r.flow_stress * r.plastic_strain_increment / rho_work;
+
+  // Trapezoidal deviatoric work: elastic (recoverable) and plastic parts together.
+  const double deviatoric_work = 0.5 * double_dot(s_old + s_new, de_dev) / rho_work;
+  double p_new;
+  if constexpr (std::is_same_v<Eos, NoEos>) {
+    p_new = p_old - material.bulk_modulus() * d_vol;
+    point.energy += deviatoric_work - 0.5 * (p_old + p_new) * d_vol / rho_work;
+  } else {
+    const double mu = rho / material.density - 1.0;
+    const EosLinearForm f = eos.form(mu);
+    // e_new = e* - p_new tr/(2 rho) with p_new = a + b e_new: linear in e_new, so the
+    // midpoint-rule energy and the EOS pressure are consistent without iteration.
+    const double e_star = point.energy + deviatoric_work - 0.5 * p_old * d_vol / rho_work;
+    const double half_strain = 0.5 * d_vol / rho_work;
+    point.energy = (e_star - f.a * half_strain) / (1.0 + f.b * half_strain);
+    p_new = f.a + f.b * point.energy;
+  }
+
+  point.stress = s_new - p_new * SymTensor::identity();
+  if (thermal) {
+    point.temperature += material.thermal.taylor_quinney * plastic_work /
+                         material.thermal.specific_heat;
+  }
+  return {plastic_work};
+}
+
+}  // namespace afemp::core

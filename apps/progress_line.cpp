@@ -1,0 +1,83 @@
+#include "apps/progress_line.hpp"
+
+#include "core/parallel.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <string>
+
+namespace afemp::apps {
+
+namespace {
+std::string clock_text(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0.0) return "--:--";
+  const long s = static_cast<long>(seconds + 0.5);
+  char buf[32];
+  if (s >= 3600)
+    std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%02ld:%02ld", s / 60, s % 60);
+  return buf;
+}
+}  // namespace
+
+ProgressReporter::ProgressReporter(std::FILE* out) : out_(out), live_(isatty(fileno(out)) != 0) {}
+
+void ProgressReporter::operator()(const mpm::Progress& p) {
+  const double fraction = p.end_time > 0.0 ? p.time / p.end_time : 1.0;
+  const double eta = fraction > 0.0 ? p.elapsed_seconds * (1.0 - fraction) / fraction : -1.0;
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "step %8ld  t %.4e  dt %.3e  %5.1f%%  elapsed %s  ETA %s  energy error %+.2e%%",
+                p.step, p.time, p.dt, 100.0 * fraction, clock_text(p.elapsed_seconds).c_str(),
+                clock_text(eta).c_str(), 100.0 * p.energy_error);
+  if (live_) {
+    std::fprintf(out_, "\r%s\x1b[K", line);
+    pending_newline_ = true;
+  } else {
+    std::fprintf(out_, "%s\n", line);
+  }
+  std::fflush(out_);
+}
+
+void ProgressReporter::finish() {
+  if (pending_newline_) std::fprintf(out_, "\n");
+  pending_newline_ = false;
+}
+
+void print_summary(std::FILE* out, const core::Scene& scene, const mpm::RunSummary& s) {
+  std::fprintf(out, "summary\n");
+  std::fprintf(out, "  steps            %ld to t = %.6g (dt %.4g .. %.4g)\n", s.steps, s.time,
+               s.min_dt, s.max_dt);
+  std::fprintf(out, "  wall time        %.3f s with %d thread(s)\n", s.wall_seconds,
+               core::thread_count());
+  std::fprintf(out, "  particles        %zu, %.3g particle-steps/s\n", s.particles,
+               s.particle_steps_per_second);
+  std::fprintf(out, "  energy  initial  kinetic %.6g  internal %.6g\n", s.initial.kinetic,
+               s.initial.internal);
+  std::fprintf(out, "          final    kinetic %.6g  internal %.6g (plastic work %.6g)  "
+               "external work %.6g\n",
+               s.final.kinetic, s.final.internal, s.final.plastic, s.final.external_work);
+  std::fprintf(out, "  energy balance   error %+.3f %% at the end, largest %.3f %%\n",
+               100.0 * s.energy_error, 100.0 * s.max_energy_error);
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    const auto& body = s.final.bodies[b];
+    const core::Vec3 v = body.mass > 0.0 ? (1.0 / body.mass) * body.momentum : core::Vec3{};
+    std::fprintf(out, "  body %-10s  mean velocity (%.6g, %.6g, %.6g)\n",
+                 scene.bodies[b].name.c_str(), v.x, v.y, v.z);
+  }
+  if (s.taylor && scene.taylor_reference) {
+    const auto& r = *scene.taylor_reference;
+    std::fprintf(out,
+                 "  taylor bar       L %.3f (ref %.3f)  D %.3f (ref %.3f)  W %.3f (ref %.3f)  "
+                 "mean error %.4f%s\n",
+                 s.taylor->length, r.length, s.taylor->impact_diameter, r.impact_diameter,
+                 s.taylor->bulge_diameter, r.bulge_diameter, s.taylor_error,
+                 r.tolerance > 0.0
+                     ? (s.taylor_error <= r.tolerance ? "  (within tolerance)" : "  (OUTSIDE tolerance)")
+                     : "");
+  }
+}
+
+}  // namespace afemp::apps

@@ -1,0 +1,14 @@
+// Elastic strength model: hypoelastic deviatoric update s += 2 G de_dev (seed 001 eq 2-41,
+// deviatoric part of the Jaumann-rate Hooke law; the rotation is applied by the caller).
+#include "core/materials/strength_models.hpp"
+
+namespace afemp::core {
+
+DeviatoricResult Elastic::update(SymTensor& s, const SymTensor& de_dev,
+                                 const StrengthContext& c) const {
+  s += (2.0 * c.shear_modulus) * de_dev;
+  // No yield surface: report zero flow stress so plastic work (flow_stress * dp) stays zero.
+  return {0.0, 0.0};
+}
+
+}  // namespace afemp::core

@@ -1,0 +1,23 @@
+// J2 plasticity with linear isotropic hardening, sigma_y = sigma_y0 + H eps_p: elastic
+// predictor and radial return in closed form (Simo & Hughes 1998, box 3.2; seed 001 §2.2.1).
+#include "core/materials/strength_models.hpp"
+
+namespace afemp::core {
+
+DeviatoricResult J2Plasticity::update(SymTensor& s, const SymTensor& de_dev,
+                                      const StrengthContext& c) const {
+  const double g = c.shear_modulus;
+  const double sigma_y = yield_stress + hardening * c.plastic_strain;
+  s += (2.0 * g) * de_dev;
+  const double q_trial = von_mises(s);
+  if (q_trial <= sigma_y) return {0.0, sigma_y};
+
+  // Linear hardening makes the consistency condition q_tr - 3G dp = sigma_y + H dp linear
+  // in dp, so the return is exact for any increment size.
+  const double dp = (q_trial - sigma_y) / (3.0 * g + hardening);
+  const double sigma_y_new = sigma_y + hardening * dp;
+  s *= sigma_y_new / q_trial;
+  return {dp, sigma_y_new};
+}
+
+}  // namespace afemp::core

@@ -1,0 +1,69 @@
+// The history CSV: one row of global energies and per-body momenta whenever the caller asks
+// (every run.history_every steps). Each row is flushed at once so the file survives a crash
+// and can be plotted while the run goes on.
+#pragma once
+
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/tensor.hpp"
+
+namespace afemp::core {
+
+struct BodyHistory {
+  Vec3 momentum;
+  Vec3 mean_velocity;
+};
+
+struct HistoryRow {
+  long step = 0;
+  double time = 0.0, dt = 0.0, kinetic = 0.0, internal = 0.0, elastic = 0.0, plastic = 0.0,
+         external_work = 0.0, total = 0.0, energy_error = 0.0;
+  // total = kinetic + internal; energy_error: the caller's relative balance error.
+  std::vector<BodyHistory> bodies;  // one per body name, in the writer's order
+};
+
+// Columns: step,time,dt,kinetic,internal,elastic,plastic,external_work,total,energy_error,
+// then per body NAME: NAME.px,NAME.py,NAME.pz,NAME.vx,NAME.vy,NAME.vz.
+// step is printed as an integer, every other value with "%.10e" (11 significant digits).
+class HistoryWriter {
+ public:
+  // Creates the parent directory if needed, truncates the file and writes the header.
+  // Throws std::runtime_error naming the path and the reason if it cannot; throws
+  // std::invalid_argument for an empty body name or one containing ',', '"' or a newline.
+  HistoryWriter(std::string path, std::vector<std::string> body_names);
+
+  // Appends and flushes one row. Throws std::invalid_argument if row.bodies does not have
+  // one entry per body name, std::runtime_error if the write fails (e.g. disk full).
+  void write(const HistoryRow& row);
+
+  const std::string& path() const { return path_; }
+  std::size_t rows() const { return rows_; }
+
+ private:
+  struct FileCloser {
+    void operator()(std::FILE* f) const { std::fclose(f); }
+  };
+  std::string path_;
+  std::vector<std::string> body_names_;
+  std::unique_ptr<std::FILE, FileCloser> file_;
+  std::string line_;  // reused row buffer
+  std::size_t rows_ = 0;
+};
+
+// A numeric CSV read back (for tests and tools): the first line is the header, every other
+// non-empty line a row of numbers ("nan" and "inf" included).
+struct CsvTable {
+  std::vector<std::string> header;
+  std::vector<std::vector<double>> rows;
+  // Index of a header name; throws std::out_of_range naming it if absent.
+  std::size_t column(const std::string& name) const;
+};
+
+// Throws std::runtime_error naming the file and line on a missing file, a non-number, or a
+// row whose length differs from the header's.
+CsvTable read_csv(const std::string& path);
+
+}  // namespace afemp::core

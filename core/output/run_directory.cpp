@@ -1,0 +1,34 @@
+// Output path conventions in one place, so the app, the tests and the tools agree on where
+// a run's files are.
+#include "core/output/run_directory.hpp"
+
+#include <filesystem>
+
+namespace afemp::core {
+
+std::string default_output_directory(const std::string& scene_path) {
+  std::string stem = std::filesystem::path(scene_path).stem().string();
+  // "." and ".." are not names a results directory should take.
+  if (stem.empty() || stem == "." || stem == "..") stem = "run";
+  return (std::filesystem::path("runs") / stem).string();
+}
+
+OutputPaths default_output_paths(const std::string& scene_path) {
+  OutputPaths paths;
+  paths.directory = default_output_directory(scene_path);
+  return paths;
+}
+
+std::string fields_h5_path(const OutputPaths& paths) {
+  return (std::filesystem::path(paths.directory) / (paths.fields_stem + ".h5")).string();
+}
+
+std::string fields_xmf_path(const OutputPaths& paths) {
+  return (std::filesystem::path(paths.directory) / (paths.fields_stem + ".xmf")).string();
+}
+
+std::string history_path(const OutputPaths& paths) {
+  return (std::filesystem::path(paths.directory) / paths.history_file).string();
+}
+
+}  // namespace afemp::core

@@ -1,0 +1,30 @@
+// Where a run writes its results. By default a scene "some/where/NAME.toml" writes into
+// "runs/NAME" relative to the current working directory, so runs never litter the examples
+// tree and rerunning a scene replaces its previous results.
+#pragma once
+
+#include <string>
+
+namespace afemp::core {
+
+struct OutputPaths {
+  std::string directory;                     // everything of one run goes here
+  std::string fields_stem = "particles";     // DIR/STEM.h5 + DIR/STEM.xmf (FieldWriter)
+  std::string history_file = "history.csv";  // DIR/history.csv (HistoryWriter)
+};
+
+// "runs/<stem of scene_path>" (relative, resolved against the cwd when used); the stem is the
+// file name without its last extension: "examples/taylor_bar/mpm.toml" -> "runs/mpm".
+// Two scenes with the same file name share a directory: pass an explicit directory then.
+// An empty or stem-less path gives "runs/run".
+std::string default_output_directory(const std::string& scene_path);
+
+// The default paths for a scene.
+OutputPaths default_output_paths(const std::string& scene_path);
+
+// DIR/STEM.h5, DIR/STEM.xmf and DIR/history.csv.
+std::string fields_h5_path(const OutputPaths& paths);
+std::string fields_xmf_path(const OutputPaths& paths);
+std::string history_path(const OutputPaths& paths);
+
+}  // namespace afemp::core

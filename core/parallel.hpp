@@ -1,0 +1,49 @@
+// OpenMP helpers: thread count and index without OpenMP, and the static partition used by
+// every reduction so that partial sums combine in thread order (same bits for a given
+// thread count).
+#pragma once
+
+#include <cstddef>
+#include <utility>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace afemp::core {
+
+inline int thread_count() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+inline int thread_index() {
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+// Threads actually running the current parallel region.
+inline int team_size() {
+#ifdef _OPENMP
+  return omp_get_num_threads();
+#else
+  return 1;
+#endif
+}
+
+// [begin, end) of thread t among T for n items.
+inline std::pair<std::size_t, std::size_t> static_range(std::size_t n, int t, int T) {
+  const std::size_t tt = static_cast<std::size_t>(t), nt = static_cast<std::size_t>(T);
+  return {n * tt / nt, n * (tt + 1) / nt};
+}
+
+// Bytes a thread's slot is padded to, so partial sums do not share cache lines.
+inline constexpr std::size_t cache_line_doubles = 8;
+
+}  // namespace afemp::core

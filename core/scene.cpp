@@ -1,0 +1,64 @@
+// Scene entry points: enum names for messages and output, and reading a scene file.
+// The checking itself lives in scene_parser.cpp; this file only turns file-system and TOML
+// syntax failures into the same InputError form as every other input problem.
+#include "core/scene.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include "core/scene_parser.hpp"
+
+namespace afemp::core {
+
+const char* to_string(UpdateScheme s) {
+  switch (s) {
+    case UpdateScheme::USF: return "USF";
+    case UpdateScheme::USL: return "USL";
+    case UpdateScheme::MUSL: return "MUSL";
+  }
+  return "?";
+}
+
+const char* to_string(FaceCondition c) {
+  switch (c) {
+    case FaceCondition::free: return "free";
+    case FaceCondition::fixed: return "fixed";
+    case FaceCondition::symmetric: return "symmetric";
+    case FaceCondition::wall: return "wall";
+  }
+  return "?";
+}
+
+const char* to_string(Face f) {
+  switch (f) {
+    case Face::xmin: return "xmin";
+    case Face::xmax: return "xmax";
+    case Face::ymin: return "ymin";
+    case Face::ymax: return "ymax";
+    case Face::zmin: return "zmin";
+    case Face::zmax: return "zmax";
+  }
+  return "?";
+}
+
+Scene read_scene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(SourceLocation{path, 0}, "", "cannot open scene file '" + path + "'");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError(SourceLocation{path, 0}, "", "cannot read scene file '" + path + "'");
+  return parse_scene(text.str(), path);
+}
+
+Scene parse_scene(const std::string& text, const std::string& path) {
+  toml::table root;
+  try {
+    root = toml::parse(std::string_view(text), std::string_view(path));
+  } catch (const toml::parse_error& e) {
+    throw InputError(SourceLocation{path, static_cast<int>(e.source().begin.line)}, "",
+                     "TOML syntax error: " + std::string(e.description()));
+  }
+  return scene_detail::scene_from_toml(root, path);
+}
+
+}  // namespace afemp::core

@@ -1,0 +1,589 @@
+// The scene parser: turns a parsed TOML document into a checked Scene (docs/scene-format.md).
+// Each section is read through a TableReader, so that every key is type-, range- and
+// spelling-checked and every error names the file, the line and the full dotted key.
+#include "core/scene_parser.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+#include <utility>
+
+namespace afemp::core::scene_detail {
+
+// ---------------------------------------------------------------------------------------------
+// Small helpers
+
+std::string format_number(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+std::string join(const std::vector<std::string>& items, bool quoted) {
+  std::string s;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (i > 0) s += ", ";
+    s += quoted ? "\"" + items[i] + "\"" : items[i];
+  }
+  return s;
+}
+
+std::string describe_type(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a float";
+    case toml::node_type::boolean: return "a boolean";
+    case toml::node_type::date: return "a date";
+    case toml::node_type::time: return "a time";
+    case toml::node_type::date_time: return "a date-time";
+    default: return "nothing";
+  }
+}
+
+namespace {
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  for (char& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+int line_of(const toml::source_region& r) { return static_cast<int>(r.begin.line); }
+
+}  // namespace
+
+bool Range::contains(double v) const {
+  if (std::isnan(v)) return false;
+  const bool lo_ok = lo_open ? v > lo : v >= lo;
+  const bool hi_ok = hi_open ? v < hi : v <= hi;
+  return lo_ok && hi_ok;
+}
+
+std::string Range::describe() const {
+  const bool has_lo = std::isfinite(lo);
+  const bool has_hi = std::isfinite(hi);
+  if (!has_lo && !has_hi) return "any finite number";
+  if (has_lo && !has_hi) return std::string("value ") + (lo_open ? "> " : ">= ") + format_number(lo);
+  if (!has_lo) return std::string("value ") + (hi_open ? "< " : "<= ") + format_number(hi);
+  return format_number(lo) + (lo_open ? " < " : " <= ") + "value" + (hi_open ? " < " : " <= ") +
+         format_number(hi);
+}
+
+// ---------------------------------------------------------------------------------------------
+// TableReader
+
+TableReader::TableReader(const toml::table& table, std::string prefix, std::string file)
+    : table_(table), prefix_(std::move(prefix)), file_(std::move(file)) {}
+
+void TableReader::known(std::initializer_list<std::string_view> keys) {
+  for (std::string_view k : keys)
+    if (std::find(known_.begin(), known_.end(), k) == known_.end()) known_.emplace_back(k);
+}
+
+void TableReader::check_unknown() const {
+  // toml++ iterates keys alphabetically; report the first unknown key in file order instead,
+  // which is the one a user reading the file top-down expects.
+  const toml::key* first = nullptr;
+  for (auto&& [k, v] : table_) {
+    (void)v;
+    if (std::find(known_.begin(), known_.end(), k.str()) != known_.end()) continue;
+    if (!first || k.source().begin.line < first->source().begin.line) first = &k;
+  }
+  if (!first) return;
+  const int line = first->source().begin.line > 0 ? line_of(first->source()) : where().line;
+  throw InputError(SourceLocation{file_, line}, dotted(first->str()),
+                   "unknown key; allowed keys here: " + join(known_, false));
+}
+
+bool TableReader::has(std::string_view key) const { return table_.get(key) != nullptr; }
+
+std::string TableReader::dotted(std::string_view key) const {
+  return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key);
+}
+
+SourceLocation TableReader::where() const { return {file_, line_of(table_.source())}; }
+
+SourceLocation TableReader::where(std::string_view key) const {
+  if (const toml::node* n = table_.get(key); n && n->source().begin.line > 0)
+    return {file_, line_of(n->source())};
+  return where();
+}
+
+void TableReader::fail(std::string_view key, const std::string& message) const {
+  throw InputError(where(key), dotted(key), message);
+}
+
+void TableReader::type_error(std::string_view key, const toml::node& node,
+                             std::string_view expected) const {
+  fail(key, "expected " + std::string(expected) + ", got " + describe_type(node));
+}
+
+const toml::node* TableReader::lookup(std::string_view key) {
+  known({key});
+  return table_.get(key);
+}
+
+std::optional<double> TableReader::optional_number(std::string_view key, const Range& range) {
+  const toml::node* n = lookup(key);
+  if (!n) return std::nullopt;
+  double v = 0.0;
+  if (const auto* i = n->as_integer())
+    v = static_cast<double>(i->get());
+  else if (const auto* f = n->as_floating_point())
+    v = f->get();
+  else
+    type_error(key, *n, "a number");
+  if (!std::isfinite(v) || !range.contains(v))
+    fail(key, "value " + format_number(v) + " is out of range; allowed: " + range.describe());
+  return v;
+}
+
+double TableReader::required_number(std::string_view key, const Range& range) {
+  const auto v = optional_number(key, range);
+  if (!v) fail(key, "required key is missing (a number, " + range.describe() + ")");
+  return *v;
+}
+
+double TableReader::number(std::string_view key, double fallback, const Range& range) {
+  return optional_number(key, range).value_or(fallback);
+}
+
+long TableReader::integer(std::string_view key, long fallback, long lo, long hi) {
+  const toml::node* n = lookup(key);
+  if (!n) return fallback;
+  const auto* i = n->as_integer();
+  if (!i) type_error(key, *n, "an integer");
+  const std::int64_t v = i->get();
+  if (v < lo || v > hi) {
+    std::string allowed = hi == std::numeric_limits<long>::max()
+                              ? "value >= " + std::to_string(lo)
+                              : std::to_string(lo) + " <= value <= " + std::to_string(hi);
+    fail(key, "value " + std::to_string(v) + " is out of range; allowed: " + allowed);
+  }
+  return static_cast<long>(v);
+}
+
+bool TableReader::boolean(std::string_view key, bool fallback) {
+  const toml::node* n = lookup(key);
+  if (!n) return fallback;
+  const auto* b = n->as_boolean();
+  if (!b) type_error(key, *n, "a boolean (true or false)");
+  return b->get();
+}
+
+std::string TableReader::string(std::string_view key, const std::string& fallback) {
+  const toml::node* n = lookup(key);
+  if (!n) return fallback;
+  const auto* s = n->as_string();
+  if (!s) type_error(key, *n, "a string");
+  return s->get();
+}
+
+std::string TableReader::required_string(std::string_view key) {
+  if (!has(key)) {
+    known({key});
+    fail(key, "required key is missing (a string)");
+  }
+  return string(key, "");
+}
+
+Vec3 TableReader::as_vec3(std::string_view key, const toml::node& node) const {
+  const auto* a = node.as_array();
+  if (!a) type_error(key, node, "an array of 3 numbers");
+  if (a->size() != 3)
+    fail(key, "expected an array of 3 numbers, got an array of " + std::to_string(a->size()));
+  Vec3 v;
+  for (int i = 0; i < 3; ++i) {
+    const toml::node& e = *a->get(static_cast<std::size_t>(i));
+    if (const auto* ii = e.as_integer())
+      v[i] = static_cast<double>(ii->get());
+    else if (const auto* f = e.as_floating_point())
+      v[i] = f->get();
+    else
+      fail(key, "expected an array of 3 numbers; element " + std::to_string(i) + " is " +
+                    describe_type(e));
+    if (!std::isfinite(v[i]))
+      fail(key, "element " + std::to_string(i) + " is not a finite number");
+  }
+  return v;
+}
+
+std::optional<Vec3> TableReader::optional_vec3(std::string_view key) {
+  const toml::node* n = lookup(key);
+  if (!n) return std::nullopt;
+  return as_vec3(key, *n);
+}
+
+Vec3 TableReader::required_vec3(std::string_view key) {
+  const auto v = optional_vec3(key);
+  if (!v) fail(key, "required key is missing (an array of 3 numbers)");
+  return *v;
+}
+
+Vec3 TableReader::vec3(std::string_view key, const Vec3& fallback) {
+  return optional_vec3(key).value_or(fallback);
+}
+
+std::size_t TableReader::choice(std::string_view key, std::initializer_list<std::string_view> allowed,
+                                std::optional<std::size_t> fallback, bool ignore_case) {
+  std::vector<std::string> names(allowed.begin(), allowed.end());
+  const toml::node* n = lookup(key);
+  if (!n) {
+    if (!fallback) fail(key, "required key is missing; allowed values: " + join(names, true));
+    return *fallback;
+  }
+  const auto* s = n->as_string();
+  if (!s) fail(key, "expected a string, got " + describe_type(*n) + "; allowed values: " +
+                        join(names, true));
+  const std::string& value = s->get();
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (ignore_case ? lower(value) == lower(names[i]) : value == names[i]) return i;
+  fail(key, "unknown value \"" + value + "\"; allowed values: " + join(names, true) +
+                (ignore_case ? " (case-insensitive)" : ""));
+}
+
+const toml::table* TableReader::optional_table(std::string_view key) {
+  const toml::node* n = lookup(key);
+  if (!n) return nullptr;
+  const auto* t = n->as_table();
+  if (!t) type_error(key, *n, "a table");
+  return t;
+}
+
+const toml::table& TableReader::required_table(std::string_view key) {
+  const toml::table* t = optional_table(key);
+  if (!t) fail(key, "required table is missing");
+  return *t;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sections
+
+namespace {
+
+void read_run(TableReader& r, RunSettings& run) {
+  r.known({"title", "end_time", "time_step_factor", "time_step", "max_steps", "output_every",
+           "history_every", "gravity"});
+  r.check_unknown();
+  run.title = r.string("title", "");
+  run.end_time = r.required_number("end_time", Range::positive());
+  run.time_step_factor = r.number("time_step_factor", 0.3, {0.0, 1.0, true, false});
+  run.fixed_time_step = r.optional_number("time_step", Range::positive()).value_or(0.0);
+  run.max_steps = r.integer("max_steps", 0, 0, std::numeric_limits<long>::max());
+  run.output_every = r.number("output_every", 0.0, Range::non_negative());
+  run.history_every = r.integer("history_every", 10, 1, std::numeric_limits<long>::max());
+  run.gravity = r.vec3("gravity", Vec3{});
+}
+
+void read_grid(TableReader& r, GridSettings& grid) {
+  r.known({"cell", "min", "max", "boundary"});
+  r.check_unknown();
+  grid.cell = r.required_number("cell", Range::positive());
+  grid.min = r.required_vec3("min");
+  grid.max = r.required_vec3("max");
+  for (int a = 0; a < 3; ++a)
+    if (!(grid.max[a] > grid.min[a]))
+      r.fail("max", "max must exceed min in every component; component " + std::to_string(a) +
+                        ": max " + format_number(grid.max[a]) + " <= min " +
+                        format_number(grid.min[a]));
+  if (const toml::table* b = r.optional_table("boundary")) {
+    TableReader br(*b, r.dotted("boundary"), r.file());
+    static constexpr std::string_view face_names[6] = {"xmin", "xmax", "ymin",
+                                                       "ymax", "zmin", "zmax"};
+    br.known({"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"});
+    br.check_unknown();
+    for (int f = 0; f < 6; ++f)
+      grid.faces[static_cast<std::size_t>(f)] =
+          static_cast<FaceCondition>(br.choice(face_names[f], {"free", "fixed", "symmetric", "wall"}, 0));
+  }
+}
+
+void read_mpm(TableReader& r, MpmSettings& mpm) {
+  r.known({"scheme", "flip", "jaumann"});
+  r.check_unknown();
+  mpm.scheme = static_cast<UpdateScheme>(r.choice("scheme", {"USF", "USL", "MUSL"}, 2, true));
+  mpm.flip = r.number("flip", 1.0, Range::closed(0.0, 1.0));
+  mpm.jaumann = r.boolean("jaumann", true);
+}
+
+StrengthModel read_strength(TableReader& r, double youngs_modulus) {
+  r.known({"model"});
+  const std::size_t model = r.choice("model", {"elastic", "j2", "johnson-cook"}, std::nullopt);
+  if (model == 0) {
+    r.check_unknown();
+    return Elastic{};
+  }
+  if (model == 1) {
+    r.known({"yield", "hardening", "tangent_modulus"});
+    r.check_unknown();
+    J2Plasticity j2;
+    j2.yield_stress = r.required_number("yield", Range::positive());
+    if (r.has("hardening") && r.has("tangent_modulus"))
+      r.fail("tangent_modulus",
+             "give either hardening (plastic modulus H) or tangent_modulus (Et), not both");
+    j2.hardening = r.number("hardening", 0.0, Range::non_negative());
+    // Et is the slope of the uniaxial stress-strain curve after yield; the radial return
+    // wants the plastic modulus, H = E Et / (E - Et).
+    if (const auto et = r.optional_number("tangent_modulus", {0.0, youngs_modulus, false, true}))
+      j2.hardening = youngs_modulus * *et / (youngs_modulus - *et);
+    return j2;
+  }
+  r.known({"A", "B", "n", "C", "m", "reference_strain_rate", "room_temperature",
+           "melt_temperature"});
+  r.check_unknown();
+  JohnsonCook jc;
+  jc.A = r.required_number("A", Range::non_negative());
+  jc.B = r.required_number("B", Range::non_negative());
+  jc.n = r.required_number("n", Range::positive());
+  jc.C = r.number("C", 0.0, Range::non_negative());
+  jc.m = r.number("m", 0.0, Range::non_negative());
+  jc.reference_strain_rate = r.number("reference_strain_rate", 1.0, Range::positive());
+  jc.room_temperature = r.number("room_temperature", 293.0, Range::non_negative());
+  if (jc.m > 0.0) {
+    // Thermal softening divides by (T_melt - T_room): it needs a melt temperature above room.
+    if (!r.has("melt_temperature"))
+      r.fail("melt_temperature", "required when m > 0 (thermal softening); allowed: value > " +
+                                     format_number(jc.room_temperature) + " (room_temperature)");
+    jc.melt_temperature =
+        r.required_number("melt_temperature", {jc.room_temperature, Range::positive().hi, true, false});
+  } else {
+    jc.melt_temperature = r.number("melt_temperature", 0.0, Range::non_negative());
+  }
+  return jc;
+}
+
+EquationOfState read_eos(TableReader& r, double density, double bulk_modulus) {
+  r.known({"model"});
+  const std::size_t model =
+      r.choice("model", {"linear", "mie-gruneisen", "linear-polynomial"}, std::nullopt);
+  if (model == 0) {
+    r.known({"bulk_modulus"});
+    r.check_unknown();
+    return LinearEos{r.number("bulk_modulus", bulk_modulus, Range::positive())};
+  }
+  if (model == 1) {
+    r.known({"c0", "s", "gamma0"});
+    r.check_unknown();
+    MieGruneisen mg;
+    mg.rho0 = density;
+    mg.c0 = r.required_number("c0", Range::positive());
+    mg.s = r.required_number("s", Range::non_negative());
+    mg.gamma0 = r.required_number("gamma0", Range::non_negative());
+    return mg;
+  }
+  r.known({"C0", "C1", "C2", "C3", "C4", "C5", "C6"});
+  r.check_unknown();
+  LinearPolynomialEos lp;
+  lp.rho0 = density;
+  static constexpr std::string_view names[7] = {"C0", "C1", "C2", "C3", "C4", "C5", "C6"};
+  for (int i = 0; i < 7; ++i) lp.c[i] = r.number(names[i], 0.0, Range::any());
+  return lp;
+}
+
+Material read_material(TableReader& r, const std::string& name) {
+  r.known({"density", "E", "nu", "strength", "eos", "specific_heat", "taylor_quinney",
+           "temperature"});
+  r.check_unknown();
+  Material m;
+  m.name = name;
+  m.density = r.required_number("density", Range::positive());
+  m.youngs_modulus = r.required_number("E", Range::positive());
+  m.poisson_ratio = r.required_number("nu", {0.0, 0.5, false, true});
+  if (const toml::table* t = r.optional_table("strength")) {
+    TableReader sr(*t, r.dotted("strength"), r.file());
+    m.strength = read_strength(sr, m.youngs_modulus);
+  }
+  if (const toml::table* t = r.optional_table("eos")) {
+    TableReader er(*t, r.dotted("eos"), r.file());
+    m.eos = read_eos(er, m.density, m.bulk_modulus());
+  }
+  m.thermal.specific_heat = r.number("specific_heat", 0.0, Range::non_negative());
+  m.thermal.taylor_quinney = r.number("taylor_quinney", 0.9, Range::closed(0.0, 1.0));
+  m.thermal.initial_temperature = r.number("temperature", 293.0, Range::non_negative());
+  try {
+    m.validate();
+  } catch (const std::invalid_argument& e) {
+    throw InputError(r.where(), r.prefix(), e.what());
+  }
+  return m;
+}
+
+Shape read_shape(TableReader& r, const std::string& scene_path) {
+  r.known({"box", "cylinder", "sphere", "points"});
+  r.check_unknown();
+  std::vector<std::string> given;
+  for (std::string_view k : {"box", "cylinder", "sphere", "points"})
+    if (r.has(k)) given.emplace_back(k);
+  if (given.size() != 1)
+    throw InputError(r.where(), r.prefix(),
+                     "give exactly one of box, cylinder, sphere, points (got " +
+                         (given.empty() ? std::string("none") : join(given, false)) + ")");
+  const std::string& kind = given.front();
+  TableReader s(r.required_table(kind), r.dotted(kind), r.file());
+  if (kind == "box") {
+    s.known({"min", "max"});
+    s.check_unknown();
+    BoxShape box{s.required_vec3("min"), s.required_vec3("max")};
+    for (int a = 0; a < 3; ++a)
+      if (!(box.max[a] > box.min[a]))
+        s.fail("max", "max must exceed min in every component (component " + std::to_string(a) +
+                          ")");
+    return box;
+  }
+  if (kind == "cylinder") {
+    s.known({"base", "axis", "radius", "length"});
+    s.check_unknown();
+    CylinderShape c;
+    c.base = s.required_vec3("base");
+    const Vec3 axis = s.vec3("axis", Vec3{0, 0, 1});
+    const double len = norm(axis);
+    if (!(len > 0.0)) s.fail("axis", "the axis must be a non-zero vector");
+    c.axis = (1.0 / len) * axis;
+    c.radius = s.required_number("radius", Range::positive());
+    c.length = s.required_number("length", Range::positive());
+    return c;
+  }
+  if (kind == "sphere") {
+    s.known({"centre", "radius"});
+    s.check_unknown();
+    SphereShape sp;
+    sp.centre = s.required_vec3("centre");
+    sp.radius = s.required_number("radius", Range::positive());
+    return sp;
+  }
+  s.known({"file"});
+  s.check_unknown();
+  const std::string file = s.required_string("file");
+  if (file.empty()) s.fail("file", "the points file name is empty");
+  // Relative to the scene file, so that a scene directory can be moved as a whole.
+  std::filesystem::path p(file);
+  if (p.is_relative()) p = std::filesystem::path(scene_path).parent_path() / p;
+  return PointListShape{p.lexically_normal().string()};
+}
+
+BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
+                   const std::vector<Material>& material_list, const std::string& scene_path) {
+  r.known({"name", "material", "shape", "particles_per_cell", "velocity", "temperature"});
+  // Name the body in messages as soon as its name is readable, even for an unknown key.
+  if (const toml::node* n = r.table().get("name"); n && n->is_string() && !n->as_string()->get().empty())
+    r.set_prefix("bodies." + n->as_string()->get());
+  r.check_unknown();
+  BodySpec b;
+  b.where = r.where();
+  b.name = r.required_string("name");
+  if (b.name.empty()) r.fail("name", "a body name must not be empty");
+  r.set_prefix("bodies." + b.name);
+  const std::string material = r.required_string("material");
+  const auto it = materials.find(material);
+  if (it == materials.end()) {
+    std::vector<std::string> defined;
+    for (const Material& m : material_list) defined.push_back(m.name);
+    r.fail("material", "unknown material \"" + material + "\"; defined materials: " +
+                           (defined.empty() ? std::string("(none)") : join(defined, true)));
+  }
+  b.material = it->second;
+  TableReader sr(r.required_table("shape"), r.dotted("shape"), r.file());
+  b.shape = read_shape(sr, scene_path);
+  b.particles_per_cell = static_cast<int>(r.integer("particles_per_cell", 2, 1, 8));
+  b.velocity = r.vec3("velocity", Vec3{});
+  b.temperature = r.optional_number("temperature", Range::non_negative());
+  return b;
+}
+
+void read_reference(TableReader& r, Scene& scene) {
+  r.known({"taylor"});
+  r.check_unknown();
+  if (const toml::table* t = r.optional_table("taylor")) {
+    TableReader tr(*t, r.dotted("taylor"), r.file());
+    tr.known({"L", "D", "W", "tolerance"});
+    tr.check_unknown();
+    TaylorReference ref;
+    ref.length = tr.required_number("L", Range::positive());
+    ref.impact_diameter = tr.required_number("D", Range::positive());
+    ref.bulge_diameter = tr.required_number("W", Range::positive());
+    ref.tolerance = tr.number("tolerance", 0.0, Range::non_negative());
+    scene.taylor_reference = ref;
+  }
+}
+
+}  // namespace
+
+Scene scene_from_toml(const toml::table& root, const std::string& path) {
+  Scene scene;
+  scene.path = path;
+  TableReader r(root, "", path);
+  r.known({"run", "grid", "mpm", "materials", "bodies", "reference"});
+  r.check_unknown();
+
+  {
+    TableReader run(r.required_table("run"), "run", path);
+    read_run(run, scene.run);
+  }
+  {
+    TableReader grid(r.required_table("grid"), "grid", path);
+    read_grid(grid, scene.mpm.grid);
+  }
+  if (const toml::table* t = r.optional_table("mpm")) {
+    TableReader mpm(*t, "mpm", path);
+    read_mpm(mpm, scene.mpm);
+  }
+
+  // Materials are numbered in file order; toml++ keeps keys sorted, so sort by position.
+  const toml::table& mats = r.required_table("materials");
+  std::vector<std::pair<const toml::key*, const toml::node*>> entries;
+  for (auto&& [k, v] : mats) entries.emplace_back(&k, &v);
+  std::stable_sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
+    const auto& sa = a.second->source().begin;
+    const auto& sb = b.second->source().begin;
+    return sa.line != sb.line ? sa.line < sb.line : sa.column < sb.column;
+  });
+  std::map<std::string, int> material_index;
+  for (const auto& [k, v] : entries) {
+    const std::string key = "materials." + std::string(k->str());
+    const toml::table* t = v->as_table();
+    if (!t)
+      throw InputError(SourceLocation{path, line_of(v->source())}, key,
+                       "expected a table [materials.NAME], got " + describe_type(*v));
+    TableReader mr(*t, key, path);
+    material_index[std::string(k->str())] = static_cast<int>(scene.materials.size());
+    scene.materials.push_back(read_material(mr, std::string(k->str())));
+  }
+  if (scene.materials.empty())
+    throw InputError(r.where("materials"), "materials", "define at least one material");
+
+  const toml::node* bodies_node = r.has("bodies") ? r.table().get("bodies") : nullptr;
+  if (!bodies_node)
+    throw InputError(SourceLocation{path, 0}, "bodies",
+                     "at least one body is required ([[bodies]] tables)");
+  const toml::array* bodies = bodies_node->as_array();
+  if (bodies && bodies->empty())
+    throw InputError(r.where("bodies"), "bodies", "at least one body is required");
+  if (!bodies || !bodies->is_array_of_tables())
+    throw InputError(r.where("bodies"), "bodies",
+                     "expected an array of tables ([[bodies]]), got " + describe_type(*bodies_node));
+  for (std::size_t i = 0; i < bodies->size(); ++i) {
+    const toml::table& t = *bodies->get(i)->as_table();
+    TableReader br(t, "bodies[" + std::to_string(i) + "]", path);
+    BodySpec b = read_body(br, material_index, scene.materials, path);
+    for (const BodySpec& other : scene.bodies)
+      if (other.name == b.name)
+        br.fail("name", "duplicate body name \"" + b.name + "\" (first defined at line " +
+                            std::to_string(other.where.line) + ")");
+    scene.bodies.push_back(std::move(b));
+  }
+
+  if (const toml::table* t = r.optional_table("reference")) {
+    TableReader ref(*t, "reference", path);
+    read_reference(ref, scene);
+  }
+  return scene;
+}
+
+}  // namespace afemp::core::scene_detail

@@ -1,0 +1,134 @@
+// Grid momentum update and boundary conditions (seed 001 eq 2-32): v = p / m, a = f / m,
+// v^{k+1} = v + a dt, with the components a face constrains set to zero in both v and a
+// (fixed: all three; symmetric: the normal one), as MPM3D does (p = 0, f = 0 there). A wall
+// face constrains the normal component of v^{k+1} only where it points into the wall, so
+// material leaves it freely: a unilateral, frictionless rigid wall on the grid.
+#include "core/parallel.hpp"
+#include "mpm/mpm_solver.hpp"
+
+namespace afemp::mpm {
+
+namespace {
+
+// The velocity components constrained at a node (bit a: component a): always, and only
+// when the velocity points out of the domain through a wall face.
+struct NodeConstraint {
+  unsigned always = 0;
+  unsigned wall_low = 0;   // walls at a min face: constrain if v_a < 0
+  unsigned wall_high = 0;  // walls at a max face: constrain if v_a > 0
+  bool any() const { return (always | wall_low | wall_high) != 0; }
+  // The mask to apply for the (unconstrained) updated velocity v.
+  unsigned mask_for(const Vec3& v) const {
+    unsigned m = always;
+    for (int a = 0; a < 3; ++a) {
+      if ((wall_low >> a) & 1u && v[a] < 0.0) m |= 1u << a;
+      if ((wall_high >> a) & 1u && v[a] > 0.0) m |= 1u << a;
+    }
+    return m;
+  }
+};
+
+class FaceConstraints {
+ public:
+  explicit FaceConstraints(const core::BackgroundGrid& g) : last_(g.nodes()) {
+    const auto& f = g.settings().faces;
+    for (int a = 0; a < 3; ++a) {
+      lo_[a] = f[static_cast<std::size_t>(2 * a)];
+      hi_[a] = f[static_cast<std::size_t>(2 * a + 1)];
+      last_[static_cast<std::size_t>(a)] -= 1;
+    }
+  }
+  NodeConstraint operator()(const std::array<int, 3>& node) const {
+    NodeConstraint c;
+    for (int a = 0; a < 3; ++a) {
+      if (node[static_cast<std::size_t>(a)] == 0) add(c, lo_[a], a, false);
+      if (node[static_cast<std::size_t>(a)] == last_[static_cast<std::size_t>(a)])
+        add(c, hi_[a], a, true);
+    }
+    return c;
+  }
+
+ private:
+  static void add(NodeConstraint& c, core::FaceCondition f, int axis, bool high) {
+    switch (f) {
+      case core::FaceCondition::fixed: c.always |= 7u; break;
+      case core::FaceCondition::symmetric: c.always |= 1u << axis; break;
+      case core::FaceCondition::wall: (high ? c.wall_high : c.wall_low) |= 1u << axis; break;
+      case core::FaceCondition::free: break;
+    }
+  }
+  core::FaceCondition lo_[3], hi_[3];
+  std::array<int, 3> last_;
+};
+
+inline void constrain(Vec3& v, unsigned mask) {
+  if (mask & 1u) v.x = 0.0;
+  if (mask & 2u) v.y = 0.0;
+  if (mask & 4u) v.z = 0.0;
+}
+
+}  // namespace
+
+void MpmSolver::apply_velocity_conditions(std::vector<Vec3>& field, bool divide_by_mass) {
+  core::BackgroundGrid& g = grid_;
+  const FaceConstraints constraints(g);
+#pragma omp parallel
+  g.for_each_slot([&](std::size_t s, const std::array<int, 3>& node) {
+    const double m = g.mass[s];
+    if (m <= 0.0) {
+      field[s] = {};
+      return;
+    }
+    if (divide_by_mass) field[s] *= 1.0 / m;
+    const NodeConstraint c = constraints(node);
+    if (c.any()) constrain(field[s], c.mask_for(field[s]));
+  });
+}
+
+void MpmSolver::grid_velocity() {
+  core::BackgroundGrid& g = grid_;
+  const std::size_t slots = g.slot_count();
+#pragma omp parallel for schedule(static)
+  for (std::size_t s = 0; s < slots; ++s) g.velocity[s] = g.momentum[s];
+  apply_velocity_conditions(g.velocity, true);
+}
+
+void MpmSolver::grid_momentum_update(double dt) {
+  core::BackgroundGrid& g = grid_;
+  const FaceConstraints constraints(g);
+  const Vec3 gravity = scene_.run.gravity;
+  const bool body_force = plan_.gravity;
+  const int nt = core::thread_count();
+  thread_sums_.assign(static_cast<std::size_t>(nt) * core::cache_line_doubles, 0.0);
+#pragma omp parallel num_threads(nt)
+  {
+    double work = 0.0;  // body-force work f_ext . (v + v_new) / 2 dt
+    g.for_each_slot([&](std::size_t s, const std::array<int, 3>& node) {
+      const double m = g.mass[s];
+      if (m <= 0.0) {
+        g.velocity[s] = {};
+        g.velocity_new[s] = {};
+        return;
+      }
+      const double inv_m = 1.0 / m;
+      Vec3 v = inv_m * g.momentum[s];
+      Vec3 a = inv_m * g.force[s];
+      const NodeConstraint c = constraints(node);
+      constrain(v, c.always);
+      constrain(a, c.always);
+      Vec3 v_new = v + dt * a;
+      // A wall stops the normal motion into it by an impulse: v_new loses that component
+      // while v keeps it, so the FLIP increment v_new - v hands the impulse to the particles
+      // (a perfectly inelastic node-wall contact: it can remove energy, never add it).
+      if (c.any()) constrain(v_new, c.mask_for(v_new) & ~c.always);
+      g.velocity[s] = v;
+      g.velocity_new[s] = v_new;
+      if (body_force) work += 0.5 * dt * m * core::dot(gravity, v + v_new);
+    });
+    thread_sums_[static_cast<std::size_t>(core::thread_index()) * core::cache_line_doubles] = work;
+  }
+  for (int t = 0; t < nt; ++t)
+    external_work_ += thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles];
+}
+
+}  // namespace afemp::mpm

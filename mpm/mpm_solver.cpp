@@ -1,0 +1,203 @@
+// The MPM step as a chain of stages (seed 001 §2.2.4): the plan decides which run and in
+// what order; this file holds the loop over the plan, the time step and the bookkeeping.
+#include "mpm/mpm_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "core/parallel.hpp"
+
+namespace afemp::mpm {
+
+MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
+    : scene_(scene),
+      plan_(build_step_plan(scene)),
+      particles_(std::move(particles)),
+      grid_(scene.mpm.grid) {
+  for (const auto& m : scene.materials) materials_.push_back(&m);
+  grid_.enable_remap_field(scene.mpm.scheme == core::UpdateScheme::MUSL);
+  stage_counts_.assign(plan_.stages.size(), 0);
+  reorder_particles();
+  signal_speed_ = max_signal_speed();
+}
+
+double MpmSolver::stable_time_step() const {
+  if (scene_.run.fixed_time_step > 0.0) return scene_.run.fixed_time_step;
+  return scene_.run.time_step_factor * grid_.cell() / signal_speed_;
+}
+
+void MpmSolver::step(double dt) {
+  if (steps_ > 0 && steps_ % reorder_interval == 0) reorder_particles();
+  for (std::size_t i = 0; i < plan_.stages.size(); ++i) {
+    switch (plan_.stages[i].kind) {
+      case StageKind::bin_particles:
+        bin_particles();
+        break;
+      case StageKind::p2g_mass_momentum:
+        particle_to_grid<true, false, false>();
+        break;
+      case StageKind::p2g_force:
+        if (plan_.gravity)
+          particle_to_grid<false, true, true>();
+        else
+          particle_to_grid<false, true, false>();
+        break;
+      case StageKind::p2g_mass_momentum_force:
+        if (plan_.gravity)
+          particle_to_grid<true, true, true>();
+        else
+          particle_to_grid<true, true, false>();
+        break;
+      case StageKind::grid_velocity:
+        grid_velocity();
+        break;
+      case StageKind::grid_momentum_update:
+        grid_momentum_update(dt);
+        break;
+      case StageKind::g2p_velocity_position:
+        grid_to_particle(dt, true);
+        break;
+      case StageKind::g2p_velocity:
+        grid_to_particle(dt, false);
+        break;
+      case StageKind::p2g_remap:
+        remap_to_grid();
+        break;
+      case StageKind::strain_stress_update:
+        strain_stress_update(dt);
+        break;
+    }
+    ++stage_counts_[i];
+  }
+  time_ += dt;
+  ++steps_;
+}
+
+double MpmSolver::max_signal_speed() const {
+  const Particles& p = particles_;
+  double smax = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : smax)
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const core::Material& m = *materials_[static_cast<std::size_t>(p.material[i])];
+    core::PointState st{p.stress[i], p.plastic_strain[i], p.temperature[i], p.energy[i],
+                        p.mass[i] / p.volume[i]};
+    smax = std::max(smax, core::wave_speed(m, st) + core::norm(p.velocity[i]));
+  }
+  return smax;
+}
+
+Energies MpmSolver::energies() const {
+  const Particles& p = particles_;
+  const std::size_t nb = scene_.bodies.size();
+  const std::size_t width = 2 + 4 * nb;  // kinetic, internal, then mass + momentum per body
+  const int nt = core::thread_count();
+  std::vector<double> partial(width * static_cast<std::size_t>(nt), 0.0);
+#pragma omp parallel num_threads(nt)
+  {
+    const int t = core::thread_index();
+    const auto [b, e] = core::static_range(p.size(), t, core::team_size());
+    double* acc = partial.data() + width * static_cast<std::size_t>(t);
+    for (std::size_t i = b; i < e; ++i) {
+      const Vec3& v = p.velocity[i];
+      const double m = p.mass[i];
+      acc[0] += 0.5 * m * core::dot(v, v);
+      acc[1] += m * p.energy[i];
+      double* body = acc + 2 + 4 * static_cast<std::size_t>(p.body[i]);
+      body[0] += m;
+      body[1] += m * v.x;
+      body[2] += m * v.y;
+      body[3] += m * v.z;
+    }
+  }
+  Energies out;
+  out.bodies.resize(nb);
+  for (int t = 0; t < nt; ++t) {
+    const double* acc = partial.data() + width * static_cast<std::size_t>(t);
+    out.kinetic += acc[0];
+    out.internal += acc[1];
+    for (std::size_t k = 0; k < nb; ++k) {
+      out.bodies[k].mass += acc[2 + 4 * k];
+      out.bodies[k].momentum += Vec3{acc[3 + 4 * k], acc[4 + 4 * k], acc[5 + 4 * k]};
+    }
+  }
+  out.plastic = plastic_work_;
+  out.external_work = external_work_;
+  return out;
+}
+
+void MpmSolver::reorder_particles() {
+  // Material batches for the constitutive update; cell order inside a batch keeps the
+  // grid accesses of neighbouring particles close in memory.
+  Particles& p = particles_;
+  const std::size_t n = p.size();
+  std::vector<std::int64_t> key(n);
+  Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto c = grid_.cell_of(p.position[i]);
+    key[i] = grid_.inside(c) ? grid_.linear_cell(c) : 0;
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], p.position[i][a]);
+      hi[a] = std::max(hi[a], p.position[i][a]);
+    }
+  }
+  std::vector<std::int32_t> perm(n);
+  std::iota(perm.begin(), perm.end(), 0);
+  std::stable_sort(perm.begin(), perm.end(), [&](std::int32_t a, std::int32_t b) {
+    const auto ua = static_cast<std::size_t>(a), ub = static_cast<std::size_t>(b);
+    if (p.material[ua] != p.material[ub]) return p.material[ua] < p.material[ub];
+    return key[ua] < key[ub];
+  });
+  p.permute(perm);
+
+  batches_.clear();
+  for (std::size_t i = 0; i < n;) {
+    std::size_t j = i;
+    while (j < n && p.material[j] == p.material[i]) ++j;
+    batches_.push_back({p.material[i], i, j});
+    i = j;
+  }
+  // Colour layers run along the axis the material spans most, for the most parallel work.
+  sweep_axis_ = 0;
+  for (int a = 1; a < 3; ++a)
+    if (hi[a] - lo[a] > hi[sweep_axis_] - lo[sweep_axis_]) sweep_axis_ = a;
+}
+
+void MpmSolver::raise_if_bad(const char* field) const {
+  std::int64_t bad = -1;
+  for (std::int64_t b : thread_bad_)
+    if (b >= 0 && (bad < 0 || b < bad)) bad = b;
+  if (bad < 0) return;
+  const auto i = static_cast<std::size_t>(bad);
+  const Particles& p = particles_;
+  std::ostringstream who;
+  who << "particle " << p.id[i] << " of body '"
+      << scene_.bodies[static_cast<std::size_t>(p.body[i])].name << "' at (" << p.position[i].x
+      << ", " << p.position[i].y << ", " << p.position[i].z << ")";
+  std::ostringstream what;
+  const std::string f = field;
+  if (f == "position" && std::isfinite(p.position[i].x) && std::isfinite(p.position[i].y) &&
+      std::isfinite(p.position[i].z))
+    what << "left the grid domain (the run stops; enlarge [grid] min/max)";
+  else
+    what << "became NaN or Inf (velocity (" << p.velocity[i].x << ", " << p.velocity[i].y << ", "
+         << p.velocity[i].z << "), pressure " << core::pressure(p.stress[i])
+         << "); try a smaller time_step_factor";
+  throw core::SimulationError(steps_, time_, who.str(), f, what.str());
+}
+
+std::size_t MpmSolver::active_cells() const {
+  std::vector<std::int64_t> cells = cell_;
+  std::sort(cells.begin(), cells.end());
+  return static_cast<std::size_t>(std::unique(cells.begin(), cells.end()) - cells.begin());
+}
+
+std::size_t MpmSolver::bytes() const {
+  return particles_.bytes() + grid_.bytes() + cell_.capacity() * sizeof(std::int64_t) +
+         (layer_.capacity() + layer_order_.capacity()) * sizeof(std::int32_t) +
+         layer_offsets_.capacity() * sizeof(std::int64_t);
+}
+
+}  // namespace afemp::mpm

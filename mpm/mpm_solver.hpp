@@ -1,0 +1,116 @@
+// The explicit MPM solver: particles on the background grid, advanced one step at a time by
+// the stages of its StepPlan (seed 001 §2.2.4, seed 000 §2.1 for USF / USL / MUSL).
+// The stage kernels live in files named after them: particle_binning.cpp,
+// particle_to_grid.cpp, grid_momentum_update.cpp, grid_to_particle.cpp, stress_update.cpp.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/grid/background_grid.hpp"
+#include "core/scene.hpp"
+#include "mpm/particles.hpp"
+#include "mpm/step_plan.hpp"
+
+namespace afemp::mpm {
+
+struct BodySums {
+  double mass = 0.0;
+  Vec3 momentum;
+};
+
+struct Energies {
+  double kinetic = 0.0;
+  double internal = 0.0;       // sum m e (elastic + plastic + EOS work)
+  double plastic = 0.0;        // accumulated plastic work
+  double external_work = 0.0;  // accumulated work of body forces
+  std::vector<BodySums> bodies;
+  double total() const { return kinetic + internal; }
+};
+
+// A contiguous range of particles of one material.
+struct MaterialBatch {
+  int material;
+  std::size_t begin, end;
+};
+
+class MpmSolver {
+ public:
+  // Particles of one material are made contiguous here (the order changes; ids do not).
+  MpmSolver(const core::Scene& scene, Particles particles);
+
+  const StepPlan& plan() const { return plan_; }
+  const Particles& particles() const { return particles_; }
+  const core::BackgroundGrid& grid() const { return grid_; }
+  long step_count() const { return steps_; }
+  double time() const { return time_; }
+
+  // Stable step: factor * h / max_p (c_p + |v_p|), or the scene's fixed step.
+  double stable_time_step() const;
+  // Advances by dt running each stage of the plan once. Throws core::SimulationError naming
+  // the step, particle and field when a value becomes NaN/Inf or a particle leaves the grid.
+  void step(double dt);
+  // Energies and per-body sums of the current state (ordered reduction: same bits for a
+  // given thread count).
+  Energies energies() const;
+  // How many times each stage of the plan has run, in plan order.
+  const std::vector<long>& stage_counts() const { return stage_counts_; }
+  // Bins the particles and activates their grid blocks without advancing, so that
+  // active_cells() and bytes() describe the first step (`afemp check`).
+  void prepare() { bin_particles(); }
+  // Active grid cells of the last binning.
+  std::size_t active_cells() const;
+  // Bytes held by particles, grid and solver scratch.
+  std::size_t bytes() const;
+
+ private:
+  // Stages (one file each).
+  void bin_particles();
+  template <bool MassMomentum, bool Force, bool Gravity>
+  void particle_to_grid();
+  void grid_velocity();
+  void grid_momentum_update(double dt);
+  void grid_to_particle(double dt, bool move_positions);
+  void remap_to_grid();
+  // Turns a nodal momentum field into velocity (when divide_by_mass) and zeroes the
+  // components the face conditions constrain.
+  void apply_velocity_conditions(std::vector<Vec3>& field, bool divide_by_mass);
+  void strain_stress_update(double dt);
+  template <class Strength, class Eos, bool Thermal>
+  void strain_stress_batch(const MaterialBatch& batch, const Strength& strength, const Eos& eos,
+                           double dt, int thread_slot_offset);
+  void reorder_particles();
+  void raise_if_bad(const char* field) const;
+  double max_signal_speed() const;
+
+  const core::Scene& scene_;
+  StepPlan plan_;
+  Particles particles_;
+  core::BackgroundGrid grid_;
+  std::vector<MaterialBatch> batches_;
+  std::vector<const core::Material*> materials_;
+
+  // Binning scratch: cell per particle, colour layers (counting sort along sweep_axis_).
+  std::vector<std::int64_t> cell_;
+  std::vector<std::int32_t> layer_;
+  std::vector<std::int32_t> layer_order_;
+  std::vector<std::int64_t> layer_offsets_;
+  std::vector<std::int64_t> scratch_offsets_;
+  int sweep_axis_ = 2;
+
+  // Accumulators and state.
+  double plastic_work_ = 0.0;
+  double external_work_ = 0.0;
+  double signal_speed_ = 0.0;  // max c + |v| at the last stress update
+  long steps_ = 0;
+  double time_ = 0.0;
+  std::vector<long> stage_counts_;
+  // Per-thread partial results, combined in thread order (determinism).
+  mutable std::vector<double> thread_sums_;
+  mutable std::vector<std::int64_t> thread_bad_;
+  mutable std::int64_t bad_particle_ = -1;
+  mutable const char* bad_field_ = "";
+  static constexpr long reorder_interval = 100;
+};
+
+}  // namespace afemp::mpm

@@ -1,0 +1,267 @@
+// Particle generation: a grid-aligned lattice clipped to each body's shape (symmetry faces cut
+// the body, other faces must contain it), or points read from a plain-text list.
+// The lattice offsets (k + 0.5)/n keep every point off the cell faces, hence off symmetry planes.
+#include "mpm/particle_generation.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace afemp::mpm {
+
+namespace {
+
+using core::BodySpec;
+using core::BoxShape;
+using core::CylinderShape;
+using core::Face;
+using core::FaceCondition;
+using core::GridSettings;
+using core::InputError;
+using core::Material;
+using core::PointListShape;
+using core::SphereShape;
+
+struct Aabb {
+  Vec3 lo, hi;
+};
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string fmt(const Vec3& v) { return "(" + fmt(v.x) + ", " + fmt(v.y) + ", " + fmt(v.z) + ")"; }
+
+// Half-open in every direction so that two boxes sharing a face never both own a point.
+struct BoxTest {
+  BoxShape s;
+  Aabb bounds() const { return {s.min, s.max}; }
+  bool inside(const Vec3& x) const {
+    for (int a = 0; a < 3; ++a)
+      if (!(x[a] >= s.min[a] && x[a] < s.max[a])) return false;
+    return true;
+  }
+};
+
+// Axial extent half-open [0, length) for the same reason as the box; radial closed.
+struct CylinderTest {
+  Vec3 base, axis;
+  double radius, length;
+  explicit CylinderTest(const CylinderShape& c)
+      : base(c.base), axis((1.0 / norm(c.axis)) * c.axis), radius(c.radius), length(c.length) {}
+  Aabb bounds() const {
+    const Vec3 top = base + length * axis;
+    Aabb b;
+    for (int a = 0; a < 3; ++a) {
+      // The end discs reach radius * sqrt(1 - axis_a^2) from their centres along axis a.
+      const double ext = radius * std::sqrt(std::max(0.0, 1.0 - axis[a] * axis[a]));
+      b.lo[a] = std::min(base[a], top[a]) - ext;
+      b.hi[a] = std::max(base[a], top[a]) + ext;
+    }
+    return b;
+  }
+  bool inside(const Vec3& x) const {
+    const Vec3 v = x - base;
+    const double s = dot(v, axis);
+    if (!(s >= 0.0 && s < length)) return false;
+    const Vec3 radial = v - s * axis;
+    return dot(radial, radial) <= radius * radius;
+  }
+};
+
+struct SphereTest {
+  SphereShape s;
+  Aabb bounds() const {
+    const Vec3 r{s.radius, s.radius, s.radius};
+    return {s.centre - r, s.centre + r};
+  }
+  bool inside(const Vec3& x) const {
+    const Vec3 v = x - s.centre;
+    return dot(v, v) <= s.radius * s.radius;
+  }
+};
+
+FaceCondition face_condition(const GridSettings& g, int axis, bool max_side) {
+  return g.faces[static_cast<std::size_t>(2 * axis + (max_side ? 1 : 0))];
+}
+
+Face face_of(int axis, bool max_side) { return static_cast<Face>(2 * axis + (max_side ? 1 : 0)); }
+
+double initial_temperature(const BodySpec& body, const Material& m) {
+  return body.temperature ? *body.temperature : m.thermal.initial_temperature;
+}
+
+// Lattice points x_j = grid.min + (j + 0.5) h/n along each axis that fall inside the shape.
+// The index range covers the shape's bounding box, clipped to the grid on symmetric sides (the
+// part beyond is the mirrored half that the symmetry condition stands for) and left unclipped on
+// other sides so that a body poking through a fixed or free face is caught, not silently cut.
+template <class Test>
+void generate_lattice(const Test& shape, const GridSettings& grid, const BodySpec& body,
+                      int body_id, const Material& material, Particles& out) {
+  const double d = grid.cell / body.particles_per_cell;
+  const double volume = d * d * d;
+  const double mass = material.density * volume;
+  const double temperature = initial_temperature(body, material);
+  const Aabb box = shape.bounds();
+
+  std::array<long long, 3> first{}, last{};
+  double candidates = 1.0;
+  for (int a = 0; a < 3; ++a) {
+    // One extra index each side: the inside test, not the bounding box, decides.
+    const double lo = std::floor((box.lo[a] - grid.min[a]) / d - 0.5) - 1.0;
+    const double hi = std::ceil((box.hi[a] - grid.min[a]) / d - 0.5) + 1.0;
+    const double grid_last = std::floor((grid.max[a] - grid.min[a]) / d - 0.5);
+    double f = lo, l = hi;
+    if (face_condition(grid, a, false) == FaceCondition::symmetric) f = std::max(f, 0.0);
+    if (face_condition(grid, a, true) == FaceCondition::symmetric) l = std::min(l, grid_last);
+    // A shape wholly beyond a symmetric face leaves an empty range; zero-particle check below.
+    if (l < f) return;
+    candidates *= (l - f + 1.0);
+    first[static_cast<std::size_t>(a)] = static_cast<long long>(f);
+    last[static_cast<std::size_t>(a)] = static_cast<long long>(l);
+  }
+  const std::string key = "bodies." + body.name + ".shape";
+  if (candidates > 4.0e9)
+    throw InputError(body.where, key,
+                     "the shape spans more than 4e9 lattice sites; it is far larger than the grid");
+
+  for (long long k = first[2]; k <= last[2]; ++k) {
+    for (long long j = first[1]; j <= last[1]; ++j) {
+      for (long long i = first[0]; i <= last[0]; ++i) {
+        const Vec3 x{grid.min.x + (static_cast<double>(i) + 0.5) * d,
+                     grid.min.y + (static_cast<double>(j) + 0.5) * d,
+                     grid.min.z + (static_cast<double>(k) + 0.5) * d};
+        if (!shape.inside(x)) continue;
+        for (int a = 0; a < 3; ++a) {
+          for (bool max_side : {false, true}) {
+            const bool beyond = max_side ? x[a] > grid.max[a] : x[a] < grid.min[a];
+            if (!beyond) continue;
+            const FaceCondition c = face_condition(grid, a, max_side);
+            if (c == FaceCondition::symmetric) continue;  // unreachable after clipping
+            throw InputError(
+                body.where, key,
+                std::string("the body crosses grid face ") + core::to_string(face_of(a, max_side)) +
+                    " (boundary \"" + core::to_string(c) + "\"): lattice point " + fmt(x) +
+                    " lies inside the shape but outside the grid " + fmt(grid.min) + " - " +
+                    fmt(grid.max) + "; move the body inside the grid or make that face \"symmetric\"");
+          }
+        }
+        bool outside_grid = false;
+        for (int a = 0; a < 3; ++a)
+          outside_grid = outside_grid || x[a] < grid.min[a] || x[a] > grid.max[a];
+        if (outside_grid) continue;  // beyond a symmetric face only: dropped by design
+        out.push_back(x, body.velocity, mass, volume, temperature, body_id, body.material);
+      }
+    }
+  }
+}
+
+// Splits "x y z [volume]" into numbers; false when a token is not a whole number.
+bool parse_numbers(const std::string& line, std::vector<double>& values) {
+  values.clear();
+  const char* p = line.c_str();
+  while (true) {
+    while (*p == ' ' || *p == '\t' || *p == '\r' || *p == ',') ++p;
+    if (*p == '\0') return true;
+    char* end = nullptr;
+    const double v = std::strtod(p, &end);
+    if (end == p) return false;
+    if (*end != '\0' && *end != ' ' && *end != '\t' && *end != '\r' && *end != ',') return false;
+    values.push_back(v);
+    p = end;
+  }
+}
+
+void generate_point_list(const PointListShape& shape, const GridSettings& grid,
+                         const BodySpec& body, int body_id, const Material& material,
+                         Particles& out) {
+  std::ifstream in(shape.path);
+  if (!in)
+    throw InputError(body.where, "bodies." + body.name + ".shape.points.file",
+                     "cannot open points file '" + shape.path + "'");
+  const double d = grid.cell / body.particles_per_cell;
+  const double default_volume = d * d * d;
+  const double temperature = initial_temperature(body, material);
+  std::string line;
+  std::vector<double> v;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    const core::SourceLocation where{shape.path, line_no};
+    if (!parse_numbers(line, v) || (v.size() != 0 && v.size() != 3 && v.size() != 4))
+      throw InputError(where, "",
+                       "points of body '" + body.name + "': malformed line; expected \"x y z\" or "
+                       "\"x y z volume\" (numbers separated by spaces)");
+    if (v.empty()) continue;  // blank or comment-only line
+    const Vec3 x{v[0], v[1], v[2]};
+    const double volume = v.size() == 4 ? v[3] : default_volume;
+    for (double c : v)
+      if (!std::isfinite(c))
+        throw InputError(where, "", "points of body '" + body.name + "': non-finite number");
+    if (!(volume > 0.0))
+      throw InputError(where, "", "points of body '" + body.name + "': volume " + fmt(volume) +
+                                      " must be > 0");
+    for (int a = 0; a < 3; ++a)
+      if (x[a] < grid.min[a] || x[a] > grid.max[a])
+        throw InputError(where, "", "points of body '" + body.name + "': point " + fmt(x) +
+                                        " lies outside the grid " + fmt(grid.min) + " - " +
+                                        fmt(grid.max));
+    out.push_back(x, body.velocity, material.density * volume, volume, temperature, body_id,
+                  body.material);
+  }
+  if (in.bad())
+    throw InputError(core::SourceLocation{shape.path, line_no}, "",
+                     "read error in points file of body '" + body.name + "'");
+}
+
+}  // namespace
+
+Particles generate_particles(const core::Scene& scene) {
+  Particles out;
+  const GridSettings& grid = scene.mpm.grid;
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    const BodySpec& body = scene.bodies[b];
+    if (body.material < 0 || static_cast<std::size_t>(body.material) >= scene.materials.size())
+      throw InputError(body.where, "bodies." + body.name + ".material",
+                       "material index " + std::to_string(body.material) + " is not defined");
+    if (body.particles_per_cell < 1)
+      throw InputError(body.where, "bodies." + body.name + ".particles_per_cell",
+                       "must be >= 1");
+    const Material& material = scene.materials[static_cast<std::size_t>(body.material)];
+    const int body_id = static_cast<int>(b);
+    const std::size_t before = out.size();
+    std::visit(
+        [&](const auto& s) {
+          using S = std::decay_t<decltype(s)>;
+          if constexpr (std::is_same_v<S, BoxShape>)
+            generate_lattice(BoxTest{s}, grid, body, body_id, material, out);
+          else if constexpr (std::is_same_v<S, CylinderShape>) {
+            if (!(norm(s.axis) > 0.0))
+              throw InputError(body.where, "bodies." + body.name + ".shape.cylinder.axis",
+                               "the axis must be a non-zero vector");
+            generate_lattice(CylinderTest{s}, grid, body, body_id, material, out);
+          } else if constexpr (std::is_same_v<S, SphereShape>)
+            generate_lattice(SphereTest{s}, grid, body, body_id, material, out);
+          else
+            generate_point_list(s, grid, body, body_id, material, out);
+        },
+        body.shape);
+    if (out.size() == before)
+      throw InputError(body.where, "bodies." + body.name + ".shape",
+                       "the body has no particle: the shape lies outside the grid or is smaller "
+                       "than a particle spacing (cell / particles_per_cell = " +
+                           fmt(grid.cell / body.particles_per_cell) + ")");
+  }
+  return out;
+}
+
+}  // namespace afemp::mpm

@@ -1,0 +1,119 @@
+#include "mpm/step_plan.hpp"
+
+#include <set>
+#include <sstream>
+
+namespace afemp::mpm {
+
+namespace {
+
+std::string strength_name(const core::StrengthModel& s) {
+  struct {
+    std::string operator()(const core::Elastic&) const { return "elastic"; }
+    std::string operator()(const core::J2Plasticity&) const { return "j2"; }
+    std::string operator()(const core::JohnsonCook&) const { return "johnson-cook"; }
+  } v;
+  return std::visit(v, s);
+}
+
+std::string eos_name(const core::EquationOfState& e) {
+  struct {
+    std::string operator()(const core::NoEos&) const { return "none"; }
+    std::string operator()(const core::LinearEos&) const { return "linear"; }
+    std::string operator()(const core::MieGruneisen&) const { return "mie-gruneisen"; }
+    std::string operator()(const core::LinearPolynomialEos&) const { return "linear-polynomial"; }
+  } v;
+  return std::visit(v, e);
+}
+
+Stage stage(StageKind kind, std::string name, std::string why) {
+  return {kind, std::move(name), std::move(why)};
+}
+
+}  // namespace
+
+StepPlan build_step_plan(const core::Scene& scene) {
+  using core::UpdateScheme;
+  StepPlan plan;
+  plan.scheme = scene.mpm.scheme;
+  plan.jaumann = scene.mpm.jaumann;
+  const core::Vec3& g = scene.run.gravity;
+  plan.gravity = g.x != 0.0 || g.y != 0.0 || g.z != 0.0;
+
+  std::set<int> used;
+  for (const auto& b : scene.bodies) used.insert(b.material);
+  for (int m : used) {
+    const core::Material& mat = scene.materials[static_cast<std::size_t>(m)];
+    plan.materials.push_back(
+        {mat.name, strength_name(mat.strength), eos_name(mat.eos), mat.has_thermal_term()});
+  }
+
+  const std::string force_why = plan.gravity ? "internal force -V sigma.grad N and gravity m N g"
+                                             : "internal force -V sigma.grad N (no body force)";
+  auto& s = plan.stages;
+  s.push_back(stage(StageKind::bin_particles, "bin particles",
+                    "cells of the points, active grid blocks, colour layers for the P2G sweep"));
+  switch (plan.scheme) {
+    case UpdateScheme::USF:
+      s.push_back(stage(StageKind::p2g_mass_momentum, "p2g mass momentum",
+                        "USF: nodal mass and momentum first"));
+      s.push_back(stage(StageKind::grid_velocity, "grid velocity",
+                        "USF: stress is updated from the velocity at the start of the step"));
+      s.push_back(stage(StageKind::strain_stress_update, "strain stress update",
+                        "USF: strain rate from the grid velocity before the momentum update"));
+      s.push_back(stage(StageKind::p2g_force, "p2g force", force_why));
+      s.push_back(stage(StageKind::grid_momentum_update, "grid momentum update",
+                        "explicit momentum update and boundary conditions"));
+      s.push_back(stage(StageKind::g2p_velocity_position, "g2p velocity position",
+                        "particle velocity (PIC/FLIP blend) and position"));
+      break;
+    case UpdateScheme::USL:
+      s.push_back(stage(StageKind::p2g_mass_momentum_force, "p2g mass momentum force",
+                        "nodal mass, momentum and " + force_why));
+      s.push_back(stage(StageKind::grid_momentum_update, "grid momentum update",
+                        "explicit momentum update and boundary conditions"));
+      s.push_back(stage(StageKind::g2p_velocity, "g2p velocity",
+                        "particle velocity (PIC/FLIP blend); positions move with the strain"));
+      s.push_back(stage(StageKind::strain_stress_update, "strain stress update",
+                        "USL: strain rate from the updated grid velocity; positions move"));
+      break;
+    case UpdateScheme::MUSL:
+      s.push_back(stage(StageKind::p2g_mass_momentum_force, "p2g mass momentum force",
+                        "nodal mass, momentum and " + force_why));
+      s.push_back(stage(StageKind::grid_momentum_update, "grid momentum update",
+                        "explicit momentum update and boundary conditions"));
+      s.push_back(stage(StageKind::g2p_velocity, "g2p velocity",
+                        "particle velocity (PIC/FLIP blend); positions move with the strain"));
+      s.push_back(stage(StageKind::p2g_remap, "p2g remap",
+                        "MUSL: updated particle momentum mapped back to the grid"));
+      s.push_back(stage(StageKind::strain_stress_update, "strain stress update",
+                        "MUSL: strain rate from the remapped grid velocity; positions move"));
+      break;
+  }
+  return plan;
+}
+
+std::vector<std::string> StepPlan::stage_names() const {
+  std::vector<std::string> names;
+  for (const auto& st : stages) names.push_back(st.name);
+  return names;
+}
+
+std::string StepPlan::describe() const {
+  std::ostringstream o;
+  o << "step plan (" << core::to_string(scheme) << ", " << velocity_fields
+    << " velocity field" << (velocity_fields == 1 ? ": bodies share it, no contact stage" : "s")
+    << "):\n";
+  int i = 1;
+  for (const auto& st : stages) o << "  " << i++ << ". " << st.name << "  -- " << st.why << "\n";
+  o << "constitutive update per material batch" << (jaumann ? " (Jaumann rate)" : "") << ":\n";
+  for (const auto& m : materials) {
+    o << "  " << m.material << ": strength " << m.strength << ", EOS " << m.eos
+      << (m.eos == "none" ? " (pressure from the bulk modulus)" : "") << ", thermal "
+      << (m.thermal ? "on (plastic work heats)" : "off") << "\n";
+  }
+  o << "body force: " << (gravity ? "gravity" : "none") << "\n";
+  return o.str();
+}
+
+}  // namespace afemp::mpm

@@ -1,0 +1,55 @@
+// The step plan: the list of stages one explicit MPM step runs, assembled once from the scene
+// (NairnMPM's task chain, seed 000 eqs 25-27 for the three orders). The time loop executes
+// exactly this list, so a scene pays only for the stages it needs.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/scene.hpp"
+
+namespace afemp::mpm {
+
+enum class StageKind {
+  bin_particles,          // cells of the points; active grid blocks; colouring layers
+  p2g_mass_momentum,      // eqs 2-29, 2-30 (USF: before the stress update)
+  p2g_force,              // eqs 2-10, 2-11 (USF: after the stress update)
+  p2g_mass_momentum_force,  // eqs 2-29..2-31 in one sweep (USL, MUSL)
+  grid_velocity,          // v = p / m with boundary conditions (USF)
+  grid_momentum_update,   // eq 2-32 and boundary conditions
+  g2p_velocity_position,  // eqs 2-33..2-36, PIC/FLIP blend (USF)
+  g2p_velocity,           // eq 2-36 only (USL, MUSL); positions move in the strain pass
+  p2g_remap,              // MUSL: eq 2-37
+  strain_stress_update,   // eqs 2-38..2-41 from the velocity the scheme names
+};
+
+struct Stage {
+  StageKind kind;
+  std::string name;  // short, as printed and as counted
+  std::string why;   // one line: what the scene asked for that needs it
+};
+
+// What the constitutive stage does for one material: the composition it instantiates.
+struct MaterialPlan {
+  std::string material;
+  std::string strength;  // "elastic" | "j2" | "johnson-cook"
+  std::string eos;       // "none" (hypoelastic pressure) | "linear" | "mie-gruneisen" | ...
+  bool thermal = false;  // temperature integrated from plastic work
+};
+
+struct StepPlan {
+  core::UpdateScheme scheme = core::UpdateScheme::MUSL;
+  std::vector<Stage> stages;
+  std::vector<MaterialPlan> materials;  // only materials that some body uses
+  bool gravity = false;                 // body force added in p2g_force
+  bool jaumann = true;
+  int velocity_fields = 1;              // one shared field: bodies stick (no contact stage)
+
+  // The plan as `afemp check` prints it, one stage per line with its reason.
+  std::string describe() const;
+  std::vector<std::string> stage_names() const;
+};
+
+StepPlan build_step_plan(const core::Scene& scene);
+
+}  // namespace afemp::mpm

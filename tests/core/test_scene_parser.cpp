@@ -1,0 +1,454 @@
+// Scene files (docs/scene-format.md): a valid scene becomes the expected Scene with its
+// documented defaults, and every kind of mistake is an InputError naming file, line, dotted
+// key and what is allowed.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <variant>
+
+#include "core/error.hpp"
+#include "core/scene.hpp"
+
+namespace afemp::core {
+namespace {
+
+// The Taylor bar of docs/scene-format.md (OFHC copper at 190 m/s; mm, ms, g, N, MPa).
+const std::string taylor_scene = R"(# Taylor bar
+[run]
+end_time = 0.08
+output_every = 0.008
+
+[grid]
+cell = 0.5
+min = [0, 0, 0]
+max = [10, 10, 28]
+boundary = { zmin = "fixed", xmin = "symmetric", ymin = "symmetric" }
+
+[mpm]
+scheme = "MUSL"
+
+[materials.copper]
+density = 8.93e-3
+E = 117e3
+nu = 0.35
+strength = { model = "johnson-cook", A = 157, B = 425, n = 1.0, C = 0.0 }
+eos = { model = "mie-gruneisen", c0 = 3940, s = 1.49, gamma0 = 1.96 }
+
+[[bodies]]
+name = "bar"
+material = "copper"
+shape = { cylinder = { base = [0, 0, 0], axis = [0, 0, 2], radius = 3.8, length = 25.4 } }
+particles_per_cell = 2
+velocity = [0, 0, -190]
+
+[reference]
+taylor = { L = 16.2, D = 13.5, W = 10.1, tolerance = 0.03 }
+)";
+
+// A small valid scene whose pieces the error tests replace or extend.
+const std::string minimal_head = R"([run]
+end_time = 1.0
+
+[grid]
+cell = 1.0
+min = [0, 0, 0]
+max = [10, 10, 10]
+)";
+
+const std::string minimal_tail = R"(
+[materials.steel]
+density = 7.8e-3
+E = 200e3
+nu = 0.3
+
+[[bodies]]
+name = "block"
+material = "steel"
+shape = { box = { min = [1, 1, 1], max = [3, 3, 3] } }
+)";
+
+// 1-based line of the first occurrence of needle in text.
+int line_of(const std::string& text, const std::string& needle) {
+  const auto pos = text.find(needle);
+  EXPECT_NE(pos, std::string::npos) << needle;
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
+}
+
+// what() of the InputError that parsing text throws ("" and a failure when none is thrown).
+std::string error_of(const std::string& text, const std::string& path = "scene.toml") {
+  try {
+    parse_scene(text, path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError for:\n" << text;
+  return "";
+}
+
+TEST(SceneParser, TaylorBarSceneParsesIntoExpectedValuesIncludingDefaults) {
+  const Scene s = parse_scene(taylor_scene, "taylor.toml");
+  EXPECT_EQ(s.path, "taylor.toml");
+  // [run]: given values and defaults.
+  EXPECT_EQ(s.run.title, "");
+  EXPECT_DOUBLE_EQ(s.run.end_time, 0.08);
+  EXPECT_DOUBLE_EQ(s.run.output_every, 0.008);
+  EXPECT_DOUBLE_EQ(s.run.time_step_factor, 0.3);
+  EXPECT_DOUBLE_EQ(s.run.fixed_time_step, 0.0);
+  EXPECT_EQ(s.run.max_steps, 0);
+  EXPECT_EQ(s.run.history_every, 10);
+  EXPECT_DOUBLE_EQ(norm(s.run.gravity), 0.0);
+  // [grid] with integer arrays accepted as floats, unnamed faces free.
+  const GridSettings& g = s.mpm.grid;
+  EXPECT_DOUBLE_EQ(g.cell, 0.5);
+  EXPECT_DOUBLE_EQ(g.min.x, 0.0);
+  EXPECT_DOUBLE_EQ(g.max.z, 28.0);
+  EXPECT_EQ(g.faces[static_cast<int>(Face::xmin)], FaceCondition::symmetric);
+  EXPECT_EQ(g.faces[static_cast<int>(Face::ymin)], FaceCondition::symmetric);
+  EXPECT_EQ(g.faces[static_cast<int>(Face::zmin)], FaceCondition::fixed);
+  EXPECT_EQ(g.faces[static_cast<int>(Face::xmax)], FaceCondition::free);
+  EXPECT_EQ(g.faces[static_cast<int>(Face::ymax)], FaceCondition::free);
+  EXPECT_EQ(g.faces[static_cast<int>(Face::zmax)], FaceCondition::free);
+  // [mpm]
+  EXPECT_EQ(s.mpm.scheme, UpdateScheme::MUSL);
+  EXPECT_DOUBLE_EQ(s.mpm.flip, 1.0);
+  EXPECT_TRUE(s.mpm.jaumann);
+  // [materials.copper]
+  ASSERT_EQ(s.materials.size(), 1u);
+  const Material& cu = s.materials[0];
+  EXPECT_EQ(cu.name, "copper");
+  EXPECT_DOUBLE_EQ(cu.density, 8.93e-3);
+  EXPECT_DOUBLE_EQ(cu.youngs_modulus, 117e3);
+  EXPECT_DOUBLE_EQ(cu.poisson_ratio, 0.35);
+  ASSERT_TRUE(std::holds_alternative<JohnsonCook>(cu.strength));
+  const auto& jc = std::get<JohnsonCook>(cu.strength);
+  EXPECT_DOUBLE_EQ(jc.A, 157.0);
+  EXPECT_DOUBLE_EQ(jc.B, 425.0);
+  EXPECT_DOUBLE_EQ(jc.n, 1.0);
+  EXPECT_DOUBLE_EQ(jc.C, 0.0);
+  EXPECT_DOUBLE_EQ(jc.m, 0.0);
+  EXPECT_DOUBLE_EQ(jc.reference_strain_rate, 1.0);
+  EXPECT_DOUBLE_EQ(jc.room_temperature, 293.0);
+  EXPECT_DOUBLE_EQ(jc.melt_temperature, 0.0);
+  ASSERT_TRUE(std::holds_alternative<MieGruneisen>(cu.eos));
+  const auto& mg = std::get<MieGruneisen>(cu.eos);
+  EXPECT_DOUBLE_EQ(mg.rho0, 8.93e-3);  // the EOS reference density is the material density
+  EXPECT_DOUBLE_EQ(mg.c0, 3940.0);
+  EXPECT_DOUBLE_EQ(mg.s, 1.49);
+  EXPECT_DOUBLE_EQ(mg.gamma0, 1.96);
+  EXPECT_DOUBLE_EQ(cu.thermal.specific_heat, 0.0);
+  EXPECT_DOUBLE_EQ(cu.thermal.taylor_quinney, 0.9);
+  EXPECT_DOUBLE_EQ(cu.thermal.initial_temperature, 293.0);
+  // [[bodies]]
+  ASSERT_EQ(s.bodies.size(), 1u);
+  const BodySpec& bar = s.bodies[0];
+  EXPECT_EQ(bar.name, "bar");
+  EXPECT_EQ(bar.material, 0);
+  ASSERT_TRUE(std::holds_alternative<CylinderShape>(bar.shape));
+  const auto& cyl = std::get<CylinderShape>(bar.shape);
+  EXPECT_DOUBLE_EQ(cyl.axis.z, 1.0);  // [0, 0, 2] normalised
+  EXPECT_DOUBLE_EQ(cyl.radius, 3.8);
+  EXPECT_DOUBLE_EQ(cyl.length, 25.4);
+  EXPECT_EQ(bar.particles_per_cell, 2);
+  EXPECT_DOUBLE_EQ(bar.velocity.z, -190.0);
+  EXPECT_FALSE(bar.temperature.has_value());
+  EXPECT_EQ(bar.where.file, "taylor.toml");
+  EXPECT_EQ(bar.where.line, line_of(taylor_scene, "[[bodies]]"));
+  // [reference]
+  ASSERT_TRUE(s.taylor_reference.has_value());
+  EXPECT_DOUBLE_EQ(s.taylor_reference->length, 16.2);
+  EXPECT_DOUBLE_EQ(s.taylor_reference->impact_diameter, 13.5);
+  EXPECT_DOUBLE_EQ(s.taylor_reference->bulge_diameter, 10.1);
+  EXPECT_DOUBLE_EQ(s.taylor_reference->tolerance, 0.03);
+}
+
+TEST(SceneParser, EveryOptionalKeyIsReadAndMaterialsAreNumberedInFileOrder) {
+  const std::string text = R"([run]
+title = "all keys"
+end_time = 2.5
+time_step_factor = 0.5
+time_step = 1e-4
+max_steps = 100
+output_every = 0.25
+history_every = 3
+gravity = [0, 0, -9.81e-3]
+
+[grid]
+cell = 1
+min = [-5, -5, 0]
+max = [5, 5, 10]
+boundary = { xmin = "fixed", xmax = "symmetric", ymin = "free", ymax = "fixed", zmin = "symmetric", zmax = "free" }
+
+[mpm]
+scheme = "usl"
+flip = 0.95
+jaumann = false
+
+[materials.zinc]
+density = 7.1e-3
+E = 100e3
+nu = 0.25
+strength = { model = "j2", yield = 200, hardening = 500 }
+eos = { model = "linear" }
+specific_heat = 390
+taylor_quinney = 0.8
+temperature = 300
+
+[materials.aluminium]
+density = 2.7e-3
+E = 70e3
+nu = 0.33
+strength = { model = "johnson-cook", A = 265, B = 426, n = 0.34, C = 0.015, m = 1.0, reference_strain_rate = 1e-3, room_temperature = 294, melt_temperature = 775 }
+eos = { model = "linear-polynomial", C1 = 70000, C4 = 2.0 }
+
+[[bodies]]
+name = "plate"
+material = "aluminium"
+shape = { box = { min = [-4, -4, 0], max = [4, 4, 2] } }
+particles_per_cell = 3
+temperature = 350
+
+[[bodies]]
+name = "ball"
+material = "zinc"
+shape = { sphere = { centre = [0, 0, 5], radius = 2 } }
+velocity = [0, 0, -1]
+
+[[bodies]]
+name = "cloud"
+material = "zinc"
+shape = { points = { file = "data/cloud.txt" } }
+)";
+  const Scene s = parse_scene(text, "cases/all.toml");
+  EXPECT_EQ(s.run.title, "all keys");
+  EXPECT_DOUBLE_EQ(s.run.time_step_factor, 0.5);
+  EXPECT_DOUBLE_EQ(s.run.fixed_time_step, 1e-4);
+  EXPECT_EQ(s.run.max_steps, 100);
+  EXPECT_DOUBLE_EQ(s.run.output_every, 0.25);
+  EXPECT_EQ(s.run.history_every, 3);
+  EXPECT_DOUBLE_EQ(s.run.gravity.z, -9.81e-3);
+  const auto& f = s.mpm.grid.faces;
+  EXPECT_EQ(f[0], FaceCondition::fixed);
+  EXPECT_EQ(f[1], FaceCondition::symmetric);
+  EXPECT_EQ(f[2], FaceCondition::free);
+  EXPECT_EQ(f[3], FaceCondition::fixed);
+  EXPECT_EQ(f[4], FaceCondition::symmetric);
+  EXPECT_EQ(f[5], FaceCondition::free);
+  EXPECT_EQ(s.mpm.scheme, UpdateScheme::USL);  // scheme names are case-insensitive
+  EXPECT_DOUBLE_EQ(s.mpm.flip, 0.95);
+  EXPECT_FALSE(s.mpm.jaumann);
+
+  // File order, not alphabetical order.
+  ASSERT_EQ(s.materials.size(), 2u);
+  EXPECT_EQ(s.materials[0].name, "zinc");
+  EXPECT_EQ(s.materials[1].name, "aluminium");
+  const Material& zn = s.materials[0];
+  const auto& j2 = std::get<J2Plasticity>(zn.strength);
+  EXPECT_DOUBLE_EQ(j2.yield_stress, 200.0);
+  EXPECT_DOUBLE_EQ(j2.hardening, 500.0);
+  // The linear EOS defaults to the bulk modulus of E and nu.
+  EXPECT_DOUBLE_EQ(std::get<LinearEos>(zn.eos).bulk_modulus, 100e3 / (3.0 * (1.0 - 0.5)));
+  EXPECT_DOUBLE_EQ(zn.thermal.specific_heat, 390.0);
+  EXPECT_DOUBLE_EQ(zn.thermal.taylor_quinney, 0.8);
+  EXPECT_DOUBLE_EQ(zn.thermal.initial_temperature, 300.0);
+  const Material& al = s.materials[1];
+  const auto& jc = std::get<JohnsonCook>(al.strength);
+  EXPECT_DOUBLE_EQ(jc.m, 1.0);
+  EXPECT_DOUBLE_EQ(jc.reference_strain_rate, 1e-3);
+  EXPECT_DOUBLE_EQ(jc.room_temperature, 294.0);
+  EXPECT_DOUBLE_EQ(jc.melt_temperature, 775.0);
+  const auto& lp = std::get<LinearPolynomialEos>(al.eos);
+  EXPECT_DOUBLE_EQ(lp.rho0, 2.7e-3);
+  EXPECT_DOUBLE_EQ(lp.c[0], 0.0);
+  EXPECT_DOUBLE_EQ(lp.c[1], 70000.0);
+  EXPECT_DOUBLE_EQ(lp.c[4], 2.0);
+  EXPECT_DOUBLE_EQ(lp.c[6], 0.0);
+
+  ASSERT_EQ(s.bodies.size(), 3u);
+  EXPECT_EQ(s.bodies[0].material, 1);
+  EXPECT_EQ(s.bodies[0].particles_per_cell, 3);
+  ASSERT_TRUE(s.bodies[0].temperature.has_value());
+  EXPECT_DOUBLE_EQ(*s.bodies[0].temperature, 350.0);
+  EXPECT_TRUE(std::holds_alternative<BoxShape>(s.bodies[0].shape));
+  EXPECT_EQ(s.bodies[1].material, 0);
+  EXPECT_DOUBLE_EQ(std::get<SphereShape>(s.bodies[1].shape).radius, 2.0);
+  EXPECT_DOUBLE_EQ(s.bodies[1].velocity.z, -1.0);
+  // Point files are resolved relative to the scene file's directory.
+  EXPECT_EQ(std::get<PointListShape>(s.bodies[2].shape).path, "cases/data/cloud.txt");
+  EXPECT_FALSE(s.taylor_reference.has_value());
+}
+
+TEST(SceneParser, UnknownTopLevelKeyNamesFileLineKeyAndAllowedKeys) {
+  const std::string text = minimal_head + "\n[rnu]\nend_time = 2\n" + minimal_tail;
+  const std::string what = error_of(text);
+  const std::string expected_prefix =
+      "scene.toml:" + std::to_string(line_of(text, "[rnu]")) + ": key 'rnu': unknown key";
+  EXPECT_EQ(what.rfind(expected_prefix, 0), 0u) << what;
+  EXPECT_NE(what.find("run, grid, mpm, materials, bodies, reference"), std::string::npos) << what;
+}
+
+TEST(SceneParser, UnknownKeyInsideStrengthTableNamesDottedKeyLineAndAllowedKeys) {
+  std::string tail = minimal_tail;
+  tail.insert(tail.find("nu = 0.3") + 9, "strength = { model = \"j2\", yeild = 300 }\n");
+  const std::string text = minimal_head + tail;
+  const std::string what = error_of(text);
+  const int line = line_of(text, "yeild");
+  EXPECT_EQ(what.rfind("scene.toml:" + std::to_string(line) +
+                           ": key 'materials.steel.strength.yeild': unknown key",
+                       0),
+            0u)
+      << what;
+  EXPECT_NE(what.find("model, yield, hardening, tangent_modulus"), std::string::npos) << what;
+}
+
+TEST(SceneParser, UnknownKeyInBodyAndMaterialTablesIsRejected) {
+  std::string tail = minimal_tail + "colour = \"red\"\n";
+  std::string what = error_of(minimal_head + tail);
+  EXPECT_NE(what.find("key 'bodies.block.colour': unknown key"), std::string::npos) << what;
+  tail = minimal_tail;
+  tail.insert(tail.find("nu = 0.3"), "poisson = 0.3\n");
+  what = error_of(minimal_head + tail);
+  EXPECT_NE(what.find("key 'materials.steel.poisson': unknown key"), std::string::npos) << what;
+}
+
+TEST(SceneParser, WrongTypeNamesTheExpectedType) {
+  std::string text = minimal_head + minimal_tail;
+  text.replace(text.find("end_time = 1.0"), 14, "end_time = \"soon\"");
+  const std::string what = error_of(text);
+  EXPECT_EQ(what, "scene.toml:2: key 'run.end_time': expected a number, got a string");
+
+  text = minimal_head + minimal_tail + "particles_per_cell = 2.5\n";
+  EXPECT_NE(error_of(text).find("key 'bodies.block.particles_per_cell': expected an integer, got a float"),
+            std::string::npos);
+  text = minimal_head + minimal_tail + "velocity = [1, 2]\n";
+  EXPECT_NE(error_of(text).find("key 'bodies.block.velocity': expected an array of 3 numbers, "
+                                "got an array of 2"),
+            std::string::npos);
+}
+
+TEST(SceneParser, OutOfRangeValueNamesTheAllowedRange) {
+  std::string text = minimal_head + minimal_tail;
+  text.replace(text.find("nu = 0.3"), 8, "nu = 0.5");
+  const std::string what = error_of(text);
+  EXPECT_NE(what.find("key 'materials.steel.nu': value 0.5 is out of range; allowed: "
+                      "0 <= value < 0.5"),
+            std::string::npos)
+      << what;
+  text = minimal_head + minimal_tail + "particles_per_cell = 9\n";
+  EXPECT_NE(error_of(text).find("allowed: 1 <= value <= 8"), std::string::npos);
+}
+
+TEST(SceneParser, EnumErrorListsAllowedValues) {
+  const std::string text = minimal_head + "\n[mpm]\nscheme = \"APIC\"\n" + minimal_tail;
+  const std::string what = error_of(text);
+  EXPECT_NE(what.find("scene.toml:" + std::to_string(line_of(text, "APIC")) +
+                      ": key 'mpm.scheme': unknown value \"APIC\"; allowed values: "
+                      "\"USF\", \"USL\", \"MUSL\""),
+            std::string::npos)
+      << what;
+  std::string head = minimal_head + "boundary = { zmin = \"sticky\" }\n";
+  EXPECT_NE(error_of(head + minimal_tail)
+                .find("key 'grid.boundary.zmin': unknown value \"sticky\"; allowed values: "
+                      "\"free\", \"fixed\", \"symmetric\""),
+            std::string::npos);
+}
+
+TEST(SceneParser, UnknownMaterialNameListsTheDefinedMaterials) {
+  std::string tail = minimal_tail;
+  tail.replace(tail.find("material = \"steel\""), 18, "material = \"stele\"");
+  const std::string what = error_of(minimal_head + tail);
+  EXPECT_NE(what.find("key 'bodies.block.material': unknown material \"stele\"; defined "
+                      "materials: \"steel\""),
+            std::string::npos)
+      << what;
+}
+
+TEST(SceneParser, J2TangentModulusConvertsToPlasticModulus) {
+  std::string tail = minimal_tail;
+  tail.insert(tail.find("nu = 0.3") + 9,
+              "strength = { model = \"j2\", yield = 250, tangent_modulus = 2000 }\n");
+  const Scene s = parse_scene(minimal_head + tail, "scene.toml");
+  const auto& j2 = std::get<J2Plasticity>(s.materials[0].strength);
+  // H = E Et / (E - Et) = 200e3 * 2000 / 198e3
+  EXPECT_NEAR(j2.hardening, 200e3 * 2000.0 / (200e3 - 2000.0), 1e-9);
+  EXPECT_DOUBLE_EQ(j2.yield_stress, 250.0);
+
+  tail = minimal_tail;
+  tail.insert(tail.find("nu = 0.3") + 9,
+              "strength = { model = \"j2\", yield = 250, hardening = 10, tangent_modulus = 2000 }\n");
+  EXPECT_NE(error_of(minimal_head + tail).find("not both"), std::string::npos);
+}
+
+TEST(SceneParser, JohnsonCookThermalSofteningNeedsAMeltTemperature) {
+  std::string tail = minimal_tail;
+  tail.insert(tail.find("nu = 0.3") + 9,
+              "strength = { model = \"johnson-cook\", A = 1, B = 1, n = 1, m = 1 }\n");
+  EXPECT_NE(error_of(minimal_head + tail)
+                .find("key 'materials.steel.strength.melt_temperature': required when m > 0"),
+            std::string::npos);
+}
+
+TEST(SceneParser, StructuralMistakesAreReported) {
+  // A body name used twice.
+  std::string text = minimal_head + minimal_tail + minimal_tail.substr(minimal_tail.find("[[bodies]]"));
+  EXPECT_NE(error_of(text).find("duplicate body name \"block\""), std::string::npos);
+  // No body at all.
+  text = minimal_head + minimal_tail.substr(0, minimal_tail.find("[[bodies]]"));
+  EXPECT_NE(error_of(text).find("key 'bodies': at least one body is required"), std::string::npos);
+  // Two shapes for one body.
+  std::string tail = minimal_tail;
+  tail.replace(tail.find("} }"), 3, "}, sphere = { centre = [5, 5, 5], radius = 1 } }");
+  EXPECT_NE(error_of(minimal_head + tail).find("give exactly one of box, cylinder, sphere, points"),
+            std::string::npos);
+  // Grid max not above min.
+  std::string head = minimal_head;
+  head.replace(head.find("max = [10, 10, 10]"), 18, "max = [10, 0, 10]");
+  EXPECT_NE(error_of(head + minimal_tail).find("key 'grid.max': max must exceed min"),
+            std::string::npos);
+  // A missing required section.
+  EXPECT_NE(error_of(minimal_tail).find("key 'run': required table is missing"), std::string::npos);
+}
+
+TEST(SceneParser, TomlSyntaxErrorReportsItsLine) {
+  const std::string text = minimal_head + "\n[mpm]\nflip = [0.5\n" + minimal_tail;
+  const std::string what = error_of(text);
+  EXPECT_EQ(what.rfind("scene.toml:", 0), 0u) << what;
+  EXPECT_NE(what.find("TOML syntax error"), std::string::npos) << what;
+  const int line = std::stoi(what.substr(11));
+  EXPECT_GE(line, line_of(text, "flip"));
+}
+
+TEST(SceneParser, MissingSceneFileIsAnInputErrorNamingThePath) {
+  try {
+    read_scene("/nonexistent/dir/scene.toml");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/scene.toml"), std::string::npos);
+  }
+}
+
+TEST(SceneParser, ReadSceneReadsAFileFromDisk) {
+  const auto path = std::filesystem::temp_directory_path() / "afemp_test_scene_parser.toml";
+  {
+    std::ofstream out(path);
+    out << taylor_scene;
+  }
+  const Scene s = read_scene(path.string());
+  EXPECT_EQ(s.path, path.string());
+  EXPECT_EQ(s.bodies.at(0).name, "bar");
+  std::filesystem::remove(path);
+}
+
+TEST(SceneParser, EnumNamesRoundTripToTheirSceneSpelling) {
+  EXPECT_STREQ(to_string(UpdateScheme::USF), "USF");
+  EXPECT_STREQ(to_string(UpdateScheme::MUSL), "MUSL");
+  EXPECT_STREQ(to_string(FaceCondition::symmetric), "symmetric");
+  EXPECT_STREQ(to_string(Face::ymax), "ymax");
+  EXPECT_STREQ(to_string(Face::zmin), "zmin");
+}
+
+}  // namespace
+}  // namespace afemp::core
