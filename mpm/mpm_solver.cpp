@@ -67,6 +67,7 @@ void MpmSolver::step(double dt) {
         remap_to_grid();
         break;
       case StageKind::strain_stress_update:
+      case StageKind::g2p_velocity_strain_stress:
         strain_stress_update(dt);
         break;
     }

@@ -1,13 +1,25 @@
 // Strain and stress update of the particles (seed 001 eqs 2-38..2-41): velocity gradient
 // from the nodal velocity the scheme names, Jaumann rotation of the stress, volume update
 // V <- V (1 + tr d eps) (eq 2-40), then the material's constitutive update, batch by batch:
-// one std::visit per material, one direct call per point.
+// one std::visit per material, one direct (inlined) call per point. USL also updates the
+// particle velocity here, since it uses the same weights and the same grid velocity.
 #include <cmath>
 
 #include "core/parallel.hpp"
 #include "mpm/mpm_solver.hpp"
 
 namespace afemp::mpm {
+
+namespace {
+
+// Which nodal velocities a strain sweep reads, and what else it updates.
+struct StrainSweep {
+  const Vec3* strain_velocity;  // USF: v^k; USL: v^{k+1}; MUSL: remapped
+  bool move;                    // USL, MUSL: x += dt sum N v^{k+1} (eq 2-35)
+  bool flip_update;             // USL: the particle velocity update of grid_to_particle
+};
+
+}  // namespace
 
 void MpmSolver::strain_stress_update(double dt) {
   const int nt = core::thread_count();
@@ -28,8 +40,9 @@ void MpmSolver::strain_stress_update(double dt) {
   }
   double work = 0.0, speed = 0.0;
   for (int t = 0; t < nt; ++t) {
-    work += thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles];
-    speed = std::max(speed, thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles + 1]);
+    const double* sums = thread_sums_.data() + static_cast<std::size_t>(t) * core::cache_line_doubles;
+    work += sums[0];
+    speed = std::max(speed, sums[1]);
   }
   plastic_work_ += work;
   signal_speed_ = speed;
@@ -37,49 +50,57 @@ void MpmSolver::strain_stress_update(double dt) {
 }
 
 template <class Strength, class Eos, bool Thermal>
-void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& strength,
-                                    const Eos& eos, double dt, int nt) {
+void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& strength_in,
+                                    const Eos& eos_in, double dt, int nt) {
   const core::BackgroundGrid& g = grid_;
   Particles& p = particles_;
-  const core::Material& mat = *materials_[static_cast<std::size_t>(batch.material)];
-  const bool jaumann = plan_.jaumann;
-  // The velocity the strain rate comes from: USF the start-of-step grid velocity, USL the
-  // updated one, MUSL the remapped one. USL and MUSL move the particle here (eq 2-35).
-  const std::vector<Vec3>* from = &g.velocity_new;
-  bool move = true;
-  if (plan_.scheme == core::UpdateScheme::USF) {
-    from = &g.velocity;
-    move = false;
-  } else if (plan_.scheme == core::UpdateScheme::MUSL) {
-    from = &g.velocity_remap;
+  StrainSweep sweep{g.velocity_new.data(), true, false};
+  switch (plan_.scheme) {
+    case core::UpdateScheme::USF: sweep = {g.velocity.data(), false, false}; break;
+    case core::UpdateScheme::USL: sweep = {g.velocity_new.data(), true, true}; break;
+    case core::UpdateScheme::MUSL: sweep = {g.velocity_remap.data(), true, false}; break;
   }
-  const std::vector<Vec3>& v_strain = *from;
-  const std::vector<Vec3>& v_move = g.velocity_new;
+  const Vec3* v_old = g.velocity.data();
+  const Vec3* v_new = g.velocity_new.data();
+  const bool jaumann = plan_.jaumann;
+  const double flip = scene_.mpm.flip;
 
 #pragma omp parallel num_threads(nt)
   {
+    // Thread-local copies: stores to the particle arrays cannot alias them, so the
+    // material constants stay in registers through the loop.
+    const core::Material mat = *materials_[static_cast<std::size_t>(batch.material)];
+    const Strength strength = strength_in;
+    const Eos eos = eos_in;
     const int t = core::thread_index();
     const auto [b, e] = core::static_range(batch.end - batch.begin, t, core::team_size());
     double work = 0.0, speed = 0.0;
     std::int64_t bad = -1;
     for (std::size_t i = batch.begin + b; i < batch.begin + e; ++i) {
-      Vec3& x = p.position[i];
+      Vec3 x = p.position[i];
       const auto c = g.cell_of(x);
       const core::CellWeights w = g.weights(x, c);
       std::array<std::int32_t, 8> slot;
       g.node_slots(c, slot);
       core::Mat3 l;  // L_ij = sum_I v_Ii dN_I/dx_j
-      Vec3 v_bar;
+      Vec3 v_bar, dv;
       for (int k = 0; k < 8; ++k) {
         const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]);
-        const Vec3& v = v_strain[s];
+        const Vec3 v = sweep.strain_velocity[s];
         const Vec3& d = w.grad[static_cast<std::size_t>(k)];
         for (int r = 0; r < 3; ++r) {
           l.m[r][0] += v[r] * d.x;
           l.m[r][1] += v[r] * d.y;
           l.m[r][2] += v[r] * d.z;
         }
-        if (move) v_bar += w.w[static_cast<std::size_t>(k)] * v_move[s];
+        const double wk = w.w[static_cast<std::size_t>(k)];
+        if (sweep.move) v_bar += wk * v_new[s];
+        if (sweep.flip_update) dv += wk * (v_new[s] - v_old[s]);
+      }
+      Vec3 v_p = p.velocity[i];
+      if (sweep.flip_update) {
+        v_p = flip * (v_p + dv) + (1.0 - flip) * v_bar;
+        p.velocity[i] = v_p;
       }
       const core::SymTensor d_eps = dt * core::sym_part(l);
       core::PointState st;
@@ -89,11 +110,12 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
                                              0.5 * dt * (l.m[0][2] - l.m[2][0]),
                                              0.5 * dt * (l.m[0][1] - l.m[1][0]));
       }
-      p.volume[i] *= 1.0 + d_eps.trace();
+      const double volume = p.volume[i] * (1.0 + d_eps.trace());
+      p.volume[i] = volume;
       st.plastic_strain = p.plastic_strain[i];
       st.temperature = p.temperature[i];
       st.energy = p.energy[i];
-      st.density = p.mass[i] / p.volume[i];
+      st.density = p.mass[i] / volume;
       const core::PointUpdate u =
           core::constitutive_update(mat, strength, eos, Thermal, st, d_eps, dt);
       p.stress[i] = st.stress;
@@ -102,10 +124,14 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
       p.energy[i] = st.energy;
       p.strain[i] += d_eps;
       work += p.mass[i] * u.plastic_work;
-      if (move) x += dt * v_bar;
-      const double s = core::wave_speed(mat, st) + core::norm(p.velocity[i]);
-      if (!(std::isfinite(s) && std::isfinite(st.stress.trace()) && std::isfinite(x.x + x.y + x.z)) &&
-          bad < 0)
+      if (sweep.move) {
+        x += dt * v_bar;
+        p.position[i] = x;
+      }
+      const double s = core::wave_speed(mat, eos, st) + core::norm(v_p);
+      const core::SymTensor& o = st.stress;
+      // One sum catches a NaN or Inf in any of the values it adds.
+      if (!std::isfinite(s + o.xx + o.yy + o.zz + o.yz + o.xz + o.xy + x.x + x.y + x.z) && bad < 0)
         bad = static_cast<std::int64_t>(i);
       speed = std::max(speed, s);
     }

@@ -18,22 +18,6 @@ BackgroundGrid::BackgroundGrid(const GridSettings& settings)
   directory_.assign(static_cast<std::size_t>(blocks_[0]) * blocks_[1] * blocks_[2], -1);
 }
 
-CellWeights BackgroundGrid::weights(const Vec3& x, const std::array<int, 3>& c) const {
-  // Local coordinates in [0, 1) along each axis; N = (1 - f) or f per axis (eq 2-5).
-  const double fx = (x.x - origin_.x) * inv_h_ - c[0];
-  const double fy = (x.y - origin_.y) * inv_h_ - c[1];
-  const double fz = (x.z - origin_.z) * inv_h_ - c[2];
-  const double wx[2] = {1.0 - fx, fx}, wy[2] = {1.0 - fy, fy}, wz[2] = {1.0 - fz, fz};
-  const double dx[2] = {-inv_h_, inv_h_};
-  CellWeights r;
-  for (int n = 0; n < 8; ++n) {
-    const int a = n & 1, b = (n >> 1) & 1, cc = n >> 2;
-    r.w[n] = wx[a] * wy[b] * wz[cc];
-    r.grad[n] = {dx[a] * wy[b] * wz[cc], wx[a] * dx[b] * wz[cc], wx[a] * wy[b] * dx[cc]};
-  }
-  return r;
-}
-
 void BackgroundGrid::activate(std::span<const std::int64_t> cells) {
   for (std::int64_t b : active_blocks_) directory_[static_cast<std::size_t>(b)] = -1;
 
@@ -52,11 +36,17 @@ void BackgroundGrid::activate(std::span<const std::int64_t> cells) {
       if (l == last_cell) continue;  // neighbours in memory mostly share a cell
       last_cell = l;
       const auto c = cell_from_linear(l);
-      for (int cc = 0; cc < 2; ++cc)
-        for (int b = 0; b < 2; ++b)
-          for (int a = 0; a < 2; ++a) {
-            const std::int64_t blk = ((c[2] + cc) / block_edge * by + (c[1] + b) / block_edge) * bx +
-                                     (c[0] + a) / block_edge;
+      // The cell's nodes lie in 1, 2, 4 or 8 blocks: one per distinct block index per axis.
+      const int nbx = (c[0] % block_edge == block_edge - 1) ? 2 : 1;
+      const int nby = (c[1] % block_edge == block_edge - 1) ? 2 : 1;
+      const int nbz = (c[2] % block_edge == block_edge - 1) ? 2 : 1;
+      for (int cc = 0; cc < nbz; ++cc)
+        for (int b = 0; b < nby; ++b)
+          for (int a = 0; a < nbx; ++a) {
+            const std::int64_t blk =
+                (static_cast<std::int64_t>(c[2] / block_edge + cc) * by + c[1] / block_edge + b) *
+                    bx +
+                c[0] / block_edge + a;
             if (mine.empty() || mine.back() != blk) mine.push_back(blk);
           }
     }
@@ -79,24 +69,6 @@ void BackgroundGrid::resize_fields() {
   velocity.resize(n);
   velocity_new.resize(n);
   if (keep_remap_) velocity_remap.resize(n);
-}
-
-void BackgroundGrid::node_slots(const std::array<int, 3>& c,
-                                std::array<std::int32_t, 8>& slots) const {
-  const std::int64_t bx = blocks_[0], by = blocks_[1];
-  int blk[3][2], loc[3][2];
-  for (int a = 0; a < 3; ++a)
-    for (int o = 0; o < 2; ++o) {
-      blk[a][o] = (c[a] + o) / block_edge;
-      loc[a][o] = (c[a] + o) % block_edge;
-    }
-  for (int n = 0; n < 8; ++n) {
-    const int a = n & 1, b = (n >> 1) & 1, cc = n >> 2;
-    const std::int64_t block = (blk[2][cc] * by + blk[1][b]) * bx + blk[0][a];
-    slots[static_cast<std::size_t>(n)] =
-        directory_[static_cast<std::size_t>(block)] * block_nodes +
-        (loc[2][cc] * block_edge + loc[1][b]) * block_edge + loc[0][a];
-  }
 }
 
 std::array<int, 3> BackgroundGrid::node_of_slot(std::size_t slot) const {

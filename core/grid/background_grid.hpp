@@ -46,8 +46,24 @@ class BackgroundGrid {
     return c[0] >= 0 && c[1] >= 0 && c[2] >= 0 && c[0] < cells_[0] && c[1] < cells_[1] &&
            c[2] < cells_[2];
   }
-  // Weights of the 8 nodes of cell c at x (x must lie in c).
-  CellWeights weights(const Vec3& x, const std::array<int, 3>& c) const;
+  // Weights of the 8 nodes of cell c at x (x must lie in c); inline: every transfer of
+  // every particle calls it.
+  CellWeights weights(const Vec3& x, const std::array<int, 3>& c) const {
+    // Local coordinates in [0, 1) along each axis; N = (1 - f) or f per axis (eq 2-5).
+    const double fx = (x.x - origin_.x) * inv_h_ - c[0];
+    const double fy = (x.y - origin_.y) * inv_h_ - c[1];
+    const double fz = (x.z - origin_.z) * inv_h_ - c[2];
+    const double wx[2] = {1.0 - fx, fx}, wy[2] = {1.0 - fy, fy}, wz[2] = {1.0 - fz, fz};
+    const double dx[2] = {-inv_h_, inv_h_};
+    CellWeights r;
+    for (int n = 0; n < 8; ++n) {
+      const int a = n & 1, b = (n >> 1) & 1, cc = n >> 2;
+      r.w[static_cast<std::size_t>(n)] = wx[a] * wy[b] * wz[cc];
+      r.grad[static_cast<std::size_t>(n)] = {dx[a] * wy[b] * wz[cc], wx[a] * dx[b] * wz[cc],
+                                             wx[a] * wy[b] * dx[cc]};
+    }
+    return r;
+  }
   Vec3 node_position(int i, int j, int k) const {
     return {origin_.x + i * h_, origin_.y + j * h_, origin_.z + k * h_};
   }
@@ -67,7 +83,23 @@ class BackgroundGrid {
   }
 
   // Storage slots of the 8 nodes of an active cell, in CellWeights order.
-  void node_slots(const std::array<int, 3>& c, std::array<std::int32_t, 8>& slots) const;
+  void node_slots(const std::array<int, 3>& c, std::array<std::int32_t, 8>& slots) const {
+    const std::int64_t bx = blocks_[0], by = blocks_[1];
+    int blk[3][2], loc[3][2];
+    for (int a = 0; a < 3; ++a)
+      for (int o = 0; o < 2; ++o) {
+        const int n = c[static_cast<std::size_t>(a)] + o;
+        blk[a][o] = n / block_edge;
+        loc[a][o] = n % block_edge;
+      }
+    for (int n = 0; n < 8; ++n) {
+      const int a = n & 1, b = (n >> 1) & 1, cc = n >> 2;
+      const std::int64_t block = (blk[2][cc] * by + blk[1][b]) * bx + blk[0][a];
+      slots[static_cast<std::size_t>(n)] =
+          directory_[static_cast<std::size_t>(block)] * block_nodes +
+          (loc[2][cc] * block_edge + loc[1][b]) * block_edge + loc[0][a];
+    }
+  }
   // Number of node slots in use (active blocks x 64; slots of untouched nodes carry zero mass).
   std::size_t slot_count() const { return active_blocks_.size() * block_nodes; }
   std::size_t active_block_count() const { return active_blocks_.size(); }

@@ -3,6 +3,7 @@
 // de = (s_mid : de_dev - p_mid tr(d eps)) / rho solved in closed form with p = a(mu) + b(mu) e.
 #pragma once
 
+#include <cmath>
 #include <type_traits>
 
 namespace afemp::core {
@@ -51,6 +52,17 @@ inline PointUpdate constitutive_update(const Material& material, const Strength&
                          material.thermal.specific_heat;
   }
   return {plastic_work};
+}
+
+template <class Eos>
+inline double wave_speed(const Material& material, const Eos& eos, const PointState& point) {
+  double k_tangent;
+  if constexpr (std::is_same_v<Eos, NoEos>) {
+    k_tangent = material.bulk_modulus();
+  } else {
+    k_tangent = eos.tangent_bulk_modulus(point.density / material.density - 1.0, point.energy);
+  }
+  return std::sqrt((k_tangent + 4.0 / 3.0 * material.shear_modulus()) / point.density);
 }
 
 }  // namespace afemp::core

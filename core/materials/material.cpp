@@ -77,17 +77,8 @@ void Material::validate() const {
 }
 
 double wave_speed(const Material& material, const PointState& point) {
-  const double mu = point.density / material.density - 1.0;
-  const double k_tangent = std::visit(
-      [&](const auto& eos) {
-        if constexpr (std::is_same_v<std::decay_t<decltype(eos)>, NoEos>) {
-          return material.bulk_modulus();
-        } else {
-          return eos.tangent_bulk_modulus(mu, point.energy);
-        }
-      },
-      material.eos);
-  return std::sqrt((k_tangent + 4.0 / 3.0 * material.shear_modulus()) / point.density);
+  return std::visit([&](const auto& eos) { return wave_speed(material, eos, point); },
+                    material.eos);
 }
 
 }  // namespace afemp::core

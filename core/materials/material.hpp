@@ -66,8 +66,10 @@ PointUpdate constitutive_update(const Material& material, const Strength& streng
                                 bool thermal, PointState& point, const SymTensor& d_eps, double dt);
 
 // Longitudinal wave speed sqrt((K_t + 4G/3) / rho) at the point's state, K_t the EOS tangent
-// bulk modulus (or K without an EOS).
+// bulk modulus (or K without an EOS). The template is the per-batch form.
 double wave_speed(const Material& material, const PointState& point);
+template <class Eos>
+double wave_speed(const Material& material, const Eos& eos, const PointState& point);
 
 }  // namespace afemp::core
 
