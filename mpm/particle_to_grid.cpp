@@ -39,33 +39,67 @@ void MpmSolver::particle_to_grid() {
   }
   const Particles& p = particles_;
   const Vec3 gravity = scene_.run.gravity;
-  sweep_layers(layer_offsets_, layer_order_, [&](std::size_t i) {
-    const Vec3& x = p.position[i];
-    const auto c = g.cell_of(x);
-    const core::CellWeights w = g.weights(x, c);
-    std::array<std::int32_t, 8> slot;
-    g.node_slots(c, slot);
-    const double m = p.mass[i];
-    const Vec3 mv = m * p.velocity[i];
-    const double vol = p.volume[i];
-    const core::SymTensor& s = p.stress[i];
-    for (int n = 0; n < 8; ++n) {
-      const auto k = static_cast<std::size_t>(slot[static_cast<std::size_t>(n)]);
-      const double wn = w.w[static_cast<std::size_t>(n)];
-      if constexpr (MassMomentum) {
-        g.mass[k] += m * wn;
-        g.momentum[k] += wn * mv;
+  const std::vector<std::int64_t>& cells = cell_;
+  const std::int64_t layers = static_cast<std::int64_t>(layer_offsets_.size()) - 1;
+  // Particles of one cell mostly follow each other (the arrays are kept in cell order), so
+  // each sweep sums a run of same-cell particles into the cell's 8 nodes locally and adds
+  // the sums to the grid once per run: 8x less grid traffic, same order every time.
+  for (int parity = 0; parity < 2; ++parity) {
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::int64_t l = parity; l < layers; l += 2) {
+      const auto b = static_cast<std::size_t>(layer_offsets_[static_cast<std::size_t>(l)]);
+      const auto e = static_cast<std::size_t>(layer_offsets_[static_cast<std::size_t>(l) + 1]);
+      double mass[8];
+      Vec3 momentum[8], force[8];
+      std::array<std::int32_t, 8> slot{};
+      std::int64_t current = -1;
+      auto flush = [&] {
+        if (current < 0) return;
+        for (std::size_t n = 0; n < 8; ++n) {
+          const auto k = static_cast<std::size_t>(slot[n]);
+          if constexpr (MassMomentum) {
+            g.mass[k] += mass[n];
+            g.momentum[k] += momentum[n];
+          }
+          if constexpr (Force) g.force[k] += force[n];
+        }
+      };
+      for (std::size_t q = b; q < e; ++q) {
+        const auto i = static_cast<std::size_t>(layer_order_[q]);
+        const Vec3& x = p.position[i];
+        const auto c = g.cell_of(x);
+        if (cells[i] != current) {
+          flush();
+          current = cells[i];
+          g.node_slots(c, slot);
+          for (std::size_t n = 0; n < 8; ++n) {
+            mass[n] = 0.0;
+            momentum[n] = {};
+            force[n] = {};
+          }
+        }
+        const core::CellWeights w = g.weights(x, c);
+        const double m = p.mass[i];
+        const Vec3 mv = m * p.velocity[i];
+        const core::SymTensor sv = p.volume[i] * p.stress[i];
+        for (std::size_t n = 0; n < 8; ++n) {
+          const double wn = w.w[n];
+          if constexpr (MassMomentum) {
+            mass[n] += m * wn;
+            momentum[n] += wn * mv;
+          }
+          if constexpr (Force) {
+            const Vec3& d = w.grad[n];
+            force[n] -= Vec3{sv.xx * d.x + sv.xy * d.y + sv.xz * d.z,
+                             sv.xy * d.x + sv.yy * d.y + sv.yz * d.z,
+                             sv.xz * d.x + sv.yz * d.y + sv.zz * d.z};
+            if constexpr (Gravity) force[n] += (m * wn) * gravity;
+          }
+        }
       }
-      if constexpr (Force) {
-        const Vec3& d = w.grad[static_cast<std::size_t>(n)];
-        Vec3 f{-vol * (s.xx * d.x + s.xy * d.y + s.xz * d.z),
-               -vol * (s.xy * d.x + s.yy * d.y + s.yz * d.z),
-               -vol * (s.xz * d.x + s.yz * d.y + s.zz * d.z)};
-        if constexpr (Gravity) f += (m * wn) * gravity;
-        g.force[k] += f;
-      }
+      flush();
     }
-  });
+  }
 }
 
 template void MpmSolver::particle_to_grid<true, false, false>();
