@@ -1,8 +1,8 @@
 // Grid momentum update and boundary conditions (seed 001 eq 2-32): v = p / m, a = f / m,
 // v^{k+1} = v + a dt, with the components a face constrains set to zero in both v and a
 // (fixed: all three; symmetric: the normal one), as MPM3D does (p = 0, f = 0 there). A wall
-// face constrains the normal component of v^{k+1} only where it points into the wall, so
-// material leaves it freely: a unilateral, frictionless rigid wall on the grid.
+// face holds the normal component of v and of v^{k+1} only where it points into the wall,
+// so material leaves it freely: a unilateral, frictionless rigid wall on the grid.
 #include "core/parallel.hpp"
 #include "mpm/mpm_solver.hpp"
 
@@ -100,6 +100,7 @@ void MpmSolver::grid_momentum_update(double dt) {
   const bool body_force = plan_.gravity;
   const int nt = core::thread_count();
   thread_sums_.assign(static_cast<std::size_t>(nt) * core::cache_line_doubles, 0.0);
+  wall_contact_.assign(g.slot_count(), 0);
 #pragma omp parallel num_threads(nt)
   {
     double work = 0.0;  // body-force work f_ext . (v + v_new) / 2 dt
@@ -114,13 +115,20 @@ void MpmSolver::grid_momentum_update(double dt) {
       Vec3 v = inv_m * g.momentum[s];
       Vec3 a = inv_m * g.force[s];
       const NodeConstraint c = constraints(node);
-      constrain(v, c.always);
+      // A wall holds a node whose start velocity v points into it (rigid-body contact as in
+      // Bardenhagen et al. 2000: corrected after P2G and again after integration). Zeroing
+      // only v_new let the FLIP increment v_new - v hand the particles an impulse -m v the
+      // strain (computed with v held at 0) never saw: +11..14 % energy in the elastic bar.
+      constrain(v, c.mask_for(v));
       constrain(a, c.always);
       Vec3 v_new = v + dt * a;
-      // A wall stops the normal motion into it by an impulse: v_new loses that component
-      // while v keeps it, so the FLIP increment v_new - v hands the impulse to the particles
-      // (a perfectly inelastic node-wall contact: it can remove energy, never add it).
-      if (c.any()) constrain(v_new, c.mask_for(v_new) & ~c.always);
+      // A node still driven into the wall (v_new) stops there; the components held this
+      // step are kept for the MUSL remap, which must hold them too (remap_to_grid).
+      if (c.any()) {
+        const unsigned wall = (c.mask_for(v) | c.mask_for(v_new)) & ~c.always;
+        constrain(v_new, wall);
+        wall_contact_[s] = static_cast<std::uint8_t>(wall);
+      }
       g.velocity[s] = v;
       g.velocity_new[s] = v_new;
       if (body_force) work += 0.5 * dt * m * core::dot(gravity, v + v_new);

@@ -98,6 +98,10 @@ class MpmSolver {
   std::vector<std::int64_t> scratch_offsets_;
   int sweep_axis_ = 2;
 
+  // Wall-face components constrained at each grid slot by this step's momentum update
+  // (bit a: component a), reused for the MUSL remapped velocity (see remap_to_grid).
+  std::vector<std::uint8_t> wall_contact_;
+
   // Accumulators and state.
   double plastic_work_ = 0.0;
   double external_work_ = 0.0;

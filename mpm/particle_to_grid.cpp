@@ -128,6 +128,12 @@ void MpmSolver::remap_to_grid() {
           w.w[static_cast<std::size_t>(n)] * mv;
   });
   apply_velocity_conditions(g.velocity_remap, true);
+  // A wall node held this step (its v or v_new pointed into the wall) did not move
+  // normally (positions move with v_new): its remapped normal velocity is zeroed too, or
+  // the strain would compress the material against a node that stayed put (energy created).
+  for (std::size_t s = 0; s < slots && s < wall_contact_.size(); ++s)
+    for (int a = 0; a < 3; ++a)
+      if ((wall_contact_[s] >> a) & 1u) g.velocity_remap[s][a] = 0.0;
 }
 
 }  // namespace afemp::mpm
