@@ -1,0 +1,88 @@
+// V1: the elastic copper bar of seed 001 §2.3.1 (L 10, R 2, quarter model, cell 1, 260
+// particles, 300 m/s) on a rigid frictionless wall, from examples/elastic_bar/mpm.toml,
+// with each update scheme. Prints the rebound speed and the energy balance of each.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "core/scene.hpp"
+#include "mpm/simulation.hpp"
+
+namespace afemp::mpm {
+namespace {
+
+std::string example_text() {
+  std::ifstream in(std::string(AFEMP_SOURCE_DIR) + "/examples/elastic_bar/mpm.toml");
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The example with another scheme and time-step factor.
+core::Scene elastic_bar(const std::string& scheme, double factor) {
+  std::string text = example_text();
+  const std::string key = "scheme = \"MUSL\"";
+  const auto at = text.find(key);
+  EXPECT_NE(at, std::string::npos);
+  text.replace(at, key.size(), "scheme = \"" + scheme + "\"");
+  const std::string run = "[run]\n";
+  text.insert(text.find(run) + run.size(), "time_step_factor = " + std::to_string(factor) + "\n");
+  return core::parse_scene(text, "examples/elastic_bar/mpm.toml");
+}
+
+struct Rebound {
+  double speed, max_error, end_error, kinetic_ratio;
+};
+
+Rebound run(const std::string& scheme, double factor) {
+  const core::Scene scene = elastic_bar(scheme, factor);
+  Simulation sim(scene);
+  const RunSummary s = sim.run({});
+  const BodySums& bar = s.final.bodies.at(0);
+  const Rebound r{bar.momentum.z / bar.mass, s.max_energy_error, s.energy_error,
+                  s.final.kinetic / s.initial.kinetic};
+  std::printf("V1 %-4s factor %.2f: rebound %.1f m/s (v0 300), kinetic energy back %.1f %%, "
+              "energy balance error %+.2f %% at the end, largest %.2f %%, %ld steps\n",
+              scheme.c_str(), factor, r.speed, 100.0 * r.kinetic_ratio, 100.0 * r.end_error,
+              100.0 * r.max_error, s.steps);
+  return r;
+}
+
+// Reference: the bar leaves the wall at v0 = 300 m/s in 1D theory; in 3D a short bar
+// (L/D = 2.5) keeps part of its energy in lateral (Poisson) vibration, and the finer the
+// grid and step the lower the rebound goes (cell 1 / 0.5 / 0.25: 277.6 / 271.7 / 262.7 m/s
+// with MUSL), so the rebound is checked between 0.9 v0 and the 305 m/s no scheme may exceed
+// without creating energy. The energy balance must close within 2 % (VALIDATION V1) with
+// time_step_factor 0.1; USF needs it (4.5 % at 0.3: its strain is taken before the wall
+// decides which nodes it holds), MUSL meets it at 0.3 as well.
+TEST(ElasticBar, MuslReboundsAndClosesEnergyBalance) {
+  for (double factor : {0.3, 0.1}) {
+    const Rebound r = run("MUSL", factor);
+    EXPECT_GT(r.speed, 270.0);
+    EXPECT_LT(r.speed, 305.0);
+    EXPECT_LT(r.max_error, 0.02);
+  }
+}
+
+TEST(ElasticBar, UsfReboundsAndClosesEnergyBalance) {
+  const Rebound r = run("USF", 0.1);
+  EXPECT_GT(r.speed, 270.0);
+  EXPECT_LT(r.speed, 305.0);
+  EXPECT_LT(r.max_error, 0.02);
+}
+
+TEST(ElasticBar, UslFiguresAreReportedBesideTheOthers) {
+  // USL dissipates and is unstable at free surfaces (seed 000 §2.1.2); its figures are
+  // reported, and the only assertion is that it neither blows up nor gains energy beyond
+  // the 20 % the old wall treatment showed.
+  const Rebound r = run("USL", 0.1);
+  EXPECT_TRUE(std::isfinite(r.speed));
+  EXPECT_LT(r.max_error, 0.20);
+}
+
+}  // namespace
+}  // namespace afemp::mpm
