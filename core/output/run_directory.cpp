@@ -7,9 +7,14 @@
 namespace afemp::core {
 
 std::string default_output_directory(const std::string& scene_path) {
-  std::string stem = std::filesystem::path(scene_path).stem().string();
+  const std::filesystem::path path(scene_path);
+  std::string stem = path.stem().string();
   // "." and ".." are not names a results directory should take.
   if (stem.empty() || stem == "." || stem == "..") stem = "run";
+  // The folder name goes in front: examples keep one folder per case with scenes named
+  // after the method (taylor_bar/mpm.toml, elastic_bar/mpm.toml), which must not collide.
+  const std::string folder = path.parent_path().filename().string();
+  if (!folder.empty() && folder != "." && folder != "..") stem = folder + "-" + stem;
   return (std::filesystem::path("runs") / stem).string();
 }
 

@@ -1,6 +1,6 @@
 // Where a run writes its results. By default a scene "some/where/NAME.toml" writes into
-// "runs/NAME" relative to the current working directory, so runs never litter the examples
-// tree and rerunning a scene replaces its previous results.
+// "runs/where-NAME" relative to the current working directory, so runs never litter the
+// examples tree and rerunning a scene replaces its previous results.
 #pragma once
 
 #include <string>

@@ -130,15 +130,15 @@ TEST(History, UnwritablePathThrowsNamingIt) {
 }
 
 TEST(OutputPaths, DefaultDirectoryIsRunsSlashSceneStem) {
-  EXPECT_EQ(default_output_directory("examples/taylor_bar/mpm.toml"), "runs/mpm");
-  EXPECT_EQ(default_output_directory("/abs/path/taylor.scene.toml"), "runs/taylor.scene");
+  EXPECT_EQ(default_output_directory("examples/taylor_bar/mpm.toml"), "runs/taylor_bar-mpm");
+  EXPECT_EQ(default_output_directory("/abs/path/taylor.scene.toml"), "runs/path-taylor.scene");
   EXPECT_EQ(default_output_directory("plain"), "runs/plain");
   EXPECT_EQ(default_output_directory(""), "runs/run");
   const OutputPaths p = default_output_paths("examples/taylor_bar/mpm.toml");
-  EXPECT_EQ(p.directory, "runs/mpm");
-  EXPECT_EQ(fields_h5_path(p), "runs/mpm/particles.h5");
-  EXPECT_EQ(fields_xmf_path(p), "runs/mpm/particles.xmf");
-  EXPECT_EQ(history_path(p), "runs/mpm/history.csv");
+  EXPECT_EQ(p.directory, "runs/taylor_bar-mpm");
+  EXPECT_EQ(fields_h5_path(p), "runs/taylor_bar-mpm/particles.h5");
+  EXPECT_EQ(fields_xmf_path(p), "runs/taylor_bar-mpm/particles.xmf");
+  EXPECT_EQ(history_path(p), "runs/taylor_bar-mpm/history.csv");
 }
 
 }  // namespace

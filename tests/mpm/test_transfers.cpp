@@ -157,7 +157,7 @@ TEST(Transfer, PicStepDoesNotIncreaseKineticEnergy) {
 // particles keep crossing cell faces. References:
 //  (a) sum over all nodes of the internal force is zero (sum_I grad N_I = 0 for each
 //      particle): tolerance 1e-10 |sigma| A, A = 12 x 8 h^2 the largest face;
-//  (b) nodes more than 3 cells inside the body get no force: a uniform stress is
+//  (b) nodes at least 2 cells inside the body get no force: a uniform stress is
 //      divergence-free, and the lattice of 2 particles per cell per direction integrates the
 //      piecewise-linear shape function gradients exactly, in any position; tolerance
 //      1e-10 |sigma| h^2;
@@ -166,9 +166,13 @@ TEST(Transfer, PicStepDoesNotIncreaseKineticEnergy) {
 //      layer straddling x_c contribute, each with V sigma . e_x / h, and that layer always
 //      holds exactly two particles per x-line; tolerance 1e-10 relative;
 //  (d) the particle momentum stays the initial one to 1e-12 (free faces, no gravity).
-// The free surface accelerates under the unbalanced traction and changes the stress near the
-// surface; E = 1 MPa (c dt / h = 0.011) makes that change decay by ~1e-4 per cell inward, so
-// at 3 cells it is below round-off and (b), (c) measure the transfer, not the dynamics.
+// The free surface accelerates under the unbalanced traction, and the grid velocity (a mass
+// average over two cells) carries that disturbance about one cell inward per step: with
+// steel's density and E = 1 MPa the stress 3 cells deep had drifted by 1e-4 sigma after 15
+// steps. The body is therefore made heavy and soft (rho = 7.85e3 g/mm^3, E = 0.01 MPa): the
+// surface velocity changes by 2 sigma dt / (rho h) ~ 3e-7 mm/ms per step (against 300) and the
+// stress by E dt dv / h ~ 1e-12 sigma, so the stress stays uniform to round-off for 20 steps
+// and (b), (c) measure the transfer itself.
 TEST(Transfer, PatchTestUniformStressGivesNoInteriorForceWhileCrossingCells) {
   const SymTensor sigma{1.0, -0.5, 0.3, 0.2, -0.4, 0.6};  // MPa
   const double sigma_norm = std::sqrt(core::double_dot(sigma, sigma));
@@ -179,8 +183,8 @@ TEST(Transfer, PatchTestUniformStressGivesNoInteriorForceWhileCrossingCells) {
         std::string("[run]\nend_time = 1.0\n") +
             "[grid]\ncell = 1.0\nmin = [0, 0, 0]\nmax = [32, 16, 16]\n"
             "[mpm]\nscheme = \"" + scheme + "\"\n"
-            "[materials.soft]\ndensity = 7.85e-3\nE = 1.0\nnu = 0.3\n"
-            "[[bodies]]\nname = \"b\"\nmaterial = \"soft\"\nparticles_per_cell = 2\n"
+            "[materials.heavy]\ndensity = 7.85e6\nE = 0.01\nnu = 0.3\n"
+            "[[bodies]]\nname = \"b\"\nmaterial = \"heavy\"\nparticles_per_cell = 2\n"
             "velocity = [300, 0, 0]\n"
             "shape = { box = { min = [2, 4, 4], max = [14, 12, 12] } }\n",
         "patch.toml");
@@ -210,18 +214,13 @@ TEST(Transfer, PatchTestUniformStressGivesNoInteriorForceWhileCrossingCells) {
         total += f;
         if (xi.x > x_cut) beyond += f;
         bool inside = true;
-        for (int a = 0; a < 3; ++a) inside = inside && xi[a] >= lo[a] + 3 * h && xi[a] <= hi[a] - 3 * h;
+        for (int a = 0; a < 3; ++a) inside = inside && xi[a] >= lo[a] + 2 * h && xi[a] <= hi[a] - 2 * h;
         if (inside) {
           ++interior;
           worst_interior = std::max(worst_interior, core::norm(f) / (sigma_norm * h * h));
         }
       }
-      ASSERT_GT(interior, 20u);
-      { double ms = 0; for (std::size_t i = 0; i < solver.particles().size(); ++i) { const Vec3& x = solver.particles().position[i]; bool in = true; for (int a = 0; a < 3; ++a) in = in && x[a] > lo[a] + 3 && x[a] < hi[a] - 3; if (in) ms = std::max(ms, std::abs(solver.particles().stress[i].xx - sigma.xx)); }
-        std::printf("DBG step %d interior=%zu worst_int=%g stressdev=%g\n", k, interior, worst_interior, ms);
-        double bydist[8] = {0}; double vdev[8] = {0};
-        for (std::size_t i = 0; i < solver.particles().size(); ++i) { const Vec3& x = solver.particles().position[i]; double d = 1e9; for (int a = 0; a < 3; ++a) d = std::min({d, x[a] - lo[a], hi[a] - x[a]}); int b = std::min(7, (int)std::floor(d)); if (b < 0) b = 0; const auto& st = solver.particles().stress[i]; double dv = std::abs(st.xx - sigma.xx) + std::abs(st.yy - sigma.yy) + std::abs(st.xy - sigma.xy); bydist[b] = std::max(bydist[b], dv); vdev[b] = std::max(vdev[b], core::norm(solver.particles().velocity[i] - Vec3{300,0,0})); }
-        std::printf("   stress dev by depth:"); for (double v : bydist) std::printf(" %.2g", v); std::printf("\n   vel dev:"); for (double v : vdev) std::printf(" %.2g", v); std::printf("\n"); }
+      ASSERT_GE(interior, 175u);  // at least 7 x 5 x 5 nodes
       worst_sum = std::max(worst_sum, core::norm(total) / (sigma_norm * 12 * 8 * h * h));
       const double a_yz = 8 * 8 * h * h;
       const Vec3 traction{-sigma.xx * a_yz, -sigma.xy * a_yz, -sigma.xz * a_yz};
