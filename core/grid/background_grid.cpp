@@ -1,6 +1,7 @@
 #include "core/grid/background_grid.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "core/parallel.hpp"
@@ -19,7 +20,7 @@ BackgroundGrid::BackgroundGrid(const GridSettings& settings)
 }
 
 void BackgroundGrid::activate(std::span<const std::int64_t> cells) {
-  for (std::int64_t b : active_blocks_) directory_[static_cast<std::size_t>(b)] = -1;
+  for (std::int64_t b : active_blocks_) directory_[static_cast<std::size_t>(b)] = inactive;
 
   const int nt = thread_count();
   thread_blocks_.resize(static_cast<std::size_t>(nt));
@@ -27,7 +28,7 @@ void BackgroundGrid::activate(std::span<const std::int64_t> cells) {
   const std::int64_t n = static_cast<std::int64_t>(cells.size());
 #pragma omp parallel
   {
-    auto& mine = thread_blocks_[static_cast<std::size_t>(thread_index())];
+    auto& mine = thread_blocks_[static_cast<std::size_t>(thread_index())].blocks;
     mine.clear();
     std::int64_t last_cell = -1;
 #pragma omp for schedule(static)
@@ -47,12 +48,20 @@ void BackgroundGrid::activate(std::span<const std::int64_t> cells) {
                 (static_cast<std::int64_t>(c[2] / block_edge + cc) * by + c[1] / block_edge + b) *
                     bx +
                 c[0] / block_edge + a;
-            if (mine.empty() || mine.back() != blk) mine.push_back(blk);
+            // Mark the block in the directory so each thread lists it once; two threads
+            // may both list it (the marks race benignly through relaxed atomics), which
+            // the sort and unique below absorb.
+            std::atomic_ref<std::int32_t> mark(directory_[static_cast<std::size_t>(blk)]);
+            if (mark.load(std::memory_order_relaxed) == inactive) {
+              mark.store(marked, std::memory_order_relaxed);
+              mine.push_back(blk);
+            }
           }
     }
   }
   active_blocks_.clear();
-  for (auto& t : thread_blocks_) active_blocks_.insert(active_blocks_.end(), t.begin(), t.end());
+  for (auto& t : thread_blocks_)
+    active_blocks_.insert(active_blocks_.end(), t.blocks.begin(), t.blocks.end());
   std::sort(active_blocks_.begin(), active_blocks_.end());
   active_blocks_.erase(std::unique(active_blocks_.begin(), active_blocks_.end()),
                        active_blocks_.end());

@@ -138,9 +138,14 @@ class BackgroundGrid {
   double h_ = 0.0, inv_h_ = 0.0;
   std::array<int, 3> cells_{};
   std::array<int, 3> blocks_{};          // blocks per axis
-  std::vector<std::int32_t> directory_;  // block -> active block number, -1 if inactive
+  std::vector<std::int32_t> directory_;  // block -> active block number, or inactive
+  static constexpr std::int32_t inactive = -1, marked = -2;
   std::vector<std::int64_t> active_blocks_;
-  std::vector<std::vector<std::int64_t>> thread_blocks_;  // per-thread scratch
+  // Per-thread scratch, one cache line each so that appends do not false-share.
+  struct alignas(64) ThreadBlocks {
+    std::vector<std::int64_t> blocks;
+  };
+  std::vector<ThreadBlocks> thread_blocks_;
   bool keep_remap_ = false;
   void resize_fields();
 
