@@ -45,6 +45,10 @@ int main(int argc, char** argv) {
   getrusage(RUSAGE_SELF, &usage);
   const double rss_bytes = static_cast<double>(usage.ru_maxrss) * 1024.0;
   std::printf("kinetic-energy check: %s\n", ok ? "within 2 %" : "OUTSIDE 2 %");
+  for (std::size_t i = 0; i < solver.plan().stages.size(); ++i)
+    std::printf("  stage %-28s %7.3f s\n", solver.plan().stages[i].name.c_str(),
+                solver.stage_seconds()[i]);
+  std::printf("  reorder particles            %7.3f s\n", solver.reorder_seconds());
   std::printf("threads %d  particles %zu  steps %ld  wall %.3f s  %.3f M particle-steps/s  "
               "peak RSS %.1f MiB = %.0f bytes/particle\n",
               core::thread_count(), n, steps, wall,

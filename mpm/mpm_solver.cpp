@@ -3,6 +3,7 @@
 #include "mpm/mpm_solver.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <numeric>
 #include <sstream>
@@ -20,6 +21,7 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
   for (const auto& m : scene.materials) materials_.push_back(&m);
   grid_.enable_remap_field(scene.mpm.scheme == core::UpdateScheme::MUSL);
   stage_counts_.assign(plan_.stages.size(), 0);
+  stage_seconds_.assign(plan_.stages.size(), 0.0);
   reorder_particles();
   signal_speed_ = max_signal_speed();
 }
@@ -30,8 +32,14 @@ double MpmSolver::stable_time_step() const {
 }
 
 void MpmSolver::step(double dt) {
-  if (steps_ > 0 && steps_ % reorder_interval == 0) reorder_particles();
+  using clock = std::chrono::steady_clock;
+  if (steps_ > 0 && steps_ % reorder_interval == 0) {
+    const auto t0 = clock::now();
+    reorder_particles();
+    reorder_seconds_ += std::chrono::duration<double>(clock::now() - t0).count();
+  }
   for (std::size_t i = 0; i < plan_.stages.size(); ++i) {
+    const auto t0 = clock::now();
     switch (plan_.stages[i].kind) {
       case StageKind::bin_particles:
         bin_particles();
@@ -72,6 +80,7 @@ void MpmSolver::step(double dt) {
         break;
     }
     ++stage_counts_[i];
+    stage_seconds_[i] += std::chrono::duration<double>(clock::now() - t0).count();
   }
   time_ += dt;
   ++steps_;
@@ -79,15 +88,16 @@ void MpmSolver::step(double dt) {
 
 double MpmSolver::max_signal_speed() const {
   const Particles& p = particles_;
-  double smax = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : smax)
+  double wave = 0.0, speed2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : wave, speed2)
   for (std::size_t i = 0; i < p.size(); ++i) {
     const core::Material& m = *materials_[static_cast<std::size_t>(p.material[i])];
     core::PointState st{p.stress[i], p.plastic_strain[i], p.temperature[i], p.energy[i],
                         p.mass[i] / p.volume[i]};
-    smax = std::max(smax, core::wave_speed(m, st) + core::norm(p.velocity[i]));
+    wave = std::max(wave, core::wave_speed(m, st));
+    speed2 = std::max(speed2, core::dot(p.velocity[i], p.velocity[i]));
   }
-  return smax;
+  return wave + std::sqrt(speed2);
 }
 
 Energies MpmSolver::energies() const {
@@ -178,11 +188,17 @@ void MpmSolver::raise_if_bad(const char* field) const {
       << scene_.bodies[static_cast<std::size_t>(p.body[i])].name << "' at (" << p.position[i].x
       << ", " << p.position[i].y << ", " << p.position[i].z << ")";
   std::ostringstream what;
-  const std::string f = field;
+  std::string f = field;
   if (f == "position" && std::isfinite(p.position[i].x) && std::isfinite(p.position[i].y) &&
-      std::isfinite(p.position[i].z))
+      std::isfinite(p.position[i].z)) {
     what << "left the grid domain (the run stops; enlarge [grid] min/max)";
-  else
+  } else if (f == "stress" && !(p.volume[i] > 0.0)) {
+    // The strain pass flags the point; a non-positive volume is the cause to name.
+    f = "volume";
+    what << "became " << p.volume[i]
+         << ": the point was compressed through zero volume in one step; try a smaller "
+            "time_step_factor";
+  } else
     what << "became NaN or Inf (velocity (" << p.velocity[i].x << ", " << p.velocity[i].y << ", "
          << p.velocity[i].z << "), pressure " << core::pressure(p.stress[i])
          << "); try a smaller time_step_factor";

@@ -45,7 +45,7 @@ class MpmSolver {
   long step_count() const { return steps_; }
   double time() const { return time_; }
 
-  // Stable step: factor * h / max_p (c_p + |v_p|), or the scene's fixed step.
+  // Stable step: factor * h / (max_p c_p + max_p |v_p|), or the scene's fixed step.
   double stable_time_step() const;
   // Advances by dt running each stage of the plan once. Throws core::SimulationError naming
   // the step, particle and field when a value becomes NaN/Inf or a particle leaves the grid.
@@ -53,8 +53,11 @@ class MpmSolver {
   // Energies and per-body sums of the current state (ordered reduction: same bits for a
   // given thread count).
   Energies energies() const;
-  // How many times each stage of the plan has run, in plan order.
+  // How many times each stage of the plan has run, and the wall seconds spent in it, in plan
+  // order; the reordering of particles for locality is counted apart.
   const std::vector<long>& stage_counts() const { return stage_counts_; }
+  const std::vector<double>& stage_seconds() const { return stage_seconds_; }
+  double reorder_seconds() const { return reorder_seconds_; }
   // Bins the particles and activates their grid blocks without advancing, so that
   // active_cells() and bytes() describe the first step (`afemp check`).
   void prepare() { bin_particles(); }
@@ -105,10 +108,12 @@ class MpmSolver {
   // Accumulators and state.
   double plastic_work_ = 0.0;
   double external_work_ = 0.0;
-  double signal_speed_ = 0.0;  // max c + |v| at the last stress update
+  double signal_speed_ = 0.0;  // max c + max |v| at the last stress update
   long steps_ = 0;
   double time_ = 0.0;
   std::vector<long> stage_counts_;
+  std::vector<double> stage_seconds_;
+  double reorder_seconds_ = 0.0;
   // Per-thread partial results, combined in thread order (determinism).
   mutable std::vector<double> thread_sums_;
   mutable std::vector<std::int64_t> thread_bad_;

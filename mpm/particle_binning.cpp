@@ -16,47 +16,61 @@ void MpmSolver::bin_particles() {
   const std::size_t n = p.size();
   cell_.resize(n);
   layer_.resize(n);
-  thread_bad_.assign(static_cast<std::size_t>(core::thread_count()), -1);
+  layer_order_.resize(n);
+  const int nt = core::thread_count();
+  thread_bad_.assign(static_cast<std::size_t>(nt), -1);
   const int axis = sweep_axis_;
-#pragma omp parallel
+  const std::size_t layers =
+      static_cast<std::size_t>(grid_.cells()[static_cast<std::size_t>(axis)]);
+  // Counting sort by layer, in parallel and stable: thread t counts its static range, then
+  // writes it behind the counts of threads 0..t-1 in every layer. The result is the same
+  // as a serial stable sort, whatever the thread count.
+  std::vector<std::int64_t>& counts = scratch_offsets_;
+  counts.assign(layers * static_cast<std::size_t>(nt), 0);
+#pragma omp parallel num_threads(nt)
   {
+    const int t = core::thread_index();
+    const int team = core::team_size();
+    const auto [b, e] = core::static_range(n, t, team);
+    std::int64_t* mine = counts.data() + layers * static_cast<std::size_t>(t);
     std::int64_t bad = -1;
-#pragma omp for schedule(static)
-    for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t i = b; i < e; ++i) {
       const Vec3& x = p.position[i];
-      if (!(std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z))) {
-        if (bad < 0) bad = static_cast<std::int64_t>(i);
-        cell_[i] = 0;
-        layer_[i] = 0;
-        continue;
-      }
-      const auto c = grid_.cell_of(x);
+      const bool finite = std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z);
+      const auto c = finite ? grid_.cell_of(x) : std::array<int, 3>{-1, -1, -1};
       if (!grid_.inside(c)) {
         if (bad < 0) bad = static_cast<std::int64_t>(i);
         cell_[i] = 0;
         layer_[i] = 0;
-        continue;
+      } else {
+        cell_[i] = grid_.linear_cell(c);
+        layer_[i] = c[static_cast<std::size_t>(axis)];
       }
-      cell_[i] = grid_.linear_cell(c);
-      layer_[i] = c[static_cast<std::size_t>(axis)];
+      ++mine[static_cast<std::size_t>(layer_[i])];
     }
-    thread_bad_[static_cast<std::size_t>(core::thread_index())] = bad;
+    thread_bad_[static_cast<std::size_t>(t)] = bad;
+#pragma omp barrier
+#pragma omp single
+    {
+      layer_offsets_.assign(layers + 1, 0);
+      std::int64_t running = 0;
+      for (std::size_t l = 0; l < layers; ++l) {
+        layer_offsets_[l] = running;
+        for (int u = 0; u < team; ++u) {
+          std::int64_t& c = counts[layers * static_cast<std::size_t>(u) + l];
+          const std::int64_t count = c;
+          c = running;  // becomes thread u's next insert position in layer l
+          running += count;
+        }
+      }
+      layer_offsets_[layers] = running;
+    }
+    for (std::size_t i = b; i < e; ++i)
+      layer_order_[static_cast<std::size_t>(mine[static_cast<std::size_t>(layer_[i])]++)] =
+          static_cast<std::int32_t>(i);
   }
   raise_if_bad("position");
-
   grid_.activate(cell_);
-
-  // Counting sort by layer (stable).
-  const std::size_t layers = static_cast<std::size_t>(grid_.cells()[static_cast<std::size_t>(axis)]);
-  layer_offsets_.assign(layers + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) ++layer_offsets_[static_cast<std::size_t>(layer_[i]) + 1];
-  for (std::size_t l = 0; l < layers; ++l) layer_offsets_[l + 1] += layer_offsets_[l];
-  layer_order_.resize(n);
-  std::vector<std::int64_t>& next = scratch_offsets_;
-  next.assign(layer_offsets_.begin(), layer_offsets_.end() - 1);
-  for (std::size_t i = 0; i < n; ++i)
-    layer_order_[static_cast<std::size_t>(next[static_cast<std::size_t>(layer_[i])]++)] =
-        static_cast<std::int32_t>(i);
 }
 
 }  // namespace afemp::mpm

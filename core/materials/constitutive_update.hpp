@@ -20,28 +20,28 @@ inline PointUpdate constitutive_update(const Material& material, const Strength&
   // Work per unit mass uses the volume the increment acts on: the solvers update volume as
   // V_new = V_old (1 + tr d eps), so sigma : d eps V_old / m = sigma : d eps / rho_old, which
   // makes the volumetric work exact over a compress-release cycle (second order overall).
-  const double rho_work = rho * (1.0 + d_vol);
+  const double inv_rho_work = 1.0 / (rho * (1.0 + d_vol));  // one division per point
 
   SymTensor s_new = s_old;
   const StrengthContext context{material.shear_modulus(), point.plastic_strain,
                                 point.temperature, dt};
   const DeviatoricResult r = strength.update(s_new, de_dev, context);
   point.plastic_strain += r.plastic_strain_increment;
-  const double plastic_work = r.flow_stress * r.plastic_strain_increment / rho_work;
+  const double plastic_work = r.flow_stress * r.plastic_strain_increment * inv_rho_work;
 
   // Trapezoidal deviatoric work: elastic (recoverable) and plastic parts together.
-  const double deviatoric_work = 0.5 * double_dot(s_old + s_new, de_dev) / rho_work;
+  const double deviatoric_work = 0.5 * double_dot(s_old + s_new, de_dev) * inv_rho_work;
   double p_new;
   if constexpr (std::is_same_v<Eos, NoEos>) {
     p_new = p_old - material.bulk_modulus() * d_vol;
-    point.energy += deviatoric_work - 0.5 * (p_old + p_new) * d_vol / rho_work;
+    point.energy += deviatoric_work - 0.5 * (p_old + p_new) * d_vol * inv_rho_work;
   } else {
     const double mu = rho / material.density - 1.0;
     const EosLinearForm f = eos.form(mu);
     // e_new = e* - p_new tr/(2 rho) with p_new = a + b e_new: linear in e_new, so the
     // midpoint-rule energy and the EOS pressure are consistent without iteration.
-    const double e_star = point.energy + deviatoric_work - 0.5 * p_old * d_vol / rho_work;
-    const double half_strain = 0.5 * d_vol / rho_work;
+    const double e_star = point.energy + deviatoric_work - 0.5 * p_old * d_vol * inv_rho_work;
+    const double half_strain = 0.5 * d_vol * inv_rho_work;
     point.energy = (e_star - f.a * half_strain) / (1.0 + f.b * half_strain);
     p_new = f.a + f.b * point.energy;
   }
