@@ -127,9 +127,11 @@ RunSummary Simulation::run(const RunOptions& options) {
   const double end = rs.end_time;
 
   while (solver_.time() < end * (1.0 - 1e-12) && (rs.max_steps <= 0 || solver_.step_count() < rs.max_steps)) {
-    dt = std::min(solver_.stable_time_step(), end - solver_.time());
-    sum.min_dt = std::min(sum.min_dt, dt);
-    sum.max_dt = std::max(sum.max_dt, dt);
+    const double stable = solver_.stable_time_step();
+    // The statistics describe the stable step; the last step may be cut to land on end.
+    sum.min_dt = std::min(sum.min_dt, stable);
+    sum.max_dt = std::max(sum.max_dt, stable);
+    dt = std::min(stable, end - solver_.time());
     solver_.step(dt);  // throws SimulationError: files written so far are already flushed
     const long k = solver_.step_count();
     if (k % rs.history_every == 0) last_error = record(dt);

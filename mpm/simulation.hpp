@@ -37,7 +37,7 @@ struct RunSummary {
   double time = 0.0;
   double wall_seconds = 0.0;
   double particle_steps_per_second = 0.0;
-  double min_dt = 0.0, max_dt = 0.0;
+  double min_dt = 0.0, max_dt = 0.0;  // of the stable step (the last step may be shorter)
   std::size_t particles = 0;
   Energies initial, final;
   double energy_error = 0.0;      // at the end

@@ -120,7 +120,8 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
       const core::PointUpdate u =
           core::constitutive_update(mat, strength, eos, Thermal, st, d_eps, dt);
       p.stress[i] = st.stress;
-      p.plastic_strain[i] = st.plastic_strain;
+      if constexpr (!std::is_same_v<Strength, core::Elastic>)
+        p.plastic_strain[i] = st.plastic_strain;  // an elastic batch never changes it
       if constexpr (Thermal) p.temperature[i] = st.temperature;
       p.energy[i] = st.energy;
       p.strain[i] += d_eps;
