@@ -8,18 +8,16 @@ namespace afemp::mpm {
 
 namespace {
 
-// Runs body(particle) for every particle, layer by layer: layers of one parity in parallel.
+// Runs body(begin, end) on the particle range of every colour layer: the layers of one
+// parity in parallel (they share no node), then the others.
 template <class Body>
-void sweep_layers(const std::vector<std::int64_t>& offsets, const std::vector<std::int32_t>& order,
-                  Body&& body) {
+void sweep_layers(const std::vector<std::int64_t>& offsets, Body&& body) {
   const std::int64_t layers = static_cast<std::int64_t>(offsets.size()) - 1;
   for (int parity = 0; parity < 2; ++parity) {
 #pragma omp parallel for schedule(dynamic, 1)
-    for (std::int64_t l = parity; l < layers; l += 2) {
-      const auto b = static_cast<std::size_t>(offsets[static_cast<std::size_t>(l)]);
-      const auto e = static_cast<std::size_t>(offsets[static_cast<std::size_t>(l) + 1]);
-      for (std::size_t k = b; k < e; ++k) body(static_cast<std::size_t>(order[k]));
-    }
+    for (std::int64_t l = parity; l < layers; l += 2)
+      body(static_cast<std::size_t>(offsets[static_cast<std::size_t>(l)]),
+           static_cast<std::size_t>(offsets[static_cast<std::size_t>(l) + 1]));
   }
 }
 
@@ -40,66 +38,60 @@ void MpmSolver::particle_to_grid() {
   const Particles& p = particles_;
   const Vec3 gravity = scene_.run.gravity;
   const std::vector<std::int64_t>& cells = cell_;
-  const std::int64_t layers = static_cast<std::int64_t>(layer_offsets_.size()) - 1;
   // Particles of one cell mostly follow each other (the arrays are kept in cell order), so
   // each sweep sums a run of same-cell particles into the cell's 8 nodes locally and adds
   // the sums to the grid once per run: 8x less grid traffic, same order every time.
-  for (int parity = 0; parity < 2; ++parity) {
-#pragma omp parallel for schedule(dynamic, 1)
-    for (std::int64_t l = parity; l < layers; l += 2) {
-      const auto b = static_cast<std::size_t>(layer_offsets_[static_cast<std::size_t>(l)]);
-      const auto e = static_cast<std::size_t>(layer_offsets_[static_cast<std::size_t>(l) + 1]);
-      double mass[8];
-      Vec3 momentum[8], force[8];
-      std::array<std::int32_t, 8> slot{};
-      std::int64_t current = -1;
-      auto flush = [&] {
-        if (current < 0) return;
-        for (std::size_t n = 0; n < 8; ++n) {
-          const auto k = static_cast<std::size_t>(slot[n]);
-          if constexpr (MassMomentum) {
-            g.mass[k] += mass[n];
-            g.momentum[k] += momentum[n];
-          }
-          if constexpr (Force) g.force[k] += force[n];
+  sweep_layers(layer_offsets_, [&](std::size_t b, std::size_t e) {
+    double mass[8];
+    Vec3 momentum[8], force[8];
+    std::array<std::int32_t, 8> slot{};
+    std::int64_t current = -1;
+    auto flush = [&] {
+      if (current < 0) return;
+      for (std::size_t n = 0; n < 8; ++n) {
+        const auto k = static_cast<std::size_t>(slot[n]);
+        if constexpr (MassMomentum) {
+          g.mass[k] += mass[n];
+          g.momentum[k] += momentum[n];
         }
-      };
-      for (std::size_t q = b; q < e; ++q) {
-        const auto i = static_cast<std::size_t>(layer_order_[q]);
-        const Vec3& x = p.position[i];
-        const auto c = g.cell_of(x);
-        if (cells[i] != current) {
-          flush();
-          current = cells[i];
-          g.node_slots(c, slot);
-          for (std::size_t n = 0; n < 8; ++n) {
-            mass[n] = 0.0;
-            momentum[n] = {};
-            force[n] = {};
-          }
-        }
-        const core::CellWeights w = g.weights(x, c);
-        const double m = p.mass[i];
-        const Vec3 mv = m * p.velocity[i];
-        const core::SymTensor sv = p.volume[i] * p.stress[i];
+        if constexpr (Force) g.force[k] += force[n];
+      }
+    };
+    for (std::size_t q = b; q < e; ++q) {
+      const auto i = static_cast<std::size_t>(layer_order_[q]);
+      const Vec3& x = p.position[i];
+      const auto c = g.cell_of(x);
+      if (cells[i] != current) {
+        flush();
+        current = cells[i];
+        g.node_slots(c, slot);
         for (std::size_t n = 0; n < 8; ++n) {
-          const double wn = w.w[n];
-          if constexpr (MassMomentum) {
-            mass[n] += m * wn;
-            momentum[n] += wn * mv;
-          }
-          if constexpr (Force) {
-            const Vec3& d = w.grad[n];
-            force[n] -= Vec3{sv.xx * d.x + sv.xy * d.y + sv.xz * d.z,
-                             sv.xy * d.x + sv.yy * d.y + sv.yz * d.z,
-                             sv.xz * d.x + sv.yz * d.y + sv.zz * d.z};
-            if constexpr (Gravity) force[n] += (m * wn) * gravity;
-          }
+          mass[n] = 0.0;
+          momentum[n] = {};
+          force[n] = {};
         }
       }
-      flush();
+      const core::CellWeights w = g.weights(x, c);
+      const double m = p.mass[i];
+      const Vec3 mv = m * p.velocity[i];
+      const core::SymTensor sv = p.volume[i] * p.stress[i];
+      for (std::size_t n = 0; n < 8; ++n) {
+        const double wn = w.w[n];
+        if constexpr (MassMomentum) {
+          mass[n] += m * wn;
+          momentum[n] += wn * mv;
+        }
+        if constexpr (Force) {
+          const Vec3& d = w.grad[n];
+          force[n] -= Vec3{sv.xx * d.x + sv.xy * d.y + sv.xz * d.z,
+                           sv.xy * d.x + sv.yy * d.y + sv.yz * d.z,
+                           sv.xz * d.x + sv.yz * d.y + sv.zz * d.z};
+          if constexpr (Gravity) force[n] += (m * wn) * gravity;
+        }
+      }
     }
-  }
+    flush();
+  });
 }
 
 template void MpmSolver::particle_to_grid<true, false, false>();
@@ -116,16 +108,18 @@ void MpmSolver::remap_to_grid() {
 #pragma omp parallel for schedule(static)
   for (std::size_t s = 0; s < slots; ++s) g.velocity_remap[s] = {};
   const Particles& p = particles_;
-  sweep_layers(layer_offsets_, layer_order_, [&](std::size_t i) {
-    const Vec3& x = p.position[i];
-    const auto c = g.cell_of(x);
-    const core::CellWeights w = g.weights(x, c);
-    std::array<std::int32_t, 8> slot;
-    g.node_slots(c, slot);
-    const Vec3 mv = p.mass[i] * p.velocity[i];
-    for (int n = 0; n < 8; ++n)
-      g.velocity_remap[static_cast<std::size_t>(slot[static_cast<std::size_t>(n)])] +=
-          w.w[static_cast<std::size_t>(n)] * mv;
+  sweep_layers(layer_offsets_, [&](std::size_t b, std::size_t e) {
+    for (std::size_t q = b; q < e; ++q) {
+      const auto i = static_cast<std::size_t>(layer_order_[q]);
+      const Vec3& x = p.position[i];
+      const auto c = g.cell_of(x);
+      const core::CellWeights w = g.weights(x, c);
+      std::array<std::int32_t, 8> slot;
+      g.node_slots(c, slot);
+      const Vec3 mv = p.mass[i] * p.velocity[i];
+      for (std::size_t n = 0; n < 8; ++n)
+        g.velocity_remap[static_cast<std::size_t>(slot[n])] += w.w[n] * mv;
+    }
   });
   apply_velocity_conditions(g.velocity_remap, true);
   // A wall node held this step (its v or v_new pointed into the wall) did not move

@@ -68,19 +68,17 @@ StepPlan build_step_plan(const core::Scene& scene) {
                         "particle velocity (PIC/FLIP blend) and position"));
       break;
     case UpdateScheme::USL:
-      s.push_back(stage(StageKind::p2g_mass_momentum_force, "p2g mass momentum force",
-                        "nodal mass, momentum and " + force_why));
-      s.push_back(stage(StageKind::grid_momentum_update, "grid momentum update",
-                        "explicit momentum update and boundary conditions"));
-      s.push_back(stage(StageKind::g2p_velocity_strain_stress, "g2p velocity strain stress",
-                        "USL: particle velocity (PIC/FLIP blend), strain rate from the updated "
-                        "grid velocity and position, in one sweep"));
-      break;
     case UpdateScheme::MUSL:
       s.push_back(stage(StageKind::p2g_mass_momentum_force, "p2g mass momentum force",
                         "nodal mass, momentum and " + force_why));
       s.push_back(stage(StageKind::grid_momentum_update, "grid momentum update",
                         "explicit momentum update and boundary conditions"));
+      if (plan.scheme == UpdateScheme::USL) {
+        s.push_back(stage(StageKind::g2p_velocity_strain_stress, "g2p velocity strain stress",
+                          "USL: particle velocity (PIC/FLIP blend), strain rate from the "
+                          "updated grid velocity and position, in one sweep"));
+        break;
+      }
       s.push_back(stage(StageKind::g2p_velocity, "g2p velocity",
                         "particle velocity (PIC/FLIP blend); positions move with the strain"));
       s.push_back(stage(StageKind::p2g_remap, "p2g remap",

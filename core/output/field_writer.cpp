@@ -31,6 +31,8 @@ class Handle {
   }
   Handle(const Handle&) = delete;
   Handle& operator=(const Handle&) = delete;
+  Handle(Handle&& o) noexcept : id_(o.id_), close_(o.close_) { o.id_ = -1; }
+  Handle& operator=(Handle&&) = delete;
   hid_t get() const { return id_; }
   bool valid() const { return id_ >= 0; }
 
@@ -382,15 +384,24 @@ std::vector<double> read_dataset(const std::string& h5_path, const std::string& 
   return values;
 }
 
+namespace {
+// An attribute of a group or dataset, opened for reading; `where` names it in errors.
+Handle open_attribute(const Handle& file, const std::string& object_path,
+                      const std::string& name, const std::string& where) {
+  Handle attr(
+      H5Aopen_by_name(file.get(), object_path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT),
+      H5Aclose);
+  if (!attr.valid()) fail(where, "cannot open attribute");
+  return attr;
+}
+}  // namespace
+
 double read_attribute(const std::string& h5_path, const std::string& object_path,
                       const std::string& name) {
   const QuietErrors quiet;
   const Handle file(open_for_reading(h5_path), H5Fclose);
   const std::string where = h5_path + ":" + object_path + "@" + name;
-  const Handle attr(
-      H5Aopen_by_name(file.get(), object_path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT),
-      H5Aclose);
-  if (!attr.valid()) fail(where, "cannot open attribute");
+  const Handle attr = open_attribute(file, object_path, name, where);
   const Handle space(H5Aget_space(attr.get()), H5Sclose);
   if (!space.valid() || H5Sget_simple_extent_npoints(space.get()) != 1)
     throw std::runtime_error(where + ": attribute is not a single value");
@@ -404,10 +415,7 @@ std::string read_string_attribute(const std::string& h5_path, const std::string&
   const QuietErrors quiet;
   const Handle file(open_for_reading(h5_path), H5Fclose);
   const std::string where = h5_path + ":" + object_path + "@" + name;
-  const Handle attr(
-      H5Aopen_by_name(file.get(), object_path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT),
-      H5Aclose);
-  if (!attr.valid()) fail(where, "cannot open attribute");
+  const Handle attr = open_attribute(file, object_path, name, where);
   const Handle type(H5Aget_type(attr.get()), H5Tclose);
   if (!type.valid() || H5Tget_class(type.get()) != H5T_STRING ||
       H5Tis_variable_str(type.get()) != 0)

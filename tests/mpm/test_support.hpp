@@ -14,40 +14,11 @@
 #include <unistd.h>
 
 #include "core/scene.hpp"
+#include "scratch_dir.hpp"
 
 namespace afemp::mpm::test {
 
-// A fresh, empty directory under the system temp directory, unique per process and test,
-// removed again when the object goes out of scope.
-class ScratchDir {
- public:
-  ScratchDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = "afemp_mpm_";
-    if (info != nullptr) name += std::string(info->test_suite_name()) + "_" + info->name();
-    name += "_" + std::to_string(::getpid());
-    path_ = std::filesystem::temp_directory_path() / name;
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path_, ec);
-  }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-  const std::filesystem::path& path() const { return path_; }
-  std::string file(const std::string& name) const { return (path_ / name).string(); }
-  // Writes text to DIR/name and returns the full path.
-  std::string write(const std::string& name, const std::string& text) const {
-    const std::string p = file(name);
-    std::ofstream(p) << text;
-    return p;
-  }
-
- private:
-  std::filesystem::path path_;
-};
+using afemp::test::ScratchDir;
 
 inline std::string slurp(const std::string& path) {
   std::ifstream in(path);
