@@ -40,6 +40,8 @@ struct MaterialPlan {
 
 struct StepPlan {
   core::UpdateScheme scheme = core::UpdateScheme::MUSL;
+  core::Transfer transfer = core::Transfer::flip;
+  double flip = 1.0;
   std::vector<Stage> stages;
   std::vector<MaterialPlan> materials;  // only materials that some body uses
   bool gravity = false;                 // body force added in p2g_force

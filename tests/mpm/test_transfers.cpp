@@ -247,3 +247,45 @@ TEST(Transfer, PatchTestUniformStressGivesNoInteriorForceWhileCrossingCells) {
 
 }  // namespace
 }  // namespace afemp::mpm
+
+namespace afemp::mpm {
+namespace {
+
+// Reference (W6 for the affine transfer): the APIC P2G adds m_p N_Ip C_p (x_I - x_p) to the
+// nodal momentum, and sum_I N_Ip (x_I - x_p) = 0 (linear completeness), so the nodal
+// momentum still equals the particle momentum, to 1e-12 relative, for random C_p; and the
+// G2P keeps it over steps with stress building up (sum_I f_I = 0), each scheme.
+TEST(Transfer, AffineTransferConservesMomentum) {
+  for (const char* scheme : schemes) {
+    SCOPED_TRACE(scheme);
+    const std::string text = std::string("[run]\nend_time = 1.0\n"
+                                         "[grid]\ncell = 1.0\nmin = [0, 0, 0]\nmax = [12, 12, 12]\n"
+                                         "[mpm]\ntransfer = \"apic\"\nscheme = \"") +
+                             scheme +
+                             "\"\n[materials.steel]\ndensity = 7.85e-3\nE = 200e3\nnu = 0.3\n"
+                             "[[bodies]]\nname = \"b\"\nmaterial = \"steel\"\n"
+                             "shape = { box = { min = [4, 4, 4.5], max = [8, 8, 7.5] } }\n";
+    const core::Scene scene = core::parse_scene(text, "apic.toml");
+    Particles p = random_velocities(scene, 11);
+    std::mt19937_64 rng(12);
+    std::uniform_real_distribution<double> u(-3.0, 3.0);
+    p.affine.resize(p.size());
+    for (auto& c : p.affine)
+      for (auto& row : c.m)
+        for (double& v : row) v = u(rng);
+    const Vec3 momentum = particle_momentum(p);
+    const double scale = momentum_scale(p);
+    MpmSolver solver(scene, p);
+    solver.step(0.1 * solver.stable_time_step());
+    Vec3 grid_momentum;
+    for (std::size_t s = 0; s < solver.grid().slot_count(); ++s)
+      grid_momentum += solver.grid().momentum[s];
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(grid_momentum[a], momentum[a], 1e-12 * scale);
+    for (int k = 0; k < 4; ++k) solver.step(solver.stable_time_step());
+    const Vec3 after = particle_momentum(solver.particles());
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(after[a], momentum[a], 1e-12 * scale);
+  }
+}
+
+}  // namespace
+}  // namespace afemp::mpm
