@@ -36,6 +36,7 @@ StepPlan build_step_plan(const core::Scene& scene) {
   using core::UpdateScheme;
   StepPlan plan;
   plan.scheme = scene.mpm.scheme;
+  plan.flip = scene.mpm.flip;
   plan.transfer = scene.mpm.transfer;
   plan.flip = scene.mpm.flip;
   plan.jaumann = scene.mpm.jaumann;
@@ -116,6 +117,7 @@ std::string StepPlan::describe() const {
     o << "APIC (particles carry their velocity gradient)\n";
   else
     o << "FLIP/PIC blend, flip = " << flip << "\n";
+  o << "particle velocity: PIC/FLIP blend, flip = " << flip << "\n";
   o << "body force: " << (gravity ? "gravity" : "none") << "\n";
   return o.str();
 }
