@@ -19,14 +19,6 @@ const char* to_string(UpdateScheme s) {
   return "?";
 }
 
-const char* to_string(Transfer t) {
-  switch (t) {
-    case Transfer::flip: return "flip";
-    case Transfer::apic: return "apic";
-  }
-  return "?";
-}
-
 const char* to_string(FaceCondition c) {
   switch (c) {
     case FaceCondition::free: return "free";

@@ -16,10 +16,6 @@
 namespace afemp::core {
 
 enum class UpdateScheme { USF, USL, MUSL };  // seed 000 eqs 25-27
-// How velocity travels between particles and grid: FLIP/PIC blend, or the affine PIC of
-// Jiang et al. 2015 (particles carry a velocity gradient C_p; P2G maps v_p + C_p (x_I - x_p)),
-// which transfers rigid rotation exactly and conserves angular momentum.
-enum class Transfer { flip, apic };
 // free: nothing; fixed: all velocity components zero (the material sticks);
 // symmetric: normal component zero (a symmetry plane; tension is carried across it);
 // wall: a rigid frictionless wall the material may not cross but may leave (the normal
@@ -28,7 +24,6 @@ enum class FaceCondition { free, fixed, symmetric, wall };
 enum class Face { xmin = 0, xmax, ymin, ymax, zmin, zmax };
 
 const char* to_string(UpdateScheme s);
-const char* to_string(Transfer t);
 const char* to_string(FaceCondition c);
 const char* to_string(Face f);
 
@@ -53,8 +48,7 @@ struct GridSettings {
 
 struct MpmSettings {
   UpdateScheme scheme = UpdateScheme::MUSL;
-  Transfer transfer = Transfer::flip;
-  double flip = 1.0;     // velocity update blend (transfer flip): 1 pure FLIP, 0 pure PIC
+  double flip = 1.0;     // velocity update blend: 1 pure FLIP, 0 pure PIC
   bool jaumann = true;   // objective (Jaumann) stress rate
   GridSettings grid;
 };

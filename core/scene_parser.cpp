@@ -306,12 +306,9 @@ void read_grid(TableReader& r, GridSettings& grid) {
 }
 
 void read_mpm(TableReader& r, MpmSettings& mpm) {
-  r.known({"scheme", "transfer", "flip", "jaumann"});
+  r.known({"scheme", "flip", "jaumann"});
   r.check_unknown();
   mpm.scheme = static_cast<UpdateScheme>(r.choice("scheme", {"USF", "USL", "MUSL"}, 2, true));
-  mpm.transfer = static_cast<Transfer>(r.choice("transfer", {"flip", "apic"}, 0));
-  if (mpm.transfer == Transfer::apic && r.has("flip"))
-    r.fail("flip", "applies to transfer = \"flip\" only; transfer = \"apic\" is a PIC update");
   mpm.flip = r.number("flip", 1.0, Range::closed(0.0, 1.0));
   mpm.jaumann = r.boolean("jaumann", true);
 }

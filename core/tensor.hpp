@@ -33,15 +33,6 @@ struct Mat3 {
   double m[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
 };
 
-// a += u (x) v, i.e. a_ij += u_i v_j (a velocity gradient sum_I v_I (x) grad N_I).
-constexpr void add_outer(Mat3& a, const Vec3& u, const Vec3& v) {
-  for (int r = 0; r < 3; ++r) {
-    a.m[r][0] += u[r] * v.x;
-    a.m[r][1] += u[r] * v.y;
-    a.m[r][2] += u[r] * v.z;
-  }
-}
-
 struct SymTensor {
   double xx = 0.0, yy = 0.0, zz = 0.0, yz = 0.0, xz = 0.0, xy = 0.0;
 

@@ -1,9 +1,7 @@
 // Grid-to-particle velocity update (seed 001 eqs 2-33..2-36) with a PIC/FLIP blend:
 // v_p <- flip (v_p + sum N (v_new - v)) + (1 - flip) sum N v_new. USF also moves the
 // particle here with the updated grid velocity (eq 2-35); USL and MUSL move it in the
-// strain pass, whose weights must still be those of the step's start position. With the
-// APIC transfer the particle takes the grid velocity (PIC) and its gradient
-// C_p = sum v_new (x) grad N (Jiang et al. 2015, the form for trilinear weights).
+// strain pass, whose weights must still be those of the step's start position.
 #include "mpm/mpm_solver.hpp"
 
 namespace afemp::mpm {
@@ -12,7 +10,6 @@ void MpmSolver::grid_to_particle(double dt, bool move_positions) {
   const core::BackgroundGrid& g = grid_;
   Particles& p = particles_;
   const double flip = scene_.mpm.flip;
-  const bool affine = scene_.mpm.transfer == core::Transfer::apic;
   const std::size_t n = p.size();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
@@ -22,21 +19,13 @@ void MpmSolver::grid_to_particle(double dt, bool move_positions) {
     std::array<std::int32_t, 8> slot;
     g.node_slots(c, slot);
     Vec3 v_grid, dv;
-    core::Mat3 c_p;
     for (int k = 0; k < 8; ++k) {
       const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]);
       const double wk = w.w[static_cast<std::size_t>(k)];
-      const Vec3& v_new = g.velocity_new[s];
-      v_grid += wk * v_new;
-      dv += wk * (v_new - g.velocity[s]);
-      if (affine) add_outer(c_p, v_new, w.grad[static_cast<std::size_t>(k)]);
+      v_grid += wk * g.velocity_new[s];
+      dv += wk * (g.velocity_new[s] - g.velocity[s]);
     }
-    if (affine) {
-      p.velocity[i] = v_grid;
-      p.affine[i] = c_p;
-    } else {
-      p.velocity[i] = flip * (p.velocity[i] + dv) + (1.0 - flip) * v_grid;
-    }
+    p.velocity[i] = flip * (p.velocity[i] + dv) + (1.0 - flip) * v_grid;
     if (move_positions) x += dt * v_grid;
   }
 }

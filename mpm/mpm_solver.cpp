@@ -20,10 +20,6 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
       grid_(scene.mpm.grid) {
   for (const auto& m : scene.materials) materials_.push_back(&m);
   grid_.enable_remap_field(scene.mpm.scheme == core::UpdateScheme::MUSL);
-  // APIC: particles start with C_p = 0, the gradient of their body's uniform velocity,
-  // unless the caller gave them a velocity gradient of their own.
-  if (scene.mpm.transfer == core::Transfer::apic && particles_.affine.size() != particles_.size())
-    particles_.affine.assign(particles_.size(), core::Mat3{});
   stage_counts_.assign(plan_.stages.size(), 0);
   stage_seconds_.assign(plan_.stages.size(), 0.0);
   reorder_particles();
@@ -49,13 +45,19 @@ void MpmSolver::step(double dt) {
         bin_particles();
         break;
       case StageKind::p2g_mass_momentum:
-        particle_to_grid(true, false);
+        particle_to_grid<true, false, false>();
         break;
       case StageKind::p2g_force:
-        particle_to_grid(false, true);
+        if (plan_.gravity)
+          particle_to_grid<false, true, true>();
+        else
+          particle_to_grid<false, true, false>();
         break;
       case StageKind::p2g_mass_momentum_force:
-        particle_to_grid(true, true);
+        if (plan_.gravity)
+          particle_to_grid<true, true, true>();
+        else
+          particle_to_grid<true, true, false>();
         break;
       case StageKind::grid_velocity:
         grid_velocity();

@@ -69,10 +69,8 @@ class MpmSolver {
  private:
   // Stages (one file each).
   void bin_particles();
-  template <bool MassMomentum, bool Force, bool Gravity, bool Affine>
+  template <bool MassMomentum, bool Force, bool Gravity>
   void particle_to_grid();
-  // Instantiates particle_to_grid for the scene's body force and transfer.
-  void particle_to_grid(bool mass_momentum, bool force);
   void grid_velocity();
   void grid_momentum_update(double dt);
   void grid_to_particle(double dt, bool move_positions);

@@ -21,16 +21,9 @@ void sweep_layers(const std::vector<std::int64_t>& offsets, Body&& body) {
   }
 }
 
-// C d for the affine velocity C of a particle and the offset d = x_I - x_p.
-inline Vec3 affine_times(const core::Mat3& c, const Vec3& d) {
-  return {c.m[0][0] * d.x + c.m[0][1] * d.y + c.m[0][2] * d.z,
-          c.m[1][0] * d.x + c.m[1][1] * d.y + c.m[1][2] * d.z,
-          c.m[2][0] * d.x + c.m[2][1] * d.y + c.m[2][2] * d.z};
-}
-
 }  // namespace
 
-template <bool MassMomentum, bool Force, bool Gravity, bool Affine>
+template <bool MassMomentum, bool Force, bool Gravity>
 void MpmSolver::particle_to_grid() {
   core::BackgroundGrid& g = grid_;
   const std::size_t slots = g.slot_count();
@@ -44,7 +37,6 @@ void MpmSolver::particle_to_grid() {
   }
   const Particles& p = particles_;
   const Vec3 gravity = scene_.run.gravity;
-  const double h = g.cell();
   const std::vector<std::int64_t>& cells = cell_;
   // Particles of one cell mostly follow each other (the arrays are kept in cell order), so
   // each sweep sums a run of same-cell particles into the cell's 8 nodes locally and adds
@@ -88,8 +80,6 @@ void MpmSolver::particle_to_grid() {
         if constexpr (MassMomentum) {
           mass[n] += m * wn;
           momentum[n] += wn * mv;
-          if constexpr (Affine)  // APIC: m N (v_p + C_p (x_I - x_p))
-            momentum[n] += (wn * m) * affine_times(p.affine[i], w.node_offset(static_cast<int>(n), h));
         }
         if constexpr (Force) {
           const Vec3& d = w.grad[n];
@@ -104,24 +94,11 @@ void MpmSolver::particle_to_grid() {
   });
 }
 
-void MpmSolver::particle_to_grid(bool mass_momentum, bool force) {
-  const bool gravity = plan_.gravity;
-  const bool affine = scene_.mpm.transfer == core::Transfer::apic;
-  // Every combination a plan can ask for; each runs with no branch per particle.
-  if (mass_momentum && force) {
-    if (gravity)
-      affine ? particle_to_grid<true, true, true, true>() : particle_to_grid<true, true, true, false>();
-    else
-      affine ? particle_to_grid<true, true, false, true>()
-             : particle_to_grid<true, true, false, false>();
-  } else if (mass_momentum) {
-    affine ? particle_to_grid<true, false, false, true>()
-           : particle_to_grid<true, false, false, false>();
-  } else {
-    gravity ? particle_to_grid<false, true, true, false>()
-            : particle_to_grid<false, true, false, false>();
-  }
-}
+template void MpmSolver::particle_to_grid<true, false, false>();
+template void MpmSolver::particle_to_grid<false, true, false>();
+template void MpmSolver::particle_to_grid<false, true, true>();
+template void MpmSolver::particle_to_grid<true, true, false>();
+template void MpmSolver::particle_to_grid<true, true, true>();
 
 void MpmSolver::remap_to_grid() {
   // MUSL (eq 2-37): the updated particle momentum, mapped with the weights of the step's
@@ -131,8 +108,6 @@ void MpmSolver::remap_to_grid() {
 #pragma omp parallel for schedule(static)
   for (std::size_t s = 0; s < slots; ++s) g.velocity_remap[s] = {};
   const Particles& p = particles_;
-  const bool affine = scene_.mpm.transfer == core::Transfer::apic;
-  const double h = g.cell();
   sweep_layers(layer_offsets_, [&](std::size_t b, std::size_t e) {
     for (std::size_t q = b; q < e; ++q) {
       const auto i = static_cast<std::size_t>(layer_order_[q]);
@@ -141,13 +116,9 @@ void MpmSolver::remap_to_grid() {
       const core::CellWeights w = g.weights(x, c);
       std::array<std::int32_t, 8> slot;
       g.node_slots(c, slot);
-      const double m = p.mass[i];
-      const Vec3 mv = m * p.velocity[i];
-      for (std::size_t n = 0; n < 8; ++n) {
-        Vec3 add = w.w[n] * mv;
-        if (affine) add += (w.w[n] * m) * affine_times(p.affine[i], w.node_offset(static_cast<int>(n), h));
-        g.velocity_remap[static_cast<std::size_t>(slot[n])] += add;
-      }
+      const Vec3 mv = p.mass[i] * p.velocity[i];
+      for (std::size_t n = 0; n < 8; ++n)
+        g.velocity_remap[static_cast<std::size_t>(slot[n])] += w.w[n] * mv;
     }
   });
   apply_velocity_conditions(g.velocity_remap, true);

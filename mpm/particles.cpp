@@ -9,7 +9,6 @@ template <class F>
 void for_each_array(Particles& p, F&& f) {
   f(p.position); f(p.velocity); f(p.mass); f(p.volume); f(p.stress); f(p.strain);
   f(p.plastic_strain); f(p.temperature); f(p.energy); f(p.body); f(p.material); f(p.id);
-  if (!p.affine.empty()) f(p.affine);  // only when the APIC transfer uses it
 }
 template <class F>
 void for_each_array(const Particles& p, F&& f) {
@@ -39,7 +38,6 @@ void Particles::push_back(const Vec3& x, const Vec3& v, double m, double vol, do
   energy.push_back(0.0);
   body.push_back(body_id);
   material.push_back(material_id);
-  if (!affine.empty()) affine.push_back({});
 }
 
 void Particles::permute(const std::vector<std::int32_t>& perm) {

@@ -27,8 +27,6 @@ struct Particles {
   std::vector<std::int32_t> body;
   std::vector<std::int32_t> material;
   std::vector<std::int32_t> id;        // stable id, unchanged by reordering
-  // Affine velocity C_p of the APIC transfer (velocity gradient); empty unless it is used.
-  std::vector<core::Mat3> affine;
 
   std::size_t size() const { return position.size(); }
   void resize(std::size_t n);

@@ -37,8 +37,6 @@ StepPlan build_step_plan(const core::Scene& scene) {
   StepPlan plan;
   plan.scheme = scene.mpm.scheme;
   plan.flip = scene.mpm.flip;
-  plan.transfer = scene.mpm.transfer;
-  plan.flip = scene.mpm.flip;
   plan.jaumann = scene.mpm.jaumann;
   const core::Vec3& g = scene.run.gravity;
   plan.gravity = g.x != 0.0 || g.y != 0.0 || g.z != 0.0;
@@ -112,11 +110,6 @@ std::string StepPlan::describe() const {
       << (m.eos == "none" ? " (pressure from the bulk modulus)" : "") << ", thermal "
       << (m.thermal ? "on (plastic work heats)" : "off") << "\n";
   }
-  o << "velocity transfer: ";
-  if (transfer == core::Transfer::apic)
-    o << "APIC (particles carry their velocity gradient)\n";
-  else
-    o << "FLIP/PIC blend, flip = " << flip << "\n";
   o << "particle velocity: PIC/FLIP blend, flip = " << flip << "\n";
   o << "body force: " << (gravity ? "gravity" : "none") << "\n";
   return o.str();

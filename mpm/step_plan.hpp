@@ -40,8 +40,7 @@ struct MaterialPlan {
 
 struct StepPlan {
   core::UpdateScheme scheme = core::UpdateScheme::MUSL;
-  core::Transfer transfer = core::Transfer::flip;
-  double flip = 1.0;
+  double flip = 1.0;  // PIC/FLIP blend of the particle velocity update
   std::vector<Stage> stages;
   std::vector<MaterialPlan> materials;  // only materials that some body uses
   bool gravity = false;                 // body force added in p2g_force

@@ -65,7 +65,6 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
   const Vec3* v_new = g.velocity_new.data();
   const bool jaumann = plan_.jaumann;
   const double flip = scene_.mpm.flip;
-  const bool affine = scene_.mpm.transfer == core::Transfer::apic;
 
 #pragma omp parallel num_threads(nt)
   {
@@ -88,19 +87,20 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
       Vec3 v_bar, dv;
       for (int k = 0; k < 8; ++k) {
         const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]);
-        core::add_outer(l, sweep.strain_velocity[s], w.grad[static_cast<std::size_t>(k)]);
+        const Vec3 v = sweep.strain_velocity[s];
+        const Vec3& d = w.grad[static_cast<std::size_t>(k)];
+        for (int r = 0; r < 3; ++r) {
+          l.m[r][0] += v[r] * d.x;
+          l.m[r][1] += v[r] * d.y;
+          l.m[r][2] += v[r] * d.z;
+        }
         const double wk = w.w[static_cast<std::size_t>(k)];
         if (sweep.move) v_bar += wk * v_new[s];
         if (sweep.flip_update) dv += wk * (v_new[s] - v_old[s]);
       }
       Vec3 v_p = p.velocity[i];
       if (sweep.flip_update) {
-        if (affine) {  // APIC: PIC velocity, and the gradient of the same field (USL)
-          v_p = v_bar;
-          p.affine[i] = l;
-        } else {
-          v_p = flip * (v_p + dv) + (1.0 - flip) * v_bar;
-        }
+        v_p = flip * (v_p + dv) + (1.0 - flip) * v_bar;
         p.velocity[i] = v_p;
       }
       const core::SymTensor d_eps = dt * core::sym_part(l);

@@ -20,11 +20,6 @@ namespace afemp::core {
 struct CellWeights {
   std::array<double, 8> w;
   std::array<Vec3, 8> grad;
-  Vec3 local;  // the point in cell units, each component in [0, 1)
-  // x_I - x for node n (h the cell size).
-  Vec3 node_offset(int n, double h) const {
-    return {((n & 1) - local.x) * h, (((n >> 1) & 1) - local.y) * h, ((n >> 2) - local.z) * h};
-  }
 };
 
 class BackgroundGrid {
@@ -61,7 +56,6 @@ class BackgroundGrid {
     const double wx[2] = {1.0 - fx, fx}, wy[2] = {1.0 - fy, fy}, wz[2] = {1.0 - fz, fz};
     const double dx[2] = {-inv_h_, inv_h_};
     CellWeights r;
-    r.local = {fx, fy, fz};
     for (int n = 0; n < 8; ++n) {
       const int a = n & 1, b = (n >> 1) & 1, cc = n >> 2;
       r.w[static_cast<std::size_t>(n)] = wx[a] * wy[b] * wz[cc];

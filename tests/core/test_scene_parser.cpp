@@ -352,24 +352,8 @@ TEST(SceneParser, EnumErrorListsAllowedValues) {
   std::string head = minimal_head + "boundary = { zmin = \"sticky\" }\n";
   EXPECT_NE(error_of(head + minimal_tail)
                 .find("key 'grid.boundary.zmin': unknown value \"sticky\"; allowed values: "
-                      "\"free\", \"fixed\", \"symmetric\", \"wall\""),
+                      "\"free\", \"fixed\", \"symmetric\""),
             std::string::npos);
-}
-
-TEST(SceneParser, TransferIsFlipByDefaultAndApicRejectsAFlipBlend) {
-  // Reference: docs/scene-format.md, [mpm] transfer: "flip" by default; "apic" is a PIC
-  // update, so giving it a flip blend is an error naming the key and the reason.
-  EXPECT_EQ(core::parse_scene(minimal_head + minimal_tail, "scene.toml").mpm.transfer,
-            core::Transfer::flip);
-  const core::Scene apic = core::parse_scene(
-      minimal_head + "\n[mpm]\ntransfer = \"apic\"\n" + minimal_tail, "scene.toml");
-  EXPECT_EQ(apic.mpm.transfer, core::Transfer::apic);
-  const std::string text = minimal_head + "\n[mpm]\ntransfer = \"apic\"\nflip = 0.5\n" + minimal_tail;
-  const std::string what = error_of(text);
-  EXPECT_NE(what.find("scene.toml:" + std::to_string(line_of(text, "flip = 0.5")) +
-                      ": key 'mpm.flip': applies to transfer = \"flip\" only"),
-            std::string::npos)
-      << what;
 }
 
 TEST(SceneParser, UnknownMaterialNameListsTheDefinedMaterials) {
