@@ -96,7 +96,7 @@ int run(const std::string& path, std::string out_dir) {
   try {
     const mpm::RunSummary s = sim.run(options);
     progress.finish();
-    apps::print_summary(stdout, scene, s);
+    apps::print_summary(stdout, scene, sim.solver().plan(), s);
     std::printf("output: %s/particles.xmf (%zu frames), %s/history.csv\n", out_dir.c_str(),
                 s.field_frames, out_dir.c_str());
     if (s.taylor && scene.taylor_reference && scene.taylor_reference->tolerance > 0.0 &&

@@ -46,7 +46,8 @@ void ProgressReporter::finish() {
   pending_newline_ = false;
 }
 
-void print_summary(std::FILE* out, const core::Scene& scene, const mpm::RunSummary& s) {
+void print_summary(std::FILE* out, const core::Scene& scene, const mpm::StepPlan& plan,
+                   const mpm::RunSummary& s) {
   std::fprintf(out, "summary\n");
   std::fprintf(out, "  steps            %ld to t = %.6g (dt %.4g .. %.4g)\n", s.steps, s.time,
                s.min_dt, s.max_dt);
@@ -54,6 +55,10 @@ void print_summary(std::FILE* out, const core::Scene& scene, const mpm::RunSumma
                core::thread_count());
   std::fprintf(out, "  particles        %zu, %.3g particle-steps/s\n", s.particles,
                s.particle_steps_per_second);
+  std::fprintf(out, "  stage seconds   ");
+  for (std::size_t i = 0; i < plan.stages.size() && i < s.stage_seconds.size(); ++i)
+    std::fprintf(out, " %s %.2f%s", plan.stages[i].name.c_str(), s.stage_seconds[i],
+                 i + 1 < plan.stages.size() ? "," : "\n");
   std::fprintf(out, "  energy  initial  kinetic %.6g  internal %.6g\n", s.initial.kinetic,
                s.initial.internal);
   std::fprintf(out, "          final    kinetic %.6g  internal %.6g (plastic work %.6g)  "

@@ -24,6 +24,7 @@ class ProgressReporter {
   bool pending_newline_ = false;
 };
 
-void print_summary(std::FILE* out, const core::Scene& scene, const mpm::RunSummary& s);
+void print_summary(std::FILE* out, const core::Scene& scene, const mpm::StepPlan& plan,
+                   const mpm::RunSummary& s);
 
 }  // namespace afemp::apps

@@ -43,6 +43,12 @@ inline std::pair<std::size_t, std::size_t> static_range(std::size_t n, int t, in
   return {n * tt / nt, n * (tt + 1) / nt};
 }
 
+// Whether a loop over this many items is worth a parallel region: below it, thread start-up
+// and barriers cost more than the work, and on a loaded machine far more (a waiting thread
+// spins on a core another process needs). Decided per loop from its size, so a given scene
+// and thread count always take the same path.
+inline bool worth_threads(std::size_t items) { return items >= 2048; }
+
 // Bytes a thread's slot is padded to, so partial sums do not share cache lines.
 inline constexpr std::size_t cache_line_doubles = 8;
 

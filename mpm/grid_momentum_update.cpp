@@ -72,7 +72,7 @@ inline void constrain(Vec3& v, unsigned mask) {
 void MpmSolver::apply_velocity_conditions(std::vector<Vec3>& field, bool divide_by_mass) {
   core::BackgroundGrid& g = grid_;
   const FaceConstraints constraints(g);
-#pragma omp parallel
+#pragma omp parallel if (core::worth_threads(g.slot_count()))
   g.for_each_slot([&](std::size_t s, const std::array<int, 3>& node) {
     const double m = g.mass[s];
     if (m <= 0.0) {
@@ -88,7 +88,7 @@ void MpmSolver::apply_velocity_conditions(std::vector<Vec3>& field, bool divide_
 void MpmSolver::grid_velocity() {
   core::BackgroundGrid& g = grid_;
   const std::size_t slots = g.slot_count();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (core::worth_threads(slots))
   for (std::size_t s = 0; s < slots; ++s) g.velocity[s] = g.momentum[s];
   apply_velocity_conditions(g.velocity, true);
 }
@@ -101,7 +101,7 @@ void MpmSolver::grid_momentum_update(double dt) {
   const int nt = core::thread_count();
   thread_sums_.assign(static_cast<std::size_t>(nt) * core::cache_line_doubles, 0.0);
   wall_contact_.assign(g.slot_count(), 0);
-#pragma omp parallel num_threads(nt)
+#pragma omp parallel num_threads(nt) if (core::worth_threads(g.slot_count()))
   {
     double work = 0.0;  // body-force work f_ext . (v + v_new) / 2 dt
     g.for_each_slot([&](std::size_t s, const std::array<int, 3>& node) {

@@ -2,6 +2,7 @@
 // v_p <- flip (v_p + sum N (v_new - v)) + (1 - flip) sum N v_new. USF also moves the
 // particle here with the updated grid velocity (eq 2-35); USL and MUSL move it in the
 // strain pass, whose weights must still be those of the step's start position.
+#include "core/parallel.hpp"
 #include "mpm/mpm_solver.hpp"
 
 namespace afemp::mpm {
@@ -11,7 +12,7 @@ void MpmSolver::grid_to_particle(double dt, bool move_positions) {
   Particles& p = particles_;
   const double flip = scene_.mpm.flip;
   const std::size_t n = p.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (core::worth_threads(n))
   for (std::size_t i = 0; i < n; ++i) {
     Vec3& x = p.position[i];
     const auto c = g.cell_of(x);

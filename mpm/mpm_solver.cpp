@@ -89,7 +89,8 @@ void MpmSolver::step(double dt) {
 double MpmSolver::max_signal_speed() const {
   const Particles& p = particles_;
   double wave = 0.0, speed2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : wave, speed2)
+#pragma omp parallel for schedule(static) reduction(max : wave, speed2) \
+    if (core::worth_threads(p.size()))
   for (std::size_t i = 0; i < p.size(); ++i) {
     const core::Material& m = *materials_[static_cast<std::size_t>(p.material[i])];
     core::PointState st{p.stress[i], p.plastic_strain[i], p.temperature[i], p.energy[i],
@@ -106,7 +107,7 @@ Energies MpmSolver::energies() const {
   const std::size_t width = 2 + 4 * nb;  // kinetic, internal, then mass + momentum per body
   const int nt = core::thread_count();
   std::vector<double> partial(width * static_cast<std::size_t>(nt), 0.0);
-#pragma omp parallel num_threads(nt)
+#pragma omp parallel num_threads(nt) if (core::worth_threads(p.size()))
   {
     const int t = core::thread_index();
     const auto [b, e] = core::static_range(p.size(), t, core::team_size());

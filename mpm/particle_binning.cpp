@@ -27,7 +27,7 @@ void MpmSolver::bin_particles() {
   // as a serial stable sort, whatever the thread count.
   std::vector<std::int64_t>& counts = scratch_offsets_;
   counts.assign(layers * static_cast<std::size_t>(nt), 0);
-#pragma omp parallel num_threads(nt)
+#pragma omp parallel num_threads(nt) if (core::worth_threads(n))
   {
     const int t = core::thread_index();
     const int team = core::team_size();

@@ -13,8 +13,9 @@ namespace {
 template <class Body>
 void sweep_layers(const std::vector<std::int64_t>& offsets, Body&& body) {
   const std::int64_t layers = static_cast<std::int64_t>(offsets.size()) - 1;
+  const bool threads = core::worth_threads(static_cast<std::size_t>(offsets.back()));
   for (int parity = 0; parity < 2; ++parity) {
-#pragma omp parallel for schedule(dynamic, 1)
+#pragma omp parallel for schedule(dynamic, 1) if (threads)
     for (std::int64_t l = parity; l < layers; l += 2)
       body(static_cast<std::size_t>(offsets[static_cast<std::size_t>(l)]),
            static_cast<std::size_t>(offsets[static_cast<std::size_t>(l) + 1]));
@@ -27,7 +28,7 @@ template <bool MassMomentum, bool Force, bool Gravity>
 void MpmSolver::particle_to_grid() {
   core::BackgroundGrid& g = grid_;
   const std::size_t slots = g.slot_count();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (core::worth_threads(slots))
   for (std::size_t s = 0; s < slots; ++s) {
     if constexpr (MassMomentum) {
       g.mass[s] = 0.0;
@@ -105,7 +106,7 @@ void MpmSolver::remap_to_grid() {
   // start positions, gives the nodal velocity the strain rate is computed from.
   core::BackgroundGrid& g = grid_;
   const std::size_t slots = g.slot_count();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (core::worth_threads(slots))
   for (std::size_t s = 0; s < slots; ++s) g.velocity_remap[s] = {};
   const Particles& p = particles_;
   sweep_layers(layer_offsets_, [&](std::size_t b, std::size_t e) {

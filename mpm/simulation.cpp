@@ -158,6 +158,7 @@ RunSummary Simulation::run(const RunOptions& options) {
   sum.final = solver_.energies();
   sum.energy_error = last_error;
   sum.stage_counts = solver_.stage_counts();
+  sum.stage_seconds = solver_.stage_seconds();
   sum.field_frames = frames ? frames->frames() : 0;
   if (sum.min_dt > sum.max_dt) sum.min_dt = sum.max_dt = dt;
   if (scene_.taylor_reference) {

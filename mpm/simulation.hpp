@@ -43,6 +43,7 @@ struct RunSummary {
   double energy_error = 0.0;      // at the end
   double max_energy_error = 0.0;  // largest magnitude over the history rows
   std::vector<long> stage_counts;
+  std::vector<double> stage_seconds;  // wall seconds per plan stage
   std::size_t field_frames = 0;
   std::optional<TaylorMeasures> taylor;  // when the scene states a Taylor reference
   double taylor_error = 0.0;

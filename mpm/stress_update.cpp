@@ -66,7 +66,7 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
   const bool jaumann = plan_.jaumann;
   const double flip = scene_.mpm.flip;
 
-#pragma omp parallel num_threads(nt)
+#pragma omp parallel num_threads(nt) if (core::worth_threads(batch.end - batch.begin))
   {
     // Thread-local copies: stores to the particle arrays cannot alias them, so the
     // material constants stay in registers through the loop.

@@ -24,12 +24,12 @@ void BackgroundGrid::activate(std::span<const std::int64_t> cells) {
 
   const int nt = thread_count();
   thread_blocks_.resize(static_cast<std::size_t>(nt));
+  for (auto& t : thread_blocks_) t.blocks.clear();
   const std::int64_t bx = blocks_[0], by = blocks_[1];
   const std::int64_t n = static_cast<std::int64_t>(cells.size());
-#pragma omp parallel
+#pragma omp parallel if (worth_threads(cells.size()))
   {
     auto& mine = thread_blocks_[static_cast<std::size_t>(thread_index())].blocks;
-    mine.clear();
     std::int64_t last_cell = -1;
 #pragma omp for schedule(static)
     for (std::int64_t p = 0; p < n; ++p) {

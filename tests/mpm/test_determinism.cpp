@@ -35,6 +35,7 @@ eos = { model = "mie-gruneisen", c0 = 3940, s = 1.49, gamma0 = 1.96 }
 name = "bar"
 material = "copper"
 shape = { cylinder = { base = [0, 0, 0.5], radius = 4, length = 20 } }
+particles_per_cell = 3
 velocity = [0, 0, -200]
 )";
 
@@ -48,6 +49,8 @@ Particles run(int threads) {
   const core::Scene scene = core::parse_scene(scene_text, "determinism.toml");
   MpmSolver solver(scene, generate_particles(scene));
   // 150 steps: the bar hits the wall, yields and spreads; the particles get reordered once.
+  // ~6800 particles: enough for every particle loop to run threaded (core::worth_threads).
+  EXPECT_TRUE(core::worth_threads(solver.particles().size()));
   for (int k = 0; k < 150; ++k) solver.step(solver.stable_time_step());
 #ifdef _OPENMP
   omp_set_num_threads(before);
