@@ -57,7 +57,7 @@ Rebound run(const std::string& scheme, double factor) {
 // grid and step the lower the rebound goes (cell 1 / 0.5 / 0.25: 277.6 / 271.7 / 262.7 m/s
 // with MUSL), so the rebound is checked between 0.9 v0 and the 305 m/s no scheme may exceed
 // without creating energy. The energy balance must close within 2 % (VALIDATION V1) with
-// time_step_factor 0.1; USF needs it (4.5 % at 0.3: its strain is taken before the wall
+// time_step_factor 0.1; USF needs it (4.4 % at 0.3: its strain is taken before the wall
 // decides which nodes it holds), MUSL meets it at 0.3 as well.
 TEST(ElasticBar, MuslReboundsAndClosesEnergyBalance) {
   for (double factor : {0.3, 0.1}) {
