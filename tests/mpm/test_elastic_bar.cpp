@@ -57,8 +57,7 @@ Rebound run(const std::string& scheme, double factor) {
 // under 1 %) the rebound converges to 0.943 v0 (cell 1 and 0.5, time_step_factor 0.3 and
 // 0.1), and at 300 m/s refinement lowers it further (MUSL, cell 1 / 0.5 / 0.25: 277.8 /
 // 271.6 / 263.7 m/s). So the rebound is checked between 0.9 v0 and the 305 m/s no scheme
-// may exceed
-// without creating energy. The energy balance must close within 2 % (VALIDATION V1) with
+// may exceed without creating energy. The energy balance must close within 2 % (VALIDATION V1) with
 // time_step_factor 0.1; USF needs it (4.4 % at 0.3: its strain is taken before the wall
 // decides which nodes it holds), MUSL meets it at 0.3 as well.
 TEST(ElasticBar, MuslReboundsAndClosesEnergyBalance) {
