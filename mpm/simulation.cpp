@@ -1,3 +1,4 @@
+// A run of the MPM solver to its end time with output, history, progress and the guard.
 #include "mpm/simulation.hpp"
 
 #include <algorithm>
@@ -25,7 +26,7 @@ namespace {
 // Derived per-particle fields for output, kept between frames.
 class FrameWriter {
  public:
-  FrameWriter(const std::string& directory) : writer_(directory, "particles") {}
+  explicit FrameWriter(const std::string& directory) : writer_(directory, "particles") {}
 
   void write(const MpmSolver& s) {
     const Particles& p = s.particles();
