@@ -35,6 +35,7 @@ struct RunSettings {
   long max_steps = 0;              // > 0: stop after this many steps
   double output_every = 0.0;       // simulated time between field outputs; 0: final state only
   long history_every = 10;         // steps between history rows
+  bool output_strain = false;      // integrate and write each particle's strain tensor
   Vec3 gravity;                    // body force per unit mass
 };
 

@@ -20,6 +20,10 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
       grid_(scene.mpm.grid) {
   for (const auto& m : scene.materials) materials_.push_back(&m);
   grid_.enable_remap_field(scene.mpm.scheme == core::UpdateScheme::MUSL);
+  // The strain tensor is integrated only for scenes that write it: it is the largest array
+  // the strain sweep streams, and nothing in the physics reads it.
+  if (plan_.strain && particles_.strain.size() != particles_.size())
+    particles_.strain.assign(particles_.size(), SymTensor{});
   stage_counts_.assign(plan_.stages.size(), 0);
   stage_seconds_.assign(plan_.stages.size(), 0.0);
   reorder_particles();

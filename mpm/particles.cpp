@@ -7,8 +7,9 @@ namespace afemp::mpm {
 namespace {
 template <class F>
 void for_each_array(Particles& p, F&& f) {
-  f(p.position); f(p.velocity); f(p.mass); f(p.volume); f(p.stress); f(p.strain);
+  f(p.position); f(p.velocity); f(p.mass); f(p.volume); f(p.stress);
   f(p.plastic_strain); f(p.temperature); f(p.energy); f(p.body); f(p.material); f(p.id);
+  if (!p.strain.empty()) f(p.strain);  // only when the scene asks for it
 }
 template <class F>
 void for_each_array(const Particles& p, F&& f) {
@@ -32,7 +33,7 @@ void Particles::push_back(const Vec3& x, const Vec3& v, double m, double vol, do
   mass.push_back(m);
   volume.push_back(vol);
   stress.push_back({});
-  strain.push_back({});
+  if (!strain.empty()) strain.push_back({});
   plastic_strain.push_back(0.0);
   temperature.push_back(temp);
   energy.push_back(0.0);

@@ -20,7 +20,7 @@ struct Particles {
   std::vector<double> mass;
   std::vector<double> volume;          // current volume; density = mass / volume
   std::vector<SymTensor> stress;       // Cauchy stress
-  std::vector<SymTensor> strain;       // accumulated strain (sum of D dt)
+  std::vector<SymTensor> strain;       // accumulated strain (sum of D dt); empty unless asked for
   std::vector<double> plastic_strain;  // equivalent plastic strain
   std::vector<double> temperature;
   std::vector<double> energy;          // specific internal energy (per unit mass)

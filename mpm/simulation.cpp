@@ -43,7 +43,8 @@ class FrameWriter {
       body_[i] = p.body[i];
       id_[i] = p.id[i];
     }
-    const core::FieldView fields[] = {
+    std::vector<core::FieldView>& fields = views_;
+    fields = {
         core::vector_field("velocity", p.velocity.data()),
         core::tensor_field("stress", p.stress.data()),
         core::scalar_field("pressure", pressure_.data()),
@@ -52,10 +53,10 @@ class FrameWriter {
         core::scalar_field("temperature", p.temperature.data()),
         core::scalar_field("density", density_.data()),
         core::scalar_field("internal_energy", p.energy.data()),
-        core::tensor_field("strain", p.strain.data()),
         core::scalar_field("body", body_.data()),
         core::scalar_field("id", id_.data()),
     };
+    if (!p.strain.empty()) fields.push_back(core::tensor_field("strain", p.strain.data()));
     writer_.write_frame(s.time(), s.step_count(), n, core::as_doubles(p.position.data()), fields);
   }
   std::size_t frames() const { return writer_.frames(); }
@@ -63,6 +64,7 @@ class FrameWriter {
  private:
   core::FieldWriter writer_;
   std::vector<double> pressure_, von_mises_, density_, body_, id_;
+  std::vector<core::FieldView> views_;
 };
 
 core::HistoryRow history_row(const MpmSolver& s, const Energies& e, double dt, double error) {

@@ -37,6 +37,7 @@ StepPlan build_step_plan(const core::Scene& scene) {
   StepPlan plan;
   plan.scheme = scene.mpm.scheme;
   plan.flip = scene.mpm.flip;
+  plan.strain = scene.run.output_strain;
   plan.jaumann = scene.mpm.jaumann;
   const core::Vec3& g = scene.run.gravity;
   plan.gravity = g.x != 0.0 || g.y != 0.0 || g.z != 0.0;
@@ -111,6 +112,8 @@ std::string StepPlan::describe() const {
       << (m.thermal ? "on (plastic work heats)" : "off") << "\n";
   }
   o << "particle velocity: PIC/FLIP blend, flip = " << flip << "\n";
+  o << "strain tensor: " << (strain ? "integrated and written (output_strain)" : "not integrated")
+    << "\n";
   o << "body force: " << (gravity ? "gravity" : "none") << "\n";
   return o.str();
 }

@@ -41,6 +41,7 @@ struct MaterialPlan {
 struct StepPlan {
   core::UpdateScheme scheme = core::UpdateScheme::MUSL;
   double flip = 1.0;  // PIC/FLIP blend of the particle velocity update
+  bool strain = false;  // the strain tensor is integrated (run.output_strain)
   std::vector<Stage> stages;
   std::vector<MaterialPlan> materials;  // only materials that some body uses
   bool gravity = false;                 // body force added in p2g_force

@@ -64,6 +64,7 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
   const Vec3* v_old = g.velocity.data();
   const Vec3* v_new = g.velocity_new.data();
   const bool jaumann = plan_.jaumann;
+  const bool track_strain = plan_.strain;
   const double flip = scene_.mpm.flip;
 
 #pragma omp parallel num_threads(nt) if (core::worth_threads(batch.end - batch.begin))
@@ -124,7 +125,7 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
         p.plastic_strain[i] = st.plastic_strain;  // an elastic batch never changes it
       if constexpr (Thermal) p.temperature[i] = st.temperature;
       p.energy[i] = st.energy;
-      p.strain[i] += d_eps;
+      if (track_strain) p.strain[i] += d_eps;
       work += p.mass[i] * u.plastic_work;
       if (sweep.move) {
         x += dt * v_bar;
