@@ -63,6 +63,8 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
   }
   const Vec3* v_old = g.velocity.data();
   const Vec3* v_new = g.velocity_new.data();
+  constexpr bool reads_plastic_strain = !std::is_same_v<Strength, core::Elastic>;
+  constexpr bool reads_temperature = Thermal || std::is_same_v<Strength, core::JohnsonCook>;
   const bool jaumann = plan_.jaumann;
   const bool track_strain = plan_.strain;
   const double flip = scene_.mpm.flip;
@@ -114,15 +116,15 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
       }
       const double volume = p.volume[i] * (1.0 + d_eps.trace());
       p.volume[i] = volume;
-      st.plastic_strain = p.plastic_strain[i];
-      st.temperature = p.temperature[i];
+      // History an elastic batch never reads stays in memory: less to stream per point.
+      if constexpr (reads_plastic_strain) st.plastic_strain = p.plastic_strain[i];
+      if constexpr (reads_temperature) st.temperature = p.temperature[i];
       st.energy = p.energy[i];
       st.density = p.mass[i] / volume;
       const core::PointUpdate u =
           core::constitutive_update(mat, strength, eos, Thermal, st, d_eps, dt);
       p.stress[i] = st.stress;
-      if constexpr (!std::is_same_v<Strength, core::Elastic>)
-        p.plastic_strain[i] = st.plastic_strain;  // an elastic batch never changes it
+      if constexpr (reads_plastic_strain) p.plastic_strain[i] = st.plastic_strain;
       if constexpr (Thermal) p.temperature[i] = st.temperature;
       p.energy[i] = st.energy;
       if (track_strain) p.strain[i] += d_eps;
