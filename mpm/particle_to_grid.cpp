@@ -38,7 +38,6 @@ void MpmSolver::particle_to_grid() {
   }
   const Particles& p = particles_;
   const Vec3 gravity = scene_.run.gravity;
-  const std::vector<std::int64_t>& cells = cell_;
   // Particles of one cell mostly follow each other (the arrays are kept in cell order), so
   // each sweep sums a run of same-cell particles into the cell's 8 nodes locally and adds
   // the sums to the grid once per run: 8x less grid traffic, same order every time.
@@ -62,9 +61,10 @@ void MpmSolver::particle_to_grid() {
       const auto i = static_cast<std::size_t>(layer_order_[q]);
       const Vec3& x = p.position[i];
       const auto c = g.cell_of(x);
-      if (cells[i] != current) {
+      const std::int64_t cell = g.linear_cell(c);  // recomputed: cheaper than reading cell_
+      if (cell != current) {
         flush();
-        current = cells[i];
+        current = cell;
         g.node_slots(c, slot);
         for (std::size_t n = 0; n < 8; ++n) {
           mass[n] = 0.0;
