@@ -52,6 +52,9 @@ StepPlan build_step_plan(const core::Scene& scene) {
 
   const std::string force_why = plan.gravity ? "internal force -V sigma.grad N and gravity m N g"
                                              : "internal force -V sigma.grad N (no body force)";
+  // The one stage every scheme runs the same way.
+  const Stage grid_update = stage(StageKind::grid_momentum_update, "grid momentum update",
+                                  "explicit momentum update and boundary conditions");
   auto& s = plan.stages;
   s.push_back(stage(StageKind::bin_particles, "bin particles",
                     "cells of the points, active grid blocks, colour layers for the P2G sweep"));
@@ -64,8 +67,7 @@ StepPlan build_step_plan(const core::Scene& scene) {
       s.push_back(stage(StageKind::strain_stress_update, "strain stress update",
                         "USF: strain rate from the grid velocity before the momentum update"));
       s.push_back(stage(StageKind::p2g_force, "p2g force", force_why));
-      s.push_back(stage(StageKind::grid_momentum_update, "grid momentum update",
-                        "explicit momentum update and boundary conditions"));
+      s.push_back(grid_update);
       s.push_back(stage(StageKind::g2p_velocity_position, "g2p velocity position",
                         "particle velocity (PIC/FLIP blend) and position"));
       break;
@@ -73,8 +75,7 @@ StepPlan build_step_plan(const core::Scene& scene) {
     case UpdateScheme::MUSL:
       s.push_back(stage(StageKind::p2g_mass_momentum_force, "p2g mass momentum force",
                         "nodal mass, momentum and " + force_why));
-      s.push_back(stage(StageKind::grid_momentum_update, "grid momentum update",
-                        "explicit momentum update and boundary conditions"));
+      s.push_back(grid_update);
       if (plan.scheme == UpdateScheme::USL) {
         s.push_back(stage(StageKind::g2p_velocity_strain_stress, "g2p velocity strain stress",
                           "USL: particle velocity (PIC/FLIP blend), strain rate from the "
