@@ -4,13 +4,15 @@
 
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <string>
 
 #include "apps/progress_line.hpp"
 #include "core/error.hpp"
 #include "core/output/run_directory.hpp"
 #include "core/parallel.hpp"
-#include "mpm/simulation.hpp"
+#include "core/time_loop.hpp"
+#include "mpm/mpm_model.hpp"
 
 namespace {
 
@@ -27,78 +29,47 @@ void set_threads(int threads) {
 #endif
 }
 
-const char* shape_name(const core::Shape& s) {
-  switch (s.index()) {
-    case 0: return "box";
-    case 1: return "cylinder";
-    case 2: return "sphere";
-    default: return "points";
-  }
+// The model a scene describes: particles on the grid or a mesh (core::Model either way).
+std::unique_ptr<core::Model> make_model(const core::Scene& scene) {
+  return std::make_unique<mpm::MpmModel>(scene);
 }
 
 int check(const std::string& path) {
   const core::Scene scene = core::read_scene(path);
-  mpm::Simulation sim(scene);
-  mpm::MpmSolver& solver = sim.solver();
-  solver.prepare();
-  const auto& g = solver.grid();
-  const auto& p = solver.particles();
-
+  const std::unique_ptr<core::Model> model = make_model(scene);
   std::printf("scene %s%s%s\n", path.c_str(), scene.run.title.empty() ? "" : ": ",
               scene.run.title.c_str());
-  std::printf("grid: cell %g, %d x %d x %d cells over [%g, %g] x [%g, %g] x [%g, %g]\n",
-              g.cell(), g.cells()[0], g.cells()[1], g.cells()[2], scene.mpm.grid.min.x,
-              scene.mpm.grid.max.x, scene.mpm.grid.min.y, scene.mpm.grid.max.y,
-              scene.mpm.grid.min.z, scene.mpm.grid.max.z);
-  std::printf("faces:");
-  for (int f = 0; f < 6; ++f)
-    std::printf(" %s=%s", core::to_string(static_cast<core::Face>(f)),
-                core::to_string(scene.mpm.grid.faces[static_cast<std::size_t>(f)]));
-  std::printf("\n");
-  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
-    std::size_t count = 0;
-    double mass = 0.0;
-    for (std::size_t i = 0; i < p.size(); ++i)
-      if (p.body[i] == static_cast<int>(b)) {
-        ++count;
-        mass += p.mass[i];
-      }
-    const auto& body = scene.bodies[b];
-    std::printf("body %s: %s of %s, %zu particles (%d per cell per direction), mass %.6g\n",
-                body.name.c_str(), shape_name(body.shape),
-                scene.materials[static_cast<std::size_t>(body.material)].name.c_str(), count,
-                body.particles_per_cell, mass);
-  }
-  std::printf("particles: %zu; active cells: %zu; active grid blocks: %zu (%zu node slots)\n",
-              p.size(), solver.active_cells(), g.active_block_count(), g.slot_count());
-  std::fputs(solver.plan().describe().c_str(), stdout);
-  const double dt = solver.stable_time_step();
+  std::fputs(model->describe().c_str(), stdout);
+  const double dt = model->stable_time_step();
   std::printf("time step: %.6g (%s), about %.0f steps to t = %g\n", dt,
               scene.run.fixed_time_step > 0.0 ? "fixed" : "stable step x time_step_factor",
               scene.run.end_time / dt, scene.run.end_time);
-  std::printf("memory estimate: %.1f MiB (%.0f bytes per particle)\n",
-              static_cast<double>(solver.bytes()) / (1024.0 * 1024.0),
-              static_cast<double>(solver.bytes()) / static_cast<double>(p.size()));
+  const double points = static_cast<double>(model->particle_count() + model->element_count());
+  std::printf("memory estimate: %.1f MiB (%.0f bytes per particle or element)\n",
+              static_cast<double>(model->bytes()) / (1024.0 * 1024.0),
+              static_cast<double>(model->bytes()) / points);
   return 0;
 }
 
 int run(const std::string& path, std::string out_dir) {
   const core::Scene scene = core::read_scene(path);
   if (out_dir.empty()) out_dir = core::default_output_directory(path);
-  mpm::Simulation sim(scene);
+  const std::unique_ptr<core::Model> model = make_model(scene);
   apps::ProgressReporter progress(stdout);
-  mpm::RunOptions options;
+  core::RunOptions options;
   options.output_directory = out_dir;
-  options.progress = [&](const mpm::Progress& pr) { progress(pr); };
+  options.progress = [&](const core::Progress& pr) { progress(pr); };
   options.progress_seconds = progress.interval();
   std::printf("afemp run %s -> %s (%d thread(s))\n", path.c_str(), out_dir.c_str(),
               core::thread_count());
   try {
-    const mpm::RunSummary s = sim.run(options);
+    const core::RunSummary s = core::run(*model, scene, options);
     progress.finish();
-    apps::print_summary(stdout, scene, sim.solver().plan(), s);
-    std::printf("output: %s/particles.xmf (%zu frames), %s/history.csv\n", out_dir.c_str(),
-                s.field_frames, out_dir.c_str());
+    apps::print_summary(stdout, scene, s);
+    core::OutputPaths paths;
+    std::printf("output: %s/%s.xmf (%zu frames), %s/%s\n", out_dir.c_str(),
+                paths.fields_stem.c_str(), s.field_frames, out_dir.c_str(),
+                paths.history_file.c_str());
     if (s.taylor && scene.taylor_reference && scene.taylor_reference->tolerance > 0.0 &&
         s.taylor_error > scene.taylor_reference->tolerance)
       return 4;

@@ -24,7 +24,7 @@ std::string clock_text(double seconds) {
 
 ProgressReporter::ProgressReporter(std::FILE* out) : out_(out), live_(isatty(fileno(out)) != 0) {}
 
-void ProgressReporter::operator()(const mpm::Progress& p) {
+void ProgressReporter::operator()(const core::Progress& p) {
   const double fraction = p.end_time > 0.0 ? p.time / p.end_time : 1.0;
   const double eta = fraction > 0.0 ? p.elapsed_seconds * (1.0 - fraction) / fraction : -1.0;
   char line[256];
@@ -46,24 +46,26 @@ void ProgressReporter::finish() {
   pending_newline_ = false;
 }
 
-void print_summary(std::FILE* out, const core::Scene& scene, const mpm::StepPlan& plan,
-                   const mpm::RunSummary& s) {
+void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSummary& s) {
   std::fprintf(out, "summary\n");
   std::fprintf(out, "  steps            %ld to t = %.6g (dt %.4g .. %.4g)\n", s.steps, s.time,
                s.min_dt, s.max_dt);
   std::fprintf(out, "  wall time        %.3f s with %d thread(s)\n", s.wall_seconds,
                core::thread_count());
-  std::fprintf(out, "  particles        %zu, %.3g particle-steps/s\n", s.particles,
-               s.particle_steps_per_second);
+  std::fprintf(out, "  points           %zu particles, %zu elements, %.3g point-steps/s\n",
+               s.particles, s.elements, s.point_steps_per_second);
   std::fprintf(out, "  stage seconds   ");
-  for (std::size_t i = 0; i < plan.stages.size() && i < s.stage_seconds.size(); ++i)
-    std::fprintf(out, " %s %.2f%s", plan.stages[i].name.c_str(), s.stage_seconds[i],
-                 i + 1 < plan.stages.size() ? "," : "\n");
+  for (std::size_t i = 0; i < s.stages.size(); ++i)
+    std::fprintf(out, " %s %.2f%s", s.stages[i].name.c_str(), s.stages[i].seconds,
+                 i + 1 < s.stages.size() ? "," : "\n");
   std::fprintf(out, "  energy  initial  kinetic %.6g  internal %.6g\n", s.initial.kinetic,
                s.initial.internal);
   std::fprintf(out, "          final    kinetic %.6g  internal %.6g (plastic work %.6g)  "
                "external work %.6g\n",
                s.final.kinetic, s.final.internal, s.final.plastic, s.final.external_work);
+  if (s.final.hourglass != 0.0 || s.final.viscous != 0.0 || s.final.eroded != 0.0)
+    std::fprintf(out, "                   hourglass %.6g  bulk-viscous %.6g  eroded %.6g\n",
+                 s.final.hourglass, s.final.viscous, s.final.eroded);
   std::fprintf(out, "  energy balance   error %+.3f %% at the end, largest %.3f %%\n",
                100.0 * s.energy_error, 100.0 * s.max_energy_error);
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {

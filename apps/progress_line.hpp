@@ -4,14 +4,15 @@
 
 #include <cstdio>
 
-#include "mpm/simulation.hpp"
+#include "core/scene.hpp"
+#include "core/time_loop.hpp"
 
 namespace afemp::apps {
 
 class ProgressReporter {
  public:
   explicit ProgressReporter(std::FILE* out);
-  void operator()(const mpm::Progress& p);
+  void operator()(const core::Progress& p);
   // Ends the live line so that following output starts on a fresh line.
   void finish();
   bool live() const { return live_; }
@@ -24,7 +25,6 @@ class ProgressReporter {
   bool pending_newline_ = false;
 };
 
-void print_summary(std::FILE* out, const core::Scene& scene, const mpm::StepPlan& plan,
-                   const mpm::RunSummary& s);
+void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSummary& s);
 
 }  // namespace afemp::apps

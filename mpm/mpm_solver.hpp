@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/energies.hpp"
 #include "core/grid/background_grid.hpp"
 #include "core/scene.hpp"
 #include "mpm/particles.hpp"
@@ -14,19 +15,8 @@
 
 namespace afemp::mpm {
 
-struct BodySums {
-  double mass = 0.0;
-  Vec3 momentum;
-};
-
-struct Energies {
-  double kinetic = 0.0;
-  double internal = 0.0;       // sum m e (elastic + plastic + EOS work)
-  double plastic = 0.0;        // accumulated plastic work
-  double external_work = 0.0;  // accumulated work of body forces
-  std::vector<BodySums> bodies;
-  double total() const { return kinetic + internal; }
-};
+using core::BodySums;
+using core::Energies;
 
 // A contiguous range of particles of one material.
 struct MaterialBatch {

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "core/scene.hpp"
-#include "mpm/simulation.hpp"
+#include "mpm/mpm_model.hpp"
 
 namespace afemp::mpm {
 namespace {
@@ -40,8 +40,8 @@ struct Rebound {
 
 Rebound run(const std::string& scheme, double factor) {
   const core::Scene scene = elastic_bar(scheme, factor);
-  Simulation sim(scene);
-  const RunSummary s = sim.run({});
+  MpmModel sim(scene);
+  const core::RunSummary s = core::run(sim, scene, {});
   const BodySums& bar = s.final.bodies.at(0);
   const Rebound r{bar.momentum.z / bar.mass, s.max_energy_error, s.energy_error,
                   s.final.kinetic / s.initial.kinetic};

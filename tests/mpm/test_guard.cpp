@@ -11,7 +11,7 @@
 #include "core/error.hpp"
 #include "core/output/history.hpp"
 #include "core/scene.hpp"
-#include "mpm/simulation.hpp"
+#include "mpm/mpm_model.hpp"
 #include "test_support.hpp"
 
 namespace afemp::mpm {
@@ -38,7 +38,7 @@ std::string wall_scene(const std::string& time_step_line, const std::string& fac
 TEST(Guard, UnstableTimeStepStopsWithStepParticleAndFieldAndKeepsOutput) {
   // The stable step of this scene at factor 1.
   const core::Scene probe = core::parse_scene(wall_scene("", "time_step_factor = 1.0\n"), "p.toml");
-  const double stable = Simulation(probe).solver().stable_time_step();
+  const double stable = MpmModel(probe).solver().stable_time_step();
   ASSERT_GT(stable, 0.0);
 
   char fixed_step[32];
@@ -48,12 +48,12 @@ TEST(Guard, UnstableTimeStepStopsWithStepParticleAndFieldAndKeepsOutput) {
   ASSERT_NEAR(scene.run.fixed_time_step, 100.0 * stable, 1e-6 * stable);
   test::ScratchDir dir;
   const std::string out = dir.file("run");
-  Simulation sim(scene);
-  RunOptions options;
+  MpmModel sim(scene);
+  core::RunOptions options;
   options.output_directory = out;
   bool thrown = false;
   try {
-    sim.run(options);
+    core::run(sim, scene, options);
   } catch (const core::SimulationError& e) {
     thrown = true;
     const std::string what = e.what();
@@ -93,9 +93,9 @@ TEST(Guard, ParticleLeavingTheGridStopsTheRunWithFieldPosition) {
       "velocity = [0, 0, 500]\n"
       "shape = { box = { min = [1, 1, 1], max = [3, 3, 3] } }\n",
       "leave.toml");
-  Simulation sim(scene);
+  MpmModel sim(scene);
   try {
-    sim.run(RunOptions{});
+    core::run(sim, scene, core::RunOptions{});
     FAIL() << "the body left the grid without an error";
   } catch (const core::SimulationError& e) {
     const std::string what = e.what();

@@ -8,7 +8,7 @@
 
 #include "core/parallel.hpp"
 #include "core/scene.hpp"
-#include "mpm/simulation.hpp"
+#include "mpm/mpm_model.hpp"
 
 namespace afemp::mpm {
 namespace {
@@ -17,10 +17,10 @@ TEST(TaylorBar, MpmMatchesExperimentWithinThreePercentMeanError) {
   const core::Scene scene =
       core::read_scene(std::string(AFEMP_SOURCE_DIR) + "/examples/taylor_bar/mpm.toml");
   ASSERT_TRUE(scene.taylor_reference.has_value());
-  Simulation sim(scene);
-  const RunSummary s = sim.run({});
+  MpmModel sim(scene);
+  const core::RunSummary s = core::run(sim, scene, {});
   ASSERT_TRUE(s.taylor.has_value());
-  const TaylorMeasures& m = *s.taylor;
+  const core::TaylorMeasures& m = *s.taylor;
   std::printf("| method | cell | particles | L | D | W | mean error | steps | wall s | threads |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|\n");
   std::printf("| experiment | | | 16.2 | 13.5 | 10.1 | - | | | |\n");

@@ -1,0 +1,34 @@
+// The energy account every solver reports and the balance the time loop checks: kinetic,
+// internal (elastic + plastic + EOS work, bulk-viscous heating included), hourglass, what
+// erosion removed, and the work of external loads.
+#pragma once
+
+#include <vector>
+
+#include "core/tensor.hpp"
+
+namespace afemp::core {
+
+struct BodySums {
+  double mass = 0.0;
+  Vec3 momentum;
+};
+
+struct Energies {
+  double kinetic = 0.0;
+  double internal = 0.0;       // sum m e (elastic + plastic + EOS work + bulk-viscous heating)
+  double plastic = 0.0;        // accumulated plastic work (part of internal)
+  double viscous = 0.0;        // accumulated bulk-viscous work (part of internal)
+  double hourglass = 0.0;      // accumulated hourglass work (stored or dissipated)
+  double eroded = 0.0;         // internal + kinetic energy taken away by eroded elements
+  double external_work = 0.0;  // accumulated work of body forces and moving boundaries
+  std::vector<BodySums> bodies;
+  // Everything that must equal the initial total plus the external work.
+  double total() const { return kinetic + internal + hourglass + eroded; }
+};
+
+// Relative energy-balance error: (E - E0 - W_ext) / max(E0 + |W_ext|, max kinetic so far),
+// E = Energies::total(). The denominator is the energy the run has handled.
+double energy_balance_error(const Energies& now, const Energies& initial, double max_kinetic);
+
+}  // namespace afemp::core

@@ -1,0 +1,166 @@
+// The run loop of core/time_loop.hpp: stable step, output at the requested interval, history
+// rows, progress and the summary. Moved here from the MPM solver so that FE and coupled runs
+// share it.
+#include "core/time_loop.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <variant>
+
+#include "core/output/history.hpp"
+#include "core/output/run_directory.hpp"
+
+namespace afemp::core {
+
+namespace {
+
+HistoryRow history_row(const Model& m, const Energies& e, double dt, double error) {
+  HistoryRow r;
+  r.step = m.step_count();
+  r.time = m.time();
+  r.dt = dt;
+  r.kinetic = e.kinetic;
+  r.internal = e.internal;
+  r.plastic = e.plastic;
+  r.elastic = e.internal - e.plastic - e.viscous;
+  r.viscous = e.viscous;
+  r.hourglass = e.hourglass;
+  r.eroded = e.eroded;
+  r.external_work = e.external_work;
+  r.total = e.total();
+  r.energy_error = error;
+  for (const BodySums& b : e.bodies)
+    r.bodies.push_back({b.momentum, b.mass > 0.0 ? (1.0 / b.mass) * b.momentum : Vec3{}});
+  return r;
+}
+
+// Appends a model's event rows to their CSV files in the run directory (header first).
+class EventFiles {
+ public:
+  explicit EventFiles(std::string directory) : directory_(std::move(directory)) {}
+  void write(const std::vector<EventLog>& logs) {
+    for (const EventLog& log : logs) {
+      if (log.rows.empty()) continue;
+      auto [it, fresh] = files_.try_emplace(log.file);
+      if (fresh) {
+        it->second.open(directory_ + "/" + log.file, std::ios::trunc);
+        if (!it->second) throw std::runtime_error(directory_ + "/" + log.file + ": cannot write");
+        it->second << log.header << '\n';
+      }
+      for (const std::string& row : log.rows) it->second << row << '\n';
+      it->second.flush();
+    }
+  }
+
+ private:
+  std::string directory_;
+  std::map<std::string, std::ofstream> files_;
+};
+
+}  // namespace
+
+RunSummary run(Model& model, const Scene& scene, const RunOptions& options) {
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
+  const RunSettings& rs = scene.run;
+
+  std::unique_ptr<FieldWriter> frames;
+  std::unique_ptr<HistoryWriter> history;
+  std::unique_ptr<EventFiles> events;
+  if (!options.output_directory.empty()) {
+    OutputPaths paths;
+    paths.directory = options.output_directory;
+    if (options.write_fields)
+      frames = std::make_unique<FieldWriter>(paths.directory, paths.fields_stem);
+    std::vector<std::string> names;
+    for (const auto& b : scene.bodies) names.push_back(b.name);
+    history = std::make_unique<HistoryWriter>(history_path(paths), names);
+    events = std::make_unique<EventFiles>(paths.directory);
+  }
+
+  RunSummary sum;
+  sum.particles = model.particle_count();
+  sum.elements = model.element_count();
+  sum.initial = model.energies();
+  double max_kinetic = sum.initial.kinetic;
+  sum.min_dt = 1e300;
+
+  auto record = [&](double dt) {
+    const Energies e = model.energies();
+    max_kinetic = std::max(max_kinetic, e.kinetic);
+    const double err = energy_balance_error(e, sum.initial, max_kinetic);
+    sum.max_energy_error = std::max(sum.max_energy_error, std::abs(err));
+    if (history) history->write(history_row(model, e, dt, err));
+    if (events) events->write(model.take_events());
+    return err;
+  };
+
+  double dt = model.stable_time_step();
+  record(dt);
+  if (frames) model.write_fields(*frames);
+  double next_output = rs.output_every > 0.0 ? rs.output_every : 1e300;
+  double next_progress = options.progress_seconds;
+  double last_error = 0.0;
+  const double end = rs.end_time;
+
+  while (model.time() < end * (1.0 - 1e-12) &&
+         (rs.max_steps <= 0 || model.step_count() < rs.max_steps)) {
+    const double stable = model.stable_time_step();
+    // The statistics describe the stable step; the last step may be cut to land on end.
+    sum.min_dt = std::min(sum.min_dt, stable);
+    sum.max_dt = std::max(sum.max_dt, stable);
+    dt = std::min(stable, end - model.time());
+    try {
+      model.step(dt);
+    } catch (const SimulationError&) {
+      if (events) events->write(model.take_events());  // what led up to it stays on disk
+      throw;
+    }
+    const long k = model.step_count();
+    if (k % rs.history_every == 0) last_error = record(dt);
+    if (frames && model.time() >= next_output * (1.0 - 1e-9) && model.time() < end * (1.0 - 1e-12)) {
+      model.write_fields(*frames);
+      next_output += rs.output_every;
+    }
+    if (options.progress && elapsed() >= next_progress) {
+      const Energies e = model.energies();
+      options.progress({k, model.time(), dt, end, elapsed(),
+                        energy_balance_error(e, sum.initial, std::max(max_kinetic, e.kinetic))});
+      next_progress = elapsed() + options.progress_seconds;
+    }
+  }
+  if (model.step_count() % rs.history_every != 0) last_error = record(dt);
+  if (frames) model.write_fields(*frames);  // the final state, always
+
+  sum.steps = model.step_count();
+  sum.time = model.time();
+  sum.wall_seconds = elapsed();
+  sum.point_steps_per_second =
+      sum.wall_seconds > 0.0
+          ? static_cast<double>(sum.particles + sum.elements) * sum.steps / sum.wall_seconds
+          : 0.0;
+  sum.final = model.energies();
+  sum.energy_error = last_error;
+  sum.stages = model.stage_timings();
+  sum.field_frames = frames ? frames->frames() : 0;
+  if (sum.min_dt > sum.max_dt) sum.min_dt = sum.max_dt = dt;
+  if (scene.taylor_reference) {
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+      if (!std::holds_alternative<CylinderShape>(scene.bodies[b].shape)) continue;
+      sum.taylor = model.measure_taylor(static_cast<int>(b));
+      sum.taylor_error = taylor_mean_error(*sum.taylor, *scene.taylor_reference);
+      break;
+    }
+  }
+  if (options.progress)
+    options.progress({sum.steps, sum.time, dt, end, sum.wall_seconds, sum.energy_error});
+  return sum;
+}
+
+}  // namespace afemp::core

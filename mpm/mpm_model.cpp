@@ -1,0 +1,128 @@
+// The MPM solver behind the core::Model interface (mpm/mpm_model.hpp).
+#include "mpm/mpm_model.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "mpm/particle_generation.hpp"
+
+namespace afemp::mpm {
+
+MpmModel::MpmModel(const core::Scene& scene)
+    : scene_(scene), solver_(scene, generate_particles(scene)) {}
+
+void MpmModel::write_fields(core::FieldWriter& writer) {
+  const Particles& p = solver_.particles();
+  const std::size_t n = p.size();
+  pressure_.resize(n);
+  von_mises_.resize(n);
+  density_.resize(n);
+  body_.resize(n);
+  id_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    pressure_[i] = core::pressure(p.stress[i]);
+    von_mises_[i] = core::von_mises(p.stress[i]);
+    density_[i] = p.mass[i] / p.volume[i];
+    body_[i] = p.body[i];
+    id_[i] = p.id[i];
+  }
+  std::vector<core::FieldView> fields = {
+      core::vector_field("velocity", p.velocity.data()),
+      core::tensor_field("stress", p.stress.data()),
+      core::scalar_field("pressure", pressure_.data()),
+      core::scalar_field("von_mises", von_mises_.data()),
+      core::scalar_field("plastic_strain", p.plastic_strain.data()),
+      core::scalar_field("temperature", p.temperature.data()),
+      core::scalar_field("density", density_.data()),
+      core::scalar_field("internal_energy", p.energy.data()),
+      core::scalar_field("body", body_.data()),
+      core::scalar_field("id", id_.data()),
+  };
+  if (!p.strain.empty()) fields.push_back(core::tensor_field("strain", p.strain.data()));
+  writer.write_frame(solver_.time(), solver_.step_count(), n,
+                     core::as_doubles(p.position.data()), fields);
+}
+
+std::vector<core::StageTiming> MpmModel::stage_timings() const {
+  std::vector<core::StageTiming> out;
+  const auto& stages = solver_.plan().stages;
+  for (std::size_t i = 0; i < stages.size(); ++i)
+    out.push_back({stages[i].name, solver_.stage_counts()[i], solver_.stage_seconds()[i]});
+  return out;
+}
+
+namespace {
+
+const char* shape_name(const core::Shape& s) {
+  switch (s.index()) {
+    case 0: return "box";
+    case 1: return "cylinder";
+    case 2: return "sphere";
+    default: return "points";
+  }
+}
+
+template <class... Args>
+void append(std::string& out, const char* format, Args... args) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, format, args...);
+  out += buf;
+}
+
+}  // namespace
+
+std::string MpmModel::describe() const {
+  solver_.prepare();
+  const core::Scene& scene = scene_;
+  const auto& g = solver_.grid();
+  const auto& p = solver_.particles();
+  std::string out;
+  append(out, "grid: cell %g, %d x %d x %d cells over [%g, %g] x [%g, %g] x [%g, %g]\n",
+         g.cell(), g.cells()[0], g.cells()[1], g.cells()[2], scene.mpm.grid.min.x,
+         scene.mpm.grid.max.x, scene.mpm.grid.min.y, scene.mpm.grid.max.y, scene.mpm.grid.min.z,
+         scene.mpm.grid.max.z);
+  out += "faces:";
+  for (int f = 0; f < 6; ++f)
+    append(out, " %s=%s", core::to_string(static_cast<core::Face>(f)),
+           core::to_string(scene.mpm.grid.faces[static_cast<std::size_t>(f)]));
+  out += "\n";
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    std::size_t count = 0;
+    double mass = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p.body[i] == static_cast<int>(b)) {
+        ++count;
+        mass += p.mass[i];
+      }
+    const auto& body = scene.bodies[b];
+    append(out, "body %s: %s of %s, %zu particles (%d per cell per direction), mass %.6g\n",
+           body.name.c_str(), shape_name(body.shape),
+           scene.materials[static_cast<std::size_t>(body.material)].name.c_str(), count,
+           body.particles_per_cell, mass);
+  }
+  append(out, "particles: %zu; active cells: %zu; active grid blocks: %zu (%zu node slots)\n",
+         p.size(), solver_.active_cells(), g.active_block_count(), g.slot_count());
+  out += solver_.plan().describe();
+  return out;
+}
+
+core::TaylorMeasures MpmModel::measure_taylor(int body) const {
+  const core::BodySpec& spec = scene_.bodies.at(static_cast<std::size_t>(body));
+  const auto* cyl = std::get_if<core::CylinderShape>(&spec.shape);
+  if (cyl == nullptr)
+    throw std::invalid_argument("Taylor measures need a cylinder body; '" + spec.name +
+                                "' is not one");
+  const Particles& p = solver_.particles();
+  std::vector<core::Vec3> points;
+  std::vector<double> half;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.body[i] != body) continue;
+    points.push_back(p.position[i]);
+    half.push_back(0.5 * std::cbrt(p.volume[i]));  // material reaches half a spacing out
+  }
+  if (points.empty()) throw std::invalid_argument("body '" + spec.name + "' has no particles");
+  return core::measure_taylor(points, half, *cyl, 0.0);
+}
+
+}  // namespace afemp::mpm

@@ -1,0 +1,39 @@
+// The MPM solver as a core::Model, so that core::run drives it: particle fields for the output
+// (pressure, von Mises, density derived per frame), stage timings and the Taylor measures.
+#pragma once
+
+#include <vector>
+
+#include "core/scene.hpp"
+#include "core/time_loop.hpp"
+#include "mpm/mpm_solver.hpp"
+
+namespace afemp::mpm {
+
+class MpmModel final : public core::Model {
+ public:
+  explicit MpmModel(const core::Scene& scene);
+  MpmSolver& solver() { return solver_; }
+  const MpmSolver& solver() const { return solver_; }
+
+  double stable_time_step() const override { return solver_.stable_time_step(); }
+  void step(double dt) override { solver_.step(dt); }
+  long step_count() const override { return solver_.step_count(); }
+  double time() const override { return solver_.time(); }
+  core::Energies energies() const override { return solver_.energies(); }
+  std::size_t particle_count() const override { return solver_.particles().size(); }
+  std::size_t element_count() const override { return 0; }
+  void write_fields(core::FieldWriter& writer) override;
+  std::vector<core::StageTiming> stage_timings() const override;
+  core::TaylorMeasures measure_taylor(int body) const override;
+  // Bins the particles first so that the active cells and memory describe the first step.
+  std::string describe() const override;
+  std::size_t bytes() const override { return solver_.bytes(); }
+
+ private:
+  const core::Scene& scene_;
+  mutable MpmSolver solver_;  // describe() bins the particles
+  std::vector<double> pressure_, von_mises_, density_, body_, id_;  // derived, per frame
+};
+
+}  // namespace afemp::mpm
