@@ -41,6 +41,35 @@ const char* to_string(Face f) {
   return "?";
 }
 
+const char* to_string(Discretisation d) {
+  switch (d) {
+    case Discretisation::particles: return "particles";
+    case Discretisation::hexahedra: return "hexahedra";
+    case Discretisation::trusses: return "trusses";
+  }
+  return "?";
+}
+
+const char* to_string(HexFormulation f) {
+  return f == HexFormulation::one_point ? "one-point" : "full";
+}
+
+const char* to_string(HourglassForm f) {
+  return f == HourglassForm::viscous ? "viscous" : "stiffness";
+}
+
+bool has_particles(const Scene& scene) {
+  for (const BodySpec& b : scene.bodies)
+    if (b.discretisation == Discretisation::particles) return true;
+  return false;
+}
+
+bool has_mesh(const Scene& scene) {
+  for (const BodySpec& b : scene.bodies)
+    if (b.discretisation != Discretisation::particles) return true;
+  return false;
+}
+
 Scene read_scene(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(SourceLocation{path, 0}, "", "cannot open scene file '" + path + "'");

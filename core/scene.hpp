@@ -30,7 +30,8 @@ const char* to_string(Face f);
 struct RunSettings {
   std::string title;
   double end_time = 0.0;           // required
-  double time_step_factor = 0.3;   // Courant safety factor on the stable step
+  double time_step_factor = 0.3;   // Courant safety factor on the grid's stable step
+  double element_time_step_factor = 0.9;  // on the elements' critical step (LS-DYNA's TSSFAC)
   double fixed_time_step = 0.0;    // > 0: use this step instead of the stable one
   long max_steps = 0;              // > 0: stop after this many steps
   double output_every = 0.0;       // simulated time between field outputs; 0: final state only
@@ -72,13 +73,78 @@ struct SphereShape {
 struct PointListShape {
   std::string path;
 };
-using Shape = std::variant<BoxShape, CylinderShape, SphereShape, PointListShape>;
+// A mesh read from a file (Gmsh .msh 4.1, Abaqus .inp, LS-DYNA keyword), path resolved
+// relative to the scene file; `parts` selects parts by name (empty: all).
+struct MeshFileShape {
+  std::string path;
+  std::vector<std::string> parts;
+  double scale = 1.0;   // coordinates are multiplied by scale, then translated
+  Vec3 translate;
+};
+// A straight truss bar.
+struct LineShape {
+  Vec3 from, to;
+};
+// A rebar mat: straight bars both ways in the plane normal to `normal_axis` at `position`,
+// spanning the box [min, max] less the cover (fem/mesh_generation.hpp).
+struct RebarShape {
+  Vec3 min, max;
+  int normal_axis = 2;
+  double position = 0.0, spacing = 0.0, diameter = 0.0, cover = 0.0;
+};
+using Shape = std::variant<BoxShape, CylinderShape, SphereShape, PointListShape, MeshFileShape,
+                           LineShape, RebarShape>;
+
+enum class Discretisation { particles, hexahedra, trusses };
+enum class HexFormulation { one_point, full };  // FB hourglass-controlled | 2x2x2 B-bar
+enum class HourglassForm { viscous, stiffness };
+const char* to_string(Discretisation d);
+const char* to_string(HexFormulation f);
+const char* to_string(HourglassForm f);
+
+// How finely a generated mesh divides its shape. `size` (a target edge length) fills what is
+// not given explicitly.
+struct MeshDensity {
+  std::array<int, 3> divisions{0, 0, 0};  // box: elements along x, y, z
+  int core = 0, ring = 0, axial = 0;      // cylinder O-grid (fem/mesh_generation.hpp)
+  int sectors = 4;                        // cylinder: 1 quarter, 2 half, 4 full
+  int segments = 0;                       // line: trusses along the bar
+  double size = 0.0;                      // target element edge / truss length
+};
+
+struct HourglassSettings {
+  HourglassForm form = HourglassForm::viscous;
+  double coefficient = 0.1;  // Q_hg (LS-DYNA's default QM)
+};
+
+// Linear and quadratic artificial bulk viscosity (LS-DYNA's Q2 = 0.06, Q1 = 1.5).
+struct BulkViscositySettings {
+  double linear = 0.06;
+  double quadratic = 1.5;
+};
+
+// Erosion criteria of a body's elements; 0 / false switches a criterion off. With erosion on,
+// an element whose Jacobian turns non-positive erodes instead of stopping the run.
+struct ErosionSettings {
+  double plastic_strain = 0.0;    // equivalent plastic strain at which an element erodes
+  bool material_failure = false;  // erode at the material's failure_strain
+  double volume_ratio = 0.0;      // erode when V / V0 falls below this
+  double time_step = 0.0;         // erode when the element's critical step falls below this
+};
 
 struct BodySpec {
   std::string name;
   int material = -1;            // index into Scene::materials
+  Discretisation discretisation = Discretisation::particles;
   Shape shape;
-  int particles_per_cell = 2;   // per direction
+  int particles_per_cell = 2;   // per direction (particles)
+  // Meshes (hexahedra, trusses).
+  MeshDensity mesh;
+  HexFormulation element = HexFormulation::one_point;
+  HourglassSettings hourglass;
+  BulkViscositySettings bulk_viscosity;
+  std::optional<ErosionSettings> erosion;
+  double area = 0.0;            // truss cross-section where the mesh gives none
   Vec3 velocity;                // initial velocity
   std::optional<double> temperature;  // initial temperature; default the material's
   SourceLocation where;         // the [[bodies]] table, for messages
@@ -90,14 +156,49 @@ struct TaylorReference {
   double tolerance = 0.0;       // allowed mean error; 0: report only
 };
 
+// Which mesh nodes a constraint holds: inside a box, on a plane (within tolerance), or a
+// node set named by an imported mesh.
+struct NodeSelector {
+  enum class Kind { box, plane, set } kind = Kind::box;
+  Vec3 min, max;          // box
+  Vec3 point, normal;     // plane (normal unit)
+  double tolerance = 0.0;  // plane: largest distance of a selected node
+  std::string set;        // set
+};
+
+// Fixed or prescribed-velocity nodes (FE bodies).
+struct ConstraintSpec {
+  NodeSelector nodes;
+  int body = -1;                       // restrict to one body; -1: every mesh body
+  std::array<bool, 3> components{false, false, false};  // which components are imposed
+  Vec3 velocity;                       // the imposed value (0 for fixed components)
+  SourceLocation where;
+};
+
+// A rigid planar wall for FE nodes (LS-DYNA *RIGIDWALL_PLANAR): nodes stay on the side the
+// normal points to; the wall may move at a constant velocity; Coulomb friction.
+struct WallSpec {
+  Vec3 point, normal, velocity;
+  double friction = 0.0;
+  std::vector<int> bodies;  // empty: every mesh body
+  SourceLocation where;
+};
+
 struct Scene {
   std::string path;             // the scene file, as given
   RunSettings run;
+  bool has_grid = false;        // a [grid] section: needed by particle bodies
   MpmSettings mpm;
   std::vector<Material> materials;
   std::vector<BodySpec> bodies;
+  std::vector<ConstraintSpec> constraints;
+  std::vector<WallSpec> walls;
   std::optional<TaylorReference> taylor_reference;
 };
+
+// Whether some body is made of particles / of a mesh (hexahedra or trusses).
+bool has_particles(const Scene& scene);
+bool has_mesh(const Scene& scene);
 
 // Reads and validates a scene file. Throws InputError naming file, line, key and what is
 // allowed for unknown keys, wrong types and out-of-range values.

@@ -194,6 +194,39 @@ std::string TableReader::required_string(std::string_view key) {
   return string(key, "");
 }
 
+std::vector<std::string> TableReader::strings(std::string_view key) {
+  const toml::node* n = lookup(key);
+  if (!n) return {};
+  if (const auto* s = n->as_string()) return {s->get()};
+  const auto* a = n->as_array();
+  if (!a) type_error(key, *n, "an array of strings");
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const auto* s = a->get(i)->as_string();
+    if (!s)
+      fail(key, "expected an array of strings; element " + std::to_string(i) + " is " +
+                    describe_type(*a->get(i)));
+    out.push_back(s->get());
+  }
+  return out;
+}
+
+std::array<int, 3> TableReader::integers3(std::string_view key, int lo, int hi) {
+  const toml::node* n = lookup(key);
+  std::array<int, 3> out{0, 0, 0};
+  if (!n) return out;
+  const auto* a = n->as_array();
+  if (!a || a->size() != 3) fail(key, "expected an array of 3 integers");
+  for (std::size_t i = 0; i < 3; ++i) {
+    const auto* v = a->get(i)->as_integer();
+    if (!v || v->get() < lo || v->get() > hi)
+      fail(key, "element " + std::to_string(i) + " must be an integer in " + std::to_string(lo) +
+                    ".." + std::to_string(hi));
+    out[i] = static_cast<int>(v->get());
+  }
+  return out;
+}
+
 Vec3 TableReader::as_vec3(std::string_view key, const toml::node& node) const {
   const auto* a = node.as_array();
   if (!a) type_error(key, node, "an array of 3 numbers");
@@ -269,12 +302,13 @@ const toml::table& TableReader::required_table(std::string_view key) {
 namespace {
 
 void read_run(TableReader& r, RunSettings& run) {
-  r.known({"title", "end_time", "time_step_factor", "time_step", "max_steps", "output_every",
+  r.known({"title", "end_time", "time_step_factor", "element_time_step_factor", "time_step", "max_steps", "output_every",
            "history_every", "output_strain", "gravity"});
   r.check_unknown();
   run.title = r.string("title", "");
   run.end_time = r.required_number("end_time", Range::positive());
   run.time_step_factor = r.number("time_step_factor", 0.3, {0.0, 1.0, true, false});
+  run.element_time_step_factor = r.number("element_time_step_factor", 0.9, {0.0, 1.0, true, false});
   run.fixed_time_step = r.optional_number("time_step", Range::positive()).value_or(0.0);
   run.max_steps = r.integer("max_steps", 0, 0, std::numeric_limits<long>::max());
   run.output_every = r.number("output_every", 0.0, Range::non_negative());
@@ -390,7 +424,7 @@ EquationOfState read_eos(TableReader& r, double density, double bulk_modulus) {
 
 Material read_material(TableReader& r, const std::string& name) {
   r.known({"density", "E", "nu", "strength", "eos", "specific_heat", "taylor_quinney",
-           "temperature"});
+           "temperature", "failure_strain"});
   r.check_unknown();
   Material m;
   m.name = name;
@@ -408,6 +442,7 @@ Material read_material(TableReader& r, const std::string& name) {
   m.thermal.specific_heat = r.number("specific_heat", 0.0, Range::non_negative());
   m.thermal.taylor_quinney = r.number("taylor_quinney", 0.9, Range::closed(0.0, 1.0));
   m.thermal.initial_temperature = r.number("temperature", 293.0, Range::non_negative());
+  m.failure_strain = r.number("failure_strain", 0.0, Range::non_negative());
   try {
     m.validate();
   } catch (const std::invalid_argument& e) {
@@ -416,17 +451,39 @@ Material read_material(TableReader& r, const std::string& name) {
   return m;
 }
 
-Shape read_shape(TableReader& r, const std::string& scene_path) {
-  r.known({"box", "cylinder", "sphere", "points"});
+std::string relative_to_scene(const std::string& file, const std::string& scene_path) {
+  // Relative to the scene file, so that a scene directory can be moved as a whole.
+  std::filesystem::path p(file);
+  if (p.is_relative()) p = std::filesystem::path(scene_path).parent_path() / p;
+  return p.lexically_normal().string();
+}
+
+// The shapes each discretisation accepts.
+std::vector<std::string> shapes_for(Discretisation d) {
+  switch (d) {
+    case Discretisation::particles: return {"box", "cylinder", "sphere", "points"};
+    case Discretisation::hexahedra: return {"box", "cylinder", "mesh"};
+    case Discretisation::trusses: return {"line", "rebar", "mesh"};
+  }
+  return {};
+}
+
+Shape read_shape(TableReader& r, const std::string& scene_path, Discretisation d) {
+  r.known({"box", "cylinder", "sphere", "points", "mesh", "line", "rebar"});
   r.check_unknown();
+  const std::vector<std::string> allowed = shapes_for(d);
   std::vector<std::string> given;
-  for (std::string_view k : {"box", "cylinder", "sphere", "points"})
+  for (std::string_view k : {"box", "cylinder", "sphere", "points", "mesh", "line", "rebar"})
     if (r.has(k)) given.emplace_back(k);
   if (given.size() != 1)
     throw InputError(r.where(), r.prefix(),
-                     "give exactly one of box, cylinder, sphere, points (got " +
+                     "give exactly one of " + join(allowed, false) + " (got " +
                          (given.empty() ? std::string("none") : join(given, false)) + ")");
   const std::string& kind = given.front();
+  if (std::find(allowed.begin(), allowed.end(), kind) == allowed.end())
+    throw InputError(r.where(kind), r.dotted(kind),
+                     "a body of " + std::string(to_string(d)) + " takes one of " +
+                         join(allowed, false) + ", not " + kind);
   TableReader s(r.required_table(kind), r.dotted(kind), r.file());
   if (kind == "box") {
     s.known({"min", "max"});
@@ -459,19 +516,85 @@ Shape read_shape(TableReader& r, const std::string& scene_path) {
     sp.radius = s.required_number("radius", Range::positive());
     return sp;
   }
+  if (kind == "mesh") {
+    s.known({"file", "parts", "scale", "translate"});
+    s.check_unknown();
+    MeshFileShape m;
+    const std::string file = s.required_string("file");
+    if (file.empty()) s.fail("file", "the mesh file name is empty");
+    m.path = relative_to_scene(file, scene_path);
+    m.parts = s.strings("parts");
+    m.scale = s.number("scale", 1.0, Range::positive());
+    m.translate = s.vec3("translate", Vec3{});
+    return m;
+  }
+  if (kind == "line") {
+    s.known({"from", "to"});
+    s.check_unknown();
+    LineShape l{s.required_vec3("from"), s.required_vec3("to")};
+    if (!(norm(l.to - l.from) > 0.0)) s.fail("to", "the line has zero length");
+    return l;
+  }
+  if (kind == "rebar") {
+    s.known({"min", "max", "normal", "position", "spacing", "diameter", "cover"});
+    s.check_unknown();
+    RebarShape m;
+    m.min = s.required_vec3("min");
+    m.max = s.required_vec3("max");
+    for (int a = 0; a < 3; ++a)
+      if (!(m.max[a] > m.min[a])) s.fail("max", "max must exceed min in every component");
+    m.normal_axis = static_cast<int>(s.choice("normal", {"x", "y", "z"}, std::nullopt));
+    m.position = s.required_number("position", Range::any());
+    if (m.position < m.min[m.normal_axis] || m.position > m.max[m.normal_axis])
+      s.fail("position", "the mat's plane must lie between min and max along its normal");
+    m.spacing = s.required_number("spacing", Range::positive());
+    m.diameter = s.required_number("diameter", Range::positive());
+    m.cover = s.required_number("cover", Range::non_negative());
+    return m;
+  }
   s.known({"file"});
   s.check_unknown();
   const std::string file = s.required_string("file");
   if (file.empty()) s.fail("file", "the points file name is empty");
-  // Relative to the scene file, so that a scene directory can be moved as a whole.
-  std::filesystem::path p(file);
-  if (p.is_relative()) p = std::filesystem::path(scene_path).parent_path() / p;
-  return PointListShape{p.lexically_normal().string()};
+  return PointListShape{relative_to_scene(file, scene_path)};
+}
+
+void read_mesh_density(TableReader& r, const BodySpec& b, MeshDensity& m) {
+  const bool box = std::holds_alternative<BoxShape>(b.shape);
+  const bool cylinder = std::holds_alternative<CylinderShape>(b.shape);
+  const bool line = std::holds_alternative<LineShape>(b.shape);
+  const bool rebar = std::holds_alternative<RebarShape>(b.shape);
+  if (box) r.known({"size", "divisions"});
+  if (cylinder) r.known({"size", "core", "ring", "axial", "sectors"});
+  if (line) r.known({"size", "segments"});
+  if (rebar) r.known({"size"});
+  r.check_unknown();
+  m.size = r.number("size", 0.0, Range::positive());
+  if (box) {
+    m.divisions = r.integers3("divisions", 1, 100000);
+    if (m.size == 0.0 && m.divisions[0] == 0)
+      r.fail("divisions", "give divisions = [nx, ny, nz] or an element size");
+  }
+  if (cylinder) {
+    m.core = static_cast<int>(r.integer("core", 0, 1, 10000));
+    m.ring = static_cast<int>(r.integer("ring", 0, 1, 10000));
+    m.axial = static_cast<int>(r.integer("axial", 0, 1, 100000));
+    m.sectors = static_cast<int>(r.integer("sectors", 4, 1, 4));
+    if (m.sectors == 3) r.fail("sectors", "allowed values: 1 (quarter), 2 (half), 4 (full)");
+    if (m.size == 0.0 && (m.core == 0 || m.ring == 0 || m.axial == 0))
+      r.fail("core", "give core, ring and axial divisions, or an element size");
+  }
+  if (line) {
+    m.segments = static_cast<int>(r.integer("segments", 0, 1, 1000000));
+    if (m.size == 0.0 && m.segments == 0) r.fail("segments", "give segments or a truss length size");
+  }
+  if (rebar && m.size == 0.0) r.fail("size", "give the truss length size of the bars");
 }
 
 BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
                    const std::vector<Material>& material_list, const std::string& scene_path) {
-  r.known({"name", "material", "shape", "particles_per_cell", "velocity", "temperature"});
+  r.known({"name", "material", "discretisation", "shape", "particles_per_cell", "velocity",
+           "temperature", "mesh", "element", "hourglass", "bulk_viscosity", "erosion", "area"});
   // Name the body in messages as soon as its name is readable, even for an unknown key.
   if (const toml::node* n = r.table().get("name"); n && n->is_string() && !n->as_string()->get().empty())
     r.set_prefix("bodies." + n->as_string()->get());
@@ -490,12 +613,180 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
                            (defined.empty() ? std::string("(none)") : join(defined, true)));
   }
   b.material = it->second;
+  b.discretisation = static_cast<Discretisation>(
+      r.choice("discretisation", {"particles", "hexahedra", "trusses"}, 0));
   TableReader sr(r.required_table("shape"), r.dotted("shape"), r.file());
-  b.shape = read_shape(sr, scene_path);
-  b.particles_per_cell = static_cast<int>(r.integer("particles_per_cell", 2, 1, 8));
+  b.shape = read_shape(sr, scene_path, b.discretisation);
   b.velocity = r.vec3("velocity", Vec3{});
   b.temperature = r.optional_number("temperature", Range::non_negative());
+  // Keys that belong to the other discretisations are errors, not silently ignored.
+  auto only_for = [&](std::string_view key, Discretisation d1, Discretisation d2) {
+    if (r.has(key) && b.discretisation != d1 && b.discretisation != d2)
+      r.fail(key, "applies to bodies of " + std::string(to_string(d1)) +
+                      (d1 != d2 ? " or " + std::string(to_string(d2)) : std::string()) +
+                      ", not to " + to_string(b.discretisation));
+  };
+  using D = Discretisation;
+  only_for("particles_per_cell", D::particles, D::particles);
+  only_for("mesh", D::hexahedra, D::trusses);
+  only_for("element", D::hexahedra, D::hexahedra);
+  only_for("hourglass", D::hexahedra, D::hexahedra);
+  only_for("bulk_viscosity", D::hexahedra, D::hexahedra);
+  only_for("erosion", D::hexahedra, D::trusses);
+  only_for("area", D::trusses, D::trusses);
+  b.particles_per_cell = static_cast<int>(r.integer("particles_per_cell", 2, 1, 8));
+  if (b.discretisation == D::particles) return b;
+
+  const bool generated = !std::holds_alternative<MeshFileShape>(b.shape);
+  if (generated) {
+    if (!r.has("mesh")) r.fail("mesh", "a generated mesh needs its density: mesh = { size = ... }");
+    TableReader mr(r.required_table("mesh"), r.dotted("mesh"), r.file());
+    read_mesh_density(mr, b, b.mesh);
+  } else if (r.has("mesh")) {
+    r.fail("mesh", "an imported mesh takes its density from the file; remove this key");
+  }
+  b.element = static_cast<HexFormulation>(r.choice("element", {"one-point", "full"}, 0));
+  if (const toml::table* t = r.optional_table("hourglass")) {
+    TableReader hr(*t, r.dotted("hourglass"), r.file());
+    hr.known({"form", "coefficient"});
+    hr.check_unknown();
+    b.hourglass.form = static_cast<HourglassForm>(hr.choice("form", {"viscous", "stiffness"}, 0));
+    b.hourglass.coefficient = hr.number("coefficient", 0.1, Range::closed(0.0, 0.5));
+  }
+  if (const toml::table* t = r.optional_table("bulk_viscosity")) {
+    TableReader vr(*t, r.dotted("bulk_viscosity"), r.file());
+    vr.known({"linear", "quadratic"});
+    vr.check_unknown();
+    b.bulk_viscosity.linear = vr.number("linear", 0.06, Range::closed(0.0, 1.0));
+    b.bulk_viscosity.quadratic = vr.number("quadratic", 1.5, Range::closed(0.0, 10.0));
+  }
+  if (const toml::table* t = r.optional_table("erosion")) {
+    TableReader er(*t, r.dotted("erosion"), r.file());
+    er.known({"plastic_strain", "material_failure", "volume_ratio", "time_step"});
+    er.check_unknown();
+    ErosionSettings e;
+    e.plastic_strain = er.number("plastic_strain", 0.0, Range::non_negative());
+    e.material_failure = er.boolean("material_failure", false);
+    e.volume_ratio = er.number("volume_ratio", 0.0, {0.0, 1.0, false, true});
+    e.time_step = er.number("time_step", 0.0, Range::non_negative());
+    b.erosion = e;
+  }
+  b.area = r.number("area", 0.0, Range::positive());
+  if (b.discretisation == D::trusses && std::holds_alternative<LineShape>(b.shape) &&
+      b.area == 0.0)
+    r.fail("area", "a truss line needs its cross-section area");
   return b;
+}
+
+int body_index(TableReader& r, std::string_view key, const std::string& name, const Scene& scene) {
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    if (scene.bodies[i].name == name) {
+      if (scene.bodies[i].discretisation == Discretisation::particles)
+        r.fail(key, "body \"" + name + "\" is made of particles; this applies to mesh bodies");
+      return static_cast<int>(i);
+    }
+    names.push_back(scene.bodies[i].name);
+  }
+  r.fail(key, "unknown body \"" + name + "\"; bodies: " + join(names, true));
+}
+
+NodeSelector read_selector(TableReader& r) {
+  r.known({"box", "plane", "set"});
+  r.check_unknown();
+  int given = 0;
+  for (std::string_view k : {"box", "plane", "set"}) given += r.has(k) ? 1 : 0;
+  if (given != 1) r.fail("", "give exactly one of box, plane, set");
+  NodeSelector s;
+  if (r.has("set")) {
+    s.kind = NodeSelector::Kind::set;
+    s.set = r.required_string("set");
+    return s;
+  }
+  if (r.has("box")) {
+    s.kind = NodeSelector::Kind::box;
+    TableReader b(r.required_table("box"), r.dotted("box"), r.file());
+    b.known({"min", "max"});
+    b.check_unknown();
+    s.min = b.required_vec3("min");
+    s.max = b.required_vec3("max");
+    for (int a = 0; a < 3; ++a)
+      if (s.max[a] < s.min[a]) b.fail("max", "max must not be below min in any component");
+    return s;
+  }
+  s.kind = NodeSelector::Kind::plane;
+  TableReader p(r.required_table("plane"), r.dotted("plane"), r.file());
+  p.known({"point", "normal", "tolerance"});
+  p.check_unknown();
+  s.point = p.required_vec3("point");
+  const Vec3 n = p.required_vec3("normal");
+  if (!(norm(n) > 0.0)) p.fail("normal", "the normal must be a non-zero vector");
+  s.normal = (1.0 / norm(n)) * n;
+  s.tolerance = p.number("tolerance", 1e-6, Range::non_negative());
+  return s;
+}
+
+ConstraintSpec read_constraint(TableReader& r, const Scene& scene) {
+  r.known({"nodes", "body", "fixed", "velocity"});
+  r.check_unknown();
+  ConstraintSpec c;
+  c.where = r.where();
+  TableReader nr(r.required_table("nodes"), r.dotted("nodes"), r.file());
+  c.nodes = read_selector(nr);
+  if (r.has("body")) c.body = body_index(r, "body", r.required_string("body"), scene);
+  if (r.has("fixed") == r.has("velocity"))
+    r.fail("fixed", "give either fixed = [\"x\", \"y\", \"z\"] (a subset, or \"all\") or "
+                    "velocity = [vx, vy, vz]");
+  if (r.has("velocity")) {
+    c.velocity = r.required_vec3("velocity");
+    c.components = {true, true, true};
+    return c;
+  }
+  for (const std::string& comp : r.strings("fixed")) {
+    if (comp == "all") {
+      c.components = {true, true, true};
+    } else if (comp == "x" || comp == "y" || comp == "z") {
+      c.components[static_cast<std::size_t>(comp[0] - 'x')] = true;
+    } else {
+      r.fail("fixed", "unknown component \"" + comp + "\"; allowed values: \"x\", \"y\", "
+                      "\"z\", \"all\"");
+    }
+  }
+  if (!c.components[0] && !c.components[1] && !c.components[2])
+    r.fail("fixed", "name at least one component");
+  return c;
+}
+
+WallSpec read_wall(TableReader& r, const Scene& scene) {
+  r.known({"point", "normal", "velocity", "friction", "bodies"});
+  r.check_unknown();
+  WallSpec w;
+  w.where = r.where();
+  w.point = r.required_vec3("point");
+  const Vec3 n = r.required_vec3("normal");
+  if (!(norm(n) > 0.0)) r.fail("normal", "the normal must be a non-zero vector");
+  w.normal = (1.0 / norm(n)) * n;
+  w.velocity = r.vec3("velocity", Vec3{});
+  w.friction = r.number("friction", 0.0, Range::non_negative());
+  for (const std::string& name : r.strings("bodies"))
+    w.bodies.push_back(body_index(r, "bodies", name, scene));
+  return w;
+}
+
+// Reads an optional array of tables [[KEY]] with `read` for each element.
+template <class Read>
+void read_table_array(TableReader& r, std::string_view key, const std::string& path, Read read) {
+  if (!r.has(key)) return;
+  const toml::node* node = r.table().get(key);
+  const toml::array* a = node->as_array();
+  if (!a || !a->is_array_of_tables())
+    throw InputError(r.where(key), std::string(key),
+                     "expected an array of tables ([[" + std::string(key) + "]]), got " +
+                         describe_type(*node));
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    TableReader t(*a->get(i)->as_table(), std::string(key) + "[" + std::to_string(i) + "]", path);
+    read(t);
+  }
 }
 
 void read_reference(TableReader& r, Scene& scene) {
@@ -520,16 +811,17 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
   Scene scene;
   scene.path = path;
   TableReader r(root, "", path);
-  r.known({"run", "grid", "mpm", "materials", "bodies", "reference"});
+  r.known({"run", "grid", "mpm", "materials", "bodies", "constraints", "walls", "reference"});
   r.check_unknown();
 
   {
     TableReader run(r.required_table("run"), "run", path);
     read_run(run, scene.run);
   }
-  {
-    TableReader grid(r.required_table("grid"), "grid", path);
+  if (const toml::table* t = r.optional_table("grid")) {
+    TableReader grid(*t, "grid", path);
     read_grid(grid, scene.mpm.grid);
+    scene.has_grid = true;
   }
   if (const toml::table* t = r.optional_table("mpm")) {
     TableReader mpm(*t, "mpm", path);
@@ -579,6 +871,23 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
                             std::to_string(other.where.line) + ")");
     scene.bodies.push_back(std::move(b));
   }
+  if (has_particles(scene) && !scene.has_grid)
+    throw InputError(SourceLocation{path, 0}, "grid",
+                     "bodies of particles need a [grid] section (cell, min, max)");
+  if (has_particles(scene) && has_mesh(scene))
+    throw InputError(SourceLocation{path, 0}, "bodies",
+                     "this version runs particle bodies and mesh bodies (hexahedra, trusses) in "
+                     "separate scenes: coupling them on the grid is not available yet");
+  read_table_array(r, "constraints", path, [&](TableReader& t) {
+    scene.constraints.push_back(read_constraint(t, scene));
+  });
+  read_table_array(r, "walls", path, [&](TableReader& t) {
+    scene.walls.push_back(read_wall(t, scene));
+  });
+  if ((!scene.constraints.empty() || !scene.walls.empty()) && !has_mesh(scene))
+    throw InputError(SourceLocation{path, 0}, scene.walls.empty() ? "constraints" : "walls",
+                     "constraints and walls act on mesh nodes, and the scene has no mesh body; "
+                     "particles take their boundary conditions from [grid] boundary");
 
   if (const toml::table* t = r.optional_table("reference")) {
     TableReader ref(*t, "reference", path);

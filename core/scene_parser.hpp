@@ -73,6 +73,10 @@ class TableReader {
   std::optional<Vec3> optional_vec3(std::string_view key);
   Vec3 required_vec3(std::string_view key);
   Vec3 vec3(std::string_view key, const Vec3& fallback);
+  // An array of strings (a single string is taken as a list of one); empty when absent.
+  std::vector<std::string> strings(std::string_view key);
+  // An array of exactly three integers in [lo, hi].
+  std::array<int, 3> integers3(std::string_view key, int lo, int hi);
   // One of `allowed` (the canonical spellings); returns the index into `allowed`.
   std::size_t choice(std::string_view key, std::initializer_list<std::string_view> allowed,
                      std::optional<std::size_t> fallback, bool ignore_case = false);

@@ -233,6 +233,7 @@ Particles generate_particles(const core::Scene& scene) {
     if (body.material < 0 || static_cast<std::size_t>(body.material) >= scene.materials.size())
       throw InputError(body.where, "bodies." + body.name + ".material",
                        "material index " + std::to_string(body.material) + " is not defined");
+    if (body.discretisation != core::Discretisation::particles) continue;
     if (body.particles_per_cell < 1)
       throw InputError(body.where, "bodies." + body.name + ".particles_per_cell",
                        "must be >= 1");
@@ -251,8 +252,11 @@ Particles generate_particles(const core::Scene& scene) {
             generate_lattice(CylinderTest{s}, grid, body, body_id, material, out);
           } else if constexpr (std::is_same_v<S, SphereShape>)
             generate_lattice(SphereTest{s}, grid, body, body_id, material, out);
-          else
+          else if constexpr (std::is_same_v<S, PointListShape>)
             generate_point_list(s, grid, body, body_id, material, out);
+          else  // the parser gives particle bodies particle shapes only
+            throw InputError(body.where, "bodies." + body.name + ".shape",
+                             "this shape makes a mesh, not particles");
         },
         body.shape);
     if (out.size() == before)

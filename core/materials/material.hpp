@@ -30,6 +30,7 @@ struct Material {
   StrengthModel strength = Elastic{};
   EquationOfState eos = NoEos{};
   ThermalProperties thermal;
+  double failure_strain = 0.0;  // equivalent plastic strain at failure; 0: none (erosion uses it)
 
   double shear_modulus() const { return youngs_modulus / (2.0 * (1.0 + poisson_ratio)); }
   double bulk_modulus() const { return youngs_modulus / (3.0 * (1.0 - 2.0 * poisson_ratio)); }
