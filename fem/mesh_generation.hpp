@@ -1,0 +1,68 @@
+// Structured meshes generated from the scene's shapes: boxes of hexahedra, O-grid cylinders
+// (a blended square core inside a ring, so no element is degenerate at the axis), truss lines and
+// two-way rebar mats of 2-node trusses. Bad sizes or counts throw std::invalid_argument.
+#pragma once
+
+#include <array>
+
+#include "core/scene.hpp"
+#include "core/tensor.hpp"
+#include "fem/mesh.hpp"
+
+namespace afemp::fem {
+
+// An axis-aligned box divided into divisions[d] equal hexahedra along axis d, all in one part
+// "mesh" (callers rename part_names[0]). Node sets "xmin", "xmax", "ymin", "ymax", "zmin" and
+// "zmax" hold the nodes of each face.
+MeshData box_mesh(const core::BoxShape& box, std::array<int, 3> divisions);
+
+// The right-handed orthonormal frame (x, y, z = axis) in which a cylinder's cross-section is
+// laid out: the global frame turned by the smallest rotation that takes the global z onto the
+// axis (the identity for an axis along +z). Where that rotation is undefined, for an axis within
+// 1e-6 of -z, it is the half turn about the global x.
+struct CylinderFrame {
+  core::Vec3 x, y, z;
+};
+CylinderFrame cylinder_frame(const core::Vec3& axis);
+
+// An O-grid cylinder: a square core of n_core x n_core hexahedra, its sides bowed outward so that
+// its corners open to 120 degrees, surrounded by a ring n_ring elements thick that blends the
+// core's boundary into the circle; 4 n_core elements round the circumference and n_axial along
+// the axis. The core's half-width is chosen from n_core / n_ring (between 0.35 R and 0.6 R) so
+// that core and ring elements are of similar size.
+//
+// `sectors` keeps 1 (a quarter: local angles 0..90 degrees), 2 (a half: 0..180) or 4 (the whole
+// cylinder) of the cross-section, measured in cylinder_frame(c.axis); a quarter or half is exactly
+// that part of the whole mesh, and needs an even n_core (the cut planes run along the core's
+// midlines). For an axis along z the quarter occupies x >= 0, y >= 0.
+//
+// One part "mesh". Node sets: "base" (the disc at c.base), "top" (the disc at c.base + length
+// axis), "surface" (the curved surface); for sectors 1 and 2 "cut_0", the nodes on the plane
+// through the axis and the local x (local y = 0), and for sector 1 also "cut_1", the nodes on the
+// plane through the axis and the local y (local x = 0).
+MeshData cylinder_mesh(const core::CylinderShape& c, int n_core, int n_ring, int n_axial,
+                       int sectors = 4);
+
+// A straight truss from a to b in `segments` equal 2-node lines of cross-section `area`, one
+// part "mesh"; node sets "start" (the node at a) and "end" (at b).
+MeshData truss_line(core::Vec3 a, core::Vec3 b, int segments, double area);
+
+// Straight bars in the two in-plane directions of a plane normal to a coordinate axis.
+struct RebarMat {
+  core::Vec3 min, max;          // the box the mat spans (the concrete block)
+  int normal_axis = 2;          // 0, 1, 2: the mat lies in a plane normal to this axis
+  double position = 0.0;        // coordinate of that plane along normal_axis
+  double spacing = 0.0;         // between neighbouring parallel bars (axis to axis)
+  double diameter = 0.0;        // of a bar; the truss area is pi d^2 / 4
+  double cover = 0.0;           // from the box faces to the outermost bars' axes, in the plane
+  double segment_length = 0.0;  // target truss length: a bar of length L gets ceil(L / this)
+};
+
+// Bars along each in-plane axis, that axis's part "bars along x" (y, z); the part of the lower
+// axis comes first. Across a direction the bars lie between the cover lines, as many as the
+// spacing allows, the leftover distance split equally between the two sides; along its length a
+// bar runs from cover line to cover line. Both layers lie in the same plane, and crossing bars
+// share no node: they are separate trusses, to be tied to the concrete, not to each other.
+MeshData rebar_mat(const RebarMat& mat);
+
+}  // namespace afemp::fem
