@@ -11,8 +11,7 @@
 
 namespace afemp::fem {
 
-enum class HourglassForm { viscous, stiffness };
-
+// The form is chosen per body in the scene (core::HourglassForm).
 // Default coefficients Q_hg. Viscous: 0.1, LS-DYNA's default QM (above 0.15 the viscous forms
 // can go unstable). Stiffness: 0.05, the top of the 0.03-0.05 LS-DYNA recommends for types 4/5
 // on solids: on a cube of edge h, k_h below gives the hourglass mode the frequency

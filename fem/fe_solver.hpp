@@ -1,0 +1,143 @@
+// The explicit FE solver: lumped-mass nodes moved by central differences (Belytschko, Liu &
+// Moran, Nonlinear Finite Elements, box 6.1), 8-node hexahedra (one-point with
+// Flanagan-Belytschko hourglass control, or 2x2x2 B-bar) and 2-node trusses, all updated by the
+// shared material composition of core/materials. The stages live in files named after them:
+// fe_model_builder.cpp (mesh, masses, sets), nodal_update.cpp (forces to motion, constraints),
+// rigid_wall.cpp, hexahedron_update.cpp, truss_update.cpp, erosion.cpp.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/energies.hpp"
+#include "core/scene.hpp"
+#include "fem/hexahedron.hpp"
+#include "fem/mesh.hpp"
+
+namespace afemp::fem {
+
+using core::Vec3;
+
+// Nodes as structures of arrays. Velocities live at half steps (v^{n+1/2}).
+struct FeNodes {
+  std::vector<Vec3> position, initial_position, velocity;
+  std::vector<double> mass;           // lumped, from the live elements
+  std::vector<std::int32_t> body;     // scene body index
+  std::vector<std::uint8_t> imposed;  // bit a: velocity component a is imposed
+  std::vector<Vec3> imposed_velocity;
+  std::size_t size() const { return position.size(); }
+};
+
+// A contiguous range of elements of one body: one material, one formulation.
+struct ElementBatch {
+  int body = 0;
+  int material = 0;
+  std::size_t begin = 0, end = 0;  // elements
+  std::size_t point_begin = 0;     // first integration point
+  int points_per_element = 1;      // 1 (one-point hexahedron, truss) or 8 (B-bar)
+};
+
+// Hexahedra and trusses share one layout: per element and per integration point arrays.
+struct FeElements {
+  std::vector<std::array<std::int32_t, 8>> nodes;  // hexahedra: 8 nodes; trusses: first 2 used
+  std::vector<double> mass, volume0, volume;  // volume: current (trusses: A L)
+  std::vector<double> length0, area0;         // trusses only
+  std::vector<double> bulk_q;                 // bulk-viscous pressure (hexahedra)
+  std::vector<double> critical_dt;            // element critical step of the last update
+  std::vector<std::uint8_t> alive;
+  std::vector<std::array<Vec3, 4>> hourglass_force;  // stiffness form state (hexahedra)
+  // Integration points (trusses: the axial stress in the bar frame, sigma_xx).
+  std::vector<core::SymTensor> stress;
+  std::vector<double> point_mass, plastic_strain, temperature, energy, density;
+  std::vector<ElementBatch> batches;
+  std::size_t size() const { return nodes.size(); }
+};
+
+// A record of an eroded element.
+struct ErosionEvent {
+  double time = 0.0;
+  char kind = 'h';            // 'h' hexahedron, 't' truss
+  std::int64_t element = 0;   // index within its kind
+  int body = 0;
+  std::string reason;
+  double energy = 0.0;        // internal (+ hourglass) energy taken away with it
+};
+
+// Where a wall acts: the nodes it may touch.
+struct WallState {
+  core::WallSpec spec;
+  std::vector<std::int32_t> nodes;
+};
+
+class FeSolver {
+ public:
+  explicit FeSolver(const core::Scene& scene);
+
+  const FeNodes& nodes() const { return nodes_; }
+  const FeElements& hexahedra() const { return hexes_; }
+  const FeElements& trusses() const { return trusses_; }
+  const MeshData& mesh() const { return mesh_; }  // the assembled input mesh (for reports)
+  long step_count() const { return steps_; }
+  double time() const { return time_; }
+  const std::vector<std::string>& stage_names() const { return stage_names_; }
+  const std::vector<double>& stage_seconds() const { return stage_seconds_; }
+
+  // factor * min over live elements of the critical step (or the scene's fixed step).
+  double stable_time_step() const;
+  // Where the smallest critical step is: "hexahedron 12 of body bar".
+  std::string smallest_step_element() const;
+  // One central-difference step. Throws core::SimulationError naming the step, the node or
+  // element and the field when a value goes NaN/Inf or an element inverts without erosion.
+  void step(double dt);
+  core::Energies energies() const;
+  std::vector<ErosionEvent> take_erosion_events();
+  std::size_t bytes() const;
+  std::size_t live_hexahedra() const;
+  std::size_t live_trusses() const;
+
+ private:
+  void build(const core::Scene& scene);
+  void update_nodes(double dt);
+  void apply_walls(double dt);
+  void update_hexahedra(double dt);
+  void update_trusses(double dt);
+  template <class Strength, class Eos, bool Thermal>
+  void hexahedron_batch(const ElementBatch& b, const Strength& s, const Eos& e, double dt);
+  template <class Strength, class Eos, bool Thermal>
+  void truss_batch(const ElementBatch& b, const Strength& s, const Eos& e, double dt);
+  void erode(FeElements& elements, char kind, std::size_t e, const char* reason);
+  void finish_erosion();
+  void recompute_node_masses();
+  [[noreturn]] void raise(const std::string& entity, const char* field,
+                          const std::string& detail) const;
+
+  const core::Scene& scene_;
+  MeshData mesh_;
+  FeNodes nodes_;
+  FeElements hexes_, trusses_;
+  std::vector<WallState> walls_;
+  // Element nodal forces, gathered per node through the incidence lists (no atomics):
+  // hexahedron e node a at 8 e + a, truss t end b at 8 n_hex + 2 t + b.
+  std::vector<Vec3> element_force_;
+  std::vector<std::int64_t> incidence_offsets_;
+  std::vector<std::int64_t> incidence_;
+
+  // Accounting.
+  double plastic_work_ = 0.0, viscous_work_ = 0.0, hourglass_work_ = 0.0;
+  double eroded_energy_ = 0.0, external_work_ = 0.0;
+  double previous_dt_ = 0.0;
+  long steps_ = 0;
+  double time_ = 0.0;
+  bool erosion_this_step_ = false;
+  std::vector<ErosionEvent> events_;
+  std::vector<std::string> stage_names_;
+  std::vector<double> stage_seconds_;
+  // Per-thread partial sums (padded), combined in thread order.
+  std::vector<double> thread_sums_;
+  std::vector<std::vector<std::size_t>> thread_erosions_;
+  std::vector<std::string> thread_errors_;
+};
+
+}  // namespace afemp::fem
