@@ -5,6 +5,7 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cstdio>
@@ -112,22 +113,30 @@ void write_string_attribute(hid_t object, const char* name, const std::string& v
   write_attribute(object, name, type.get(), type.get(), value.c_str(), path);
 }
 
+// An n x components dataset (rank 1 for one component) of file_type, from data in mem_type.
 hid_t write_matrix(hid_t group, const std::string& name, std::size_t n, int components,
-                   const double* data, hid_t dcpl, const std::string& path) {
+                   hid_t file_type, hid_t mem_type, const void* data, hid_t dcpl,
+                   const std::string& path) {
   const hsize_t dims[2] = {static_cast<hsize_t>(n), static_cast<hsize_t>(components)};
   const int rank = components == 1 ? 1 : 2;
   const Handle space(H5Screate_simple(rank, dims, nullptr), H5Sclose);
   if (!space.valid()) fail(path, "cannot create dataspace for " + name);
   const hid_t dset =
-      H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT, dcpl, H5P_DEFAULT);
+      H5Dcreate2(group, name.c_str(), file_type, space.get(), H5P_DEFAULT, dcpl, H5P_DEFAULT);
   if (dset < 0) fail(path, "cannot create dataset " + name);
-  // One write per dataset, never per point; an empty frame has nothing to write.
-  if (n > 0 && H5Dwrite(dset, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0) {
+  // One write per dataset, never per point; an empty block has nothing to write.
+  if (n > 0 && H5Dwrite(dset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0) {
     const std::string reason = hdf5_reason();
     H5Dclose(dset);
     throw std::runtime_error(path + ": cannot write dataset " + name + ": " + reason);
   }
   return dset;
+}
+
+hid_t write_doubles(hid_t group, const std::string& name, std::size_t n, int components,
+                    const double* data, hid_t dcpl, const std::string& path) {
+  return write_matrix(group, name, n, components, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data, dcpl,
+                      path);
 }
 
 std::string frame_name(std::size_t frame) {
@@ -169,6 +178,15 @@ const char* attribute_type(int components) {
   }
 }
 
+// XDMF topology of a block by its nodes per cell (1: a point block).
+const char* topology_type(int nodes_per_cell) {
+  switch (nodes_per_cell) {
+    case 1: return "Polyvertex";
+    case 8: return "Hexahedron";
+    default: return "Polyline";
+  }
+}
+
 std::string dimensions(std::size_t n, int components) {
   return components == 1 ? std::to_string(n) : std::to_string(n) + " " + std::to_string(components);
 }
@@ -205,6 +223,60 @@ hid_t open_for_reading(const std::string& h5_path) {
   return file;
 }
 
+[[noreturn]] void reject(const std::string& path, const std::string& what) {
+  throw std::invalid_argument("FieldWriter::write_frame: " + path + ": " + what);
+}
+
+// A group or dataset name we create: HDF5 reads '/' as a path separator and "." as the
+// group itself.
+bool bad_name(const std::string& name) {
+  return name.empty() || name == "." || name.find('/') != std::string::npos;
+}
+
+// Checks one group of fields (a block's node or cell fields) for n items; `what` names the
+// group in messages, e.g. "block 'hexahedra': cell field".
+void check_fields(std::span<const FieldView> fields, std::size_t n, const std::string& what,
+                  const std::string& path) {
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    const FieldView& f = fields[i];
+    if (bad_name(f.name))
+      reject(path, what + " '" + f.name + "': bad name (empty, \".\", or contains '/')");
+    if (f.components < 1)
+      reject(path, what + " '" + f.name + "' has " + std::to_string(f.components) + " components");
+    if (n > 0 && f.data == nullptr) reject(path, what + " '" + f.name + "' has no data");
+    const std::size_t expected = n * static_cast<std::size_t>(f.components);
+    if (f.size != FieldView::unknown_size && f.size != expected)
+      reject(path, what + " '" + f.name + "' has " + std::to_string(f.size) + " values, expected " +
+                       std::to_string(n) + " x " + std::to_string(f.components) + " = " +
+                       std::to_string(expected));
+    for (std::size_t j = 0; j < i; ++j)
+      if (fields[j].name == f.name) reject(path, what + " '" + f.name + "' given twice");
+  }
+}
+
+// Writes a block's fields into a new subgroup (node or cell) of the block group; 6-component
+// fields go through `scratch` to reorder them to XDMF Tensor6 order.
+void write_fields(hid_t block, const char* subgroup, std::span<const FieldView> fields,
+                  std::size_t n, hid_t gcpl, hid_t dcpl, std::vector<double>& scratch,
+                  const std::string& path) {
+  const Handle group(H5Gcreate2(block, subgroup, H5P_DEFAULT, gcpl, H5P_DEFAULT), H5Gclose);
+  if (!group.valid()) fail(path, std::string("cannot create group ") + subgroup);
+  const std::string where = path + "/" + subgroup;
+  for (const FieldView& f : fields) {
+    if (f.components == 6) {
+      scratch.resize(n * 6);
+      for (std::size_t i = 0; i < n; ++i)
+        for (int k = 0; k < 6; ++k) scratch[i * 6 + k] = f.data[i * 6 + kTensor6FromAfemp[k]];
+      const Handle dset(write_doubles(group.get(), f.name, n, 6, scratch.data(), dcpl, where),
+                        H5Dclose);
+      write_string_attribute(dset.get(), "component_order", kTensor6Order, where);
+    } else {
+      const Handle dset(write_doubles(group.get(), f.name, n, f.components, f.data, dcpl, where),
+                        H5Dclose);
+    }
+  }
+}
+
 }  // namespace
 
 FieldWriter::FieldWriter(std::string directory, std::string stem)
@@ -239,63 +311,117 @@ FieldWriter::~FieldWriter() {
   }
 }
 
-void FieldWriter::write_frame(double time, long step, std::size_t n_points,
-                              const double* positions, std::span<const FieldView> fields) {
+void FieldWriter::write_frame(double time, long step, std::size_t n_points, const double* positions,
+                              std::span<const FieldView> fields) {
+  const PointBlock particles[] = {{"particles", n_points, positions, fields}};
+  write_frame(time, step, particles, {});
+}
+
+void FieldWriter::write_frame(double time, long step, std::span<const PointBlock> points,
+                              std::span<const MeshBlock> meshes) {
+  const std::size_t frame = frames_.size();
+  const std::string group_name = frame_name(frame);
+
   // Check everything before touching the file so a bad call leaves no half frame behind.
-  if (n_points > 0 && positions == nullptr)
-    throw std::invalid_argument("FieldWriter::write_frame: positions is null for " +
-                                std::to_string(n_points) + " points");
-  FrameRecord record{time, n_points, {}};
-  record.fields.reserve(fields.size());
-  for (const FieldView& f : fields) {
-    if (f.name.empty() || f.name.find('/') != std::string::npos || f.name == "." ||
-        f.name == "position")
-      throw std::invalid_argument("FieldWriter::write_frame: bad field name '" + f.name +
-                                  "' (empty, contains '/', or reserved)");
-    if (f.components < 1)
-      throw std::invalid_argument("FieldWriter::write_frame: field '" + f.name + "' has " +
-                                  std::to_string(f.components) + " components");
-    if (n_points > 0 && f.data == nullptr)
-      throw std::invalid_argument("FieldWriter::write_frame: field '" + f.name +
-                                  "' has no data");
-    for (const FieldRecord& seen : record.fields)
-      if (seen.name == f.name)
-        throw std::invalid_argument("FieldWriter::write_frame: field '" + f.name +
-                                    "' given twice");
-    record.fields.push_back({f.name, f.components});
+  std::vector<const std::string*> names;
+  auto check_block = [&](const std::string& name, std::size_t n, const void* positions) {
+    if (bad_name(name))
+      reject(h5_path_, "bad block name '" + name + "' (empty, \".\", or contains '/')");
+    for (const std::string* seen : names)
+      if (*seen == name) reject(h5_path_, "block '" + name + "' given twice");
+    names.push_back(&name);
+    if (n > 0 && positions == nullptr)
+      reject(h5_path_,
+             "block '" + name + "': positions are null for " + std::to_string(n) + " points");
+  };
+  auto records = [](std::span<const FieldView> views) {
+    std::vector<FieldRecord> out;
+    out.reserve(views.size());
+    for (const FieldView& f : views) out.push_back({f.name, f.components});
+    return out;
+  };
+  FrameRecord record{time, {}};
+  record.blocks.reserve(points.size() + meshes.size());
+  for (const PointBlock& b : points) {
+    check_block(b.name, b.n_points, b.positions);
+    check_fields(b.fields, b.n_points, "block '" + b.name + "': field", h5_path_);
+    record.blocks.push_back({b.name, 1, b.n_points, b.n_points, frame, records(b.fields), {}});
+  }
+  // The frame whose group holds each mesh block's connectivity: this one, or the last one
+  // that stored an equal connectivity for the block (contents compared, so the caller need
+  // not say when it changes).
+  std::vector<std::size_t> holder(meshes.size(), frame);
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    const MeshBlock& b = meshes[m];
+    check_block(b.name, b.n_nodes, b.node_positions);
+    if (b.n_cells > 0 && b.connectivity == nullptr)
+      reject(h5_path_, "block '" + b.name + "': connectivity is null for " +
+                           std::to_string(b.n_cells) + " cells");
+    const std::size_t npc = static_cast<std::size_t>(nodes_per_cell(b.kind));
+    const std::span<const std::int32_t> cells(b.connectivity, b.n_cells * npc);
+    for (std::size_t i = 0; i < cells.size(); ++i)
+      if (cells[i] < 0 || static_cast<std::size_t>(cells[i]) >= b.n_nodes)
+        reject(h5_path_, "block '" + b.name + "': cell " + std::to_string(i / npc) +
+                             " refers to node " + std::to_string(cells[i]) + " of " +
+                             std::to_string(b.n_nodes));
+    check_fields(b.node_fields, b.n_nodes, "block '" + b.name + "': node field", h5_path_);
+    check_fields(b.cell_fields, b.n_cells, "block '" + b.name + "': cell field", h5_path_);
+    for (const StoredConnectivity& s : connectivity_)
+      if (s.block == b.name && s.kind == b.kind && std::ranges::equal(s.cells, cells))
+        holder[m] = s.frame;
+    record.blocks.push_back({b.name, static_cast<int>(npc), b.n_nodes, b.n_cells, holder[m],
+                             records(b.node_fields), records(b.cell_fields)});
   }
 
   const QuietErrors quiet;
   const hid_t file = static_cast<hid_t>(file_);
-  const std::string group_name = frame_name(frames_.size());
   const std::string where = h5_path_ + ":/" + group_name;
   try {
     const Handle gcpl(untimed_plist(H5P_GROUP_CREATE, where), H5Pclose);
     const Handle dcpl(untimed_plist(H5P_DATASET_CREATE, where), H5Pclose);
-    const Handle group(
-        H5Gcreate2(file, group_name.c_str(), H5P_DEFAULT, gcpl.get(), H5P_DEFAULT), H5Gclose);
+    const Handle group(H5Gcreate2(file, group_name.c_str(), H5P_DEFAULT, gcpl.get(), H5P_DEFAULT),
+                       H5Gclose);
     if (!group.valid()) fail(where, "cannot create group");
     write_attribute(group.get(), "time", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &time, where);
     const std::int64_t step64 = step;
     write_attribute(group.get(), "step", H5T_STD_I64LE, H5T_NATIVE_INT64, &step64, where);
 
-    const Handle position(
-        write_matrix(group.get(), "position", n_points, 3, positions, dcpl.get(), where),
-        H5Dclose);
-    for (const FieldView& f : fields) {
-      if (f.components == 6) {
-        scratch_.resize(n_points * 6);
-        for (std::size_t i = 0; i < n_points; ++i)
-          for (int k = 0; k < 6; ++k) scratch_[i * 6 + k] = f.data[i * 6 + kTensor6FromAfemp[k]];
-        const Handle dset(
-            write_matrix(group.get(), f.name, n_points, 6, scratch_.data(), dcpl.get(), where),
-            H5Dclose);
-        write_string_attribute(dset.get(), "component_order", kTensor6Order, where);
+    // The block group with its topology name and positions; the caller adds the rest.
+    auto open_block = [&](const std::string& name, int npc, std::size_t n,
+                          const double* positions) {
+      const std::string block_where = where + "/" + name;
+      Handle block(H5Gcreate2(group.get(), name.c_str(), H5P_DEFAULT, gcpl.get(), H5P_DEFAULT),
+                   H5Gclose);
+      if (!block.valid()) fail(block_where, "cannot create group");
+      write_string_attribute(block.get(), "topology", topology_type(npc), block_where);
+      const Handle position(
+          write_doubles(block.get(), "position", n, 3, positions, dcpl.get(), block_where),
+          H5Dclose);
+      return block;
+    };
+    for (const PointBlock& b : points) {
+      const Handle block = open_block(b.name, 1, b.n_points, b.positions);
+      write_fields(block.get(), "node", b.fields, b.n_points, gcpl.get(), dcpl.get(), scratch_,
+                   where + "/" + b.name);
+    }
+    for (std::size_t m = 0; m < meshes.size(); ++m) {
+      const MeshBlock& b = meshes[m];
+      const std::string block_where = where + "/" + b.name;
+      const int npc = nodes_per_cell(b.kind);
+      const Handle block = open_block(b.name, npc, b.n_nodes, b.node_positions);
+      if (holder[m] != frame) {
+        const std::string target = "/" + frame_name(holder[m]) + "/" + b.name + "/connectivity";
+        check(H5Lcreate_soft(target.c_str(), block.get(), "connectivity", H5P_DEFAULT, H5P_DEFAULT),
+              block_where, "cannot link connectivity to " + target);
       } else {
-        const Handle dset(
-            write_matrix(group.get(), f.name, n_points, f.components, f.data, dcpl.get(), where),
-            H5Dclose);
+        const Handle conn(write_matrix(block.get(), "connectivity", b.n_cells, npc, H5T_STD_I32LE,
+                                       H5T_NATIVE_INT32, b.connectivity, dcpl.get(), block_where),
+                          H5Dclose);
       }
+      write_fields(block.get(), "node", b.node_fields, b.n_nodes, gcpl.get(), dcpl.get(), scratch_,
+                   block_where);
+      write_fields(block.get(), "cell", b.cell_fields, b.n_cells, gcpl.get(), dcpl.get(), scratch_,
+                   block_where);
     }
   } catch (...) {
     // Drop the half-written group so the next call can reuse the frame number.
@@ -305,6 +431,17 @@ void FieldWriter::write_frame(double time, long step, std::size_t n_points,
   }
   // Data on disk before the index that points at it.
   check(H5Fflush(file, H5F_SCOPE_LOCAL), h5_path_, "cannot flush");
+  for (std::size_t m = 0; m < meshes.size(); ++m) {
+    if (holder[m] != frame) continue;
+    const MeshBlock& b = meshes[m];
+    const std::size_t count = b.n_cells * static_cast<std::size_t>(nodes_per_cell(b.kind));
+    std::vector<std::int32_t> cells(b.connectivity, b.connectivity + count);
+    const auto same_block = [&](const StoredConnectivity& s) { return s.block == b.name; };
+    if (const auto it = std::ranges::find_if(connectivity_, same_block); it != connectivity_.end())
+      *it = {b.name, frame, b.kind, std::move(cells)};
+    else
+      connectivity_.push_back({b.name, frame, b.kind, std::move(cells)});
+  }
   frames_.push_back(std::move(record));
   write_index();
 }
@@ -312,7 +449,7 @@ void FieldWriter::write_frame(double time, long step, std::size_t n_points,
 void FieldWriter::write_index() const {
   const std::string h5_name = xml_escape(stem_ + ".h5");
   std::string xml;
-  xml.reserve(512 + frames_.size() * 512);
+  xml.reserve(512 + frames_.size() * 1024);
   xml += "<?xml version=\"1.0\" ?>\n";
   xml += "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n";
   // XDMF 2: ParaView's XDMF reader builds the implicit one-point cells of a Polyvertex
@@ -320,25 +457,46 @@ void FieldWriter::write_index() const {
   xml += "<Xdmf Version=\"2.0\">\n  <Domain>\n";
   xml += "    <Grid Name=\"" + xml_escape(stem_) +
          "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  // number_type: "Float" (the 8-byte doubles) or "Int" (the 4-byte connectivity).
+  auto data_item = [&](std::size_t frame, const std::string& dataset, std::size_t n, int components,
+                       const std::string& number_type) {
+    return "<DataItem Dimensions=\"" + dimensions(n, components) + "\" NumberType=\"" +
+           number_type + "\" Precision=\"" + (number_type == "Int" ? "4" : "8") +
+           "\" Format=\"HDF\">" + h5_name + ":/" + frame_name(frame) + "/" + xml_escape(dataset) +
+           "</DataItem>";
+  };
   for (std::size_t i = 0; i < frames_.size(); ++i) {
     const FrameRecord& fr = frames_[i];
-    const std::string group = frame_name(i);
-    const std::string n = std::to_string(fr.n_points);
-    auto data_item = [&](const std::string& dataset, int components) {
-      return "<DataItem Dimensions=\"" + dimensions(fr.n_points, components) +
-             "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" + h5_name + ":/" + group +
-             "/" + xml_escape(dataset) + "</DataItem>";
-    };
-    xml += "      <Grid Name=\"" + group + "\" GridType=\"Uniform\">\n";
+    xml += "      <Grid Name=\"" + frame_name(i) +
+           "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n";
     xml += "        <Time Value=\"" + format_double(fr.time) + "\"/>\n";
-    xml += "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + n +
-           "\" NodesPerElement=\"1\"/>\n";
-    xml += "        <Geometry GeometryType=\"XYZ\">\n          " + data_item("position", 3) +
-           "\n        </Geometry>\n";
-    for (const FieldRecord& f : fr.fields) {
-      xml += "        <Attribute Name=\"" + xml_escape(f.name) + "\" AttributeType=\"" +
-             attribute_type(f.components) + "\" Center=\"Node\">\n          " +
-             data_item(f.name, f.components) + "\n        </Attribute>\n";
+    for (const BlockRecord& b : fr.blocks) {
+      const std::string block = b.name + "/";
+      xml += "        <Grid Name=\"" + xml_escape(b.name) + "\" GridType=\"Uniform\">\n";
+      xml += "          <Topology TopologyType=\"" + std::string(topology_type(b.nodes_per_cell)) +
+             "\" NumberOfElements=\"" + std::to_string(b.n_cells) + "\"";
+      if (b.nodes_per_cell == 1) {
+        xml += " NodesPerElement=\"1\"/>\n";
+      } else {
+        if (b.nodes_per_cell == 2) xml += " NodesPerElement=\"2\"";
+        xml += ">\n            " +
+               data_item(b.connectivity_frame, block + "connectivity", b.n_cells, b.nodes_per_cell,
+                         "Int") +
+               "\n          </Topology>\n";
+      }
+      xml += "          <Geometry GeometryType=\"XYZ\">\n            " +
+             data_item(i, block + "position", b.n_points, 3, "Float") + "\n          </Geometry>\n";
+      auto attributes = [&](const std::vector<FieldRecord>& fields, const char* center,
+                            const std::string& subgroup, std::size_t n) {
+        for (const FieldRecord& f : fields)
+          xml += "          <Attribute Name=\"" + xml_escape(f.name) + "\" AttributeType=\"" +
+                 attribute_type(f.components) + "\" Center=\"" + center + "\">\n            " +
+                 data_item(i, block + subgroup + f.name, n, f.components, "Float") +
+                 "\n          </Attribute>\n";
+      };
+      attributes(b.node_fields, "Node", "node/", b.n_points);
+      attributes(b.cell_fields, "Cell", "cell/", b.n_cells);
+      xml += "        </Grid>\n";
     }
     xml += "      </Grid>\n";
   }
@@ -349,8 +507,9 @@ void FieldWriter::write_index() const {
   const std::string tmp = xmf_path_ + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error(tmp + ": cannot create XDMF index: " +
-                                       std::error_code(errno, std::generic_category()).message());
+    if (!out)
+      throw std::runtime_error(tmp + ": cannot create XDMF index: " +
+                               std::error_code(errno, std::generic_category()).message());
     out.write(xml.data(), static_cast<std::streamsize>(xml.size()));
     out.flush();
     if (!out) throw std::runtime_error(tmp + ": cannot write XDMF index");
@@ -386,8 +545,8 @@ std::vector<double> read_dataset(const std::string& h5_path, const std::string& 
 
 namespace {
 // An attribute of a group or dataset, opened for reading; `where` names it in errors.
-Handle open_attribute(const Handle& file, const std::string& object_path,
-                      const std::string& name, const std::string& where) {
+Handle open_attribute(const Handle& file, const std::string& object_path, const std::string& name,
+                      const std::string& where) {
   Handle attr(
       H5Aopen_by_name(file.get(), object_path.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT),
       H5Aclose);
@@ -425,6 +584,20 @@ std::string read_string_attribute(const std::string& h5_path, const std::string&
   check(H5Aread(attr.get(), type.get(), buf.data()), where, "cannot read attribute");
   buf.resize(std::char_traits<char>::length(buf.c_str()));  // drop the terminator and padding
   return buf;
+}
+
+std::string read_link_target(const std::string& h5_path, const std::string& object_path) {
+  const QuietErrors quiet;
+  const Handle file(open_for_reading(h5_path), H5Fclose);
+  const std::string where = h5_path + ":" + object_path;
+  H5L_info_t info;
+  check(H5Lget_info(file.get(), object_path.c_str(), &info, H5P_DEFAULT), where, "no such object");
+  if (info.type != H5L_TYPE_SOFT) return {};
+  std::string target(info.u.val_size, '\0');
+  check(H5Lget_val(file.get(), object_path.c_str(), target.data(), target.size(), H5P_DEFAULT),
+        where, "cannot read link");
+  target.resize(std::char_traits<char>::length(target.c_str()));
+  return target;
 }
 
 }  // namespace afemp::core
