@@ -1,0 +1,397 @@
+// The starter half of the FE solver: turns the scene's mesh bodies into nodes and elements
+// (generated structured meshes or imported files), lumps the masses, sets the initial state,
+// resolves constraints and walls to node lists, and builds the node-to-element incidence
+// through which element forces are gathered without atomics.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <set>
+#include <stdexcept>
+
+#include "core/error.hpp"
+#include "core/materials/uniaxial_update.hpp"
+#include "core/parallel.hpp"
+#include "fem/fe_solver.hpp"
+#include "fem/hexahedron_full.hpp"
+#include "fem/hexahedron_one_point.hpp"
+#include "fem/mesh_generation.hpp"
+#include "fem/mesh_import.hpp"
+#include "fem/truss.hpp"
+
+namespace afemp::fem {
+
+namespace {
+
+using core::BodySpec;
+using core::Discretisation;
+using core::InputError;
+
+int divisions_for(double extent, double size) {
+  return std::max(1, static_cast<int>(std::ceil(extent / size - 1e-9)));
+}
+
+// The elements of one kind (and of the selected parts) of an imported mesh, with only the
+// nodes they use; node sets are kept for the nodes that remain.
+MeshData extract(const MeshData& in, bool hexahedra, const std::vector<std::string>& parts,
+                 const BodySpec& body) {
+  std::vector<char> part_wanted(in.part_names.size(), parts.empty() ? 1 : 0);
+  for (const std::string& p : parts) {
+    const auto it = std::find(in.part_names.begin(), in.part_names.end(), p);
+    if (it == in.part_names.end()) {
+      std::vector<std::string> quoted;
+      for (const std::string& n : in.part_names) quoted.push_back("\"" + n + "\"");
+      std::string list;
+      for (std::size_t i = 0; i < quoted.size(); ++i) list += (i ? ", " : "") + quoted[i];
+      throw InputError(body.where, "bodies." + body.name + ".shape.mesh.parts",
+                       "the mesh has no part \"" + p + "\"; its parts: " + list);
+    }
+    part_wanted[static_cast<std::size_t>(it - in.part_names.begin())] = 1;
+  }
+  MeshData out;
+  out.part_names = in.part_names;
+  std::vector<std::int32_t> new_index(in.nodes.size(), -1);
+  auto use = [&](std::int32_t n) {
+    auto& k = new_index[static_cast<std::size_t>(n)];
+    if (k < 0) {
+      k = static_cast<std::int32_t>(out.nodes.size());
+      out.nodes.push_back(in.nodes[static_cast<std::size_t>(n)]);
+      if (!in.node_labels.empty()) out.node_labels.push_back(in.node_labels[static_cast<std::size_t>(n)]);
+    }
+    return k;
+  };
+  if (hexahedra) {
+    for (std::size_t e = 0; e < in.hexahedra.size(); ++e) {
+      if (!part_wanted[static_cast<std::size_t>(in.hexahedron_part[e])]) continue;
+      Hexahedron h;
+      for (int a = 0; a < 8; ++a) h[static_cast<std::size_t>(a)] = use(in.hexahedra[e][static_cast<std::size_t>(a)]);
+      out.hexahedra.push_back(h);
+      out.hexahedron_part.push_back(in.hexahedron_part[e]);
+    }
+  } else {
+    for (std::size_t e = 0; e < in.lines.size(); ++e) {
+      if (!part_wanted[static_cast<std::size_t>(in.line_part[e])]) continue;
+      out.lines.push_back({use(in.lines[e][0]), use(in.lines[e][1])});
+      out.line_part.push_back(in.line_part[e]);
+      out.line_area.push_back(in.line_area[e]);
+    }
+  }
+  std::vector<std::int32_t> set_index(in.node_sets.size(), -1);
+  for (std::size_t s = 0; s < in.node_sets.size(); ++s) {
+    NamedSet kept{in.node_sets[s].name, {}};
+    for (std::int32_t n : in.node_sets[s].members)
+      if (new_index[static_cast<std::size_t>(n)] >= 0) kept.members.push_back(new_index[static_cast<std::size_t>(n)]);
+    if (kept.members.empty()) continue;
+    set_index[s] = static_cast<std::int32_t>(out.node_sets.size());
+    out.node_sets.push_back(std::move(kept));
+  }
+  for (const ImportedConstraint& c : in.constraints)
+    if (set_index[static_cast<std::size_t>(c.node_set)] >= 0)
+      out.constraints.push_back({set_index[static_cast<std::size_t>(c.node_set)], c.fixed});
+  return out;
+}
+
+// The mesh of one body, from its shape and density.
+MeshData body_mesh(const BodySpec& b) {
+  const std::string key = "bodies." + b.name + ".mesh";
+  const core::MeshDensity& d = b.mesh;
+  try {
+    if (const auto* box = std::get_if<core::BoxShape>(&b.shape)) {
+      std::array<int, 3> n = d.divisions;
+      if (n[0] == 0)
+        for (int a = 0; a < 3; ++a) n[static_cast<std::size_t>(a)] = divisions_for(box->max[a] - box->min[a], d.size);
+      return box_mesh(*box, n);
+    }
+    if (const auto* c = std::get_if<core::CylinderShape>(&b.shape)) {
+      int core_n = d.core, ring = d.ring, axial = d.axial;
+      // A quarter arc of pi R / 2 carries core_n elements; the ring spans roughly the outer half
+      // of the radius; sectors other than the whole need an even core count.
+      if (core_n == 0) core_n = divisions_for(std::numbers::pi * c->radius / 2.0, d.size);
+      if (d.sectors != 4 && core_n % 2 == 1) ++core_n;
+      if (ring == 0) ring = divisions_for(0.5 * c->radius, d.size);
+      if (axial == 0) axial = divisions_for(c->length, d.size);
+      return cylinder_mesh(*c, core_n, ring, axial, d.sectors);
+    }
+    if (const auto* l = std::get_if<core::LineShape>(&b.shape)) {
+      const int n = d.segments > 0 ? d.segments : divisions_for(core::norm(l->to - l->from), d.size);
+      return truss_line(l->from, l->to, n, b.area);
+    }
+    if (const auto* r = std::get_if<core::RebarShape>(&b.shape)) {
+      RebarMat m{r->min, r->max, r->normal_axis, r->position, r->spacing, r->diameter, r->cover, d.size};
+      return rebar_mat(m);
+    }
+  } catch (const std::invalid_argument& e) {
+    throw InputError(b.where, key, e.what());
+  }
+  const auto& file = std::get<core::MeshFileShape>(b.shape);
+  MeshData m = extract(read_mesh(file.path), b.discretisation == Discretisation::hexahedra,
+                       file.parts, b);
+  for (core::Vec3& x : m.nodes) x = file.scale * x + file.translate;
+  const bool hexes = b.discretisation == Discretisation::hexahedra;
+  if ((hexes && m.hexahedra.empty()) || (!hexes && m.lines.empty()))
+    throw InputError(b.where, "bodies." + b.name + ".shape.mesh",
+                     "the file " + file.path + " has no " + (hexes ? "hexahedra" : "lines (trusses)") +
+                         (file.parts.empty() ? std::string() : " in the selected parts"));
+  for (double& a : m.line_area) {
+    if (a <= 0.0) a = b.area;
+    if (a <= 0.0)
+      throw InputError(b.where, "bodies." + b.name + ".area",
+                       "the file gives no cross-section area for some lines; set area");
+  }
+  return m;
+}
+
+bool inside(const core::NodeSelector& s, const core::Vec3& x) {
+  switch (s.kind) {
+    case core::NodeSelector::Kind::box: {
+      // A relative slack so that nodes on the box faces are inside despite round-off.
+      const double slack = 1e-9 * (core::norm(s.max - s.min) + 1.0);
+      for (int a = 0; a < 3; ++a)
+        if (x[a] < s.min[a] - slack || x[a] > s.max[a] + slack) return false;
+      return true;
+    }
+    case core::NodeSelector::Kind::plane:
+      return std::abs(core::dot(x - s.point, s.normal)) <= s.tolerance;
+    case core::NodeSelector::Kind::set: return false;
+  }
+  return false;
+}
+
+}  // namespace
+
+FeSolver::FeSolver(const core::Scene& scene) : scene_(scene) { build(scene); }
+
+void FeSolver::build(const core::Scene& scene) {
+  // 1. Meshes, body by body; hexahedra and trusses keep body order (contiguous batches).
+  std::vector<std::size_t> node_begin, node_end;
+  std::vector<MeshData> meshes(scene.bodies.size());
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    const BodySpec& body = scene.bodies[b];
+    node_begin.push_back(mesh_.nodes.size());
+    if (body.discretisation != Discretisation::particles) {
+      meshes[b] = body_mesh(body);
+      validate(meshes[b], body.name);
+      append(mesh_, meshes[b]);
+    }
+    node_end.push_back(mesh_.nodes.size());
+  }
+  const std::size_t n_nodes = mesh_.nodes.size();
+  nodes_.position = mesh_.nodes;
+  nodes_.initial_position = mesh_.nodes;
+  nodes_.velocity.assign(n_nodes, Vec3{});
+  nodes_.mass.assign(n_nodes, 0.0);
+  nodes_.body.assign(n_nodes, -1);
+  nodes_.imposed.assign(n_nodes, 0);
+  nodes_.imposed_velocity.assign(n_nodes, Vec3{});
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+    for (std::size_t n = node_begin[b]; n < node_end[b]; ++n) {
+      nodes_.body[n] = static_cast<std::int32_t>(b);
+      nodes_.velocity[n] = scene.bodies[b].velocity;
+    }
+
+  // 2. Elements and their initial state.
+  auto add_point_state = [](FeElements& el, const core::Material& m, double temperature,
+                            double point_mass) {
+    el.stress.push_back({});
+    el.point_mass.push_back(point_mass);
+    el.plastic_strain.push_back(0.0);
+    el.temperature.push_back(temperature);
+    el.energy.push_back(0.0);
+    el.density.push_back(m.density);
+  };
+  std::size_t hex_cursor = 0, line_cursor = 0;
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    const BodySpec& body = scene.bodies[b];
+    if (body.discretisation == Discretisation::particles) continue;
+    const core::Material& mat = scene.materials[static_cast<std::size_t>(body.material)];
+    const double temperature = body.temperature.value_or(mat.thermal.initial_temperature);
+    const auto offset = static_cast<std::int32_t>(node_begin[b]);
+    const MeshData& m = meshes[b];
+    FeElements& el = body.discretisation == Discretisation::hexahedra ? hexes_ : trusses_;
+    ElementBatch batch;
+    batch.body = static_cast<int>(b);
+    batch.material = body.material;
+    batch.begin = el.size();
+    batch.point_begin = el.stress.size();
+    if (body.discretisation == Discretisation::hexahedra) {
+      const bool full = body.element == core::HexFormulation::full;
+      batch.points_per_element = full ? 8 : 1;
+      for (std::size_t e = 0; e < m.hexahedra.size(); ++e, ++hex_cursor) {
+        std::array<std::int32_t, 8> nodes;
+        HexVectors x;
+        for (std::size_t a = 0; a < 8; ++a) {
+          nodes[a] = m.hexahedra[e][a] + offset;
+          x[a] = nodes_.position[static_cast<std::size_t>(nodes[a])];
+        }
+        const double volume = one_point_hex(x).volume;
+        if (!(volume > 0.0))
+          throw InputError(body.where, "bodies." + body.name,
+                           "hexahedron " + std::to_string(e) + " has a non-positive volume (" +
+                               std::to_string(volume) + "): check its node order");
+        el.nodes.push_back(nodes);
+        el.mass.push_back(mat.density * volume);
+        el.volume0.push_back(volume);
+        el.volume.push_back(volume);
+        el.length0.push_back(0.0);
+        el.area0.push_back(0.0);
+        el.bulk_q.push_back(0.0);
+        el.critical_dt.push_back(0.0);
+        el.alive.push_back(1);
+        el.hourglass_force.push_back({});
+        if (full) {
+          const FullHex f = full_hex(x);
+          if (!(min_jacobian(f) > 0.0))
+            throw InputError(body.where, "bodies." + body.name,
+                             "hexahedron " + std::to_string(e) +
+                                 " has a non-positive Jacobian at a Gauss point");
+          for (int g = 0; g < 8; ++g)
+            add_point_state(el, mat, temperature, mat.density * f.weight[static_cast<std::size_t>(g)]);
+        } else {
+          add_point_state(el, mat, temperature, mat.density * volume);
+        }
+      }
+    } else {
+      for (std::size_t e = 0; e < m.lines.size(); ++e, ++line_cursor) {
+        std::array<std::int32_t, 8> nodes{};
+        nodes[0] = m.lines[e][0] + offset;
+        nodes[1] = m.lines[e][1] + offset;
+        const double length = core::norm(nodes_.position[static_cast<std::size_t>(nodes[1])] -
+                                         nodes_.position[static_cast<std::size_t>(nodes[0])]);
+        if (!(length > 0.0))
+          throw InputError(body.where, "bodies." + body.name,
+                           "truss " + std::to_string(e) + " has zero length");
+        const double area = m.line_area[e];
+        el.nodes.push_back(nodes);
+        el.mass.push_back(mat.density * area * length);
+        el.volume0.push_back(area * length);
+        el.volume.push_back(area * length);
+        el.length0.push_back(length);
+        el.area0.push_back(area);
+        el.bulk_q.push_back(0.0);
+        el.critical_dt.push_back(0.0);
+        el.alive.push_back(1);
+        el.hourglass_force.push_back({});
+        add_point_state(el, mat, temperature, mat.density * area * length);
+      }
+    }
+    batch.end = el.size();
+    el.batches.push_back(batch);
+  }
+
+  // 3. Constraints: from the scene's selectors and from imported files.
+  for (const core::ConstraintSpec& c : scene.constraints) {
+    std::size_t selected = 0;
+    auto impose = [&](std::size_t n) {
+      for (int a = 0; a < 3; ++a)
+        if (c.components[static_cast<std::size_t>(a)]) {
+          nodes_.imposed[n] |= static_cast<std::uint8_t>(1u << a);
+          nodes_.imposed_velocity[n][a] = c.velocity[a];
+        }
+      ++selected;
+    };
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+      if (c.body >= 0 && c.body != static_cast<int>(b)) continue;
+      if (c.nodes.kind == core::NodeSelector::Kind::set) {
+        for (const NamedSet& s : meshes[b].node_sets)
+          if (s.name == c.nodes.set)
+            for (std::int32_t n : s.members) impose(node_begin[b] + static_cast<std::size_t>(n));
+      } else {
+        for (std::size_t n = node_begin[b]; n < node_end[b]; ++n)
+          if (inside(c.nodes, nodes_.position[n])) impose(n);
+      }
+    }
+    if (selected == 0)
+      throw InputError(c.where, "constraints",
+                       c.nodes.kind == core::NodeSelector::Kind::set
+                           ? "no mesh body has a node set named \"" + c.nodes.set + "\""
+                           : std::string("the selector holds no mesh node"));
+  }
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+    for (const ImportedConstraint& c : meshes[b].constraints)
+      for (std::int32_t n : meshes[b].node_sets[static_cast<std::size_t>(c.node_set)].members)
+        for (int a = 0; a < 3; ++a)
+          if (c.fixed[static_cast<std::size_t>(a)]) {
+            const std::size_t k = node_begin[b] + static_cast<std::size_t>(n);
+            nodes_.imposed[k] |= static_cast<std::uint8_t>(1u << a);
+            nodes_.imposed_velocity[k][a] = 0.0;
+          }
+  // Imposed components start at their imposed value.
+  for (std::size_t n = 0; n < n_nodes; ++n)
+    for (int a = 0; a < 3; ++a)
+      if (nodes_.imposed[n] & (1u << a)) nodes_.velocity[n][a] = nodes_.imposed_velocity[n][a];
+
+  // 4. Walls: every node of the bodies they name.
+  for (const core::WallSpec& w : scene.walls) {
+    WallState state{w, {}};
+    for (std::size_t n = 0; n < n_nodes; ++n) {
+      const int b = nodes_.body[n];
+      if (w.bodies.empty() || std::find(w.bodies.begin(), w.bodies.end(), b) != w.bodies.end())
+        state.nodes.push_back(static_cast<std::int32_t>(n));
+    }
+    walls_.push_back(std::move(state));
+  }
+
+  // 5. Force slots and the node -> slot incidence (CSR).
+  element_force_.assign(8 * hexes_.size() + 2 * trusses_.size(), Vec3{});
+  std::vector<std::int64_t> count(n_nodes + 1, 0);
+  for (std::size_t e = 0; e < hexes_.size(); ++e)
+    for (int a = 0; a < 8; ++a) ++count[static_cast<std::size_t>(hexes_.nodes[e][static_cast<std::size_t>(a)]) + 1];
+  for (std::size_t t = 0; t < trusses_.size(); ++t)
+    for (int a = 0; a < 2; ++a) ++count[static_cast<std::size_t>(trusses_.nodes[t][static_cast<std::size_t>(a)]) + 1];
+  for (std::size_t n = 0; n < n_nodes; ++n) count[n + 1] += count[n];
+  incidence_offsets_ = count;
+  incidence_.assign(static_cast<std::size_t>(count[n_nodes]), 0);
+  std::vector<std::int64_t> fill(count.begin(), count.end() - 1);
+  for (std::size_t e = 0; e < hexes_.size(); ++e)
+    for (int a = 0; a < 8; ++a)
+      incidence_[static_cast<std::size_t>(fill[static_cast<std::size_t>(hexes_.nodes[e][static_cast<std::size_t>(a)])]++)] =
+          static_cast<std::int64_t>(8 * e) + a;
+  const auto truss_base = static_cast<std::int64_t>(8 * hexes_.size());
+  for (std::size_t t = 0; t < trusses_.size(); ++t)
+    for (int a = 0; a < 2; ++a)
+      incidence_[static_cast<std::size_t>(fill[static_cast<std::size_t>(trusses_.nodes[t][static_cast<std::size_t>(a)])]++)] =
+          truss_base + static_cast<std::int64_t>(2 * t) + a;
+
+  recompute_node_masses();
+
+  // 6. Critical steps of the initial state.
+  for (const ElementBatch& b : hexes_.batches) {
+    const core::Material& mat = scene.materials[static_cast<std::size_t>(b.material)];
+    for (std::size_t e = b.begin; e < b.end; ++e) {
+      HexVectors x;
+      for (std::size_t a = 0; a < 8; ++a) x[a] = nodes_.position[static_cast<std::size_t>(hexes_.nodes[e][a])];
+      core::PointState st{{}, 0.0, 0.0, 0.0, mat.density};
+      hexes_.critical_dt[e] = characteristic_length(x, hexes_.volume0[e]) / core::wave_speed(mat, st);
+    }
+  }
+  for (const ElementBatch& b : trusses_.batches) {
+    const core::Material& mat = scene.materials[static_cast<std::size_t>(b.material)];
+    core::PointState st{{}, 0.0, 0.0, 0.0, mat.density};
+    const double modulus = core::uniaxial_modulus(mat, st);
+    for (std::size_t e = b.begin; e < b.end; ++e)
+      trusses_.critical_dt[e] = truss_time_step(trusses_.length0[e], modulus, mat.density);
+  }
+
+  stage_names_ = {"nodal update"};
+  if (!walls_.empty()) stage_names_.push_back("rigid walls");
+  if (!hexes_.empty()) stage_names_.push_back("hexahedra");
+  if (!trusses_.empty()) stage_names_.push_back("trusses");
+  stage_seconds_.assign(stage_names_.size(), 0.0);
+  thread_sums_.assign(static_cast<std::size_t>(core::thread_count()) * core::cache_line_doubles, 0.0);
+  thread_erosions_.resize(static_cast<std::size_t>(core::thread_count()));
+  thread_errors_.resize(static_cast<std::size_t>(core::thread_count()));
+}
+
+void FeSolver::recompute_node_masses() {
+  std::fill(nodes_.mass.begin(), nodes_.mass.end(), 0.0);
+  for (std::size_t e = 0; e < hexes_.size(); ++e)
+    if (hexes_.alive[e])
+      for (std::size_t a = 0; a < 8; ++a)
+        nodes_.mass[static_cast<std::size_t>(hexes_.nodes[e][a])] += hexes_.mass[e] / 8.0;
+  for (std::size_t t = 0; t < trusses_.size(); ++t)
+    if (trusses_.alive[t])
+      for (std::size_t a = 0; a < 2; ++a)
+        nodes_.mass[static_cast<std::size_t>(trusses_.nodes[t][a])] += trusses_.mass[t] / 2.0;
+}
+
+}  // namespace afemp::fem

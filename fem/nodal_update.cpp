@@ -1,0 +1,186 @@
+// The nodal half of the central-difference step (Belytschko, Liu & Moran box 6.1):
+// f = sum of element forces (gathered through the incidence lists) + m g,
+// v^{n+1/2} = v^{n-1/2} + dt^n f / m with dt^n = (dt^{n-1/2} + dt^{n+1/2}) / 2 (half a step
+// on the first), imposed components set, rigid walls, x^{n+1} = x^n + dt v^{n+1/2}.
+// Also the step itself, the stable step and the energies.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "core/parallel.hpp"
+#include "fem/fe_solver.hpp"
+
+namespace afemp::fem {
+
+namespace {
+
+template <class F>
+void parallel_chunks(std::size_t n, F&& body) {
+  if (!core::worth_threads(n)) {
+    body(std::size_t{0}, n, 0);
+    return;
+  }
+#pragma omp parallel
+  {
+    const auto [begin, end] = core::static_range(n, core::thread_index(), core::team_size());
+    body(begin, end, core::thread_index());
+  }
+}
+
+}  // namespace
+
+void FeSolver::update_nodes(double dt) {
+  const double dt_force = steps_ == 0 ? 0.5 * dt : 0.5 * (previous_dt_ + dt);
+  const Vec3 g = scene_.run.gravity;
+  const bool gravity = g.x != 0.0 || g.y != 0.0 || g.z != 0.0;
+  const std::size_t n = nodes_.size();
+  std::fill(thread_sums_.begin(), thread_sums_.end(), 0.0);
+  for (auto& e : thread_errors_) e.clear();
+  parallel_chunks(n, [&](std::size_t begin, std::size_t end, int t) {
+    double work = 0.0;
+    for (std::size_t i = begin; i < end; ++i) {
+      const double m = nodes_.mass[i];
+      if (!(m > 0.0)) continue;  // no live element: out of the update
+      Vec3 f;
+      for (std::int64_t k = incidence_offsets_[i]; k < incidence_offsets_[i + 1]; ++k)
+        f += element_force_[static_cast<std::size_t>(incidence_[static_cast<std::size_t>(k)])];
+      Vec3& v = nodes_.velocity[i];
+      v += (dt_force / m) * f;
+      if (gravity) {
+        v += dt_force * g;
+      }
+      if (const std::uint8_t imposed = nodes_.imposed[i]) {
+        for (int a = 0; a < 3; ++a)
+          if (imposed & (1u << a)) {
+            // The reaction impulse m (v_imposed - v) does work at the imposed velocity.
+            const double target = nodes_.imposed_velocity[i][a];
+            work += m * (target - v[a]) * target;
+            v[a] = target;
+          }
+      }
+      if (gravity) work += m * core::dot(g, v) * dt;
+      if (!std::isfinite(v.x + v.y + v.z) && thread_errors_[static_cast<std::size_t>(t)].empty())
+        thread_errors_[static_cast<std::size_t>(t)] = "node " + std::to_string(i);
+    }
+    thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles] = work;
+  });
+  for (std::size_t t = 0; t < thread_errors_.size(); ++t)
+    if (!thread_errors_[t].empty()) raise(thread_errors_[t], "velocity", "not a finite number");
+  for (std::size_t t = 0; t < thread_errors_.size(); ++t)
+    external_work_ += thread_sums_[t * core::cache_line_doubles];
+}
+
+void FeSolver::step(double dt) {
+  using clock = std::chrono::steady_clock;
+  std::size_t stage = 0;
+  auto timed = [&](auto&& f) {
+    const auto t0 = clock::now();
+    f();
+    stage_seconds_[stage++] += std::chrono::duration<double>(clock::now() - t0).count();
+  };
+  timed([&] { update_nodes(dt); });
+  if (!walls_.empty()) timed([&] { apply_walls(dt); });
+  // Positions after every velocity condition, so the walls see the final v^{n+1/2}.
+  const std::size_t n = nodes_.size();
+  parallel_chunks(n, [&](std::size_t begin, std::size_t end, int) {
+    for (std::size_t i = begin; i < end; ++i)
+      if (nodes_.mass[i] > 0.0) nodes_.position[i] += dt * nodes_.velocity[i];
+  });
+  if (!hexes_.empty()) timed([&] { update_hexahedra(dt); });
+  if (!trusses_.empty()) timed([&] { update_trusses(dt); });
+  time_ += dt;
+  ++steps_;
+  previous_dt_ = dt;
+  if (erosion_this_step_) finish_erosion();
+}
+
+double FeSolver::stable_time_step() const {
+  if (scene_.run.fixed_time_step > 0.0) return scene_.run.fixed_time_step;
+  double dt = std::numeric_limits<double>::infinity();
+  for (const FeElements* el : {&hexes_, &trusses_})
+    for (std::size_t e = 0; e < el->size(); ++e)
+      if (el->alive[e]) dt = std::min(dt, el->critical_dt[e]);
+  if (!std::isfinite(dt))
+    throw core::SimulationError(steps_, time_, "mesh", "time step",
+                                "no live element is left to set the time step");
+  return scene_.run.element_time_step_factor * dt;
+}
+
+std::string FeSolver::smallest_step_element() const {
+  double dt = std::numeric_limits<double>::infinity();
+  std::string where = "none";
+  auto scan = [&](const FeElements& el, const char* kind) {
+    for (const ElementBatch& b : el.batches)
+      for (std::size_t e = b.begin; e < b.end; ++e)
+        if (el.alive[e] && el.critical_dt[e] < dt) {
+          dt = el.critical_dt[e];
+          where = std::string(kind) + " " + std::to_string(e - b.begin) + " of body " +
+                  scene_.bodies[static_cast<std::size_t>(b.body)].name;
+        }
+  };
+  scan(hexes_, "hexahedron");
+  scan(trusses_, "truss");
+  return where;
+}
+
+core::Energies FeSolver::energies() const {
+  core::Energies out;
+  out.bodies.resize(scene_.bodies.size());
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    const double m = nodes_.mass[i];
+    if (!(m > 0.0)) continue;
+    const Vec3& v = nodes_.velocity[i];
+    out.kinetic += 0.5 * m * core::dot(v, v);
+    core::BodySums& b = out.bodies[static_cast<std::size_t>(nodes_.body[i])];
+    b.mass += m;
+    b.momentum += m * v;
+  }
+  for (const FeElements* el : {&hexes_, &trusses_})
+    for (const ElementBatch& b : el->batches)
+      for (std::size_t e = b.begin; e < b.end; ++e) {
+        if (!el->alive[e]) continue;
+        const std::size_t p0 = b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
+        for (int g = 0; g < b.points_per_element; ++g)
+          out.internal += el->point_mass[p0 + static_cast<std::size_t>(g)] * el->energy[p0 + static_cast<std::size_t>(g)];
+      }
+  out.plastic = plastic_work_;
+  out.viscous = viscous_work_;
+  out.hourglass = hourglass_work_;
+  out.eroded = eroded_energy_;
+  out.external_work = external_work_;
+  return out;
+}
+
+std::vector<ErosionEvent> FeSolver::take_erosion_events() {
+  std::vector<ErosionEvent> out;
+  out.swap(events_);
+  return out;
+}
+
+std::size_t FeSolver::live_hexahedra() const {
+  return static_cast<std::size_t>(std::count(hexes_.alive.begin(), hexes_.alive.end(), 1));
+}
+std::size_t FeSolver::live_trusses() const {
+  return static_cast<std::size_t>(std::count(trusses_.alive.begin(), trusses_.alive.end(), 1));
+}
+
+std::size_t FeSolver::bytes() const {
+  auto v = [](const auto& x) { return x.capacity() * sizeof(x[0]); };
+  std::size_t b = v(nodes_.position) + v(nodes_.initial_position) + v(nodes_.velocity) +
+                  v(nodes_.mass) + v(nodes_.body) + v(nodes_.imposed) + v(nodes_.imposed_velocity);
+  for (const FeElements* el : {&hexes_, &trusses_})
+    b += v(el->nodes) + v(el->mass) + v(el->volume0) + v(el->volume) + v(el->length0) +
+         v(el->area0) + v(el->bulk_q) + v(el->critical_dt) + v(el->alive) +
+         v(el->hourglass_force) + v(el->stress) + v(el->point_mass) + v(el->plastic_strain) +
+         v(el->temperature) + v(el->energy) + v(el->density);
+  return b + v(element_force_) + v(incidence_) + v(incidence_offsets_);
+}
+
+void FeSolver::raise(const std::string& entity, const char* field, const std::string& detail) const {
+  throw core::SimulationError(steps_ + 1, time_, entity, field, detail);
+}
+
+}  // namespace afemp::fem

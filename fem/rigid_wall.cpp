@@ -1,0 +1,61 @@
+// Rigid planar walls for FE nodes (the kinematic wall of LS-DYNA's *RIGIDWALL_PLANAR): a node
+// whose predicted position x + dt v would lie behind the wall gets the normal velocity that
+// puts it on the wall at the end of the step; Coulomb friction limits the tangential impulse
+// to mu times the normal one (stick below it, slide with the reduced velocity above it). A
+// moving wall does work m dv . v_wall on the nodes, which goes to the external work; the
+// kinetic energy a fixed wall takes from arriving nodes is not hidden and shows in the
+// energy balance.
+#include <cmath>
+
+#include "core/parallel.hpp"
+#include "fem/fe_solver.hpp"
+
+namespace afemp::fem {
+
+void FeSolver::apply_walls(double dt) {
+  for (const WallState& w : walls_) {
+    const core::WallSpec& s = w.spec;
+    const Vec3 wall_point = s.point + (time_ + dt) * s.velocity;
+    const std::size_t n = w.nodes.size();
+    std::fill(thread_sums_.begin(), thread_sums_.end(), 0.0);
+    auto sweep = [&](std::size_t begin, std::size_t end, int t) {
+      double work = 0.0;
+      for (std::size_t k = begin; k < end; ++k) {
+        const auto i = static_cast<std::size_t>(w.nodes[k]);
+        const double m = nodes_.mass[i];
+        if (!(m > 0.0) || nodes_.imposed[i]) continue;  // constraints win over walls
+        Vec3& v = nodes_.velocity[i];
+        const double gap = core::dot(nodes_.position[i] + dt * v - wall_point, s.normal);
+        if (gap >= 0.0) continue;
+        const Vec3 before = v;
+        const double dvn = -gap / dt;  // > 0: back onto the wall
+        v += dvn * s.normal;
+        if (s.friction > 0.0) {
+          const Vec3 rel = v - s.velocity;
+          const Vec3 tangential = rel - core::dot(rel, s.normal) * s.normal;
+          const double vt = core::norm(tangential);
+          const double limit = s.friction * dvn;
+          if (vt <= limit)
+            v -= tangential;
+          else
+            v -= (limit / vt) * tangential;
+        }
+        work += m * core::dot(v - before, s.velocity);
+      }
+      thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles] = work;
+    };
+    if (!core::worth_threads(n)) {
+      sweep(0, n, 0);
+    } else {
+#pragma omp parallel
+      {
+        const auto [begin, end] = core::static_range(n, core::thread_index(), core::team_size());
+        sweep(begin, end, core::thread_index());
+      }
+    }
+    for (std::size_t t = 0; t < thread_erosions_.size(); ++t)
+      external_work_ += thread_sums_[t * core::cache_line_doubles];
+  }
+}
+
+}  // namespace afemp::fem
