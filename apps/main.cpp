@@ -12,6 +12,7 @@
 #include "core/output/run_directory.hpp"
 #include "core/parallel.hpp"
 #include "core/time_loop.hpp"
+#include "fem/fe_model.hpp"
 #include "mpm/mpm_model.hpp"
 
 namespace {
@@ -31,6 +32,7 @@ void set_threads(int threads) {
 
 // The model a scene describes: particles on the grid or a mesh (core::Model either way).
 std::unique_ptr<core::Model> make_model(const core::Scene& scene) {
+  if (core::has_mesh(scene)) return std::make_unique<fem::FeModel>(scene);
   return std::make_unique<mpm::MpmModel>(scene);
 }
 

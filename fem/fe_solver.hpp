@@ -53,16 +53,18 @@ struct FeElements {
   std::vector<double> point_mass, plastic_strain, temperature, energy, density;
   std::vector<ElementBatch> batches;
   std::size_t size() const { return nodes.size(); }
+  bool empty() const { return nodes.empty(); }
 };
 
 // A record of an eroded element.
 struct ErosionEvent {
   double time = 0.0;
-  char kind = 'h';            // 'h' hexahedron, 't' truss
-  std::int64_t element = 0;   // index within its kind
+  const char* kind = "hexahedron";  // "hexahedron", "truss" or "node" (left with no element)
+  std::int64_t id = 0;              // index within its kind and body
   int body = 0;
   std::string reason;
-  double energy = 0.0;        // internal (+ hourglass) energy taken away with it
+  double energy = 0.0;  // internal energy of an element, kinetic energy of a dropped node
+  double mass = 0.0;
 };
 
 // Where a wall acts: the nodes it may touch.
@@ -107,7 +109,8 @@ class FeSolver {
   void hexahedron_batch(const ElementBatch& b, const Strength& s, const Eos& e, double dt);
   template <class Strength, class Eos, bool Thermal>
   void truss_batch(const ElementBatch& b, const Strength& s, const Eos& e, double dt);
-  void erode(FeElements& elements, char kind, std::size_t e, const char* reason);
+  // Erodes the elements the last sweep flagged (thread order: deterministic).
+  void collect_erosions(FeElements& elements, const char* kind);
   void finish_erosion();
   void recompute_node_masses();
   [[noreturn]] void raise(const std::string& entity, const char* field,
@@ -137,7 +140,9 @@ class FeSolver {
   // Per-thread partial sums (padded), combined in thread order.
   std::vector<double> thread_sums_;
   std::vector<std::vector<std::size_t>> thread_erosions_;
-  std::vector<std::string> thread_errors_;
+  std::vector<std::vector<const char*>> thread_failure_;
+  std::vector<std::string> thread_errors_;       // entity of the first bad value per thread
+  std::vector<const char*> thread_error_field_;  // and its field
 };
 
 }  // namespace afemp::fem

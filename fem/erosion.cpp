@@ -1,0 +1,55 @@
+// Element erosion: an element that meets one of its body's criteria (equivalent plastic
+// strain, the material's failure strain, volume ratio, critical time step, or inversion) is
+// removed; its internal energy leaves with it and is booked as eroded energy. Node masses are
+// then recomputed from the live elements (one source of truth), the kinetic energy of the mass
+// that left is booked too, and nodes left with no element drop out of the update; every
+// eroded element and dropped node is written to erosion.csv.
+#include <algorithm>
+
+#include "fem/fe_solver.hpp"
+
+namespace afemp::fem {
+
+void FeSolver::collect_erosions(FeElements& el, const char* kind) {
+  for (std::size_t t = 0; t < thread_erosions_.size(); ++t) {
+    for (std::size_t k = 0; k < thread_erosions_[t].size(); ++k) {
+      const std::size_t e = thread_erosions_[t][k];
+      const ElementBatch* batch = nullptr;
+      for (const ElementBatch& b : el.batches)
+        if (e >= b.begin && e < b.end) batch = &b;
+      const std::size_t p0 =
+          batch->point_begin + (e - batch->begin) * static_cast<std::size_t>(batch->points_per_element);
+      double energy = 0.0;
+      for (int g = 0; g < batch->points_per_element; ++g)
+        energy += el.point_mass[p0 + static_cast<std::size_t>(g)] * el.energy[p0 + static_cast<std::size_t>(g)];
+      el.alive[e] = 0;
+      el.bulk_q[e] = 0.0;
+      eroded_energy_ += energy;
+      events_.push_back({time_, kind, static_cast<std::int64_t>(e - batch->begin), batch->body,
+                         thread_failure_[t][k], energy, el.mass[e]});
+      erosion_this_step_ = true;
+    }
+    thread_erosions_[t].clear();
+    thread_failure_[t].clear();
+  }
+}
+
+void FeSolver::finish_erosion() {
+  erosion_this_step_ = false;
+  const std::vector<double> before = nodes_.mass;
+  recompute_node_masses();
+  for (auto& ev : events_)
+    if (ev.time < time_) ev.time = time_;  // stamped with the end of the step they happened in
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    const double lost = before[i] - nodes_.mass[i];
+    if (lost <= 0.0) continue;
+    const Vec3& v = nodes_.velocity[i];
+    const double kinetic = 0.5 * lost * core::dot(v, v);
+    eroded_energy_ += kinetic;
+    if (nodes_.mass[i] == 0.0)
+      events_.push_back({time_, "node", static_cast<std::int64_t>(i), nodes_.body[i],
+                         "no element left", kinetic, lost});
+  }
+}
+
+}  // namespace afemp::fem

@@ -1,0 +1,235 @@
+// The FE solver behind the core::Model interface (fem/fe_model.hpp).
+#include "fem/fe_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "fem/mesh_quality.hpp"
+
+namespace afemp::fem {
+
+namespace {
+
+template <class... Args>
+void append(std::string& out, const char* format, Args... args) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, format, args...);
+  out += buf;
+}
+
+}  // namespace
+
+FeModel::FeModel(const core::Scene& scene) : scene_(scene), solver_(scene) {}
+
+void FeModel::write_fields(core::FieldWriter& writer) {
+  const FeNodes& n = solver_.nodes();
+  displacement_.resize(n.size());
+  for (std::size_t i = 0; i < n.size(); ++i) displacement_[i] = n.position[i] - n.initial_position[i];
+  const std::vector<core::FieldView> node_fields = {
+      core::vector_field("velocity", std::span<const core::Vec3>(n.velocity)),
+      core::vector_field("displacement", std::span<const core::Vec3>(displacement_))};
+
+  std::vector<core::MeshBlock> blocks;
+  std::vector<core::FieldView> hex_fields, truss_fields;
+  const FeElements& h = solver_.hexahedra();
+  if (!h.empty()) {
+    const std::size_t ne = h.size();
+    hex_stress_.assign(ne, {});
+    hex_pressure_.assign(ne, 0.0);
+    hex_von_mises_.assign(ne, 0.0);
+    hex_plastic_.assign(ne, 0.0);
+    hex_temperature_.assign(ne, 0.0);
+    hex_density_.assign(ne, 0.0);
+    hex_alive_.assign(ne, 0.0);
+    hex_body_.assign(ne, 0.0);
+    hex_connectivity_.resize(8 * ne);
+    for (const ElementBatch& b : h.batches)
+      for (std::size_t e = b.begin; e < b.end; ++e) {
+        const std::size_t p0 = b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
+        const double w = 1.0 / b.points_per_element;
+        for (int g = 0; g < b.points_per_element; ++g) {
+          const std::size_t p = p0 + static_cast<std::size_t>(g);
+          hex_stress_[e] += w * h.stress[p];
+          hex_plastic_[e] += w * h.plastic_strain[p];
+          hex_temperature_[e] += w * h.temperature[p];
+        }
+        hex_pressure_[e] = core::pressure(hex_stress_[e]);
+        hex_von_mises_[e] = core::von_mises(hex_stress_[e]);
+        hex_density_[e] = h.mass[e] / h.volume[e];
+        hex_alive_[e] = h.alive[e];
+        hex_body_[e] = b.body;
+        for (std::size_t a = 0; a < 8; ++a) hex_connectivity_[8 * e + a] = h.nodes[e][a];
+      }
+    hex_fields = {core::tensor_field("stress", std::span<const core::SymTensor>(hex_stress_)),
+                  core::scalar_field("pressure", std::span<const double>(hex_pressure_)),
+                  core::scalar_field("von_mises", std::span<const double>(hex_von_mises_)),
+                  core::scalar_field("plastic_strain", std::span<const double>(hex_plastic_)),
+                  core::scalar_field("temperature", std::span<const double>(hex_temperature_)),
+                  core::scalar_field("density", std::span<const double>(hex_density_)),
+                  core::scalar_field("alive", std::span<const double>(hex_alive_)),
+                  core::scalar_field("body", std::span<const double>(hex_body_))};
+    blocks.push_back({"hexahedra", core::CellKind::hexahedron, n.size(),
+                      core::as_doubles(n.position.data()), ne, hex_connectivity_.data(),
+                      node_fields, hex_fields});
+  }
+  const FeElements& t = solver_.trusses();
+  if (!t.empty()) {
+    const std::size_t ne = t.size();
+    truss_stress_.assign(ne, 0.0);
+    truss_force_.assign(ne, 0.0);
+    truss_plastic_.assign(ne, 0.0);
+    truss_temperature_.assign(ne, 0.0);
+    truss_alive_.assign(ne, 0.0);
+    truss_body_.assign(ne, 0.0);
+    truss_connectivity_.resize(2 * ne);
+    for (const ElementBatch& b : t.batches)
+      for (std::size_t e = b.begin; e < b.end; ++e) {
+        const std::size_t p = b.point_begin + (e - b.begin);
+        const core::Vec3 d = n.position[static_cast<std::size_t>(t.nodes[e][1])] -
+                             n.position[static_cast<std::size_t>(t.nodes[e][0])];
+        truss_stress_[e] = t.stress[p].xx;
+        truss_force_[e] = t.stress[p].xx * t.volume[e] / core::norm(d);
+        truss_plastic_[e] = t.plastic_strain[p];
+        truss_temperature_[e] = t.temperature[p];
+        truss_alive_[e] = t.alive[e];
+        truss_body_[e] = b.body;
+        truss_connectivity_[2 * e] = t.nodes[e][0];
+        truss_connectivity_[2 * e + 1] = t.nodes[e][1];
+      }
+    truss_fields = {core::scalar_field("axial_stress", std::span<const double>(truss_stress_)),
+                    core::scalar_field("axial_force", std::span<const double>(truss_force_)),
+                    core::scalar_field("plastic_strain", std::span<const double>(truss_plastic_)),
+                    core::scalar_field("temperature", std::span<const double>(truss_temperature_)),
+                    core::scalar_field("alive", std::span<const double>(truss_alive_)),
+                    core::scalar_field("body", std::span<const double>(truss_body_))};
+    blocks.push_back({"trusses", core::CellKind::line, n.size(), core::as_doubles(n.position.data()),
+                      ne, truss_connectivity_.data(), node_fields, truss_fields});
+  }
+  writer.write_frame(solver_.time(), solver_.step_count(), {}, blocks);
+}
+
+std::vector<core::StageTiming> FeModel::stage_timings() const {
+  std::vector<core::StageTiming> out;
+  for (std::size_t i = 0; i < solver_.stage_names().size(); ++i)
+    out.push_back({solver_.stage_names()[i], solver_.step_count(), solver_.stage_seconds()[i]});
+  return out;
+}
+
+std::vector<core::EventLog> FeModel::take_events() {
+  const core::Energies e = solver_.energies();
+  // Only once the hourglass energy matters at all (not round-off in the first steps).
+  if (hourglass_warning_step_ < 0 && e.hourglass > 0.1 * e.internal &&
+      e.hourglass > 1e-3 * (e.kinetic + e.internal + e.hourglass)) {
+    hourglass_warning_step_ = solver_.step_count();
+    std::fprintf(stderr,
+                 "afemp: warning: at step %ld the hourglass energy %.4g exceeds 10 %% of the "
+                 "internal energy %.4g: refine the mesh, use the stiffness form or full "
+                 "integration\n",
+                 solver_.step_count(), e.hourglass, e.internal);
+  }
+  core::EventLog log{"erosion.csv", "time,kind,id,body,reason,energy,mass", {}};
+  for (const ErosionEvent& ev : solver_.take_erosion_events()) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "%.10e,%s,%lld,%s,%s,%.10e,%.10e", ev.time, ev.kind,
+                  static_cast<long long>(ev.id),
+                  scene_.bodies[static_cast<std::size_t>(ev.body)].name.c_str(), ev.reason.c_str(),
+                  ev.energy, ev.mass);
+    log.rows.emplace_back(buf);
+  }
+  return {log};
+}
+
+core::TaylorMeasures FeModel::measure_taylor(int body) const {
+  const core::BodySpec& spec = scene_.bodies.at(static_cast<std::size_t>(body));
+  const auto* cyl = std::get_if<core::CylinderShape>(&spec.shape);
+  if (cyl == nullptr)
+    throw std::invalid_argument("Taylor measures need a cylinder body; '" + spec.name +
+                                "' is not one");
+  const FeNodes& n = solver_.nodes();
+  std::vector<core::Vec3> points;
+  for (std::size_t i = 0; i < n.size(); ++i)
+    if (n.body[i] == body && n.mass[i] > 0.0) points.push_back(n.position[i]);
+  // Nodes lie on the surface; W is read in a band of half an initial element length.
+  const double band = 0.5 * cyl->length / std::max(1, spec.mesh.axial > 0 ? spec.mesh.axial
+      : static_cast<int>(std::ceil(cyl->length / std::max(spec.mesh.size, 1e-300))));
+  return core::measure_taylor(points, {}, *cyl, band);
+}
+
+std::string FeModel::describe() const {
+  std::string out;
+  const MeshQualityReport q = mesh_quality(solver_.mesh());
+  const FeNodes& n = solver_.nodes();
+  for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
+    const core::BodySpec& body = scene_.bodies[b];
+    std::size_t nodes = 0;
+    double mass = 0.0;
+    for (std::size_t i = 0; i < n.size(); ++i)
+      if (n.body[i] == static_cast<int>(b)) {
+        ++nodes;
+        mass += n.mass[i];
+      }
+    const bool hexes = body.discretisation == core::Discretisation::hexahedra;
+    const FeElements& el = hexes ? solver_.hexahedra() : solver_.trusses();
+    std::size_t count = 0;
+    for (const ElementBatch& batch : el.batches)
+      if (batch.body == static_cast<int>(b)) count += batch.end - batch.begin;
+    append(out, "body %s: %zu %s of %s, %zu nodes, mass %.6g\n", body.name.c_str(), count,
+           hexes ? "hexahedra" : "trusses",
+           scene_.materials[static_cast<std::size_t>(body.material)].name.c_str(), nodes, mass);
+    if (hexes) {
+      if (body.element == core::HexFormulation::one_point)
+        append(out, "  one-point hexahedra, %s hourglass control Q_hg = %g\n",
+               core::to_string(body.hourglass.form), body.hourglass.coefficient);
+      else
+        out += "  fully integrated hexahedra (2x2x2) with B-bar volumetric integration\n";
+      append(out, "  bulk viscosity: linear %g, quadratic %g\n", body.bulk_viscosity.linear,
+             body.bulk_viscosity.quadratic);
+    }
+    if (body.erosion) {
+      const core::ErosionSettings& e = *body.erosion;
+      out += "  erosion:";
+      if (e.plastic_strain > 0.0) append(out, " plastic strain %g;", e.plastic_strain);
+      if (e.material_failure) append(out, " material failure strain %g;",
+                                     scene_.materials[static_cast<std::size_t>(body.material)].failure_strain);
+      if (e.volume_ratio > 0.0) append(out, " volume ratio %g;", e.volume_ratio);
+      if (e.time_step > 0.0) append(out, " time step %g;", e.time_step);
+      out += " inverted elements\n";
+    }
+  }
+  std::size_t imposed = 0;
+  for (std::uint8_t m : n.imposed) imposed += m ? 1 : 0;
+  append(out, "nodes: %zu (%zu with imposed velocity components); rigid walls: %zu\n", n.size(),
+         imposed, scene_.walls.size());
+  if (q.hexahedra > 0)
+    append(out,
+           "mesh quality: min scaled Jacobian %.3f (hexahedron %d), max aspect ratio %.2f "
+           "(hexahedron %d), %zu inverted, volume %.6g\n",
+           q.min_scaled_jacobian, q.worst_jacobian_element, q.max_aspect_ratio,
+           q.worst_aspect_element, q.inverted, q.total_volume);
+  if (q.lines > 0) append(out, "trusses: shortest %.4g (truss %d)\n", q.min_line_length, q.shortest_line);
+  append(out, "smallest element time step: %.6g at %s\n",
+         solver_.stable_time_step() / scene_.run.element_time_step_factor,
+         solver_.smallest_step_element().c_str());
+  out += "step plan (explicit FE, central differences; no particles, so no background grid is "
+         "allocated and no grid stage runs):\n";
+  int k = 1;
+  append(out, "  %d. nodal update  -- element forces gathered per node, v += dt f / m, imposed "
+              "velocities%s\n", k++, scene_.run.gravity.x != 0.0 || scene_.run.gravity.y != 0.0 ||
+              scene_.run.gravity.z != 0.0 ? ", gravity" : "");
+  if (!scene_.walls.empty())
+    append(out, "  %d. rigid walls  -- %zu planar wall(s): nodes kept on their side\n", k++,
+           scene_.walls.size());
+  if (!solver_.hexahedra().empty())
+    append(out, "  %d. hexahedra  -- strain rate, Jaumann stress update, bulk viscosity, "
+                "hourglass, nodal forces, critical step%s\n", k++,
+           std::any_of(scene_.bodies.begin(), scene_.bodies.end(), [](const auto& b) { return b.erosion.has_value(); })
+               ? ", erosion" : "");
+  if (!solver_.trusses().empty())
+    append(out, "  %d. trusses  -- axial strain rate, uniaxial stress update, axial forces, "
+                "critical step\n", k++);
+  return out;
+}
+
+}  // namespace afemp::fem

@@ -1,0 +1,50 @@
+// The FE solver as a core::Model: mesh fields for the output (hexahedra and trusses as mesh
+// blocks of the same HDF5/XDMF frame particles use), the plan and mesh quality that
+// `afemp check` prints, the erosion log and the Taylor measures.
+#pragma once
+
+#include <vector>
+
+#include "core/scene.hpp"
+#include "core/time_loop.hpp"
+#include "fem/fe_solver.hpp"
+
+namespace afemp::fem {
+
+class FeModel final : public core::Model {
+ public:
+  explicit FeModel(const core::Scene& scene);
+  FeSolver& solver() { return solver_; }
+  const FeSolver& solver() const { return solver_; }
+
+  double stable_time_step() const override { return solver_.stable_time_step(); }
+  void step(double dt) override { solver_.step(dt); }
+  long step_count() const override { return solver_.step_count(); }
+  double time() const override { return solver_.time(); }
+  core::Energies energies() const override { return solver_.energies(); }
+  std::size_t particle_count() const override { return 0; }
+  std::size_t element_count() const override {
+    return solver_.hexahedra().size() + solver_.trusses().size();
+  }
+  void write_fields(core::FieldWriter& writer) override;
+  std::vector<core::StageTiming> stage_timings() const override;
+  std::vector<core::EventLog> take_events() override;
+  core::TaylorMeasures measure_taylor(int body) const override;
+  std::string describe() const override;
+  std::size_t bytes() const override { return solver_.bytes(); }
+
+ private:
+  const core::Scene& scene_;
+  FeSolver solver_;
+  long hourglass_warning_step_ = -1;
+  // Derived fields, per frame.
+  std::vector<core::Vec3> displacement_;
+  std::vector<core::SymTensor> hex_stress_;
+  std::vector<double> hex_pressure_, hex_von_mises_, hex_plastic_, hex_temperature_,
+      hex_density_, hex_alive_, hex_body_;
+  std::vector<double> truss_stress_, truss_force_, truss_plastic_, truss_temperature_,
+      truss_alive_, truss_body_;
+  std::vector<std::int32_t> hex_connectivity_, truss_connectivity_;
+};
+
+}  // namespace afemp::fem

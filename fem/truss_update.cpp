@@ -1,0 +1,112 @@
+// The truss stage: the axial strain increment from v^{n+1/2} along the mid-step axis, the
+// axial stress from the uniaxial-stress form of the shared material law
+// (core/materials/uniaxial_update.hpp), the area from mass conservation, the axial force
+// N = sigma A along the end-of-step axis, the bar critical step L / c, and erosion.
+#include <cmath>
+#include <string>
+
+#include "core/materials/uniaxial_update.hpp"
+#include "core/parallel.hpp"
+#include "fem/fe_solver.hpp"
+#include "fem/truss.hpp"
+
+namespace afemp::fem {
+
+template <class Strength, class Eos, bool Thermal>
+void FeSolver::truss_batch(const ElementBatch& b, const Strength& strength, const Eos& eos,
+                           double dt) {
+  const core::BodySpec& body = scene_.bodies[static_cast<std::size_t>(b.body)];
+  const core::Material& mat = scene_.materials[static_cast<std::size_t>(b.material)];
+  const core::ErosionSettings* erosion = body.erosion ? &*body.erosion : nullptr;
+  FeElements& el = trusses_;
+  const std::size_t force_base = 8 * hexes_.size();
+
+  auto sweep = [&](std::size_t begin, std::size_t end, int t) {
+    double* sums = &thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles];
+    for (std::size_t e = begin; e < end; ++e) {
+      if (!el.alive[e]) continue;
+      const auto na = static_cast<std::size_t>(el.nodes[e][0]);
+      const auto nb = static_cast<std::size_t>(el.nodes[e][1]);
+      const Vec3 va = nodes_.velocity[na], vb = nodes_.velocity[nb];
+      const Vec3 xa = nodes_.position[na], xb = nodes_.position[nb];
+      const std::size_t p = b.point_begin + (e - b.begin);
+      const TrussKinematics mid =
+          truss_kinematics(xa - (0.5 * dt) * va, xb - (0.5 * dt) * vb, va, vb);
+      core::PointState st{el.stress[p], el.plastic_strain[p], el.temperature[p], el.energy[p],
+                          el.density[p]};
+      const core::UniaxialUpdate u = core::uniaxial_update(mat, strength, eos, Thermal, st,
+                                                           mid.axial_strain_rate * dt, dt);
+      sums[0] += el.point_mass[p] * u.point.plastic_work;
+      el.stress[p] = st.stress;
+      el.plastic_strain[p] = st.plastic_strain;
+      el.temperature[p] = st.temperature;
+      el.energy[p] = st.energy;
+      el.density[p] = st.density;
+      const TrussKinematics now = truss_kinematics(xa, xb, va, vb);
+      const double area = current_area(el.area0[e], el.length0[e], mat.density, now.length, st.density);
+      el.volume[e] = area * now.length;
+      Vec3 fa, fb;
+      add_truss_forces(now, st.stress.xx * area, fa, fb);
+      el.critical_dt[e] = truss_time_step(now.length, core::uniaxial_modulus(mat, eos, st), st.density);
+      if (!std::isfinite(st.stress.xx + fa.x + fa.y + fa.z) &&
+          thread_errors_[static_cast<std::size_t>(t)].empty()) {
+        thread_errors_[static_cast<std::size_t>(t)] =
+            "truss " + std::to_string(e - b.begin) + " of body " + body.name;
+        thread_error_field_[static_cast<std::size_t>(t)] = "stress";
+      }
+      const char* failure = nullptr;
+      if (erosion) {
+        if (erosion->plastic_strain > 0.0 && st.plastic_strain >= erosion->plastic_strain)
+          failure = "plastic strain";
+        else if (erosion->material_failure && mat.failure_strain > 0.0 &&
+                 st.plastic_strain >= mat.failure_strain)
+          failure = "material failure strain";
+        else if (el.volume[e] < erosion->volume_ratio * el.volume0[e])
+          failure = "volume ratio";
+        else if (el.critical_dt[e] < erosion->time_step)
+          failure = "time step";
+      }
+      if (failure) {
+        thread_erosions_[static_cast<std::size_t>(t)].push_back(e);
+        thread_failure_[static_cast<std::size_t>(t)].push_back(failure);
+        fa = fb = Vec3{};
+      }
+      element_force_[force_base + 2 * e] = fa;
+      element_force_[force_base + 2 * e + 1] = fb;
+    }
+  };
+  if (!core::worth_threads(b.end - b.begin)) {
+    sweep(b.begin, b.end, 0);
+  } else {
+#pragma omp parallel
+    {
+      const auto [lo, hi] = core::static_range(b.end - b.begin, core::thread_index(), core::team_size());
+      sweep(b.begin + lo, b.begin + hi, core::thread_index());
+    }
+  }
+}
+
+void FeSolver::update_trusses(double dt) {
+  std::fill(thread_sums_.begin(), thread_sums_.end(), 0.0);
+  for (auto& e : thread_errors_) e.clear();
+  for (const ElementBatch& b : trusses_.batches) {
+    const core::Material& m = scene_.materials[static_cast<std::size_t>(b.material)];
+    std::visit(
+        [&](const auto& strength, const auto& eos) {
+          using S = std::decay_t<decltype(strength)>;
+          using E = std::decay_t<decltype(eos)>;
+          if (m.has_thermal_term())
+            truss_batch<S, E, true>(b, strength, eos, dt);
+          else
+            truss_batch<S, E, false>(b, strength, eos, dt);
+        },
+        m.strength, m.eos);
+    for (std::size_t t = 0; t < thread_errors_.size(); ++t)
+      if (!thread_errors_[t].empty()) raise(thread_errors_[t], thread_error_field_[t], "not a finite number");
+    collect_erosions(trusses_, "truss");
+  }
+  for (std::size_t t = 0; t < thread_errors_.size(); ++t)
+    plastic_work_ += thread_sums_[t * core::cache_line_doubles];
+}
+
+}  // namespace afemp::fem
