@@ -78,6 +78,8 @@ class FeSolver {
   explicit FeSolver(const core::Scene& scene);
 
   const FeNodes& nodes() const { return nodes_; }
+  // For drivers and tests that prescribe node motion between steps (velocities at half steps).
+  FeNodes& mutable_nodes() { return nodes_; }
   const FeElements& hexahedra() const { return hexes_; }
   const FeElements& trusses() const { return trusses_; }
   const MeshData& mesh() const { return mesh_; }  // the assembled input mesh (for reports)
