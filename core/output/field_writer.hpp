@@ -119,7 +119,7 @@ class FieldWriter {
  public:
   // Creates the directory (and parents) and truncates both files. Throws std::runtime_error
   // naming the path and the reason if either cannot be created.
-  explicit FieldWriter(std::string directory, std::string stem = "particles");
+  explicit FieldWriter(std::string directory, std::string stem = "fields");
   ~FieldWriter();
   FieldWriter(const FieldWriter&) = delete;
   FieldWriter& operator=(const FieldWriter&) = delete;

@@ -9,7 +9,7 @@ namespace afemp::core {
 
 struct OutputPaths {
   std::string directory;                     // everything of one run goes here
-  std::string fields_stem = "particles";     // DIR/STEM.h5 + DIR/STEM.xmf (FieldWriter)
+  std::string fields_stem = "fields";        // DIR/STEM.h5 + DIR/STEM.xmf (FieldWriter)
   std::string history_file = "history.csv";  // DIR/history.csv (HistoryWriter)
 };
 

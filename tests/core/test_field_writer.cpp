@@ -144,7 +144,7 @@ TEST(FieldWriter, TwoFramesReadBackExactly) {
   {
     FieldWriter w(out);
     EXPECT_EQ(w.frames(), 0u);
-    EXPECT_EQ(w.h5_path(), out + "/particles.h5");
+    EXPECT_EQ(w.h5_path(), out + "/fields.h5");
     FrameData(0).write(w, 0.0, 0);
     EXPECT_EQ(w.frames(), 1u);
     // Flushed: readable while the writer still holds the file (a run that dies later).
@@ -152,7 +152,7 @@ TEST(FieldWriter, TwoFramesReadBackExactly) {
     FrameData(1).write(w, 0.1, 1234567890123L);
     EXPECT_EQ(w.frames(), 2u);
   }
-  const std::string h5 = out + "/particles.h5";
+  const std::string h5 = out + "/fields.h5";
   expect_frame(h5, 0, 0.0, 0);
   expect_frame(h5, 1, 0.1, 1234567890123L);
 }
@@ -206,10 +206,10 @@ TEST(FieldWriter, SameCallsGiveSameBytes) {
     FrameData(0).write(w, 0.0, 0);
     FrameData(1).write(w, 0.25, 7);
   }
-  const std::string a = slurp(dir / "a/particles.h5"), b = slurp(dir / "b/particles.h5");
+  const std::string a = slurp(dir / "a/fields.h5"), b = slurp(dir / "b/fields.h5");
   ASSERT_FALSE(a.empty());
   EXPECT_TRUE(a == b) << "HDF5 output differs between identical runs";
-  EXPECT_EQ(slurp(dir / "a/particles.xmf"), slurp(dir / "b/particles.xmf"));
+  EXPECT_EQ(slurp(dir / "a/fields.xmf"), slurp(dir / "b/fields.xmf"));
 }
 
 TEST(FieldWriter, EmptyFrameAndOtherComponentCounts) {
@@ -485,8 +485,8 @@ TEST(FieldWriter, SingleCloudCallIsAOneBlockFrame) {
     const PointBlock points[] = {{"particles", kPoints, as_doubles(d.position.data()), fields}};
     w.write_frame(0.5, 5, points, {});
   }
-  EXPECT_TRUE(slurp(dir / "old/particles.h5") == slurp(dir / "new/particles.h5"));
-  EXPECT_EQ(slurp(dir / "old/particles.xmf"), slurp(dir / "new/particles.xmf"));
+  EXPECT_TRUE(slurp(dir / "old/fields.h5") == slurp(dir / "new/fields.h5"));
+  EXPECT_EQ(slurp(dir / "old/fields.xmf"), slurp(dir / "new/fields.xmf"));
 }
 
 TEST(FieldWriter, SameMultiBlockCallsGiveSameBytes) {
@@ -585,7 +585,7 @@ TEST(FieldWriter, ReaderNamesWhatIsMissing) {
     FieldWriter w(dir.str());
     FrameData(0).write(w, 0.0, 0);
   }
-  const std::string h5 = (dir / "particles.h5").string();
+  const std::string h5 = (dir / "fields.h5").string();
   try {
     read_dataset(h5, "/frame_000000/nothing");
     FAIL() << "expected std::runtime_error";

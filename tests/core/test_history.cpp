@@ -125,8 +125,8 @@ TEST(OutputPaths, DefaultDirectoryIsRunsSlashSceneStem) {
   EXPECT_EQ(default_output_directory(""), "runs/run");
   const OutputPaths p = default_output_paths("examples/taylor_bar/mpm.toml");
   EXPECT_EQ(p.directory, "runs/taylor_bar-mpm");
-  EXPECT_EQ(fields_h5_path(p), "runs/taylor_bar-mpm/particles.h5");
-  EXPECT_EQ(fields_xmf_path(p), "runs/taylor_bar-mpm/particles.xmf");
+  EXPECT_EQ(fields_h5_path(p), "runs/taylor_bar-mpm/fields.h5");
+  EXPECT_EQ(fields_xmf_path(p), "runs/taylor_bar-mpm/fields.xmf");
   EXPECT_EQ(history_path(p), "runs/taylor_bar-mpm/history.csv");
 }
 

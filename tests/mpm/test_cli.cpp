@@ -47,7 +47,7 @@ TEST(Cli, CheckRejectsMisspeltKeyNamingFileLineKeyAndAllowedKeys) {
 // 7.85e-3 x 8 = 0.0628 g, and with v = (3, -4, 12) m/s (|v|^2 = 169) the first history row
 // (step 0, before any step) has KE = m |v|^2 / 2 = 5.3066 (g mm^2 / ms^2). Tolerance 1e-10
 // relative (the CSV keeps 11 significant digits). The run must exit 0 and leave
-// particles.h5, particles.xmf and history.csv in the directory given with -o.
+// fields.h5, fields.xmf and history.csv in the directory given with -o.
 TEST(Cli, RunWritesFieldsAndHistoryStartingFromTheSceneKineticEnergy) {
   test::ScratchDir dir;
   const std::string path = dir.write("tiny.toml",
@@ -61,7 +61,7 @@ TEST(Cli, RunWritesFieldsAndHistoryStartingFromTheSceneKineticEnergy) {
   const test::CommandResult r =
       test::run_afemp("run \"" + path + "\" -o \"" + out + "\" --threads 1", dir);
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-  for (const char* f : {"particles.h5", "particles.xmf", "history.csv"})
+  for (const char* f : {"fields.h5", "fields.xmf", "history.csv"})
     EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
 
   const core::CsvTable h = core::read_csv(out + "/history.csv");

@@ -34,7 +34,7 @@ std::string wall_scene(const std::string& time_step_line, const std::string& fac
 // particle is thrown off the grid. The guard must stop the run with a SimulationError whose
 // message names the step ("step N", N >= 1), the particle ("particle ID of body 'block'")
 // and the field ("field 'stress'", 'volume' or 'position'), and leave history.csv with at
-// least the step-0 row and particles.xmf listing frame 0.
+// least the step-0 row and fields.xmf listing frame 0.
 TEST(Guard, UnstableTimeStepStopsWithStepParticleAndFieldAndKeepsOutput) {
   // The stable step of this scene at factor 1.
   const core::Scene probe = core::parse_scene(wall_scene("", "time_step_factor = 1.0\n"), "p.toml");
@@ -72,9 +72,9 @@ TEST(Guard, UnstableTimeStepStopsWithStepParticleAndFieldAndKeepsOutput) {
   ASSERT_GE(table.rows.size(), 1u);
   EXPECT_EQ(table.rows[0][table.column("step")], 0.0);
   EXPECT_GT(table.rows[0][table.column("kinetic")], 0.0);
-  const std::string xmf = out + "/particles.xmf";
+  const std::string xmf = out + "/fields.xmf";
   ASSERT_TRUE(std::filesystem::exists(xmf));
-  ASSERT_TRUE(std::filesystem::exists(out + "/particles.h5"));
+  ASSERT_TRUE(std::filesystem::exists(out + "/fields.h5"));
   const std::string index = test::slurp(xmf);
   EXPECT_NE(index.find("frame_000000"), std::string::npos) << index;
   EXPECT_NE(index.find("<Time Value=\"0\""), std::string::npos) << index;
