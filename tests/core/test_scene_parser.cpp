@@ -452,3 +452,126 @@ TEST(SceneParser, EnumNamesRoundTripToTheirSceneSpelling) {
 
 }  // namespace
 }  // namespace afemp::core
+
+namespace afemp::core {
+namespace {
+
+const std::string mesh_scene = R"([run]
+end_time = 1.0
+
+[materials.steel]
+density = 7.8e-3
+E = 200e3
+nu = 0.3
+failure_strain = 0.4
+
+[[bodies]]
+name = "plate"
+discretisation = "hexahedra"
+material = "steel"
+shape = { box = { min = [0, 0, 0], max = [4, 2, 1] } }
+mesh = { divisions = [8, 4, 2] }
+element = "full"
+hourglass = { form = "stiffness", coefficient = 0.05 }
+bulk_viscosity = { linear = 0.1, quadratic = 2.0 }
+erosion = { plastic_strain = 0.8, material_failure = true, volume_ratio = 0.1, time_step = 1e-7 }
+velocity = [0, 0, -10]
+
+[[bodies]]
+name = "bar"
+discretisation = "trusses"
+material = "steel"
+shape = { line = { from = [0, 0, 0], to = [0, 0, 10] } }
+mesh = { segments = 5 }
+area = 0.5
+
+[[constraints]]
+nodes = { plane = { point = [0, 0, 0], normal = [1, 0, 0], tolerance = 1e-9 } }
+body = "plate"
+fixed = ["x", "z"]
+
+[[constraints]]
+nodes = { set = "end" }
+velocity = [0, 0, 1]
+
+[[walls]]
+point = [0, 0, -1]
+normal = [0, 0, 2]
+velocity = [0, 0, 1]
+friction = 0.2
+bodies = ["plate"]
+)";
+
+TEST(SceneParser, MeshBodiesConstraintsAndWallsNeedNoGrid) {
+  const Scene s = parse_scene(mesh_scene, "mesh.toml");
+  EXPECT_FALSE(s.has_grid);
+  ASSERT_EQ(s.bodies.size(), 2u);
+  const BodySpec& plate = s.bodies[0];
+  EXPECT_EQ(plate.discretisation, Discretisation::hexahedra);
+  EXPECT_EQ(plate.mesh.divisions, (std::array<int, 3>{8, 4, 2}));
+  EXPECT_EQ(plate.element, HexFormulation::full);
+  EXPECT_EQ(plate.hourglass.form, HourglassForm::stiffness);
+  EXPECT_EQ(plate.hourglass.coefficient, 0.05);
+  EXPECT_EQ(plate.bulk_viscosity.linear, 0.1);
+  EXPECT_EQ(plate.bulk_viscosity.quadratic, 2.0);
+  ASSERT_TRUE(plate.erosion.has_value());
+  EXPECT_EQ(plate.erosion->plastic_strain, 0.8);
+  EXPECT_TRUE(plate.erosion->material_failure);
+  EXPECT_EQ(plate.erosion->volume_ratio, 0.1);
+  EXPECT_EQ(plate.erosion->time_step, 1e-7);
+  EXPECT_EQ(s.materials[0].failure_strain, 0.4);
+  const BodySpec& bar = s.bodies[1];
+  EXPECT_EQ(bar.discretisation, Discretisation::trusses);
+  EXPECT_EQ(bar.mesh.segments, 5);
+  EXPECT_EQ(bar.area, 0.5);
+  ASSERT_EQ(s.constraints.size(), 2u);
+  EXPECT_EQ(s.constraints[0].body, 0);
+  EXPECT_EQ(s.constraints[0].components, (std::array<bool, 3>{true, false, true}));
+  EXPECT_EQ(s.constraints[1].nodes.kind, NodeSelector::Kind::set);
+  EXPECT_EQ(s.constraints[1].velocity.z, 1.0);
+  ASSERT_EQ(s.walls.size(), 1u);
+  EXPECT_EQ(s.walls[0].normal.z, 1.0);  // normalised
+  EXPECT_EQ(s.walls[0].friction, 0.2);
+  EXPECT_EQ(s.walls[0].bodies, std::vector<int>{0});
+}
+
+TEST(SceneParser, MeshMistakesNameTheKeyAndWhatIsAllowed) {
+  auto replaced = [](std::string from, const std::string& to) {
+    std::string s = mesh_scene;
+    s.replace(s.find(from), from.size(), to);
+    return s;
+  };
+  std::string e = error_of(replaced("shape = { line = { from = [0, 0, 0], to = [0, 0, 10] } }",
+                                    "shape = { sphere = { centre = [0, 0, 0], radius = 1 } }"));
+  EXPECT_NE(e.find("a body of trusses takes one of line, rebar, mesh, not sphere"),
+            std::string::npos) << e;
+  e = error_of(replaced("element = \"full\"", "particles_per_cell = 2"));
+  EXPECT_NE(e.find("bodies.plate.particles_per_cell"), std::string::npos) << e;
+  EXPECT_NE(e.find("not to hexahedra"), std::string::npos) << e;
+  e = error_of(replaced("fixed = [\"x\", \"z\"]", "fixed = [\"w\"]"));
+  EXPECT_NE(e.find("allowed values: \"x\", \"y\", \"z\", \"all\""), std::string::npos) << e;
+  e = error_of(replaced("bodies = [\"plate\"]", "bodies = [\"plat\"]"));
+  EXPECT_NE(e.find("unknown body \"plat\""), std::string::npos) << e;
+  e = error_of(replaced("area = 0.5\n", ""));
+  EXPECT_NE(e.find("bodies.bar.area"), std::string::npos) << e;
+  e = error_of(replaced("mesh = { segments = 5 }", "mesh = { core = 5 }"));
+  EXPECT_NE(e.find("unknown key"), std::string::npos) << e;
+  e = error_of(replaced("hourglass = { form = \"stiffness\"", "hourglass = { form = \"stiff\""));
+  EXPECT_NE(e.find("allowed values: \"viscous\", \"stiffness\""), std::string::npos) << e;
+}
+
+TEST(SceneParser, ParticlesAndMeshesInOneSceneAreRejectedUntilCoupled) {
+  std::string text = mesh_scene;
+  text.insert(text.find("[materials.steel]"), "[grid]\ncell = 1.0\nmin = [-5, -5, -5]\nmax = [5, 5, 15]\n\n");
+  text.insert(text.find("[[constraints]]"),
+              "[[bodies]]\nname = \"ball\"\nmaterial = \"steel\"\n"
+              "shape = { sphere = { centre = [0, 0, 5], radius = 1 } }\n\n");
+  const std::string e = error_of(text);
+  EXPECT_NE(e.find("separate scenes"), std::string::npos) << e;
+  // A particle body without a grid is an error naming [grid].
+  const std::string no_grid = minimal_tail;
+  EXPECT_NE(error_of("[run]\nend_time = 1.0\n" + no_grid).find("key 'grid'"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace afemp::core
