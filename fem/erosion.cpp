@@ -1,10 +1,11 @@
 // Element erosion: an element that meets one of its body's criteria (equivalent plastic
 // strain, the material's failure strain, volume ratio, critical time step, or inversion) is
-// removed; its internal energy leaves with it and is booked as eroded energy. Node masses are
-// then recomputed from the live elements (one source of truth), the kinetic energy of the mass
-// that left is booked too, and nodes left with no element drop out of the update; every
-// eroded element and dropped node is written to erosion.csv.
+// removed; its internal energy and the kinetic energy of its share of the node masses leave with
+// it, booked as eroded energy and written in its erosion.csv record, so the records add up to
+// the eroded energy. Node masses are then recomputed from the live elements (one source of
+// truth), and nodes left with no element drop out of the update, with a record of their own.
 #include <algorithm>
+#include <string_view>
 
 #include "fem/fe_solver.hpp"
 
@@ -22,6 +23,12 @@ void FeSolver::collect_erosions(FeElements& el, const char* kind) {
       double energy = 0.0;
       for (int g = 0; g < batch->points_per_element; ++g)
         energy += el.point_mass[p0 + static_cast<std::size_t>(g)] * el.energy[p0 + static_cast<std::size_t>(g)];
+      // The element's mass leaves its nodes (a lumped share each) at their velocity v^{n+1/2}.
+      const std::size_t corners = std::string_view(kind) == "truss" ? 2 : 8;
+      for (std::size_t a = 0; a < corners; ++a) {
+        const Vec3& v = nodes_.velocity[static_cast<std::size_t>(el.nodes[e][a])];
+        energy += 0.5 * (el.mass[e] / static_cast<double>(corners)) * core::dot(v, v);
+      }
       el.alive[e] = 0;
       el.bulk_q[e] = 0.0;
       eroded_energy_ += energy;
@@ -40,16 +47,11 @@ void FeSolver::finish_erosion() {
   recompute_node_masses();
   for (auto& ev : events_)
     if (ev.time < time_) ev.time = time_;  // stamped with the end of the step they happened in
-  for (std::size_t i = 0; i < nodes_.size(); ++i) {
-    const double lost = before[i] - nodes_.mass[i];
-    if (lost <= 0.0) continue;
-    const Vec3& v = nodes_.velocity[i];
-    const double kinetic = 0.5 * lost * core::dot(v, v);
-    eroded_energy_ += kinetic;
-    if (nodes_.mass[i] == 0.0)
+  // A dropped node's mass and kinetic energy are in its elements' records: its own carries none.
+  for (std::size_t i = 0; i < nodes_.size(); ++i)
+    if (before[i] > 0.0 && nodes_.mass[i] == 0.0)
       events_.push_back({time_, "node", static_cast<std::int64_t>(i), nodes_.body[i],
-                         "no element left", kinetic, lost});
-  }
+                         "no element left", 0.0, 0.0});
 }
 
 }  // namespace afemp::fem

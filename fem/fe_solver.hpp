@@ -63,7 +63,10 @@ struct ErosionEvent {
   std::int64_t id = 0;              // index within its kind and body
   int body = 0;
   std::string reason;
-  double energy = 0.0;  // internal energy of an element, kinetic energy of a dropped node
+  // An element's internal energy plus the kinetic energy of its node-mass share, and its mass;
+  // 0 for a dropped node (its elements' records carry its mass and energy). The records' energies
+  // add up to the eroded energy.
+  double energy = 0.0;
   double mass = 0.0;
 };
 

@@ -4,8 +4,9 @@
 // to mu times the normal one (stick below it, slide with the reduced velocity above it). A
 // moving wall does work m dv . v_wall on the nodes, which goes to the external work; the
 // kinetic energy a fixed wall takes from arriving nodes is not hidden and shows in the
-// energy balance.
+// energy balance. Imposed velocity components (constraints) are never changed by a wall.
 #include <cmath>
+#include <cstdint>
 
 #include "core/parallel.hpp"
 #include "fem/fe_solver.hpp"
@@ -23,22 +24,33 @@ void FeSolver::apply_walls(double dt) {
       for (std::size_t k = begin; k < end; ++k) {
         const auto i = static_cast<std::size_t>(w.nodes[k]);
         const double m = nodes_.mass[i];
-        if (!(m > 0.0) || nodes_.imposed[i]) continue;  // constraints win over walls
+        if (!(m > 0.0)) continue;
+        // Constraints win over walls: the wall moves only the free components, so a node on a
+        // symmetry plane normal to the wall is still held by it. free_normal is the wall
+        // normal with the imposed components removed; along it the gap closes.
+        const std::uint8_t imposed = nodes_.imposed[i];
+        Vec3 free_normal = s.normal;
+        for (int a = 0; a < 3; ++a)
+          if (imposed & (1u << a)) free_normal[a] = 0.0;
+        const double reach = core::dot(free_normal, s.normal);
+        if (reach < 1e-12) continue;  // the normal lies in imposed components
         Vec3& v = nodes_.velocity[i];
         const double gap = core::dot(nodes_.position[i] + dt * v - wall_point, s.normal);
         if (gap >= 0.0) continue;
         const Vec3 before = v;
-        const double dvn = -gap / dt;  // > 0: back onto the wall
-        v += dvn * s.normal;
+        const double dvn = -gap / dt;  // > 0: the normal velocity change back onto the wall
+        v += (dvn / reach) * free_normal;
         if (s.friction > 0.0) {
           const Vec3 rel = v - s.velocity;
-          const Vec3 tangential = rel - core::dot(rel, s.normal) * s.normal;
+          Vec3 tangential = rel - core::dot(rel, s.normal) * s.normal;
+          for (int a = 0; a < 3; ++a)
+            if (imposed & (1u << a)) tangential[a] = 0.0;
           const double vt = core::norm(tangential);
           const double limit = s.friction * dvn;
-          if (vt <= limit)
-            v -= tangential;
-          else
-            v -= (limit / vt) * tangential;
+          v -= (vt <= limit ? 1.0 : limit / vt) * tangential;
+          // Removing imposed components may have tilted the friction change off the wall plane.
+          const double off = core::dot(nodes_.position[i] + dt * v - wall_point, s.normal);
+          v -= (off / (dt * reach)) * free_normal;
         }
         work += m * core::dot(v - before, s.velocity);
       }
