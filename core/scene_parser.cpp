@@ -651,7 +651,9 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
     hr.known({"form", "coefficient"});
     hr.check_unknown();
     b.hourglass.form = static_cast<HourglassForm>(hr.choice("form", {"viscous", "stiffness"}, 0));
-    b.hourglass.coefficient = hr.number("coefficient", 0.1, Range::closed(0.0, 0.5));
+    // Defaults of fem/hourglass.hpp: 0.1 viscous (LS-DYNA's QM), 0.05 stiffness (types 4/5).
+    const bool stiffness = b.hourglass.form == HourglassForm::stiffness;
+    b.hourglass.coefficient = hr.number("coefficient", stiffness ? 0.05 : 0.1, Range::closed(0.0, 0.5));
   }
   if (const toml::table* t = r.optional_table("bulk_viscosity")) {
     TableReader vr(*t, r.dotted("bulk_viscosity"), r.file());

@@ -74,8 +74,7 @@ TEST(TaylorBar, OnePointHexahedraMatchExperimentWithinThreePercentMeanError) {
   EXPECT_LT(s.max_energy_error, 0.02);
 }
 
-// The stiffness form at 0.05, the coefficient fem/hourglass.hpp documents for it (the scene's
-// default, 0.1, is the viscous form's): the same pass mark. At 0.1 it is reported, and a stiffer
+// The stiffness form at 0.05, its default coefficient (fem/hourglass.hpp): the same pass mark. At 0.1 it is reported, and a stiffer
 // hourglass must resist the lip of the mushroom more: D at 0.1 <= D at 0.05.
 TEST(TaylorBar, StiffnessHourglassMatchesExperimentWithinThreePercentMeanError) {
   print_header();
