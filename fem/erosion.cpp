@@ -3,7 +3,8 @@
 // removed; its internal energy and the kinetic energy of its share of the node masses leave with
 // it, booked as eroded energy and written in its erosion.csv record, so the records add up to
 // the eroded energy. Node masses are then recomputed from the live elements (one source of
-// truth), and nodes left with no element drop out of the update, with a record of their own.
+// truth), and nodes left with no element drop out of the update, with a record of their own
+// that reports their mass and kinetic energy (already counted in their elements' records).
 #include <algorithm>
 #include <string_view>
 
@@ -47,11 +48,15 @@ void FeSolver::finish_erosion() {
   recompute_node_masses();
   for (auto& ev : events_)
     if (ev.time < time_) ev.time = time_;  // stamped with the end of the step they happened in
-  // A dropped node's mass and kinetic energy are in its elements' records: its own carries none.
+  // A dropped node's row reports the mass and kinetic energy it leaves the update with; both
+  // are already in its elements' rows (and in the eroded energy), so the rows of kind "node"
+  // are not added to them.
   for (std::size_t i = 0; i < nodes_.size(); ++i)
-    if (before[i] > 0.0 && nodes_.mass[i] == 0.0)
+    if (before[i] > 0.0 && nodes_.mass[i] == 0.0) {
+      const Vec3& v = nodes_.velocity[i];
       events_.push_back({time_, "node", static_cast<std::int64_t>(i), nodes_.body[i],
-                         "no element left", 0.0, 0.0});
+                         "no element left", 0.5 * before[i] * core::dot(v, v), before[i]});
+    }
 }
 
 }  // namespace afemp::fem

@@ -63,9 +63,9 @@ struct ErosionEvent {
   std::int64_t id = 0;              // index within its kind and body
   int body = 0;
   std::string reason;
-  // An element's internal energy plus the kinetic energy of its node-mass share, and its mass;
-  // 0 for a dropped node (its elements' records carry its mass and energy). The records' energies
-  // add up to the eroded energy.
+  // An element's internal energy plus the kinetic energy of its node-mass share, and its mass:
+  // the element records add up to the eroded energy. A dropped node's record reports its mass
+  // and kinetic energy, which its elements' records already count.
   double energy = 0.0;
   double mass = 0.0;
 };
