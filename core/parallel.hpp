@@ -49,6 +49,21 @@ inline std::pair<std::size_t, std::size_t> static_range(std::size_t n, int t, in
 // and thread count always take the same path.
 inline bool worth_threads(std::size_t items) { return items >= 2048; }
 
+// Runs body(begin, end, thread) over the static partition of [0, n) among the threads, or as
+// one serial chunk (thread 0) when n is not worth_threads: the sweep shape of every loop that
+// keeps per-thread partial results.
+template <class Body>
+void parallel_chunks(std::size_t n, Body&& body) {
+  if (!worth_threads(n)) {
+    body(std::size_t{0}, n, 0);
+    return;
+  }
+#pragma omp parallel
+  {
+    const auto [begin, end] = static_range(n, thread_index(), team_size());
+    body(begin, end, thread_index());
+  }
+}
 // Bytes a thread's slot is padded to, so partial sums do not share cache lines.
 inline constexpr std::size_t cache_line_doubles = 8;
 

@@ -6,20 +6,10 @@
 #include <cstdio>
 #include <string>
 
+#include "core/appendf.hpp"
 #include "fem/mesh_quality.hpp"
 
 namespace afemp::fem {
-
-namespace {
-
-template <class... Args>
-void append(std::string& out, const char* format, Args... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, format, args...);
-  out += buf;
-}
-
-}  // namespace
 
 FeModel::FeModel(const core::Scene& scene) : scene_(scene), solver_(scene) {}
 
@@ -175,59 +165,59 @@ std::string FeModel::describe() const {
     std::size_t count = 0;
     for (const ElementBatch& batch : el.batches)
       if (batch.body == static_cast<int>(b)) count += batch.end - batch.begin;
-    append(out, "body %s: %zu %s of %s, %zu nodes, mass %.6g\n", body.name.c_str(), count,
+    core::appendf(out, "body %s: %zu %s of %s, %zu nodes, mass %.6g\n", body.name.c_str(), count,
            hexes ? "hexahedra" : "trusses",
            scene_.materials[static_cast<std::size_t>(body.material)].name.c_str(), nodes, mass);
     if (hexes) {
       if (body.element == core::HexFormulation::one_point)
-        append(out, "  one-point hexahedra, %s hourglass control Q_hg = %g\n",
+        core::appendf(out, "  one-point hexahedra, %s hourglass control Q_hg = %g\n",
                core::to_string(body.hourglass.form), body.hourglass.coefficient);
       else
         out += "  fully integrated hexahedra (2x2x2) with B-bar volumetric integration\n";
-      append(out, "  bulk viscosity: linear %g, quadratic %g\n", body.bulk_viscosity.linear,
+      core::appendf(out, "  bulk viscosity: linear %g, quadratic %g\n", body.bulk_viscosity.linear,
              body.bulk_viscosity.quadratic);
     }
     if (body.erosion) {
       const core::ErosionSettings& e = *body.erosion;
       out += "  erosion:";
-      if (e.plastic_strain > 0.0) append(out, " plastic strain %g;", e.plastic_strain);
-      if (e.material_failure) append(out, " material failure strain %g;",
+      if (e.plastic_strain > 0.0) core::appendf(out, " plastic strain %g;", e.plastic_strain);
+      if (e.material_failure) core::appendf(out, " material failure strain %g;",
                                      scene_.materials[static_cast<std::size_t>(body.material)].failure_strain);
-      if (e.volume_ratio > 0.0) append(out, " volume ratio %g;", e.volume_ratio);
-      if (e.time_step > 0.0) append(out, " time step %g;", e.time_step);
+      if (e.volume_ratio > 0.0) core::appendf(out, " volume ratio %g;", e.volume_ratio);
+      if (e.time_step > 0.0) core::appendf(out, " time step %g;", e.time_step);
       out += " inverted elements\n";
     }
   }
   std::size_t imposed = 0;
   for (std::uint8_t m : n.imposed) imposed += m ? 1 : 0;
-  append(out, "nodes: %zu (%zu with imposed velocity components); rigid walls: %zu\n", n.size(),
+  core::appendf(out, "nodes: %zu (%zu with imposed velocity components); rigid walls: %zu\n", n.size(),
          imposed, scene_.walls.size());
   if (q.hexahedra > 0)
-    append(out,
+    core::appendf(out,
            "mesh quality: min scaled Jacobian %.3f (hexahedron %d), max aspect ratio %.2f "
            "(hexahedron %d), %zu inverted, volume %.6g\n",
            q.min_scaled_jacobian, q.worst_jacobian_element, q.max_aspect_ratio,
            q.worst_aspect_element, q.inverted, q.total_volume);
-  if (q.lines > 0) append(out, "trusses: shortest %.4g (truss %d)\n", q.min_line_length, q.shortest_line);
-  append(out, "smallest element time step: %.6g at %s\n",
+  if (q.lines > 0) core::appendf(out, "trusses: shortest %.4g (truss %d)\n", q.min_line_length, q.shortest_line);
+  core::appendf(out, "smallest element time step: %.6g at %s\n",
          solver_.stable_time_step() / scene_.run.element_time_step_factor,
          solver_.smallest_step_element().c_str());
   out += "step plan (explicit FE, central differences; no particles, so no background grid is "
          "allocated and no grid stage runs):\n";
   int k = 1;
-  append(out, "  %d. nodal update  -- element forces gathered per node, v += dt f / m, imposed "
+  core::appendf(out, "  %d. nodal update  -- element forces gathered per node, v += dt f / m, imposed "
               "velocities%s\n", k++, scene_.run.gravity.x != 0.0 || scene_.run.gravity.y != 0.0 ||
               scene_.run.gravity.z != 0.0 ? ", gravity" : "");
   if (!scene_.walls.empty())
-    append(out, "  %d. rigid walls  -- %zu planar wall(s): nodes kept on their side\n", k++,
+    core::appendf(out, "  %d. rigid walls  -- %zu planar wall(s): nodes kept on their side\n", k++,
            scene_.walls.size());
   if (!solver_.hexahedra().empty())
-    append(out, "  %d. hexahedra  -- strain rate, Jaumann stress update, bulk viscosity, "
+    core::appendf(out, "  %d. hexahedra  -- strain rate, Jaumann stress update, bulk viscosity, "
                 "hourglass, nodal forces, critical step%s\n", k++,
            std::any_of(scene_.bodies.begin(), scene_.bodies.end(), [](const auto& b) { return b.erosion.has_value(); })
                ? ", erosion" : "");
   if (!solver_.trusses().empty())
-    append(out, "  %d. trusses  -- axial strain rate, uniaxial stress update, axial forces, "
+    core::appendf(out, "  %d. trusses  -- axial strain rate, uniaxial stress update, axial forces, "
                 "critical step\n", k++);
   return out;
 }

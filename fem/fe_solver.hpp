@@ -9,9 +9,12 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "core/energies.hpp"
+#include "core/materials/material.hpp"
 #include "core/scene.hpp"
 #include "fem/hexahedron.hpp"
 #include "fem/mesh.hpp"
@@ -120,6 +123,12 @@ class FeSolver {
   void recompute_node_masses();
   [[noreturn]] void raise(const std::string& entity, const char* field,
                           const std::string& detail) const;
+  // Throws for the first thread (in thread order) that met a bad value in the last sweep.
+  void raise_thread_errors() const;
+  // Runs batch_update<Strength, Eos, Thermal>(batch, strength, eos, dt) for each batch with
+  // the material's concrete model types: one std::visit per batch.
+  template <class Update>
+  void for_each_batch(const FeElements& elements, Update&& batch_update);
 
   const core::Scene& scene_;
   MeshData mesh_;
@@ -149,5 +158,22 @@ class FeSolver {
   std::vector<std::string> thread_errors_;       // entity of the first bad value per thread
   std::vector<const char*> thread_error_field_;  // and its field
 };
+
+template <class Update>
+void FeSolver::for_each_batch(const FeElements& elements, Update&& update) {
+  for (const ElementBatch& b : elements.batches) {
+    const core::Material& m = scene_.materials[static_cast<std::size_t>(b.material)];
+    std::visit(
+        [&](const auto& strength, const auto& eos) {
+          using S = std::decay_t<decltype(strength)>;
+          using E = std::decay_t<decltype(eos)>;
+          if (m.has_thermal_term())
+            update.template operator()<S, E, true>(b, strength, eos);
+          else
+            update.template operator()<S, E, false>(b, strength, eos);
+        },
+        m.strength, m.eos);
+  }
+}
 
 }  // namespace afemp::fem

@@ -196,41 +196,20 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
       for (std::size_t a = 0; a < 8; ++a) element_force_[8 * e + a] = f[a];
     }
   };
-  if (!core::worth_threads(b.end - b.begin)) {
-    sweep(b.begin, b.end, 0);
-  } else {
-#pragma omp parallel
-    {
-      const auto [lo, hi] = core::static_range(b.end - b.begin, core::thread_index(), core::team_size());
-      sweep(b.begin + lo, b.begin + hi, core::thread_index());
-    }
-  }
+  core::parallel_chunks(b.end - b.begin, [&](std::size_t lo, std::size_t hi, int t) {
+    sweep(b.begin + lo, b.begin + hi, t);
+  });
 }
 
 void FeSolver::update_hexahedra(double dt) {
   std::fill(thread_sums_.begin(), thread_sums_.end(), 0.0);
   for (auto& e : thread_errors_) e.clear();
-  for (const ElementBatch& b : hexes_.batches) {
-    const core::Material& m = scene_.materials[static_cast<std::size_t>(b.material)];
-    std::visit(
-        [&](const auto& strength, const auto& eos) {
-          using S = std::decay_t<decltype(strength)>;
-          using E = std::decay_t<decltype(eos)>;
-          if (m.has_thermal_term())
-            hexahedron_batch<S, E, true>(b, strength, eos, dt);
-          else
-            hexahedron_batch<S, E, false>(b, strength, eos, dt);
-        },
-        m.strength, m.eos);
-    for (std::size_t t = 0; t < thread_errors_.size(); ++t)
-      if (!thread_errors_[t].empty())
-        raise(thread_errors_[t], thread_error_field_[t],
-              std::string(thread_error_field_[t]) == "jacobian"
-                  ? "the element inverted (set an erosion criterion on the body to remove such "
-                    "elements instead of stopping)"
-                  : "not a finite number");
+  for_each_batch(hexes_, [&]<class S, class E, bool Thermal>(const ElementBatch& b, const S& s,
+                                                         const E& e) {
+    hexahedron_batch<S, E, Thermal>(b, s, e, dt);
+    raise_thread_errors();
     collect_erosions(hexes_, "hexahedron");
-  }
+  });
   for (std::size_t t = 0; t < thread_errors_.size(); ++t) {
     const double* s = &thread_sums_[t * core::cache_line_doubles];
     plastic_work_ += s[kPlastic];

@@ -15,23 +15,6 @@
 
 namespace afemp::fem {
 
-namespace {
-
-template <class F>
-void parallel_chunks(std::size_t n, F&& body) {
-  if (!core::worth_threads(n)) {
-    body(std::size_t{0}, n, 0);
-    return;
-  }
-#pragma omp parallel
-  {
-    const auto [begin, end] = core::static_range(n, core::thread_index(), core::team_size());
-    body(begin, end, core::thread_index());
-  }
-}
-
-}  // namespace
-
 void FeSolver::update_nodes(double dt) {
   const double dt_force = steps_ == 0 ? 0.5 * dt : 0.5 * (previous_dt_ + dt);
   const Vec3 g = scene_.run.gravity;
@@ -39,7 +22,7 @@ void FeSolver::update_nodes(double dt) {
   const std::size_t n = nodes_.size();
   std::fill(thread_sums_.begin(), thread_sums_.end(), 0.0);
   for (auto& e : thread_errors_) e.clear();
-  parallel_chunks(n, [&](std::size_t begin, std::size_t end, int t) {
+  core::parallel_chunks(n, [&](std::size_t begin, std::size_t end, int t) {
     double work = 0.0;
     for (std::size_t i = begin; i < end; ++i) {
       const double m = nodes_.mass[i];
@@ -62,13 +45,14 @@ void FeSolver::update_nodes(double dt) {
           }
       }
       if (gravity) work += m * core::dot(g, v) * dt;
-      if (!std::isfinite(v.x + v.y + v.z) && thread_errors_[static_cast<std::size_t>(t)].empty())
+      if (!std::isfinite(v.x + v.y + v.z) && thread_errors_[static_cast<std::size_t>(t)].empty()) {
         thread_errors_[static_cast<std::size_t>(t)] = "node " + std::to_string(i);
+        thread_error_field_[static_cast<std::size_t>(t)] = "velocity";
+      }
     }
     thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles] = work;
   });
-  for (std::size_t t = 0; t < thread_errors_.size(); ++t)
-    if (!thread_errors_[t].empty()) raise(thread_errors_[t], "velocity", "not a finite number");
+  raise_thread_errors();
   for (std::size_t t = 0; t < thread_errors_.size(); ++t)
     external_work_ += thread_sums_[t * core::cache_line_doubles];
 }
@@ -85,7 +69,7 @@ void FeSolver::step(double dt) {
   if (!walls_.empty()) timed([&] { apply_walls(dt); });
   // Positions after every velocity condition, so the walls see the final v^{n+1/2}.
   const std::size_t n = nodes_.size();
-  parallel_chunks(n, [&](std::size_t begin, std::size_t end, int) {
+  core::parallel_chunks(n, [&](std::size_t begin, std::size_t end, int) {
     for (std::size_t i = begin; i < end; ++i)
       if (nodes_.mass[i] > 0.0) nodes_.position[i] += dt * nodes_.velocity[i];
   });
@@ -177,6 +161,17 @@ std::size_t FeSolver::bytes() const {
          v(el->hourglass_force) + v(el->stress) + v(el->point_mass) + v(el->plastic_strain) +
          v(el->temperature) + v(el->energy) + v(el->density);
   return b + v(element_force_) + v(incidence_) + v(incidence_offsets_);
+}
+
+void FeSolver::raise_thread_errors() const {
+  for (std::size_t t = 0; t < thread_errors_.size(); ++t) {
+    if (thread_errors_[t].empty()) continue;
+    const std::string field = thread_error_field_[t];
+    raise(thread_errors_[t], thread_error_field_[t],
+          field == "jacobian" ? "the element inverted (set an erosion criterion on the body to "
+                                "remove such elements instead of stopping)"
+                              : "not a finite number");
+  }
 }
 
 void FeSolver::raise(const std::string& entity, const char* field, const std::string& detail) const {

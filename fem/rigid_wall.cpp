@@ -56,16 +56,8 @@ void FeSolver::apply_walls(double dt) {
       }
       thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles] = work;
     };
-    if (!core::worth_threads(n)) {
-      sweep(0, n, 0);
-    } else {
-#pragma omp parallel
-      {
-        const auto [begin, end] = core::static_range(n, core::thread_index(), core::team_size());
-        sweep(begin, end, core::thread_index());
-      }
-    }
-    for (std::size_t t = 0; t < thread_erosions_.size(); ++t)
+    core::parallel_chunks(n, sweep);
+    for (std::size_t t = 0; t < thread_errors_.size(); ++t)
       external_work_ += thread_sums_[t * core::cache_line_doubles];
   }
 }

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "core/appendf.hpp"
 #include "mpm/particle_generation.hpp"
 
 namespace afemp::mpm {
@@ -63,13 +64,6 @@ const char* shape_name(const core::Shape& s) {
   }
 }
 
-template <class... Args>
-void append(std::string& out, const char* format, Args... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, format, args...);
-  out += buf;
-}
-
 }  // namespace
 
 std::string MpmModel::describe() const {
@@ -78,13 +72,13 @@ std::string MpmModel::describe() const {
   const auto& g = solver_.grid();
   const auto& p = solver_.particles();
   std::string out;
-  append(out, "grid: cell %g, %d x %d x %d cells over [%g, %g] x [%g, %g] x [%g, %g]\n",
+  core::appendf(out, "grid: cell %g, %d x %d x %d cells over [%g, %g] x [%g, %g] x [%g, %g]\n",
          g.cell(), g.cells()[0], g.cells()[1], g.cells()[2], scene.mpm.grid.min.x,
          scene.mpm.grid.max.x, scene.mpm.grid.min.y, scene.mpm.grid.max.y, scene.mpm.grid.min.z,
          scene.mpm.grid.max.z);
   out += "faces:";
   for (int f = 0; f < 6; ++f)
-    append(out, " %s=%s", core::to_string(static_cast<core::Face>(f)),
+    core::appendf(out, " %s=%s", core::to_string(static_cast<core::Face>(f)),
            core::to_string(scene.mpm.grid.faces[static_cast<std::size_t>(f)]));
   out += "\n";
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
@@ -96,12 +90,12 @@ std::string MpmModel::describe() const {
         mass += p.mass[i];
       }
     const auto& body = scene.bodies[b];
-    append(out, "body %s: %s of %s, %zu particles (%d per cell per direction), mass %.6g\n",
+    core::appendf(out, "body %s: %s of %s, %zu particles (%d per cell per direction), mass %.6g\n",
            body.name.c_str(), shape_name(body.shape),
            scene.materials[static_cast<std::size_t>(body.material)].name.c_str(), count,
            body.particles_per_cell, mass);
   }
-  append(out, "particles: %zu; active cells: %zu; active grid blocks: %zu (%zu node slots)\n",
+  core::appendf(out, "particles: %zu; active cells: %zu; active grid blocks: %zu (%zu node slots)\n",
          p.size(), solver_.active_cells(), g.active_block_count(), g.slot_count());
   out += solver_.plan().describe();
   return out;
