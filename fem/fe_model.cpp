@@ -4,12 +4,22 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
 #include <string>
 
 #include "core/appendf.hpp"
 #include "fem/mesh_quality.hpp"
 
 namespace afemp::fem {
+
+namespace {
+
+// Sizes every per-element output array to n zeros.
+void zeroed(std::size_t n, std::initializer_list<std::vector<double>*> arrays) {
+  for (std::vector<double>* a : arrays) a->assign(n, 0.0);
+}
+
+}  // namespace
 
 FeModel::FeModel(const core::Scene& scene) : scene_(scene), solver_(scene) {}
 
@@ -27,13 +37,8 @@ void FeModel::write_fields(core::FieldWriter& writer) {
   if (!h.empty()) {
     const std::size_t ne = h.size();
     hex_stress_.assign(ne, {});
-    hex_pressure_.assign(ne, 0.0);
-    hex_von_mises_.assign(ne, 0.0);
-    hex_plastic_.assign(ne, 0.0);
-    hex_temperature_.assign(ne, 0.0);
-    hex_density_.assign(ne, 0.0);
-    hex_alive_.assign(ne, 0.0);
-    hex_body_.assign(ne, 0.0);
+    zeroed(ne, {&hex_pressure_, &hex_von_mises_, &hex_plastic_, &hex_temperature_, &hex_density_,
+                &hex_alive_, &hex_body_});
     hex_connectivity_.resize(8 * ne);
     for (const ElementBatch& b : h.batches)
       for (std::size_t e = b.begin; e < b.end; ++e) {
@@ -67,12 +72,8 @@ void FeModel::write_fields(core::FieldWriter& writer) {
   const FeElements& t = solver_.trusses();
   if (!t.empty()) {
     const std::size_t ne = t.size();
-    truss_stress_.assign(ne, 0.0);
-    truss_force_.assign(ne, 0.0);
-    truss_plastic_.assign(ne, 0.0);
-    truss_temperature_.assign(ne, 0.0);
-    truss_alive_.assign(ne, 0.0);
-    truss_body_.assign(ne, 0.0);
+    zeroed(ne, {&truss_stress_, &truss_force_, &truss_plastic_, &truss_temperature_,
+                &truss_alive_, &truss_body_});
     truss_connectivity_.resize(2 * ne);
     for (const ElementBatch& b : t.batches)
       for (std::size_t e = b.begin; e < b.end; ++e) {

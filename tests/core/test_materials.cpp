@@ -8,54 +8,15 @@
 #include <string>
 
 #include "core/materials/material.hpp"
+#include "core/material_fixtures.hpp"
 
 namespace afemp::core {
 namespace {
 
-// Steel-like, units mm ms g N MPa.
-Material steel(StrengthModel strength = Elastic{}) {
-  Material m;
-  m.name = "steel";
-  m.density = 7.85e-3;
-  m.youngs_modulus = 2.0e5;
-  m.poisson_ratio = 0.3;
-  m.strength = strength;
-  return m;
-}
-
-// OFHC copper, Johnson-Cook (Johnson & Cook 1983) with Mie-Grueneisen (seed 001 values).
-JohnsonCook copper_jc() {
-  JohnsonCook jc;
-  jc.A = 90.0;
-  jc.B = 292.0;
-  jc.n = 0.31;
-  jc.C = 0.025;
-  jc.m = 1.09;
-  jc.reference_strain_rate = 1e-3;  // 1/s in 1/ms
-  jc.room_temperature = 293.0;
-  jc.melt_temperature = 1356.0;
-  return jc;
-}
-
-Material copper() {
-  Material m;
-  m.name = "copper";
-  m.density = 8.93e-3;
-  m.youngs_modulus = 1.24e5;
-  m.poisson_ratio = 0.34;
-  m.strength = copper_jc();
-  m.eos = MieGruneisen{8.93e-3, 3940.0, 1.49, 1.96};
-  m.thermal.specific_heat = 385.0;  // J/(kg K) = mm^2/(ms^2 K)
-  m.thermal.taylor_quinney = 0.9;
-  return m;
-}
-
-PointState at_rest(const Material& m) {
-  PointState p;
-  p.density = m.density;
-  p.temperature = m.thermal.initial_temperature;
-  return p;
-}
+using fixtures::at_rest;
+using fixtures::copper;
+using fixtures::copper_jc;
+using fixtures::steel;
 
 template <class Strength>
 PointUpdate update_no_eos(const Material& m, PointState& point, const SymTensor& d_eps,

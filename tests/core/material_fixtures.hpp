@@ -1,0 +1,53 @@
+// Materials the material-law tests share (units mm, ms, g, N, MPa): a steel-like solid and
+// OFHC copper with Johnson-Cook (Johnson & Cook 1983) and Mie-Grueneisen (seed 001 values).
+#pragma once
+
+#include "core/materials/material.hpp"
+
+namespace afemp::core::fixtures {
+
+inline Material steel(StrengthModel strength = Elastic{}) {
+  Material m;
+  m.name = "steel";
+  m.density = 7.85e-3;
+  m.youngs_modulus = 2.0e5;
+  m.poisson_ratio = 0.3;
+  m.strength = strength;
+  return m;
+}
+
+inline JohnsonCook copper_jc() {
+  JohnsonCook jc;
+  jc.A = 90.0;
+  jc.B = 292.0;
+  jc.n = 0.31;
+  jc.C = 0.025;
+  jc.m = 1.09;
+  jc.reference_strain_rate = 1e-3;  // 1/s in 1/ms
+  jc.room_temperature = 293.0;
+  jc.melt_temperature = 1356.0;
+  return jc;
+}
+
+inline Material copper() {
+  Material m;
+  m.name = "copper";
+  m.density = 8.93e-3;
+  m.youngs_modulus = 1.24e5;
+  m.poisson_ratio = 0.34;
+  m.strength = copper_jc();
+  m.eos = MieGruneisen{8.93e-3, 3940.0, 1.49, 1.96};
+  m.thermal.specific_heat = 385.0;  // J/(kg K) = mm^2/(ms^2 K)
+  m.thermal.taylor_quinney = 0.9;
+  return m;
+}
+
+// A point of the material at rest in its reference state.
+inline PointState at_rest(const Material& m) {
+  PointState p;
+  p.density = m.density;
+  p.temperature = m.thermal.initial_temperature;
+  return p;
+}
+
+}  // namespace afemp::core::fixtures
