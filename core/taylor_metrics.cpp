@@ -34,6 +34,15 @@ TaylorMeasures measure_taylor(std::span<const Vec3> points, std::span<const doub
   return {hi - lo, 2.0 * r_face, 2.0 * r_bulge};
 }
 
+const CylinderShape& taylor_bar(const Scene& scene, int body) {
+  const BodySpec& spec = scene.bodies.at(static_cast<std::size_t>(body));
+  const auto* cyl = std::get_if<CylinderShape>(&spec.shape);
+  if (cyl == nullptr)
+    throw std::invalid_argument("Taylor measures need a cylinder body; '" + spec.name +
+                                "' is not one");
+  return *cyl;
+}
+
 double taylor_mean_error(const TaylorMeasures& m, const TaylorReference& ref) {
   return (std::abs(m.length - ref.length) / ref.length +
           std::abs(m.impact_diameter - ref.impact_diameter) / ref.impact_diameter +

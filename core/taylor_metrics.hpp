@@ -22,6 +22,10 @@ struct TaylorMeasures {
 TaylorMeasures measure_taylor(std::span<const Vec3> points, std::span<const double> half,
                               const CylinderShape& bar, double face_band);
 
+// The cylinder of scene body `body`; throws std::invalid_argument naming the body when it is
+// not a cylinder.
+const CylinderShape& taylor_bar(const Scene& scene, int body);
+
 // Eq 2-42.
 double taylor_mean_error(const TaylorMeasures& m, const TaylorReference& ref);
 

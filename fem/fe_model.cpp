@@ -134,10 +134,7 @@ std::vector<core::EventLog> FeModel::take_events() {
 
 core::TaylorMeasures FeModel::measure_taylor(int body) const {
   const core::BodySpec& spec = scene_.bodies.at(static_cast<std::size_t>(body));
-  const auto* cyl = std::get_if<core::CylinderShape>(&spec.shape);
-  if (cyl == nullptr)
-    throw std::invalid_argument("Taylor measures need a cylinder body; '" + spec.name +
-                                "' is not one");
+  const core::CylinderShape* cyl = &core::taylor_bar(scene_, body);
   const FeNodes& n = solver_.nodes();
   std::vector<core::Vec3> points;
   for (std::size_t i = 0; i < n.size(); ++i)

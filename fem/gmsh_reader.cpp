@@ -164,14 +164,36 @@ class GmshReader {
     expect_end(key);
   }
 
+  // The first line of $Nodes and $Elements: entity blocks and the total item count, which
+  // the blocks must add up to.
+  struct SectionHeader {
+    std::int64_t blocks = 0, total = 0;
+    core::SourceLocation where;
+    const char* items;
+    void check_count(std::int64_t read, const std::string& key) const {
+      if (read != total)
+        throw core::InputError(where, key,
+                               "the header announces " + std::to_string(total) + " " + items +
+                                   ", the blocks hold " + std::to_string(read));
+    }
+  };
+
+  SectionHeader section_header(const std::string& key, const char* layout, const char* items) {
+    const auto h = next_words(key, 4, layout);
+    SectionHeader s;
+    s.blocks = integer(h[0], key, "the number of entity blocks");
+    s.total = integer(h[1], key, std::string("the number of ") + items);
+    s.where = here();
+    s.items = items;
+    return s;
+  }
+
   void read_nodes() {
     const std::string key = "$Nodes";
-    const auto h = next_words(key, 4, "'numEntityBlocks numNodes minNodeTag maxNodeTag'");
-    const auto blocks = integer(h[0], key, "the number of entity blocks");
-    const auto total = integer(h[1], key, "the number of nodes");
-    const core::SourceLocation header = here();
+    const SectionHeader section =
+        section_header(key, "'numEntityBlocks numNodes minNodeTag maxNodeTag'", "nodes");
     std::int64_t read = 0;
-    for (std::int64_t b = 0; b < blocks; ++b) {
+    for (std::int64_t b = 0; b < section.blocks; ++b) {
       const auto w = next_words(key, 4, "'entityDim entityTag parametric numNodesInBlock'");
       const DimTag entity{dimension(w[0], key),
                           static_cast<int>(integer(w[1], key, "the entity tag"))};
@@ -196,21 +218,16 @@ class GmshReader {
       }
       read += n;
     }
-    if (read != total)
-      throw core::InputError(header, key,
-                             "the header announces " + std::to_string(total) +
-                                 " nodes, the blocks hold " + std::to_string(read));
+    section.check_count(read, key);
     expect_end(key);
   }
 
   void read_elements() {
     const std::string key = "$Elements";
-    const auto h = next_words(key, 4, "'numEntityBlocks numElements minTag maxTag'");
-    const auto blocks = integer(h[0], key, "the number of entity blocks");
-    const auto total = integer(h[1], key, "the number of elements");
-    const core::SourceLocation header = here();
+    const SectionHeader section =
+        section_header(key, "'numEntityBlocks numElements minTag maxTag'", "elements");
     std::int64_t read = 0;
-    for (std::int64_t b = 0; b < blocks; ++b) {
+    for (std::int64_t b = 0; b < section.blocks; ++b) {
       const auto w = next_words(key, 4, "'entityDim entityTag elementType numElementsInBlock'");
       const DimTag entity{dimension(w[0], key),
                           static_cast<int>(integer(w[1], key, "the entity tag"))};
@@ -227,10 +244,7 @@ class GmshReader {
       }
       read += n;
     }
-    if (read != total)
-      throw core::InputError(header, key,
-                             "the header announces " + std::to_string(total) +
-                                 " elements, the blocks hold " + std::to_string(read));
+    section.check_count(read, key);
     expect_end(key);
   }
 

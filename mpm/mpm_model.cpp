@@ -103,10 +103,7 @@ std::string MpmModel::describe() const {
 
 core::TaylorMeasures MpmModel::measure_taylor(int body) const {
   const core::BodySpec& spec = scene_.bodies.at(static_cast<std::size_t>(body));
-  const auto* cyl = std::get_if<core::CylinderShape>(&spec.shape);
-  if (cyl == nullptr)
-    throw std::invalid_argument("Taylor measures need a cylinder body; '" + spec.name +
-                                "' is not one");
+  const core::CylinderShape* cyl = &core::taylor_bar(scene_, body);
   const Particles& p = solver_.particles();
   std::vector<core::Vec3> points;
   std::vector<double> half;
