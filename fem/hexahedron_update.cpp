@@ -12,6 +12,7 @@
 #include "core/parallel.hpp"
 #include "fem/fe_solver.hpp"
 #include "fem/hexahedron_full.hpp"
+#include "fem/hexahedron_lanes.hpp"
 #include "fem/hexahedron_one_point.hpp"
 #include "fem/hourglass.hpp"
 
@@ -28,6 +29,9 @@ StrainIncrement increment(const core::Mat3& l, double dt) {
   return {dt * core::sym_part(l), 0.5 * dt * (l.m[1][2] - l.m[2][1]),
           0.5 * dt * (l.m[0][2] - l.m[2][0]), 0.5 * dt * (l.m[0][1] - l.m[1][0])};
 }
+
+// Elements per pack of the one-point sweep: two AVX-512 or four AVX2 registers per array row.
+constexpr int kLanes = 8;
 
 // Thread slots: plastic work, bulk-viscous work, hourglass work.
 constexpr std::size_t kPlastic = 0, kViscous = 1, kHourglass = 2;
@@ -46,7 +50,87 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
   const core::ErosionSettings* erosion = body.erosion ? &*body.erosion : nullptr;
   FeElements& el = hexes_;
 
-  auto sweep = [&](std::size_t begin, std::size_t end, int t) {
+  // Update of one integration point with the velocity gradient l of the step.
+  auto update_point = [&](std::size_t p, const core::Mat3& l, double density, double q_old,
+                          double* sums) {
+    const StrainIncrement inc = increment(l, dt);
+    core::PointState st{el.stress[p], el.plastic_strain[p], el.temperature[p], el.energy[p],
+                        density};
+    st.stress += core::jaumann_increment(st.stress, inc.w23, inc.w13, inc.w12);
+    // Bulk-viscous heating by the q that acted over this step.
+    const double q_heat = -q_old * inc.d_eps.trace() / density;
+    const core::PointUpdate u =
+        core::constitutive_update(mat, strength, eos, Thermal, st, inc.d_eps, dt);
+    st.energy += q_heat;
+    sums[kPlastic] += el.point_mass[p] * u.plastic_work;
+    sums[kViscous] += el.point_mass[p] * q_heat;
+    el.stress[p] = st.stress;
+    el.plastic_strain[p] = st.plastic_strain;
+    el.temperature[p] = st.temperature;
+    el.energy[p] = st.energy;
+    el.density[p] = density;
+    return core::wave_speed(mat, eos, st);
+  };
+  // Bulk-viscous pressure q and the critical step of an element (length l, dilatation rate
+  // trace_rate, wave speed c).
+  auto bulk_viscosity = [&](std::size_t e, double density, double length, double trace_rate,
+                            double wave) {
+    const double q = trace_rate < 0.0 ? density * length *
+                                            (c_quad * length * trace_rate * trace_rate -
+                                             c_lin * wave * trace_rate)
+                                      : 0.0;
+    el.bulk_q[e] = q;
+    const double qv = c_lin * wave + c_quad * length * std::abs(std::min(trace_rate, 0.0));
+    el.critical_dt[e] = length / (qv + std::sqrt(qv * qv + wave * wave));
+    return q;
+  };
+  // After the forces f of element e: bad values, the erosion criteria, the forces stored.
+  auto finish = [&](std::size_t e, std::size_t p0, double volume, const char* failure,
+                    HexVectors& f, int t) {
+    el.volume[e] = volume;
+    if (!failure) {
+      bool bad = !std::isfinite(f[0].x + f[0].y + f[0].z);
+      for (int g = 0; g < b.points_per_element; ++g) {
+        const core::SymTensor& s = el.stress[p0 + static_cast<std::size_t>(g)];
+        bad = bad || !std::isfinite(s.xx + s.yy + s.zz + s.yz + s.xz + s.xy);
+      }
+      if (bad && thread_errors_[static_cast<std::size_t>(t)].empty()) {
+        thread_errors_[static_cast<std::size_t>(t)] =
+            "hexahedron " + std::to_string(e - b.begin) + " of body " + body.name;
+        thread_error_field_[static_cast<std::size_t>(t)] = "stress";
+      }
+    }
+    if (erosion && !failure) {
+      double eps_p = 0.0;
+      for (int g = 0; g < b.points_per_element; ++g)
+        eps_p = std::max(eps_p, el.plastic_strain[p0 + static_cast<std::size_t>(g)]);
+      if (erosion->plastic_strain > 0.0 && eps_p >= erosion->plastic_strain)
+        failure = "plastic strain";
+      else if (erosion->material_failure && mat.failure_strain > 0.0 && eps_p >= mat.failure_strain)
+        failure = "material failure strain";
+      else if (volume < erosion->volume_ratio * el.volume0[e])
+        failure = "volume ratio";
+      else if (el.critical_dt[e] < erosion->time_step)
+        failure = "time step";
+    }
+    if (failure) {
+      if (!erosion) {
+        if (thread_errors_[static_cast<std::size_t>(t)].empty()) {
+          thread_errors_[static_cast<std::size_t>(t)] =
+              "hexahedron " + std::to_string(e - b.begin) + " of body " + body.name;
+          thread_error_field_[static_cast<std::size_t>(t)] = "jacobian";
+        }
+        return;
+      }
+      thread_erosions_[static_cast<std::size_t>(t)].push_back(e);
+      thread_failure_[static_cast<std::size_t>(t)].push_back(failure);
+      for (HexVectors::size_type a = 0; a < 8; ++a) f[a] = Vec3{};
+    }
+    for (std::size_t a = 0; a < 8; ++a) element_force_[8 * e + a] = f[a];
+  };
+
+  // Fully integrated (B-bar) elements, one at a time.
+  auto sweep_full = [&](std::size_t begin, std::size_t end, int t) {
     double* sums = &thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles];
     for (std::size_t e = begin; e < end; ++e) {
       if (!el.alive[e]) continue;
@@ -57,147 +141,141 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
         x_new[a] = nodes_.position[n];
         x_mid[a] = x_new[a] - (0.5 * dt) * v[a];
       }
-      const std::size_t p0 = b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
+      const std::size_t p0 = b.point_begin + (e - b.begin) * 8;
       const double q_old = el.bulk_q[e];
       HexVectors f{};
-      double volume, trace_rate = 0.0, wave = 0.0;
       const char* failure = nullptr;
-
-      auto update_point = [&](std::size_t p, const core::Mat3& l, double density) {
-        const StrainIncrement inc = increment(l, dt);
-        core::PointState st{el.stress[p], el.plastic_strain[p], el.temperature[p], el.energy[p],
-                            density};
-        st.stress += core::jaumann_increment(st.stress, inc.w23, inc.w13, inc.w12);
-        // Bulk-viscous heating by the q that acted over this step.
-        const double q_heat = -q_old * inc.d_eps.trace() / density;
-        const core::PointUpdate u =
-            core::constitutive_update(mat, strength, eos, Thermal, st, inc.d_eps, dt);
-        st.energy += q_heat;
-        sums[kPlastic] += el.point_mass[p] * u.plastic_work;
-        sums[kViscous] += el.point_mass[p] * q_heat;
-        el.stress[p] = st.stress;
-        el.plastic_strain[p] = st.plastic_strain;
-        el.temperature[p] = st.temperature;
-        el.energy[p] = st.energy;
-        el.density[p] = density;
-        wave = std::max(wave, core::wave_speed(mat, eos, st));
-      };
-
-      if (full) {
-        const FullHex mid = full_hex(x_mid);
-        const FullHex now = full_hex(x_new);
-        if (!(min_jacobian(now) > 0.0) || !(min_jacobian(mid) > 0.0)) {
-          failure = "negative Jacobian";
-          volume = now.volume;
-        } else {
-          volume = now.volume;
-          const double density = el.mass[e] / volume;  // B-bar: uniform dilatation
-          for (int g = 0; g < 8; ++g) {
-            const core::Mat3 l = velocity_gradient_bbar(mid, g, v);
-            if (g == 0) trace_rate = l.m[0][0] + l.m[1][1] + l.m[2][2];
-            update_point(p0 + static_cast<std::size_t>(g), l, density);
-          }
-        }
-        if (!failure) {
-          const double length = characteristic_length(x_new, volume);
-          const double q = trace_rate < 0.0
-                               ? (el.mass[e] / volume) * length *
-                                     (c_quad * length * trace_rate * trace_rate - c_lin * wave * trace_rate)
-                               : 0.0;
-          el.bulk_q[e] = q;
-          std::array<core::SymTensor, 8> sigma;
-          for (std::size_t g = 0; g < 8; ++g) sigma[g] = el.stress[p0 + g] - q * core::SymTensor::identity();
-          add_stress_forces_bbar(now, sigma, f);
-          const double qv = c_lin * wave + c_quad * length * std::abs(std::min(trace_rate, 0.0));
-          el.critical_dt[e] = length / (qv + std::sqrt(qv * qv + wave * wave));
-        }
+      const FullHex mid = full_hex(x_mid);
+      const FullHex now = full_hex(x_new);
+      const double volume = now.volume;
+      if (!(min_jacobian(now) > 0.0) || !(min_jacobian(mid) > 0.0)) {
+        failure = "negative Jacobian";
       } else {
-        const OnePointHex mid = one_point_hex(x_mid);
-        const OnePointHex now = one_point_hex(x_new);
-        volume = now.volume;
-        if (!(volume > 0.0) || !(mid.volume > 0.0)) {
-          failure = "negative Jacobian";
-        } else {
-          const core::Mat3 l = velocity_gradient(mid, v);
-          trace_rate = l.m[0][0] + l.m[1][1] + l.m[2][2];
-          const double density = el.mass[e] / volume;
-          update_point(p0, l, density);
-          const double length = characteristic_length(x_new, volume);
-          const double q = trace_rate < 0.0
-                               ? density * length *
-                                     (c_quad * length * trace_rate * trace_rate - c_lin * wave * trace_rate)
-                               : 0.0;
-          el.bulk_q[e] = q;
-          add_stress_forces(now, el.stress[p0] - q * core::SymTensor::identity(), f);
-          if (q_hg > 0.0) {
-            const HourglassModes modes = hourglass_modes(now, x_new);
-            if (stiffness) {
-              // The stored energy changes by (Q_old + Q_new)/2 . q dt (exactly Q^2 / 2 k_h for
-              // a constant k_h); the kernel's power uses Q_new alone, and Q_old alone would be
-              // off the other way, by k_h q^2 dt^2 / 2 a step either side.
-              const std::array<Vec3, 4> q_old = el.hourglass_force[e];
-              add_hourglass_stiffness(modes, v, q_hg, density * wave * wave, volume, dt,
-                                      el.hourglass_force[e], f);
-              double work = 0.0;
-              for (std::size_t k = 0; k < 4; ++k) {
-                Vec3 qk;
-                for (std::size_t a = 0; a < 8; ++a) qk += modes.gamma[k][a] * v[a];
-                work += 0.5 * core::dot(q_old[k] + el.hourglass_force[e][k], qk) * dt;
-              }
-              sums[kHourglass] += work;
-            } else {
-              sums[kHourglass] += dt * add_hourglass_viscous(modes, v, q_hg, density, wave, volume, f);
-            }
-          }
-          const double qv = c_lin * wave + c_quad * length * std::abs(std::min(trace_rate, 0.0));
-          el.critical_dt[e] = length / (qv + std::sqrt(qv * qv + wave * wave));
+        const double density = el.mass[e] / volume;  // B-bar: uniform dilatation
+        double trace_rate = 0.0, wave = 0.0;
+        for (int g = 0; g < 8; ++g) {
+          const core::Mat3 l = velocity_gradient_bbar(mid, g, v);
+          if (g == 0) trace_rate = l.m[0][0] + l.m[1][1] + l.m[2][2];
+          wave = std::max(wave, update_point(p0 + static_cast<std::size_t>(g), l, density, q_old, sums));
         }
+        const double q = bulk_viscosity(e, density, characteristic_length(x_new, volume),
+                                         trace_rate, wave);
+        std::array<core::SymTensor, 8> sigma;
+        for (std::size_t g = 0; g < 8; ++g) sigma[g] = el.stress[p0 + g] - q * core::SymTensor::identity();
+        add_stress_forces_bbar(now, sigma, f);
       }
-      el.volume[e] = volume;
-
-      if (!failure) {
-        bool bad = !std::isfinite(f[0].x + f[0].y + f[0].z);
-        for (int g = 0; g < b.points_per_element; ++g) {
-          const core::SymTensor& s = el.stress[p0 + static_cast<std::size_t>(g)];
-          bad = bad || !std::isfinite(s.xx + s.yy + s.zz + s.yz + s.xz + s.xy);
-        }
-        if (bad && thread_errors_[static_cast<std::size_t>(t)].empty()) {
-          thread_errors_[static_cast<std::size_t>(t)] =
-              "hexahedron " + std::to_string(e - b.begin) + " of body " + body.name;
-          thread_error_field_[static_cast<std::size_t>(t)] = "stress";
-        }
-      }
-      if (erosion && !failure) {
-        double eps_p = 0.0;
-        for (int g = 0; g < b.points_per_element; ++g)
-          eps_p = std::max(eps_p, el.plastic_strain[p0 + static_cast<std::size_t>(g)]);
-        if (erosion->plastic_strain > 0.0 && eps_p >= erosion->plastic_strain)
-          failure = "plastic strain";
-        else if (erosion->material_failure && mat.failure_strain > 0.0 && eps_p >= mat.failure_strain)
-          failure = "material failure strain";
-        else if (volume < erosion->volume_ratio * el.volume0[e])
-          failure = "volume ratio";
-        else if (el.critical_dt[e] < erosion->time_step)
-          failure = "time step";
-      }
-      if (failure) {
-        if (!erosion) {
-          if (thread_errors_[static_cast<std::size_t>(t)].empty()) {
-            thread_errors_[static_cast<std::size_t>(t)] =
-                "hexahedron " + std::to_string(e - b.begin) + " of body " + body.name;
-            thread_error_field_[static_cast<std::size_t>(t)] = "jacobian";
-          }
-          continue;
-        }
-        thread_erosions_[static_cast<std::size_t>(t)].push_back(e);
-        thread_failure_[static_cast<std::size_t>(t)].push_back(failure);
-        for (HexVectors::size_type a = 0; a < 8; ++a) f[a] = Vec3{};
-      }
-      for (std::size_t a = 0; a < 8; ++a) element_force_[8 * e + a] = f[a];
+      finish(e, p0, volume, failure, f, t);
     }
   };
+
+  // One-point elements in packs of kLanes: the geometry, velocity gradient, hourglass shapes
+  // and nodal forces run on all lanes at once (fem/hexahedron_lanes.hpp); the material update,
+  // bulk viscosity and hourglass resistance run lane by lane.
+  constexpr int W = kLanes;
+  auto sweep_one_point = [&](std::size_t begin, std::size_t end, int t) {
+    double* sums = &thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles];
+    alignas(64) double x[3][8][W], v[3][8][W], xm[3][8][W], c[3][8][W], bm[3][8][W],
+        bn[3][8][W], f[3][8][W], grad[3][3][W], gamma[4][8][W], q[4][3][W], g[4][3][W],
+        sigma[6][W];
+    alignas(64) double vol_mid[W], vol[W], length[W];
+    for (std::size_t e0 = begin; e0 < end; e0 += W) {
+      const int n = static_cast<int>(std::min<std::size_t>(W, end - e0));
+      // Lanes past the end repeat the last element; their results are dropped.
+      for (int l = 0; l < W; ++l) {
+        const std::size_t e = e0 + static_cast<std::size_t>(std::min(l, n - 1));
+        for (int a = 0; a < 8; ++a) {
+          const auto node = static_cast<std::size_t>(el.nodes[e][static_cast<std::size_t>(a)]);
+          const Vec3& xa = nodes_.position[node];
+          const Vec3& va = nodes_.velocity[node];
+          for (int i = 0; i < 3; ++i) {
+            x[i][a][l] = xa[i];
+            v[i][a][l] = va[i];
+          }
+        }
+      }
+      for (int i = 0; i < 3; ++i)
+        for (int a = 0; a < 8; ++a)
+          for (int l = 0; l < W; ++l) xm[i][a][l] = x[i][a][l] - 0.5 * dt * v[i][a][l];
+      lanes::b_vectors<W>(xm, c, bm, vol_mid);
+      lanes::b_vectors<W>(x, c, bn, vol);
+      lanes::velocity_gradient<W>(bm, vol_mid, v, grad);
+      lanes::characteristic_length<W>(x, vol, length);
+      if (q_hg > 0.0) {
+        lanes::hourglass_shapes<W>(c, bn, vol, gamma);
+        lanes::hourglass_velocities<W>(gamma, v, q);
+      }
+
+      const char* failure[W] = {};
+      for (int l = 0; l < W; ++l) {
+        const std::size_t e = e0 + static_cast<std::size_t>(l);
+        const bool live = l < n && el.alive[e] && vol[l] > 0.0 && vol_mid[l] > 0.0;
+        if (l < n && el.alive[e] && !live) failure[l] = "negative Jacobian";
+        for (int k = 0; k < 4; ++k)
+          for (int i = 0; i < 3; ++i) g[k][i][l] = 0.0;
+        for (double(&s)[W] : sigma) s[l] = 0.0;
+        if (!live) continue;
+        core::Mat3 lg;
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) lg.m[i][j] = grad[i][j][l];
+        const double trace_rate = lg.m[0][0] + lg.m[1][1] + lg.m[2][2];
+        const double density = el.mass[e] / vol[l];
+        const std::size_t p = b.point_begin + (e - b.begin);
+        const double wave = update_point(p, lg, density, el.bulk_q[e], sums);
+        const double bulk_q = bulk_viscosity(e, density, length[l], trace_rate, wave);
+        const core::SymTensor& s = el.stress[p];
+        sigma[0][l] = s.xx - bulk_q;
+        sigma[1][l] = s.yy - bulk_q;
+        sigma[2][l] = s.zz - bulk_q;
+        sigma[3][l] = s.yz;
+        sigma[4][l] = s.xz;
+        sigma[5][l] = s.xy;
+        if (q_hg <= 0.0) continue;
+        if (stiffness) {
+          // The stored energy changes by (Q_old + Q_new)/2 . q dt (exactly Q^2 / 2 k_h for a
+          // constant k_h); Q_new alone would be off by k_h q^2 dt^2 / 2 a step.
+          double b_squared = 0.0;
+          for (int i = 0; i < 3; ++i)
+            for (int a = 0; a < 8; ++a) b_squared += bn[i][a][l] * bn[i][a][l];
+          const double k_h =
+              stiffness_hourglass_factor(q_hg, density * wave * wave, b_squared, vol[l]);
+          double work = 0.0;
+          for (int k = 0; k < 4; ++k) {
+            Vec3& hk = el.hourglass_force[e][static_cast<std::size_t>(k)];
+            const Vec3 qk{q[k][0][l], q[k][1][l], q[k][2][l]};
+            const Vec3 h_old = hk;
+            hk += (k_h * dt) * qk;
+            work += 0.5 * core::dot(h_old + hk, qk) * dt;
+            for (int i = 0; i < 3; ++i) g[k][i][l] = hk[i];
+          }
+          sums[kHourglass] += work;
+        } else {
+          const double a_h = viscous_hourglass_factor(q_hg, density, wave, vol[l]);
+          double power = 0.0;
+          for (int k = 0; k < 4; ++k)
+            for (int i = 0; i < 3; ++i) {
+              power += a_h * q[k][i][l] * q[k][i][l];
+              g[k][i][l] = a_h * q[k][i][l];
+            }
+          sums[kHourglass] += dt * power;
+        }
+      }
+      lanes::stress_forces<W>(bn, sigma, f);
+      if (q_hg > 0.0) lanes::subtract_hourglass_forces<W>(gamma, g, f);
+      for (int l = 0; l < n; ++l) {
+        const std::size_t e = e0 + static_cast<std::size_t>(l);
+        if (!el.alive[e]) continue;
+        HexVectors fe;
+        lanes::store<W>(f, l, fe);
+        finish(e, b.point_begin + (e - b.begin), vol[l], failure[l], fe, t);
+      }
+    }
+  };
+
   core::parallel_chunks(b.end - b.begin, [&](std::size_t lo, std::size_t hi, int t) {
-    sweep(b.begin + lo, b.begin + hi, t);
+    if (full)
+      sweep_full(b.begin + lo, b.begin + hi, t);
+    else
+      sweep_one_point(b.begin + lo, b.begin + hi, t);
   });
 }
 

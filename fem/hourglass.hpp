@@ -4,9 +4,11 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 
 #include "core/tensor.hpp"
 #include "fem/hexahedron.hpp"
+#include "fem/hexahedron_lanes.hpp"
 #include "fem/hexahedron_one_point.hpp"
 
 namespace afemp::fem {
@@ -21,19 +23,8 @@ namespace afemp::fem {
 inline constexpr double kDefaultViscousHourglass = 0.1;
 inline constexpr double kDefaultStiffnessHourglass = 0.05;
 
-// Base vectors h_k of the four hourglass modes, the nodal values of eta*zeta, zeta*xi, xi*eta
-// and xi*eta*zeta: orthogonal to each other and to the constant and linear nodal patterns.
-inline constexpr std::array<std::array<double, 8>, 4> kHourglassBase = [] {
-  std::array<std::array<double, 8>, 4> h{};
-  for (int a = 0; a < 8; ++a) {
-    const double xi = kHexNatural[a][0], eta = kHexNatural[a][1], zeta = kHexNatural[a][2];
-    h[0][a] = eta * zeta;
-    h[1][a] = zeta * xi;
-    h[2][a] = xi * eta;
-    h[3][a] = xi * eta * zeta;
-  }
-  return h;
-}();
+// Base vectors h_k of the four hourglass modes (fem/hexahedron_lanes.hpp).
+using lanes::kHourglassBase;
 
 struct HourglassModes {
   // gamma_k = h_k - (1/V) sum_b (h_k,b x_b) . b_a: the part of h_k that no linear field has.
@@ -42,6 +33,18 @@ struct HourglassModes {
 };
 
 HourglassModes hourglass_modes(const OnePointHex& e, const HexVectors& x);
+
+// a_h of the viscous form and k_h of the stiffness form below (the hexahedron stage applies
+// them to packs of elements with the kernels of fem/hexahedron_lanes.hpp).
+inline double viscous_hourglass_factor(double coefficient, double density, double wave_speed,
+                                       double volume) {
+  const double v13 = std::cbrt(volume);
+  return 0.25 * coefficient * density * wave_speed * v13 * v13;
+}
+inline double stiffness_hourglass_factor(double coefficient, double modulus, double b_squared,
+                                         double volume) {
+  return coefficient * modulus * b_squared / (3.0 * volume);
+}
 
 // Viscous form (LS-DYNA type 3): q_ik = sum_a v_a,i gamma_k,a and f_a,i -= a_h sum_k q_ik
 // gamma_k,a with a_h = Q_hg rho c V^(2/3) / 4 (LS-DYNA Theory Manual, hourglass control: the
