@@ -1,5 +1,6 @@
 // The energy account every solver reports and the balance the time loop checks: kinetic,
-// internal (elastic + plastic + EOS work, bulk-viscous heating included), hourglass, what
+// internal (elastic + plastic + EOS work, bulk-viscous heating and assumed-strain stabilisation
+// included), hourglass, what
 // erosion removed, and the work of external loads.
 #pragma once
 
@@ -20,6 +21,10 @@ struct Energies {
   double plastic = 0.0;        // accumulated plastic work (part of internal)
   double viscous = 0.0;        // accumulated bulk-viscous work (part of internal)
   double hourglass = 0.0;      // accumulated hourglass work (stored or dissipated)
+  // Strain energy of the assumed-strain hourglass stabilisation (the linear strain field of a
+  // one-point hexahedron under Hooke's law, fem/hourglass_assumed_strain.hpp): physical elastic
+  // energy, so part of internal, and reported on its own as well.
+  double stabilisation = 0.0;
   double eroded = 0.0;         // internal + kinetic energy taken away by eroded elements
   double external_work = 0.0;  // accumulated work of body forces and moving boundaries
   std::vector<BodySums> bodies;

@@ -55,7 +55,12 @@ const char* to_string(HexFormulation f) {
 }
 
 const char* to_string(HourglassForm f) {
-  return f == HourglassForm::viscous ? "viscous" : "stiffness";
+  switch (f) {
+    case HourglassForm::viscous: return "viscous";
+    case HourglassForm::stiffness: return "stiffness";
+    case HourglassForm::assumed_strain: return "assumed_strain";
+  }
+  return "?";
 }
 
 bool has_particles(const Scene& scene) {

@@ -97,7 +97,9 @@ using Shape = std::variant<BoxShape, CylinderShape, SphereShape, PointListShape,
 
 enum class Discretisation { particles, hexahedra, trusses };
 enum class HexFormulation { one_point, full };  // FB hourglass-controlled | 2x2x2 B-bar
-enum class HourglassForm { viscous, stiffness };
+// FB viscous (LS-DYNA type 3) | FB stiffness (type 5) | assumed strain (type 6, Belytschko &
+// Bindeman ASQBI): fem/hourglass.hpp, fem/hourglass_assumed_strain.hpp
+enum class HourglassForm { viscous, stiffness, assumed_strain };
 const char* to_string(Discretisation d);
 const char* to_string(HexFormulation f);
 const char* to_string(HourglassForm f);
@@ -114,7 +116,7 @@ struct MeshDensity {
 
 struct HourglassSettings {
   HourglassForm form = HourglassForm::viscous;
-  double coefficient = 0.1;  // Q_hg (LS-DYNA's default QM)
+  double coefficient = 0.1;  // Q_hg (LS-DYNA's default QM); assumed strain: scale on K, 1
 };
 
 // Linear and quadratic artificial bulk viscosity (LS-DYNA's Q2 = 0.06, Q1 = 1.5).

@@ -650,10 +650,21 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
     TableReader hr(*t, r.dotted("hourglass"), r.file());
     hr.known({"form", "coefficient"});
     hr.check_unknown();
-    b.hourglass.form = static_cast<HourglassForm>(hr.choice("form", {"viscous", "stiffness"}, 0));
-    // Defaults of fem/hourglass.hpp: 0.1 viscous (LS-DYNA's QM), 0.05 stiffness (types 4/5).
-    const bool stiffness = b.hourglass.form == HourglassForm::stiffness;
-    b.hourglass.coefficient = hr.number("coefficient", stiffness ? 0.05 : 0.1, Range::closed(0.0, 0.5));
+    b.hourglass.form = static_cast<HourglassForm>(
+        hr.choice("form", {"viscous", "stiffness", "assumed_strain"}, 0));
+    // Defaults of fem/hourglass.hpp: 0.1 viscous (LS-DYNA's QM), 0.05 stiffness (types 4/5);
+    // the assumed strain form has no free coefficient, only a scale on its stiffness (1).
+    switch (b.hourglass.form) {
+      case HourglassForm::viscous:
+        b.hourglass.coefficient = hr.number("coefficient", 0.1, Range::closed(0.0, 0.5));
+        break;
+      case HourglassForm::stiffness:
+        b.hourglass.coefficient = hr.number("coefficient", 0.05, Range::closed(0.0, 0.5));
+        break;
+      case HourglassForm::assumed_strain:
+        b.hourglass.coefficient = hr.number("coefficient", 1.0, Range::closed(0.0, 1.0));
+        break;
+    }
   }
   if (const toml::table* t = r.optional_table("bulk_viscosity")) {
     TableReader vr(*t, r.dotted("bulk_viscosity"), r.file());

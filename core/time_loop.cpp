@@ -30,6 +30,7 @@ HistoryRow history_row(const Model& m, const Energies& e, double dt, double erro
   r.elastic = e.internal - e.plastic - e.viscous;
   r.viscous = e.viscous;
   r.hourglass = e.hourglass;
+  r.stabilisation = e.stabilisation;
   r.eroded = e.eroded;
   r.external_work = e.external_work;
   r.total = e.total();

@@ -167,7 +167,12 @@ std::string FeModel::describe() const {
            hexes ? "hexahedra" : "trusses",
            scene_.materials[static_cast<std::size_t>(body.material)].name.c_str(), nodes, mass);
     if (hexes) {
-      if (body.element == core::HexFormulation::one_point)
+      if (body.element == core::HexFormulation::one_point &&
+          body.hourglass.form == core::HourglassForm::assumed_strain)
+        core::appendf(out, "  one-point hexahedra, assumed-strain (Belytschko-Bindeman ASQBI) "
+                           "stabilisation from the elastic constants, scale %g\n",
+                      body.hourglass.coefficient);
+      else if (body.element == core::HexFormulation::one_point)
         core::appendf(out, "  one-point hexahedra, %s hourglass control Q_hg = %g\n",
                core::to_string(body.hourglass.form), body.hourglass.coefficient);
       else

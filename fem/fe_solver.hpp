@@ -50,7 +50,9 @@ struct FeElements {
   std::vector<double> bulk_q;                 // bulk-viscous pressure (hexahedra)
   std::vector<double> critical_dt;            // element critical step of the last update
   std::vector<std::uint8_t> alive;
-  std::vector<std::array<Vec3, 4>> hourglass_force;  // stiffness form state (hexahedra)
+  // Hexahedra: the stiffness form's generalised hourglass forces (global axes), or the assumed
+  // strain form's generalised stresses (the element's corotational frame).
+  std::vector<std::array<Vec3, 4>> hourglass_force;
   // Integration points (trusses: the axial stress in the bar frame, sigma_xx).
   std::vector<core::SymTensor> stress;
   std::vector<double> point_mass, plastic_strain, temperature, energy, density;
@@ -142,7 +144,8 @@ class FeSolver {
   std::vector<std::int64_t> incidence_;
 
   // Accounting.
-  double plastic_work_ = 0.0, viscous_work_ = 0.0, hourglass_work_ = 0.0;
+  double plastic_work_ = 0.0, viscous_work_ = 0.0, hourglass_work_ = 0.0,
+         stabilisation_work_ = 0.0;
   double eroded_energy_ = 0.0, external_work_ = 0.0;
   double previous_dt_ = 0.0;
   long steps_ = 0;

@@ -15,6 +15,7 @@
 #include "fem/hexahedron_lanes.hpp"
 #include "fem/hexahedron_one_point.hpp"
 #include "fem/hourglass.hpp"
+#include "fem/hourglass_assumed_strain.hpp"
 
 namespace afemp::fem {
 
@@ -33,8 +34,8 @@ StrainIncrement increment(const core::Mat3& l, double dt) {
 // Elements per pack of the one-point sweep: two AVX-512 or four AVX2 registers per array row.
 constexpr int kLanes = 8;
 
-// Thread slots: plastic work, bulk-viscous work, hourglass work.
-constexpr std::size_t kPlastic = 0, kViscous = 1, kHourglass = 2;
+// Thread slots: plastic work, bulk-viscous work, hourglass work, assumed-strain stabilisation.
+constexpr std::size_t kPlastic = 0, kViscous = 1, kHourglass = 2, kStabilisation = 3;
 
 }  // namespace
 
@@ -45,7 +46,9 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
   const core::Material& mat = scene_.materials[static_cast<std::size_t>(b.material)];
   const bool full = b.points_per_element == 8;
   const double c_lin = body.bulk_viscosity.linear, c_quad = body.bulk_viscosity.quadratic;
-  const bool stiffness = body.hourglass.form == core::HourglassForm::stiffness;
+  const core::HourglassForm hg_form = body.hourglass.form;
+  // Assumed strain: the elastic constants, the scene's coefficient scaling the stiffness.
+  const double hg_shear = body.hourglass.coefficient * mat.shear_modulus();
   const double q_hg = body.hourglass.coefficient;
   const core::ErosionSettings* erosion = body.erosion ? &*body.erosion : nullptr;
   FeElements& el = hexes_;
@@ -230,7 +233,18 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
         sigma[4][l] = s.xz;
         sigma[5][l] = s.xy;
         if (q_hg <= 0.0) continue;
-        if (stiffness) {
+        if (hg_form == core::HourglassForm::assumed_strain) {
+          HexVectors xe;
+          lanes::store<W>(x, l, xe);
+          std::array<Vec3, 4> qe, ge;
+          for (int k = 0; k < 4; ++k) qe[k] = {q[k][0][l], q[k][1][l], q[k][2][l]};
+          sums[kStabilisation] +=
+              dt * assumed_strain_hourglass_forces(assumed_strain_geometry(xe), vol[l], hg_shear,
+                                                   mat.poisson_ratio, dt, qe,
+                                                   el.hourglass_force[e], ge);
+          for (int k = 0; k < 4; ++k)
+            for (int i = 0; i < 3; ++i) g[k][i][l] = ge[k][i];
+        } else if (hg_form == core::HourglassForm::stiffness) {
           // The stored energy changes by (Q_old + Q_new)/2 . q dt (exactly Q^2 / 2 k_h for a
           // constant k_h); Q_new alone would be off by k_h q^2 dt^2 / 2 a step.
           double b_squared = 0.0;
@@ -293,6 +307,7 @@ void FeSolver::update_hexahedra(double dt) {
     plastic_work_ += s[kPlastic];
     viscous_work_ += s[kViscous];
     hourglass_work_ += s[kHourglass];
+    stabilisation_work_ += s[kStabilisation];
   }
 }
 

@@ -95,33 +95,43 @@ HourglassComponents assumed_strain_stiffness_product(const core::Vec3& c, double
   return out;
 }
 
+double assumed_strain_hourglass_forces(const AssumedStrainGeometry& geo, double volume,
+                                       double shear_modulus, double poisson_ratio, double dt,
+                                       const std::array<core::Vec3, 4>& q,
+                                       HourglassComponents& hourglass_stress,
+                                       std::array<core::Vec3, 4>& g) {
+  HourglassComponents q_frame{};
+  for (int k = 0; k < 4; ++k)
+    for (int i = 0; i < 3; ++i) q_frame[k][i] = core::dot(geo.axis[i], q[k]);
+  const HourglassComponents rate = assumed_strain_stiffness_product(
+      geo.inverse_half_length, volume, shear_modulus, poisson_ratio, q_frame);
+  double power = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const double old_power = core::dot(hourglass_stress[k], q_frame[k]);
+    hourglass_stress[k] += dt * rate[k];
+    power += 0.5 * (old_power + core::dot(hourglass_stress[k], q_frame[k]));
+    const core::Vec3& s = hourglass_stress[k];
+    g[k] = s.x * geo.axis[0] + s.y * geo.axis[1] + s.z * geo.axis[2];
+  }
+  return power;
+}
+
 double add_hourglass_assumed_strain(const HexVectors& x, const HexVectors& v, const OnePointHex& e,
                                     const HourglassModes& m, double shear_modulus,
                                     double poisson_ratio, double dt,
                                     HourglassComponents& hourglass_stress, HexVectors& f,
                                     double* midpoint_power) {
-  const AssumedStrainGeometry geo = assumed_strain_geometry(x);
-  // Hourglass velocities, global, then in the corotational frame.
-  HourglassComponents q{};
+  std::array<core::Vec3, 4> q{}, g{};
+  for (int k = 0; k < 4; ++k)
+    for (int a = 0; a < 8; ++a) q[k] += m.gamma[k][a] * v[a];
+  const double midpoint =
+      assumed_strain_hourglass_forces(assumed_strain_geometry(x), e.volume, shear_modulus,
+                                      poisson_ratio, dt, q, hourglass_stress, g);
+  if (midpoint_power) *midpoint_power = midpoint;
+  double power = 0.0;  // with the updated stresses
   for (int k = 0; k < 4; ++k) {
-    core::Vec3 qk;
-    for (int a = 0; a < 8; ++a) qk += m.gamma[k][a] * v[a];
-    for (int i = 0; i < 3; ++i) q[k][i] = core::dot(geo.axis[i], qk);
-  }
-  const HourglassComponents rate = assumed_strain_stiffness_product(
-      geo.inverse_half_length, e.volume, shear_modulus, poisson_ratio, q);
-  double power = 0.0, old_power = 0.0;
-  for (int k = 0; k < 4; ++k) {
-    old_power += core::dot(hourglass_stress[k], q[k]);
-    hourglass_stress[k] += dt * rate[k];
-    power += core::dot(hourglass_stress[k], q[k]);
-  }
-  if (midpoint_power) *midpoint_power = 0.5 * (old_power + power);
-  // Generalised forces back in global axes, then onto the nodes.
-  for (int k = 0; k < 4; ++k) {
-    const core::Vec3& s = hourglass_stress[k];
-    const core::Vec3 global = s.x * geo.axis[0] + s.y * geo.axis[1] + s.z * geo.axis[2];
-    for (int a = 0; a < 8; ++a) f[a] -= m.gamma[k][a] * global;
+    power += core::dot(g[k], q[k]);
+    for (int a = 0; a < 8; ++a) f[a] -= m.gamma[k][a] * g[k];
   }
   return power;
 }

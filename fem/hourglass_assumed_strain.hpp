@@ -100,6 +100,16 @@ HourglassComponents assumed_strain_stiffness_product(const core::Vec3& c, double
                                                      double shear_modulus, double poisson_ratio,
                                                      const HourglassComponents& q);
 
+// The step below from global hourglass velocities q_k = sum_a gamma_k,a v_a to the global
+// generalised forces g_k (the nodal forces are then f_a -= sum_k gamma_k,a g_k): rotates q into
+// the frame, adds K q^ dt to the stored stresses, rotates them back. Returns the midpoint
+// power (Q^_old + Q^_new)/2 . q^ (see below).
+double assumed_strain_hourglass_forces(const AssumedStrainGeometry& geo, double volume,
+                                       double shear_modulus, double poisson_ratio, double dt,
+                                       const std::array<core::Vec3, 4>& q,
+                                       HourglassComponents& hourglass_stress,
+                                       std::array<core::Vec3, 4>& g);
+
 // One explicit step of the stabilisation, in rate form in the corotational frame:
 //   q^_ik = e_i . sum_a gamma_k,a v_a   (hourglass velocities; zero for every linear field)
 //   Q^   += K q^ dt                     (hourglass_stress: caller-owned, zero at the start)

@@ -133,6 +133,8 @@ core::Energies FeSolver::energies() const {
   out.plastic = plastic_work_;
   out.viscous = viscous_work_;
   out.hourglass = hourglass_work_;
+  out.stabilisation = stabilisation_work_;
+  out.internal += stabilisation_work_;
   out.eroded = eroded_energy_;
   out.external_work = external_work_;
   return out;

@@ -143,13 +143,21 @@ INSTANTIATE_TEST_SUITE_P(Meshes, FeCantileverMeshStudy,
                                            MeshCase{"one-point viscous, 8 layers", "one-point",
                                                     "viscous", 2, 8, 160, one_point_prediction(8)},
                                            MeshCase{"one-point stiffness Q 0.05, 4 layers",
-                                                    "one-point", "stiffness", 1, 4, 80, 0.0}),
+                                                    "one-point", "stiffness", 1, 4, 80, 0.0},
+                                           MeshCase{"one-point assumed strain, 1 layer",
+                                                    "one-point", "assumed_strain", 1, 1, 20, 0.0},
+                                           MeshCase{"one-point assumed strain, 2 layers",
+                                                    "one-point", "assumed_strain", 1, 2, 40, 0.0},
+                                           MeshCase{"one-point assumed strain, 4 layers",
+                                                    "one-point", "assumed_strain", 1, 4, 80, 0.0}),
                          [](const auto& info) {
                            const MeshCase& c = info.param;
                            const std::string element = std::string(c.element) == "full" ? "FullBbar"
                                                        : std::string(c.hourglass) == "viscous"
                                                            ? "OnePointViscous"
-                                                           : "OnePointStiffness";
+                                                       : std::string(c.hourglass) == "stiffness"
+                                                           ? "OnePointStiffness"
+                                                           : "OnePointAssumedStrain";
                            return element + std::to_string(c.width) + "x" +
                                   std::to_string(c.layers) + "x" + std::to_string(c.along);
                          });
