@@ -557,7 +557,18 @@ TEST(SceneParser, MeshMistakesNameTheKeyAndWhatIsAllowed) {
   e = error_of(replaced("mesh = { segments = 5 }", "mesh = { core = 5 }"));
   EXPECT_NE(e.find("unknown key"), std::string::npos) << e;
   e = error_of(replaced("hourglass = { form = \"stiffness\"", "hourglass = { form = \"stiff\""));
-  EXPECT_NE(e.find("allowed values: \"viscous\", \"stiffness\""), std::string::npos) << e;
+  EXPECT_NE(e.find("allowed values: \"viscous\", \"stiffness\", \"assumed_strain\""),
+            std::string::npos) << e;
+  // The assumed-strain form's coefficient is a scale on its stiffness: default 1, at most 1.
+  const Scene asqbi = parse_scene(replaced("hourglass = { form = \"stiffness\", coefficient = 0.05 }",
+                                           "hourglass = { form = \"assumed_strain\" }"),
+                                  "mesh.toml");
+  EXPECT_EQ(asqbi.bodies[0].hourglass.form, HourglassForm::assumed_strain);
+  EXPECT_EQ(asqbi.bodies[0].hourglass.coefficient, 1.0);
+  e = error_of(replaced("hourglass = { form = \"stiffness\", coefficient = 0.05 }",
+                        "hourglass = { form = \"assumed_strain\", coefficient = 1.5 }"));
+  EXPECT_NE(e.find("bodies.plate.hourglass.coefficient"), std::string::npos) << e;
+  EXPECT_NE(e.find("1"), std::string::npos) << e;
 }
 
 TEST(SceneParser, ParticlesAndMeshesInOneSceneAreRejectedUntilCoupled) {
