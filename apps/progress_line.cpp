@@ -66,6 +66,9 @@ void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSumm
   if (s.final.hourglass != 0.0 || s.final.viscous != 0.0 || s.final.eroded != 0.0)
     std::fprintf(out, "                   hourglass %.6g  bulk-viscous %.6g  eroded %.6g\n",
                  s.final.hourglass, s.final.viscous, s.final.eroded);
+  if (s.final.stabilisation != 0.0)
+    std::fprintf(out, "                   assumed-strain stabilisation %.6g (part of internal)\n",
+                 s.final.stabilisation);
   std::fprintf(out, "  energy balance   error %+.3f %% at the end, largest %.3f %%\n",
                100.0 * s.energy_error, 100.0 * s.max_energy_error);
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
