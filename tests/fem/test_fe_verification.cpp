@@ -379,26 +379,28 @@ TEST(FeCantilever, OnePointWithOneElementThroughDepthBendsOnHourglassForcesAlone
 // pure bending: one element through the depth bends like the beam. There is no artificial
 // hourglass energy (0, against the 10 % mark); the bending energy is the stabilisation's
 // strain energy, counted as internal energy and printed on its own.
-TEST(FeCantilever, OnePointAssumedStrainWithOneElementThroughDepthMatchesEulerBernoulli) {
-  const BeamRun r = cantilever(
-      "element = \"one-point\"\nhourglass = { form = \"assumed_strain\" }\n"
-      "mesh = { divisions = [1, 1, 20] }\n",
-      1.1);
-  print("one-point, assumed-strain stabilisation, 1x1x20 (2 mm cubes)", r, "tolerance 3 %");
-  EXPECT_NEAR(r.frequency, r.reference, 0.03 * r.reference);
-  EXPECT_LT(r.vibration.max_hourglass, 0.1 * r.vibration.max_internal);
-  EXPECT_GT(r.vibration.max_stabilisation, 0.5 * r.vibration.max_internal);
-  EXPECT_LT(r.vibration.max_balance_error, 0.02);
-}
-
-TEST(FeCantilever, OnePointAssumedStrainWithFourElementsThroughDepthMatchesEulerBernoulli) {
-  const BeamRun r = cantilever(
-      "element = \"one-point\"\nhourglass = { form = \"assumed_strain\" }\n"
-      "mesh = { divisions = [1, 4, 80] }\n",
-      1.1);
-  print("one-point, assumed-strain stabilisation, 1x4x80 (2 x 0.5 x 0.5 mm)", r, "tolerance 3 %");
-  EXPECT_NEAR(r.frequency, r.reference, 0.03 * r.reference);
-  EXPECT_LT(r.vibration.max_balance_error, 0.02);
+// With 4 elements through the depth as well: the stabilisation then carries only the bending
+// within each layer (a few % of the internal energy).
+TEST(FeCantilever, OnePointAssumedStrainWithOneOrFourElementsThroughDepthMatchesEulerBernoulli) {
+  const struct {
+    const char* divisions;
+    const char* label;
+    double min_stabilisation_share;
+  } meshes[] = {{"[1, 1, 20]", "1x1x20 (2 mm cubes)", 0.5},
+                {"[1, 4, 80]", "1x4x80 (2 x 0.5 x 0.5 mm)", 0.0}};
+  for (const auto& m : meshes) {
+    const BeamRun r = cantilever(
+        "element = \"one-point\"\nhourglass = { form = \"assumed_strain\" }\n"
+        "mesh = { divisions = " + std::string(m.divisions) + " }\n",
+        1.1);
+    print((std::string("one-point, assumed-strain stabilisation, ") + m.label).c_str(), r,
+          "tolerance 3 %");
+    EXPECT_NEAR(r.frequency, r.reference, 0.03 * r.reference) << m.label;
+    EXPECT_LT(r.vibration.max_hourglass, 0.1 * r.vibration.max_internal) << m.label;
+    EXPECT_GE(r.vibration.max_stabilisation,
+              m.min_stabilisation_share * r.vibration.max_internal) << m.label;
+    EXPECT_LT(r.vibration.max_balance_error, 0.02) << m.label;
+  }
 }
 
 // With nu = 0.3, ASQBI's bending modes of one plane are coupled through nu / (1 - nu) to the
