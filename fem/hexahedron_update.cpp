@@ -2,9 +2,11 @@
 // mid-step geometry (Belytschko, Liu & Moran box 6.1), the Jaumann-rotated stress updated by
 // the shared material law (seed 001 eq 2-41), artificial bulk viscosity
 // q = rho l (C_q l eps_v'^2 - C_l c eps_v') in compression (LS-DYNA theory manual, "Artificial
-// bulk viscosity"), hourglass forces (Flanagan & Belytschko 1981) for one-point elements, the
-// nodal forces on the end-of-step geometry, the critical step l / (Q + sqrt(Q^2 + c^2)) with
-// Q = C_l c + C_q l |eps_v'|, and the erosion criteria. One std::visit per batch.
+// bulk viscosity"), hourglass forces for one-point elements (Flanagan & Belytschko 1981 viscous
+// or stiffness forms, or Belytschko & Bindeman 1993 assumed strain), the nodal forces on the
+// end-of-step geometry, the critical step l / (Q + sqrt(Q^2 + c^2)) with
+// Q = C_l c + C_q l |eps_v'|, and the erosion criteria. One std::visit per batch; one-point
+// elements go in packs of kLanes through the vectorised kernels of fem/hexahedron_lanes.hpp.
 #include <cmath>
 #include <string>
 
