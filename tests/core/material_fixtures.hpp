@@ -6,6 +6,19 @@
 
 namespace afemp::core::fixtures {
 
+// Scene text of the determinism tests: gravity and a Johnson-Cook copper with the
+// Mie-Grueneisen EOS (seed 001's Taylor bar values, rate term off), to follow a [run] header
+// line and precede the [[bodies]] table.
+inline constexpr const char* kDeterminismCopperToml = R"(end_time = 1.0
+gravity = [0, 0, -9.81e-3]
+[materials.copper]
+density = 8.93e-3
+E = 117e3
+nu = 0.35
+strength = { model = "johnson-cook", A = 157, B = 425, n = 1.0 }
+eos = { model = "mie-gruneisen", c0 = 3940, s = 1.49, gamma0 = 1.96 }
+)";
+
 inline Material steel(StrengthModel strength = Elastic{}) {
   Material m;
   m.name = "steel";

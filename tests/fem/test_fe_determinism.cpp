@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/material_fixtures.hpp"
 #include "core/parallel.hpp"
 #include "core/scene.hpp"
 #include "fem/fe_solver.hpp"
@@ -16,16 +17,7 @@ namespace afemp::fem {
 namespace {
 
 // A copper bar onto a rigid wall with Johnson-Cook, Mie-Grueneisen and erosion: every stage.
-const char* scene_text = R"(
-[run]
-end_time = 1.0
-gravity = [0, 0, -9.81e-3]
-[materials.copper]
-density = 8.93e-3
-E = 117e3
-nu = 0.35
-strength = { model = "johnson-cook", A = 157, B = 425, n = 1.0 }
-eos = { model = "mie-gruneisen", c0 = 3940, s = 1.49, gamma0 = 1.96 }
+const std::string scene_text = std::string("[run]\n") + core::fixtures::kDeterminismCopperToml + R"(
 [[bodies]]
 name = "bar"
 discretisation = "hexahedra"

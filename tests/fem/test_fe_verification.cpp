@@ -324,6 +324,13 @@ BeamRun cantilever(const std::string& element_lines, double periods, double nu =
   return r;
 }
 
+// The element lines of a one-point cantilever with hourglass form `form` on the mesh
+// `divisions` ("[nx, ny, nz]").
+std::string one_point(const std::string& form, const std::string& divisions) {
+  return "element = \"one-point\"\nhourglass = { form = \"" + form +
+         "\" }\nmesh = { divisions = " + divisions + " }\n";
+}
+
 void print(const char* what, const BeamRun& r, const char* tolerance) {
   std::printf(
       "[W3 cantilever, %s, %ld steps, %.2f s] f1 = %.6g /ms, reference Euler-Bernoulli "
@@ -339,10 +346,7 @@ void print(const char* what, const BeamRun& r, const char* tolerance) {
 // of f1); the viscous hourglass form adds no stiffness (measured -3.3 %), the stiffness form
 // restores part of the intra-element bending.
 TEST(FeCantilever, OnePointStiffnessFormWithFourElementsThroughDepthMatchesEulerBernoulli) {
-  const BeamRun r = cantilever(
-      "element = \"one-point\"\nhourglass = { form = \"stiffness\" }\n"
-      "mesh = { divisions = [1, 4, 80] }\n",
-      1.1);
+  const BeamRun r = cantilever(one_point("stiffness", "[1, 4, 80]"), 1.1);
   print("one-point, stiffness hourglass Q 0.05, 1x4x80 (2 x 0.5 x 0.5 mm)", r, "tolerance 3 %");
   EXPECT_NEAR(r.frequency, r.reference, 0.03 * r.reference);
   EXPECT_LT(r.vibration.max_balance_error, 0.02);
@@ -363,10 +367,7 @@ TEST(FeCantilever, FullBbarWithFourElementsThroughDepthMatchesEulerBernoulli) {
 // internal energy, far over the 10 % at which FeModel warns. The frequency is printed only
 // (sanity: the beam does vibrate, within a factor 2 of the reference).
 TEST(FeCantilever, OnePointWithOneElementThroughDepthBendsOnHourglassForcesAlone) {
-  const BeamRun r = cantilever(
-      "element = \"one-point\"\nhourglass = { form = \"stiffness\" }\n"
-      "mesh = { divisions = [1, 1, 20] }\n",
-      1.1);
+  const BeamRun r = cantilever(one_point("stiffness", "[1, 1, 20]"), 1.1);
   print("one-point, stiffness hourglass Q 0.05, 1x1x20 (2 mm cubes)", r, "reported only");
   EXPECT_GT(r.vibration.max_hourglass, 10.0 * r.vibration.max_internal);
   EXPECT_GT(r.frequency, 0.5 * r.reference);
@@ -389,10 +390,7 @@ TEST(FeCantilever, OnePointAssumedStrainWithOneOrFourElementsThroughDepthMatches
   } meshes[] = {{"[1, 1, 20]", "1x1x20 (2 mm cubes)", 0.5},
                 {"[1, 4, 80]", "1x4x80 (2 x 0.5 x 0.5 mm)", 0.0}};
   for (const auto& m : meshes) {
-    const BeamRun r = cantilever(
-        "element = \"one-point\"\nhourglass = { form = \"assumed_strain\" }\n"
-        "mesh = { divisions = " + std::string(m.divisions) + " }\n",
-        1.1);
+    const BeamRun r = cantilever(one_point("assumed_strain", m.divisions), 1.1);
     print((std::string("one-point, assumed-strain stabilisation, ") + m.label).c_str(), r,
           "tolerance 3 %");
     EXPECT_NEAR(r.frequency, r.reference, 0.03 * r.reference) << m.label;
@@ -415,10 +413,7 @@ TEST(FeCantilever, OnePointAssumedStrainWithOneOrFourElementsThroughDepthMatches
 // this mesh runs at 0.6 (at 0.9 it blows up with every hourglass form).
 TEST(FeCantilever, OnePointAssumedStrainWithPoissonRatioBendsWithYoungsModulus) {
   const double nu = 0.3;
-  const BeamRun r = cantilever(
-      "element = \"one-point\"\nhourglass = { form = \"assumed_strain\" }\n"
-      "mesh = { divisions = [1, 1, 20] }\n",
-      1.1, nu, 0.6);
+  const BeamRun r = cantilever(one_point("assumed_strain", "[1, 1, 20]"), 1.1, nu, 0.6);
   print("one-point, assumed-strain stabilisation, nu 0.3, 1x1x20, factor 0.6", r,
         "tolerance 1 %");
   EXPECT_NEAR(r.frequency, r.reference, 0.01 * r.reference);
@@ -430,10 +425,7 @@ TEST(FeCantilever, OnePointAssumedStrainWithPoissonRatioBendsWithYoungsModulus) 
 // bending stiffness at all, so the tip drifts off at its initial velocity instead of turning
 // back within the reference period at the elastic amplitude 1e-3 L.
 TEST(FeCantilever, OnePointViscousFormWithOneElementThroughDepthIsAMechanism) {
-  const BeamRun r = cantilever(
-      "element = \"one-point\"\nhourglass = { form = \"viscous\" }\n"
-      "mesh = { divisions = [1, 1, 20] }\n",
-      1.1);
+  const BeamRun r = cantilever(one_point("viscous", "[1, 1, 20]"), 1.1);
   std::printf(
       "[W3 cantilever, one-point, viscous hourglass Q 0.1, 1x1x20, %ld steps, %.2f s] "
       "zero crossings after t = 0: %s; largest tip deflection %.4g mm (elastic amplitude "

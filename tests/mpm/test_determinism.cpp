@@ -6,6 +6,7 @@
 #include <cstring>
 #include <string>
 
+#include "core/material_fixtures.hpp"
 #include "core/parallel.hpp"
 #include "core/scene.hpp"
 #include "mpm/mpm_solver.hpp"
@@ -14,10 +15,7 @@
 namespace afemp::mpm {
 namespace {
 
-const char* scene_text = R"(
-[run]
-end_time = 1.0
-gravity = [0, 0, -9.81e-3]
+const std::string scene_text = std::string("[run]\n") + core::fixtures::kDeterminismCopperToml + R"(
 [grid]
 cell = 1.0
 min = [0, 0, 0]
@@ -25,12 +23,6 @@ max = [12, 12, 24]
 boundary = { zmin = "wall", xmin = "symmetric", ymin = "symmetric" }
 [mpm]
 scheme = "MUSL"
-[materials.copper]
-density = 8.93e-3
-E = 117e3
-nu = 0.35
-strength = { model = "johnson-cook", A = 157, B = 425, n = 1.0 }
-eos = { model = "mie-gruneisen", c0 = 3940, s = 1.49, gamma0 = 1.96 }
 [[bodies]]
 name = "bar"
 material = "copper"
