@@ -19,6 +19,10 @@ const char* to_string(UpdateScheme s) {
   return "?";
 }
 
+const char* to_string(ShapeFunction s) { return s == ShapeFunction::gimp ? "gimp" : "linear"; }
+
+const char* to_string(Transfer t) { return t == Transfer::apic ? "apic" : "flip"; }
+
 const char* to_string(FaceCondition c) {
   switch (c) {
     case FaceCondition::free: return "free";

@@ -16,6 +16,12 @@
 namespace afemp::core {
 
 enum class UpdateScheme { USF, USL, MUSL };  // seed 000 eqs 25-27
+// Particle-grid weights: the trilinear hat of the node (seed 001 eq 2-5), or uGIMP, the hat
+// averaged over the particle's cubic domain (Bardenhagen & Kober 2004), smooth across cells.
+enum class ShapeFunction { linear, gimp };
+// How velocity travels between particles and grid: the FLIP/PIC blend, or the affine PIC of
+// Jiang et al. 2015 (particles carry an affine velocity C_p; P2G maps v_p + C_p (x_I - x_p)).
+enum class Transfer { flip, apic };
 // free: nothing; fixed: all velocity components zero (the material sticks);
 // symmetric: normal component zero (a symmetry plane; tension is carried across it);
 // wall: a rigid frictionless wall the material may not cross but may leave (the normal
@@ -24,6 +30,8 @@ enum class FaceCondition { free, fixed, symmetric, wall };
 enum class Face { xmin = 0, xmax, ymin, ymax, zmin, zmax };
 
 const char* to_string(UpdateScheme s);
+const char* to_string(ShapeFunction s);
+const char* to_string(Transfer t);
 const char* to_string(FaceCondition c);
 const char* to_string(Face f);
 
@@ -48,9 +56,12 @@ struct GridSettings {
                                      FaceCondition::free, FaceCondition::free};
 };
 
+
 struct MpmSettings {
   UpdateScheme scheme = UpdateScheme::MUSL;
-  double flip = 1.0;     // velocity update blend: 1 pure FLIP, 0 pure PIC
+  ShapeFunction shape = ShapeFunction::linear;
+  Transfer transfer = Transfer::flip;
+  double flip = 1.0;     // velocity update blend (transfer flip): 1 pure FLIP, 0 pure PIC
   bool jaumann = true;   // objective (Jaumann) stress rate
   GridSettings grid;
 };

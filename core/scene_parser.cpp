@@ -341,10 +341,24 @@ void read_grid(TableReader& r, GridSettings& grid) {
 }
 
 void read_mpm(TableReader& r, MpmSettings& mpm) {
-  r.known({"scheme", "flip", "jaumann"});
+  r.known({"scheme", "shape_function", "transfer", "flip", "jaumann"});
   r.check_unknown();
   mpm.scheme = static_cast<UpdateScheme>(r.choice("scheme", {"USF", "USL", "MUSL"}, 2, true));
+  mpm.shape = static_cast<ShapeFunction>(r.choice("shape_function", {"linear", "gimp"}, 0));
+  mpm.transfer = static_cast<Transfer>(r.choice("transfer", {"flip", "apic"}, 0));
   mpm.flip = r.number("flip", 1.0, Range::closed(0.0, 1.0));
+  if (mpm.transfer == Transfer::apic) {
+    // With the linear hat a node at the far side of a particle's cell gets a tiny mass but
+    // a full-size gradient; the affine transfer carries its velocity back undamped and the
+    // run blows up (measured: the Taylor bar at step 382). uGIMP's weights fade with their
+    // gradients, which is what the affine transfer needs.
+    if (mpm.shape != ShapeFunction::gimp)
+      r.fail("transfer", "\"apic\" needs shape_function = \"gimp\" (the affine transfer is "
+                         "unstable with linear weights); allowed with \"linear\": \"flip\"");
+    if (r.has("flip"))
+      r.fail("flip", "the PIC/FLIP blend applies to transfer = \"flip\" only; remove it or set "
+                     "transfer = \"flip\"");
+  }
   mpm.jaumann = r.boolean("jaumann", true);
 }
 

@@ -33,6 +33,21 @@ struct Mat3 {
   double m[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
 };
 
+// a += u (x) v, i.e. a_ij += u_i v_j (a velocity gradient sum_I v_I (x) grad N_I).
+constexpr void add_outer(Mat3& a, const Vec3& u, const Vec3& v) {
+  for (int r = 0; r < 3; ++r) {
+    a.m[r][0] += u[r] * v.x;
+    a.m[r][1] += u[r] * v.y;
+    a.m[r][2] += u[r] * v.z;
+  }
+}
+
+constexpr Vec3 operator*(const Mat3& a, const Vec3& v) {
+  return {a.m[0][0] * v.x + a.m[0][1] * v.y + a.m[0][2] * v.z,
+          a.m[1][0] * v.x + a.m[1][1] * v.y + a.m[1][2] * v.z,
+          a.m[2][0] * v.x + a.m[2][1] * v.y + a.m[2][2] * v.z};
+}
+
 struct SymTensor {
   double xx = 0.0, yy = 0.0, zz = 0.0, yz = 0.0, xz = 0.0, xy = 0.0;
 

@@ -41,8 +41,9 @@ class FaceConstraints {
   NodeConstraint operator()(const std::array<int, 3>& node) const {
     NodeConstraint c;
     for (int a = 0; a < 3; ++a) {
-      if (node[static_cast<std::size_t>(a)] == 0) add(c, lo_[a], a, false);
-      if (node[static_cast<std::size_t>(a)] == last_[static_cast<std::size_t>(a)])
+      // Halo nodes beyond a face (uGIMP) take the face's condition.
+      if (node[static_cast<std::size_t>(a)] <= 0) add(c, lo_[a], a, false);
+      if (node[static_cast<std::size_t>(a)] >= last_[static_cast<std::size_t>(a)])
         add(c, hi_[a], a, true);
     }
     return c;

@@ -1,13 +1,17 @@
 // Grid-to-particle velocity update (seed 001 eqs 2-33..2-36) with a PIC/FLIP blend:
 // v_p <- flip (v_p + sum N (v_new - v)) + (1 - flip) sum N v_new. USF also moves the
 // particle here with the updated grid velocity (eq 2-35); USL and MUSL move it in the
-// strain pass, whose weights must still be those of the step's start position.
+// strain pass, whose weights must still be those of the step's start position. With the
+// affine transfer (APIC, Jiang et al. 2015, eqs 8-10) the particle takes the grid velocity
+// v_p = sum S v_new and its affine part C_p = sum S v_new (x_I - x_p)^T D_p^-1.
 #include "core/parallel.hpp"
 #include "mpm/mpm_solver.hpp"
+#include "mpm/stencil.hpp"
 
 namespace afemp::mpm {
 
-void MpmSolver::grid_to_particle(double dt, bool move_positions) {
+template <class Stencil, bool Affine>
+void MpmSolver::g2p_kernel(double dt, bool move_positions) {
   const core::BackgroundGrid& g = grid_;
   Particles& p = particles_;
   const double flip = scene_.mpm.flip;
@@ -15,20 +19,37 @@ void MpmSolver::grid_to_particle(double dt, bool move_positions) {
 #pragma omp parallel for schedule(static) if (core::worth_threads(n))
   for (std::size_t i = 0; i < n; ++i) {
     Vec3& x = p.position[i];
-    const auto c = g.cell_of(x);
-    const core::CellWeights w = g.weights(x, c);
-    std::array<std::int32_t, 8> slot;
-    g.node_slots(c, slot);
+    const Stencil st(g, p, i, x);
+    typename Stencil::Slots slot;
+    st.slots(g, slot);
     Vec3 v_grid, dv;
-    for (int k = 0; k < 8; ++k) {
+    core::Mat3 b;  // sum S v_new (x_I - x_p)^T
+    for (int k = 0; k < Stencil::nodes; ++k) {
       const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]);
-      const double wk = w.w[static_cast<std::size_t>(k)];
-      v_grid += wk * g.velocity_new[s];
-      dv += wk * (g.velocity_new[s] - g.velocity[s]);
+      const double wk = st.w(k);
+      const Vec3& v_new = g.velocity_new[s];
+      v_grid += wk * v_new;
+      if constexpr (Affine)
+        core::add_outer(b, wk * v_new, st.offset(k));
+      else
+        dv += wk * (v_new - g.velocity[s]);
     }
-    p.velocity[i] = flip * (p.velocity[i] + dv) + (1.0 - flip) * v_grid;
+    if constexpr (Affine) {
+      p.velocity[i] = v_grid;
+      const Vec3 inv_d = st.inverse_moments();
+      core::Mat3& c = p.affine[i];
+      for (int r = 0; r < 3; ++r)
+        for (int a = 0; a < 3; ++a) c.m[r][a] = b.m[r][a] * inv_d[a];
+    } else {
+      p.velocity[i] = flip * (p.velocity[i] + dv) + (1.0 - flip) * v_grid;
+    }
     if (move_positions) x += dt * v_grid;
   }
+}
+
+void MpmSolver::grid_to_particle(double dt, bool move_positions) {
+  with_stencil(
+      [&]<class Stencil, bool Affine>() { g2p_kernel<Stencil, Affine>(dt, move_positions); });
 }
 
 }  // namespace afemp::mpm

@@ -17,13 +17,25 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
     : scene_(scene),
       plan_(build_step_plan(scene)),
       particles_(std::move(particles)),
-      grid_(scene.mpm.grid) {
+      grid_(scene.mpm.grid, scene.mpm.shape == core::ShapeFunction::gimp ? 1 : 0) {
   for (const auto& m : scene.materials) materials_.push_back(&m);
   grid_.enable_remap_field(scene.mpm.scheme == core::UpdateScheme::MUSL);
   // The strain tensor is integrated only for scenes that write it: it is the largest array
   // the strain sweep streams, and nothing in the physics reads it.
   if (plan_.strain && particles_.strain.size() != particles_.size())
     particles_.strain.assign(particles_.size(), SymTensor{});
+  // uGIMP: each particle's domain is the cube of its initial volume, at most one cell
+  // (a domain wider than a cell would reach a fourth node per axis).
+  if (plan_.shape == core::ShapeFunction::gimp) {
+    particles_.half_width.resize(particles_.size());
+    for (std::size_t i = 0; i < particles_.size(); ++i)
+      particles_.half_width[i] =
+          std::min(0.5, 0.5 * std::cbrt(particles_.volume[i]) * grid_.inverse_cell());
+  }
+  // APIC: particles start with C_p = 0 (each body starts at a uniform velocity) unless the
+  // caller gave them an affine velocity of their own.
+  if (plan_.transfer == core::Transfer::apic && particles_.affine.size() != particles_.size())
+    particles_.affine.assign(particles_.size(), core::Mat3{});
   stage_counts_.assign(plan_.stages.size(), 0);
   stage_seconds_.assign(plan_.stages.size(), 0.0);
   reorder_particles();
@@ -49,19 +61,13 @@ void MpmSolver::step(double dt) {
         bin_particles();
         break;
       case StageKind::p2g_mass_momentum:
-        particle_to_grid<true, false, false>();
+        particle_to_grid(true, false);
         break;
       case StageKind::p2g_force:
-        if (plan_.gravity)
-          particle_to_grid<false, true, true>();
-        else
-          particle_to_grid<false, true, false>();
+        particle_to_grid(false, true);
         break;
       case StageKind::p2g_mass_momentum_force:
-        if (plan_.gravity)
-          particle_to_grid<true, true, true>();
-        else
-          particle_to_grid<true, true, false>();
+        particle_to_grid(true, true);
         break;
       case StageKind::grid_velocity:
         grid_velocity();
@@ -110,6 +116,7 @@ Energies MpmSolver::energies() const {
   const std::size_t nb = scene_.bodies.size();
   const std::size_t width = 2 + 4 * nb;  // kinetic, internal, then mass + momentum per body
   const int nt = core::thread_count();
+  const bool affine = plan_.transfer == core::Transfer::apic;
   std::vector<double> partial(width * static_cast<std::size_t>(nt), 0.0);
 #pragma omp parallel num_threads(nt) if (core::worth_threads(p.size()))
   {
@@ -120,6 +127,17 @@ Energies MpmSolver::energies() const {
       const Vec3& v = p.velocity[i];
       const double m = p.mass[i];
       acc[0] += 0.5 * m * core::dot(v, v);
+      // APIC: the affine part of the velocity carries kinetic energy too. Over the
+      // particle's cube of half-width l the field v_p + C_p (x - x_p) holds
+      // 1/2 m (|v_p|^2 + l^2 / 3 |C_p|^2) (the cube's second moment is l^2 / 3 per axis).
+      if (affine) {
+        const double l = p.half_width[i] * grid_.cell();
+        const core::Mat3& c = p.affine[i];
+        double sum = 0.0;
+        for (int r = 0; r < 3; ++r)
+          for (int a = 0; a < 3; ++a) sum += c.m[r][a] * c.m[r][a];
+        acc[0] += 0.5 * m * (l * l / 3.0) * sum;
+      }
       acc[1] += m * p.energy[i];
       double* body = acc + 2 + 4 * static_cast<std::size_t>(p.body[i]);
       body[0] += m;
@@ -218,6 +236,7 @@ std::size_t MpmSolver::active_cells() const {
 
 std::size_t MpmSolver::bytes() const {
   return particles_.bytes() + grid_.bytes() + cell_.capacity() * sizeof(std::int64_t) +
+         velocity_gradient_.capacity() * sizeof(core::Mat3) +
          (layer_.capacity() + layer_order_.capacity()) * sizeof(std::int32_t) +
          layer_offsets_.capacity() * sizeof(std::int64_t);
 }

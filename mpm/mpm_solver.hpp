@@ -11,6 +11,7 @@
 #include "core/grid/background_grid.hpp"
 #include "core/scene.hpp"
 #include "mpm/particles.hpp"
+#include "mpm/stencil.hpp"
 #include "mpm/step_plan.hpp"
 
 namespace afemp::mpm {
@@ -59,17 +60,39 @@ class MpmSolver {
  private:
   // Stages (one file each).
   void bin_particles();
-  template <bool MassMomentum, bool Force, bool Gravity>
-  void particle_to_grid();
+  void particle_to_grid(bool mass_momentum, bool force);
   void grid_velocity();
   void grid_momentum_update(double dt);
   void grid_to_particle(double dt, bool move_positions);
   void remap_to_grid();
+  // The kernels behind them, one instance per shape function and transfer (defined and
+  // instantiated in the stage's file).
+  template <class Stencil, bool Affine, bool MassMomentum, bool Force, bool Gravity>
+  void p2g_kernel();
+  template <class Stencil, bool Affine>
+  void remap_kernel();
+  template <class Stencil, bool Affine>
+  void g2p_kernel(double dt, bool move_positions);
+  template <class Stencil, bool Affine>
+  void kinematics_kernel(double dt);
+  // Calls f.template operator()<Stencil, Affine>() for the scene's shape function and
+  // transfer (the parser allows the affine transfer with uGIMP only).
+  template <class F>
+  void with_stencil(F&& f) {
+    if (plan_.shape == core::ShapeFunction::gimp) {
+      if (plan_.transfer == core::Transfer::apic)
+        f.template operator()<GimpStencil, true>();
+      else
+        f.template operator()<GimpStencil, false>();
+    } else {
+      f.template operator()<LinearStencil, false>();
+    }
+  }
   // Turns a nodal momentum field into velocity (when divide_by_mass) and zeroes the
   // components the face conditions constrain.
   void apply_velocity_conditions(std::vector<Vec3>& field, bool divide_by_mass);
   void strain_stress_update(double dt);
-  template <class Strength, class Eos, bool Thermal>
+  template <class Strength, class Eos, bool Thermal, bool Fused>
   void strain_stress_batch(const MaterialBatch& batch, const Strength& strength, const Eos& eos,
                            double dt, int thread_slot_offset);
   void reorder_particles();
@@ -90,6 +113,8 @@ class MpmSolver {
   std::vector<std::int64_t> layer_offsets_;
   std::vector<std::int64_t> scratch_offsets_;
   int sweep_axis_ = 2;
+  // uGIMP: the velocity gradient of each particle, from kinematics_kernel to the stress update.
+  std::vector<core::Mat3> velocity_gradient_;
 
   // Wall-face components constrained at each grid slot by this step's momentum update
   // (bit a: component a), reused for the MUSL remapped velocity (see remap_to_grid).

@@ -1,22 +1,24 @@
 // Particle-to-grid transfers (seed 001 eqs 2-29..2-31, 2-10, 2-11, 2-37): lumped nodal mass,
 // momentum, internal force -V sigma.grad N and body force m N g, summed without atomics by
-// sweeping the colour layers of particle_binning.cpp (even layers, then odd layers).
+// sweeping the colour layers of particle_binning.cpp (one colour at a time). With the affine
+// transfer the momentum is m N (v_p + C_p (x_I - x_p)) (Jiang et al. 2015).
 #include "core/parallel.hpp"
 #include "mpm/mpm_solver.hpp"
+#include "mpm/stencil.hpp"
 
 namespace afemp::mpm {
 
 namespace {
 
 // Runs body(begin, end) on the particle range of every colour layer: the layers of one
-// parity in parallel (they share no node), then the others.
-template <class Body>
+// colour in parallel (they share no node), then the next colour.
+template <int Colours, class Body>
 void sweep_layers(const std::vector<std::int64_t>& offsets, Body&& body) {
   const std::int64_t layers = static_cast<std::int64_t>(offsets.size()) - 1;
   const bool threads = core::worth_threads(static_cast<std::size_t>(offsets.back()));
-  for (int parity = 0; parity < 2; ++parity) {
+  for (int colour = 0; colour < Colours; ++colour) {
 #pragma omp parallel for schedule(dynamic, 1) if (threads)
-    for (std::int64_t l = parity; l < layers; l += 2)
+    for (std::int64_t l = colour; l < layers; l += Colours)
       body(static_cast<std::size_t>(offsets[static_cast<std::size_t>(l)]),
            static_cast<std::size_t>(offsets[static_cast<std::size_t>(l) + 1]));
   }
@@ -24,8 +26,19 @@ void sweep_layers(const std::vector<std::int64_t>& offsets, Body&& body) {
 
 }  // namespace
 
-template <bool MassMomentum, bool Force, bool Gravity>
-void MpmSolver::particle_to_grid() {
+// The momentum a particle gives node n: m S (v_p + C_p (x_I - x_p)) with the affine (APIC)
+// transfer (Jiang et al. 2015, eq 11), m S v_p without.
+template <class Stencil, bool Affine>
+inline Vec3 node_momentum(const Stencil& s, int n, double m, const Vec3& mv, const Particles& p,
+                          std::size_t i) {
+  if constexpr (Affine)
+    return s.w(n) * (mv + m * (p.affine[i] * s.offset(n)));
+  else
+    return s.w(n) * mv;
+}
+
+template <class Stencil, bool Affine, bool MassMomentum, bool Force, bool Gravity>
+void MpmSolver::p2g_kernel() {
   core::BackgroundGrid& g = grid_;
   const std::size_t slots = g.slot_count();
 #pragma omp parallel for schedule(static) if (core::worth_threads(slots))
@@ -38,17 +51,18 @@ void MpmSolver::particle_to_grid() {
   }
   const Particles& p = particles_;
   const Vec3 gravity = scene_.run.gravity;
+  constexpr int N = Stencil::nodes;
   // Particles of one cell mostly follow each other (the arrays are kept in cell order), so
-  // each sweep sums a run of same-cell particles into the cell's 8 nodes locally and adds
-  // the sums to the grid once per run: 8x less grid traffic, same order every time.
-  sweep_layers(layer_offsets_, [&](std::size_t b, std::size_t e) {
-    double mass[8];
-    Vec3 momentum[8], force[8];
-    std::array<std::int32_t, 8> slot{};
+  // each sweep sums a run of particles that reach the same nodes locally and adds the sums
+  // to the grid once per run: less grid traffic, same order every time.
+  sweep_layers<Stencil::colours>(layer_offsets_, [&](std::size_t b, std::size_t e) {
+    double mass[N];
+    Vec3 momentum[N], force[N];
+    typename Stencil::Slots slot{};
     std::int64_t current = -1;
     auto flush = [&] {
       if (current < 0) return;
-      for (std::size_t n = 0; n < 8; ++n) {
+      for (std::size_t n = 0; n < N; ++n) {
         const auto k = static_cast<std::size_t>(slot[n]);
         if constexpr (MassMomentum) {
           g.mass[k] += mass[n];
@@ -59,35 +73,33 @@ void MpmSolver::particle_to_grid() {
     };
     for (std::size_t q = b; q < e; ++q) {
       const auto i = static_cast<std::size_t>(layer_order_[q]);
-      const Vec3& x = p.position[i];
-      const auto c = g.cell_of(x);
-      const std::int64_t cell = g.linear_cell(c);  // recomputed: cheaper than reading cell_
-      if (cell != current) {
+      const Stencil st(g, p, i, p.position[i]);
+      if (st.key != current) {
         flush();
-        current = cell;
-        g.node_slots(c, slot);
-        for (std::size_t n = 0; n < 8; ++n) {
+        current = st.key;
+        st.slots(g, slot);
+        for (std::size_t n = 0; n < N; ++n) {
           mass[n] = 0.0;
           momentum[n] = {};
           force[n] = {};
         }
       }
-      const core::CellWeights w = g.weights(x, c);
       const double m = p.mass[i];
       const Vec3 mv = m * p.velocity[i];
       const core::SymTensor sv = p.volume[i] * p.stress[i];
-      for (std::size_t n = 0; n < 8; ++n) {
-        const double wn = w.w[n];
+      for (int n = 0; n < N; ++n) {
+        const double wn = st.w(n);
+        const auto k = static_cast<std::size_t>(n);
         if constexpr (MassMomentum) {
-          mass[n] += m * wn;
-          momentum[n] += wn * mv;
+          mass[k] += m * wn;
+          momentum[k] += node_momentum<Stencil, Affine>(st, n, m, mv, p, i);
         }
         if constexpr (Force) {
-          const Vec3& d = w.grad[n];
-          force[n] -= Vec3{sv.xx * d.x + sv.xy * d.y + sv.xz * d.z,
+          const Vec3& d = st.grad(n);
+          force[k] -= Vec3{sv.xx * d.x + sv.xy * d.y + sv.xz * d.z,
                            sv.xy * d.x + sv.yy * d.y + sv.yz * d.z,
                            sv.xz * d.x + sv.yz * d.y + sv.zz * d.z};
-          if constexpr (Gravity) force[n] += (m * wn) * gravity;
+          if constexpr (Gravity) force[k] += (m * wn) * gravity;
         }
       }
     }
@@ -95,13 +107,26 @@ void MpmSolver::particle_to_grid() {
   });
 }
 
-template void MpmSolver::particle_to_grid<true, false, false>();
-template void MpmSolver::particle_to_grid<false, true, false>();
-template void MpmSolver::particle_to_grid<false, true, true>();
-template void MpmSolver::particle_to_grid<true, true, false>();
-template void MpmSolver::particle_to_grid<true, true, true>();
+void MpmSolver::particle_to_grid(bool mass_momentum, bool force) {
+  // Every combination a plan asks for, each a loop with no branch per particle.
+  with_stencil([&]<class Stencil, bool Affine>() {
+    if (mass_momentum && force) {
+      if (plan_.gravity)
+        p2g_kernel<Stencil, Affine, true, true, true>();
+      else
+        p2g_kernel<Stencil, Affine, true, true, false>();
+    } else if (mass_momentum) {
+      p2g_kernel<Stencil, Affine, true, false, false>();
+    } else if (plan_.gravity) {
+      p2g_kernel<Stencil, Affine, false, true, true>();
+    } else {
+      p2g_kernel<Stencil, Affine, false, true, false>();
+    }
+  });
+}
 
-void MpmSolver::remap_to_grid() {
+template <class Stencil, bool Affine>
+void MpmSolver::remap_kernel() {
   // MUSL (eq 2-37): the updated particle momentum, mapped with the weights of the step's
   // start positions, gives the nodal velocity the strain rate is computed from.
   core::BackgroundGrid& g = grid_;
@@ -109,17 +134,17 @@ void MpmSolver::remap_to_grid() {
 #pragma omp parallel for schedule(static) if (core::worth_threads(slots))
   for (std::size_t s = 0; s < slots; ++s) g.velocity_remap[s] = {};
   const Particles& p = particles_;
-  sweep_layers(layer_offsets_, [&](std::size_t b, std::size_t e) {
+  sweep_layers<Stencil::colours>(layer_offsets_, [&](std::size_t b, std::size_t e) {
     for (std::size_t q = b; q < e; ++q) {
       const auto i = static_cast<std::size_t>(layer_order_[q]);
-      const Vec3& x = p.position[i];
-      const auto c = g.cell_of(x);
-      const core::CellWeights w = g.weights(x, c);
-      std::array<std::int32_t, 8> slot;
-      g.node_slots(c, slot);
-      const Vec3 mv = p.mass[i] * p.velocity[i];
-      for (std::size_t n = 0; n < 8; ++n)
-        g.velocity_remap[static_cast<std::size_t>(slot[n])] += w.w[n] * mv;
+      const Stencil st(g, p, i, p.position[i]);
+      typename Stencil::Slots slot;
+      st.slots(g, slot);
+      const double m = p.mass[i];
+      const Vec3 mv = m * p.velocity[i];
+      for (int n = 0; n < Stencil::nodes; ++n)
+        g.velocity_remap[static_cast<std::size_t>(slot[static_cast<std::size_t>(n)])] +=
+            node_momentum<Stencil, Affine>(st, n, m, mv, p, i);
     }
   });
   apply_velocity_conditions(g.velocity_remap, true);
@@ -129,6 +154,10 @@ void MpmSolver::remap_to_grid() {
   for (std::size_t s = 0; s < slots && s < wall_contact_.size(); ++s)
     for (int a = 0; a < 3; ++a)
       if ((wall_contact_[s] >> a) & 1u) g.velocity_remap[s][a] = 0.0;
+}
+
+void MpmSolver::remap_to_grid() {
+  with_stencil([&]<class Stencil, bool Affine>() { remap_kernel<Stencil, Affine>(); });
 }
 
 }  // namespace afemp::mpm

@@ -9,7 +9,10 @@ template <class F>
 void for_each_array(Particles& p, F&& f) {
   f(p.position); f(p.velocity); f(p.mass); f(p.volume); f(p.stress);
   f(p.plastic_strain); f(p.temperature); f(p.energy); f(p.body); f(p.material); f(p.id);
-  if (!p.strain.empty()) f(p.strain);  // only when the scene asks for it
+  // Only when the scene asks for them:
+  if (!p.strain.empty()) f(p.strain);
+  if (!p.half_width.empty()) f(p.half_width);
+  if (!p.affine.empty()) f(p.affine);
 }
 template <class F>
 void for_each_array(const Particles& p, F&& f) {
@@ -34,6 +37,8 @@ void Particles::push_back(const Vec3& x, const Vec3& v, double m, double vol, do
   volume.push_back(vol);
   stress.push_back({});
   if (!strain.empty()) strain.push_back({});
+  if (!half_width.empty()) half_width.push_back(0.0);  // the solver sets it from the volume
+  if (!affine.empty()) affine.push_back({});
   plastic_strain.push_back(0.0);
   temperature.push_back(temp);
   energy.push_back(0.0);

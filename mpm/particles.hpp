@@ -11,6 +11,7 @@
 
 namespace afemp::mpm {
 
+using core::Mat3;
 using core::SymTensor;
 using core::Vec3;
 
@@ -27,6 +28,9 @@ struct Particles {
   std::vector<std::int32_t> body;
   std::vector<std::int32_t> material;
   std::vector<std::int32_t> id;        // stable id, unchanged by reordering
+  // Empty unless the scene asks for them:
+  std::vector<double> half_width;      // uGIMP: half the particle's initial edge, in cells
+  std::vector<core::Mat3> affine;      // APIC: the affine velocity C_p (a velocity gradient)
 
   std::size_t size() const { return position.size(); }
   void resize(std::size_t n);

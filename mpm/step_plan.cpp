@@ -36,6 +36,8 @@ StepPlan build_step_plan(const core::Scene& scene) {
   using core::UpdateScheme;
   StepPlan plan;
   plan.scheme = scene.mpm.scheme;
+  plan.shape = scene.mpm.shape;
+  plan.transfer = scene.mpm.transfer;
   plan.flip = scene.mpm.flip;
   plan.strain = scene.run.output_strain;
   plan.jaumann = scene.mpm.jaumann;
@@ -56,6 +58,9 @@ StepPlan build_step_plan(const core::Scene& scene) {
   const Stage grid_update = stage(StageKind::grid_momentum_update, "grid momentum update",
                                   "explicit momentum update and boundary conditions");
   auto& s = plan.stages;
+  const std::string velocity =
+      plan.transfer == core::Transfer::apic ? "particle velocity and affine velocity (APIC)"
+                                            : "particle velocity (PIC/FLIP blend)";
   s.push_back(stage(StageKind::bin_particles, "bin particles",
                     "cells of the points, active grid blocks, colour layers for the P2G sweep"));
   switch (plan.scheme) {
@@ -69,7 +74,7 @@ StepPlan build_step_plan(const core::Scene& scene) {
       s.push_back(stage(StageKind::p2g_force, "p2g force", force_why));
       s.push_back(grid_update);
       s.push_back(stage(StageKind::g2p_velocity_position, "g2p velocity position",
-                        "particle velocity (PIC/FLIP blend) and position"));
+                        velocity + " and position"));
       break;
     case UpdateScheme::USL:
     case UpdateScheme::MUSL:
@@ -78,12 +83,13 @@ StepPlan build_step_plan(const core::Scene& scene) {
       s.push_back(grid_update);
       if (plan.scheme == UpdateScheme::USL) {
         s.push_back(stage(StageKind::g2p_velocity_strain_stress, "g2p velocity strain stress",
-                          "USL: particle velocity (PIC/FLIP blend), strain rate from the "
-                          "updated grid velocity and position, in one sweep"));
+                          "USL: " + velocity +
+                              ", strain rate from the updated grid velocity and position, in "
+                              "one sweep"));
         break;
       }
       s.push_back(stage(StageKind::g2p_velocity, "g2p velocity",
-                        "particle velocity (PIC/FLIP blend); positions move with the strain"));
+                        velocity + "; positions move with the strain"));
       s.push_back(stage(StageKind::p2g_remap, "p2g remap",
                         "MUSL: updated particle momentum mapped back to the grid"));
       s.push_back(stage(StageKind::strain_stress_update, "strain stress update",
@@ -112,7 +118,13 @@ std::string StepPlan::describe() const {
       << (m.eos == "none" ? " (pressure from the bulk modulus)" : "") << ", thermal "
       << (m.thermal ? "on (plastic work heats)" : "off") << "\n";
   }
-  o << "particle velocity: PIC/FLIP blend, flip = " << flip << "\n";
+  o << "shape functions: "
+    << (shape == core::ShapeFunction::gimp ? "uGIMP (27 nodes per particle)" : "linear hat (8 nodes)")
+    << "\n";
+  if (transfer == core::Transfer::apic)
+    o << "particle velocity: APIC (affine velocity carried by each particle)\n";
+  else
+    o << "particle velocity: PIC/FLIP blend, flip = " << flip << "\n";
   o << "strain tensor: " << (strain ? "integrated and written (output_strain)" : "not integrated")
     << "\n";
   o << "body force: " << (gravity ? "gravity" : "none") << "\n";

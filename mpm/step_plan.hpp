@@ -40,7 +40,9 @@ struct MaterialPlan {
 
 struct StepPlan {
   core::UpdateScheme scheme = core::UpdateScheme::MUSL;
-  double flip = 1.0;  // PIC/FLIP blend of the particle velocity update
+  core::ShapeFunction shape = core::ShapeFunction::linear;
+  core::Transfer transfer = core::Transfer::flip;
+  double flip = 1.0;  // PIC/FLIP blend of the particle velocity update (transfer flip)
   bool strain = false;  // the strain tensor is integrated (run.output_strain)
   std::vector<Stage> stages;
   std::vector<MaterialPlan> materials;  // only materials that some body uses

@@ -19,22 +19,46 @@ struct StrainSweep {
   bool flip_update;             // USL: the particle velocity update of grid_to_particle
 };
 
+StrainSweep strain_sweep(const core::BackgroundGrid& g, core::UpdateScheme scheme) {
+  switch (scheme) {
+    case core::UpdateScheme::USF: return {g.velocity.data(), false, false};
+    case core::UpdateScheme::USL: return {g.velocity_new.data(), true, true};
+    case core::UpdateScheme::MUSL: break;
+  }
+  return {g.velocity_remap.data(), true, false};
+}
+
 }  // namespace
 
 void MpmSolver::strain_stress_update(double dt) {
   const int nt = core::thread_count();
   thread_sums_.assign(static_cast<std::size_t>(nt) * core::cache_line_doubles, 0.0);
   thread_bad_.assign(static_cast<std::size_t>(nt), -1);
+  // The linear hat computes the kinematics inside the constitutive loop (one pass over the
+  // particles); uGIMP's 27-node stencil runs them in a pass of its own (kinematics_kernel)
+  // and leaves L in velocity_gradient_, so the material loops are not duplicated per shape.
+  const bool fused = plan_.shape == core::ShapeFunction::linear;
+  if (!fused) {
+    velocity_gradient_.resize(particles_.size());
+    with_stencil([&]<class Stencil, bool Affine>() { kinematics_kernel<Stencil, Affine>(dt); });
+  }
   for (const MaterialBatch& batch : batches_) {
     const core::Material& m = *materials_[static_cast<std::size_t>(batch.material)];
     std::visit(
         [&](const auto& strength, const auto& eos) {
           using S = std::decay_t<decltype(strength)>;
           using E = std::decay_t<decltype(eos)>;
-          if (m.has_thermal_term())
-            strain_stress_batch<S, E, true>(batch, strength, eos, dt, nt);
-          else
-            strain_stress_batch<S, E, false>(batch, strength, eos, dt, nt);
+          if (fused) {
+            if (m.has_thermal_term())
+              strain_stress_batch<S, E, true, true>(batch, strength, eos, dt, nt);
+            else
+              strain_stress_batch<S, E, false, true>(batch, strength, eos, dt, nt);
+          } else {
+            if (m.has_thermal_term())
+              strain_stress_batch<S, E, true, false>(batch, strength, eos, dt, nt);
+            else
+              strain_stress_batch<S, E, false, false>(batch, strength, eos, dt, nt);
+          }
         },
         m.strength, m.eos);
   }
@@ -50,17 +74,56 @@ void MpmSolver::strain_stress_update(double dt) {
   raise_if_bad("stress");
 }
 
-template <class Strength, class Eos, bool Thermal>
+template <class Stencil, bool Affine>
+void MpmSolver::kinematics_kernel(double dt) {
+  const core::BackgroundGrid& g = grid_;
+  Particles& p = particles_;
+  const StrainSweep sweep = strain_sweep(g, plan_.scheme);
+  const Vec3* v_old = g.velocity.data();
+  const Vec3* v_new = g.velocity_new.data();
+  const double flip = scene_.mpm.flip;
+  const std::size_t n = p.size();
+#pragma omp parallel for schedule(static) if (core::worth_threads(n))
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec3& x = p.position[i];
+    const Stencil st(g, p, i, x);
+    typename Stencil::Slots slot;
+    st.slots(g, slot);
+    core::Mat3 l, b;  // L = sum v (x) grad S; b = sum S v_new (x_I - x_p)^T (APIC, USL)
+    Vec3 v_bar, dv;
+    for (int k = 0; k < Stencil::nodes; ++k) {
+      const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]);
+      core::add_outer(l, sweep.strain_velocity[s], st.grad(k));
+      const double wk = st.w(k);
+      if (sweep.move) v_bar += wk * v_new[s];
+      if (sweep.flip_update) {
+        if constexpr (Affine)
+          core::add_outer(b, wk * v_new[s], st.offset(k));
+        else
+          dv += wk * (v_new[s] - v_old[s]);
+      }
+    }
+    velocity_gradient_[i] = l;
+    if (sweep.flip_update) {
+      if constexpr (Affine) {
+        p.velocity[i] = v_bar;
+        const Vec3 inv_d = st.inverse_moments();
+        for (int r = 0; r < 3; ++r)
+          for (int a = 0; a < 3; ++a) p.affine[i].m[r][a] = b.m[r][a] * inv_d[a];
+      } else {
+        p.velocity[i] = flip * (p.velocity[i] + dv) + (1.0 - flip) * v_bar;
+      }
+    }
+    if (sweep.move) x += dt * v_bar;
+  }
+}
+
+template <class Strength, class Eos, bool Thermal, bool Fused>
 void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& strength_in,
                                     const Eos& eos_in, double dt, int nt) {
   const core::BackgroundGrid& g = grid_;
   Particles& p = particles_;
-  StrainSweep sweep{g.velocity_new.data(), true, false};
-  switch (plan_.scheme) {
-    case core::UpdateScheme::USF: sweep = {g.velocity.data(), false, false}; break;
-    case core::UpdateScheme::USL: sweep = {g.velocity_new.data(), true, true}; break;
-    case core::UpdateScheme::MUSL: sweep = {g.velocity_remap.data(), true, false}; break;
-  }
+  const StrainSweep sweep = strain_sweep(g, plan_.scheme);
   const Vec3* v_old = g.velocity.data();
   const Vec3* v_new = g.velocity_new.data();
   constexpr bool reads_plastic_strain = !std::is_same_v<Strength, core::Elastic>;
@@ -82,29 +145,34 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
     std::int64_t bad = -1;
     for (std::size_t i = batch.begin + b; i < batch.begin + e; ++i) {
       Vec3 x = p.position[i];
-      const auto c = g.cell_of(x);
-      const core::CellWeights w = g.weights(x, c);
-      std::array<std::int32_t, 8> slot;
-      g.node_slots(c, slot);
       core::Mat3 l;  // L_ij = sum_I v_Ii dN_I/dx_j
-      Vec3 v_bar, dv;
-      for (int k = 0; k < 8; ++k) {
-        const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]);
-        const Vec3 v = sweep.strain_velocity[s];
-        const Vec3& d = w.grad[static_cast<std::size_t>(k)];
-        for (int r = 0; r < 3; ++r) {
-          l.m[r][0] += v[r] * d.x;
-          l.m[r][1] += v[r] * d.y;
-          l.m[r][2] += v[r] * d.z;
-        }
-        const double wk = w.w[static_cast<std::size_t>(k)];
-        if (sweep.move) v_bar += wk * v_new[s];
-        if (sweep.flip_update) dv += wk * (v_new[s] - v_old[s]);
-      }
+      Vec3 v_bar;
       Vec3 v_p = p.velocity[i];
-      if (sweep.flip_update) {
-        v_p = flip * (v_p + dv) + (1.0 - flip) * v_bar;
-        p.velocity[i] = v_p;
+      if constexpr (Fused) {
+        const auto c = g.cell_of(x);
+        const core::CellWeights w = g.weights(x, c);
+        std::array<std::int32_t, 8> slot;
+        g.node_slots(c, slot);
+        Vec3 dv;
+        for (int k = 0; k < 8; ++k) {
+          const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]);
+          const Vec3 v = sweep.strain_velocity[s];
+          const Vec3& d = w.grad[static_cast<std::size_t>(k)];
+          for (int r = 0; r < 3; ++r) {
+            l.m[r][0] += v[r] * d.x;
+            l.m[r][1] += v[r] * d.y;
+            l.m[r][2] += v[r] * d.z;
+          }
+          const double wk = w.w[static_cast<std::size_t>(k)];
+          if (sweep.move) v_bar += wk * v_new[s];
+          if (sweep.flip_update) dv += wk * (v_new[s] - v_old[s]);
+        }
+        if (sweep.flip_update) {
+          v_p = flip * (v_p + dv) + (1.0 - flip) * v_bar;
+          p.velocity[i] = v_p;
+        }
+      } else {
+        l = velocity_gradient_[i];  // kinematics_kernel moved x and updated v_p already
       }
       const core::SymTensor d_eps = dt * core::sym_part(l);
       core::PointState st;
@@ -129,7 +197,7 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
       p.energy[i] = st.energy;
       if (track_strain) p.strain[i] += d_eps;
       work += p.mass[i] * u.plastic_work;
-      if (sweep.move) {
+      if (Fused && sweep.move) {
         x += dt * v_bar;
         p.position[i] = x;
       }

@@ -8,13 +8,13 @@
 
 namespace afemp::core {
 
-BackgroundGrid::BackgroundGrid(const GridSettings& settings)
-    : settings_(settings), origin_(settings.min), h_(settings.cell), inv_h_(1.0 / settings.cell) {
+BackgroundGrid::BackgroundGrid(const GridSettings& settings, int halo)
+    : settings_(settings), halo_(halo), origin_(settings.min), h_(settings.cell), inv_h_(1.0 / settings.cell) {
   for (int a = 0; a < 3; ++a) {
     const double extent = settings.max[a] - settings.min[a];
     // A domain that is not a whole number of cells is extended by the remainder.
     cells_[a] = std::max(1, static_cast<int>(std::ceil(extent * inv_h_ - 1e-9)));
-    blocks_[a] = (cells_[a] + 1 + block_edge - 1) / block_edge;
+    blocks_[a] = (cells_[a] + 1 + 2 * halo_ + block_edge - 1) / block_edge;
   }
   directory_.assign(static_cast<std::size_t>(blocks_[0]) * blocks_[1] * blocks_[2], -1);
 }
@@ -37,17 +37,18 @@ void BackgroundGrid::activate(std::span<const std::int64_t> cells) {
       if (l == last_cell) continue;  // neighbours in memory mostly share a cell
       last_cell = l;
       const auto c = cell_from_linear(l);
-      // The cell's nodes lie in 1, 2, 4 or 8 blocks: one per distinct block index per axis.
-      const int nbx = (c[0] % block_edge == block_edge - 1) ? 2 : 1;
-      const int nby = (c[1] % block_edge == block_edge - 1) ? 2 : 1;
-      const int nbz = (c[2] % block_edge == block_edge - 1) ? 2 : 1;
-      for (int cc = 0; cc < nbz; ++cc)
-        for (int b = 0; b < nby; ++b)
-          for (int a = 0; a < nbx; ++a) {
+      // The cell's nodes and halo, stored nodes c .. c + 1 + 2 halo per axis, lie in one or
+      // two blocks per axis.
+      int lo[3], nb[3];
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = c[static_cast<std::size_t>(a)] / block_edge;
+        nb[a] = (c[static_cast<std::size_t>(a)] + 1 + 2 * halo_) / block_edge - lo[a] + 1;
+      }
+      for (int cc = 0; cc < nb[2]; ++cc)
+        for (int b = 0; b < nb[1]; ++b)
+          for (int a = 0; a < nb[0]; ++a) {
             const std::int64_t blk =
-                (static_cast<std::int64_t>(c[2] / block_edge + cc) * by + c[1] / block_edge + b) *
-                    bx +
-                c[0] / block_edge + a;
+                (static_cast<std::int64_t>(lo[2] + cc) * by + lo[1] + b) * bx + lo[0] + a;
             // Mark the block in the directory so each thread lists it once; two threads
             // may both list it (the marks race benignly through relaxed atomics), which
             // the sort and unique below absorb.
@@ -86,8 +87,9 @@ std::array<int, 3> BackgroundGrid::node_of_slot(std::size_t slot) const {
   const std::int64_t bx = blocks_[0], by = blocks_[1];
   const int bi = static_cast<int>(block % bx), bj = static_cast<int>((block / bx) % by),
             bk = static_cast<int>(block / (bx * by));
-  return {bi * block_edge + local % block_edge, bj * block_edge + (local / block_edge) % block_edge,
-          bk * block_edge + local / (block_edge * block_edge)};
+  return {bi * block_edge + local % block_edge - halo_,
+          bj * block_edge + (local / block_edge) % block_edge - halo_,
+          bk * block_edge + local / (block_edge * block_edge) - halo_};
 }
 
 std::size_t BackgroundGrid::bytes() const {

@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "core/grid/gimp.hpp"
 #include "core/scene.hpp"
 #include "core/tensor.hpp"
 
@@ -22,12 +23,29 @@ struct CellWeights {
   std::array<Vec3, 8> grad;
 };
 
+// uGIMP weights of the 3 x 3 x 3 nodes base + (a, b, c), node n = a + 3 b + 9 c (gimp.hpp).
+struct GimpWeights {
+  std::array<int, 3> base;
+  std::array<double, 27> w;
+  std::array<Vec3, 27> grad;
+  std::array<GimpAxis, 3> axis;
+  // x_I - x_p of node n.
+  Vec3 offset(int n) const {
+    return {axis[0].offset[static_cast<std::size_t>(n % 3)],
+            axis[1].offset[static_cast<std::size_t>((n / 3) % 3)],
+            axis[2].offset[static_cast<std::size_t>(n / 9)]};
+  }
+};
+
 class BackgroundGrid {
  public:
   static constexpr int block_edge = 4;  // nodes per block edge
   static constexpr int block_nodes = block_edge * block_edge * block_edge;
 
-  explicit BackgroundGrid(const GridSettings& settings);
+  // halo: nodes stored beyond each face (1 for uGIMP, whose particles near a face reach the
+  // node outside it; those nodes take the face's condition).
+  explicit BackgroundGrid(const GridSettings& settings, int halo = 0);
+  int halo() const { return halo_; }
 
   const GridSettings& settings() const { return settings_; }
   double cell() const { return h_; }
@@ -64,13 +82,33 @@ class BackgroundGrid {
     }
     return r;
   }
+  // uGIMP weights at x for a particle of half-width a h (0 < a <= 1/2).
+  GimpWeights gimp_weights(const Vec3& x, double a) const {
+    GimpWeights r;
+    for (int d = 0; d < 3; ++d) {
+      r.axis[static_cast<std::size_t>(d)] = gimp_axis((x[d] - origin_[d]) * inv_h_, a, h_);
+      r.base[static_cast<std::size_t>(d)] = r.axis[static_cast<std::size_t>(d)].base;
+    }
+    const GimpAxis &ax = r.axis[0], &ay = r.axis[1], &az = r.axis[2];
+    for (std::size_t c = 0; c < 3; ++c)
+      for (std::size_t b = 0; b < 3; ++b) {
+        const double wyz = ay.w[b] * az.w[c];
+        const double gy = ay.grad[b] * az.w[c], gz = ay.w[b] * az.grad[c];
+        for (std::size_t a = 0; a < 3; ++a) {
+          const std::size_t n = a + 3 * b + 9 * c;
+          r.w[n] = ax.w[a] * wyz;
+          r.grad[n] = {ax.grad[a] * wyz, ax.w[a] * gy, ax.w[a] * gz};
+        }
+      }
+    return r;
+  }
   Vec3 node_position(int i, int j, int k) const {
     return {origin_.x + i * h_, origin_.y + j * h_, origin_.z + k * h_};
   }
 
   // --- Activation, once per step -------------------------------------------------------
-  // Makes active exactly the blocks that hold a node of one of the given cells (cells as
-  // linear indices, see linear_cell); nodal storage is resized, not shrunk, so a steady run
+  // Makes active exactly the blocks that hold a node of one of the given cells, or of the
+  // halo around it (cells as linear indices, see linear_cell); nodal storage is resized, not shrunk, so a steady run
   // allocates nothing. Block order is ascending block index: deterministic.
   void activate(std::span<const std::int64_t> cells);
   std::int64_t linear_cell(const std::array<int, 3>& c) const {
@@ -88,7 +126,7 @@ class BackgroundGrid {
     int blk[3][2], loc[3][2];
     for (int a = 0; a < 3; ++a)
       for (int o = 0; o < 2; ++o) {
-        const int n = c[static_cast<std::size_t>(a)] + o;
+        const int n = c[static_cast<std::size_t>(a)] + o + halo_;
         blk[a][o] = n / block_edge;
         loc[a][o] = n % block_edge;
       }
@@ -99,6 +137,28 @@ class BackgroundGrid {
           directory_[static_cast<std::size_t>(block)] * block_nodes +
           (loc[2][cc] * block_edge + loc[1][b]) * block_edge + loc[0][a];
     }
+  }
+  // Storage slots of the Span^3 nodes base + (a, b, c), node n = a + Span (b + Span c); every
+  // node must lie in an active block (activate with the halo).
+  template <int Span>
+  void stencil_slots(const std::array<int, 3>& base,
+                     std::array<std::int32_t, Span * Span * Span>& slots) const {
+    const std::int64_t bx = blocks_[0], by = blocks_[1];
+    int blk[3][Span], loc[3][Span];
+    for (int a = 0; a < 3; ++a)
+      for (int o = 0; o < Span; ++o) {
+        const int n = base[static_cast<std::size_t>(a)] + o + halo_;
+        blk[a][o] = n / block_edge;
+        loc[a][o] = n % block_edge;
+      }
+    for (int c = 0; c < Span; ++c)
+      for (int b = 0; b < Span; ++b)
+        for (int a = 0; a < Span; ++a) {
+          const std::int64_t block = (blk[2][c] * by + blk[1][b]) * bx + blk[0][a];
+          slots[static_cast<std::size_t>(a + Span * (b + Span * c))] =
+              directory_[static_cast<std::size_t>(block)] * block_nodes +
+              (loc[2][c] * block_edge + loc[1][b]) * block_edge + loc[0][a];
+        }
   }
   // Number of node slots in use (active blocks x 64; slots of untouched nodes carry zero mass).
   std::size_t slot_count() const { return active_blocks_.size() * block_nodes; }
@@ -134,6 +194,7 @@ class BackgroundGrid {
 
  private:
   GridSettings settings_;
+  int halo_ = 0;
   Vec3 origin_;
   double h_ = 0.0, inv_h_ = 0.0;
   std::array<int, 3> cells_{};

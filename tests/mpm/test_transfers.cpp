@@ -27,11 +27,14 @@ const char* const schemes[] = {"USF", "USL", "MUSL"};
 
 // A 4 x 4 x 3-cell steel box at 2 particles per cell per direction (384 particles) in a
 // larger grid with free faces and no gravity. Units mm, ms, g, MPa.
-core::Scene random_body_scene(const std::string& scheme, double flip) {
+// `method` is extra [mpm] text (shape function and transfer); flip < 0 leaves the blend out.
+core::Scene random_body_scene(const std::string& scheme, double flip,
+                              const std::string& method = "") {
+  const std::string blend = flip < 0.0 ? "" : "flip = " + std::to_string(flip) + "\n";
   return core::parse_scene(
       "[run]\nend_time = 1.0\n"
       "[grid]\ncell = 1.0\nmin = [0, 0, 0]\nmax = [12, 12, 12]\n"
-      "[mpm]\nscheme = \"" + scheme + "\"\nflip = " + std::to_string(flip) + "\n"
+      "[mpm]\nscheme = \"" + scheme + "\"\n" + blend + method +
       "[materials.steel]\ndensity = 7.85e-3\nE = 200e3\nnu = 0.3\n"
       "[[bodies]]\nname = \"b\"\nmaterial = \"steel\"\nparticles_per_cell = 2\n"
       "shape = { box = { min = [4, 4, 4.5], max = [8, 8, 7.5] } }\n",
@@ -127,6 +130,52 @@ TEST(Transfer, G2PConservesParticleMomentumForFlipAndPicInEveryScheme) {
       const Energies e = solver.energies();
       ASSERT_EQ(e.bodies.size(), 1u);
       for (int a = 0; a < 3; ++a) EXPECT_NEAR(e.bodies[0].momentum[a], momentum[a], 1e-12 * scale);
+    }
+  }
+}
+
+// The same two references with uGIMP weights (sum_I S_Ip = 1, sum_I grad S_Ip = 0 over the 27
+// nodes), with FLIP and with the affine transfer. With APIC the P2G maps
+// m S (v_p + C_p (x_I - x_p)), and sum_I S_Ip (x_I - x_p) = 0 (linear reproduction) keeps the
+// nodal momentum sum equal to sum m v_p for any C_p: the particles start with random C_p
+// (entries uniform in (-5, 5) per ms). Tolerance 1e-12 relative to sum m |v|.
+TEST(Transfer, GimpAndAffineTransfersConserveMassAndMomentumInEveryScheme) {
+  for (const char* scheme : schemes) {
+    for (const bool affine : {false, true}) {
+      SCOPED_TRACE(std::string(scheme) + (affine ? " gimp apic" : " gimp flip"));
+      const core::Scene scene = random_body_scene(
+          scheme, affine ? -1.0 : 1.0,
+          std::string("shape_function = \"gimp\"\ntransfer = \"") + (affine ? "apic" : "flip") +
+              "\"\n");
+      Particles initial = random_velocities(scene, 9);
+      if (affine) {
+        std::mt19937_64 rng(10);
+        std::uniform_real_distribution<double> u(-5.0, 5.0);
+        initial.affine.resize(initial.size());
+        for (auto& c : initial.affine)
+          for (auto& row : c.m)
+            for (double& x : row) x = u(rng);
+      }
+      const double mass = particle_mass(initial);
+      const Vec3 momentum = particle_momentum(initial);
+      const double scale = momentum_scale(initial);
+      MpmSolver solver(scene, initial);
+      solver.step(0.1 * solver.stable_time_step());
+      const auto& g = solver.grid();
+      double grid_mass = 0.0;
+      Vec3 grid_momentum;
+      for (std::size_t s = 0; s < g.slot_count(); ++s) {
+        EXPECT_GE(g.mass[s], 0.0);
+        grid_mass += g.mass[s];
+        grid_momentum += g.momentum[s];
+      }
+      EXPECT_NEAR(grid_mass, mass, 1e-12 * mass);
+      for (int a = 0; a < 3; ++a) EXPECT_NEAR(grid_momentum[a], momentum[a], 1e-12 * scale);
+      for (int k = 0; k < 5; ++k) {
+        solver.step(solver.stable_time_step());
+        const Vec3 now = particle_momentum(solver.particles());
+        for (int a = 0; a < 3; ++a) ASSERT_NEAR(now[a], momentum[a], 1e-12 * scale) << "step " << k;
+      }
     }
   }
 }

@@ -1,0 +1,65 @@
+// A particle's view of the grid for each shape function: the nodes it reaches, their weights,
+// gradients and storage slots. The transfer kernels are templates over these, so the linear
+// path keeps its 8-node loops and uGIMP gets 27-node ones, with no branch per node.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "core/grid/background_grid.hpp"
+#include "mpm/particles.hpp"
+
+namespace afemp::mpm {
+
+// Trilinear hat (seed 001 eq 2-5): the 8 nodes of the particle's cell.
+struct LinearStencil {
+  static constexpr int nodes = 8;
+  // Colour layers (one cell thick along the sweep axis) that may run at once: layer L
+  // reaches nodes L and L + 1, so layers two apart share none.
+  static constexpr int colours = 2;
+  using Slots = std::array<std::int32_t, 8>;
+  core::CellWeights weights;
+  std::array<int, 3> cell;
+  std::int64_t key;  // equal keys, equal nodes (the cell)
+
+  LinearStencil(const core::BackgroundGrid& g, const Particles&, std::size_t, const Vec3& x)
+      : cell(g.cell_of(x)) {
+    weights = g.weights(x, cell);
+    key = g.linear_cell(cell);
+  }
+  void slots(const core::BackgroundGrid& g, Slots& out) const { g.node_slots(cell, out); }
+  double w(int n) const { return weights.w[static_cast<std::size_t>(n)]; }
+  const Vec3& grad(int n) const { return weights.grad[static_cast<std::size_t>(n)]; }
+};
+
+// uGIMP (core/grid/gimp.hpp): 3 x 3 x 3 nodes around the particle.
+struct GimpStencil {
+  static constexpr int nodes = 27;
+  // Layer L reaches nodes L - 1 .. L + 2: layers four apart share none.
+  static constexpr int colours = 4;
+  using Slots = std::array<std::int32_t, 27>;
+  core::GimpWeights weights;
+  std::int64_t key;  // equal keys, equal nodes (the base node)
+
+  GimpStencil(const core::BackgroundGrid& g, const Particles& p, std::size_t i, const Vec3& x) {
+    weights = g.gimp_weights(x, p.half_width[i]);
+    const auto& b = weights.base;
+    key = (static_cast<std::int64_t>(b[2] + 1) << 42) | (static_cast<std::int64_t>(b[1] + 1) << 21) |
+          static_cast<std::int64_t>(b[0] + 1);
+  }
+  void slots(const core::BackgroundGrid& g, Slots& out) const {
+    g.stencil_slots<3>(weights.base, out);
+  }
+  double w(int n) const { return weights.w[static_cast<std::size_t>(n)]; }
+  const Vec3& grad(int n) const { return weights.grad[static_cast<std::size_t>(n)]; }
+  // x_I - x_p.
+  Vec3 offset(int n) const { return weights.offset(n); }
+  // APIC (Jiang et al. 2015, eq 10): C_p = sum_I S v_I (x_I - x_p)^T D_p^-1, where
+  // D_p = sum_I S (x_I - x_p)(x_I - x_p)^T is diagonal for tensor-product weights.
+  Vec3 inverse_moments() const {
+    return {weights.axis[0].inverse_moment, weights.axis[1].inverse_moment,
+            weights.axis[2].inverse_moment};
+  }
+};
+
+}  // namespace afemp::mpm
