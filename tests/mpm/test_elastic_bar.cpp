@@ -23,12 +23,13 @@ std::string example_text() {
 }
 
 // The example with another scheme and time-step factor.
-core::Scene elastic_bar(const std::string& scheme, double factor) {
+// `method`: extra [mpm] lines (shape function, transfer).
+core::Scene elastic_bar(const std::string& scheme, double factor, const std::string& method) {
   std::string text = example_text();
   const std::string key = "scheme = \"MUSL\"";
   const auto at = text.find(key);
   EXPECT_NE(at, std::string::npos);
-  text.replace(at, key.size(), "scheme = \"" + scheme + "\"");
+  text.replace(at, key.size(), "scheme = \"" + scheme + "\"\n" + method);
   const std::string run = "[run]\n";
   text.insert(text.find(run) + run.size(), "time_step_factor = " + std::to_string(factor) + "\n");
   return core::parse_scene(text, "examples/elastic_bar/mpm.toml");
@@ -38,16 +39,17 @@ struct Rebound {
   double speed, max_error, end_error, kinetic_ratio;
 };
 
-Rebound run(const std::string& scheme, double factor) {
-  const core::Scene scene = elastic_bar(scheme, factor);
+Rebound run(const std::string& scheme, double factor, const std::string& method = "") {
+  const core::Scene scene = elastic_bar(scheme, factor, method);
   MpmModel sim(scene);
   const core::RunSummary s = core::run(sim, scene, {});
   const BodySums& bar = s.final.bodies.at(0);
   const Rebound r{bar.momentum.z / bar.mass, s.max_energy_error, s.energy_error,
                   s.final.kinetic / s.initial.kinetic};
-  std::printf("V1 %-4s factor %.2f: rebound %.1f m/s (v0 300), kinetic energy back %.1f %%, "
+  std::printf("V1 %-4s %s %s factor %.2f: rebound %.1f m/s (v0 300), kinetic energy back %.1f %%, "
               "energy balance error %+.2f %% at the end, largest %.2f %%, %ld steps\n",
-              scheme.c_str(), factor, r.speed, 100.0 * r.kinetic_ratio, 100.0 * r.end_error,
+              scheme.c_str(), core::to_string(scene.mpm.shape),
+              core::to_string(scene.mpm.transfer), factor, r.speed, 100.0 * r.kinetic_ratio, 100.0 * r.end_error,
               100.0 * r.max_error, s.steps);
   return r;
 }
@@ -83,6 +85,24 @@ TEST(ElasticBar, UslFiguresAreReportedBesideTheOthers) {
   const Rebound r = run("USL", 0.1);
   EXPECT_TRUE(std::isfinite(r.speed));
   EXPECT_LT(r.max_error, 0.20);
+}
+
+// The same bar with uGIMP weights (MUSL, factor 0.3). With FLIP it meets the marks the
+// linear hat meets (measured 282.3 m/s, balance within 1.6 %). The affine transfer rebounds
+// as fast (281.7 m/s) but damps the lateral ringing the short bar carries away from the
+// wall: measured -9.3 % of the energy at the end, a loss and never a gain. Its figures are
+// reported, and the assertion is that it loses energy (at most 15 %) rather than creating
+// any (the balance stays below +0.5 %).
+TEST(ElasticBar, GimpWithFlipMeetsTheMarksAndApicIsReportedBeside) {
+  const Rebound flip = run("MUSL", 0.3, "shape_function = \"gimp\"\n");
+  EXPECT_GT(flip.speed, 270.0);
+  EXPECT_LT(flip.speed, 305.0);
+  EXPECT_LT(flip.max_error, 0.02);
+  const Rebound apic = run("MUSL", 0.3, "shape_function = \"gimp\"\ntransfer = \"apic\"\n");
+  EXPECT_GT(apic.speed, 270.0);
+  EXPECT_LT(apic.speed, 305.0);
+  EXPECT_LT(apic.end_error, 0.005);
+  EXPECT_GT(apic.end_error, -0.15);
 }
 
 }  // namespace
