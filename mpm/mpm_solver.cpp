@@ -31,6 +31,7 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
     for (std::size_t i = 0; i < particles_.size(); ++i)
       particles_.half_width[i] =
           std::min(0.5, 0.5 * std::cbrt(particles_.volume[i]) * grid_.inverse_cell());
+    velocity_gradient_.resize(particles_.size());  // the kinematics pass's output
   }
   // APIC: particles start with C_p = 0 (each body starts at a uniform velocity) unless the
   // caller gave them an affine velocity of their own.
