@@ -36,10 +36,7 @@ void MpmSolver::g2p_kernel(double dt, bool move_positions) {
     }
     if constexpr (Affine) {
       p.velocity[i] = v_grid;
-      const Vec3 inv_d = st.inverse_moments();
-      core::Mat3& c = p.affine[i];
-      for (int r = 0; r < 3; ++r)
-        for (int a = 0; a < 3; ++a) c.m[r][a] = b.m[r][a] * inv_d[a];
+      store_affine(p.affine[i], b, st.inverse_moments());
     } else {
       p.velocity[i] = flip * (p.velocity[i] + dv) + (1.0 - flip) * v_grid;
     }

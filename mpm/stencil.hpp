@@ -62,4 +62,10 @@ struct GimpStencil {
   }
 };
 
+// C_p = b D_p^-1 with b = sum S v (x_I - x_p)^T and D_p^-1 diagonal (GimpStencil).
+inline void store_affine(core::Mat3& c, const core::Mat3& b, const Vec3& inverse_moments) {
+  for (int r = 0; r < 3; ++r)
+    for (int a = 0; a < 3; ++a) c.m[r][a] = b.m[r][a] * inverse_moments[a];
+}
+
 }  // namespace afemp::mpm

@@ -107,9 +107,7 @@ void MpmSolver::kinematics_kernel(double dt) {
     if (sweep.flip_update) {
       if constexpr (Affine) {
         p.velocity[i] = v_bar;
-        const Vec3 inv_d = st.inverse_moments();
-        for (int r = 0; r < 3; ++r)
-          for (int a = 0; a < 3; ++a) p.affine[i].m[r][a] = b.m[r][a] * inv_d[a];
+        store_affine(p.affine[i], b, st.inverse_moments());
       } else {
         p.velocity[i] = flip * (p.velocity[i] + dv) + (1.0 - flip) * v_bar;
       }

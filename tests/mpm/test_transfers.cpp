@@ -68,6 +68,21 @@ double particle_mass(const Particles& p) {
   return m;
 }
 
+// The grid's P2G sums (grid().mass / grid().momentum keep them after the step) equal the
+// particles' mass and momentum to 1e-12 relative to sum m and sum m |v|.
+void expect_grid_holds(const MpmSolver& solver, double mass, const Vec3& momentum, double scale) {
+  const auto& g = solver.grid();
+  double grid_mass = 0.0;
+  Vec3 grid_momentum;
+  for (std::size_t s = 0; s < g.slot_count(); ++s) {
+    EXPECT_GE(g.mass[s], 0.0);
+    grid_mass += g.mass[s];
+    grid_momentum += g.momentum[s];
+  }
+  EXPECT_NEAR(grid_mass, mass, 1e-12 * mass);
+  for (int a = 0; a < 3; ++a) EXPECT_NEAR(grid_momentum[a], momentum[a], 1e-12 * scale);
+}
+
 // Reference: P2G with lumped mass, m_I = sum_p N_Ip m_p and p_I = sum_p N_Ip m_p v_p, so
 // sum_I m_I = sum_p m_p and sum_I p_I = sum_p m_p v_p because sum_I N_Ip = 1 (exact).
 // grid().mass / grid().momentum keep the P2G result of the step (the momentum update writes
@@ -84,16 +99,7 @@ TEST(Transfer, P2GConservesMassAndMomentum) {
     MpmSolver solver(scene, initial);
     solver.step(0.1 * solver.stable_time_step());
 
-    const auto& g = solver.grid();
-    double grid_mass = 0.0;
-    Vec3 grid_momentum;
-    for (std::size_t s = 0; s < g.slot_count(); ++s) {
-      EXPECT_GE(g.mass[s], 0.0);
-      grid_mass += g.mass[s];
-      grid_momentum += g.momentum[s];
-    }
-    EXPECT_NEAR(grid_mass, mass, 1e-12 * mass);
-    for (int a = 0; a < 3; ++a) EXPECT_NEAR(grid_momentum[a], momentum[a], 1e-12 * scale);
+    expect_grid_holds(solver, mass, momentum, scale);
     // Particle mass is carried, not computed: unchanged bit for bit.
     EXPECT_EQ(particle_mass(solver.particles()), mass);
   }
@@ -161,16 +167,7 @@ TEST(Transfer, GimpAndAffineTransfersConserveMassAndMomentumInEveryScheme) {
       const double scale = momentum_scale(initial);
       MpmSolver solver(scene, initial);
       solver.step(0.1 * solver.stable_time_step());
-      const auto& g = solver.grid();
-      double grid_mass = 0.0;
-      Vec3 grid_momentum;
-      for (std::size_t s = 0; s < g.slot_count(); ++s) {
-        EXPECT_GE(g.mass[s], 0.0);
-        grid_mass += g.mass[s];
-        grid_momentum += g.momentum[s];
-      }
-      EXPECT_NEAR(grid_mass, mass, 1e-12 * mass);
-      for (int a = 0; a < 3; ++a) EXPECT_NEAR(grid_momentum[a], momentum[a], 1e-12 * scale);
+      expect_grid_holds(solver, mass, momentum, scale);
       for (int k = 0; k < 5; ++k) {
         solver.step(solver.stable_time_step());
         const Vec3 now = particle_momentum(solver.particles());
