@@ -22,25 +22,13 @@ void MpmSolver::g2p_kernel(double dt, bool move_positions) {
     const Stencil st(g, p, i, x);
     typename Stencil::Slots slot;
     st.slots(g, slot);
-    Vec3 v_grid, dv;
-    core::Mat3 b;  // sum S v_new (x_I - x_p)^T
+    VelocityUpdate<Stencil, Affine> update;
     for (int k = 0; k < Stencil::nodes; ++k) {
       const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]);
-      const double wk = st.w(k);
-      const Vec3& v_new = g.velocity_new[s];
-      v_grid += wk * v_new;
-      if constexpr (Affine)
-        core::add_outer(b, wk * v_new, st.offset(k));
-      else
-        dv += wk * (v_new - g.velocity[s]);
+      update.add(st, k, g.velocity_new[s], g.velocity[s]);
     }
-    if constexpr (Affine) {
-      p.velocity[i] = v_grid;
-      store_affine(p.affine[i], b, st.inverse_moments());
-    } else {
-      p.velocity[i] = flip * (p.velocity[i] + dv) + (1.0 - flip) * v_grid;
-    }
-    if (move_positions) x += dt * v_grid;
+    update.store(p, i, st, flip);
+    if (move_positions) x += dt * update.v_grid;
   }
 }
 

@@ -68,4 +68,30 @@ inline void store_affine(core::Mat3& c, const core::Mat3& b, const Vec3& inverse
     for (int a = 0; a < 3; ++a) c.m[r][a] = b.m[r][a] * inverse_moments[a];
 }
 
+// The grid-to-particle velocity update of one particle, summed node by node: the PIC/FLIP
+// blend v_p <- flip (v_p + sum S (v_new - v)) + (1 - flip) sum S v_new, or with the affine
+// transfer v_p <- sum S v_new and C_p <- sum S v_new (x_I - x_p)^T D_p^-1 (Jiang et al.
+// 2015, eqs 8-10). Used by G2P (USF, MUSL) and by USL's kinematics pass.
+template <class Stencil, bool Affine>
+struct VelocityUpdate {
+  Vec3 v_grid, dv;
+  core::Mat3 b;
+  void add(const Stencil& st, int k, const Vec3& v_new, const Vec3& v_old) {
+    const double wk = st.w(k);
+    v_grid += wk * v_new;
+    if constexpr (Affine)
+      core::add_outer(b, wk * v_new, st.offset(k));
+    else
+      dv += wk * (v_new - v_old);
+  }
+  void store(Particles& p, std::size_t i, const Stencil& st, double flip) const {
+    if constexpr (Affine) {
+      p.velocity[i] = v_grid;
+      store_affine(p.affine[i], b, st.inverse_moments());
+    } else {
+      p.velocity[i] = flip * (p.velocity[i] + dv) + (1.0 - flip) * v_grid;
+    }
+  }
+};
+
 }  // namespace afemp::mpm

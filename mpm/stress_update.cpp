@@ -89,30 +89,16 @@ void MpmSolver::kinematics_kernel(double dt) {
     const Stencil st(g, p, i, x);
     typename Stencil::Slots slot;
     st.slots(g, slot);
-    core::Mat3 l, b;  // L = sum v (x) grad S; b = sum S v_new (x_I - x_p)^T (APIC, USL)
-    Vec3 v_bar, dv;
+    core::Mat3 l;  // L = sum v (x) grad S
+    VelocityUpdate<Stencil, Affine> update;  // USL: the G2P of grid_to_particle.cpp
     for (int k = 0; k < Stencil::nodes; ++k) {
       const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]);
       core::add_outer(l, sweep.strain_velocity[s], st.grad(k));
-      const double wk = st.w(k);
-      if (sweep.move) v_bar += wk * v_new[s];
-      if (sweep.flip_update) {
-        if constexpr (Affine)
-          core::add_outer(b, wk * v_new[s], st.offset(k));
-        else
-          dv += wk * (v_new[s] - v_old[s]);
-      }
+      if (sweep.move) update.add(st, k, v_new[s], v_old[s]);
     }
     velocity_gradient_[i] = l;
-    if (sweep.flip_update) {
-      if constexpr (Affine) {
-        p.velocity[i] = v_bar;
-        store_affine(p.affine[i], b, st.inverse_moments());
-      } else {
-        p.velocity[i] = flip * (p.velocity[i] + dv) + (1.0 - flip) * v_bar;
-      }
-    }
-    if (sweep.move) x += dt * v_bar;
+    if (sweep.flip_update) update.store(p, i, st, flip);
+    if (sweep.move) x += dt * update.v_grid;
   }
 }
 
