@@ -15,21 +15,15 @@ void MpmSolver::g2p_kernel(double dt, bool move_positions) {
   const core::BackgroundGrid& g = grid_;
   Particles& p = particles_;
   const double flip = scene_.mpm.flip;
-  const std::size_t n = p.size();
-#pragma omp parallel for schedule(static) if (core::worth_threads(n))
-  for (std::size_t i = 0; i < n; ++i) {
-    Vec3& x = p.position[i];
-    const Stencil st(g, p, i, x);
-    typename Stencil::Slots slot;
-    st.slots(g, slot);
+  for_each_particle_stencil<Stencil>(g, p, [&](std::size_t i, const Stencil& st, const auto& slot) {
     VelocityUpdate<Stencil, Affine> update;
     for (int k = 0; k < Stencil::nodes; ++k) {
       const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]);
       update.add(st, k, g.velocity_new[s], g.velocity[s]);
     }
     update.store(p, i, st, flip);
-    if (move_positions) x += dt * update.v_grid;
-  }
+    if (move_positions) p.position[i] += dt * update.v_grid;
+  });
 }
 
 void MpmSolver::grid_to_particle(double dt, bool move_positions) {

@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "core/grid/background_grid.hpp"
+#include "core/parallel.hpp"
 #include "mpm/particles.hpp"
 
 namespace afemp::mpm {
@@ -61,6 +62,20 @@ struct GimpStencil {
             weights.axis[2].inverse_moment};
   }
 };
+
+// Calls f(i, stencil, slots) for every particle, threads splitting the particles statically
+// (each call writes only particle i: no race).
+template <class Stencil, class F>
+void for_each_particle_stencil(const core::BackgroundGrid& g, Particles& p, F&& f) {
+  const std::size_t n = p.size();
+#pragma omp parallel for schedule(static) if (core::worth_threads(n))
+  for (std::size_t i = 0; i < n; ++i) {
+    const Stencil st(g, p, i, p.position[i]);
+    typename Stencil::Slots slot;
+    st.slots(g, slot);
+    f(i, st, slot);
+  }
+}
 
 // C_p = b D_p^-1 with b = sum S v (x_I - x_p)^T and D_p^-1 diagonal (GimpStencil).
 inline void store_affine(core::Mat3& c, const core::Mat3& b, const Vec3& inverse_moments) {

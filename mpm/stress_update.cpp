@@ -82,13 +82,7 @@ void MpmSolver::kinematics_kernel(double dt) {
   const Vec3* v_old = g.velocity.data();
   const Vec3* v_new = g.velocity_new.data();
   const double flip = scene_.mpm.flip;
-  const std::size_t n = p.size();
-#pragma omp parallel for schedule(static) if (core::worth_threads(n))
-  for (std::size_t i = 0; i < n; ++i) {
-    Vec3& x = p.position[i];
-    const Stencil st(g, p, i, x);
-    typename Stencil::Slots slot;
-    st.slots(g, slot);
+  for_each_particle_stencil<Stencil>(g, p, [&](std::size_t i, const Stencil& st, const auto& slot) {
     core::Mat3 l;  // L = sum v (x) grad S
     VelocityUpdate<Stencil, Affine> update;  // USL: the G2P of grid_to_particle.cpp
     for (int k = 0; k < Stencil::nodes; ++k) {
@@ -98,8 +92,8 @@ void MpmSolver::kinematics_kernel(double dt) {
     }
     velocity_gradient_[i] = l;
     if (sweep.flip_update) update.store(p, i, st, flip);
-    if (sweep.move) x += dt * update.v_grid;
-  }
+    if (sweep.move) p.position[i] += dt * update.v_grid;
+  });
 }
 
 template <class Strength, class Eos, bool Thermal, bool Fused>
