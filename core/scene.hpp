@@ -197,6 +197,16 @@ struct WallSpec {
   SourceLocation where;
 };
 
+// Grid contact between two particle bodies (seed 000 eqs 37-42): each body named in a
+// contact gets its own velocity field on the grid; where two fields meet at a node and
+// approach, a normal correction makes their normal velocities equal, Coulomb friction limits
+// the tangential one, and they may separate.
+struct ContactSpec {
+  std::array<int, 2> bodies{-1, -1};  // indices into Scene::bodies
+  double friction = 0.0;              // Coulomb coefficient
+  double distance_factor = 0.5;       // lambda of eq 42: contact once the gap <= lambda h
+  SourceLocation where;
+};
 struct Scene {
   std::string path;             // the scene file, as given
   RunSettings run;
@@ -206,6 +216,7 @@ struct Scene {
   std::vector<BodySpec> bodies;
   std::vector<ConstraintSpec> constraints;
   std::vector<WallSpec> walls;
+  std::vector<ContactSpec> contacts;
   std::optional<TaylorReference> taylor_reference;
 };
 

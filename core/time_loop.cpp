@@ -32,6 +32,7 @@ HistoryRow history_row(const Model& m, const Energies& e, double dt, double erro
   r.hourglass = e.hourglass;
   r.stabilisation = e.stabilisation;
   r.eroded = e.eroded;
+  r.contact = e.contact;
   r.external_work = e.external_work;
   r.total = e.total();
   r.energy_error = error;

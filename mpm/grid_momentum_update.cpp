@@ -73,22 +73,27 @@ inline void constrain(Vec3& v, unsigned mask) {
 void MpmSolver::apply_velocity_conditions(std::vector<Vec3>& field, bool divide_by_mass) {
   core::BackgroundGrid& g = grid_;
   const FaceConstraints constraints(g);
+  const std::size_t stride = g.slot_count();
+  const int fields = g.field_count();
 #pragma omp parallel if (core::worth_threads(g.slot_count()))
-  g.for_each_slot([&](std::size_t s, const std::array<int, 3>& node) {
-    const double m = g.mass[s];
-    if (m <= 0.0) {
-      field[s] = {};
-      return;
-    }
-    if (divide_by_mass) field[s] *= 1.0 / m;
+  g.for_each_slot([&](std::size_t slot, const std::array<int, 3>& node) {
     const NodeConstraint c = constraints(node);
-    if (c.any()) constrain(field[s], c.mask_for(field[s]));
+    for (int f = 0; f < fields; ++f) {
+      const std::size_t s = slot + static_cast<std::size_t>(f) * stride;
+      const double m = g.mass[s];
+      if (m <= 0.0) {
+        field[s] = {};
+        continue;
+      }
+      if (divide_by_mass) field[s] *= 1.0 / m;
+      if (c.any()) constrain(field[s], c.mask_for(field[s]));
+    }
   });
 }
 
 void MpmSolver::grid_velocity() {
   core::BackgroundGrid& g = grid_;
-  const std::size_t slots = g.slot_count();
+  const std::size_t slots = g.field_slot_count();
 #pragma omp parallel for schedule(static) if (core::worth_threads(slots))
   for (std::size_t s = 0; s < slots; ++s) g.velocity[s] = g.momentum[s];
   apply_velocity_conditions(g.velocity, true);
@@ -101,21 +106,25 @@ void MpmSolver::grid_momentum_update(double dt) {
   const bool body_force = plan_.gravity;
   const int nt = core::thread_count();
   thread_sums_.assign(static_cast<std::size_t>(nt) * core::cache_line_doubles, 0.0);
-  wall_contact_.assign(g.slot_count(), 0);
+  wall_contact_.assign(g.field_slot_count(), 0);
+  const std::size_t stride = g.slot_count();
+  const int fields = g.field_count();
 #pragma omp parallel num_threads(nt) if (core::worth_threads(g.slot_count()))
   {
     double work = 0.0;  // body-force work f_ext . (v + v_new) / 2 dt
-    g.for_each_slot([&](std::size_t s, const std::array<int, 3>& node) {
+    g.for_each_slot([&](std::size_t slot, const std::array<int, 3>& node) {
+     const NodeConstraint c = constraints(node);
+     for (int f = 0; f < fields; ++f) {  // each velocity field on its own (contact after)
+      const std::size_t s = slot + static_cast<std::size_t>(f) * stride;
       const double m = g.mass[s];
       if (m <= 0.0) {
         g.velocity[s] = {};
         g.velocity_new[s] = {};
-        return;
+        continue;
       }
       const double inv_m = 1.0 / m;
       Vec3 v = inv_m * g.momentum[s];
       Vec3 a = inv_m * g.force[s];
-      const NodeConstraint c = constraints(node);
       // A wall holds a node whose start velocity v points into it (rigid-body contact as in
       // Bardenhagen et al. 2000: corrected after P2G and again after integration). Zeroing
       // only v_new let the FLIP increment v_new - v hand the particles an impulse -m v the
@@ -133,6 +142,7 @@ void MpmSolver::grid_momentum_update(double dt) {
       g.velocity[s] = v;
       g.velocity_new[s] = v_new;
       if (body_force) work += 0.5 * dt * m * core::dot(gravity, v + v_new);
+     }
     });
     thread_sums_[static_cast<std::size_t>(core::thread_index()) * core::cache_line_doubles] = work;
   }

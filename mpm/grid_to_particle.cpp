@@ -17,8 +17,9 @@ void MpmSolver::g2p_kernel(double dt, bool move_positions) {
   const double flip = scene_.mpm.flip;
   for_each_particle_stencil<Stencil>(g, p, [&](std::size_t i, const Stencil& st, const auto& slot) {
     VelocityUpdate<Stencil, Affine> update;
+    const std::size_t field = field_offset(i);  // the particle's own velocity field
     for (int k = 0; k < Stencil::nodes; ++k) {
-      const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]);
+      const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]) + field;
       update.add(st, k, g.velocity_new[s], g.velocity[s]);
     }
     update.store(p, i, st, flip);

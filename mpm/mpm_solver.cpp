@@ -20,6 +20,24 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
       grid_(scene.mpm.grid, scene.mpm.shape == core::ShapeFunction::gimp ? 1 : 0) {
   for (const auto& m : scene.materials) materials_.push_back(&m);
   grid_.enable_remap_field(scene.mpm.scheme == core::UpdateScheme::MUSL);
+  // Grid contact: one velocity field per contact body and one shared by the rest.
+  const int fields = plan_.velocity_fields;
+  multi_field_ = fields > 1;
+  field_of_body_ = plan_.field_of_body;
+  law_.assign(static_cast<std::size_t>(fields * fields), PairLaw{});
+  for (const core::ContactSpec& c : scene.contacts) {
+    const int a = field_of_body_[static_cast<std::size_t>(c.bodies[0])];
+    const int b = field_of_body_[static_cast<std::size_t>(c.bodies[1])];
+    const PairLaw law{true, c.friction, c.distance_factor};
+    law_[static_cast<std::size_t>(a * fields + b)] = law;
+    law_[static_cast<std::size_t>(b * fields + a)] = law;
+  }
+  field_in_contact_.assign(static_cast<std::size_t>(fields), 0);
+  for (int a = 0; a < fields; ++a)
+    for (int b = 0; b < fields; ++b)
+      if (law_[static_cast<std::size_t>(a * fields + b)].contact)
+        field_in_contact_[static_cast<std::size_t>(a)] = 1;
+  grid_.set_fields(fields, !scene.contacts.empty());
   // The strain tensor is integrated only for scenes that write it: it is the largest array
   // the strain sweep streams, and nothing in the physics reads it.
   if (plan_.strain && particles_.strain.size() != particles_.size())
@@ -88,6 +106,18 @@ void MpmSolver::step(double dt) {
       case StageKind::strain_stress_update:
       case StageKind::g2p_velocity_strain_stress:
         strain_stress_update(dt);
+        break;
+      case StageKind::contact_surfaces:
+        contact_surfaces();
+        break;
+      case StageKind::contact_start:
+        grid_contact(ContactPass::start);
+        break;
+      case StageKind::grid_contact:
+        grid_contact(ContactPass::update);
+        break;
+      case StageKind::contact_remap:
+        grid_contact(ContactPass::remap);
         break;
     }
     ++stage_counts_[i];
@@ -160,6 +190,7 @@ Energies MpmSolver::energies() const {
   }
   out.plastic = plastic_work_;
   out.external_work = external_work_;
+  out.contact = contact_energy_;
   return out;
 }
 
@@ -238,6 +269,7 @@ std::size_t MpmSolver::active_cells() const {
 std::size_t MpmSolver::bytes() const {
   return particles_.bytes() + grid_.bytes() + cell_.capacity() * sizeof(std::int64_t) +
          velocity_gradient_.capacity() * sizeof(core::Mat3) +
+         contact_normal_.capacity() * sizeof(Vec3) +
          (layer_.capacity() + layer_order_.capacity()) * sizeof(std::int32_t) +
          layer_offsets_.capacity() * sizeof(std::int64_t);
 }

@@ -65,6 +65,19 @@ class MpmSolver {
   void grid_momentum_update(double dt);
   void grid_to_particle(double dt, bool move_positions);
   void remap_to_grid();
+  // Grid contact (grid_contact.cpp): each contact field's normal and reach at the nodes it
+  // shares, then the correction of one nodal velocity field.
+  void contact_surfaces();
+  void grid_contact(ContactPass pass);
+  template <class Stencil>
+  void contact_surfaces_kernel();
+  // Offset of particle i's velocity field in the nodal arrays (0 with a single field).
+  std::size_t field_offset(std::size_t i) const {
+    return multi_field_ ? static_cast<std::size_t>(
+                              field_of_body_[static_cast<std::size_t>(particles_.body[i])]) *
+                              grid_.slot_count()
+                        : 0;
+  }
   // The kernels behind them, one instance per shape function and transfer (defined and
   // instantiated in the stage's file).
   template <class Stencil, bool Affine, bool MassMomentum, bool Force, bool Gravity>
@@ -115,6 +128,21 @@ class MpmSolver {
   int sweep_axis_ = 2;
   // uGIMP: the velocity gradient of each particle, from kinematics_kernel to the stress update.
   std::vector<core::Mat3> velocity_gradient_;
+
+  // Velocity fields: the field of each body, and what happens where fields f and g meet at
+  // a node (law_[f * fields + g]): they stick (one velocity, as in a single field) unless the
+  // scene put their bodies in contact.
+  struct PairLaw {
+    bool contact = false;
+    double friction = 0.0;
+    double distance_factor = 0.5;
+  };
+  std::vector<int> field_of_body_;
+  std::vector<PairLaw> law_;
+  std::vector<char> field_in_contact_;  // the field meets some field it is in contact with
+  bool multi_field_ = false;
+  std::vector<Vec3> contact_normal_;  // unit normal of each field at its contact nodes, or 0
+  double contact_energy_ = 0.0;       // kinetic energy the contact took out (Energies::contact)
 
   // Wall-face components constrained at each grid slot by this step's momentum update
   // (bit a: component a), reused for the MUSL remapped velocity (see remap_to_grid).

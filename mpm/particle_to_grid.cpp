@@ -8,24 +8,6 @@
 
 namespace afemp::mpm {
 
-namespace {
-
-// Runs body(begin, end) on the particle range of every colour layer: the layers of one
-// colour in parallel (they share no node), then the next colour.
-template <int Colours, class Body>
-void sweep_layers(const std::vector<std::int64_t>& offsets, Body&& body) {
-  const std::int64_t layers = static_cast<std::int64_t>(offsets.size()) - 1;
-  const bool threads = core::worth_threads(static_cast<std::size_t>(offsets.back()));
-  for (int colour = 0; colour < Colours; ++colour) {
-#pragma omp parallel for schedule(dynamic, 1) if (threads)
-    for (std::int64_t l = colour; l < layers; l += Colours)
-      body(static_cast<std::size_t>(offsets[static_cast<std::size_t>(l)]),
-           static_cast<std::size_t>(offsets[static_cast<std::size_t>(l) + 1]));
-  }
-}
-
-}  // namespace
-
 // The momentum a particle gives node n: m S (v_p + C_p (x_I - x_p)) with the affine (APIC)
 // transfer (Jiang et al. 2015, eq 11), m S v_p without.
 template <class Stencil, bool Affine>
@@ -40,7 +22,7 @@ inline Vec3 node_momentum(const Stencil& s, int n, double m, const Vec3& mv, con
 template <class Stencil, bool Affine, bool MassMomentum, bool Force, bool Gravity>
 void MpmSolver::p2g_kernel() {
   core::BackgroundGrid& g = grid_;
-  const std::size_t slots = g.slot_count();
+  const std::size_t slots = g.field_slot_count();
 #pragma omp parallel for schedule(static) if (core::worth_threads(slots))
   for (std::size_t s = 0; s < slots; ++s) {
     if constexpr (MassMomentum) {
@@ -54,16 +36,18 @@ void MpmSolver::p2g_kernel() {
   constexpr int N = Stencil::nodes;
   // Particles of one cell mostly follow each other (the arrays are kept in cell order), so
   // each sweep sums a run of particles that reach the same nodes locally and adds the sums
-  // to the grid once per run: less grid traffic, same order every time.
+  // to the grid once per run: less grid traffic, same order every time. Each particle adds
+  // to its body's velocity field (one field unless bodies are in grid contact).
   sweep_layers<Stencil::colours>(layer_offsets_, [&](std::size_t b, std::size_t e) {
     double mass[N];
     Vec3 momentum[N], force[N];
     typename Stencil::Slots slot{};
     std::int64_t current = -1;
+    std::size_t current_field = 0;
     auto flush = [&] {
       if (current < 0) return;
       for (std::size_t n = 0; n < N; ++n) {
-        const auto k = static_cast<std::size_t>(slot[n]);
+        const auto k = static_cast<std::size_t>(slot[n]) + current_field;
         if constexpr (MassMomentum) {
           g.mass[k] += mass[n];
           g.momentum[k] += momentum[n];
@@ -74,9 +58,11 @@ void MpmSolver::p2g_kernel() {
     for (std::size_t q = b; q < e; ++q) {
       const auto i = static_cast<std::size_t>(layer_order_[q]);
       const Stencil st(g, p, i, p.position[i]);
-      if (st.key != current) {
+      const std::size_t field = field_offset(i);
+      if (st.key != current || field != current_field) {
         flush();
         current = st.key;
+        current_field = field;
         st.slots(g, slot);
         for (std::size_t n = 0; n < N; ++n) {
           mass[n] = 0.0;
@@ -130,7 +116,7 @@ void MpmSolver::remap_kernel() {
   // MUSL (eq 2-37): the updated particle momentum, mapped with the weights of the step's
   // start positions, gives the nodal velocity the strain rate is computed from.
   core::BackgroundGrid& g = grid_;
-  const std::size_t slots = g.slot_count();
+  const std::size_t slots = g.field_slot_count();
 #pragma omp parallel for schedule(static) if (core::worth_threads(slots))
   for (std::size_t s = 0; s < slots; ++s) g.velocity_remap[s] = {};
   const Particles& p = particles_;
@@ -140,10 +126,11 @@ void MpmSolver::remap_kernel() {
       const Stencil st(g, p, i, p.position[i]);
       typename Stencil::Slots slot;
       st.slots(g, slot);
+      const std::size_t field = field_offset(i);
       const double m = p.mass[i];
       const Vec3 mv = m * p.velocity[i];
       for (int n = 0; n < Stencil::nodes; ++n)
-        g.velocity_remap[static_cast<std::size_t>(slot[static_cast<std::size_t>(n)])] +=
+        g.velocity_remap[static_cast<std::size_t>(slot[static_cast<std::size_t>(n)]) + field] +=
             node_momentum<Stencil, Affine>(st, n, m, mv, p, i);
     }
   });

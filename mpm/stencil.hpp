@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "core/grid/background_grid.hpp"
 #include "core/parallel.hpp"
@@ -29,6 +30,10 @@ struct LinearStencil {
     key = g.linear_cell(cell);
   }
   void slots(const core::BackgroundGrid& g, Slots& out) const { g.node_slots(cell, out); }
+  // Grid node (i, j, k) of stencil node n.
+  std::array<int, 3> node(int n) const {
+    return {cell[0] + (n & 1), cell[1] + ((n >> 1) & 1), cell[2] + (n >> 2)};
+  }
   double w(int n) const { return weights.w[static_cast<std::size_t>(n)]; }
   const Vec3& grad(int n) const { return weights.grad[static_cast<std::size_t>(n)]; }
 };
@@ -50,6 +55,10 @@ struct GimpStencil {
   }
   void slots(const core::BackgroundGrid& g, Slots& out) const {
     g.stencil_slots<3>(weights.base, out);
+  }
+  std::array<int, 3> node(int n) const {
+    const auto& b = weights.base;
+    return {b[0] + n % 3, b[1] + (n / 3) % 3, b[2] + n / 9};
   }
   double w(int n) const { return weights.w[static_cast<std::size_t>(n)]; }
   const Vec3& grad(int n) const { return weights.grad[static_cast<std::size_t>(n)]; }
@@ -74,6 +83,21 @@ void for_each_particle_stencil(const core::BackgroundGrid& g, Particles& p, F&& 
     typename Stencil::Slots slot;
     st.slots(g, slot);
     f(i, st, slot);
+  }
+}
+
+// Runs body(begin, end) on the particle range of every colour layer (particle_binning.cpp):
+// the layers of one colour in parallel (they share no node), then the next colour. Scatter
+// loops from particles to nodes use it to sum without atomics.
+template <int Colours, class Body>
+void sweep_layers(const std::vector<std::int64_t>& offsets, Body&& body) {
+  const std::int64_t layers = static_cast<std::int64_t>(offsets.size()) - 1;
+  const bool threads = core::worth_threads(static_cast<std::size_t>(offsets.back()));
+  for (int colour = 0; colour < Colours; ++colour) {
+#pragma omp parallel for schedule(dynamic, 1) if (threads)
+    for (std::int64_t l = colour; l < layers; l += Colours)
+      body(static_cast<std::size_t>(offsets[static_cast<std::size_t>(l)]),
+           static_cast<std::size_t>(offsets[static_cast<std::size_t>(l) + 1]));
   }
 }
 

@@ -52,6 +52,35 @@ StepPlan build_step_plan(const core::Scene& scene) {
         {mat.name, strength_name(mat.strength), eos_name(mat.eos), mat.has_thermal_term()});
   }
 
+  // Velocity fields: one for each body in a contact, one shared by all the others.
+  plan.field_of_body.assign(scene.bodies.size(), 0);
+  std::vector<bool> in_contact(scene.bodies.size(), false);
+  for (const auto& c : scene.contacts)
+    for (int b : c.bodies) in_contact[static_cast<std::size_t>(b)] = true;
+  bool shared = false;
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+    shared = shared || (!in_contact[b] &&
+                        scene.bodies[b].discretisation == core::Discretisation::particles);
+  int next = shared ? 1 : 0;
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+    if (in_contact[b]) plan.field_of_body[b] = next++;
+  const bool contact = !scene.contacts.empty();
+  plan.velocity_fields = contact ? next : 1;
+  for (const auto& c : scene.contacts) {
+    std::ostringstream o;
+    o << scene.bodies[static_cast<std::size_t>(c.bodies[0])].name << " - "
+      << scene.bodies[static_cast<std::size_t>(c.bodies[1])].name << ": friction " << c.friction
+      << ", contact once the gap is below " << c.distance_factor << " cell";
+    plan.contacts.push_back(o.str());
+  }
+  const Stage surfaces = stage(StageKind::contact_surfaces, "contact surfaces",
+                               "grid contact: each contact body's normal from its mass "
+                               "gradient and its reach toward the other (seed 000 eqs 37, 42)");
+  const Stage grid_contact =
+      stage(StageKind::grid_contact, "grid contact",
+            "grid contact on the updated velocity: normal stop, Coulomb friction, separation "
+            "(seed 000 eqs 38-42)");
+
   const std::string force_why = plan.gravity ? "internal force -V sigma.grad N and gravity m N g"
                                              : "internal force -V sigma.grad N (no body force)";
   // The one stage every scheme runs the same way.
@@ -67,12 +96,17 @@ StepPlan build_step_plan(const core::Scene& scene) {
     case UpdateScheme::USF:
       s.push_back(stage(StageKind::p2g_mass_momentum, "p2g mass momentum",
                         "USF: nodal mass and momentum first"));
+      if (contact) s.push_back(surfaces);
       s.push_back(stage(StageKind::grid_velocity, "grid velocity",
                         "USF: stress is updated from the velocity at the start of the step"));
+      if (contact)
+        s.push_back(stage(StageKind::contact_start, "contact start velocity",
+                          "grid contact on the start velocity the strain rate is taken from"));
       s.push_back(stage(StageKind::strain_stress_update, "strain stress update",
                         "USF: strain rate from the grid velocity before the momentum update"));
       s.push_back(stage(StageKind::p2g_force, "p2g force", force_why));
       s.push_back(grid_update);
+      if (contact) s.push_back(grid_contact);
       s.push_back(stage(StageKind::g2p_velocity_position, "g2p velocity position",
                         velocity + " and position"));
       break;
@@ -80,7 +114,9 @@ StepPlan build_step_plan(const core::Scene& scene) {
     case UpdateScheme::MUSL:
       s.push_back(stage(StageKind::p2g_mass_momentum_force, "p2g mass momentum force",
                         "nodal mass, momentum and " + force_why));
+      if (contact) s.push_back(surfaces);
       s.push_back(grid_update);
+      if (contact) s.push_back(grid_contact);
       if (plan.scheme == UpdateScheme::USL) {
         s.push_back(stage(StageKind::g2p_velocity_strain_stress, "g2p velocity strain stress",
                           "USL: " + velocity +
@@ -92,6 +128,9 @@ StepPlan build_step_plan(const core::Scene& scene) {
                         velocity + "; positions move with the strain"));
       s.push_back(stage(StageKind::p2g_remap, "p2g remap",
                         "MUSL: updated particle momentum mapped back to the grid"));
+      if (contact)
+        s.push_back(stage(StageKind::contact_remap, "contact remap",
+                          "grid contact on the remapped velocity the strain rate is taken from"));
       s.push_back(stage(StageKind::strain_stress_update, "strain stress update",
                         "MUSL: strain rate from the remapped grid velocity; positions move"));
       break;
@@ -112,6 +151,7 @@ std::string StepPlan::describe() const {
     << "):\n";
   int i = 1;
   for (const auto& st : stages) o << "  " << i++ << ". " << st.name << "  -- " << st.why << "\n";
+  for (const auto& c : contacts) o << "grid contact " << c << "\n";
   o << "constitutive update per material batch" << (jaumann ? " (Jaumann rate)" : "") << ":\n";
   for (const auto& m : materials) {
     o << "  " << m.material << ": strength " << m.strength << ", EOS " << m.eos

@@ -22,7 +22,14 @@ enum class StageKind {
   p2g_remap,              // MUSL: eq 2-37
   strain_stress_update,   // eqs 2-38..2-41 from the velocity the scheme names
   g2p_velocity_strain_stress,  // USL: eqs 2-33..2-41 in one sweep (same weights, same field)
+  contact_surfaces,       // grid contact: normals (seed 000 eq 37) and reach (eq 42)
+  contact_start,          // grid contact on the start velocity (USF: the strain reads it)
+  grid_contact,           // seed 000 eqs 38-42 on the updated velocity, Coulomb friction
+  contact_remap,          // MUSL: the same on the remapped velocity
 };
+
+// Which nodal velocity a grid-contact stage corrects.
+enum class ContactPass { start, update, remap };
 
 struct Stage {
   StageKind kind;
@@ -49,6 +56,10 @@ struct StepPlan {
   bool gravity = false;                 // body force added in p2g_force
   bool jaumann = true;
   int velocity_fields = 1;              // one shared field: bodies stick (no contact stage)
+  // Grid contact: the velocity field of each body (all 0 with one field), and one line per
+  // contact pair for describe().
+  std::vector<int> field_of_body;
+  std::vector<std::string> contacts;
 
   // The plan as `afemp check` prints it, one stage per line with its reason.
   std::string describe() const;

@@ -85,8 +85,9 @@ void MpmSolver::kinematics_kernel(double dt) {
   for_each_particle_stencil<Stencil>(g, p, [&](std::size_t i, const Stencil& st, const auto& slot) {
     core::Mat3 l;  // L = sum v (x) grad S
     VelocityUpdate<Stencil, Affine> update;  // USL: the G2P of grid_to_particle.cpp
+    const std::size_t field = field_offset(i);
     for (int k = 0; k < Stencil::nodes; ++k) {
-      const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]);
+      const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]) + field;
       core::add_outer(l, sweep.strain_velocity[s], st.grad(k));
       if (sweep.move) update.add(st, k, v_new[s], v_old[s]);
     }
@@ -131,9 +132,10 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
         const core::CellWeights w = g.weights(x, c);
         std::array<std::int32_t, 8> slot;
         g.node_slots(c, slot);
+        const std::size_t field = field_offset(i);
         Vec3 dv;
         for (int k = 0; k < 8; ++k) {
-          const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]);
+          const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]) + field;
           const Vec3 v = sweep.strain_velocity[s];
           const Vec3& d = w.grad[static_cast<std::size_t>(k)];
           for (int r = 0; r < 3; ++r) {

@@ -72,13 +72,17 @@ void BackgroundGrid::activate(std::span<const std::int64_t> cells) {
 }
 
 void BackgroundGrid::resize_fields() {
-  const std::size_t n = slot_count();
+  const std::size_t n = field_slot_count();
   mass.resize(n);
   momentum.resize(n);
   force.resize(n);
   velocity.resize(n);
   velocity_new.resize(n);
   if (keep_remap_) velocity_remap.resize(n);
+  if (keep_contact_) {
+    mass_gradient.resize(n);
+    reach.resize(n);
+  }
 }
 
 std::array<int, 3> BackgroundGrid::node_of_slot(std::size_t slot) const {
@@ -96,8 +100,9 @@ std::size_t BackgroundGrid::bytes() const {
   return directory_.capacity() * sizeof(std::int32_t) +
          active_blocks_.capacity() * sizeof(std::int64_t) + mass.capacity() * sizeof(double) +
          (momentum.capacity() + force.capacity() + velocity.capacity() + velocity_new.capacity() +
-          velocity_remap.capacity()) *
-             sizeof(Vec3);
+          velocity_remap.capacity() + mass_gradient.capacity()) *
+             sizeof(Vec3) +
+         reach.capacity() * sizeof(double);
 }
 
 }  // namespace afemp::core

@@ -181,13 +181,22 @@ class BackgroundGrid {
     }
   }
 
-  // --- Nodal fields (one velocity field) -----------------------------------------------
+  // --- Nodal fields ---------------------------------------------------------------------
+  // One velocity field by default; with grid contact, one per contact body plus the shared
+  // one (mpm/grid_contact.cpp). Field f of slot s is entry f * slot_count() + s of each array.
   std::vector<double> mass;
   std::vector<Vec3> momentum;  // after P2G; divided into velocity by the grid update
   std::vector<Vec3> force;     // internal + external; turned into acceleration
   std::vector<Vec3> velocity;  // v^k (old) after the grid update
   std::vector<Vec3> velocity_new;  // v^{k+1}
   std::vector<Vec3> velocity_remap;  // MUSL: velocity remapped from updated particles
+  // Grid contact only: each field's mass gradient sum m grad S (seed 000 eq 37) and, along
+  // its contact normal, how far its particles reach past the node (eq 42).
+  std::vector<Vec3> mass_gradient;
+  std::vector<double> reach;
+  int field_count() const { return fields_; }
+  // Entries per nodal array: fields x slots.
+  std::size_t field_slot_count() const { return slot_count() * static_cast<std::size_t>(fields_); }
 
   // Bytes held by nodal storage and directory.
   std::size_t bytes() const;
@@ -208,11 +217,18 @@ class BackgroundGrid {
   };
   std::vector<ThreadBlocks> thread_blocks_;
   bool keep_remap_ = false;
+  int fields_ = 1;
+  bool keep_contact_ = false;
   void resize_fields();
 
  public:
   // The remap field is only stored when a scheme asks for it (MUSL).
   void enable_remap_field(bool on) { keep_remap_ = on; }
+  // Velocity fields per node, and whether the contact arrays are kept (before activate).
+  void set_fields(int fields, bool contact) {
+    fields_ = fields;
+    keep_contact_ = contact;
+  }
 };
 
 }  // namespace afemp::core

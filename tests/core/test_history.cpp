@@ -34,6 +34,7 @@ HistoryRow make_row(int r) {
   row.hourglass = 1.0e-3 * r;
   row.stabilisation = 2.0e-4 * r;
   row.eroded = r / 11.0;
+  row.contact = 0.125 * r;
   row.external_work = -2.0e-9 * r;
   row.total = row.kinetic + row.internal + row.hourglass + row.eroded;
   row.energy_error = r == 0 ? 0.0 : 3.3e-12 * r;
@@ -45,7 +46,8 @@ HistoryRow make_row(int r) {
 std::vector<double> flatten(const HistoryRow& row) {
   std::vector<double> v = {static_cast<double>(row.step), row.time, row.dt, row.kinetic,
                            row.internal, row.elastic, row.plastic, row.viscous,
-                           row.hourglass, row.stabilisation, row.eroded, row.external_work,
+                           row.hourglass, row.stabilisation, row.eroded, row.contact,
+                           row.external_work,
                            row.total, row.energy_error};
   for (const BodyHistory& b : row.bodies) {
     for (int i = 0; i < 3; ++i) v.push_back(b.momentum[i]);
@@ -67,7 +69,7 @@ TEST(History, HeaderListsPerBodyColumnsAndRowsReadBack) {
   const CsvTable empty = read_csv(path);  // header on disk before any row
   const std::vector<std::string> expected_header = {
       "step",     "time",     "dt",        "kinetic", "internal", "elastic",
-      "plastic",  "viscous",  "hourglass", "stabilisation", "eroded",  "external_work", "total",
+      "plastic",  "viscous",  "hourglass", "stabilisation", "eroded", "contact", "external_work", "total",
       "energy_error", "bar.px", "bar.py",  "bar.pz", "bar.vx", "bar.vy", "bar.vz",  "anvil.px", "anvil.py", "anvil.pz",
       "anvil.vx", "anvil.vy", "anvil.vz"};
   EXPECT_EQ(empty.header, expected_header);
@@ -82,7 +84,7 @@ TEST(History, HeaderListsPerBodyColumnsAndRowsReadBack) {
   }
   EXPECT_EQ(w.rows(), 3u);
   const CsvTable t = read_csv(path);
-  EXPECT_EQ(t.column("anvil.vx"), 23u);
+  EXPECT_EQ(t.column("anvil.vx"), 24u);
   EXPECT_EQ(t.rows[2][t.column("step")], 200.0);
   for (int r = 0; r < 3; ++r) expect_close(t.rows[r], flatten(make_row(r)));
 }
@@ -95,7 +97,7 @@ TEST(History, NoBodiesGivesTheGlobalColumnsOnly) {
   row.bodies.clear();
   w.write(row);
   const CsvTable t = read_csv(path);
-  EXPECT_EQ(t.header.size(), 14u);
+  EXPECT_EQ(t.header.size(), 15u);
   ASSERT_EQ(t.rows.size(), 1u);
   expect_close(t.rows[0], flatten(row));
 }

@@ -287,7 +287,7 @@ TEST(SceneParser, UnknownTopLevelKeyNamesFileLineKeyAndAllowedKeys) {
   const std::string expected_prefix =
       "scene.toml:" + std::to_string(line_of(text, "[rnu]")) + ": key 'rnu': unknown key";
   EXPECT_EQ(what.rfind(expected_prefix, 0), 0u) << what;
-  EXPECT_NE(what.find("run, grid, mpm, materials, bodies, constraints, walls, reference"), std::string::npos) << what;
+  EXPECT_NE(what.find("run, grid, mpm, materials, bodies, constraints, walls, contact, reference"), std::string::npos) << what;
 }
 
 TEST(SceneParser, UnknownKeyInsideStrengthTableNamesDottedKeyLineAndAllowedKeys) {
@@ -593,6 +593,37 @@ TEST(SceneParser, MeshMistakesNameTheKeyAndWhatIsAllowed) {
                         "hourglass = { form = \"assumed_strain\", coefficient = 1.5 }"));
   EXPECT_NE(e.find("bodies.plate.hourglass.coefficient"), std::string::npos) << e;
   EXPECT_NE(e.find("1"), std::string::npos) << e;
+}
+
+// [[contact]] names two particle bodies; its mistakes name the line and the key.
+TEST(SceneParser, ContactReadsItsPairAndRejectsWhatItCannotDo) {
+  const std::string second = "[[bodies]]\nname = \"plate\"\nmaterial = \"steel\"\n"
+                             "shape = { box = { min = [5, 1, 1], max = [7, 3, 3] } }\n";
+  const std::string good = minimal_head + minimal_tail + second +
+                           "[[contact]]\nbodies = [\"block\", \"plate\"]\nfriction = 0.2\n";
+  const Scene s = parse_scene(good, "scene.toml");
+  ASSERT_EQ(s.contacts.size(), 1u);
+  EXPECT_EQ(s.contacts[0].bodies[0], 0);
+  EXPECT_EQ(s.contacts[0].bodies[1], 1);
+  EXPECT_EQ(s.contacts[0].friction, 0.2);
+  EXPECT_EQ(s.contacts[0].distance_factor, 0.5);  // seed 000 eq 42's lambda
+  const int line = line_of(good, "[[contact]]");  // its bodies key is on the next line
+  std::string e = error_of(minimal_head + minimal_tail + second +
+                           "[[contact]]\nbodies = [\"block\", \"block\"]\n");
+  EXPECT_NE(e.find("itself"), std::string::npos) << e;
+  e = error_of(minimal_head + minimal_tail + second +
+               "[[contact]]\nbodies = [\"block\", \"plat\"]\n");
+  EXPECT_NE(e.find("scene.toml:" + std::to_string(line + 1)), std::string::npos) << e;
+  EXPECT_NE(e.find("unknown body \"plat\""), std::string::npos) << e;
+  e = error_of(good + "[[contact]]\nbodies = [\"plate\", \"block\"]\n");
+  EXPECT_NE(e.find("already has a contact (line " + std::to_string(line)), std::string::npos) << e;
+  e = error_of(minimal_head + "[mpm]\nscheme = \"USL\"\n" + minimal_tail + second +
+               "[[contact]]\nbodies = [\"block\", \"plate\"]\n");
+  EXPECT_NE(e.find("contact[0].bodies"), std::string::npos) << e;
+  EXPECT_NE(e.find("\"MUSL\" (the default) or \"USF\""), std::string::npos) << e;
+  e = error_of(minimal_head + minimal_tail + second +
+               "[[contact]]\nbodies = [\"block\", \"plate\"]\nfriction = -0.1\n");
+  EXPECT_NE(e.find("friction"), std::string::npos) << e;
 }
 
 TEST(SceneParser, ParticlesAndMeshesInOneSceneAreRejectedUntilCoupled) {
