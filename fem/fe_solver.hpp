@@ -167,14 +167,15 @@ template <class Update>
 void FeSolver::for_each_batch(const FeElements& elements, Update&& update) {
   for (const ElementBatch& b : elements.batches) {
     const core::Material& m = scene_.materials[static_cast<std::size_t>(b.material)];
-    core::visit_models(m, [&](const auto& strength, const auto& eos) {
-      using S = std::decay_t<decltype(strength)>;
-      using E = std::decay_t<decltype(eos)>;
-      if (m.has_thermal_term())
-        update.template operator()<S, E, true>(b, strength, eos);
-      else
-        update.template operator()<S, E, false>(b, strength, eos);
-    });
+    core::visit_models(
+        m, [&](const auto& strength, const auto& eos) {
+          using S = std::decay_t<decltype(strength)>;
+          using E = std::decay_t<decltype(eos)>;
+          if (m.has_thermal_term())
+            update.template operator()<S, E, true>(b, strength, eos);
+          else
+            update.template operator()<S, E, false>(b, strength, eos);
+        });
   }
 }
 

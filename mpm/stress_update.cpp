@@ -44,21 +44,22 @@ void MpmSolver::strain_stress_update(double dt) {
   }
   for (const MaterialBatch& batch : batches_) {
     const core::Material& m = *materials_[static_cast<std::size_t>(batch.material)];
-    core::visit_models(m, [&](const auto& strength, const auto& eos) {
-      using S = std::decay_t<decltype(strength)>;
-      using E = std::decay_t<decltype(eos)>;
-      if (fused) {
-        if (m.has_thermal_term())
-          strain_stress_batch<S, E, true, true>(batch, strength, eos, dt, nt);
-        else
-          strain_stress_batch<S, E, false, true>(batch, strength, eos, dt, nt);
-      } else {
-        if (m.has_thermal_term())
-          strain_stress_batch<S, E, true, false>(batch, strength, eos, dt, nt);
-        else
-          strain_stress_batch<S, E, false, false>(batch, strength, eos, dt, nt);
-      }
-    });
+    core::visit_models(
+        m, [&](const auto& strength, const auto& eos) {
+          using S = std::decay_t<decltype(strength)>;
+          using E = std::decay_t<decltype(eos)>;
+          if (fused) {
+            if (m.has_thermal_term())
+              strain_stress_batch<S, E, true, true>(batch, strength, eos, dt, nt);
+            else
+              strain_stress_batch<S, E, false, true>(batch, strength, eos, dt, nt);
+          } else {
+            if (m.has_thermal_term())
+              strain_stress_batch<S, E, true, false>(batch, strength, eos, dt, nt);
+            else
+              strain_stress_batch<S, E, false, false>(batch, strength, eos, dt, nt);
+          }
+        });
   }
   double work = 0.0, wave = 0.0, speed2 = 0.0;
   for (int t = 0; t < nt; ++t) {
