@@ -362,9 +362,72 @@ void read_mpm(TableReader& r, MpmSettings& mpm) {
   mpm.jaumann = r.boolean("jaumann", true);
 }
 
+HolmquistJohnsonCook read_holmquist_johnson_cook(TableReader& r) {
+  r.known({"A", "B", "N", "C", "fc", "T", "reference_strain_rate", "EFMIN", "SFMAX", "D1", "D2"});
+  r.check_unknown();
+  HolmquistJohnsonCook hjc;
+  hjc.A = r.required_number("A", Range::non_negative());
+  hjc.B = r.required_number("B", Range::non_negative());
+  hjc.N = r.required_number("N", Range::positive());
+  hjc.C = r.number("C", 0.0, Range::non_negative());
+  hjc.compressive_strength = r.required_number("fc", Range::positive());
+  hjc.tensile_strength = r.required_number("T", Range::positive());
+  hjc.reference_strain_rate = r.number("reference_strain_rate", 1.0, Range::positive());
+  hjc.min_fracture_strain = r.required_number("EFMIN", Range::positive());
+  hjc.max_strength = r.required_number("SFMAX", Range::positive());
+  hjc.D1 = r.required_number("D1", Range::non_negative());
+  hjc.D2 = r.required_number("D2", Range::non_negative());
+  return hjc;
+}
+
+// The compaction law's own ranges; the checks that need the derived mu_plock (K1 against
+// PC / muc, the dense curve rising, crushing softer than elasticity) are Material::validate's.
+HjcCompaction read_hjc_compaction(TableReader& r) {
+  r.known({"PC", "muc", "PL", "mul", "K1", "K2", "K3"});
+  r.check_unknown();
+  const double pc = r.required_number("PC", Range::positive());
+  const double muc = r.required_number("muc", {0.0, 1.0, true, true});
+  const double pl = r.required_number("PL", {pc, Range::positive().hi, true, false});
+  const double mul = r.required_number("mul", {muc, 1.0, true, true});
+  const double k1 = r.required_number("K1", {pc / muc, Range::positive().hi, false, false});
+  const double k2 = r.required_number("K2", Range::any());
+  const double k3 = r.required_number("K3", Range::non_negative());
+  return {pc, muc, pl, mul, k1, k2, k3};
+}
+
+// The HJC strength model and compaction law go together, and the material's elastic constants
+// come from G and the compaction law's bulk modulus K_e = PC / muc.
+void pair_holmquist_johnson_cook(TableReader& r, Material& m, std::optional<double> shear_modulus) {
+  const auto* compaction = std::get_if<HjcCompaction>(&m.eos);
+  const bool hjc_strength = std::holds_alternative<HolmquistJohnsonCook>(m.strength);
+  if (hjc_strength && !compaction)
+    r.fail(r.has("eos") ? "eos" : "strength",
+           "strength model \"holmquist-johnson-cook\" needs eos = { model = \"hjc-compaction\", "
+           "PC, muc, PL, mul, K1, K2, K3 }");
+  if (compaction && !hjc_strength)
+    r.fail("eos", "eos model \"hjc-compaction\" is the pressure law of strength model "
+                  "\"holmquist-johnson-cook\" and goes with it only");
+  if (!compaction) {
+    if (shear_modulus)
+      r.fail("G", "G is for eos hjc-compaction, whose PC / muc is the bulk modulus; give E and nu");
+    return;
+  }
+  if (!shear_modulus)
+    r.fail("eos", "eos model \"hjc-compaction\" sets the bulk modulus PC / muc; give the "
+                  "material's shear modulus G instead of E and nu");
+  if (r.has("E") || r.has("nu"))
+    r.fail(r.has("E") ? "E" : "nu", "give G only: eos hjc-compaction sets the bulk modulus");
+  const double k = compaction->elastic_modulus();
+  if (!(3.0 * k >= 2.0 * *shear_modulus))
+    r.fail("G", "value " + format_number(*shear_modulus) + " needs PC / muc = " +
+                    format_number(k) + " >= 2 G / 3 (Poisson's ratio >= 0)");
+  m.set_shear_and_bulk_modulus(*shear_modulus, k);
+}
+
 StrengthModel read_strength(TableReader& r, double youngs_modulus) {
   r.known({"model"});
-  const std::size_t model = r.choice("model", {"elastic", "j2", "johnson-cook"}, std::nullopt);
+  const std::size_t model = r.choice(
+      "model", {"elastic", "j2", "johnson-cook", "holmquist-johnson-cook"}, std::nullopt);
   if (model == 0) {
     r.check_unknown();
     return Elastic{};
@@ -384,6 +447,7 @@ StrengthModel read_strength(TableReader& r, double youngs_modulus) {
       j2.hardening = youngs_modulus * *et / (youngs_modulus - *et);
     return j2;
   }
+  if (model == 3) return read_holmquist_johnson_cook(r);
   r.known({"A", "B", "n", "C", "m", "reference_strain_rate", "room_temperature",
            "melt_temperature"});
   r.check_unknown();
@@ -410,8 +474,8 @@ StrengthModel read_strength(TableReader& r, double youngs_modulus) {
 
 EquationOfState read_eos(TableReader& r, double density, double bulk_modulus) {
   r.known({"model"});
-  const std::size_t model =
-      r.choice("model", {"linear", "mie-gruneisen", "linear-polynomial"}, std::nullopt);
+  const std::size_t model = r.choice(
+      "model", {"linear", "mie-gruneisen", "linear-polynomial", "hjc-compaction"}, std::nullopt);
   if (model == 0) {
     r.known({"bulk_modulus"});
     r.check_unknown();
@@ -427,6 +491,7 @@ EquationOfState read_eos(TableReader& r, double density, double bulk_modulus) {
     mg.gamma0 = r.required_number("gamma0", Range::non_negative());
     return mg;
   }
+  if (model == 3) return read_hjc_compaction(r);
   r.known({"C0", "C1", "C2", "C3", "C4", "C5", "C6"});
   r.check_unknown();
   LinearPolynomialEos lp;
@@ -437,14 +502,18 @@ EquationOfState read_eos(TableReader& r, double density, double bulk_modulus) {
 }
 
 Material read_material(TableReader& r, const std::string& name) {
-  r.known({"density", "E", "nu", "strength", "eos", "specific_heat", "taylor_quinney",
+  r.known({"density", "E", "nu", "G", "strength", "eos", "specific_heat", "taylor_quinney",
            "temperature", "failure_strain"});
   r.check_unknown();
   Material m;
   m.name = name;
   m.density = r.required_number("density", Range::positive());
-  m.youngs_modulus = r.required_number("E", Range::positive());
-  m.poisson_ratio = r.required_number("nu", {0.0, 0.5, false, true});
+  // A material with the HJC compaction law gives G; PC / muc is its bulk modulus.
+  const std::optional<double> shear_modulus = r.optional_number("G", Range::positive());
+  if (!shear_modulus) {
+    m.youngs_modulus = r.required_number("E", Range::positive());
+    m.poisson_ratio = r.required_number("nu", {0.0, 0.5, false, true});
+  }
   if (const toml::table* t = r.optional_table("strength")) {
     TableReader sr(*t, r.dotted("strength"), r.file());
     m.strength = read_strength(sr, m.youngs_modulus);
@@ -453,6 +522,7 @@ Material read_material(TableReader& r, const std::string& name) {
     TableReader er(*t, r.dotted("eos"), r.file());
     m.eos = read_eos(er, m.density, m.bulk_modulus());
   }
+  pair_holmquist_johnson_cook(r, m, shear_modulus);
   m.thermal.specific_heat = r.number("specific_heat", 0.0, Range::non_negative());
   m.thermal.taylor_quinney = r.number("taylor_quinney", 0.9, Range::closed(0.0, 1.0));
   m.thermal.initial_temperature = r.number("temperature", 293.0, Range::non_negative());

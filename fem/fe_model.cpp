@@ -37,8 +37,8 @@ void FeModel::write_fields(core::FieldWriter& writer) {
   if (!h.empty()) {
     const std::size_t ne = h.size();
     hex_stress_.assign(ne, {});
-    zeroed(ne, {&hex_pressure_, &hex_von_mises_, &hex_plastic_, &hex_temperature_, &hex_density_,
-                &hex_alive_, &hex_body_});
+    zeroed(ne, {&hex_pressure_, &hex_von_mises_, &hex_plastic_, &hex_damage_, &hex_temperature_,
+                &hex_density_, &hex_alive_, &hex_body_});
     hex_connectivity_.resize(8 * ne);
     for (const ElementBatch& b : h.batches)
       for (std::size_t e = b.begin; e < b.end; ++e) {
@@ -48,6 +48,7 @@ void FeModel::write_fields(core::FieldWriter& writer) {
           const std::size_t p = p0 + static_cast<std::size_t>(g);
           hex_stress_[e] += w * h.stress[p];
           hex_plastic_[e] += w * h.plastic_strain[p];
+          hex_damage_[e] += w * h.damage[p];
           hex_temperature_[e] += w * h.temperature[p];
         }
         hex_pressure_[e] = core::pressure(hex_stress_[e]);
@@ -61,6 +62,7 @@ void FeModel::write_fields(core::FieldWriter& writer) {
                   core::scalar_field("pressure", std::span<const double>(hex_pressure_)),
                   core::scalar_field("von_mises", std::span<const double>(hex_von_mises_)),
                   core::scalar_field("plastic_strain", std::span<const double>(hex_plastic_)),
+                  core::scalar_field("damage", std::span<const double>(hex_damage_)),
                   core::scalar_field("temperature", std::span<const double>(hex_temperature_)),
                   core::scalar_field("density", std::span<const double>(hex_density_)),
                   core::scalar_field("alive", std::span<const double>(hex_alive_)),

@@ -40,7 +40,7 @@ class FeModel final : public core::Model {
   // Derived fields, per frame.
   std::vector<core::Vec3> displacement_;
   std::vector<core::SymTensor> hex_stress_;
-  std::vector<double> hex_pressure_, hex_von_mises_, hex_plastic_, hex_temperature_,
+  std::vector<double> hex_pressure_, hex_von_mises_, hex_plastic_, hex_damage_, hex_temperature_,
       hex_density_, hex_alive_, hex_body_;
   std::vector<double> truss_stress_, truss_force_, truss_plastic_, truss_temperature_,
       truss_alive_, truss_body_;

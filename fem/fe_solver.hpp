@@ -56,6 +56,7 @@ struct FeElements {
   // Integration points (trusses: the axial stress in the bar frame, sigma_xx).
   std::vector<core::SymTensor> stress;
   std::vector<double> point_mass, plastic_strain, temperature, energy, density;
+  std::vector<double> damage, max_compaction;  // D in [0, 1]; largest rho / rho0 - 1 reached
   std::vector<ElementBatch> batches;
   std::size_t size() const { return nodes.size(); }
   bool empty() const { return nodes.empty(); }
@@ -166,16 +167,15 @@ template <class Update>
 void FeSolver::for_each_batch(const FeElements& elements, Update&& update) {
   for (const ElementBatch& b : elements.batches) {
     const core::Material& m = scene_.materials[static_cast<std::size_t>(b.material)];
-    std::visit(
-        [&](const auto& strength, const auto& eos) {
+    core::visit_models(
+        m, [&](const auto& strength, const auto& eos) {
           using S = std::decay_t<decltype(strength)>;
           using E = std::decay_t<decltype(eos)>;
           if (m.has_thermal_term())
             update.template operator()<S, E, true>(b, strength, eos);
           else
             update.template operator()<S, E, false>(b, strength, eos);
-        },
-        m.strength, m.eos);
+        });
   }
 }
 

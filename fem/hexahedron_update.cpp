@@ -61,6 +61,10 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
     const StrainIncrement inc = increment(l, dt);
     core::PointState st{el.stress[p], el.plastic_strain[p], el.temperature[p], el.energy[p],
                         density};
+    if constexpr (core::has_damage_state<Strength>) {
+      st.damage = el.damage[p];
+      st.max_compaction = el.max_compaction[p];
+    }
     st.stress += core::jaumann_increment(st.stress, inc.w23, inc.w13, inc.w12);
     // Bulk-viscous heating by the q that acted over this step.
     const double q_heat = -q_old * inc.d_eps.trace() / density;
@@ -74,6 +78,10 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
     el.temperature[p] = st.temperature;
     el.energy[p] = st.energy;
     el.density[p] = density;
+    if constexpr (core::has_damage_state<Strength>) {
+      el.damage[p] = st.damage;
+      el.max_compaction[p] = st.max_compaction;
+    }
     return core::wave_speed(mat, eos, st);
   };
   // Bulk-viscous pressure q and the critical step of an element (length l, dilatation rate

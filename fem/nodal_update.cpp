@@ -161,7 +161,8 @@ std::size_t FeSolver::bytes() const {
     b += v(el->nodes) + v(el->mass) + v(el->volume0) + v(el->volume) + v(el->length0) +
          v(el->area0) + v(el->bulk_q) + v(el->critical_dt) + v(el->alive) +
          v(el->hourglass_force) + v(el->stress) + v(el->point_mass) + v(el->plastic_strain) +
-         v(el->temperature) + v(el->energy) + v(el->density);
+         v(el->temperature) + v(el->energy) + v(el->density) + v(el->damage) +
+         v(el->max_compaction);
   return b + v(element_force_) + v(incidence_) + v(incidence_offsets_);
 }
 

@@ -33,7 +33,7 @@ void FeSolver::truss_batch(const ElementBatch& b, const Strength& strength, cons
       const TrussKinematics mid =
           truss_kinematics(xa - (0.5 * dt) * va, xb - (0.5 * dt) * vb, va, vb);
       core::PointState st{el.stress[p], el.plastic_strain[p], el.temperature[p], el.energy[p],
-                          el.density[p]};
+                          el.density[p], el.damage[p], el.max_compaction[p]};
       const core::UniaxialUpdate u = core::uniaxial_update(mat, strength, eos, Thermal, st,
                                                            mid.axial_strain_rate * dt, dt);
       sums[0] += el.point_mass[p] * u.point.plastic_work;
@@ -42,6 +42,8 @@ void FeSolver::truss_batch(const ElementBatch& b, const Strength& strength, cons
       el.temperature[p] = st.temperature;
       el.energy[p] = st.energy;
       el.density[p] = st.density;
+      el.damage[p] = st.damage;
+      el.max_compaction[p] = st.max_compaction;
       const TrussKinematics now = truss_kinematics(xa, xb, va, vb);
       const double area = current_area(el.area0[e], el.length0[e], mat.density, now.length, st.density);
       el.volume[e] = area * now.length;

@@ -34,6 +34,7 @@ void MpmModel::write_fields(core::FieldWriter& writer) {
       core::scalar_field("pressure", pressure_.data()),
       core::scalar_field("von_mises", von_mises_.data()),
       core::scalar_field("plastic_strain", p.plastic_strain.data()),
+      core::scalar_field("damage", p.damage.data()),
       core::scalar_field("temperature", p.temperature.data()),
       core::scalar_field("density", density_.data()),
       core::scalar_field("internal_energy", p.energy.data()),

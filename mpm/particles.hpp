@@ -25,6 +25,8 @@ struct Particles {
   std::vector<double> plastic_strain;  // equivalent plastic strain
   std::vector<double> temperature;
   std::vector<double> energy;          // specific internal energy (per unit mass)
+  std::vector<double> damage;          // scalar damage D in [0, 1]
+  std::vector<double> max_compaction;  // largest volumetric strain rho / rho0 - 1 reached
   std::vector<std::int32_t> body;
   std::vector<std::int32_t> material;
   std::vector<std::int32_t> id;        // stable id, unchanged by reordering
@@ -35,7 +37,7 @@ struct Particles {
   std::size_t size() const { return position.size(); }
   void resize(std::size_t n);
   void reserve(std::size_t n);
-  // Appends one point at rest-state (zero stress, strain, plastic strain, energy).
+  // Appends one point at rest-state (zero stress, strain, plastic strain, energy, damage).
   void push_back(const Vec3& x, const Vec3& v, double m, double vol, double temp,
                  std::int32_t body_id, std::int32_t material_id);
   // Reorders every array by perm: new[i] = old[perm[i]].

@@ -12,6 +12,7 @@ std::string strength_name(const core::StrengthModel& s) {
     std::string operator()(const core::Elastic&) const { return "elastic"; }
     std::string operator()(const core::J2Plasticity&) const { return "j2"; }
     std::string operator()(const core::JohnsonCook&) const { return "johnson-cook"; }
+    std::string operator()(const core::HolmquistJohnsonCook&) const { return "holmquist-johnson-cook"; }
   } v;
   return std::visit(v, s);
 }
@@ -22,6 +23,7 @@ std::string eos_name(const core::EquationOfState& e) {
     std::string operator()(const core::LinearEos&) const { return "linear"; }
     std::string operator()(const core::MieGruneisen&) const { return "mie-gruneisen"; }
     std::string operator()(const core::LinearPolynomialEos&) const { return "linear-polynomial"; }
+    std::string operator()(const core::HjcCompaction&) const { return "hjc-compaction"; }
   } v;
   return std::visit(v, e);
 }

@@ -44,8 +44,8 @@ void MpmSolver::strain_stress_update(double dt) {
   }
   for (const MaterialBatch& batch : batches_) {
     const core::Material& m = *materials_[static_cast<std::size_t>(batch.material)];
-    std::visit(
-        [&](const auto& strength, const auto& eos) {
+    core::visit_models(
+        m, [&](const auto& strength, const auto& eos) {
           using S = std::decay_t<decltype(strength)>;
           using E = std::decay_t<decltype(eos)>;
           if (fused) {
@@ -59,8 +59,7 @@ void MpmSolver::strain_stress_update(double dt) {
             else
               strain_stress_batch<S, E, false, false>(batch, strength, eos, dt, nt);
           }
-        },
-        m.strength, m.eos);
+        });
   }
   double work = 0.0, wave = 0.0, speed2 = 0.0;
   for (int t = 0; t < nt; ++t) {
@@ -107,6 +106,7 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
   const Vec3* v_new = g.velocity_new.data();
   constexpr bool reads_plastic_strain = !std::is_same_v<Strength, core::Elastic>;
   constexpr bool reads_temperature = Thermal || std::is_same_v<Strength, core::JohnsonCook>;
+  constexpr bool reads_damage = core::has_damage_state<Strength>;
   const bool jaumann = plan_.jaumann;
   const bool track_strain = plan_.strain;
   const double flip = scene_.mpm.flip;
@@ -167,6 +167,10 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
       // History an elastic batch never reads stays in memory: less to stream per point.
       if constexpr (reads_plastic_strain) st.plastic_strain = p.plastic_strain[i];
       if constexpr (reads_temperature) st.temperature = p.temperature[i];
+      if constexpr (reads_damage) {
+        st.damage = p.damage[i];
+        st.max_compaction = p.max_compaction[i];
+      }
       st.energy = p.energy[i];
       st.density = p.mass[i] / volume;
       const core::PointUpdate u =
@@ -174,6 +178,10 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
       p.stress[i] = st.stress;
       if constexpr (reads_plastic_strain) p.plastic_strain[i] = st.plastic_strain;
       if constexpr (Thermal) p.temperature[i] = st.temperature;
+      if constexpr (reads_damage) {
+        p.damage[i] = st.damage;
+        p.max_compaction[i] = st.max_compaction;
+      }
       p.energy[i] = st.energy;
       if (track_strain) p.strain[i] += d_eps;
       work += p.mass[i] * u.plastic_work;

@@ -1,6 +1,7 @@
 // Definition of constitutive_update (declared in material.hpp, which includes this file at its
 // end: include material.hpp, not this header). Seed 001 eq 2-41 with the energy equation
-// de = (s_mid : de_dev - p_mid tr(d eps)) / rho solved in closed form with p = a(mu) + b(mu) e.
+// de = (s_mid : de_dev - p_mid tr(d eps)) / rho solved in closed form with p = a(mu) + b(mu) e;
+// the Holmquist-Johnson-Cook pair branches to its own update (holmquist_johnson_cook.cpp).
 #pragma once
 
 #include <cmath>
@@ -12,56 +13,69 @@ template <class Strength, class Eos>
 inline PointUpdate constitutive_update(const Material& material, const Strength& strength,
                                        const Eos& eos, bool thermal, PointState& point,
                                        const SymTensor& d_eps, double dt) {
-  const double p_old = pressure(point.stress);
-  const SymTensor s_old = point.stress.deviator();
-  const SymTensor de_dev = d_eps.deviator();
-  const double d_vol = d_eps.trace();  // dV / V over the increment
-  const double rho = point.density;
-  // Work per unit mass uses the volume the increment acts on: the solvers update volume as
-  // V_new = V_old (1 + tr d eps), so sigma : d eps V_old / m = sigma : d eps / rho_old, which
-  // makes the volumetric work exact over a compress-release cycle (second order overall).
-  const double inv_rho_work = 1.0 / (rho * (1.0 + d_vol));  // one division per point
-
-  SymTensor s_new = s_old;
-  const StrengthContext context{material.shear_modulus(), point.plastic_strain,
-                                point.temperature, dt};
-  const DeviatoricResult r = strength.update(s_new, de_dev, context);
-  point.plastic_strain += r.plastic_strain_increment;
-  const double plastic_work = r.flow_stress * r.plastic_strain_increment * inv_rho_work;
-
-  // Trapezoidal deviatoric work: elastic (recoverable) and plastic parts together.
-  const double deviatoric_work = 0.5 * double_dot(s_old + s_new, de_dev) * inv_rho_work;
-  double p_new;
-  if constexpr (std::is_same_v<Eos, NoEos>) {
-    p_new = p_old - material.bulk_modulus() * d_vol;
-    point.energy += deviatoric_work - 0.5 * (p_old + p_new) * d_vol * inv_rho_work;
+  static_assert(composable<Strength, Eos>, "HolmquistJohnsonCook pairs with HjcCompaction only");
+  if constexpr (std::is_same_v<Strength, HolmquistJohnsonCook>) {
+    return holmquist_johnson_cook_update(material, strength, eos, point, d_eps, dt);
   } else {
-    const double mu = rho / material.density - 1.0;
-    const EosLinearForm f = eos.form(mu);
-    // e_new = e* - p_new tr/(2 rho) with p_new = a + b e_new: linear in e_new, so the
-    // midpoint-rule energy and the EOS pressure are consistent without iteration.
-    const double e_star = point.energy + deviatoric_work - 0.5 * p_old * d_vol * inv_rho_work;
-    const double half_strain = 0.5 * d_vol * inv_rho_work;
-    point.energy = (e_star - f.a * half_strain) / (1.0 + f.b * half_strain);
-    p_new = f.a + f.b * point.energy;
-  }
+    const double p_old = pressure(point.stress);
+    const SymTensor s_old = point.stress.deviator();
+    const SymTensor de_dev = d_eps.deviator();
+    const double d_vol = d_eps.trace();  // dV / V over the increment
+    const double rho = point.density;
+    // Work per unit mass uses the volume the increment acts on: the solvers update volume as
+    // V_new = V_old (1 + tr d eps), so sigma : d eps V_old / m = sigma : d eps / rho_old, which
+    // makes the volumetric work exact over a compress-release cycle (second order overall).
+    const double inv_rho_work = 1.0 / (rho * (1.0 + d_vol));  // one division per point
 
-  point.stress = s_new - p_new * SymTensor::identity();
-  if (thermal) {
-    point.temperature += material.thermal.taylor_quinney * plastic_work /
-                         material.thermal.specific_heat;
+    SymTensor s_new = s_old;
+    const StrengthContext context{material.shear_modulus(), point.plastic_strain,
+                                  point.temperature, dt};
+    const DeviatoricResult r = strength.update(s_new, de_dev, context);
+    point.plastic_strain += r.plastic_strain_increment;
+    const double plastic_work = r.flow_stress * r.plastic_strain_increment * inv_rho_work;
+
+    // Trapezoidal deviatoric work: elastic (recoverable) and plastic parts together.
+    const double deviatoric_work = 0.5 * double_dot(s_old + s_new, de_dev) * inv_rho_work;
+    double p_new;
+    if constexpr (std::is_same_v<Eos, NoEos>) {
+      p_new = p_old - material.bulk_modulus() * d_vol;
+      point.energy += deviatoric_work - 0.5 * (p_old + p_new) * d_vol * inv_rho_work;
+    } else {
+      const double mu = rho / material.density - 1.0;
+      const EosLinearForm f = eos.form(mu);
+      // e_new = e* - p_new tr/(2 rho) with p_new = a + b e_new: linear in e_new, so the
+      // midpoint-rule energy and the EOS pressure are consistent without iteration.
+      const double e_star = point.energy + deviatoric_work - 0.5 * p_old * d_vol * inv_rho_work;
+      const double half_strain = 0.5 * d_vol * inv_rho_work;
+      point.energy = (e_star - f.a * half_strain) / (1.0 + f.b * half_strain);
+      p_new = f.a + f.b * point.energy;
+    }
+
+    point.stress = s_new - p_new * SymTensor::identity();
+    if (thermal) {
+      point.temperature += material.thermal.taylor_quinney * plastic_work /
+                           material.thermal.specific_heat;
+    }
+    return {plastic_work};
   }
-  return {plastic_work};
+}
+
+template <class Eos>
+inline double tangent_bulk_modulus(const Material& material, const Eos& eos,
+                                   const PointState& point) {
+  const double mu = point.density / material.density - 1.0;
+  if constexpr (std::is_same_v<Eos, NoEos>) {
+    return material.bulk_modulus();
+  } else if constexpr (std::is_same_v<Eos, HjcCompaction>) {
+    return eos.tangent_bulk_modulus(mu, point.max_compaction);
+  } else {
+    return eos.tangent_bulk_modulus(mu, point.energy);
+  }
 }
 
 template <class Eos>
 inline double wave_speed(const Material& material, const Eos& eos, const PointState& point) {
-  double k_tangent;
-  if constexpr (std::is_same_v<Eos, NoEos>) {
-    k_tangent = material.bulk_modulus();
-  } else {
-    k_tangent = eos.tangent_bulk_modulus(point.density / material.density - 1.0, point.energy);
-  }
+  const double k_tangent = tangent_bulk_modulus(material, eos, point);
   return std::sqrt((k_tangent + 4.0 / 3.0 * material.shear_modulus()) / point.density);
 }
 

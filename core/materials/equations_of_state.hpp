@@ -1,6 +1,7 @@
-// Equations of state: the volumetric half of a material. Every EOS here is linear in the
-// specific internal energy e, p = a(mu) + b(mu) e with mu = rho / rho0 - 1, which lets the
-// energy equation be solved in closed form together with the new pressure (material.hpp).
+// Equations of state: the volumetric half of a material. Every EOS here but HjcCompaction is
+// linear in the specific internal energy e, p = a(mu) + b(mu) e with mu = rho / rho0 - 1, which
+// lets the energy equation be solved in closed form together with the new pressure
+// (material.hpp). HjcCompaction is independent of e but depends on the compaction history.
 #pragma once
 
 namespace afemp::core {
@@ -39,6 +40,50 @@ struct LinearPolynomialEos {
   double c[7] = {0, 0, 0, 0, 0, 0, 0};
   EosLinearForm form(double mu) const;
   double tangent_bulk_modulus(double mu, double e) const;
+};
+
+// Pressure-compaction law of the Holmquist-Johnson-Cook concrete model (hjc_compaction.cpp):
+// elastic up to the crush point (mu_c, P_c), linear crushing of the air voids up to the lock
+// pressure P_l, then the fully dense cubic in mubar = (mu - mu_l) / (1 + mu_l). Unloading
+// follows a modulus set by the largest compaction mu_max reached, so the law needs that
+// history; the HJC update (holmquist_johnson_cook.cpp) is its only user. The tension cutoff
+// -T (1 - D) belongs to the strength model and is applied there.
+class HjcCompaction {
+ public:
+  HjcCompaction() = default;
+  // Finds mu_plock, the strain at which the fully dense curve reaches lock_pressure (NaN when
+  // it never does; Material::validate reports that).
+  HjcCompaction(double crush_pressure, double crush_strain, double lock_pressure,
+                double lock_strain, double k1, double k2, double k3);
+
+  double crush_pressure() const { return crush_pressure_; }  // P_c
+  double crush_strain() const { return crush_strain_; }      // mu_c
+  double lock_pressure() const { return lock_pressure_; }    // P_l
+  double lock_strain() const { return lock_strain_; }        // mu_l: dense curve's P = 0 point
+  double plock_strain() const { return plock_strain_; }      // mu_plock: crushing ends, P = P_l
+  double k1() const { return k1_; }
+  double k2() const { return k2_; }
+  double k3() const { return k3_; }
+  double elastic_modulus() const { return crush_pressure_ / crush_strain_; }  // K_e = P_c / mu_c
+
+  // Pressure on the virgin loading curve (mu >= mu_max: the point compacts further).
+  double loading_pressure(double mu) const;
+  // dP/dmu of the virgin loading curve.
+  double loading_slope(double mu) const;
+  // dP/dmu of the unloading (and reloading) line from mu_max.
+  double unloading_modulus(double mu_max) const;
+  // Pressure at mu after the largest compaction mu_max >= mu, before the tension cutoff.
+  double pressure(double mu, double mu_max) const;
+  // Permanent volumetric strain mu_p left at P = 0 after mu_max: the crushed air voids.
+  double plastic_compaction(double mu_max) const;
+  // rho dp/drho for the time step: the stiffer of the loading and unloading slopes at mu_max,
+  // because a point loading now may unload in the next step.
+  double tangent_bulk_modulus(double mu, double mu_max) const;
+
+ private:
+  double crush_pressure_ = 0.0, crush_strain_ = 0.0, lock_pressure_ = 0.0, lock_strain_ = 0.0;
+  double k1_ = 0.0, k2_ = 0.0, k3_ = 0.0;
+  double plock_strain_ = 0.0;
 };
 
 }  // namespace afemp::core

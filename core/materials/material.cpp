@@ -1,5 +1,6 @@
 // Material composition checks and the longitudinal wave speed sqrt((K_t + 4G/3) / rho) used
 // for the explicit time step (seed 001 §2.2; K_t = rho dp/drho of the EOS at the point's state).
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -40,6 +41,21 @@ void validate_strength(const Material& m, const JohnsonCook& jc) {
   }
 }
 
+void validate_strength(const Material& m, const HolmquistJohnsonCook& hjc) {
+  require(hjc.A >= 0.0, m, "A", hjc.A, ">= 0");
+  require(hjc.B >= 0.0, m, "B", hjc.B, ">= 0");
+  require(hjc.N > 0.0, m, "N", hjc.N, "> 0");
+  require(hjc.C >= 0.0, m, "C", hjc.C, ">= 0");
+  require(hjc.compressive_strength > 0.0, m, "fc", hjc.compressive_strength, "> 0");
+  require(hjc.tensile_strength > 0.0, m, "T", hjc.tensile_strength, "> 0");
+  require(hjc.reference_strain_rate > 0.0, m, "reference_strain_rate",
+          hjc.reference_strain_rate, "> 0");
+  require(hjc.min_fracture_strain > 0.0, m, "EFMIN", hjc.min_fracture_strain, "> 0");
+  require(hjc.max_strength > 0.0, m, "SFMAX", hjc.max_strength, "> 0");
+  require(hjc.D1 >= 0.0, m, "D1", hjc.D1, ">= 0");
+  require(hjc.D2 >= 0.0, m, "D2", hjc.D2, ">= 0");
+}
+
 void validate_eos(const Material&, const NoEos&) {}
 
 void validate_eos(const Material& m, const LinearEos& eos) {
@@ -57,6 +73,31 @@ void validate_eos(const Material& m, const LinearPolynomialEos& eos) {
   require(eos.rho0 > 0.0, m, "rho0", eos.rho0, "> 0");
 }
 
+void validate_eos(const Material& m, const HjcCompaction& eos) {
+  require(eos.crush_pressure() > 0.0, m, "PC", eos.crush_pressure(), "> 0");
+  require(eos.crush_strain() > 0.0, m, "muc", eos.crush_strain(), "> 0");
+  require(eos.lock_pressure() > eos.crush_pressure(), m, "PL", eos.lock_pressure(), "> PC");
+  require(eos.lock_strain() > eos.crush_strain(), m, "mul", eos.lock_strain(), "> muc");
+  const double k_e = eos.elastic_modulus();
+  require(eos.k1() >= k_e, m, "K1", eos.k1(), ">= PC / muc (unloading stiffens as voids close)");
+  // The dense curve must rise for every mubar >= 0: its slope K1 + 2 K2 x + 3 K3 x^2 is
+  // smallest at x = max(0, -K2 / (3 K3)) (K3 > 0) or grows without bound only if K2 >= 0.
+  require(eos.k3() >= 0.0, m, "K3", eos.k3(), ">= 0");
+  if (eos.k3() > 0.0) {
+    const double x = std::max(0.0, -eos.k2() / (3.0 * eos.k3()));
+    const double slope = eos.k1() + x * (2.0 * eos.k2() + 3.0 * eos.k3() * x);
+    require(slope > 0.0, m, "K2", eos.k2(),
+            "such that K1 + 2 K2 x + 3 K3 x^2 > 0 for x >= 0 (pressure rises with compaction)");
+  } else {
+    require(eos.k2() >= 0.0, m, "K2", eos.k2(), ">= 0 when K3 = 0");
+  }
+  require(eos.plock_strain() > eos.crush_strain(), m, "mu_plock", eos.plock_strain(),
+          "> muc (where the dense curve reaches PL; lower PL or mul)");
+  const double crush_slope = eos.loading_slope(0.5 * (eos.crush_strain() + eos.plock_strain()));
+  require(crush_slope <= k_e, m, "(PL - PC) / (mu_plock - muc)", crush_slope,
+          "<= PC / muc (crushing is softer than the elastic response)");
+}
+
 }  // namespace
 
 bool Material::has_thermal_term() const {
@@ -71,6 +112,19 @@ void Material::validate() const {
           "in [0, 0.5)");
   std::visit([this](const auto& model) { validate_strength(*this, model); }, strength);
   std::visit([this](const auto& model) { validate_eos(*this, model); }, eos);
+  const bool hjc_strength = std::holds_alternative<HolmquistJohnsonCook>(strength);
+  if (hjc_strength != std::holds_alternative<HjcCompaction>(eos)) {
+    throw std::invalid_argument("material '" + name + "': strength model " +
+                                (hjc_strength ? "holmquist-johnson-cook needs eos hjc-compaction"
+                                              : "other than holmquist-johnson-cook cannot use "
+                                                "eos hjc-compaction"));
+  }
+  if (const auto* compaction = std::get_if<HjcCompaction>(&eos)) {
+    // The deviator uses G from E and nu, the compaction law K_e = PC / muc: they must agree.
+    const double k_e = compaction->elastic_modulus();
+    require(std::abs(bulk_modulus() - k_e) <= 1e-9 * k_e, *this, "bulk modulus E / (3 (1 - 2 nu))",
+            bulk_modulus(), "= PC / muc (set E and nu from G and PC / muc)");
+  }
   require(thermal.taylor_quinney >= 0.0 && thermal.taylor_quinney <= 1.0, *this,
           "taylor_quinney", thermal.taylor_quinney, "in [0, 1]");
   require(thermal.specific_heat >= 0.0, *this, "specific_heat", thermal.specific_heat, ">= 0");

@@ -4,7 +4,10 @@
 // contiguous batches of points: std::visit once per batch, then a direct call per point.
 #pragma once
 
+#include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <variant>
 
 #include "core/materials/equations_of_state.hpp"
@@ -13,8 +16,20 @@
 
 namespace afemp::core {
 
-using StrengthModel = std::variant<Elastic, J2Plasticity, JohnsonCook>;
-using EquationOfState = std::variant<NoEos, LinearEos, MieGruneisen, LinearPolynomialEos>;
+using StrengthModel = std::variant<Elastic, J2Plasticity, JohnsonCook, HolmquistJohnsonCook>;
+using EquationOfState =
+    std::variant<NoEos, LinearEos, MieGruneisen, LinearPolynomialEos, HjcCompaction>;
+
+// The strength and EOS pairs that form a material: the Holmquist-Johnson-Cook strength goes
+// with its compaction law and nothing else does (Material::validate checks it).
+template <class Strength, class Eos>
+inline constexpr bool composable =
+    std::is_same_v<Strength, HolmquistJohnsonCook> == std::is_same_v<Eos, HjcCompaction>;
+
+// Whether a strength model's update reads and writes PointState::damage and max_compaction;
+// solvers leave that history in memory for the others.
+template <class Strength>
+inline constexpr bool has_damage_state = std::is_same_v<Strength, HolmquistJohnsonCook>;
 
 struct ThermalProperties {
   double specific_heat = 0.0;     // c_p per unit mass; 0 = no adiabatic heating
@@ -34,6 +49,11 @@ struct Material {
 
   double shear_modulus() const { return youngs_modulus / (2.0 * (1.0 + poisson_ratio)); }
   double bulk_modulus() const { return youngs_modulus / (3.0 * (1.0 - 2.0 * poisson_ratio)); }
+  // Sets E and nu from the shear modulus G and the bulk modulus K (for models given G).
+  void set_shear_and_bulk_modulus(double g, double k) {
+    youngs_modulus = 9.0 * k * g / (3.0 * k + g);
+    poisson_ratio = (3.0 * k - 2.0 * g) / (2.0 * (3.0 * k + g));
+  }
   bool has_eos() const { return !std::holds_alternative<NoEos>(eos); }
   // True when temperature must be integrated: a strength model that softens with
   // temperature and a specific heat to turn plastic work into heat.
@@ -49,6 +69,8 @@ struct PointState {
   double temperature = 0.0;
   double energy = 0.0;          // specific internal energy (per unit mass)
   double density = 0.0;         // current density rho^{k+1}
+  double damage = 0.0;          // scalar damage D in [0, 1]
+  double max_compaction = 0.0;  // largest volumetric strain mu = rho / rho0 - 1 reached
 };
 
 struct PointUpdate {
@@ -62,12 +84,46 @@ struct PointUpdate {
 //   every EOS is linear in e), or p -= K tr(d_eps) without an EOS; temperature rises by
 //   taylor_quinney * plastic work / c_p when has_thermal_term().
 // Templated on the model types so that each batch runs one instantiation.
+// The Holmquist-Johnson-Cook pair takes holmquist_johnson_cook_update instead.
 template <class Strength, class Eos>
 PointUpdate constitutive_update(const Material& material, const Strength& strength, const Eos& eos,
                                 bool thermal, PointState& point, const SymTensor& d_eps, double dt);
 
-// Longitudinal wave speed sqrt((K_t + 4G/3) / rho) at the point's state, K_t the EOS tangent
-// bulk modulus (or K without an EOS). The template is the per-batch form.
+// Holmquist-Johnson-Cook update of one point (holmquist_johnson_cook.cpp): pressure from the
+// compaction law with the tension cutoff -T (1 - D), deviator returned radially onto the yield
+// surface at that pressure, damage from the plastic and crushing strain increments, and the
+// same energy equation as constitutive_update (the pressure does not depend on e).
+PointUpdate holmquist_johnson_cook_update(const Material& material,
+                                          const HolmquistJohnsonCook& strength,
+                                          const HjcCompaction& eos, PointState& point,
+                                          const SymTensor& d_eps, double dt);
+
+// Calls f(strength, eos) with the material's model types, instantiating only composable pairs:
+// the one visit per batch of the solvers. Throws std::invalid_argument for a pair that
+// Material::validate would reject.
+template <class F>
+decltype(auto) visit_models(const Material& material, F&& f) {
+  using Result = decltype(f(std::declval<const Elastic&>(), std::declval<const NoEos&>()));
+  return std::visit(
+      [&](const auto& strength, const auto& eos) -> Result {
+        if constexpr (composable<std::decay_t<decltype(strength)>, std::decay_t<decltype(eos)>>) {
+          return f(strength, eos);
+        } else {
+          throw std::invalid_argument("material '" + material.name +
+                                      "': strength model holmquist-johnson-cook and eos "
+                                      "hjc-compaction go together only");
+        }
+      },
+      material.strength, material.eos);
+}
+
+// Bulk modulus rho dp/drho of the pressure response at the point's state: the EOS tangent, or
+// K of the hypoelastic law without an EOS.
+template <class Eos>
+double tangent_bulk_modulus(const Material& material, const Eos& eos, const PointState& point);
+
+// Longitudinal wave speed sqrt((K_t + 4G/3) / rho) at the point's state, K_t from
+// tangent_bulk_modulus. The template is the per-batch form.
 double wave_speed(const Material& material, const PointState& point);
 template <class Eos>
 double wave_speed(const Material& material, const Eos& eos, const PointState& point);

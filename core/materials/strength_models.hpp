@@ -51,4 +51,27 @@ struct JohnsonCook {
   bool thermal() const { return m > 0.0 && melt_temperature > room_temperature; }
 };
 
+// Holmquist-Johnson-Cook concrete strength and damage (holmquist_johnson_cook.cpp), with
+// P* = P / fc, T* = T / fc and the strain-rate factor r = 1 + C ln(max(epsdot / epsdot_0, 1)):
+//   sigma* = min(SFMAX, [A (1 - D) + B P*^N] r)   for P* >= 0
+//   sigma* = A (1 - D)(1 + P* / T*) r             for -T* <= P* < 0
+//   D += (d eps_p + d mu_p) / max(EFMIN, D1 (P* + T*)^D2).
+// Its yield stress depends on the pressure and its damage on the crushing of the pressure law,
+// so it is paired with HjcCompaction and updated by holmquist_johnson_cook_update
+// (material.hpp), not through update() like the models above.
+struct HolmquistJohnsonCook {
+  double A = 0.0, B = 0.0, N = 1.0, C = 0.0;
+  double compressive_strength = 0.0;   // fc, the quasi-static uniaxial compressive strength
+  double tensile_strength = 0.0;       // T, the largest hydrostatic tension
+  double reference_strain_rate = 1.0;  // epsdot_0, in the scene's time unit
+  double min_fracture_strain = 0.0;    // EFMIN
+  double max_strength = 0.0;           // SFMAX, normalised
+  double D1 = 0.0, D2 = 0.0;
+  // sigma* at normalised pressure p_star, damage and equivalent strain rate.
+  double normalised_strength(double p_star, double damage, double strain_rate) const;
+  // Plastic strain to fracture at normalised pressure p_star, max(EFMIN, D1 (P* + T*)^D2).
+  double fracture_strain(double p_star) const;
+  bool thermal() const { return false; }
+};
+
 }  // namespace afemp::core

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <type_traits>
 #include <variant>
 
 #include "core/materials/material.hpp"
@@ -29,18 +28,6 @@ inline constexpr int kMaxUniaxialTrials = 30;
 
 // Lateral stress tolerance relative to max(|sigma_xx|, E |d_axial|).
 inline constexpr double kUniaxialLateralTolerance = 1e-10;
-
-// Bulk modulus of the pressure response at the point's state: the EOS tangent rho dp/drho,
-// or K of the hypoelastic law without an EOS.
-template <class Eos>
-inline double tangent_bulk_modulus(const Material& material, const Eos& eos,
-                                   const PointState& point) {
-  if constexpr (std::is_same_v<Eos, NoEos>) {
-    return material.bulk_modulus();
-  } else {
-    return eos.tangent_bulk_modulus(point.density / material.density - 1.0, point.energy);
-  }
-}
 
 // Elastic modulus of a bar under uniaxial stress, E_t = 9 K_t G / (3 K_t + G); E itself
 // without an EOS. The bar wave speed sqrt(E_t / rho) bounds a truss's time step.
@@ -136,11 +123,9 @@ UniaxialUpdate uniaxial_update(const Material& material, const Strength& strengt
 inline UniaxialUpdate uniaxial_update(const Material& material, PointState& point, double d_axial,
                                       double dt) {
   const bool thermal = material.has_thermal_term();
-  return std::visit(
-      [&](const auto& strength, const auto& eos) {
-        return uniaxial_update(material, strength, eos, thermal, point, d_axial, dt);
-      },
-      material.strength, material.eos);
+  return visit_models(material, [&](const auto& strength, const auto& eos) {
+    return uniaxial_update(material, strength, eos, thermal, point, d_axial, dt);
+  });
 }
 
 // One-point form of uniaxial_modulus.
