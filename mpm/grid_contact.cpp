@@ -86,24 +86,29 @@ void MpmSolver::contact_surfaces_kernel() {
     g.reach[s] = -std::numeric_limits<double>::infinity();
   }
   const Particles& p = particles_;
-  auto in_contact = [&](std::size_t i) {
-    return field_in_contact_[static_cast<std::size_t>(
-        field_of_body_[static_cast<std::size_t>(p.body[i])])];
+  // Scatters from the particles of contact fields, colour by colour (no two threads write a
+  // node): f(i, stencil, slot index of each node in the particle's field).
+  auto scatter_contact_particles = [&](auto&& f) {
+    sweep_layers<Stencil::colours>(layer_offsets_, [&](std::size_t b, std::size_t e) {
+      for (std::size_t q = b; q < e; ++q) {
+        const auto i = static_cast<std::size_t>(layer_order_[q]);
+        const std::size_t field = field_offset(i);
+        if (!field_in_contact_[field / stride]) continue;
+        const Stencil st(g, p, i, p.position[i]);
+        typename Stencil::Slots slot;
+        st.slots(g, slot);
+        std::array<std::size_t, Stencil::nodes> s;
+        for (int n = 0; n < Stencil::nodes; ++n)
+          s[static_cast<std::size_t>(n)] =
+              static_cast<std::size_t>(slot[static_cast<std::size_t>(n)]) + field;
+        f(i, st, s);
+      }
+    });
   };
   // Eq 37 per field: grad m = sum_p m_p grad S_I(x_p), pointing out of the body.
-  sweep_layers<Stencil::colours>(layer_offsets_, [&](std::size_t b, std::size_t e) {
-    for (std::size_t q = b; q < e; ++q) {
-      const auto i = static_cast<std::size_t>(layer_order_[q]);
-      if (!in_contact(i)) continue;
-      const Stencil st(g, p, i, p.position[i]);
-      typename Stencil::Slots slot;
-      st.slots(g, slot);
-      const std::size_t field = field_offset(i);
-      const double m = p.mass[i];
-      for (int n = 0; n < Stencil::nodes; ++n)
-        g.mass_gradient[static_cast<std::size_t>(slot[static_cast<std::size_t>(n)]) + field] +=
-            m * st.grad(n);
-    }
+  scatter_contact_particles([&](std::size_t i, const Stencil& st, const auto& s) {
+    for (int n = 0; n < Stencil::nodes; ++n)
+      g.mass_gradient[s[static_cast<std::size_t>(n)]] += p.mass[i] * st.grad(n);
   });
   // Each field's outward normal against the fields it meets at the node, where it meets one
   // it is in contact with; zero elsewhere.
@@ -138,24 +143,15 @@ void MpmSolver::contact_surfaces_kernel() {
     }
   });
   // Eq 42: how far each field's particles reach past the node along its normal.
-  sweep_layers<Stencil::colours>(layer_offsets_, [&](std::size_t b, std::size_t e) {
-    for (std::size_t q = b; q < e; ++q) {
-      const auto i = static_cast<std::size_t>(layer_order_[q]);
-      if (!in_contact(i)) continue;
-      const Stencil st(g, p, i, p.position[i]);
-      typename Stencil::Slots slot;
-      st.slots(g, slot);
-      const std::size_t field = field_offset(i);
-      const Vec3 x = p.position[i];
-      for (int n = 0; n < Stencil::nodes; ++n) {
-        if (st.w(n) <= 0.0) continue;
-        const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(n)]) + field;
-        const Vec3& normal = contact_normal_[s];
-        if (normal.x == 0.0 && normal.y == 0.0 && normal.z == 0.0) continue;
-        const auto node = st.node(n);
-        const double r = core::dot(x - g.node_position(node[0], node[1], node[2]), normal);
-        if (r > g.reach[s]) g.reach[s] = r;
-      }
+  scatter_contact_particles([&](std::size_t i, const Stencil& st, const auto& s) {
+    for (int n = 0; n < Stencil::nodes; ++n) {
+      const std::size_t k = s[static_cast<std::size_t>(n)];
+      const Vec3& normal = contact_normal_[k];
+      if (st.w(n) <= 0.0 || (normal.x == 0.0 && normal.y == 0.0 && normal.z == 0.0)) continue;
+      const auto node = st.node(n);
+      const double r =
+          core::dot(p.position[i] - g.node_position(node[0], node[1], node[2]), normal);
+      if (r > g.reach[k]) g.reach[k] = r;
     }
   });
 }

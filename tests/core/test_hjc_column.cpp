@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/materials/material.hpp"
@@ -37,6 +38,21 @@ struct PointCheck {
   core::SymTensor stress;
   double density, damage_before, max_compaction, plastic_increment;
 };
+
+// Runs the solver to the end time and returns its points' damage and plastic strain as they
+// were before the last step (the yield check uses the damage the step started with).
+// `points(solver)` gives the solver's point storage (particles or hexahedra).
+template <class Solver, class Points>
+std::pair<std::vector<double>, std::vector<double>> run_keeping_last_history(Solver& solver,
+                                                                             Points&& points) {
+  std::vector<double> damage, plastic;
+  while (solver.time() < kEndTime) {
+    damage = points(solver).damage;
+    plastic = points(solver).plastic_strain;
+    solver.step(solver.stable_time_step());
+  }
+  return {damage, plastic};
+}
 
 // Compares every point with the closed forms; some must have been crushed and unloaded.
 void check_points(const char* label, const core::Material& m, const std::vector<PointCheck>& pts) {
@@ -94,12 +110,8 @@ velocity = [0, 0, -20]
 )",
                                               "hjc_column_mpm.toml");
   mpm::MpmSolver solver(scene, mpm::generate_particles(scene));
-  std::vector<double> damage, plastic;
-  while (solver.time() < kEndTime) {
-    damage = solver.particles().damage;
-    plastic = solver.particles().plastic_strain;
-    solver.step(solver.stable_time_step());
-  }
+  const auto [damage, plastic] = run_keeping_last_history(
+      solver, [](const mpm::MpmSolver& s) -> auto& { return s.particles(); });
   const mpm::Particles& p = solver.particles();
   std::vector<PointCheck> pts;
   for (std::size_t i = 0; i < p.size(); ++i)
@@ -133,12 +145,8 @@ normal = [0, 0, 1]
 )" + lateral,
                                               "hjc_column_fe.toml");
   fem::FeSolver solver(scene);
-  std::vector<double> damage, plastic;
-  while (solver.time() < kEndTime) {
-    damage = solver.hexahedra().damage;
-    plastic = solver.hexahedra().plastic_strain;
-    solver.step(solver.stable_time_step());
-  }
+  const auto [damage, plastic] = run_keeping_last_history(
+      solver, [](const fem::FeSolver& s) -> auto& { return s.hexahedra(); });
   const fem::FeElements& h = solver.hexahedra();
   std::vector<PointCheck> pts;
   for (std::size_t i = 0; i < h.stress.size(); ++i)

@@ -14,6 +14,7 @@
 #include "core/error.hpp"
 #include "core/materials/material.hpp"
 #include "core/scene.hpp"
+#include "scene_errors.hpp"
 
 namespace afemp::core {
 namespace {
@@ -343,22 +344,8 @@ material = "concrete"
 shape = { box = { min = [0.002, 0.002, 0.002], max = [0.004, 0.004, 0.004] } }
 )";
 
-int line_of(const std::string& text, const std::string& needle) {
-  const auto pos = text.find(needle);
-  EXPECT_NE(pos, std::string::npos) << needle;
-  return 1 +
-         static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
-}
-
-std::string error_of(const std::string& text) {
-  try {
-    parse_scene(text, "scene.toml");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InputError for:\n" << text;
-  return "";
-}
+using test::error_of;
+using test::line_of;
 
 // The error names file, line and dotted key first.
 void expect_error_at(const std::string& text, const std::string& needle, const std::string& key,

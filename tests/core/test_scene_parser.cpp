@@ -12,6 +12,7 @@
 
 #include "core/error.hpp"
 #include "core/scene.hpp"
+#include "scene_errors.hpp"
 
 namespace afemp::core {
 namespace {
@@ -71,23 +72,8 @@ material = "steel"
 shape = { box = { min = [1, 1, 1], max = [3, 3, 3] } }
 )";
 
-// 1-based line of the first occurrence of needle in text.
-int line_of(const std::string& text, const std::string& needle) {
-  const auto pos = text.find(needle);
-  EXPECT_NE(pos, std::string::npos) << needle;
-  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
-}
-
-// what() of the InputError that parsing text throws ("" and a failure when none is thrown).
-std::string error_of(const std::string& text, const std::string& path = "scene.toml") {
-  try {
-    parse_scene(text, path);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InputError for:\n" << text;
-  return "";
-}
+using test::error_of;
+using test::line_of;
 
 TEST(SceneParser, TaylorBarSceneParsesIntoExpectedValuesIncludingDefaults) {
   const Scene s = parse_scene(taylor_scene, "taylor.toml");

@@ -13,6 +13,7 @@
 
 #include "core/error.hpp"
 #include "fem/mesh_import.hpp"
+#include "scene_errors.hpp"
 #include "scratch_dir.hpp"
 
 namespace afemp::fem {
@@ -105,13 +106,7 @@ std::array<bool, 3> fixed_on(const MeshData& m, const std::string& name) {
   return {false, false, false};
 }
 
-// 1-based number of the line of `text` holding `needle`.
-int line_of(const std::string& text, const std::string& needle) {
-  const auto pos = text.find(needle);
-  EXPECT_NE(pos, std::string::npos) << needle;
-  return 1 +
-         static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(pos), '\n'));
-}
+using test::line_of;
 
 // The message of the InputError `f` throws ("" and a failure when it throws none).
 template <class F>
