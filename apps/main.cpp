@@ -12,6 +12,7 @@
 #include "core/output/run_directory.hpp"
 #include "core/parallel.hpp"
 #include "core/time_loop.hpp"
+#include "coupling/coupled_model.hpp"
 #include "fem/fe_model.hpp"
 #include "mpm/mpm_model.hpp"
 
@@ -30,8 +31,10 @@ void set_threads(int threads) {
 #endif
 }
 
-// The model a scene describes: particles on the grid or a mesh (core::Model either way).
+// The model a scene describes: particles on the grid, a mesh, or both (core::Model each way).
 std::unique_ptr<core::Model> make_model(const core::Scene& scene) {
+  if (core::has_mesh(scene) && (core::has_particles(scene) || core::has_grid_coupling(scene)))
+    return std::make_unique<coupling::CoupledModel>(scene);
   if (core::has_mesh(scene)) return std::make_unique<fem::FeModel>(scene);
   return std::make_unique<mpm::MpmModel>(scene);
 }

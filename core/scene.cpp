@@ -79,6 +79,16 @@ bool has_mesh(const Scene& scene) {
   return false;
 }
 
+bool has_grid_coupling(const Scene& scene) {
+  for (const BodySpec& b : scene.bodies)
+    if (b.bonded_to >= 0) return true;
+  for (const ContactSpec& c : scene.contacts)
+    for (int b : c.bodies)
+      if (scene.bodies[static_cast<std::size_t>(b)].discretisation != Discretisation::particles)
+        return true;
+  return false;
+}
+
 Scene read_scene(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(SourceLocation{path, 0}, "", "cannot open scene file '" + path + "'");

@@ -158,6 +158,9 @@ struct BodySpec {
   BulkViscositySettings bulk_viscosity;
   std::optional<ErosionSettings> erosion;
   double area = 0.0;            // truss cross-section where the mesh gives none
+  // Bonded coupling (HFEMP, seed 000 §2.6): the particle body whose velocity field this mesh
+  // body's nodes join; they move with the grid solution (perfect bond). -1: not bonded.
+  int bonded_to = -1;
   Vec3 velocity;                // initial velocity
   std::optional<double> temperature;  // initial temperature; default the material's
   SourceLocation where;         // the [[bodies]] table, for messages
@@ -197,10 +200,11 @@ struct WallSpec {
   SourceLocation where;
 };
 
-// Grid contact between two particle bodies (seed 000 eqs 37-42): each body named in a
-// contact gets its own velocity field on the grid; where two fields meet at a node and
-// approach, a normal correction makes their normal velocities equal, Coulomb friction limits
-// the tangential one, and they may separate.
+// Grid contact between two bodies, at least one of particles (seed 000 eqs 37-42): each body
+// named in a contact gets its own velocity field on the grid (a mesh body's nodes map into
+// theirs: contact coupling, CFEMP); where two fields meet at a node and approach, a normal
+// correction makes their normal velocities equal, Coulomb friction limits the tangential one,
+// and they may separate.
 struct ContactSpec {
   std::array<int, 2> bodies{-1, -1};  // indices into Scene::bodies
   double friction = 0.0;              // Coulomb coefficient
@@ -223,6 +227,9 @@ struct Scene {
 // Whether some body is made of particles / of a mesh (hexahedra or trusses).
 bool has_particles(const Scene& scene);
 bool has_mesh(const Scene& scene);
+// Whether mesh nodes take part in the grid step: a mesh body bonded to particles or named in
+// a grid contact (coupling/).
+bool has_grid_coupling(const Scene& scene);
 
 // Reads and validates a scene file. Throws InputError naming file, line, key and what is
 // allowed for unknown keys, wrong types and out-of-range values.

@@ -678,7 +678,8 @@ void read_mesh_density(TableReader& r, const BodySpec& b, MeshDensity& m) {
 BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
                    const std::vector<Material>& material_list, const std::string& scene_path) {
   r.known({"name", "material", "discretisation", "shape", "particles_per_cell", "velocity",
-           "temperature", "mesh", "element", "hourglass", "bulk_viscosity", "erosion", "area"});
+           "temperature", "mesh", "element", "hourglass", "bulk_viscosity", "erosion", "area",
+           "bonded_to"});
   // Name the body in messages as soon as its name is readable, even for an unknown key.
   if (const toml::node* n = r.table().get("name"); n && n->is_string() && !n->as_string()->get().empty())
     r.set_prefix("bodies." + n->as_string()->get());
@@ -718,6 +719,7 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
   only_for("bulk_viscosity", D::hexahedra, D::hexahedra);
   only_for("erosion", D::hexahedra, D::trusses);
   only_for("area", D::trusses, D::trusses);
+  only_for("bonded_to", D::hexahedra, D::trusses);  // resolved once every body is read
   b.particles_per_cell = static_cast<int>(r.integer("particles_per_cell", 2, 1, 8));
   if (b.discretisation == D::particles) return b;
 
@@ -775,11 +777,12 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
   return b;
 }
 
-int body_index(TableReader& r, std::string_view key, const std::string& name, const Scene& scene) {
+int body_index(TableReader& r, std::string_view key, const std::string& name, const Scene& scene,
+               bool mesh_only = true) {
   std::vector<std::string> names;
   for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
     if (scene.bodies[i].name == name) {
-      if (scene.bodies[i].discretisation == Discretisation::particles)
+      if (mesh_only && scene.bodies[i].discretisation == Discretisation::particles)
         r.fail(key, "body \"" + name + "\" is made of particles; this applies to mesh bodies");
       return static_cast<int>(i);
     }
@@ -831,6 +834,10 @@ ConstraintSpec read_constraint(TableReader& r, const Scene& scene) {
   TableReader nr(r.required_table("nodes"), r.dotted("nodes"), r.file());
   c.nodes = read_selector(nr);
   if (r.has("body")) c.body = body_index(r, "body", r.required_string("body"), scene);
+  if (c.body >= 0 && scene.bodies[static_cast<std::size_t>(c.body)].bonded_to >= 0)
+    r.fail("body", "body \"" + scene.bodies[static_cast<std::size_t>(c.body)].name +
+                       "\" is bonded to particles and moves with the grid; constrain the grid "
+                       "([grid] boundary) instead");
   if (r.has("fixed") == r.has("velocity"))
     r.fail("fixed", "give either fixed = [\"x\", \"y\", \"z\"] (a subset, or \"all\") or "
                     "velocity = [vx, vy, vz]");
@@ -865,8 +872,12 @@ WallSpec read_wall(TableReader& r, const Scene& scene) {
   w.normal = (1.0 / norm(n)) * n;
   w.velocity = r.vec3("velocity", Vec3{});
   w.friction = r.number("friction", 0.0, Range::non_negative());
-  for (const std::string& name : r.strings("bodies"))
+  for (const std::string& name : r.strings("bodies")) {
     w.bodies.push_back(body_index(r, "bodies", name, scene));
+    if (scene.bodies[static_cast<std::size_t>(w.bodies.back())].bonded_to >= 0)
+      r.fail("bodies", "body \"" + name + "\" is bonded to particles and moves with the grid; "
+                       "walls act on free mesh bodies (use a [grid] boundary wall face)");
+  }
   return w;
 }
 
@@ -879,18 +890,21 @@ ContactSpec read_contact(TableReader& r, const Scene& scene) {
   if (names.size() != 2)
     r.fail("bodies", "name exactly two bodies, e.g. bodies = [\"projectile\", \"plate\"]");
   for (std::size_t k = 0; k < 2; ++k) {
-    std::vector<std::string> all;
-    for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-      all.push_back(scene.bodies[i].name);
-      if (scene.bodies[i].name != names[k]) continue;
-      if (scene.bodies[i].discretisation != Discretisation::particles)
-        r.fail("bodies", "body \"" + names[k] + "\" is a mesh; grid contact acts between "
-                         "particle bodies (mesh bodies meet rigid walls, [[walls]])");
-      c.bodies[k] = static_cast<int>(i);
-    }
-    if (c.bodies[k] < 0)
-      r.fail("bodies", "unknown body \"" + names[k] + "\"; bodies: " + join(all, true));
+    c.bodies[k] = body_index(r, "bodies", names[k], scene, false);
+    const BodySpec& body = scene.bodies[static_cast<std::size_t>(c.bodies[k])];
+    if (body.bonded_to >= 0)
+      r.fail("bodies", "body \"" + names[k] + "\" is bonded to \"" +
+                           scene.bodies[static_cast<std::size_t>(body.bonded_to)].name +
+                           "\" and moves in its velocity field; name that body in the contact");
   }
+  const auto mesh = [&](int b) {
+    return scene.bodies[static_cast<std::size_t>(b)].discretisation != Discretisation::particles;
+  };
+  if (mesh(c.bodies[0]) && mesh(c.bodies[1]))
+    r.fail("bodies", "both bodies are meshes; grid contact needs a particle body on one side "
+                     "(mesh bodies meet each other only through rigid walls, [[walls]])");
+  if (!scene.has_grid)
+    r.fail("bodies", "grid contact needs a [grid] section covering the bodies (cell, min, max)");
   if (c.bodies[0] == c.bodies[1]) r.fail("bodies", "a body cannot be in contact with itself");
   // USL takes the strain from the contact-corrected velocity that also moves the particles,
   // and in the head-on test of tests/mpm/test_grid_contact.cpp it lost 79 % of the energy
@@ -1010,10 +1024,21 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
   if (has_particles(scene) && !scene.has_grid)
     throw InputError(SourceLocation{path, 0}, "grid",
                      "bodies of particles need a [grid] section (cell, min, max)");
-  if (has_particles(scene) && has_mesh(scene))
-    throw InputError(SourceLocation{path, 0}, "bodies",
-                     "this version runs particle bodies and mesh bodies (hexahedra, trusses) in "
-                     "separate scenes: coupling them on the grid is not available yet");
+  // Bonded coupling: the host named by each mesh body's bonded_to.
+  for (std::size_t i = 0; i < bodies->size(); ++i) {
+    const toml::table& t = *bodies->get(i)->as_table();
+    if (!t.contains("bonded_to")) continue;
+    TableReader br(t, "bodies." + scene.bodies[i].name, path);
+    const std::string host = br.required_string("bonded_to");
+    const int h = body_index(br, "bonded_to", host, scene, false);
+    if (scene.bodies[static_cast<std::size_t>(h)].discretisation != Discretisation::particles)
+      br.fail("bonded_to", "body \"" + host + "\" is a mesh; a mesh body bonds to a body of "
+                           "particles (its nodes join that body's velocity field on the grid)");
+    if (scene.mpm.scheme == UpdateScheme::USL)
+      br.fail("bonded_to", "bonded coupling needs [mpm] scheme = \"MUSL\" (the default) or "
+                           "\"USF\"");
+    scene.bodies[i].bonded_to = h;
+  }
   read_table_array(r, "constraints", path, [&](TableReader& t) {
     scene.constraints.push_back(read_constraint(t, scene));
   });

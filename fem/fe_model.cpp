@@ -24,15 +24,21 @@ void zeroed(std::size_t n, std::initializer_list<std::vector<double>*> arrays) {
 FeModel::FeModel(const core::Scene& scene) : scene_(scene), solver_(scene) {}
 
 void FeModel::write_fields(core::FieldWriter& writer) {
+  writer.write_frame(solver_.time(), solver_.step_count(), {}, mesh_blocks());
+}
+
+const std::vector<core::MeshBlock>& FeModel::mesh_blocks() {
   const FeNodes& n = solver_.nodes();
   displacement_.resize(n.size());
   for (std::size_t i = 0; i < n.size(); ++i) displacement_[i] = n.position[i] - n.initial_position[i];
-  const std::vector<core::FieldView> node_fields = {
+  node_fields_ = {
       core::vector_field("velocity", std::span<const core::Vec3>(n.velocity)),
       core::vector_field("displacement", std::span<const core::Vec3>(displacement_))};
-
-  std::vector<core::MeshBlock> blocks;
-  std::vector<core::FieldView> hex_fields, truss_fields;
+  const std::vector<core::FieldView>& node_fields = node_fields_;
+  std::vector<core::MeshBlock>& blocks = blocks_;
+  blocks.clear();
+  std::vector<core::FieldView>& hex_fields = hex_fields_;
+  std::vector<core::FieldView>& truss_fields = truss_fields_;
   const FeElements& h = solver_.hexahedra();
   if (!h.empty()) {
     const std::size_t ne = h.size();
@@ -100,7 +106,7 @@ void FeModel::write_fields(core::FieldWriter& writer) {
     blocks.push_back({"trusses", core::CellKind::line, n.size(), core::as_doubles(n.position.data()),
                       ne, truss_connectivity_.data(), node_fields, truss_fields});
   }
-  writer.write_frame(solver_.time(), solver_.step_count(), {}, blocks);
+  return blocks;
 }
 
 std::vector<core::StageTiming> FeModel::stage_timings() const {
@@ -148,11 +154,20 @@ core::TaylorMeasures FeModel::measure_taylor(int body) const {
 }
 
 std::string FeModel::describe() const {
+  std::string out = describe_mesh();
+  out += "step plan (explicit FE, central differences; no particles, so no background grid is "
+         "allocated and no grid stage runs):\n";
+  out += describe_stages();
+  return out;
+}
+
+std::string FeModel::describe_mesh() const {
   std::string out;
   const MeshQualityReport q = mesh_quality(solver_.mesh());
   const FeNodes& n = solver_.nodes();
   for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
     const core::BodySpec& body = scene_.bodies[b];
+    if (body.discretisation == core::Discretisation::particles) continue;
     std::size_t nodes = 0;
     double mass = 0.0;
     for (std::size_t i = 0; i < n.size(); ++i)
@@ -207,8 +222,11 @@ std::string FeModel::describe() const {
   core::appendf(out, "smallest element time step: %.6g at %s\n",
          solver_.stable_time_step() / scene_.run.element_time_step_factor,
          solver_.smallest_step_element().c_str());
-  out += "step plan (explicit FE, central differences; no particles, so no background grid is "
-         "allocated and no grid stage runs):\n";
+  return out;
+}
+
+std::string FeModel::describe_stages() const {
+  std::string out;
   int k = 1;
   core::appendf(out, "  %d. nodal update  -- element forces gathered per node, v += dt f / m, imposed "
               "velocities%s\n", k++, scene_.run.gravity.x != 0.0 || scene_.run.gravity.y != 0.0 ||

@@ -31,6 +31,11 @@ class FeModel final : public core::Model {
   std::vector<core::EventLog> take_events() override;
   core::TaylorMeasures measure_taylor(int body) const override;
   std::string describe() const override;
+  // Its parts: the bodies, mesh quality and smallest step; the FE stages, one per line.
+  std::string describe_mesh() const;
+  std::string describe_stages() const;
+  // The mesh blocks of one output frame (valid until the next call).
+  const std::vector<core::MeshBlock>& mesh_blocks();
   std::size_t bytes() const override { return solver_.bytes(); }
 
  private:
@@ -45,6 +50,8 @@ class FeModel final : public core::Model {
   std::vector<double> truss_stress_, truss_force_, truss_plastic_, truss_temperature_,
       truss_alive_, truss_body_;
   std::vector<std::int32_t> hex_connectivity_, truss_connectivity_;
+  std::vector<core::FieldView> node_fields_, hex_fields_, truss_fields_;
+  std::vector<core::MeshBlock> blocks_;
 };
 
 }  // namespace afemp::fem

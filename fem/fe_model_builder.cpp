@@ -183,6 +183,7 @@ void FeSolver::build(const core::Scene& scene) {
   nodes_.body.assign(n_nodes, -1);
   nodes_.imposed.assign(n_nodes, 0);
   nodes_.imposed_velocity.assign(n_nodes, Vec3{});
+  nodes_.grid_driven.assign(n_nodes, 0);
   for (std::size_t b = 0; b < scene.bodies.size(); ++b)
     for (std::size_t n = node_begin[b]; n < node_end[b]; ++n) {
       nodes_.body[n] = static_cast<std::int32_t>(b);

@@ -30,6 +30,9 @@ struct FeNodes {
   std::vector<std::int32_t> body;     // scene body index
   std::vector<std::uint8_t> imposed;  // bit a: velocity component a is imposed
   std::vector<Vec3> imposed_velocity;
+  // 1: the node moves with the background grid (bonded to particles, coupling/): the nodal
+  // update and the position update leave it to the caller.
+  std::vector<std::uint8_t> grid_driven;
   std::size_t size() const { return position.size(); }
 };
 
@@ -103,7 +106,23 @@ class FeSolver {
   std::string smallest_step_element() const;
   // One central-difference step. Throws core::SimulationError naming the step, the node or
   // element and the field when a value goes NaN/Inf or an element inverts without erosion.
+  // It is begin_step then finish_step; a coupled step (coupling/) runs the grid in between.
   void step(double dt);
+  // v^{n+1/2} of every node not grid driven: element forces, gravity, imposed velocities,
+  // rigid walls.
+  void begin_step(double dt);
+  // x^{n+1} of every node not grid driven (the caller has moved the others), then the
+  // elements' stress and forces at x^{n+1} with v^{n+1/2}, erosion, and the clock.
+  void finish_step(double dt);
+  // Marks the nodes the grid moves (driven[i] != 0); they also leave the rigid walls.
+  void set_grid_driven(const std::vector<std::uint8_t>& driven);
+  // The sum of the element forces on node i at the current state (no gravity).
+  Vec3 node_force(std::size_t i) const {
+    Vec3 f;
+    for (std::int64_t k = incidence_offsets_[i]; k < incidence_offsets_[i + 1]; ++k)
+      f += element_force_[static_cast<std::size_t>(incidence_[static_cast<std::size_t>(k)])];
+    return f;
+  }
   core::Energies energies() const;
   std::vector<ErosionEvent> take_erosion_events();
   std::size_t bytes() const;

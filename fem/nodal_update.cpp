@@ -27,9 +27,8 @@ void FeSolver::update_nodes(double dt) {
     for (std::size_t i = begin; i < end; ++i) {
       const double m = nodes_.mass[i];
       if (!(m > 0.0)) continue;  // no live element: out of the update
-      Vec3 f;
-      for (std::int64_t k = incidence_offsets_[i]; k < incidence_offsets_[i + 1]; ++k)
-        f += element_force_[static_cast<std::size_t>(incidence_[static_cast<std::size_t>(k)])];
+      if (nodes_.grid_driven[i]) continue;  // moved by the background grid (coupling/)
+      const Vec3 f = node_force(i);
       Vec3& v = nodes_.velocity[i];
       v += (dt_force / m) * f;
       if (gravity) {
@@ -57,24 +56,39 @@ void FeSolver::update_nodes(double dt) {
     external_work_ += thread_sums_[t * core::cache_line_doubles];
 }
 
+namespace {
+
+// Runs f and adds its wall seconds to `seconds`.
+template <class F>
+void timed(double& seconds, F&& f) {
+  const auto t0 = std::chrono::steady_clock::now();
+  f();
+  seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
 void FeSolver::step(double dt) {
-  using clock = std::chrono::steady_clock;
-  std::size_t stage = 0;
-  auto timed = [&](auto&& f) {
-    const auto t0 = clock::now();
-    f();
-    stage_seconds_[stage++] += std::chrono::duration<double>(clock::now() - t0).count();
-  };
-  timed([&] { update_nodes(dt); });
-  if (!walls_.empty()) timed([&] { apply_walls(dt); });
+  begin_step(dt);
+  finish_step(dt);
+}
+
+void FeSolver::begin_step(double dt) {
+  timed(stage_seconds_[0], [&] { update_nodes(dt); });
+  if (!walls_.empty()) timed(stage_seconds_[1], [&] { apply_walls(dt); });
+}
+
+void FeSolver::finish_step(double dt) {
   // Positions after every velocity condition, so the walls see the final v^{n+1/2}.
   const std::size_t n = nodes_.size();
   core::parallel_chunks(n, [&](std::size_t begin, std::size_t end, int) {
     for (std::size_t i = begin; i < end; ++i)
-      if (nodes_.mass[i] > 0.0) nodes_.position[i] += dt * nodes_.velocity[i];
+      if (nodes_.mass[i] > 0.0 && !nodes_.grid_driven[i])
+        nodes_.position[i] += dt * nodes_.velocity[i];
   });
-  if (!hexes_.empty()) timed([&] { update_hexahedra(dt); });
-  if (!trusses_.empty()) timed([&] { update_trusses(dt); });
+  std::size_t stage = walls_.empty() ? 1 : 2;
+  if (!hexes_.empty()) timed(stage_seconds_[stage++], [&] { update_hexahedra(dt); });
+  if (!trusses_.empty()) timed(stage_seconds_[stage], [&] { update_trusses(dt); });
   time_ += dt;
   ++steps_;
   previous_dt_ = dt;
@@ -140,6 +154,12 @@ core::Energies FeSolver::energies() const {
   return out;
 }
 
+void FeSolver::set_grid_driven(const std::vector<std::uint8_t>& driven) {
+  nodes_.grid_driven = driven;
+  for (WallState& w : walls_)
+    std::erase_if(w.nodes, [&](std::int32_t k) { return driven[static_cast<std::size_t>(k)] != 0; });
+}
+
 std::vector<ErosionEvent> FeSolver::take_erosion_events() {
   std::vector<ErosionEvent> out;
   out.swap(events_);
@@ -156,7 +176,8 @@ std::size_t FeSolver::live_trusses() const {
 std::size_t FeSolver::bytes() const {
   auto v = [](const auto& x) { return x.capacity() * sizeof(x[0]); };
   std::size_t b = v(nodes_.position) + v(nodes_.initial_position) + v(nodes_.velocity) +
-                  v(nodes_.mass) + v(nodes_.body) + v(nodes_.imposed) + v(nodes_.imposed_velocity);
+                  v(nodes_.mass) + v(nodes_.body) + v(nodes_.imposed) + v(nodes_.imposed_velocity) +
+                  v(nodes_.grid_driven);
   for (const FeElements* el : {&hexes_, &trusses_})
     b += v(el->nodes) + v(el->mass) + v(el->volume0) + v(el->volume) + v(el->length0) +
          v(el->area0) + v(el->bulk_q) + v(el->critical_dt) + v(el->alive) +

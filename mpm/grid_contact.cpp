@@ -79,6 +79,7 @@ void MpmSolver::contact_surfaces_kernel() {
   core::BackgroundGrid& g = grid_;
   const std::size_t stride = g.slot_count(), total = g.field_slot_count();
   const int fields = g.field_count();
+  const double h = g.cell();
   contact_normal_.resize(total);
 #pragma omp parallel for schedule(static) if (core::worth_threads(total))
   for (std::size_t s = 0; s < total; ++s) {
@@ -110,6 +111,7 @@ void MpmSolver::contact_surfaces_kernel() {
     for (int n = 0; n < Stencil::nodes; ++n)
       g.mass_gradient[s[static_cast<std::size_t>(n)]] += p.mass[i] * st.grad(n);
   });
+  nodes_contact_surfaces(true);
   // Each field's outward normal against the fields it meets at the node, where it meets one
   // it is in contact with; zero elsewhere.
 #pragma omp parallel if (core::worth_threads(stride))
@@ -142,7 +144,10 @@ void MpmSolver::contact_surfaces_kernel() {
       contact_normal_[s] = unit_or_zero((mass - m) * own - (m / (mass - m)) * others);
     }
   });
-  // Eq 42: how far each field's particles reach past the node along its normal.
+  // Eq 42: how far each field's particles reach past the node along its normal, counting the
+  // particles within half a cell of the normal line through the node (reach_along). Counting
+  // every particle the node sees let a particle off to the side reach far along a normal that
+  // tilts at an edge, and contact fired there before the bodies met.
   scatter_contact_particles([&](std::size_t i, const Stencil& st, const auto& s) {
     for (int n = 0; n < Stencil::nodes; ++n) {
       const std::size_t k = s[static_cast<std::size_t>(n)];
@@ -150,10 +155,11 @@ void MpmSolver::contact_surfaces_kernel() {
       if (st.w(n) <= 0.0 || (normal.x == 0.0 && normal.y == 0.0 && normal.z == 0.0)) continue;
       const auto node = st.node(n);
       const double r =
-          core::dot(p.position[i] - g.node_position(node[0], node[1], node[2]), normal);
+          reach_along(p.position[i] - g.node_position(node[0], node[1], node[2]), normal, h);
       if (r > g.reach[k]) g.reach[k] = r;
     }
   });
+  nodes_contact_surfaces(false);
 }
 
 void MpmSolver::contact_surfaces() {
@@ -171,6 +177,9 @@ void MpmSolver::grid_contact(ContactPass pass) {
   const double h = g.cell();
   const int nt = core::thread_count();
   thread_sums_.assign(static_cast<std::size_t>(nt) * core::cache_line_doubles, 0.0);
+  // FE contact nodes receive the change this pass makes to their field (node_transfers.cpp).
+  const bool record = update && nodes_;
+  if (record) contact_change_.assign(g.field_slot_count(), Vec3{});
 #pragma omp parallel num_threads(nt) if (core::worth_threads(stride))
   {
     double dissipated = 0.0;
@@ -193,6 +202,10 @@ void MpmSolver::grid_contact(ContactPass pass) {
             // of each would differ from the one shared field's.
             const double inv = 1.0 / (ma + mb);
             const Vec3 cm = inv * (ma * v[a] + mb * v[b]);
+            if (record) {
+              contact_change_[a] += cm - v[a];
+              contact_change_[b] += cm - v[b];
+            }
             v[a] = cm;
             v[b] = cm;
             if (update) {
@@ -228,6 +241,10 @@ void MpmSolver::grid_contact(ContactPass pass) {
           const Vec3 impulse = pn * n + t;
           v[a] += (1.0 / ma) * impulse;
           v[b] -= (1.0 / mb) * impulse;
+          if (record) {
+            contact_change_[a] += (1.0 / ma) * impulse;
+            contact_change_[b] -= (1.0 / mb) * impulse;
+          }
           // What the contact dissipates: the impulse's work on the interface at the mean of
           // the relative velocity at the start and after the correction. Its normal part is
           // >= 0, since the pair does not separate at the start and does not approach after.

@@ -141,7 +141,9 @@ void MpmSolver::grid_momentum_update(double dt) {
       }
       g.velocity[s] = v;
       g.velocity_new[s] = v_new;
-      if (body_force) work += 0.5 * dt * m * core::dot(gravity, v + v_new);
+      // A field of FE contact nodes only: the FE update counted its gravity work.
+      const bool counted = !field_nodes_only_.empty() && field_nodes_only_[static_cast<std::size_t>(f)];
+      if (body_force && !counted) work += 0.5 * dt * m * core::dot(gravity, v + v_new);
      }
     });
     thread_sums_[static_cast<std::size_t>(core::thread_index()) * core::cache_line_doubles] = work;

@@ -14,6 +14,12 @@ MpmModel::MpmModel(const core::Scene& scene)
     : scene_(scene), solver_(scene, generate_particles(scene)) {}
 
 void MpmModel::write_fields(core::FieldWriter& writer) {
+  const core::PointBlock block = particle_block();
+  writer.write_frame(solver_.time(), solver_.step_count(), block.n_points, block.positions,
+                     block.fields);
+}
+
+core::PointBlock MpmModel::particle_block() {
   const Particles& p = solver_.particles();
   const std::size_t n = p.size();
   pressure_.resize(n);
@@ -28,7 +34,8 @@ void MpmModel::write_fields(core::FieldWriter& writer) {
     body_[i] = p.body[i];
     id_[i] = p.id[i];
   }
-  std::vector<core::FieldView> fields = {
+  std::vector<core::FieldView>& fields = fields_;
+  fields = {
       core::vector_field("velocity", p.velocity.data()),
       core::tensor_field("stress", p.stress.data()),
       core::scalar_field("pressure", pressure_.data()),
@@ -42,8 +49,7 @@ void MpmModel::write_fields(core::FieldWriter& writer) {
       core::scalar_field("id", id_.data()),
   };
   if (!p.strain.empty()) fields.push_back(core::tensor_field("strain", p.strain.data()));
-  writer.write_frame(solver_.time(), solver_.step_count(), n,
-                     core::as_doubles(p.position.data()), fields);
+  return {"particles", n, core::as_doubles(p.position.data()), fields};
 }
 
 std::vector<core::StageTiming> MpmModel::stage_timings() const {
@@ -83,6 +89,7 @@ std::string MpmModel::describe() const {
            core::to_string(scene.mpm.grid.faces[static_cast<std::size_t>(f)]));
   out += "\n";
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    if (scene.bodies[b].discretisation != core::Discretisation::particles) continue;
     std::size_t count = 0;
     double mass = 0.0;
     for (std::size_t i = 0; i < p.size(); ++i)

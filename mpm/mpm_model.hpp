@@ -29,11 +29,14 @@ class MpmModel final : public core::Model {
   // Bins the particles first so that the active cells and memory describe the first step.
   std::string describe() const override;
   std::size_t bytes() const override { return solver_.bytes(); }
+  // The particles' block of one output frame (valid until the next call).
+  core::PointBlock particle_block();
 
  private:
   const core::Scene& scene_;
   mutable MpmSolver solver_;  // describe() bins the particles
   std::vector<double> pressure_, von_mises_, density_, body_, id_;  // derived, per frame
+  std::vector<core::FieldView> fields_;
 };
 
 }  // namespace afemp::mpm

@@ -68,6 +68,7 @@ double MpmSolver::stable_time_step() const {
 
 void MpmSolver::step(double dt) {
   using clock = std::chrono::steady_clock;
+  step_dt_ = dt;
   if (steps_ > 0 && steps_ % reorder_interval == 0) {
     const auto t0 = clock::now();
     reorder_particles();

@@ -10,6 +10,7 @@
 #include "core/energies.hpp"
 #include "core/grid/background_grid.hpp"
 #include "core/scene.hpp"
+#include "mpm/node_points.hpp"
 #include "mpm/particles.hpp"
 #include "mpm/stencil.hpp"
 #include "mpm/step_plan.hpp"
@@ -49,6 +50,13 @@ class MpmSolver {
   const std::vector<long>& stage_counts() const { return stage_counts_; }
   const std::vector<double>& stage_seconds() const { return stage_seconds_; }
   double reorder_seconds() const { return reorder_seconds_; }
+  // FE nodes that join the grid step from now on (coupling/); the caller fills them before
+  // each step and reads back what the step wrote (node_points.hpp). nullptr: none.
+  void set_node_points(NodePoints* nodes);
+  // The grid's stable step for points moving at `speed` (the scene's factor applied).
+  double stable_time_step_for_speed(double speed) const {
+    return scene_.run.time_step_factor * grid_.cell() / speed;
+  }
   // Bins the particles and activates their grid blocks without advancing, so that
   // active_cells() and bytes() describe the first step (`afemp check`).
   void prepare() { bin_particles(); }
@@ -105,6 +113,13 @@ class MpmSolver {
   // components the face conditions constrain.
   void apply_velocity_conditions(std::vector<Vec3>& field, bool divide_by_mass);
   void strain_stress_update(double dt);
+  // The FE nodes' part of each transfer (node_points.hpp), after the particles' and in node
+  // order (one thread: deterministic; there are few of them).
+  void nodes_to_grid(bool mass_momentum, bool force);
+  void nodes_from_grid(double dt);
+  void nodes_remap();
+  void nodes_contact_surfaces(bool gradient);  // mass gradient, or reach (eqs 37, 42)
+  void bin_nodes();
   template <class Strength, class Eos, bool Thermal, bool Fused>
   void strain_stress_batch(const MaterialBatch& batch, const Strength& strength, const Eos& eos,
                            double dt, int thread_slot_offset);
@@ -143,6 +158,13 @@ class MpmSolver {
   bool multi_field_ = false;
   std::vector<Vec3> contact_normal_;  // unit normal of each field at its contact nodes, or 0
   double contact_energy_ = 0.0;       // kinetic energy the contact took out (Energies::contact)
+  // Coupled FE nodes, and the velocity change grid contact made to each field at each node
+  // in the update pass (what contact nodes receive); field_nodes_only_: the field holds FE
+  // contact nodes only, whose gravity work the FE update counts.
+  NodePoints* nodes_ = nullptr;
+  std::vector<Vec3> contact_change_;
+  std::vector<char> field_nodes_only_;
+  double step_dt_ = 0.0;
 
   // Wall-face components constrained at each grid slot by this step's momentum update
   // (bit a: component a), reused for the MUSL remapped velocity (see remap_to_grid).

@@ -6,7 +6,9 @@
 // contributions in the same order for any thread count.
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
+#include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "mpm/mpm_solver.hpp"
 
@@ -71,7 +73,30 @@ void MpmSolver::bin_particles() {
           static_cast<std::int32_t>(i);
   }
   raise_if_bad("position");
+  bin_nodes();
   grid_.activate(cell_);
+}
+
+void MpmSolver::bin_nodes() {
+  if (!nodes_) return;
+  NodePoints& q = *nodes_;
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    const Vec3& x = q.position[k];
+    const auto c = grid_.cell_of(x);
+    const bool inside = std::isfinite(x.x + x.y + x.z) && grid_.inside(c);
+    q.on_grid[k] = inside && q.mass[k] > 0.0;
+    if (q.on_grid[k]) cell_.push_back(grid_.linear_cell(c));
+    // A contact node off the grid moves by the FE update alone; a bonded one has lost its host.
+    if (!inside && q.bonded[k] && q.mass[k] > 0.0) {
+      std::ostringstream who, what;
+      who << "node " << k << " of body '" << scene_.bodies[static_cast<std::size_t>(q.body[k])].name
+          << "' at (" << x.x << ", " << x.y << ", " << x.z << ")";
+      what << (std::isfinite(x.x + x.y + x.z) ? "a bonded node left the grid domain (enlarge "
+                                               "[grid] min/max)"
+                                             : "became NaN or Inf");
+      throw core::SimulationError(steps_, time_, who.str(), "position", what.str());
+    }
+  }
 }
 
 }  // namespace afemp::mpm

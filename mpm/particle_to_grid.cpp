@@ -109,6 +109,7 @@ void MpmSolver::particle_to_grid(bool mass_momentum, bool force) {
       p2g_kernel<Stencil, Affine, false, true, false>();
     }
   });
+  nodes_to_grid(mass_momentum, force);
 }
 
 template <class Stencil, bool Affine>
@@ -134,6 +135,7 @@ void MpmSolver::remap_kernel() {
             node_momentum<Stencil, Affine>(st, n, m, mv, p, i);
     }
   });
+  nodes_remap();
   apply_velocity_conditions(g.velocity_remap, true);
   // A wall node held this step (its v or v_new pointed into the wall) did not move
   // normally (positions move with v_new): its remapped normal velocity is zeroed too, or

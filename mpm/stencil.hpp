@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/grid/background_grid.hpp"
@@ -132,5 +133,14 @@ struct VelocityUpdate {
     }
   }
 };
+
+// How far a point at offset d from a grid node reaches along the unit normal n (seed 000
+// eq 42), or -inf for a point more than half a cell h from the normal line through the node.
+inline double reach_along(const Vec3& d, const Vec3& n, double h) {
+  const double along = core::dot(d, n);
+  const Vec3 lateral = d - along * n;
+  return core::dot(lateral, lateral) <= 0.25 * h * h ? along
+                                                     : -std::numeric_limits<double>::infinity();
+}
 
 }  // namespace afemp::mpm

@@ -66,6 +66,10 @@ StepPlan build_step_plan(const core::Scene& scene) {
   int next = shared ? 1 : 0;
   for (std::size_t b = 0; b < scene.bodies.size(); ++b)
     if (in_contact[b]) plan.field_of_body[b] = next++;
+  // Bonded mesh bodies (HFEMP) move in their host's field.
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+    if (scene.bodies[b].bonded_to >= 0)
+      plan.field_of_body[b] = plan.field_of_body[static_cast<std::size_t>(scene.bodies[b].bonded_to)];
   const bool contact = !scene.contacts.empty();
   plan.velocity_fields = contact ? next : 1;
   for (const auto& c : scene.contacts) {

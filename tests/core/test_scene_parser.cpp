@@ -612,14 +612,52 @@ TEST(SceneParser, ContactReadsItsPairAndRejectsWhatItCannotDo) {
   EXPECT_NE(e.find("friction"), std::string::npos) << e;
 }
 
-TEST(SceneParser, ParticlesAndMeshesInOneSceneAreRejectedUntilCoupled) {
-  std::string text = mesh_scene;
-  text.insert(text.find("[materials.steel]"), "[grid]\ncell = 1.0\nmin = [-5, -5, -5]\nmax = [5, 5, 15]\n\n");
-  text.insert(text.find("[[constraints]]"),
+// Particle and mesh bodies share a scene; the couplings (bonded_to, [[contact]] with a mesh
+// body) are checked: each error names the key and what is allowed.
+TEST(SceneParser, CouplingKeysNameTheKeyAndWhatIsAllowed) {
+  std::string base = mesh_scene;
+  base.insert(base.find("[materials.steel]"), "[grid]\ncell = 1.0\nmin = [-5, -5, -5]\nmax = [5, 5, 15]\n\n");
+  base.insert(base.find("[[constraints]]"),
               "[[bodies]]\nname = \"ball\"\nmaterial = \"steel\"\n"
               "shape = { sphere = { centre = [0, 0, 5], radius = 1 } }\n\n");
-  const std::string e = error_of(text);
-  EXPECT_NE(e.find("separate scenes"), std::string::npos) << e;
+  const Scene mixed = parse_scene(base, "mixed.toml");
+  EXPECT_TRUE(has_particles(mixed) && has_mesh(mixed));
+  EXPECT_FALSE(has_grid_coupling(mixed));
+  // bar (trusses) bonded to the ball: resolved to the ball's index.
+  auto with_bond = [&](const std::string& host) {
+    std::string t = base;
+    t.insert(t.find("area = 0.5") + 10, "\nbonded_to = \"" + host + "\"");
+    return t;
+  };
+  const Scene bonded = parse_scene(with_bond("ball"), "bonded.toml");
+  EXPECT_EQ(bonded.bodies[1].bonded_to, 2);
+  EXPECT_TRUE(has_grid_coupling(bonded));
+  std::string e = error_of(with_bond("slab"));
+  EXPECT_NE(e.find("bodies.bar.bonded_to"), std::string::npos) << e;
+  EXPECT_NE(e.find("unknown body \"slab\""), std::string::npos) << e;
+  e = error_of(with_bond("plate"));
+  EXPECT_NE(e.find("is a mesh; a mesh body bonds to a body of particles"), std::string::npos) << e;
+  std::string usl = with_bond("ball");
+  usl.insert(usl.find("[materials.steel]"), "[mpm]\nscheme = \"USL\"\n");
+  e = error_of(usl);
+  EXPECT_NE(e.find("bonded coupling needs [mpm] scheme"), std::string::npos) << e;
+  std::string on_particles = base;
+  on_particles.insert(on_particles.find("radius = 1 } }") + 14, "\nbonded_to = \"plate\"");
+  e = error_of(on_particles);
+  EXPECT_NE(e.find("bodies.ball.bonded_to"), std::string::npos) << e;
+  EXPECT_NE(e.find("applies to bodies of hexahedra or trusses"), std::string::npos) << e;
+  // A bonded body moves with its host: no wall and no contact of its own.
+  e = error_of(with_bond("ball") + "\n[[walls]]\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\nbodies = [\"bar\"]\n");
+  EXPECT_NE(e.find("walls[1].bodies"), std::string::npos) << e;  // mesh_scene has a wall
+  EXPECT_NE(e.find("bonded to particles"), std::string::npos) << e;
+  e = error_of(with_bond("ball") + "\n[[contact]]\nbodies = [\"bar\", \"plate\"]\n");
+  EXPECT_NE(e.find("contact[0].bodies"), std::string::npos) << e;
+  EXPECT_NE(e.find("is bonded to \"ball\""), std::string::npos) << e;
+  // Grid contact needs a particle body on one side; a mesh body with particles is coupled.
+  e = error_of(base + "\n[[contact]]\nbodies = [\"bar\", \"plate\"]\n");
+  EXPECT_NE(e.find("both bodies are meshes"), std::string::npos) << e;
+  const Scene cfemp = parse_scene(base + "\n[[contact]]\nbodies = [\"plate\", \"ball\"]\n", "c.toml");
+  EXPECT_TRUE(has_grid_coupling(cfemp));
   // A particle body without a grid is an error naming [grid].
   const std::string no_grid = minimal_tail;
   EXPECT_NE(error_of("[run]\nend_time = 1.0\n" + no_grid).find("key 'grid'"), std::string::npos);

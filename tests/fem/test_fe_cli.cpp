@@ -83,21 +83,24 @@ TEST(FeCli, RunWritesMeshFieldsAndHistoryWithFeEnergyColumns) {
 
 // Reference: core/scene_parser.cpp: particle and mesh bodies run in separate scenes in this
 // version; a scene with both is an input error (exit status 1) that says so.
-TEST(FeCli, SceneMixingParticleAndMeshBodiesIsRejected) {
+// A scene with particle and mesh bodies runs both on one clock; `afemp check` says how each
+// mesh body meets the grid (here: not at all, then through grid contact).
+TEST(FeCli, CheckSaysHowMeshBodiesMeetTheGrid) {
   ScratchDir dir;
-  const std::string path = dir.write(
-      "mixed.toml",
+  const std::string scene =
       "[run]\nend_time = 1.0\n[grid]\ncell = 1.0\nmin = [0, 0, 0]\nmax = [8, 8, 8]\n"
       "[materials.steel]\ndensity = 7.85e-3\nE = 200e3\nnu = 0.3\n"
       "[[bodies]]\nname = \"particles\"\nmaterial = \"steel\"\n"
       "shape = { box = { min = [1, 1, 1], max = [3, 3, 3] } }\n"
       "[[bodies]]\nname = \"mesh\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-      "shape = { box = { min = [4, 4, 4], max = [6, 6, 6] } }\nmesh = { size = 1.0 }\n");
-  const CommandResult r = run_afemp("check \"" + path + "\"", dir);
-  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
-  EXPECT_NE(r.err.find(path), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("particle bodies and mesh bodies"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("separate scenes"), std::string::npos) << r.err;
+      "shape = { box = { min = [4, 4, 4], max = [6, 6, 6] } }\nmesh = { size = 1.0 }\n";
+  CommandResult r = run_afemp("check \"" + dir.write("mixed.toml", scene) + "\"", dir);
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("body mesh: FE only"), std::string::npos) << r.out;
+  r = run_afemp("check \"" + dir.write("contact.toml", scene + "[[contact]]\nbodies = [\"mesh\", \"particles\"]\n") + "\"", dir);
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("body mesh: 27 nodes in grid contact (CFEMP"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("2 velocity fields"), std::string::npos) << r.out;
 }
 
 }  // namespace

@@ -1,0 +1,197 @@
+// The coupled FE-MPM step (coupling/coupled_model.hpp; seed 000 §2.4 contact coupling and
+// §2.6 hybrid FEMP). Time integration: the FE velocities live at half steps (central
+// differences) and so do the grid's updated velocities, so one dt advances both.
+// Contact nodes: the grid sees a contact node with its v^{n-1/2} as momentum and
+// m (v^{n+1/2} - v^{n-1/2}) / dt as force, so its field's updated velocity is the FE update's;
+// the node then takes sum N dv of the contact's change to that field, which hands the FE body
+// exactly the impulse the contact gave its field (momentum conserved to round-off).
+// Bonded nodes: their element forces at x^n enter the host's field like the particles'
+// -V sigma.grad N, and they take the particles' velocity update and the grid velocity as
+// motion; the trusses' strain rate is taken from that motion, so it matches the length change.
+#include "coupling/coupled_model.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "core/appendf.hpp"
+#include "core/error.hpp"
+
+namespace afemp::coupling {
+
+CoupledModel::CoupledModel(const core::Scene& scene) : scene_(scene), fe_(scene), mpm_(scene) {
+  const std::size_t nb = scene.bodies.size();
+  std::vector<char> in_contact(nb, 0);
+  for (const core::ContactSpec& c : scene.contacts)
+    for (int b : c.bodies) in_contact[static_cast<std::size_t>(b)] = 1;
+  const fem::FeNodes& n = fe().nodes();
+  std::vector<std::uint8_t> driven(n.size(), 0);
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    if (n.body[i] < 0) continue;
+    const core::BodySpec& body = scene.bodies[static_cast<std::size_t>(n.body[i])];
+    const bool bonded = body.bonded_to >= 0;
+    if (!bonded && !in_contact[static_cast<std::size_t>(n.body[i])]) continue;
+    if (bonded && n.imposed[i])
+      throw core::InputError(core::SourceLocation{scene.path, 0}, "constraints",
+                             "a constraint holds node " + std::to_string(i) + " of body \"" +
+                                 body.name + "\", which is bonded to particles and moves with "
+                                 "the grid; restrict the constraint to other bodies (body = ...)");
+    driven[i] = bonded ? 1 : 0;
+    fe_node_.push_back(i);
+  }
+  fe().set_grid_driven(driven);
+  surface_body_.assign(nb, 0);
+  for (std::size_t b = 0; b < nb; ++b)
+    surface_body_[b] = in_contact[b] &&
+                       scene.bodies[b].discretisation == core::Discretisation::hexahedra;
+  points_.resize(fe_node_.size());
+  start_velocity_.resize(fe_node_.size());
+  for (std::size_t k = 0; k < fe_node_.size(); ++k) {
+    const std::size_t i = fe_node_[k];
+    points_.body[k] = n.body[i];
+    points_.bonded[k] = driven[i];
+    points_.position[k] = n.position[i];
+    points_.velocity[k] = n.velocity[i];
+    points_.mass[k] = n.mass[i];
+    points_.surface[k] = surface_body_[static_cast<std::size_t>(n.body[i])];
+  }
+  if (!fe_node_.empty()) mpm().set_node_points(&points_);
+}
+
+double CoupledModel::stable_time_step() const {
+  double dt = std::min(fe().stable_time_step(), mpm().stable_time_step());
+  if (scene_.run.fixed_time_step > 0.0) return scene_.run.fixed_time_step;
+  // Coupled nodes cross the grid too: at most factor h per step.
+  double speed2 = 0.0;
+  for (std::size_t i : fe_node_)
+    speed2 = std::max(speed2, core::dot(fe().nodes().velocity[i], fe().nodes().velocity[i]));
+  if (speed2 > 0.0) dt = std::min(dt, mpm().stable_time_step_for_speed(std::sqrt(speed2)));
+  return dt;
+}
+
+void CoupledModel::load_points(double dt) {
+  const fem::FeNodes& n = fe().nodes();
+  if (std::any_of(surface_body_.begin(), surface_body_.end(), [](char c) { return c != 0; })) {
+    const std::size_t live = fe().live_hexahedra();
+    if (surface_.nodes.empty() || live != surface_live_) {
+      surface_ = boundary_faces(fe().hexahedra(), surface_body_);
+      surface_live_ = live;
+    }
+    surface_normals(surface_, fe().hexahedra(), n.position, normal_);
+    for (std::size_t k = 0; k < fe_node_.size(); ++k)
+      if (points_.surface[k]) points_.normal[k] = normal_[fe_node_[k]];
+  }
+  for (std::size_t k = 0; k < fe_node_.size(); ++k) {
+    const std::size_t i = fe_node_[k];
+    const double m = n.mass[i];
+    points_.position[k] = n.position[i];
+    points_.mass[k] = m;
+    if (points_.bonded[k]) {
+      points_.force[k] = fe().node_force(i);
+    } else {
+      points_.velocity[k] = start_velocity_[k];
+      points_.force[k] = (m / dt) * (n.velocity[i] - start_velocity_[k]);
+    }
+  }
+}
+
+void CoupledModel::step(double dt) {
+  fem::FeNodes& n = fe().mutable_nodes();
+  for (std::size_t k = 0; k < fe_node_.size(); ++k)
+    if (!points_.bonded[k]) start_velocity_[k] = n.velocity[fe_node_[k]];
+  fe().begin_step(dt);
+  const auto t0 = std::chrono::steady_clock::now();
+  load_points(dt);
+  mpm().step(dt);
+  for (std::size_t k = 0; k < fe_node_.size(); ++k) {
+    const std::size_t i = fe_node_[k];
+    if (!(n.mass[i] > 0.0)) continue;
+    if (points_.bonded[k]) {
+      n.position[i] += dt * points_.motion[k];
+      n.velocity[i] = points_.motion[k];  // the elements' strain rate (see above)
+    } else {
+      n.velocity[i] += points_.motion[k];
+      for (int a = 0; a < 3; ++a)  // imposed components stay imposed (a support's reaction)
+        if (n.imposed[i] & (1u << a)) n.velocity[i][a] = n.imposed_velocity[i][a];
+    }
+  }
+  coupling_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  fe().finish_step(dt);
+  for (std::size_t k = 0; k < fe_node_.size(); ++k)
+    if (points_.bonded[k]) n.velocity[fe_node_[k]] = points_.velocity[k];
+}
+
+core::Energies CoupledModel::energies() const {
+  core::Energies out = fe().energies();
+  const core::Energies m = mpm().energies();
+  out.kinetic += m.kinetic;
+  out.internal += m.internal;
+  out.plastic += m.plastic;
+  out.external_work += m.external_work;
+  out.contact += m.contact;
+  for (std::size_t b = 0; b < out.bodies.size(); ++b) {
+    out.bodies[b].mass += m.bodies[b].mass;
+    out.bodies[b].momentum += m.bodies[b].momentum;
+  }
+  return out;
+}
+
+void CoupledModel::write_fields(core::FieldWriter& writer) {
+  const core::PointBlock points[] = {mpm_.particle_block()};
+  writer.write_frame(time(), step_count(), points, fe_.mesh_blocks());
+}
+
+std::vector<core::StageTiming> CoupledModel::stage_timings() const {
+  std::vector<core::StageTiming> out;
+  for (core::StageTiming t : fe_.stage_timings()) {
+    t.name = "fe " + t.name;
+    out.push_back(t);
+  }
+  for (const core::StageTiming& t : mpm_.stage_timings()) out.push_back(t);
+  out.push_back({"coupling (grid step included)", step_count(), coupling_seconds_});
+  return out;
+}
+
+core::TaylorMeasures CoupledModel::measure_taylor(int body) const {
+  if (scene_.bodies.at(static_cast<std::size_t>(body)).discretisation ==
+      core::Discretisation::particles)
+    return mpm_.measure_taylor(body);
+  return fe_.measure_taylor(body);
+}
+
+std::string CoupledModel::describe() const {
+  std::string out = mpm_.describe();
+  out += fe_.describe_mesh();
+  out += "coupling on the grid (FE nodes inside the grid domain only):\n";
+  const fem::FeNodes& n = fe().nodes();
+  for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
+    const core::BodySpec& body = scene_.bodies[b];
+    if (body.discretisation == core::Discretisation::particles) continue;
+    std::size_t count = 0;
+    for (std::size_t i : fe_node_) count += n.body[i] == static_cast<int>(b) ? 1 : 0;
+    if (body.bonded_to >= 0)
+      core::appendf(out, "  body %s: %zu nodes bonded to %s (HFEMP: they join its velocity field "
+                         "and move with the grid)\n", body.name.c_str(), count,
+                    scene_.bodies[static_cast<std::size_t>(body.bonded_to)].name.c_str());
+    else if (count > 0)
+      core::appendf(out, "  body %s: %zu nodes in grid contact (CFEMP: own velocity field; "
+                         "contact corrections return to the nodes, elsewhere the FE update "
+                         "alone)\n", body.name.c_str(), count);
+    else
+      core::appendf(out, "  body %s: FE only (in no contact and bonded to nothing: it does not "
+                         "meet the particles)\n", body.name.c_str());
+  }
+  out += "FE stages, around each grid step (time step: the smaller of the FE and grid steps):\n";
+  out += fe_.describe_stages();
+  return out;
+}
+
+std::size_t CoupledModel::bytes() const {
+  return fe_.bytes() + mpm_.bytes() +
+         points_.size() * (4 * sizeof(core::Vec3) + sizeof(double) + sizeof(std::int32_t) + 2) +
+         fe_node_.capacity() * sizeof(std::size_t) + start_velocity_.capacity() * sizeof(core::Vec3);
+}
+
+}  // namespace afemp::coupling

@@ -1,0 +1,75 @@
+// FE and MPM bodies in one scene, tied through the background grid (seed 000 §2.4 and §2.6):
+//   - contact coupling (CFEMP): the nodes of a mesh body named in a [[contact]] map their
+//     mass, momentum and FE-update force into their own velocity field; grid contact corrects
+//     that field against the particles' and each node receives sum N dv of the correction.
+//     Elsewhere (no other body at its grid nodes) a node moves by the FE update alone.
+//   - bonded coupling (HFEMP): the nodes of a mesh body with `bonded_to` map mass, momentum
+//     and element forces into their host's field and move with the grid solution like its
+//     particles (perfect bond: rebar in concrete).
+// Mesh bodies in neither take no part in the grid step. One step with dt = the smaller of the
+// FE and grid stable steps:
+//   1. FE: v^{n+1/2} of the free and contact nodes from the element forces at x^n;
+//   2. grid: particles and coupled nodes (mpm/node_points.hpp), the scene's MPM scheme;
+//   3. contact nodes add the contact change; bonded nodes move with the grid velocity;
+//   4. FE: x^{n+1} of the other nodes, then element stress and forces at x^{n+1}.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "core/scene.hpp"
+#include "core/time_loop.hpp"
+#include "coupling/surface_normals.hpp"
+#include "fem/fe_model.hpp"
+#include "mpm/mpm_model.hpp"
+#include "mpm/node_points.hpp"
+
+namespace afemp::coupling {
+
+class CoupledModel final : public core::Model {
+ public:
+  // Throws core::InputError when a constraint holds a bonded node.
+  explicit CoupledModel(const core::Scene& scene);
+
+  fem::FeSolver& fe() { return fe_.solver(); }
+  const fem::FeSolver& fe() const { return fe_.solver(); }
+  mpm::MpmSolver& mpm() { return mpm_.solver(); }
+  const mpm::MpmSolver& mpm() const { return mpm_.solver(); }
+  // The FE nodes the grid step carries, and the FE node of each.
+  const mpm::NodePoints& node_points() const { return points_; }
+  const std::vector<std::size_t>& coupled_nodes() const { return fe_node_; }
+
+  double stable_time_step() const override;
+  void step(double dt) override;
+  long step_count() const override { return mpm().step_count(); }
+  double time() const override { return mpm().time(); }
+  // FE and MPM energies added; per-body sums from whichever holds the body.
+  core::Energies energies() const override;
+  std::size_t particle_count() const override { return mpm_.particle_count(); }
+  std::size_t element_count() const override { return fe_.element_count(); }
+  void write_fields(core::FieldWriter& writer) override;
+  std::vector<core::StageTiming> stage_timings() const override;
+  std::vector<core::EventLog> take_events() override { return fe_.take_events(); }
+  core::TaylorMeasures measure_taylor(int body) const override;
+  std::string describe() const override;
+  std::size_t bytes() const override;
+
+ private:
+  // Copies the FE nodes' state into the node points before the grid step.
+  void load_points(double dt);
+
+  const core::Scene& scene_;
+  fem::FeModel fe_;
+  mutable mpm::MpmModel mpm_;  // describe() bins the particles
+  mpm::NodePoints points_;
+  std::vector<std::size_t> fe_node_;   // FE node of each node point
+  std::vector<core::Vec3> start_velocity_;  // contact nodes: v^{n-1/2}
+  // The surface of the hexahedral contact bodies, rebuilt when elements erode.
+  std::vector<char> surface_body_;
+  SurfaceFaces surface_;
+  std::size_t surface_live_ = 0;  // live hexahedra when surface_ was built
+  std::vector<core::Vec3> normal_;  // per FE node
+  double coupling_seconds_ = 0.0;
+};
+
+}  // namespace afemp::coupling

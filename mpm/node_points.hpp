@@ -1,0 +1,59 @@
+// FE nodes that take part in the grid step (the couplings of coupling/, seed 000 §2.4 and
+// §2.6). They are points with mass, momentum and a force the caller computes (the elements'),
+// mapped with the trilinear hat into their body's velocity field, and:
+//   - bonded nodes (HFEMP: rebar in concrete) share the field of the particles they are
+//     embedded in and are moved by the grid solution exactly like particles (same PIC/FLIP
+//     blend), so mass and momentum are conserved as for particles;
+//   - contact nodes (CFEMP) have their own field; the caller advances them by the FE update,
+//     and the grid step only returns the velocity change grid contact made at the nodes
+//     around them, interpolated to each node: sum N_I dv_I. Since the field's nodal mass is
+//     sum_n N_I m_n, the nodes receive exactly the impulse the contact gave their field.
+// A node outside the grid takes no part in the step (contact) or stops the run (bonded).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/tensor.hpp"
+
+namespace afemp::mpm {
+
+using core::Vec3;
+
+struct NodePoints {
+  // Set by the caller before each step.
+  std::vector<Vec3> position;  // x^n
+  std::vector<Vec3> velocity;  // bonded: the node's velocity; contact: v^{n-1/2}
+  // Bonded: the elements' force on the node (gravity is added on the grid). Contact: the
+  // force of the FE update, m (v^{n+1/2} - v^{n-1/2}) / dt, gravity and conditions included.
+  std::vector<Vec3> force;
+  std::vector<double> mass;         // 0: the node takes no part (no live element)
+  std::vector<std::int32_t> body;   // scene body: its velocity field
+  std::vector<std::uint8_t> bonded;
+  // Contact nodes of a body with a surface (hexahedra): the outward unit normal of the surface
+  // at the node (0 inside the body), which sets the body's normal on the grid instead of its
+  // mass gradient (surface = 1). FE nodes lie on a grid plane wherever mesh and grid align,
+  // and there the one-sided hat gradient tilts the normal; the surface knows it exactly.
+  std::vector<Vec3> normal;
+  std::vector<std::uint8_t> surface;
+  // Written by the step. Bonded: velocity is the updated one, position moved by `motion`,
+  // the grid velocity at the node. Contact: `motion` is the contact's velocity change.
+  std::vector<Vec3> motion;
+  std::vector<std::uint8_t> on_grid;  // the node lay inside the grid at the step's start
+
+  std::size_t size() const { return position.size(); }
+  void resize(std::size_t n) {
+    position.resize(n);
+    velocity.resize(n);
+    force.resize(n);
+    mass.resize(n);
+    body.resize(n);
+    bonded.resize(n);
+    normal.resize(n);
+    surface.resize(n);
+    motion.resize(n);
+    on_grid.resize(n);
+  }
+};
+
+}  // namespace afemp::mpm
