@@ -89,6 +89,7 @@ void CoupledModel::load_points(double dt) {
     points_.position[k] = n.position[i];
     points_.mass[k] = m;
     if (points_.bonded[k]) {
+      points_.velocity[k] = n.velocity[i];
       points_.force[k] = fe().node_force(i);
     } else {
       points_.velocity[k] = start_velocity_[k];

@@ -33,6 +33,8 @@ class MpmSolver {
 
   const StepPlan& plan() const { return plan_; }
   const Particles& particles() const { return particles_; }
+  // For drivers and tests that set a state the scene cannot express (a velocity field).
+  Particles& mutable_particles() { return particles_; }
   const core::BackgroundGrid& grid() const { return grid_; }
   long step_count() const { return steps_; }
   double time() const { return time_; }
