@@ -6,6 +6,8 @@
 // elements' nodal force) instead of -V sigma.grad N. Bonded nodes take the particles' velocity
 // update (the same PIC/FLIP blend, or the grid velocity with APIC) and move with the grid
 // velocity; contact nodes take only sum N dv of the contact correction of their field.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -32,12 +34,25 @@ void MpmSolver::set_node_points(NodePoints* nodes) {
 
 namespace {
 
-// Offset of node k's velocity field in the nodal arrays.
-std::size_t node_field(const NodePoints& q, std::size_t k, const std::vector<int>& field_of_body,
-                       bool multi_field, std::size_t stride) {
-  return multi_field
-             ? static_cast<std::size_t>(field_of_body[static_cast<std::size_t>(q.body[k])]) * stride
-             : 0;
+// Calls f(k, stencil, s) for every node point k on the grid with mass, s[n] being the slot of
+// stencil node n in the node's velocity field (one field, or its body's).
+template <class F>
+void for_each_node_point(const NodePoints& q, const core::BackgroundGrid& g, const Particles& p,
+                         const std::vector<int>& field_of_body, bool multi_field, F&& f) {
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    if (!q.on_grid[k] || !(q.mass[k] > 0.0)) continue;
+    const LinearStencil st(g, p, 0, q.position[k]);
+    LinearStencil::Slots slot;
+    st.slots(g, slot);
+    const std::size_t field =
+        multi_field ? static_cast<std::size_t>(field_of_body[static_cast<std::size_t>(q.body[k])]) *
+                          g.slot_count()
+                    : 0;
+    std::array<std::size_t, LinearStencil::nodes> s;
+    for (int n = 0; n < LinearStencil::nodes; ++n)
+      s[static_cast<std::size_t>(n)] = static_cast<std::size_t>(slot[static_cast<std::size_t>(n)]) + field;
+    f(k, st, s);
+  }
 }
 
 }  // namespace
@@ -47,15 +62,11 @@ void MpmSolver::nodes_to_grid(bool mass_momentum, bool force) {
   NodePoints& q = *nodes_;
   core::BackgroundGrid& g = grid_;
   const Vec3 gravity = scene_.run.gravity;
-  for (std::size_t k = 0; k < q.size(); ++k) {
+  for_each_node_point(q, g, particles_, field_of_body_, multi_field_,
+                      [&](std::size_t k, const LinearStencil& st, const auto& slots) {
     const double m = q.mass[k];
-    if (!q.on_grid[k] || !(m > 0.0)) continue;
-    const LinearStencil st(g, particles_, 0, q.position[k]);
-    LinearStencil::Slots slot;
-    st.slots(g, slot);
-    const std::size_t field = node_field(q, k, field_of_body_, multi_field_, g.slot_count());
     for (int n = 0; n < LinearStencil::nodes; ++n) {
-      const std::size_t s = static_cast<std::size_t>(slot[static_cast<std::size_t>(n)]) + field;
+      const std::size_t s = slots[static_cast<std::size_t>(n)];
       const double w = st.w(n);
       if (mass_momentum) {
         g.mass[s] += w * m;
@@ -67,7 +78,7 @@ void MpmSolver::nodes_to_grid(bool mass_momentum, bool force) {
         if (q.bonded[k] && plan_.gravity) g.force[s] += (w * m) * gravity;
       }
     }
-  }
+  });
 }
 
 void MpmSolver::nodes_from_grid(double) {
@@ -77,16 +88,12 @@ void MpmSolver::nodes_from_grid(double) {
   const double flip = scene_.mpm.flip;
   const bool affine = plan_.transfer == core::Transfer::apic;
   const bool changes = !contact_change_.empty();
-  for (std::size_t k = 0; k < q.size(); ++k) {
-    q.motion[k] = {};
-    if (!q.on_grid[k] || !(q.mass[k] > 0.0)) continue;
-    const LinearStencil st(g, particles_, 0, q.position[k]);
-    LinearStencil::Slots slot;
-    st.slots(g, slot);
-    const std::size_t field = node_field(q, k, field_of_body_, multi_field_, g.slot_count());
+  std::fill(q.motion.begin(), q.motion.end(), Vec3{});
+  for_each_node_point(q, g, particles_, field_of_body_, multi_field_,
+                      [&](std::size_t k, const LinearStencil& st, const auto& slots) {
     Vec3 v_grid, dv;
     for (int n = 0; n < LinearStencil::nodes; ++n) {
-      const std::size_t s = static_cast<std::size_t>(slot[static_cast<std::size_t>(n)]) + field;
+      const std::size_t s = slots[static_cast<std::size_t>(n)];
       const double w = st.w(n);
       if (q.bonded[k]) {
         v_grid += w * g.velocity_new[s];
@@ -103,28 +110,23 @@ void MpmSolver::nodes_from_grid(double) {
     } else {
       q.motion[k] = dv;
     }
-  }
+  });
 }
 
 void MpmSolver::nodes_remap() {
   if (!nodes_) return;
   NodePoints& q = *nodes_;
   core::BackgroundGrid& g = grid_;
-  for (std::size_t k = 0; k < q.size(); ++k) {
+  for_each_node_point(q, g, particles_, field_of_body_, multi_field_,
+                      [&](std::size_t k, const LinearStencil& st, const auto& slots) {
     const double m = q.mass[k];
-    if (!q.on_grid[k] || !(m > 0.0)) continue;
-    const LinearStencil st(g, particles_, 0, q.position[k]);
-    LinearStencil::Slots slot;
-    st.slots(g, slot);
-    const std::size_t field = node_field(q, k, field_of_body_, multi_field_, g.slot_count());
     // The updated momentum: bonded nodes hold their updated velocity; a contact node's is the
     // FE update's v^{n+1/2} plus the contact change.
     const Vec3 mv = q.bonded[k] ? m * q.velocity[k]
                                 : m * q.velocity[k] + step_dt_ * q.force[k] + m * q.motion[k];
     for (int n = 0; n < LinearStencil::nodes; ++n)
-      g.velocity_remap[static_cast<std::size_t>(slot[static_cast<std::size_t>(n)]) + field] +=
-          st.w(n) * mv;
-  }
+      g.velocity_remap[slots[static_cast<std::size_t>(n)]] += st.w(n) * mv;
+  });
 }
 
 void MpmSolver::nodes_contact_surfaces(bool gradient) {
@@ -132,16 +134,12 @@ void MpmSolver::nodes_contact_surfaces(bool gradient) {
   NodePoints& q = *nodes_;
   core::BackgroundGrid& g = grid_;
   const std::size_t stride = g.slot_count();
-  for (std::size_t k = 0; k < q.size(); ++k) {
+  for_each_node_point(q, g, particles_, field_of_body_, multi_field_,
+                      [&](std::size_t k, const LinearStencil& st, const auto& slots) {
+    if (!field_in_contact_[slots[0] / stride]) return;
     const double m = q.mass[k];
-    if (!q.on_grid[k] || !(m > 0.0)) continue;
-    const std::size_t field = node_field(q, k, field_of_body_, multi_field_, stride);
-    if (!field_in_contact_[field / stride]) continue;
-    const LinearStencil st(g, particles_, 0, q.position[k]);
-    LinearStencil::Slots slot;
-    st.slots(g, slot);
     for (int n = 0; n < LinearStencil::nodes; ++n) {
-      const std::size_t s = static_cast<std::size_t>(slot[static_cast<std::size_t>(n)]) + field;
+      const std::size_t s = slots[static_cast<std::size_t>(n)];
       if (gradient) {
         // m n / h: the size of a mass gradient, for fields that also hold particles.
         g.mass_gradient[s] += q.surface[k] ? (st.w(n) * m * g.inverse_cell()) * q.normal[k]
@@ -159,7 +157,7 @@ void MpmSolver::nodes_contact_surfaces(bool gradient) {
                        0.25 * g.cell();
       if (r > g.reach[s]) g.reach[s] = r;
     }
-  }
+  });
 }
 
 }  // namespace afemp::mpm

@@ -61,6 +61,14 @@ const Vec3 drift{5.0, 2.0, 1.0};     // a uniform velocity on top, so the moment
 // Stretch about the block's centre plus the drift, on the particles and the bar's nodes.
 Vec3 stretch(const Vec3& x) { return drift + Vec3{strain_rate * (x.x - 10.0), 0.0, 0.0}; }
 
+// Gives the particles and the bar's nodes the stretch velocity field.
+void set_stretch(CoupledModel& model) {
+  for (std::size_t i = 0; i < model.mpm().particles().size(); ++i)
+    model.mpm().mutable_particles().velocity[i] = stretch(model.mpm().particles().position[i]);
+  for (std::size_t k : model.coupled_nodes())
+    model.fe().mutable_nodes().velocity[k] = stretch(model.fe().nodes().position[k]);
+}
+
 struct Sums {
   double mass = 0.0;
   Vec3 momentum;
@@ -89,10 +97,7 @@ Sums point_sums(const CoupledModel& m) {
 TEST(BondedCoupling, GridHoldsTheMassAndMomentumOfParticlesAndBarAndMomentumIsConserved) {
   const core::Scene scene = core::parse_scene(block_with_bar, "block_with_bar.toml");
   CoupledModel model(scene);
-  for (std::size_t i = 0; i < model.mpm().particles().size(); ++i)
-    model.mpm().mutable_particles().velocity[i] = stretch(model.mpm().particles().position[i]);
-  for (std::size_t k : model.coupled_nodes())
-    model.fe().mutable_nodes().velocity[k] = stretch(model.fe().nodes().position[k]);
+  set_stretch(model);
   const Sums start = point_sums(model);
   double worst_mass = 0.0, worst_momentum = 0.0, worst_drift = 0.0;
   while (model.time() < scene.run.end_time) {
@@ -126,10 +131,7 @@ TEST(BondedCoupling, GridHoldsTheMassAndMomentumOfParticlesAndBarAndMomentumIsCo
 TEST(BondedCoupling, BarInAUniformlyStretchedBlockCarriesItsLawsForce) {
   const core::Scene scene = core::parse_scene(block_with_bar, "block_with_bar.toml");
   CoupledModel model(scene);
-  for (std::size_t i = 0; i < model.mpm().particles().size(); ++i)
-    model.mpm().mutable_particles().velocity[i] = stretch(model.mpm().particles().position[i]);
-  for (std::size_t k : model.coupled_nodes())
-    model.fe().mutable_nodes().velocity[k] = stretch(model.fe().nodes().position[k]);
+  set_stretch(model);
   while (model.time() < scene.run.end_time)
     model.step(std::min(model.stable_time_step(), scene.run.end_time - model.time()));
   const double strain = std::log(1.0 + strain_rate * model.time());
