@@ -52,8 +52,13 @@ void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSumm
                s.min_dt, s.max_dt);
   std::fprintf(out, "  wall time        %.3f s with %d thread(s)\n", s.wall_seconds,
                core::thread_count());
-  std::fprintf(out, "  points           %zu particles, %zu elements, %.3g point-steps/s\n",
-               s.particles, s.elements, s.point_steps_per_second);
+  if (s.final_particles != s.particles)
+    std::fprintf(out, "  points           %zu particles (%zu at the end: converted elements), %zu "
+                      "elements, %.3g point-steps/s (initial points)\n",
+                 s.particles, s.final_particles, s.elements, s.point_steps_per_second);
+  else
+    std::fprintf(out, "  points           %zu particles, %zu elements, %.3g point-steps/s\n",
+                 s.particles, s.elements, s.point_steps_per_second);
   std::fprintf(out, "  stage seconds   ");
   for (std::size_t i = 0; i < s.stages.size(); ++i)
     std::fprintf(out, " %s %.2f%s", s.stages[i].name.c_str(), s.stages[i].seconds,

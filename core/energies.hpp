@@ -26,6 +26,11 @@ struct Energies {
   // energy, so part of internal, and reported on its own as well.
   double stabilisation = 0.0;
   double eroded = 0.0;         // internal + kinetic energy taken away by eroded elements
+  // Energy lost when hexahedra became particles (AFEMP, fem/element_conversion.cpp): the
+  // kinetic energy of the nodes' mass shares less that of the particles, whose velocities are
+  // interpolated from the nodes (never negative), plus any internal energy the particles' equal
+  // mass shares change (fully integrated elements only).
+  double converted = 0.0;
   double external_work = 0.0;  // accumulated work of body forces and moving boundaries
   // Energy the grid contact dissipated (normal stops and friction; mpm/grid_contact.cpp),
   // estimated from the work of its impulses on the interface. An estimate, not part of
@@ -34,7 +39,7 @@ struct Energies {
   double contact = 0.0;
   std::vector<BodySums> bodies;
   // Everything that must equal the initial total plus the external work.
-  double total() const { return kinetic + internal + hourglass + eroded; }
+  double total() const { return kinetic + internal + hourglass + eroded + converted; }
 };
 
 // Relative energy-balance error: (E - E0 - W_ext) / max(E0 + |W_ext|, max kinetic so far),

@@ -81,7 +81,7 @@ bool has_mesh(const Scene& scene) {
 
 bool has_grid_coupling(const Scene& scene) {
   for (const BodySpec& b : scene.bodies)
-    if (b.bonded_to >= 0) return true;
+    if (b.bonded_to >= 0 || b.conversion) return true;
   for (const ContactSpec& c : scene.contacts)
     for (int b : c.bodies)
       if (scene.bodies[static_cast<std::size_t>(b)].discretisation != Discretisation::particles)

@@ -145,6 +145,19 @@ struct ErosionSettings {
   double time_step = 0.0;         // erode when the element's critical step falls below this
 };
 
+// Adaptive conversion of a body's hexahedra into particles (AFEMP, seed 000 §2.5): an element
+// inside the grid domain that meets any criterion becomes points x points x points particles;
+// 0 / false switches a criterion off.
+struct ConversionSettings {
+  double plastic_strain = 0.0;      // equivalent plastic strain of any integration point
+  double volumetric_strain = 0.0;   // |V / V0 - 1|
+  double jacobian_ratio = 0.0;      // smallest scaled corner Jacobian (1 for a box) below this
+  bool negative_jacobian = true;    // an element that inverts converts instead of stopping
+  double time_step_fraction = 0.0;  // critical step below this fraction of h / c (material at rest)
+  double damage = 0.0;              // scalar damage of any integration point
+  int points = 1;                   // particles per direction: 1 or 2
+};
+
 struct BodySpec {
   std::string name;
   int material = -1;            // index into Scene::materials
@@ -157,6 +170,7 @@ struct BodySpec {
   HourglassSettings hourglass;
   BulkViscositySettings bulk_viscosity;
   std::optional<ErosionSettings> erosion;
+  std::optional<ConversionSettings> conversion;  // hexahedra
   double area = 0.0;            // truss cross-section where the mesh gives none
   // Bonded coupling (HFEMP, seed 000 §2.6): the particle body whose velocity field this mesh
   // body's nodes join; they move with the grid solution (perfect bond). -1: not bonded.
@@ -227,8 +241,8 @@ struct Scene {
 // Whether some body is made of particles / of a mesh (hexahedra or trusses).
 bool has_particles(const Scene& scene);
 bool has_mesh(const Scene& scene);
-// Whether mesh nodes take part in the grid step: a mesh body bonded to particles or named in
-// a grid contact (coupling/).
+// Whether mesh nodes take part in the grid step: a mesh body bonded to particles, named in a
+// grid contact, or converting its elements into particles (coupling/).
 bool has_grid_coupling(const Scene& scene);
 
 // Reads and validates a scene file. Throws InputError naming file, line, key and what is

@@ -679,7 +679,7 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
                    const std::vector<Material>& material_list, const std::string& scene_path) {
   r.known({"name", "material", "discretisation", "shape", "particles_per_cell", "velocity",
            "temperature", "mesh", "element", "hourglass", "bulk_viscosity", "erosion", "area",
-           "bonded_to"});
+           "bonded_to", "conversion"});
   // Name the body in messages as soon as its name is readable, even for an unknown key.
   if (const toml::node* n = r.table().get("name"); n && n->is_string() && !n->as_string()->get().empty())
     r.set_prefix("bodies." + n->as_string()->get());
@@ -720,6 +720,7 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
   only_for("erosion", D::hexahedra, D::trusses);
   only_for("area", D::trusses, D::trusses);
   only_for("bonded_to", D::hexahedra, D::trusses);  // resolved once every body is read
+  only_for("conversion", D::hexahedra, D::hexahedra);
   b.particles_per_cell = static_cast<int>(r.integer("particles_per_cell", 2, 1, 8));
   if (b.discretisation == D::particles) return b;
 
@@ -769,6 +770,26 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
     e.volume_ratio = er.number("volume_ratio", 0.0, {0.0, 1.0, false, true});
     e.time_step = er.number("time_step", 0.0, Range::non_negative());
     b.erosion = e;
+  }
+  if (const toml::table* t = r.optional_table("conversion")) {
+    TableReader cr(*t, r.dotted("conversion"), r.file());
+    cr.known({"plastic_strain", "volumetric_strain", "jacobian_ratio", "negative_jacobian",
+              "time_step_fraction", "damage", "points"});
+    cr.check_unknown();
+    ConversionSettings c;
+    c.plastic_strain = cr.number("plastic_strain", 0.0, Range::non_negative());
+    c.volumetric_strain = cr.number("volumetric_strain", 0.0, {0.0, 1.0, false, true});
+    c.jacobian_ratio = cr.number("jacobian_ratio", 0.0, {0.0, 1.0, false, true});
+    c.negative_jacobian = cr.boolean("negative_jacobian", true);
+    c.time_step_fraction = cr.number("time_step_fraction", 0.0, {0.0, 1.0, false, true});
+    c.damage = cr.number("damage", 0.0, {0.0, 1.0, false, false});
+    c.points = static_cast<int>(cr.integer("points", 1, 1, 2));
+    if (c.plastic_strain == 0.0 && c.volumetric_strain == 0.0 && c.jacobian_ratio == 0.0 &&
+        !c.negative_jacobian && c.time_step_fraction == 0.0 && c.damage == 0.0)
+      r.fail("conversion", "every criterion is off; give at least one of plastic_strain, "
+                           "volumetric_strain, jacobian_ratio, negative_jacobian, "
+                           "time_step_fraction, damage");
+    b.conversion = c;
   }
   b.area = r.number("area", 0.0, Range::positive());
   if (b.discretisation == D::trusses && std::holds_alternative<LineShape>(b.shape) &&
@@ -1024,6 +1045,21 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
   if (has_particles(scene) && !scene.has_grid)
     throw InputError(SourceLocation{path, 0}, "grid",
                      "bodies of particles need a [grid] section (cell, min, max)");
+  // Adaptive conversion: the particles need the grid, and the remaining elements bond to them.
+  for (std::size_t i = 0; i < bodies->size(); ++i) {
+    if (!scene.bodies[i].conversion) continue;
+    const toml::table& t = *bodies->get(i)->as_table();
+    TableReader br(t, "bodies." + scene.bodies[i].name, path);
+    if (!scene.has_grid)
+      br.fail("conversion", "converted elements become particles on the background grid; add a "
+                            "[grid] section (cell, min, max) covering where they may convert");
+    if (scene.mpm.scheme == UpdateScheme::USL)
+      br.fail("conversion", "conversion bonds the remaining elements to the new particles, which "
+                            "needs [mpm] scheme = \"MUSL\" (the default) or \"USF\"");
+    if (t.contains("bonded_to"))
+      br.fail("conversion", "a body bonded to particles cannot also convert; remove one of "
+                            "bonded_to and conversion");
+  }
   // Bonded coupling: the host named by each mesh body's bonded_to.
   for (std::size_t i = 0; i < bodies->size(); ++i) {
     const toml::table& t = *bodies->get(i)->as_table();

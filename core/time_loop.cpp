@@ -32,6 +32,7 @@ HistoryRow history_row(const Model& m, const Energies& e, double dt, double erro
   r.hourglass = e.hourglass;
   r.stabilisation = e.stabilisation;
   r.eroded = e.eroded;
+  r.converted = e.converted;
   r.contact = e.contact;
   r.external_work = e.external_work;
   r.total = e.total();
@@ -141,6 +142,7 @@ RunSummary run(Model& model, const Scene& scene, const RunOptions& options) {
   if (frames) model.write_fields(*frames);  // the final state, always
 
   sum.steps = model.step_count();
+  sum.final_particles = model.particle_count();
   sum.time = model.time();
   sum.wall_seconds = elapsed();
   sum.point_steps_per_second =

@@ -13,11 +13,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
 #include "core/appendf.hpp"
 #include "core/error.hpp"
+#include "core/taylor_metrics.hpp"
 
 namespace afemp::coupling {
 
@@ -26,42 +28,93 @@ CoupledModel::CoupledModel(const core::Scene& scene) : scene_(scene), fe_(scene)
   std::vector<char> in_contact(nb, 0);
   for (const core::ContactSpec& c : scene.contacts)
     for (int b : c.bodies) in_contact[static_cast<std::size_t>(b)] = 1;
+  surface_body_.assign(nb, 0);
+  for (std::size_t b = 0; b < nb; ++b)
+    surface_body_[b] = in_contact[b] &&
+                       scene.bodies[b].discretisation == core::Discretisation::hexahedra;
   const fem::FeNodes& n = fe().nodes();
-  std::vector<std::uint8_t> driven(n.size(), 0);
+  driven_.assign(n.size(), 0);
+  point_of_node_.assign(n.size(), -1);
   for (std::size_t i = 0; i < n.size(); ++i) {
     if (n.body[i] < 0) continue;
-    const core::BodySpec& body = scene.bodies[static_cast<std::size_t>(n.body[i])];
+    const auto b = static_cast<std::size_t>(n.body[i]);
+    const core::BodySpec& body = scene.bodies[b];
     const bool bonded = body.bonded_to >= 0;
-    if (!bonded && !in_contact[static_cast<std::size_t>(n.body[i])]) continue;
+    if (!bonded && !in_contact[b]) continue;
     if (bonded && n.imposed[i])
       throw core::InputError(core::SourceLocation{scene.path, 0}, "constraints",
                              "a constraint holds node " + std::to_string(i) + " of body \"" +
                                  body.name + "\", which is bonded to particles and moves with "
                                  "the grid; restrict the constraint to other bodies (body = ...)");
-    driven[i] = bonded ? 1 : 0;
+    add_point(i, bonded, surface_body_[b] != 0);
+  }
+  fe().set_grid_driven(driven_);
+  bool converts = false;
+  for (const core::BodySpec& body : scene.bodies) converts = converts || body.conversion;
+  if (!fe_node_.empty() || converts) mpm().set_node_points(&points_);
+}
+
+std::size_t CoupledModel::add_point(std::size_t i, bool bonded, bool surface) {
+  const fem::FeNodes& n = fe().nodes();
+  if (point_of_node_[i] < 0) {
+    point_of_node_[i] = static_cast<std::int64_t>(fe_node_.size());
     fe_node_.push_back(i);
+    points_.resize(fe_node_.size());
+    start_velocity_.resize(fe_node_.size());
   }
-  fe().set_grid_driven(driven);
-  surface_body_.assign(nb, 0);
-  for (std::size_t b = 0; b < nb; ++b)
-    surface_body_[b] = in_contact[b] &&
-                       scene.bodies[b].discretisation == core::Discretisation::hexahedra;
-  points_.resize(fe_node_.size());
-  start_velocity_.resize(fe_node_.size());
-  for (std::size_t k = 0; k < fe_node_.size(); ++k) {
-    const std::size_t i = fe_node_[k];
-    points_.body[k] = n.body[i];
-    points_.bonded[k] = driven[i];
-    points_.position[k] = n.position[i];
-    points_.velocity[k] = n.velocity[i];
-    points_.mass[k] = n.mass[i];
-    points_.surface[k] = surface_body_[static_cast<std::size_t>(n.body[i])];
+  const auto k = static_cast<std::size_t>(point_of_node_[i]);
+  points_.body[k] = n.body[i];
+  points_.bonded[k] = bonded ? 1 : 0;
+  points_.position[k] = n.position[i];
+  points_.velocity[k] = n.velocity[i];
+  points_.mass[k] = n.mass[i];
+  points_.surface[k] = surface ? 1 : 0;
+  driven_[i] = bonded ? 1 : 0;
+  return k;
+}
+
+void CoupledModel::convert_elements() {
+  std::vector<fem::ConvertedPoint> made = fe().take_converted_points();
+  const std::vector<fem::ConversionEvent> events = fe().take_conversion_events();
+  if (made.empty()) return;
+  mpm::Particles more;
+  more.reserve(made.size());
+  for (const fem::ConvertedPoint& q : made) {
+    more.push_back(q.position, q.velocity, q.mass, q.volume, q.temperature, q.body, q.material);
+    const std::size_t j = more.size() - 1;
+    more.stress[j] = q.stress;
+    more.plastic_strain[j] = q.plastic_strain;
+    more.energy[j] = q.energy;
+    more.damage[j] = q.damage;
+    more.max_compaction[j] = q.max_compaction;
   }
-  if (!fe_node_.empty()) mpm().set_node_points(&points_);
+  mpm().add_particles(more);
+  // The nodes the converted elements shared with live ones now bond to the particles; a node
+  // left with no element (mass 0) drops out. Imposed components stay imposed (see step()).
+  const fem::FeNodes& n = fe().nodes();
+  const fem::FeElements& hexes = fe().hexahedra();
+  for (const fem::ConversionEvent& ev : events) {
+    auto e = static_cast<std::size_t>(ev.id);
+    for (const fem::ElementBatch& b : hexes.batches)
+      if (b.body == ev.body) e = b.begin + static_cast<std::size_t>(ev.id);
+    for (std::int32_t node : hexes.nodes[e]) {
+      const auto i = static_cast<std::size_t>(node);
+      if (n.mass[i] > 0.0 && !driven_[i]) add_point(i, true, false);
+    }
+    char row[320];
+    std::snprintf(row, sizeof row, "%.10e,%s,%lld,%s,%d,%.10e,%.10e,%.10e", ev.time,
+                  scene_.bodies[static_cast<std::size_t>(ev.body)].name.c_str(),
+                  static_cast<long long>(ev.id), ev.reason, ev.particles, ev.mass,
+                  ev.kinetic_before, ev.kinetic_after);
+    conversion_rows_.emplace_back(row);
+  }
+  fe().set_grid_driven(driven_);
 }
 
 double CoupledModel::stable_time_step() const {
-  double dt = std::min(fe().stable_time_step(), mpm().stable_time_step());
+  // A body whose elements have all converted leaves the FE side without a step of its own.
+  double dt = mpm().stable_time_step();
+  if (fe().live_hexahedra() + fe().live_trusses() > 0) dt = std::min(dt, fe().stable_time_step());
   if (scene_.run.fixed_time_step > 0.0) return scene_.run.fixed_time_step;
   // Coupled nodes cross the grid too: at most factor h per step.
   double speed2 = 0.0;
@@ -110,8 +163,13 @@ void CoupledModel::step(double dt) {
     const std::size_t i = fe_node_[k];
     if (!(n.mass[i] > 0.0)) continue;
     if (points_.bonded[k]) {
-      n.position[i] += dt * points_.motion[k];
-      n.velocity[i] = points_.motion[k];  // the elements' strain rate (see above)
+      // Imposed components stay imposed: a symmetry plane's node that bonded to the particles
+      // of converted elements (the grid face holds the particles the same way).
+      core::Vec3 motion = points_.motion[k];
+      for (int a = 0; a < 3; ++a)
+        if (n.imposed[i] & (1u << a)) motion[a] = n.imposed_velocity[i][a];
+      n.position[i] += dt * motion;
+      n.velocity[i] = motion;  // the elements' strain rate (see above)
     } else {
       n.velocity[i] += points_.motion[k];
       for (int a = 0; a < 3; ++a)  // imposed components stay imposed (a support's reaction)
@@ -120,8 +178,14 @@ void CoupledModel::step(double dt) {
   }
   coupling_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   fe().finish_step(dt);
-  for (std::size_t k = 0; k < fe_node_.size(); ++k)
-    if (points_.bonded[k]) n.velocity[fe_node_[k]] = points_.velocity[k];
+  for (std::size_t k = 0; k < fe_node_.size(); ++k) {
+    if (!points_.bonded[k]) continue;
+    const std::size_t i = fe_node_[k];
+    n.velocity[i] = points_.velocity[k];
+    for (int a = 0; a < 3; ++a)
+      if (n.imposed[i] & (1u << a)) n.velocity[i][a] = n.imposed_velocity[i][a];
+  }
+  convert_elements();
 }
 
 core::Energies CoupledModel::energies() const {
@@ -156,10 +220,35 @@ std::vector<core::StageTiming> CoupledModel::stage_timings() const {
 }
 
 core::TaylorMeasures CoupledModel::measure_taylor(int body) const {
-  if (scene_.bodies.at(static_cast<std::size_t>(body)).discretisation ==
-      core::Discretisation::particles)
-    return mpm_.measure_taylor(body);
-  return fe_.measure_taylor(body);
+  const core::BodySpec& spec = scene_.bodies.at(static_cast<std::size_t>(body));
+  if (spec.discretisation == core::Discretisation::particles) return mpm_.measure_taylor(body);
+  if (!spec.conversion) return fe_.measure_taylor(body);
+  // A converting bar: its live nodes (on the surface) and its particles (reaching half a
+  // spacing beyond their centres), measured together.
+  std::vector<core::Vec3> points;
+  std::vector<double> half;
+  const fem::FeNodes& n = fe().nodes();
+  for (std::size_t i = 0; i < n.size(); ++i)
+    if (n.body[i] == body && n.mass[i] > 0.0) {
+      points.push_back(n.position[i]);
+      half.push_back(0.0);
+    }
+  const mpm::Particles& p = mpm().particles();
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.body[i] == body) {
+      points.push_back(p.position[i]);
+      half.push_back(0.5 * std::cbrt(p.volume[i]));
+    }
+  return core::measure_taylor(points, half, core::taylor_bar(scene_, body), fe_.taylor_band(body));
+}
+
+std::vector<core::EventLog> CoupledModel::take_events() {
+  std::vector<core::EventLog> out = fe_.take_events();
+  core::EventLog log{"conversion.csv",
+                     "time,body,element,reason,particles,mass,kinetic_before,kinetic_after", {}};
+  log.rows.swap(conversion_rows_);
+  out.push_back(std::move(log));
+  return out;
 }
 
 std::string CoupledModel::describe() const {
@@ -172,7 +261,37 @@ std::string CoupledModel::describe() const {
     if (body.discretisation == core::Discretisation::particles) continue;
     std::size_t count = 0;
     for (std::size_t i : fe_node_) count += n.body[i] == static_cast<int>(b) ? 1 : 0;
-    if (body.bonded_to >= 0)
+    if (body.conversion) {
+      const core::ConversionSettings& c = *body.conversion;
+      std::string when;
+      auto add = [&](const std::string& what) { when += (when.empty() ? "" : ", ") + what; };
+      char buf[96];
+      if (c.plastic_strain > 0.0) add((std::snprintf(buf, sizeof buf, "plastic strain >= %g", c.plastic_strain), buf));
+      if (c.damage > 0.0) add((std::snprintf(buf, sizeof buf, "damage >= %g", c.damage), buf));
+      if (c.volumetric_strain > 0.0) add((std::snprintf(buf, sizeof buf, "|V/V0 - 1| >= %g", c.volumetric_strain), buf));
+      if (c.jacobian_ratio > 0.0) add((std::snprintf(buf, sizeof buf, "scaled Jacobian < %g", c.jacobian_ratio), buf));
+      if (c.time_step_fraction > 0.0) add((std::snprintf(buf, sizeof buf, "critical step < %g h/c", c.time_step_fraction), buf));
+      if (c.negative_jacobian) add("inversion");
+      std::size_t elements = 0, inside = 0;
+      const fem::FeElements& hexes = fe().hexahedra();
+      for (const fem::ElementBatch& batch : hexes.batches)
+        if (batch.body == static_cast<int>(b))
+          for (std::size_t e = batch.begin; e < batch.end; ++e) {
+            ++elements;
+            inside += fe().inside_grid(e) ? 1 : 0;
+          }
+      const core::GridSettings& g = scene_.mpm.grid;
+      core::appendf(out, "  body %s: AFEMP, a hexahedron becomes %d particle%s when %s; only "
+                         "inside the grid [%g, %g] x [%g, %g] x [%g, %g]: %zu of %zu elements "
+                         "lie inside now (outside, %s); nodes shared with converted elements "
+                         "bond to the particles%s\n",
+                    body.name.c_str(), c.points * c.points * c.points, c.points == 1 ? "" : "s",
+                    when.c_str(), g.min.x, g.max.x, g.min.y, g.max.y, g.min.z, g.max.z, inside,
+                    elements,
+                    body.erosion ? "the erosion criteria apply"
+                    : c.negative_jacobian ? "an inverting element stops the run" : "none converts",
+                    count > 0 ? "; the others are in grid contact (CFEMP)" : "");
+    } else if (body.bonded_to >= 0)
       core::appendf(out, "  body %s: %zu nodes bonded to %s (HFEMP: they join its velocity field "
                          "and move with the grid)\n", body.name.c_str(), count,
                     scene_.bodies[static_cast<std::size_t>(body.bonded_to)].name.c_str());

@@ -6,6 +6,10 @@
 //   - bonded coupling (HFEMP): the nodes of a mesh body with `bonded_to` map mass, momentum
 //     and element forces into their host's field and move with the grid solution like its
 //     particles (perfect bond: rebar in concrete).
+//   - adaptive conversion (AFEMP, seed 000 §2.5): hexahedra of a body with `conversion` that
+//     meet a criterion become particles of the same body (fem/element_conversion.cpp); the
+//     nodes they shared with live elements then join the body's field as bonded nodes, so the
+//     remaining mesh and its particles move together (the same bonded coupling).
 // Mesh bodies in neither take no part in the grid step. One step with dt = the smaller of the
 // FE and grid stable steps:
 //   1. FE: v^{n+1/2} of the free and contact nodes from the element forces at x^n;
@@ -14,7 +18,9 @@
 //   4. FE: x^{n+1} of the other nodes, then element stress and forces at x^{n+1}.
 #pragma once
 
+#include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "core/scene.hpp"
@@ -49,20 +55,28 @@ class CoupledModel final : public core::Model {
   std::size_t element_count() const override { return fe_.element_count(); }
   void write_fields(core::FieldWriter& writer) override;
   std::vector<core::StageTiming> stage_timings() const override;
-  std::vector<core::EventLog> take_events() override { return fe_.take_events(); }
   core::TaylorMeasures measure_taylor(int body) const override;
+  std::vector<core::EventLog> take_events() override;
   std::string describe() const override;
   std::size_t bytes() const override;
 
  private:
   // Copies the FE nodes' state into the node points before the grid step.
   void load_points(double dt);
+  // Adds a node point for FE node i (bonded or contact), or returns its index.
+  std::size_t add_point(std::size_t i, bool bonded, bool surface);
+  // Turns the elements the FE step converted into particles, and bonds the nodes they shared
+  // with live elements to the body's field.
+  void convert_elements();
 
   const core::Scene& scene_;
   fem::FeModel fe_;
   mutable mpm::MpmModel mpm_;  // describe() bins the particles
   mpm::NodePoints points_;
   std::vector<std::size_t> fe_node_;   // FE node of each node point
+  std::vector<std::int64_t> point_of_node_;  // node point of each FE node, or -1
+  std::vector<std::uint8_t> driven_;         // FE nodes the grid moves (bonded)
+  std::vector<std::string> conversion_rows_;  // conversion.csv rows not yet taken
   std::vector<core::Vec3> start_velocity_;  // contact nodes: v^{n-1/2}
   // The surface of the hexahedral contact bodies, rebuilt when elements erode.
   std::vector<char> surface_body_;

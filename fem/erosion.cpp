@@ -5,6 +5,7 @@
 // the eroded energy. Node masses are then recomputed from the live elements (one source of
 // truth), and nodes left with no element drop out of the update, with a record of their own
 // that reports their mass and kinetic energy (already counted in their elements' records).
+// Converted elements (element_conversion.cpp) share the mass recomputation.
 #include <algorithm>
 #include <string_view>
 
@@ -48,15 +49,19 @@ void FeSolver::finish_erosion() {
   recompute_node_masses();
   for (auto& ev : events_)
     if (ev.time < time_) ev.time = time_;  // stamped with the end of the step they happened in
+  for (auto& ev : conversion_events_)
+    if (ev.time < time_) ev.time = time_;
   // A dropped node's row reports the mass and kinetic energy it leaves the update with; both
   // are already in its elements' rows (and in the eroded energy), so the rows of kind "node"
   // are not added to them.
+  // A node whose last element converted handed its mass to the particles: no erosion row.
   for (std::size_t i = 0; i < nodes_.size(); ++i)
-    if (before[i] > 0.0 && nodes_.mass[i] == 0.0) {
+    if (before[i] > 0.0 && nodes_.mass[i] == 0.0 && !converted_node_[i]) {
       const Vec3& v = nodes_.velocity[i];
       events_.push_back({time_, "node", static_cast<std::int64_t>(i), nodes_.body[i],
                          "no element left", 0.5 * before[i] * core::dot(v, v), before[i]});
     }
+  std::fill(converted_node_.begin(), converted_node_.end(), 0);
 }
 
 }  // namespace afemp::fem

@@ -141,16 +141,20 @@ std::vector<core::EventLog> FeModel::take_events() {
 }
 
 core::TaylorMeasures FeModel::measure_taylor(int body) const {
-  const core::BodySpec& spec = scene_.bodies.at(static_cast<std::size_t>(body));
   const core::CylinderShape* cyl = &core::taylor_bar(scene_, body);
   const FeNodes& n = solver_.nodes();
   std::vector<core::Vec3> points;
   for (std::size_t i = 0; i < n.size(); ++i)
     if (n.body[i] == body && n.mass[i] > 0.0) points.push_back(n.position[i]);
+  return core::measure_taylor(points, {}, *cyl, taylor_band(body));
+}
+
+double FeModel::taylor_band(int body) const {
   // Nodes lie on the surface; W is read in a band of half an initial element length.
-  const double band = 0.5 * cyl->length / std::max(1, spec.mesh.axial > 0 ? spec.mesh.axial
+  const core::BodySpec& spec = scene_.bodies.at(static_cast<std::size_t>(body));
+  const core::CylinderShape* cyl = &core::taylor_bar(scene_, body);
+  return 0.5 * cyl->length / std::max(1, spec.mesh.axial > 0 ? spec.mesh.axial
       : static_cast<int>(std::ceil(cyl->length / std::max(spec.mesh.size, 1e-300))));
-  return core::measure_taylor(points, {}, *cyl, band);
 }
 
 std::string FeModel::describe() const {

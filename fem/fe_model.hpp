@@ -30,6 +30,8 @@ class FeModel final : public core::Model {
   std::vector<core::StageTiming> stage_timings() const override;
   std::vector<core::EventLog> take_events() override;
   core::TaylorMeasures measure_taylor(int body) const override;
+  // The band around 0.2 L0 in which W is read from the nodes of a Taylor bar.
+  double taylor_band(int body) const;
   std::string describe() const override;
   // Its parts: the bodies, mesh quality and smallest step; the FE stages, one per line.
   std::string describe_mesh() const;

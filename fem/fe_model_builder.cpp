@@ -382,6 +382,9 @@ void FeSolver::build(const core::Scene& scene) {
   stage_seconds_.assign(stage_names_.size(), 0.0);
   thread_sums_.assign(static_cast<std::size_t>(core::thread_count()) * core::cache_line_doubles, 0.0);
   thread_erosions_.resize(static_cast<std::size_t>(core::thread_count()));
+  thread_conversions_.resize(static_cast<std::size_t>(core::thread_count()));
+  thread_conversion_reason_.resize(static_cast<std::size_t>(core::thread_count()));
+  converted_node_.assign(nodes_.size(), 0);
   thread_failure_.resize(static_cast<std::size_t>(core::thread_count()));
   thread_error_field_.resize(static_cast<std::size_t>(core::thread_count()), "");
   thread_errors_.resize(static_cast<std::size_t>(core::thread_count()));

@@ -79,6 +79,29 @@ struct ErosionEvent {
   double mass = 0.0;
 };
 
+// A particle made from a converted hexahedron (AFEMP, fem/element_conversion.cpp): at an
+// integration point of the element, with its share of the mass and the point's state.
+struct ConvertedPoint {
+  Vec3 position, velocity;  // x^{n+1}; v^{n+1/2} interpolated from the nodes
+  double mass = 0.0, volume = 0.0;
+  core::SymTensor stress;
+  double plastic_strain = 0.0, temperature = 0.0, energy = 0.0;  // energy: per unit mass
+  double damage = 0.0, max_compaction = 0.0;
+  int body = 0, material = 0;
+};
+
+// A record of one converted hexahedron.
+struct ConversionEvent {
+  double time = 0.0;
+  std::int64_t id = 0;  // index within its body
+  int body = 0;
+  const char* reason = "";
+  int particles = 0;
+  double mass = 0.0;
+  // Kinetic energy of the element's node-mass shares, and of its particles.
+  double kinetic_before = 0.0, kinetic_after = 0.0;
+};
+
 // Where a wall acts: the nodes it may touch.
 struct WallState {
   core::WallSpec spec;
@@ -125,6 +148,14 @@ class FeSolver {
   }
   core::Energies energies() const;
   std::vector<ErosionEvent> take_erosion_events();
+  // Hexahedra converted into particles since the last call (bodies with `conversion`): the
+  // particles to add and one record per element. Their nodes keep their velocity; their
+  // masses come from the live elements (a node left with none has handed its whole mass to
+  // the particles, with the momentum the interpolation gives them).
+  std::vector<ConvertedPoint> take_converted_points();
+  std::vector<ConversionEvent> take_conversion_events();
+  // Whether hexahedron e lies inside the background grid (where it may convert).
+  bool inside_grid(std::size_t e) const;
   std::size_t bytes() const;
   std::size_t live_hexahedra() const;
   std::size_t live_trusses() const;
@@ -142,6 +173,11 @@ class FeSolver {
   // Erodes the elements the last sweep flagged (thread order: deterministic).
   void collect_erosions(FeElements& elements, const char* kind);
   void finish_erosion();
+  // Conversion (element_conversion.cpp): the first criterion element e of batch b meets
+  // (nullptr: none), and the particles of the elements the last sweep flagged.
+  const char* conversion_reason(const core::ConversionSettings& c, const ElementBatch& b,
+                                std::size_t e, double volume, double grid_step) const;
+  void collect_conversions();
   void recompute_node_masses();
   [[noreturn]] void raise(const std::string& entity, const char* field,
                           const std::string& detail) const;
@@ -172,6 +208,12 @@ class FeSolver {
   double time_ = 0.0;
   bool erosion_this_step_ = false;
   std::vector<ErosionEvent> events_;
+  double converted_energy_ = 0.0;
+  std::vector<ConvertedPoint> converted_points_;
+  std::vector<ConversionEvent> conversion_events_;
+  std::vector<std::uint8_t> converted_node_;  // a node of an element converted this step
+  std::vector<std::vector<std::size_t>> thread_conversions_;
+  std::vector<std::vector<const char*>> thread_conversion_reason_;
   std::vector<std::string> stage_names_;
   std::vector<double> stage_seconds_;
   // Per-thread partial sums (padded), combined in thread order.

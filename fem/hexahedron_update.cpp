@@ -53,6 +53,12 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
   const double hg_shear = body.hourglass.coefficient * mat.shear_modulus();
   const double q_hg = body.hourglass.coefficient;
   const core::ErosionSettings* erosion = body.erosion ? &*body.erosion : nullptr;
+  const core::ConversionSettings* conversion = body.conversion ? &*body.conversion : nullptr;
+  // The grid's Courant step for this material at rest, h / c (conversion's time-step criterion).
+  const double grid_step =
+      conversion ? scene_.mpm.grid.cell /
+                       core::wave_speed(mat, core::PointState{{}, 0.0, 0.0, 0.0, mat.density})
+                 : 0.0;
   FeElements& el = hexes_;
 
   // Update of one integration point with the velocity gradient l of the step.
@@ -111,6 +117,17 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
         thread_errors_[static_cast<std::size_t>(t)] =
             "hexahedron " + std::to_string(e - b.begin) + " of body " + body.name;
         thread_error_field_[static_cast<std::size_t>(t)] = "stress";
+      }
+    }
+    // Conversion first (AFEMP): an element inside the grid that meets a criterion, or inverts
+    // with negative_jacobian on, becomes particles; outside the grid erosion still applies.
+    if (conversion && (!failure || conversion->negative_jacobian) && inside_grid(e)) {
+      const char* reason = failure ? failure : conversion_reason(*conversion, b, e, volume, grid_step);
+      if (reason) {
+        thread_conversions_[static_cast<std::size_t>(t)].push_back(e);
+        thread_conversion_reason_[static_cast<std::size_t>(t)].push_back(reason);
+        for (std::size_t a = 0; a < 8; ++a) element_force_[8 * e + a] = Vec3{};
+        return;
       }
     }
     if (erosion && !failure) {
@@ -311,6 +328,7 @@ void FeSolver::update_hexahedra(double dt) {
     hexahedron_batch<S, E, Thermal>(b, s, e, dt);
     raise_thread_errors();
     collect_erosions(hexes_, "hexahedron");
+    collect_conversions();
   });
   for (std::size_t t = 0; t < thread_errors_.size(); ++t) {
     const double* s = &thread_sums_[t * core::cache_line_doubles];

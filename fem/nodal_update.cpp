@@ -150,6 +150,7 @@ core::Energies FeSolver::energies() const {
   out.stabilisation = stabilisation_work_;
   out.internal += stabilisation_work_;
   out.eroded = eroded_energy_;
+  out.converted = converted_energy_;
   out.external_work = external_work_;
   return out;
 }

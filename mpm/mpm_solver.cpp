@@ -61,6 +61,33 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
   signal_speed_ = max_signal_speed();
 }
 
+void MpmSolver::add_particles(const Particles& more) {
+  if (more.size() == 0) return;
+  Particles& p = particles_;
+  std::int32_t next_id = 0;
+  for (std::int32_t id : p.id) next_id = std::max(next_id, id + 1);
+  const std::size_t n0 = p.size();
+  p.reserve(n0 + more.size());
+  for (std::size_t k = 0; k < more.size(); ++k) {
+    p.push_back(more.position[k], more.velocity[k], more.mass[k], more.volume[k],
+                more.temperature[k], more.body[k], more.material[k]);
+    const std::size_t i = n0 + k;
+    p.id[i] = next_id++;
+    p.stress[i] = more.stress[k];
+    p.plastic_strain[i] = more.plastic_strain[k];
+    p.energy[i] = more.energy[k];
+    p.damage[i] = more.damage[k];
+    p.max_compaction[i] = more.max_compaction[k];
+    if (!p.half_width.empty())
+      p.half_width[i] = std::min(0.5, 0.5 * std::cbrt(p.volume[i]) * grid_.inverse_cell());
+    if (!field_nodes_only_.empty())
+      field_nodes_only_[static_cast<std::size_t>(field_of_body_[static_cast<std::size_t>(p.body[i])])] = 0;
+  }
+  if (plan_.shape == core::ShapeFunction::gimp) velocity_gradient_.resize(p.size());
+  reorder_particles();
+  signal_speed_ = std::max(signal_speed_, max_signal_speed());
+}
+
 double MpmSolver::stable_time_step() const {
   if (scene_.run.fixed_time_step > 0.0) return scene_.run.fixed_time_step;
   return scene_.run.time_step_factor * grid_.cell() / signal_speed_;

@@ -55,6 +55,11 @@ class MpmSolver {
   // FE nodes that join the grid step from now on (coupling/); the caller fills them before
   // each step and reads back what the step wrote (node_points.hpp). nullptr: none.
   void set_node_points(NodePoints* nodes);
+  // Appends particles made during the run (hexahedra converted into particles, coupling/):
+  // their ids continue after the largest so far, the arrays the scene asks for (strain, uGIMP
+  // half width, APIC affine velocity) are filled as at the start, and the material batches are
+  // rebuilt. `more` gives position, velocity, mass, volume, state, body and material.
+  void add_particles(const Particles& more);
   // The grid's stable step for points moving at `speed` (the scene's factor applied).
   double stable_time_step_for_speed(double speed) const {
     return scene_.run.time_step_factor * grid_.cell() / speed;

@@ -62,7 +62,8 @@ StepPlan build_step_plan(const core::Scene& scene) {
   bool shared = false;
   for (std::size_t b = 0; b < scene.bodies.size(); ++b)
     shared = shared || (!in_contact[b] &&
-                        scene.bodies[b].discretisation == core::Discretisation::particles);
+                        (scene.bodies[b].discretisation == core::Discretisation::particles ||
+                         scene.bodies[b].conversion));
   int next = shared ? 1 : 0;
   for (std::size_t b = 0; b < scene.bodies.size(); ++b)
     if (in_contact[b]) plan.field_of_body[b] = next++;

@@ -46,7 +46,7 @@ HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> body_nam
   if (!file_) throw std::runtime_error(path_ + ": cannot create history file: " + errno_text(errno));
 
   std::string header = "step,time,dt,kinetic,internal,elastic,plastic,viscous,hourglass,"
-                       "stabilisation,eroded,contact,external_work,total,energy_error";
+                       "stabilisation,eroded,converted,contact,external_work,total,energy_error";
   for (const std::string& name : body_names_)
     for (const char* c : {".px", ".py", ".pz", ".vx", ".vy", ".vz"}) header += "," + name + c;
   header += '\n';
@@ -62,7 +62,7 @@ void HistoryWriter::write(const HistoryRow& row) {
                                 std::to_string(body_names_.size()) + " (" + path_ + ")");
   line_ = std::to_string(row.step);
   for (const double v : {row.time, row.dt, row.kinetic, row.internal, row.elastic, row.plastic,
-                         row.viscous, row.hourglass, row.stabilisation, row.eroded, row.contact, row.external_work, row.total,
+                         row.viscous, row.hourglass, row.stabilisation, row.eroded, row.converted, row.contact, row.external_work, row.total,
                          row.energy_error})
     append_number(line_, v);
   for (const BodyHistory& b : row.bodies) {

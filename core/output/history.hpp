@@ -20,18 +20,18 @@ struct BodyHistory {
 struct HistoryRow {
   long step = 0;
   double time = 0.0, dt = 0.0, kinetic = 0.0, internal = 0.0, elastic = 0.0, plastic = 0.0,
-         viscous = 0.0, hourglass = 0.0, stabilisation = 0.0, eroded = 0.0, contact = 0.0, external_work = 0.0,
-         total = 0.0,
-         energy_error = 0.0;
+         viscous = 0.0, hourglass = 0.0, stabilisation = 0.0, eroded = 0.0, converted = 0.0,
+         contact = 0.0, external_work = 0.0, total = 0.0, energy_error = 0.0;
   // internal = elastic + plastic + viscous (bulk-viscous heating); elastic includes
   // stabilisation (the strain energy of assumed-strain hourglass control);
-  // total = kinetic + internal + hourglass + eroded + contact; energy_error: the caller's relative
+  // total = kinetic + internal + hourglass + eroded + converted (contact is an estimate of what
+  // the grid contact dissipated, not part of it); energy_error: the caller's relative
   // balance error (core/energies.hpp).
   std::vector<BodyHistory> bodies;  // one per body name, in the writer's order
 };
 
 // Columns: step,time,dt,kinetic,internal,elastic,plastic,viscous,hourglass,stabilisation,eroded,
-// contact,external_work,total,energy_error,
+// converted,contact,external_work,total,energy_error,
 // then per body NAME: NAME.px,NAME.py,NAME.pz,NAME.vx,NAME.vy,NAME.vz.
 // step is printed as an integer, every other value with "%.10e" (11 significant digits).
 class HistoryWriter {

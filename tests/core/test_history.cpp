@@ -34,9 +34,10 @@ HistoryRow make_row(int r) {
   row.hourglass = 1.0e-3 * r;
   row.stabilisation = 2.0e-4 * r;
   row.eroded = r / 11.0;
+  row.converted = r / 13.0;
   row.contact = 0.125 * r;
   row.external_work = -2.0e-9 * r;
-  row.total = row.kinetic + row.internal + row.hourglass + row.eroded;
+  row.total = row.kinetic + row.internal + row.hourglass + row.eroded + row.converted;
   row.energy_error = r == 0 ? 0.0 : 3.3e-12 * r;
   row.bodies = {{{1.0 + r, -2.0 / 3.0, 1e5}, {0.5, 0.25 * r, -190.0}},
                 {{0.0, 0.0, -1.0 / 7.0}, {r / 9.0, 0.0, 0.0}}};
@@ -46,7 +47,7 @@ HistoryRow make_row(int r) {
 std::vector<double> flatten(const HistoryRow& row) {
   std::vector<double> v = {static_cast<double>(row.step), row.time, row.dt, row.kinetic,
                            row.internal, row.elastic, row.plastic, row.viscous,
-                           row.hourglass, row.stabilisation, row.eroded, row.contact,
+                           row.hourglass, row.stabilisation, row.eroded, row.converted, row.contact,
                            row.external_work,
                            row.total, row.energy_error};
   for (const BodyHistory& b : row.bodies) {
@@ -69,7 +70,7 @@ TEST(History, HeaderListsPerBodyColumnsAndRowsReadBack) {
   const CsvTable empty = read_csv(path);  // header on disk before any row
   const std::vector<std::string> expected_header = {
       "step",     "time",     "dt",        "kinetic", "internal", "elastic",
-      "plastic",  "viscous",  "hourglass", "stabilisation", "eroded", "contact", "external_work", "total",
+      "plastic",  "viscous",  "hourglass", "stabilisation", "eroded", "converted", "contact", "external_work", "total",
       "energy_error", "bar.px", "bar.py",  "bar.pz", "bar.vx", "bar.vy", "bar.vz",  "anvil.px", "anvil.py", "anvil.pz",
       "anvil.vx", "anvil.vy", "anvil.vz"};
   EXPECT_EQ(empty.header, expected_header);
@@ -84,7 +85,7 @@ TEST(History, HeaderListsPerBodyColumnsAndRowsReadBack) {
   }
   EXPECT_EQ(w.rows(), 3u);
   const CsvTable t = read_csv(path);
-  EXPECT_EQ(t.column("anvil.vx"), 24u);
+  EXPECT_EQ(t.column("anvil.vx"), 25u);
   EXPECT_EQ(t.rows[2][t.column("step")], 200.0);
   for (int r = 0; r < 3; ++r) expect_close(t.rows[r], flatten(make_row(r)));
 }
@@ -97,7 +98,7 @@ TEST(History, NoBodiesGivesTheGlobalColumnsOnly) {
   row.bodies.clear();
   w.write(row);
   const CsvTable t = read_csv(path);
-  EXPECT_EQ(t.header.size(), 15u);
+  EXPECT_EQ(t.header.size(), 16u);
   ASSERT_EQ(t.rows.size(), 1u);
   expect_close(t.rows[0], flatten(row));
 }
