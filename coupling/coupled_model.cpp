@@ -94,10 +94,7 @@ void CoupledModel::convert_elements() {
   const fem::FeNodes& n = fe().nodes();
   const fem::FeElements& hexes = fe().hexahedra();
   for (const fem::ConversionEvent& ev : events) {
-    auto e = static_cast<std::size_t>(ev.id);
-    for (const fem::ElementBatch& b : hexes.batches)
-      if (b.body == ev.body) e = b.begin + static_cast<std::size_t>(ev.id);
-    for (std::int32_t node : hexes.nodes[e]) {
+    for (std::int32_t node : hexes.nodes[ev.element]) {
       const auto i = static_cast<std::size_t>(node);
       if (n.mass[i] > 0.0 && !driven_[i]) add_point(i, true, false);
     }
@@ -136,6 +133,9 @@ void CoupledModel::load_points(double dt) {
     for (std::size_t k = 0; k < fe_node_.size(); ++k)
       if (points_.surface[k]) points_.normal[k] = normal_[fe_node_[k]];
   }
+  // Bonded nodes' element forces act over the FE update's force step, as on the free nodes of
+  // the same elements, so the impulses across the bond cancel when the step changes.
+  const double force_scale = fe().force_step(dt) / dt;
   for (std::size_t k = 0; k < fe_node_.size(); ++k) {
     const std::size_t i = fe_node_[k];
     const double m = n.mass[i];
@@ -143,7 +143,7 @@ void CoupledModel::load_points(double dt) {
     points_.mass[k] = m;
     if (points_.bonded[k]) {
       points_.velocity[k] = n.velocity[i];
-      points_.force[k] = fe().node_force(i);
+      points_.force[k] = force_scale * fe().node_force(i);
     } else {
       points_.velocity[k] = start_velocity_[k];
       points_.force[k] = (m / dt) * (n.velocity[i] - start_velocity_[k]);

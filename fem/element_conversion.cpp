@@ -65,84 +65,17 @@ void FeSolver::collect_conversions() {
       const ElementBatch* batch = nullptr;
       for (const ElementBatch& b : el.batches)
         if (e >= b.begin && e < b.end) batch = &b;
-      const core::BodySpec& body = scene_.bodies[static_cast<std::size_t>(batch->body)];
-      const int ppe = batch->points_per_element;
-      const std::size_t p0 = batch->point_begin + (e - batch->begin) * static_cast<std::size_t>(ppe);
-      HexVectors x, v;
-      double kinetic_before = 0.0, internal_before = 0.0;
-      for (std::size_t a = 0; a < 8; ++a) {
-        const auto i = static_cast<std::size_t>(el.nodes[e][a]);
-        x[a] = nodes_.position[i];
-        v[a] = nodes_.velocity[i];
-        kinetic_before += 0.5 * (el.mass[e] / 8.0) * core::dot(v[a], v[a]);
-        converted_node_[i] = 1;
-      }
-      for (int g = 0; g < ppe; ++g)
-        internal_before += el.point_mass[p0 + static_cast<std::size_t>(g)] * el.energy[p0 + static_cast<std::size_t>(g)];
-
-      // The state a particle inherits from integration point g (or the mass-weighted mean of
-      // all points when one particle replaces a fully integrated element).
-      auto state_of = [&](int g, ConvertedPoint& q) {
-        if (g >= 0) {
-          const std::size_t p = p0 + static_cast<std::size_t>(g);
-          q.stress = el.stress[p];
-          q.plastic_strain = el.plastic_strain[p];
-          q.temperature = el.temperature[p];
-          q.energy = el.energy[p];
-          q.damage = el.damage[p];
-          q.max_compaction = el.max_compaction[p];
-          return el.density[p];
-        }
-        double m = 0.0, rho = 0.0;
-        for (int h = 0; h < ppe; ++h) {
-          const std::size_t p = p0 + static_cast<std::size_t>(h);
-          const double w = el.point_mass[p];
-          m += w;
-          q.stress += w * el.stress[p];
-          q.plastic_strain += w * el.plastic_strain[p];
-          q.temperature += w * el.temperature[p];
-          q.energy += w * el.energy[p];
-          q.damage += w * el.damage[p];
-          q.max_compaction += w * el.max_compaction[p];
-          rho += w / el.density[p];  // volume-consistent mean density
-        }
-        q.stress = (1.0 / m) * q.stress;
-        q.plastic_strain /= m;
-        q.temperature /= m;
-        q.energy /= m;
-        q.damage /= m;
-        q.max_compaction /= m;
-        return m / rho;
-      };
-
-      const int n = body.conversion->points;
-      const int count = n * n * n;
-      const double mass = el.mass[e] / count;
-      double kinetic_after = 0.0, internal_after = 0.0;
-      const double r = n == 1 ? 0.0 : 1.0 / std::sqrt(3.0);
-      for (int g = 0; g < count; ++g) {
-        ConvertedPoint q;
-        for (std::size_t a = 0; a < 8; ++a) {
-          double shape = 1.0 / 8.0;
-          for (int d = 0; d < 3; ++d)
-            shape *= 1.0 + (n == 1 ? 0.0 : r * kHexNatural[g][d]) * kHexNatural[a][d];
-          q.position += shape * x[a];
-          q.velocity += shape * v[a];
-        }
-        // Gauss point g is nearest node g, as in fem/hexahedron_full.hpp.
-        const double density = state_of(n == 2 && ppe == 8 ? g : (ppe == 1 ? 0 : -1), q);
-        q.mass = mass;
-        q.volume = mass / density;
-        q.body = batch->body;
-        q.material = batch->material;
-        kinetic_after += 0.5 * mass * core::dot(q.velocity, q.velocity);
-        internal_after += mass * q.energy;
-        converted_points_.push_back(q);
-      }
-      converted_energy_ += kinetic_before + internal_before - kinetic_after - internal_after;
-      conversion_events_.push_back({time_, static_cast<std::int64_t>(e - batch->begin),
-                                    batch->body, thread_conversion_reason_[t][k], count,
-                                    el.mass[e], kinetic_before, kinetic_after});
+      const int n = scene_.bodies[static_cast<std::size_t>(batch->body)].conversion->points;
+      ConversionEvent ev;
+      ev.time = time_;
+      ev.element = e;
+      ev.id = static_cast<std::int64_t>(e - batch->begin);
+      ev.body = batch->body;
+      ev.reason = thread_conversion_reason_[t][k];
+      ev.particles = n * n * n;
+      ev.mass = el.mass[e];
+      conversion_events_.push_back(ev);
+      for (std::size_t a = 0; a < 8; ++a) converted_node_[static_cast<std::size_t>(el.nodes[e][a])] = 1;
       el.alive[e] = 0;
       el.bulk_q[e] = 0.0;
       erosion_this_step_ = true;  // node masses are recomputed at the end of the step
@@ -153,14 +86,100 @@ void FeSolver::collect_conversions() {
 }
 
 std::vector<ConvertedPoint> FeSolver::take_converted_points() {
+  // Built when taken, from the nodes' final v^{n+1/2}: in a coupled step the grid sets the
+  // bonded nodes' velocity after the element update that flagged the conversion.
   std::vector<ConvertedPoint> out;
-  out.swap(converted_points_);
+  const FeElements& el = hexes_;
+  for (std::size_t k = converted_taken_; k < conversion_events_.size(); ++k) {
+    ConversionEvent& ev = conversion_events_[k];
+    const std::size_t e = ev.element;
+    const ElementBatch* batch = nullptr;
+    for (const ElementBatch& b : el.batches)
+      if (e >= b.begin && e < b.end) batch = &b;
+    const int ppe = batch->points_per_element;
+    const std::size_t p0 = batch->point_begin + (e - batch->begin) * static_cast<std::size_t>(ppe);
+    HexVectors x, v;
+    double kinetic_before = 0.0, internal_before = 0.0;
+    for (std::size_t a = 0; a < 8; ++a) {
+      const auto i = static_cast<std::size_t>(el.nodes[e][a]);
+      x[a] = nodes_.position[i];
+      v[a] = nodes_.velocity[i];
+      kinetic_before += 0.5 * (el.mass[e] / 8.0) * core::dot(v[a], v[a]);
+    }
+    for (int g = 0; g < ppe; ++g)
+      internal_before += el.point_mass[p0 + static_cast<std::size_t>(g)] * el.energy[p0 + static_cast<std::size_t>(g)];
+
+    // The state a particle inherits from integration point g (or the mass-weighted mean of
+    // all points when one particle replaces a fully integrated element).
+    auto state_of = [&](int g, ConvertedPoint& q) {
+      if (g >= 0) {
+        const std::size_t p = p0 + static_cast<std::size_t>(g);
+        q.stress = el.stress[p];
+        q.plastic_strain = el.plastic_strain[p];
+        q.temperature = el.temperature[p];
+        q.energy = el.energy[p];
+        q.damage = el.damage[p];
+        q.max_compaction = el.max_compaction[p];
+        return el.density[p];
+      }
+      double m = 0.0, volume = 0.0;
+      for (int h = 0; h < ppe; ++h) {
+        const std::size_t p = p0 + static_cast<std::size_t>(h);
+        const double w = el.point_mass[p];
+        m += w;
+        q.stress += w * el.stress[p];
+        q.plastic_strain += w * el.plastic_strain[p];
+        q.temperature += w * el.temperature[p];
+        q.energy += w * el.energy[p];
+        q.damage += w * el.damage[p];
+        q.max_compaction += w * el.max_compaction[p];
+        volume += w / el.density[p];
+      }
+      q.stress = (1.0 / m) * q.stress;
+      q.plastic_strain /= m;
+      q.temperature /= m;
+      q.energy /= m;
+      q.damage /= m;
+      q.max_compaction /= m;
+      return m / volume;
+    };
+
+    const int n = ev.particles == 1 ? 1 : 2;
+    const double mass = el.mass[e] / ev.particles;
+    double kinetic_after = 0.0, internal_after = 0.0;
+    const double r = n == 1 ? 0.0 : 1.0 / std::sqrt(3.0);
+    for (int g = 0; g < ev.particles; ++g) {
+      ConvertedPoint q;
+      for (std::size_t a = 0; a < 8; ++a) {
+        double shape = 1.0 / 8.0;
+        for (int d = 0; d < 3; ++d) shape *= 1.0 + r * kHexNatural[g][d] * kHexNatural[a][d];
+        q.position += shape * x[a];
+        q.velocity += shape * v[a];
+      }
+      // Gauss point g is nearest node g, as in fem/hexahedron_full.hpp.
+      const double density = state_of(ppe == 1 ? 0 : (n == 2 ? g : -1), q);
+      q.mass = mass;
+      q.volume = mass / density;
+      q.body = batch->body;
+      q.material = batch->material;
+      kinetic_after += 0.5 * mass * core::dot(q.velocity, q.velocity);
+      internal_after += mass * q.energy;
+      out.push_back(q);
+    }
+    converted_energy_ += kinetic_before + internal_before - kinetic_after - internal_after;
+    ev.kinetic_before = kinetic_before;
+    ev.kinetic_after = kinetic_after;
+  }
+  converted_taken_ = conversion_events_.size();
   return out;
 }
 
 std::vector<ConversionEvent> FeSolver::take_conversion_events() {
-  std::vector<ConversionEvent> out;
-  out.swap(conversion_events_);
+  std::vector<ConversionEvent> out(conversion_events_.begin(),
+                                   conversion_events_.begin() + static_cast<std::ptrdiff_t>(converted_taken_));
+  conversion_events_.erase(conversion_events_.begin(),
+                           conversion_events_.begin() + static_cast<std::ptrdiff_t>(converted_taken_));
+  converted_taken_ = 0;
   return out;
 }
 

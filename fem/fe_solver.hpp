@@ -93,7 +93,8 @@ struct ConvertedPoint {
 // A record of one converted hexahedron.
 struct ConversionEvent {
   double time = 0.0;
-  std::int64_t id = 0;  // index within its body
+  std::size_t element = 0;  // index into the hexahedra
+  std::int64_t id = 0;      // index within its body
   int body = 0;
   const char* reason = "";
   int particles = 0;
@@ -139,6 +140,9 @@ class FeSolver {
   void finish_step(double dt);
   // Marks the nodes the grid moves (driven[i] != 0); they also leave the rigid walls.
   void set_grid_driven(const std::vector<std::uint8_t>& driven);
+  // The step the nodal update applies the forces over: dt^n = (dt^{n-1/2} + dt^{n+1/2}) / 2
+  // (half a step on the first), for a coupled step that hands other nodes the same impulse.
+  double force_step(double dt) const { return steps_ == 0 ? 0.5 * dt : 0.5 * (previous_dt_ + dt); }
   // The sum of the element forces on node i at the current state (no gravity).
   Vec3 node_force(std::size_t i) const {
     Vec3 f;
@@ -149,9 +153,10 @@ class FeSolver {
   core::Energies energies() const;
   std::vector<ErosionEvent> take_erosion_events();
   // Hexahedra converted into particles since the last call (bodies with `conversion`): the
-  // particles to add and one record per element. Their nodes keep their velocity; their
-  // masses come from the live elements (a node left with none has handed its whole mass to
-  // the particles, with the momentum the interpolation gives them).
+  // particles to add, made from the nodes' state at the call, then one record per element
+  // taken. Their nodes keep their velocity; their masses come from the live elements (a node
+  // left with none has handed its whole mass to the particles, with the momentum the
+  // interpolation gives them).
   std::vector<ConvertedPoint> take_converted_points();
   std::vector<ConversionEvent> take_conversion_events();
   // Whether hexahedron e lies inside the background grid (where it may convert).
@@ -211,6 +216,7 @@ class FeSolver {
   double converted_energy_ = 0.0;
   std::vector<ConvertedPoint> converted_points_;
   std::vector<ConversionEvent> conversion_events_;
+  std::size_t converted_taken_ = 0;  // events whose particles were taken
   std::vector<std::uint8_t> converted_node_;  // a node of an element converted this step
   std::vector<std::vector<std::size_t>> thread_conversions_;
   std::vector<std::vector<const char*>> thread_conversion_reason_;

@@ -16,7 +16,7 @@
 namespace afemp::fem {
 
 void FeSolver::update_nodes(double dt) {
-  const double dt_force = steps_ == 0 ? 0.5 * dt : 0.5 * (previous_dt_ + dt);
+  const double dt_force = force_step(dt);
   const Vec3 g = scene_.run.gravity;
   const bool gravity = g.x != 0.0 || g.y != 0.0 || g.z != 0.0;
   const std::size_t n = nodes_.size();

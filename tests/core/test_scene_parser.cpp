@@ -663,5 +663,45 @@ TEST(SceneParser, CouplingKeysNameTheKeyAndWhatIsAllowed) {
   EXPECT_NE(error_of("[run]\nend_time = 1.0\n" + no_grid).find("key 'grid'"), std::string::npos);
 }
 
+// Conversion (AFEMP) keys: read into ConversionSettings; each misuse names bodies.NAME.conversion
+// (or the sub-key) and what is allowed.
+TEST(SceneParser, ConversionKeysNameTheKeyAndWhatIsAllowed) {
+  std::string base = mesh_scene;
+  base.insert(base.find("[materials.steel]"), "[grid]\ncell = 1.0\nmin = [-5, -5, -5]\nmax = [5, 5, 15]\n\n");
+  auto with = [](std::string t, const std::string& conversion) {
+    t.insert(t.find("velocity = [0, 0, -10]"), "conversion = " + conversion + "\n");
+    return t;
+  };
+  const Scene s = parse_scene(with(base, "{ plastic_strain = 0.5, jacobian_ratio = 0.2, points = 2 }"),
+                              "c.toml");
+  ASSERT_TRUE(s.bodies[0].conversion.has_value());
+  const ConversionSettings& c = *s.bodies[0].conversion;
+  EXPECT_EQ(c.plastic_strain, 0.5);
+  EXPECT_EQ(c.jacobian_ratio, 0.2);
+  EXPECT_TRUE(c.negative_jacobian);  // on by default
+  EXPECT_EQ(c.points, 2);
+  EXPECT_TRUE(has_grid_coupling(s));
+  std::string e = error_of(with(base, "{ points = 3 }"));
+  EXPECT_NE(e.find("bodies.plate.conversion.points"), std::string::npos) << e;
+  e = error_of(with(base, "{ volumetric_strain = 1.5 }"));
+  EXPECT_NE(e.find("bodies.plate.conversion.volumetric_strain"), std::string::npos) << e;
+  e = error_of(with(base, "{ negative_jacobian = false }"));
+  EXPECT_NE(e.find("every criterion is off"), std::string::npos) << e;
+  e = error_of(with(base, "{ strain = 0.1 }"));
+  EXPECT_NE(e.find("strain"), std::string::npos) << e;
+  e = error_of(with(mesh_scene, "{ damage = 0.9 }"));
+  EXPECT_NE(e.find("bodies.plate.conversion"), std::string::npos) << e;
+  EXPECT_NE(e.find("add a [grid] section"), std::string::npos) << e;
+  std::string usl = with(base, "{ damage = 0.9 }");
+  usl.insert(usl.find("[materials.steel]"), "[mpm]\nscheme = \"USL\"\n");
+  e = error_of(usl);
+  EXPECT_NE(e.find("needs [mpm] scheme"), std::string::npos) << e;
+  std::string trusses = base;
+  trusses.insert(trusses.find("area = 0.5"), "conversion = { damage = 0.9 }\n");
+  e = error_of(trusses);
+  EXPECT_NE(e.find("bodies.bar.conversion"), std::string::npos) << e;
+  EXPECT_NE(e.find("applies to bodies of hexahedra, not to trusses"), std::string::npos) << e;
+}
+
 }  // namespace
 }  // namespace afemp::core

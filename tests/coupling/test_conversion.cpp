@@ -1,0 +1,174 @@
+// Adaptive conversion of hexahedra into particles (AFEMP, fem/element_conversion.cpp and
+// coupling/coupled_model.hpp). References: conservation of mass and linear momentum (the
+// particles take the mass shares and the N-weighted momentum the nodes lose, so both hold to
+// round-off: 1e-12 relative), the kinetic energy the interpolation loses (the sum over the
+// conversion records, booked as `converted`), and the grid domain (no element converts
+// outside it). Body: a 4 mm aluminium cube of 4 x 4 x 4 hexahedra, free in space, drifting
+// and spinning, with the half x > 2 squeezed along x so that only its elements compress past
+// the criterion |V / V0 - 1| >= 5e-3 in the first step. Units mm, ms, g, N, MPa.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "core/scene.hpp"
+#include "coupling/coupled_model.hpp"
+
+namespace afemp::coupling {
+namespace {
+
+using core::Vec3;
+
+std::string cube_scene(int points, const char* element, const char* grid_max) {
+  return std::string(R"([run]
+end_time = 0.01
+
+[grid]
+cell = 1.0
+min = [-4, -4, -4]
+max = )") + grid_max + R"(
+
+[materials.aluminium]
+density = 2.7e-3
+E = 70e3
+nu = 0.3
+
+[[bodies]]
+name = "cube"
+discretisation = "hexahedra"
+material = "aluminium"
+shape = { box = { min = [0, 0, 0], max = [4, 4, 4] } }
+mesh = { divisions = [4, 4, 4] }
+element = ")" + element + R"("
+conversion = { volumetric_strain = 5e-3, points = )" + std::to_string(points) + R"( }
+)";
+}
+
+// Drift, spin about the cube's centre, and a squeeze of the half x > 2 (50 /ms).
+Vec3 start_velocity(const Vec3& x) {
+  const Vec3 drift{20.0, -10.0, 5.0};
+  const Vec3 omega{0.0, 0.0, 5.0};  // rad/ms
+  const Vec3 r = x - Vec3{2.0, 2.0, 2.0};
+  const Vec3 spin{omega.y * r.z - omega.z * r.y, omega.z * r.x - omega.x * r.z,
+                  omega.x * r.y - omega.y * r.x};
+  return drift + spin + Vec3{-50.0 * std::max(x.x - 2.0, 0.0), 0.0, 0.0};
+}
+
+struct Sums {
+  double mass = 0.0;
+  Vec3 momentum;
+  double scale = 0.0;  // sum m |v|
+  double kinetic = 0.0;
+};
+
+Sums sums(const CoupledModel& m) {
+  Sums s;
+  auto add = [&](double mass, const Vec3& v) {
+    s.mass += mass;
+    s.momentum += mass * v;
+    s.scale += mass * core::norm(v);
+    s.kinetic += 0.5 * mass * core::dot(v, v);
+  };
+  const auto& p = m.mpm().particles();
+  for (std::size_t i = 0; i < p.size(); ++i) add(p.mass[i], p.velocity[i]);
+  const auto& n = m.fe().nodes();
+  for (std::size_t i = 0; i < n.size(); ++i) add(n.mass[i], n.velocity[i]);
+  return s;
+}
+
+struct Case {
+  int points;
+  const char* element;
+};
+
+class Conversion : public ::testing::TestWithParam<Case> {};
+
+// One step converts the squeezed half (32 elements) into particles: the mass and momentum of
+// nodes plus particles are those before the step to 1e-12, the particles inherit the elements'
+// stress, and the converted energy is the kinetic energy the records say the nodes lost. Then
+// 200 steps of the mixed body (remaining elements bonded to the particles) keep the momentum.
+TEST_P(Conversion, ConservesMassAndMomentumAndBooksTheKineticEnergyItLoses) {
+  const Case c = GetParam();
+  const core::Scene scene = core::parse_scene(cube_scene(c.points, c.element, "[8, 8, 8]"), "cube.toml");
+  CoupledModel model(scene);
+  for (std::size_t i = 0; i < model.fe().nodes().size(); ++i)
+    model.fe().mutable_nodes().velocity[i] = start_velocity(model.fe().nodes().position[i]);
+  const Sums start = sums(model);
+  model.step(model.stable_time_step());
+  const Sums after = sums(model);
+  const auto& p = model.mpm().particles();
+  const std::size_t converted = p.size() / static_cast<std::size_t>(c.points * c.points * c.points);
+  std::printf("%s, %d per direction: %zu elements converted into %zu particles; mass %.2e, "
+              "momentum %.2e (relative); converted energy %.6g uJ of kinetic %.6g\n",
+              c.element, c.points, converted, p.size(), std::abs(after.mass - start.mass) / start.mass,
+              core::norm(after.momentum - start.momentum) / start.scale,
+              model.energies().converted, start.kinetic);
+  EXPECT_EQ(converted, 32u);  // the half x > 2, and only it
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    EXPECT_GT(p.position[i].x, 2.0);
+    EXPECT_LT(p.stress[i].xx, 0.0);  // the squeeze's compression, inherited
+  }
+  EXPECT_LT(std::abs(after.mass - start.mass), 1e-12 * start.mass);
+  EXPECT_LT(core::norm(after.momentum - start.momentum), 1e-12 * start.scale);
+  // The records' kinetic energy change is what the nodes' kinetic energy lost less what the
+  // particles gained; one-point elements have one state, so nothing else changes.
+  double lost = 0.0;
+  for (const core::EventLog& log : model.take_events())
+    if (log.file == "conversion.csv") {
+      EXPECT_EQ(log.rows.size(), 32u);
+      for (const std::string& row : log.rows) {
+        // time,body,element,reason,particles,mass,kinetic_before,kinetic_after
+        std::size_t at = 0;
+        for (int k = 0; k < 6; ++k) at = row.find(',', at) + 1;
+        const double before = std::stod(row.substr(at));
+        const double later = std::stod(row.substr(row.find(',', at) + 1));
+        lost += before - later;
+        EXPECT_NE(row.find("volumetric strain"), std::string::npos) << row;
+      }
+    }
+  EXPECT_GT(lost, 0.0);
+  if (std::string(c.element) == "one-point") {
+    EXPECT_NEAR(model.energies().converted, lost, 1e-12 * start.kinetic);
+  }
+
+  // The mixed body: no external force, so the momentum stays (to 1e-12 of sum m |v|).
+  double drift = 0.0;
+  for (int s = 0; s < 200; ++s) {
+    model.step(model.stable_time_step());
+    drift = std::max(drift, core::norm(sums(model).momentum - start.momentum) / start.scale);
+    ASSERT_LT(std::abs(sums(model).mass - start.mass), 1e-12 * start.mass);
+  }
+  std::printf("  after 200 more steps (t = %.4g ms, %zu particles, %zu elements): momentum "
+              "drift %.2e\n", model.time(), model.mpm().particles().size(),
+              model.fe().live_hexahedra(), drift);
+  EXPECT_LT(drift, 1e-12);
+}
+
+INSTANTIATE_TEST_SUITE_P(PointsAndElements, Conversion,
+                         ::testing::Values(Case{1, "one-point"}, Case{2, "one-point"},
+                                           Case{1, "full"}, Case{2, "full"}),
+                         [](const auto& info) {
+                           return std::string(info.param.element == std::string("full") ? "Full" : "OnePoint") +
+                                  std::to_string(info.param.points);
+                         });
+
+// The grid covers y < 2 only: of the squeezed half, the 16 elements inside it convert and the
+// 16 outside stay elements (conversion happens only where the grid is; check says so).
+TEST(ConversionDomain, OnlyElementsInsideTheGridConvert) {
+  const core::Scene scene = core::parse_scene(cube_scene(1, "one-point", "[8, 2, 8]"), "cube.toml");
+  CoupledModel model(scene);
+  EXPECT_NE(model.describe().find("32 of 64 elements lie inside now"), std::string::npos)
+      << model.describe();
+  for (std::size_t i = 0; i < model.fe().nodes().size(); ++i)
+    model.fe().mutable_nodes().velocity[i] =
+        Vec3{-50.0 * std::max(model.fe().nodes().position[i].x - 2.0, 0.0), 0.0, 0.0};
+  model.step(model.stable_time_step());
+  const auto& p = model.mpm().particles();
+  EXPECT_EQ(p.size(), 16u);
+  for (std::size_t i = 0; i < p.size(); ++i) EXPECT_LT(p.position[i].y, 2.0);
+  EXPECT_EQ(model.fe().live_hexahedra(), 48u);
+}
+
+}  // namespace
+}  // namespace afemp::coupling
