@@ -62,9 +62,7 @@ void FeSolver::collect_conversions() {
   for (std::size_t t = 0; t < thread_conversions_.size(); ++t) {
     for (std::size_t k = 0; k < thread_conversions_[t].size(); ++k) {
       const std::size_t e = thread_conversions_[t][k];
-      const ElementBatch* batch = nullptr;
-      for (const ElementBatch& b : el.batches)
-        if (e >= b.begin && e < b.end) batch = &b;
+      const ElementBatch* batch = &batch_of(el, e);
       const int n = scene_.bodies[static_cast<std::size_t>(batch->body)].conversion->points;
       ConversionEvent ev;
       ev.time = time_;
@@ -93,9 +91,7 @@ std::vector<ConvertedPoint> FeSolver::take_converted_points() {
   for (std::size_t k = converted_taken_; k < conversion_events_.size(); ++k) {
     ConversionEvent& ev = conversion_events_[k];
     const std::size_t e = ev.element;
-    const ElementBatch* batch = nullptr;
-    for (const ElementBatch& b : el.batches)
-      if (e >= b.begin && e < b.end) batch = &b;
+    const ElementBatch* batch = &batch_of(el, e);
     const int ppe = batch->points_per_element;
     const std::size_t p0 = batch->point_begin + (e - batch->begin) * static_cast<std::size_t>(ppe);
     HexVectors x, v;

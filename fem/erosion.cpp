@@ -13,13 +13,17 @@
 
 namespace afemp::fem {
 
+const ElementBatch& batch_of(const FeElements& elements, std::size_t e) {
+  for (const ElementBatch& b : elements.batches)
+    if (e >= b.begin && e < b.end) return b;
+  return elements.batches.back();  // not reached: the batches cover every element
+}
+
 void FeSolver::collect_erosions(FeElements& el, const char* kind) {
   for (std::size_t t = 0; t < thread_erosions_.size(); ++t) {
     for (std::size_t k = 0; k < thread_erosions_[t].size(); ++k) {
       const std::size_t e = thread_erosions_[t][k];
-      const ElementBatch* batch = nullptr;
-      for (const ElementBatch& b : el.batches)
-        if (e >= b.begin && e < b.end) batch = &b;
+      const ElementBatch* batch = &batch_of(el, e);
       const std::size_t p0 =
           batch->point_begin + (e - batch->begin) * static_cast<std::size_t>(batch->points_per_element);
       double energy = 0.0;

@@ -46,6 +46,10 @@ struct ElementBatch {
 };
 
 // Hexahedra and trusses share one layout: per element and per integration point arrays.
+struct FeElements;
+// The batch holding element e (the batches cover every element).
+const ElementBatch& batch_of(const FeElements& elements, std::size_t e);
+
 struct FeElements {
   std::vector<std::array<std::int32_t, 8>> nodes;  // hexahedra: 8 nodes; trusses: first 2 used
   std::vector<double> mass, volume0, volume;  // volume: current (trusses: A L)
