@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <ostream>
 #include <string>
 
 #include "core/scene.hpp"
@@ -81,6 +82,8 @@ struct Case {
   int points;
   const char* element;
 };
+
+void PrintTo(const Case& c, std::ostream* out) { *out << c.element << ", points " << c.points; }
 
 class Conversion : public ::testing::TestWithParam<Case> {};
 
