@@ -11,6 +11,7 @@
 
 #include "core/error.hpp"
 #include "core/materials/material.hpp"
+#include "core/ogive_nose.hpp"
 #include "core/tensor.hpp"
 
 namespace afemp::core {
@@ -73,7 +74,8 @@ struct CylinderShape {
   Vec3 base;               // centre of the base disc
   Vec3 axis{0, 0, 1};      // direction, normalised by the parser
   double radius = 0.0;
-  double length = 0.0;
+  double length = 0.0;     // overall, the nose included
+  OgiveNose nose;          // at the far end (base + length axis); crh 0: a flat end
 };
 struct SphereShape {
   Vec3 centre;
@@ -101,7 +103,8 @@ struct LineShape {
 struct RebarShape {
   Vec3 min, max;
   int normal_axis = 2;
-  double position = 0.0, spacing = 0.0, diameter = 0.0, cover = 0.0;
+  std::vector<double> positions;  // one mat (layer) per plane position along normal_axis
+  double spacing = 0.0, diameter = 0.0, cover = 0.0;
 };
 using Shape = std::variant<BoxShape, CylinderShape, SphereShape, PointListShape, MeshFileShape,
                            LineShape, RebarShape>;

@@ -211,6 +211,31 @@ std::vector<std::string> TableReader::strings(std::string_view key) {
   return out;
 }
 
+std::vector<double> TableReader::numbers(std::string_view key, const Range& range) {
+  const toml::node* n = lookup(key);
+  if (!n) return {};
+  if (!n->as_array()) return {required_number(key, range)};
+  const auto* a = n->as_array();
+  if (a->empty()) fail(key, "expected a number or a non-empty array of numbers");
+  std::vector<double> out;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const toml::node& e = *a->get(i);
+    double v = 0.0;
+    if (const auto* ii = e.as_integer())
+      v = static_cast<double>(ii->get());
+    else if (const auto* f = e.as_floating_point())
+      v = f->get();
+    else
+      fail(key, "expected an array of numbers; element " + std::to_string(i) + " is " +
+                    describe_type(e));
+    if (!std::isfinite(v) || !range.contains(v))
+      fail(key, "element " + std::to_string(i) + ", " + format_number(v) +
+                    ", is out of range; allowed: " + range.describe());
+    out.push_back(v);
+  }
+  return out;
+}
+
 std::array<int, 3> TableReader::integers3(std::string_view key, int lo, int hi) {
   const toml::node* n = lookup(key);
   std::array<int, 3> out{0, 0, 0};
@@ -580,7 +605,7 @@ Shape read_shape(TableReader& r, const std::string& scene_path, Discretisation d
     return box;
   }
   if (kind == "cylinder") {
-    s.known({"base", "axis", "radius", "length"});
+    s.known({"base", "axis", "radius", "length", "nose"});
     s.check_unknown();
     CylinderShape c;
     c.base = s.required_vec3("base");
@@ -590,6 +615,23 @@ Shape read_shape(TableReader& r, const std::string& scene_path, Discretisation d
     c.axis = (1.0 / len) * axis;
     c.radius = s.required_number("radius", Range::positive());
     c.length = s.required_number("length", Range::positive());
+    if (const toml::table* t = s.optional_table("nose")) {
+      TableReader n(*t, s.dotted("nose"), s.file());
+      n.known({"crh", "meplat"});
+      n.check_unknown();
+      c.nose.crh = n.required_number("crh", Range::closed(0.5, std::numeric_limits<double>::infinity()));
+      c.nose.meplat = n.number("meplat", 0.0, Range::non_negative());
+      if (!(c.nose.meplat < 2.0 * c.radius))
+        n.fail("meplat", "the flat tip's diameter must be less than the cylinder's, " +
+                             format_number(2.0 * c.radius));
+      if (d == Discretisation::hexahedra && !(c.nose.meplat > 0.0))
+        n.fail("meplat", "a nose meshed with hexahedra needs a flat tip (meplat > 0): the "
+                         "elements at a sharp tip would have no width");
+      const double nose = ogive_nose_length(c.nose, c.radius);
+      if (!(nose < c.length))
+        n.fail("crh", "the nose (" + format_number(nose) + " long) must be shorter than the "
+                      "cylinder's length, " + format_number(c.length));
+    }
     return c;
   }
   if (kind == "sphere") {
@@ -628,9 +670,14 @@ Shape read_shape(TableReader& r, const std::string& scene_path, Discretisation d
     for (int a = 0; a < 3; ++a)
       if (!(m.max[a] > m.min[a])) s.fail("max", "max must exceed min in every component");
     m.normal_axis = static_cast<int>(s.choice("normal", {"x", "y", "z"}, std::nullopt));
-    m.position = s.required_number("position", Range::any());
-    if (m.position < m.min[m.normal_axis] || m.position > m.max[m.normal_axis])
-      s.fail("position", "the mat's plane must lie between min and max along its normal");
+    if (!s.has("position"))
+      s.fail("position", "required key is missing (a number, or an array of numbers: one mat per "
+                         "layer)");
+    m.positions = s.numbers("position", Range::any());
+    for (std::size_t i = 0; i < m.positions.size(); ++i)
+      if (m.positions[i] < m.min[m.normal_axis] || m.positions[i] > m.max[m.normal_axis])
+        s.fail("position", "every mat's plane must lie between min and max along its normal (" +
+                               format_number(m.positions[i]) + " does not)");
     m.spacing = s.required_number("spacing", Range::positive());
     m.diameter = s.required_number("diameter", Range::positive());
     m.cover = s.required_number("cover", Range::non_negative());

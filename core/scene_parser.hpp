@@ -75,6 +75,9 @@ class TableReader {
   Vec3 vec3(std::string_view key, const Vec3& fallback);
   // An array of strings (a single string is taken as a list of one); empty when absent.
   std::vector<std::string> strings(std::string_view key);
+  // A number or an array of numbers, each within `range` (a single number is a list of one);
+  // empty when absent.
+  std::vector<double> numbers(std::string_view key, const Range& range);
   // An array of exactly three integers in [lo, hi].
   std::array<int, 3> integers3(std::string_view key, int lo, int hi);
   // One of `allowed` (the canonical spellings); returns the index into `allowed`.

@@ -40,6 +40,9 @@ const CylinderShape& taylor_bar(const Scene& scene, int body) {
   if (cyl == nullptr)
     throw std::invalid_argument("Taylor measures need a cylinder body; '" + spec.name +
                                 "' is not one");
+  if (cyl->nose.crh > 0.0)
+    throw std::invalid_argument("Taylor measures need a flat-ended cylinder; '" + spec.name +
+                                "' has a nose");
   return *cyl;
 }
 

@@ -156,7 +156,8 @@ RunSummary run(Model& model, const Scene& scene, const RunOptions& options) {
   if (sum.min_dt > sum.max_dt) sum.min_dt = sum.max_dt = dt;
   if (scene.taylor_reference) {
     for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
-      if (!std::holds_alternative<CylinderShape>(scene.bodies[b].shape)) continue;
+      const auto* bar = std::get_if<CylinderShape>(&scene.bodies[b].shape);
+      if (bar == nullptr || bar->nose.crh > 0.0) continue;
       sum.taylor = model.measure_taylor(static_cast<int>(b));
       sum.taylor_error = taylor_mean_error(*sum.taylor, *scene.taylor_reference);
       break;

@@ -117,7 +117,7 @@ MeshData body_mesh(const BodySpec& b) {
       return truss_line(l->from, l->to, n, b.area);
     }
     if (const auto* r = std::get_if<core::RebarShape>(&b.shape)) {
-      RebarMat m{r->min, r->max, r->normal_axis, r->position, r->spacing, r->diameter, r->cover, d.size};
+      RebarMat m{r->min, r->max, r->normal_axis, r->positions, r->spacing, r->diameter, r->cover, d.size};
       return rebar_mat(m);
     }
   } catch (const std::invalid_argument& e) {

@@ -221,6 +221,11 @@ MeshData cylinder_mesh(const core::CylinderShape& c, int n_core, int n_ring, int
           "cylinder mesh: a quarter or half cylinder needs an even number of core divisions (the "
           "cut planes run along the core's midlines); got " +
               std::to_string(n_core));
+  require(c.nose.crh == 0.0 || (c.nose.crh >= 0.5 && c.nose.meplat > 0.0 &&
+                                 c.nose.meplat < 2.0 * c.radius &&
+                                 core::ogive_nose_length(c.nose, c.radius) < c.length),
+          "cylinder mesh: an ogive nose needs crh >= 0.5, a meplat between 0 and the diameter "
+          "(both exclusive) and a length shorter than the cylinder's");
   const CylinderFrame frame = cylinder_frame(c.axis);
   require_32bit_indices(
       (std::int64_t{n_core + 1} * (n_core + 1) + std::int64_t{4} * n_core * n_ring) * (n_axial + 1),
@@ -232,12 +237,16 @@ MeshData cylinder_mesh(const core::CylinderShape& c, int n_core, int n_ring, int
   m.node_sets = {{"base", {}}, {"top", {}}, {"surface", {}}};
   if (sectors != 4) m.node_sets.push_back({"cut_0", {}});
   if (sectors == 1) m.node_sets.push_back({"cut_1", {}});
+  // An ogive nose scales the section of each layer beyond the shank by r(t) / R.
+  const double shank =
+      c.nose.crh > 0.0 ? c.length - core::ogive_nose_length(c.nose, c.radius) : c.length;
   for (int l = 0; l <= n_axial; ++l) {
     const double w = std::lerp(0.0, c.length, static_cast<double>(l) / n_axial);
+    const double scale = w > shank ? core::ogive_radius(c.nose, c.radius, w - shank) / c.radius : 1.0;
     for (std::int32_t v = 0; v < layer; ++v) {
       const std::int32_t node = l * layer + v;
       const auto& q = s.points[v];
-      m.nodes.push_back(c.base + q[0] * frame.x + q[1] * frame.y + w * frame.z);
+      m.nodes.push_back(c.base + scale * q[0] * frame.x + scale * q[1] * frame.y + w * frame.z);
       if (l == 0) m.node_sets[0].members.push_back(node);
       if (l == n_axial) m.node_sets[1].members.push_back(node);
       if (s.on_surface[v]) m.node_sets[2].members.push_back(node);
@@ -276,9 +285,11 @@ MeshData rebar_mat(const RebarMat& mat) {
     require(mat.max[d] > mat.min[d],
             std::string("rebar mat: the box's max must exceed its min along ") + kAxisName[d]);
   const int normal = mat.normal_axis;
-  require(mat.position >= mat.min[normal] && mat.position <= mat.max[normal],
-          std::string("rebar mat: the plane's position must lie inside the box along ") +
-              kAxisName[normal]);
+  require(!mat.positions.empty(), "rebar mat: give at least one plane position");
+  for (double p : mat.positions)
+    require(p >= mat.min[normal] && p <= mat.max[normal],
+            std::string("rebar mat: every plane's position must lie inside the box along ") +
+                kAxisName[normal]);
   require(mat.spacing > 0.0, "rebar mat: the bar spacing must be positive");
   require(mat.diameter > 0.0, "rebar mat: the bar diameter must be positive");
   require(mat.segment_length > 0.0, "rebar mat: the segment length must be positive");
@@ -304,16 +315,17 @@ MeshData rebar_mat(const RebarMat& mat) {
     const double start = mat.min[along] + mat.cover, end = mat.max[along] - mat.cover;
     const auto segments = std::max<std::int64_t>(
         1, static_cast<std::int64_t>(std::ceil((end - start) / mat.segment_length - kRoundoff)));
-    total_nodes += bars * (segments + 1);
+    total_nodes += static_cast<std::int64_t>(mat.positions.size()) * bars * (segments + 1);
     require_32bit_indices(total_nodes, "rebar mat");
-    for (std::int64_t b = 0; b < bars; ++b) {
-      core::Vec3 a, z;
-      a[normal] = z[normal] = mat.position;
-      a[across] = z[across] = first + static_cast<double>(b) * mat.spacing;
-      a[along] = start;
-      z[along] = end;
-      append_bar(m, a, z, static_cast<int>(segments), area, part);
-    }
+    for (double position : mat.positions)
+      for (std::int64_t b = 0; b < bars; ++b) {
+        core::Vec3 a, z;
+        a[normal] = z[normal] = position;
+        a[across] = z[across] = first + static_cast<double>(b) * mat.spacing;
+        a[along] = start;
+        z[along] = end;
+        append_bar(m, a, z, static_cast<int>(segments), area, part);
+      }
   }
   return m;
 }

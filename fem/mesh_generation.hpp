@@ -36,6 +36,12 @@ CylinderFrame cylinder_frame(const core::Vec3& axis);
 // that part of the whole mesh, and needs an even n_core (the cut planes run along the core's
 // midlines). For an axis along z the quarter occupies x >= 0, y >= 0.
 //
+// With an ogive nose (c.nose.crh > 0, core/ogive_nose.hpp; it needs a meplat > 0) the layers of
+// nodes past the shank are the cross-section scaled by r(t) / R, so that the "top" disc is the
+// meplat. The layers stay equally spaced along the axis, so the nose's elements narrow towards
+// the tip: their width there is about meplat / (2 R) of the shank's, and the stable time step
+// falls with it.
+//
 // One part "mesh". Node sets: "base" (the disc at c.base), "top" (the disc at c.base + length
 // axis), "surface" (the curved surface); for sectors 1 and 2 "cut_0", the nodes on the plane
 // through the axis and the local x (local y = 0), and for sector 1 also "cut_1", the nodes on the
@@ -51,7 +57,7 @@ MeshData truss_line(core::Vec3 a, core::Vec3 b, int segments, double area);
 struct RebarMat {
   core::Vec3 min, max;          // the box the mat spans (the concrete block)
   int normal_axis = 2;          // 0, 1, 2: the mat lies in a plane normal to this axis
-  double position = 0.0;        // coordinate of that plane along normal_axis
+  std::vector<double> positions;  // the planes' coordinates along normal_axis: one mat each
   double spacing = 0.0;         // between neighbouring parallel bars (axis to axis)
   double diameter = 0.0;        // of a bar; the truss area is pi d^2 / 4
   double cover = 0.0;           // from the box faces to the outermost bars' axes, in the plane
@@ -61,8 +67,10 @@ struct RebarMat {
 // Bars along each in-plane axis, that axis's part "bars along x" (y, z); the part of the lower
 // axis comes first. Across a direction the bars lie between the cover lines, as many as the
 // spacing allows, the leftover distance split equally between the two sides; along its length a
-// bar runs from cover line to cover line. Both layers lie in the same plane, and crossing bars
-// share no node: they are separate trusses, to be tied to the concrete, not to each other.
+// bar runs from cover line to cover line. The two directions of a mat lie in the same plane,
+// and crossing bars share no node: they are separate trusses, to be tied to the concrete, not to
+// each other. Each entry of `positions` adds one such mat (a layer near each face of a slab);
+// a part holds its direction's bars of every layer, layer by layer in the given order.
 MeshData rebar_mat(const RebarMat& mat);
 
 }  // namespace afemp::fem

@@ -52,11 +52,19 @@ struct BoxTest {
 };
 
 // Axial extent half-open [0, length) for the same reason as the box; radial closed.
+// With an ogive nose (core/ogive_nose.hpp) the radius falls along the last stretch of the axis.
 struct CylinderTest {
   Vec3 base, axis;
   double radius, length;
+  core::OgiveNose nose;
+  double shank;  // axial distance at which the nose starts (length without one)
   explicit CylinderTest(const CylinderShape& c)
-      : base(c.base), axis((1.0 / norm(c.axis)) * c.axis), radius(c.radius), length(c.length) {}
+      : base(c.base),
+        axis((1.0 / norm(c.axis)) * c.axis),
+        radius(c.radius),
+        length(c.length),
+        nose(c.nose),
+        shank(c.nose.crh > 0.0 ? c.length - core::ogive_nose_length(c.nose, c.radius) : c.length) {}
   Aabb bounds() const {
     const Vec3 top = base + length * axis;
     Aabb b;
@@ -73,7 +81,8 @@ struct CylinderTest {
     const double s = dot(v, axis);
     if (!(s >= 0.0 && s < length)) return false;
     const Vec3 radial = v - s * axis;
-    return dot(radial, radial) <= radius * radius;
+    const double r = s > shank ? core::ogive_radius(nose, radius, s - shank) : radius;
+    return dot(radial, radial) <= r * r;
   }
 };
 

@@ -18,7 +18,8 @@ class ScratchDir {
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     std::string name = "afemp_mpm_";
     if (info != nullptr) name += std::string(info->test_suite_name()) + "_" + info->name();
-    name += "_" + std::to_string(::getpid());
+    name += '_';  // appended in two steps: "_" + std::to_string trips GCC 12's -Wrestrict
+    name += std::to_string(::getpid());
     path_ = std::filesystem::temp_directory_path() / name;
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);

@@ -545,6 +545,66 @@ TEST(SceneParser, MeshBodiesConstraintsAndWallsNeedNoGrid) {
   EXPECT_EQ(s.walls[0].bodies, std::vector<int>{0});
 }
 
+TEST(SceneParser, RebarTakesOnePlaneOrALayerPerPlane) {
+  // `position` is a number (one mat) or an array (one mat per layer), each inside the box along
+  // the mat's normal; a plane outside names the key and the value.
+  auto with = [](const std::string& rebar) {
+    std::string s = mesh_scene;
+    const std::string from = "shape = { line = { from = [0, 0, 0], to = [0, 0, 10] } }";
+    s.replace(s.find(from), from.size(), "shape = { rebar = " + rebar + " }");
+    s.replace(s.find("mesh = { segments = 5 }"), 23, "mesh = { size = 0.5 }");
+    s.replace(s.find("area = 0.5\n"), 11, "");
+    return s;
+  };
+  const std::string box = "min = [0, 0, 0], max = [4, 2, 1], normal = \"z\", spacing = 0.5, "
+                          "diameter = 0.1, cover = 0.25";
+  Scene s = parse_scene(with("{ " + box + ", position = 0.2 }"), "rebar.toml");
+  const auto& one = std::get<RebarShape>(s.bodies[1].shape);
+  EXPECT_EQ(one.positions, std::vector<double>{0.2});
+  s = parse_scene(with("{ " + box + ", position = [0.2, 0.8] }"), "rebar.toml");
+  EXPECT_EQ(std::get<RebarShape>(s.bodies[1].shape).positions, (std::vector<double>{0.2, 0.8}));
+  std::string e = error_of(with("{ " + box + ", position = [0.2, 1.5] }"));
+  EXPECT_NE(e.find("bodies.bar.shape.rebar.position"), std::string::npos) << e;
+  EXPECT_NE(e.find("1.5 does not"), std::string::npos) << e;
+  e = error_of(with("{ " + box + ", position = [] }"));
+  EXPECT_NE(e.find("non-empty array"), std::string::npos) << e;
+  e = error_of(with("{ " + box + " }"));
+  EXPECT_NE(e.find("one mat per layer"), std::string::npos) << e;
+}
+
+TEST(SceneParser, CylinderNoseKeysNameTheKeyAndWhatIsAllowed) {
+  // An ogive nose (core/ogive_nose.hpp): crh >= 0.5, a meplat below the diameter (7.6 here),
+  // a nose shorter than the cylinder (CRH 12 on R = 3.8 is 26.1 long, the bar 25.4), and a flat
+  // tip when hexahedra mesh it.
+  auto with = [](const std::string& nose, bool hexahedra = false) {
+    std::string s = taylor_scene;
+    const std::string from = "length = 25.4 }";
+    s.replace(s.find(from), from.size(), "length = 25.4, nose = " + nose + " }");
+    if (hexahedra) {
+      s.replace(s.find("particles_per_cell = 2\n"), 23, "discretisation = \"hexahedra\"\nmesh = { size = 1 }\n");
+      s = s.substr(0, s.find("[reference]"));  // Taylor measures need a flat-ended bar
+    }
+    return s;
+  };
+  const Scene s = parse_scene(with("{ crh = 3, meplat = 1 }"), "nose.toml");
+  const auto& bar = std::get<CylinderShape>(s.bodies[0].shape);
+  EXPECT_EQ(bar.nose.crh, 3.0);
+  EXPECT_EQ(bar.nose.meplat, 1.0);
+  EXPECT_NO_THROW(parse_scene(with("{ crh = 3, meplat = 1 }", true), "nose.toml"));
+  std::string e = error_of(with("{ crh = 0.3 }"));
+  EXPECT_NE(e.find("bodies.bar.shape.cylinder.nose.crh"), std::string::npos) << e;
+  EXPECT_NE(e.find("value >= 0.5"), std::string::npos) << e;
+  e = error_of(with("{ crh = 12 }"));
+  EXPECT_NE(e.find("must be shorter than the cylinder's length, 25.4"), std::string::npos) << e;
+  e = error_of(with("{ crh = 3, meplat = 8 }"));
+  EXPECT_NE(e.find("nose.meplat"), std::string::npos) << e;
+  e = error_of(with("{ crh = 3 }", true));
+  EXPECT_NE(e.find("nose.meplat"), std::string::npos) << e;
+  EXPECT_NE(e.find("needs a flat tip"), std::string::npos) << e;
+  e = error_of(with("{ crh = 3, tip = 1 }"));
+  EXPECT_NE(e.find("unknown key"), std::string::npos) << e;
+}
+
 TEST(SceneParser, MeshMistakesNameTheKeyAndWhatIsAllowed) {
   auto replaced = [](std::string from, const std::string& to) {
     std::string s = mesh_scene;

@@ -108,7 +108,7 @@ double polygon_prism_volume(double radius, double length, int n_core, int sector
 
 TEST(CylinderMesh, VolumeIsTheInscribedPolygonPrism) {
   // Reference: polygon_prism_volume above, for full, half and quarter meshes; 1e-12 relative.
-  const core::CylinderShape c{{0.5, -1, 2}, {0, 0, 1}, 2.5, 7.0};
+  const core::CylinderShape c{{0.5, -1, 2}, {0, 0, 1}, 2.5, 7.0, {}};
   for (int sectors : {1, 2, 4})
     for (auto [n_core, n_ring] : {std::pair{2, 1}, std::pair{4, 3}, std::pair{6, 2}}) {
       const MeshData m = cylinder_mesh(c, n_core, n_ring, 3, sectors);
@@ -123,7 +123,7 @@ TEST(CylinderMesh, VolumeConvergesAtSecondOrderToTheCylinder) {
   // Reference: pi R^2 L times the sector fraction. The chords' error is O(h^2): doubling n_core
   // divides it by 4 (3.9..4.1 allowed, the O(h^4) term shifts it by ~1 %), and n_core = 8
   // (32 chords) is within 1 %.
-  const core::CylinderShape c{{0, 0, 0}, {0, 0, 1}, 1.0, 2.0};
+  const core::CylinderShape c{{0, 0, 0}, {0, 0, 1}, 1.0, 2.0, {}};
   for (int sectors : {1, 2, 4}) {
     const double exact = sectors / 4.0 * std::numbers::pi * c.radius * c.radius * c.length;
     double previous = 0.0;
@@ -151,7 +151,7 @@ TEST(CylinderMesh, QuarterAndHalfAreExactPartsOfTheFullMesh) {
   // Reference: the sectors are cut from the same layout, so 4 V_quarter = 2 V_half = V_full to
   // roundoff (1e-13 relative); node and element counts: the full mesh has
   // ((n+1)^2 + 4 n n_ring)(n_axial + 1) nodes and (n^2 + 4 n n_ring) n_axial hexahedra.
-  const core::CylinderShape c{{0, 0, 0}, {0, 0, 1}, 3.0, 1.0};
+  const core::CylinderShape c{{0, 0, 0}, {0, 0, 1}, 3.0, 1.0, {}};
   const int n = 6, ring = 3, axial = 4;
   const MeshData full = cylinder_mesh(c, n, ring, axial, 4);
   EXPECT_EQ(full.nodes.size(),
@@ -194,7 +194,7 @@ void expect_boundary_sets_on_the_cylinder(const core::CylinderShape& c, const Me
 }
 
 TEST(CylinderMesh, SurfaceBaseAndTopSetsLieOnTheCylinder) {
-  const core::CylinderShape c{{1, 2, 3}, {0, 0, 1}, 5.0, 12.0};
+  const core::CylinderShape c{{1, 2, 3}, {0, 0, 1}, 5.0, 12.0, {}};
   for (int sectors : {1, 2, 4}) {
     SCOPED_TRACE(sectors);
     expect_boundary_sets_on_the_cylinder(c, cylinder_mesh(c, 4, 2, 5, sectors), 4, 5, sectors);
@@ -205,7 +205,7 @@ TEST(CylinderMesh, ScaledJacobianStaysAboveOneHalfForAnyDivisions) {
   // Reference: the O-grid's worst corners are the three 120-degree corners at the core's corners
   // (sin 120 = 0.866); the bound asked of the mesher is 0.5. No element may be inverted. Axial
   // spacing 1 / n_core, close to the core spacing, so the aspect ratio printed is the section's.
-  const core::CylinderShape c{{0, 0, 0}, {0, 0, 1}, 1.0, 1.0};
+  const core::CylinderShape c{{0, 0, 0}, {0, 0, 1}, 1.0, 1.0, {}};
   for (auto [n_core, n_ring] : {std::pair{1, 1}, std::pair{2, 1}, std::pair{2, 6}, std::pair{4, 1},
                                 std::pair{4, 2}, std::pair{4, 4}, std::pair{8, 2}, std::pair{8, 8},
                                 std::pair{16, 4}, std::pair{3, 5}, std::pair{12, 2}}) {
@@ -221,9 +221,53 @@ TEST(CylinderMesh, ScaledJacobianStaysAboveOneHalfForAnyDivisions) {
   }
 }
 
+TEST(CylinderMesh, OgiveNoseFollowsItsArcAndHoldsItsVolume) {
+  // Hanchak's projectile as a quarter: R = 12.7, length 143.7, CRH 3 nose with a 4 mm meplat.
+  // References: every node of the "surface" set lies on the profile (the shank's radius or the
+  // arc r(t), core/ogive_nose.hpp) to 1e-12, as the O-grid's boundary does on the circle; the
+  // "top" disc has the meplat's radius; the volume is pi R^2 L_shank + V_nose over 4, within
+  // 1 % at 16 core divisions and 1 mm layers (the chords cost 0.3 %, the straight layers of
+  // the nose a little more); no element is inverted.
+  core::CylinderShape c{{0, 0, 0}, {0, 0, 1}, 12.7, 143.7, {}};
+  c.nose = {3.0, 4.0};
+  const double nose = core::ogive_nose_length(c.nose, c.radius), shank = c.length - nose;
+  const MeshData m = cylinder_mesh(c, 16, 8, 144, 1);
+  EXPECT_NO_THROW(validate(m, "ogive"));
+  auto set = [&](const std::string& name) -> const std::vector<std::int32_t>& {
+    for (const auto& s : m.node_sets)
+      if (s.name == name) return s.members;
+    ADD_FAILURE() << "no set " << name;
+    return m.node_sets.front().members;
+  };
+  for (std::int32_t i : set("surface")) {
+    const Vec3& x = m.nodes[static_cast<std::size_t>(i)];
+    const double profile = x.z > shank ? core::ogive_radius(c.nose, c.radius, x.z - shank) : c.radius;
+    EXPECT_NEAR(std::hypot(x.x, x.y), profile, 1e-12 * c.radius) << "node " << i;
+  }
+  double top_radius = 0.0;
+  for (std::int32_t i : set("top")) {
+    const Vec3& x = m.nodes[static_cast<std::size_t>(i)];
+    top_radius = std::max(top_radius, std::hypot(x.x, x.y));
+    EXPECT_NEAR(x.z, c.length, 1e-12 * c.length);
+  }
+  EXPECT_NEAR(top_radius, 2.0, 1e-12 * c.radius);
+  const MeshQualityReport q = mesh_quality(m);
+  const double exact =
+      (std::numbers::pi * c.radius * c.radius * shank + core::ogive_nose_volume(c.nose, c.radius)) /
+      4.0;
+  std::printf("ogive quarter: volume %.6g, exact %.6g, relative error %.2e; min scaled Jacobian "
+              "%.3f\n",
+              q.total_volume, exact, (q.total_volume - exact) / exact, q.min_scaled_jacobian);
+  EXPECT_NEAR(q.total_volume, exact, 0.01 * exact);
+  EXPECT_EQ(q.inverted, 0u);
+  // A sharp tip would collapse the last layer: the mesher refuses it with a reason.
+  c.nose.meplat = 0.0;
+  EXPECT_NE(error_of([&] { cylinder_mesh(c, 4, 2, 10, 1); }).find("meplat"), std::string::npos);
+}
+
 TEST(CylinderMesh, NoTwoNodesCoincide) {
   // Reference: shared nodes are generated once: no two nodes closer than 1e-9 R.
-  const core::CylinderShape c{{0, 0, 0}, {0, 0, 1}, 2.0, 1.0};
+  const core::CylinderShape c{{0, 0, 0}, {0, 0, 1}, 2.0, 1.0, {}};
   for (int sectors : {1, 2, 4})
     for (auto [n_core, n_ring] : {std::pair{2, 1}, std::pair{4, 3}}) {
       const MeshData m = cylinder_mesh(c, n_core, n_ring, 2, sectors);
@@ -236,7 +280,7 @@ TEST(CylinderMesh, CutSetsHoldExactlyTheNodesOnTheCutPlanes) {
   // plane x = 0 (members within 1e-12 R; every node within 1e-9 R of the plane is a member).
   // The half lies in y >= 0 and has cut_0 only; the full cylinder has no cut sets.
   for (const Vec3 axis : {Vec3{0, 0, 1}, Vec3{1, 1, 0}, Vec3{-0.3, 0.5, -0.8}}) {
-    const core::CylinderShape c{{1, -1, 0.5}, axis, 2.0, 3.0};
+    const core::CylinderShape c{{1, -1, 0.5}, axis, 2.0, 3.0, {}};
     for (int sectors : {1, 2}) {
       const MeshData m = cylinder_mesh(c, 4, 2, 2, sectors);
       const double tol = 1e-12 * c.radius;
@@ -269,7 +313,7 @@ TEST(CylinderMesh, CutSetsHoldExactlyTheNodesOnTheCutPlanes) {
 TEST(CylinderMesh, QuarterAlongZOccupiesThePositiveQuadrant) {
   // Reference: for axis +z the local frame is the global one, so the quarter's nodes have
   // x >= 0 and y >= 0 exactly (the cut-plane nodes get exact zeros).
-  const MeshData m = cylinder_mesh({{0, 0, 0}, {0, 0, 1}, 1.0, 1.0}, 4, 2, 1, 1);
+  const MeshData m = cylinder_mesh({{0, 0, 0}, {0, 0, 1}, 1.0, 1.0, {}}, 4, 2, 1, 1);
   for (const Vec3& p : m.nodes) {
     EXPECT_GE(p.x, 0.0);
     EXPECT_GE(p.y, 0.0);
@@ -281,8 +325,8 @@ TEST(CylinderMesh, QuarterAlongZOccupiesThePositiveQuadrant) {
 TEST(CylinderMesh, RotatedAxisGivesTheSameVolumeRadiiAndShapes) {
   // Reference: a rigid rotation and shift change neither volume (1e-12 relative) nor the radius
   // of the surface nodes nor the scaled Jacobian (1e-12).
-  const core::CylinderShape along_z{{0, 0, 0}, {0, 0, 1}, 1.5, 4.0};
-  const core::CylinderShape tilted{{3, -2, 1}, {1, 1, 0}, 1.5, 4.0};
+  const core::CylinderShape along_z{{0, 0, 0}, {0, 0, 1}, 1.5, 4.0, {}};
+  const core::CylinderShape tilted{{3, -2, 1}, {1, 1, 0}, 1.5, 4.0, {}};
   for (int sectors : {1, 4}) {
     const MeshQualityReport a = mesh_quality(cylinder_mesh(along_z, 6, 3, 4, sectors));
     const MeshData m = cylinder_mesh(tilted, 6, 3, 4, sectors);
@@ -326,16 +370,16 @@ TEST(CylinderFrame, IsTheSmallestRotationTakingZOntoTheAxis) {
 }
 
 TEST(CylinderMesh, RejectsInvalidInputWithAReason) {
-  const core::CylinderShape c{{0, 0, 0}, {0, 0, 1}, 1.0, 1.0};
+  const core::CylinderShape c{{0, 0, 0}, {0, 0, 1}, 1.0, 1.0, {}};
   EXPECT_NE(error_of([&] { cylinder_mesh(c, 3, 1, 1, 1); }).find("even"), std::string::npos);
   EXPECT_NE(error_of([&] { cylinder_mesh(c, 4, 1, 1, 3); }).find("sectors"), std::string::npos);
   EXPECT_NE(error_of([&] { cylinder_mesh(c, 4, 0, 1); }).find("at least 1"), std::string::npos);
   EXPECT_NE(error_of([] {
-              cylinder_mesh({{0, 0, 0}, {0, 0, 1}, 0.0, 1.0}, 2, 1, 1);
+              cylinder_mesh({{0, 0, 0}, {0, 0, 1}, 0.0, 1.0, {}}, 2, 1, 1);
             }).find("radius"),
             std::string::npos);
   EXPECT_NE(error_of([] {
-              cylinder_mesh({{0, 0, 0}, {0, 0, 0}, 1.0, 1.0}, 2, 1, 1);
+              cylinder_mesh({{0, 0, 0}, {0, 0, 0}, 1.0, 1.0, {}}, 2, 1, 1);
             }).find("axis"),
             std::string::npos);
 }
@@ -377,7 +421,7 @@ TEST(RebarMat, BarsStartAtTheCoverWithEqualSpacingAndTheRightArea) {
   // bars along x at y = 0.05..0.55 (6 bars of length 0.9, 9 segments of 0.1), bars along y at
   // x = 0.05..0.95 (10 bars of length 0.5, 5 segments). Total length 6 * 0.9 + 10 * 0.5 = 10.4;
   // area pi d^2 / 4. Each bar has its own nodes: 6 * 10 + 10 * 6 = 120. Tolerance 1e-12.
-  RebarMat mat{{0, 0, 0}, {1, 0.6, 0.3}, 2, 0.05, 0.1, 0.012, 0.05, 0.1};
+  RebarMat mat{{0, 0, 0}, {1, 0.6, 0.3}, 2, {0.05}, 0.1, 0.012, 0.05, 0.1};
   const MeshData m = rebar_mat(mat);
   EXPECT_NO_THROW(validate(m, "rebar"));
   ASSERT_EQ(m.part_names, (std::vector<std::string>{"bars along x", "bars along y"}));
@@ -407,7 +451,7 @@ TEST(RebarMat, LeftoverWidthIsSplitEquallyBetweenTheSides) {
   // 1.0 - 2 * 0.05 = 0.9, room for 5 bars at 0.2 (0.8); the leftover 0.1 goes half to each side:
   // bars at z = 0.1, 0.3, ..., 0.9. Across y the span 0.4 holds 3 bars exactly (0.05, 0.25, 0.45).
   // Bars along z run from cover line to cover line: 0.05..0.95 in ceil(0.9 / 0.25) = 4 segments.
-  RebarMat mat{{0, 0, 0}, {0.3, 0.5, 1.0}, 0, 0.15, 0.2, 0.01, 0.05, 0.25};
+  RebarMat mat{{0, 0, 0}, {0.3, 0.5, 1.0}, 0, {0.15}, 0.2, 0.01, 0.05, 0.25};
   const MeshData m = rebar_mat(mat);
   ASSERT_EQ(m.part_names, (std::vector<std::string>{"bars along y", "bars along z"}));
   const std::vector<double> z_of_y_bars = bar_positions(m, 0, 2);
@@ -428,8 +472,40 @@ TEST(RebarMat, LeftoverWidthIsSplitEquallyBetweenTheSides) {
   for (const Vec3& p : m.nodes) EXPECT_EQ(p.x, 0.15);
 }
 
+TEST(RebarMat, LayersRepeatTheSameMatInEachPlane) {
+  // The block of the first test with mats at z = 0.05 and z = 0.25 (one near each face): every
+  // layer is that test's mat, so twice its 104 trusses and 120 nodes and twice its bar length
+  // 10.4; half the nodes lie in each plane, and the bars along x of both layers share part 0.
+  RebarMat mat{{0, 0, 0}, {1, 0.6, 0.3}, 2, {0.05, 0.25}, 0.1, 0.012, 0.05, 0.1};
+  const MeshData m = rebar_mat(mat);
+  EXPECT_NO_THROW(validate(m, "rebar"));
+  ASSERT_EQ(m.part_names, (std::vector<std::string>{"bars along x", "bars along y"}));
+  EXPECT_EQ(m.lines.size(), 2u * (6u * 9u + 10u * 5u));
+  EXPECT_EQ(m.nodes.size(), 240u);
+  std::size_t low = 0, high = 0, other = 0;
+  for (const Vec3& p : m.nodes) {
+    if (p.z == 0.05)
+      ++low;
+    else if (p.z == 0.25)
+      ++high;
+    else
+      ++other;
+  }
+  EXPECT_EQ(low, 120u);
+  EXPECT_EQ(high, 120u);
+  EXPECT_EQ(other, 0u);
+  double total = 0.0;
+  std::size_t along_x = 0;
+  for (std::size_t e = 0; e < m.lines.size(); ++e) {
+    total += core::norm(m.nodes[m.lines[e][1]] - m.nodes[m.lines[e][0]]);
+    along_x += m.line_part[e] == 0 ? 1 : 0;
+  }
+  EXPECT_NEAR(total, 20.8, 1e-12);
+  EXPECT_EQ(along_x, 2u * 6u * 9u);
+}
+
 TEST(RebarMat, RejectsCoverSpacingAndPlaneOutsideTheBlock) {
-  const RebarMat ok{{0, 0, 0}, {1, 1, 1}, 2, 0.5, 0.1, 0.01, 0.05, 0.1};
+  const RebarMat ok{{0, 0, 0}, {1, 1, 1}, 2, {0.5}, 0.1, 0.01, 0.05, 0.1};
   RebarMat bad = ok;
   bad.cover = 0.5;
   EXPECT_NE(error_of([&] { rebar_mat(bad); }).find("cover"), std::string::npos);
@@ -437,7 +513,9 @@ TEST(RebarMat, RejectsCoverSpacingAndPlaneOutsideTheBlock) {
   bad.spacing = 0.0;
   EXPECT_NE(error_of([&] { rebar_mat(bad); }).find("spacing"), std::string::npos);
   bad = ok;
-  bad.position = 1.5;
+  bad.positions = {0.5, 1.5};
+  EXPECT_NE(error_of([&] { rebar_mat(bad); }).find("position"), std::string::npos);
+  bad.positions.clear();
   EXPECT_NE(error_of([&] { rebar_mat(bad); }).find("position"), std::string::npos);
   bad = ok;
   bad.normal_axis = 3;
