@@ -50,6 +50,8 @@ void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSumm
   std::fprintf(out, "summary\n");
   std::fprintf(out, "  steps            %ld to t = %.6g (dt %.4g .. %.4g)\n", s.steps, s.time,
                s.min_dt, s.max_dt);
+  if (!s.terminated.empty())
+    std::fprintf(out, "  stopped early    %s\n", s.terminated.c_str());
   std::fprintf(out, "  wall time        %.3f s with %d thread(s)\n", s.wall_seconds,
                core::thread_count());
   if (s.final_particles != s.particles)

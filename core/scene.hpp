@@ -47,6 +47,13 @@ struct RunSettings {
   long history_every = 10;         // steps between history rows
   bool output_strain = false;      // integrate and write each particle's strain tensor
   Vec3 gravity;                    // body force per unit mass
+  // Stop before end_time once a body's centre of mass has moved `travel` from where it started
+  // (LS-DYNA's *TERMINATION_BODY): a perforation run ends when the projectile is through.
+  struct Termination {
+    int body = -1;
+    double travel = 0.0;
+  };
+  std::optional<Termination> terminate;
 };
 
 struct GridSettings {

@@ -328,7 +328,7 @@ namespace {
 
 void read_run(TableReader& r, RunSettings& run) {
   r.known({"title", "end_time", "time_step_factor", "element_time_step_factor", "time_step", "max_steps", "output_every",
-           "history_every", "output_strain", "gravity"});
+           "history_every", "output_strain", "gravity", "terminate"});
   r.check_unknown();
   run.title = r.string("title", "");
   run.end_time = r.required_number("end_time", Range::positive());
@@ -1142,6 +1142,18 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
       t.fail("bodies", "at most 31 bodies can take part in grid contact (each has its own "
                        "velocity field on the grid)");
   });
+  {
+    TableReader run(r.required_table("run"), "run", path);
+    if (const toml::table* t = run.optional_table("terminate")) {
+      TableReader tr(*t, "run.terminate", path);
+      tr.known({"body", "travel"});
+      tr.check_unknown();
+      RunSettings::Termination term;
+      term.body = body_index(tr, "body", tr.required_string("body"), scene, false);
+      term.travel = tr.required_number("travel", Range::positive());
+      scene.run.terminate = term;
+    }
+  }
   if ((!scene.constraints.empty() || !scene.walls.empty()) && !has_mesh(scene))
     throw InputError(SourceLocation{path, 0}, scene.walls.empty() ? "constraints" : "walls",
                      "constraints and walls act on mesh nodes, and the scene has no mesh body; "

@@ -89,11 +89,13 @@ struct RunSummary {
   double max_energy_error = 0.0;  // largest magnitude over the history rows
   std::vector<StageTiming> stages;
   std::size_t field_frames = 0;
+  // Set when [run] terminate stopped the run before end_time: what ended it.
+  std::string terminated;
   std::optional<TaylorMeasures> taylor;  // when the scene states a Taylor reference
   double taylor_error = 0.0;
 };
 
-// Runs `model` to scene.run.end_time (or max_steps). Throws core::SimulationError from the
+// Runs `model` to scene.run.end_time (or max_steps, or [run] terminate). Throws core::SimulationError from the
 // model after flushing what was written.
 RunSummary run(Model& model, const Scene& scene, const RunOptions& options);
 
