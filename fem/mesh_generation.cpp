@@ -195,8 +195,11 @@ CylinderFrame cylinder_frame(const core::Vec3& axis) {
   const double length = core::norm(axis);
   require(length > 0.0 && std::isfinite(length), "cylinder: the axis must be a non-zero vector");
   const core::Vec3 z = (1.0 / length) * axis;
-  core::Vec3 x{1.0, 0.0, 0.0};
+  // Near -z: the half turn about (1, 1, 0), which swaps x and y, so that a quarter pointing
+  // down -z occupies x >= 0, y >= 0 as one pointing up +z does (a projectile in a quarter model).
+  core::Vec3 x{0.0, 1.0, 0.0};
   if (1.0 + z.z > 1e-6) {
+    x = {1.0, 0.0, 0.0};
     // Rodrigues' rotation R v = v + w x v + w x (w x v) / (1 + cos) with w = e_z x axis.
     const core::Vec3 w = core::cross({0.0, 0.0, 1.0}, z);
     x = x + core::cross(w, x) + (1.0 / (1.0 + z.z)) * core::cross(w, core::cross(w, x));

@@ -19,7 +19,8 @@ MeshData box_mesh(const core::BoxShape& box, std::array<int, 3> divisions);
 // The right-handed orthonormal frame (x, y, z = axis) in which a cylinder's cross-section is
 // laid out: the global frame turned by the smallest rotation that takes the global z onto the
 // axis (the identity for an axis along +z). Where that rotation is undefined, for an axis within
-// 1e-6 of -z, it is the half turn about the global x.
+// 1e-6 of -z, it is the half turn about (1, 1, 0): x and y swap, so that a quarter (below) along
+// -z occupies x >= 0, y >= 0 as one along +z does.
 struct CylinderFrame {
   core::Vec3 x, y, z;
 };
@@ -34,7 +35,7 @@ CylinderFrame cylinder_frame(const core::Vec3& axis);
 // `sectors` keeps 1 (a quarter: local angles 0..90 degrees), 2 (a half: 0..180) or 4 (the whole
 // cylinder) of the cross-section, measured in cylinder_frame(c.axis); a quarter or half is exactly
 // that part of the whole mesh, and needs an even n_core (the cut planes run along the core's
-// midlines). For an axis along z the quarter occupies x >= 0, y >= 0.
+// midlines). For an axis along +z or -z the quarter occupies x >= 0, y >= 0.
 //
 // With an ogive nose (c.nose.crh > 0, core/ogive_nose.hpp; it needs a meplat > 0) the layers of
 // nodes past the shank are the cross-section scaled by r(t) / R, so that the "top" disc is the

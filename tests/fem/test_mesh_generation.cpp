@@ -339,7 +339,7 @@ TEST(CylinderMesh, RotatedAxisGivesTheSameVolumeRadiiAndShapes) {
 
 TEST(CylinderFrame, IsTheSmallestRotationTakingZOntoTheAxis) {
   // Reference: +z gives the identity exactly; +x is reached by a quarter turn about y
-  // (x -> -z, y -> y); -z by the half turn about x (x, -y, -z); an axis tilted by 1e-3 from z
+  // (x -> -z, y -> y); -z by the half turn about (1, 1, 0) (x <-> y, -z); an axis tilted by 1e-3 from z
   // moves the frame's x by about 1e-3 only. Every frame is orthonormal and right-handed (1e-14).
   auto expect_vec = [](const Vec3& a, const Vec3& b, double tol) {
     EXPECT_NEAR(a.x, b.x, tol);
@@ -354,8 +354,8 @@ TEST(CylinderFrame, IsTheSmallestRotationTakingZOntoTheAxis) {
   expect_vec(fx.x, {0, 0, -1}, 1e-15);
   expect_vec(fx.y, {0, 1, 0}, 1e-15);
   const CylinderFrame down = cylinder_frame({0, 0, -1});
-  expect_vec(down.x, {1, 0, 0}, 1e-15);
-  expect_vec(down.y, {0, -1, 0}, 1e-15);
+  expect_vec(down.x, {0, 1, 0}, 1e-15);
+  expect_vec(down.y, {1, 0, 0}, 1e-15);
   expect_vec(cylinder_frame({1e-3, 0, 1}).x, {1, 0, -1e-3}, 1e-6);
   for (const Vec3 axis :
        {Vec3{1, 1, 0}, Vec3{-0.3, 0.5, -0.8}, Vec3{1e-4, 0, -1}, Vec3{0, -1, 0}}) {
