@@ -13,31 +13,20 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/parallel.hpp"
 #include "core/scene.hpp"
 #include "coupling/coupled_model.hpp"
+#include "example_text.hpp"
 
 namespace afemp::coupling {
 namespace {
 
-std::string example() {
-  std::ifstream in(std::string(AFEMP_SOURCE_DIR) + "/examples/rc_slab/scene.toml");
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::replaced;
 
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
-}
+std::string example() { return test::example_text("rc_slab/scene.toml"); }
 
 struct Row {
   double striking = 0.0, residual = 0.0;

@@ -11,33 +11,21 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 #include "core/parallel.hpp"
 #include "core/scene.hpp"
 #include "coupling/coupled_model.hpp"
+#include "example_text.hpp"
 #include "fem/fe_model.hpp"
 #include "mpm/mpm_model.hpp"
 
 namespace afemp::coupling {
 namespace {
 
-std::string example(const char* file) {
-  std::ifstream in(std::string(AFEMP_SOURCE_DIR) + "/examples/taylor_bar/" + file);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::replaced;
 
-// Replaces the first `from` in text by `to` (the test fails if it is missing).
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
-}
+std::string example(const char* file) { return test::example_text(std::string("taylor_bar/") + file); }
 
 // afemp_fine: elements of h / 2 in cells of h, one particle per converted element (the
 // particle spacing of MPM's 2 per cell), converting below a quarter of h / c.
