@@ -13,6 +13,8 @@ namespace afemp::core {
 struct BodySums {
   double mass = 0.0;
   Vec3 momentum;
+  double kinetic = 0.0;
+  double internal = 0.0;  // sum m e of the body's points (elements, particles)
 };
 
 struct Energies {

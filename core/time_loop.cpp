@@ -38,7 +38,8 @@ HistoryRow history_row(const Model& m, const Energies& e, double dt, double erro
   r.total = e.total();
   r.energy_error = error;
   for (const BodySums& b : e.bodies)
-    r.bodies.push_back({b.momentum, b.mass > 0.0 ? (1.0 / b.mass) * b.momentum : Vec3{}});
+    r.bodies.push_back(
+        {b.momentum, b.mass > 0.0 ? (1.0 / b.mass) * b.momentum : Vec3{}, b.kinetic, b.internal});
   return r;
 }
 

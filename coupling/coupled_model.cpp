@@ -199,6 +199,8 @@ core::Energies CoupledModel::energies() const {
   for (std::size_t b = 0; b < out.bodies.size(); ++b) {
     out.bodies[b].mass += m.bodies[b].mass;
     out.bodies[b].momentum += m.bodies[b].momentum;
+    out.bodies[b].kinetic += m.bodies[b].kinetic;
+    out.bodies[b].internal += m.bodies[b].internal;
   }
   return out;
 }

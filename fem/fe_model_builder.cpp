@@ -381,6 +381,7 @@ void FeSolver::build(const core::Scene& scene) {
   if (!trusses_.empty()) stage_names_.push_back("trusses");
   stage_seconds_.assign(stage_names_.size(), 0.0);
   thread_sums_.assign(static_cast<std::size_t>(core::thread_count()) * core::cache_line_doubles, 0.0);
+  body_stabilisation_.assign(scene.bodies.size(), 0.0);
   thread_erosions_.resize(static_cast<std::size_t>(core::thread_count()));
   thread_conversions_.resize(static_cast<std::size_t>(core::thread_count()));
   thread_conversion_reason_.resize(static_cast<std::size_t>(core::thread_count()));

@@ -211,6 +211,7 @@ class FeSolver {
   // Accounting.
   double plastic_work_ = 0.0, viscous_work_ = 0.0, hourglass_work_ = 0.0,
          stabilisation_work_ = 0.0;
+  std::vector<double> body_stabilisation_;  // stabilisation_work_ per body
   double eroded_energy_ = 0.0, external_work_ = 0.0;
   double previous_dt_ = 0.0;
   long steps_ = 0;

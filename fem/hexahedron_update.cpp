@@ -323,9 +323,19 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
 void FeSolver::update_hexahedra(double dt) {
   std::fill(thread_sums_.begin(), thread_sums_.end(), 0.0);
   for (auto& e : thread_errors_) e.clear();
+  // The stabilisation energy per body (part of its internal energy): the threads' sums
+  // grow batch by batch, so a batch's share is the growth over its sweep.
+  auto stabilisation = [&] {
+    double sum = 0.0;
+    for (std::size_t t = 0; t < thread_errors_.size(); ++t)
+      sum += thread_sums_[t * core::cache_line_doubles + kStabilisation];
+    return sum;
+  };
   for_each_batch(hexes_, [&]<class S, class E, bool Thermal>(const ElementBatch& b, const S& s,
                                                          const E& e) {
+    const double before = stabilisation();
     hexahedron_batch<S, E, Thermal>(b, s, e, dt);
+    body_stabilisation_[static_cast<std::size_t>(b.body)] += stabilisation() - before;
     raise_thread_errors();
     collect_erosions(hexes_, "hexahedron");
     collect_conversions();

@@ -131,24 +131,31 @@ core::Energies FeSolver::energies() const {
     const double m = nodes_.mass[i];
     if (!(m > 0.0)) continue;
     const Vec3& v = nodes_.velocity[i];
-    out.kinetic += 0.5 * m * core::dot(v, v);
+    const double kinetic = 0.5 * m * core::dot(v, v);
+    out.kinetic += kinetic;
     core::BodySums& b = out.bodies[static_cast<std::size_t>(nodes_.body[i])];
     b.mass += m;
     b.momentum += m * v;
+    b.kinetic += kinetic;
   }
   for (const FeElements* el : {&hexes_, &trusses_})
     for (const ElementBatch& b : el->batches)
       for (std::size_t e = b.begin; e < b.end; ++e) {
         if (!el->alive[e]) continue;
         const std::size_t p0 = b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
+        double internal = 0.0;
         for (int g = 0; g < b.points_per_element; ++g)
-          out.internal += el->point_mass[p0 + static_cast<std::size_t>(g)] * el->energy[p0 + static_cast<std::size_t>(g)];
+          internal += el->point_mass[p0 + static_cast<std::size_t>(g)] * el->energy[p0 + static_cast<std::size_t>(g)];
+        out.internal += internal;
+        out.bodies[static_cast<std::size_t>(b.body)].internal += internal;
       }
   out.plastic = plastic_work_;
   out.viscous = viscous_work_;
   out.hourglass = hourglass_work_;
   out.stabilisation = stabilisation_work_;
   out.internal += stabilisation_work_;
+  for (std::size_t b = 0; b < body_stabilisation_.size(); ++b)
+    out.bodies[b].internal += body_stabilisation_[b];
   out.eroded = eroded_energy_;
   out.converted = converted_energy_;
   out.external_work = external_work_;

@@ -173,7 +173,8 @@ double MpmSolver::max_signal_speed() const {
 Energies MpmSolver::energies() const {
   const Particles& p = particles_;
   const std::size_t nb = scene_.bodies.size();
-  const std::size_t width = 2 + 4 * nb;  // kinetic, internal, then mass + momentum per body
+  const std::size_t width = 2 + 6 * nb;  // kinetic, internal, then per body: mass, momentum,
+                                        // kinetic, internal
   const int nt = core::thread_count();
   const bool affine = plan_.transfer == core::Transfer::apic;
   std::vector<double> partial(width * static_cast<std::size_t>(nt), 0.0);
@@ -185,7 +186,7 @@ Energies MpmSolver::energies() const {
     for (std::size_t i = b; i < e; ++i) {
       const Vec3& v = p.velocity[i];
       const double m = p.mass[i];
-      acc[0] += 0.5 * m * core::dot(v, v);
+      double kinetic = 0.5 * m * core::dot(v, v);
       // APIC: the affine part of the velocity carries kinetic energy too. Over the
       // particle's cube of half-width l the field v_p + C_p (x - x_p) holds
       // 1/2 m (|v_p|^2 + l^2 / 3 |C_p|^2) (the cube's second moment is l^2 / 3 per axis).
@@ -195,14 +196,17 @@ Energies MpmSolver::energies() const {
         double sum = 0.0;
         for (int r = 0; r < 3; ++r)
           for (int a = 0; a < 3; ++a) sum += c.m[r][a] * c.m[r][a];
-        acc[0] += 0.5 * m * (l * l / 3.0) * sum;
+        kinetic += 0.5 * m * (l * l / 3.0) * sum;
       }
+      acc[0] += kinetic;
       acc[1] += m * p.energy[i];
-      double* body = acc + 2 + 4 * static_cast<std::size_t>(p.body[i]);
+      double* body = acc + 2 + 6 * static_cast<std::size_t>(p.body[i]);
       body[0] += m;
       body[1] += m * v.x;
       body[2] += m * v.y;
       body[3] += m * v.z;
+      body[4] += kinetic;
+      body[5] += m * p.energy[i];
     }
   }
   Energies out;
@@ -212,8 +216,11 @@ Energies MpmSolver::energies() const {
     out.kinetic += acc[0];
     out.internal += acc[1];
     for (std::size_t k = 0; k < nb; ++k) {
-      out.bodies[k].mass += acc[2 + 4 * k];
-      out.bodies[k].momentum += Vec3{acc[3 + 4 * k], acc[4 + 4 * k], acc[5 + 4 * k]};
+      const double* body = acc + 2 + 6 * k;
+      out.bodies[k].mass += body[0];
+      out.bodies[k].momentum += Vec3{body[1], body[2], body[3]};
+      out.bodies[k].kinetic += body[4];
+      out.bodies[k].internal += body[5];
     }
   }
   out.plastic = plastic_work_;

@@ -48,7 +48,7 @@ HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> body_nam
   std::string header = "step,time,dt,kinetic,internal,elastic,plastic,viscous,hourglass,"
                        "stabilisation,eroded,converted,contact,external_work,total,energy_error";
   for (const std::string& name : body_names_)
-    for (const char* c : {".px", ".py", ".pz", ".vx", ".vy", ".vz"}) header += "," + name + c;
+    for (const char* c : {".px", ".py", ".pz", ".vx", ".vy", ".vz", ".kinetic", ".internal"}) header += "," + name + c;
   header += '\n';
   if (std::fwrite(header.data(), 1, header.size(), file_.get()) != header.size() ||
       std::fflush(file_.get()) != 0)
@@ -68,6 +68,8 @@ void HistoryWriter::write(const HistoryRow& row) {
   for (const BodyHistory& b : row.bodies) {
     for (int i = 0; i < 3; ++i) append_number(line_, b.momentum[i]);
     for (int i = 0; i < 3; ++i) append_number(line_, b.mean_velocity[i]);
+    append_number(line_, b.kinetic);
+    append_number(line_, b.internal);
   }
   line_ += '\n';
   if (std::fwrite(line_.data(), 1, line_.size(), file_.get()) != line_.size() ||

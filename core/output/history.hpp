@@ -15,6 +15,8 @@ namespace afemp::core {
 struct BodyHistory {
   Vec3 momentum;
   Vec3 mean_velocity;
+  double kinetic = 0.0;
+  double internal = 0.0;  // its elements' and particles' sum m e (hourglass energy is global)
 };
 
 struct HistoryRow {
@@ -32,7 +34,8 @@ struct HistoryRow {
 
 // Columns: step,time,dt,kinetic,internal,elastic,plastic,viscous,hourglass,stabilisation,eroded,
 // converted,contact,external_work,total,energy_error,
-// then per body NAME: NAME.px,NAME.py,NAME.pz,NAME.vx,NAME.vy,NAME.vz.
+// then per body NAME: NAME.px,NAME.py,NAME.pz,NAME.vx,NAME.vy,NAME.vz,NAME.kinetic,
+// NAME.internal (like LS-DYNA's MATSUM per part).
 // step is printed as an integer, every other value with "%.10e" (11 significant digits).
 class HistoryWriter {
  public:

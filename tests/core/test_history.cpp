@@ -39,8 +39,8 @@ HistoryRow make_row(int r) {
   row.external_work = -2.0e-9 * r;
   row.total = row.kinetic + row.internal + row.hourglass + row.eroded + row.converted;
   row.energy_error = r == 0 ? 0.0 : 3.3e-12 * r;
-  row.bodies = {{{1.0 + r, -2.0 / 3.0, 1e5}, {0.5, 0.25 * r, -190.0}},
-                {{0.0, 0.0, -1.0 / 7.0}, {r / 9.0, 0.0, 0.0}}};
+  row.bodies = {{{1.0 + r, -2.0 / 3.0, 1e5}, {0.5, 0.25 * r, -190.0}, 0.75 * r, 1.0 / 3.0},
+                {{0.0, 0.0, -1.0 / 7.0}, {r / 9.0, 0.0, 0.0}, 2.5e3, r / 17.0}};
   return row;
 }
 
@@ -53,6 +53,8 @@ std::vector<double> flatten(const HistoryRow& row) {
   for (const BodyHistory& b : row.bodies) {
     for (int i = 0; i < 3; ++i) v.push_back(b.momentum[i]);
     for (int i = 0; i < 3; ++i) v.push_back(b.mean_velocity[i]);
+    v.push_back(b.kinetic);
+    v.push_back(b.internal);
   }
   return v;
 }
@@ -71,8 +73,9 @@ TEST(History, HeaderListsPerBodyColumnsAndRowsReadBack) {
   const std::vector<std::string> expected_header = {
       "step",     "time",     "dt",        "kinetic", "internal", "elastic",
       "plastic",  "viscous",  "hourglass", "stabilisation", "eroded", "converted", "contact", "external_work", "total",
-      "energy_error", "bar.px", "bar.py",  "bar.pz", "bar.vx", "bar.vy", "bar.vz",  "anvil.px", "anvil.py", "anvil.pz",
-      "anvil.vx", "anvil.vy", "anvil.vz"};
+      "energy_error", "bar.px", "bar.py",  "bar.pz", "bar.vx", "bar.vy", "bar.vz", "bar.kinetic",
+      "bar.internal", "anvil.px", "anvil.py", "anvil.pz", "anvil.vx", "anvil.vy", "anvil.vz",
+      "anvil.kinetic", "anvil.internal"};
   EXPECT_EQ(empty.header, expected_header);
   EXPECT_TRUE(empty.rows.empty());
 
@@ -85,7 +88,7 @@ TEST(History, HeaderListsPerBodyColumnsAndRowsReadBack) {
   }
   EXPECT_EQ(w.rows(), 3u);
   const CsvTable t = read_csv(path);
-  EXPECT_EQ(t.column("anvil.vx"), 25u);
+  EXPECT_EQ(t.column("anvil.vx"), 27u);
   EXPECT_EQ(t.rows[2][t.column("step")], 200.0);
   for (int r = 0; r < 3; ++r) expect_close(t.rows[r], flatten(make_row(r)));
 }
