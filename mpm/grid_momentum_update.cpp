@@ -68,6 +68,25 @@ inline void constrain(Vec3& v, unsigned mask) {
   if (mask & 4u) v.z = 0.0;
 }
 
+// Eq 2-32 at one node with its conditions: v = p / m and v_new = v + dt f / m. A wall holds a
+// node whose start velocity v points into it (rigid-body contact as in Bardenhagen et al.
+// 2000: corrected after P2G and again after integration). Zeroing only v_new let the FLIP
+// increment v_new - v hand the particles an impulse -m v the strain (computed with v held at
+// 0) never saw: +11..14 % energy in the elastic bar. A node still driven into the wall
+// (v_new) stops there. Returns the wall components held this step.
+unsigned integrate(const Vec3& momentum, const Vec3& force, double inv_m, double dt,
+                   const NodeConstraint& c, Vec3& v, Vec3& v_new) {
+  v = inv_m * momentum;
+  Vec3 a = inv_m * force;
+  constrain(v, c.mask_for(v));
+  constrain(a, c.always);
+  v_new = v + dt * a;
+  if (!c.any()) return 0;
+  const unsigned wall = (c.mask_for(v) | c.mask_for(v_new)) & ~c.always;
+  constrain(v_new, wall);
+  return wall;
+}
+
 }  // namespace
 
 void MpmSolver::apply_velocity_conditions(std::vector<Vec3>& field, bool divide_by_mass) {
@@ -109,6 +128,7 @@ void MpmSolver::grid_momentum_update(double dt) {
   wall_contact_.assign(g.field_slot_count(), 0);
   const std::size_t stride = g.slot_count();
   const int fields = g.field_count();
+  const bool shared = shared_.any;
 #pragma omp parallel num_threads(nt) if (core::worth_threads(g.slot_count()))
   {
     double work = 0.0;  // body-force work f_ext . (v + v_new) / 2 dt
@@ -122,28 +142,35 @@ void MpmSolver::grid_momentum_update(double dt) {
         g.velocity_new[s] = {};
         continue;
       }
-      const double inv_m = 1.0 / m;
-      Vec3 v = inv_m * g.momentum[s];
-      Vec3 a = inv_m * g.force[s];
-      // A wall holds a node whose start velocity v points into it (rigid-body contact as in
-      // Bardenhagen et al. 2000: corrected after P2G and again after integration). Zeroing
-      // only v_new let the FLIP increment v_new - v hand the particles an impulse -m v the
-      // strain (computed with v held at 0) never saw: +11..14 % energy in the elastic bar.
-      constrain(v, c.mask_for(v));
-      constrain(a, c.always);
-      Vec3 v_new = v + dt * a;
-      // A node still driven into the wall (v_new) stops there; the components held this
-      // step are kept for the MUSL remap, which must hold them too (remap_to_grid).
-      if (c.any()) {
-        const unsigned wall = (c.mask_for(v) | c.mask_for(v_new)) & ~c.always;
-        constrain(v_new, wall);
-        wall_contact_[s] = static_cast<std::uint8_t>(wall);
-      }
+      Vec3 v, v_new;
+      const unsigned wall = integrate(g.momentum[s], g.force[s], 1.0 / m, dt, c, v, v_new);
+      // The components held this step are kept for the MUSL remap, which must hold them
+      // too (remap_to_grid).
+      if (c.any()) wall_contact_[s] = static_cast<std::uint8_t>(wall);
       g.velocity[s] = v;
       g.velocity_new[s] = v_new;
       // A field of FE contact nodes only: the FE update counted its gravity work.
       const bool counted = !field_nodes_only_.empty() && field_nodes_only_[static_cast<std::size_t>(f)];
-      if (body_force && !counted) work += 0.5 * dt * m * core::dot(gravity, v + v_new);
+      if (!shared || !(shared_.mass[s] > 0.0)) {
+        if (body_force && !counted) work += 0.5 * dt * m * core::dot(gravity, v + v_new);
+        continue;
+      }
+      // Contact nodes share this field with particles or bonded nodes of their body: the
+      // particles' own part (the field less the nodes' mass, momentum and force) is
+      // integrated too, and the shift from the field's velocities to it stored for the
+      // particles' update (apply_shared_shifts). Its gravity work is the part's alone.
+      const double mo = m - shared_.mass[s];
+      Vec3 start, updated;
+      if (mo > shared_fraction * m) {
+        Vec3 vo, vo_new;
+        integrate(g.momentum[s] - shared_.start[s], g.force[s] - shared_.updated[s], 1.0 / mo,
+                  dt, c, vo, vo_new);
+        start = vo - v;
+        updated = vo_new - v_new;
+        if (body_force) work += 0.5 * dt * mo * core::dot(gravity, vo + vo_new);
+      }
+      shared_.start[s] = start;
+      shared_.updated[s] = updated;
      }
     });
     thread_sums_[static_cast<std::size_t>(core::thread_index()) * core::cache_line_doubles] = work;

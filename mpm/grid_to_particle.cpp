@@ -28,6 +28,7 @@ void MpmSolver::g2p_kernel(double dt, bool move_positions) {
 }
 
 void MpmSolver::grid_to_particle(double dt, bool move_positions) {
+  apply_shared_shifts();
   with_stencil(
       [&]<class Stencil, bool Affine>() { g2p_kernel<Stencil, Affine>(dt, move_positions); });
   nodes_from_grid(dt);

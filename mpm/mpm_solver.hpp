@@ -171,6 +171,21 @@ class MpmSolver {
   NodePoints* nodes_ = nullptr;
   std::vector<Vec3> contact_change_;
   std::vector<char> field_nodes_only_;
+  // A converting body in contact: its contact nodes share its field with its particles and
+  // the nodes bonded to them. The contact nodes take their own FE update, so the particles
+  // must take theirs from their own part of the field, or the nodes' velocity change would
+  // reach the particles as well (momentum created). Per slot: the contact nodes' mass,
+  // momentum (start) and force (updated), from nodes_to_grid; grid_momentum_update replaces
+  // start and updated with the shift of the field's start and updated velocities to the
+  // particles' part (0 where the part has under shared_fraction of the mass), which
+  // apply_shared_shifts adds after contact.
+  struct SharedFields {
+    bool any = false;  // some contact node maps into a field shared this step
+    std::vector<double> mass;
+    std::vector<Vec3> start, updated;
+  } shared_;
+  static constexpr double shared_fraction = 1e-9;
+  void apply_shared_shifts();
   double step_dt_ = 0.0;
 
   // Wall-face components constrained at each grid slot by this step's momentum update

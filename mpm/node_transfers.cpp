@@ -5,7 +5,11 @@
 // sums are exact by the partition of unity; the force is the one the caller gives (the
 // elements' nodal force) instead of -V sigma.grad N. Bonded nodes take the particles' velocity
 // update (the same PIC/FLIP blend, or the grid velocity with APIC) and move with the grid
-// velocity; contact nodes take only sum N dv of the contact correction of their field.
+// velocity; contact nodes take only sum N dv of the contact correction of their field. Where
+// contact nodes share their body's field with its particles (a converting body), the
+// particles and bonded nodes take the update of their own part of the field (SharedFields in
+// mpm_solver.hpp) plus the same contact correction, so each side keeps its own momentum
+// balance and the contact's impulse is shared by mass.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -62,23 +66,58 @@ void MpmSolver::nodes_to_grid(bool mass_momentum, bool force) {
   NodePoints& q = *nodes_;
   core::BackgroundGrid& g = grid_;
   const Vec3 gravity = scene_.run.gravity;
+  const std::size_t stride = g.slot_count();
+  // Contact nodes in a field that also holds particles or bonded nodes (SharedFields).
+  auto shares = [&](std::size_t k, std::size_t slot) {
+    return !q.bonded[k] && !field_nodes_only_[slot / stride];
+  };
+  if (mass_momentum) {
+    shared_.any = false;
+    for_each_node_point(q, g, particles_, field_of_body_, multi_field_,
+                        [&](std::size_t k, const LinearStencil&, const auto& slots) {
+      shared_.any = shared_.any || shares(k, slots[0]);
+    });
+    if (shared_.any) {
+      shared_.mass.assign(g.field_slot_count(), 0.0);
+      shared_.start.assign(g.field_slot_count(), Vec3{});
+      shared_.updated.assign(g.field_slot_count(), Vec3{});
+    }
+  }
   for_each_node_point(q, g, particles_, field_of_body_, multi_field_,
                       [&](std::size_t k, const LinearStencil& st, const auto& slots) {
     const double m = q.mass[k];
+    const bool shared = shared_.any && shares(k, slots[0]);
     for (int n = 0; n < LinearStencil::nodes; ++n) {
       const std::size_t s = slots[static_cast<std::size_t>(n)];
       const double w = st.w(n);
       if (mass_momentum) {
         g.mass[s] += w * m;
         g.momentum[s] += (w * m) * q.velocity[k];
+        if (shared) {
+          shared_.mass[s] += w * m;
+          shared_.start[s] += (w * m) * q.velocity[k];
+        }
       }
       if (force) {
         g.force[s] += w * q.force[k];
+        if (shared) shared_.updated[s] += w * q.force[k];
         // Contact nodes bring their gravity in the FE update's force.
         if (q.bonded[k] && plan_.gravity) g.force[s] += (w * m) * gravity;
       }
     }
   });
+}
+
+void MpmSolver::apply_shared_shifts() {
+  if (!shared_.any) return;
+  core::BackgroundGrid& g = grid_;
+  const std::size_t slots = g.field_slot_count();
+#pragma omp parallel for schedule(static) if (core::worth_threads(slots))
+  for (std::size_t s = 0; s < slots; ++s)
+    if (shared_.mass[s] > 0.0) {
+      g.velocity[s] += shared_.start[s];
+      g.velocity_new[s] += shared_.updated[s];
+    }
 }
 
 void MpmSolver::nodes_from_grid(double) {
