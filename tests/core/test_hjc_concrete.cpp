@@ -315,6 +315,31 @@ TEST(HolmquistJohnsonCook, WaveSpeedUsesTheStifferOfLoadingAndUnloadingModuli) {
   EXPECT_NEAR(wave_speed(m, p), c, 1e-12 * c);
 }
 
+TEST(HolmquistJohnsonCook, FullyDamagedConcreteInTensionCarriesNoStressAndNoSignal) {
+  // D = 1 and rho < rho0: the pressure is cut off at -T (1 - D) = 0 and the strength
+  // A (1 - D)(1 + P*/T*) is 0, so any increment, expanding, shearing or compressing while the
+  // point stays below rho0, leaves the stress at 0 (exactly), and the wave speed is 0. The
+  // same point compacted again (mu > 0) carries pressure and strength B P*^N again and has
+  // c = sqrt((K_t + 4G/3) / rho) once more (1e-12 relative).
+  const Material m = concrete();
+  PointState p = at_rest(m);
+  p.damage = 1.0;
+  const SymTensor shear{0.0, 0.0, 0.0, 0.0, 0.0, 1e-3};
+  for (double mu : {-1e-3, -0.5, -0.9, -0.95, -0.5}) {
+    step_to(m, p, mu, shear, 1e-6);
+    EXPECT_EQ(p.stress.xx, 0.0) << mu;
+    EXPECT_EQ(p.stress.xy, 0.0) << mu;
+    EXPECT_EQ(wave_speed(m, p), 0.0) << mu;
+  }
+  PointState q = at_rest(m);
+  q.damage = 1.0;
+  step_to(m, q, 1e-4, shear, 1e-6);
+  EXPECT_GT(p_of(q), 0.0);
+  EXPECT_GT(std::abs(q.stress.xy), 0.0);
+  const double c = std::sqrt((16e9 * (1.0 + 1e-4) + 4.0 / 3.0 * kG) / q.density);
+  EXPECT_NEAR(wave_speed(m, q), c, 1e-12 * c);
+}
+
 // ------------------------------------------------------------------------------------------
 // Scene keys
 
