@@ -763,12 +763,24 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
   only_for("mesh", D::hexahedra, D::trusses);
   only_for("element", D::hexahedra, D::hexahedra);
   only_for("hourglass", D::hexahedra, D::hexahedra);
-  only_for("bulk_viscosity", D::hexahedra, D::hexahedra);
+  only_for("bulk_viscosity", D::hexahedra, D::particles);
   only_for("erosion", D::hexahedra, D::trusses);
   only_for("area", D::trusses, D::trusses);
   only_for("bonded_to", D::hexahedra, D::trusses);  // resolved once every body is read
   only_for("conversion", D::hexahedra, D::hexahedra);
   b.particles_per_cell = static_cast<int>(r.integer("particles_per_cell", 2, 1, 8));
+  // Particles: on by default where the material has an equation of state (shocks), off
+  // otherwise; hexahedra: always on by default (LS-DYNA's Q1, Q2).
+  const bool viscous_default = b.discretisation == D::hexahedra ||
+                               material_list[static_cast<std::size_t>(b.material)].has_eos();
+  if (!viscous_default) b.bulk_viscosity = {0.0, 0.0};
+  if (const toml::table* t = r.optional_table("bulk_viscosity")) {
+    TableReader vr(*t, r.dotted("bulk_viscosity"), r.file());
+    vr.known({"linear", "quadratic"});
+    vr.check_unknown();
+    b.bulk_viscosity.linear = vr.number("linear", 0.06, Range::closed(0.0, 1.0));
+    b.bulk_viscosity.quadratic = vr.number("quadratic", 1.5, Range::closed(0.0, 10.0));
+  }
   if (b.discretisation == D::particles) return b;
 
   const bool generated = !std::holds_alternative<MeshFileShape>(b.shape);
@@ -799,13 +811,6 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
         b.hourglass.coefficient = hr.number("coefficient", 1.0, Range::closed(0.0, 1.0));
         break;
     }
-  }
-  if (const toml::table* t = r.optional_table("bulk_viscosity")) {
-    TableReader vr(*t, r.dotted("bulk_viscosity"), r.file());
-    vr.known({"linear", "quadratic"});
-    vr.check_unknown();
-    b.bulk_viscosity.linear = vr.number("linear", 0.06, Range::closed(0.0, 1.0));
-    b.bulk_viscosity.quadratic = vr.number("quadratic", 1.5, Range::closed(0.0, 10.0));
   }
   if (const toml::table* t = r.optional_table("erosion")) {
     TableReader er(*t, r.dotted("erosion"), r.file());

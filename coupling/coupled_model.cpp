@@ -194,6 +194,7 @@ core::Energies CoupledModel::energies() const {
   out.kinetic += m.kinetic;
   out.internal += m.internal;
   out.plastic += m.plastic;
+  out.viscous += m.viscous;
   out.external_work += m.external_work;
   out.contact += m.contact;
   for (std::size_t b = 0; b < out.bodies.size(); ++b) {

@@ -102,6 +102,11 @@ std::string MpmModel::describe() const {
            body.name.c_str(), shape_name(body.shape),
            scene.materials[static_cast<std::size_t>(body.material)].name.c_str(), count,
            body.particles_per_cell, mass);
+    if (body.bulk_viscosity.linear > 0.0 || body.bulk_viscosity.quadratic > 0.0)
+      core::appendf(out, "  bulk viscosity: linear %g, quadratic %g (length: the cell)\n",
+                    body.bulk_viscosity.linear, body.bulk_viscosity.quadratic);
+    else
+      out += "  bulk viscosity: off\n";
   }
   core::appendf(out, "particles: %zu; active cells: %zu; active grid blocks: %zu (%zu node slots)\n",
          p.size(), solver_.active_cells(), g.active_block_count(), g.slot_count());

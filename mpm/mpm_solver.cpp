@@ -55,6 +55,13 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
   // caller gave them an affine velocity of their own.
   if (plan_.transfer == core::Transfer::apic && particles_.affine.size() != particles_.size())
     particles_.affine.assign(particles_.size(), core::Mat3{});
+  for (const core::BodySpec& b : scene.bodies) {
+    bulk_viscosity_.push_back(b.bulk_viscosity);
+    // Only particle bodies and hexahedra (whose elements may become particles) have it.
+    if (b.discretisation != core::Discretisation::trusses &&
+        (b.bulk_viscosity.linear > 0.0 || b.bulk_viscosity.quadratic > 0.0))
+      viscous_ = true;
+  }
   stage_counts_.assign(plan_.stages.size(), 0);
   stage_seconds_.assign(plan_.stages.size(), 0.0);
   reorder_particles();
@@ -224,6 +231,7 @@ Energies MpmSolver::energies() const {
     }
   }
   out.plastic = plastic_work_;
+  out.viscous = viscous_work_;
   out.external_work = external_work_;
   out.contact = contact_energy_;
   return out;

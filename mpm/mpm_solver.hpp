@@ -192,8 +192,14 @@ class MpmSolver {
   // (bit a: component a), reused for the MUSL remapped velocity (see remap_to_grid).
   std::vector<std::uint8_t> wall_contact_;
 
+  // Artificial bulk viscosity of each body's particles (core::BodySpec::bulk_viscosity;
+  // mpm/bulk_viscosity.hpp), and whether any body has it.
+  std::vector<core::BulkViscositySettings> bulk_viscosity_;
+  bool viscous_ = false;
+
   // Accumulators and state.
   double plastic_work_ = 0.0;
+  double viscous_work_ = 0.0;  // heat of the bulk viscosity (Energies::viscous)
   double external_work_ = 0.0;
   double signal_speed_ = 0.0;  // max c + max |v| at the last stress update
   long steps_ = 0;

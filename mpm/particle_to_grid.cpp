@@ -72,7 +72,9 @@ void MpmSolver::p2g_kernel() {
       }
       const double m = p.mass[i];
       const Vec3 mv = m * p.velocity[i];
-      const core::SymTensor sv = p.volume[i] * p.stress[i];
+      // The bulk-viscous pressure acts with the stress (mpm/bulk_viscosity.hpp).
+      const core::SymTensor sv =
+          p.volume[i] * (p.stress[i] - p.bulk_q[i] * core::SymTensor::identity());
       for (int n = 0; n < N; ++n) {
         const double wn = st.w(n);
         const auto k = static_cast<std::size_t>(n);

@@ -9,6 +9,7 @@ template <class F>
 void for_each_array(Particles& p, F&& f) {
   f(p.position); f(p.velocity); f(p.mass); f(p.volume); f(p.stress);
   f(p.plastic_strain); f(p.temperature); f(p.energy); f(p.damage); f(p.max_compaction);
+  f(p.bulk_q);
   f(p.body); f(p.material); f(p.id);
   // Only when the scene asks for them:
   if (!p.strain.empty()) f(p.strain);
@@ -45,6 +46,7 @@ void Particles::push_back(const Vec3& x, const Vec3& v, double m, double vol, do
   energy.push_back(0.0);
   damage.push_back(0.0);
   max_compaction.push_back(0.0);
+  bulk_q.push_back(0.0);
   body.push_back(body_id);
   material.push_back(material_id);
 }

@@ -27,6 +27,7 @@ struct Particles {
   std::vector<double> energy;          // specific internal energy (per unit mass)
   std::vector<double> damage;          // scalar damage D in [0, 1]
   std::vector<double> max_compaction;  // largest volumetric strain rho / rho0 - 1 reached
+  std::vector<double> bulk_q;          // artificial bulk-viscous pressure acting this step
   std::vector<std::int32_t> body;
   std::vector<std::int32_t> material;
   std::vector<std::int32_t> id;        // stable id, unchanged by reordering

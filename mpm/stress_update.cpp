@@ -1,11 +1,13 @@
 // Strain and stress update of the particles (seed 001 eqs 2-38..2-41): velocity gradient
 // from the nodal velocity the scheme names, Jaumann rotation of the stress, volume update
 // V <- V (1 + tr d eps) (eq 2-40), then the material's constitutive update, batch by batch:
-// one std::visit per material, one direct (inlined) call per point. USL also updates the
-// particle velocity here, since it uses the same weights and the same grid velocity.
+// one std::visit per material, one direct (inlined) call per point, and the bulk viscosity
+// (mpm/bulk_viscosity.hpp). USL also updates the particle velocity here, since it uses the
+// same weights and the same grid velocity.
 #include <cmath>
 
 #include "core/parallel.hpp"
+#include "mpm/bulk_viscosity.hpp"
 #include "mpm/mpm_solver.hpp"
 
 namespace afemp::mpm {
@@ -61,14 +63,16 @@ void MpmSolver::strain_stress_update(double dt) {
           }
         });
   }
-  double work = 0.0, wave = 0.0, speed2 = 0.0;
+  double work = 0.0, wave = 0.0, speed2 = 0.0, heat = 0.0;
   for (int t = 0; t < nt; ++t) {
     const double* sums = thread_sums_.data() + static_cast<std::size_t>(t) * core::cache_line_doubles;
     work += sums[0];
+    heat += sums[3];
     wave = std::max(wave, sums[1]);
     speed2 = std::max(speed2, sums[2]);
   }
   plastic_work_ += work;
+  viscous_work_ += heat;
   signal_speed_ = wave + std::sqrt(speed2);
   raise_if_bad("stress");
 }
@@ -110,6 +114,9 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
   const bool jaumann = plan_.jaumann;
   const bool track_strain = plan_.strain;
   const double flip = scene_.mpm.flip;
+  const bool viscous = viscous_;
+  const core::BulkViscositySettings* viscosity = bulk_viscosity_.data();
+  const double h = g.cell();
 
 #pragma omp parallel num_threads(nt) if (core::worth_threads(batch.end - batch.begin))
   {
@@ -120,7 +127,7 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
     const Eos eos = eos_in;
     const int t = core::thread_index();
     const auto [b, e] = core::static_range(batch.end - batch.begin, t, core::team_size());
-    double work = 0.0, wave = 0.0, speed2 = 0.0;
+    double work = 0.0, wave = 0.0, speed2 = 0.0, heat = 0.0;
     std::int64_t bad = -1;
     for (std::size_t i = batch.begin + b; i < batch.begin + e; ++i) {
       Vec3 x = p.position[i];
@@ -182,16 +189,26 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
         p.damage[i] = st.damage;
         p.max_compaction[i] = st.max_compaction;
       }
-      p.energy[i] = st.energy;
       if (track_strain) p.strain[i] += d_eps;
       work += p.mass[i] * u.plastic_work;
+      // The step bound uses max c + max |v| >= max (c + |v|): squares here, two square
+      // roots per step instead of two per particle.
+      double c_wave = core::wave_speed(mat, eos, st);
+      if (viscous) {
+        const double q_heat = bulk_viscous_heat(p.bulk_q[i], d_eps.trace(), st.density);
+        st.energy += q_heat;
+        heat += p.mass[i] * q_heat;
+        const ViscousState vs =
+            bulk_viscosity(viscosity[static_cast<std::size_t>(p.body[i])], st.density, h,
+                           d_eps.trace() / dt, c_wave);
+        p.bulk_q[i] = vs.q;
+        c_wave = vs.signal;
+      }
+      p.energy[i] = st.energy;
       if (Fused && sweep.move) {
         x += dt * v_bar;
         p.position[i] = x;
       }
-      // The step bound uses max c + max |v| >= max (c + |v|): squares here, two square
-      // roots per step instead of two per particle.
-      const double c_wave = core::wave_speed(mat, eos, st);
       const double v2 = core::dot(v_p, v_p);
       const core::SymTensor& o = st.stress;
       // One sum catches a NaN or Inf in any of the values it adds.
@@ -205,6 +222,7 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
     out[0] += work;
     out[1] = std::max(out[1], wave);
     out[2] = std::max(out[2], speed2);
+    out[3] += heat;
     auto& tb = thread_bad_[static_cast<std::size_t>(t)];
     if (bad >= 0 && (tb < 0 || bad < tb)) tb = bad;
   }

@@ -641,6 +641,68 @@ TEST(SceneParser, MeshMistakesNameTheKeyAndWhatIsAllowed) {
   EXPECT_NE(e.find("1"), std::string::npos) << e;
 }
 
+// Artificial bulk viscosity: hexahedra have LS-DYNA's (0.06, 1.5) by default; particles have
+// it by default only where the material has an EOS (shocks), and take the key too; trusses
+// refuse it by name.
+TEST(SceneParser, BulkViscosityDefaultsFollowTheDiscretisationAndTheEos) {
+  const std::string text = R"(
+[run]
+end_time = 1.0
+[grid]
+cell = 1.0
+min = [0, 0, 0]
+max = [10, 10, 10]
+[materials.solid]
+density = 8.9e-3
+E = 124e3
+nu = 0.35
+[materials.shocked]
+density = 8.9e-3
+E = 124e3
+nu = 0.35
+eos = { model = "mie-gruneisen", c0 = 3940, s = 1.49, gamma0 = 1.96 }
+[[bodies]]
+name = "plain"
+material = "solid"
+shape = { box = { min = [0, 0, 0], max = [2, 2, 2] } }
+[[bodies]]
+name = "with_eos"
+material = "shocked"
+shape = { box = { min = [3, 0, 0], max = [5, 2, 2] } }
+[[bodies]]
+name = "given"
+material = "solid"
+shape = { box = { min = [6, 0, 0], max = [8, 2, 2] } }
+bulk_viscosity = { linear = 0.1 }
+[[bodies]]
+name = "elements"
+discretisation = "hexahedra"
+material = "solid"
+shape = { box = { min = [0, 4, 0], max = [2, 6, 2] } }
+mesh = { size = 1.0 }
+)";
+  const Scene s = parse_scene(text, "viscosity.toml");
+  ASSERT_EQ(s.bodies.size(), 4u);
+  EXPECT_EQ(s.bodies[0].bulk_viscosity.linear, 0.0);
+  EXPECT_EQ(s.bodies[0].bulk_viscosity.quadratic, 0.0);
+  EXPECT_EQ(s.bodies[1].bulk_viscosity.linear, 0.06);
+  EXPECT_EQ(s.bodies[1].bulk_viscosity.quadratic, 1.5);
+  EXPECT_EQ(s.bodies[2].bulk_viscosity.linear, 0.1);
+  EXPECT_EQ(s.bodies[2].bulk_viscosity.quadratic, 1.5);  // the key's own default
+  EXPECT_EQ(s.bodies[3].bulk_viscosity.linear, 0.06);
+  EXPECT_EQ(s.bodies[3].bulk_viscosity.quadratic, 1.5);
+  std::string bad = text;
+  bad.replace(bad.find("bulk_viscosity = { linear = 0.1 }"), 33,
+              "bulk_viscosity = { linear = 0.1, quadratic = 12 }");
+  std::string e = error_of(bad);
+  EXPECT_NE(e.find("bodies.given.bulk_viscosity.quadratic"), std::string::npos) << e;
+  EXPECT_NE(e.find("10"), std::string::npos) << e;
+  e = error_of(std::string(mesh_scene).replace(std::string(mesh_scene).find("area = 0.5"), 10,
+                                               "area = 0.5\nbulk_viscosity = { linear = 0.1 }"));
+  EXPECT_NE(e.find("bodies.bar.bulk_viscosity"), std::string::npos) << e;
+  EXPECT_NE(e.find("not to trusses"), std::string::npos) << e;
+}
+
 // [[contact]] names two particle bodies; its mistakes name the line and the key.
 TEST(SceneParser, ContactReadsItsPairAndRejectsWhatItCannotDo) {
   const std::string second = "[[bodies]]\nname = \"plate\"\nmaterial = \"steel\"\n"
