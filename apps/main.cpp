@@ -1,7 +1,9 @@
 // The `afemp` command: a thin layer over the library. `afemp check` reads a scene and prints
-// the plan (the starter); `afemp run` runs it with progress, output and a summary.
+// the plan (the starter); `afemp run` runs it with progress, output and a summary; `afemp
+// study` runs a study file's variations and writes their error against run time.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <memory>
@@ -11,10 +13,10 @@
 #include "core/error.hpp"
 #include "core/output/run_directory.hpp"
 #include "core/parallel.hpp"
+#include "core/study_file.hpp"
 #include "core/time_loop.hpp"
-#include "coupling/coupled_model.hpp"
-#include "fem/fe_model.hpp"
-#include "mpm/mpm_model.hpp"
+#include "coupling/make_model.hpp"
+#include "coupling/study.hpp"
 
 namespace {
 
@@ -23,21 +25,9 @@ using namespace afemp;
 constexpr int exit_input_error = 1;
 constexpr int exit_simulation_error = 3;
 
-void set_threads(int threads) {
-#ifdef _OPENMP
-  if (threads > 0) omp_set_num_threads(threads);
-#else
-  (void)threads;
-#endif
-}
+constexpr int exit_check_failed = 4;  // a reference or tolerance the results miss
 
-// The model a scene describes: particles on the grid, a mesh, or both (core::Model each way).
-std::unique_ptr<core::Model> make_model(const core::Scene& scene) {
-  if (core::has_mesh(scene) && (core::has_particles(scene) || core::has_grid_coupling(scene)))
-    return std::make_unique<coupling::CoupledModel>(scene);
-  if (core::has_mesh(scene)) return std::make_unique<fem::FeModel>(scene);
-  return std::make_unique<mpm::MpmModel>(scene);
-}
+using coupling::make_model;
 
 int check(const std::string& path) {
   const core::Scene scene = core::read_scene(path);
@@ -77,7 +67,7 @@ int run(const std::string& path, std::string out_dir) {
                 paths.history_file.c_str());
     if (s.taylor && scene.taylor_reference && scene.taylor_reference->tolerance > 0.0 &&
         s.taylor_error > scene.taylor_reference->tolerance)
-      return 4;
+      return exit_check_failed;
   } catch (const core::SimulationError& e) {
     progress.finish();
     std::fprintf(stderr, "afemp: simulation stopped: %s\n", e.what());
@@ -85,6 +75,28 @@ int run(const std::string& path, std::string out_dir) {
     return exit_simulation_error;
   }
   return 0;
+}
+
+// `afemp study FILE [-o DIR] [--threads N]`: --threads overrides the study's own threads.
+int study(const std::string& path, std::string out_dir, int threads) {
+  core::StudyPlan plan = core::read_study(path);
+  if (threads > 0) plan.threads = threads;
+  if (out_dir.empty()) out_dir = core::default_output_directory(path);
+  std::printf("afemp study %s -> %s: %zu runs\n", path.c_str(), out_dir.c_str(), plan.runs.size());
+  std::size_t done = 0;
+  const coupling::StudyResult result =
+      coupling::run_study(plan, [&](const coupling::StudyResult& so_far, const coupling::StudyRow& row) {
+        std::printf("[%zu/%zu] %s\n", ++done, plan.runs.size(),
+                    coupling::describe_row(so_far, row).c_str());
+        std::fflush(stdout);
+      });
+  coupling::write_study(plan, result, out_dir);
+  const coupling::StudyFiles files;
+  std::printf("output: %s/%s, %s/%s, %s/%s\n", out_dir.c_str(), files.csv.c_str(), out_dir.c_str(),
+              files.markdown.c_str(), out_dir.c_str(), files.plot.c_str());
+  const bool all_ok = std::all_of(result.rows.begin(), result.rows.end(),
+                                  [](const coupling::StudyRow& r) { return r.ok(); });
+  return all_ok ? 0 : exit_check_failed;
 }
 
 }  // namespace
@@ -105,10 +117,18 @@ int main(int argc, char** argv) {
   check_cmd->add_option("SCENE", scene_path, "scene file (TOML)")->required();
   check_cmd->add_option("--threads", threads, "OpenMP threads")->check(CLI::PositiveNumber);
 
+  auto* study_cmd = app.add_subcommand(
+      "study", "run a study file's variations; write a CSV, a Markdown table and an error-vs-time plot");
+  study_cmd->add_option("STUDY", scene_path, "study file (TOML, docs/study-format.md)")->required();
+  study_cmd->add_option("-o,--output", out_dir, "output directory (default runs/<study name>)");
+  study_cmd->add_option("--threads", threads, "OpenMP threads for every run (default: the study's)")
+      ->check(CLI::PositiveNumber);
+
   CLI11_PARSE(app, argc, argv);
-  set_threads(threads);
+  if (!*study_cmd) core::set_thread_count(threads);
   try {
     if (*run_cmd) return run(scene_path, out_dir);
+    if (*study_cmd) return study(scene_path, out_dir, threads);
     return check(scene_path);
   } catch (const core::InputError& e) {
     std::fprintf(stderr, "afemp: %s\n", e.what());

@@ -28,6 +28,15 @@ inline int thread_index() {
 #endif
 }
 
+// Sets the threads of the parallel regions that follow (n > 0; no effect without OpenMP).
+inline void set_thread_count(int n) {
+#ifdef _OPENMP
+  if (n > 0) omp_set_num_threads(n);
+#else
+  (void)n;
+#endif
+}
+
 // Threads actually running the current parallel region.
 inline int team_size() {
 #ifdef _OPENMP

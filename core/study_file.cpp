@@ -1,0 +1,299 @@
+// The study file (docs/study-format.md): [study], [[metrics]] and [[runs]], read with the
+// scene parser's checked TableReader so that its mistakes read like a scene's, and each run's
+// scene built from its scene file with the run's overrides applied to the TOML tree.
+#include "core/study_file.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "core/scene_parser.hpp"
+
+namespace afemp::core {
+
+using scene_detail::join;
+using scene_detail::Range;
+using scene_detail::TableReader;
+
+const char* to_string(MetricKind k) {
+  switch (k) {
+    case MetricKind::taylor: return "taylor";
+    case MetricKind::velocity: return "velocity";
+  }
+  return "?";
+}
+
+namespace {
+
+int line_of(const toml::source_region& r) { return static_cast<int>(r.begin.line); }
+
+std::string format_number_short(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+toml::table parse_toml(const std::string& text, const std::string& path) {
+  try {
+    return toml::parse(std::string_view(text), std::string_view(path));
+  } catch (const toml::parse_error& e) {
+    throw InputError(SourceLocation{path, static_cast<int>(e.source().begin.line)}, "",
+                     "TOML syntax error: " + std::string(e.description()));
+  }
+}
+
+std::string read_text(const std::string& path, const char* what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(SourceLocation{path, 0}, "", std::string("cannot open ") + what + " '" + path + "'");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// A TOML value as text ("0.25", "\"MUSL\"", "[1, 2]").
+std::string toml_text(const toml::node& n) {
+  std::ostringstream os;
+  n.visit([&](const auto& v) { os << v; });
+  return os.str();
+}
+
+MetricSpec read_metric(TableReader& r, std::size_t index) {
+  MetricSpec m;
+  m.where = r.where();
+  r.known({"kind", "name", "body", "component", "reference", "tolerance"});
+  r.check_unknown();
+  m.kind = static_cast<MetricKind>(r.choice("kind", {"taylor", "velocity"}, std::nullopt));
+  m.name = r.string("name", to_string(m.kind));
+  if (m.name.empty() || m.name.find_first_of(",.\"\n") != std::string::npos)
+    r.fail("name", "a metric name must be non-empty and hold no comma, dot, quote or newline");
+  m.body = r.required_string("body");
+  m.tolerance = r.number("tolerance", 0.0, Range::non_negative());
+  if (m.kind == MetricKind::taylor) {
+    if (r.has("component")) r.fail("component", "applies to kind \"velocity\" only");
+    if (!r.has("reference"))
+      r.fail("reference", "a taylor metric needs its reference: reference = { L = ..., D = ..., W = ... }");
+    TableReader ref(r.required_table("reference"), r.dotted("reference"), r.file());
+    ref.known({"L", "D", "W"});
+    ref.check_unknown();
+    TaylorReference t;
+    t.length = ref.required_number("L", Range::positive());
+    t.impact_diameter = ref.required_number("D", Range::positive());
+    t.bulge_diameter = ref.required_number("W", Range::positive());
+    t.tolerance = m.tolerance;
+    m.taylor = t;
+  } else {
+    m.component = static_cast<int>(r.choice("component", {"x", "y", "z", "magnitude"}, 3));
+    if (m.component == 3) m.component = -1;
+    m.reference = r.optional_number("reference", Range::any());
+    if (m.reference && *m.reference == 0.0)
+      r.fail("reference", "the error is relative to the reference, which must not be 0");
+  }
+  if (m.tolerance > 0.0 && !m.taylor && !m.reference)
+    r.fail("tolerance", "a tolerance needs a reference to compare with");
+  (void)index;
+  return m;
+}
+
+// [[runs]]: one run, or one per value when `resolution` is an array (every `set` value is
+// then an array of as many values, the k-th for the k-th run).
+void read_runs(TableReader& r, const std::string& study_path, std::vector<StudyRun>& out) {
+  r.known({"method", "scene", "resolution", "set", "label"});
+  r.check_unknown();
+  StudyRun base;
+  base.where = r.where();
+  base.method = r.required_string("method");
+  if (base.method.empty() || base.method.find_first_of(",\"\n") != std::string::npos)
+    r.fail("method", "a method name must be non-empty and hold no comma, quote or newline");
+  std::filesystem::path scene = r.required_string("scene");
+  if (scene.is_relative()) scene = std::filesystem::path(study_path).parent_path() / scene;
+  base.scene_path = scene.lexically_normal().string();
+  const std::string label = r.string("label", "");
+  const std::vector<double> resolutions = r.numbers("resolution", Range::positive());
+  const bool sweep = r.has("resolution") && r.table().get("resolution")->is_array();
+  const std::size_t count = sweep ? resolutions.size() : 1;
+  // set = { "grid.cell" = 0.5 } or set = { grid.cell = 0.5 } (TOML's dotted keys make
+  // nested tables): every leaf, by its dotted path.
+  std::vector<std::pair<std::string, const toml::node*>> leaves;
+  auto flatten = [&](auto& self, const toml::table& t, const std::string& prefix) -> void {
+    for (const auto& [key, node] : t) {
+      const std::string k = prefix + std::string(key.str());
+      if (const toml::table* sub = node.as_table())
+        self(self, *sub, k + ".");
+      else
+        leaves.emplace_back(k, &node);
+    }
+  };
+  std::vector<std::pair<std::string, const toml::node*>> set;
+  if (const toml::table* t = r.optional_table("set")) {
+    flatten(flatten, *t, "");
+    for (const auto& [k, node_ptr] : leaves) {
+      const toml::node& node = *node_ptr;
+      if (sweep) {
+        const auto* a = node.as_array();
+        if (!a || a->size() != count)
+          throw InputError(SourceLocation{r.file(), line_of(node.source())}, r.dotted("set") + "." + k,
+                           "with resolution = [" + std::to_string(count) +
+                               " values], every set value must be an array of " +
+                               std::to_string(count) + " values, one per run");
+      }
+      set.emplace_back(k, &node);
+    }
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    StudyRun run = base;
+    if (!resolutions.empty()) run.resolution = resolutions[i];
+    for (const auto& [k, node] : set)
+      run.overrides.push_back({k, toml_text(sweep ? *node->as_array()->get(i) : *node)});
+    std::ostringstream l;
+    if (!label.empty())
+      l << label;
+    else
+      l << run.method;
+    if (run.resolution) l << ", resolution " << format_number_short(*run.resolution);
+    run.label = l.str();
+    out.push_back(std::move(run));
+  }
+}
+
+}  // namespace
+
+StudyPlan parse_study(const std::string& text, const std::string& path) {
+  const toml::table root = parse_toml(text, path);
+  TableReader top(root, "", path);
+  top.known({"study", "metrics", "runs"});
+  top.check_unknown();
+  StudyPlan plan;
+  plan.path = path;
+  if (!top.has("study")) top.fail("study", "a study file needs a [study] table (title, threads, plot)");
+  TableReader s(top.required_table("study"), "study", path);
+  s.known({"title", "threads", "plot"});
+  s.check_unknown();
+  plan.title = s.string("title", std::filesystem::path(path).stem().string());
+  plan.threads = static_cast<int>(s.integer("threads", 0, 0, 4096));
+  const toml::node* metrics = root.get("metrics");
+  if (metrics && !metrics->is_array_of_tables())
+    top.fail("metrics", "expected [[metrics]] tables");
+  std::set<std::string> names;
+  if (metrics) {
+    const auto& a = *metrics->as_array();
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      TableReader mr(*a.get(i)->as_table(), "metrics[" + std::to_string(i) + "]", path);
+      plan.metrics.push_back(read_metric(mr, i));
+      if (!names.insert(plan.metrics.back().name).second)
+        mr.fail("name", "a second metric named \"" + plan.metrics.back().name +
+                            "\"; give each its own name = \"...\"");
+    }
+  }
+  const toml::node* runs = root.get("runs");
+  if (!runs || !runs->is_array_of_tables() || runs->as_array()->empty())
+    top.fail("runs", "a study needs at least one [[runs]] table (method, scene, resolution, set)");
+  const auto& ra = *runs->as_array();
+  for (std::size_t i = 0; i < ra.size(); ++i) {
+    TableReader rr(*ra.get(i)->as_table(), "runs[" + std::to_string(i) + "]", path);
+    read_runs(rr, path, plan.runs);
+  }
+  // The plotted metric: named, or the first with a reference.
+  if (s.has("plot")) {
+    plan.plot = s.required_string("plot");
+    const auto it = std::find_if(plan.metrics.begin(), plan.metrics.end(),
+                                 [&](const MetricSpec& m) { return m.name == plan.plot; });
+    std::vector<std::string> with_reference;
+    for (const MetricSpec& m : plan.metrics)
+      if (m.taylor || m.reference) with_reference.push_back(m.name);
+    if (plan.plot != "energy" && (it == plan.metrics.end() || !(it->taylor || it->reference)))
+      s.fail("plot", "names the metric whose error is plotted: one with a reference (" +
+                         (with_reference.empty() ? std::string("none here") : join(with_reference, true)) +
+                         "), or \"energy\" for the energy-balance error");
+  }
+  if (plan.plot.empty())
+    for (const MetricSpec& m : plan.metrics)
+      if (m.taylor || m.reference) {
+        plan.plot = m.name;
+        break;
+      }
+  if (plan.plot.empty()) plan.plot = "energy";
+  // Build every run's scene now: a mistake stops the study before the first run.
+  for (const StudyRun& run : plan.runs) {
+    const Scene scene = build_run_scene(plan, run);
+    for (const MetricSpec& m : plan.metrics) {
+      const auto b = std::find_if(scene.bodies.begin(), scene.bodies.end(),
+                                  [&](const BodySpec& body) { return body.name == m.body; });
+      if (b == scene.bodies.end())
+        throw InputError(m.where, "metrics.body",
+                         "metric \"" + m.name + "\" measures body \"" + m.body + "\", which run \"" +
+                             run.label + "\" (scene " + run.scene_path + ") does not have");
+      if (m.kind == MetricKind::taylor && !std::holds_alternative<CylinderShape>(b->shape))
+        throw InputError(m.where, "metrics.body",
+                         "a taylor metric measures a cylinder; body \"" + m.body + "\" of " +
+                             run.scene_path + " is not one");
+    }
+  }
+  return plan;
+}
+
+StudyPlan read_study(const std::string& path) { return parse_study(read_text(path, "study file"), path); }
+
+Scene build_run_scene(const StudyPlan& plan, const StudyRun& run) {
+  const std::string text = read_text(run.scene_path, "scene file");
+  toml::table root = parse_toml(text, run.scene_path);
+  std::string context = "run \"" + run.label + "\" (scene " + run.scene_path;
+  for (std::size_t i = 0; i < run.overrides.size(); ++i)
+    context += (i == 0 ? " with " : ", ") + run.overrides[i].path + " = " + run.overrides[i].value;
+  context += "): ";
+  for (const StudyRun::Override& o : run.overrides) {
+    auto fail = [&](const std::string& message) -> void {
+      throw InputError(run.where, "set." + o.path, message);
+    };
+    std::vector<std::string> segments;
+    std::stringstream ss(o.path);
+    for (std::string seg; std::getline(ss, seg, '.');) segments.push_back(seg);
+    if (segments.empty() || std::any_of(segments.begin(), segments.end(),
+                                        [](const std::string& x) { return x.empty(); }))
+      fail("a scene key as a dotted path: \"grid.cell\", \"bodies.NAME.mesh.size\"");
+    toml::table* t = &root;
+    std::string walked;
+    for (std::size_t i = 0; i + 1 < segments.size(); ++i) {
+      walked += (walked.empty() ? "" : ".") + segments[i];
+      toml::node* n = t->get(segments[i]);
+      if (!n) {  // a table the scene left out ([mpm] with its defaults): start it
+        t = t->insert_or_assign(segments[i], toml::table{}).first->second.as_table();
+      } else if (toml::table* sub = n->as_table()) {
+        t = sub;
+      } else if (n->is_array_of_tables()) {
+        if (i + 2 >= segments.size())
+          fail("'" + walked + "' is a list of tables: name the element and the key, '" + walked +
+               ".NAME.KEY'");
+        toml::array& a = *n->as_array();
+        std::vector<std::string> names;
+        toml::table* found = nullptr;
+        for (auto& e : a) {
+          toml::table& et = *e.as_table();
+          const std::string name = et["name"].value_or(std::string());
+          names.push_back(name);
+          if (name == segments[i + 1]) found = &et;
+        }
+        if (!found)
+          fail("scene " + run.scene_path + " has no '" + walked + "' named \"" + segments[i + 1] +
+               "\"; it has " + join(names, true));
+        t = found;
+        ++i;
+        walked += "." + segments[i];
+      } else {
+        fail("'" + walked + "' in scene " + run.scene_path + " is not a table");
+      }
+    }
+    const toml::table value = parse_toml("v = " + o.value, plan.path);
+    value.get("v")->visit([&](const auto& v) { t->insert_or_assign(segments.back(), v); });
+  }
+  try {
+    return scene_detail::scene_from_toml(root, run.scene_path);
+  } catch (const InputError& e) {
+    throw InputError(run.where, "runs", context + e.what());
+  }
+}
+
+}  // namespace afemp::core

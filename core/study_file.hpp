@@ -1,0 +1,75 @@
+// A study: one or more scenes run over a list of variations, each run measured for its wall
+// time and for metrics compared with reference values (docs/study-format.md). This file reads
+// and checks the study file and builds each run's scene: the scene file with the run's
+// overrides ("grid.cell" = 0.25) applied before the scene is checked, so a bad override is
+// reported like any other scene error, with the study file and run named in front.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/scene.hpp"
+
+namespace afemp::core {
+
+// What a metric measures at the end of a run.
+enum class MetricKind {
+  taylor,    // a Taylor bar's L, D, W and the mean error of seed 001 eq 2-42
+  velocity,  // a body's mean velocity (one component or the magnitude): residual, rebound
+};
+
+struct MetricSpec {
+  MetricKind kind = MetricKind::velocity;
+  std::string name;  // column prefix, unique in the study
+  std::string body;  // the scene body it measures (every run's scene must have it)
+  int component = -1;  // velocity: 0, 1, 2 for x, y, z; -1 for the magnitude
+  // References: taylor needs L, D, W (its error is eq 2-42); velocity has an optional one
+  // (its error is |v - v_ref| / |v_ref|).
+  std::optional<double> reference;
+  std::optional<TaylorReference> taylor;
+  double tolerance = 0.0;  // > 0: a run whose error exceeds it fails the study
+  SourceLocation where;
+};
+
+// One run: a scene and the overrides applied to it.
+struct StudyRun {
+  std::string method;      // the plot's line ("MPM", "FE", "AFEMP", ...)
+  std::string label;       // "MPM, resolution 0.5"
+  std::optional<double> resolution;  // the resolution column (cell or element size, ...)
+  std::string scene_path;  // resolved against the study file's folder
+  // Overrides: a dotted path into the scene ("grid.cell", "bodies.bar.mesh.size") and the
+  // value as TOML text.
+  struct Override {
+    std::string path;
+    std::string value;
+  };
+  std::vector<Override> overrides;
+  SourceLocation where;  // the [[runs]] table
+};
+
+struct StudyPlan {
+  std::string path;   // the study file
+  std::string title;
+  int threads = 0;    // OpenMP threads for every run; 0: the default
+  std::vector<MetricSpec> metrics;
+  // The metric whose error is plotted against wall time ("energy": the energy-balance
+  // error's magnitude); by default the first metric with a reference, else "energy".
+  std::string plot;
+  std::vector<StudyRun> runs;
+};
+
+// Reads and checks a study file (every run's scene is built once here, so a bad scene or
+// override stops the study before anything runs). Throws InputError.
+StudyPlan read_study(const std::string& path);
+StudyPlan parse_study(const std::string& text, const std::string& path);
+
+// The run's scene: its scene file with the overrides applied, checked by the scene parser.
+// Errors name the study file, the run and the override.
+Scene build_run_scene(const StudyPlan& plan, const StudyRun& run);
+
+const char* to_string(MetricKind k);
+
+}  // namespace afemp::core

@@ -1,0 +1,215 @@
+#include "coupling/study.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "core/output/svg_plot.hpp"
+#include "core/parallel.hpp"
+#include "core/taylor_metrics.hpp"
+#include "coupling/make_model.hpp"
+
+namespace afemp::coupling {
+
+namespace {
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+int body_index(const core::Scene& scene, const std::string& name) {
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+    if (scene.bodies[b].name == name) return static_cast<int>(b);
+  return -1;  // read_study checked every run's scene
+}
+
+// The metric's values (in value_columns order) and its error (NaN without a reference).
+void measure(const core::MetricSpec& m, const core::Scene& scene, const core::Model& model,
+             std::vector<double>& values, std::vector<double>& errors) {
+  const int b = body_index(scene, m.body);
+  if (m.kind == core::MetricKind::taylor) {
+    const core::TaylorMeasures t = model.measure_taylor(b);
+    values.insert(values.end(), {t.length, t.impact_diameter, t.bulge_diameter});
+    errors.push_back(core::taylor_mean_error(t, *m.taylor));
+    return;
+  }
+  const core::BodySums body = model.energies().bodies[static_cast<std::size_t>(b)];
+  const core::Vec3 v = (1.0 / body.mass) * body.momentum;
+  const double value = m.component < 0 ? core::norm(v) : v[m.component];
+  values.push_back(value);
+  if (m.reference) errors.push_back(std::abs(value - *m.reference) / std::abs(*m.reference));
+}
+
+std::string number(double v, const char* format = "%.6g") {
+  if (std::isnan(v)) return "";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+// A CSV field, quoted when it holds a comma, quote or newline.
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+std::string status(const StudyRow& row) {
+  if (!row.stopped.empty()) return "stopped: " + row.stopped;
+  if (row.over_tolerance.empty()) return "ok";
+  std::string s = "over tolerance:";
+  for (const std::string& m : row.over_tolerance) s += " " + m;
+  return s;
+}
+
+void write_file(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  if (!out)
+    throw core::InputError(core::SourceLocation{path.string(), 0}, "",
+                           "cannot write '" + path.string() + "'");
+}
+
+}  // namespace
+
+double StudyResult::plotted_error(const core::StudyPlan& plan, const StudyRow& row) const {
+  if (plan.plot == "energy") return std::abs(row.energy_error);
+  const auto it = std::find(error_columns.begin(), error_columns.end(), plan.plot + ".error");
+  return it == error_columns.end() ? nan : row.errors[static_cast<std::size_t>(it - error_columns.begin())];
+}
+
+StudyResult run_study(const core::StudyPlan& plan,
+                      const std::function<void(const StudyResult&, const StudyRow&)>& report) {
+  StudyResult result;
+  for (const core::MetricSpec& m : plan.metrics) {
+    if (m.kind == core::MetricKind::taylor) {
+      for (const char* c : {".L", ".D", ".W"}) result.value_columns.push_back(m.name + c);
+      result.error_columns.push_back(m.name + ".error");
+    } else {
+      result.value_columns.push_back(m.name);
+      if (m.reference) result.error_columns.push_back(m.name + ".error");
+    }
+  }
+  const int threads_before = core::thread_count();
+  if (plan.threads > 0) core::set_thread_count(plan.threads);
+  for (const core::StudyRun& run : plan.runs) {
+    const core::Scene scene = core::build_run_scene(plan, run);
+    StudyRow row;
+    row.run = &run;
+    row.threads = core::thread_count();
+    const std::unique_ptr<core::Model> model = make_model(scene);
+    row.elements = model->element_count();
+    core::RunOptions options;  // no output directory: nothing written, nothing timed but the steps
+    try {
+      const core::RunSummary s = core::run(*model, scene, options);
+      row.steps = s.steps;
+      row.wall_seconds = s.wall_seconds;
+      row.energy_error = s.energy_error;
+      for (const core::MetricSpec& m : plan.metrics) measure(m, scene, *model, row.values, row.errors);
+      std::size_t e = 0;
+      for (const core::MetricSpec& m : plan.metrics) {
+        if (!(m.taylor || m.reference)) continue;
+        if (m.tolerance > 0.0 && !(row.errors[e] <= m.tolerance)) row.over_tolerance.push_back(m.name);
+        ++e;
+      }
+    } catch (const core::SimulationError& err) {
+      row.stopped = err.what();
+      row.steps = model->step_count();
+      row.values.assign(result.value_columns.size(), nan);
+      row.errors.assign(result.error_columns.size(), nan);
+      row.energy_error = nan;
+    }
+    row.particles = model->particle_count();
+    result.rows.push_back(std::move(row));
+    if (report) report(result, result.rows.back());
+  }
+  core::set_thread_count(threads_before);
+  return result;
+}
+
+std::string describe_row(const StudyResult& result, const StudyRow& row) {
+  std::ostringstream os;
+  os << row.run->label << ": " << row.steps << " steps, " << number(row.wall_seconds, "%.2f")
+     << " s on " << row.threads << " thread(s)";
+  if (!row.stopped.empty()) return os.str() + ", stopped: " + row.stopped;
+  for (std::size_t i = 0; i < result.value_columns.size(); ++i)
+    os << ", " << result.value_columns[i] << " " << number(row.values[i], "%.4g");
+  for (std::size_t i = 0; i < result.error_columns.size(); ++i)
+    os << ", " << result.error_columns[i] << " " << number(row.errors[i], "%.4f");
+  os << ", energy error " << number(100.0 * row.energy_error, "%+.2f") << " %";
+  if (!row.over_tolerance.empty()) os << " (" << status(row) << ")";
+  return os.str();
+}
+
+void write_study(const core::StudyPlan& plan, const StudyResult& result, const std::string& directory) {
+  const std::filesystem::path dir(directory);
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec)
+    throw core::InputError(core::SourceLocation{directory, 0}, "",
+                           "cannot create the output directory: " + ec.message());
+  const StudyFiles files;
+  // CSV: one row per run.
+  std::string csv = "run,method,label,resolution,particles,elements,steps,wall_seconds,threads,energy_error";
+  for (const std::string& c : result.value_columns) csv += "," + c;
+  for (const std::string& c : result.error_columns) csv += "," + c;
+  csv += ",status\n";
+  for (std::size_t k = 0; k < result.rows.size(); ++k) {
+    const StudyRow& r = result.rows[k];
+    csv += std::to_string(k + 1) + "," + csv_field(r.run->method) + "," + csv_field(r.run->label) + "," +
+           (r.run->resolution ? number(*r.run->resolution) : "") + "," + std::to_string(r.particles) +
+           "," + std::to_string(r.elements) + "," + std::to_string(r.steps) + "," +
+           number(r.wall_seconds, "%.4f") + "," + std::to_string(r.threads) + "," +
+           number(r.energy_error, "%.6g");
+    // Appended in two steps: "," + std::string trips GCC 12's -Wrestrict.
+    for (double v : r.values) (csv += ',') += number(v, "%.6g");
+    for (double v : r.errors) (csv += ',') += number(v, "%.6g");
+    csv += "," + csv_field(status(r)) + "\n";
+  }
+  write_file(dir / files.csv, csv);
+  // Markdown: the same table for reading.
+  std::string md = "# " + plan.title + "\n\n";
+  md += "Study file `" + plan.path + "`; wall time of the time loop (no output written).\n\n";
+  md += "| method | resolution | particles | elements | steps | wall time (s) | threads | energy error";
+  std::string rule = "|---|---|---|---|---|---|---|---";
+  for (const std::string& c : result.value_columns) md += " | " + c, rule += "|---";
+  for (const std::string& c : result.error_columns) md += " | " + c, rule += "|---";
+  md += " | status |\n" + rule + "|---|\n";
+  for (const StudyRow& r : result.rows) {
+    md += "| " + r.run->method + " | " + (r.run->resolution ? number(*r.run->resolution) : "-") + " | " +
+          std::to_string(r.particles) + " | " + std::to_string(r.elements) + " | " +
+          std::to_string(r.steps) + " | " + number(r.wall_seconds, "%.2f") + " | " +
+          std::to_string(r.threads) + " | " +
+          (std::isnan(r.energy_error) ? std::string("-") : number(100.0 * r.energy_error, "%+.2f") + " %");
+    for (double v : r.values) md += " | " + (std::isnan(v) ? std::string("-") : number(v, "%.4g"));
+    for (double v : r.errors) md += " | " + (std::isnan(v) ? std::string("-") : number(v, "%.4f"));
+    std::string st = status(r);
+    std::replace(st.begin(), st.end(), '|', '/');
+    md += " | " + st + " |\n";
+  }
+  md += "\n![error against wall time](" + files.plot + ")\n";
+  write_file(dir / files.markdown, md);
+  // The plot: the plotted error against wall time, one line per method in order of first
+  // appearance, runs in the study's order.
+  core::LogLogPlot plot;
+  plot.title = plan.title;
+  plot.x_label = "wall time (s), " + std::to_string(result.rows.empty() ? 0 : result.rows[0].threads) +
+                 " thread(s)";
+  plot.y_label = plan.plot == "energy" ? "|energy-balance error|" : plan.plot + " error";
+  for (const StudyRow& r : result.rows) {
+    auto it = std::find_if(plot.series.begin(), plot.series.end(),
+                           [&](const core::PlotSeries& s) { return s.name == r.run->method; });
+    if (it == plot.series.end()) {
+      plot.series.push_back({r.run->method, {}, {}});
+      it = plot.series.end() - 1;
+    }
+    it->x.push_back(r.wall_seconds);
+    it->y.push_back(result.plotted_error(plan, r));
+  }
+  write_file(dir / files.plot, core::svg_loglog(plot));
+}
+
+}  // namespace afemp::coupling

@@ -1,0 +1,52 @@
+// `afemp study`: runs each run of a study (core/study_file.hpp) to its end, measures its wall
+// time and metrics, and writes a CSV row per run, a Markdown table and a log-log plot of the
+// plotted metric's error against wall time, one line per method (docs/study-format.md).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/study_file.hpp"
+
+namespace afemp::coupling {
+
+struct StudyRow {
+  const core::StudyRun* run = nullptr;
+  std::size_t particles = 0;  // at the end (conversion adds particles)
+  std::size_t elements = 0;   // at the start
+  long steps = 0;
+  double wall_seconds = 0.0;  // of the time loop, no output written
+  int threads = 0;
+  double energy_error = 0.0;  // the energy-balance error at the end
+  std::vector<double> values;  // StudyResult::value_columns
+  std::vector<double> errors;  // StudyResult::error_columns (NaN: the run stopped)
+  std::string stopped;         // the simulation error that stopped the run, if one did
+  std::vector<std::string> over_tolerance;  // metrics whose error exceeds their tolerance
+  bool ok() const { return stopped.empty() && over_tolerance.empty(); }
+};
+
+struct StudyResult {
+  std::vector<std::string> value_columns;  // "taylor.L", ..., "velocity"
+  std::vector<std::string> error_columns;  // "taylor.error", ... (metrics with a reference)
+  std::vector<StudyRow> rows;
+  // The plotted error of a row: the plot metric's error, or |energy error|.
+  double plotted_error(const core::StudyPlan& plan, const StudyRow& row) const;
+};
+
+// Runs the study; `report` is called after each run with the result so far and its row.
+StudyResult run_study(
+    const core::StudyPlan& plan,
+    const std::function<void(const StudyResult&, const StudyRow&)>& report = {});
+
+// The files written to `directory` (created if needed).
+struct StudyFiles {
+  std::string csv = "study.csv", markdown = "study.md", plot = "error_vs_time.svg";
+};
+void write_study(const core::StudyPlan& plan, const StudyResult& result,
+                 const std::string& directory);
+
+// One line of text per run for the terminal.
+std::string describe_row(const StudyResult& result, const StudyRow& row);
+
+}  // namespace afemp::coupling
