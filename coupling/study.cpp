@@ -181,7 +181,7 @@ void write_study(const core::StudyPlan& plan, const StudyResult& result, const s
   for (const StudyRow& r : result.rows) {
     md += "| " + r.run->method + " | " + (r.run->resolution ? number(*r.run->resolution) : "-") + " | " +
           std::to_string(r.particles) + " | " + std::to_string(r.elements) + " | " +
-          std::to_string(r.steps) + " | " + number(r.wall_seconds, "%.2f") + " | " +
+          std::to_string(r.steps) + " | " + number(r.wall_seconds, "%.3g") + " | " +
           std::to_string(r.threads) + " | " +
           (std::isnan(r.energy_error) ? std::string("-") : number(100.0 * r.energy_error, "%+.2f") + " %");
     for (double v : r.values) md += " | " + (std::isnan(v) ? std::string("-") : number(v, "%.4g"));

@@ -23,7 +23,8 @@ struct LinearEos {
 };
 
 // Mie-Grueneisen with a linear Us-Up Hugoniot, seed 001 eqs 2-21..2-26:
-// p = pH (1 - gamma0 mu / 2) + gamma0 rho0 e,  (gamma rho = gamma0 rho0, eq 2-22)
+// p = pH (1 - gamma mu / 2) + gamma rho e with gamma = gamma0 rho0 / rho (eq 2-22), i.e.
+// p = pH (1 - gamma0 mu / (2 (1 + mu))) + gamma0 rho0 e,
 // pH = C1 mu + C2 mu^2 + C3 mu^3 (mu >= 0), pH = C1 mu (mu < 0),
 // C1 = rho0 c0^2, C2 = C1 (2s - 1), C3 = C1 (s - 1)(3s - 1).
 struct MieGruneisen {

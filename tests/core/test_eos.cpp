@@ -27,8 +27,9 @@ double numerical_tangent(const Eos& eos, double mu, double e) {
 }
 
 TEST(MieGruneisen, CompressedPressureMatchesCubicHugoniotFormula) {
-  // Reference: eqs 2-25/2-26 evaluated here and by hand (C1 = rho0 c0^2 = 138625.748 MPa,
-  // pH(0.1) = 16843.0700 MPa, p = pH (1 - 0.098) + 1.96 * 8.93e-3 * 1e5 = 16942.7291 MPa).
+  // Reference: eqs 2-25/2-26 with gamma = gamma0 rho0 / rho (eq 2-22), so gamma mu =
+  // gamma0 mu / (1 + mu), evaluated here and by hand (C1 = rho0 c0^2 = 138625.748 MPa,
+  // pH(0.1) = 16843.0700 MPa, p = pH (1 - 0.098 / 1.1) + 1.96 * 8.93e-3 * 1e5 = 17092.7856 MPa).
   // Tolerance 1e-12 relative (a few roundings).
   const MieGruneisen eos = copper_eos();
   const double mu = 0.1, e = 1.0e5;
@@ -36,34 +37,67 @@ TEST(MieGruneisen, CompressedPressureMatchesCubicHugoniotFormula) {
   const double c2 = c1 * (2.0 * eos.s - 1.0);
   const double c3 = c1 * (eos.s - 1.0) * (3.0 * eos.s - 1.0);
   const double p_hugoniot = c1 * mu + c2 * mu * mu + c3 * mu * mu * mu;
-  const double formula = p_hugoniot * (1.0 - 0.5 * eos.gamma0 * mu) + eos.gamma0 * eos.rho0 * e;
+  const double gamma = eos.gamma0 / (1.0 + mu);
+  const double formula = p_hugoniot * (1.0 - 0.5 * gamma * mu) + gamma * (1.0 + mu) * eos.rho0 * e;
   const double p = eos_pressure(eos, mu, e);
   EXPECT_NEAR(c1, 138625.748, 1e-12 * 138625.748);
   EXPECT_NEAR(p, formula, 1e-12 * formula);
-  EXPECT_NEAR(p, 16942.72911269141, 1e-12 * 16942.72911269141);
+  EXPECT_NEAR(p, 17092.78555423987, 1e-12 * 17092.78555423987);
   // The energy coefficient is gamma0 rho0 (gamma rho = gamma0 rho0, eq 2-22).
   EXPECT_DOUBLE_EQ(eos.form(mu).b, eos.gamma0 * eos.rho0);
 }
 
 TEST(MieGruneisen, TensionUsesLinearHugoniotWithoutQuadraticAndCubicTerms) {
-  // Reference: pH = C1 mu for mu < 0: p(-0.05, 1e4) = C1 (-0.05)(1 + 0.049) + gamma0 rho0 1e4
-  // = -7095.8924826 MPa by hand; the cubic form would give a different value. Tol 1e-12 rel.
+  // Reference: pH = C1 mu for mu < 0: p(-0.05, 1e4) = C1 (-0.05)(1 + 0.049 / 0.95)
+  // + gamma0 rho0 1e4 = -7113.767908 MPa by hand; the cubic form would give a different
+  // value. Tol 1e-12 rel.
   const MieGruneisen eos = copper_eos();
   const double mu = -0.05, e = 1.0e4;
   const double c1 = eos.rho0 * eos.c0 * eos.c0;
-  const double formula = c1 * mu * (1.0 - 0.5 * eos.gamma0 * mu) + eos.gamma0 * eos.rho0 * e;
+  const double formula =
+      c1 * mu * (1.0 - 0.5 * eos.gamma0 * mu / (1.0 + mu)) + eos.gamma0 * eos.rho0 * e;
   const double p = eos_pressure(eos, mu, e);
   EXPECT_NEAR(p, formula, 1e-12 * std::abs(formula));
-  EXPECT_NEAR(p, -7095.892482599999, 1e-12 * 7095.892482599999);
+  EXPECT_NEAR(p, -7113.767908000002, 1e-12 * 7113.767908000002);
   const double c2 = c1 * (2.0 * eos.s - 1.0);
   const double c3 = c1 * (eos.s - 1.0) * (3.0 * eos.s - 1.0);
   const double cubic = (c1 * mu + c2 * mu * mu + c3 * mu * mu * mu) *
-                           (1.0 - 0.5 * eos.gamma0 * mu) + eos.gamma0 * eos.rho0 * e;
+                           (1.0 - 0.5 * eos.gamma0 * mu / (1.0 + mu)) + eos.gamma0 * eos.rho0 * e;
   EXPECT_GT(std::abs(p - cubic), 100.0);  // the compression branch would be off by ~700 MPa
 }
 
+TEST(MieGruneisen, HugoniotStatesHaveTheHugoniotPressure) {
+  // Reference: eq 2-23 with P0 = E0 = 0 puts a state on the reference curve at
+  // e_H = pH (V0 - V) / 2 = pH mu / (2 rho0 (1 + mu)) per unit mass; eq 2-25 must then give
+  // p = pH, to round-off (1e-12 rel), up to 3.5x compression.
+  const MieGruneisen eos = copper_eos();
+  const double c1 = eos.rho0 * eos.c0 * eos.c0;
+  const double c2 = c1 * (2.0 * eos.s - 1.0);
+  const double c3 = c1 * (eos.s - 1.0) * (3.0 * eos.s - 1.0);
+  for (double mu : {0.05, 0.2, 0.5, 0.8, 1.2, 2.5}) {
+    const double ph = c1 * mu + c2 * mu * mu + c3 * mu * mu * mu;
+    const double e_h = ph * mu / (2.0 * eos.rho0 * (1.0 + mu));
+    EXPECT_NEAR(eos_pressure(eos, mu, e_h), ph, 1e-12 * ph) << "mu = " << mu;
+  }
+}
+
+TEST(MieGruneisen, ColdPressureRisesWithCompressionAtEveryDensity) {
+  // Reference: a solid's cold (e = 0) pressure rises with density; with gamma0 in place of
+  // gamma in eq 2-25 it would peak at mu = 0.67 and fall (the factor 1 - gamma0 mu / 2
+  // vanishes at mu = 1.02), and a 10 km/s impact of copper collapses. Exact sign checks up to
+  // 4x compression.
+  const MieGruneisen eos = copper_eos();
+  double previous = 0.0;
+  for (double mu = 0.05; mu <= 3.0; mu += 0.05) {
+    const double p = eos_pressure(eos, mu, 0.0);
+    EXPECT_GT(p, previous) << "mu = " << mu;
+    EXPECT_GT(eos.tangent_bulk_modulus(mu, 0.0), 0.0) << "mu = " << mu;
+    previous = p;
+  }
+}
+
 TEST(MieGruneisen, LargeExpansionStaysFiniteAndMonotone) {
-  // Reference: no clamp on mu (see mie_gruneisen.cpp): a(mu) = C1 mu (1 - gamma0 mu / 2) is
+  // Reference: no clamp on mu (see mie_gruneisen.cpp): a(mu) = C1 mu (1 - gamma0 mu / (2 (1 + mu))) is
   // finite and increasing for -1 < mu < 0, so the tangent is positive. Exact sign checks.
   const MieGruneisen eos = copper_eos();
   double previous = eos_pressure(eos, -0.9, 0.0);
@@ -82,7 +116,7 @@ TEST(MieGruneisen, TangentBulkModulusIsRhoDpDrhoAtFixedEnergy) {
   const MieGruneisen eos = copper_eos();
   const double c1 = eos.rho0 * eos.c0 * eos.c0;
   EXPECT_NEAR(eos.tangent_bulk_modulus(0.0, 0.0), c1, 1e-12 * c1);
-  for (double mu : {-0.2, -0.05, 0.05, 0.2, 0.4}) {
+  for (double mu : {-0.2, -0.05, 0.05, 0.2, 0.4, 0.9, 1.5}) {
     const double k = eos.tangent_bulk_modulus(mu, 2.0e4);
     EXPECT_NEAR(k, numerical_tangent(eos, mu, 2.0e4), 1e-7 * k) << "mu = " << mu;
   }

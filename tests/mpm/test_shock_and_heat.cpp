@@ -106,24 +106,25 @@ TEST(Shock, SpeedAndStressFollowTheMieGrueneisenHugoniot) {
 
 // A km/s plate impact with and without the particles' artificial bulk viscosity
 // (mpm/bulk_viscosity.hpp): two 1 x 1 x 10 mm copper columns (side faces symmetric: uniaxial
-// strain) meet at z = 0 at 2000 m/s each, so each side stops: u_p = 2000 m/s.
-// Reference: the Rankine-Hugoniot jump conditions (e = u_p^2 / 2, p = rho0 U_s u_p,
-// mu = u_p / (U_s - u_p)) with the EOS the solver implements, seed 001's cubic form
-// p = (C1 mu + C2 mu^2 + C3 mu^3)(1 - gamma0 mu / 2) + gamma0 rho0 e, solved for mu here by
-// bisection: mu = 0.456, p = 114.0 GPa, U_s = 6380 m/s. (At this compression the cubic
-// Hugoniot lies 8 % below the linear U_s-u_p law's rho0 (c0 + s u_p) u_p = 123.6 GPa.)
-// Measured at t = 1.2 us: the mean axial stress of the cell layers 1-4 mm from the impact
-// plane (the fronts are near 5.3 mm), the largest deviation of a layer's mean from it and the
-// largest particle speed there (the ringing), the shocked mass as a length of
-// uncompressed column, which is U_s t (from the target's momentum: its unshocked part still
-// moves at -u_p, the rest has stopped), and the energy: the kinetic energy the impact stops
-// all becomes internal energy.
+// strain) meet at z = 0 at u_p each (2000 and 5000 m/s: 4 and 10 km/s closing), so each side
+// stops. Reference: the Rankine-Hugoniot jump conditions (e = u_p^2 / 2, p = rho0 U_s u_p,
+// mu = u_p / (U_s - u_p)) with the EOS the solver implements, seed 001's eq 2-25 with
+// gamma = gamma0 rho0 / rho, p = (C1 mu + C2 mu^2 + C3 mu^3)(1 - gamma0 mu / (2 (1 + mu)))
+// + gamma0 rho0 e, solved for mu here by bisection: at 2000 m/s p = 121.9 GPa and U_s t =
+// 8.18 mm at 1.2 us (1.4 % below the linear U_s-u_p law's rho0 (c0 + s u_p) u_p = 123.6 GPa);
+// at 5000 m/s p = 480.8 GPa, measured at 0.8 us, before the front reaches the free end.
+// Measured: the mean axial stress of 1 mm slabs from 1 mm off the impact plane to 0.7 of the
+// way to the fronts, the largest deviation of a slab's mean from the Hugoniot and the largest
+// particle speed there (the ringing), the shocked mass as a length of uncompressed column,
+// which is U_s t (from the target's momentum: its unshocked part still moves at -u_p, the
+// rest has stopped), and the energy: the kinetic energy the impact stops all becomes
+// internal energy.
 struct PlateImpact {
   double sigma_h = 0.0;           // the Hugoniot axial stress -(p + 2Y/3)
   double shocked_length = 0.0;    // shocked mass / (rho0 A) of the target, against U_s t
   double us_t = 0.0;
-  double stress_mean = 0.0;       // mean sigma_zz / sigma_H over the shocked cell layers
-  double stress_deviation = 0.0;  // max |sigma_zz / sigma_H - 1| of a layer's mean
+  double stress_mean = 0.0;       // mean sigma_zz / sigma_H over the shocked slabs
+  double stress_deviation = 0.0;  // max |sigma_zz / sigma_H - 1| of a slab's mean
   double speed = 0.0;             // max |v| / u_p there
   double balance = 0.0;           // (KE + IE) / E0 - 1 at the end
   double viscous = 0.0;           // bulk-viscous heat / E0
@@ -131,7 +132,7 @@ struct PlateImpact {
   std::string stopped;            // the solver's message if the run broke down
 };
 
-PlateImpact plate_impact(const std::string& viscosity) {
+PlateImpact plate_impact(double up, double t_end, const std::string& viscosity) {
   const std::string body_keys = "material = \"copper\"\n" + viscosity;
   const std::string text = R"(
 [run]
@@ -150,23 +151,24 @@ eos = { model = "mie-gruneisen", c0 = 3940, s = 1.49, gamma0 = 1.96 }
 [[bodies]]
 name = "flyer"
 shape = { box = { min = [0, 0, -10], max = [1, 1, 0] } }
-velocity = [0, 0, 2000]
+velocity = [0, 0, )" + std::to_string(up) + R"(]
 )" + body_keys + R"(
 [[bodies]]
 name = "target"
 shape = { box = { min = [0, 0, 0], max = [1, 1, 10] } }
-velocity = [0, 0, -2000]
+velocity = [0, 0, -)" + std::to_string(up) + R"(]
 )" + body_keys;
   const core::Scene scene = core::parse_scene(text, "plate_impact.toml");
   MpmSolver solver(scene, generate_particles(scene));
-  const double rho0 = 8.93e-3, c0 = 3940.0, s = 1.49, gamma0 = 1.96, up = 2000.0, yield = 240.0;
+  const double rho0 = 8.93e-3, c0 = 3940.0, s = 1.49, gamma0 = 1.96, yield = 240.0;
   const double c1 = rho0 * c0 * c0, c2 = c1 * (2.0 * s - 1.0), c3 = c1 * (s - 1.0) * (3.0 * s - 1.0);
   const double e_h = 0.5 * up * up;
   auto eos = [&](double mu) {
-    return mu * (c1 + mu * (c2 + mu * c3)) * (1.0 - 0.5 * gamma0 * mu) + gamma0 * rho0 * e_h;
+    return mu * (c1 + mu * (c2 + mu * c3)) * (1.0 - 0.5 * gamma0 * mu / (1.0 + mu)) +
+           gamma0 * rho0 * e_h;
   };
   auto jump = [&](double mu) { return rho0 * up * up * (1.0 + mu) / mu; };  // rho0 U_s u_p
-  double lo = 0.1, hi = 1.0;  // eos - jump changes sign once in between
+  double lo = 0.05, hi = 2.0;  // eos - jump changes sign once in between
   for (int k = 0; k < 100; ++k) {
     const double mid = 0.5 * (lo + hi);
     (eos(mid) < jump(mid) ? lo : hi) = mid;
@@ -176,7 +178,6 @@ velocity = [0, 0, -2000]
   r.sigma_h = -(jump(mu) + 2.0 * yield / 3.0);
   const core::Energies e0 = solver.energies();
   const double E0 = e0.kinetic + e0.internal;
-  const double t_end = 1.2e-3;
   r.us_t = us * t_end;
   try {
     while (solver.time() < t_end)
@@ -184,23 +185,26 @@ velocity = [0, 0, -2000]
   } catch (const core::SimulationError& e) {
     r.stopped = e.what();
   }
-  // Cell layers 1-4 mm from the plane on each side: 2 x 12 layers of a cell (0.25 mm).
-  // Within a cell the two particle layers share one strain rate but not their history (MPM's
-  // null space), so their stresses differ; the grid, and the ringing, see the layer mean.
+  // Slabs 1 mm thick (4 cells) from 1 mm off the impact plane (its wall-heating layer) to 0.7
+  // of the way to the fronts, on each side. Within a cell the particle layers share one strain rate but not their
+  // history (MPM's null space), so neighbouring layers carry alternating stresses; the grid,
+  // and the ringing, see the slab mean.
+  const double front = (us - up) * t_end;  // from the plane, in the lab
+  const auto slabs = static_cast<std::size_t>(0.7 * front - 1.0);
   const Particles& q = solver.particles();
-  std::vector<double> layer_stress(24, 0.0);
-  std::vector<int> layer_count(24, 0);
+  std::vector<double> slab_stress(2 * slabs, 0.0);
+  std::vector<int> slab_count(2 * slabs, 0);
   for (std::size_t i = 0; i < q.size(); ++i) {
     const double z = std::abs(q.position[i].z);
-    if (z < 1.0 || z >= 4.0) continue;
-    const auto k = static_cast<std::size_t>((z - 1.0) / 0.25) + (q.position[i].z > 0.0 ? 12 : 0);
-    layer_stress[k] += q.stress[i].zz / r.sigma_h;
-    ++layer_count[k];
+    if (z < 1.0 || z >= 1.0 + static_cast<double>(slabs)) continue;
+    const auto k = static_cast<std::size_t>(z - 1.0) + (q.position[i].z > 0.0 ? slabs : 0);
+    slab_stress[k] += q.stress[i].zz / r.sigma_h;
+    ++slab_count[k];
     r.speed = std::max(r.speed, core::norm(q.velocity[i]) / up);
   }
-  for (std::size_t k = 0; k < 24; ++k) {
-    const double ratio = layer_stress[k] / layer_count[k];
-    r.stress_mean += ratio / 24.0;
+  for (std::size_t k = 0; k < 2 * slabs; ++k) {
+    const double ratio = slab_stress[k] / slab_count[k];
+    r.stress_mean += ratio / static_cast<double>(2 * slabs);
     r.stress_deviation = std::max(r.stress_deviation, std::abs(ratio - 1.0));
   }
   const core::Energies e = solver.energies();
@@ -213,26 +217,39 @@ velocity = [0, 0, -2000]
   return r;
 }
 
-TEST(Shock, BulkViscosityKeepsAKilometrePerSecondPlateImpactStable) {
-  const PlateImpact on = plate_impact(""),
-                    off = plate_impact("bulk_viscosity = { linear = 0.0, quadratic = 0.0 }\n");
+TEST(Shock, BulkViscosityStopsTheRingingOfKilometrePerSecondPlateImpacts) {
+  const std::string none = "bulk_viscosity = { linear = 0.0, quadratic = 0.0 }\n";
+  const PlateImpact on = plate_impact(2000.0, 1.2e-3, ""), off = plate_impact(2000.0, 1.2e-3, none);
+  const PlateImpact fast_on = plate_impact(5000.0, 0.8e-3, ""),
+                    fast_off = plate_impact(5000.0, 0.8e-3, none);
   std::printf("Hugoniot axial stress %.0f MPa, U_s t = %.3f mm\n", on.sigma_h, on.us_t);
-  for (const auto& [name, r] : {std::pair{"on", &on}, std::pair{"off", &off}})
-    std::printf("viscosity %-3s  steps %ld  stress mean %.3f  deviation %.3f  speed %.3f u_p  "
-                "shocked %.3f mm  balance %+.2e  viscous heat %.4f E0  %s\n",
-                name, r->steps, r->stress_mean, r->stress_deviation, r->speed,
-                r->shocked_length, r->balance, r->viscous, r->stopped.c_str());
-  // With the viscosity: to the end, on the Hugoniot, no layer ringing past 20 %, the front
-  // where the jump conditions put it, and the energy kept (what q takes is heat).
-  EXPECT_TRUE(on.stopped.empty()) << on.stopped;
+  for (const auto& [name, r] :
+       {std::pair{"2000 on", &on}, std::pair{"2000 off", &off}, std::pair{"5000 on", &fast_on},
+        std::pair{"5000 off", &fast_off}})
+    std::printf("u_p %-8s  Hugoniot %.0f MPa  steps %ld  stress mean %.3f  deviation %.3f  speed %.3f u_p  "
+                "shocked %.3f mm (U_s t %.3f)  balance %+.2e  viscous heat %.4f E0  %s\n",
+                name, r->sigma_h, r->steps, r->stress_mean, r->stress_deviation, r->speed,
+                r->shocked_length, r->us_t, r->balance, r->viscous, r->stopped.c_str());
+  // With the viscosity: to the end, on the Hugoniot, no slab ringing past 10 % (15 % at
+  // 2 x 5000 m/s), particles behind the fronts near rest, the fronts where the jump conditions
+  // put them, and the energy kept (what q takes is heat).
+  for (const PlateImpact* r : {&on, &fast_on}) {
+    EXPECT_TRUE(r->stopped.empty()) << r->stopped;
+    EXPECT_LT(r->speed, 0.25);
+    EXPECT_NEAR(r->shocked_length, r->us_t, 0.06 * r->us_t);
+    EXPECT_LT(std::abs(r->balance), 0.03);
+    EXPECT_GT(r->viscous, 0.0);
+  }
   EXPECT_NEAR(on.stress_mean, 1.0, 0.03);
-  EXPECT_LT(on.stress_deviation, 0.2);
-  EXPECT_LT(on.speed, 0.2);
-  EXPECT_NEAR(on.shocked_length, on.us_t, 0.06 * on.us_t);
-  EXPECT_LT(std::abs(on.balance), 0.03);
-  EXPECT_GT(on.viscous, 0.0);
-  // Without it the same impact compresses a particle through zero volume and stops.
-  EXPECT_FALSE(off.stopped.empty());
+  EXPECT_LT(on.stress_deviation, 0.10);
+  EXPECT_NEAR(fast_on.stress_mean, 1.0, 0.10);
+  EXPECT_LT(fast_on.stress_deviation, 0.15);
+  // Without it the shocked material rings (particles at 0.7 to 1 u_p where it should rest)
+  // and the impact creates energy.
+  for (const PlateImpact* r : {&off, &fast_off}) {
+    EXPECT_GT(r->speed, 0.5);
+    EXPECT_GT(r->balance, 0.03);
+  }
 }
 
 TEST(Heating, TemperatureRiseCarriesTheTaylorQuinneyFractionOfPlasticWork) {
