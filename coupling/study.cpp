@@ -132,7 +132,7 @@ StudyResult run_study(const core::StudyPlan& plan,
 
 std::string describe_row(const StudyResult& result, const StudyRow& row) {
   std::ostringstream os;
-  os << row.run->label << ": " << row.steps << " steps, " << number(row.wall_seconds, "%.2f")
+  os << row.run->label << ": " << row.steps << " steps, " << number(row.wall_seconds, "%.3g")
      << " s on " << row.threads << " thread(s)";
   if (!row.stopped.empty()) return os.str() + ", stopped: " + row.stopped;
   for (std::size_t i = 0; i < result.value_columns.size(); ++i)
