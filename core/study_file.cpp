@@ -170,10 +170,11 @@ StudyPlan parse_study(const std::string& text, const std::string& path) {
   plan.path = path;
   if (!top.has("study")) top.fail("study", "a study file needs a [study] table (title, threads, plot)");
   TableReader s(top.required_table("study"), "study", path);
-  s.known({"title", "threads", "plot"});
+  s.known({"title", "threads", "plot", "energy_tolerance"});
   s.check_unknown();
   plan.title = s.string("title", std::filesystem::path(path).stem().string());
   plan.threads = static_cast<int>(s.integer("threads", 0, 0, 4096));
+  plan.energy_tolerance = s.number("energy_tolerance", 0.0, Range::non_negative());
   const toml::node* metrics = root.get("metrics");
   if (metrics && !metrics->is_array_of_tables())
     top.fail("metrics", "expected [[metrics]] tables");

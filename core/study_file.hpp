@@ -54,6 +54,9 @@ struct StudyPlan {
   std::string path;   // the study file
   std::string title;
   int threads = 0;    // OpenMP threads for every run; 0: the default
+  // > 0: a run whose energy-balance error ever exceeds this in magnitude fails ("energy"):
+  // the stability criterion of a time-step or scheme sweep.
+  double energy_tolerance = 0.0;
   std::vector<MetricSpec> metrics;
   // The metric whose error is plotted against wall time ("energy": the energy-balance
   // error's magnitude); by default the first metric with a reference, else "energy".

@@ -19,6 +19,7 @@ struct StudyRow {
   double wall_seconds = 0.0;  // of the time loop, no output written
   int threads = 0;
   double energy_error = 0.0;  // the energy-balance error at the end
+  double max_energy_error = 0.0;  // its largest magnitude over the run
   std::vector<double> values;  // StudyResult::value_columns
   std::vector<double> errors;  // StudyResult::error_columns (NaN: the run stopped)
   std::string stopped;         // the simulation error that stopped the run, if one did

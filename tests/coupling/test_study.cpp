@@ -116,11 +116,20 @@ TEST(Study, ElasticBarRowsMatchDirectRunsAndTheFilesHoldThem) {
   EXPECT_NE(bad.stopped.find("step"), std::string::npos) << bad.stopped;
   EXPECT_TRUE(std::isnan(bad.errors[0]));
 
+  // A stability criterion: the largest energy-balance error (1.5 % for the cell of 1 mm).
+  core::StudyPlan strict = plan;
+  strict.energy_tolerance = 0.005;
+  strict.runs.resize(1);
+  const StudyResult checked = run_study(strict);
+  EXPECT_GT(checked.rows[0].max_energy_error, 0.005);
+  EXPECT_EQ(checked.rows[0].over_tolerance, std::vector<std::string>{"energy"});
+  EXPECT_EQ(result.rows[0].max_energy_error, checked.rows[0].max_energy_error);
+
   write_study(plan, result, dir.str() + "/out");
   const std::string csv = text_of(dir.file("out/study.csv"));
   EXPECT_EQ(count(csv, "\n"), 4u) << csv;  // header + 3 runs
   EXPECT_EQ(csv.rfind("run,method,label,resolution,particles,elements,steps,wall_seconds,threads,"
-                      "energy_error,rebound,rebound.error,status\n", 0),
+                      "energy_error,max_energy_error,rebound,rebound.error,status\n", 0),
             0u) << csv;
   EXPECT_NE(csv.find("1,MPM,\"MPM, resolution 1\",1,"), std::string::npos) << csv;
   EXPECT_NE(csv.find(",\"stopped: step"), std::string::npos) << csv;
