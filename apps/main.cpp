@@ -65,9 +65,7 @@ int run(const std::string& path, std::string out_dir) {
     std::printf("output: %s/%s.xmf (%zu frames), %s/%s\n", out_dir.c_str(),
                 paths.fields_stem.c_str(), s.field_frames, out_dir.c_str(),
                 paths.history_file.c_str());
-    if (s.taylor && scene.taylor_reference && scene.taylor_reference->tolerance > 0.0 &&
-        s.taylor_error > scene.taylor_reference->tolerance)
-      return exit_check_failed;
+    if (!s.checks_passed()) return exit_check_failed;
   } catch (const core::SimulationError& e) {
     progress.finish();
     std::fprintf(stderr, "afemp: simulation stopped: %s\n", e.what());

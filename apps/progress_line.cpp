@@ -84,6 +84,13 @@ void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSumm
     std::fprintf(out, "  body %-10s  mean velocity (%.6g, %.6g, %.6g)\n",
                  scene.bodies[b].name.c_str(), v.x, v.y, v.z);
   }
+  for (const core::ReferenceCheck& c : s.checks) {
+    if (c.name.rfind("taylor", 0) == 0) continue;  // the Taylor line below says more
+    std::fprintf(out, "  reference        %s: %.6g", c.name.c_str(), c.value);
+    if (c.reference != 0.0) std::fprintf(out, " (ref %.6g, error %.4f)", c.reference, c.error);
+    std::fprintf(out, "%s\n", c.tolerance > 0.0 ? (c.passed() ? "  (within tolerance)" : "  (OUTSIDE tolerance)")
+                                               : "");
+  }
   if (s.taylor && scene.taylor_reference) {
     const auto& r = *scene.taylor_reference;
     std::fprintf(out,

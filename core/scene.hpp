@@ -196,6 +196,16 @@ struct TaylorReference {
   double tolerance = 0.0;       // allowed mean error; 0: report only
 };
 
+// A body's mean velocity at the end of the run (a projectile's residual velocity, a bar's
+// rebound) against a reference value: error |v - value| / |value|.
+struct VelocityReference {
+  int body = -1;
+  int component = -1;  // 0, 1, 2 for x, y, z; -1 for the magnitude
+  double value = 0.0;  // != 0
+  double tolerance = 0.0;  // allowed error; 0: report only
+  SourceLocation where;
+};
+
 // Which mesh nodes a constraint holds: inside a box, on a plane (within tolerance), or a
 // node set named by an imported mesh.
 struct NodeSelector {
@@ -246,6 +256,8 @@ struct Scene {
   std::vector<WallSpec> walls;
   std::vector<ContactSpec> contacts;
   std::optional<TaylorReference> taylor_reference;
+  std::vector<VelocityReference> velocity_references;
+  double energy_tolerance = 0.0;  // > 0: the largest |energy-balance error| allowed
 };
 
 // Whether some body is made of particles / of a mesh (hexahedra or trusses).

@@ -1011,9 +1011,51 @@ void read_table_array(TableReader& r, std::string_view key, const std::string& p
   }
 }
 
-void read_reference(TableReader& r, Scene& scene) {
-  r.known({"taylor"});
+VelocityReference read_velocity_reference(TableReader& r, const Scene& scene) {
+  r.known({"body", "component", "value", "tolerance"});
   r.check_unknown();
+  VelocityReference v;
+  v.where = r.where();
+  const std::string body = r.required_string("body");
+  std::vector<std::string> names;
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    names.push_back(scene.bodies[b].name);
+    if (scene.bodies[b].name == body) v.body = static_cast<int>(b);
+  }
+  if (v.body < 0) r.fail("body", "unknown body \"" + body + "\"; bodies: " + join(names, true));
+  v.component = static_cast<int>(r.choice("component", {"x", "y", "z", "magnitude"}, 3));
+  if (v.component == 3) v.component = -1;
+  v.value = r.required_number("value", Range::any());
+  if (v.value == 0.0) r.fail("value", "the error is relative to the value, which must not be 0");
+  v.tolerance = r.number("tolerance", 0.0, Range::non_negative());
+  return v;
+}
+
+void read_reference(TableReader& r, Scene& scene) {
+  r.known({"taylor", "velocity", "energy"});
+  r.check_unknown();
+  // velocity: one inline table or an array of them.
+  if (const toml::node* n = r.table().get("velocity")) {
+    if (const toml::table* t = n->as_table()) {
+      TableReader vr(*t, r.dotted("velocity"), r.file());
+      scene.velocity_references.push_back(read_velocity_reference(vr, scene));
+    } else if (const toml::array* a = n->as_array(); a && !a->empty() && a->is_homogeneous<toml::table>()) {
+      for (std::size_t i = 0; i < a->size(); ++i) {
+        TableReader vr(*a->get(i)->as_table(), r.dotted("velocity") + "[" + std::to_string(i) + "]",
+                       r.file());
+        scene.velocity_references.push_back(read_velocity_reference(vr, scene));
+      }
+    } else {
+      r.fail("velocity", "expected { body = ..., component = ..., value = ..., tolerance = ... } or an "
+                         "array of such tables");
+    }
+  }
+  if (const toml::table* t = r.optional_table("energy")) {
+    TableReader er(*t, r.dotted("energy"), r.file());
+    er.known({"tolerance"});
+    er.check_unknown();
+    scene.energy_tolerance = er.required_number("tolerance", Range::positive());
+  }
   if (const toml::table* t = r.optional_table("taylor")) {
     TableReader tr(*t, r.dotted("taylor"), r.file());
     tr.known({"L", "D", "W", "tolerance"});

@@ -187,9 +187,23 @@ RunSummary run(Model& model, const Scene& scene, const RunOptions& options) {
       if (bar == nullptr || bar->nose.crh > 0.0) continue;
       sum.taylor = model.measure_taylor(static_cast<int>(b));
       sum.taylor_error = taylor_mean_error(*sum.taylor, *scene.taylor_reference);
+      sum.checks.push_back({"taylor mean error (eq 2-42)", sum.taylor_error, 0.0, sum.taylor_error,
+                            scene.taylor_reference->tolerance});
       break;
     }
   }
+  for (const VelocityReference& v : scene.velocity_references) {
+    const BodySums& body = sum.final.bodies[static_cast<std::size_t>(v.body)];
+    const Vec3 mean = body.mass > 0.0 ? (1.0 / body.mass) * body.momentum : Vec3{};
+    const double value = v.component < 0 ? norm(mean) : mean[v.component];
+    static const char* components[] = {"x", "y", "z"};
+    sum.checks.push_back({"velocity of " + scene.bodies[static_cast<std::size_t>(v.body)].name + " (" +
+                              (v.component < 0 ? "magnitude" : components[v.component]) + ")",
+                          value, v.value, std::abs(value - v.value) / std::abs(v.value), v.tolerance});
+  }
+  if (scene.energy_tolerance > 0.0)
+    sum.checks.push_back({"largest |energy-balance error|", sum.max_energy_error, 0.0,
+                          sum.max_energy_error, scene.energy_tolerance});
   if (options.progress)
     options.progress({sum.steps, sum.time, dt, end, sum.wall_seconds, sum.energy_error});
   return sum;

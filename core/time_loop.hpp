@@ -76,6 +76,16 @@ struct RunOptions {
   double progress_seconds = 0.5;
 };
 
+// A result compared with a reference the scene states ([reference]).
+struct ReferenceCheck {
+  std::string name;        // "velocity of rod (z)", "taylor mean error", "energy balance"
+  double value = 0.0;      // what the run gave
+  double reference = 0.0;  // what it is compared with
+  double error = 0.0;      // relative error (the Taylor and energy checks: the error itself)
+  double tolerance = 0.0;  // 0: report only
+  bool passed() const { return tolerance <= 0.0 || error <= tolerance; }
+};
+
 struct RunSummary {
   long steps = 0;
   double time = 0.0;
@@ -93,6 +103,13 @@ struct RunSummary {
   std::string terminated;
   std::optional<TaylorMeasures> taylor;  // when the scene states a Taylor reference
   double taylor_error = 0.0;
+  // Every [reference] check, the Taylor one included, in the scene's order.
+  std::vector<ReferenceCheck> checks;
+  bool checks_passed() const {
+    for (const ReferenceCheck& c : checks)
+      if (!c.passed()) return false;
+    return true;
+  }
 };
 
 // Runs `model` to scene.run.end_time (or max_steps, or [run] terminate). Throws core::SimulationError from the

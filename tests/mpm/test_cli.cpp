@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <vector>
 #include <string>
 
 #include "core/output/history.hpp"
@@ -76,6 +78,83 @@ TEST(Cli, RunWritesFieldsAndHistoryStartingFromTheSceneKineticEnergy) {
   // kinetic energy.
   EXPECT_EQ(h.rows.back()[h.column("step")], 20.0);
   EXPECT_NEAR(h.rows.back()[h.column("kinetic")], kinetic, 1e-10 * kinetic);
+}
+
+// [reference] in a scene: a free rigid translation keeps its mean velocity (3, -4, 12) m/s
+// exactly (|v| = 13) and its energy, so `afemp run` reports velocity errors of 0 and exits 0;
+// a reference of 13.5 m/s is 3.7 % off, outside a 1 % tolerance, and the run exits 4 (a check
+// the results miss) with the line saying so.
+TEST(Cli, RunComparesTheSceneReferencesAndExitsFourWhenOneIsMissed) {
+  test::ScratchDir dir;
+  const std::string scene =
+      "[run]\nend_time = 1.0\nmax_steps = 10\n"
+      "[grid]\ncell = 1.0\nmin = [-4, -4, -4]\nmax = [8, 8, 8]\n"
+      "[materials.steel]\ndensity = 7.85e-3\nE = 200e3\nnu = 0.3\n"
+      "[[bodies]]\nname = \"cube\"\nmaterial = \"steel\"\nvelocity = [3, -4, 12]\n"
+      "shape = { box = { min = [0, 0, 0], max = [2, 2, 2] } }\n"
+      "[reference]\nenergy = { tolerance = 1e-6 }\nvelocity = [{ body = \"cube\", component = \"z\", "
+      "value = 12, tolerance = 1e-9 }, { body = \"cube\", value = SPEED, tolerance = 0.01 }]\n";
+  auto with_speed = [&](const char* speed) {
+    std::string s = scene;
+    s.replace(s.find("SPEED"), 5, speed);
+    return s;
+  };
+  const test::CommandResult ok =
+      test::run_afemp("run \"" + dir.write("ok.toml", with_speed("13")) + "\" -o \"" +
+                          dir.file("ok") + "\" --threads 1",
+                      dir);
+  EXPECT_EQ(ok.exit_code, 0) << ok.out << ok.err;
+  EXPECT_NE(ok.out.find("velocity of cube (z): 12 (ref 12, error 0.0000)  (within tolerance)"),
+            std::string::npos) << ok.out;
+  EXPECT_NE(ok.out.find("velocity of cube (magnitude): 13 (ref 13, error 0.0000)"),
+            std::string::npos) << ok.out;
+  EXPECT_NE(ok.out.find("largest |energy-balance error|"), std::string::npos) << ok.out;
+  const test::CommandResult missed =
+      test::run_afemp("run \"" + dir.write("missed.toml", with_speed("13.5")) + "\" -o \"" +
+                          dir.file("missed") + "\" --threads 1",
+                      dir);
+  EXPECT_EQ(missed.exit_code, 4) << missed.out << missed.err;
+  EXPECT_NE(missed.out.find("(ref 13.5, error 0.0370)  (OUTSIDE tolerance)"), std::string::npos)
+      << missed.out;
+  // A reference to a body the scene does not have names the key and the bodies.
+  std::string bad = with_speed("13");
+  bad.replace(bad.find("body = \"cube\", value"), 13, "body = \"cub\"");
+  const test::CommandResult r = test::run_afemp("check \"" + dir.write("bad.toml", bad) + "\"", dir);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("reference.velocity[1].body"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("unknown body \"cub\"; bodies: \"cube\""), std::string::npos) << r.err;
+}
+
+// `afemp study`: the study file's runs go through the same checks as `afemp run`'s scenes and
+// land in the CSV; a run whose metric misses its tolerance makes the command exit 4.
+TEST(Cli, StudyWritesItsTableAndExitsFourWhenARunMissesItsTolerance) {
+  test::ScratchDir dir;
+  dir.write("cube.toml",
+            "[run]\nend_time = 1.0\nmax_steps = 10\n"
+            "[grid]\ncell = 1.0\nmin = [-4, -4, -4]\nmax = [8, 8, 8]\n"
+            "[materials.steel]\ndensity = 7.85e-3\nE = 200e3\nnu = 0.3\n"
+            "[[bodies]]\nname = \"cube\"\nmaterial = \"steel\"\nvelocity = [3, -4, 12]\n"
+            "shape = { box = { min = [0, 0, 0], max = [2, 2, 2] } }\n");
+  const std::string study =
+      "[study]\nthreads = 1\n[[metrics]]\nkind = \"velocity\"\nbody = \"cube\"\nreference = 13\n"
+      "tolerance = 0.01\n[[runs]]\nmethod = \"MPM\"\nscene = \"cube.toml\"\nresolution = [1.0, 0.5]\n"
+      "set = { \"grid.cell\" = [1.0, 0.5], \"bodies.cube.velocity\" = [[3, -4, 12], [3, -4, 12.5]] }\n";
+  const test::CommandResult r = test::run_afemp(
+      "study \"" + dir.write("study.toml", study) + "\" -o \"" + dir.file("out") + "\"", dir);
+  EXPECT_EQ(r.exit_code, 4) << r.out << r.err;
+  // The CSV holds text columns (method, label, status): checked as text. Row 1: |v| = 13 to
+  // round-off; row 2: |(3, -4, 12.5)| = 13.4629, 3.6 % from 13.
+  std::ifstream in(dir.file("out/study.csv"));
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 3u);
+  EXPECT_NE(lines[0].find(",velocity,velocity.error,status"), std::string::npos) << lines[0];
+  EXPECT_NE(lines[1].find(",13,"), std::string::npos) << lines[1];  // error: round-off
+  EXPECT_EQ(lines[1].substr(lines[1].size() - 3), ",ok") << lines[1];
+  EXPECT_NE(lines[2].find(",13.4629,"), std::string::npos) << lines[2];
+  EXPECT_NE(lines[2].find(",over tolerance: velocity"), std::string::npos) << lines[2];
+  EXPECT_NE(r.out.find("[2/2] MPM, resolution 0.5"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("over tolerance: velocity"), std::string::npos) << r.out;
 }
 
 }  // namespace
