@@ -16,6 +16,8 @@
 #include <type_traits>
 #include <utility>
 
+#include "core/output/xml_escape.hpp"
+
 namespace afemp::core {
 
 static_assert(std::is_same_v<hid_t, std::int64_t>, "FieldWriter stores hid_t as int64_t");
@@ -150,22 +152,6 @@ std::string format_double(double v) {
   char buf[64];
   const auto r = std::to_chars(buf, buf + sizeof buf, v);
   return std::string(buf, r.ptr);
-}
-
-std::string xml_escape(const std::string& s) {
-  std::string out;
-  out.reserve(s.size());
-  for (const char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
-    }
-  }
-  return out;
 }
 
 const char* attribute_type(int components) {

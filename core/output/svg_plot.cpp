@@ -7,25 +7,11 @@
 #include <limits>
 
 #include "core/appendf.hpp"
+#include "core/output/xml_escape.hpp"
 
 namespace afemp::core {
 
 namespace {
-
-// Text content with the XML specials escaped.
-std::string escaped(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 constexpr const char* palette[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
                                    "#ff7f0e", "#8c564b", "#e377c2", "#17becf"};
@@ -84,7 +70,7 @@ std::string svg_loglog(const LogLogPlot& plot) {
   appendf(out, "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n");
   // User text goes in with +=: appendf's buffer is short.
   appendf(out, "<text x=\"%.1f\" y=\"28\" text-anchor=\"middle\" font-size=\"15\">", left + pw / 2);
-  out += escaped(plot.title) + "</text>\n";
+  out += xml_escape(plot.title) + "</text>\n";
   // Grid: decades solid, 2..9 faint.
   for (int k = x0; k <= x1; ++k) {
     for (int m = 1; m <= (k < x1 ? 9 : 1); ++m) {
@@ -107,10 +93,10 @@ std::string svg_loglog(const LogLogPlot& plot) {
   appendf(out, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"none\" stroke=\"black\"/>\n",
           left, top, pw, ph);
   appendf(out, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">", left + pw / 2, height - 15);
-  out += escaped(plot.x_label) + "</text>\n";
+  out += xml_escape(plot.x_label) + "</text>\n";
   appendf(out, "<text x=\"20\" y=\"%.1f\" text-anchor=\"middle\" transform=\"rotate(-90 20 %.1f)\">",
           top + ph / 2, top + ph / 2);
-  out += escaped(plot.y_label) + "</text>\n";
+  out += xml_escape(plot.y_label) + "</text>\n";
   // Series and legend.
   for (std::size_t k = 0; k < plot.series.size(); ++k) {
     const PlotSeries& s = plot.series[k];
@@ -121,7 +107,7 @@ std::string svg_loglog(const LogLogPlot& plot) {
     for (std::size_t i = 0; i < s.x.size(); ++i)
       if (s.x[i] > 0.0 && s.y[i] > 0.0 && std::isfinite(s.x[i]) && std::isfinite(s.y[i]))
         kept.emplace_back(px(s.x[i]), py(s.y[i]));
-    out += "<g class=\"series\" data-name=\"" + escaped(s.name) + "\">\n";
+    out += "<g class=\"series\" data-name=\"" + xml_escape(s.name) + "\">\n";
     for (const auto& [x, y] : kept) appendf(points, "%.2f,%.2f ", x, y);
     if (kept.size() > 1)  // appendf's buffer is too short for a long point list
       out += "<polyline points=\"" + points + "\" fill=\"none\" stroke=\"" + colour +
@@ -133,7 +119,7 @@ std::string svg_loglog(const LogLogPlot& plot) {
             left + pw + 15, ly, left + pw + 45, ly, colour);
     marker(out, shape, left + pw + 30, ly, colour);
     appendf(out, "<text x=\"%.1f\" y=\"%.1f\" dominant-baseline=\"middle\">", left + pw + 52, ly);
-    out += escaped(s.name) + "</text>\n";
+    out += xml_escape(s.name) + "</text>\n";
   }
   out += "</svg>\n";
   return out;

@@ -7,29 +7,13 @@
 
 #include "core/study_file.hpp"
 #include "scene_errors.hpp"
+#include "elastic_bar_scene.hpp"
 #include "scratch_dir.hpp"
 
 namespace afemp::core {
 namespace {
 
-const char* bar_scene = R"(
-[run]
-end_time = 0.02
-[grid]
-cell = 1.0
-min = [0, 0, 0]
-max = [4, 4, 16]
-boundary = { xmin = "symmetric", ymin = "symmetric", zmin = "wall" }
-[materials.copper]
-density = 8.9e-3
-E = 1.0e5
-nu = 0.3
-[[bodies]]
-name = "bar"
-material = "copper"
-shape = { cylinder = { base = [0, 0, 0.5], axis = [0, 0, 1], radius = 2.0, length = 10.0 } }
-velocity = [0, 0, -300]
-)";
+using test::elastic_bar_scene;
 
 const char* study_text = R"(
 [study]
@@ -59,7 +43,7 @@ set = { "mpm.scheme" = "USF" }
 struct StudyFiles {
   test::ScratchDir dir;
   std::string study;
-  explicit StudyFiles(const std::string& text, const std::string& scene = bar_scene) {
+  explicit StudyFiles(const std::string& text, const std::string& scene = elastic_bar_scene) {
     dir.write("bar.toml", scene);
     study = dir.write("study.toml", text);
   }

@@ -17,29 +17,13 @@
 #include "core/study_file.hpp"
 #include "coupling/make_model.hpp"
 #include "coupling/study.hpp"
+#include "elastic_bar_scene.hpp"
 #include "scratch_dir.hpp"
 
 namespace afemp::coupling {
 namespace {
 
-const char* bar_scene = R"(
-[run]
-end_time = 0.02
-[grid]
-cell = 1.0
-min = [0, 0, 0]
-max = [4, 4, 16]
-boundary = { xmin = "symmetric", ymin = "symmetric", zmin = "wall" }
-[materials.copper]
-density = 8.9e-3
-E = 1.0e5
-nu = 0.3
-[[bodies]]
-name = "bar"
-material = "copper"
-shape = { cylinder = { base = [0, 0, 0.5], axis = [0, 0, 1], radius = 2.0, length = 10.0 } }
-velocity = [0, 0, -300]
-)";
+using test::elastic_bar_scene;
 
 const char* study_text = R"(
 [study]
@@ -81,7 +65,7 @@ std::size_t count(const std::string& text, const std::string& what) {
 
 TEST(Study, ElasticBarRowsMatchDirectRunsAndTheFilesHoldThem) {
   test::ScratchDir dir;
-  dir.write("bar.toml", bar_scene);
+  dir.write("bar.toml", elastic_bar_scene);
   const core::StudyPlan plan = core::read_study(dir.write("study.toml", study_text));
   const StudyResult result = run_study(plan);
   ASSERT_EQ(result.rows.size(), 3u);
