@@ -25,19 +25,7 @@ namespace {
 
 using test::elastic_bar_scene;
 
-const char* study_text = R"(
-[study]
-title = "Elastic bar on a wall"
-threads = 1
-
-[[metrics]]
-kind = "velocity"
-name = "rebound"
-body = "bar"
-component = "z"
-reference = 300
-tolerance = 0.1
-
+const std::string study_text = test::elastic_bar_study("Elastic bar on a wall") + R"(
 [[runs]]
 method = "MPM"
 scene = "bar.toml"

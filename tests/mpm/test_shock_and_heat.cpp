@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "copper_shock_material.hpp"
 #include "core/scene.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
@@ -142,12 +143,7 @@ cell = 0.25
 min = [0, 0, -11]
 max = [1, 1, 11]
 boundary = { xmin = "symmetric", xmax = "symmetric", ymin = "symmetric", ymax = "symmetric" }
-[materials.copper]
-density = 8.93e-3
-E = 124e3
-nu = 0.35
-strength = { model = "j2", yield = 240 }
-eos = { model = "mie-gruneisen", c0 = 3940, s = 1.49, gamma0 = 1.96 }
+)" + std::string(test::copper_shock_material) + R"(
 [[bodies]]
 name = "flyer"
 shape = { box = { min = [0, 0, -10], max = [1, 1, 0] } }

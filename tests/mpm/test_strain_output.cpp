@@ -7,33 +7,20 @@
 #include <string>
 
 #include "core/scene.hpp"
+#include "elastic_bar_scene.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
 
 namespace afemp::mpm {
 namespace {
 
+// The V1 elastic bar, with or without the strain output.
 core::Scene bar(bool strain) {
-  return core::parse_scene(std::string(R"(
-[run]
-end_time = 1.0
-output_strain = )") + (strain ? "true" : "false") + R"(
-[grid]
-cell = 1.0
-min = [0, 0, 0]
-max = [4, 4, 16]
-boundary = { xmin = "symmetric", ymin = "symmetric", zmin = "wall" }
-[materials.copper]
-density = 8.9e-3
-E = 1.0e5
-nu = 0.3
-[[bodies]]
-name = "bar"
-material = "copper"
-shape = { cylinder = { base = [0, 0, 0.5], radius = 2.0, length = 10.0 } }
-velocity = [0, 0, -300]
-)",
-                           "strain.toml");
+  std::string text = test::elastic_bar_scene;
+  const std::string run = "[run]\nend_time = 0.02\n";
+  text.replace(text.find(run), run.size(),
+               "[run]\nend_time = 1.0\noutput_strain = " + std::string(strain ? "true" : "false") + "\n");
+  return core::parse_scene(text, "strain.toml");
 }
 
 TEST(StrainOutput, IntegratedOnlyWhenAskedAndItsTraceFollowsTheVolume) {

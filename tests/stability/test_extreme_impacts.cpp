@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <string>
 
+#include "copper_shock_material.hpp"
 #include "core/scene.hpp"
 #include "core/time_loop.hpp"
 #include "coupling/make_model.hpp"
@@ -30,12 +31,7 @@ cell = 0.2
 min = [0, 0, -26]
 max = [14, 14, 16]
 boundary = { xmin = "symmetric", ymin = "symmetric" }
-[materials.copper]
-density = 8.93e-3
-E = 124e3
-nu = 0.35
-strength = { model = "j2", yield = 240 }
-eos = { model = "mie-gruneisen", c0 = 3940, s = 1.49, gamma0 = 1.96 }
+)" + std::string(test::copper_shock_material) + R"(
 [[bodies]]
 name = "projectile"
 material = "copper"
