@@ -45,6 +45,9 @@ struct RunSettings {
   long max_steps = 0;              // > 0: stop after this many steps
   double output_every = 0.0;       // simulated time between field outputs; 0: final state only
   long history_every = 10;         // steps between history rows
+  // > 0: stop the run as unstable once |energy-balance error| exceeds this at a history row
+  // (energy created or destroyed beyond any physical account); 0: no such guard.
+  double energy_error_limit = 1.0;
   bool output_strain = false;      // integrate and write each particle's strain tensor
   Vec3 gravity;                    // body force per unit mass
   // Stop before end_time once a body's centre of mass has moved `travel` from where it started

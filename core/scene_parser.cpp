@@ -328,7 +328,7 @@ namespace {
 
 void read_run(TableReader& r, RunSettings& run) {
   r.known({"title", "end_time", "time_step_factor", "element_time_step_factor", "time_step", "max_steps", "output_every",
-           "history_every", "output_strain", "gravity", "terminate"});
+           "history_every", "energy_error_limit", "output_strain", "gravity", "terminate"});
   r.check_unknown();
   run.title = r.string("title", "");
   run.end_time = r.required_number("end_time", Range::positive());
@@ -338,6 +338,7 @@ void read_run(TableReader& r, RunSettings& run) {
   run.max_steps = r.integer("max_steps", 0, 0, std::numeric_limits<long>::max());
   run.output_every = r.number("output_every", 0.0, Range::non_negative());
   run.history_every = r.integer("history_every", 10, 1, std::numeric_limits<long>::max());
+  run.energy_error_limit = r.number("energy_error_limit", 1.0, Range::non_negative());
   run.output_strain = r.boolean("output_strain", false);
   run.gravity = r.vec3("gravity", Vec3{});
 }
