@@ -146,8 +146,12 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
     if (failure) {
       if (!erosion) {
         if (thread_errors_[static_cast<std::size_t>(t)].empty()) {
+          // With conversion on inversion the element got here only by lying outside the grid.
           thread_errors_[static_cast<std::size_t>(t)] =
-              "hexahedron " + std::to_string(e - b.begin) + " of body " + body.name;
+              "hexahedron " + std::to_string(e - b.begin) + " of body " + body.name +
+              (conversion && conversion->negative_jacobian
+                   ? " (outside the background grid, where it cannot convert)"
+                   : "");
           thread_error_field_[static_cast<std::size_t>(t)] = "jacobian";
         }
         return;

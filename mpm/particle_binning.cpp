@@ -91,9 +91,11 @@ void MpmSolver::bin_nodes() {
       std::ostringstream who, what;
       who << "node " << k << " of body '" << scene_.bodies[static_cast<std::size_t>(q.body[k])].name
           << "' at (" << x.x << ", " << x.y << ", " << x.z << ")";
-      what << (std::isfinite(x.x + x.y + x.z) ? "a bonded node left the grid domain (enlarge "
-                                               "[grid] min/max)"
-                                             : "became NaN or Inf");
+      what << (std::isfinite(x.x + x.y + x.z)
+                   ? "a node bonded to the grid (a bonded_to body's node, or a node shared with "
+                     "elements converted into particles) left the grid domain (enlarge [grid] "
+                     "min/max to cover where the body goes)"
+                   : "became NaN or Inf");
       throw core::SimulationError(steps_, time_, who.str(), "position", what.str());
     }
   }
