@@ -190,6 +190,10 @@ struct BodySpec {
   int bonded_to = -1;
   Vec3 velocity;                // initial velocity
   std::optional<double> temperature;  // initial temperature; default the material's
+  // Initial specific internal energy e0 (per unit mass; J/kg = mm^2/ms^2): with an EOS that
+  // depends on e it is an initial pressure (a hot or pressurised body, a gas charge), like
+  // LS-DYNA's E0 on the EOS card (which is per unit reference volume, rho0 e0).
+  double internal_energy = 0.0;
   SourceLocation where;         // the [[bodies]] table, for messages
 };
 

@@ -726,7 +726,7 @@ void read_mesh_density(TableReader& r, const BodySpec& b, MeshDensity& m) {
 BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
                    const std::vector<Material>& material_list, const std::string& scene_path) {
   r.known({"name", "material", "discretisation", "shape", "particles_per_cell", "velocity",
-           "temperature", "mesh", "element", "hourglass", "bulk_viscosity", "erosion", "area",
+           "temperature", "internal_energy", "mesh", "element", "hourglass", "bulk_viscosity", "erosion", "area",
            "bonded_to", "conversion"});
   // Name the body in messages as soon as its name is readable, even for an unknown key.
   if (const toml::node* n = r.table().get("name"); n && n->is_string() && !n->as_string()->get().empty())
@@ -752,6 +752,7 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
   b.shape = read_shape(sr, scene_path, b.discretisation);
   b.velocity = r.vec3("velocity", Vec3{});
   b.temperature = r.optional_number("temperature", Range::non_negative());
+  b.internal_energy = r.number("internal_energy", 0.0, Range::non_negative());
   // Keys that belong to the other discretisations are errors, not silently ignored.
   auto only_for = [&](std::string_view key, Discretisation d1, Discretisation d2) {
     if (r.has(key) && b.discretisation != d1 && b.discretisation != d2)

@@ -192,12 +192,12 @@ void FeSolver::build(const core::Scene& scene) {
 
   // 2. Elements and their initial state.
   auto add_point_state = [](FeElements& el, const core::Material& m, double temperature,
-                            double point_mass) {
+                            double point_mass, double energy) {
     el.stress.push_back({});
     el.point_mass.push_back(point_mass);
     el.plastic_strain.push_back(0.0);
     el.temperature.push_back(temperature);
-    el.energy.push_back(0.0);
+    el.energy.push_back(energy);
     el.density.push_back(m.density);
     el.damage.push_back(0.0);
     el.max_compaction.push_back(0.0);
@@ -248,9 +248,10 @@ void FeSolver::build(const core::Scene& scene) {
                              "hexahedron " + std::to_string(e) +
                                  " has a non-positive Jacobian at a Gauss point");
           for (int g = 0; g < 8; ++g)
-            add_point_state(el, mat, temperature, mat.density * f.weight[static_cast<std::size_t>(g)]);
+            add_point_state(el, mat, temperature, mat.density * f.weight[static_cast<std::size_t>(g)],
+                            body.internal_energy);
         } else {
-          add_point_state(el, mat, temperature, mat.density * volume);
+          add_point_state(el, mat, temperature, mat.density * volume, body.internal_energy);
         }
       }
     } else {
@@ -274,7 +275,7 @@ void FeSolver::build(const core::Scene& scene) {
         el.critical_dt.push_back(0.0);
         el.alive.push_back(1);
         el.hourglass_force.push_back({});
-        add_point_state(el, mat, temperature, mat.density * area * length);
+        add_point_state(el, mat, temperature, mat.density * area * length, body.internal_energy);
       }
     }
     batch.end = el.size();

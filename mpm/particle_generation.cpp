@@ -268,6 +268,7 @@ Particles generate_particles(const core::Scene& scene) {
                              "this shape makes a mesh, not particles");
         },
         body.shape);
+    for (std::size_t p = before; p < out.size(); ++p) out.energy[p] = body.internal_energy;
     if (out.size() == before)
       throw InputError(body.where, "bodies." + body.name + ".shape",
                        "the body has no particle: the shape lies outside the grid or is smaller "

@@ -82,7 +82,15 @@ inline double wave_speed(const Material& material, const Eos& eos, const PointSt
     // debris particles, expanded 20 to 30 times, cut the stable step to a third (V6).
     if (point.damage >= 1.0 && point.density < material.density) return 0.0;
   }
-  const double k_tangent = tangent_bulk_modulus(material, eos, point);
+  double k_tangent = tangent_bulk_modulus(material, eos, point);
+  if constexpr (!std::is_same_v<Eos, NoEos> && !std::is_same_v<Eos, HjcCompaction>) {
+    // Along the isentrope de = p / rho^2 drho, so rho dp/drho|_s = K_e + (dp/de) p / rho: for
+    // an ideal gas (p = (gamma - 1) rho e) c^2 = gamma p / rho, not p / rho. Only compression
+    // (p > 0) adds; a tensile state keeps the fixed-e value, which is then the larger.
+    const EosLinearForm f = eos.form(point.density / material.density - 1.0);
+    const double p = f.a + f.b * point.energy;
+    if (p > 0.0 && f.b > 0.0) k_tangent += f.b * p / point.density;
+  }
   return std::sqrt((k_tangent + 4.0 / 3.0 * material.shear_modulus()) / point.density);
 }
 
