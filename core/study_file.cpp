@@ -85,6 +85,7 @@ const std::vector<MetricKey>& metric_keys() {
       {"probe", {K::frequency}},
       {"quantity", {K::wave_front, K::frequency}},
       {"fraction", {K::wave_front}},
+      {"until", {K::wave_front}},
   };
   return keys;
 }
@@ -93,7 +94,7 @@ MetricSpec read_metric(TableReader& r) {
   MetricSpec m;
   m.where = r.where();
   r.known({"kind", "name", "body", "component", "point", "normal", "ring", "threshold", "band",
-           "probes", "probe", "quantity", "fraction", "reference", "tolerance"});
+           "probes", "probe", "quantity", "fraction", "until", "reference", "tolerance"});
   r.check_unknown();
   m.kind = static_cast<MetricKind>(r.choice(
       "kind", {"taylor", "velocity", "crater", "hole", "wave_front", "frequency"}, std::nullopt));
@@ -158,6 +159,7 @@ MetricSpec read_metric(TableReader& r) {
         r.fail("probes", "name two or more probes along the wave's path, e.g. probes = [\"near\", \"far\"]");
       m.quantity = r.required_string("quantity");
       m.fraction = r.number("fraction", 0.5, {0.0, 1.0, true, false});
+      m.until = r.number("until", 0.0, Range::positive());
       break;
     case MetricKind::frequency:
       m.probes = {r.required_string("probe")};

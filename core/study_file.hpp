@@ -45,6 +45,7 @@ struct MetricSpec {
   std::vector<std::string> probes;
   std::string quantity;
   double fraction = 0.5;  // wave_front: the arrival threshold, a fraction of the peak
+  double until = 0.0;     // wave_front: > 0: only the samples up to this time count
   // References: taylor needs L, D, W (its error is eq 2-42); crater { depth, diameter } (the
   // mean of the two relative errors); the others an optional number (|v - v_ref| / |v_ref|).
   std::optional<double> reference;

@@ -83,7 +83,12 @@ void measure(const core::MetricSpec& m, const core::Scene& scene, const core::Mo
         if (k == 0) first = x0;
         distance.push_back(core::norm(x0 - first));
         const std::vector<double> q = p.series(static_cast<std::size_t>(p.column(m.quantity)));
-        arrival.push_back(core::arrival_time(p.time, q, m.fraction));
+        std::size_t n = p.rows();  // `until`: the samples up to it
+        if (m.until > 0.0)
+          n = static_cast<std::size_t>(std::upper_bound(p.time.begin(), p.time.end(), m.until) -
+                                       p.time.begin());
+        arrival.push_back(
+            core::arrival_time(std::span(p.time).first(n), std::span(q).first(n), m.fraction));
       }
       value = core::front_speed(distance, arrival);
       break;
