@@ -1097,8 +1097,9 @@ ProbeSpec read_probe(TableReader& r, const Scene& scene) {
       ++given;
     }
   if (given != 1)
-    r.fail("", "give exactly one of particle = { body, index | near }, node = { ... }, "
-               "element = { ... }, mean_velocity = \"BODY\", extreme = { field, of, box, body }");
+    throw InputError(r.where(), r.prefix(),
+                     "give exactly one of particle = { body, index | near }, node = { ... }, "
+                     "element = { ... }, mean_velocity = \"BODY\", extreme = { field, of, box, body }");
   p.interval = r.number("interval", 0.0, Range::positive());
   const auto is_particles = [&](int b) {
     return scene.bodies[static_cast<std::size_t>(b)].discretisation == Discretisation::particles;
