@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/materials/material.hpp"
 #include "core/ogive_nose.hpp"
+#include "core/probes.hpp"
 #include "core/tensor.hpp"
 
 namespace afemp::core {
@@ -265,6 +266,7 @@ struct Scene {
   std::optional<TaylorReference> taylor_reference;
   std::vector<VelocityReference> velocity_references;
   double energy_tolerance = 0.0;  // > 0: the largest |energy-balance error| allowed
+  std::vector<ProbeSpec> probes;  // [[probes]], in file order
 };
 
 // Whether some body is made of particles / of a mesh (hexahedra or trusses).

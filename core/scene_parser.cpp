@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -1071,6 +1072,79 @@ void read_reference(TableReader& r, Scene& scene) {
   }
 }
 
+// [[probes]]: exactly one of particle, node, element, mean_velocity, extreme. Whether the
+// index names an existing particle, node or element is known once the model is built: the
+// model checks it at the start of the run (Model::resolve_probes) with this table's line.
+ProbeSpec read_probe(TableReader& r, const Scene& scene) {
+  r.known({"name", "particle", "node", "element", "mean_velocity", "extreme", "interval"});
+  r.check_unknown();
+  ProbeSpec p;
+  p.where = r.where();
+  p.key = r.prefix();
+  p.name = r.required_string("name");
+  if (p.name.empty() || p.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                 "0123456789_-") != std::string::npos)
+    r.fail("name", "a probe name (its file probes/NAME.csv) must be non-empty and hold only "
+                   "letters, digits, '_' and '-'");
+  for (const ProbeSpec& other : scene.probes)
+    if (other.name == p.name)
+      r.fail("name", "duplicate probe name \"" + p.name + "\" (first defined at line " +
+                         std::to_string(other.where.line) + ")");
+  const std::vector<std::string_view> kinds = {"particle", "node", "element", "mean_velocity",
+                                               "extreme"};
+  int given = 0;
+  for (std::size_t k = 0; k < kinds.size(); ++k)
+    if (r.has(kinds[k])) {
+      p.kind = static_cast<ProbeKind>(k);
+      ++given;
+    }
+  if (given != 1)
+    throw InputError(r.where(), r.prefix(),
+                     "give exactly one of particle = { body, index | near }, node = { ... }, "
+                     "element = { ... }, mean_velocity = \"BODY\", extreme = { field, of, box, body }");
+  p.interval = r.number("interval", 0.0, Range::positive());
+  const auto is_particles = [&](int b) {
+    return scene.bodies[static_cast<std::size_t>(b)].discretisation == Discretisation::particles;
+  };
+  if (p.kind == ProbeKind::mean_velocity) {
+    p.body = body_index(r, "mean_velocity", r.required_string("mean_velocity"), scene, false);
+    return p;
+  }
+  const std::string kind = to_string(p.kind);
+  TableReader t(r.required_table(kind), r.dotted(kind), r.file());
+  if (p.kind == ProbeKind::extreme) {
+    t.known({"field", "of", "box", "body"});
+    t.check_unknown();
+    p.field = static_cast<ProbeField>(t.choice(
+        "field", {"pressure", "von_mises", "plastic_strain", "speed", "vx", "vy", "vz"}, std::nullopt));
+    p.maximum = t.choice("of", {"max", "min"}, 0) == 0;
+    if (t.has("body")) p.body = body_index(t, "body", t.required_string("body"), scene, false);
+    TableReader b(t.required_table("box"), t.dotted("box"), r.file());
+    b.known({"min", "max"});
+    b.check_unknown();
+    p.box_min = b.required_vec3("min");
+    p.box_max = b.required_vec3("max");
+    for (int a = 0; a < 3; ++a)
+      if (p.box_max[a] < p.box_min[a]) b.fail("max", "max must not be below min in any component");
+    return p;
+  }
+  t.known({"body", "index", "near"});
+  t.check_unknown();
+  p.body = body_index(t, "body", t.required_string("body"), scene, p.kind != ProbeKind::particle);
+  if (p.kind == ProbeKind::particle && !is_particles(p.body))
+    t.fail("body", "body \"" + scene.bodies[static_cast<std::size_t>(p.body)].name +
+                       "\" is a mesh; a particle probe watches a body of particles (use node or "
+                       "element)");
+  if (t.has("index") == t.has("near"))
+    t.fail("index", "give either index = I (0-based within the body) or near = [x, y, z] (the " +
+                        kind + " nearest to it at the start)");
+  if (t.has("index"))
+    p.index = t.integer("index", 0, 0, std::numeric_limits<std::int32_t>::max());
+  else
+    p.near = t.required_vec3("near");
+  return p;
+}
+
 }  // namespace
 
 Scene scene_from_toml(const toml::table& root, const std::string& path) {
@@ -1078,7 +1152,7 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
   scene.path = path;
   TableReader r(root, "", path);
   r.known({"run", "grid", "mpm", "materials", "bodies", "constraints", "walls", "contact",
-           "reference"});
+           "reference", "probes"});
   r.check_unknown();
 
   {
@@ -1212,6 +1286,9 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
     TableReader ref(*t, "reference", path);
     read_reference(ref, scene);
   }
+  read_table_array(r, "probes", path, [&](TableReader& t) {
+    scene.probes.push_back(read_probe(t, scene));
+  });
   return scene;
 }
 

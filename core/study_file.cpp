@@ -23,6 +23,10 @@ const char* to_string(MetricKind k) {
   switch (k) {
     case MetricKind::taylor: return "taylor";
     case MetricKind::velocity: return "velocity";
+    case MetricKind::crater: return "crater";
+    case MetricKind::hole: return "hole";
+    case MetricKind::wave_front: return "wave_front";
+    case MetricKind::frequency: return "frequency";
   }
   return "?";
 }
@@ -61,40 +65,112 @@ std::string toml_text(const toml::node& n) {
   return os.str();
 }
 
-MetricSpec read_metric(TableReader& r, std::size_t index) {
+// Which metric kinds a key of [[metrics]] applies to (kind, name, reference and tolerance:
+// every kind).
+struct MetricKey {
+  std::string_view key;
+  std::vector<MetricKind> kinds;
+};
+const std::vector<MetricKey>& metric_keys() {
+  using K = MetricKind;
+  static const std::vector<MetricKey> keys = {
+      {"body", {K::taylor, K::velocity, K::crater, K::hole}},
+      {"component", {K::velocity}},
+      {"point", {K::crater, K::hole}},
+      {"normal", {K::crater, K::hole}},
+      {"ring", {K::crater}},
+      {"threshold", {K::crater}},
+      {"band", {K::hole}},
+      {"probes", {K::wave_front}},
+      {"probe", {K::frequency}},
+      {"quantity", {K::wave_front, K::frequency}},
+      {"fraction", {K::wave_front}},
+      {"until", {K::wave_front}},
+  };
+  return keys;
+}
+
+MetricSpec read_metric(TableReader& r) {
   MetricSpec m;
   m.where = r.where();
-  r.known({"kind", "name", "body", "component", "reference", "tolerance"});
+  r.known({"kind", "name", "body", "component", "point", "normal", "ring", "threshold", "band",
+           "probes", "probe", "quantity", "fraction", "until", "reference", "tolerance"});
   r.check_unknown();
-  m.kind = static_cast<MetricKind>(r.choice("kind", {"taylor", "velocity"}, std::nullopt));
+  m.kind = static_cast<MetricKind>(r.choice(
+      "kind", {"taylor", "velocity", "crater", "hole", "wave_front", "frequency"}, std::nullopt));
   m.name = r.string("name", to_string(m.kind));
   if (m.name.empty() || m.name.find_first_of(",.\"\n") != std::string::npos)
     r.fail("name", "a metric name must be non-empty and hold no comma, dot, quote or newline");
-  m.body = r.required_string("body");
-  m.tolerance = r.number("tolerance", 0.0, Range::non_negative());
-  if (m.kind == MetricKind::taylor) {
-    if (r.has("component")) r.fail("component", "applies to kind \"velocity\" only");
-    if (!r.has("reference"))
-      r.fail("reference", "a taylor metric needs its reference: reference = { L = ..., D = ..., W = ... }");
-    TableReader ref(r.required_table("reference"), r.dotted("reference"), r.file());
-    ref.known({"L", "D", "W"});
-    ref.check_unknown();
-    TaylorReference t;
-    t.length = ref.required_number("L", Range::positive());
-    t.impact_diameter = ref.required_number("D", Range::positive());
-    t.bulge_diameter = ref.required_number("W", Range::positive());
-    t.tolerance = m.tolerance;
-    m.taylor = t;
-  } else {
-    m.component = static_cast<int>(r.choice("component", {"x", "y", "z", "magnitude"}, 3));
-    if (m.component == 3) m.component = -1;
-    m.reference = r.optional_number("reference", Range::any());
-    if (m.reference && *m.reference == 0.0)
-      r.fail("reference", "the error is relative to the reference, which must not be 0");
+  for (const MetricKey& k : metric_keys()) {
+    if (!r.has(k.key) || std::find(k.kinds.begin(), k.kinds.end(), m.kind) != k.kinds.end()) continue;
+    std::vector<std::string> kinds;
+    for (MetricKind kind : k.kinds) kinds.push_back(to_string(kind));
+    r.fail(k.key, "applies to kind " + join(kinds, true) + " only, not \"" + to_string(m.kind) + "\"");
   }
-  if (m.tolerance > 0.0 && !m.taylor && !m.reference)
+  m.tolerance = r.number("tolerance", 0.0, Range::non_negative());
+  switch (m.kind) {
+    case MetricKind::taylor: {
+      m.body = r.required_string("body");
+      if (!r.has("reference"))
+        r.fail("reference", "a taylor metric needs its reference: reference = { L = ..., D = ..., W = ... }");
+      TableReader ref(r.required_table("reference"), r.dotted("reference"), r.file());
+      ref.known({"L", "D", "W"});
+      ref.check_unknown();
+      TaylorReference t;
+      t.length = ref.required_number("L", Range::positive());
+      t.impact_diameter = ref.required_number("D", Range::positive());
+      t.bulge_diameter = ref.required_number("W", Range::positive());
+      t.tolerance = m.tolerance;
+      m.taylor = t;
+      return m;
+    }
+    case MetricKind::velocity:
+      m.body = r.required_string("body");
+      m.component = static_cast<int>(r.choice("component", {"x", "y", "z", "magnitude"}, 3));
+      if (m.component == 3) m.component = -1;
+      break;
+    case MetricKind::crater:
+    case MetricKind::hole: {
+      m.body = r.required_string("body");
+      m.point = r.required_vec3("point");
+      const Vec3 n = r.required_vec3("normal");
+      if (!(norm(n) > 0.0)) r.fail("normal", "the normal must be a non-zero vector");
+      m.normal = (1.0 / norm(n)) * n;
+      if (m.kind == MetricKind::hole) {
+        m.band = r.required_number("band", Range::positive());
+        break;
+      }
+      m.ring = r.required_number("ring", Range::positive());
+      m.threshold = r.required_number("threshold", Range::positive());
+      if (const toml::table* t = r.optional_table("reference")) {
+        TableReader ref(*t, r.dotted("reference"), r.file());
+        ref.known({"depth", "diameter"});
+        ref.check_unknown();
+        m.crater = CraterReference{ref.required_number("depth", Range::positive()),
+                                   ref.required_number("diameter", Range::positive())};
+      }
+      if (m.tolerance > 0.0 && !m.crater)
+        r.fail("tolerance", "a tolerance needs a reference to compare with");
+      return m;
+    }
+    case MetricKind::wave_front:
+      m.probes = r.strings("probes");
+      if (m.probes.size() < 2)
+        r.fail("probes", "name two or more probes along the wave's path, e.g. probes = [\"near\", \"far\"]");
+      m.quantity = r.required_string("quantity");
+      m.fraction = r.number("fraction", 0.5, {0.0, 1.0, true, false});
+      m.until = r.number("until", 0.0, Range::positive());
+      break;
+    case MetricKind::frequency:
+      m.probes = {r.required_string("probe")};
+      m.quantity = r.required_string("quantity");
+      break;
+  }
+  m.reference = r.optional_number("reference", Range::any());
+  if (m.reference && *m.reference == 0.0)
+    r.fail("reference", "the error is relative to the reference, which must not be 0");
+  if (m.tolerance > 0.0 && !m.has_reference())
     r.fail("tolerance", "a tolerance needs a reference to compare with");
-  (void)index;
   return m;
 }
 
@@ -183,7 +259,7 @@ StudyPlan parse_study(const std::string& text, const std::string& path) {
     const auto& a = *metrics->as_array();
     for (std::size_t i = 0; i < a.size(); ++i) {
       TableReader mr(*a.get(i)->as_table(), "metrics[" + std::to_string(i) + "]", path);
-      plan.metrics.push_back(read_metric(mr, i));
+      plan.metrics.push_back(read_metric(mr));
       if (!names.insert(plan.metrics.back().name).second)
         mr.fail("name", "a second metric named \"" + plan.metrics.back().name +
                             "\"; give each its own name = \"...\"");
@@ -204,15 +280,15 @@ StudyPlan parse_study(const std::string& text, const std::string& path) {
                                  [&](const MetricSpec& m) { return m.name == plan.plot; });
     std::vector<std::string> with_reference;
     for (const MetricSpec& m : plan.metrics)
-      if (m.taylor || m.reference) with_reference.push_back(m.name);
-    if (plan.plot != "energy" && (it == plan.metrics.end() || !(it->taylor || it->reference)))
+      if (m.has_reference()) with_reference.push_back(m.name);
+    if (plan.plot != "energy" && (it == plan.metrics.end() || !it->has_reference()))
       s.fail("plot", "names the metric whose error is plotted: one with a reference (" +
                          (with_reference.empty() ? std::string("none here") : join(with_reference, true)) +
                          "), or \"energy\" for the energy-balance error");
   }
   if (plan.plot.empty())
     for (const MetricSpec& m : plan.metrics)
-      if (m.taylor || m.reference) {
+      if (m.has_reference()) {
         plan.plot = m.name;
         break;
       }
@@ -221,6 +297,25 @@ StudyPlan parse_study(const std::string& text, const std::string& path) {
   for (const StudyRun& run : plan.runs) {
     const Scene scene = build_run_scene(plan, run);
     for (const MetricSpec& m : plan.metrics) {
+      for (const std::string& name : m.probes) {
+        const auto p = std::find_if(scene.probes.begin(), scene.probes.end(),
+                                    [&](const ProbeSpec& probe) { return probe.name == name; });
+        if (p == scene.probes.end())
+          throw InputError(m.where, m.kind == MetricKind::frequency ? "metrics.probe" : "metrics.probes",
+                           "metric \"" + m.name + "\" reads probe \"" + name + "\", which run \"" +
+                               run.label + "\" (scene " + run.scene_path + ") does not have");
+        const std::vector<std::string> columns = probe_columns(p->kind);
+        if (std::find(columns.begin(), columns.end(), m.quantity) == columns.end())
+          throw InputError(m.where, "metrics.quantity",
+                           "probe \"" + name + "\" is a " + to_string(p->kind) + " probe; its columns are " +
+                               join(columns, true));
+        if (m.kind == MetricKind::wave_front &&
+            (p->kind == ProbeKind::mean_velocity || p->kind == ProbeKind::extreme))
+          throw InputError(m.where, "metrics.probes",
+                           "a wave front is timed at probes with a place (particle, node, element); "
+                           "probe \"" + name + "\" is a " + to_string(p->kind) + " probe");
+      }
+      if (m.body.empty()) continue;
       const auto b = std::find_if(scene.bodies.begin(), scene.bodies.end(),
                                   [&](const BodySpec& body) { return body.name == m.body; });
       if (b == scene.bodies.end())

@@ -17,21 +17,43 @@ namespace afemp::core {
 
 // What a metric measures at the end of a run.
 enum class MetricKind {
-  taylor,    // a Taylor bar's L, D, W and the mean error of seed 001 eq 2-42
-  velocity,  // a body's mean velocity (one component or the magnitude): residual, rebound
+  taylor,      // a Taylor bar's L, D, W and the mean error of seed 001 eq 2-42
+  velocity,    // a body's mean velocity (one component or the magnitude): residual, rebound
+  crater,      // a target's crater depth and diameter (core/crater_metrics.hpp)
+  hole,        // the diameter of the hole in a plate (core/crater_metrics.hpp)
+  wave_front,  // a front's speed from its arrival at probes (core/signal_metrics.hpp)
+  frequency,   // a probe history's first natural frequency (core/signal_metrics.hpp)
+};
+
+// A crater's reference depth and diameter.
+struct CraterReference {
+  double depth = 0.0, diameter = 0.0;
 };
 
 struct MetricSpec {
   MetricKind kind = MetricKind::velocity;
   std::string name;  // column prefix, unique in the study
-  std::string body;  // the scene body it measures (every run's scene must have it)
+  std::string body;  // the scene body it measures (every run's scene must have it); empty
+                     // for wave_front and frequency, which read probes
   int component = -1;  // velocity: 0, 1, 2 for x, y, z; -1 for the magnitude
-  // References: taylor needs L, D, W (its error is eq 2-42); velocity has an optional one
-  // (its error is |v - v_ref| / |v_ref|).
+  // crater, hole: the impact axis, through `point` along the unit `normal` of the struck face.
+  Vec3 point, normal;
+  double ring = 0.0, threshold = 0.0;  // crater: ring width, drop that marks the crater
+  double band = 0.0;                   // hole: half thickness of the slab about the mid-plane
+  // wave_front: the probes along the path (two or more); frequency: one. Every run's scene
+  // must have them; `quantity` is the column read.
+  std::vector<std::string> probes;
+  std::string quantity;
+  double fraction = 0.5;  // wave_front: the arrival threshold, a fraction of the peak
+  double until = 0.0;     // wave_front: > 0: only the samples up to this time count
+  // References: taylor needs L, D, W (its error is eq 2-42); crater { depth, diameter } (the
+  // mean of the two relative errors); the others an optional number (|v - v_ref| / |v_ref|).
   std::optional<double> reference;
   std::optional<TaylorReference> taylor;
+  std::optional<CraterReference> crater;
   double tolerance = 0.0;  // > 0: a run whose error exceeds it fails the study
   SourceLocation where;
+  bool has_reference() const { return reference || taylor || crater; }
 };
 
 // One run: a scene and the overrides applied to it.

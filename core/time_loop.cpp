@@ -13,6 +13,7 @@
 #include <variant>
 
 #include "core/output/history.hpp"
+#include "core/probe_recorder.hpp"
 #include "core/output/run_directory.hpp"
 
 namespace afemp::core {
@@ -99,6 +100,8 @@ RunSummary run(Model& model, const Scene& scene, const RunOptions& options) {
   auto elapsed = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
   const RunSettings& rs = scene.run;
 
+  // First: a probe naming a node or element the mesh lacks stops the run before any output.
+  ProbeRecorder probes(model, scene.probes, options.output_directory);
   std::unique_ptr<FieldWriter> frames;
   std::unique_ptr<HistoryWriter> history;
   std::unique_ptr<EventFiles> events;
@@ -158,6 +161,7 @@ RunSummary run(Model& model, const Scene& scene, const RunOptions& options) {
 
   double dt = model.stable_time_step();
   record(dt);
+  probes.sample(model, true);
   if (frames) model.write_fields(*frames);
   double next_output = rs.output_every > 0.0 ? rs.output_every : 1e300;
   double next_progress = options.progress_seconds;
@@ -179,6 +183,7 @@ RunSummary run(Model& model, const Scene& scene, const RunOptions& options) {
     }
     const long k = model.step_count();
     if (k % rs.history_every == 0) last_error = record(dt);
+    probes.sample(model, k % rs.history_every == 0);
     if (frames && model.time() >= next_output * (1.0 - 1e-9) && model.time() < end * (1.0 - 1e-12)) {
       model.write_fields(*frames);
       next_output += rs.output_every;
@@ -191,6 +196,8 @@ RunSummary run(Model& model, const Scene& scene, const RunOptions& options) {
     }
   }
   if (model.step_count() % rs.history_every != 0) last_error = record(dt);
+  probes.sample(model, false, true);
+  sum.probes = probes.take();
   if (frames) model.write_fields(*frames);  // the final state, always
 
   if (through) {

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,19 @@ class Model {
   virtual std::string describe() const = 0;
   // Bytes held by the model's data (points, nodes, elements, grid, scratch).
   virtual std::size_t bytes() const = 0;
+  // Probes (core/probes.hpp). resolve_probes finds, once at the start, the particle, node or
+  // element each probe of the kinds the model holds names (by index, or nearest to a point);
+  // it throws InputError naming the probe's line and key, and what exists, when one does not.
+  // sample_probes writes probe_stride values per probe into out (probe k from k
+  // probe_stride), in probe_columns order, for the probes of the kinds it holds: particle,
+  // node, element, and its points' part of an extreme (merge_extreme; the caller fills out
+  // with NaN first). Mean velocities are the time loop's, from energies(). An element that
+  // is gone (eroded, converted into particles) leaves its NaN.
+  virtual void resolve_probes(std::span<const ProbeSpec> probes) = 0;
+  virtual void sample_probes(std::span<double> out) const = 0;
+  // The current positions of the points that carry body `body`'s material: its particles
+  // and the nodes of its live elements (crater and hole metrics, coupling/study.cpp).
+  virtual std::vector<Vec3> body_points(int body) const = 0;
 };
 
 struct Progress {
@@ -105,6 +119,9 @@ struct RunSummary {
   double taylor_error = 0.0;
   // Every [reference] check, the Taylor one included, in the scene's order.
   std::vector<ReferenceCheck> checks;
+  // Every probe's history ([[probes]]), in the scene's order, recorded with or without an
+  // output directory.
+  std::vector<ProbeSeries> probes;
   bool checks_passed() const {
     for (const ReferenceCheck& c : checks)
       if (!c.passed()) return false;

@@ -311,6 +311,13 @@ std::string CoupledModel::describe() const {
   return out;
 }
 
+std::vector<core::Vec3> CoupledModel::body_points(int body) const {
+  std::vector<core::Vec3> points = mpm_.body_points(body);
+  const std::vector<core::Vec3> nodes = fe_.body_points(body);
+  points.insert(points.end(), nodes.begin(), nodes.end());
+  return points;
+}
+
 std::size_t CoupledModel::bytes() const {
   return fe_.bytes() + mpm_.bytes() +
          points_.size() * (4 * sizeof(core::Vec3) + sizeof(double) + sizeof(std::int32_t) + 2) +

@@ -59,6 +59,18 @@ class CoupledModel final : public core::Model {
   std::vector<core::EventLog> take_events() override;
   std::string describe() const override;
   std::size_t bytes() const override;
+  // Particle probes from the MPM part, node and element probes from the FE part, extremes
+  // over both.
+  void resolve_probes(std::span<const core::ProbeSpec> probes) override {
+    mpm_.resolve_probes(probes);
+    fe_.resolve_probes(probes);
+  }
+  void sample_probes(std::span<double> out) const override {
+    mpm_.sample_probes(out);
+    fe_.sample_probes(out);
+  }
+  // The body's particles (converted elements' included) and the nodes of its live elements.
+  std::vector<core::Vec3> body_points(int body) const override;
 
  private:
   // Copies the FE nodes' state into the node points before the grid step.

@@ -6,10 +6,13 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
+#include "core/crater_metrics.hpp"
 #include "core/error.hpp"
 #include "core/output/svg_plot.hpp"
 #include "core/parallel.hpp"
+#include "core/signal_metrics.hpp"
 #include "core/taylor_metrics.hpp"
 #include "coupling/make_model.hpp"
 
@@ -25,21 +28,80 @@ int body_index(const core::Scene& scene, const std::string& name) {
   return -1;  // read_study checked every run's scene
 }
 
+// A metric's value relative to its reference: |v - v_ref| / |v_ref|.
+double relative_error(double value, double reference) {
+  return std::abs(value - reference) / std::abs(reference);
+}
+
+// The probe history a metric reads, and the column of its quantity.
+const core::ProbeSeries& probe_series(const core::RunSummary& s, const std::string& name) {
+  for (const core::ProbeSeries& p : s.probes)
+    if (p.name == name) return p;
+  throw std::logic_error("probe \"" + name + "\" not recorded");  // read_study checked the scenes
+}
+
 // The metric's values (in value_columns order) and its error (NaN without a reference).
+// initial_level: a crater metric's surface level at the start (core/crater_metrics.hpp).
 void measure(const core::MetricSpec& m, const core::Scene& scene, const core::Model& model,
-             std::vector<double>& values, std::vector<double>& errors) {
-  const int b = body_index(scene, m.body);
-  if (m.kind == core::MetricKind::taylor) {
-    const core::TaylorMeasures t = model.measure_taylor(b);
-    values.insert(values.end(), {t.length, t.impact_diameter, t.bulge_diameter});
-    errors.push_back(core::taylor_mean_error(t, *m.taylor));
-    return;
+             const core::RunSummary& summary, double initial_level, std::vector<double>& values,
+             std::vector<double>& errors) {
+  const int b = m.body.empty() ? -1 : body_index(scene, m.body);
+  double value = nan;
+  switch (m.kind) {
+    case core::MetricKind::taylor: {
+      const core::TaylorMeasures t = model.measure_taylor(b);
+      values.insert(values.end(), {t.length, t.impact_diameter, t.bulge_diameter});
+      errors.push_back(core::taylor_mean_error(t, *m.taylor));
+      return;
+    }
+    case core::MetricKind::crater: {
+      const std::vector<core::Vec3> points = model.body_points(b);
+      const core::CraterMeasures c =
+          core::measure_crater(points, m.point, m.normal, initial_level, m.ring, m.threshold);
+      values.insert(values.end(), {c.depth, c.diameter});
+      if (m.crater)
+        errors.push_back(0.5 * (relative_error(c.depth, m.crater->depth) +
+                                relative_error(c.diameter, m.crater->diameter)));
+      return;
+    }
+    case core::MetricKind::velocity: {
+      const core::BodySums body = model.energies().bodies[static_cast<std::size_t>(b)];
+      const core::Vec3 v = (1.0 / body.mass) * body.momentum;
+      value = m.component < 0 ? core::norm(v) : v[m.component];
+      break;
+    }
+    case core::MetricKind::hole:
+      value = core::measure_hole(model.body_points(b), m.point, m.normal, m.band);
+      break;
+    case core::MetricKind::wave_front: {
+      // Distances along the path from the first probe's place at the start.
+      std::vector<double> distance, arrival;
+      core::Vec3 first;
+      for (std::size_t k = 0; k < m.probes.size(); ++k) {
+        const core::ProbeSeries& p = probe_series(summary, m.probes[k]);
+        const core::Vec3 x0{p.at(0, 0), p.at(0, 1), p.at(0, 2)};
+        if (k == 0) first = x0;
+        distance.push_back(core::norm(x0 - first));
+        const std::vector<double> q = p.series(static_cast<std::size_t>(p.column(m.quantity)));
+        std::size_t n = p.rows();  // `until`: the samples up to it
+        if (m.until > 0.0)
+          n = static_cast<std::size_t>(std::upper_bound(p.time.begin(), p.time.end(), m.until) -
+                                       p.time.begin());
+        arrival.push_back(
+            core::arrival_time(std::span(p.time).first(n), std::span(q).first(n), m.fraction));
+      }
+      value = core::front_speed(distance, arrival);
+      break;
+    }
+    case core::MetricKind::frequency: {
+      const core::ProbeSeries& p = probe_series(summary, m.probes[0]);
+      value = core::zero_crossing_frequency(
+          p.time, p.series(static_cast<std::size_t>(p.column(m.quantity))));
+      break;
+    }
   }
-  const core::BodySums body = model.energies().bodies[static_cast<std::size_t>(b)];
-  const core::Vec3 v = (1.0 / body.mass) * body.momentum;
-  const double value = m.component < 0 ? core::norm(v) : v[m.component];
   values.push_back(value);
-  if (m.reference) errors.push_back(std::abs(value - *m.reference) / std::abs(*m.reference));
+  if (m.reference) errors.push_back(relative_error(value, *m.reference));
 }
 
 std::string number(double v, const char* format = "%.6g") {
@@ -87,11 +149,12 @@ StudyResult run_study(const core::StudyPlan& plan,
   for (const core::MetricSpec& m : plan.metrics) {
     if (m.kind == core::MetricKind::taylor) {
       for (const char* c : {".L", ".D", ".W"}) result.value_columns.push_back(m.name + c);
-      result.error_columns.push_back(m.name + ".error");
+    } else if (m.kind == core::MetricKind::crater) {
+      for (const char* c : {".depth", ".diameter"}) result.value_columns.push_back(m.name + c);
     } else {
       result.value_columns.push_back(m.name);
-      if (m.reference) result.error_columns.push_back(m.name + ".error");
     }
+    if (m.has_reference()) result.error_columns.push_back(m.name + ".error");
   }
   const int threads_before = core::thread_count();
   if (plan.threads > 0) core::set_thread_count(plan.threads);
@@ -103,16 +166,25 @@ StudyResult run_study(const core::StudyPlan& plan,
     const std::unique_ptr<core::Model> model = make_model(scene);
     row.elements = model->element_count();
     core::RunOptions options;  // no output directory: nothing written, nothing timed but the steps
+    // Crater metrics: the target's surface level at the start, on the same points.
+    std::vector<double> initial_level(plan.metrics.size(), nan);
+    for (std::size_t k = 0; k < plan.metrics.size(); ++k) {
+      const core::MetricSpec& m = plan.metrics[k];
+      if (m.kind == core::MetricKind::crater)
+        initial_level[k] = core::surface_level(model->body_points(body_index(scene, m.body)), m.point,
+                                               m.normal);
+    }
     try {
       const core::RunSummary s = core::run(*model, scene, options);
       row.steps = s.steps;
       row.wall_seconds = s.wall_seconds;
       row.energy_error = s.energy_error;
       row.max_energy_error = s.max_energy_error;
-      for (const core::MetricSpec& m : plan.metrics) measure(m, scene, *model, row.values, row.errors);
+      for (std::size_t k = 0; k < plan.metrics.size(); ++k)
+        measure(plan.metrics[k], scene, *model, s, initial_level[k], row.values, row.errors);
       std::size_t e = 0;
       for (const core::MetricSpec& m : plan.metrics) {
-        if (!(m.taylor || m.reference)) continue;
+        if (!m.has_reference()) continue;
         if (m.tolerance > 0.0 && !(row.errors[e] <= m.tolerance)) row.over_tolerance.push_back(m.name);
         ++e;
       }

@@ -8,6 +8,7 @@
 #include "core/scene.hpp"
 #include "core/time_loop.hpp"
 #include "fem/fe_solver.hpp"
+#include "fem/mesh_probes.hpp"
 
 namespace afemp::fem {
 
@@ -39,6 +40,13 @@ class FeModel final : public core::Model {
   // The mesh blocks of one output frame (valid until the next call).
   const std::vector<core::MeshBlock>& mesh_blocks();
   std::size_t bytes() const override { return solver_.bytes(); }
+  void resolve_probes(std::span<const core::ProbeSpec> probes) override {
+    probes_.resolve(probes, solver_, scene_);
+  }
+  void sample_probes(std::span<double> out) const override { probes_.sample(solver_, out); }
+  std::vector<core::Vec3> body_points(int body) const override {
+    return live_node_positions(solver_, body);
+  }
 
  private:
   const core::Scene& scene_;
@@ -54,6 +62,7 @@ class FeModel final : public core::Model {
   std::vector<std::int32_t> hex_connectivity_, truss_connectivity_;
   std::vector<core::FieldView> node_fields_, hex_fields_, truss_fields_;
   std::vector<core::MeshBlock> blocks_;
+  MeshProbes probes_;
 };
 
 }  // namespace afemp::fem

@@ -7,6 +7,7 @@
 #include "core/scene.hpp"
 #include "core/time_loop.hpp"
 #include "mpm/mpm_solver.hpp"
+#include "mpm/particle_probes.hpp"
 
 namespace afemp::mpm {
 
@@ -29,6 +30,13 @@ class MpmModel final : public core::Model {
   // Bins the particles first so that the active cells and memory describe the first step.
   std::string describe() const override;
   std::size_t bytes() const override { return solver_.bytes(); }
+  void resolve_probes(std::span<const core::ProbeSpec> probes) override {
+    probes_.resolve(probes, solver_.particles(), scene_);
+  }
+  void sample_probes(std::span<double> out) const override { probes_.sample(solver_.particles(), out); }
+  std::vector<core::Vec3> body_points(int body) const override {
+    return particle_positions(solver_.particles(), body);
+  }
   // The particles' block of one output frame (valid until the next call).
   core::PointBlock particle_block();
 
@@ -37,6 +45,7 @@ class MpmModel final : public core::Model {
   mutable MpmSolver solver_;  // describe() bins the particles
   std::vector<double> pressure_, von_mises_, density_, body_, id_;  // derived, per frame
   std::vector<core::FieldView> fields_;
+  ParticleProbes probes_;
 };
 
 }  // namespace afemp::mpm

@@ -87,7 +87,7 @@ TEST(StudyFile, MistakesNameTheFileLineKeyAndWhatIsAllowed) {
   EXPECT_NE(e.find("study.toml:4"), std::string::npos) << e;
   EXPECT_NE(e.find("study.thread"), std::string::npos) << e;
   EXPECT_NE(e.find("title, threads, plot"), std::string::npos) << e;
-  e = study_error(replaced(study_text, "kind = \"velocity\"", "kind = \"crater\""));
+  e = study_error(replaced(study_text, "kind = \"velocity\"", "kind = \"penetration\""));
   EXPECT_NE(e.find("metrics[0].kind"), std::string::npos) << e;
   EXPECT_NE(e.find("\"taylor\", \"velocity\""), std::string::npos) << e;
   e = study_error(replaced(study_text, "\"bodies.bar.particles_per_cell\" = [2, 1]",

@@ -1,0 +1,259 @@
+// The study metrics read from probes and from a target's points (docs/study-format.md):
+//  - wave_front and frequency on the fixed-free elastic bar of hexahedra (nu = 0): the front
+//    runs at c = sqrt(E / rho) (5047.5 m/s) and the first axial frequency is c / (4 L); the
+//    study's values and errors against those references within 2 %;
+//  - crater and hole on targets of particles made from point lists with a spherical-cap crater
+//    (depth 1.5, rim radius 3) and a round hole (radius 2) cut into them, at rest for a few
+//    steps: the metrics give the cut geometry within one particle spacing;
+//  - the mistakes a study file can make with them name the file, line, key and what is allowed.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "core/study_file.hpp"
+#include "coupling/study.hpp"
+#include "scratch_dir.hpp"
+
+namespace afemp::coupling {
+namespace {
+
+const double c = std::sqrt(200e3 / 7.85e-3), length = 50.0;
+
+const std::string bar_scene = R"(
+[run]
+end_time = 0.0792
+history_every = 1
+[materials.steel]
+density = 7.85e-3
+E = 200e3
+nu = 0
+[[bodies]]
+name = "bar"
+discretisation = "hexahedra"
+material = "steel"
+shape = { box = { min = [0, 0, 0], max = [1, 1, 50] } }
+mesh = { divisions = [1, 1, 50] }
+velocity = [0, 0, -10]
+[[constraints]]
+nodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }
+fixed = ["all"]
+[[probes]]
+name = "z10"
+node = { body = "bar", near = [1, 1, 10] }
+[[probes]]
+name = "z25"
+node = { body = "bar", near = [1, 1, 25] }
+[[probes]]
+name = "z40"
+node = { body = "bar", near = [1, 1, 40] }
+[[probes]]
+name = "tip"
+node = { body = "bar", near = [1, 1, 50] }
+[[probes]]
+name = "bar_v"
+mean_velocity = "bar"
+)";
+
+// The front's first passage: the histories up to 55 mm of travel, before the reflection
+// from the free end reaches z = 40.
+const std::string bar_study = R"(
+[study]
+title = "Fixed-free bar"
+threads = 1
+plot = "front"
+
+[[metrics]]
+kind = "wave_front"
+name = "front"
+probes = ["z10", "z25", "z40"]
+quantity = "vz"
+until = 0.0109
+reference = 5047.54
+tolerance = 0.02
+
+[[metrics]]
+kind = "frequency"
+name = "axial"
+probe = "tip"
+quantity = "vz"
+reference = 25.2377
+tolerance = 0.02
+
+[[runs]]
+method = "FE"
+scene = "bar.toml"
+)";
+
+std::string study_error(const std::string& study, const std::string& scene = bar_scene) {
+  test::ScratchDir dir;
+  dir.write("bar.toml", scene);
+  try {
+    core::read_study(dir.write("study.toml", study));
+  } catch (const core::InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError for:\n" << study;
+  return "";
+}
+
+std::string replaced(std::string s, const std::string& from, const std::string& to) {
+  const auto at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) s.replace(at, from.size(), to);
+  return s;
+}
+
+TEST(StudyMetrics, WaveFrontAndFrequencyOfTheFixedFreeBar) {
+  test::ScratchDir dir;
+  dir.write("bar.toml", bar_scene);
+  const core::StudyPlan plan = core::read_study(dir.write("study.toml", bar_study));
+  const StudyResult result = run_study(plan);
+  ASSERT_EQ(result.value_columns, (std::vector<std::string>{"front", "axial"}));
+  ASSERT_EQ(result.error_columns, (std::vector<std::string>{"front.error", "axial.error"}));
+  const StudyRow& row = result.rows.at(0);
+  std::printf("front %.1f m/s (c %.1f, error %.4f), axial %.3f /ms (c / 4L %.3f, error %.4f)\n",
+              row.values[0], c, row.errors[0], row.values[1], c / (4 * length), row.errors[1]);
+  EXPECT_TRUE(row.ok()) << describe_row(result, row);
+  EXPECT_NEAR(row.values[0], c, 0.02 * c);
+  EXPECT_NEAR(row.values[1], c / (4.0 * length), 0.02 * c / (4.0 * length));
+  EXPECT_DOUBLE_EQ(row.errors[0], std::abs(row.values[0] - 5047.54) / 5047.54);
+  EXPECT_DOUBLE_EQ(row.errors[1], std::abs(row.values[1] - 25.2377) / 25.2377);
+  // The whole history: the reflection doubles the change at z = 40 before it does at z = 10,
+  // so the half-peak arrival there is the first front's top and the speed reads low.
+  test::ScratchDir dir2;
+  dir2.write("bar.toml", bar_scene);
+  const core::StudyPlan whole =
+      core::read_study(dir2.write("study.toml", replaced(bar_study, "until = 0.0109\n", "")));
+  const StudyResult whole_result = run_study(whole);
+  const StudyRow& w = whole_result.rows.at(0);
+  std::printf("front without until: %.1f m/s\n", w.values[0]);
+  EXPECT_GT(w.errors[0], 0.05);
+  EXPECT_FALSE(w.ok());
+}
+
+// Lattice points (spacing d, volume d^3) of a plate [-5, 5]^2 x [-2, 0] about (cx, 0, 0),
+// less those inside `cut`.
+template <class Cut>
+std::string plate_points(double cx, double d, Cut cut) {
+  std::ostringstream os;
+  for (double x = -5 + d / 2; x < 5; x += d)
+    for (double y = -5 + d / 2; y < 5; y += d)
+      for (double z = -2 + d / 2; z < 0; z += d)
+        if (!cut(x, y, z)) os << cx + x << ' ' << y << ' ' << z << ' ' << d * d * d << '\n';
+  return os.str();
+}
+
+TEST(StudyMetrics, CraterAndHoleOfCutTargets) {
+  const double d = 0.25, depth = 1.5, rim = 3.0, hole = 2.0;
+  const double sphere = (rim * rim + depth * depth) / (2 * depth);
+  test::ScratchDir dir;
+  // The crater: points above the sphere through the rim circle and (0, 0, -depth) are cut.
+  dir.write("crater.xyz", plate_points(0.0, d, [&](double x, double y, double z) {
+              return std::hypot(x, y, z - (sphere - depth)) < sphere;
+            }));
+  dir.write("hole.xyz", plate_points(20.0, d, [&](double x, double y, double) {
+              return std::hypot(x, y) < hole;
+            }));
+  dir.write("targets.toml", R"(
+[run]
+end_time = 1
+max_steps = 3
+[grid]
+cell = 0.5
+min = [-6, -6, -3]
+max = [26, 6, 1]
+[materials.al]
+density = 2.7e-3
+E = 70e3
+nu = 0.3
+[[bodies]]
+name = "block"
+material = "al"
+shape = { points = { file = "crater.xyz" } }
+[[bodies]]
+name = "plate"
+material = "al"
+shape = { points = { file = "hole.xyz" } }
+)");
+  const core::StudyPlan plan = core::read_study(dir.write("study.toml", R"(
+[study]
+threads = 1
+[[metrics]]
+kind = "crater"
+body = "block"
+point = [0, 0, 0]
+normal = [0, 0, 1]
+ring = 0.25
+threshold = 0.1
+reference = { depth = 1.5, diameter = 6.0 }
+tolerance = 0.1
+[[metrics]]
+kind = "hole"
+body = "plate"
+point = [20, 0, -1]
+normal = [0, 0, 1]
+band = 0.5
+reference = 4.0
+tolerance = 0.1
+[[runs]]
+method = "MPM"
+scene = "targets.toml"
+)"));
+  const StudyResult result = run_study(plan);
+  ASSERT_EQ(result.value_columns,
+            (std::vector<std::string>{"crater.depth", "crater.diameter", "hole"}));
+  ASSERT_EQ(result.error_columns, (std::vector<std::string>{"crater.error", "hole.error"}));
+  const StudyRow& row = result.rows.at(0);
+  std::printf("crater depth %.3f (cut %.2f), diameter %.3f (cut %.2f); hole %.3f (cut %.2f); "
+              "errors %.4f %.4f\n", row.values[0], depth, row.values[1], 2 * rim, row.values[2],
+              2 * hole, row.errors[0], row.errors[1]);
+  EXPECT_EQ(row.steps, 3);
+  // Particles sit half a spacing inside the material: the surface level is measured on them
+  // too, so the depth is the cut's within a spacing; the diameter within a ring each side.
+  EXPECT_NEAR(row.values[0], depth, d);
+  EXPECT_NEAR(row.values[1], 2 * rim, 2 * d);
+  // The hole: twice the nearest particle's distance, within a spacing of the cut.
+  EXPECT_NEAR(row.values[2], 2 * hole, 2 * d);
+  EXPECT_GE(row.values[2], 2 * hole);
+  EXPECT_DOUBLE_EQ(row.errors[0], 0.5 * (std::abs(row.values[0] - 1.5) / 1.5 +
+                                         std::abs(row.values[1] - 6.0) / 6.0));
+  EXPECT_TRUE(row.ok()) << describe_row(result, row);
+}
+
+TEST(StudyMetrics, MistakesNameTheFileLineKeyAndWhatIsAllowed) {
+  std::string e = study_error(replaced(bar_study, "quantity = \"vz\"\nuntil", "quantity = \"speed\"\nuntil"));
+  EXPECT_NE(e.find("study.toml:7: key 'metrics.quantity': probe \"z10\" is a node probe; its columns "
+                   "are \"x\", \"y\", \"z\", \"vx\", \"vy\", \"vz\""),
+            std::string::npos) << e;
+  e = study_error(replaced(bar_study, "probe = \"tip\"", "probe = \"end\""));
+  EXPECT_NE(e.find("key 'metrics.probe': metric \"axial\" reads probe \"end\", which run \"FE\""),
+            std::string::npos) << e;
+  e = study_error(replaced(bar_study, "probes = [\"z10\", \"z25\", \"z40\"]", "probes = [\"z10\"]"));
+  EXPECT_NE(e.find("key 'metrics[0].probes': name two or more probes"), std::string::npos) << e;
+  e = study_error(replaced(bar_study, "probes = [\"z10\", \"z25\", \"z40\"]", "probes = [\"z10\", \"bar_v\"]"));
+  EXPECT_NE(e.find("probe \"bar_v\" is a mean_velocity probe"), std::string::npos) << e;
+  e = study_error(replaced(bar_study, "probe = \"tip\"", "probe = \"tip\"\nband = 1"));
+  EXPECT_NE(e.find("key 'metrics[1].band': applies to kind \"hole\" only, not \"frequency\""),
+            std::string::npos) << e;
+  e = study_error(replaced(bar_study, "until = 0.0109", "until = -1"));
+  EXPECT_NE(e.find("key 'metrics[0].until'"), std::string::npos) << e;
+  const std::string crater = "[study]\n[[metrics]]\nkind = \"crater\"\nbody = \"bar\"\npoint = [0, 0, 50]\n"
+                             "normal = [0, 0, 1]\nring = 0.5\nthreshold = 0.1\ntolerance = 0.1\n"
+                             "[[runs]]\nmethod = \"FE\"\nscene = \"bar.toml\"\n";
+  e = study_error(crater);
+  EXPECT_NE(e.find("study.toml:9: key 'metrics[0].tolerance': a tolerance needs a reference"),
+            std::string::npos) << e;
+  e = study_error(replaced(crater, "ring = 0.5\n", ""));
+  EXPECT_NE(e.find("key 'metrics[0].ring': required key is missing"), std::string::npos) << e;
+  e = study_error(replaced(crater, "normal = [0, 0, 1]", "normal = [0, 0, 0]"));
+  EXPECT_NE(e.find("key 'metrics[0].normal': the normal must be a non-zero vector"), std::string::npos) << e;
+  e = study_error(replaced(replaced(crater, "tolerance = 0.1\n", ""), "body = \"bar\"", "body = \"slab\""));
+  EXPECT_NE(e.find("measures body \"slab\""), std::string::npos) << e;
+}
+
+}  // namespace
+}  // namespace afemp::coupling
