@@ -25,6 +25,7 @@
 #include "core/time_loop.hpp"
 #include "coupling/make_model.hpp"
 #include "fem/fe_model.hpp"
+#include "fixed_free_bar_scene.hpp"
 #include "scene_errors.hpp"
 #include "scratch_dir.hpp"
 
@@ -170,25 +171,7 @@ TEST(Probes, FilesHoldWhatTheSummaryHolds) {
 constexpr double young = 200e3, density = 7.85e-3, v0 = 10.0, length = 50.0;
 const double c = std::sqrt(young / density);  // 5047.5 m/s
 std::string fixed_free_bar(const std::string& extra = "") {
-  return R"(
-[run]
-end_time = 0.0792
-history_every = 1
-[materials.steel]
-density = 7.85e-3
-E = 200e3
-nu = 0
-[[bodies]]
-name = "bar"
-discretisation = "hexahedra"
-material = "steel"
-shape = { box = { min = [0, 0, 0], max = [1, 1, 50] } }
-mesh = { divisions = [1, 1, 50] }
-velocity = [0, 0, -10]
-)" + extra + R"(
-[[constraints]]
-nodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }
-fixed = ["all"]
+  return test::fixed_free_bar_scene(extra) + R"(
 [[probes]]
 name = "z10"
 node = { body = "bar", near = [1, 1, 10] }

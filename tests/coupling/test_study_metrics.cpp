@@ -16,6 +16,7 @@
 
 #include "core/study_file.hpp"
 #include "coupling/study.hpp"
+#include "fixed_free_bar_scene.hpp"
 #include "scratch_dir.hpp"
 
 namespace afemp::coupling {
@@ -23,24 +24,7 @@ namespace {
 
 const double c = std::sqrt(200e3 / 7.85e-3), length = 50.0;
 
-const std::string bar_scene = R"(
-[run]
-end_time = 0.0792
-history_every = 1
-[materials.steel]
-density = 7.85e-3
-E = 200e3
-nu = 0
-[[bodies]]
-name = "bar"
-discretisation = "hexahedra"
-material = "steel"
-shape = { box = { min = [0, 0, 0], max = [1, 1, 50] } }
-mesh = { divisions = [1, 1, 50] }
-velocity = [0, 0, -10]
-[[constraints]]
-nodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }
-fixed = ["all"]
+const std::string bar_scene = test::fixed_free_bar_scene() + R"(
 [[probes]]
 name = "z10"
 node = { body = "bar", near = [1, 1, 10] }
