@@ -87,17 +87,46 @@ void MpmSolver::contact_surfaces_kernel() {
     g.reach[s] = -std::numeric_limits<double>::infinity();
   }
   const Particles& p = particles_;
-  // Scatters from the particles of contact fields, colour by colour (no two threads write a
-  // node): f(i, stencil, slot index of each node in the particle's field).
+  // Normals and reach matter only at nodes where two or more fields meet, one of them in
+  // contact: a thin layer along the interfaces. Particles whose stencil reaches none of those
+  // nodes are skipped (with the linear hat before their weights are computed): in V6 they
+  // are nearly all of the concrete's, and this pass took a quarter of the step.
+  contact_node_.assign(stride, 0);
+#pragma omp parallel if (core::worth_threads(stride))
+  g.for_each_slot([&](std::size_t slot, const std::array<int, 3>&) {
+    int count = 0;
+    bool contact = false;
+    for (int f = 0; f < fields; ++f)
+      if (g.mass[slot + static_cast<std::size_t>(f) * stride] > 0.0) {
+        ++count;
+        contact = contact || field_in_contact_[static_cast<std::size_t>(f)];
+      }
+    if (count >= 2 && contact) contact_node_[slot] = 1;
+  });
+  // Scatters from the particles of contact fields near a flagged node, colour by colour (no
+  // two threads write a node): f(i, stencil, slot index of each node in the particle's field).
   auto scatter_contact_particles = [&](auto&& f) {
     sweep_layers<Stencil::colours>(layer_offsets_, [&](std::size_t b, std::size_t e) {
       for (std::size_t q = b; q < e; ++q) {
         const auto i = static_cast<std::size_t>(layer_order_[q]);
         const std::size_t field = field_offset(i);
         if (!field_in_contact_[field / stride]) continue;
+        bool near = false;
+        if constexpr (Stencil::nodes == 8) {
+          std::array<std::int32_t, 8> corners;
+          g.node_slots(g.cell_of(p.position[i]), corners);
+          for (const std::int32_t c : corners)
+            near = near || contact_node_[static_cast<std::size_t>(c)] != 0;
+          if (!near) continue;
+        }
         const Stencil st(g, p, i, p.position[i]);
         typename Stencil::Slots slot;
         st.slots(g, slot);
+        if constexpr (Stencil::nodes != 8) {
+          for (const std::int32_t c : slot)
+            near = near || contact_node_[static_cast<std::size_t>(c)] != 0;
+          if (!near) continue;
+        }
         std::array<std::size_t, Stencil::nodes> s;
         for (int n = 0; n < Stencil::nodes; ++n)
           s[static_cast<std::size_t>(n)] =

@@ -164,6 +164,7 @@ class MpmSolver {
   std::vector<char> field_in_contact_;  // the field meets some field it is in contact with
   bool multi_field_ = false;
   std::vector<Vec3> contact_normal_;  // unit normal of each field at its contact nodes, or 0
+  std::vector<std::uint8_t> contact_node_;  // per slot: where normals are needed (grid_contact.cpp)
   double contact_energy_ = 0.0;       // kinetic energy the contact took out (Energies::contact)
   // Coupled FE nodes, and the velocity change grid contact made to each field at each node
   // in the update pass (what contact nodes receive); field_nodes_only_: the field holds FE
