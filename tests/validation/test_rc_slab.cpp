@@ -2,7 +2,8 @@
 // (1992) geometry, examples/rc_slab/scene.toml: a 0.5 kg, 25.4 mm, CRH 3 ogive-nosed steel rod
 // (hexahedra in grid contact with the concrete, CFEMP; nose elements whose step would fall below
 // 0.2 h / c become particles, AFEMP) through a 610 x 610 x 178 mm slab of 48 MPa HJC concrete
-// particles with a rebar mat near each face bonded into it (HFEMP); quarter model, 8 mm cells.
+// particles with a rebar mat near each face bonded into it (HFEMP); quarter model, 8 mm cells,
+// 3 particles per cell per direction.
 // Each run ends when the rod's centre of mass has moved 343.7 mm ([run] terminate: its tail
 // 20 mm past the rear face) and reports the residual velocity Vr, the rod's mean velocity then.
 // Pass mark (VALIDATION V6): every run completes, the energy balance error stays below 5 %
