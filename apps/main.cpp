@@ -10,7 +10,7 @@
 #include <string>
 
 #include "apps/progress_line.hpp"
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 #include "core/output/run_directory.hpp"
 #include "core/parallel.hpp"
 #include "core/study_file.hpp"

@@ -8,7 +8,7 @@
 
 #include <span>
 
-#include "core/tensor.hpp"
+#include "afemp/tensor.hpp"
 
 namespace afemp::core {
 

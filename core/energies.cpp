@@ -1,5 +1,5 @@
 // The energy-balance error of core/energies.hpp.
-#include "core/energies.hpp"
+#include "afemp/energies.hpp"
 
 #include <algorithm>
 #include <cmath>

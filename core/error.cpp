@@ -1,4 +1,4 @@
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 
 #include <sstream>
 

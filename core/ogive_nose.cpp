@@ -1,6 +1,6 @@
 // Tangent-ogive nose geometry (core/ogive_nose.hpp): the arc r(t) = sqrt(S^2 - t^2) - (S - R),
 // S = 2 psi R, cut by a meplat of diameter 2a at t_a = sqrt(S^2 - (S - R + a)^2).
-#include "core/ogive_nose.hpp"
+#include "afemp/ogive_nose.hpp"
 
 #include <algorithm>
 #include <cmath>

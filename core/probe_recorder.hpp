@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/probes.hpp"
+#include "afemp/probes.hpp"
 #include "core/time_loop.hpp"
 
 namespace afemp::core {

@@ -1,5 +1,5 @@
 // Probe kinds, fields and columns (core/probes.hpp).
-#include "core/probes.hpp"
+#include "afemp/probes.hpp"
 
 #include <cmath>
 

@@ -689,7 +689,9 @@ Shape read_shape(TableReader& r, const std::string& scene_path, Discretisation d
   s.check_unknown();
   const std::string file = s.required_string("file");
   if (file.empty()) s.fail("file", "the points file name is empty");
-  return PointListShape{relative_to_scene(file, scene_path)};
+  PointListShape points;
+  points.path = relative_to_scene(file, scene_path);
+  return points;
 }
 
 void read_mesh_density(TableReader& r, const BodySpec& b, MeshDensity& m) {
@@ -772,17 +774,15 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
   only_for("bonded_to", D::hexahedra, D::trusses);  // resolved once every body is read
   only_for("conversion", D::hexahedra, D::hexahedra);
   b.particles_per_cell = static_cast<int>(r.integer("particles_per_cell", 2, 1, 8));
-  // Particles: on by default where the material has an equation of state (shocks), off
-  // otherwise; hexahedra: always on by default (LS-DYNA's Q1, Q2).
-  const bool viscous_default = b.discretisation == D::hexahedra ||
-                               material_list[static_cast<std::size_t>(b.material)].has_eos();
-  if (!viscous_default) b.bulk_viscosity = {0.0, 0.0};
+  // Unset, the default of core::bulk_viscosity_of applies.
   if (const toml::table* t = r.optional_table("bulk_viscosity")) {
     TableReader vr(*t, r.dotted("bulk_viscosity"), r.file());
     vr.known({"linear", "quadratic"});
     vr.check_unknown();
-    b.bulk_viscosity.linear = vr.number("linear", 0.06, Range::closed(0.0, 1.0));
-    b.bulk_viscosity.quadratic = vr.number("quadratic", 1.5, Range::closed(0.0, 10.0));
+    BulkViscositySettings q;
+    q.linear = vr.number("linear", 0.06, Range::closed(0.0, 1.0));
+    q.quadratic = vr.number("quadratic", 1.5, Range::closed(0.0, 10.0));
+    b.bulk_viscosity = q;
   }
   if (b.discretisation == D::particles) return b;
 

@@ -12,9 +12,9 @@
 
 #include <toml++/toml.h>
 
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 #include "core/scene.hpp"
-#include "core/tensor.hpp"
+#include "afemp/tensor.hpp"
 
 namespace afemp::core::scene_detail {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 #include "core/scene.hpp"
 
 namespace afemp::core {

@@ -6,13 +6,10 @@
 
 #include <span>
 
+#include "afemp/run.hpp"
 #include "core/scene.hpp"
 
 namespace afemp::core {
-
-struct TaylorMeasures {
-  double length = 0.0, impact_diameter = 0.0, bulge_diameter = 0.0;
-};
 
 // Measures a cylinder bar whose base faces the wall. Each point stands for material reaching
 // half[i] beyond it (half may be empty: points on the surface, as mesh nodes are); D and W are

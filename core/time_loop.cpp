@@ -44,29 +44,6 @@ HistoryRow history_row(const Model& m, const Energies& e, double dt, double erro
   return r;
 }
 
-// Appends a model's event rows to their CSV files in the run directory (header first).
-class EventFiles {
- public:
-  explicit EventFiles(std::string directory) : directory_(std::move(directory)) {}
-  void write(const std::vector<EventLog>& logs) {
-    for (const EventLog& log : logs) {
-      if (log.rows.empty()) continue;
-      auto [it, fresh] = files_.try_emplace(log.file);
-      if (fresh) {
-        it->second.open(directory_ + "/" + log.file, std::ios::trunc);
-        if (!it->second) throw std::runtime_error(directory_ + "/" + log.file + ": cannot write");
-        it->second << log.header << '\n';
-      }
-      for (const std::string& row : log.rows) it->second << row << '\n';
-      it->second.flush();
-    }
-  }
-
- private:
-  std::string directory_;
-  std::map<std::string, std::ofstream> files_;
-};
-
 // The guard on the energy balance: an explicit scheme past its stability limit creates energy
 // (a growing mode) long before a value turns NaN, and a balance that is off by more than the
 // whole energy of the run is no longer a discretisation error. Names the body whose kinetic +
@@ -94,137 +71,167 @@ class EventFiles {
 
 }  // namespace
 
-RunSummary run(Model& model, const Scene& scene, const RunOptions& options) {
-  using clock = std::chrono::steady_clock;
-  const auto start = clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
-  const RunSettings& rs = scene.run;
+// Appends a model's event rows to their CSV files in the run directory (header first).
+class EventFiles {
+ public:
+  explicit EventFiles(std::string directory) : directory_(std::move(directory)) {}
+  void write(const std::vector<EventLog>& logs) {
+    for (const EventLog& log : logs) {
+      if (log.rows.empty()) continue;
+      auto [it, fresh] = files_.try_emplace(log.file);
+      if (fresh) {
+        it->second.open(directory_ + "/" + log.file, std::ios::trunc);
+        if (!it->second) throw std::runtime_error(directory_ + "/" + log.file + ": cannot write");
+        it->second << log.header << '\n';
+      }
+      for (const std::string& row : log.rows) it->second << row << '\n';
+      it->second.flush();
+    }
+  }
 
-  // First: a probe naming a node or element the mesh lacks stops the run before any output.
-  ProbeRecorder probes(model, scene.probes, options.output_directory);
-  std::unique_ptr<FieldWriter> frames;
-  std::unique_ptr<HistoryWriter> history;
-  std::unique_ptr<EventFiles> events;
-  if (!options.output_directory.empty()) {
+ private:
+  std::string directory_;
+  std::map<std::string, std::ofstream> files_;
+};
+
+TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
+    : model_(model),
+      scene_(scene),
+      options_(options),
+      start_(std::chrono::steady_clock::now()),
+      // First: a probe naming a node or element the mesh lacks stops the run before any output.
+      probes_(std::make_unique<ProbeRecorder>(model, scene.probes, options.output_directory)) {
+  if (!options_.output_directory.empty()) {
     OutputPaths paths;
-    paths.directory = options.output_directory;
-    if (options.write_fields)
-      frames = std::make_unique<FieldWriter>(paths.directory, paths.fields_stem);
+    paths.directory = options_.output_directory;
+    if (options_.write_fields)
+      frames_ = std::make_unique<FieldWriter>(paths.directory, paths.fields_stem);
     std::vector<std::string> names;
-    for (const auto& b : scene.bodies) names.push_back(b.name);
-    history = std::make_unique<HistoryWriter>(history_path(paths), names);
-    events = std::make_unique<EventFiles>(paths.directory);
+    for (const auto& b : scene_.bodies) names.push_back(b.name);
+    history_ = std::make_unique<HistoryWriter>(history_path(paths), names);
+    events_ = std::make_unique<EventFiles>(paths.directory);
   }
+  sum_.particles = model_.particle_count();
+  sum_.elements = model_.element_count();
+  sum_.initial = model_.energies();
+  max_kinetic_ = sum_.initial.kinetic;
+  sum_.min_dt = 1e300;
+  last_time_ = model_.time();
+  if (scene_.run.terminate) last_velocity_ = mean_velocity(sum_.initial);
+  dt_ = model_.stable_time_step();
+  record(dt_);
+  probes_->sample(model_, true);
+  if (frames_) model_.write_fields(*frames_);
+  next_output_ = scene_.run.output_every > 0.0 ? scene_.run.output_every : 1e300;
+  next_progress_ = options_.progress_seconds;
+}
 
-  RunSummary sum;
-  sum.particles = model.particle_count();
-  sum.elements = model.element_count();
-  sum.initial = model.energies();
-  double max_kinetic = sum.initial.kinetic;
-  sum.min_dt = 1e300;
+TimeLoop::~TimeLoop() = default;
 
-  // [run] terminate: the body's centre of mass moves with its mean velocity p / m, integrated
-  // by the trapezoidal rule over the history rows (history_every steps apart).
-  const std::optional<RunSettings::Termination>& term = rs.terminate;
-  auto mean_velocity = [&](const Energies& e) {
-    const BodySums& b = e.bodies.at(static_cast<std::size_t>(term->body));
-    return b.mass > 0.0 ? (1.0 / b.mass) * b.momentum : Vec3{};
-  };
-  Vec3 travelled, last_velocity;
-  double last_time = model.time();
-  if (term) last_velocity = mean_velocity(sum.initial);
-  bool through = false;
-  int rows_beyond = 0;  // consecutive history rows with the energy balance beyond its limit
+double TimeLoop::elapsed() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
 
-  auto record = [&](double dt) {
-    const Energies e = model.energies();
-    if (term) {
-      const Vec3 v = mean_velocity(e);
-      travelled += (0.5 * (model.time() - last_time)) * (v + last_velocity);
-      last_velocity = v;
-      last_time = model.time();
-      through = norm(travelled) >= term->travel;
-    }
-    max_kinetic = std::max(max_kinetic, e.kinetic);
-    const double err = energy_balance_error(e, sum.initial, max_kinetic);
-    sum.max_energy_error = std::max(sum.max_energy_error, std::abs(err));
-    if (history) history->write(history_row(model, e, dt, err));
-    if (events) events->write(model.take_events());
-    // Three rows in a row: a start-up transient (a velocity imposed on nodes at rest, before the
-    // work it does has accumulated) can pass the limit for a row; a growing mode stays.
-    rows_beyond = rs.energy_error_limit > 0.0 && !(std::abs(err) <= rs.energy_error_limit)
-                      ? rows_beyond + 1
-                      : 0;
-    if (rows_beyond >= 3) throw_energy_runaway(model, scene, e, sum.initial, err);
-    return err;
-  };
+// [run] terminate: the body's centre of mass moves with its mean velocity p / m, integrated
+// by the trapezoidal rule over the history rows (history_every steps apart).
+Vec3 TimeLoop::mean_velocity(const Energies& e) const {
+  const BodySums& b = e.bodies.at(static_cast<std::size_t>(scene_.run.terminate->body));
+  return b.mass > 0.0 ? (1.0 / b.mass) * b.momentum : Vec3{};
+}
 
-  double dt = model.stable_time_step();
-  record(dt);
-  probes.sample(model, true);
-  if (frames) model.write_fields(*frames);
-  double next_output = rs.output_every > 0.0 ? rs.output_every : 1e300;
-  double next_progress = options.progress_seconds;
-  double last_error = 0.0;
+double TimeLoop::record(double dt) {
+  const Energies e = model_.energies();
+  if (scene_.run.terminate) {
+    const Vec3 v = mean_velocity(e);
+    travelled_ += (0.5 * (model_.time() - last_time_)) * (v + last_velocity_);
+    last_velocity_ = v;
+    last_time_ = model_.time();
+    through_ = norm(travelled_) >= scene_.run.terminate->travel;
+  }
+  max_kinetic_ = std::max(max_kinetic_, e.kinetic);
+  const double err = energy_balance_error(e, sum_.initial, max_kinetic_);
+  sum_.max_energy_error = std::max(sum_.max_energy_error, std::abs(err));
+  if (history_) history_->write(history_row(model_, e, dt, err));
+  if (events_) events_->write(model_.take_events());
+  // Three rows in a row: a start-up transient (a velocity imposed on nodes at rest, before the
+  // work it does has accumulated) can pass the limit for a row; a growing mode stays.
+  const double limit = scene_.run.energy_error_limit;
+  rows_beyond_ = limit > 0.0 && !(std::abs(err) <= limit) ? rows_beyond_ + 1 : 0;
+  if (rows_beyond_ >= 3) throw_energy_runaway(model_, scene_, e, sum_.initial, err);
+  return err;
+}
+
+bool TimeLoop::finished() const {
+  const RunSettings& rs = scene_.run;
+  return !(model_.time() < rs.end_time * (1.0 - 1e-12)) || through_ ||
+         (rs.max_steps > 0 && model_.step_count() >= rs.max_steps);
+}
+
+void TimeLoop::step(double until) {
+  const RunSettings& rs = scene_.run;
   const double end = rs.end_time;
-
-  while (model.time() < end * (1.0 - 1e-12) && !through &&
-         (rs.max_steps <= 0 || model.step_count() < rs.max_steps)) {
-    const double stable = model.stable_time_step();
-    // The statistics describe the stable step; the last step may be cut to land on end.
-    sum.min_dt = std::min(sum.min_dt, stable);
-    sum.max_dt = std::max(sum.max_dt, stable);
-    dt = std::min(stable, end - model.time());
-    try {
-      model.step(dt);
-    } catch (const SimulationError&) {
-      if (events) events->write(model.take_events());  // what led up to it stays on disk
-      throw;
-    }
-    const long k = model.step_count();
-    if (k % rs.history_every == 0) last_error = record(dt);
-    probes.sample(model, k % rs.history_every == 0);
-    if (frames && model.time() >= next_output * (1.0 - 1e-9) && model.time() < end * (1.0 - 1e-12)) {
-      model.write_fields(*frames);
-      next_output += rs.output_every;
-    }
-    if (options.progress && elapsed() >= next_progress) {
-      const Energies e = model.energies();
-      options.progress({k, model.time(), dt, end, elapsed(),
-                        energy_balance_error(e, sum.initial, std::max(max_kinetic, e.kinetic))});
-      next_progress = elapsed() + options.progress_seconds;
-    }
+  until = std::min(until, end);
+  const double stable = model_.stable_time_step();
+  // The statistics describe the stable step; the last step may be cut to land on end.
+  sum_.min_dt = std::min(sum_.min_dt, stable);
+  sum_.max_dt = std::max(sum_.max_dt, stable);
+  dt_ = std::min(stable, until - model_.time());
+  try {
+    model_.step(dt_);
+  } catch (const SimulationError&) {
+    if (events_) events_->write(model_.take_events());  // what led up to it stays on disk
+    throw;
   }
-  if (model.step_count() % rs.history_every != 0) last_error = record(dt);
-  probes.sample(model, false, true);
-  sum.probes = probes.take();
-  if (frames) model.write_fields(*frames);  // the final state, always
+  const long k = model_.step_count();
+  if (k % rs.history_every == 0) last_error_ = record(dt_);
+  probes_->sample(model_, k % rs.history_every == 0);
+  if (frames_ && model_.time() >= next_output_ * (1.0 - 1e-9) &&
+      model_.time() < end * (1.0 - 1e-12)) {
+    model_.write_fields(*frames_);
+    next_output_ += rs.output_every;
+  }
+  if (options_.progress && elapsed() >= next_progress_) {
+    const Energies e = model_.energies();
+    options_.progress({k, model_.time(), dt_, end, elapsed(),
+                       energy_balance_error(e, sum_.initial, std::max(max_kinetic_, e.kinetic))});
+    next_progress_ = elapsed() + options_.progress_seconds;
+  }
+}
 
-  if (through) {
+RunSummary TimeLoop::finish() {
+  const RunSettings& rs = scene_.run;
+  if (model_.step_count() % rs.history_every != 0) last_error_ = record(dt_);
+  probes_->sample(model_, false, true);
+  sum_.probes = probes_->take();
+  if (frames_) model_.write_fields(*frames_);  // the final state, always
+
+  if (through_) {
     char buf[160];
     std::snprintf(buf, sizeof buf, "body '%s' travelled %.6g (terminate travel %.6g)",
-                  scene.bodies[static_cast<std::size_t>(term->body)].name.c_str(), norm(travelled),
-                  term->travel);
-    sum.terminated = buf;
+                  scene_.bodies[static_cast<std::size_t>(rs.terminate->body)].name.c_str(),
+                  norm(travelled_), rs.terminate->travel);
+    sum_.terminated = buf;
   }
-  sum.steps = model.step_count();
-  sum.final_particles = model.particle_count();
-  sum.time = model.time();
+  RunSummary& sum = sum_;
+  sum.steps = model_.step_count();
+  sum.final_particles = model_.particle_count();
+  sum.time = model_.time();
   sum.wall_seconds = elapsed();
   sum.point_steps_per_second =
       sum.wall_seconds > 0.0
           ? static_cast<double>(sum.particles + sum.elements) * sum.steps / sum.wall_seconds
           : 0.0;
-  sum.final = model.energies();
-  sum.energy_error = last_error;
-  sum.stages = model.stage_timings();
-  sum.field_frames = frames ? frames->frames() : 0;
-  if (sum.min_dt > sum.max_dt) sum.min_dt = sum.max_dt = dt;
+  sum.final = model_.energies();
+  sum.energy_error = last_error_;
+  sum.stages = model_.stage_timings();
+  sum.field_frames = frames_ ? frames_->frames() : 0;
+  if (sum.min_dt > sum.max_dt) sum.min_dt = sum.max_dt = dt_;
+  const Scene& scene = scene_;
   if (scene.taylor_reference) {
     for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
       const auto* bar = std::get_if<CylinderShape>(&scene.bodies[b].shape);
       if (bar == nullptr || bar->nose.crh > 0.0) continue;
-      sum.taylor = model.measure_taylor(static_cast<int>(b));
+      sum.taylor = model_.measure_taylor(static_cast<int>(b));
       sum.taylor_error = taylor_mean_error(*sum.taylor, *scene.taylor_reference);
       sum.checks.push_back({"taylor mean error (eq 2-42)", sum.taylor_error, 0.0, sum.taylor_error,
                             scene.taylor_reference->tolerance});
@@ -243,9 +250,15 @@ RunSummary run(Model& model, const Scene& scene, const RunOptions& options) {
   if (scene.energy_tolerance > 0.0)
     sum.checks.push_back({"largest |energy-balance error|", sum.max_energy_error, 0.0,
                           sum.max_energy_error, scene.energy_tolerance});
-  if (options.progress)
-    options.progress({sum.steps, sum.time, dt, end, sum.wall_seconds, sum.energy_error});
+  if (options_.progress)
+    options_.progress({sum.steps, sum.time, dt_, rs.end_time, sum.wall_seconds, sum.energy_error});
   return sum;
+}
+
+RunSummary run(Model& model, const Scene& scene, const RunOptions& options) {
+  TimeLoop loop(model, scene, options);
+  while (!loop.finished()) loop.step(scene.run.end_time);
+  return loop.finish();
 }
 
 }  // namespace afemp::core

@@ -4,26 +4,22 @@
 // a model that throws core::SimulationError stops the run, and what was written stays on disk.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
-#include "core/energies.hpp"
+#include "afemp/energies.hpp"
+#include "afemp/run.hpp"
 #include "core/output/field_writer.hpp"
 #include "core/scene.hpp"
 #include "core/taylor_metrics.hpp"
 
 namespace afemp::core {
-
-// Wall seconds and calls of one named stage of a model's step.
-struct StageTiming {
-  std::string name;
-  long count = 0;
-  double seconds = 0.0;
-};
 
 // A record the model wants in the run directory beside the history (eroded elements, ...):
 // a CSV file name, its header and rows appended since the last call.
@@ -75,13 +71,6 @@ class Model {
   virtual std::vector<Vec3> body_points(int body) const = 0;
 };
 
-struct Progress {
-  long step = 0;
-  double time = 0.0, dt = 0.0, end_time = 0.0;
-  double elapsed_seconds = 0.0;
-  double energy_error = 0.0;
-};
-
 struct RunOptions {
   std::string output_directory;  // empty: no output files at all (tests, benchmarks)
   bool write_fields = true;
@@ -90,43 +79,49 @@ struct RunOptions {
   double progress_seconds = 0.5;
 };
 
-// A result compared with a reference the scene states ([reference]).
-struct ReferenceCheck {
-  std::string name;        // "velocity of rod (z)", "taylor mean error", "energy balance"
-  double value = 0.0;      // what the run gave
-  double reference = 0.0;  // what it is compared with
-  double error = 0.0;      // relative error (the Taylor and energy checks: the error itself)
-  double tolerance = 0.0;  // 0: report only
-  bool passed() const { return tolerance <= 0.0 || error <= tolerance; }
-};
+class EventFiles;
+class HistoryWriter;
+class ProbeRecorder;
 
-struct RunSummary {
-  long steps = 0;
-  double time = 0.0;
-  double wall_seconds = 0.0;
-  std::size_t particles = 0, elements = 0;
-  std::size_t final_particles = 0;  // elements converted into particles add to them
-  double point_steps_per_second = 0.0;  // (particles + elements) * steps / wall seconds
-  double min_dt = 0.0, max_dt = 0.0;    // of the stable step (the last step may be shorter)
-  Energies initial, final;
-  double energy_error = 0.0;      // at the end
-  double max_energy_error = 0.0;  // largest magnitude over the history rows
-  std::vector<StageTiming> stages;
-  std::size_t field_frames = 0;
-  // Set when [run] terminate stopped the run before end_time: what ended it.
-  std::string terminated;
-  std::optional<TaylorMeasures> taylor;  // when the scene states a Taylor reference
-  double taylor_error = 0.0;
-  // Every [reference] check, the Taylor one included, in the scene's order.
-  std::vector<ReferenceCheck> checks;
-  // Every probe's history ([[probes]]), in the scene's order, recorded with or without an
-  // output directory.
-  std::vector<ProbeSeries> probes;
-  bool checks_passed() const {
-    for (const ReferenceCheck& c : checks)
-      if (!c.passed()) return false;
-    return true;
-  }
+// The loop of one run, a step at a time (the library's Simulation steps it; run() below drives
+// it to the end): the constructor writes the first history row and frame, step() advances the
+// model and writes what falls due, finish() writes the final row and frame and the summary.
+// Throws core::SimulationError from the model after writing what led up to it.
+class TimeLoop {
+ public:
+  TimeLoop(Model& model, const Scene& scene, const RunOptions& options);
+  ~TimeLoop();
+  TimeLoop(const TimeLoop&) = delete;
+  TimeLoop& operator=(const TimeLoop&) = delete;
+  // Whether the run has reached scene.run.end_time, max_steps or [run] terminate.
+  bool finished() const;
+  // One step at the stable step, cut to land on `until` (at most the end time).
+  void step(double until);
+  // The final history row, probe sample and frame, and the summary with the reference checks.
+  RunSummary finish();
+
+ private:
+  double elapsed() const;
+  Vec3 mean_velocity(const Energies& e) const;
+  // A history row (and the terminate and energy guards); returns the energy-balance error.
+  double record(double dt);
+
+  Model& model_;
+  const Scene& scene_;
+  RunOptions options_;
+  std::chrono::steady_clock::time_point start_;
+  std::unique_ptr<ProbeRecorder> probes_;
+  std::unique_ptr<FieldWriter> frames_;
+  std::unique_ptr<HistoryWriter> history_;
+  std::unique_ptr<EventFiles> events_;
+  RunSummary sum_;
+  double max_kinetic_ = 0.0;
+  Vec3 travelled_, last_velocity_;
+  double last_time_ = 0.0;
+  bool through_ = false;
+  int rows_beyond_ = 0;  // consecutive history rows with the energy balance beyond its limit
+  double dt_ = 0.0;
+  double next_output_ = 0.0, next_progress_ = 0.0, last_error_ = 0.0;
 };
 
 // Runs `model` to scene.run.end_time (or max_steps, or [run] terminate). Throws core::SimulationError from the

@@ -18,7 +18,7 @@
 #include <string>
 
 #include "core/appendf.hpp"
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 #include "core/taylor_metrics.hpp"
 
 namespace afemp::coupling {

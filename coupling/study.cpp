@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "core/crater_metrics.hpp"
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 #include "core/output/svg_plot.hpp"
 #include "core/parallel.hpp"
 #include "core/signal_metrics.hpp"

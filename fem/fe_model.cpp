@@ -198,8 +198,8 @@ std::string FeModel::describe_mesh() const {
                core::to_string(body.hourglass.form), body.hourglass.coefficient);
       else
         out += "  fully integrated hexahedra (2x2x2) with B-bar volumetric integration\n";
-      core::appendf(out, "  bulk viscosity: linear %g, quadratic %g\n", body.bulk_viscosity.linear,
-             body.bulk_viscosity.quadratic);
+      core::appendf(out, "  bulk viscosity: linear %g, quadratic %g\n", core::bulk_viscosity_of(scene_, body).linear,
+             core::bulk_viscosity_of(scene_, body).quadratic);
     }
     if (body.erosion) {
       const core::ErosionSettings& e = *body.erosion;

@@ -9,7 +9,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 #include "core/materials/uniaxial_update.hpp"
 #include "core/parallel.hpp"
 #include "fem/fe_solver.hpp"
@@ -91,6 +91,22 @@ MeshData extract(const MeshData& in, bool hexahedra, const std::vector<std::stri
   return out;
 }
 
+// A program's mesh (core::MeshArrays) as the importers' MeshData: one part named after the
+// body, its node sets, checked like a file's mesh.
+MeshData mesh_from_arrays(const core::MeshArrays& a, const BodySpec& b) {
+  MeshData m;
+  m.nodes = a.nodes;
+  m.hexahedra.assign(a.hexahedra.begin(), a.hexahedra.end());
+  m.lines.assign(a.trusses.begin(), a.trusses.end());
+  m.part_names.push_back(b.name);
+  m.hexahedron_part.assign(m.hexahedra.size(), 0);
+  m.line_part.assign(m.lines.size(), 0);
+  m.line_area = a.truss_areas.empty() ? std::vector<double>(m.lines.size(), 0.0) : a.truss_areas;
+  for (const core::MeshArrays::NodeSet& set : a.node_sets) m.node_sets.push_back({set.name, set.nodes});
+  validate(m, "bodies." + b.name + ".shape.mesh (arrays)");
+  return m;
+}
+
 // The mesh of one body, from its shape and density.
 MeshData body_mesh(const BodySpec& b) {
   const std::string key = "bodies." + b.name + ".mesh";
@@ -124,13 +140,15 @@ MeshData body_mesh(const BodySpec& b) {
     throw InputError(b.where, key, e.what());
   }
   const auto& file = std::get<core::MeshFileShape>(b.shape);
-  MeshData m = extract(read_mesh(file.path), b.discretisation == Discretisation::hexahedra,
-                       file.parts, b);
+  MeshData m = extract(file.path.empty() ? mesh_from_arrays(file.arrays, b) : read_mesh(file.path),
+                       b.discretisation == Discretisation::hexahedra, file.parts, b);
   for (core::Vec3& x : m.nodes) x = file.scale * x + file.translate;
   const bool hexes = b.discretisation == Discretisation::hexahedra;
   if ((hexes && m.hexahedra.empty()) || (!hexes && m.lines.empty()))
     throw InputError(b.where, "bodies." + b.name + ".shape.mesh",
-                     "the file " + file.path + " has no " + (hexes ? "hexahedra" : "lines (trusses)") +
+                     (file.path.empty() ? std::string("the arrays have no ")
+                                        : "the file " + file.path + " has no ") +
+                         (hexes ? "hexahedra" : "lines (trusses)") +
                          (file.parts.empty() ? std::string() : " in the selected parts"));
   for (double& a : m.line_area) {
     if (a <= 0.0) a = b.area;

@@ -13,7 +13,7 @@
 #include <variant>
 #include <vector>
 
-#include "core/energies.hpp"
+#include "afemp/energies.hpp"
 #include "core/materials/material.hpp"
 #include "core/scene.hpp"
 #include "fem/hexahedron.hpp"
@@ -33,6 +33,9 @@ struct FeNodes {
   // 1: the node moves with the background grid (bonded to particles, coupling/): the nodal
   // update and the position update leave it to the caller.
   std::vector<std::uint8_t> grid_driven;
+  // Loads a program applies (afemp::Simulation::nodes), held until it changes them: empty, or
+  // one force per node, acting on the nodes the FE update moves (not grid-driven ones).
+  std::vector<Vec3> external_force;
   std::size_t size() const { return position.size(); }
 };
 

@@ -5,7 +5,7 @@
 
 #include <array>
 
-#include "core/tensor.hpp"
+#include "afemp/tensor.hpp"
 #include "fem/mesh.hpp"
 
 namespace afemp::fem {

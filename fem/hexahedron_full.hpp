@@ -6,7 +6,7 @@
 
 #include <array>
 
-#include "core/tensor.hpp"
+#include "afemp/tensor.hpp"
 #include "fem/hexahedron.hpp"
 
 namespace afemp::fem {

@@ -47,7 +47,8 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
   const core::BodySpec& body = scene_.bodies[static_cast<std::size_t>(b.body)];
   const core::Material& mat = scene_.materials[static_cast<std::size_t>(b.material)];
   const bool full = b.points_per_element == 8;
-  const double c_lin = body.bulk_viscosity.linear, c_quad = body.bulk_viscosity.quadratic;
+  const core::BulkViscositySettings q = core::bulk_viscosity_of(scene_, body);
+  const double c_lin = q.linear, c_quad = q.quadratic;
   const core::HourglassForm hg_form = body.hourglass.form;
   // Assumed strain: the elastic constants, the scene's coefficient scaling the stiffness.
   const double hg_shear = body.hourglass.coefficient * mat.shear_modulus();

@@ -6,7 +6,7 @@
 #include <array>
 #include <cmath>
 
-#include "core/tensor.hpp"
+#include "afemp/tensor.hpp"
 #include "fem/hexahedron.hpp"
 #include "fem/hexahedron_lanes.hpp"
 #include "fem/hexahedron_one_point.hpp"

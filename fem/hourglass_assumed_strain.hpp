@@ -73,7 +73,7 @@
 
 #include <array>
 
-#include "core/tensor.hpp"
+#include "afemp/tensor.hpp"
 #include "fem/hexahedron.hpp"
 #include "fem/hexahedron_one_point.hpp"
 #include "fem/hourglass.hpp"

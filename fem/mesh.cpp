@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 
 namespace afemp::fem {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/tensor.hpp"
+#include "afemp/tensor.hpp"
 
 namespace afemp::fem {
 

@@ -6,7 +6,7 @@
 #include <array>
 
 #include "core/scene.hpp"
-#include "core/tensor.hpp"
+#include "afemp/tensor.hpp"
 #include "fem/mesh.hpp"
 
 namespace afemp::fem {

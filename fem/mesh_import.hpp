@@ -10,7 +10,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 #include "fem/mesh.hpp"
 
 namespace afemp::fem {

@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "core/probes.hpp"
+#include "afemp/probes.hpp"
 #include "core/scene.hpp"
 #include "fem/fe_solver.hpp"
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "core/tensor.hpp"
+#include "afemp/tensor.hpp"
 #include "fem/mesh.hpp"
 
 namespace afemp::fem {

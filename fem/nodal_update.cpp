@@ -1,5 +1,5 @@
 // The nodal half of the central-difference step (Belytschko, Liu & Moran box 6.1):
-// f = sum of element forces (gathered through the incidence lists) + m g,
+// f = sum of element forces (gathered through the incidence lists) + m g + program loads,
 // v^{n+1/2} = v^{n-1/2} + dt^n f / m with dt^n = (dt^{n-1/2} + dt^{n+1/2}) / 2 (half a step
 // on the first), imposed components set, rigid walls, x^{n+1} = x^n + dt v^{n+1/2}.
 // Also the step itself, the stable step and the energies.
@@ -9,7 +9,7 @@
 #include <limits>
 #include <sstream>
 
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 #include "core/parallel.hpp"
 #include "fem/fe_solver.hpp"
 
@@ -20,6 +20,7 @@ void FeSolver::update_nodes(double dt) {
   const Vec3 g = scene_.run.gravity;
   const bool gravity = g.x != 0.0 || g.y != 0.0 || g.z != 0.0;
   const std::size_t n = nodes_.size();
+  const bool loads = !nodes_.external_force.empty();
   std::fill(thread_sums_.begin(), thread_sums_.end(), 0.0);
   for (auto& e : thread_errors_) e.clear();
   core::parallel_chunks(n, [&](std::size_t begin, std::size_t end, int t) {
@@ -34,6 +35,7 @@ void FeSolver::update_nodes(double dt) {
       if (gravity) {
         v += dt_force * g;
       }
+      if (loads) v += (dt_force / m) * nodes_.external_force[i];
       if (const std::uint8_t imposed = nodes_.imposed[i]) {
         for (int a = 0; a < 3; ++a)
           if (imposed & (1u << a)) {
@@ -44,6 +46,7 @@ void FeSolver::update_nodes(double dt) {
           }
       }
       if (gravity) work += m * core::dot(g, v) * dt;
+      if (loads) work += core::dot(nodes_.external_force[i], v) * dt;
       if (!std::isfinite(v.x + v.y + v.z) && thread_errors_[static_cast<std::size_t>(t)].empty()) {
         thread_errors_[static_cast<std::size_t>(t)] = "node " + std::to_string(i);
         thread_error_field_[static_cast<std::size_t>(t)] = "velocity";

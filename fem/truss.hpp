@@ -3,7 +3,7 @@
 // rotation), the stress comes from core::uniaxial_update, and N = sigma A acts along the axis.
 #pragma once
 
-#include "core/tensor.hpp"
+#include "afemp/tensor.hpp"
 
 namespace afemp::fem {
 

@@ -102,9 +102,10 @@ std::string MpmModel::describe() const {
            body.name.c_str(), shape_name(body.shape),
            scene.materials[static_cast<std::size_t>(body.material)].name.c_str(), count,
            body.particles_per_cell, mass);
-    if (body.bulk_viscosity.linear > 0.0 || body.bulk_viscosity.quadratic > 0.0)
+    if (const core::BulkViscositySettings q = core::bulk_viscosity_of(scene_, body);
+        q.linear > 0.0 || q.quadratic > 0.0)
       core::appendf(out, "  bulk viscosity: linear %g, quadratic %g (length: the cell)\n",
-                    body.bulk_viscosity.linear, body.bulk_viscosity.quadratic);
+                    q.linear, q.quadratic);
     else
       out += "  bulk viscosity: off\n";
   }

@@ -8,7 +8,7 @@
 #include <numeric>
 #include <sstream>
 
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 #include "core/parallel.hpp"
 
 namespace afemp::mpm {
@@ -56,10 +56,10 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
   if (plan_.transfer == core::Transfer::apic && particles_.affine.size() != particles_.size())
     particles_.affine.assign(particles_.size(), core::Mat3{});
   for (const core::BodySpec& b : scene.bodies) {
-    bulk_viscosity_.push_back(b.bulk_viscosity);
+    bulk_viscosity_.push_back(core::bulk_viscosity_of(scene, b));
     // Only particle bodies and hexahedra (whose elements may become particles) have it.
     if (b.discretisation != core::Discretisation::trusses &&
-        (b.bulk_viscosity.linear > 0.0 || b.bulk_viscosity.quadratic > 0.0))
+        (bulk_viscosity_.back().linear > 0.0 || bulk_viscosity_.back().quadratic > 0.0))
       viscous_ = true;
   }
   stage_counts_.assign(plan_.stages.size(), 0);

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/energies.hpp"
+#include "afemp/energies.hpp"
 #include "core/grid/background_grid.hpp"
 #include "core/scene.hpp"
 #include "mpm/node_points.hpp"

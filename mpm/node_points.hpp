@@ -14,7 +14,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/tensor.hpp"
+#include "afemp/tensor.hpp"
 
 namespace afemp::mpm {
 

@@ -16,7 +16,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/stencil.hpp"
 

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 #include "core/parallel.hpp"
 #include "mpm/mpm_solver.hpp"
 

@@ -189,9 +189,33 @@ bool parse_numbers(const std::string& line, std::vector<double>& values) {
   }
 }
 
+// Particles at a program's points (PointListShape arrays), checked as a file's lines are.
+void generate_point_arrays(const PointListShape& shape, const GridSettings& grid,
+                           const BodySpec& body, int body_id, const Material& material,
+                           Particles& out) {
+  const double d = grid.cell / body.particles_per_cell;
+  const double temperature = initial_temperature(body, material);
+  const core::SourceLocation where = body.where;
+  const std::string key = "bodies." + body.name + ".shape.points";
+  for (std::size_t i = 0; i < shape.points.size(); ++i) {
+    const Vec3& x = shape.points[i];
+    const double volume = shape.volumes.empty() ? d * d * d : shape.volumes[i];
+    if (!std::isfinite(x.x + x.y + x.z + volume) || !(volume > 0.0))
+      throw InputError(where, key, "point " + std::to_string(i) + ": non-finite number or volume <= 0");
+    for (int a = 0; a < 3; ++a)
+      if (x[a] < grid.min[a] || x[a] > grid.max[a])
+        throw InputError(where, key, "point " + std::to_string(i) + " " + fmt(x) +
+                                         " lies outside the grid " + fmt(grid.min) + " - " +
+                                         fmt(grid.max));
+    out.push_back(x, body.velocity, material.density * volume, volume, temperature, body_id,
+                  body.material);
+  }
+}
+
 void generate_point_list(const PointListShape& shape, const GridSettings& grid,
                          const BodySpec& body, int body_id, const Material& material,
                          Particles& out) {
+  if (shape.path.empty()) return generate_point_arrays(shape, grid, body, body_id, material, out);
   std::ifstream in(shape.path);
   if (!in)
     throw InputError(body.where, "bodies." + body.name + ".shape.points.file",

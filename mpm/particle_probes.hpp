@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "core/probes.hpp"
+#include "afemp/probes.hpp"
 #include "core/scene.hpp"
 #include "mpm/particles.hpp"
 

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <string>
 
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 #include "core/scene.hpp"
 
 namespace afemp::test {

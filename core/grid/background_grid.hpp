@@ -12,7 +12,7 @@
 
 #include "core/grid/gimp.hpp"
 #include "core/scene.hpp"
-#include "core/tensor.hpp"
+#include "afemp/tensor.hpp"
 
 namespace afemp::core {
 

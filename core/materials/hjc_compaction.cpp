@@ -18,7 +18,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/materials/equations_of_state.hpp"
+#include "afemp/equations_of_state.hpp"
 
 namespace afemp::core {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/materials/strength_models.hpp"
+#include "afemp/strength_models.hpp"
 
 namespace afemp::core {
 

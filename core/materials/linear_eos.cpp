@@ -1,6 +1,6 @@
 // Linear equation of state p = K mu, mu = rho / rho0 - 1: the bulk half of small-strain
 // elasticity written in terms of density, with no energy dependence (b = 0).
-#include "core/materials/equations_of_state.hpp"
+#include "afemp/equations_of_state.hpp"
 
 namespace afemp::core {
 

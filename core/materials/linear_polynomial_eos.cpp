@@ -1,7 +1,7 @@
 // Linear polynomial EOS (LS-DYNA *EOS_LINEAR_POLYNOMIAL, Keyword Manual vol. I):
 // p = C0 + C1 mu + C2 mu^2 + C3 mu^3 + (C4 + C5 mu + C6 mu^2) E, E = rho0 e the energy per
 // unit reference volume; C2 and C6 are set to zero in tension (mu < 0) as LS-DYNA does.
-#include "core/materials/equations_of_state.hpp"
+#include "afemp/equations_of_state.hpp"
 
 namespace afemp::core {
 

@@ -10,15 +10,10 @@
 #include <utility>
 #include <variant>
 
-#include "core/materials/equations_of_state.hpp"
-#include "core/materials/strength_models.hpp"
-#include "core/tensor.hpp"
+#include "afemp/material.hpp"
+#include "afemp/tensor.hpp"
 
 namespace afemp::core {
-
-using StrengthModel = std::variant<Elastic, J2Plasticity, JohnsonCook, HolmquistJohnsonCook>;
-using EquationOfState =
-    std::variant<NoEos, LinearEos, MieGruneisen, LinearPolynomialEos, HjcCompaction>;
 
 // The strength and EOS pairs that form a material: the Holmquist-Johnson-Cook strength goes
 // with its compaction law and nothing else does (Material::validate checks it).
@@ -30,37 +25,6 @@ inline constexpr bool composable =
 // solvers leave that history in memory for the others.
 template <class Strength>
 inline constexpr bool has_damage_state = std::is_same_v<Strength, HolmquistJohnsonCook>;
-
-struct ThermalProperties {
-  double specific_heat = 0.0;     // c_p per unit mass; 0 = no adiabatic heating
-  double taylor_quinney = 0.9;    // fraction of plastic work turned into heat
-  double initial_temperature = 293.0;
-};
-
-struct Material {
-  std::string name;
-  double density = 0.0;        // reference density rho0
-  double youngs_modulus = 0.0;  // E
-  double poisson_ratio = 0.0;   // nu
-  StrengthModel strength = Elastic{};
-  EquationOfState eos = NoEos{};
-  ThermalProperties thermal;
-  double failure_strain = 0.0;  // equivalent plastic strain at failure; 0: none (erosion uses it)
-
-  double shear_modulus() const { return youngs_modulus / (2.0 * (1.0 + poisson_ratio)); }
-  double bulk_modulus() const { return youngs_modulus / (3.0 * (1.0 - 2.0 * poisson_ratio)); }
-  // Sets E and nu from the shear modulus G and the bulk modulus K (for models given G).
-  void set_shear_and_bulk_modulus(double g, double k) {
-    youngs_modulus = 9.0 * k * g / (3.0 * k + g);
-    poisson_ratio = (3.0 * k - 2.0 * g) / (2.0 * (3.0 * k + g));
-  }
-  bool has_eos() const { return !std::holds_alternative<NoEos>(eos); }
-  // True when temperature must be integrated: a strength model that softens with
-  // temperature and a specific heat to turn plastic work into heat.
-  bool has_thermal_term() const;
-  // Throws std::invalid_argument naming the parameter when a value is out of range.
-  void validate() const;
-};
 
 // State of one material point through a constitutive update.
 struct PointState {

@@ -11,7 +11,7 @@
 // mu = 2 / gamma0 and the cold pressure of copper fall with compression beyond mu = 0.67: a
 // km/s impact then collapses.) This is LS-DYNA's *EOS_GRUNEISEN numerator
 // rho0 c0^2 mu (1 + (1 - gamma0 / 2) mu) over (1 + mu), with the cubic Hugoniot.
-#include "core/materials/equations_of_state.hpp"
+#include "afemp/equations_of_state.hpp"
 
 namespace afemp::core {
 

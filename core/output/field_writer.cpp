@@ -396,7 +396,9 @@ void FieldWriter::write_frame(double time, long step, std::span<const PointBlock
       const int npc = nodes_per_cell(b.kind);
       const Handle block = open_block(b.name, npc, b.n_nodes, b.node_positions);
       if (holder[m] != frame) {
-        const std::string target = "/" + frame_name(holder[m]) + "/" + b.name + "/connectivity";
+        // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "/" + std::string&&.
+        std::string target = "/";
+        target.append(frame_name(holder[m])).append("/").append(b.name).append("/connectivity");
         check(H5Lcreate_soft(target.c_str(), block.get(), "connectivity", H5P_DEFAULT, H5P_DEFAULT),
               block_where, "cannot link connectivity to " + target);
       } else {

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "core/materials/equations_of_state.hpp"
+#include "afemp/equations_of_state.hpp"
 
 namespace afemp::core {
 namespace {

@@ -18,7 +18,7 @@
 
 #include "scratch_dir.hpp"
 #include "core/output/field_writer.hpp"
-#include "core/tensor.hpp"
+#include "afemp/tensor.hpp"
 
 namespace afemp::core {
 namespace {

@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 #include "core/materials/material.hpp"
 #include "core/scene.hpp"
 #include "scene_errors.hpp"

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/tensor.hpp"
+#include "afemp/tensor.hpp"
 
 namespace afemp::core {
 namespace {

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/ogive_nose.hpp"
+#include "afemp/ogive_nose.hpp"
 
 namespace afemp::core {
 namespace {

@@ -10,7 +10,7 @@
 #include <string>
 #include <variant>
 
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 #include "core/scene.hpp"
 #include "scene_errors.hpp"
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <random>
 
-#include "core/tensor.hpp"
+#include "afemp/tensor.hpp"
 #include "fem/hexahedron.hpp"
 
 namespace afemp::fem::test {

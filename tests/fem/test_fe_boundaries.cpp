@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "core/energies.hpp"
-#include "core/error.hpp"
+#include "afemp/energies.hpp"
+#include "afemp/errors.hpp"
 #include "core/scene.hpp"
 #include "fem/fe_solver.hpp"
 

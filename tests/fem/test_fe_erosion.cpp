@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 #include "core/output/history.hpp"
 #include "core/scene.hpp"
 #include "fem/fe_model.hpp"

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "core/energies.hpp"
+#include "afemp/energies.hpp"
 #include "core/scene.hpp"
 #include "fem/fe_solver.hpp"
 

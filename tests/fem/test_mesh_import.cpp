@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 #include "fem/mesh_import.hpp"
 #include "scene_errors.hpp"
 #include "scratch_dir.hpp"

@@ -8,7 +8,7 @@
 #include <regex>
 #include <string>
 
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 #include "core/output/history.hpp"
 #include "core/scene.hpp"
 #include "mpm/mpm_model.hpp"

@@ -9,7 +9,7 @@
 #include <numbers>
 #include <string>
 
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 #include "core/scene.hpp"
 #include "mpm/particle_generation.hpp"
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 
 #include "core/scene.hpp"
 #include "mpm/mpm_solver.hpp"

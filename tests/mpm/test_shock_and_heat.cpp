@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 #include "copper_shock_material.hpp"
 #include "core/scene.hpp"
 #include "mpm/mpm_solver.hpp"

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "core/error.hpp"
+#include "afemp/errors.hpp"
 #include "core/scene.hpp"
 #include "core/time_loop.hpp"
 #include "mpm/mpm_model.hpp"

@@ -28,12 +28,12 @@ constexpr Vec3 cross(const Vec3& a, const Vec3& b) {
 }
 inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
 
-// Full 3x3 matrix, row-major: m[i][j].
+/// Full 3x3 matrix, row-major: m[i][j].
 struct Mat3 {
   double m[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
 };
 
-// a += u (x) v, i.e. a_ij += u_i v_j (a velocity gradient sum_I v_I (x) grad N_I).
+/// a += u (x) v, i.e. a_ij += u_i v_j (a velocity gradient sum_I v_I (x) grad N_I).
 constexpr void add_outer(Mat3& a, const Vec3& u, const Vec3& v) {
   for (int r = 0; r < 3; ++r) {
     a.m[r][0] += u[r] * v.x;
@@ -77,31 +77,31 @@ constexpr SymTensor operator-(SymTensor a, const SymTensor& b) { return a -= b; 
 constexpr SymTensor operator*(double s, SymTensor a) { return a *= s; }
 constexpr SymTensor operator*(SymTensor a, double s) { return a *= s; }
 
-// a : b
+/// a : b
 constexpr double double_dot(const SymTensor& a, const SymTensor& b) {
   return a.xx * b.xx + a.yy * b.yy + a.zz * b.zz + 2.0 * (a.yz * b.yz + a.xz * b.xz + a.xy * b.xy);
 }
 
-// sqrt(3/2 s:s) for the deviator s of a.
+/// sqrt(3/2 s:s) for the deviator s of a.
 inline double von_mises(const SymTensor& a) {
   const SymTensor s = a.deviator();
   return std::sqrt(1.5 * double_dot(s, s));
 }
 
-// Pressure, positive in compression.
+/// Pressure, positive in compression.
 constexpr double pressure(const SymTensor& a) { return -a.mean(); }
 
-// Symmetric part of (L + L^T)/2 and skew part (L - L^T)/2 of a velocity gradient.
+/// Symmetric part of (L + L^T)/2 and skew part (L - L^T)/2 of a velocity gradient.
 constexpr SymTensor sym_part(const Mat3& l) {
   return {l.m[0][0], l.m[1][1], l.m[2][2], 0.5 * (l.m[1][2] + l.m[2][1]),
           0.5 * (l.m[0][2] + l.m[2][0]), 0.5 * (l.m[0][1] + l.m[1][0])};
 }
 
-// Jaumann rotation increment  W.s - s.W  (seed 001 eqs 2-17, 2-41) for the spin increment
-// W = (L - L^T) dt / 2 with L_ij = dv_i/dx_j; w23, w13, w12 are its components W_23, W_13, W_12.
+/// Jaumann rotation increment  W.s - s.W  (seed 001 eqs 2-17, 2-41) for the spin increment
+/// W = (L - L^T) dt / 2 with L_ij = dv_i/dx_j; w23, w13, w12 are its components W_23, W_13, W_12.
 constexpr SymTensor jaumann_increment(const SymTensor& s, double w23, double w13, double w12) {
-  // W = [[0, w12, w13], [-w12, 0, w23], [-w13, -w23, 0]]
-  // (W s - s W) is symmetric; its components:
+  /// W = [[0, w12, w13], [-w12, 0, w23], [-w13, -w23, 0]]
+  /// (W s - s W) is symmetric; its components:
   SymTensor r;
   r.xx = 2.0 * (w12 * s.xy + w13 * s.xz);
   r.yy = 2.0 * (-w12 * s.xy + w23 * s.yz);
@@ -112,4 +112,11 @@ constexpr SymTensor jaumann_increment(const SymTensor& s, double w23, double w13
   return r;
 }
 
-}  // namespace afemp::core
+}  ///< namespace afemp::core
+
+// The public names, in namespace afemp.
+namespace afemp {
+using core::Vec3;
+using core::Mat3;
+using core::SymTensor;
+}  ///< namespace afemp

@@ -7,13 +7,13 @@
 
 namespace afemp::core {
 
-// Where a value came from in an input file (line 0: unknown / whole file).
+/// Where a value came from in an input file (line 0: unknown / whole file).
 struct SourceLocation {
   std::string file;
   int line = 0;
 };
 
-// A problem with a scene or data file. what() reads "FILE:LINE: key 'KEY': MESSAGE".
+/// A problem with a scene or data file. what() reads "FILE:LINE: key 'KEY': MESSAGE".
 class InputError : public std::runtime_error {
  public:
   InputError(const SourceLocation& where, const std::string& key, const std::string& message);
@@ -25,8 +25,8 @@ class InputError : public std::runtime_error {
   std::string key_;
 };
 
-// A simulation that went bad (NaN/Inf, particle left the grid). what() names the step,
-// the entity (particle id, node) and the field.
+/// A simulation that went bad (NaN/Inf, particle left the grid). what() names the step,
+/// the entity (particle id, node) and the field.
 class SimulationError : public std::runtime_error {
  public:
   SimulationError(long step, double time, const std::string& entity, const std::string& field,
@@ -37,4 +37,11 @@ class SimulationError : public std::runtime_error {
   long step_;
 };
 
-}  // namespace afemp::core
+}  ///< namespace afemp::core
+
+// The public names, in namespace afemp.
+namespace afemp {
+using core::SourceLocation;
+using core::InputError;
+using core::SimulationError;
+}  ///< namespace afemp

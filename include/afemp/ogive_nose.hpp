@@ -12,15 +12,20 @@
 namespace afemp::core {
 
 struct OgiveNose {
-  double crh = 0.0;     // caliber-radius-head psi >= 0.5; 0: no nose (a flat end)
-  double meplat = 0.0;  // diameter of the flat tip, 0 <= meplat < 2R
+  double crh = 0.0;     ///< caliber-radius-head psi >= 0.5; 0: no nose (a flat end)
+  double meplat = 0.0;  ///< diameter of the flat tip, 0 <= meplat < 2R
 };
 
-// Length of the nose (t_a above) on a shank of radius `radius`.
+/// Length of the nose (t_a above) on a shank of radius `radius`.
 double ogive_nose_length(const OgiveNose& nose, double radius);
-// r(t) for 0 <= t <= nose length: radius at distance t from the start of the nose.
+/// r(t) for 0 <= t <= nose length: radius at distance t from the start of the nose.
 double ogive_radius(const OgiveNose& nose, double radius, double t);
-// pi times the integral of r(t)^2 over the nose.
+/// pi times the integral of r(t)^2 over the nose.
 double ogive_nose_volume(const OgiveNose& nose, double radius);
 
-}  // namespace afemp::core
+}  ///< namespace afemp::core
+
+// The public names, in namespace afemp.
+namespace afemp {
+using core::OgiveNose;
+}  ///< namespace afemp

@@ -1,0 +1,147 @@
+// afemp::Simulation (include/afemp/simulation.hpp): the scene checked, the model the scene
+// describes (coupling::make_model, as `afemp run` makes it), and the run loop of
+// core/time_loop.cpp advanced a step at a time, with views of the solvers' arrays between steps.
+#include "afemp/simulation.hpp"
+
+#include <utility>
+
+#include "core/scene.hpp"
+#include "core/time_loop.hpp"
+#include "coupling/coupled_model.hpp"
+#include "coupling/make_model.hpp"
+#include "fem/fe_model.hpp"
+#include "mpm/mpm_model.hpp"
+
+namespace afemp {
+
+Scene read_scene(const std::string& path) { return core::read_scene(path); }
+
+void check_scene(const Scene& scene) { core::check_scene(scene); }
+
+struct Simulation::Impl {
+  Impl(Scene s, SimulationOptions o) : scene(std::move(s)), options(std::move(o)) {
+    core::check_scene(scene);
+    model = coupling::make_model(scene);
+    if (auto* m = dynamic_cast<mpm::MpmModel*>(model.get())) mpm = &m->solver();
+    if (auto* f = dynamic_cast<fem::FeModel*>(model.get())) fe = &f->solver();
+    if (auto* c = dynamic_cast<coupling::CoupledModel*>(model.get())) {
+      mpm = &c->mpm();
+      fe = &c->fe();
+    }
+    core::RunOptions run;
+    run.output_directory = options.output_directory;
+    run.write_fields = options.write_fields;
+    run.progress = options.progress;
+    run.progress_seconds = options.progress_seconds;
+    loop = std::make_unique<core::TimeLoop>(*model, scene, run);
+  }
+
+  // One step towards `until`, then the callbacks.
+  void step(Simulation& self, double until) {
+    if (finished_run)
+      throw std::logic_error("afemp::Simulation: finish() was called; the run takes no more steps");
+    loop->step(until);
+    for (const StepCallback& f : callbacks) f(self);
+  }
+
+  ElementFields elements(const fem::FeElements& const_e) {
+    auto& e = const_cast<fem::FeElements&>(const_e);  // the solver owns them; views for the caller
+    ElementFields out;
+    out.nodes = e.nodes;
+    out.alive = e.alive;
+    std::vector<std::int32_t>& body = &const_e == &fe->hexahedra() ? hex_body : truss_body;
+    body.assign(e.size(), 0);
+    out.first_point.assign(e.size(), 0);
+    out.points_per_element.assign(e.size(), 1);
+    for (const fem::ElementBatch& b : e.batches)
+      for (std::size_t k = b.begin; k < b.end; ++k) {
+        body[k] = b.body;
+        out.points_per_element[k] = b.points_per_element;
+        out.first_point[k] = b.point_begin + (k - b.begin) * static_cast<std::size_t>(b.points_per_element);
+      }
+    out.body = body;
+    out.stress = e.stress;
+    out.plastic_strain = e.plastic_strain;
+    out.temperature = e.temperature;
+    out.energy = e.energy;
+    out.damage = e.damage;
+    return out;
+  }
+
+  Scene scene;  // the models keep a reference: it lives as long as they do
+  SimulationOptions options;
+  std::unique_ptr<core::Model> model;
+  mpm::MpmSolver* mpm = nullptr;
+  fem::FeSolver* fe = nullptr;
+  std::unique_ptr<core::TimeLoop> loop;
+  std::vector<StepCallback> callbacks;
+  std::vector<std::int32_t> hex_body, truss_body;
+  bool finished_run = false;
+};
+
+Simulation::Simulation(Scene scene, SimulationOptions options)
+    : impl_(std::make_unique<Impl>(std::move(scene), std::move(options))) {}
+
+Simulation::~Simulation() = default;
+
+const Scene& Simulation::scene() const { return impl_->scene; }
+std::string Simulation::describe() const { return impl_->model->describe(); }
+double Simulation::stable_time_step() const { return impl_->model->stable_time_step(); }
+double Simulation::time() const { return impl_->model->time(); }
+long Simulation::step_count() const { return impl_->model->step_count(); }
+bool Simulation::finished() const { return impl_->finished_run || impl_->loop->finished(); }
+Energies Simulation::energies() const { return impl_->model->energies(); }
+
+void Simulation::step() {
+  if (!finished()) impl_->step(*this, impl_->scene.run.end_time);
+}
+
+void Simulation::run_to(double t) {
+  while (!finished() && time() < t * (1.0 - 1e-12)) impl_->step(*this, t);
+}
+
+RunSummary Simulation::run() {
+  while (!finished()) impl_->step(*this, impl_->scene.run.end_time);
+  return finish();
+}
+
+RunSummary Simulation::finish() {
+  if (impl_->finished_run)
+    throw std::logic_error("afemp::Simulation: finish() was called already");
+  impl_->finished_run = true;
+  return impl_->loop->finish();
+}
+
+void Simulation::on_step(StepCallback callback) { impl_->callbacks.push_back(std::move(callback)); }
+
+ParticleFields Simulation::particles() {
+  if (impl_->mpm == nullptr) return {};
+  mpm::Particles& p = impl_->mpm->mutable_particles();
+  return {p.position, p.velocity,       p.mass,   p.volume, p.stress, p.plastic_strain,
+          p.temperature, p.energy, p.damage, p.body,   p.id};
+}
+
+NodeFields Simulation::nodes() {
+  if (impl_->fe == nullptr) return {};
+  fem::FeNodes& n = impl_->fe->mutable_nodes();
+  if (n.external_force.size() != n.size()) n.external_force.assign(n.size(), Vec3{});
+  return {n.position, n.velocity, n.mass, n.body, n.external_force};
+}
+
+ElementFields Simulation::hexahedra() {
+  return impl_->fe ? impl_->elements(impl_->fe->hexahedra()) : ElementFields{};
+}
+
+ElementFields Simulation::trusses() {
+  return impl_->fe ? impl_->elements(impl_->fe->trusses()) : ElementFields{};
+}
+
+std::vector<Vec3> Simulation::node_forces() const {
+  std::vector<Vec3> f;
+  if (impl_->fe == nullptr) return f;
+  f.resize(impl_->fe->nodes().size());
+  for (std::size_t i = 0; i < f.size(); ++i) f[i] = impl_->fe->node_force(i);
+  return f;
+}
+
+}  // namespace afemp

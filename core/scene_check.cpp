@@ -1,0 +1,291 @@
+// Checks of a scene built in code (afemp::Simulation): the same ranges and rules the scene-file
+// parser (scene_parser.cpp) applies as it reads, on the plain data, with messages that name the
+// object and the field by the scene file's dotted key and say what is allowed.
+#include <cmath>
+#include <set>
+#include <string>
+
+#include "core/scene.hpp"
+
+namespace afemp::core {
+
+namespace {
+
+class Checker {
+ public:
+  explicit Checker(const Scene& scene) : scene_(scene) {}
+
+  [[noreturn]] void fail(const SourceLocation& where, const std::string& key,
+                         const std::string& message) const {
+    SourceLocation at = where;
+    if (at.file.empty()) at.file = scene_.path.empty() ? "scene built in code" : scene_.path;
+    throw InputError(at, key, message);
+  }
+  void range(const SourceLocation& where, const std::string& key, double v, double lo, double hi,
+             bool lo_open, bool hi_open) const {
+    const bool ok = !std::isnan(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+    if (ok) return;
+    std::string allowed;
+    if (std::isinf(hi)) allowed = std::string("value ") + (lo_open ? "> " : ">= ") + number(lo);
+    else allowed = number(lo) + (lo_open ? " < " : " <= ") + "value" + (hi_open ? " < " : " <= ") + number(hi);
+    fail(where, key, "out of range: " + number(v) + "; allowed: " + allowed);
+  }
+  void positive(const SourceLocation& w, const std::string& key, double v) const {
+    range(w, key, v, 0.0, INFINITY, true, false);
+  }
+  void non_negative(const SourceLocation& w, const std::string& key, double v) const {
+    range(w, key, v, 0.0, INFINITY, false, false);
+  }
+  void finite(const SourceLocation& w, const std::string& key, const Vec3& v) const {
+    if (!std::isfinite(v.x + v.y + v.z)) fail(w, key, "every component must be a finite number");
+  }
+  int body(const SourceLocation& w, const std::string& key, int index, bool mesh_only) const {
+    if (index < 0 || static_cast<std::size_t>(index) >= scene_.bodies.size())
+      fail(w, key, "body index " + std::to_string(index) + " is not defined; the scene has " +
+                       std::to_string(scene_.bodies.size()) + " bodies");
+    if (mesh_only && scene_.bodies[static_cast<std::size_t>(index)].discretisation ==
+                         Discretisation::particles)
+      fail(w, key, "body \"" + scene_.bodies[static_cast<std::size_t>(index)].name +
+                       "\" is made of particles; this applies to mesh bodies");
+    return index;
+  }
+  static std::string number(double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.10g", v);
+    return buf;
+  }
+
+ private:
+  const Scene& scene_;
+};
+
+void check_run(const Checker& c, const RunSettings& run) {
+  const SourceLocation w;
+  c.positive(w, "run.end_time", run.end_time);
+  c.range(w, "run.time_step_factor", run.time_step_factor, 0.0, 1.0, true, false);
+  c.range(w, "run.element_time_step_factor", run.element_time_step_factor, 0.0, 1.0, true, false);
+  c.non_negative(w, "run.time_step", run.fixed_time_step);
+  if (run.max_steps < 0) c.fail(w, "run.max_steps", "must be >= 0");
+  c.non_negative(w, "run.output_every", run.output_every);
+  if (run.history_every < 1) c.fail(w, "run.history_every", "must be >= 1");
+  c.non_negative(w, "run.energy_error_limit", run.energy_error_limit);
+  c.finite(w, "run.gravity", run.gravity);
+}
+
+void check_grid(const Checker& c, const Scene& scene) {
+  const SourceLocation w;
+  const GridSettings& g = scene.mpm.grid;
+  if (has_particles(scene) && !scene.has_grid)
+    c.fail(w, "grid", "bodies of particles need a grid (has_grid, cell, min, max)");
+  if (!scene.has_grid) return;
+  c.positive(w, "grid.cell", g.cell);
+  c.finite(w, "grid.min", g.min);
+  c.finite(w, "grid.max", g.max);
+  for (int a = 0; a < 3; ++a)
+    if (!(g.max[a] > g.min[a]))
+      c.fail(w, "grid.max", "max must exceed min in every component; component " +
+                                std::to_string(a));
+  c.range(w, "mpm.flip", scene.mpm.flip, 0.0, 1.0, false, false);
+  if (scene.mpm.transfer == Transfer::apic && scene.mpm.shape != ShapeFunction::gimp)
+    c.fail(w, "mpm.transfer", "\"apic\" needs shape_function = \"gimp\" (the affine transfer is "
+                              "unstable with linear weights); allowed with \"linear\": \"flip\"");
+}
+
+void check_material(const Checker& c, const Material& m) {
+  const SourceLocation w;
+  const std::string key = "materials." + (m.name.empty() ? std::string("(unnamed)") : m.name);
+  if (m.name.empty()) c.fail(w, key + ".name", "a material name must not be empty");
+  c.positive(w, key + ".density", m.density);
+  c.positive(w, key + ".E", m.youngs_modulus);
+  c.range(w, key + ".nu", m.poisson_ratio, 0.0, 0.5, false, true);
+  c.non_negative(w, key + ".specific_heat", m.thermal.specific_heat);
+  c.range(w, key + ".taylor_quinney", m.thermal.taylor_quinney, 0.0, 1.0, false, false);
+  c.non_negative(w, key + ".temperature", m.thermal.initial_temperature);
+  c.non_negative(w, key + ".failure_strain", m.failure_strain);
+  try {
+    m.validate();
+  } catch (const std::invalid_argument& e) {
+    c.fail(w, key, e.what());
+  }
+}
+
+void check_shape(const Checker& c, const BodySpec& b, const std::string& key) {
+  using D = Discretisation;
+  const bool particles = b.discretisation == D::particles;
+  const bool hexes = b.discretisation == D::hexahedra;
+  const std::string shape = key + ".shape";
+  if (const auto* box = std::get_if<BoxShape>(&b.shape)) {
+    if (b.discretisation == D::trusses) c.fail(b.where, shape, "a box makes particles or hexahedra");
+    for (int a = 0; a < 3; ++a)
+      if (!(box->max[a] > box->min[a]))
+        c.fail(b.where, shape + ".box.max", "max must exceed min in every component");
+  } else if (const auto* cyl = std::get_if<CylinderShape>(&b.shape)) {
+    if (b.discretisation == D::trusses) c.fail(b.where, shape, "a cylinder makes particles or hexahedra");
+    c.positive(b.where, shape + ".cylinder.radius", cyl->radius);
+    c.positive(b.where, shape + ".cylinder.length", cyl->length);
+    if (!(norm(cyl->axis) > 0.0))
+      c.fail(b.where, shape + ".cylinder.axis", "the axis must be a non-zero vector");
+  } else if (const auto* s = std::get_if<SphereShape>(&b.shape)) {
+    if (!particles) c.fail(b.where, shape, "a sphere makes particles only");
+    c.positive(b.where, shape + ".sphere.radius", s->radius);
+  } else if (const auto* p = std::get_if<PointListShape>(&b.shape)) {
+    if (!particles) c.fail(b.where, shape, "points make particles only");
+    if (p->path.empty() && p->points.empty())
+      c.fail(b.where, shape + ".points", "give a points file or the points themselves");
+    if (!p->volumes.empty() && p->volumes.size() != p->points.size())
+      c.fail(b.where, shape + ".points.volumes",
+             "one volume per point (" + std::to_string(p->points.size()) + "), or none");
+    for (double v : p->volumes)
+      if (!(v > 0.0)) c.fail(b.where, shape + ".points.volumes", "every volume must be > 0");
+  } else if (const auto* m = std::get_if<MeshFileShape>(&b.shape)) {
+    if (particles) c.fail(b.where, shape, "a mesh makes hexahedra or trusses, not particles");
+    if (m->path.empty()) {
+      const MeshArrays& a = m->arrays;
+      if (hexes ? a.hexahedra.empty() : a.trusses.empty())
+        c.fail(b.where, shape + ".mesh", std::string("the arrays hold no ") +
+                                             (hexes ? "hexahedra" : "trusses"));
+      if (!a.truss_areas.empty() && a.truss_areas.size() != a.trusses.size())
+        c.fail(b.where, shape + ".mesh.truss_areas",
+               "one area per truss (" + std::to_string(a.trusses.size()) + "), or none");
+    }
+    c.positive(b.where, shape + ".mesh.scale", m->scale);
+  } else if (std::holds_alternative<LineShape>(b.shape) || std::holds_alternative<RebarShape>(b.shape)) {
+    if (b.discretisation != D::trusses) c.fail(b.where, shape, "lines and rebar make trusses only");
+  }
+}
+
+void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
+  using D = Discretisation;
+  const std::string key = "bodies." + (b.name.empty() ? std::string("(unnamed)") : b.name);
+  if (b.name.empty()) c.fail(b.where, key + ".name", "a body name must not be empty");
+  if (b.material < 0 || static_cast<std::size_t>(b.material) >= scene.materials.size())
+    c.fail(b.where, key + ".material",
+           "material index " + std::to_string(b.material) + " is not defined; the scene has " +
+               std::to_string(scene.materials.size()) + " materials");
+  check_shape(c, b, key);
+  c.finite(b.where, key + ".velocity", b.velocity);
+  if (b.temperature) c.non_negative(b.where, key + ".temperature", *b.temperature);
+  c.non_negative(b.where, key + ".internal_energy", b.internal_energy);
+  if (b.particles_per_cell < 1 || b.particles_per_cell > 8)
+    c.fail(b.where, key + ".particles_per_cell",
+           "out of range: " + std::to_string(b.particles_per_cell) + "; allowed: 1 to 8");
+  if (b.bulk_viscosity) {
+    if (b.discretisation == D::trusses)
+      c.fail(b.where, key + ".bulk_viscosity", "applies to bodies of hexahedra or particles");
+    c.range(b.where, key + ".bulk_viscosity.linear", b.bulk_viscosity->linear, 0.0, 1.0, false, false);
+    c.range(b.where, key + ".bulk_viscosity.quadratic", b.bulk_viscosity->quadratic, 0.0, 10.0,
+            false, false);
+  }
+  if (b.discretisation == D::particles) {
+    if (b.erosion || b.conversion || b.bonded_to >= 0)
+      c.fail(b.where, key + (b.erosion ? ".erosion" : b.conversion ? ".conversion" : ".bonded_to"),
+             "applies to mesh bodies, not to particles");
+    return;
+  }
+  if (b.discretisation == D::hexahedra) {
+    const double hi = b.hourglass.form == HourglassForm::assumed_strain ? 1.0 : 0.5;
+    c.range(b.where, key + ".hourglass.coefficient", b.hourglass.coefficient, 0.0, hi, false, false);
+  }
+  const bool generated = !std::holds_alternative<MeshFileShape>(b.shape);
+  if (generated && !(b.mesh.size > 0.0) && b.mesh.divisions[0] == 0 &&
+      (b.mesh.core == 0 || b.mesh.ring == 0 || b.mesh.axial == 0) && b.mesh.segments == 0)
+    c.fail(b.where, key + ".mesh", "a generated mesh needs its density: a size or divisions");
+  if (b.erosion) {
+    c.non_negative(b.where, key + ".erosion.plastic_strain", b.erosion->plastic_strain);
+    c.range(b.where, key + ".erosion.volume_ratio", b.erosion->volume_ratio, 0.0, 1.0, false, true);
+    c.non_negative(b.where, key + ".erosion.time_step", b.erosion->time_step);
+  }
+  if (b.conversion) {
+    if (b.discretisation != D::hexahedra)
+      c.fail(b.where, key + ".conversion", "applies to bodies of hexahedra");
+    if (!scene.has_grid)
+      c.fail(b.where, key + ".conversion", "converted elements become particles on the "
+                                           "background grid; the scene needs a grid");
+    if (b.bonded_to >= 0)
+      c.fail(b.where, key + ".conversion", "a body bonded to particles cannot also convert");
+    const ConversionSettings& v = *b.conversion;
+    if (v.points < 1 || v.points > 2) c.fail(b.where, key + ".conversion.points", "allowed: 1 or 2");
+  }
+  if (b.discretisation == D::trusses && std::holds_alternative<LineShape>(b.shape) &&
+      !(b.area > 0.0))
+    c.fail(b.where, key + ".area", "a truss line needs its cross-section area (> 0)");
+  if (b.bonded_to >= 0) {
+    if (static_cast<std::size_t>(b.bonded_to) >= scene.bodies.size() ||
+        scene.bodies[static_cast<std::size_t>(b.bonded_to)].discretisation != D::particles)
+      c.fail(b.where, key + ".bonded_to", "a mesh body bonds to a body of particles");
+    if (scene.mpm.scheme == UpdateScheme::USL)
+      c.fail(b.where, key + ".bonded_to", "bonded coupling needs [mpm] scheme MUSL or USF");
+  }
+}
+
+}  // namespace
+
+BulkViscositySettings bulk_viscosity_of(const Scene& scene, const BodySpec& body) {
+  if (body.bulk_viscosity) return *body.bulk_viscosity;
+  const bool with_eos = body.material >= 0 &&
+                        static_cast<std::size_t>(body.material) < scene.materials.size() &&
+                        scene.materials[static_cast<std::size_t>(body.material)].has_eos();
+  if (body.discretisation == Discretisation::hexahedra || with_eos) return BulkViscositySettings{};
+  return BulkViscositySettings{0.0, 0.0};
+}
+
+void check_scene(const Scene& scene) {
+  const Checker c(scene);
+  check_run(c, scene.run);
+  if (scene.bodies.empty()) c.fail({}, "bodies", "the scene has no body");
+  std::set<std::string> names;
+  for (const Material& m : scene.materials) {
+    check_material(c, m);
+    if (!names.insert(m.name).second)
+      c.fail({}, "materials." + m.name, "duplicate material name \"" + m.name + "\"");
+  }
+  check_grid(c, scene);
+  names.clear();
+  for (const BodySpec& b : scene.bodies) {
+    check_body(c, scene, b);
+    if (!names.insert(b.name).second)
+      c.fail(b.where, "bodies." + b.name, "duplicate body name \"" + b.name + "\"");
+  }
+  for (std::size_t k = 0; k < scene.constraints.size(); ++k) {
+    const ConstraintSpec& s = scene.constraints[k];
+    const std::string key = "constraints[" + std::to_string(k) + "]";
+    if (s.body >= 0) c.body(s.where, key + ".body", s.body, true);
+    if (!s.components[0] && !s.components[1] && !s.components[2])
+      c.fail(s.where, key + ".fixed", "name at least one component");
+    if (s.nodes.kind == NodeSelector::Kind::plane && !(norm(s.nodes.normal) > 0.0))
+      c.fail(s.where, key + ".plane.normal", "the normal must be a non-zero vector");
+  }
+  for (std::size_t k = 0; k < scene.walls.size(); ++k) {
+    const WallSpec& wl = scene.walls[k];
+    const std::string key = "walls[" + std::to_string(k) + "]";
+    if (!(norm(wl.normal) > 0.0)) c.fail(wl.where, key + ".normal", "the normal must be a non-zero vector");
+    c.non_negative(wl.where, key + ".friction", wl.friction);
+    for (int b : wl.bodies) c.body(wl.where, key + ".bodies", b, true);
+  }
+  for (std::size_t k = 0; k < scene.contacts.size(); ++k) {
+    const ContactSpec& ct = scene.contacts[k];
+    const std::string key = "contact[" + std::to_string(k) + "]";
+    const int a = c.body(ct.where, key + ".bodies", ct.bodies[0], false);
+    const int b = c.body(ct.where, key + ".bodies", ct.bodies[1], false);
+    if (a == b) c.fail(ct.where, key + ".bodies", "a body cannot be in contact with itself");
+    if (scene.bodies[static_cast<std::size_t>(a)].discretisation != Discretisation::particles &&
+        scene.bodies[static_cast<std::size_t>(b)].discretisation != Discretisation::particles)
+      c.fail(ct.where, key + ".bodies", "both bodies are meshes; grid contact needs a particle "
+                                        "body on one side");
+    if (!scene.has_grid) c.fail(ct.where, key + ".bodies", "grid contact needs a grid");
+    if (scene.mpm.scheme == UpdateScheme::USL)
+      c.fail(ct.where, key + ".bodies", "grid contact needs [mpm] scheme MUSL or USF");
+    c.non_negative(ct.where, key + ".friction", ct.friction);
+    c.non_negative(ct.where, key + ".distance_factor", ct.distance_factor);
+  }
+  for (const VelocityReference& v : scene.velocity_references) {
+    c.body(v.where, "reference.velocity.body", v.body, false);
+    if (v.value == 0.0) c.fail(v.where, "reference.velocity.value", "must not be 0");
+  }
+  if (scene.run.terminate) {
+    c.body({}, "run.terminate.body", scene.run.terminate->body, false);
+    c.positive({}, "run.terminate.travel", scene.run.terminate->travel);
+  }
+}
+
+}  // namespace afemp::core

@@ -1,0 +1,13 @@
+// The afemp library in one include: scenes (materials, bodies, contacts, constraints, walls,
+// run settings) built in code or read from a scene file, and the Simulation that runs them.
+// docs/library.md is the tutorial.
+#pragma once
+
+#include "afemp/energies.hpp"
+#include "afemp/errors.hpp"
+#include "afemp/material.hpp"
+#include "afemp/probes.hpp"
+#include "afemp/run.hpp"
+#include "afemp/scene.hpp"
+#include "afemp/simulation.hpp"
+#include "afemp/tensor.hpp"

@@ -1,0 +1,84 @@
+// What a run reports: its summary (steps, wall time, energies, reference checks, probe
+// histories), the progress it reports while it runs, and the stage timings of a step.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "afemp/energies.hpp"
+#include "afemp/probes.hpp"
+
+namespace afemp::core {
+
+/// Wall seconds and calls of one named stage of a model's step.
+struct StageTiming {
+  std::string name;
+  long count = 0;
+  double seconds = 0.0;
+};
+
+/// Progress of a run, reported about every RunOptions::progress_seconds of wall time.
+struct Progress {
+  long step = 0;
+  double time = 0.0, dt = 0.0, end_time = 0.0;
+  double elapsed_seconds = 0.0;
+  double energy_error = 0.0;
+};
+
+/// Taylor-bar measures: final length L, impact-face diameter D and diameter W at 0.2 L0 from
+/// the wall (Ma 2005, section 2.3.2).
+struct TaylorMeasures {
+  double length = 0.0, impact_diameter = 0.0, bulge_diameter = 0.0;
+};
+
+/// A result compared with a reference the scene states ([reference]).
+struct ReferenceCheck {
+  std::string name;        ///< "velocity of rod (z)", "taylor mean error", "energy balance"
+  double value = 0.0;      ///< what the run gave
+  double reference = 0.0;  ///< what it is compared with
+  double error = 0.0;      ///< relative error (the Taylor and energy checks: the error itself)
+  double tolerance = 0.0;  ///< 0: report only
+  bool passed() const { return tolerance <= 0.0 || error <= tolerance; }
+};
+
+struct RunSummary {
+  long steps = 0;
+  double time = 0.0;
+  double wall_seconds = 0.0;
+  std::size_t particles = 0, elements = 0;
+  std::size_t final_particles = 0;  ///< elements converted into particles add to them
+  double point_steps_per_second = 0.0;  ///< (particles + elements) * steps / wall seconds
+  double min_dt = 0.0, max_dt = 0.0;    ///< of the stable step (the last step may be shorter)
+  Energies initial, final;
+  double energy_error = 0.0;      ///< at the end
+  double max_energy_error = 0.0;  ///< largest magnitude over the history rows
+  std::vector<StageTiming> stages;
+  std::size_t field_frames = 0;
+  /// Set when [run] terminate stopped the run before end_time: what ended it.
+  std::string terminated;
+  std::optional<TaylorMeasures> taylor;  ///< when the scene states a Taylor reference
+  double taylor_error = 0.0;
+  /// Every [reference] check, the Taylor one included, in the scene's order.
+  std::vector<ReferenceCheck> checks;
+  /// Every probe's history ([[probes]]), in the scene's order, recorded with or without an
+  /// output directory.
+  std::vector<ProbeSeries> probes;
+  bool checks_passed() const {
+    for (const ReferenceCheck& c : checks)
+      if (!c.passed()) return false;
+    return true;
+  }
+};
+
+}  ///< namespace afemp::core
+
+// The public names, in namespace afemp.
+namespace afemp {
+using core::StageTiming;
+using core::Progress;
+using core::TaylorMeasures;
+using core::ReferenceCheck;
+using core::RunSummary;
+}  ///< namespace afemp

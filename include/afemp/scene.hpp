@@ -1,0 +1,333 @@
+// The scene: everything a run needs, as plain data with defaults a newcomer would pick
+// (docs/scene-format.md names each key). The scene-file parser fills it, and so may a program
+// through the library (afemp/simulation.hpp checks it as the parser does). Units are the
+// scene's own consistent set.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "afemp/errors.hpp"
+#include "afemp/material.hpp"
+#include "afemp/ogive_nose.hpp"
+#include "afemp/probes.hpp"
+#include "afemp/tensor.hpp"
+
+namespace afemp::core {
+
+
+enum class UpdateScheme { USF, USL, MUSL };  ///< seed 000 eqs 25-27
+/// Particle-grid weights: the trilinear hat of the node (seed 001 eq 2-5), or uGIMP, the hat
+/// averaged over the particle's cubic domain (Bardenhagen & Kober 2004), smooth across cells.
+enum class ShapeFunction { linear, gimp };
+/// How velocity travels between particles and grid: the FLIP/PIC blend, or the affine PIC of
+/// Jiang et al. 2015 (particles carry an affine velocity C_p; P2G maps v_p + C_p (x_I - x_p)).
+enum class Transfer { flip, apic };
+/// free: nothing; fixed: all velocity components zero (the material sticks);
+/// symmetric: normal component zero (a symmetry plane; tension is carried across it);
+/// wall: a rigid frictionless wall the material may not cross but may leave (the normal
+/// component is zeroed only at nodes whose updated velocity points into the wall).
+enum class FaceCondition { free, fixed, symmetric, wall };
+enum class Face { xmin = 0, xmax, ymin, ymax, zmin, zmax };
+
+const char* to_string(UpdateScheme s);
+const char* to_string(ShapeFunction s);
+const char* to_string(Transfer t);
+const char* to_string(FaceCondition c);
+const char* to_string(Face f);
+
+struct RunSettings {
+  std::string title;
+  double end_time = 0.0;           ///< required
+  double time_step_factor = 0.3;   ///< Courant safety factor on the grid's stable step
+  double element_time_step_factor = 0.9;  ///< on the elements' critical step (LS-DYNA's TSSFAC)
+  double fixed_time_step = 0.0;    ///< > 0: use this step instead of the stable one
+  long max_steps = 0;              ///< > 0: stop after this many steps
+  double output_every = 0.0;       ///< simulated time between field outputs; 0: final state only
+  long history_every = 10;         ///< steps between history rows
+  /// > 0: stop the run as unstable once |energy-balance error| exceeds this at a history row
+  /// (energy created or destroyed beyond any physical account); 0: no such guard.
+  double energy_error_limit = 1.0;
+  bool output_strain = false;      ///< integrate and write each particle's strain tensor
+  Vec3 gravity;                    ///< body force per unit mass
+  /// Stop before end_time once a body's centre of mass has moved `travel` from where it started
+  /// (LS-DYNA's *TERMINATION_BODY): a perforation run ends when the projectile is through.
+  struct Termination {
+    int body = -1;
+    double travel = 0.0;
+  };
+  std::optional<Termination> terminate;
+};
+
+struct GridSettings {
+  double cell = 0.0;  ///< cell edge length h (cubic cells)
+  Vec3 min, max;      ///< the domain; grid nodes sit at min + i h
+  std::array<FaceCondition, 6> faces{FaceCondition::free, FaceCondition::free,
+                                     FaceCondition::free, FaceCondition::free,
+                                     FaceCondition::free, FaceCondition::free};
+};
+
+
+struct MpmSettings {
+  UpdateScheme scheme = UpdateScheme::MUSL;
+  ShapeFunction shape = ShapeFunction::linear;
+  Transfer transfer = Transfer::flip;
+  double flip = 1.0;     ///< velocity update blend (transfer flip): 1 pure FLIP, 0 pure PIC
+  bool jaumann = true;   ///< objective (Jaumann) stress rate
+  GridSettings grid;
+};
+
+struct BoxShape {
+  Vec3 min, max;
+};
+struct CylinderShape {
+  Vec3 base;               ///< centre of the base disc
+  Vec3 axis{0, 0, 1};      ///< direction, normalised by the parser
+  double radius = 0.0;
+  double length = 0.0;     ///< overall, the nose included
+  OgiveNose nose;          ///< at the far end (base + length axis); crh 0: a flat end
+};
+struct SphereShape {
+  Vec3 centre;
+  double radius = 0.0;
+};
+/// Particles at given points: read from a plain-text file (one "x y z [volume]" per line, '#'
+/// comments; the path resolved relative to the scene file), or, from a program, the arrays
+/// `points` and `volumes` (empty volumes: (cell / particles_per_cell)^3 each).
+struct PointListShape {
+  std::string path;  ///< empty: the arrays
+  std::vector<Vec3> points;
+  std::vector<double> volumes;
+};
+/// A mesh given as arrays (a program's own mesh): nodes, 8-node hexahedra and 2-node trusses
+/// by 0-based node index, and named node sets for constraints (`set` selectors). Hexahedron
+/// node order: nodes 0-3 round the face zeta = -1, 4-7 round zeta = +1 (LS-DYNA, Abaqus C3D8).
+struct MeshArrays {
+  std::vector<Vec3> nodes;
+  std::vector<std::array<std::int32_t, 8>> hexahedra;
+  std::vector<std::array<std::int32_t, 2>> trusses;
+  std::vector<double> truss_areas;  ///< one per truss, or empty: the body's area
+  struct NodeSet {
+    std::string name;
+    std::vector<std::int32_t> nodes;
+  };
+  std::vector<NodeSet> node_sets;
+};
+/// A mesh read from a file (Gmsh .msh 4.1, Abaqus .inp, LS-DYNA keyword), path resolved
+/// relative to the scene file, or given as arrays; `parts` selects parts by name (empty: all).
+struct MeshFileShape {
+  std::string path;     ///< empty: the arrays
+  MeshArrays arrays;
+  std::vector<std::string> parts;
+  double scale = 1.0;   ///< coordinates are multiplied by scale, then translated
+  Vec3 translate;
+};
+/// A straight truss bar.
+struct LineShape {
+  Vec3 from, to;
+};
+/// A rebar mat: straight bars both ways in the plane normal to `normal_axis` at `position`,
+/// spanning the box [min, max] less the cover (fem/mesh_generation.hpp).
+struct RebarShape {
+  Vec3 min, max;
+  int normal_axis = 2;
+  std::vector<double> positions;  ///< one mat (layer) per plane position along normal_axis
+  double spacing = 0.0, diameter = 0.0, cover = 0.0;
+};
+using Shape = std::variant<BoxShape, CylinderShape, SphereShape, PointListShape, MeshFileShape,
+                           LineShape, RebarShape>;
+
+enum class Discretisation { particles, hexahedra, trusses };
+enum class HexFormulation { one_point, full };  ///< FB hourglass-controlled | 2x2x2 B-bar
+/// FB viscous (LS-DYNA type 3) | FB stiffness (type 5) | assumed strain (type 6, Belytschko &
+/// Bindeman ASQBI): fem/hourglass.hpp, fem/hourglass_assumed_strain.hpp
+enum class HourglassForm { viscous, stiffness, assumed_strain };
+const char* to_string(Discretisation d);
+const char* to_string(HexFormulation f);
+const char* to_string(HourglassForm f);
+
+/// How finely a generated mesh divides its shape. `size` (a target edge length) fills what is
+/// not given explicitly.
+struct MeshDensity {
+  std::array<int, 3> divisions{0, 0, 0};  ///< box: elements along x, y, z
+  int core = 0, ring = 0, axial = 0;      ///< cylinder O-grid (fem/mesh_generation.hpp)
+  int sectors = 4;                        ///< cylinder: 1 quarter, 2 half, 4 full
+  int segments = 0;                       ///< line: trusses along the bar
+  double size = 0.0;                      ///< target element edge / truss length
+};
+
+struct HourglassSettings {
+  HourglassForm form = HourglassForm::viscous;
+  double coefficient = 0.1;  ///< Q_hg (LS-DYNA's default QM); assumed strain: scale on K, 1
+};
+
+/// Linear and quadratic artificial bulk viscosity (LS-DYNA's Q2 = 0.06, Q1 = 1.5).
+struct BulkViscositySettings {
+  double linear = 0.06;
+  double quadratic = 1.5;
+};
+
+/// Erosion criteria of a body's elements; 0 / false switches a criterion off. With erosion on,
+/// an element whose Jacobian turns non-positive erodes instead of stopping the run.
+struct ErosionSettings {
+  double plastic_strain = 0.0;    ///< equivalent plastic strain at which an element erodes
+  bool material_failure = false;  ///< erode at the material's failure_strain
+  double volume_ratio = 0.0;      ///< erode when V / V0 falls below this
+  double time_step = 0.0;         ///< erode when the element's critical step falls below this
+};
+
+/// Adaptive conversion of a body's hexahedra into particles (AFEMP, seed 000 §2.5): an element
+/// inside the grid domain that meets any criterion becomes points x points x points particles;
+/// 0 / false switches a criterion off.
+struct ConversionSettings {
+  double plastic_strain = 0.0;      ///< equivalent plastic strain of any integration point
+  double volumetric_strain = 0.0;   ///< |V / V0 - 1|
+  double jacobian_ratio = 0.0;      ///< smallest scaled corner Jacobian (1 for a box) below this
+  bool negative_jacobian = true;    ///< an element that inverts converts instead of stopping
+  double time_step_fraction = 0.0;  ///< critical step below this fraction of h / c (material at rest)
+  double damage = 0.0;              ///< scalar damage of any integration point
+  int points = 1;                   ///< particles per direction: 1 or 2
+};
+
+struct BodySpec {
+  std::string name;
+  int material = -1;            ///< index into Scene::materials
+  Discretisation discretisation = Discretisation::particles;
+  Shape shape;
+  int particles_per_cell = 2;   ///< per direction (particles)
+  /// Meshes (hexahedra, trusses).
+  MeshDensity mesh;
+  HexFormulation element = HexFormulation::one_point;
+  HourglassSettings hourglass;
+  /// Unset: on (LS-DYNA's defaults) for hexahedra and for particles whose material has an
+  /// equation of state, off otherwise (core::bulk_viscosity_of).
+  std::optional<BulkViscositySettings> bulk_viscosity;
+  std::optional<ErosionSettings> erosion;
+  std::optional<ConversionSettings> conversion;  ///< hexahedra
+  double area = 0.0;            ///< truss cross-section where the mesh gives none
+  /// Bonded coupling (HFEMP, seed 000 §2.6): the particle body whose velocity field this mesh
+  /// body's nodes join; they move with the grid solution (perfect bond). -1: not bonded.
+  int bonded_to = -1;
+  Vec3 velocity;                ///< initial velocity
+  std::optional<double> temperature;  ///< initial temperature; default the material's
+  /// Initial specific internal energy e0 (per unit mass; J/kg = mm^2/ms^2): with an EOS that
+  /// depends on e it is an initial pressure (a hot or pressurised body, a gas charge), like
+  /// LS-DYNA's E0 on the EOS card (which is per unit reference volume, rho0 e0).
+  double internal_energy = 0.0;
+  SourceLocation where;         ///< the [[bodies]] table, for messages
+};
+
+/// Reference values a run compares its result with at the end (seed 001 eq 2-42).
+struct TaylorReference {
+  double length = 0.0, impact_diameter = 0.0, bulge_diameter = 0.0;  ///< L, D, W
+  double tolerance = 0.0;       ///< allowed mean error; 0: report only
+};
+
+/// A body's mean velocity at the end of the run (a projectile's residual velocity, a bar's
+/// rebound) against a reference value: error |v - value| / |value|.
+struct VelocityReference {
+  int body = -1;
+  int component = -1;  ///< 0, 1, 2 for x, y, z; -1 for the magnitude
+  double value = 0.0;  ///< != 0
+  double tolerance = 0.0;  ///< allowed error; 0: report only
+  SourceLocation where;
+};
+
+/// Which mesh nodes a constraint holds: inside a box, on a plane (within tolerance), or a
+/// node set named by an imported mesh.
+struct NodeSelector {
+  enum class Kind { box, plane, set } kind = Kind::box;
+  Vec3 min, max;          ///< box
+  Vec3 point, normal;     ///< plane (normal unit)
+  double tolerance = 1e-6;  ///< plane: largest distance of a selected node
+  std::string set;        ///< set
+};
+
+/// Fixed or prescribed-velocity nodes (FE bodies).
+struct ConstraintSpec {
+  NodeSelector nodes;
+  int body = -1;                       ///< restrict to one body; -1: every mesh body
+  std::array<bool, 3> components{false, false, false};  ///< which components are imposed
+  Vec3 velocity;                       ///< the imposed value (0 for fixed components)
+  SourceLocation where;
+};
+
+/// A rigid planar wall for FE nodes (LS-DYNA *RIGIDWALL_PLANAR): nodes stay on the side the
+/// normal points to; the wall may move at a constant velocity; Coulomb friction.
+struct WallSpec {
+  Vec3 point, normal, velocity;
+  double friction = 0.0;
+  std::vector<int> bodies;  ///< empty: every mesh body
+  SourceLocation where;
+};
+
+/// Grid contact between two bodies, at least one of particles (seed 000 eqs 37-42): each body
+/// named in a contact gets its own velocity field on the grid (a mesh body's nodes map into
+/// theirs: contact coupling, CFEMP); where two fields meet at a node and approach, a normal
+/// correction makes their normal velocities equal, Coulomb friction limits the tangential one,
+/// and they may separate.
+struct ContactSpec {
+  std::array<int, 2> bodies{-1, -1};  ///< indices into Scene::bodies
+  double friction = 0.0;              ///< Coulomb coefficient
+  double distance_factor = 0.5;       ///< lambda of eq 42: contact once the gap <= lambda h
+  SourceLocation where;
+};
+struct Scene {
+  std::string path;             ///< the scene file, as given
+  RunSettings run;
+  bool has_grid = false;        ///< a [grid] section: needed by particle bodies
+  MpmSettings mpm;
+  std::vector<Material> materials;
+  std::vector<BodySpec> bodies;
+  std::vector<ConstraintSpec> constraints;
+  std::vector<WallSpec> walls;
+  std::vector<ContactSpec> contacts;
+  std::optional<TaylorReference> taylor_reference;
+  std::vector<VelocityReference> velocity_references;
+  double energy_tolerance = 0.0;  ///< > 0: the largest |energy-balance error| allowed
+  std::vector<ProbeSpec> probes;  ///< [[probes]], in file order
+};
+
+}  ///< namespace afemp::core
+
+// The public names, in namespace afemp.
+namespace afemp {
+using core::UpdateScheme;
+using core::ShapeFunction;
+using core::Transfer;
+using core::FaceCondition;
+using core::Face;
+using core::RunSettings;
+using core::GridSettings;
+using core::MpmSettings;
+using core::BoxShape;
+using core::CylinderShape;
+using core::SphereShape;
+using core::PointListShape;
+using core::MeshArrays;
+using core::MeshFileShape;
+using core::LineShape;
+using core::RebarShape;
+using core::Shape;
+using core::Discretisation;
+using core::HexFormulation;
+using core::HourglassForm;
+using core::MeshDensity;
+using core::HourglassSettings;
+using core::BulkViscositySettings;
+using core::ErosionSettings;
+using core::ConversionSettings;
+using core::BodySpec;
+using core::TaylorReference;
+using core::VelocityReference;
+using core::NodeSelector;
+using core::ConstraintSpec;
+using core::WallSpec;
+using core::ContactSpec;
+using core::Scene;
+using core::to_string;
+}  ///< namespace afemp

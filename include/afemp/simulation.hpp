@@ -1,0 +1,143 @@
+// The library's entry point: a Simulation is a model made from a Scene (built in code, or read
+// from a scene file with afemp::read_scene), stepped one step at a time or run to an end time,
+// with its fields readable and writable between steps and callbacks after each step.
+// docs/library.md is the tutorial; examples/library/ a project to copy.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "afemp/energies.hpp"
+#include "afemp/errors.hpp"
+#include "afemp/run.hpp"
+#include "afemp/scene.hpp"
+#include "afemp/tensor.hpp"
+
+namespace afemp {
+
+/// Reads and checks a scene file (docs/scene-format.md). Throws InputError naming the file,
+/// line, key and what is allowed.
+Scene read_scene(const std::string& path);
+
+/// Checks a scene as the scene-file parser would (ranges, references between objects, what
+/// goes with what). Throws InputError naming the object and field by the scene file's dotted
+/// key ("bodies.plate.particles_per_cell") and what is allowed. Simulation calls it.
+void check_scene(const Scene& scene);
+
+/// The material points of a model (particles), as views into its arrays. Valid until the next
+/// step: a step may reorder the particles (follow one by `id`) and conversion adds some.
+/// Writable fields may be changed between steps (a program's boundary condition or load).
+struct ParticleFields {
+  std::span<Vec3> position;           ///< current position
+  std::span<Vec3> velocity;           ///< velocity
+  std::span<const double> mass;       ///< mass (constant)
+  std::span<double> volume;           ///< current volume (density = mass / volume)
+  std::span<SymTensor> stress;        ///< Cauchy stress
+  std::span<double> plastic_strain;   ///< equivalent plastic strain
+  std::span<double> temperature;      ///< temperature
+  std::span<double> energy;           ///< specific internal energy (per unit mass)
+  std::span<double> damage;           ///< scalar damage in [0, 1]
+  std::span<const std::int32_t> body; ///< index of the body in Scene::bodies
+  std::span<const std::int32_t> id;   ///< stable id, unchanged by reordering
+  std::size_t size() const { return position.size(); }
+};
+
+/// The nodes of the model's meshes (every hexahedron and truss body, in body order).
+struct NodeFields {
+  std::span<Vec3> position;            ///< x^n
+  std::span<Vec3> velocity;            ///< v^{n-1/2}: central differences keep half-step velocities
+  std::span<const double> mass;        ///< lumped mass (0: the node has no live element)
+  std::span<const std::int32_t> body;  ///< index of the body in Scene::bodies
+  /// Loads the program applies, one per node, held until changed; they act over the next steps
+  /// on the nodes the FE update moves (not on nodes bonded to particles), and their work is
+  /// booked as external work in the energy balance.
+  std::span<Vec3> external_force;
+  std::size_t size() const { return position.size(); }
+};
+
+/// The elements of one kind (hexahedra, or trusses) with their integration-point state: element
+/// e's points are points_per_element[e] consecutive entries from first_point[e].
+struct ElementFields {
+  std::span<const std::array<std::int32_t, 8>> nodes;  ///< node indices (trusses: the first 2)
+  std::span<const std::uint8_t> alive;                 ///< 0: eroded or converted into particles
+  std::span<const std::int32_t> body;                  ///< index of the body in Scene::bodies
+  std::vector<std::size_t> first_point;                ///< first integration point of each element
+  std::vector<int> points_per_element;                 ///< 1 (one-point, truss) or 8 (B-bar)
+  std::span<SymTensor> stress;       ///< per point (trusses: the axial stress as xx)
+  std::span<double> plastic_strain;  ///< per point
+  std::span<double> temperature;     ///< per point
+  std::span<double> energy;          ///< per point, specific internal energy
+  std::span<double> damage;          ///< per point
+  std::size_t size() const { return nodes.size(); }
+};
+
+/// Where and how a Simulation writes its output; all optional.
+struct SimulationOptions {
+  /// Run directory for fields.xmf/.h5, history.csv, probes and event files; empty: none.
+  std::string output_directory;
+  bool write_fields = true;  ///< fields.xmf/.h5 (with an output directory)
+  /// Called about every progress_seconds of wall time while run() or run_to() step.
+  std::function<void(const Progress&)> progress;
+  double progress_seconds = 0.5;
+};
+
+/// A model made from a scene: MPM, FE, or both coupled on the background grid, as the scene
+/// asks; the same model `afemp run` makes from the same scene, stepped by the same loop
+/// (history rows, field frames, probes, energy guard). Nothing is printed and nothing exits:
+/// bad input throws InputError, a run that goes bad throws SimulationError (naming the step, the
+/// point and the field; what was written stays on disk).
+class Simulation {
+ public:
+  /// A callback after each step (a program's load, boundary condition or output).
+  using StepCallback = std::function<void(Simulation&)>;
+
+  /// Checks the scene (check_scene), builds the model and writes the initial state.
+  explicit Simulation(Scene scene, SimulationOptions options = {});
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  /// The scene the model was made from.
+  const Scene& scene() const;
+  /// What `afemp check` prints: the discretisation, the stages one step runs and why.
+  std::string describe() const;
+  /// The step the next step() takes: the stable step times the scene's factor (or the fixed step).
+  double stable_time_step() const;
+  double time() const;      ///< simulated time
+  long step_count() const;  ///< steps taken
+  /// Whether the run has reached the scene's end time, max_steps or [run] terminate.
+  bool finished() const;
+  /// Energies now, with per-body mass, momentum, kinetic and internal energy.
+  Energies energies() const;
+
+  /// One step at the stable step (cut so as not to pass the end time), then the callbacks.
+  void step();
+  /// Steps until `time` (the last step cut to land on it) or until finished().
+  void run_to(double time);
+  /// Steps to the end and returns finish().
+  RunSummary run();
+  /// The final history row and frame, and the summary with the scene's reference checks.
+  /// Call once; the Simulation takes no step after it.
+  RunSummary finish();
+
+  /// Adds a callback run after every step, in the order added.
+  void on_step(StepCallback callback);
+
+  ParticleFields particles();  ///< empty without particle bodies
+  NodeFields nodes();          ///< empty without mesh bodies
+  ElementFields hexahedra();   ///< empty without hexahedra
+  ElementFields trusses();     ///< empty without trusses
+  /// The internal (element) force on each mesh node at the current state.
+  std::vector<Vec3> node_forces() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace afemp

@@ -1,0 +1,288 @@
+// The library API (include/afemp/simulation.hpp) against the scene file it stands beside.
+// References: a scene built in code must give the model the scene file gives (same step plan,
+// bit-identical history: the two are one model); a program's nodal load F on a free body gives
+// it the momentum F t (Newton's second law) and its work enters the energy balance; bad input
+// throws InputError naming the object and the field, and the library prints nothing.
+#include <gtest/gtest.h>
+
+#include <afemp/afemp.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/scene.hpp"
+
+namespace {
+
+using afemp::Vec3;
+
+// The Taylor bar of examples/taylor_bar (OFHC copper at 190 m/s, Ma 2005 section 2.3.2),
+// coarse and short so that the comparison runs in a second.
+const char* taylor_toml(bool hexahedra) {
+  return hexahedra ? R"(
+[run]
+end_time = 0.01
+[materials.copper]
+density = 8.93e-3
+E = 117e3
+nu = 0.35
+strength = { model = "johnson-cook", A = 157, B = 425, n = 1.0, C = 0.0 }
+[[bodies]]
+name = "bar"
+discretisation = "hexahedra"
+material = "copper"
+shape = { cylinder = { base = [0, 0, 0], axis = [0, 0, 1], radius = 3.8, length = 25.4 } }
+mesh = { size = 1.0, sectors = 1 }
+velocity = [0, 0, -190]
+[[constraints]]
+nodes = { plane = { point = [0, 0, 0], normal = [1, 0, 0] } }
+fixed = ["x"]
+[[constraints]]
+nodes = { plane = { point = [0, 0, 0], normal = [0, 1, 0] } }
+fixed = ["y"]
+[[walls]]
+point = [0, 0, 0]
+normal = [0, 0, 1]
+)"
+                   : R"(
+[run]
+end_time = 0.01
+[grid]
+cell = 1.0
+min = [0, 0, 0]
+max = [10, 10, 26]
+boundary = { xmin = "symmetric", ymin = "symmetric", zmin = "wall" }
+[materials.copper]
+density = 8.93e-3
+E = 117e3
+nu = 0.35
+strength = { model = "johnson-cook", A = 157, B = 425, n = 1.0, C = 0.0 }
+[[bodies]]
+name = "bar"
+material = "copper"
+shape = { cylinder = { base = [0, 0, 0], axis = [0, 0, 1], radius = 3.8, length = 25.4 } }
+particles_per_cell = 2
+velocity = [0, 0, -190]
+)";
+}
+
+// The same bar, built in code.
+afemp::Scene taylor_in_code(bool hexahedra) {
+  afemp::Scene s;
+  s.run.end_time = 0.01;
+  afemp::Material copper;
+  copper.name = "copper";
+  copper.density = 8.93e-3;
+  copper.youngs_modulus = 117e3;
+  copper.poisson_ratio = 0.35;
+  copper.strength = afemp::JohnsonCook{.A = 157, .B = 425, .n = 1.0, .C = 0.0};
+  s.materials.push_back(copper);
+  afemp::BodySpec bar;
+  bar.name = "bar";
+  bar.material = 0;
+  bar.shape = afemp::CylinderShape{.base = {0, 0, 0}, .axis = {0, 0, 1}, .radius = 3.8, .length = 25.4};
+  bar.velocity = {0, 0, -190};
+  if (hexahedra) {
+    bar.discretisation = afemp::Discretisation::hexahedra;
+    bar.mesh.size = 1.0;
+    bar.mesh.sectors = 1;
+    for (int axis = 0; axis < 2; ++axis) {
+      afemp::ConstraintSpec c;
+      c.nodes.kind = afemp::NodeSelector::Kind::plane;
+      c.nodes.normal[axis] = 1.0;
+      c.components[static_cast<std::size_t>(axis)] = true;
+      s.constraints.push_back(c);
+    }
+    afemp::WallSpec wall;
+    wall.normal = {0, 0, 1};
+    s.walls.push_back(wall);
+  } else {
+    s.has_grid = true;
+    s.mpm.grid.cell = 1.0;
+    s.mpm.grid.max = {10, 10, 26};
+    s.mpm.grid.faces = {afemp::FaceCondition::symmetric, afemp::FaceCondition::free,
+                        afemp::FaceCondition::symmetric, afemp::FaceCondition::free,
+                        afemp::FaceCondition::wall, afemp::FaceCondition::free};
+  }
+  s.bodies.push_back(bar);
+  return s;
+}
+
+struct Trace {
+  std::string plan;
+  std::vector<double> kinetic, internal, plastic;
+  std::vector<Vec3> final_positions;
+};
+
+Trace trace(afemp::Scene scene) {
+  afemp::Simulation sim(std::move(scene));
+  Trace t;
+  t.plan = sim.describe();
+  sim.on_step([&](afemp::Simulation& s) {
+    const afemp::Energies e = s.energies();
+    t.kinetic.push_back(e.kinetic);
+    t.internal.push_back(e.internal);
+    t.plastic.push_back(e.plastic);
+  });
+  sim.run();
+  if (!sim.particles().position.empty()) {
+    const auto x = sim.particles().position;
+    t.final_positions.assign(x.begin(), x.end());
+  } else {
+    const auto x = sim.nodes().position;
+    t.final_positions.assign(x.begin(), x.end());
+  }
+  return t;
+}
+
+void expect_same(const Trace& code, const Trace& file) {
+  EXPECT_EQ(code.plan, file.plan);
+  ASSERT_EQ(code.kinetic.size(), file.kinetic.size());
+  ASSERT_GT(code.kinetic.size(), 10u);
+  for (std::size_t k = 0; k < code.kinetic.size(); ++k) {
+    ASSERT_EQ(code.kinetic[k], file.kinetic[k]) << "step " << k + 1;
+    ASSERT_EQ(code.internal[k], file.internal[k]) << "step " << k + 1;
+    ASSERT_EQ(code.plastic[k], file.plastic[k]) << "step " << k + 1;
+  }
+  ASSERT_EQ(code.final_positions.size(), file.final_positions.size());
+  for (std::size_t i = 0; i < code.final_positions.size(); ++i)
+    ASSERT_EQ(afemp::norm(code.final_positions[i] - file.final_positions[i]), 0.0) << "point " << i;
+  // The bar hits the wall: plastic work is done (a run that did nothing would match too).
+  EXPECT_GT(file.plastic.back(), 0.01 * file.kinetic.front());
+}
+
+}  // namespace
+
+TEST(SimulationApi, ParticleTaylorBarBuiltInCodeIsTheSceneFilesModel) {
+  expect_same(trace(taylor_in_code(false)),
+              trace(afemp::core::parse_scene(taylor_toml(false), "taylor_mpm.toml")));
+}
+
+TEST(SimulationApi, HexahedronTaylorBarBuiltInCodeIsTheSceneFilesModel) {
+  expect_same(trace(taylor_in_code(true)),
+              trace(afemp::core::parse_scene(taylor_toml(true), "taylor_fe.toml")));
+}
+
+// A free elastic block of hexahedra, pulled by a program's load F (total, spread over the
+// nodes of its +x face) from rest: its momentum is F t (to within the half step at which
+// central differences hold velocities), and the load's work balances the energy.
+TEST(SimulationApi, ProgramNodalLoadGivesMomentumFtAndIsBookedAsExternalWork) {
+  afemp::Scene s;
+  s.run.end_time = 0.01;
+  afemp::Material steel;
+  steel.name = "steel";
+  steel.density = 7.85e-3;
+  steel.youngs_modulus = 200e3;
+  steel.poisson_ratio = 0.3;
+  s.materials.push_back(steel);
+  afemp::BodySpec block;
+  block.name = "block";
+  block.material = 0;
+  block.discretisation = afemp::Discretisation::hexahedra;
+  block.shape = afemp::BoxShape{{0, 0, 0}, {4, 2, 2}};
+  block.mesh.divisions = {4, 2, 2};
+  s.bodies.push_back(block);
+  afemp::Simulation sim(s);
+  const double force = 100.0;  // N
+  afemp::NodeFields nodes = sim.nodes();
+  std::size_t loaded = 0;
+  for (std::size_t i = 0; i < nodes.size(); ++i) loaded += nodes.position[i].x > 4.0 - 1e-9;
+  ASSERT_EQ(loaded, 9u);  // a 3 x 3 node face
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    if (nodes.position[i].x > 4.0 - 1e-9) nodes.external_force[i] = {force / 9.0, 0, 0};
+  const double dt = sim.stable_time_step();
+  const afemp::RunSummary r = sim.run();
+  const double px = r.final.bodies[0].momentum.x;
+  EXPECT_NEAR(px, force * r.time, force * dt) << "p = F t";
+  EXPECT_NEAR(r.final.bodies[0].momentum.y, 0.0, 1e-12 * force * r.time);
+  EXPECT_GT(r.final.external_work, 0.0);
+  EXPECT_LT(std::abs(r.energy_error), 0.01) << "the load's work enters the balance";
+  const std::vector<Vec3> f = sim.node_forces();
+  Vec3 total;
+  for (const Vec3& fi : f) total += fi;
+  EXPECT_NEAR(afemp::norm(total), 0.0, 1e-9 * force) << "internal forces sum to zero";
+}
+
+// The callbacks run once per step, in the order added, and see the state after the step.
+TEST(SimulationApi, StepCallbacksRunAfterEveryStepInOrder) {
+  afemp::Simulation sim(afemp::core::parse_scene(taylor_toml(false), "taylor_mpm.toml"));
+  std::vector<int> order;
+  long calls = 0;
+  sim.on_step([&](afemp::Simulation& s) {
+    order.push_back(1);
+    ++calls;
+    EXPECT_EQ(s.step_count(), calls);
+  });
+  sim.on_step([&](afemp::Simulation&) { order.push_back(2); });
+  sim.run_to(0.004);
+  EXPECT_NEAR(sim.time(), 0.004, 1e-12);
+  EXPECT_FALSE(sim.finished());
+  const afemp::RunSummary r = sim.run();
+  EXPECT_EQ(calls, r.steps);
+  ASSERT_EQ(order.size(), static_cast<std::size_t>(2 * calls));
+  for (std::size_t k = 0; k < order.size(); ++k) EXPECT_EQ(order[k], k % 2 == 0 ? 1 : 2);
+  EXPECT_NEAR(r.time, 0.01, 1e-12);
+}
+
+// Bad input through the API: InputError naming the object and field by the scene file's key and
+// what is allowed; nothing printed.
+TEST(SimulationApi, BadInputThrowsNamingObjectFieldAndWhatIsAllowed) {
+  struct Case {
+    const char* what;
+    void (*spoil)(afemp::Scene&);
+    const char* key;
+    const char* allowed;
+  };
+  const Case cases[] = {
+      {"particles per cell", [](afemp::Scene& s) { s.bodies[0].particles_per_cell = 0; },
+       "bodies.bar.particles_per_cell", "allowed: 1 to 8"},
+      {"Poisson ratio", [](afemp::Scene& s) { s.materials[0].poisson_ratio = 0.6; },
+       "materials.copper.nu", "allowed: 0 <= value < 0.5"},
+      {"material index", [](afemp::Scene& s) { s.bodies[0].material = 3; },
+       "bodies.bar.material", "not defined"},
+      {"no grid", [](afemp::Scene& s) { s.has_grid = false; }, "grid", "need a grid"},
+      {"end time", [](afemp::Scene& s) { s.run.end_time = -1.0; }, "run.end_time",
+       "allowed: value > 0"},
+      {"contact with itself",
+       [](afemp::Scene& s) {
+         afemp::ContactSpec c;
+         c.bodies = {0, 0};
+         s.contacts.push_back(c);
+       },
+       "contact[0].bodies", "cannot be in contact with itself"},
+      {"sphere of hexahedra",
+       [](afemp::Scene& s) {
+         s.bodies[0].discretisation = afemp::Discretisation::hexahedra;
+         s.bodies[0].shape = afemp::SphereShape{{5, 5, 5}, 2.0};
+       },
+       "bodies.bar.shape", "particles only"},
+  };
+  for (const Case& c : cases) {
+    afemp::Scene s = taylor_in_code(false);
+    c.spoil(s);
+    testing::internal::CaptureStdout();
+    testing::internal::CaptureStderr();
+    try {
+      afemp::Simulation sim(s);
+      ADD_FAILURE() << c.what << ": no error";
+    } catch (const afemp::InputError& e) {
+      EXPECT_EQ(e.key(), c.key) << c.what << ": " << e.what();
+      EXPECT_NE(std::string(e.what()).find(c.allowed), std::string::npos) << c.what << ": " << e.what();
+      EXPECT_NE(std::string(e.what()).find("scene built in code"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(testing::internal::GetCapturedStdout(), "") << c.what;
+    EXPECT_EQ(testing::internal::GetCapturedStderr(), "") << c.what;
+  }
+}
+
+// Every example scene passes the API's check as it passes the parser's: the two agree.
+TEST(SimulationApi, ExampleScenesPassTheCodeCheck) {
+  for (const char* path : {"examples/taylor_bar/mpm.toml", "examples/taylor_bar/fe.toml",
+                           "examples/taylor_bar/afemp.toml", "examples/elastic_bar/fe.toml",
+                           "examples/elastic_bar/mpm.toml", "examples/rc_slab/scene.toml",
+                           "examples/fe_projectile_mpm_plate/scene.toml"}) {
+    const afemp::Scene s = afemp::read_scene(std::string(AFEMP_SOURCE_DIR) + "/" + path);
+    EXPECT_NO_THROW(afemp::check_scene(s)) << path;
+  }
+}
