@@ -1,7 +1,7 @@
-// V2 with MPM (label `validation`): the Taylor bar of seed 001 §2.3.2 from
+// V2 with MPM (label `validation`): the Taylor bar of Ma 2005, §2.3.2 from
 // examples/taylor_bar/mpm.toml — OFHC copper at 190 m/s on a rigid wall, quarter model,
 // 8 particles per cell, to 72 us. Prints the row: L, D, W, mean error (eq 2-42), steps and
-// wall time, beside the experiment and the seed's MPM3D row.
+// wall time, beside the experiment and the MPM3D row of Ma 2005.
 #include <gtest/gtest.h>
 
 #include <cstdio>

@@ -1,4 +1,4 @@
-// V2 with FE (label `validation`): the Taylor bar of seed 001 §2.3.2 from
+// V2 with FE (label `validation`): the Taylor bar of Ma 2005, §2.3.2 from
 // examples/taylor_bar/fe.toml — OFHC copper at 190 m/s on a rigid frictionless wall, quarter
 // model of 0.25 mm hexahedra (the MPM scene's particle spacing), to 72 us. Prints the row: L, D,
 // W, mean error (eq 2-42), steps, smallest and largest time step and wall time, for one-point
