@@ -159,7 +159,7 @@ struct ErosionSettings {
   double time_step = 0.0;         // erode when the element's critical step falls below this
 };
 
-// Adaptive conversion of a body's hexahedra into particles (AFEMP, Lian et al. 2019, §2.5): an
+// Adaptive conversion of a body's hexahedra into particles (AFEMP, Lian et al. 2019, §2.6): an
 // element inside the grid domain that meets any criterion becomes points x points x points
 // particles; 0 / false switches a criterion off.
 struct ConversionSettings {

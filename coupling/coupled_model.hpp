@@ -7,7 +7,7 @@
 //   - bonded coupling (HFEMP): the nodes of a mesh body with `bonded_to` map mass, momentum
 //     and element forces into their host's field and move with the grid solution like its
 //     particles (perfect bond: rebar in concrete).
-//   - adaptive conversion (AFEMP, Lian et al. 2019, §2.5): hexahedra of a body with `conversion`
+//   - adaptive conversion (AFEMP, Lian et al. 2019, §2.6): hexahedra of a body with `conversion`
 //     that meet a criterion become particles of the same body (fem/element_conversion.cpp); the
 //     nodes they shared with live elements then join the body's field as bonded nodes, so the
 //     remaining mesh and its particles move together (the same bonded coupling).

@@ -1,7 +1,7 @@
 // The background grid shared by particles (and, later, FE nodes): regular cubic cells with
 // trilinear shape functions (Ma 2005, eq 2-5). Nodal data exists only in 4x4x4-node blocks
 // that material touches, so memory follows the material, not the domain (the dynamic grid of
-// Lian et al. 2019, §5); a block directory over the domain costs 4 bytes per 64 nodes.
+// Lian et al. 2019, §2.8); a block directory over the domain costs 4 bytes per 64 nodes.
 #pragma once
 
 #include <array>
