@@ -17,7 +17,7 @@
 
 namespace afemp::core {
 
-enum class UpdateScheme { USF, USL, MUSL };  // Lian et al. 2019, eqs 25-27
+enum class UpdateScheme { USF, USL, MUSL };  // Lian et al. 2013, eqs 25-27
 // Particle-grid weights: the trilinear hat of the node (Ma 2005, eq 2-5), or uGIMP, the hat
 // averaged over the particle's cubic domain (Bardenhagen & Kober 2004), smooth across cells.
 enum class ShapeFunction { linear, gimp };
@@ -159,7 +159,7 @@ struct ErosionSettings {
   double time_step = 0.0;         // erode when the element's critical step falls below this
 };
 
-// Adaptive conversion of a body's hexahedra into particles (AFEMP, Lian et al. 2019, §2.6): an
+// Adaptive conversion of a body's hexahedra into particles (AFEMP, Lian et al. 2013, §2.6): an
 // element inside the grid domain that meets any criterion becomes points x points x points
 // particles; 0 / false switches a criterion off.
 struct ConversionSettings {
@@ -186,7 +186,7 @@ struct BodySpec {
   std::optional<ErosionSettings> erosion;
   std::optional<ConversionSettings> conversion;  // hexahedra
   double area = 0.0;            // truss cross-section where the mesh gives none
-  // Bonded coupling (HFEMP, Lian et al. 2019, §2.6): the particle body whose velocity field this
+  // Bonded coupling (HFEMP, Lian et al. 2013, §2.6): the particle body whose velocity field this
   // mesh body's nodes join; they move with the grid solution (perfect bond). -1: not bonded.
   int bonded_to = -1;
   Vec3 velocity;                // initial velocity
@@ -242,7 +242,7 @@ struct WallSpec {
   SourceLocation where;
 };
 
-// Grid contact between two bodies, at least one of particles (Lian et al. 2019, eqs 37-42): each
+// Grid contact between two bodies, at least one of particles (Lian et al. 2013, eqs 37-42): each
 // body named in a contact gets its own velocity field on the grid (a mesh body's nodes map into
 // theirs: contact coupling, CFEMP); where two fields meet at a node and approach, a normal
 // correction makes their normal velocities equal, Coulomb friction limits the tangential one, and

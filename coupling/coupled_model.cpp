@@ -1,4 +1,4 @@
-// The coupled FE-MPM step (coupling/coupled_model.hpp; Lian et al. 2019, §2.4 contact coupling and
+// The coupled FE-MPM step (coupling/coupled_model.hpp; Lian et al. 2013, §2.4 contact coupling and
 // §2.6 hybrid FEMP). Time integration: the FE velocities live at half steps (central differences)
 // and so do the grid's updated velocities, so one dt advances both.
 // Contact nodes: the grid sees a contact node with its v^{n-1/2} as momentum and

@@ -1,4 +1,4 @@
-// Adaptive conversion of hexahedra into particles (AFEMP: Lian et al. 2019, §2.6, the adaptive
+// Adaptive conversion of hexahedra into particles (AFEMP: Lian et al. 2013, §2.6, the adaptive
 // FE-MPM of Zhang et al.; Ma 2005, §3.3). An element of a body with `conversion` that lies inside
 // the background grid and meets a criterion (plastic strain, damage, |V / V0 - 1|, the smallest
 // scaled corner Jacobian, its critical step against the grid's h / c, or inversion) leaves the

@@ -1,4 +1,4 @@
-// Grid contact between bodies (Lian et al. 2019, §2.4, eqs 37-42; Bardenhagen et al. 2000 with the
+// Grid contact between bodies (Lian et al. 2013, §2.4, eqs 37-42; Bardenhagen et al. 2000 with the
 // collinear normal of Huang et al. and the distance check of Ma et al.). Each body in a contact
 // maps to its own velocity field on the grid (particle_to_grid.cpp) and every field is integrated
 // on its own (grid_momentum_update.cpp, eq 38: the trial solution). Where two

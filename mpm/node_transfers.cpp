@@ -1,5 +1,5 @@
 // The FE nodes' part of the grid step (node_points.hpp): contact coupling (CFEMP,
-// Lian et al. 2019, §2.4) and bonded coupling (hybrid FEMP, Lian et al. 2019, §2.6). Each node is
+// Lian et al. 2013, §2.4) and bonded coupling (hybrid FEMP, Lian et al. 2013, §2.6). Each node is
 // a point with the trilinear hat of its cell (Ma 2005, eq 2-5), whatever the particles use: FE
 // nodes have no domain of their own. Mass and momentum map as for particles (eqs 2-29, 2-30), so
 // the grid sums are exact by the partition of unity; the force is the one the caller gives (the

@@ -134,7 +134,7 @@ struct VelocityUpdate {
   }
 };
 
-// How far a point at offset d from a grid node reaches along the unit normal n (Lian et al. 2019,
+// How far a point at offset d from a grid node reaches along the unit normal n (Lian et al. 2013,
 // eq 42), or -inf for a point more than half a cell h from the normal line through the node.
 inline double reach_along(const Vec3& d, const Vec3& n, double h) {
   const double along = core::dot(d, n);

@@ -1,5 +1,5 @@
 // Contact coupling of FE and MPM bodies through the grid (CFEMP, coupling/coupled_model.hpp,
-// Lian et al. 2019, §2.4 and §2.6). References: conservation of linear momentum (the contact
+// Lian et al. 2013, §2.4 and §2.6). References: conservation of linear momentum (the contact
 // impulses on the FE field and on the particles' field are equal and opposite, and the FE nodes
 // receive exactly their field's impulse); the rule that contact creates no energy (kinetic +
 // internal energy never above the start, in an elastic impact); the rebound of two equal cubes

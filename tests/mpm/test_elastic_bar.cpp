@@ -79,7 +79,7 @@ TEST(ElasticBar, UsfReboundsAndClosesEnergyBalance) {
 }
 
 TEST(ElasticBar, UslFiguresAreReportedBesideTheOthers) {
-  // USL dissipates and is unstable at free surfaces (Lian et al. 2019, §2.1.2); its figures are
+  // USL dissipates and is unstable at free surfaces (Lian et al. 2013, §2.1.2); its figures are
   // reported, and the only assertion is that it neither blows up nor gains energy beyond
   // the 20 % the old wall treatment showed.
   const Rebound r = run("USL", 0.1);
