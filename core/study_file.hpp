@@ -17,7 +17,7 @@ namespace afemp::core {
 
 // What a metric measures at the end of a run.
 enum class MetricKind {
-  taylor,      // a Taylor bar's L, D, W and the mean error of seed 001 eq 2-42
+  taylor,      // a Taylor bar's L, D, W and the mean error (Ma 2005, eq 2-42)
   velocity,    // a body's mean velocity (one component or the magnitude): residual, rebound
   crater,      // a target's crater depth and diameter (core/crater_metrics.hpp)
   hole,        // the diameter of the hole in a plate (core/crater_metrics.hpp)

@@ -1,4 +1,4 @@
-// Taylor-bar measures (seed 001 §2.3.2): final length L, impact-face diameter D and the
+// Taylor-bar measures (Ma 2005, §2.3.2): final length L, impact-face diameter D and the
 // diameter W at 0.2 L0 from the wall, and the mean relative error of eq 2-42,
 // (|dL|/L + |dD|/D + |dW|/W) / 3, against reference values. Solvers pass the points of the
 // bar: particle centres with their half size, or mesh nodes (half size 0).

@@ -1,6 +1,6 @@
-// The coupled FE-MPM step (coupling/coupled_model.hpp; seed 000 §2.4 contact coupling and
-// §2.6 hybrid FEMP). Time integration: the FE velocities live at half steps (central
-// differences) and so do the grid's updated velocities, so one dt advances both.
+// The coupled FE-MPM step (coupling/coupled_model.hpp; Lian et al. 2013, §2.4 contact coupling and
+// §2.6 hybrid FEMP). Time integration: the FE velocities live at half steps (central differences)
+// and so do the grid's updated velocities, so one dt advances both.
 // Contact nodes: the grid sees a contact node with its v^{n-1/2} as momentum and
 // m (v^{n+1/2} - v^{n-1/2}) / dt as force, so its field's updated velocity is the FE update's;
 // the node then takes sum N dv of the contact's change to that field, which hands the FE body

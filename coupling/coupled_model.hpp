@@ -1,4 +1,5 @@
-// FE and MPM bodies in one scene, tied through the background grid (seed 000 §2.4 and §2.6):
+// FE and MPM bodies in one scene, tied through the background grid
+// (Lian et al. 2013, §2.4 and §2.6):
 //   - contact coupling (CFEMP): the nodes of a mesh body named in a [[contact]] map their
 //     mass, momentum and FE-update force into their own velocity field; grid contact corrects
 //     that field against the particles' and each node receives sum N dv of the correction.
@@ -6,8 +7,8 @@
 //   - bonded coupling (HFEMP): the nodes of a mesh body with `bonded_to` map mass, momentum
 //     and element forces into their host's field and move with the grid solution like its
 //     particles (perfect bond: rebar in concrete).
-//   - adaptive conversion (AFEMP, seed 000 §2.5): hexahedra of a body with `conversion` that
-//     meet a criterion become particles of the same body (fem/element_conversion.cpp); the
+//   - adaptive conversion (AFEMP, Lian et al. 2013, §2.6): hexahedra of a body with `conversion`
+//     that meet a criterion become particles of the same body (fem/element_conversion.cpp); the
 //     nodes they shared with live elements then join the body's field as bonded nodes, so the
 //     remaining mesh and its particles move together (the same bonded coupling).
 // Mesh bodies in neither take no part in the grid step. One step with dt = the smaller of the

@@ -1,6 +1,6 @@
-// Adaptive conversion of hexahedra into particles (AFEMP: seed 000 §2.5, the adaptive FE-MPM
-// of Zhang et al.; seed 001 §3.3). An element of a body with `conversion` that lies inside the
-// background grid and meets a criterion (plastic strain, damage, |V / V0 - 1|, the smallest
+// Adaptive conversion of hexahedra into particles (AFEMP: Lian et al. 2013, §2.6, the adaptive
+// FE-MPM of Zhang et al.; Ma 2005, §3.3). An element of a body with `conversion` that lies inside
+// the background grid and meets a criterion (plastic strain, damage, |V / V0 - 1|, the smallest
 // scaled corner Jacobian, its critical step against the grid's h / c, or inversion) leaves the
 // mesh and becomes n x n x n particles (n = 1: the centroid; n = 2: the 2 x 2 x 2 Gauss points
 // xi = +-1/sqrt(3)), each with mass m_e / n^3, the integration-point state (stress, plastic

@@ -1,6 +1,6 @@
 // The hexahedron stage: for every live element, the strain increment from v^{n+1/2} on the
 // mid-step geometry (Belytschko, Liu & Moran box 6.1), the Jaumann-rotated stress updated by
-// the shared material law (seed 001 eq 2-41), artificial bulk viscosity
+// the shared material law (Ma 2005, eq 2-41), artificial bulk viscosity
 // q = rho l (C_q l eps_v'^2 - C_l c eps_v') in compression (LS-DYNA theory manual, "Artificial
 // bulk viscosity"), hourglass forces for one-point elements (Flanagan & Belytschko 1981 viscous
 // or stiffness forms, or Belytschko & Bindeman 1993 assumed strain), the nodal forces on the

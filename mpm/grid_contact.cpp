@@ -1,7 +1,7 @@
-// Grid contact between bodies (seed 000 §2.4, eqs 37-42; Bardenhagen et al. 2000 with the
-// collinear normal of Huang et al. and the distance check of Ma et al.). Each body in a
-// contact maps to its own velocity field on the grid (particle_to_grid.cpp) and every field is
-// integrated on its own (grid_momentum_update.cpp, eq 38: the trial solution). Where two
+// Grid contact between bodies (Lian et al. 2013, §2.4, eqs 37-42; Bardenhagen et al. 2000 with the
+// collinear normal of Huang et al. and the distance check of Ma et al.). Each body in a contact
+// maps to its own velocity field on the grid (particle_to_grid.cpp) and every field is integrated
+// on its own (grid_momentum_update.cpp, eq 38: the trial solution). Where two
 // fields meet at a node:
 //   - fields whose bodies are not in contact stick: both take the centre-of-mass velocity,
 //     exactly what one shared field would give them;
@@ -13,7 +13,7 @@
 // Energy: in the update pass a pair whose start velocities (the particles' own) separate is
 // left alone; without that rule, fields with little mass at a node, whose updated velocities
 // carry f dt / m, drew impulses that created 12 % energy in a head-on impact of two elastic
-// cubes (seed 001 §3.2.1 reports the same failure). The energy the contact dissipates is
+// cubes (Ma 2005, §3.2.1 reports the same failure). The energy the contact dissipates is
 // estimated from the impulses' work on the interface (Energies::contact).
 // The normal n_r = -n_s is one vector for the pair, from both bodies' mass gradients
 // (eq 37 for each, combined as m_s n_r - m_r n_s: pair_normal), so the two normals are collinear by
@@ -253,7 +253,7 @@ void MpmSolver::grid_contact(ContactPass pass) {
           // field with little mass at the node carries f dt / m, which can point into the
           // other body while its particles move away from it. The particles' kinetic energy
           // changes by J . (v_a - v_b) at first order, with the start velocities, so an
-          // impulse J there would create energy (as the contact of seed 001 did).
+          // impulse J there would create energy (as the contact of Ma 2005 did).
           const Vec3 rel_start = g.velocity[a] - g.velocity[b];
           if (update && core::dot(rel_start, n) < 0.0) continue;
           const Vec3 rel = v[a] - v[b];

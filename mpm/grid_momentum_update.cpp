@@ -1,4 +1,4 @@
-// Grid momentum update and boundary conditions (seed 001 eq 2-32): v = p / m, a = f / m,
+// Grid momentum update and boundary conditions (Ma 2005, eq 2-32): v = p / m, a = f / m,
 // v^{k+1} = v + a dt, with the components a face constrains set to zero in both v and a
 // (fixed: all three; symmetric: the normal one), as MPM3D does (p = 0, f = 0 there). A wall
 // face holds the normal component of v and of v^{k+1} only where it points into the wall,

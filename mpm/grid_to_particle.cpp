@@ -1,4 +1,4 @@
-// Grid-to-particle velocity update (seed 001 eqs 2-33..2-36) with a PIC/FLIP blend:
+// Grid-to-particle velocity update (Ma 2005, eqs 2-33..2-36) with a PIC/FLIP blend:
 // v_p <- flip (v_p + sum N (v_new - v)) + (1 - flip) sum N v_new. USF also moves the
 // particle here with the updated grid velocity (eq 2-35); USL and MUSL move it in the
 // strain pass, whose weights must still be those of the step's start position. With the

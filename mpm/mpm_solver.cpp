@@ -1,4 +1,4 @@
-// The MPM step as a chain of stages (seed 001 §2.2.4): the plan decides which run and in
+// The MPM step as a chain of stages (Ma 2005, §2.2.4): the plan decides which run and in
 // what order; this file holds the loop over the plan, the time step and the bookkeeping.
 #include "mpm/mpm_solver.hpp"
 

@@ -1,5 +1,5 @@
 // The explicit MPM solver: particles on the background grid, advanced one step at a time by
-// the stages of its StepPlan (seed 001 §2.2.4, seed 000 §2.1 for USF / USL / MUSL).
+// the stages of its StepPlan (Ma 2005, §2.2.4; Lian et al. 2013, §2.1 for USF / USL / MUSL).
 // The stage kernels live in files named after them: particle_binning.cpp,
 // particle_to_grid.cpp, grid_momentum_update.cpp, grid_to_particle.cpp, stress_update.cpp.
 #pragma once

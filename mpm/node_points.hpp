@@ -1,4 +1,4 @@
-// FE nodes that take part in the grid step (the couplings of coupling/, seed 000 §2.4 and
+// FE nodes that take part in the grid step (the couplings of coupling/, Lian et al. 2013, §2.4 and
 // §2.6). They are points with mass, momentum and a force the caller computes (the elements'),
 // mapped with the trilinear hat into their body's velocity field, and:
 //   - bonded nodes (HFEMP: rebar in concrete) share the field of the particles they are

@@ -1,8 +1,8 @@
-// The FE nodes' part of the grid step (node_points.hpp): contact coupling (CFEMP, seed 000
-// §2.4) and bonded coupling (hybrid FEMP, seed 000 §2.6). Each node is a point with the
-// trilinear hat of its cell (seed 001 eq 2-5), whatever the particles use: FE nodes have no
-// domain of their own. Mass and momentum map as for particles (eqs 2-29, 2-30), so the grid
-// sums are exact by the partition of unity; the force is the one the caller gives (the
+// The FE nodes' part of the grid step (node_points.hpp): contact coupling (CFEMP,
+// Lian et al. 2013, §2.4) and bonded coupling (hybrid FEMP, Lian et al. 2013, §2.6). Each node is
+// a point with the trilinear hat of its cell (Ma 2005, eq 2-5), whatever the particles use: FE
+// nodes have no domain of their own. Mass and momentum map as for particles (eqs 2-29, 2-30), so
+// the grid sums are exact by the partition of unity; the force is the one the caller gives (the
 // elements' nodal force) instead of -V sigma.grad N. Bonded nodes take the particles' velocity
 // update (the same PIC/FLIP blend, or the grid velocity with APIC) and move with the grid
 // velocity; contact nodes take only sum N dv of the contact correction of their field. Where

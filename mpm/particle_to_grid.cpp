@@ -1,4 +1,4 @@
-// Particle-to-grid transfers (seed 001 eqs 2-29..2-31, 2-10, 2-11, 2-37): lumped nodal mass,
+// Particle-to-grid transfers (Ma 2005, eqs 2-29..2-31, 2-10, 2-11, 2-37): lumped nodal mass,
 // momentum, internal force -V sigma.grad N and body force m N g, summed without atomics by
 // sweeping the colour layers of particle_binning.cpp (one colour at a time). With the affine
 // transfer the momentum is m N (v_p + C_p (x_I - x_p)) (Jiang et al. 2015).

@@ -1,4 +1,4 @@
-// Material points as a structure of arrays (seed 001 §2.1: each point carries mass, volume,
+// Material points as a structure of arrays (Ma 2005, §2.1: each point carries mass, volume,
 // velocity, stress and history). Points of one material are kept contiguous so that the
 // constitutive update runs per material batch.
 #pragma once

@@ -14,7 +14,7 @@
 
 namespace afemp::mpm {
 
-// Trilinear hat (seed 001 eq 2-5): the 8 nodes of the particle's cell.
+// Trilinear hat (Ma 2005, eq 2-5): the 8 nodes of the particle's cell.
 struct LinearStencil {
   static constexpr int nodes = 8;
   // Colour layers (one cell thick along the sweep axis) that may run at once: layer L
@@ -134,7 +134,7 @@ struct VelocityUpdate {
   }
 };
 
-// How far a point at offset d from a grid node reaches along the unit normal n (seed 000
+// How far a point at offset d from a grid node reaches along the unit normal n (Lian et al. 2013,
 // eq 42), or -inf for a point more than half a cell h from the normal line through the node.
 inline double reach_along(const Vec3& d, const Vec3& n, double h) {
   const double along = core::dot(d, n);

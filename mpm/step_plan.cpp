@@ -82,11 +82,11 @@ StepPlan build_step_plan(const core::Scene& scene) {
   }
   const Stage surfaces = stage(StageKind::contact_surfaces, "contact surfaces",
                                "grid contact: each contact body's normal from its mass "
-                               "gradient and its reach toward the other (seed 000 eqs 37, 42)");
+                               "gradient and its reach toward the other (Lian et al. 2013, eqs 37, 42)");
   const Stage grid_contact =
       stage(StageKind::grid_contact, "grid contact",
             "grid contact on the updated velocity: normal stop, Coulomb friction, separation "
-            "(seed 000 eqs 38-42)");
+            "(Lian et al. 2013, eqs 38-42)");
 
   const std::string force_why = plan.gravity ? "internal force -V sigma.grad N and gravity m N g"
                                              : "internal force -V sigma.grad N (no body force)";

@@ -1,6 +1,6 @@
 // The step plan: the list of stages one explicit MPM step runs, assembled once from the scene
-// (NairnMPM's task chain, seed 000 eqs 25-27 for the three orders). The time loop executes
-// exactly this list, so a scene pays only for the stages it needs.
+// (NairnMPM's task chain, Lian et al. 2013, eqs 25-27 for the three orders). The time loop
+// executes exactly this list, so a scene pays only for the stages it needs.
 #pragma once
 
 #include <string>
@@ -22,9 +22,9 @@ enum class StageKind {
   p2g_remap,              // MUSL: eq 2-37
   strain_stress_update,   // eqs 2-38..2-41 from the velocity the scheme names
   g2p_velocity_strain_stress,  // USL: eqs 2-33..2-41 in one sweep (same weights, same field)
-  contact_surfaces,       // grid contact: normals (seed 000 eq 37) and reach (eq 42)
+  contact_surfaces,       // grid contact: normals (Lian et al. 2013, eq 37) and reach (eq 42)
   contact_start,          // grid contact on the start velocity (USF: the strain reads it)
-  grid_contact,           // seed 000 eqs 38-42 on the updated velocity, Coulomb friction
+  grid_contact,           // Lian et al. 2013, eqs 38-42 on the updated velocity, Coulomb friction
   contact_remap,          // MUSL: the same on the remapped velocity
 };
 

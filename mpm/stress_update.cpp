@@ -1,4 +1,4 @@
-// Strain and stress update of the particles (seed 001 eqs 2-38..2-41): velocity gradient
+// Strain and stress update of the particles (Ma 2005, eqs 2-38..2-41): velocity gradient
 // from the nodal velocity the scheme names, Jaumann rotation of the stress, volume update
 // V <- V (1 + tr d eps) (eq 2-40), then the material's constitutive update, batch by batch:
 // one std::visit per material, one direct (inlined) call per point, and the bulk viscosity

@@ -1,5 +1,5 @@
 // OFHC-like copper for shock tests: perfectly plastic (Y = 240 MPa) with the Mie-Grueneisen
-// EOS of seed 001 (c0 3940 m/s, s 1.49, gamma0 1.96), units mm, ms, g, MPa, as a scene's
+// EOS of Ma 2005 (c0 3940 m/s, s 1.49, gamma0 1.96), units mm, ms, g, MPa, as a scene's
 // [materials.copper] table (header only; not a test file itself).
 #pragma once
 

@@ -1,4 +1,4 @@
-// The V1 elastic bar (seed 001 §2.3.1; examples/elastic_bar/mpm.toml without its output keys)
+// The V1 elastic bar (Ma 2005, §2.3.1; examples/elastic_bar/mpm.toml without its output keys)
 // as scene text, for tests that write it to a file (header only; not a test file itself).
 #pragma once
 
@@ -26,7 +26,7 @@ velocity = [0, 0, -300]
 )";
 
 // A study file's head for that bar, on 1 thread: the [study] table with `title`, and a
-// "rebound" metric (the bar's mean z velocity against the seed's 300 m/s, tolerance 0.1);
+// "rebound" metric (the bar's mean z velocity against Ma 2005's 300 m/s, tolerance 0.1);
 // the caller appends its [[runs]] (with `scene = "bar.toml"`).
 inline std::string elastic_bar_study(const std::string& title) {
   return "\n[study]\ntitle = \"" + title + "\"\nthreads = 1\n\n"

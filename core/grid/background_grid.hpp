@@ -1,7 +1,7 @@
 // The background grid shared by particles (and, later, FE nodes): regular cubic cells with
-// trilinear shape functions (seed 001 eq 2-5). Nodal data exists only in 4x4x4-node blocks
+// trilinear shape functions (Ma 2005, eq 2-5). Nodal data exists only in 4x4x4-node blocks
 // that material touches, so memory follows the material, not the domain (the dynamic grid of
-// seed 000 §5); a block directory over the domain costs 4 bytes per 64 nodes.
+// Lian et al. 2013, §2.8); a block directory over the domain costs 4 bytes per 64 nodes.
 #pragma once
 
 #include <array>
@@ -190,8 +190,8 @@ class BackgroundGrid {
   std::vector<Vec3> velocity;  // v^k (old) after the grid update
   std::vector<Vec3> velocity_new;  // v^{k+1}
   std::vector<Vec3> velocity_remap;  // MUSL: velocity remapped from updated particles
-  // Grid contact only: each field's mass gradient sum m grad S (seed 000 eq 37) and, along
-  // its contact normal, how far its particles reach past the node (eq 42).
+  // Grid contact only: each field's mass gradient sum m grad S (Lian et al. 2013, eq 37) and,
+  // along its contact normal, how far its particles reach past the node (eq 42).
   std::vector<Vec3> mass_gradient;
   std::vector<double> reach;
   int field_count() const { return fields_; }

@@ -1,5 +1,5 @@
 // Definition of constitutive_update (declared in material.hpp, which includes this file at its
-// end: include material.hpp, not this header). Seed 001 eq 2-41 with the energy equation
+// end: include material.hpp, not this header). Eq 2-41 of Ma 2005 with the energy equation
 // de = (s_mid : de_dev - p_mid tr(d eps)) / rho solved in closed form with p = a(mu) + b(mu) e;
 // the Holmquist-Johnson-Cook pair branches to its own update (holmquist_johnson_cook.cpp).
 #pragma once

@@ -1,4 +1,4 @@
-// Elastic strength model: hypoelastic deviatoric update s += 2 G de_dev (seed 001 eq 2-41,
+// Elastic strength model: hypoelastic deviatoric update s += 2 G de_dev (Ma 2005, eq 2-41,
 // deviatoric part of the Jaumann-rate Hooke law; the rotation is applied by the caller).
 #include "afemp/strength_models.hpp"
 

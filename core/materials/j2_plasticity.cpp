@@ -1,5 +1,5 @@
 // J2 plasticity with linear isotropic hardening, sigma_y = sigma_y0 + H eps_p: elastic
-// predictor and radial return in closed form (Simo & Hughes 1998, box 3.2; seed 001 §2.2.1).
+// predictor and radial return in closed form (Simo & Hughes 1998, box 3.2; Ma 2005, §2.2.1).
 #include "afemp/strength_models.hpp"
 
 namespace afemp::core {

@@ -1,4 +1,4 @@
-// Johnson-Cook strength (seed 001 eq 2-20): sigma_y = (A + B eps^n)(1 + C ln(epsdot/epsdot_0))
+// Johnson-Cook strength (Ma 2005, eq 2-20): sigma_y = (A + B eps^n)(1 + C ln(epsdot/epsdot_0))
 // (1 - T*^m), returned radially with the consistency condition q_tr - 3G dp = sigma_y(eps_p + dp,
 // dp/dt, T) solved by bracketed Newton (rtsafe, Press et al., Numerical Recipes §9.4).
 #include <algorithm>

@@ -1,5 +1,5 @@
 // Material composition checks and the longitudinal wave speed sqrt((K_t + 4G/3) / rho) used
-// for the explicit time step (seed 001 §2.2; K_t = rho dp/drho of the EOS at the point's state).
+// for the explicit time step (Ma 2005, §2.2; K_t = rho dp/drho of the EOS at the point's state).
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>

@@ -1,6 +1,6 @@
 // A material is composed: a strength model for the deviator, an equation of state (or the
 // hypoelastic bulk law) for the pressure, and thermal properties for adiabatic heating
-// (seed 001 §2.2.1-2.2.2; the composition of OpenMPM3D / MPM3D-cpp). Solvers apply it to
+// (Ma 2005, §2.2.1-2.2.2; the composition of OpenMPM3D / MPM3D-cpp). Solvers apply it to
 // contiguous batches of points: std::visit once per batch, then a direct call per point.
 #pragma once
 
@@ -42,7 +42,7 @@ struct PointUpdate {
 };
 
 // Updates stress, plastic strain, temperature and specific internal energy of one point for
-// the strain increment d_eps = D dt (seed 001 eq 2-41):
+// the strain increment d_eps = D dt (Ma 2005, eq 2-41):
 //   deviator from the strength model; pressure from the EOS solved together with the energy
 //   equation de = (s_mid : de_dev - p_mid tr(d_eps)) / rho (midpoint rule, closed form since
 //   every EOS is linear in e), or p -= K tr(d_eps) without an EOS; temperature rises by

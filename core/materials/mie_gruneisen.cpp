@@ -1,4 +1,4 @@
-// Mie-Grueneisen EOS with a linear Us-Up Hugoniot in the cubic form of seed 001 eqs 2-21..2-26:
+// Mie-Grueneisen EOS with a linear Us-Up Hugoniot in the cubic form of Ma 2005, eqs 2-21..2-26:
 // p = pH (1 - gamma mu / 2) + gamma rho e (eq 2-25) with gamma = gamma0 rho0 / rho (eq 2-22),
 // so gamma mu = gamma0 mu / (1 + mu) and gamma rho = gamma0 rho0;
 // pH = C1 mu + C2 mu^2 + C3 mu^3 (mu >= 0), pH = C1 mu (mu < 0),

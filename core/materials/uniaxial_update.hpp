@@ -41,7 +41,7 @@ inline double uniaxial_modulus(const Material& material, const Eos& eos, const P
 // Advances `point` by the axial strain increment d_axial (= axial strain rate * dt) under
 // uniaxial stress. The point's stress is in the bar's frame, axis along x, lateral stresses
 // zero to the tolerance above. point.density is rho^k on entry and rho^{k+1} on return,
-// rho^{k+1} = rho^k / (1 + d_axial + 2 d_l) as in the particle volume update (seed 001
+// rho^{k+1} = rho^k / (1 + d_axial + 2 d_l) as in the particle volume update (Ma 2005,
 // eq 2-40), so every trial sees the density its own lateral strain implies.
 //
 // The lateral stress r(d_l) increases monotonically with d_l (more lateral stretch, more

@@ -22,7 +22,7 @@ struct LinearEos {
   double tangent_bulk_modulus(double mu, double e) const;  ///< rho dp/drho
 };
 
-/// Mie-Grueneisen with a linear Us-Up Hugoniot, seed 001 eqs 2-21..2-26:
+/// Mie-Grueneisen with a linear Us-Up Hugoniot (Ma 2005, eqs 2-21..2-26):
 /// p = pH (1 - gamma mu / 2) + gamma rho e with gamma = gamma0 rho0 / rho (eq 2-22), i.e.
 /// p = pH (1 - gamma0 mu / (2 (1 + mu))) + gamma0 rho0 e,
 /// pH = C1 mu + C2 mu^2 + C3 mu^3 (mu >= 0), pH = C1 mu (mu < 0),

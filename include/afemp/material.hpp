@@ -1,6 +1,6 @@
 // A material as the scene file and the library describe it: a strength model for the
 // deviator, an equation of state (or the hypoelastic bulk law) for the pressure, and thermal
-// properties for adiabatic heating (Ma 2005, sections 2.2.1-2.2.2; the composition of
+// properties for adiabatic heating (Ma 2005, §2.2.1-2.2.2; the composition of
 // OpenMPM3D / MPM3D-cpp). The point-wise updates are internal (core/materials/).
 #pragma once
 

@@ -28,7 +28,7 @@ struct Progress {
 };
 
 /// Taylor-bar measures: final length L, impact-face diameter D and diameter W at 0.2 L0 from
-/// the wall (Ma 2005, section 2.3.2).
+/// the wall (Ma 2005, §2.3.2).
 struct TaylorMeasures {
   double length = 0.0, impact_diameter = 0.0, bulge_diameter = 0.0;
 };

@@ -20,8 +20,8 @@
 namespace afemp::core {
 
 
-enum class UpdateScheme { USF, USL, MUSL };  ///< seed 000 eqs 25-27
-/// Particle-grid weights: the trilinear hat of the node (seed 001 eq 2-5), or uGIMP, the hat
+enum class UpdateScheme { USF, USL, MUSL };  ///< Lian et al. 2013, eqs 25-27
+/// Particle-grid weights: the trilinear hat of the node (Ma 2005, eq 2-5), or uGIMP, the hat
 /// averaged over the particle's cubic domain (Bardenhagen & Kober 2004), smooth across cells.
 enum class ShapeFunction { linear, gimp };
 /// How velocity travels between particles and grid: the FLIP/PIC blend, or the affine PIC of
@@ -180,7 +180,7 @@ struct ErosionSettings {
   double time_step = 0.0;         ///< erode when the element's critical step falls below this
 };
 
-/// Adaptive conversion of a body's hexahedra into particles (AFEMP, seed 000 §2.5): an element
+/// Adaptive conversion of a body's hexahedra into particles (AFEMP, Lian et al. 2013, §2.6): an element
 /// inside the grid domain that meets any criterion becomes points x points x points particles;
 /// 0 / false switches a criterion off.
 struct ConversionSettings {
@@ -209,7 +209,7 @@ struct BodySpec {
   std::optional<ErosionSettings> erosion;
   std::optional<ConversionSettings> conversion;  ///< hexahedra
   double area = 0.0;            ///< truss cross-section where the mesh gives none
-  /// Bonded coupling (HFEMP, seed 000 §2.6): the particle body whose velocity field this mesh
+  /// Bonded coupling (HFEMP, Lian et al. 2013, §2.6): the particle body whose velocity field this mesh
   /// body's nodes join; they move with the grid solution (perfect bond). -1: not bonded.
   int bonded_to = -1;
   Vec3 velocity;                ///< initial velocity
@@ -221,7 +221,7 @@ struct BodySpec {
   SourceLocation where;         ///< the [[bodies]] table, for messages
 };
 
-/// Reference values a run compares its result with at the end (seed 001 eq 2-42).
+/// Reference values a run compares its result with at the end (Ma 2005, eq 2-42).
 struct TaylorReference {
   double length = 0.0, impact_diameter = 0.0, bulge_diameter = 0.0;  ///< L, D, W
   double tolerance = 0.0;       ///< allowed mean error; 0: report only
@@ -265,7 +265,7 @@ struct WallSpec {
   SourceLocation where;
 };
 
-/// Grid contact between two bodies, at least one of particles (seed 000 eqs 37-42): each body
+/// Grid contact between two bodies, at least one of particles (Lian et al. 2013, eqs 37-42): each body
 /// named in a contact gets its own velocity field on the grid (a mesh body's nodes map into
 /// theirs: contact coupling, CFEMP); where two fields meet at a node and approach, a normal
 /// correction makes their normal velocities equal, Coulomb friction limits the tangential one,

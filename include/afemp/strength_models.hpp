@@ -1,4 +1,4 @@
-// Strength models: the deviatoric half of a material (seed 001 §2.2.1). Each model updates
+// Strength models: the deviatoric half of a material (Ma 2005, §2.2.1). Each model updates
 // the stress deviator for one strain increment by radial return onto its yield surface.
 // Bodies live in files named after each model; link-time optimisation inlines them into the
 // material batch loops.
@@ -37,7 +37,7 @@ struct J2Plasticity {
   bool thermal() const { return false; }
 };
 
-/// Johnson-Cook flow stress (seed 001 eq 2-20):
+/// Johnson-Cook flow stress (Ma 2005, eq 2-20):
 /// sigma_y = (A + B eps_p^n)(1 + C ln(epsdot_p / epsdot_0))(1 - T*^m),
 /// T* = (T - T_room) / (T_melt - T_room); the rate term is used only for epsdot_p > epsdot_0
 /// (as LS-DYNA *MAT_015 does) and the thermal term only when m > 0 and T_melt > T_room.

@@ -97,7 +97,7 @@ constexpr SymTensor sym_part(const Mat3& l) {
           0.5 * (l.m[0][2] + l.m[2][0]), 0.5 * (l.m[0][1] + l.m[1][0])};
 }
 
-/// Jaumann rotation increment  W.s - s.W  (seed 001 eqs 2-17, 2-41) for the spin increment
+/// Jaumann rotation increment  W.s - s.W  (Ma 2005, eqs 2-17, 2-41) for the spin increment
 /// W = (L - L^T) dt / 2 with L_ij = dv_i/dx_j; w23, w13, w12 are its components W_23, W_13, W_12.
 constexpr SymTensor jaumann_increment(const SymTensor& s, double w23, double w13, double w12) {
   /// W = [[0, w12, w13], [-w12, 0, w23], [-w13, -w23, 0]]

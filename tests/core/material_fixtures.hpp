@@ -1,5 +1,5 @@
 // Materials the material-law tests share (units mm, ms, g, N, MPa): a steel-like solid and
-// OFHC copper with Johnson-Cook (Johnson & Cook 1983) and Mie-Grueneisen (seed 001 values).
+// OFHC copper with Johnson-Cook (Johnson & Cook 1983) and Mie-Grueneisen (Ma 2005 values).
 #pragma once
 
 #include "core/materials/material.hpp"
@@ -7,7 +7,7 @@
 namespace afemp::core::fixtures {
 
 // Scene text of the determinism tests: gravity and a Johnson-Cook copper with the
-// Mie-Grueneisen EOS (seed 001's Taylor bar values, rate term off), to follow a [run] header
+// Mie-Grueneisen EOS (Ma 2005's Taylor bar values, rate term off), to follow a [run] header
 // line and precede the [[bodies]] table.
 inline constexpr const char* kDeterminismCopperToml = R"(end_time = 1.0
 gravity = [0, 0, -9.81e-3]

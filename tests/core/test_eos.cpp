@@ -1,4 +1,4 @@
-// Equations of state against their defining formulas: Mie-Grueneisen (seed 001 eqs 2-21..2-26),
+// Equations of state against their defining formulas: Mie-Grueneisen (Ma 2005, eqs 2-21..2-26),
 // LS-DYNA linear polynomial and the linear EOS, plus their tangent bulk moduli rho dp/drho.
 // Units mm, ms, g, N, MPa: e in mm^2/ms^2 (= J/kg), rho in g/mm^3.
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 namespace afemp::core {
 namespace {
 
-// Copper (seed 001 table values): rho0 = 8.93 g/cm^3, c0 = 3.94 km/s, s = 1.49, gamma0 = 1.96.
+// Copper (Ma 2005 table values): rho0 = 8.93 g/cm^3, c0 = 3.94 km/s, s = 1.49, gamma0 = 1.96.
 MieGruneisen copper_eos() { return {8.93e-3, 3940.0, 1.49, 1.96}; }
 
 template <class Eos>

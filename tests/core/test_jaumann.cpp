@@ -1,4 +1,4 @@
-// Objectivity of the Jaumann rate (seed 001 eqs 2-17, 2-41): under a pure spin (no rate of
+// Objectivity of the Jaumann rate (Ma 2005, eqs 2-17, 2-41): under a pure spin (no rate of
 // deformation) the stress must rotate with the material, sigma(t) = R sigma0 R^T, without
 // changing its invariants. Eigen supplies the exact rotation.
 #include <gtest/gtest.h>

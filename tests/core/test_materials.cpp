@@ -1,5 +1,5 @@
 // Strength models and the composed constitutive update (material.hpp) against closed forms:
-// Hooke's law, J2 radial return (Simo & Hughes box 3.2), Johnson-Cook (seed 001 eq 2-20),
+// Hooke's law, J2 radial return (Simo & Hughes box 3.2), Johnson-Cook (Ma 2005, eq 2-20),
 // the midpoint energy equation, adiabatic heating, wave speed and parameter validation.
 #include <gtest/gtest.h>
 

@@ -714,7 +714,7 @@ TEST(SceneParser, ContactReadsItsPairAndRejectsWhatItCannotDo) {
   EXPECT_EQ(s.contacts[0].bodies[0], 0);
   EXPECT_EQ(s.contacts[0].bodies[1], 1);
   EXPECT_EQ(s.contacts[0].friction, 0.2);
-  EXPECT_EQ(s.contacts[0].distance_factor, 0.5);  // seed 000 eq 42's lambda
+  EXPECT_EQ(s.contacts[0].distance_factor, 0.5);  // lambda of Lian et al. 2013, eq 42
   const int line = line_of(good, "[[contact]]");  // its bodies key is on the next line
   std::string e = error_of(minimal_head + minimal_tail + second +
                            "[[contact]]\nbodies = [\"block\", \"block\"]\n");

@@ -1,4 +1,4 @@
-// Bonded coupling of truss bars to particles (HFEMP, coupling/coupled_model.hpp, seed 000
+// Bonded coupling of truss bars to particles (HFEMP, coupling/coupled_model.hpp, Lian et al. 2013,
 // §2.6): the truss nodes join the particles' velocity field and move with the grid solution.
 // References: the partition of unity (the grid holds exactly the particles' and the nodes'
 // mass and momentum) and conservation of linear momentum (no external force); and a bar in a

@@ -1,10 +1,10 @@
 // Contact coupling of FE and MPM bodies through the grid (CFEMP, coupling/coupled_model.hpp,
-// seed 000 §2.4 and §2.6). References: conservation of linear momentum (the contact impulses
-// on the FE field and on the particles' field are equal and opposite, and the FE nodes receive
-// exactly their field's impulse); the rule that contact creates no energy (kinetic + internal
-// energy never above the start, in an elastic impact); the rebound of two equal cubes meeting
-// head on, which by symmetry is that of one cube on a rigid frictionless wall (38.9 m/s from
-// afemp's mesh-converged FE, tests/mpm/test_grid_contact.cpp); and a body at rest that stays
+// Lian et al. 2013, §2.4 and §2.6). References: conservation of linear momentum (the contact
+// impulses on the FE field and on the particles' field are equal and opposite, and the FE nodes
+// receive exactly their field's impulse); the rule that contact creates no energy (kinetic +
+// internal energy never above the start, in an elastic impact); the rebound of two equal cubes
+// meeting head on, which by symmetry is that of one cube on a rigid frictionless wall (38.9 m/s
+// from afemp's mesh-converged FE, tests/mpm/test_grid_contact.cpp); and a body at rest that stays
 // at rest until the other's surface reaches it (gap / speed).
 // Aluminium-like cubes, E = 70 GPa, nu = 0.3, rho = 2.7e-3 g/mm^3, 4 mm edge, 1 mm apart; the
 // FE cube has 8 one-point hexahedra per edge (assumed-strain hourglass control, no bulk

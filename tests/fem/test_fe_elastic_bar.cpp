@@ -1,4 +1,4 @@
-// V1 with FE: the elastic copper bar of seed 001 §2.3.1 (L 10, R 2, quarter model) on a rigid
+// V1 with FE: the elastic copper bar of Ma 2005, §2.3.1 (L 10, R 2, quarter model) on a rigid
 // frictionless wall, from examples/elastic_bar/fe.toml, with one-point hexahedra (viscous and
 // stiffness hourglass control), 2x2x2 B-bar hexahedra and 0.25 mm elements, at 300 m/s and at
 // 30 m/s (strains under 1 %, so linear). Prints the rebound speed (the bar's mean velocity once

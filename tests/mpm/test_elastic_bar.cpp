@@ -1,4 +1,4 @@
-// V1: the elastic copper bar of seed 001 §2.3.1 (L 10, R 2, quarter model, cell 1, 260
+// V1: the elastic copper bar of Ma 2005, §2.3.1 (L 10, R 2, quarter model, cell 1, 260
 // particles, 300 m/s) on a rigid frictionless wall, from examples/elastic_bar/mpm.toml,
 // with each update scheme. Prints the rebound speed and the energy balance of each.
 #include <gtest/gtest.h>
@@ -79,7 +79,7 @@ TEST(ElasticBar, UsfReboundsAndClosesEnergyBalance) {
 }
 
 TEST(ElasticBar, UslFiguresAreReportedBesideTheOthers) {
-  // USL dissipates and is unstable at free surfaces (seed 000 §2.1.2); its figures are
+  // USL dissipates and is unstable at free surfaces (Lian et al. 2013, §2.1.2); its figures are
   // reported, and the only assertion is that it neither blows up nor gains energy beyond
   // the 20 % the old wall treatment showed.
   const Rebound r = run("USL", 0.1);

@@ -1,4 +1,4 @@
-// Background grid: trilinear shape functions (seed 001 eqs 2-5) and the sparse 4x4x4-node
+// Background grid: trilinear shape functions (Ma 2005, eqs 2-5) and the sparse 4x4x4-node
 // block activation. References: partition of unity and linear completeness of the trilinear
 // basis (exact identities, checked to round-off), and block counts computed by hand.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Grid contact between particle bodies (mpm/grid_contact.cpp, seed 000 eqs 37-42).
+// Grid contact between particle bodies (mpm/grid_contact.cpp, Lian et al. 2013, eqs 37-42).
 // References: conservation of linear momentum (the contact impulses are equal and opposite,
 // and no boundary touches the bodies); the rule that contact must not create energy (kinetic
 // + internal energy never above the start, in an elastic impact); the rebound of two equal

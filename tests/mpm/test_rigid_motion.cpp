@@ -114,8 +114,8 @@ RigidResult run_rigid(const std::string& scheme, Velocity velocity, Method metho
 // 1000 steps; kinetic energy unchanged to 1e-10 relative; momentum to 1e-12 relative.
 // Measured: USF and MUSL keep |sigma| ~ 1e-16 E and the kinetic energy to ~1e-15.
 // With the linear hat USL is left out: it stops at step ~176 with NaN stress, the small-mass
-// weakness of textbook USL (seed 000 §2.1.2 calls it unstable; use MUSL, USF or uGIMP). Its
-// strain sweep reads v^{k+1}_I = v_I + dt f_I / m_I; when the moving body's edge particles
+// weakness of textbook USL (Lian et al. 2013, §2.1.2 calls it unstable; use MUSL, USF or uGIMP).
+// Its strain sweep reads v^{k+1}_I = v_I + dt f_I / m_I; when the moving body's edge particles
 // give a node a tiny mass (m_I / m_p ~ 1e-4..1e-3 as they cross cell faces), the round-off
 // stress (1e-13 MPa) becomes a velocity jump ~ dt f_I / m_I that the particle multiplies by
 // grad N_I = O(1 / h) rather than by its tiny weight: the stress grows ~10x per step while

@@ -1,6 +1,6 @@
 // Equation of state and heating inside the solver: a copper column driven onto a rigid wall
 // in uniaxial strain carries a shock whose speed and pressure follow the Mie-Grueneisen
-// Hugoniot (seed 001 eqs 2-21..2-26), and the heat that Johnson-Cook plastic work releases
+// Hugoniot (Ma 2005, eqs 2-21..2-26), and the heat that Johnson-Cook plastic work releases
 // (Taylor-Quinney) is exactly the fraction of that work the scene states.
 #include <gtest/gtest.h>
 
@@ -109,7 +109,7 @@ TEST(Shock, SpeedAndStressFollowTheMieGrueneisenHugoniot) {
 // (mpm/bulk_viscosity.hpp): two 1 x 1 x 10 mm copper columns (side faces symmetric: uniaxial
 // strain) meet at z = 0 at u_p each (2000 and 5000 m/s: 4 and 10 km/s closing), so each side
 // stops. Reference: the Rankine-Hugoniot jump conditions (e = u_p^2 / 2, p = rho0 U_s u_p,
-// mu = u_p / (U_s - u_p)) with the EOS the solver implements, seed 001's eq 2-25 with
+// mu = u_p / (U_s - u_p)) with the EOS the solver implements (Ma 2005, eq 2-25) with
 // gamma = gamma0 rho0 / rho, p = (C1 mu + C2 mu^2 + C3 mu^3)(1 - gamma0 mu / (2 (1 + mu)))
 // + gamma0 rho0 e, solved for mu here by bisection: at 2000 m/s p = 121.9 GPa and U_s t =
 // 8.18 mm at 1.2 us (1.4 % below the linear U_s-u_p law's rho0 (c0 + s u_p) u_p = 123.6 GPa);

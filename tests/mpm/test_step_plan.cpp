@@ -1,7 +1,7 @@
-// The step plan (seed 001 §2.2.4): the list of stages a scene needs, built once and executed
-// exactly. References: the stage lists of mpm/step_plan.cpp for each update order (seed 000
-// eqs 25-27), the material composition each scene asks for, and the `afemp check` printout,
-// which must be the plan the solver runs.
+// The step plan (Ma 2005, §2.2.4): the list of stages a scene needs, built once and executed
+// exactly. References: the stage lists of mpm/step_plan.cpp for each update order
+// (Lian et al. 2013, eqs 25-27), the material composition each scene asks for, and the `afemp
+// check` printout, which must be the plan the solver runs.
 #include <gtest/gtest.h>
 
 #include <string>

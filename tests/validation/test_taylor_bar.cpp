@@ -1,7 +1,7 @@
-// V2 with MPM (label `validation`): the Taylor bar of seed 001 §2.3.2 from
+// V2 with MPM (label `validation`): the Taylor bar of Ma 2005, §2.3.2 from
 // examples/taylor_bar/mpm.toml — OFHC copper at 190 m/s on a rigid wall, quarter model,
 // 8 particles per cell, to 72 us. Prints the row: L, D, W, mean error (eq 2-42), steps and
-// wall time, beside the experiment and the seed's MPM3D row.
+// wall time, beside the experiment and the MPM3D row of Ma 2005.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -33,7 +33,7 @@ core::RunSummary taylor_row(const std::string& method_lines, const char* label) 
   std::printf("| method | cell | particles | L | D | W | mean error | energy error | steps | wall s | threads |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::printf("| experiment | | | 16.2 | 13.5 | 10.1 | - | | | | |\n");
-  std::printf("| MPM3D (seed 001) | | | 16.4 | 13.6 | 9.9 | 0.011 | | 408 | | |\n");
+  std::printf("| MPM3D (Ma 2005) | | | 16.4 | 13.6 | 9.9 | 0.011 | | 408 | | |\n");
   std::printf("| afemp MPM %s (%s) | %g | %zu | %.2f | %.2f | %.2f | %.4f | %+.2f %% | %ld | %.1f | %d |\n",
               label, core::to_string(scene.mpm.scheme), scene.mpm.grid.cell, s.particles,
               m.length, m.impact_diameter, m.bulge_diameter, s.taylor_error,

@@ -1,10 +1,10 @@
-// V2 with adaptive conversion (label `validation`): the Taylor bar of seed 001 §2.3.2 —
+// V2 with adaptive conversion (label `validation`): the Taylor bar of Ma 2005, §2.3.2 —
 // OFHC copper at 190 m/s on a rigid frictionless wall, quarter model, to 72 us — by AFEMP
 // (examples/taylor_bar/afemp.toml: hexahedra whose critical step falls below half the grid's
 // h / c become 2 x 2 x 2 particles), beside pure MPM (mpm.toml, 2 particles per cell per
 // direction) and pure FE (fe.toml, one-point hexahedra) at the same resolutions: element edge =
-// cell edge = h for h = 1, 0.5 and 0.25 mm. Each row: L, D, W, the mean error of seed 001
-// eq 2-42 against the experiment (16.2, 13.5, 10.1), steps, wall time, threads. Pass mark
+// cell edge = h for h = 1, 0.5 and 0.25 mm. Each row: L, D, W, the mean error (Ma 2005,
+// eq 2-42) against the experiment (16.2, 13.5, 10.1), steps, wall time, threads. Pass mark
 // (VALIDATION V2): mean error <= 0.03 for every AFEMP row, with the energy balance (converted
 // energy booked) within 3 % (at h = 1 mm all three methods lose 2.0-2.1 % to numerical
 // dissipation). The wall times are printed, not asserted (speed lives in bench/).

@@ -1,4 +1,4 @@
-// V2 with FE (label `validation`): the Taylor bar of seed 001 §2.3.2 from
+// V2 with FE (label `validation`): the Taylor bar of Ma 2005, §2.3.2 from
 // examples/taylor_bar/fe.toml — OFHC copper at 190 m/s on a rigid frictionless wall, quarter
 // model of 0.25 mm hexahedra (the MPM scene's particle spacing), to 72 us. Prints the row: L, D,
 // W, mean error (eq 2-42), steps, smallest and largest time step and wall time, for one-point
@@ -61,7 +61,7 @@ void print_header() {
       "wall s | max energy error | hourglass / internal | threads |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::printf("| experiment | | | 16.2 | 13.5 | 10.1 | - | | | | | | | |\n");
-  std::printf("| MPM3D (seed 001) | | | 16.4 | 13.6 | 9.9 | 0.011 | 408 | | | | | | |\n");
+  std::printf("| MPM3D (Ma 2005) | | | 16.4 | 13.6 | 9.9 | 0.011 | 408 | | | | | | |\n");
 }
 
 // Reference: experiment L 16.2, D 13.5, W 10.1; pass mark mean error <= 0.03 (VALIDATION V2).
