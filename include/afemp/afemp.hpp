@@ -11,3 +11,10 @@
 #include "afemp/scene.hpp"
 #include "afemp/simulation.hpp"
 #include "afemp/tensor.hpp"
+
+/// The vector functions of afemp/tensor.hpp, in namespace afemp.
+namespace afemp {
+using core::cross;
+using core::dot;
+using core::norm;
+}  // namespace afemp

@@ -522,8 +522,8 @@ TEST(SceneParser, MeshBodiesConstraintsAndWallsNeedNoGrid) {
   EXPECT_EQ(plate.element, HexFormulation::full);
   EXPECT_EQ(plate.hourglass.form, HourglassForm::stiffness);
   EXPECT_EQ(plate.hourglass.coefficient, 0.05);
-  EXPECT_EQ(plate.bulk_viscosity.linear, 0.1);
-  EXPECT_EQ(plate.bulk_viscosity.quadratic, 2.0);
+  EXPECT_EQ(plate.bulk_viscosity->linear, 0.1);
+  EXPECT_EQ(plate.bulk_viscosity->quadratic, 2.0);
   ASSERT_TRUE(plate.erosion.has_value());
   EXPECT_EQ(plate.erosion->plastic_strain, 0.8);
   EXPECT_TRUE(plate.erosion->material_failure);
@@ -683,14 +683,14 @@ mesh = { size = 1.0 }
 )";
   const Scene s = parse_scene(text, "viscosity.toml");
   ASSERT_EQ(s.bodies.size(), 4u);
-  EXPECT_EQ(s.bodies[0].bulk_viscosity.linear, 0.0);
-  EXPECT_EQ(s.bodies[0].bulk_viscosity.quadratic, 0.0);
-  EXPECT_EQ(s.bodies[1].bulk_viscosity.linear, 0.06);
-  EXPECT_EQ(s.bodies[1].bulk_viscosity.quadratic, 1.5);
-  EXPECT_EQ(s.bodies[2].bulk_viscosity.linear, 0.1);
-  EXPECT_EQ(s.bodies[2].bulk_viscosity.quadratic, 1.5);  // the key's own default
-  EXPECT_EQ(s.bodies[3].bulk_viscosity.linear, 0.06);
-  EXPECT_EQ(s.bodies[3].bulk_viscosity.quadratic, 1.5);
+  EXPECT_EQ(bulk_viscosity_of(s, s.bodies[0]).linear, 0.0);
+  EXPECT_EQ(bulk_viscosity_of(s, s.bodies[0]).quadratic, 0.0);
+  EXPECT_EQ(bulk_viscosity_of(s, s.bodies[1]).linear, 0.06);
+  EXPECT_EQ(bulk_viscosity_of(s, s.bodies[1]).quadratic, 1.5);
+  EXPECT_EQ(bulk_viscosity_of(s, s.bodies[2]).linear, 0.1);
+  EXPECT_EQ(bulk_viscosity_of(s, s.bodies[2]).quadratic, 1.5);  // the key's own default
+  EXPECT_EQ(bulk_viscosity_of(s, s.bodies[3]).linear, 0.06);
+  EXPECT_EQ(bulk_viscosity_of(s, s.bodies[3]).quadratic, 1.5);
   std::string bad = text;
   bad.replace(bad.find("bulk_viscosity = { linear = 0.1 }"), 33,
               "bulk_viscosity = { linear = 0.1, quadratic = 12 }");
