@@ -44,12 +44,11 @@ struct Simulation::Impl {
     for (const StepCallback& f : callbacks) f(self);
   }
 
-  ElementFields elements(const fem::FeElements& const_e) {
-    auto& e = const_cast<fem::FeElements&>(const_e);  // the solver owns them; views for the caller
+  // Views of one element container; `body` keeps the per-element body indices the view shows.
+  static ElementFields elements(fem::FeElements& e, std::vector<std::int32_t>& body) {
     ElementFields out;
     out.nodes = e.nodes;
     out.alive = e.alive;
-    std::vector<std::int32_t>& body = &const_e == &fe->hexahedra() ? hex_body : truss_body;
     body.assign(e.size(), 0);
     out.first_point.assign(e.size(), 0);
     out.points_per_element.assign(e.size(), 1);
@@ -57,7 +56,8 @@ struct Simulation::Impl {
       for (std::size_t k = b.begin; k < b.end; ++k) {
         body[k] = b.body;
         out.points_per_element[k] = b.points_per_element;
-        out.first_point[k] = b.point_begin + (k - b.begin) * static_cast<std::size_t>(b.points_per_element);
+        out.first_point[k] =
+            b.point_begin + (k - b.begin) * static_cast<std::size_t>(b.points_per_element);
       }
     out.body = body;
     out.stress = e.stress;
@@ -129,11 +129,13 @@ NodeFields Simulation::nodes() {
 }
 
 ElementFields Simulation::hexahedra() {
-  return impl_->fe ? impl_->elements(impl_->fe->hexahedra()) : ElementFields{};
+  return impl_->fe ? Impl::elements(impl_->fe->mutable_hexahedra(), impl_->hex_body)
+                    : ElementFields{};
 }
 
 ElementFields Simulation::trusses() {
-  return impl_->fe ? impl_->elements(impl_->fe->trusses()) : ElementFields{};
+  return impl_->fe ? Impl::elements(impl_->fe->mutable_trusses(), impl_->truss_body)
+                    : ElementFields{};
 }
 
 std::vector<Vec3> Simulation::node_forces() const {

@@ -292,6 +292,12 @@ Vec3 TableReader::vec3(std::string_view key, const Vec3& fallback) {
 
 std::size_t TableReader::choice(std::string_view key, std::initializer_list<std::string_view> allowed,
                                 std::optional<std::size_t> fallback, bool ignore_case) {
+  return choice(key, std::span<const std::string_view>(allowed.begin(), allowed.size()), fallback,
+                ignore_case);
+}
+
+std::size_t TableReader::choice(std::string_view key, std::span<const std::string_view> allowed,
+                                std::optional<std::size_t> fallback, bool ignore_case) {
   std::vector<std::string> names(allowed.begin(), allowed.end());
   const toml::node* n = lookup(key);
   if (!n) {
@@ -451,30 +457,30 @@ void pair_holmquist_johnson_cook(TableReader& r, Material& m, std::optional<doub
   m.set_shear_and_bulk_modulus(*shear_modulus, k);
 }
 
-StrengthModel read_strength(TableReader& r, double youngs_modulus) {
-  r.known({"model"});
-  const std::size_t model = r.choice(
-      "model", {"elastic", "j2", "johnson-cook", "holmquist-johnson-cook"}, std::nullopt);
-  if (model == 0) {
-    r.check_unknown();
-    return Elastic{};
-  }
-  if (model == 1) {
-    r.known({"yield", "hardening", "tangent_modulus"});
-    r.check_unknown();
-    J2Plasticity j2;
-    j2.yield_stress = r.required_number("yield", Range::positive());
-    if (r.has("hardening") && r.has("tangent_modulus"))
-      r.fail("tangent_modulus",
-             "give either hardening (plastic modulus H) or tangent_modulus (Et), not both");
-    j2.hardening = r.number("hardening", 0.0, Range::non_negative());
-    // Et is the slope of the uniaxial stress-strain curve after yield; the radial return
-    // wants the plastic modulus, H = E Et / (E - Et).
-    if (const auto et = r.optional_number("tangent_modulus", {0.0, youngs_modulus, false, true}))
-      j2.hardening = youngs_modulus * *et / (youngs_modulus - *et);
-    return j2;
-  }
-  if (model == 3) return read_holmquist_johnson_cook(r);
+// Strength models by the scene file's name: each reads its own keys. A new model is its reader
+// here and one row of strength_models.
+StrengthModel read_elastic(TableReader& r, double) {
+  r.check_unknown();
+  return Elastic{};
+}
+
+StrengthModel read_j2(TableReader& r, double youngs_modulus) {
+  r.known({"yield", "hardening", "tangent_modulus"});
+  r.check_unknown();
+  J2Plasticity j2;
+  j2.yield_stress = r.required_number("yield", Range::positive());
+  if (r.has("hardening") && r.has("tangent_modulus"))
+    r.fail("tangent_modulus",
+           "give either hardening (plastic modulus H) or tangent_modulus (Et), not both");
+  j2.hardening = r.number("hardening", 0.0, Range::non_negative());
+  // Et is the slope of the uniaxial stress-strain curve after yield; the radial return
+  // wants the plastic modulus, H = E Et / (E - Et).
+  if (const auto et = r.optional_number("tangent_modulus", {0.0, youngs_modulus, false, true}))
+    j2.hardening = youngs_modulus * *et / (youngs_modulus - *et);
+  return j2;
+}
+
+StrengthModel read_johnson_cook(TableReader& r, double) {
   r.known({"A", "B", "n", "C", "m", "reference_strain_rate", "room_temperature",
            "melt_temperature"});
   r.check_unknown();
@@ -499,26 +505,49 @@ StrengthModel read_strength(TableReader& r, double youngs_modulus) {
   return jc;
 }
 
-EquationOfState read_eos(TableReader& r, double density, double bulk_modulus) {
+StrengthModel read_hjc_strength(TableReader& r, double) { return read_holmquist_johnson_cook(r); }
+
+struct StrengthEntry {
+  std::string_view name;
+  StrengthModel (*read)(TableReader&, double youngs_modulus);
+};
+constexpr StrengthEntry strength_models[] = {{"elastic", read_elastic},
+                                             {"j2", read_j2},
+                                             {"johnson-cook", read_johnson_cook},
+                                             {"holmquist-johnson-cook", read_hjc_strength}};
+
+template <class Entries>
+std::vector<std::string_view> entry_names(const Entries& entries) {
+  std::vector<std::string_view> names;
+  for (const auto& e : entries) names.push_back(e.name);
+  return names;
+}
+
+StrengthModel read_strength(TableReader& r, double youngs_modulus) {
   r.known({"model"});
-  const std::size_t model = r.choice(
-      "model", {"linear", "mie-gruneisen", "linear-polynomial", "hjc-compaction"}, std::nullopt);
-  if (model == 0) {
-    r.known({"bulk_modulus"});
-    r.check_unknown();
-    return LinearEos{r.number("bulk_modulus", bulk_modulus, Range::positive())};
-  }
-  if (model == 1) {
-    r.known({"c0", "s", "gamma0"});
-    r.check_unknown();
-    MieGruneisen mg;
-    mg.rho0 = density;
-    mg.c0 = r.required_number("c0", Range::positive());
-    mg.s = r.required_number("s", Range::non_negative());
-    mg.gamma0 = r.required_number("gamma0", Range::non_negative());
-    return mg;
-  }
-  if (model == 3) return read_hjc_compaction(r);
+  static const std::vector<std::string_view> names = entry_names(strength_models);
+  return strength_models[r.choice("model", names, std::nullopt)].read(r, youngs_modulus);
+}
+
+// Equations of state by the scene file's name, as the strength models above.
+EquationOfState read_linear_eos(TableReader& r, double, double bulk_modulus) {
+  r.known({"bulk_modulus"});
+  r.check_unknown();
+  return LinearEos{r.number("bulk_modulus", bulk_modulus, Range::positive())};
+}
+
+EquationOfState read_mie_gruneisen(TableReader& r, double density, double) {
+  r.known({"c0", "s", "gamma0"});
+  r.check_unknown();
+  MieGruneisen mg;
+  mg.rho0 = density;
+  mg.c0 = r.required_number("c0", Range::positive());
+  mg.s = r.required_number("s", Range::non_negative());
+  mg.gamma0 = r.required_number("gamma0", Range::non_negative());
+  return mg;
+}
+
+EquationOfState read_linear_polynomial(TableReader& r, double density, double) {
   r.known({"C0", "C1", "C2", "C3", "C4", "C5", "C6"});
   r.check_unknown();
   LinearPolynomialEos lp;
@@ -526,6 +555,23 @@ EquationOfState read_eos(TableReader& r, double density, double bulk_modulus) {
   static constexpr std::string_view names[7] = {"C0", "C1", "C2", "C3", "C4", "C5", "C6"};
   for (int i = 0; i < 7; ++i) lp.c[i] = r.number(names[i], 0.0, Range::any());
   return lp;
+}
+
+EquationOfState read_hjc_eos(TableReader& r, double, double) { return read_hjc_compaction(r); }
+
+struct EosEntry {
+  std::string_view name;
+  EquationOfState (*read)(TableReader&, double density, double bulk_modulus);
+};
+constexpr EosEntry equations_of_state[] = {{"linear", read_linear_eos},
+                                           {"mie-gruneisen", read_mie_gruneisen},
+                                           {"linear-polynomial", read_linear_polynomial},
+                                           {"hjc-compaction", read_hjc_eos}};
+
+EquationOfState read_eos(TableReader& r, double density, double bulk_modulus) {
+  r.known({"model"});
+  static const std::vector<std::string_view> names = entry_names(equations_of_state);
+  return equations_of_state[r.choice("model", names, std::nullopt)].read(r, density, bulk_modulus);
 }
 
 Material read_material(TableReader& r, const std::string& name) {

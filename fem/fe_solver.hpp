@@ -125,6 +125,9 @@ class FeSolver {
   FeNodes& mutable_nodes() { return nodes_; }
   const FeElements& hexahedra() const { return hexes_; }
   const FeElements& trusses() const { return trusses_; }
+  // For programs that change the integration points' state between steps (afemp::Simulation).
+  FeElements& mutable_hexahedra() { return hexes_; }
+  FeElements& mutable_trusses() { return trusses_; }
   const MeshData& mesh() const { return mesh_; }  // the assembled input mesh (for reports)
   long step_count() const { return steps_; }
   double time() const { return time_; }

@@ -108,9 +108,11 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
   const StrainSweep sweep = strain_sweep(g, plan_.scheme);
   const Vec3* v_old = g.velocity.data();
   const Vec3* v_new = g.velocity_new.data();
-  constexpr bool reads_plastic_strain = !std::is_same_v<Strength, core::Elastic>;
-  constexpr bool reads_temperature = Thermal || std::is_same_v<Strength, core::JohnsonCook>;
-  constexpr bool reads_damage = core::has_damage_state<Strength>;
+  // What the model declares it reads (include/afemp/strength_models.hpp), and the temperature
+  // whenever plastic work heats the point.
+  constexpr bool reads_plastic_strain = Strength::reads_plastic_strain;
+  constexpr bool reads_temperature = Thermal || Strength::reads_temperature;
+  constexpr bool reads_damage = Strength::reads_damage;
   const bool jaumann = plan_.jaumann;
   const bool track_strain = plan_.strain;
   const double flip = scene_.mpm.flip;

@@ -22,9 +22,9 @@ inline constexpr bool composable =
     std::is_same_v<Strength, HolmquistJohnsonCook> == std::is_same_v<Eos, HjcCompaction>;
 
 // Whether a strength model's update reads and writes PointState::damage and max_compaction;
-// solvers leave that history in memory for the others.
+// solvers leave that history in memory for the others. Each model declares it.
 template <class Strength>
-inline constexpr bool has_damage_state = std::is_same_v<Strength, HolmquistJohnsonCook>;
+inline constexpr bool has_damage_state = Strength::reads_damage;
 
 // State of one material point through a constitutive update.
 struct PointState {

@@ -10,6 +10,7 @@
 
 namespace afemp::core {
 
+/// Mass, momentum and energies of one body (one entry per scene body in Energies::bodies).
 struct BodySums {
   double mass = 0.0;
   Vec3 momentum;
@@ -17,6 +18,7 @@ struct BodySums {
   double internal = 0.0;  ///< sum m e of the body's points (elements, particles)
 };
 
+/// The energy account of a model at one instant; the time loop checks its balance.
 struct Energies {
   double kinetic = 0.0;
   double internal = 0.0;       ///< sum m e (elastic + plastic + EOS work + bulk-viscous heating)

@@ -6,6 +6,7 @@
 
 namespace afemp::core {
 
+/// An EOS at fixed density as p = a + b e (e the specific internal energy).
 struct EosLinearForm {
   double a = 0.0;  ///< pressure at zero internal energy
   double b = 0.0;  ///< dp/de at fixed density

@@ -12,16 +12,21 @@
 
 namespace afemp::core {
 
+/// The deviatoric half of a material: one of the built-in strength models.
 using StrengthModel = std::variant<Elastic, J2Plasticity, JohnsonCook, HolmquistJohnsonCook>;
+/// The volumetric half of a material: no EOS (hypoelastic bulk law) or one of the built-in EOS.
 using EquationOfState =
     std::variant<NoEos, LinearEos, MieGruneisen, LinearPolynomialEos, HjcCompaction>;
 
+/// Adiabatic heating: the share of plastic work that becomes heat.
 struct ThermalProperties {
   double specific_heat = 0.0;     ///< c_p per unit mass; 0 = no adiabatic heating
   double taylor_quinney = 0.9;    ///< fraction of plastic work turned into heat
   double initial_temperature = 293.0;
 };
 
+/// A material as the scene file's [materials.NAME] table: density, elastic constants, strength
+/// model, EOS, thermal properties and failure strain (docs/scene-format.md).
 struct Material {
   std::string name;
   double density = 0.0;        ///< reference density rho0

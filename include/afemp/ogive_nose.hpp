@@ -11,6 +11,7 @@
 
 namespace afemp::core {
 
+/// A tangent-ogive nose on a cylinder body (CylinderShape::nose).
 struct OgiveNose {
   double crh = 0.0;     ///< caliber-radius-head psi >= 0.5; 0: no nose (a flat end)
   double meplat = 0.0;  ///< diameter of the flat tip, 0 <= meplat < 2R

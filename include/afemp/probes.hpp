@@ -16,6 +16,7 @@
 
 namespace afemp::core {
 
+/// What a probe watches, and the columns it records.
 enum class ProbeKind {
   particle,       ///< x, y, z, vx, vy, vz, pressure, von_mises, plastic_strain
   node,           ///< x, y, z, vx, vy, vz
@@ -28,9 +29,11 @@ enum class ProbeKind {
 /// point-averaged stress and mean nodal velocity).
 enum class ProbeField { pressure, von_mises, plastic_strain, speed, vx, vy, vz };
 
+/// The scene file's name of a probe kind or field.
 const char* to_string(ProbeKind k);
 const char* to_string(ProbeField f);
 
+/// One [[probes]] entry of a scene.
 struct ProbeSpec {
   std::string name;  ///< unique in the scene; the file probes/NAME.csv
   ProbeKind kind = ProbeKind::particle;

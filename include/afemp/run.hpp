@@ -43,6 +43,7 @@ struct ReferenceCheck {
   bool passed() const { return tolerance <= 0.0 || error <= tolerance; }
 };
 
+/// What a finished run reports (afemp run prints it; Simulation::run and finish return it).
 struct RunSummary {
   long steps = 0;
   double time = 0.0;

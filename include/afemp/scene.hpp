@@ -20,6 +20,7 @@
 namespace afemp::core {
 
 
+/// MPM update scheme: stress update before or after the grid update, or both (modified USL).
 enum class UpdateScheme { USF, USL, MUSL };  ///< Lian et al. 2013, eqs 25-27
 /// Particle-grid weights: the trilinear hat of the node (Ma 2005, eq 2-5), or uGIMP, the hat
 /// averaged over the particle's cubic domain (Bardenhagen & Kober 2004), smooth across cells.
@@ -32,16 +33,19 @@ enum class Transfer { flip, apic };
 /// wall: a rigid frictionless wall the material may not cross but may leave (the normal
 /// component is zeroed only at nodes whose updated velocity points into the wall).
 enum class FaceCondition { free, fixed, symmetric, wall };
+/// The six faces of the grid domain, in the order of GridSettings::faces.
 enum class Face { xmin = 0, xmax, ymin, ymax, zmin, zmax };
 
+/// The scene file's names of the enumerations above.
 const char* to_string(UpdateScheme s);
 const char* to_string(ShapeFunction s);
 const char* to_string(Transfer t);
 const char* to_string(FaceCondition c);
 const char* to_string(Face f);
 
+/// The [run] section: end time, time-step factors, output and history intervals, guards.
 struct RunSettings {
-  std::string title;
+  std::string title;               ///< printed with the run
   double end_time = 0.0;           ///< required
   double time_step_factor = 0.3;   ///< Courant safety factor on the grid's stable step
   double element_time_step_factor = 0.9;  ///< on the elements' critical step (LS-DYNA's TSSFAC)
@@ -63,6 +67,7 @@ struct RunSettings {
   std::optional<Termination> terminate;
 };
 
+/// The [grid] section: the background grid of cubic cells and its face conditions.
 struct GridSettings {
   double cell = 0.0;  ///< cell edge length h (cubic cells)
   Vec3 min, max;      ///< the domain; grid nodes sit at min + i h
@@ -72,18 +77,21 @@ struct GridSettings {
 };
 
 
+/// The [mpm] section: scheme, shape function, transfer, and the grid.
 struct MpmSettings {
-  UpdateScheme scheme = UpdateScheme::MUSL;
-  ShapeFunction shape = ShapeFunction::linear;
-  Transfer transfer = Transfer::flip;
+  UpdateScheme scheme = UpdateScheme::MUSL;    ///< USF, USL or MUSL
+  ShapeFunction shape = ShapeFunction::linear;  ///< particle-grid weights
+  Transfer transfer = Transfer::flip;           ///< FLIP/PIC blend or APIC
   double flip = 1.0;     ///< velocity update blend (transfer flip): 1 pure FLIP, 0 pure PIC
   bool jaumann = true;   ///< objective (Jaumann) stress rate
-  GridSettings grid;
+  GridSettings grid;                            ///< the background grid
 };
 
+/// An axis-aligned box, corners min and max.
 struct BoxShape {
-  Vec3 min, max;
+  Vec3 min, max;  ///< opposite corners
 };
+/// A cylinder from its base disc along its axis, optionally with an ogive nose at the far end.
 struct CylinderShape {
   Vec3 base;               ///< centre of the base disc
   Vec3 axis{0, 0, 1};      ///< direction, normalised by the parser
@@ -91,44 +99,45 @@ struct CylinderShape {
   double length = 0.0;     ///< overall, the nose included
   OgiveNose nose;          ///< at the far end (base + length axis); crh 0: a flat end
 };
+/// A sphere (particles only).
 struct SphereShape {
-  Vec3 centre;
-  double radius = 0.0;
+  Vec3 centre;          ///< centre
+  double radius = 0.0;  ///< radius
 };
 /// Particles at given points: read from a plain-text file (one "x y z [volume]" per line, '#'
 /// comments; the path resolved relative to the scene file), or, from a program, the arrays
 /// `points` and `volumes` (empty volumes: (cell / particles_per_cell)^3 each).
 struct PointListShape {
   std::string path;  ///< empty: the arrays
-  std::vector<Vec3> points;
-  std::vector<double> volumes;
+  std::vector<Vec3> points;     ///< particle positions
+  std::vector<double> volumes;  ///< one volume per point, or empty
 };
 /// A mesh given as arrays (a program's own mesh): nodes, 8-node hexahedra and 2-node trusses
 /// by 0-based node index, and named node sets for constraints (`set` selectors). Hexahedron
 /// node order: nodes 0-3 round the face zeta = -1, 4-7 round zeta = +1 (LS-DYNA, Abaqus C3D8).
 struct MeshArrays {
-  std::vector<Vec3> nodes;
-  std::vector<std::array<std::int32_t, 8>> hexahedra;
-  std::vector<std::array<std::int32_t, 2>> trusses;
+  std::vector<Vec3> nodes;                             ///< node positions
+  std::vector<std::array<std::int32_t, 8>> hexahedra;  ///< 8 node indices each
+  std::vector<std::array<std::int32_t, 2>> trusses;    ///< 2 node indices each
   std::vector<double> truss_areas;  ///< one per truss, or empty: the body's area
   struct NodeSet {
     std::string name;
     std::vector<std::int32_t> nodes;
   };
-  std::vector<NodeSet> node_sets;
+  std::vector<NodeSet> node_sets;  ///< named sets for constraints (NodeSelector::set)
 };
 /// A mesh read from a file (Gmsh .msh 4.1, Abaqus .inp, LS-DYNA keyword), path resolved
 /// relative to the scene file, or given as arrays; `parts` selects parts by name (empty: all).
 struct MeshFileShape {
   std::string path;     ///< empty: the arrays
-  MeshArrays arrays;
-  std::vector<std::string> parts;
+  MeshArrays arrays;               ///< the mesh itself, when path is empty
+  std::vector<std::string> parts;  ///< parts to take from a file (empty: all)
   double scale = 1.0;   ///< coordinates are multiplied by scale, then translated
-  Vec3 translate;
+  Vec3 translate;       ///< added after scaling
 };
 /// A straight truss bar.
 struct LineShape {
-  Vec3 from, to;
+  Vec3 from, to;  ///< end points
 };
 /// A rebar mat: straight bars both ways in the plane normal to `normal_axis` at `position`,
 /// spanning the box [min, max] less the cover (fem/mesh_generation.hpp).
@@ -138,14 +147,17 @@ struct RebarShape {
   std::vector<double> positions;  ///< one mat (layer) per plane position along normal_axis
   double spacing = 0.0, diameter = 0.0, cover = 0.0;
 };
+/// Where a body's material is: a shape the body is filled with or a mesh it is made of.
 using Shape = std::variant<BoxShape, CylinderShape, SphereShape, PointListShape, MeshFileShape,
                            LineShape, RebarShape>;
 
+/// What a body is made of.
 enum class Discretisation { particles, hexahedra, trusses };
 enum class HexFormulation { one_point, full };  ///< FB hourglass-controlled | 2x2x2 B-bar
 /// FB viscous (LS-DYNA type 3) | FB stiffness (type 5) | assumed strain (type 6, Belytschko &
 /// Bindeman ASQBI): fem/hourglass.hpp, fem/hourglass_assumed_strain.hpp
 enum class HourglassForm { viscous, stiffness, assumed_strain };
+/// The scene file's names of the enumerations above.
 const char* to_string(Discretisation d);
 const char* to_string(HexFormulation f);
 const char* to_string(HourglassForm f);
@@ -160,15 +172,16 @@ struct MeshDensity {
   double size = 0.0;                      ///< target element edge / truss length
 };
 
+/// Hourglass control of one-point hexahedra: form and coefficient.
 struct HourglassSettings {
-  HourglassForm form = HourglassForm::viscous;
+  HourglassForm form = HourglassForm::viscous;  ///< viscous, stiffness or assumed strain
   double coefficient = 0.1;  ///< Q_hg (LS-DYNA's default QM); assumed strain: scale on K, 1
 };
 
 /// Linear and quadratic artificial bulk viscosity (LS-DYNA's Q2 = 0.06, Q1 = 1.5).
 struct BulkViscositySettings {
-  double linear = 0.06;
-  double quadratic = 1.5;
+  double linear = 0.06;    ///< Q1 on the sound speed term
+  double quadratic = 1.5;  ///< Q2 on the velocity-jump term
 };
 
 /// Erosion criteria of a body's elements; 0 / false switches a criterion off. With erosion on,
@@ -193,20 +206,22 @@ struct ConversionSettings {
   int points = 1;                   ///< particles per direction: 1 or 2
 };
 
+/// One [[bodies]] entry: material (index into Scene::materials), discretisation, shape, and the
+/// settings of that discretisation; initial velocity, temperature and internal energy.
 struct BodySpec {
-  std::string name;
+  std::string name;             ///< unique in the scene
   int material = -1;            ///< index into Scene::materials
-  Discretisation discretisation = Discretisation::particles;
-  Shape shape;
+  Discretisation discretisation = Discretisation::particles;  ///< particles, hexahedra or trusses
+  Shape shape;                  ///< where the body's material is
   int particles_per_cell = 2;   ///< per direction (particles)
   /// Meshes (hexahedra, trusses).
-  MeshDensity mesh;
-  HexFormulation element = HexFormulation::one_point;
-  HourglassSettings hourglass;
+  MeshDensity mesh;             ///< how finely a generated mesh divides the shape
+  HexFormulation element = HexFormulation::one_point;  ///< one-point or fully integrated
+  HourglassSettings hourglass;  ///< one-point hexahedra
   /// Unset: on (LS-DYNA's defaults) for hexahedra and for particles whose material has an
   /// equation of state, off otherwise (core::bulk_viscosity_of).
   std::optional<BulkViscositySettings> bulk_viscosity;
-  std::optional<ErosionSettings> erosion;
+  std::optional<ErosionSettings> erosion;  ///< set: the elements may erode
   std::optional<ConversionSettings> conversion;  ///< hexahedra
   double area = 0.0;            ///< truss cross-section where the mesh gives none
   /// Bonded coupling (HFEMP, Lian et al. 2013, §2.6): the particle body whose velocity field this mesh
@@ -276,6 +291,8 @@ struct ContactSpec {
   double distance_factor = 0.5;       ///< lambda of eq 42: contact once the gap <= lambda h
   SourceLocation where;
 };
+/// Everything a run needs. Bodies, constraints, walls, contacts and references refer to materials
+/// and bodies by index into the vectors here.
 struct Scene {
   std::string path;             ///< the scene file, as given
   RunSettings run;

@@ -115,7 +115,8 @@ class Simulation {
   /// Energies now, with per-body mass, momentum, kinetic and internal energy.
   Energies energies() const;
 
-  /// One step at the stable step (cut so as not to pass the end time), then the callbacks.
+  /// One step at the stable step (cut so as not to pass the end time), then the callbacks;
+  /// nothing once finished().
   void step();
   /// Steps until `time` (the last step cut to land on it) or until finished().
   void run_to(double time);

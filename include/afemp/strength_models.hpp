@@ -26,6 +26,10 @@ struct StrengthContext {
 struct Elastic {
   DeviatoricResult update(SymTensor& s, const SymTensor& de_dev, const StrengthContext& c) const;
   bool thermal() const { return false; }
+  /// What the model reads of a point's history; solvers load only that (every model states it).
+  static constexpr bool reads_plastic_strain = false;
+  static constexpr bool reads_temperature = false;
+  static constexpr bool reads_damage = false;  ///< damage and largest compaction
 };
 
 /// J2 plasticity with linear isotropic hardening (perfect plasticity when hardening = 0):
@@ -35,6 +39,10 @@ struct J2Plasticity {
   double hardening = 0.0;     ///< plastic modulus H = E Et / (E - Et)
   DeviatoricResult update(SymTensor& s, const SymTensor& de_dev, const StrengthContext& c) const;
   bool thermal() const { return false; }
+  /// What the model reads of a point's history; solvers load only that (every model states it).
+  static constexpr bool reads_plastic_strain = true;
+  static constexpr bool reads_temperature = false;
+  static constexpr bool reads_damage = false;  ///< damage and largest compaction
 };
 
 /// Johnson-Cook flow stress (Ma 2005, eq 2-20):
@@ -49,6 +57,10 @@ struct JohnsonCook {
   double flow_stress(double eps_p, double eps_rate, double temperature) const;
   DeviatoricResult update(SymTensor& s, const SymTensor& de_dev, const StrengthContext& c) const;
   bool thermal() const { return m > 0.0 && melt_temperature > room_temperature; }
+  /// What the model reads of a point's history; solvers load only that (every model states it).
+  static constexpr bool reads_plastic_strain = true;
+  static constexpr bool reads_temperature = true;
+  static constexpr bool reads_damage = false;  ///< damage and largest compaction
 };
 
 /// Holmquist-Johnson-Cook concrete strength and damage (holmquist_johnson_cook.cpp), with
@@ -72,6 +84,10 @@ struct HolmquistJohnsonCook {
   /// Plastic strain to fracture at normalised pressure p_star, max(EFMIN, D1 (P* + T*)^D2).
   double fracture_strain(double p_star) const;
   bool thermal() const { return false; }
+  /// What the model reads of a point's history; solvers load only that (every model states it).
+  static constexpr bool reads_plastic_strain = true;
+  static constexpr bool reads_temperature = false;
+  static constexpr bool reads_damage = true;  ///< damage and largest compaction
 };
 
 }  ///< namespace afemp::core

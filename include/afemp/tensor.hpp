@@ -8,6 +8,7 @@
 
 namespace afemp::core {
 
+/// A 3-vector (positions, velocities, forces).
 struct Vec3 {
   double x = 0.0, y = 0.0, z = 0.0;
 
@@ -26,6 +27,7 @@ constexpr double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.
 constexpr Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
+/// The Euclidean length of a.
 inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
 
 /// Full 3x3 matrix, row-major: m[i][j].
@@ -48,6 +50,7 @@ constexpr Vec3 operator*(const Mat3& a, const Vec3& v) {
           a.m[2][0] * v.x + a.m[2][1] * v.y + a.m[2][2] * v.z};
 }
 
+/// A symmetric tensor as six components xx, yy, zz, yz, xz, xy (stress, strain increments).
 struct SymTensor {
   double xx = 0.0, yy = 0.0, zz = 0.0, yz = 0.0, xz = 0.0, xy = 0.0;
 

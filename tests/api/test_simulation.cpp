@@ -81,7 +81,7 @@ afemp::Scene taylor_in_code(bool hexahedra) {
   afemp::BodySpec bar;
   bar.name = "bar";
   bar.material = 0;
-  bar.shape = afemp::CylinderShape{.base = {0, 0, 0}, .axis = {0, 0, 1}, .radius = 3.8, .length = 25.4};
+  bar.shape = afemp::CylinderShape{.base = {0, 0, 0}, .axis = {0, 0, 1}, .radius = 3.8, .length = 25.4, .nose = {}};
   bar.velocity = {0, 0, -190};
   if (hexahedra) {
     bar.discretisation = afemp::Discretisation::hexahedra;
@@ -285,4 +285,33 @@ TEST(SimulationApi, ExampleScenesPassTheCodeCheck) {
     const afemp::Scene s = afemp::read_scene(std::string(AFEMP_SOURCE_DIR) + "/" + path);
     EXPECT_NO_THROW(afemp::check_scene(s)) << path;
   }
+}
+
+// The field views show the model's own state: particle masses add up to the body's mass, and a
+// program's change of velocity between steps is the body's momentum (a boundary condition in
+// a callback); element views cover every hexahedron, and the bar's impact end has yielded.
+TEST(SimulationApi, FieldViewsShowAndChangeTheModelsState) {
+  afemp::Simulation particles(taylor_in_code(false));
+  afemp::ParticleFields p = particles.particles();
+  double mass = 0.0;
+  for (double m : p.mass) mass += m;
+  const afemp::Energies e0 = particles.energies();
+  EXPECT_NEAR(mass, e0.bodies[0].mass, 1e-12 * mass);
+  for (Vec3& v : p.velocity) v = {0, 0, -100};  // a program's velocity, before the first step
+  EXPECT_NEAR(particles.energies().bodies[0].momentum.z, -100.0 * mass, 1e-9 * mass);
+  EXPECT_TRUE(particles.hexahedra().nodes.empty());
+
+  afemp::Simulation mesh(taylor_in_code(true));
+  mesh.run_to(0.01);
+  const afemp::ElementFields h = mesh.hexahedra();
+  ASSERT_GT(h.size(), 100u);
+  double largest = 0.0;
+  for (std::size_t k = 0; k < h.size(); ++k) {
+    EXPECT_EQ(h.points_per_element[k], 1);
+    EXPECT_EQ(h.body[k], 0);
+    largest = std::max(largest, h.plastic_strain[h.first_point[k]]);
+  }
+  // 190 m/s on copper (rho c_L v = 8.93e-3 * 4760 * 190 = 8.1 GPa >> A = 157 MPa): it yields.
+  EXPECT_GT(largest, 0.05);
+  EXPECT_TRUE(mesh.particles().position.empty());
 }
