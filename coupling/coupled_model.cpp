@@ -19,7 +19,6 @@
 
 #include "core/appendf.hpp"
 #include "afemp/errors.hpp"
-#include "core/taylor_metrics.hpp"
 
 namespace afemp::coupling {
 
@@ -222,29 +221,6 @@ std::vector<core::StageTiming> CoupledModel::stage_timings() const {
   return out;
 }
 
-core::TaylorMeasures CoupledModel::measure_taylor(int body) const {
-  const core::BodySpec& spec = scene_.bodies.at(static_cast<std::size_t>(body));
-  if (spec.discretisation == core::Discretisation::particles) return mpm_.measure_taylor(body);
-  if (!spec.conversion) return fe_.measure_taylor(body);
-  // A converting bar: its live nodes (on the surface) and its particles (reaching half a
-  // spacing beyond their centres), measured together.
-  std::vector<core::Vec3> points;
-  std::vector<double> half;
-  const fem::FeNodes& n = fe().nodes();
-  for (std::size_t i = 0; i < n.size(); ++i)
-    if (n.body[i] == body && n.mass[i] > 0.0) {
-      points.push_back(n.position[i]);
-      half.push_back(0.0);
-    }
-  const mpm::Particles& p = mpm().particles();
-  for (std::size_t i = 0; i < p.size(); ++i)
-    if (p.body[i] == body) {
-      points.push_back(p.position[i]);
-      half.push_back(0.5 * std::cbrt(p.volume[i]));
-    }
-  return core::measure_taylor(points, half, core::taylor_bar(scene_, body), fe_.taylor_band(body));
-}
-
 std::vector<core::EventLog> CoupledModel::take_events() {
   std::vector<core::EventLog> out = fe_.take_events();
   core::EventLog log{"conversion.csv",
@@ -311,10 +287,11 @@ std::string CoupledModel::describe() const {
   return out;
 }
 
-std::vector<core::Vec3> CoupledModel::body_points(int body) const {
-  std::vector<core::Vec3> points = mpm_.body_points(body);
-  const std::vector<core::Vec3> nodes = fe_.body_points(body);
-  points.insert(points.end(), nodes.begin(), nodes.end());
+core::BodyPoints CoupledModel::body_points(int body) const {
+  core::BodyPoints points = mpm_.body_points(body);
+  const core::BodyPoints nodes = fe_.body_points(body);
+  points.position.insert(points.position.end(), nodes.position.begin(), nodes.position.end());
+  points.half_size.insert(points.half_size.end(), nodes.half_size.begin(), nodes.half_size.end());
   return points;
 }
 

@@ -2,7 +2,6 @@
 #include "fem/fe_model.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <initializer_list>
 #include <string>
@@ -138,23 +137,6 @@ std::vector<core::EventLog> FeModel::take_events() {
     log.rows.emplace_back(buf);
   }
   return {log};
-}
-
-core::TaylorMeasures FeModel::measure_taylor(int body) const {
-  const core::CylinderShape* cyl = &core::taylor_bar(scene_, body);
-  const FeNodes& n = solver_.nodes();
-  std::vector<core::Vec3> points;
-  for (std::size_t i = 0; i < n.size(); ++i)
-    if (n.body[i] == body && n.mass[i] > 0.0) points.push_back(n.position[i]);
-  return core::measure_taylor(points, {}, *cyl, taylor_band(body));
-}
-
-double FeModel::taylor_band(int body) const {
-  // Nodes lie on the surface; W is read in a band of half an initial element length.
-  const core::BodySpec& spec = scene_.bodies.at(static_cast<std::size_t>(body));
-  const core::CylinderShape* cyl = &core::taylor_bar(scene_, body);
-  return 0.5 * cyl->length / std::max(1, spec.mesh.axial > 0 ? spec.mesh.axial
-      : static_cast<int>(std::ceil(cyl->length / std::max(spec.mesh.size, 1e-300))));
 }
 
 std::string FeModel::describe() const {
