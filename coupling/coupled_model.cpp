@@ -241,16 +241,6 @@ std::string CoupledModel::describe() const {
     std::size_t count = 0;
     for (std::size_t i : fe_node_) count += n.body[i] == static_cast<int>(b) ? 1 : 0;
     if (body.conversion) {
-      const core::ConversionSettings& c = *body.conversion;
-      std::string when;
-      auto add = [&](const std::string& what) { when += (when.empty() ? "" : ", ") + what; };
-      char buf[96];
-      if (c.plastic_strain > 0.0) add((std::snprintf(buf, sizeof buf, "plastic strain >= %g", c.plastic_strain), buf));
-      if (c.damage > 0.0) add((std::snprintf(buf, sizeof buf, "damage >= %g", c.damage), buf));
-      if (c.volumetric_strain > 0.0) add((std::snprintf(buf, sizeof buf, "|V/V0 - 1| >= %g", c.volumetric_strain), buf));
-      if (c.jacobian_ratio > 0.0) add((std::snprintf(buf, sizeof buf, "scaled Jacobian < %g", c.jacobian_ratio), buf));
-      if (c.time_step_fraction > 0.0) add((std::snprintf(buf, sizeof buf, "critical step < %g h/c", c.time_step_fraction), buf));
-      if (c.negative_jacobian) add("inversion");
       std::size_t elements = 0, inside = 0;
       const fem::FeElements& hexes = fe().hexahedra();
       for (const fem::ElementBatch& batch : hexes.batches)
@@ -260,15 +250,15 @@ std::string CoupledModel::describe() const {
             inside += fe().inside_grid(e) ? 1 : 0;
           }
       const core::GridSettings& g = scene_.mpm.grid;
-      core::appendf(out, "  body %s: AFEMP, a hexahedron becomes %d particle%s when %s; only "
-                         "inside the grid [%g, %g] x [%g, %g] x [%g, %g]: %zu of %zu elements "
-                         "lie inside now (outside, %s); nodes shared with converted elements "
-                         "bond to the particles%s\n",
-                    body.name.c_str(), c.points * c.points * c.points, c.points == 1 ? "" : "s",
-                    when.c_str(), g.min.x, g.max.x, g.min.y, g.max.y, g.min.z, g.max.z, inside,
-                    elements,
-                    body.erosion ? "the erosion criteria apply"
-                    : c.negative_jacobian ? "an inverting element stops the run" : "none converts",
+      core::appendf(out, "  body %s: AFEMP (the FE conversion stage below); only inside the grid "
+                         "[%g, %g] x [%g, %g] x [%g, %g]: %zu of %zu elements lie inside now "
+                         "(outside, %s); nodes shared with converted elements bond to the "
+                         "particles%s\n",
+                    body.name.c_str(), g.min.x, g.max.x, g.min.y, g.max.y, g.min.z, g.max.z,
+                    inside, elements,
+                    body.erosion                        ? "the erosion criteria apply"
+                    : body.conversion->negative_jacobian ? "an inverting element stops the run"
+                                                         : "none converts",
                     count > 0 ? "; the others are in grid contact (CFEMP)" : "");
     } else if (body.bonded_to >= 0)
       core::appendf(out, "  body %s: %zu nodes bonded to %s (HFEMP: they join its velocity field "
@@ -283,7 +273,7 @@ std::string CoupledModel::describe() const {
                          "meet the particles)\n", body.name.c_str());
   }
   out += "FE stages, around each grid step (time step: the smaller of the FE and grid steps):\n";
-  out += fe_.describe_stages();
+  out += fe().plan().describe();
   return out;
 }
 

@@ -1,5 +1,5 @@
 // The FE solver as a core::Model: mesh fields for the output (hexahedra and trusses as mesh
-// blocks of the same HDF5/XDMF frame particles use), the plan and mesh quality that
+// blocks of the same HDF5/XDMF frame particles use), the step plan and mesh quality that
 // `afemp check` prints, the erosion log and the nodes of a body.
 #pragma once
 
@@ -31,9 +31,8 @@ class FeModel final : public core::Model {
   std::vector<core::StageTiming> stage_timings() const override;
   std::vector<core::EventLog> take_events() override;
   std::string describe() const override;
-  // Its parts: the bodies, mesh quality and smallest step; the FE stages, one per line.
+  // Its first part: the bodies, mesh quality and smallest step (the step plan follows).
   std::string describe_mesh() const;
-  std::string describe_stages() const;
   // The mesh blocks of one output frame (valid until the next call).
   const std::vector<core::MeshBlock>& mesh_blocks();
   std::size_t bytes() const override { return solver_.bytes(); }
