@@ -134,8 +134,9 @@ int main(int argc, char** argv) {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   const double rss_bytes = static_cast<double>(usage.ru_maxrss) * 1024.0;
-  for (std::size_t i = 0; i < solver.stage_names().size(); ++i)
-    std::printf("  stage %-28s %7.3f s\n", solver.stage_names()[i].c_str(), solver.stage_seconds()[i]);
+  for (std::size_t i = 0; i < solver.plan().stages.size(); ++i)
+    std::printf("  stage %-28s %7.3f s\n", solver.plan().stages[i].name.c_str(),
+                solver.stage_seconds()[i]);
   const double element_steps = static_cast<double>(n) * static_cast<double>(steps);
   std::printf("threads %d  elements %zu  steps %ld  wall %.3f s (steps %.3f s)  %.3f M "
               "element-steps/s (steps alone %.3f M)  peak RSS %.1f MiB = %.0f bytes/element\n",

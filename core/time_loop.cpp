@@ -1,6 +1,6 @@
 // The run loop of core/time_loop.hpp: stable step, output at the requested interval, history
-// rows, progress and the summary. Moved here from the MPM solver so that FE and coupled runs
-// share it.
+// rows, progress and the summary (its reference checks: core/reference_checks.cpp). Moved here
+// from the MPM solver so that FE and coupled runs share it.
 #include "core/time_loop.hpp"
 
 #include <algorithm>
@@ -10,11 +10,11 @@
 #include <fstream>
 #include <map>
 #include <memory>
-#include <variant>
 
 #include "core/output/history.hpp"
 #include "core/probe_recorder.hpp"
 #include "core/output/run_directory.hpp"
+#include "core/reference_checks.hpp"
 
 namespace afemp::core {
 
@@ -226,30 +226,7 @@ RunSummary TimeLoop::finish() {
   sum.stages = model_.stage_timings();
   sum.field_frames = frames_ ? frames_->frames() : 0;
   if (sum.min_dt > sum.max_dt) sum.min_dt = sum.max_dt = dt_;
-  const Scene& scene = scene_;
-  if (scene.taylor_reference) {
-    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
-      const auto* bar = std::get_if<CylinderShape>(&scene.bodies[b].shape);
-      if (bar == nullptr || bar->nose.crh > 0.0) continue;
-      sum.taylor = model_.measure_taylor(static_cast<int>(b));
-      sum.taylor_error = taylor_mean_error(*sum.taylor, *scene.taylor_reference);
-      sum.checks.push_back({"taylor mean error (eq 2-42)", sum.taylor_error, 0.0, sum.taylor_error,
-                            scene.taylor_reference->tolerance});
-      break;
-    }
-  }
-  for (const VelocityReference& v : scene.velocity_references) {
-    const BodySums& body = sum.final.bodies[static_cast<std::size_t>(v.body)];
-    const Vec3 mean = body.mass > 0.0 ? (1.0 / body.mass) * body.momentum : Vec3{};
-    const double value = v.component < 0 ? norm(mean) : mean[v.component];
-    static const char* components[] = {"x", "y", "z"};
-    sum.checks.push_back({"velocity of " + scene.bodies[static_cast<std::size_t>(v.body)].name + " (" +
-                              (v.component < 0 ? "magnitude" : components[v.component]) + ")",
-                          value, v.value, std::abs(value - v.value) / std::abs(v.value), v.tolerance});
-  }
-  if (scene.energy_tolerance > 0.0)
-    sum.checks.push_back({"largest |energy-balance error|", sum.max_energy_error, 0.0,
-                          sum.max_energy_error, scene.energy_tolerance});
+  check_references(model_, scene_, sum);
   if (options_.progress)
     options_.progress({sum.steps, sum.time, dt_, rs.end_time, sum.wall_seconds, sum.energy_error});
   return sum;

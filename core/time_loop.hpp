@@ -17,7 +17,6 @@
 #include "afemp/run.hpp"
 #include "core/output/field_writer.hpp"
 #include "core/scene.hpp"
-#include "core/taylor_metrics.hpp"
 
 namespace afemp::core {
 
@@ -27,6 +26,14 @@ struct EventLog {
   std::string file;    // e.g. "erosion.csv"
   std::string header;  // the CSV header line, without newline
   std::vector<std::string> rows;
+};
+
+// The points that carry a body's material (Model::body_points), and how far the material of
+// each reaches beyond it: half the edge of a particle's cube of volume; 0 for a mesh node, which
+// lies on the surface.
+struct BodyPoints {
+  std::vector<Vec3> position;
+  std::vector<double> half_size;
 };
 
 class Model {
@@ -49,8 +56,6 @@ class Model {
   virtual std::vector<StageTiming> stage_timings() const = 0;
   // Event rows produced since the last call (none by default).
   virtual std::vector<EventLog> take_events() { return {}; }
-  // The Taylor-bar measures of scene body `body`, a cylinder.
-  virtual TaylorMeasures measure_taylor(int body) const = 0;
   // What `afemp check` prints before the time step: the discretisation (grid, bodies, mesh
   // quality), and the stages one step runs with the reason for each.
   virtual std::string describe() const = 0;
@@ -66,9 +71,9 @@ class Model {
   // is gone (eroded, converted into particles) leaves its NaN.
   virtual void resolve_probes(std::span<const ProbeSpec> probes) = 0;
   virtual void sample_probes(std::span<double> out) const = 0;
-  // The current positions of the points that carry body `body`'s material: its particles
-  // and the nodes of its live elements (crater and hole metrics, coupling/study.cpp).
-  virtual std::vector<Vec3> body_points(int body) const = 0;
+  // The points that carry body `body`'s material now: its particles and the nodes of its live
+  // elements (Taylor, crater and hole metrics: core/reference_checks.cpp, coupling/study.cpp).
+  virtual BodyPoints body_points(int body) const = 0;
 };
 
 struct RunOptions {

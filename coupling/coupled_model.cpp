@@ -19,7 +19,6 @@
 
 #include "core/appendf.hpp"
 #include "afemp/errors.hpp"
-#include "core/taylor_metrics.hpp"
 
 namespace afemp::coupling {
 
@@ -222,29 +221,6 @@ std::vector<core::StageTiming> CoupledModel::stage_timings() const {
   return out;
 }
 
-core::TaylorMeasures CoupledModel::measure_taylor(int body) const {
-  const core::BodySpec& spec = scene_.bodies.at(static_cast<std::size_t>(body));
-  if (spec.discretisation == core::Discretisation::particles) return mpm_.measure_taylor(body);
-  if (!spec.conversion) return fe_.measure_taylor(body);
-  // A converting bar: its live nodes (on the surface) and its particles (reaching half a
-  // spacing beyond their centres), measured together.
-  std::vector<core::Vec3> points;
-  std::vector<double> half;
-  const fem::FeNodes& n = fe().nodes();
-  for (std::size_t i = 0; i < n.size(); ++i)
-    if (n.body[i] == body && n.mass[i] > 0.0) {
-      points.push_back(n.position[i]);
-      half.push_back(0.0);
-    }
-  const mpm::Particles& p = mpm().particles();
-  for (std::size_t i = 0; i < p.size(); ++i)
-    if (p.body[i] == body) {
-      points.push_back(p.position[i]);
-      half.push_back(0.5 * std::cbrt(p.volume[i]));
-    }
-  return core::measure_taylor(points, half, core::taylor_bar(scene_, body), fe_.taylor_band(body));
-}
-
 std::vector<core::EventLog> CoupledModel::take_events() {
   std::vector<core::EventLog> out = fe_.take_events();
   core::EventLog log{"conversion.csv",
@@ -265,16 +241,6 @@ std::string CoupledModel::describe() const {
     std::size_t count = 0;
     for (std::size_t i : fe_node_) count += n.body[i] == static_cast<int>(b) ? 1 : 0;
     if (body.conversion) {
-      const core::ConversionSettings& c = *body.conversion;
-      std::string when;
-      auto add = [&](const std::string& what) { when += (when.empty() ? "" : ", ") + what; };
-      char buf[96];
-      if (c.plastic_strain > 0.0) add((std::snprintf(buf, sizeof buf, "plastic strain >= %g", c.plastic_strain), buf));
-      if (c.damage > 0.0) add((std::snprintf(buf, sizeof buf, "damage >= %g", c.damage), buf));
-      if (c.volumetric_strain > 0.0) add((std::snprintf(buf, sizeof buf, "|V/V0 - 1| >= %g", c.volumetric_strain), buf));
-      if (c.jacobian_ratio > 0.0) add((std::snprintf(buf, sizeof buf, "scaled Jacobian < %g", c.jacobian_ratio), buf));
-      if (c.time_step_fraction > 0.0) add((std::snprintf(buf, sizeof buf, "critical step < %g h/c", c.time_step_fraction), buf));
-      if (c.negative_jacobian) add("inversion");
       std::size_t elements = 0, inside = 0;
       const fem::FeElements& hexes = fe().hexahedra();
       for (const fem::ElementBatch& batch : hexes.batches)
@@ -284,15 +250,15 @@ std::string CoupledModel::describe() const {
             inside += fe().inside_grid(e) ? 1 : 0;
           }
       const core::GridSettings& g = scene_.mpm.grid;
-      core::appendf(out, "  body %s: AFEMP, a hexahedron becomes %d particle%s when %s; only "
-                         "inside the grid [%g, %g] x [%g, %g] x [%g, %g]: %zu of %zu elements "
-                         "lie inside now (outside, %s); nodes shared with converted elements "
-                         "bond to the particles%s\n",
-                    body.name.c_str(), c.points * c.points * c.points, c.points == 1 ? "" : "s",
-                    when.c_str(), g.min.x, g.max.x, g.min.y, g.max.y, g.min.z, g.max.z, inside,
-                    elements,
-                    body.erosion ? "the erosion criteria apply"
-                    : c.negative_jacobian ? "an inverting element stops the run" : "none converts",
+      core::appendf(out, "  body %s: AFEMP (the FE conversion stage below); only inside the grid "
+                         "[%g, %g] x [%g, %g] x [%g, %g]: %zu of %zu elements lie inside now "
+                         "(outside, %s); nodes shared with converted elements bond to the "
+                         "particles%s\n",
+                    body.name.c_str(), g.min.x, g.max.x, g.min.y, g.max.y, g.min.z, g.max.z,
+                    inside, elements,
+                    body.erosion                        ? "the erosion criteria apply"
+                    : body.conversion->negative_jacobian ? "an inverting element stops the run"
+                                                         : "none converts",
                     count > 0 ? "; the others are in grid contact (CFEMP)" : "");
     } else if (body.bonded_to >= 0)
       core::appendf(out, "  body %s: %zu nodes bonded to %s (HFEMP: they join its velocity field "
@@ -307,14 +273,15 @@ std::string CoupledModel::describe() const {
                          "meet the particles)\n", body.name.c_str());
   }
   out += "FE stages, around each grid step (time step: the smaller of the FE and grid steps):\n";
-  out += fe_.describe_stages();
+  out += fe().plan().describe();
   return out;
 }
 
-std::vector<core::Vec3> CoupledModel::body_points(int body) const {
-  std::vector<core::Vec3> points = mpm_.body_points(body);
-  const std::vector<core::Vec3> nodes = fe_.body_points(body);
-  points.insert(points.end(), nodes.begin(), nodes.end());
+core::BodyPoints CoupledModel::body_points(int body) const {
+  core::BodyPoints points = mpm_.body_points(body);
+  const core::BodyPoints nodes = fe_.body_points(body);
+  points.position.insert(points.position.end(), nodes.position.begin(), nodes.position.end());
+  points.half_size.insert(points.half_size.end(), nodes.half_size.begin(), nodes.half_size.end());
   return points;
 }
 

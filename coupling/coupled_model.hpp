@@ -56,7 +56,6 @@ class CoupledModel final : public core::Model {
   std::size_t element_count() const override { return fe_.element_count(); }
   void write_fields(core::FieldWriter& writer) override;
   std::vector<core::StageTiming> stage_timings() const override;
-  core::TaylorMeasures measure_taylor(int body) const override;
   std::vector<core::EventLog> take_events() override;
   std::string describe() const override;
   std::size_t bytes() const override;
@@ -71,7 +70,7 @@ class CoupledModel final : public core::Model {
     fe_.sample_probes(out);
   }
   // The body's particles (converted elements' included) and the nodes of its live elements.
-  std::vector<core::Vec3> body_points(int body) const override;
+  core::BodyPoints body_points(int body) const override;
 
  private:
   // Copies the FE nodes' state into the node points before the grid step.

@@ -49,13 +49,15 @@ void measure(const core::MetricSpec& m, const core::Scene& scene, const core::Mo
   double value = nan;
   switch (m.kind) {
     case core::MetricKind::taylor: {
-      const core::TaylorMeasures t = model.measure_taylor(b);
+      const core::BodyPoints points = model.body_points(b);
+      const core::TaylorMeasures t =
+          core::measure_taylor(scene, b, points.position, points.half_size);
       values.insert(values.end(), {t.length, t.impact_diameter, t.bulge_diameter});
       errors.push_back(core::taylor_mean_error(t, *m.taylor));
       return;
     }
     case core::MetricKind::crater: {
-      const std::vector<core::Vec3> points = model.body_points(b);
+      const std::vector<core::Vec3> points = model.body_points(b).position;
       const core::CraterMeasures c =
           core::measure_crater(points, m.point, m.normal, initial_level, m.ring, m.threshold);
       values.insert(values.end(), {c.depth, c.diameter});
@@ -71,7 +73,7 @@ void measure(const core::MetricSpec& m, const core::Scene& scene, const core::Mo
       break;
     }
     case core::MetricKind::hole:
-      value = core::measure_hole(model.body_points(b), m.point, m.normal, m.band);
+      value = core::measure_hole(model.body_points(b).position, m.point, m.normal, m.band);
       break;
     case core::MetricKind::wave_front: {
       // Distances along the path from the first probe's place at the start.
@@ -171,8 +173,8 @@ StudyResult run_study(const core::StudyPlan& plan,
     for (std::size_t k = 0; k < plan.metrics.size(); ++k) {
       const core::MetricSpec& m = plan.metrics[k];
       if (m.kind == core::MetricKind::crater)
-        initial_level[k] = core::surface_level(model->body_points(body_index(scene, m.body)), m.point,
-                                               m.normal);
+        initial_level[k] = core::surface_level(
+            model->body_points(body_index(scene, m.body)).position, m.point, m.normal);
     }
     try {
       const core::RunSummary s = core::run(*model, scene, options);

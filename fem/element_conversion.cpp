@@ -84,6 +84,12 @@ void FeSolver::collect_conversions() {
 }
 
 std::vector<ConvertedPoint> FeSolver::take_converted_points() {
+  std::vector<ConvertedPoint> out;
+  run_stage(FeStageKind::conversion, [&] { out = make_converted_points(); });
+  return out;
+}
+
+std::vector<ConvertedPoint> FeSolver::make_converted_points() {
   // Built when taken, from the nodes' final v^{n+1/2}: in a coupled step the grid sets the
   // bonded nodes' velocity after the element update that flagged the conversion.
   std::vector<ConvertedPoint> out;

@@ -1,8 +1,6 @@
 // The FE solver behind the core::Model interface (fem/fe_model.hpp).
 #include "fem/fe_model.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <initializer_list>
 #include <string>
@@ -111,8 +109,9 @@ const std::vector<core::MeshBlock>& FeModel::mesh_blocks() {
 
 std::vector<core::StageTiming> FeModel::stage_timings() const {
   std::vector<core::StageTiming> out;
-  for (std::size_t i = 0; i < solver_.stage_names().size(); ++i)
-    out.push_back({solver_.stage_names()[i], solver_.step_count(), solver_.stage_seconds()[i]});
+  const std::vector<FeStage>& stages = solver_.plan().stages;
+  for (std::size_t i = 0; i < stages.size(); ++i)
+    out.push_back({stages[i].name, solver_.step_count(), solver_.stage_seconds()[i]});
   return out;
 }
 
@@ -140,28 +139,11 @@ std::vector<core::EventLog> FeModel::take_events() {
   return {log};
 }
 
-core::TaylorMeasures FeModel::measure_taylor(int body) const {
-  const core::CylinderShape* cyl = &core::taylor_bar(scene_, body);
-  const FeNodes& n = solver_.nodes();
-  std::vector<core::Vec3> points;
-  for (std::size_t i = 0; i < n.size(); ++i)
-    if (n.body[i] == body && n.mass[i] > 0.0) points.push_back(n.position[i]);
-  return core::measure_taylor(points, {}, *cyl, taylor_band(body));
-}
-
-double FeModel::taylor_band(int body) const {
-  // Nodes lie on the surface; W is read in a band of half an initial element length.
-  const core::BodySpec& spec = scene_.bodies.at(static_cast<std::size_t>(body));
-  const core::CylinderShape* cyl = &core::taylor_bar(scene_, body);
-  return 0.5 * cyl->length / std::max(1, spec.mesh.axial > 0 ? spec.mesh.axial
-      : static_cast<int>(std::ceil(cyl->length / std::max(spec.mesh.size, 1e-300))));
-}
-
 std::string FeModel::describe() const {
   std::string out = describe_mesh();
   out += "step plan (explicit FE, central differences; no particles, so no background grid is "
          "allocated and no grid stage runs):\n";
-  out += describe_stages();
+  out += solver_.plan().describe();
   return out;
 }
 
@@ -187,30 +169,6 @@ std::string FeModel::describe_mesh() const {
     core::appendf(out, "body %s: %zu %s of %s, %zu nodes, mass %.6g\n", body.name.c_str(), count,
            hexes ? "hexahedra" : "trusses",
            scene_.materials[static_cast<std::size_t>(body.material)].name.c_str(), nodes, mass);
-    if (hexes) {
-      if (body.element == core::HexFormulation::one_point &&
-          body.hourglass.form == core::HourglassForm::assumed_strain)
-        core::appendf(out, "  one-point hexahedra, assumed-strain (Belytschko-Bindeman ASQBI) "
-                           "stabilisation from the elastic constants, scale %g\n",
-                      body.hourglass.coefficient);
-      else if (body.element == core::HexFormulation::one_point)
-        core::appendf(out, "  one-point hexahedra, %s hourglass control Q_hg = %g\n",
-               core::to_string(body.hourglass.form), body.hourglass.coefficient);
-      else
-        out += "  fully integrated hexahedra (2x2x2) with B-bar volumetric integration\n";
-      core::appendf(out, "  bulk viscosity: linear %g, quadratic %g\n", core::bulk_viscosity_of(scene_, body).linear,
-             core::bulk_viscosity_of(scene_, body).quadratic);
-    }
-    if (body.erosion) {
-      const core::ErosionSettings& e = *body.erosion;
-      out += "  erosion:";
-      if (e.plastic_strain > 0.0) core::appendf(out, " plastic strain %g;", e.plastic_strain);
-      if (e.material_failure) core::appendf(out, " material failure strain %g;",
-                                     scene_.materials[static_cast<std::size_t>(body.material)].failure_strain);
-      if (e.volume_ratio > 0.0) core::appendf(out, " volume ratio %g;", e.volume_ratio);
-      if (e.time_step > 0.0) core::appendf(out, " time step %g;", e.time_step);
-      out += " inverted elements\n";
-    }
   }
   std::size_t imposed = 0;
   for (std::uint8_t m : n.imposed) imposed += m ? 1 : 0;
@@ -226,26 +184,6 @@ std::string FeModel::describe_mesh() const {
   core::appendf(out, "smallest element time step: %.6g at %s\n",
          solver_.stable_time_step() / scene_.run.element_time_step_factor,
          solver_.smallest_step_element().c_str());
-  return out;
-}
-
-std::string FeModel::describe_stages() const {
-  std::string out;
-  int k = 1;
-  core::appendf(out, "  %d. nodal update  -- element forces gathered per node, v += dt f / m, imposed "
-              "velocities%s\n", k++, scene_.run.gravity.x != 0.0 || scene_.run.gravity.y != 0.0 ||
-              scene_.run.gravity.z != 0.0 ? ", gravity" : "");
-  if (!scene_.walls.empty())
-    core::appendf(out, "  %d. rigid walls  -- %zu planar wall(s): nodes kept on their side\n", k++,
-           scene_.walls.size());
-  if (!solver_.hexahedra().empty())
-    core::appendf(out, "  %d. hexahedra  -- strain rate, Jaumann stress update, bulk viscosity, "
-                "hourglass, nodal forces, critical step%s\n", k++,
-           std::any_of(scene_.bodies.begin(), scene_.bodies.end(), [](const auto& b) { return b.erosion.has_value(); })
-               ? ", erosion" : "");
-  if (!solver_.trusses().empty())
-    core::appendf(out, "  %d. trusses  -- axial strain rate, uniaxial stress update, axial forces, "
-                "critical step\n", k++);
   return out;
 }
 

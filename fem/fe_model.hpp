@@ -1,6 +1,6 @@
 // The FE solver as a core::Model: mesh fields for the output (hexahedra and trusses as mesh
-// blocks of the same HDF5/XDMF frame particles use), the plan and mesh quality that
-// `afemp check` prints, the erosion log and the Taylor measures.
+// blocks of the same HDF5/XDMF frame particles use), the step plan and mesh quality that
+// `afemp check` prints, the erosion log and the nodes of a body.
 #pragma once
 
 #include <vector>
@@ -30,13 +30,9 @@ class FeModel final : public core::Model {
   void write_fields(core::FieldWriter& writer) override;
   std::vector<core::StageTiming> stage_timings() const override;
   std::vector<core::EventLog> take_events() override;
-  core::TaylorMeasures measure_taylor(int body) const override;
-  // The band around 0.2 L0 in which W is read from the nodes of a Taylor bar.
-  double taylor_band(int body) const;
   std::string describe() const override;
-  // Its parts: the bodies, mesh quality and smallest step; the FE stages, one per line.
+  // Its first part: the bodies, mesh quality and smallest step (the step plan follows).
   std::string describe_mesh() const;
-  std::string describe_stages() const;
   // The mesh blocks of one output frame (valid until the next call).
   const std::vector<core::MeshBlock>& mesh_blocks();
   std::size_t bytes() const override { return solver_.bytes(); }
@@ -44,8 +40,11 @@ class FeModel final : public core::Model {
     probes_.resolve(probes, solver_, scene_);
   }
   void sample_probes(std::span<double> out) const override { probes_.sample(solver_, out); }
-  std::vector<core::Vec3> body_points(int body) const override {
-    return live_node_positions(solver_, body);
+  // The nodes of the body's live elements, each with half size 0 (on the surface).
+  core::BodyPoints body_points(int body) const override {
+    core::BodyPoints out{live_node_positions(solver_, body), {}};
+    out.half_size.assign(out.position.size(), 0.0);
+    return out;
   }
 
  private:

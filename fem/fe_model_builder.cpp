@@ -394,11 +394,10 @@ void FeSolver::build(const core::Scene& scene) {
       trusses_.critical_dt[e] = truss_time_step(trusses_.length0[e], modulus, mat.density);
   }
 
-  stage_names_ = {"nodal update"};
-  if (!walls_.empty()) stage_names_.push_back("rigid walls");
-  if (!hexes_.empty()) stage_names_.push_back("hexahedra");
-  if (!trusses_.empty()) stage_names_.push_back("trusses");
-  stage_seconds_.assign(stage_names_.size(), 0.0);
+  plan_ = build_fe_step_plan(
+      scene, static_cast<std::size_t>(std::count_if(nodes_.imposed.begin(), nodes_.imposed.end(),
+                                                    [](std::uint8_t m) { return m != 0; })));
+  stage_seconds_.assign(plan_.stages.size(), 0.0);
   thread_sums_.assign(static_cast<std::size_t>(core::thread_count()) * core::cache_line_doubles, 0.0);
   body_stabilisation_.assign(scene.bodies.size(), 0.0);
   thread_erosions_.resize(static_cast<std::size_t>(core::thread_count()));

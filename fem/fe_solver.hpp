@@ -1,12 +1,14 @@
 // The explicit FE solver: lumped-mass nodes moved by central differences (Belytschko, Liu &
 // Moran, Nonlinear Finite Elements, box 6.1), 8-node hexahedra (one-point with
 // Flanagan-Belytschko hourglass control, or 2x2x2 B-bar) and 2-node trusses, all updated by the
-// shared material composition of core/materials. The stages live in files named after them:
-// fe_model_builder.cpp (mesh, masses, sets), nodal_update.cpp (forces to motion, constraints),
-// rigid_wall.cpp, hexahedron_update.cpp, truss_update.cpp, erosion.cpp.
+// shared material composition of core/materials. The stages a scene needs are its step plan
+// (fe_step_plan.cpp); they live in files named after them: fe_model_builder.cpp (mesh, masses,
+// sets), nodal_update.cpp (forces to motion, constraints), rigid_wall.cpp,
+// hexahedron_update.cpp, truss_update.cpp, erosion.cpp, element_conversion.cpp.
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <string>
 #include <type_traits>
@@ -16,6 +18,7 @@
 #include "afemp/energies.hpp"
 #include "core/materials/material.hpp"
 #include "core/scene.hpp"
+#include "fem/fe_step_plan.hpp"
 #include "fem/hexahedron.hpp"
 #include "fem/mesh.hpp"
 
@@ -131,7 +134,8 @@ class FeSolver {
   const MeshData& mesh() const { return mesh_; }  // the assembled input mesh (for reports)
   long step_count() const { return steps_; }
   double time() const { return time_; }
-  const std::vector<std::string>& stage_names() const { return stage_names_; }
+  // The stages a step runs, built once from the scene, and the wall seconds of each.
+  const FeStepPlan& plan() const { return plan_; }
   const std::vector<double>& stage_seconds() const { return stage_seconds_; }
 
   // factor * min over live elements of the critical step (or the scene's fixed step).
@@ -166,7 +170,7 @@ class FeSolver {
   // particles to add, made from the nodes' state at the call, then one record per element
   // taken. Their nodes keep their velocity; their masses come from the live elements (a node
   // left with none has handed its whole mass to the particles, with the momentum the
-  // interpolation gives them).
+  // interpolation gives them). Timed as the plan's conversion stage.
   std::vector<ConvertedPoint> take_converted_points();
   std::vector<ConversionEvent> take_conversion_events();
   // Whether hexahedron e lies inside the background grid (where it may convert).
@@ -193,7 +197,12 @@ class FeSolver {
   const char* conversion_reason(const core::ConversionSettings& c, const ElementBatch& b,
                                 std::size_t e, double volume, double grid_step) const;
   void collect_conversions();
+  std::vector<ConvertedPoint> make_converted_points();
   void recompute_node_masses();
+  // Runs f as the plan's stage `kind` and adds its wall seconds; nothing when the scene does
+  // not need that stage.
+  template <class F>
+  void run_stage(FeStageKind kind, F&& f);
   [[noreturn]] void raise(const std::string& entity, const char* field,
                           const std::string& detail) const;
   // Throws for the first thread (in thread order) that met a bad value in the last sweep.
@@ -231,7 +240,7 @@ class FeSolver {
   std::vector<std::uint8_t> converted_node_;  // a node of an element converted this step
   std::vector<std::vector<std::size_t>> thread_conversions_;
   std::vector<std::vector<const char*>> thread_conversion_reason_;
-  std::vector<std::string> stage_names_;
+  FeStepPlan plan_;
   std::vector<double> stage_seconds_;
   // Per-thread partial sums (padded), combined in thread order.
   std::vector<double> thread_sums_;
@@ -240,6 +249,16 @@ class FeSolver {
   std::vector<std::string> thread_errors_;       // entity of the first bad value per thread
   std::vector<const char*> thread_error_field_;  // and its field
 };
+
+template <class F>
+void FeSolver::run_stage(FeStageKind kind, F&& f) {
+  const int i = plan_.index(kind);
+  if (i < 0) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  f();
+  stage_seconds_[static_cast<std::size_t>(i)] +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
 
 template <class Update>
 void FeSolver::for_each_batch(const FeElements& elements, Update&& update) {

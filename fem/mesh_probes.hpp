@@ -1,8 +1,8 @@
 // The probes a mesh answers (core/probes.hpp): node and element probes, resolved once to the
 // node or element index, and the live elements' part of the field extremes (at each
 // centroid, with the point-averaged stress and the mean nodal velocity, as the field output
-// averages them); and a body's points for the crater and hole metrics. Used by FeModel and by
-// the coupled model.
+// averages them); and a body's points for the Taylor, crater and hole metrics. Used by FeModel
+// and by the coupled model.
 #pragma once
 
 #include <cstddef>

@@ -4,7 +4,6 @@
 // on the first), imposed components set, rigid walls, x^{n+1} = x^n + dt v^{n+1/2}.
 // Also the step itself, the stable step and the energies.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -59,26 +58,14 @@ void FeSolver::update_nodes(double dt) {
     external_work_ += thread_sums_[t * core::cache_line_doubles];
 }
 
-namespace {
-
-// Runs f and adds its wall seconds to `seconds`.
-template <class F>
-void timed(double& seconds, F&& f) {
-  const auto t0 = std::chrono::steady_clock::now();
-  f();
-  seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-}  // namespace
-
 void FeSolver::step(double dt) {
   begin_step(dt);
   finish_step(dt);
 }
 
 void FeSolver::begin_step(double dt) {
-  timed(stage_seconds_[0], [&] { update_nodes(dt); });
-  if (!walls_.empty()) timed(stage_seconds_[1], [&] { apply_walls(dt); });
+  run_stage(FeStageKind::nodal_update, [&] { update_nodes(dt); });
+  run_stage(FeStageKind::rigid_walls, [&] { apply_walls(dt); });
 }
 
 void FeSolver::finish_step(double dt) {
@@ -89,13 +76,17 @@ void FeSolver::finish_step(double dt) {
       if (nodes_.mass[i] > 0.0 && !nodes_.grid_driven[i])
         nodes_.position[i] += dt * nodes_.velocity[i];
   });
-  std::size_t stage = walls_.empty() ? 1 : 2;
-  if (!hexes_.empty()) timed(stage_seconds_[stage++], [&] { update_hexahedra(dt); });
-  if (!trusses_.empty()) timed(stage_seconds_[stage], [&] { update_trusses(dt); });
+  run_stage(FeStageKind::hexahedra, [&] { update_hexahedra(dt); });
+  run_stage(FeStageKind::trusses, [&] { update_trusses(dt); });
   time_ += dt;
   ++steps_;
   previous_dt_ = dt;
-  if (erosion_this_step_) finish_erosion();
+  // Elements left the mesh (eroded or converted): the node masses follow, in the erosion
+  // stage, or in the conversion stage where no body erodes.
+  if (erosion_this_step_)
+    run_stage(plan_.index(FeStageKind::erosion) >= 0 ? FeStageKind::erosion
+                                                      : FeStageKind::conversion,
+              [&] { finish_erosion(); });
 }
 
 double FeSolver::stable_time_step() const {

@@ -115,19 +115,15 @@ std::string MpmModel::describe() const {
   return out;
 }
 
-core::TaylorMeasures MpmModel::measure_taylor(int body) const {
-  const core::BodySpec& spec = scene_.bodies.at(static_cast<std::size_t>(body));
-  const core::CylinderShape* cyl = &core::taylor_bar(scene_, body);
+core::BodyPoints MpmModel::body_points(int body) const {
   const Particles& p = solver_.particles();
-  std::vector<core::Vec3> points;
-  std::vector<double> half;
+  core::BodyPoints out;
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.body[i] != body) continue;
-    points.push_back(p.position[i]);
-    half.push_back(0.5 * std::cbrt(p.volume[i]));  // material reaches half a spacing out
+    out.position.push_back(p.position[i]);
+    out.half_size.push_back(0.5 * std::cbrt(p.volume[i]));  // a particle fills a cube of its volume
   }
-  if (points.empty()) throw std::invalid_argument("body '" + spec.name + "' has no particles");
-  return core::measure_taylor(points, half, *cyl, 0.0);
+  return out;
 }
 
 }  // namespace afemp::mpm

@@ -1,5 +1,5 @@
 // The MPM solver as a core::Model, so that core::run drives it: particle fields for the output
-// (pressure, von Mises, density derived per frame), stage timings and the Taylor measures.
+// (pressure, von Mises, density derived per frame), stage timings and the particles of a body.
 #pragma once
 
 #include <vector>
@@ -26,7 +26,6 @@ class MpmModel final : public core::Model {
   std::size_t element_count() const override { return 0; }
   void write_fields(core::FieldWriter& writer) override;
   std::vector<core::StageTiming> stage_timings() const override;
-  core::TaylorMeasures measure_taylor(int body) const override;
   // Bins the particles first so that the active cells and memory describe the first step.
   std::string describe() const override;
   std::size_t bytes() const override { return solver_.bytes(); }
@@ -34,9 +33,7 @@ class MpmModel final : public core::Model {
     probes_.resolve(probes, solver_.particles(), scene_);
   }
   void sample_probes(std::span<double> out) const override { probes_.sample(solver_.particles(), out); }
-  std::vector<core::Vec3> body_points(int body) const override {
-    return particle_positions(solver_.particles(), body);
-  }
+  core::BodyPoints body_points(int body) const override;
   // The particles' block of one output frame (valid until the next call).
   core::PointBlock particle_block();
 

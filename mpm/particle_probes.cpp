@@ -67,11 +67,4 @@ void ParticleProbes::sample(const Particles& p, std::span<double> out) const {
   }
 }
 
-std::vector<core::Vec3> particle_positions(const Particles& p, int body) {
-  std::vector<core::Vec3> out;
-  for (std::size_t i = 0; i < p.size(); ++i)
-    if (p.body[i] == body) out.push_back(p.position[i]);
-  return out;
-}
-
 }  // namespace afemp::mpm

@@ -1,6 +1,6 @@
 // The probes a body of particles answers (core/probes.hpp): particle probes, resolved once to
-// the particle's stable id, and the particles' part of the field extremes; and a body's points
-// for the crater and hole metrics. Used by MpmModel and by the coupled model.
+// the particle's stable id, and the particles' part of the field extremes. Used by MpmModel and
+// by the coupled model.
 #pragma once
 
 #include <cstdint>
@@ -27,8 +27,5 @@ class ParticleProbes {
   std::vector<std::int32_t> id_;            // particle probes: the particle's id
   mutable std::vector<std::size_t> slot_;   // where it sat at the last sample (reordering moves it)
 };
-
-// The positions of body `body`'s particles.
-std::vector<core::Vec3> particle_positions(const Particles& p, int body);
 
 }  // namespace afemp::mpm

@@ -1,0 +1,144 @@
+// The FE step plan of fem/fe_step_plan.hpp: each stage where the scene needs it, in the order
+// FeSolver::begin_step and finish_step run them, with its reason.
+#include "fem/fe_step_plan.hpp"
+
+#include "core/appendf.hpp"
+
+namespace afemp::fem {
+
+namespace {
+
+using core::BodySpec;
+using core::Discretisation;
+
+// "bar: ...; plate: ...": one part per body that has it.
+void add_body(std::string& why, const BodySpec& body, const std::string& what) {
+  why += (why.empty() ? "" : "; ") + body.name + ": " + what;
+}
+
+// How body's hexahedra integrate and stabilise (fem/hexahedron_one_point.cpp, hourglass.cpp,
+// hourglass_assumed_strain.cpp, hexahedron_full.cpp) and their bulk viscosity.
+std::string hexahedron_formulation(const core::Scene& scene, const BodySpec& body) {
+  std::string out;
+  if (body.element == core::HexFormulation::full)
+    out = "fully integrated (2x2x2) with B-bar volumetric integration";
+  else if (body.hourglass.form == core::HourglassForm::assumed_strain)
+    core::appendf(out, "one-point, assumed-strain (Belytschko-Bindeman ASQBI) stabilisation "
+                       "from the elastic constants, scale %g", body.hourglass.coefficient);
+  else
+    core::appendf(out, "one-point, %s hourglass control Q_hg = %g",
+                  core::to_string(body.hourglass.form), body.hourglass.coefficient);
+  const core::BulkViscositySettings q = core::bulk_viscosity_of(scene, body);
+  if (q.linear > 0.0 || q.quadratic > 0.0)
+    core::appendf(out, ", bulk viscosity linear %g, quadratic %g", q.linear, q.quadratic);
+  else
+    out += ", no bulk viscosity";
+  return out;
+}
+
+// The criteria of body's erosion (fem/hexahedron_update.cpp, truss_update.cpp).
+std::string erosion_criteria(const core::Scene& scene, const BodySpec& body) {
+  const core::ErosionSettings& e = *body.erosion;
+  std::string out;
+  if (e.plastic_strain > 0.0) core::appendf(out, "plastic strain %g, ", e.plastic_strain);
+  if (e.material_failure)
+    core::appendf(out, "material failure strain %g, ",
+                  scene.materials[static_cast<std::size_t>(body.material)].failure_strain);
+  if (e.volume_ratio > 0.0) core::appendf(out, "volume ratio %g, ", e.volume_ratio);
+  if (e.time_step > 0.0) core::appendf(out, "time step %g, ", e.time_step);
+  return out + "inverted elements";
+}
+
+// The criteria of body's conversion (fem/element_conversion.cpp) and what an element becomes.
+std::string conversion_criteria(const BodySpec& body) {
+  const core::ConversionSettings& c = *body.conversion;
+  std::string when;
+  auto add = [&](const char* format, double value) {
+    if (!when.empty()) when += ", ";
+    core::appendf(when, format, value);
+  };
+  if (c.plastic_strain > 0.0) add("plastic strain >= %g", c.plastic_strain);
+  if (c.damage > 0.0) add("damage >= %g", c.damage);
+  if (c.volumetric_strain > 0.0) add("|V/V0 - 1| >= %g", c.volumetric_strain);
+  if (c.jacobian_ratio > 0.0) add("scaled Jacobian < %g", c.jacobian_ratio);
+  if (c.time_step_fraction > 0.0) add("critical step < %g h/c", c.time_step_fraction);
+  if (c.negative_jacobian) when += when.empty() ? "inversion" : ", inversion";
+  const int particles = c.points * c.points * c.points;
+  std::string out;
+  core::appendf(out, "%d particle%s per element when ", particles, particles == 1 ? "" : "s");
+  return out + when;
+}
+
+}  // namespace
+
+FeStepPlan build_fe_step_plan(const core::Scene& scene, std::size_t imposed_nodes) {
+  FeStepPlan plan;
+  auto& s = plan.stages;
+  const core::Vec3& g = scene.run.gravity;
+  std::string forces = "element forces gathered per node";
+  if (g.x != 0.0 || g.y != 0.0 || g.z != 0.0) forces += ", gravity m g";
+  forces += " and any loads a program sets give v^{n+1/2} = v^{n-1/2} + dt f / m";
+  if (imposed_nodes > 0)
+    core::appendf(forces, "; imposed velocity components on %zu nodes (constraints)",
+                  imposed_nodes);
+  s.push_back({FeStageKind::nodal_update, "nodal update", forces});
+  if (!scene.walls.empty()) {
+    std::string why;
+    core::appendf(why, "%zu planar wall(s): nodes kept on their side", scene.walls.size());
+    s.push_back({FeStageKind::rigid_walls, "rigid walls", why});
+  }
+
+  std::string hexahedra, erosion, conversion;
+  bool trusses = false;
+  for (const BodySpec& body : scene.bodies) {
+    if (body.discretisation == Discretisation::hexahedra)
+      add_body(hexahedra, body, hexahedron_formulation(scene, body));
+    trusses = trusses || body.discretisation == Discretisation::trusses;
+    if (body.discretisation != Discretisation::particles && body.erosion)
+      add_body(erosion, body, erosion_criteria(scene, body));
+    if (body.discretisation == Discretisation::hexahedra && body.conversion)
+      add_body(conversion, body, conversion_criteria(body));
+  }
+  if (!hexahedra.empty())
+    s.push_back({FeStageKind::hexahedra, "hexahedra",
+                 "strain rate from v^{n+1/2} on the mid-step geometry, Jaumann stress update, "
+                 "forces on the end-of-step geometry, critical step; " + hexahedra});
+  if (trusses)
+    s.push_back({FeStageKind::trusses, "trusses",
+                 "axial strain rate, uniaxial stress update, axial forces, critical step"});
+  if (!erosion.empty())
+    s.push_back({FeStageKind::erosion, "erosion",
+                 "an element that meets a criterion leaves with its energy (erosion.csv), the "
+                 "node masses follow the live elements; " + erosion});
+  // Where no body erodes, the node masses after a conversion are this stage's.
+  if (!conversion.empty())
+    s.push_back({FeStageKind::conversion, "conversion",
+                 "a hexahedron inside the grid that meets a criterion becomes particles with "
+                 "its mass, momentum and state (AFEMP, Lian et al. 2013, §2.6), the node masses "
+                 "follow the live elements; " + conversion});
+  return plan;
+}
+
+int FeStepPlan::index(FeStageKind kind) const {
+  for (std::size_t i = 0; i < stages.size(); ++i)
+    if (stages[i].kind == kind) return static_cast<int>(i);
+  return -1;
+}
+
+std::vector<std::string> FeStepPlan::stage_names() const {
+  std::vector<std::string> names;
+  for (const FeStage& st : stages) names.push_back(st.name);
+  return names;
+}
+
+std::string FeStepPlan::describe() const {
+  std::string out;
+  int i = 1;
+  for (const FeStage& st : stages) {
+    core::appendf(out, "  %d. ", i++);
+    out += st.name + "  -- " + st.why + "\n";
+  }
+  return out;
+}
+
+}  // namespace afemp::fem

@@ -1,0 +1,44 @@
+// The FE step plan: the stages one explicit FE step runs for a scene (central differences,
+// Belytschko, Liu & Moran box 6.1), each with the line of the scene that asks for it, built once
+// like the MPM plan (mpm/step_plan.hpp). FeSolver times exactly these stages; `afemp check`
+// prints them.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/scene.hpp"
+
+namespace afemp::fem {
+
+enum class FeStageKind {
+  nodal_update,  // forces gathered per node -> v^{n+1/2}, imposed components (nodal_update.cpp)
+  rigid_walls,   // rigid_wall.cpp
+  hexahedra,     // strain rate, stress, bulk viscosity, hourglass, forces (hexahedron_update.cpp)
+  trusses,       // truss_update.cpp
+  erosion,       // eroded elements leave the mesh, node masses follow (erosion.cpp)
+  conversion,    // converted hexahedra become particles (element_conversion.cpp)
+};
+
+struct FeStage {
+  FeStageKind kind;
+  std::string name;  // as printed and as timed
+  std::string why;   // one line: what the scene asked for that needs it
+};
+
+struct FeStepPlan {
+  std::vector<FeStage> stages;
+
+  // The position of the stage of this kind, or -1 when the scene does not need it.
+  int index(FeStageKind kind) const;
+  std::vector<std::string> stage_names() const;
+  // One stage per line with its reason, numbered, as `afemp check` prints it.
+  std::string describe() const;
+};
+
+// imposed_nodes: the nodes with an imposed velocity component, from the scene's constraints
+// and from a mesh file's (which only the built mesh knows).
+FeStepPlan build_fe_step_plan(const core::Scene& scene, std::size_t imposed_nodes);
+
+}  // namespace afemp::fem
