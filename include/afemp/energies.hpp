@@ -13,7 +13,7 @@ namespace afemp::core {
 /// Mass, momentum and energies of one body (one entry per scene body in Energies::bodies).
 struct BodySums {
   double mass = 0.0;
-  Vec3 momentum;
+  Vec3 momentum{};
   double kinetic = 0.0;
   double internal = 0.0;  ///< sum m e of the body's points (elements, particles)
 };
@@ -41,7 +41,7 @@ struct Energies {
   /// total(): in the head-on test it is 1.2 to 2.7 times the energy the bodies actually lose,
   /// so a contact run's balance error includes what the contact dissipated.
   double contact = 0.0;
-  std::vector<BodySums> bodies;
+  std::vector<BodySums> bodies{};
   /// Everything that must equal the initial total plus the external work.
   double total() const { return kinetic + internal + hourglass + eroded + converted; }
 };

@@ -9,7 +9,7 @@ namespace afemp::core {
 
 /// Where a value came from in an input file (line 0: unknown / whole file).
 struct SourceLocation {
-  std::string file;
+  std::string file{};
   int line = 0;
 };
 

@@ -28,13 +28,13 @@ struct ThermalProperties {
 /// A material as the scene file's [materials.NAME] table: density, elastic constants, strength
 /// model, EOS, thermal properties and failure strain (docs/scene-format.md).
 struct Material {
-  std::string name;
+  std::string name{};
   double density = 0.0;        ///< reference density rho0
   double youngs_modulus = 0.0;  ///< E
   double poisson_ratio = 0.0;   ///< nu
   StrengthModel strength = Elastic{};
   EquationOfState eos = NoEos{};
-  ThermalProperties thermal;
+  ThermalProperties thermal{};
   double failure_strain = 0.0;  ///< equivalent plastic strain at failure; 0: none (erosion uses it)
 
   double shear_modulus() const { return youngs_modulus / (2.0 * (1.0 + poisson_ratio)); }

@@ -35,20 +35,20 @@ const char* to_string(ProbeField f);
 
 /// One [[probes]] entry of a scene.
 struct ProbeSpec {
-  std::string name;  ///< unique in the scene; the file probes/NAME.csv
+  std::string name{};  ///< unique in the scene; the file probes/NAME.csv
   ProbeKind kind = ProbeKind::particle;
   int body = -1;  ///< the body watched; extreme: -1 for every body
   /// particle, node, element: the 0-based index within the body (particles in the order they
   /// were made, nodes and elements in mesh order), or -1 and `near`: the one nearest to it at
   /// the start (element: by centroid).
   long index = -1;
-  Vec3 near;
+  Vec3 near{};
   ProbeField field = ProbeField::pressure;  ///< extreme
   bool maximum = true;                      ///< extreme: max, or min
-  Vec3 box_min, box_max;                    ///< extreme
+  Vec3 box_min{}, box_max{};                    ///< extreme
   double interval = 0.0;  ///< > 0: simulated time between samples; 0: every history row
-  SourceLocation where;   ///< the [[probes]] table
-  std::string key;        ///< "probes[k]", for messages
+  SourceLocation where{};   ///< the [[probes]] table
+  std::string key{};        ///< "probes[k]", for messages
 };
 
 /// Values per probe in the buffer Model::sample_probes fills (the longest column list).
@@ -59,11 +59,11 @@ std::vector<std::string> probe_columns(ProbeKind k);
 
 /// A probe's recorded history: one row per sample.
 struct ProbeSeries {
-  std::string name;
+  std::string name{};
   ProbeKind kind = ProbeKind::particle;
-  std::vector<std::string> columns;  ///< probe_columns(kind)
-  std::vector<double> time;
-  std::vector<double> values;  ///< row-major: columns.size() values per row; NaN: the entity is gone
+  std::vector<std::string> columns{};  ///< probe_columns(kind)
+  std::vector<double> time{};
+  std::vector<double> values{};  ///< row-major: columns.size() values per row; NaN: the entity is gone
   std::size_t rows() const { return time.size(); }
   double at(std::size_t row, std::size_t column) const { return values[row * columns.size() + column]; }
   /// The index of a column, or -1.

@@ -14,7 +14,7 @@ namespace afemp::core {
 
 /// Wall seconds and calls of one named stage of a model's step.
 struct StageTiming {
-  std::string name;
+  std::string name{};
   long count = 0;
   double seconds = 0.0;
 };
@@ -52,20 +52,20 @@ struct RunSummary {
   std::size_t final_particles = 0;  ///< elements converted into particles add to them
   double point_steps_per_second = 0.0;  ///< (particles + elements) * steps / wall seconds
   double min_dt = 0.0, max_dt = 0.0;    ///< of the stable step (the last step may be shorter)
-  Energies initial, final;
+  Energies initial{}, final{};
   double energy_error = 0.0;      ///< at the end
   double max_energy_error = 0.0;  ///< largest magnitude over the history rows
-  std::vector<StageTiming> stages;
+  std::vector<StageTiming> stages{};
   std::size_t field_frames = 0;
   /// Set when [run] terminate stopped the run before end_time: what ended it.
-  std::string terminated;
-  std::optional<TaylorMeasures> taylor;  ///< when the scene states a Taylor reference
+  std::string terminated{};
+  std::optional<TaylorMeasures> taylor{};  ///< when the scene states a Taylor reference
   double taylor_error = 0.0;
   /// Every [reference] check, the Taylor one included, in the scene's order.
-  std::vector<ReferenceCheck> checks;
+  std::vector<ReferenceCheck> checks{};
   /// Every probe's history ([[probes]]), in the scene's order, recorded with or without an
   /// output directory.
-  std::vector<ProbeSeries> probes;
+  std::vector<ProbeSeries> probes{};
   bool checks_passed() const {
     for (const ReferenceCheck& c : checks)
       if (!c.passed()) return false;

@@ -45,7 +45,7 @@ const char* to_string(Face f);
 
 /// The [run] section: end time, time-step factors, output and history intervals, guards.
 struct RunSettings {
-  std::string title;               ///< printed with the run
+  std::string title{};               ///< printed with the run
   double end_time = 0.0;           ///< required
   double time_step_factor = 0.3;   ///< Courant safety factor on the grid's stable step
   double element_time_step_factor = 0.9;  ///< on the elements' critical step (LS-DYNA's TSSFAC)
@@ -57,20 +57,20 @@ struct RunSettings {
   /// (energy created or destroyed beyond any physical account); 0: no such guard.
   double energy_error_limit = 1.0;
   bool output_strain = false;      ///< integrate and write each particle's strain tensor
-  Vec3 gravity;                    ///< body force per unit mass
+  Vec3 gravity{};                    ///< body force per unit mass
   /// Stop before end_time once a body's centre of mass has moved `travel` from where it started
   /// (LS-DYNA's *TERMINATION_BODY): a perforation run ends when the projectile is through.
   struct Termination {
     int body = -1;
     double travel = 0.0;
   };
-  std::optional<Termination> terminate;
+  std::optional<Termination> terminate{};
 };
 
 /// The [grid] section: the background grid of cubic cells and its face conditions.
 struct GridSettings {
   double cell = 0.0;  ///< cell edge length h (cubic cells)
-  Vec3 min, max;      ///< the domain; grid nodes sit at min + i h
+  Vec3 min{}, max{};      ///< the domain; grid nodes sit at min + i h
   std::array<FaceCondition, 6> faces{FaceCondition::free, FaceCondition::free,
                                      FaceCondition::free, FaceCondition::free,
                                      FaceCondition::free, FaceCondition::free};
@@ -84,65 +84,65 @@ struct MpmSettings {
   Transfer transfer = Transfer::flip;           ///< FLIP/PIC blend or APIC
   double flip = 1.0;     ///< velocity update blend (transfer flip): 1 pure FLIP, 0 pure PIC
   bool jaumann = true;   ///< objective (Jaumann) stress rate
-  GridSettings grid;                            ///< the background grid
+  GridSettings grid{};                            ///< the background grid
 };
 
 /// An axis-aligned box, corners min and max.
 struct BoxShape {
-  Vec3 min, max;  ///< opposite corners
+  Vec3 min{}, max{};  ///< opposite corners
 };
 /// A cylinder from its base disc along its axis, optionally with an ogive nose at the far end.
 struct CylinderShape {
-  Vec3 base;               ///< centre of the base disc
+  Vec3 base{};               ///< centre of the base disc
   Vec3 axis{0, 0, 1};      ///< direction, normalised by the parser
   double radius = 0.0;
   double length = 0.0;     ///< overall, the nose included
-  OgiveNose nose;          ///< at the far end (base + length axis); crh 0: a flat end
+  OgiveNose nose{};        ///< at the far end (base + length axis); crh 0: a flat end
 };
 /// A sphere (particles only).
 struct SphereShape {
-  Vec3 centre;          ///< centre
+  Vec3 centre{};          ///< centre
   double radius = 0.0;  ///< radius
 };
 /// Particles at given points: read from a plain-text file (one "x y z [volume]" per line, '#'
 /// comments; the path resolved relative to the scene file), or, from a program, the arrays
 /// `points` and `volumes` (empty volumes: (cell / particles_per_cell)^3 each).
 struct PointListShape {
-  std::string path;  ///< empty: the arrays
-  std::vector<Vec3> points;     ///< particle positions
-  std::vector<double> volumes;  ///< one volume per point, or empty
+  std::string path{};  ///< empty: the arrays
+  std::vector<Vec3> points{};     ///< particle positions
+  std::vector<double> volumes{};  ///< one volume per point, or empty
 };
 /// A mesh given as arrays (a program's own mesh): nodes, 8-node hexahedra and 2-node trusses
 /// by 0-based node index, and named node sets for constraints (`set` selectors). Hexahedron
 /// node order: nodes 0-3 round the face zeta = -1, 4-7 round zeta = +1 (LS-DYNA, Abaqus C3D8).
 struct MeshArrays {
-  std::vector<Vec3> nodes;                             ///< node positions
-  std::vector<std::array<std::int32_t, 8>> hexahedra;  ///< 8 node indices each
-  std::vector<std::array<std::int32_t, 2>> trusses;    ///< 2 node indices each
-  std::vector<double> truss_areas;  ///< one per truss, or empty: the body's area
+  std::vector<Vec3> nodes{};                             ///< node positions
+  std::vector<std::array<std::int32_t, 8>> hexahedra{};  ///< 8 node indices each
+  std::vector<std::array<std::int32_t, 2>> trusses{};    ///< 2 node indices each
+  std::vector<double> truss_areas{};  ///< one per truss, or empty: the body's area
   struct NodeSet {
-    std::string name;
-    std::vector<std::int32_t> nodes;
+    std::string name{};
+    std::vector<std::int32_t> nodes{};
   };
   std::vector<NodeSet> node_sets;  ///< named sets for constraints (NodeSelector::set)
 };
 /// A mesh read from a file (Gmsh .msh 4.1, Abaqus .inp, LS-DYNA keyword), path resolved
 /// relative to the scene file, or given as arrays; `parts` selects parts by name (empty: all).
 struct MeshFileShape {
-  std::string path;     ///< empty: the arrays
-  MeshArrays arrays;               ///< the mesh itself, when path is empty
-  std::vector<std::string> parts;  ///< parts to take from a file (empty: all)
+  std::string path{};     ///< empty: the arrays
+  MeshArrays arrays{};               ///< the mesh itself, when path is empty
+  std::vector<std::string> parts{};  ///< parts to take from a file (empty: all)
   double scale = 1.0;   ///< coordinates are multiplied by scale, then translated
-  Vec3 translate;       ///< added after scaling
+  Vec3 translate{};       ///< added after scaling
 };
 /// A straight truss bar.
 struct LineShape {
-  Vec3 from, to;  ///< end points
+  Vec3 from{}, to{};  ///< end points
 };
 /// A rebar mat: straight bars both ways in the plane normal to `normal_axis` at `position`,
 /// spanning the box [min, max] less the cover (fem/mesh_generation.hpp).
 struct RebarShape {
-  Vec3 min, max;
+  Vec3 min{}, max{};
   int normal_axis = 2;
   std::vector<double> positions;  ///< one mat (layer) per plane position along normal_axis
   double spacing = 0.0, diameter = 0.0, cover = 0.0;
@@ -209,31 +209,31 @@ struct ConversionSettings {
 /// One [[bodies]] entry: material (index into Scene::materials), discretisation, shape, and the
 /// settings of that discretisation; initial velocity, temperature and internal energy.
 struct BodySpec {
-  std::string name;             ///< unique in the scene
+  std::string name{};             ///< unique in the scene
   int material = -1;            ///< index into Scene::materials
   Discretisation discretisation = Discretisation::particles;  ///< particles, hexahedra or trusses
-  Shape shape;                  ///< where the body's material is
+  Shape shape{};                  ///< where the body's material is
   int particles_per_cell = 2;   ///< per direction (particles)
   /// Meshes (hexahedra, trusses).
-  MeshDensity mesh;             ///< how finely a generated mesh divides the shape
+  MeshDensity mesh{};             ///< how finely a generated mesh divides the shape
   HexFormulation element = HexFormulation::one_point;  ///< one-point or fully integrated
-  HourglassSettings hourglass;  ///< one-point hexahedra
+  HourglassSettings hourglass{};  ///< one-point hexahedra
   /// Unset: on (LS-DYNA's defaults) for hexahedra and for particles whose material has an
   /// equation of state, off otherwise (core::bulk_viscosity_of).
-  std::optional<BulkViscositySettings> bulk_viscosity;
-  std::optional<ErosionSettings> erosion;  ///< set: the elements may erode
-  std::optional<ConversionSettings> conversion;  ///< hexahedra
+  std::optional<BulkViscositySettings> bulk_viscosity{};
+  std::optional<ErosionSettings> erosion{};  ///< set: the elements may erode
+  std::optional<ConversionSettings> conversion{};  ///< hexahedra
   double area = 0.0;            ///< truss cross-section where the mesh gives none
   /// Bonded coupling (HFEMP, Lian et al. 2013, §2.6): the particle body whose velocity field this mesh
   /// body's nodes join; they move with the grid solution (perfect bond). -1: not bonded.
   int bonded_to = -1;
-  Vec3 velocity;                ///< initial velocity
-  std::optional<double> temperature;  ///< initial temperature; default the material's
+  Vec3 velocity{};                ///< initial velocity
+  std::optional<double> temperature{};  ///< initial temperature; default the material's
   /// Initial specific internal energy e0 (per unit mass; J/kg = mm^2/ms^2): with an EOS that
   /// depends on e it is an initial pressure (a hot or pressurised body, a gas charge), like
   /// LS-DYNA's E0 on the EOS card (which is per unit reference volume, rho0 e0).
   double internal_energy = 0.0;
-  SourceLocation where;         ///< the [[bodies]] table, for messages
+  SourceLocation where{};         ///< the [[bodies]] table, for messages
 };
 
 /// Reference values a run compares its result with at the end (Ma 2005, eq 2-42).
@@ -249,35 +249,35 @@ struct VelocityReference {
   int component = -1;  ///< 0, 1, 2 for x, y, z; -1 for the magnitude
   double value = 0.0;  ///< != 0
   double tolerance = 0.0;  ///< allowed error; 0: report only
-  SourceLocation where;
+  SourceLocation where{};
 };
 
 /// Which mesh nodes a constraint holds: inside a box, on a plane (within tolerance), or a
 /// node set named by an imported mesh.
 struct NodeSelector {
   enum class Kind { box, plane, set } kind = Kind::box;
-  Vec3 min, max;          ///< box
+  Vec3 min{}, max{};          ///< box
   Vec3 point, normal;     ///< plane (normal unit)
   double tolerance = 1e-6;  ///< plane: largest distance of a selected node
-  std::string set;        ///< set
+  std::string set{};        ///< set
 };
 
 /// Fixed or prescribed-velocity nodes (FE bodies).
 struct ConstraintSpec {
-  NodeSelector nodes;
+  NodeSelector nodes{};
   int body = -1;                       ///< restrict to one body; -1: every mesh body
   std::array<bool, 3> components{false, false, false};  ///< which components are imposed
   Vec3 velocity;                       ///< the imposed value (0 for fixed components)
-  SourceLocation where;
+  SourceLocation where{};
 };
 
 /// A rigid planar wall for FE nodes (LS-DYNA *RIGIDWALL_PLANAR): nodes stay on the side the
 /// normal points to; the wall may move at a constant velocity; Coulomb friction.
 struct WallSpec {
-  Vec3 point, normal, velocity;
+  Vec3 point{}, normal{}, velocity{};
   double friction = 0.0;
-  std::vector<int> bodies;  ///< empty: every mesh body
-  SourceLocation where;
+  std::vector<int> bodies{};  ///< empty: every mesh body
+  SourceLocation where{};
 };
 
 /// Grid contact between two bodies, at least one of particles (Lian et al. 2013, eqs 37-42): each body
@@ -289,24 +289,24 @@ struct ContactSpec {
   std::array<int, 2> bodies{-1, -1};  ///< indices into Scene::bodies
   double friction = 0.0;              ///< Coulomb coefficient
   double distance_factor = 0.5;       ///< lambda of eq 42: contact once the gap <= lambda h
-  SourceLocation where;
+  SourceLocation where{};
 };
 /// Everything a run needs. Bodies, constraints, walls, contacts and references refer to materials
 /// and bodies by index into the vectors here.
 struct Scene {
-  std::string path;             ///< the scene file, as given
-  RunSettings run;
+  std::string path{};             ///< the scene file, as given
+  RunSettings run{};
   bool has_grid = false;        ///< a [grid] section: needed by particle bodies
-  MpmSettings mpm;
-  std::vector<Material> materials;
-  std::vector<BodySpec> bodies;
-  std::vector<ConstraintSpec> constraints;
-  std::vector<WallSpec> walls;
-  std::vector<ContactSpec> contacts;
-  std::optional<TaylorReference> taylor_reference;
-  std::vector<VelocityReference> velocity_references;
+  MpmSettings mpm{};
+  std::vector<Material> materials{};
+  std::vector<BodySpec> bodies{};
+  std::vector<ConstraintSpec> constraints{};
+  std::vector<WallSpec> walls{};
+  std::vector<ContactSpec> contacts{};
+  std::optional<TaylorReference> taylor_reference{};
+  std::vector<VelocityReference> velocity_references{};
   double energy_tolerance = 0.0;  ///< > 0: the largest |energy-balance error| allowed
-  std::vector<ProbeSpec> probes;  ///< [[probes]], in file order
+  std::vector<ProbeSpec> probes{};  ///< [[probes]], in file order
 };
 
 }  ///< namespace afemp::core

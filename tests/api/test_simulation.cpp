@@ -81,7 +81,7 @@ afemp::Scene taylor_in_code(bool hexahedra) {
   afemp::BodySpec bar;
   bar.name = "bar";
   bar.material = 0;
-  bar.shape = afemp::CylinderShape{.base = {0, 0, 0}, .axis = {0, 0, 1}, .radius = 3.8, .length = 25.4, .nose = {}};
+  bar.shape = afemp::CylinderShape{.base = {0, 0, 0}, .axis = {0, 0, 1}, .radius = 3.8, .length = 25.4};
   bar.velocity = {0, 0, -190};
   if (hexahedra) {
     bar.discretisation = afemp::Discretisation::hexahedra;
