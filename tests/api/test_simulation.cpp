@@ -12,15 +12,17 @@
 #include <vector>
 
 #include "core/scene.hpp"
+#include "scratch_dir.hpp"
 
 namespace {
 
 using afemp::Vec3;
 
 // The Taylor bar of examples/taylor_bar (OFHC copper at 190 m/s, Ma 2005 section 2.3.2),
-// coarse and short so that the comparison runs in a second.
-const char* taylor_toml(bool hexahedra) {
-  return hexahedra ? R"(
+// coarse and short so that the comparison runs in a second: particles on a grid with symmetry
+// and wall faces, or a quarter of hexahedra with symmetry constraints and a rigid wall.
+std::string taylor_toml(bool hexahedra) {
+  const std::string bar = R"(
 [run]
 end_time = 0.01
 [materials.copper]
@@ -30,11 +32,20 @@ nu = 0.35
 strength = { model = "johnson-cook", A = 157, B = 425, n = 1.0, C = 0.0 }
 [[bodies]]
 name = "bar"
-discretisation = "hexahedra"
 material = "copper"
 shape = { cylinder = { base = [0, 0, 0], axis = [0, 0, 1], radius = 3.8, length = 25.4 } }
-mesh = { size = 1.0, sectors = 1 }
 velocity = [0, 0, -190]
+)";
+  if (!hexahedra)
+    return bar + R"(particles_per_cell = 2
+[grid]
+cell = 1.0
+min = [0, 0, 0]
+max = [10, 10, 26]
+boundary = { xmin = "symmetric", ymin = "symmetric", zmin = "wall" }
+)";
+  return bar + R"(discretisation = "hexahedra"
+mesh = { size = 1.0, sectors = 1 }
 [[constraints]]
 nodes = { plane = { point = [0, 0, 0], normal = [1, 0, 0] } }
 fixed = ["x"]
@@ -44,26 +55,6 @@ fixed = ["y"]
 [[walls]]
 point = [0, 0, 0]
 normal = [0, 0, 1]
-)"
-                   : R"(
-[run]
-end_time = 0.01
-[grid]
-cell = 1.0
-min = [0, 0, 0]
-max = [10, 10, 26]
-boundary = { xmin = "symmetric", ymin = "symmetric", zmin = "wall" }
-[materials.copper]
-density = 8.93e-3
-E = 117e3
-nu = 0.35
-strength = { model = "johnson-cook", A = 157, B = 425, n = 1.0, C = 0.0 }
-[[bodies]]
-name = "bar"
-material = "copper"
-shape = { cylinder = { base = [0, 0, 0], axis = [0, 0, 1], radius = 3.8, length = 25.4 } }
-particles_per_cell = 2
-velocity = [0, 0, -190]
 )";
 }
 
@@ -314,4 +305,25 @@ TEST(SimulationApi, FieldViewsShowAndChangeTheModelsState) {
   // 190 m/s on copper (rho c_L v = 8.93e-3 * 4760 * 190 = 8.1 GPa >> A = 157 MPa): it yields.
   EXPECT_GT(largest, 0.05);
   EXPECT_TRUE(mesh.particles().position.empty());
+}
+
+// With an output directory a Simulation writes the run directory `afemp run` writes: a history
+// row every history_every steps plus the first and the last, and a field frame at the start,
+// every output_every and at the end (0.01 / 0.004: t = 0, 0.004, 0.008, 0.01).
+TEST(SimulationApi, OutputDirectoryGetsTheHistoryAndTheFrames) {
+  afemp::test::ScratchDir dir;
+  afemp::Scene scene = taylor_in_code(false);
+  scene.run.output_every = 0.004;
+  afemp::SimulationOptions options;
+  options.output_directory = dir.path().string();
+  afemp::Simulation sim(scene, options);
+  const afemp::RunSummary r = sim.run();
+  EXPECT_EQ(r.field_frames, 4u);
+  std::ifstream history(dir.path() / "history.csv");
+  ASSERT_TRUE(history.good());
+  std::size_t lines = 0;
+  for (std::string line; std::getline(history, line);) ++lines;
+  const long rows = r.steps / scene.run.history_every + 1 + (r.steps % scene.run.history_every != 0);
+  EXPECT_EQ(lines, static_cast<std::size_t>(rows) + 1) << "rows and the header";
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "fields.xmf"));
 }
