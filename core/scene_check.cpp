@@ -6,10 +6,13 @@
 #include <string>
 
 #include "core/scene.hpp"
+#include "core/scene_parser.hpp"
 
 namespace afemp::core {
 
 namespace {
+
+using scene_detail::Range;
 
 class Checker {
  public:
@@ -21,20 +24,18 @@ class Checker {
     if (at.file.empty()) at.file = scene_.path.empty() ? "scene built in code" : scene_.path;
     throw InputError(at, key, message);
   }
-  void range(const SourceLocation& where, const std::string& key, double v, double lo, double hi,
-             bool lo_open, bool hi_open) const {
-    const bool ok = !std::isnan(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
-    if (ok) return;
-    std::string allowed;
-    if (std::isinf(hi)) allowed = std::string("value ") + (lo_open ? "> " : ">= ") + number(lo);
-    else allowed = number(lo) + (lo_open ? " < " : " <= ") + "value" + (hi_open ? " < " : " <= ") + number(hi);
-    fail(where, key, "out of range: " + number(v) + "; allowed: " + allowed);
+  // The parser's Range and message (scene_parser.cpp), on a value built in code.
+  void range(const SourceLocation& where, const std::string& key, double v,
+             const scene_detail::Range& allowed) const {
+    if (!allowed.contains(v))
+      fail(where, key, "value " + scene_detail::format_number(v) +
+                           " is out of range; allowed: " + allowed.describe());
   }
   void positive(const SourceLocation& w, const std::string& key, double v) const {
-    range(w, key, v, 0.0, INFINITY, true, false);
+    range(w, key, v, scene_detail::Range::positive());
   }
   void non_negative(const SourceLocation& w, const std::string& key, double v) const {
-    range(w, key, v, 0.0, INFINITY, false, false);
+    range(w, key, v, scene_detail::Range::non_negative());
   }
   void finite(const SourceLocation& w, const std::string& key, const Vec3& v) const {
     if (!std::isfinite(v.x + v.y + v.z)) fail(w, key, "every component must be a finite number");
@@ -49,12 +50,6 @@ class Checker {
                        "\" is made of particles; this applies to mesh bodies");
     return index;
   }
-  static std::string number(double v) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.10g", v);
-    return buf;
-  }
-
  private:
   const Scene& scene_;
 };
@@ -62,8 +57,9 @@ class Checker {
 void check_run(const Checker& c, const RunSettings& run) {
   const SourceLocation w;
   c.positive(w, "run.end_time", run.end_time);
-  c.range(w, "run.time_step_factor", run.time_step_factor, 0.0, 1.0, true, false);
-  c.range(w, "run.element_time_step_factor", run.element_time_step_factor, 0.0, 1.0, true, false);
+  c.range(w, "run.time_step_factor", run.time_step_factor, Range{0.0, 1.0, true, false});
+  c.range(w, "run.element_time_step_factor",
+          run.element_time_step_factor, Range{0.0, 1.0, true, false});
   c.non_negative(w, "run.time_step", run.fixed_time_step);
   if (run.max_steps < 0) c.fail(w, "run.max_steps", "must be >= 0");
   c.non_negative(w, "run.output_every", run.output_every);
@@ -85,7 +81,7 @@ void check_grid(const Checker& c, const Scene& scene) {
     if (!(g.max[a] > g.min[a]))
       c.fail(w, "grid.max", "max must exceed min in every component; component " +
                                 std::to_string(a));
-  c.range(w, "mpm.flip", scene.mpm.flip, 0.0, 1.0, false, false);
+  c.range(w, "mpm.flip", scene.mpm.flip, Range::closed(0.0, 1.0));
   if (scene.mpm.transfer == Transfer::apic && scene.mpm.shape != ShapeFunction::gimp)
     c.fail(w, "mpm.transfer", "\"apic\" needs shape_function = \"gimp\" (the affine transfer is "
                               "unstable with linear weights); allowed with \"linear\": \"flip\"");
@@ -97,9 +93,9 @@ void check_material(const Checker& c, const Material& m) {
   if (m.name.empty()) c.fail(w, key + ".name", "a material name must not be empty");
   c.positive(w, key + ".density", m.density);
   c.positive(w, key + ".E", m.youngs_modulus);
-  c.range(w, key + ".nu", m.poisson_ratio, 0.0, 0.5, false, true);
+  c.range(w, key + ".nu", m.poisson_ratio, Range{0.0, 0.5, false, true});
   c.non_negative(w, key + ".specific_heat", m.thermal.specific_heat);
-  c.range(w, key + ".taylor_quinney", m.thermal.taylor_quinney, 0.0, 1.0, false, false);
+  c.range(w, key + ".taylor_quinney", m.thermal.taylor_quinney, Range::closed(0.0, 1.0));
   c.non_negative(w, key + ".temperature", m.thermal.initial_temperature);
   c.non_negative(w, key + ".failure_strain", m.failure_strain);
   try {
@@ -115,12 +111,14 @@ void check_shape(const Checker& c, const BodySpec& b, const std::string& key) {
   const bool hexes = b.discretisation == D::hexahedra;
   const std::string shape = key + ".shape";
   if (const auto* box = std::get_if<BoxShape>(&b.shape)) {
-    if (b.discretisation == D::trusses) c.fail(b.where, shape, "a box makes particles or hexahedra");
+    if (b.discretisation == D::trusses)
+      c.fail(b.where, shape, "a box makes particles or hexahedra");
     for (int a = 0; a < 3; ++a)
       if (!(box->max[a] > box->min[a]))
         c.fail(b.where, shape + ".box.max", "max must exceed min in every component");
   } else if (const auto* cyl = std::get_if<CylinderShape>(&b.shape)) {
-    if (b.discretisation == D::trusses) c.fail(b.where, shape, "a cylinder makes particles or hexahedra");
+    if (b.discretisation == D::trusses)
+      c.fail(b.where, shape, "a cylinder makes particles or hexahedra");
     c.positive(b.where, shape + ".cylinder.radius", cyl->radius);
     c.positive(b.where, shape + ".cylinder.length", cyl->length);
     if (!(norm(cyl->axis) > 0.0))
@@ -149,7 +147,8 @@ void check_shape(const Checker& c, const BodySpec& b, const std::string& key) {
                "one area per truss (" + std::to_string(a.trusses.size()) + "), or none");
     }
     c.positive(b.where, shape + ".mesh.scale", m->scale);
-  } else if (std::holds_alternative<LineShape>(b.shape) || std::holds_alternative<RebarShape>(b.shape)) {
+  } else if (std::holds_alternative<LineShape>(b.shape) ||
+             std::holds_alternative<RebarShape>(b.shape)) {
     if (b.discretisation != D::trusses) c.fail(b.where, shape, "lines and rebar make trusses only");
   }
 }
@@ -172,9 +171,10 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
   if (b.bulk_viscosity) {
     if (b.discretisation == D::trusses)
       c.fail(b.where, key + ".bulk_viscosity", "applies to bodies of hexahedra or particles");
-    c.range(b.where, key + ".bulk_viscosity.linear", b.bulk_viscosity->linear, 0.0, 1.0, false, false);
-    c.range(b.where, key + ".bulk_viscosity.quadratic", b.bulk_viscosity->quadratic, 0.0, 10.0,
-            false, false);
+    c.range(b.where, key + ".bulk_viscosity.linear",
+            b.bulk_viscosity->linear, Range::closed(0.0, 1.0));
+    c.range(b.where, key + ".bulk_viscosity.quadratic",
+            b.bulk_viscosity->quadratic, Range::closed(0.0, 10.0));
   }
   if (b.discretisation == D::particles) {
     if (b.erosion || b.conversion || b.bonded_to >= 0)
@@ -184,7 +184,8 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
   }
   if (b.discretisation == D::hexahedra) {
     const double hi = b.hourglass.form == HourglassForm::assumed_strain ? 1.0 : 0.5;
-    c.range(b.where, key + ".hourglass.coefficient", b.hourglass.coefficient, 0.0, hi, false, false);
+    c.range(b.where, key + ".hourglass.coefficient",
+            b.hourglass.coefficient, Range::closed(0.0, hi));
   }
   const bool generated = !std::holds_alternative<MeshFileShape>(b.shape);
   if (generated && !(b.mesh.size > 0.0) && b.mesh.divisions[0] == 0 &&
@@ -192,7 +193,8 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
     c.fail(b.where, key + ".mesh", "a generated mesh needs its density: a size or divisions");
   if (b.erosion) {
     c.non_negative(b.where, key + ".erosion.plastic_strain", b.erosion->plastic_strain);
-    c.range(b.where, key + ".erosion.volume_ratio", b.erosion->volume_ratio, 0.0, 1.0, false, true);
+    c.range(b.where, key + ".erosion.volume_ratio",
+            b.erosion->volume_ratio, Range{0.0, 1.0, false, true});
     c.non_negative(b.where, key + ".erosion.time_step", b.erosion->time_step);
   }
   if (b.conversion) {
@@ -204,7 +206,8 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
     if (b.bonded_to >= 0)
       c.fail(b.where, key + ".conversion", "a body bonded to particles cannot also convert");
     const ConversionSettings& v = *b.conversion;
-    if (v.points < 1 || v.points > 2) c.fail(b.where, key + ".conversion.points", "allowed: 1 or 2");
+    if (v.points < 1 || v.points > 2)
+      c.fail(b.where, key + ".conversion.points", "allowed: 1 or 2");
   }
   if (b.discretisation == D::trusses && std::holds_alternative<LineShape>(b.shape) &&
       !(b.area > 0.0))
@@ -258,7 +261,8 @@ void check_scene(const Scene& scene) {
   for (std::size_t k = 0; k < scene.walls.size(); ++k) {
     const WallSpec& wl = scene.walls[k];
     const std::string key = "walls[" + std::to_string(k) + "]";
-    if (!(norm(wl.normal) > 0.0)) c.fail(wl.where, key + ".normal", "the normal must be a non-zero vector");
+    if (!(norm(wl.normal) > 0.0))
+      c.fail(wl.where, key + ".normal", "the normal must be a non-zero vector");
     c.non_negative(wl.where, key + ".friction", wl.friction);
     for (int b : wl.bodies) c.body(wl.where, key + ".bodies", b, true);
   }

@@ -234,7 +234,6 @@ class FeSolver {
   bool erosion_this_step_ = false;
   std::vector<ErosionEvent> events_;
   double converted_energy_ = 0.0;
-  std::vector<ConvertedPoint> converted_points_;
   std::vector<ConversionEvent> conversion_events_;
   std::size_t converted_taken_ = 0;  // events whose particles were taken
   std::vector<std::uint8_t> converted_node_;  // a node of an element converted this step
