@@ -65,6 +65,8 @@ struct Simulation::Impl {
     out.temperature = e.temperature;
     out.energy = e.energy;
     out.damage = e.damage;
+    out.history = e.history;
+    out.history_count = e.history_count;
     return out;
   }
 
@@ -117,8 +119,9 @@ void Simulation::on_step(StepCallback callback) { impl_->callbacks.push_back(std
 ParticleFields Simulation::particles() {
   if (impl_->mpm == nullptr) return {};
   mpm::Particles& p = impl_->mpm->mutable_particles();
-  return {p.position, p.velocity,       p.mass,   p.volume, p.stress, p.plastic_strain,
-          p.temperature, p.energy, p.damage, p.body,   p.id};
+  return {p.position,    p.velocity, p.mass,    p.volume,          p.stress, p.plastic_strain,
+          p.temperature, p.energy,   p.damage,  p.history,         p.history_count,
+          p.body,        p.id};
 }
 
 NodeFields Simulation::nodes() {

@@ -10,6 +10,16 @@
 #include <omp.h>
 #endif
 
+// Forces a hot loop's helper lambda inline (write it after the parameter list). A loop body
+// split into lambdas must compile to the code of the fused loop: left out of line, values
+// pass through memory, the compiler contracts fewer a * b + c into fused multiply-adds, and
+// the results change in their last bits.
+#if defined(__GNUC__)
+#define AFEMP_INLINE __attribute__((always_inline))
+#else
+#define AFEMP_INLINE
+#endif
+
 namespace afemp::core {
 
 inline int thread_count() {

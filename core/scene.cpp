@@ -3,6 +3,7 @@
 // syntax failures into the same InputError form as every other input problem.
 #include "core/scene.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -87,6 +88,31 @@ bool has_grid_coupling(const Scene& scene) {
       if (scene.bodies[static_cast<std::size_t>(b)].discretisation != Discretisation::particles)
         return true;
   return false;
+}
+
+std::size_t history_count(const Scene& scene) {
+  std::size_t n = 0;
+  for (const Material& m : scene.materials) n = std::max(n, m.history_count());
+  return n;
+}
+
+std::vector<std::string> history_field_names(const Scene& scene) {
+  std::vector<std::string> names(history_count(scene));
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    std::string name;
+    bool shared = true;
+    for (const Material& m : scene.materials) {
+      const auto* u = std::get_if<UserStrength>(&m.strength);
+      if (!u || k >= u->history_count()) continue;
+      const std::string& own = u->definition->history_variables[k];
+      if (name.empty()) name = own;
+      shared = shared && own == name;
+    }
+    names[k] = "history_" + (shared && !name.empty() && name.find('/') == std::string::npos
+                                 ? name
+                                 : std::to_string(k));
+  }
+  return names;
 }
 
 Scene read_scene(const std::string& path) {

@@ -2,7 +2,9 @@
 // The scene's data types are public (afemp/scene.hpp).
 #pragma once
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include "afemp/scene.hpp"
 #include "core/materials/material.hpp"
@@ -15,6 +17,13 @@ bool has_mesh(const Scene& scene);
 // Whether mesh nodes take part in the grid step: a mesh body bonded to particles, named in a
 // grid contact, or converting its elements into particles (coupling/).
 bool has_grid_coupling(const Scene& scene);
+
+// History variables per point the solvers store: the most any of the scene's materials has
+// (user strength models, afemp/user_material.hpp); 0 when none has any.
+std::size_t history_count(const Scene& scene);
+// The output field of each history column: "history_NAME" when every material with that
+// column names it NAME, else "history_K".
+std::vector<std::string> history_field_names(const Scene& scene);
 
 // The bulk viscosity of a body: its own, or the default (on for hexahedra and for particles
 // whose material has an equation of state).

@@ -88,6 +88,11 @@ void TableReader::known(std::initializer_list<std::string_view> keys) {
     if (std::find(known_.begin(), known_.end(), k) == known_.end()) known_.emplace_back(k);
 }
 
+void TableReader::known(const std::vector<std::string>& keys) {
+  for (const std::string& k : keys)
+    if (std::find(known_.begin(), known_.end(), k) == known_.end()) known_.emplace_back(k);
+}
+
 void TableReader::check_unknown() const {
   // toml++ iterates keys alphabetically; report the first unknown key in file order instead,
   // which is the one a user reading the file top-down expects.
@@ -523,10 +528,27 @@ std::vector<std::string_view> entry_names(const Entries& entries) {
   return names;
 }
 
+// A registered user strength model (afemp/user_material.hpp): its parameters by name, every
+// one required.
+StrengthModel read_user_strength(TableReader& r, const std::string& name) {
+  UserStrength u;
+  u.definition = find_strength_model(name);
+  r.known(u.definition->parameters);
+  r.check_unknown();
+  for (const std::string& key : u.definition->parameters)
+    u.parameters.push_back(r.required_number(key, Range::any()));
+  return u;
+}
+
 StrengthModel read_strength(TableReader& r, double youngs_modulus) {
   r.known({"model"});
-  static const std::vector<std::string_view> names = entry_names(strength_models);
-  return strength_models[r.choice("model", names, std::nullopt)].read(r, youngs_modulus);
+  // The built-in models, then the user models registered by the program reading the scene.
+  const std::vector<std::string> user = registered_strength_models();
+  std::vector<std::string_view> names = entry_names(strength_models);
+  for (const std::string& name : user) names.push_back(name);
+  const std::size_t i = r.choice("model", names, std::nullopt);
+  if (i < std::size(strength_models)) return strength_models[i].read(r, youngs_modulus);
+  return read_user_strength(r, user[i - std::size(strength_models)]);
 }
 
 // Equations of state by the scene file's name, as the strength models above.

@@ -52,6 +52,7 @@ class TableReader {
 
   // Declares keys as allowed without reading them.
   void known(std::initializer_list<std::string_view> keys);
+  void known(const std::vector<std::string>& keys);
   // Throws for the first (by line) key of the table that is not known, listing the known keys.
   // Call it before reading so that a typo in a required key is reported as the typo it is.
   void check_unknown() const;

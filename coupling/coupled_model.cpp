@@ -77,6 +77,7 @@ void CoupledModel::convert_elements() {
   const std::vector<fem::ConversionEvent> events = fe().take_conversion_events();
   if (made.empty()) return;
   mpm::Particles more;
+  more.history_count = fe().hexahedra().history_count;
   more.reserve(made.size());
   for (const fem::ConvertedPoint& q : made) {
     more.push_back(q.position, q.velocity, q.mass, q.volume, q.temperature, q.body, q.material);
@@ -86,6 +87,8 @@ void CoupledModel::convert_elements() {
     more.energy[j] = q.energy;
     more.damage[j] = q.damage;
     more.max_compaction[j] = q.max_compaction;
+    std::copy(q.history.begin(), q.history.end(),
+              more.history.begin() + static_cast<std::ptrdiff_t>(j * more.history_count));
   }
   mpm().add_particles(more);
   // The nodes the converted elements shared with live ones now bond to the particles; a node

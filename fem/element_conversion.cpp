@@ -122,12 +122,17 @@ std::vector<ConvertedPoint> FeSolver::make_converted_points() {
         q.energy = el.energy[p];
         q.damage = el.damage[p];
         q.max_compaction = el.max_compaction[p];
+        q.history.assign(el.history.begin() + static_cast<std::ptrdiff_t>(p * el.history_count),
+                         el.history.begin() + static_cast<std::ptrdiff_t>((p + 1) * el.history_count));
         return el.density[p];
       }
       double m = 0.0, volume = 0.0;
+      q.history.assign(el.history_count, 0.0);
       for (int h = 0; h < ppe; ++h) {
         const std::size_t p = p0 + static_cast<std::size_t>(h);
         const double w = el.point_mass[p];
+        for (std::size_t v = 0; v < el.history_count; ++v)
+          q.history[v] += w * el.history[p * el.history_count + v];
         m += w;
         q.stress += w * el.stress[p];
         q.plastic_strain += w * el.plastic_strain[p];
@@ -143,6 +148,7 @@ std::vector<ConvertedPoint> FeSolver::make_converted_points() {
       q.energy /= m;
       q.damage /= m;
       q.max_compaction /= m;
+      for (double& v : q.history) v /= m;
       return m / volume;
     };
 

@@ -19,7 +19,8 @@ void zeroed(std::size_t n, std::initializer_list<std::vector<double>*> arrays) {
 
 }  // namespace
 
-FeModel::FeModel(const core::Scene& scene) : scene_(scene), solver_(scene) {}
+FeModel::FeModel(const core::Scene& scene)
+    : scene_(scene), solver_(scene), history_names_(core::history_field_names(scene)) {}
 
 void FeModel::write_fields(core::FieldWriter& writer) {
   writer.write_frame(solver_.time(), solver_.step_count(), {}, mesh_blocks());
@@ -44,6 +45,8 @@ const std::vector<core::MeshBlock>& FeModel::mesh_blocks() {
     zeroed(ne, {&hex_pressure_, &hex_von_mises_, &hex_plastic_, &hex_damage_, &hex_temperature_,
                 &hex_density_, &hex_alive_, &hex_body_});
     hex_connectivity_.resize(8 * ne);
+    const std::size_t hc = h.history_count;
+    hex_history_.assign(hc, std::vector<double>(ne, 0.0));
     for (const ElementBatch& b : h.batches)
       for (std::size_t e = b.begin; e < b.end; ++e) {
         const std::size_t p0 = b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
@@ -54,6 +57,7 @@ const std::vector<core::MeshBlock>& FeModel::mesh_blocks() {
           hex_plastic_[e] += w * h.plastic_strain[p];
           hex_damage_[e] += w * h.damage[p];
           hex_temperature_[e] += w * h.temperature[p];
+          for (std::size_t v = 0; v < hc; ++v) hex_history_[v][e] += w * h.history[p * hc + v];
         }
         hex_pressure_[e] = core::pressure(hex_stress_[e]);
         hex_von_mises_[e] = core::von_mises(hex_stress_[e]);
@@ -71,6 +75,9 @@ const std::vector<core::MeshBlock>& FeModel::mesh_blocks() {
                   core::scalar_field("density", std::span<const double>(hex_density_)),
                   core::scalar_field("alive", std::span<const double>(hex_alive_)),
                   core::scalar_field("body", std::span<const double>(hex_body_))};
+    // User strength models' history variables, element means, one scalar field per variable.
+    for (std::size_t v = 0; v < hc; ++v)
+      hex_fields.push_back(core::scalar_field(history_names_[v], std::span<const double>(hex_history_[v])));
     blocks.push_back({"hexahedra", core::CellKind::hexahedron, n.size(),
                       core::as_doubles(n.position.data()), ne, hex_connectivity_.data(),
                       node_fields, hex_fields});
@@ -101,6 +108,14 @@ const std::vector<core::MeshBlock>& FeModel::mesh_blocks() {
                     core::scalar_field("temperature", std::span<const double>(truss_temperature_)),
                     core::scalar_field("alive", std::span<const double>(truss_alive_)),
                     core::scalar_field("body", std::span<const double>(truss_body_))};
+    const std::size_t thc = t.history_count;
+    truss_history_.assign(thc, std::vector<double>(ne, 0.0));
+    for (const ElementBatch& b : t.batches)
+      for (std::size_t e = b.begin; e < b.end; ++e)
+        for (std::size_t v = 0; v < thc; ++v)
+          truss_history_[v][e] = t.history[(b.point_begin + (e - b.begin)) * thc + v];
+    for (std::size_t v = 0; v < thc; ++v)
+      truss_fields.push_back(core::scalar_field(history_names_[v], std::span<const double>(truss_history_[v])));
     blocks.push_back({"trusses", core::CellKind::line, n.size(), core::as_doubles(n.position.data()),
                       ne, truss_connectivity_.data(), node_fields, truss_fields});
   }

@@ -58,6 +58,9 @@ class FeModel final : public core::Model {
       hex_density_, hex_alive_, hex_body_;
   std::vector<double> truss_stress_, truss_force_, truss_plastic_, truss_temperature_,
       truss_alive_, truss_body_;
+  // User strength models' history variables per element (hexahedra: means of the points).
+  std::vector<std::vector<double>> hex_history_, truss_history_;
+  std::vector<std::string> history_names_;  // core::history_field_names
   std::vector<std::int32_t> hex_connectivity_, truss_connectivity_;
   std::vector<core::FieldView> node_fields_, hex_fields_, truss_fields_;
   std::vector<core::MeshBlock> blocks_;

@@ -11,6 +11,7 @@
 
 #include "afemp/errors.hpp"
 #include "core/materials/uniaxial_update.hpp"
+#include "core/materials/user_strength_chunk.hpp"
 #include "core/parallel.hpp"
 #include "fem/fe_solver.hpp"
 #include "fem/hexahedron_full.hpp"
@@ -209,8 +210,12 @@ void FeSolver::build(const core::Scene& scene) {
     }
 
   // 2. Elements and their initial state.
+  hexes_.history_count = trusses_.history_count = core::history_count(scene);
   auto add_point_state = [](FeElements& el, const core::Material& m, double temperature,
                             double point_mass, double energy) {
+    el.history.resize(el.history.size() + el.history_count);
+    core::initial_history(m, el.history.data() + el.history.size() - el.history_count,
+                          el.history_count);
     el.stress.push_back({});
     el.point_mass.push_back(point_mass);
     el.plastic_strain.push_back(0.0);

@@ -70,6 +70,10 @@ struct FeElements {
   std::vector<core::SymTensor> stress;
   std::vector<double> point_mass, plastic_strain, temperature, energy, density;
   std::vector<double> damage, max_compaction;  // D in [0, 1]; largest rho / rho0 - 1 reached
+  // History variables of user strength models (afemp/user_material.hpp): history_count per
+  // integration point, point-major; history_count is the scene's (core::history_count).
+  std::vector<double> history;
+  std::size_t history_count = 0;
   std::vector<ElementBatch> batches;
   std::size_t size() const { return nodes.size(); }
   bool empty() const { return nodes.empty(); }
@@ -97,6 +101,7 @@ struct ConvertedPoint {
   core::SymTensor stress;
   double plastic_strain = 0.0, temperature = 0.0, energy = 0.0;  // energy: per unit mass
   double damage = 0.0, max_compaction = 0.0;
+  std::vector<double> history;  // the user strength model's history variables
   int body = 0, material = 0;
 };
 

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/materials/material.hpp"
+#include "core/materials/user_strength_chunk.hpp"
 #include "core/parallel.hpp"
 #include "fem/fe_solver.hpp"
 #include "fem/hexahedron_full.hpp"
@@ -62,34 +63,71 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
                  : 0.0;
   FeElements& el = hexes_;
 
-  // Update of one integration point with the velocity gradient l of the step.
-  auto update_point = [&](std::size_t p, const core::Mat3& l, double density, double q_old,
-                          double* sums) {
+  // Update of one integration point with the velocity gradient l of the step, in two halves
+  // around the strength model: a user model (afemp/user_material.hpp) runs between them on
+  // the points of a whole element or pack.
+  struct PointStart {
+    core::PointState st;
+    core::SymTensor d_eps;
+    double q_heat = 0.0;
+  };
+  auto begin_point = [&](std::size_t p, const core::Mat3& l, double density,
+                         double q_old) AFEMP_INLINE {
     const StrainIncrement inc = increment(l, dt);
-    core::PointState st{el.stress[p], el.plastic_strain[p], el.temperature[p], el.energy[p],
-                        density};
+    PointStart b{core::PointState{el.stress[p], el.plastic_strain[p], el.temperature[p],
+                                  el.energy[p], density},
+                 inc.d_eps};
     if constexpr (core::has_damage_state<Strength>) {
-      st.damage = el.damage[p];
-      st.max_compaction = el.max_compaction[p];
+      b.st.damage = el.damage[p];
+      b.st.max_compaction = el.max_compaction[p];
     }
-    st.stress += core::jaumann_increment(st.stress, inc.w23, inc.w13, inc.w12);
+    b.st.stress += core::jaumann_increment(b.st.stress, inc.w23, inc.w13, inc.w12);
     // Bulk-viscous heating by the q that acted over this step.
-    const double q_heat = -q_old * inc.d_eps.trace() / density;
-    const core::PointUpdate u =
-        core::constitutive_update(mat, strength, eos, Thermal, st, inc.d_eps, dt);
-    st.energy += q_heat;
+    b.q_heat = -q_old * inc.d_eps.trace() / density;
+    return b;
+  };
+  auto end_point = [&](std::size_t p, PointStart& b, const core::PointUpdate& u,
+                       double* sums) AFEMP_INLINE {
+    core::PointState& st = b.st;
+    st.energy += b.q_heat;
     sums[kPlastic] += el.point_mass[p] * u.plastic_work;
-    sums[kViscous] += el.point_mass[p] * q_heat;
+    sums[kViscous] += el.point_mass[p] * b.q_heat;
     el.stress[p] = st.stress;
     el.plastic_strain[p] = st.plastic_strain;
     el.temperature[p] = st.temperature;
     el.energy[p] = st.energy;
-    el.density[p] = density;
+    el.density[p] = st.density;
     if constexpr (core::has_damage_state<Strength>) {
       el.damage[p] = st.damage;
       el.max_compaction[p] = st.max_compaction;
     }
     return core::wave_speed(mat, eos, st);
+  };
+  auto update_point = [&](std::size_t p, const core::Mat3& l, double density, double q_old,
+                          double* sums) {
+    if constexpr (core::is_user_strength<Strength>) {
+      return 0.0;  // user models take load_point, run and finish_point below
+    } else {
+      PointStart b = begin_point(p, l, density, q_old);
+      const core::PointUpdate u =
+          core::constitutive_update(mat, strength, eos, Thermal, b.st, b.d_eps, dt);
+      return end_point(p, b, u, sums);
+    }
+  };
+  // A user model's chunk: load point p into slot j, then (after run) finish slot j.
+  constexpr bool user = core::is_user_strength<Strength>;
+  [[maybe_unused]] const std::size_t hc = el.history_count;
+  auto load_point = [&](auto& chunk, std::size_t j, std::size_t p, PointStart& b,
+                        core::IncrementStart& in) {
+    in = core::start_increment(b.st, b.d_eps);
+    chunk.load(j, b.st, in, el.history.data() + p * hc);
+  };
+  auto finish_point = [&](auto& chunk, std::size_t j, std::size_t p, PointStart& b,
+                          const core::IncrementStart& in, double* sums) {
+    chunk.store_history(j, el.history.data() + p * hc);
+    const core::PointUpdate u = core::finish_increment(mat, eos, Thermal, b.st, in,
+                                                       chunk.deviator(j), chunk.result(j));
+    return end_point(p, b, u, sums);
   };
   // Bulk-viscous pressure q and the critical step of an element (length l, dilatation rate
   // trace_rate, wave speed c).
@@ -167,6 +205,9 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
   // Fully integrated (B-bar) elements, one at a time.
   auto sweep_full = [&](std::size_t begin, std::size_t end, int t) {
     double* sums = &thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles];
+    [[maybe_unused]] core::UserChunkFor<Strength> chunk(mat, strength);
+    [[maybe_unused]] std::array<PointStart, 8> pending;
+    [[maybe_unused]] std::array<core::IncrementStart, 8> starts;
     for (std::size_t e = begin; e < end; ++e) {
       if (!el.alive[e]) continue;
       HexVectors x_new, x_mid, v;
@@ -188,10 +229,20 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
       } else {
         const double density = el.mass[e] / volume;  // B-bar: uniform dilatation
         double trace_rate = 0.0, wave = 0.0;
-        for (int g = 0; g < 8; ++g) {
-          const core::Mat3 l = velocity_gradient_bbar(mid, g, v);
+        for (std::size_t g = 0; g < 8; ++g) {
+          const core::Mat3 l = velocity_gradient_bbar(mid, static_cast<int>(g), v);
           if (g == 0) trace_rate = l.m[0][0] + l.m[1][1] + l.m[2][2];
-          wave = std::max(wave, update_point(p0 + static_cast<std::size_t>(g), l, density, q_old, sums));
+          if constexpr (user) {
+            pending[g] = begin_point(p0 + g, l, density, q_old);
+            load_point(chunk, g, p0 + g, pending[g], starts[g]);
+          } else {
+            wave = std::max(wave, update_point(p0 + g, l, density, q_old, sums));
+          }
+        }
+        if constexpr (user) {
+          chunk.run(8, dt);
+          for (std::size_t g = 0; g < 8; ++g)
+            wave = std::max(wave, finish_point(chunk, g, p0 + g, pending[g], starts[g], sums));
         }
         const double q = bulk_viscosity(e, density, characteristic_length(x_new, volume),
                                          trace_rate, wave);
@@ -213,6 +264,9 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
         bn[3][8][W], f[3][8][W], grad[3][3][W], gamma[4][8][W], q[4][3][W], g[4][3][W],
         sigma[6][W];
     alignas(64) double vol_mid[W], vol[W], length[W];
+    [[maybe_unused]] core::UserChunkFor<Strength> chunk(mat, strength);
+    [[maybe_unused]] std::array<PointStart, W> pending;
+    [[maybe_unused]] std::array<core::IncrementStart, W> starts;
     for (std::size_t e0 = begin; e0 < end; e0 += W) {
       const int n = static_cast<int>(std::min<std::size_t>(W, end - e0));
       // Lanes past the end repeat the last element; their results are dropped.
@@ -240,22 +294,50 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
         lanes::hourglass_velocities<W>(gamma, v, q);
       }
 
+      auto live_lane = [&](int l) {
+        const std::size_t e = e0 + static_cast<std::size_t>(l);
+        return l < n && el.alive[e] && vol[l] > 0.0 && vol_mid[l] > 0.0;
+      };
+      auto lane_gradient = [&](int l) {
+        core::Mat3 lg;
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) lg.m[i][j] = grad[i][j][l];
+        return lg;
+      };
+      if constexpr (user) {
+        // The live lanes' material points in one call of the user's function.
+        std::size_t count = 0;
+        for (int l = 0; l < W; ++l) {
+          if (!live_lane(l)) continue;
+          const std::size_t e = e0 + static_cast<std::size_t>(l);
+          const std::size_t p = b.point_begin + (e - b.begin);
+          pending[count] = begin_point(p, lane_gradient(l), el.mass[e] / vol[l], el.bulk_q[e]);
+          load_point(chunk, count, p, pending[count], starts[count]);
+          ++count;
+        }
+        if (count > 0) chunk.run(count, dt);
+      }
+      [[maybe_unused]] std::size_t slot = 0;  // the user chunk's slot of the next live lane
       const char* failure[W] = {};
       for (int l = 0; l < W; ++l) {
         const std::size_t e = e0 + static_cast<std::size_t>(l);
-        const bool live = l < n && el.alive[e] && vol[l] > 0.0 && vol_mid[l] > 0.0;
+        const bool live = live_lane(l);
         if (l < n && el.alive[e] && !live) failure[l] = "negative Jacobian";
         for (int k = 0; k < 4; ++k)
           for (int i = 0; i < 3; ++i) g[k][i][l] = 0.0;
         for (double(&s)[W] : sigma) s[l] = 0.0;
         if (!live) continue;
-        core::Mat3 lg;
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) lg.m[i][j] = grad[i][j][l];
+        const core::Mat3 lg = lane_gradient(l);
         const double trace_rate = lg.m[0][0] + lg.m[1][1] + lg.m[2][2];
         const double density = el.mass[e] / vol[l];
         const std::size_t p = b.point_begin + (e - b.begin);
-        const double wave = update_point(p, lg, density, el.bulk_q[e], sums);
+        double wave;
+        if constexpr (user) {
+          wave = finish_point(chunk, slot, p, pending[slot], starts[slot], sums);
+          ++slot;
+        } else {
+          wave = update_point(p, lg, density, el.bulk_q[e], sums);
+        }
         const double bulk_q = bulk_viscosity(e, density, length[l], trace_rate, wave);
         const core::SymTensor& s = el.stress[p];
         sigma[0][l] = s.xx - bulk_q;

@@ -185,7 +185,7 @@ std::size_t FeSolver::bytes() const {
          v(el->area0) + v(el->bulk_q) + v(el->critical_dt) + v(el->alive) +
          v(el->hourglass_force) + v(el->stress) + v(el->point_mass) + v(el->plastic_strain) +
          v(el->temperature) + v(el->energy) + v(el->density) + v(el->damage) +
-         v(el->max_compaction);
+         v(el->max_compaction) + v(el->history);
   return b + v(element_force_) + v(incidence_) + v(incidence_offsets_);
 }
 

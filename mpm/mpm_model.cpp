@@ -11,7 +11,9 @@
 namespace afemp::mpm {
 
 MpmModel::MpmModel(const core::Scene& scene)
-    : scene_(scene), solver_(scene, generate_particles(scene)) {}
+    : scene_(scene),
+      solver_(scene, generate_particles(scene)),
+      history_names_(core::history_field_names(scene)) {}
 
 void MpmModel::write_fields(core::FieldWriter& writer) {
   const core::PointBlock block = particle_block();
@@ -49,6 +51,14 @@ core::PointBlock MpmModel::particle_block() {
       core::scalar_field("id", id_.data()),
   };
   if (!p.strain.empty()) fields.push_back(core::tensor_field("strain", p.strain.data()));
+  // User strength models' history variables, one scalar field per variable.
+  const std::size_t hc = p.history_count;
+  history_.resize(hc);
+  for (std::size_t k = 0; k < hc; ++k) {
+    history_[k].resize(n);
+    for (std::size_t i = 0; i < n; ++i) history_[k][i] = p.history[i * hc + k];
+    fields.push_back(core::scalar_field(history_names_[k], std::span<const double>(history_[k])));
+  }
   return {"particles", n, core::as_doubles(p.position.data()), fields};
 }
 

@@ -41,6 +41,8 @@ class MpmModel final : public core::Model {
   const core::Scene& scene_;
   mutable MpmSolver solver_;  // describe() bins the particles
   std::vector<double> pressure_, von_mises_, density_, body_, id_;  // derived, per frame
+  std::vector<std::vector<double>> history_;  // user models' history variables, per variable
+  std::vector<std::string> history_names_;    // core::history_field_names
   std::vector<core::FieldView> fields_;
   ParticleProbes probes_;
 };

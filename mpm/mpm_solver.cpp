@@ -9,7 +9,9 @@
 #include <sstream>
 
 #include "afemp/errors.hpp"
+#include "core/materials/user_strength_chunk.hpp"
 #include "core/parallel.hpp"
+#include "core/scene.hpp"
 
 namespace afemp::mpm {
 
@@ -55,6 +57,16 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
   // caller gave them an affine velocity of their own.
   if (plan_.transfer == core::Transfer::apic && particles_.affine.size() != particles_.size())
     particles_.affine.assign(particles_.size(), core::Mat3{});
+  // User strength models' history variables: the scene's count per point, initial values
+  // by material (the generators leave them out).
+  const std::size_t hc = core::history_count(scene);
+  if (particles_.history_count != hc) {
+    particles_.history_count = hc;
+    particles_.history.assign(particles_.size() * hc, 0.0);
+    for (std::size_t i = 0; i < particles_.size(); ++i)
+      core::initial_history(scene.materials[static_cast<std::size_t>(particles_.material[i])],
+                            particles_.history.data() + i * hc, hc);
+  }
   for (const core::BodySpec& b : scene.bodies) {
     bulk_viscosity_.push_back(core::bulk_viscosity_of(scene, b));
     // Only particle bodies and hexahedra (whose elements may become particles) have it.
@@ -85,6 +97,12 @@ void MpmSolver::add_particles(const Particles& more) {
     p.energy[i] = more.energy[k];
     p.damage[i] = more.damage[k];
     p.max_compaction[i] = more.max_compaction[k];
+    double* history = p.history.data() + i * p.history_count;
+    if (more.history_count == p.history_count)
+      std::copy_n(more.history.data() + k * p.history_count, p.history_count, history);
+    else
+      core::initial_history(*materials_[static_cast<std::size_t>(p.material[i])], history,
+                            p.history_count);
     if (!p.half_width.empty())
       p.half_width[i] = std::min(0.5, 0.5 * std::cbrt(p.volume[i]) * grid_.inverse_cell());
     if (!field_nodes_only_.empty())

@@ -1,5 +1,6 @@
 #include "mpm/particles.hpp"
 
+#include <algorithm>
 #include <utility>
 
 namespace afemp::mpm {
@@ -24,10 +25,12 @@ void for_each_array(const Particles& p, F&& f) {
 
 void Particles::resize(std::size_t n) {
   for_each_array(*this, [n](auto& a) { a.resize(n); });
+  history.resize(n * history_count);
 }
 
 void Particles::reserve(std::size_t n) {
   for_each_array(*this, [n](auto& a) { a.reserve(n); });
+  history.reserve(n * history_count);
 }
 
 void Particles::push_back(const Vec3& x, const Vec3& v, double m, double vol, double temp,
@@ -47,6 +50,7 @@ void Particles::push_back(const Vec3& x, const Vec3& v, double m, double vol, do
   damage.push_back(0.0);
   max_compaction.push_back(0.0);
   bulk_q.push_back(0.0);
+  history.resize(history.size() + history_count, 0.0);
   body.push_back(body_id);
   material.push_back(material_id);
 }
@@ -56,12 +60,17 @@ void Particles::permute(const std::vector<std::int32_t>& perm) {
     auto copy = a;
     for (std::size_t i = 0; i < perm.size(); ++i) a[i] = copy[static_cast<std::size_t>(perm[i])];
   });
+  if (history_count == 0) return;
+  const std::vector<double> copy = history;
+  for (std::size_t i = 0; i < perm.size(); ++i)
+    std::copy_n(&copy[static_cast<std::size_t>(perm[i]) * history_count], history_count,
+                &history[i * history_count]);
 }
 
 std::size_t Particles::bytes() const {
   std::size_t total = 0;
   for_each_array(*this, [&total](const auto& a) { total += a.capacity() * sizeof(a[0]); });
-  return total;
+  return total + history.capacity() * sizeof(double);
 }
 
 }  // namespace afemp::mpm

@@ -34,11 +34,17 @@ struct Particles {
   // Empty unless the scene asks for them:
   std::vector<double> half_width;      // uGIMP: half the particle's initial edge, in cells
   std::vector<core::Mat3> affine;      // APIC: the affine velocity C_p (a velocity gradient)
+  // History variables of user strength models (afemp/user_material.hpp): history_count values
+  // per point, point-major (point i's at history[i * history_count]); history_count is the
+  // largest count of the scene's materials, 0 (and history empty) when none has any.
+  std::vector<double> history;
+  std::size_t history_count = 0;
 
   std::size_t size() const { return position.size(); }
   void resize(std::size_t n);
   void reserve(std::size_t n);
-  // Appends one point at rest-state (zero stress, strain, plastic strain, energy, damage).
+  // Appends one point at rest-state (zero stress, strain, plastic strain, energy, damage,
+  // history).
   void push_back(const Vec3& x, const Vec3& v, double m, double vol, double temp,
                  std::int32_t body_id, std::int32_t material_id);
   // Reorders every array by perm: new[i] = old[perm[i]].

@@ -3,6 +3,8 @@
 #include <set>
 #include <sstream>
 
+#include "core/materials/user_strength_chunk.hpp"
+
 namespace afemp::mpm {
 
 namespace {
@@ -13,6 +15,11 @@ std::string strength_name(const core::StrengthModel& s) {
     std::string operator()(const core::J2Plasticity&) const { return "j2"; }
     std::string operator()(const core::JohnsonCook&) const { return "johnson-cook"; }
     std::string operator()(const core::HolmquistJohnsonCook&) const { return "holmquist-johnson-cook"; }
+    std::string operator()(const core::UserStrength& u) const {
+      return "user model " + (u.definition ? u.definition->name : std::string("?")) + " (" +
+             std::to_string(u.history_count()) + " history variables, batches of " +
+             std::to_string(core::kUserChunk) + ")";
+    }
   } v;
   return std::visit(v, s);
 }

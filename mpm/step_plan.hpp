@@ -40,7 +40,7 @@ struct Stage {
 // What the constitutive stage does for one material: the composition it instantiates.
 struct MaterialPlan {
   std::string material;
-  std::string strength;  // "elastic" | "j2" | "johnson-cook"
+  std::string strength;  // the scene file's model name ("j2"), or the user model's
   std::string eos;       // "none" (hypoelastic pressure) | "linear" | "mie-gruneisen" | ...
   bool thermal = false;  // temperature integrated from plastic work
 };

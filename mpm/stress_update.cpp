@@ -6,6 +6,7 @@
 // same weights and the same grid velocity.
 #include <cmath>
 
+#include "core/materials/user_strength_chunk.hpp"
 #include "core/parallel.hpp"
 #include "mpm/bulk_viscosity.hpp"
 #include "mpm/mpm_solver.hpp"
@@ -131,16 +132,22 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
     const auto [b, e] = core::static_range(batch.end - batch.begin, t, core::team_size());
     double work = 0.0, wave = 0.0, speed2 = 0.0, heat = 0.0;
     std::int64_t bad = -1;
-    for (std::size_t i = batch.begin + b; i < batch.begin + e; ++i) {
-      Vec3 x = p.position[i];
+    // The kinematics, objective rotation and volume of particle i, and its start state: the
+    // position x (moved by dt v_bar at the end), the particle velocity v_p, the strain
+    // increment d_eps and the state st. Separate locals rather than one struct, so that the
+    // compiler keeps them in registers and the arithmetic stays that of one fused loop.
+    auto prepare = [&](std::size_t i, Vec3& x, Vec3& v_bar, Vec3& v_p, core::SymTensor& d_eps,
+                       core::PointState& st) AFEMP_INLINE {
+      x = p.position[i];
       core::Mat3 l;  // L_ij = sum_I v_Ii dN_I/dx_j
-      Vec3 v_bar;
-      Vec3 v_p = p.velocity[i];
+      v_bar = Vec3{};
+      v_p = p.velocity[i];
+      st = core::PointState{};
       if constexpr (Fused) {
-        const auto c = g.cell_of(x);
-        const core::CellWeights w = g.weights(x, c);
+        const auto cell = g.cell_of(x);
+        const core::CellWeights w = g.weights(x, cell);
         std::array<std::int32_t, 8> slot;
-        g.node_slots(c, slot);
+        g.node_slots(cell, slot);
         const std::size_t field = field_offset(i);
         Vec3 dv;
         for (int k = 0; k < 8; ++k) {
@@ -163,8 +170,7 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
       } else {
         l = velocity_gradient_[i];  // kinematics_kernel moved x and updated v_p already
       }
-      const core::SymTensor d_eps = dt * core::sym_part(l);
-      core::PointState st;
+      d_eps = dt * core::sym_part(l);
       st.stress = p.stress[i];
       if (jaumann) {
         st.stress += core::jaumann_increment(st.stress, 0.5 * dt * (l.m[1][2] - l.m[2][1]),
@@ -182,8 +188,12 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
       }
       st.energy = p.energy[i];
       st.density = p.mass[i] / volume;
-      const core::PointUpdate u =
-          core::constitutive_update(mat, strength, eos, Thermal, st, d_eps, dt);
+    };
+    // The state stored after the constitutive update u, the bulk viscosity, the move and the
+    // step bound of particle i.
+    auto complete = [&](std::size_t i, Vec3& x, const Vec3& v_bar, const Vec3& v_p,
+                        const core::SymTensor& d_eps, core::PointState& st,
+                        const core::PointUpdate& u) AFEMP_INLINE {
       p.stress[i] = st.stress;
       if constexpr (reads_plastic_strain) p.plastic_strain[i] = st.plastic_strain;
       if constexpr (Thermal) p.temperature[i] = st.temperature;
@@ -219,6 +229,41 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
         bad = static_cast<std::int64_t>(i);
       wave = std::max(wave, c_wave);
       speed2 = std::max(speed2, v2);
+    };
+    if constexpr (core::is_user_strength<Strength>) {
+      // A user model: kinematics of a chunk, one call of the user's function, then the rest.
+      core::UserStrengthChunk chunk(mat, strength);
+      const std::size_t hc = p.history_count;
+      constexpr std::size_t N = core::kUserChunk;
+      std::array<Vec3, N> x, v_bar, v_p;
+      std::array<core::SymTensor, N> d_eps;
+      std::array<core::PointState, N> st;
+      std::array<core::IncrementStart, N> start;
+      for (std::size_t i0 = batch.begin + b; i0 < batch.begin + e; i0 += N) {
+        const std::size_t n = std::min(N, batch.begin + e - i0);
+        for (std::size_t j = 0; j < n; ++j) {
+          prepare(i0 + j, x[j], v_bar[j], v_p[j], d_eps[j], st[j]);
+          start[j] = core::start_increment(st[j], d_eps[j]);
+          chunk.load(j, st[j], start[j], p.history.data() + (i0 + j) * hc);
+        }
+        chunk.run(n, dt);
+        for (std::size_t j = 0; j < n; ++j) {
+          chunk.store_history(j, p.history.data() + (i0 + j) * hc);
+          const core::PointUpdate u = core::finish_increment(
+              mat, eos, Thermal, st[j], start[j], chunk.deviator(j), chunk.result(j));
+          complete(i0 + j, x[j], v_bar[j], v_p[j], d_eps[j], st[j], u);
+        }
+      }
+    } else {
+      for (std::size_t i = batch.begin + b; i < batch.begin + e; ++i) {
+        Vec3 x, v_bar, v_p;
+        core::SymTensor d_eps;
+        core::PointState st;
+        prepare(i, x, v_bar, v_p, d_eps, st);
+        const core::PointUpdate u =
+            core::constitutive_update(mat, strength, eos, Thermal, st, d_eps, dt);
+        complete(i, x, v_bar, v_p, d_eps, st, u);
+      }
     }
     double* out = thread_sums_.data() + static_cast<std::size_t>(t) * core::cache_line_doubles;
     out[0] += work;

@@ -9,54 +9,69 @@
 
 namespace afemp::core {
 
+inline IncrementStart start_increment(const PointState& point, const SymTensor& d_eps) {
+  IncrementStart in;
+  in.p_old = pressure(point.stress);
+  in.s_old = point.stress.deviator();
+  in.de_dev = d_eps.deviator();
+  in.d_vol = d_eps.trace();  // dV / V over the increment
+  // Work per unit mass uses the volume the increment acts on: the solvers update volume as
+  // V_new = V_old (1 + tr d eps), so sigma : d eps V_old / m = sigma : d eps / rho_old, which
+  // makes the volumetric work exact over a compress-release cycle (second order overall).
+  in.inv_rho_work = 1.0 / (point.density * (1.0 + in.d_vol));  // one division per point
+  return in;
+}
+
+template <class Eos>
+inline PointUpdate finish_increment(const Material& material, const Eos& eos, bool thermal,
+                                    PointState& point, const IncrementStart& in,
+                                    const SymTensor& s_new, const DeviatoricResult& r) {
+  static_assert(!std::is_same_v<Eos, HjcCompaction>, "HjcCompaction pairs with HJC only");
+  point.plastic_strain += r.plastic_strain_increment;
+  const double plastic_work = r.flow_stress * r.plastic_strain_increment * in.inv_rho_work;
+
+  // Trapezoidal deviatoric work: elastic (recoverable) and plastic parts together.
+  const double deviatoric_work = 0.5 * double_dot(in.s_old + s_new, in.de_dev) * in.inv_rho_work;
+  const double d_vol = in.d_vol;
+  double p_new;
+  if constexpr (std::is_same_v<Eos, NoEos>) {
+    p_new = in.p_old - material.bulk_modulus() * d_vol;
+    point.energy += deviatoric_work - 0.5 * (in.p_old + p_new) * d_vol * in.inv_rho_work;
+  } else {
+    const double mu = point.density / material.density - 1.0;
+    const EosLinearForm f = eos.form(mu);
+    // e_new = e* - p_new tr/(2 rho) with p_new = a + b e_new: linear in e_new, so the
+    // midpoint-rule energy and the EOS pressure are consistent without iteration.
+    const double e_star = point.energy + deviatoric_work - 0.5 * in.p_old * d_vol * in.inv_rho_work;
+    const double half_strain = 0.5 * d_vol * in.inv_rho_work;
+    point.energy = (e_star - f.a * half_strain) / (1.0 + f.b * half_strain);
+    p_new = f.a + f.b * point.energy;
+  }
+
+  point.stress = s_new - p_new * SymTensor::identity();
+  if (thermal) {
+    point.temperature += material.thermal.taylor_quinney * plastic_work /
+                         material.thermal.specific_heat;
+  }
+  return {plastic_work};
+}
+
 template <class Strength, class Eos>
 inline PointUpdate constitutive_update(const Material& material, const Strength& strength,
                                        const Eos& eos, bool thermal, PointState& point,
                                        const SymTensor& d_eps, double dt) {
   static_assert(composable<Strength, Eos>, "HolmquistJohnsonCook pairs with HjcCompaction only");
+  static_assert(!std::is_same_v<Strength, UserStrength>,
+                "user strength models run on batches (user_strength_chunk.hpp), never per point");
   if constexpr (std::is_same_v<Strength, HolmquistJohnsonCook>) {
     return holmquist_johnson_cook_update(material, strength, eos, point, d_eps, dt);
   } else {
-    const double p_old = pressure(point.stress);
-    const SymTensor s_old = point.stress.deviator();
-    const SymTensor de_dev = d_eps.deviator();
-    const double d_vol = d_eps.trace();  // dV / V over the increment
-    const double rho = point.density;
-    // Work per unit mass uses the volume the increment acts on: the solvers update volume as
-    // V_new = V_old (1 + tr d eps), so sigma : d eps V_old / m = sigma : d eps / rho_old, which
-    // makes the volumetric work exact over a compress-release cycle (second order overall).
-    const double inv_rho_work = 1.0 / (rho * (1.0 + d_vol));  // one division per point
-
-    SymTensor s_new = s_old;
+    const IncrementStart in = start_increment(point, d_eps);
+    SymTensor s_new = in.s_old;
     const StrengthContext context{material.shear_modulus(), point.plastic_strain,
                                   point.temperature, dt};
-    const DeviatoricResult r = strength.update(s_new, de_dev, context);
-    point.plastic_strain += r.plastic_strain_increment;
-    const double plastic_work = r.flow_stress * r.plastic_strain_increment * inv_rho_work;
-
-    // Trapezoidal deviatoric work: elastic (recoverable) and plastic parts together.
-    const double deviatoric_work = 0.5 * double_dot(s_old + s_new, de_dev) * inv_rho_work;
-    double p_new;
-    if constexpr (std::is_same_v<Eos, NoEos>) {
-      p_new = p_old - material.bulk_modulus() * d_vol;
-      point.energy += deviatoric_work - 0.5 * (p_old + p_new) * d_vol * inv_rho_work;
-    } else {
-      const double mu = rho / material.density - 1.0;
-      const EosLinearForm f = eos.form(mu);
-      // e_new = e* - p_new tr/(2 rho) with p_new = a + b e_new: linear in e_new, so the
-      // midpoint-rule energy and the EOS pressure are consistent without iteration.
-      const double e_star = point.energy + deviatoric_work - 0.5 * p_old * d_vol * inv_rho_work;
-      const double half_strain = 0.5 * d_vol * inv_rho_work;
-      point.energy = (e_star - f.a * half_strain) / (1.0 + f.b * half_strain);
-      p_new = f.a + f.b * point.energy;
-    }
-
-    point.stress = s_new - p_new * SymTensor::identity();
-    if (thermal) {
-      point.temperature += material.thermal.taylor_quinney * plastic_work /
-                           material.thermal.specific_heat;
-    }
-    return {plastic_work};
+    const DeviatoricResult r = strength.update(s_new, in.de_dev, context);
+    return finish_increment(material, eos, thermal, point, in, s_new, r);
   }
 }
 

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "core/materials/material.hpp"
 
@@ -56,6 +57,28 @@ void validate_strength(const Material& m, const HolmquistJohnsonCook& hjc) {
   require(hjc.D2 >= 0.0, m, "D2", hjc.D2, ">= 0");
 }
 
+void validate_strength(const Material& m, const UserStrength& u) {
+  if (!u.definition)
+    throw std::invalid_argument("material '" + m.name +
+                                "': user strength model without a definition (make it with "
+                                "afemp::user_strength)");
+  const std::vector<std::string>& names = u.definition->parameters;
+  if (u.parameters.size() != names.size())
+    throw std::invalid_argument("material '" + m.name + "': user strength model '" +
+                                u.definition->name + "' takes " + std::to_string(names.size()) +
+                                " parameters, got " + std::to_string(u.parameters.size()));
+  for (std::size_t i = 0; i < names.size(); ++i)
+    require(std::isfinite(u.parameters[i]), m, names[i].c_str(), u.parameters[i], "finite");
+  if (u.definition->check) {
+    try {
+      u.definition->check(u.parameters);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("material '" + m.name + "': strength model '" +
+                                  u.definition->name + "': " + e.what());
+    }
+  }
+}
+
 void validate_eos(const Material&, const NoEos&) {}
 
 void validate_eos(const Material& m, const LinearEos& eos) {
@@ -103,6 +126,11 @@ void validate_eos(const Material& m, const HjcCompaction& eos) {
 bool Material::has_thermal_term() const {
   const bool softens = std::visit([](const auto& model) { return model.thermal(); }, strength);
   return softens && thermal.specific_heat > 0.0;
+}
+
+std::size_t Material::history_count() const {
+  const auto* user = std::get_if<UserStrength>(&strength);
+  return user ? user->history_count() : 0;
 }
 
 void Material::validate() const {

@@ -21,6 +21,11 @@ template <class Strength, class Eos>
 inline constexpr bool composable =
     std::is_same_v<Strength, HolmquistJohnsonCook> == std::is_same_v<Eos, HjcCompaction>;
 
+// Whether the model runs on batches through a user's function (afemp/user_material.hpp)
+// rather than per point.
+template <class Strength>
+inline constexpr bool is_user_strength = std::is_same_v<Strength, UserStrength>;
+
 // Whether a strength model's update reads and writes PointState::damage and max_compaction;
 // solvers leave that history in memory for the others. Each model declares it.
 template <class Strength>
@@ -40,6 +45,28 @@ struct PointState {
 struct PointUpdate {
   double plastic_work = 0.0;  // plastic work per unit mass done in this increment
 };
+
+// What the two halves of an update share: the start state split into deviator and pressure,
+// the strain increment's deviator and trace, and 1 / (rho (1 + tr d eps)) for the work terms.
+// constitutive_update is start_increment, the strength model's update of the deviator, then
+// finish_increment; a user strength model (afemp/user_material.hpp) runs between the two on
+// a batch of points.
+struct IncrementStart {
+  double p_old = 0.0;
+  SymTensor s_old;
+  SymTensor de_dev;
+  double d_vol = 0.0;
+  double inv_rho_work = 0.0;
+};
+
+inline IncrementStart start_increment(const PointState& point, const SymTensor& d_eps);
+
+// The volumetric half after the deviator s_new and the strength result r: plastic strain,
+// energy equation, EOS pressure, stress and adiabatic heating (any strength model but HJC).
+template <class Eos>
+PointUpdate finish_increment(const Material& material, const Eos& eos, bool thermal,
+                             PointState& point, const IncrementStart& in, const SymTensor& s_new,
+                             const DeviatoricResult& r);
 
 // Updates stress, plastic strain, temperature and specific internal energy of one point for
 // the strain increment d_eps = D dt (Ma 2005, eq 2-41):

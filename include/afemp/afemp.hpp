@@ -11,6 +11,7 @@
 #include "afemp/scene.hpp"
 #include "afemp/simulation.hpp"
 #include "afemp/tensor.hpp"
+#include "afemp/user_material.hpp"
 
 /// The vector functions of afemp/tensor.hpp, in namespace afemp.
 namespace afemp {

@@ -4,16 +4,20 @@
 // OpenMPM3D / MPM3D-cpp). The point-wise updates are internal (core/materials/).
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <variant>
 
 #include "afemp/equations_of_state.hpp"
 #include "afemp/strength_models.hpp"
+#include "afemp/user_material.hpp"
 
 namespace afemp::core {
 
-/// The deviatoric half of a material: one of the built-in strength models.
-using StrengthModel = std::variant<Elastic, J2Plasticity, JohnsonCook, HolmquistJohnsonCook>;
+/// The deviatoric half of a material: one of the built-in strength models, or a user model
+/// registered through afemp/user_material.hpp.
+using StrengthModel =
+    std::variant<Elastic, J2Plasticity, JohnsonCook, HolmquistJohnsonCook, UserStrength>;
 /// The volumetric half of a material: no EOS (hypoelastic bulk law) or one of the built-in EOS.
 using EquationOfState =
     std::variant<NoEos, LinearEos, MieGruneisen, LinearPolynomialEos, HjcCompaction>;
@@ -45,6 +49,8 @@ struct Material {
     poisson_ratio = (3.0 * k - 2.0 * g) / (2.0 * (3.0 * k + g));
   }
   bool has_eos() const { return !std::holds_alternative<NoEos>(eos); }
+  /// History variables each point of the material carries (user strength models only).
+  std::size_t history_count() const;
   /// True when temperature must be integrated: a strength model that softens with
   /// temperature and a specific heat to turn plastic work into heat.
   bool has_thermal_term() const;

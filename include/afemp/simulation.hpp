@@ -42,6 +42,10 @@ struct ParticleFields {
   std::span<double> temperature{};      ///< temperature
   std::span<double> energy{};           ///< specific internal energy (per unit mass)
   std::span<double> damage{};           ///< scalar damage in [0, 1]
+  /// User strength models' history variables, history_count per particle, point-major:
+  /// particle i's variable v is history[i * history_count + v].
+  std::span<double> history{};
+  std::size_t history_count = 0;  ///< the most any of the scene's materials declares
   std::span<const std::int32_t> body{}; ///< index of the body in Scene::bodies
   std::span<const std::int32_t> id{};   ///< stable id, unchanged by reordering
   std::size_t size() const { return position.size(); }
@@ -73,6 +77,9 @@ struct ElementFields {
   std::span<double> temperature{};     ///< per point
   std::span<double> energy{};          ///< per point, specific internal energy
   std::span<double> damage{};          ///< per point
+  /// User strength models' history variables, history_count per point, point-major.
+  std::span<double> history{};
+  std::size_t history_count = 0;  ///< the most any of the scene's materials declares
   std::size_t size() const { return nodes.size(); }
 };
 

@@ -122,4 +122,7 @@ namespace afemp {
 using core::Vec3;
 using core::Mat3;
 using core::SymTensor;
+using core::double_dot;
+using core::von_mises;
+using core::pressure;
 }  ///< namespace afemp
