@@ -45,9 +45,15 @@ struct Simulation::Impl {
   }
 
   // Views of one element container; `body` keeps the per-element body indices the view shows.
-  static ElementFields elements(fem::FeElements& e, std::vector<std::int32_t>& body) {
+  template <class Elements>
+  static ElementFields elements(Elements& e, std::vector<std::int32_t>& body) {
+    constexpr int corners = Elements::corners;
+    static_assert(sizeof(e.nodes[0]) == corners * sizeof(std::int32_t),
+                  "an element's node indices are contiguous");
     ElementFields out;
-    out.nodes = e.nodes;
+    out.connectivity = {e.nodes.empty() ? nullptr : e.nodes.front().data(),
+                        e.nodes.size() * static_cast<std::size_t>(corners)};
+    out.nodes_per_element = corners;
     out.alive = e.alive;
     body.assign(e.size(), 0);
     out.first_point.assign(e.size(), 0);

@@ -94,7 +94,7 @@ void CoupledModel::convert_elements() {
   // The nodes the converted elements shared with live ones now bond to the particles; a node
   // left with no element (mass 0) drops out. Imposed components stay imposed (see step()).
   const fem::FeNodes& n = fe().nodes();
-  const fem::FeElements& hexes = fe().hexahedra();
+  const fem::HexElements& hexes = fe().hexahedra();
   for (const fem::ConversionEvent& ev : events) {
     for (std::int32_t node : hexes.nodes[ev.element]) {
       const auto i = static_cast<std::size_t>(node);
@@ -245,7 +245,7 @@ std::string CoupledModel::describe() const {
     for (std::size_t i : fe_node_) count += n.body[i] == static_cast<int>(b) ? 1 : 0;
     if (body.conversion) {
       std::size_t elements = 0, inside = 0;
-      const fem::FeElements& hexes = fe().hexahedra();
+      const fem::HexElements& hexes = fe().hexahedra();
       for (const fem::ElementBatch& batch : hexes.batches)
         if (batch.body == static_cast<int>(b))
           for (std::size_t e = batch.begin; e < batch.end; ++e) {

@@ -17,7 +17,7 @@ constexpr int hex_faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
 
 }  // namespace
 
-SurfaceFaces boundary_faces(const fem::FeElements& hexes, const std::vector<char>& selected) {
+SurfaceFaces boundary_faces(const fem::HexElements& hexes, const std::vector<char>& selected) {
   using Key = std::array<std::int32_t, 4>;
   std::vector<std::tuple<Key, Key, std::int32_t>> all;  // sorted ids, face, element
   for (const fem::ElementBatch& b : hexes.batches) {
@@ -49,7 +49,7 @@ SurfaceFaces boundary_faces(const fem::FeElements& hexes, const std::vector<char
   return out;
 }
 
-void surface_normals(const SurfaceFaces& faces, const fem::FeElements& hexes,
+void surface_normals(const SurfaceFaces& faces, const fem::HexElements& hexes,
                      const std::vector<core::Vec3>& x, std::vector<core::Vec3>& normal) {
   normal.assign(x.size(), core::Vec3{});
   for (std::size_t f = 0; f < faces.nodes.size(); ++f) {

@@ -17,11 +17,11 @@ struct SurfaceFaces {
 };
 
 // Boundary faces of the live hexahedra of the bodies with selected[body] != 0.
-SurfaceFaces boundary_faces(const fem::FeElements& hexes, const std::vector<char>& selected);
+SurfaceFaces boundary_faces(const fem::HexElements& hexes, const std::vector<char>& selected);
 
 // Outward unit normals at the FE nodes (size: all nodes) from the faces at positions x; nodes
 // on no face get 0.
-void surface_normals(const SurfaceFaces& faces, const fem::FeElements& hexes,
+void surface_normals(const SurfaceFaces& faces, const fem::HexElements& hexes,
                      const std::vector<core::Vec3>& x, std::vector<core::Vec3>& normal);
 
 }  // namespace afemp::coupling

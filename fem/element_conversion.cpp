@@ -34,7 +34,7 @@ bool FeSolver::inside_grid(std::size_t e) const {
 
 const char* FeSolver::conversion_reason(const core::ConversionSettings& c, const ElementBatch& b,
                                         std::size_t e, double volume, double grid_step) const {
-  const FeElements& el = hexes_;
+  const HexElements& el = hexes_;
   const std::size_t p0 =
       b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
   double eps_p = 0.0, damage = 0.0;
@@ -58,7 +58,7 @@ const char* FeSolver::conversion_reason(const core::ConversionSettings& c, const
 }
 
 void FeSolver::collect_conversions() {
-  FeElements& el = hexes_;
+  HexElements& el = hexes_;
   for (std::size_t t = 0; t < thread_conversions_.size(); ++t) {
     for (std::size_t k = 0; k < thread_conversions_[t].size(); ++k) {
       const std::size_t e = thread_conversions_[t][k];
@@ -93,7 +93,7 @@ std::vector<ConvertedPoint> FeSolver::make_converted_points() {
   // Built when taken, from the nodes' final v^{n+1/2}: in a coupled step the grid sets the
   // bonded nodes' velocity after the element update that flagged the conversion.
   std::vector<ConvertedPoint> out;
-  const FeElements& el = hexes_;
+  const HexElements& el = hexes_;
   for (std::size_t k = converted_taken_; k < conversion_events_.size(); ++k) {
     ConversionEvent& ev = conversion_events_[k];
     const std::size_t e = ev.element;

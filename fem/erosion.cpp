@@ -8,18 +8,20 @@
 // Converted elements (element_conversion.cpp) share the mass recomputation.
 #include <algorithm>
 #include <string_view>
+#include <type_traits>
 
 #include "fem/fe_solver.hpp"
 
 namespace afemp::fem {
 
-const ElementBatch& batch_of(const FeElements& elements, std::size_t e) {
+const ElementBatch& batch_of(const ElementStore& elements, std::size_t e) {
   for (const ElementBatch& b : elements.batches)
     if (e >= b.begin && e < b.end) return b;
   return elements.batches.back();  // not reached: the batches cover every element
 }
 
-void FeSolver::collect_erosions(FeElements& el, const char* kind) {
+template <class Elements>
+void FeSolver::collect_erosions(Elements& el, const char* kind) {
   for (std::size_t t = 0; t < thread_erosions_.size(); ++t) {
     for (std::size_t k = 0; k < thread_erosions_[t].size(); ++k) {
       const std::size_t e = thread_erosions_[t][k];
@@ -30,13 +32,13 @@ void FeSolver::collect_erosions(FeElements& el, const char* kind) {
       for (int g = 0; g < batch->points_per_element; ++g)
         energy += el.point_mass[p0 + static_cast<std::size_t>(g)] * el.energy[p0 + static_cast<std::size_t>(g)];
       // The element's mass leaves its nodes (a lumped share each) at their velocity v^{n+1/2}.
-      const std::size_t corners = std::string_view(kind) == "truss" ? 2 : 8;
+      constexpr std::size_t corners = Elements::corners;
       for (std::size_t a = 0; a < corners; ++a) {
         const Vec3& v = nodes_.velocity[static_cast<std::size_t>(el.nodes[e][a])];
         energy += 0.5 * (el.mass[e] / static_cast<double>(corners)) * core::dot(v, v);
       }
       el.alive[e] = 0;
-      el.bulk_q[e] = 0.0;
+      if constexpr (std::is_same_v<Elements, HexElements>) el.bulk_q[e] = 0.0;
       eroded_energy_ += energy;
       events_.push_back({time_, kind, static_cast<std::int64_t>(e - batch->begin), batch->body,
                          thread_failure_[t][k], energy, el.mass[e]});
@@ -46,6 +48,9 @@ void FeSolver::collect_erosions(FeElements& el, const char* kind) {
     thread_failure_[t].clear();
   }
 }
+
+template void FeSolver::collect_erosions(HexElements&, const char*);
+template void FeSolver::collect_erosions(TrussElements&, const char*);
 
 void FeSolver::finish_erosion() {
   erosion_this_step_ = false;

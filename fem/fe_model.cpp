@@ -38,7 +38,7 @@ const std::vector<core::MeshBlock>& FeModel::mesh_blocks() {
   blocks.clear();
   std::vector<core::FieldView>& hex_fields = hex_fields_;
   std::vector<core::FieldView>& truss_fields = truss_fields_;
-  const FeElements& h = solver_.hexahedra();
+  const HexElements& h = solver_.hexahedra();
   if (!h.empty()) {
     const std::size_t ne = h.size();
     hex_stress_.assign(ne, {});
@@ -82,7 +82,7 @@ const std::vector<core::MeshBlock>& FeModel::mesh_blocks() {
                       core::as_doubles(n.position.data()), ne, hex_connectivity_.data(),
                       node_fields, hex_fields});
   }
-  const FeElements& t = solver_.trusses();
+  const TrussElements& t = solver_.trusses();
   if (!t.empty()) {
     const std::size_t ne = t.size();
     zeroed(ne, {&truss_stress_, &truss_force_, &truss_plastic_, &truss_temperature_,
@@ -177,7 +177,8 @@ std::string FeModel::describe_mesh() const {
         mass += n.mass[i];
       }
     const bool hexes = body.discretisation == core::Discretisation::hexahedra;
-    const FeElements& el = hexes ? solver_.hexahedra() : solver_.trusses();
+    const ElementStore& el = hexes ? static_cast<const ElementStore&>(solver_.hexahedra())
+                                   : static_cast<const ElementStore&>(solver_.trusses());
     std::size_t count = 0;
     for (const ElementBatch& batch : el.batches)
       if (batch.body == static_cast<int>(b)) count += batch.end - batch.begin;

@@ -211,7 +211,14 @@ void FeSolver::build(const core::Scene& scene) {
 
   // 2. Elements and their initial state.
   hexes_.history_count = trusses_.history_count = core::history_count(scene);
-  auto add_point_state = [](FeElements& el, const core::Material& m, double temperature,
+  auto add_element = [](ElementStore& el, double mass, double volume) {
+    el.mass.push_back(mass);
+    el.volume0.push_back(volume);
+    el.volume.push_back(volume);
+    el.critical_dt.push_back(0.0);
+    el.alive.push_back(1);
+  };
+  auto add_point_state = [](ElementStore& el, const core::Material& m, double temperature,
                             double point_mass, double energy) {
     el.history.resize(el.history.size() + el.history_count);
     core::initial_history(m, el.history.data() + el.history.size() - el.history_count,
@@ -233,7 +240,9 @@ void FeSolver::build(const core::Scene& scene) {
     const double temperature = body.temperature.value_or(mat.thermal.initial_temperature);
     const auto offset = static_cast<std::int32_t>(node_begin[b]);
     const MeshData& m = meshes[b];
-    FeElements& el = body.discretisation == Discretisation::hexahedra ? hexes_ : trusses_;
+    ElementStore& el = body.discretisation == Discretisation::hexahedra
+                           ? static_cast<ElementStore&>(hexes_)
+                           : static_cast<ElementStore&>(trusses_);
     ElementBatch batch;
     batch.body = static_cast<int>(b);
     batch.material = body.material;
@@ -254,16 +263,10 @@ void FeSolver::build(const core::Scene& scene) {
           throw InputError(body.where, "bodies." + body.name,
                            "hexahedron " + std::to_string(e) + " has a non-positive volume (" +
                                std::to_string(volume) + "): check its node order");
-        el.nodes.push_back(nodes);
-        el.mass.push_back(mat.density * volume);
-        el.volume0.push_back(volume);
-        el.volume.push_back(volume);
-        el.length0.push_back(0.0);
-        el.area0.push_back(0.0);
-        el.bulk_q.push_back(0.0);
-        el.critical_dt.push_back(0.0);
-        el.alive.push_back(1);
-        el.hourglass_force.push_back({});
+        hexes_.nodes.push_back(nodes);
+        hexes_.bulk_q.push_back(0.0);
+        hexes_.hourglass_force.push_back({});
+        add_element(el, mat.density * volume, volume);
         if (full) {
           const FullHex f = full_hex(x);
           if (!(min_jacobian(f) > 0.0))
@@ -279,25 +282,17 @@ void FeSolver::build(const core::Scene& scene) {
       }
     } else {
       for (std::size_t e = 0; e < m.lines.size(); ++e, ++line_cursor) {
-        std::array<std::int32_t, 8> nodes{};
-        nodes[0] = m.lines[e][0] + offset;
-        nodes[1] = m.lines[e][1] + offset;
+        const std::array<std::int32_t, 2> nodes{m.lines[e][0] + offset, m.lines[e][1] + offset};
         const double length = core::norm(nodes_.position[static_cast<std::size_t>(nodes[1])] -
                                          nodes_.position[static_cast<std::size_t>(nodes[0])]);
         if (!(length > 0.0))
           throw InputError(body.where, "bodies." + body.name,
                            "truss " + std::to_string(e) + " has zero length");
         const double area = m.line_area[e];
-        el.nodes.push_back(nodes);
-        el.mass.push_back(mat.density * area * length);
-        el.volume0.push_back(area * length);
-        el.volume.push_back(area * length);
-        el.length0.push_back(length);
-        el.area0.push_back(area);
-        el.bulk_q.push_back(0.0);
-        el.critical_dt.push_back(0.0);
-        el.alive.push_back(1);
-        el.hourglass_force.push_back({});
+        trusses_.nodes.push_back(nodes);
+        trusses_.length0.push_back(length);
+        trusses_.area0.push_back(area);
+        add_element(el, mat.density * area * length, area * length);
         add_point_state(el, mat, temperature, mat.density * area * length, body.internal_energy);
       }
     }

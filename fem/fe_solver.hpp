@@ -51,21 +51,12 @@ struct ElementBatch {
   int points_per_element = 1;      // 1 (one-point hexahedron, truss) or 8 (B-bar)
 };
 
-// Hexahedra and trusses share one layout: per element and per integration point arrays.
-struct FeElements;
-// The batch holding element e (the batches cover every element).
-const ElementBatch& batch_of(const FeElements& elements, std::size_t e);
-
-struct FeElements {
-  std::vector<std::array<std::int32_t, 8>> nodes;  // hexahedra: 8 nodes; trusses: first 2 used
+// What every element kind holds: per element arrays, the integration points' state, and the
+// batches. Each kind adds its connectivity and its own fields (HexElements, TrussElements).
+struct ElementStore {
   std::vector<double> mass, volume0, volume;  // volume: current (trusses: A L)
-  std::vector<double> length0, area0;         // trusses only
-  std::vector<double> bulk_q;                 // bulk-viscous pressure (hexahedra)
   std::vector<double> critical_dt;            // element critical step of the last update
   std::vector<std::uint8_t> alive;
-  // Hexahedra: the stiffness form's generalised hourglass forces (global axes), or the assumed
-  // strain form's generalised stresses (the element's corotational frame).
-  std::vector<std::array<Vec3, 4>> hourglass_force;
   // Integration points (trusses: the axial stress in the bar frame, sigma_xx).
   std::vector<core::SymTensor> stress;
   std::vector<double> point_mass, plastic_strain, temperature, energy, density;
@@ -75,9 +66,33 @@ struct FeElements {
   std::vector<double> history;
   std::size_t history_count = 0;
   std::vector<ElementBatch> batches;
-  std::size_t size() const { return nodes.size(); }
-  bool empty() const { return nodes.empty(); }
+  std::size_t size() const { return alive.size(); }
+  bool empty() const { return alive.empty(); }
+  // Bytes held by these arrays (capacity).
+  std::size_t bytes() const;
 };
+
+// 8-node hexahedra: one-point (hourglass-controlled) or 2 x 2 x 2 B-bar.
+struct HexElements : ElementStore {
+  static constexpr int corners = 8;
+  std::vector<std::array<std::int32_t, 8>> nodes;
+  std::vector<double> bulk_q;  // bulk-viscous pressure acting this step
+  // The stiffness form's generalised hourglass forces (global axes), or the assumed strain
+  // form's generalised stresses (the element's corotational frame).
+  std::vector<std::array<Vec3, 4>> hourglass_force;
+  std::size_t bytes() const;
+};
+
+// 2-node trusses (bars): one point, uniaxial stress.
+struct TrussElements : ElementStore {
+  static constexpr int corners = 2;
+  std::vector<std::array<std::int32_t, 2>> nodes;
+  std::vector<double> length0, area0;  // initial length and cross-section
+  std::size_t bytes() const;
+};
+
+// The batch holding element e (the batches cover every element).
+const ElementBatch& batch_of(const ElementStore& elements, std::size_t e);
 
 // A record of an eroded element.
 struct ErosionEvent {
@@ -131,11 +146,11 @@ class FeSolver {
   const FeNodes& nodes() const { return nodes_; }
   // For drivers and tests that prescribe node motion between steps (velocities at half steps).
   FeNodes& mutable_nodes() { return nodes_; }
-  const FeElements& hexahedra() const { return hexes_; }
-  const FeElements& trusses() const { return trusses_; }
+  const HexElements& hexahedra() const { return hexes_; }
+  const TrussElements& trusses() const { return trusses_; }
   // For programs that change the integration points' state between steps (afemp::Simulation).
-  FeElements& mutable_hexahedra() { return hexes_; }
-  FeElements& mutable_trusses() { return trusses_; }
+  HexElements& mutable_hexahedra() { return hexes_; }
+  TrussElements& mutable_trusses() { return trusses_; }
   const MeshData& mesh() const { return mesh_; }  // the assembled input mesh (for reports)
   long step_count() const { return steps_; }
   double time() const { return time_; }
@@ -195,7 +210,8 @@ class FeSolver {
   template <class Strength, class Eos, bool Thermal>
   void truss_batch(const ElementBatch& b, const Strength& s, const Eos& e, double dt);
   // Erodes the elements the last sweep flagged (thread order: deterministic).
-  void collect_erosions(FeElements& elements, const char* kind);
+  template <class Elements>
+  void collect_erosions(Elements& elements, const char* kind);
   void finish_erosion();
   // Conversion (element_conversion.cpp): the first criterion element e of batch b meets
   // (nullptr: none), and the particles of the elements the last sweep flagged.
@@ -215,12 +231,13 @@ class FeSolver {
   // Runs batch_update<Strength, Eos, Thermal>(batch, strength, eos, dt) for each batch with
   // the material's concrete model types: one std::visit per batch.
   template <class Update>
-  void for_each_batch(const FeElements& elements, Update&& batch_update);
+  void for_each_batch(const ElementStore& elements, Update&& batch_update);
 
   const core::Scene& scene_;
   MeshData mesh_;
   FeNodes nodes_;
-  FeElements hexes_, trusses_;
+  HexElements hexes_;
+  TrussElements trusses_;
   std::vector<WallState> walls_;
   // Element nodal forces, gathered per node through the incidence lists (no atomics):
   // hexahedron e node a at 8 e + a, truss t end b at 8 n_hex + 2 t + b.
@@ -265,7 +282,7 @@ void FeSolver::run_stage(FeStageKind kind, F&& f) {
 }
 
 template <class Update>
-void FeSolver::for_each_batch(const FeElements& elements, Update&& update) {
+void FeSolver::for_each_batch(const ElementStore& elements, Update&& update) {
   for (const ElementBatch& b : elements.batches) {
     const core::Material& m = scene_.materials[static_cast<std::size_t>(b.material)];
     core::visit_models(

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/erosion_criteria.hpp"
 #include "core/materials/material.hpp"
 #include "core/materials/user_strength_chunk.hpp"
 #include "core/parallel.hpp"
@@ -61,7 +62,7 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
       conversion ? scene_.mpm.grid.cell /
                        core::wave_speed(mat, core::PointState{{}, 0.0, 0.0, 0.0, mat.density})
                  : 0.0;
-  FeElements& el = hexes_;
+  HexElements& el = hexes_;
 
   // Update of one integration point with the velocity gradient l of the step, in two halves
   // around the strength model: a user model (afemp/user_material.hpp) runs between them on
@@ -173,14 +174,7 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
       double eps_p = 0.0;
       for (int g = 0; g < b.points_per_element; ++g)
         eps_p = std::max(eps_p, el.plastic_strain[p0 + static_cast<std::size_t>(g)]);
-      if (erosion->plastic_strain > 0.0 && eps_p >= erosion->plastic_strain)
-        failure = "plastic strain";
-      else if (erosion->material_failure && mat.failure_strain > 0.0 && eps_p >= mat.failure_strain)
-        failure = "material failure strain";
-      else if (volume < erosion->volume_ratio * el.volume0[e])
-        failure = "volume ratio";
-      else if (el.critical_dt[e] < erosion->time_step)
-        failure = "time step";
+      failure = core::erosion_reason(*erosion, mat, eps_p, volume, el.volume0[e], el.critical_dt[e]);
     }
     if (failure) {
       if (!erosion) {

@@ -11,13 +11,11 @@ namespace afemp::fem {
 namespace {
 
 // Hexahedra or trusses: what the body's elements are.
-const FeElements& elements_of(const FeSolver& fe, const core::Scene& scene, int body) {
-  return scene.bodies[static_cast<std::size_t>(body)].discretisation == core::Discretisation::trusses
-             ? fe.trusses()
-             : fe.hexahedra();
+const ElementStore& elements_of(const FeSolver& fe, const core::Scene& scene, int body) {
+  if (scene.bodies[static_cast<std::size_t>(body)].discretisation == core::Discretisation::trusses)
+    return fe.trusses();
+  return fe.hexahedra();
 }
-
-int corner_count(const FeElements& el, const FeSolver& fe) { return &el == &fe.trusses() ? 2 : 8; }
 
 // Centroid, mean nodal velocity, point-averaged stress and plastic strain of element e.
 struct ElementState {
@@ -25,10 +23,11 @@ struct ElementState {
   core::SymTensor stress;
   double plastic_strain = 0.0;
 };
-ElementState element_state(const FeSolver& fe, const FeElements& el, const ElementBatch& b,
+template <class Elements>
+ElementState element_state(const FeSolver& fe, const Elements& el, const ElementBatch& b,
                            std::size_t e) {
   ElementState s;
-  const int corners = corner_count(el, fe);
+  constexpr int corners = Elements::corners;
   const double wn = 1.0 / corners;
   for (int a = 0; a < corners; ++a) {
     const auto n = static_cast<std::size_t>(el.nodes[e][static_cast<std::size_t>(a)]);
@@ -44,7 +43,7 @@ ElementState element_state(const FeSolver& fe, const FeElements& el, const Eleme
   return s;
 }
 
-const ElementBatch* body_batch(const FeElements& el, int body) {
+const ElementBatch* body_batch(const ElementStore& el, int body) {
   for (const ElementBatch& b : el.batches)
     if (b.body == body) return &b;
   return nullptr;
@@ -67,7 +66,7 @@ void MeshProbes::resolve(std::span<const core::ProbeSpec> probes, const FeSolver
     const std::string what = node ? "node" : (truss ? "truss" : "hexahedron");
     // The body's range: its nodes are contiguous (fe_model_builder.cpp), so are its elements.
     std::size_t begin = 0, count = 0;
-    const FeElements& el = elements_of(fe, scene, s.body);
+    const ElementStore& el = elements_of(fe, scene, s.body);
     const ElementBatch* batch = body_batch(el, s.body);
     if (node) {
       const auto first = std::find(nodes.body.begin(), nodes.body.end(), s.body);
@@ -91,7 +90,9 @@ void MeshProbes::resolve(std::span<const core::ProbeSpec> probes, const FeSolver
     }
     double best = std::numeric_limits<double>::infinity();
     for (std::size_t i = begin; i < begin + count; ++i) {
-      const core::Vec3 x = node ? nodes.position[i] : element_state(fe, el, *batch, i).centroid;
+      const core::Vec3 x = node    ? nodes.position[i]
+                           : truss ? element_state(fe, fe.trusses(), *batch, i).centroid
+                                   : element_state(fe, fe.hexahedra(), *batch, i).centroid;
       const double d = core::norm(x - s.near);
       if (d < best) best = d, target_[k] = i;
     }
@@ -108,46 +109,52 @@ void MeshProbes::sample(const FeSolver& fe, std::span<double> out) const {
       const double row[] = {x.x, x.y, x.z, u.x, u.y, u.z};
       std::copy(std::begin(row), std::end(row), v);
     } else if (s.kind == core::ProbeKind::element) {
-      for (const FeElements* el : {&fe.hexahedra(), &fe.trusses()})
-        for (const ElementBatch& b : el->batches) {
+      auto sample_element = [&](const auto& el) {
+        for (const ElementBatch& b : el.batches) {
           const std::size_t e = target_[k];
-          if (b.body != s.body || e < b.begin || e >= b.end || !el->alive[e]) continue;
-          const ElementState st = element_state(fe, *el, b, e);
+          if (b.body != s.body || e < b.begin || e >= b.end || !el.alive[e]) continue;
+          const ElementState st = element_state(fe, el, b, e);
           const double row[] = {st.centroid.x, st.centroid.y, st.centroid.z,
                                 st.velocity.x, st.velocity.y, st.velocity.z,
                                 core::pressure(st.stress), core::von_mises(st.stress),
                                 st.plastic_strain};
           std::copy(std::begin(row), std::end(row), v);
         }
+      };
+      sample_element(fe.hexahedra());
+      sample_element(fe.trusses());
     } else if (s.kind == core::ProbeKind::extreme) {
-      for (const FeElements* el : {&fe.hexahedra(), &fe.trusses()})
-        for (const ElementBatch& b : el->batches) {
+      auto scan = [&](const auto& el) {
+        for (const ElementBatch& b : el.batches) {
           if (s.body >= 0 && b.body != s.body) continue;
           for (std::size_t e = b.begin; e < b.end; ++e) {
-            if (!el->alive[e]) continue;
-            const ElementState st = element_state(fe, *el, b, e);
+            if (!el.alive[e]) continue;
+            const ElementState st = element_state(fe, el, b, e);
             if (!core::in_probe_box(s, st.centroid)) continue;
             core::merge_extreme(
                 s, core::probe_field_value(s.field, st.stress, st.plastic_strain, st.velocity),
                 st.centroid, v);
           }
         }
+      };
+      scan(fe.hexahedra());
+      scan(fe.trusses());
     }
   }
 }
 
 std::vector<core::Vec3> live_node_positions(const FeSolver& fe, int body) {
   std::vector<std::uint8_t> used(fe.nodes().size(), 0);
-  for (const FeElements* el : {&fe.hexahedra(), &fe.trusses()}) {
-    const int corners = corner_count(*el, fe);
-    for (const ElementBatch& b : el->batches) {
+  auto mark = [&](const auto& el) {
+    for (const ElementBatch& b : el.batches) {
       if (b.body != body) continue;
       for (std::size_t e = b.begin; e < b.end; ++e)
-        if (el->alive[e])
-          for (int a = 0; a < corners; ++a)
-            used[static_cast<std::size_t>(el->nodes[e][static_cast<std::size_t>(a)])] = 1;
+        if (el.alive[e])
+          for (const std::int32_t n : el.nodes[e]) used[static_cast<std::size_t>(n)] = 1;
     }
-  }
+  };
+  mark(fe.hexahedra());
+  mark(fe.trusses());
   std::vector<core::Vec3> out;
   for (std::size_t n = 0; n < used.size(); ++n)
     if (used[n]) out.push_back(fe.nodes().position[n]);

@@ -92,7 +92,8 @@ void FeSolver::finish_step(double dt) {
 double FeSolver::stable_time_step() const {
   if (scene_.run.fixed_time_step > 0.0) return scene_.run.fixed_time_step;
   double dt = std::numeric_limits<double>::infinity();
-  for (const FeElements* el : {&hexes_, &trusses_})
+  for (const ElementStore* el : {static_cast<const ElementStore*>(&hexes_),
+                                 static_cast<const ElementStore*>(&trusses_)})
     for (std::size_t e = 0; e < el->size(); ++e)
       if (el->alive[e]) dt = std::min(dt, el->critical_dt[e]);
   if (!std::isfinite(dt))
@@ -104,7 +105,7 @@ double FeSolver::stable_time_step() const {
 std::string FeSolver::smallest_step_element() const {
   double dt = std::numeric_limits<double>::infinity();
   std::string where = "none";
-  auto scan = [&](const FeElements& el, const char* kind) {
+  auto scan = [&](const ElementStore& el, const char* kind) {
     for (const ElementBatch& b : el.batches)
       for (std::size_t e = b.begin; e < b.end; ++e)
         if (el.alive[e] && el.critical_dt[e] < dt) {
@@ -132,7 +133,8 @@ core::Energies FeSolver::energies() const {
     b.momentum += m * v;
     b.kinetic += kinetic;
   }
-  for (const FeElements* el : {&hexes_, &trusses_})
+  for (const ElementStore* el : {static_cast<const ElementStore*>(&hexes_),
+                                 static_cast<const ElementStore*>(&trusses_)})
     for (const ElementBatch& b : el->batches)
       for (std::size_t e = b.begin; e < b.end; ++e) {
         if (!el->alive[e]) continue;
@@ -180,13 +182,32 @@ std::size_t FeSolver::bytes() const {
   std::size_t b = v(nodes_.position) + v(nodes_.initial_position) + v(nodes_.velocity) +
                   v(nodes_.mass) + v(nodes_.body) + v(nodes_.imposed) + v(nodes_.imposed_velocity) +
                   v(nodes_.grid_driven);
-  for (const FeElements* el : {&hexes_, &trusses_})
-    b += v(el->nodes) + v(el->mass) + v(el->volume0) + v(el->volume) + v(el->length0) +
-         v(el->area0) + v(el->bulk_q) + v(el->critical_dt) + v(el->alive) +
-         v(el->hourglass_force) + v(el->stress) + v(el->point_mass) + v(el->plastic_strain) +
-         v(el->temperature) + v(el->energy) + v(el->density) + v(el->damage) +
-         v(el->max_compaction) + v(el->history);
-  return b + v(element_force_) + v(incidence_) + v(incidence_offsets_);
+  return b + hexes_.bytes() + trusses_.bytes() + v(element_force_) + v(incidence_) +
+         v(incidence_offsets_);
+}
+
+namespace {
+template <class V>
+std::size_t capacity_bytes(const V& x) {
+  return x.capacity() * sizeof(x[0]);
+}
+}  // namespace
+
+std::size_t ElementStore::bytes() const {
+  auto v = [](const auto& x) { return capacity_bytes(x); };
+  return v(mass) + v(volume0) + v(volume) + v(critical_dt) + v(alive) + v(stress) +
+         v(point_mass) + v(plastic_strain) + v(temperature) + v(energy) + v(density) +
+         v(damage) + v(max_compaction) + v(history);
+}
+
+std::size_t HexElements::bytes() const {
+  return ElementStore::bytes() + capacity_bytes(nodes) + capacity_bytes(bulk_q) +
+         capacity_bytes(hourglass_force);
+}
+
+std::size_t TrussElements::bytes() const {
+  return ElementStore::bytes() + capacity_bytes(nodes) + capacity_bytes(length0) +
+         capacity_bytes(area0);
 }
 
 void FeSolver::raise_thread_errors() const {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/erosion_criteria.hpp"
 #include "core/materials/uniaxial_update.hpp"
 #include "core/parallel.hpp"
 #include "fem/fe_solver.hpp"
@@ -20,7 +21,7 @@ void FeSolver::truss_batch(const ElementBatch& b, const Strength& strength, cons
   const core::BodySpec& body = scene_.bodies[static_cast<std::size_t>(b.body)];
   const core::Material& mat = scene_.materials[static_cast<std::size_t>(b.material)];
   const core::ErosionSettings* erosion = body.erosion ? &*body.erosion : nullptr;
-  FeElements& el = trusses_;
+  TrussElements& el = trusses_;
   const std::size_t force_base = 8 * hexes_.size();
 
   // The mid-step kinematics of truss e: its nodes' positions x and velocities v, its point's
@@ -62,18 +63,10 @@ void FeSolver::truss_batch(const ElementBatch& b, const Strength& strength, cons
           "truss " + std::to_string(e - b.begin) + " of body " + body.name;
       thread_error_field_[static_cast<std::size_t>(t)] = "stress";
     }
-    const char* failure = nullptr;
-    if (erosion) {
-      if (erosion->plastic_strain > 0.0 && st.plastic_strain >= erosion->plastic_strain)
-        failure = "plastic strain";
-      else if (erosion->material_failure && mat.failure_strain > 0.0 &&
-               st.plastic_strain >= mat.failure_strain)
-        failure = "material failure strain";
-      else if (el.volume[e] < erosion->volume_ratio * el.volume0[e])
-        failure = "volume ratio";
-      else if (el.critical_dt[e] < erosion->time_step)
-        failure = "time step";
-    }
+    const char* failure =
+        erosion ? core::erosion_reason(*erosion, mat, st.plastic_strain, el.volume[e],
+                                       el.volume0[e], el.critical_dt[e])
+                : nullptr;
     if (failure) {
       thread_erosions_[static_cast<std::size_t>(t)].push_back(e);
       thread_failure_[static_cast<std::size_t>(t)].push_back(failure);

@@ -67,7 +67,9 @@ struct NodeFields {
 /// The elements of one kind (hexahedra, or trusses) with their integration-point state: element
 /// e's points are points_per_element[e] consecutive entries from first_point[e].
 struct ElementFields {
-  std::span<const std::array<std::int32_t, 8>> nodes{};  ///< node indices (trusses: the first 2)
+  /// Node indices, nodes_per_element per element (element e's from e * nodes_per_element).
+  std::span<const std::int32_t> connectivity{};
+  int nodes_per_element = 0;                             ///< 8 (hexahedra) or 2 (trusses)
   std::span<const std::uint8_t> alive{};                 ///< 0: eroded or converted into particles
   std::span<const std::int32_t> body{};                  ///< index of the body in Scene::bodies
   std::vector<std::size_t> first_point{};                ///< first integration point of each element
@@ -80,7 +82,7 @@ struct ElementFields {
   /// User strength models' history variables, history_count per point, point-major.
   std::span<double> history{};
   std::size_t history_count = 0;  ///< the most any of the scene's materials declares
-  std::size_t size() const { return nodes.size(); }
+  std::size_t size() const { return alive.size(); }
 };
 
 /// Where and how a Simulation writes its output; all optional.

@@ -290,7 +290,7 @@ TEST(SimulationApi, FieldViewsShowAndChangeTheModelsState) {
   EXPECT_NEAR(mass, e0.bodies[0].mass, 1e-12 * mass);
   for (Vec3& v : p.velocity) v = {0, 0, -100};  // a program's velocity, before the first step
   EXPECT_NEAR(particles.energies().bodies[0].momentum.z, -100.0 * mass, 1e-9 * mass);
-  EXPECT_TRUE(particles.hexahedra().nodes.empty());
+  EXPECT_TRUE(particles.hexahedra().size() == 0);
 
   afemp::Simulation mesh(taylor_in_code(true));
   mesh.run_to(0.01);

@@ -154,9 +154,9 @@ Trace trace(const std::string& text) {
   const afemp::ParticleFields p = sim.particles();
   const afemp::ElementFields h = sim.hexahedra(), tr = sim.trusses();
   const auto& eps = !p.position.empty() ? p.plastic_strain
-                    : !h.nodes.empty()  ? h.plastic_strain
+                    : h.size() > 0  ? h.plastic_strain
                                         : tr.plastic_strain;
-  const auto& his = !p.position.empty() ? p.history : !h.nodes.empty() ? h.history : tr.history;
+  const auto& his = !p.position.empty() ? p.history : h.size() > 0 ? h.history : tr.history;
   t.plastic_strain.assign(eps.begin(), eps.end());
   t.history.assign(his.begin(), his.end());
   return t;

@@ -147,7 +147,7 @@ normal = [0, 0, 1]
   fem::FeSolver solver(scene);
   const auto [damage, plastic] = run_keeping_last_history(
       solver, [](const fem::FeSolver& s) -> auto& { return s.hexahedra(); });
-  const fem::FeElements& h = solver.hexahedra();
+  const fem::HexElements& h = solver.hexahedra();
   std::vector<PointCheck> pts;
   for (std::size_t i = 0; i < h.stress.size(); ++i)
     pts.push_back({h.stress[i], h.density[i], damage[i], h.max_compaction[i],

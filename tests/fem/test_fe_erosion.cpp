@@ -79,7 +79,7 @@ TEST(Erosion, ErodedElementsAreRecordedAndTheEnergyBalanceCloses) {
   const core::RunSummary s = core::run(model, scene, options);
 
   const FeSolver& solver = model.solver();
-  const FeElements& h = solver.hexahedra();
+  const HexElements& h = solver.hexahedra();
   std::size_t eroded = 0;
   for (std::size_t e = 0; e < h.size(); ++e) {
     if (h.alive[e]) continue;

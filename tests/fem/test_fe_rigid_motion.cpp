@@ -43,7 +43,7 @@ velocity = )" +
          v + "\n";
 }
 
-double largest_stress(const FeElements& h) {
+double largest_stress(const HexElements& h) {
   double s = 0.0;
   for (const core::SymTensor& t : h.stress)
     s = std::max({s, std::abs(t.xx), std::abs(t.yy), std::abs(t.zz), std::abs(t.yz), std::abs(t.xz),

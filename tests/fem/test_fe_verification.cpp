@@ -112,7 +112,7 @@ struct Slab {
 };
 Slab slab(const FeSolver& solver, double at, double half) {
   const FeNodes& n = solver.nodes();
-  const FeElements& h = solver.hexahedra();
+  const HexElements& h = solver.hexahedra();
   const std::size_t points = h.stress.size() / h.size();
   Slab s;
   int elements = 0, nodes = 0;

@@ -113,7 +113,7 @@ std::vector<Piece> pieces(const core::Model& model, const std::vector<Vec3>& x0)
                    sigma.zz, x});
   };
   if (const auto* fe = dynamic_cast<const fem::FeModel*>(&model)) {
-    const fem::FeElements& el = fe->solver().hexahedra();
+    const fem::HexElements& el = fe->solver().hexahedra();
     for (const fem::ElementBatch& b : el.batches)
       for (std::size_t e = b.begin; e < b.end; ++e) {
         core::SymTensor mean{};

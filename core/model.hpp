@@ -1,0 +1,76 @@
+// The interface every discretisation offers the time loop (core/time_loop.hpp): the MPM
+// solver, the FE solver and their coupling each implement it (mpm/mpm_model.hpp,
+// fem/fe_model.hpp, coupling/coupled_model.hpp); the loop, the probes, the reference checks
+// and the studies see a model only through it.
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "afemp/energies.hpp"
+#include "afemp/probes.hpp"
+#include "afemp/run.hpp"
+#include "afemp/tensor.hpp"
+#include "core/output/field_writer.hpp"
+
+namespace afemp::core {
+
+// A record the model wants in the run directory beside the history (eroded elements, ...):
+// a CSV file name, its header and rows appended since the last call.
+struct EventLog {
+  std::string file;    // e.g. "erosion.csv"
+  std::string header;  // the CSV header line, without newline
+  std::vector<std::string> rows;
+};
+
+// The points that carry a body's material (Model::body_points), and how far the material of
+// each reaches beyond it: half the edge of a particle's cube of volume; 0 for a mesh node, which
+// lies on the surface.
+struct BodyPoints {
+  std::vector<Vec3> position;
+  std::vector<double> half_size;
+};
+
+class Model {
+ public:
+  virtual ~Model() = default;
+  // The step the next call of step() may take (the scene's factor applied).
+  virtual double stable_time_step() const = 0;
+  // Advances by dt. Throws core::SimulationError naming the step, entity and field.
+  virtual void step(double dt) = 0;
+  virtual long step_count() const = 0;
+  virtual double time() const = 0;
+  // Energies and per-body sums (one per scene body) of the current state.
+  virtual Energies energies() const = 0;
+  // Points that carry material state: particles and element integration points / trusses.
+  virtual std::size_t particle_count() const = 0;
+  virtual std::size_t element_count() const = 0;
+  // Appends one frame of the model's fields to the writer.
+  virtual void write_fields(FieldWriter& writer) = 0;
+  // Stage timings in step order.
+  virtual std::vector<StageTiming> stage_timings() const = 0;
+  // Event rows produced since the last call (none by default).
+  virtual std::vector<EventLog> take_events() { return {}; }
+  // What `afemp check` prints before the time step: the discretisation (grid, bodies, mesh
+  // quality), and the stages one step runs with the reason for each.
+  virtual std::string describe() const = 0;
+  // Bytes held by the model's data (points, nodes, elements, grid, scratch).
+  virtual std::size_t bytes() const = 0;
+  // Probes (core/probes.hpp). resolve_probes finds, once at the start, the particle, node or
+  // element each probe of the kinds the model holds names (by index, or nearest to a point);
+  // it throws InputError naming the probe's line and key, and what exists, when one does not.
+  // sample_probes writes probe_stride values per probe into out (probe k from k
+  // probe_stride), in probe_columns order, for the probes of the kinds it holds: particle,
+  // node, element, and its points' part of an extreme (merge_extreme; the caller fills out
+  // with NaN first). Mean velocities are the time loop's, from energies(). An element that
+  // is gone (eroded, converted into particles) leaves its NaN.
+  virtual void resolve_probes(std::span<const ProbeSpec> probes) = 0;
+  virtual void sample_probes(std::span<double> out) const = 0;
+  // The points that carry body `body`'s material now: its particles and the nodes of its live
+  // elements (Taylor, crater and hole metrics: core/reference_checks.cpp, coupling/study.cpp).
+  virtual BodyPoints body_points(int body) const = 0;
+};
+
+}  // namespace afemp::core
