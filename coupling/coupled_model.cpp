@@ -18,6 +18,7 @@
 #include <string>
 
 #include "core/appendf.hpp"
+#include "coupling/element_conversion.hpp"
 #include "afemp/errors.hpp"
 
 namespace afemp::coupling {
@@ -48,6 +49,9 @@ CoupledModel::CoupledModel(const core::Scene& scene) : scene_(scene), fe_(scene)
     add_point(i, bonded, surface_body_[b] != 0);
   }
   fe().set_grid_driven(driven_);
+  // Hexahedra retire (and become particles) only inside the grid.
+  const core::GridSettings& g = scene.mpm.grid;
+  fe().set_retirement_domain({g.min, g.max, g.cell, scene.has_grid});
   bool converts = false;
   for (const core::BodySpec& body : scene.bodies) converts = converts || body.conversion;
   if (!fe_node_.empty() || converts) mpm().set_node_points(&points_);
@@ -73,29 +77,37 @@ std::size_t CoupledModel::add_point(std::size_t i, bool bonded, bool surface) {
 }
 
 void CoupledModel::convert_elements() {
-  std::vector<fem::ConvertedPoint> made = fe().take_converted_points();
-  const std::vector<fem::ConversionEvent> events = fe().take_conversion_events();
-  if (made.empty()) return;
+  const std::vector<fem::RetiredElement> retired = fe().take_retired_elements();
+  if (retired.empty()) return;
+  // Built now, from the nodes' final v^{n+1/2}: the grid set the bonded nodes' velocity after
+  // the element update that retired the elements.
+  std::vector<Conversion> made;
+  made.reserve(retired.size());
+  for (const fem::RetiredElement& ev : retired) {
+    made.push_back(convert_element(fe(), scene_, ev));
+    converted_energy_ += made.back().lost_energy;
+  }
   mpm::Particles more;
   more.history_count = fe().hexahedra().history_count;
-  more.reserve(made.size());
-  for (const fem::ConvertedPoint& q : made) {
-    more.push_back(q.position, q.velocity, q.mass, q.volume, q.temperature, q.body, q.material);
-    const std::size_t j = more.size() - 1;
-    more.stress[j] = q.stress;
-    more.plastic_strain[j] = q.plastic_strain;
-    more.energy[j] = q.energy;
-    more.damage[j] = q.damage;
-    more.max_compaction[j] = q.max_compaction;
-    std::copy(q.history.begin(), q.history.end(),
-              more.history.begin() + static_cast<std::ptrdiff_t>(j * more.history_count));
-  }
+  for (const Conversion& c : made)
+    for (const ConvertedPoint& q : c.points) {
+      more.push_back(q.position, q.velocity, q.mass, q.volume, q.temperature, q.body, q.material);
+      const std::size_t j = more.size() - 1;
+      more.stress[j] = q.stress;
+      more.plastic_strain[j] = q.plastic_strain;
+      more.energy[j] = q.energy;
+      more.damage[j] = q.damage;
+      more.max_compaction[j] = q.max_compaction;
+      std::copy(q.history.begin(), q.history.end(),
+                more.history.begin() + static_cast<std::ptrdiff_t>(j * more.history_count));
+    }
   mpm().add_particles(more);
   // The nodes the converted elements shared with live ones now bond to the particles; a node
   // left with no element (mass 0) drops out. Imposed components stay imposed (see step()).
   const fem::FeNodes& n = fe().nodes();
   const fem::HexElements& hexes = fe().hexahedra();
-  for (const fem::ConversionEvent& ev : events) {
+  for (std::size_t k = 0; k < retired.size(); ++k) {
+    const fem::RetiredElement& ev = retired[k];
     for (std::int32_t node : hexes.nodes[ev.element]) {
       const auto i = static_cast<std::size_t>(node);
       if (n.mass[i] > 0.0 && !driven_[i]) add_point(i, true, false);
@@ -103,8 +115,8 @@ void CoupledModel::convert_elements() {
     char row[320];
     std::snprintf(row, sizeof row, "%.10e,%s,%lld,%s,%d,%.10e,%.10e,%.10e", ev.time,
                   scene_.bodies[static_cast<std::size_t>(ev.body)].name.c_str(),
-                  static_cast<long long>(ev.id), ev.reason, ev.particles, ev.mass,
-                  ev.kinetic_before, ev.kinetic_after);
+                  static_cast<long long>(ev.id), ev.reason, made[k].particles,
+                  hexes.mass[ev.element], made[k].kinetic_before, made[k].kinetic_after);
     conversion_rows_.emplace_back(row);
   }
   fe().set_grid_driven(driven_);
@@ -192,6 +204,7 @@ void CoupledModel::step(double dt) {
 
 core::Energies CoupledModel::energies() const {
   core::Energies out = fe().energies();
+  out.converted = converted_energy_;
   const core::Energies m = mpm().energies();
   out.kinetic += m.kinetic;
   out.internal += m.internal;
@@ -250,7 +263,7 @@ std::string CoupledModel::describe() const {
         if (batch.body == static_cast<int>(b))
           for (std::size_t e = batch.begin; e < batch.end; ++e) {
             ++elements;
-            inside += fe().inside_grid(e) ? 1 : 0;
+            inside += fe().inside_retirement_domain(e) ? 1 : 0;
           }
       const core::GridSettings& g = scene_.mpm.grid;
       core::appendf(out, "  body %s: AFEMP (the FE conversion stage below); only inside the grid "

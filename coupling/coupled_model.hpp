@@ -8,9 +8,9 @@
 //     and element forces into their host's field and move with the grid solution like its
 //     particles (perfect bond: rebar in concrete).
 //   - adaptive conversion (AFEMP, Lian et al. 2013, §2.6): hexahedra of a body with `conversion`
-//     that meet a criterion become particles of the same body (fem/element_conversion.cpp); the
-//     nodes they shared with live elements then join the body's field as bonded nodes, so the
-//     remaining mesh and its particles move together (the same bonded coupling).
+//     that meet a criterion retire from the mesh (fem/element_retirement.cpp) and become
+//     particles of the same body (coupling/element_conversion.cpp); the nodes they shared
+//     with live elements then join the body's field as bonded nodes, so the remaining mesh and its particles move together (the same bonded coupling).
 // Mesh bodies in neither take no part in the grid step. One step with dt = the smaller of the
 // FE and grid stable steps:
 //   1. FE: v^{n+1/2} of the free and contact nodes from the element forces at x^n;
@@ -96,6 +96,7 @@ class CoupledModel final : public core::Model {
   std::size_t surface_live_ = 0;  // live hexahedra when surface_ was built
   std::vector<core::Vec3> normal_;  // per FE node
   double coupling_seconds_ = 0.0;
+  double converted_energy_ = 0.0;  // Energies::converted: what conversion's interpolation lost
 };
 
 }  // namespace afemp::coupling

@@ -5,7 +5,7 @@
 // the eroded energy. Node masses are then recomputed from the live elements (one source of
 // truth), and nodes left with no element drop out of the update, with a record of their own
 // that reports their mass and kinetic energy (already counted in their elements' records).
-// Converted elements (element_conversion.cpp) share the mass recomputation.
+// Retired elements (element_retirement.cpp) share the mass recomputation.
 #include <algorithm>
 #include <string_view>
 #include <type_traits>
@@ -58,7 +58,7 @@ void FeSolver::finish_erosion() {
   recompute_node_masses();
   for (auto& ev : events_)
     if (ev.time < time_) ev.time = time_;  // stamped with the end of the step they happened in
-  for (auto& ev : conversion_events_)
+  for (auto& ev : retired_)
     if (ev.time < time_) ev.time = time_;
   // A dropped node's row reports the mass and kinetic energy it leaves the update with; both
   // are already in its elements' rows (and in the eroded energy), so the rows of kind "node"

@@ -4,7 +4,7 @@
 // shared material composition of core/materials. The stages a scene needs are its step plan
 // (fe_step_plan.cpp); they live in files named after them: fe_model_builder.cpp (mesh, masses,
 // sets), nodal_update.cpp (forces to motion, constraints), rigid_wall.cpp,
-// hexahedron_update.cpp, truss_update.cpp, erosion.cpp, element_conversion.cpp.
+// hexahedron_update.cpp, truss_update.cpp, erosion.cpp, element_retirement.cpp.
 #pragma once
 
 #include <array>
@@ -108,29 +108,25 @@ struct ErosionEvent {
   double mass = 0.0;
 };
 
-// A particle made from a converted hexahedron (AFEMP, fem/element_conversion.cpp): at an
-// integration point of the element, with its share of the mass and the point's state.
-struct ConvertedPoint {
-  Vec3 position, velocity;  // x^{n+1}; v^{n+1/2} interpolated from the nodes
-  double mass = 0.0, volume = 0.0;
-  core::SymTensor stress;
-  double plastic_strain = 0.0, temperature = 0.0, energy = 0.0;  // energy: per unit mass
-  double damage = 0.0, max_compaction = 0.0;
-  std::vector<double> history;  // the user strength model's history variables
-  int body = 0, material = 0;
-};
-
-// A record of one converted hexahedron.
-struct ConversionEvent {
+// A hexahedron that left the mesh without eroding: its body's `conversion` criteria met inside
+// the retirement domain (fem/element_retirement.cpp). Its state stays in the arrays (alive = 0)
+// for the caller that takes it (take_retired_elements) to make what replaces it (particles:
+// coupling/element_conversion.cpp); its nodes' masses follow the live elements.
+struct RetiredElement {
   double time = 0.0;
   std::size_t element = 0;  // index into the hexahedra
   std::int64_t id = 0;      // index within its body
   int body = 0;
   const char* reason = "";
-  int particles = 0;
-  double mass = 0.0;
-  // Kinetic energy of the element's node-mass shares, and of its particles.
-  double kinetic_before = 0.0, kinetic_after = 0.0;
+};
+
+// Where hexahedra may retire, and the cell h that the time-step criterion compares an
+// element's critical step with (at h / c): set by the caller that takes them (coupling/: the
+// background grid's domain and cell). Unset, no element retires.
+struct RetirementDomain {
+  Vec3 min, max;
+  double cell = 0.0;
+  bool set = false;
 };
 
 // Where a wall acts: the nodes it may touch.
@@ -186,15 +182,13 @@ class FeSolver {
   }
   core::Energies energies() const;
   std::vector<ErosionEvent> take_erosion_events();
-  // Hexahedra converted into particles since the last call (bodies with `conversion`): the
-  // particles to add, made from the nodes' state at the call, then one record per element
-  // taken. Their nodes keep their velocity; their masses come from the live elements (a node
-  // left with none has handed its whole mass to the particles, with the momentum the
-  // interpolation gives them). Timed as the plan's conversion stage.
-  std::vector<ConvertedPoint> take_converted_points();
-  std::vector<ConversionEvent> take_conversion_events();
-  // Whether hexahedron e lies inside the background grid (where it may convert).
-  bool inside_grid(std::size_t e) const;
+  // Hexahedra retired (their body's `conversion` criteria met) since the last call, in the
+  // order they retired; the caller makes what replaces them from the arrays and the nodes.
+  std::vector<RetiredElement> take_retired_elements();
+  // Where hexahedra may retire (see RetirementDomain); the coupled model sets the grid's.
+  void set_retirement_domain(const RetirementDomain& domain) { retirement_ = domain; }
+  // Whether hexahedron e lies inside the retirement domain (where it may retire).
+  bool inside_retirement_domain(std::size_t e) const;
   std::size_t bytes() const;
   std::size_t live_hexahedra() const;
   std::size_t live_trusses() const;
@@ -213,12 +207,11 @@ class FeSolver {
   template <class Elements>
   void collect_erosions(Elements& elements, const char* kind);
   void finish_erosion();
-  // Conversion (element_conversion.cpp): the first criterion element e of batch b meets
-  // (nullptr: none), and the particles of the elements the last sweep flagged.
+  // Retirement (element_retirement.cpp): the first `conversion` criterion element e of batch b
+  // meets (nullptr: none), and the records of the elements the last sweep flagged.
   const char* conversion_reason(const core::ConversionSettings& c, const ElementBatch& b,
                                 std::size_t e, double volume, double grid_step) const;
-  void collect_conversions();
-  std::vector<ConvertedPoint> make_converted_points();
+  void collect_retirements();
   void recompute_node_masses();
   // Runs f as the plan's stage `kind` and adds its wall seconds; nothing when the scene does
   // not need that stage.
@@ -255,9 +248,8 @@ class FeSolver {
   double time_ = 0.0;
   bool erosion_this_step_ = false;
   std::vector<ErosionEvent> events_;
-  double converted_energy_ = 0.0;
-  std::vector<ConversionEvent> conversion_events_;
-  std::size_t converted_taken_ = 0;  // events whose particles were taken
+  std::vector<RetiredElement> retired_;  // not yet taken
+  RetirementDomain retirement_;
   std::vector<std::uint8_t> converted_node_;  // a node of an element converted this step
   std::vector<std::vector<std::size_t>> thread_conversions_;
   std::vector<std::vector<const char*>> thread_conversion_reason_;

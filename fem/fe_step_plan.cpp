@@ -49,7 +49,8 @@ std::string erosion_criteria(const core::Scene& scene, const BodySpec& body) {
   return out + "inverted elements";
 }
 
-// The criteria of body's conversion (fem/element_conversion.cpp) and what an element becomes.
+// The criteria of body's conversion (fem/element_retirement.cpp) and what an element becomes
+// (coupling/element_conversion.cpp).
 std::string conversion_criteria(const BodySpec& body) {
   const core::ConversionSettings& c = *body.conversion;
   std::string when;

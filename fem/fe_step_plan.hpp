@@ -18,7 +18,7 @@ enum class FeStageKind {
   hexahedra,     // strain rate, stress, bulk viscosity, hourglass, forces (hexahedron_update.cpp)
   trusses,       // truss_update.cpp
   erosion,       // eroded elements leave the mesh, node masses follow (erosion.cpp)
-  conversion,    // converted hexahedra become particles (element_conversion.cpp)
+  conversion,    // retired hexahedra leave the mesh (element_retirement.cpp; particles: coupling/)
 };
 
 struct FeStage {

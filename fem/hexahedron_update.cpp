@@ -57,9 +57,10 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
   const double q_hg = body.hourglass.coefficient;
   const core::ErosionSettings* erosion = body.erosion ? &*body.erosion : nullptr;
   const core::ConversionSettings* conversion = body.conversion ? &*body.conversion : nullptr;
-  // The grid's Courant step for this material at rest, h / c (conversion's time-step criterion).
+  // The retirement domain's Courant step for this material at rest, h / c (conversion's
+  // time-step criterion).
   const double grid_step =
-      conversion ? scene_.mpm.grid.cell /
+      conversion ? retirement_.cell /
                        core::wave_speed(mat, core::PointState{{}, 0.0, 0.0, 0.0, mat.density})
                  : 0.0;
   HexElements& el = hexes_;
@@ -161,7 +162,7 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
     }
     // Conversion first (AFEMP): an element inside the grid that meets a criterion, or inverts
     // with negative_jacobian on, becomes particles; outside the grid erosion still applies.
-    if (conversion && (!failure || conversion->negative_jacobian) && inside_grid(e)) {
+    if (conversion && (!failure || conversion->negative_jacobian) && inside_retirement_domain(e)) {
       const char* reason = failure ? failure : conversion_reason(*conversion, b, e, volume, grid_step);
       if (reason) {
         thread_conversions_[static_cast<std::size_t>(t)].push_back(e);
@@ -419,7 +420,7 @@ void FeSolver::update_hexahedra(double dt) {
     body_stabilisation_[static_cast<std::size_t>(b.body)] += stabilisation() - before;
     raise_thread_errors();
     collect_erosions(hexes_, "hexahedron");
-    collect_conversions();
+    collect_retirements();
   });
   for (std::size_t t = 0; t < thread_errors_.size(); ++t) {
     const double* s = &thread_sums_[t * core::cache_line_doubles];

@@ -153,7 +153,6 @@ core::Energies FeSolver::energies() const {
   for (std::size_t b = 0; b < body_stabilisation_.size(); ++b)
     out.bodies[b].internal += body_stabilisation_[b];
   out.eroded = eroded_energy_;
-  out.converted = converted_energy_;
   out.external_work = external_work_;
   return out;
 }

@@ -30,7 +30,7 @@ struct Energies {
   /// energy, so part of internal, and reported on its own as well.
   double stabilisation = 0.0;
   double eroded = 0.0;         ///< internal + kinetic energy taken away by eroded elements
-  /// Energy lost when hexahedra became particles (AFEMP, fem/element_conversion.cpp): the
+  /// Energy lost when hexahedra became particles (AFEMP, coupling/element_conversion.cpp): the
   /// kinetic energy of the nodes' mass shares less that of the particles, whose velocities are
   /// interpolated from the nodes (never negative), plus any internal energy the particles' equal
   /// mass shares change (fully integrated elements only).

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/scene.hpp"
+#include "taylor_bar_scene.hpp"
 
 namespace {
 
@@ -70,45 +71,10 @@ const char* kBuiltIn = R"(strength = { model = "j2", yield = 157, hardening = 42
 const char* kUser =
     R"(strength = { model = "test-linear-j2", yield_stress = 157, hardening = 425 })";
 
-// A coarse copper Taylor bar at 190 m/s (examples/taylor_bar), particles or hexahedra.
-std::string taylor(const std::string& strength, const std::string& body) {
-  return R"(
-[run]
-end_time = 0.01
-[materials.copper]
-density = 8.93e-3
-E = 117e3
-nu = 0.35
-)" + strength + R"(
-[[bodies]]
-name = "bar"
-material = "copper"
-shape = { cylinder = { base = [0, 0, 0], axis = [0, 0, 1], radius = 3.8, length = 25.4 } }
-velocity = [0, 0, -190]
-)" + body;
-}
-
-const char* kParticles = R"(particles_per_cell = 2
-[grid]
-cell = 1.0
-min = [0, 0, 0]
-max = [10, 10, 26]
-boundary = { xmin = "symmetric", ymin = "symmetric", zmin = "wall" }
-)";
-
-std::string hexahedra(const char* element) {
-  return std::string("discretisation = \"hexahedra\"\nelement = \"") + element + R"("
-mesh = { size = 1.0, sectors = 1 }
-[[constraints]]
-nodes = { plane = { point = [0, 0, 0], normal = [1, 0, 0] } }
-fixed = ["x"]
-[[constraints]]
-nodes = { plane = { point = [0, 0, 0], normal = [0, 1, 0] } }
-fixed = ["y"]
-[[walls]]
-point = [0, 0, 0]
-normal = [0, 0, 1]
-)";
+// The coarse Taylor bar of tests/taylor_bar_scene.hpp with either strength model.
+std::string particles(const char* strength) { return afemp::test::taylor_bar_scene(false, strength); }
+std::string hexahedra(const char* strength, const char* element) {
+  return afemp::test::taylor_bar_scene(true, strength, element);
 }
 
 // A steel bar of 40 trusses clamped at z = 0 and moving at 20 m/s along +z: the tension wave
@@ -196,18 +162,18 @@ void expect_same(const Trace& user, const Trace& built_in, const char* what) {
 
 TEST(UserMaterial, LinearJ2GivesBuiltInJ2TaylorHistoriesInParticles) {
   register_once();
-  expect_same(trace(taylor(kUser, kParticles)), trace(taylor(kBuiltIn, kParticles)), "particles");
+  expect_same(trace(particles(kUser)), trace(particles(kBuiltIn)), "particles");
 }
 
 TEST(UserMaterial, LinearJ2GivesBuiltInJ2TaylorHistoriesInOnePointHexahedra) {
   register_once();
-  expect_same(trace(taylor(kUser, hexahedra("one-point"))),
-              trace(taylor(kBuiltIn, hexahedra("one-point"))), "one-point hexahedra");
+  expect_same(trace(hexahedra(kUser, "one-point")), trace(hexahedra(kBuiltIn, "one-point")),
+              "one-point hexahedra");
 }
 
 TEST(UserMaterial, LinearJ2GivesBuiltInJ2TaylorHistoriesInFullyIntegratedHexahedra) {
   register_once();
-  expect_same(trace(taylor(kUser, hexahedra("full"))), trace(taylor(kBuiltIn, hexahedra("full"))),
+  expect_same(trace(hexahedra(kUser, "full")), trace(hexahedra(kBuiltIn, "full")),
               "fully integrated hexahedra");
 }
 
@@ -220,7 +186,7 @@ TEST(UserMaterial, SceneFileErrorsNameTheKeyAndWhatIsAllowed) {
   register_once();
   auto message = [](const std::string& strength) {
     try {
-      afemp::core::parse_scene(taylor(strength, kParticles), "bad.toml");
+      afemp::core::parse_scene(afemp::test::taylor_bar_scene(false, strength), "bad.toml");
     } catch (const afemp::InputError& e) {
       return std::string(e.what());
     }
@@ -264,7 +230,7 @@ TEST(UserMaterial, RegistrationAndCodeBuiltMaterialsAreChecked) {
   EXPECT_EQ(u.parameters[0], 157.0) << "values in the model's declared order";
   EXPECT_EQ(u.parameters[1], 425.0);
   // A Material built in code with a rejected value: the same check, naming the material.
-  afemp::Scene s = afemp::core::parse_scene(taylor(kBuiltIn, kParticles), "taylor.toml");
+  afemp::Scene s = afemp::core::parse_scene(particles(kBuiltIn), "taylor.toml");
   s.materials[0].strength = afemp::user_strength("test-linear-j2", {{"yield_stress", -5.0},
                                                                     {"hardening", 425.0}});
   try {

@@ -1,5 +1,5 @@
-// Adaptive conversion of hexahedra into particles (AFEMP, fem/element_conversion.cpp and
-// coupling/coupled_model.hpp). References: conservation of mass and linear momentum (the
+// Adaptive conversion of hexahedra into particles (AFEMP: fem/element_retirement.cpp,
+// coupling/element_conversion.cpp and coupling/coupled_model.hpp). References: conservation of mass and linear momentum (the
 // particles take the mass shares and the N-weighted momentum the nodes lose, so both hold to
 // round-off: 1e-12 relative), the kinetic energy the interpolation loses (the sum over the
 // conversion records, booked as `converted`), and the grid domain (no element converts
