@@ -27,11 +27,8 @@ void ludwik(const afemp::StrengthBatch& b) {
   const double A = b.parameters[0], B = b.parameters[1], n = b.parameters[2];
   const double g = b.shear_modulus;
   for (std::size_t j = 0; j < b.count; ++j) {
-    afemp::SymTensor s{b.deviator[0][j], b.deviator[1][j], b.deviator[2][j],
-                       b.deviator[3][j], b.deviator[4][j], b.deviator[5][j]};
-    const afemp::SymTensor de{b.strain_increment[0][j], b.strain_increment[1][j],
-                              b.strain_increment[2][j], b.strain_increment[3][j],
-                              b.strain_increment[4][j], b.strain_increment[5][j]};
+    afemp::SymTensor s = b.deviator_at(j);
+    const afemp::SymTensor de = b.strain_increment_at(j);
     double& alpha = b.history_at(j, 0);
     const double sigma_y = A + B * std::pow(alpha, n);
     s += (2.0 * g) * de;
@@ -52,12 +49,7 @@ void ludwik(const afemp::StrengthBatch& b) {
       s *= flow / q;
     }
     alpha += dp;
-    b.deviator[0][j] = s.xx;
-    b.deviator[1][j] = s.yy;
-    b.deviator[2][j] = s.zz;
-    b.deviator[3][j] = s.yz;
-    b.deviator[4][j] = s.xz;
-    b.deviator[5][j] = s.xy;
+    b.set_deviator(j, s);
     b.plastic_strain_increment[j] = dp;
     b.flow_stress[j] = flow;
   }

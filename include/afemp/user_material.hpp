@@ -14,6 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include "afemp/tensor.hpp"
+
 namespace afemp::core {
 
 /// One batch of material points handed to a user strength model: `count` points, every
@@ -50,6 +52,25 @@ struct StrengthBatch {
 
   /// Variable v of point j.
   double& history_at(std::size_t j, std::size_t v) const { return history[v * count + j]; }
+  /// Point j's deviator (start value before the model writes it).
+  SymTensor deviator_at(std::size_t j) const {
+    return {deviator[0][j], deviator[1][j], deviator[2][j],
+            deviator[3][j], deviator[4][j], deviator[5][j]};
+  }
+  /// Writes point j's deviator at the end of the increment.
+  void set_deviator(std::size_t j, const SymTensor& s) const {
+    deviator[0][j] = s.xx;
+    deviator[1][j] = s.yy;
+    deviator[2][j] = s.zz;
+    deviator[3][j] = s.yz;
+    deviator[4][j] = s.xz;
+    deviator[5][j] = s.xy;
+  }
+  /// Point j's deviatoric strain increment.
+  SymTensor strain_increment_at(std::size_t j) const {
+    return {strain_increment[0][j], strain_increment[1][j], strain_increment[2][j],
+            strain_increment[3][j], strain_increment[4][j], strain_increment[5][j]};
+  }
 };
 
 /// A user strength model: its name, parameters and history variables, and the batch update.
