@@ -3,8 +3,9 @@
 // give the built-in J2 model's histories (Simo & Hughes 1998, box 3.2: the same radial return)
 // to round-off, in particles (whose history is reordered with them), one-point and fully
 // integrated hexahedra, and trusses (whose uniaxial secant search runs batched); its history
-// variable must equal the solver's plastic strain. Bad parameters and names get InputErrors
-// naming the key and what is allowed.
+// variable must equal the solver's plastic strain. A model gets the pressure and temperature it
+// declares it reads (the closed-form p = -tr(sigma) / 3 of a known state), and nothing else.
+// Bad parameters and names get InputErrors naming the key and what is allowed.
 #include <gtest/gtest.h>
 
 #include <afemp/afemp.hpp>
@@ -15,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "core/materials/uniaxial_update.hpp"
 #include "core/scene.hpp"
 #include "taylor_bar_scene.hpp"
 
@@ -231,5 +233,60 @@ TEST(UserMaterial, RegistrationAndCodeBuiltMaterialsAreChecked) {
   } catch (const afemp::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("copper"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("yield_stress must be >= 0"), std::string::npos) << e.what();
+  }
+}
+
+// What a model declares it reads is what it gets: on a bar point under uniaxial stress
+// sigma_xx = -3 p0 at temperature T0, StrengthBatch::pressure holds p0 (p = -tr(sigma) / 3) and
+// temperature T0 when declared, and both are null when not; the density is the end-of-increment
+// one, rho0 / (1 + d_axial (1 - 2 nu)) (Ma 2005, eq 2-40), since an elastic bar takes the
+// lateral strain -nu d_axial at its first and only trial.
+TEST(UserMaterial, BatchCarriesPressureAndTemperatureOnlyWhenDeclared) {
+  struct Seen {
+    const double* pressure = nullptr;
+    const double* temperature = nullptr;
+    double p = 0.0, t = 0.0, rho = 0.0;
+  };
+  static Seen seen;
+  auto record = [](const afemp::StrengthBatch& b) {
+    seen = {b.pressure, b.temperature, b.pressure ? b.pressure[0] : 0.0,
+            b.temperature ? b.temperature[0] : 0.0, b.density[0]};
+    for (std::size_t j = 0; j < b.count; ++j) {
+      afemp::SymTensor s = b.deviator_at(j);
+      s += (2.0 * b.shear_modulus) * b.strain_increment_at(j);
+      b.set_deviator(j, s);
+    }
+  };
+  for (const bool declared : {true, false}) {
+    afemp::UserStrengthDefinition d;
+    d.name = declared ? "test-reads-both" : "test-reads-none";
+    d.reads_pressure = declared;
+    d.reads_temperature = declared;
+    d.update = record;
+    afemp::register_strength_model(d);
+    afemp::core::Material m;
+    m.name = "steel";
+    m.density = 7.85e-3;
+    m.youngs_modulus = 200e3;
+    m.poisson_ratio = 0.3;
+    m.strength = afemp::user_strength(d.name, {});
+    afemp::core::PointState point;
+    const double p0 = 150.0, t0 = 400.0;
+    point.stress = {-3.0 * p0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    point.temperature = t0;
+    point.density = m.density;
+    const afemp::core::UniaxialUpdate u = afemp::core::uniaxial_update(m, point, 1e-4, 1e-3);
+    EXPECT_EQ(u.trials, 1);
+    if (declared) {
+      ASSERT_NE(seen.pressure, nullptr);
+      ASSERT_NE(seen.temperature, nullptr);
+      EXPECT_NEAR(seen.p, p0, 1e-12 * p0);
+      EXPECT_EQ(seen.t, t0);
+    } else {
+      EXPECT_EQ(seen.pressure, nullptr);
+      EXPECT_EQ(seen.temperature, nullptr);
+    }
+    const double d_vol = 1e-4 * (1.0 - 2.0 * m.poisson_ratio);
+    EXPECT_NEAR(seen.rho, m.density / (1.0 + d_vol), 1e-12 * m.density);
   }
 }
