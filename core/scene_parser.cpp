@@ -1215,6 +1215,8 @@ ProbeSpec read_probe(TableReader& r, const Scene& scene) {
 
 }  // namespace
 
+std::vector<std::string_view> builtin_strength_models() { return entry_names(strength_models); }
+
 Scene scene_from_toml(const toml::table& root, const std::string& path) {
   Scene scene;
   scene.path = path;

@@ -107,6 +107,9 @@ class TableReader {
 std::string describe_type(const toml::node& node);
 // "a, b, c" and "\"a\", \"b\"".
 std::string join(const std::vector<std::string>& items, bool quoted);
+// The scene-file names of the built-in strength models (the parser's table), which a user
+// strength model may not take.
+std::vector<std::string_view> builtin_strength_models();
 std::string format_number(double v);
 
 // Builds and checks a Scene from a parsed document.

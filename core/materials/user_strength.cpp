@@ -9,13 +9,11 @@
 
 #include "afemp/errors.hpp"
 #include "afemp/user_material.hpp"
+#include "core/scene_parser.hpp"
 
 namespace afemp::core {
 
 namespace {
-
-// The built-in strength models' scene-file names, which a user model may not take.
-constexpr const char* kBuiltIn[] = {"elastic", "j2", "johnson-cook", "holmquist-johnson-cook"};
 
 struct Registry {
   std::mutex lock;
@@ -31,10 +29,9 @@ Registry& registry() {
   throw InputError({"user strength model registration", 0}, name, message);
 }
 
-std::string join(const std::vector<std::string>& names) {
-  std::string out;
-  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out.empty() ? "(none)" : out;
+// The names for a message: "a, b, c", or "(none)".
+std::string listed(const std::vector<std::string>& names) {
+  return names.empty() ? "(none)" : scene_detail::join(names, false);
 }
 
 }  // namespace
@@ -42,7 +39,7 @@ std::string join(const std::vector<std::string>& names) {
 void register_strength_model(UserStrengthDefinition definition) {
   const std::string name = definition.name;
   if (name.empty()) fail("name", "a user strength model needs a name");
-  for (const char* b : kBuiltIn)
+  for (std::string_view b : scene_detail::builtin_strength_models())
     if (name == b) fail(name, "is a built-in strength model; choose another name");
   if (!definition.update) fail(name, "has no update function");
   if (!definition.initial_history.empty() &&
@@ -74,7 +71,7 @@ std::shared_ptr<const UserStrengthDefinition> find_strength_model(const std::str
     if (it != r.models.end()) return it->second;
   }
   fail(name, "no user strength model of that name is registered; registered: " +
-                 join(registered_strength_models()));
+                 listed(registered_strength_models()));
 }
 
 std::vector<std::string> registered_strength_models() {
@@ -92,12 +89,12 @@ UserStrength user_strength(const std::string& name,
   const std::vector<std::string>& declared = u.definition->parameters;
   for (const auto& [key, value] : parameters)
     if (std::find(declared.begin(), declared.end(), key) == declared.end())
-      fail(name, "unknown parameter '" + key + "'; the model's parameters: " + join(declared));
+      fail(name, "unknown parameter '" + key + "'; the model's parameters: " + listed(declared));
   for (const std::string& key : declared) {
     const auto it = std::find_if(parameters.begin(), parameters.end(),
                                  [&](const auto& kv) { return kv.first == key; });
     if (it == parameters.end())
-      fail(name, "parameter '" + key + "' missing; the model's parameters: " + join(declared));
+      fail(name, "parameter '" + key + "' missing; the model's parameters: " + listed(declared));
     u.parameters.push_back(it->second);
   }
   return u;
