@@ -23,7 +23,7 @@
 
 namespace afemp::coupling {
 
-CoupledModel::CoupledModel(const core::Scene& scene) : scene_(scene), fe_(scene), mpm_(scene) {
+CoupledModel::CoupledModel(const core::Scene& scene) : scene_(scene), fe_(scene), mpm_(scene), points_(scene) {
   const std::size_t nb = scene.bodies.size();
   std::vector<char> in_contact(nb, 0);
   for (const core::ContactSpec& c : scene.contacts)
@@ -54,7 +54,7 @@ CoupledModel::CoupledModel(const core::Scene& scene) : scene_(scene), fe_(scene)
   fe().set_retirement_domain({g.min, g.max, g.cell, scene.has_grid});
   bool converts = false;
   for (const core::BodySpec& body : scene.bodies) converts = converts || body.conversion;
-  if (!fe_node_.empty() || converts) mpm().set_node_points(&points_);
+  if (!fe_node_.empty() || converts) mpm().set_grid_points(&points_);
 }
 
 std::size_t CoupledModel::add_point(std::size_t i, bool bonded, bool surface) {

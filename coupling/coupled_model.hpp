@@ -14,7 +14,8 @@
 // Mesh bodies in neither take no part in the grid step. One step with dt = the smaller of the
 // FE and grid stable steps:
 //   1. FE: v^{n+1/2} of the free and contact nodes from the element forces at x^n;
-//   2. grid: particles and coupled nodes (mpm/node_points.hpp), the scene's MPM scheme;
+//   2. grid: particles and coupled nodes (node_points.hpp, through the
+//      MPM solver's grid-points hook), the scene's MPM scheme;
 //   3. contact nodes add the contact change; bonded nodes move with the grid velocity;
 //   4. FE: x^{n+1} of the other nodes, then element stress and forces at x^{n+1}.
 #pragma once
@@ -26,10 +27,10 @@
 
 #include "core/scene.hpp"
 #include "core/time_loop.hpp"
+#include "coupling/node_points.hpp"
 #include "coupling/surface_normals.hpp"
 #include "fem/fe_model.hpp"
 #include "mpm/mpm_model.hpp"
-#include "mpm/node_points.hpp"
 
 namespace afemp::coupling {
 
@@ -43,7 +44,7 @@ class CoupledModel final : public core::Model {
   mpm::MpmSolver& mpm() { return mpm_.solver(); }
   const mpm::MpmSolver& mpm() const { return mpm_.solver(); }
   // The FE nodes the grid step carries, and the FE node of each.
-  const mpm::NodePoints& node_points() const { return points_; }
+  const NodePoints& node_points() const { return points_; }
   const std::vector<std::size_t>& coupled_nodes() const { return fe_node_; }
 
   double stable_time_step() const override;
@@ -84,7 +85,7 @@ class CoupledModel final : public core::Model {
   const core::Scene& scene_;
   fem::FeModel fe_;
   mutable mpm::MpmModel mpm_;  // describe() bins the particles
-  mpm::NodePoints points_;
+  NodePoints points_;
   std::vector<std::size_t> fe_node_;   // FE node of each node point
   std::vector<std::int64_t> point_of_node_;  // node point of each FE node, or -1
   std::vector<std::uint8_t> driven_;         // FE nodes the grid moves (bonded)

@@ -140,7 +140,7 @@ void MpmSolver::contact_surfaces_kernel() {
     for (int n = 0; n < Stencil::nodes; ++n)
       g.mass_gradient[s[static_cast<std::size_t>(n)]] += p.mass[i] * st.grad(n);
   });
-  nodes_contact_surfaces(true);
+  if (points_) points_->contact_surfaces(access(), true);
   // Each field's outward normal against the fields it meets at the node, where it meets one
   // it is in contact with; zero elsewhere.
 #pragma omp parallel if (core::worth_threads(stride))
@@ -188,7 +188,7 @@ void MpmSolver::contact_surfaces_kernel() {
       if (r > g.reach[k]) g.reach[k] = r;
     }
   });
-  nodes_contact_surfaces(false);
+  if (points_) points_->contact_surfaces(access(), false);
 }
 
 void MpmSolver::contact_surfaces() {
@@ -206,8 +206,9 @@ void MpmSolver::grid_contact(ContactPass pass) {
   const double h = g.cell();
   const int nt = core::thread_count();
   thread_sums_.assign(static_cast<std::size_t>(nt) * core::cache_line_doubles, 0.0);
-  // FE contact nodes receive the change this pass makes to their field (node_transfers.cpp).
-  const bool record = update && nodes_;
+  // Self-updating grid points receive the change this pass makes to their field
+  // (grid_points.hpp).
+  const bool record = update && points_;
   if (record) contact_change_.assign(g.field_slot_count(), Vec3{});
 #pragma omp parallel num_threads(nt) if (core::worth_threads(stride))
   {

@@ -149,8 +149,9 @@ void MpmSolver::grid_momentum_update(double dt) {
       if (c.any()) wall_contact_[s] = static_cast<std::uint8_t>(wall);
       g.velocity[s] = v;
       g.velocity_new[s] = v_new;
-      // A field of FE contact nodes only: the FE update counted its gravity work.
-      const bool counted = !field_nodes_only_.empty() && field_nodes_only_[static_cast<std::size_t>(f)];
+      // A field of self-updating points only: their owner counted its gravity work.
+      const bool counted =
+          !field_self_updated_.empty() && field_self_updated_[static_cast<std::size_t>(f)];
       if (!shared || !(shared_.mass[s] > 0.0)) {
         if (body_force && !counted) work += 0.5 * dt * m * core::dot(gravity, v + v_new);
         continue;
@@ -161,7 +162,7 @@ void MpmSolver::grid_momentum_update(double dt) {
       // particles' update (apply_shared_shifts). Its gravity work is the part's alone.
       const double mo = m - shared_.mass[s];
       Vec3 start, updated;
-      if (mo > shared_fraction * m) {
+      if (mo > SelfUpdatedShare::fraction * m) {
         Vec3 vo, vo_new;
         integrate(g.momentum[s] - shared_.start[s], g.force[s] - shared_.updated[s], 1.0 / mo,
                   dt, c, vo, vo_new);

@@ -31,7 +31,7 @@ void MpmSolver::grid_to_particle(double dt, bool move_positions) {
   apply_shared_shifts();
   with_stencil(
       [&]<class Stencil, bool Affine>() { g2p_kernel<Stencil, Affine>(dt, move_positions); });
-  nodes_from_grid(dt);
+  if (points_) points_->from_grid(access());
 }
 
 }  // namespace afemp::mpm

@@ -105,8 +105,9 @@ void MpmSolver::add_particles(const Particles& more) {
                             p.history_count);
     if (!p.half_width.empty())
       p.half_width[i] = std::min(0.5, 0.5 * std::cbrt(p.volume[i]) * grid_.inverse_cell());
-    if (!field_nodes_only_.empty())
-      field_nodes_only_[static_cast<std::size_t>(field_of_body_[static_cast<std::size_t>(p.body[i])])] = 0;
+    if (!field_self_updated_.empty())
+      field_self_updated_[static_cast<std::size_t>(
+          field_of_body_[static_cast<std::size_t>(p.body[i])])] = 0;
   }
   if (plan_.shape == core::ShapeFunction::gimp) velocity_gradient_.resize(p.size());
   reorder_particles();

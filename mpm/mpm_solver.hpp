@@ -10,7 +10,7 @@
 #include "afemp/energies.hpp"
 #include "core/grid/background_grid.hpp"
 #include "core/scene.hpp"
-#include "mpm/node_points.hpp"
+#include "mpm/grid_points.hpp"
 #include "mpm/particles.hpp"
 #include "mpm/stencil.hpp"
 #include "mpm/step_plan.hpp"
@@ -52,9 +52,9 @@ class MpmSolver {
   const std::vector<long>& stage_counts() const { return stage_counts_; }
   const std::vector<double>& stage_seconds() const { return stage_seconds_; }
   double reorder_seconds() const { return reorder_seconds_; }
-  // FE nodes that join the grid step from now on (coupling/); the caller fills them before
-  // each step and reads back what the step wrote (node_points.hpp). nullptr: none.
-  void set_node_points(NodePoints* nodes);
+  // Points that join the grid step from now on (grid_points.hpp; coupling/ puts FE nodes on
+  // the grid this way). nullptr: none. Throws std::invalid_argument with the USL scheme.
+  void set_grid_points(GridPoints* points);
   // Appends particles made during the run (hexahedra converted into particles, coupling/):
   // their ids continue after the largest so far, the arrays the scene asks for (strain, uGIMP
   // half width, APIC affine velocity) are filled as at the start, and the material batches are
@@ -120,13 +120,8 @@ class MpmSolver {
   // components the face conditions constrain.
   void apply_velocity_conditions(std::vector<Vec3>& field, bool divide_by_mass);
   void strain_stress_update(double dt);
-  // The FE nodes' part of each transfer (node_points.hpp), after the particles' and in node
-  // order (one thread: deterministic; there are few of them).
-  void nodes_to_grid(bool mass_momentum, bool force);
-  void nodes_from_grid(double dt);
-  void nodes_remap();
-  void nodes_contact_surfaces(bool gradient);  // mass gradient, or reach (eqs 37, 42)
-  void bin_nodes();
+  // What the grid points' owner may read and write during a stage (grid_points.hpp).
+  GridStepAccess access();
   template <class Strength, class Eos, bool Thermal, bool Fused>
   void strain_stress_batch(const MaterialBatch& batch, const Strength& strength, const Eos& eos,
                            double dt, int thread_slot_offset);
@@ -166,26 +161,16 @@ class MpmSolver {
   std::vector<Vec3> contact_normal_;  // unit normal of each field at its contact nodes, or 0
   std::vector<std::uint8_t> contact_node_;  // per slot: where normals are needed (grid_contact.cpp)
   double contact_energy_ = 0.0;       // kinetic energy the contact took out (Energies::contact)
-  // Coupled FE nodes, and the velocity change grid contact made to each field at each node
-  // in the update pass (what contact nodes receive); field_nodes_only_: the field holds FE
-  // contact nodes only, whose gravity work the FE update counts.
-  NodePoints* nodes_ = nullptr;
+  // Points that join the grid step (grid_points.hpp), and the velocity change grid contact
+  // made to each field at each slot in the update pass (what self-updating points receive);
+  // field_self_updated_: the field holds self-updating points only, whose gravity work their
+  // owner counts.
+  GridPoints* points_ = nullptr;
   std::vector<Vec3> contact_change_;
-  std::vector<char> field_nodes_only_;
-  // A converting body in contact: its contact nodes share its field with its particles and
-  // the nodes bonded to them. The contact nodes take their own FE update, so the particles
-  // must take theirs from their own part of the field, or the nodes' velocity change would
-  // reach the particles as well (momentum created). Per slot: the contact nodes' mass,
-  // momentum (start) and force (updated), from nodes_to_grid; grid_momentum_update replaces
-  // start and updated with the shift of the field's start and updated velocities to the
-  // particles' part (0 where the part has under shared_fraction of the mass), which
-  // apply_shared_shifts adds after contact.
-  struct SharedFields {
-    bool any = false;  // some contact node maps into a field shared this step
-    std::vector<double> mass;
-    std::vector<Vec3> start, updated;
-  } shared_;
-  static constexpr double shared_fraction = 1e-9;
+  std::vector<char> field_self_updated_;
+  // Self-updating points in a field shared with particles (grid_points.hpp).
+  SelfUpdatedShare shared_;
+  // Adds the shifts of shared_ to the grid velocities after contact (grid_to_particle.cpp).
   void apply_shared_shifts();
   double step_dt_ = 0.0;
 

@@ -73,32 +73,8 @@ void MpmSolver::bin_particles() {
           static_cast<std::int32_t>(i);
   }
   raise_if_bad("position");
-  bin_nodes();
+  if (points_) points_->bin(access(), cell_);
   grid_.activate(cell_);
-}
-
-void MpmSolver::bin_nodes() {
-  if (!nodes_) return;
-  NodePoints& q = *nodes_;
-  for (std::size_t k = 0; k < q.size(); ++k) {
-    const Vec3& x = q.position[k];
-    const auto c = grid_.cell_of(x);
-    const bool inside = std::isfinite(x.x + x.y + x.z) && grid_.inside(c);
-    q.on_grid[k] = inside && q.mass[k] > 0.0;
-    if (q.on_grid[k]) cell_.push_back(grid_.linear_cell(c));
-    // A contact node off the grid moves by the FE update alone; a bonded one has lost its host.
-    if (!inside && q.bonded[k] && q.mass[k] > 0.0) {
-      std::ostringstream who, what;
-      who << "node " << k << " of body '" << scene_.bodies[static_cast<std::size_t>(q.body[k])].name
-          << "' at (" << x.x << ", " << x.y << ", " << x.z << ")";
-      what << (std::isfinite(x.x + x.y + x.z)
-                   ? "a node bonded to the grid (a bonded_to body's node, or a node shared with "
-                     "elements converted into particles) left the grid domain (enlarge [grid] "
-                     "min/max to cover where the body goes)"
-                   : "became NaN or Inf");
-      throw core::SimulationError(steps_, time_, who.str(), "position", what.str());
-    }
-  }
 }
 
 }  // namespace afemp::mpm

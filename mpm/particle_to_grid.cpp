@@ -111,7 +111,7 @@ void MpmSolver::particle_to_grid(bool mass_momentum, bool force) {
       p2g_kernel<Stencil, Affine, false, true, false>();
     }
   });
-  nodes_to_grid(mass_momentum, force);
+  if (points_) points_->to_grid(access(), mass_momentum, force);
 }
 
 template <class Stencil, bool Affine>
@@ -137,7 +137,7 @@ void MpmSolver::remap_kernel() {
             node_momentum<Stencil, Affine>(st, n, m, mv, p, i);
     }
   });
-  nodes_remap();
+  if (points_) points_->remap(access());
   apply_velocity_conditions(g.velocity_remap, true);
   // A wall node held this step (its v or v_new pointed into the wall) did not move
   // normally (positions move with v_new): its remapped normal velocity is zeroed too, or

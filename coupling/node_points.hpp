@@ -9,18 +9,28 @@
 //     around them, interpolated to each node: sum N_I dv_I. Since the field's nodal mass is
 //     sum_n N_I m_n, the nodes receive exactly the impulse the contact gave their field.
 // A node outside the grid takes no part in the step (contact) or stops the run (bonded).
+// They join the MPM solver's step through its neutral grid-points hook (mpm/grid_points.hpp);
+// the transfers are in node_transfers.cpp.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
 #include "afemp/tensor.hpp"
+#include "core/scene.hpp"
+#include "mpm/grid_points.hpp"
 
-namespace afemp::mpm {
+namespace afemp::coupling {
 
 using core::Vec3;
 
-struct NodePoints {
+class NodePoints final : public mpm::GridPoints {
+ public:
+  // Contact nodes take their own (FE) update; a bonded_to body's nodes move with the grid.
+  explicit NodePoints(const core::Scene& scene) {
+    for (const core::BodySpec& body : scene.bodies) updates_itself_.push_back(body.bonded_to < 0);
+  }
+
   // Set by the caller before each step.
   std::vector<Vec3> position;  // x^n
   std::vector<Vec3> velocity;  // bonded: the node's velocity; contact: v^{n-1/2}
@@ -54,6 +64,20 @@ struct NodePoints {
     motion.resize(n);
     on_grid.resize(n);
   }
+
+  // The hook (node_transfers.cpp). A body's nodes that are not bonded take their own update,
+  // even where conversion bonds some of them: the grid learns that from its particles.
+  bool updates_itself(int body) const override {
+    return updates_itself_[static_cast<std::size_t>(body)] != 0;
+  }
+  void bin(const mpm::GridStepAccess& access, std::vector<std::int64_t>& cells) override;
+  void to_grid(const mpm::GridStepAccess& access, bool mass_momentum, bool force) override;
+  void contact_surfaces(const mpm::GridStepAccess& access, bool gradient) override;
+  void from_grid(const mpm::GridStepAccess& access) override;
+  void remap(const mpm::GridStepAccess& access) override;
+
+ private:
+  std::vector<char> updates_itself_;  // per scene body
 };
 
-}  // namespace afemp::mpm
+}  // namespace afemp::coupling

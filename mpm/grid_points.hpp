@@ -1,0 +1,86 @@
+// A neutral hook of the MPM solver: points that are not its particles but join its grid step.
+// Their owner (coupling/: FE nodes for the contact and bonded couplings, Lian et al. 2013,
+// §2.4 and §2.6) scatters them to the grid and gathers from it at the stages of the step; the
+// solver knows nothing of what they are. Each method is called once per stage, never per point,
+// after the particles' part of the stage, so the sums keep their order (same bits for a given
+// thread count).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "afemp/tensor.hpp"
+#include "core/grid/background_grid.hpp"
+#include "core/scene.hpp"
+#include "mpm/particles.hpp"
+#include "mpm/step_plan.hpp"
+
+namespace afemp::mpm {
+
+using core::Vec3;
+
+// Points that take their own update (their owner integrates them) yet map into a velocity field
+// that also holds particles (a converting body's contact nodes share its field with its
+// particles). The particles must then take their update from their own part of the field, or
+// the points' velocity change would reach them as well (momentum created). Per slot: the
+// self-updating points' mass, momentum (start) and force (updated), which the owner adds in
+// GridPoints::to_grid; the grid momentum update replaces start and updated with the shift of
+// the field's start and updated velocities to the particles' part (0 where that part has under
+// `fraction` of the mass), which the solver adds after contact.
+struct SelfUpdatedShare {
+  static constexpr double fraction = 1e-9;
+  bool any = false;  // some self-updating point maps into a shared field this step
+  std::vector<double> mass;
+  std::vector<Vec3> start, updated;
+};
+
+// What the solver lends the points' owner for one stage.
+struct GridStepAccess {
+  core::BackgroundGrid& grid;
+  const core::Scene& scene;
+  const StepPlan& plan;
+  const Particles& particles;  // for the stencils' constructor (they read no particle)
+  // The velocity field of each scene body (multi_field false: one field for all).
+  const std::vector<int>& field_of_body;
+  bool multi_field;
+  // Per field: it meets a field it is in contact with; it holds self-updating points only.
+  const std::vector<char>& field_in_contact;
+  const std::vector<char>& field_self_updated;
+  // Per field slot: each field's unit contact normal (0 where none), and the velocity change
+  // grid contact made in the update pass (empty before the first update pass).
+  const std::vector<Vec3>& contact_normal;
+  const std::vector<Vec3>& contact_change;
+  SelfUpdatedShare& share;
+  double dt;    // this step's
+  long step;    // steps done before this one
+  double time;  // at the step's start
+
+  // Offset of a body's velocity field in the nodal arrays.
+  std::size_t field_offset(int body) const {
+    return multi_field ? static_cast<std::size_t>(field_of_body[static_cast<std::size_t>(body)]) *
+                             grid.slot_count()
+                       : 0;
+  }
+};
+
+class GridPoints {
+ public:
+  virtual ~GridPoints() = default;
+  // The body's points take their own update: their owner counts their gravity work, and a
+  // field that holds only such points and no particle leaves it out of the grid's.
+  virtual bool updates_itself(int body) const = 0;
+  // Binning: appends the linear cell of each point on the grid to `cells` (their grid blocks
+  // become active); throws core::SimulationError for a point that must not leave the grid.
+  virtual void bin(const GridStepAccess& access, std::vector<std::int64_t>& cells) = 0;
+  // Mass and momentum (mass_momentum) and force (force) into the grid.
+  virtual void to_grid(const GridStepAccess& access, bool mass_momentum, bool force) = 0;
+  // Grid contact's surfaces: the mass gradient (gradient), then the reach along the normals.
+  virtual void contact_surfaces(const GridStepAccess& access, bool gradient) = 0;
+  // The updated grid velocities back to the points (after contact's update pass).
+  virtual void from_grid(const GridStepAccess& access) = 0;
+  // The points' updated momentum into grid.velocity_remap (MUSL).
+  virtual void remap(const GridStepAccess& access) = 0;
+};
+
+}  // namespace afemp::mpm
