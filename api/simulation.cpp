@@ -1,10 +1,12 @@
 // afemp::Simulation (include/afemp/simulation.hpp): the scene checked, the model the scene
 // describes (coupling::make_model, as `afemp run` makes it), and the run loop of
-// core/time_loop.cpp advanced a step at a time, with views of the solvers' arrays between steps.
+// core/time_loop.cpp advanced a step at a time, with views of the solvers' arrays between steps;
+// at the end, the scene's reference checks (analysis/reference_checks.cpp).
 #include "afemp/simulation.hpp"
 
 #include <utility>
 
+#include "analysis/reference_checks.hpp"
 #include "core/scene.hpp"
 #include "core/time_loop.hpp"
 #include "coupling/coupled_model.hpp"
@@ -117,7 +119,9 @@ RunSummary Simulation::finish() {
   if (impl_->finished_run)
     throw std::logic_error("afemp::Simulation: finish() was called already");
   impl_->finished_run = true;
-  return impl_->loop->finish();
+  RunSummary summary = impl_->loop->finish();
+  analysis::check_references(*impl_->model, impl_->scene, summary);
+  return summary;
 }
 
 void Simulation::on_step(StepCallback callback) { impl_->callbacks.push_back(std::move(callback)); }

@@ -11,12 +11,13 @@
 
 #include "apps/progress_line.hpp"
 #include "afemp/errors.hpp"
+#include "analysis/reference_checks.hpp"
+#include "analysis/study.hpp"
+#include "analysis/study_file.hpp"
 #include "core/output/run_directory.hpp"
 #include "core/parallel.hpp"
-#include "core/study_file.hpp"
 #include "core/time_loop.hpp"
 #include "coupling/make_model.hpp"
-#include "coupling/study.hpp"
 
 namespace {
 
@@ -59,7 +60,7 @@ int run(const std::string& path, std::string out_dir) {
   std::printf("afemp run %s -> %s (%d thread(s))\n", path.c_str(), out_dir.c_str(),
               core::thread_count());
   try {
-    const core::RunSummary s = core::run(*model, scene, options);
+    const core::RunSummary s = analysis::run(*model, scene, options);
     progress.finish();
     apps::print_summary(stdout, scene, s);
     core::OutputPaths paths;
@@ -80,23 +81,23 @@ int run(const std::string& path, std::string out_dir) {
 
 // `afemp study FILE [-o DIR] [--threads N]`: --threads overrides the study's own threads.
 int study(const std::string& path, std::string out_dir, int threads) {
-  core::StudyPlan plan = core::read_study(path);
+  analysis::StudyPlan plan = analysis::read_study(path);
   if (threads > 0) plan.threads = threads;
   if (out_dir.empty()) out_dir = core::default_output_directory(path);
   std::printf("afemp study %s -> %s: %zu runs\n", path.c_str(), out_dir.c_str(), plan.runs.size());
   std::size_t done = 0;
-  const coupling::StudyResult result =
-      coupling::run_study(plan, [&](const coupling::StudyResult& so_far, const coupling::StudyRow& row) {
+  const analysis::StudyResult result =
+      analysis::run_study(plan, [&](const analysis::StudyResult& so_far, const analysis::StudyRow& row) {
         std::printf("[%zu/%zu] %s\n", ++done, plan.runs.size(),
-                    coupling::describe_row(so_far, row).c_str());
+                    analysis::describe_row(so_far, row).c_str());
         std::fflush(stdout);
       });
-  coupling::write_study(plan, result, out_dir);
-  const coupling::StudyFiles files;
+  analysis::write_study(plan, result, out_dir);
+  const analysis::StudyFiles files;
   std::printf("output: %s/%s, %s/%s, %s/%s\n", out_dir.c_str(), files.csv.c_str(), out_dir.c_str(),
               files.markdown.c_str(), out_dir.c_str(), files.plot.c_str());
   const bool all_ok = std::all_of(result.rows.begin(), result.rows.end(),
-                                  [](const coupling::StudyRow& r) { return r.ok(); });
+                                  [](const analysis::StudyRow& r) { return r.ok(); });
   return all_ok ? 0 : exit_check_failed;
 }
 

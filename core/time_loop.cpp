@@ -1,6 +1,7 @@
 // The run loop of core/time_loop.hpp: stable step, output at the requested interval, history
-// rows, progress and the summary (its reference checks: core/reference_checks.cpp). Moved here
-// from the MPM solver so that FE and coupled runs share it.
+// rows, progress and the summary (the scene's reference checks come after it, from
+// analysis/reference_checks.cpp). Moved here from the MPM solver so that FE and coupled runs
+// share it.
 #include "core/time_loop.hpp"
 
 #include <algorithm>
@@ -14,7 +15,6 @@
 #include "core/output/history.hpp"
 #include "core/probe_recorder.hpp"
 #include "core/output/run_directory.hpp"
-#include "core/reference_checks.hpp"
 
 namespace afemp::core {
 
@@ -226,16 +226,9 @@ RunSummary TimeLoop::finish() {
   sum.stages = model_.stage_timings();
   sum.field_frames = frames_ ? frames_->frames() : 0;
   if (sum.min_dt > sum.max_dt) sum.min_dt = sum.max_dt = dt_;
-  check_references(model_, scene_, sum);
   if (options_.progress)
     options_.progress({sum.steps, sum.time, dt_, rs.end_time, sum.wall_seconds, sum.energy_error});
   return sum;
-}
-
-RunSummary run(Model& model, const Scene& scene, const RunOptions& options) {
-  TimeLoop loop(model, scene, options);
-  while (!loop.finished()) loop.step(scene.run.end_time);
-  return loop.finish();
 }
 
 }  // namespace afemp::core

@@ -33,8 +33,8 @@ class EventFiles;
 class HistoryWriter;
 class ProbeRecorder;
 
-// The loop of one run, a step at a time (the library's Simulation steps it; run() below drives
-// it to the end): the constructor writes the first history row and frame, step() advances the
+// The loop of one run, a step at a time (the library's Simulation steps it;
+// analysis::run drives it to the end): the constructor writes the first history row and frame, step() advances the
 // model and writes what falls due, finish() writes the final row and frame and the summary.
 // Throws core::SimulationError from the model after writing what led up to it.
 class TimeLoop {
@@ -47,7 +47,8 @@ class TimeLoop {
   bool finished() const;
   // One step at the stable step, cut to land on `until` (at most the end time).
   void step(double until);
-  // The final history row, probe sample and frame, and the summary with the reference checks.
+  // The final history row, probe sample and frame, and the summary (without the scene's
+  // reference checks: analysis/reference_checks.hpp adds them).
   RunSummary finish();
 
  private:
@@ -73,9 +74,5 @@ class TimeLoop {
   double dt_ = 0.0;
   double next_output_ = 0.0, next_progress_ = 0.0, last_error_ = 0.0;
 };
-
-// Runs `model` to scene.run.end_time (or max_steps, or [run] terminate). Throws core::SimulationError from the
-// model after flushing what was written.
-RunSummary run(Model& model, const Scene& scene, const RunOptions& options);
 
 }  // namespace afemp::core

@@ -20,8 +20,9 @@
 #include <string>
 #include <vector>
 
+#include "analysis/reference_checks.hpp"
 #include "core/scene.hpp"
-#include "core/signal_metrics.hpp"
+#include "analysis/signal_metrics.hpp"
 #include "core/time_loop.hpp"
 #include "coupling/make_model.hpp"
 #include "fem/fe_model.hpp"
@@ -38,7 +39,7 @@ core::RunSummary run_text(const std::string& text, const std::string& directory 
   core::RunOptions options;
   options.output_directory = directory;
   options.write_fields = false;
-  return core::run(*model, scene, options);
+  return analysis::run(*model, scene, options);
 }
 
 const core::ProbeSeries& series(const core::RunSummary& s, const std::string& name) {
@@ -97,7 +98,7 @@ extreme = { field = "speed", box = { min = [-5, -5, -5], max = [30, 5, 10] } }
 TEST(Probes, RigidTranslationReadsX0PlusV0TAndMeanVelocityIsMomentumOverMass) {
   const core::Scene scene = core::parse_scene(free_blocks, "scene.toml");
   const auto model = make_model(scene);
-  const core::RunSummary s = core::run(*model, scene, {});
+  const core::RunSummary s = analysis::run(*model, scene, {});
   ASSERT_EQ(s.probes.size(), 6u);
   // The particle nearest (2, 2, 4): the lattice's top corner particle at (1.75, 1.75, 3.75).
   const core::ProbeSeries& p = series(s, "corner");
@@ -199,11 +200,11 @@ TEST(Probes, FixedFreeBarFrontSpeedFrequencyAndStressBehindTheFront) {
     std::vector<double> t, q;
     for (std::size_t r = 0; r < p.rows() && p.time[r] < 55.0 / c; ++r)
       t.push_back(p.time[r]), q.push_back(p.at(r, 5));
-    return core::arrival_time(t, q, 0.5);
+    return analysis::arrival_time(t, q, 0.5);
   };
   const double ta = first_passage(a), tb = first_passage(b);
   const double speed = (b.at(0, 2) - a.at(0, 2)) / (tb - ta);
-  const double f = core::zero_crossing_frequency(tip.time, tip.series(5));
+  const double f = analysis::zero_crossing_frequency(tip.time, tip.series(5));
   std::printf("front speed %.1f (c = %.1f, %+.2f %%), first axial frequency %.3f /ms (c / 4L = "
               "%.3f, %+.2f %%)\n", speed, c, 100 * (speed / c - 1), f, c / (4 * length),
               100 * (f * 4 * length / c - 1));
@@ -262,7 +263,7 @@ name = "tip"
 particle = { body = "bar", near = [0, 0, 30] }
 )");
   const core::ProbeSeries& tip = series(s, "tip");
-  const double f = core::zero_crossing_frequency(tip.time, tip.series(5));
+  const double f = analysis::zero_crossing_frequency(tip.time, tip.series(5));
   std::printf("particles: first axial frequency %.3f /ms (c / 4L = %.3f, %+.2f %%)\n", f,
               c / (4 * l), 100 * (f * 4 * l / c - 1));
   EXPECT_NEAR(f, c / (4.0 * l), 0.03 * c / (4.0 * l));
@@ -275,7 +276,7 @@ TEST(Probes, AnErodedElementLeavesNanRows) {
                            "[[probes]]\nname = \"e0\"\nelement = { body = \"bar\", index = 0 }\n";
   const core::Scene scene = core::parse_scene(text, "scene.toml");
   fem::FeModel model(scene);
-  core::RunSummary s = core::run(model, scene, {});
+  core::RunSummary s = analysis::run(model, scene, {});
   const core::ProbeSeries& e = series(s, "e0");
   const std::size_t element = 0;
   ASSERT_FALSE(model.solver().hexahedra().alive[element]);
@@ -299,7 +300,7 @@ TEST(Probes, NamingWhatTheBodyLacksStopsTheRunWithLineKeyAndRange) {
     const core::Scene scene = core::parse_scene(text, "scene.toml");
     const auto model = make_model(scene);
     try {
-      core::run(*model, scene, {});
+      analysis::run(*model, scene, {});
     } catch (const core::InputError& e) {
       return e.what();
     }

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "analysis/reference_checks.hpp"
 #include "core/scene.hpp"
 #include "fem/fe_model.hpp"
 
@@ -55,7 +56,7 @@ Rebound rebound(const std::string& label, double v0, Edits edits) {
   }
   const core::Scene scene = elastic_bar(edits);
   FeModel model(scene);
-  const core::RunSummary s = core::run(model, scene, {});
+  const core::RunSummary s = analysis::run(model, scene, {});
   const core::BodySums& bar = s.final.bodies.at(0);
   const FeNodes& n = model.solver().nodes();
   double lowest = 1e300;

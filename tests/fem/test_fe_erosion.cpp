@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "afemp/errors.hpp"
+#include "analysis/reference_checks.hpp"
 #include "core/output/history.hpp"
 #include "core/scene.hpp"
 #include "fem/fe_model.hpp"
@@ -76,7 +77,7 @@ TEST(Erosion, ErodedElementsAreRecordedAndTheEnergyBalanceCloses) {
   core::RunOptions options;
   options.output_directory = dir.str();
   options.write_fields = false;
-  const core::RunSummary s = core::run(model, scene, options);
+  const core::RunSummary s = analysis::run(model, scene, options);
 
   const FeSolver& solver = model.solver();
   const HexElements& h = solver.hexahedra();

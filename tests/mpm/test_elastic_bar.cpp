@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "analysis/reference_checks.hpp"
 #include "core/scene.hpp"
 #include "mpm/mpm_model.hpp"
 
@@ -42,7 +43,7 @@ struct Rebound {
 Rebound run(const std::string& scheme, double factor, const std::string& method = "") {
   const core::Scene scene = elastic_bar(scheme, factor, method);
   MpmModel sim(scene);
-  const core::RunSummary s = core::run(sim, scene, {});
+  const core::RunSummary s = analysis::run(sim, scene, {});
   const BodySums& bar = s.final.bodies.at(0);
   const Rebound r{bar.momentum.z / bar.mass, s.max_energy_error, s.energy_error,
                   s.final.kinetic / s.initial.kinetic};

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "afemp/errors.hpp"
+#include "analysis/reference_checks.hpp"
 #include "core/output/history.hpp"
 #include "core/scene.hpp"
 #include "mpm/mpm_model.hpp"
@@ -53,7 +54,7 @@ TEST(Guard, UnstableTimeStepStopsWithStepParticleAndFieldAndKeepsOutput) {
   options.output_directory = out;
   bool thrown = false;
   try {
-    core::run(sim, scene, options);
+    analysis::run(sim, scene, options);
   } catch (const core::SimulationError& e) {
     thrown = true;
     const std::string what = e.what();
@@ -95,7 +96,7 @@ TEST(Guard, ParticleLeavingTheGridStopsTheRunWithFieldPosition) {
       "leave.toml");
   MpmModel sim(scene);
   try {
-    core::run(sim, scene, core::RunOptions{});
+    analysis::run(sim, scene, core::RunOptions{});
     FAIL() << "the body left the grid without an error";
   } catch (const core::SimulationError& e) {
     const std::string what = e.what();

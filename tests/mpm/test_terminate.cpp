@@ -5,6 +5,7 @@
 #include <string>
 
 #include "afemp/errors.hpp"
+#include "analysis/reference_checks.hpp"
 #include "core/scene.hpp"
 #include "core/time_loop.hpp"
 #include "mpm/mpm_model.hpp"
@@ -31,7 +32,7 @@ TEST(Terminate, RunStopsAtTheFirstHistoryRowPastTheTravel) {
       drifting_block("terminate = { body = \"block\", travel = 0.1 }\n"), "t.toml");
   ASSERT_TRUE(scene.run.terminate.has_value());
   MpmModel sim(scene);
-  const core::RunSummary s = core::run(sim, scene, {});
+  const core::RunSummary s = analysis::run(sim, scene, {});
   EXPECT_EQ(s.steps, 21);
   EXPECT_NEAR(s.time, 0.0021, 1e-12);
   EXPECT_NE(s.terminated.find("body 'block' travelled 0.105"), std::string::npos) << s.terminated;
@@ -39,7 +40,7 @@ TEST(Terminate, RunStopsAtTheFirstHistoryRowPastTheTravel) {
   core::Scene short_run = plain;
   short_run.run.end_time = 0.005;
   MpmModel free_run(short_run);
-  const core::RunSummary f = core::run(free_run, short_run, {});
+  const core::RunSummary f = analysis::run(free_run, short_run, {});
   EXPECT_EQ(f.steps, 50);
   EXPECT_TRUE(f.terminated.empty());
 }

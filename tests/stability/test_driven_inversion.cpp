@@ -11,6 +11,7 @@
 #include <string>
 
 #include "afemp/errors.hpp"
+#include "analysis/reference_checks.hpp"
 #include "core/scene.hpp"
 #include "core/time_loop.hpp"
 #include "coupling/make_model.hpp"
@@ -66,7 +67,7 @@ TEST(Stability, DrivenInversionWithoutCriteriaStopsNamingTheElement) {
   const core::Scene scene = core::parse_scene(punch_scene(""), "punch.toml");
   const auto model = make_model(scene);
   try {
-    core::run(*model, scene, core::RunOptions{});
+    analysis::run(*model, scene, core::RunOptions{});
     FAIL() << "the punch went through without inverting an element";
   } catch (const core::SimulationError& e) {
     const std::string what = e.what();
@@ -85,7 +86,7 @@ TEST(Stability, DrivenInversionErodesTheInvertedElements) {
   const core::Scene scene =
       core::parse_scene(punch_scene("erosion = { plastic_strain = 1000 }"), "punch.toml");
   const auto model = make_model(scene);
-  const core::RunSummary s = core::run(*model, scene, core::RunOptions{});
+  const core::RunSummary s = analysis::run(*model, scene, core::RunOptions{});
   // erosion.csv also lists the nodes left without an element (kind "node").
   const std::size_t eroded = event_rows(*model, "erosion.csv", ",hexahedron,");
   const double m0 = s.initial.bodies[0].mass, m = s.final.bodies[0].mass;
@@ -105,7 +106,7 @@ TEST(Stability, DrivenInversionConvertsTheInvertedElements) {
   const core::Scene scene =
       core::parse_scene(punch_scene("conversion = { negative_jacobian = true }"), "punch.toml");
   const auto model = make_model(scene);
-  const core::RunSummary s = core::run(*model, scene, core::RunOptions{});
+  const core::RunSummary s = analysis::run(*model, scene, core::RunOptions{});
   const std::size_t converted = event_rows(*model, "conversion.csv", ",block,");
   const double m0 = s.initial.bodies[0].mass, m = s.final.bodies[0].mass;
   std::printf("punch, conversion: %ld steps, %zu elements converted into %zu particles, energy "
@@ -127,7 +128,7 @@ TEST(Stability, DrivenInversionOutsideTheGridStopsAndSaysWhy) {
       punch_scene("conversion = { negative_jacobian = true }", "0"), "punch.toml");
   const auto model = make_model(scene);
   try {
-    core::run(*model, scene, core::RunOptions{});
+    analysis::run(*model, scene, core::RunOptions{});
     FAIL() << "no element inverted above the grid";
   } catch (const core::SimulationError& e) {
     const std::string what = e.what();

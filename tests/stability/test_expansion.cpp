@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <string>
 
+#include "analysis/reference_checks.hpp"
 #include "core/scene.hpp"
 #include "core/time_loop.hpp"
 #include "coupling/make_model.hpp"
@@ -68,7 +69,7 @@ TEST(Stability, GasSlabReleasedIntoVacuumTakesTheImpulseOfItsMidPlanePressure) {
   const double t = 0.004;
   const core::Scene scene = core::parse_scene(slab_scene(t, 12, gas, e0), "gas.toml");
   const auto model = make_model(scene);
-  const core::RunSummary s = core::run(*model, scene, core::RunOptions{});
+  const core::RunSummary s = analysis::run(*model, scene, core::RunOptions{});
   double vmax = 0.0;
   const double pz = upper_half_momentum(*model, &vmax);
   const double total = s.final.bodies[0].momentum.z;
@@ -93,7 +94,7 @@ TEST(Stability, GasSlabExpandsAndSeparates) {
   const auto model = make_model(scene);
   core::RunSummary s;
   try {
-    s = core::run(*model, scene, core::RunOptions{});
+    s = analysis::run(*model, scene, core::RunOptions{});
   } catch (const std::exception& e) {
     FAIL() << e.what();
   }
@@ -130,7 +131,7 @@ eos = { model = "mie-gruneisen", c0 = 3940, s = 1.49, gamma0 = 1.96 }
   const double p_hot = 1.96 * 8.93e-3 * 57130.0;
   const core::Scene scene = core::parse_scene(slab_scene(0.00055, 4, copper, 57130.0), "hot.toml");
   const auto model = make_model(scene);
-  const core::RunSummary s = core::run(*model, scene, core::RunOptions{});
+  const core::RunSummary s = analysis::run(*model, scene, core::RunOptions{});
   const mpm::Particles& p = dynamic_cast<const mpm::MpmModel&>(*model).solver().particles();
   double sum = 0.0, szz = 0.0;
   int n = 0;

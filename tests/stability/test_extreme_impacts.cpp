@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <string>
 
+#include "analysis/reference_checks.hpp"
 #include "copper_shock_material.hpp"
 #include "core/scene.hpp"
 #include "core/time_loop.hpp"
@@ -44,7 +45,7 @@ shape = { box = { min = [0, 0, -2], max = [4, 4, 0] } }
 )",
                                               "hypervelocity.toml");
   const auto model = make_model(scene);
-  const core::RunSummary s = core::run(*model, scene, core::RunOptions{});
+  const core::RunSummary s = analysis::run(*model, scene, core::RunOptions{});
   const double pz0 = s.initial.bodies[0].momentum.z + s.initial.bodies[1].momentum.z;
   const double pz = s.final.bodies[0].momentum.z + s.final.bodies[1].momentum.z;
   const core::BodySums& rod = s.final.bodies[0];
@@ -87,7 +88,7 @@ velocity = [0, 0, 2000]
 )",
                                               "crossing.toml");
   const auto model = make_model(scene);
-  const core::RunSummary s = core::run(*model, scene, core::RunOptions{});
+  const core::RunSummary s = analysis::run(*model, scene, core::RunOptions{});
   const core::BodySums& b0 = s.initial.bodies[0];
   const core::BodySums& b = s.final.bodies[0];
   const double travelled = 2000.0 * s.time;  // cells of 1 mm

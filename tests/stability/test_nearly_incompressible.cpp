@@ -13,6 +13,7 @@
 #include <tuple>
 #include <vector>
 
+#include "analysis/reference_checks.hpp"
 #include "core/scene.hpp"
 #include "core/time_loop.hpp"
 #include "coupling/make_model.hpp"
@@ -174,7 +175,7 @@ Outcome run_variant(const std::string& variant, const std::string& run_keys = ""
         core::parse_scene(scene_text(variant, t_early, run_keys), "incompressible.toml");
     const auto model = make_model(scene);
     const std::vector<Vec3> x0 = initial_points(*model);
-    core::run(*model, scene, core::RunOptions{});
+    analysis::run(*model, scene, core::RunOptions{});
     double sum = 0.0;
     int count = 0;
     for (const Piece& p : pieces(*model, x0)) {
@@ -187,7 +188,7 @@ Outcome run_variant(const std::string& variant, const std::string& run_keys = ""
       core::parse_scene(scene_text(variant, end_time, run_keys), "incompressible.toml");
   const auto model = make_model(scene);
   const std::vector<Vec3> x0 = initial_points(*model);
-  const core::RunSummary s = core::run(*model, scene, core::RunOptions{});
+  const core::RunSummary s = analysis::run(*model, scene, core::RunOptions{});
   const std::vector<Piece> cells = pieces(*model, x0);
   o.steps = s.steps;
   o.energy_error = s.energy_error;
@@ -214,7 +215,7 @@ TEST(Stability, NearlyIncompressibleOnePointHexahedraAtTheDefaultFactorAreStoppe
   const core::Scene scene = core::parse_scene(scene_text("one-point", end_time), "incompressible.toml");
   const auto model = make_model(scene);
   try {
-    core::run(*model, scene, core::RunOptions{});
+    analysis::run(*model, scene, core::RunOptions{});
     FAIL() << "the unstable run reached its end time";
   } catch (const core::SimulationError& e) {
     const std::string what = e.what();

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <string>
 
+#include "analysis/reference_checks.hpp"
 #include "core/scene.hpp"
 #include "core/time_loop.hpp"
 #include "coupling/make_model.hpp"
@@ -57,7 +58,7 @@ velocity = [0, 0, -100]
 void run_tungsten_on_foam(const std::string& variant) {
   const core::Scene scene = core::parse_scene(tungsten_on_foam(variant), "contrast.toml");
   const auto model = make_model(scene);
-  const core::RunSummary s = core::run(*model, scene, core::RunOptions{});
+  const core::RunSummary s = analysis::run(*model, scene, core::RunOptions{});
   auto total = [](const core::Energies& e) {
     return e.bodies[0].momentum + e.bodies[1].momentum;
   };
@@ -144,7 +145,7 @@ TEST(Stability, TinyElementSetsTheTimeStep) {
   const std::string path = dir.write("tiny.toml", tiny_element_scene(false));
   const core::Scene scene = core::read_scene(path);
   const auto model = make_model(scene);
-  const core::RunSummary s = core::run(*model, scene, core::RunOptions{});
+  const core::RunSummary s = analysis::run(*model, scene, core::RunOptions{});
   const double v = s.final.bodies[0].momentum.z / s.final.bodies[0].mass;
   std::printf("tiny element: %ld steps, dt %.4g .. %.4g, energy %+.3f %% (largest %.3f %%), mean "
               "velocity %.3f m/s (closed form %.3f)\n",
@@ -165,12 +166,12 @@ TEST(Stability, TinyElementConvertsAndTheStepGrows) {
   dir.write("bar.inp", tiny_element_mesh());
   const core::Scene fe_scene = core::read_scene(dir.write("tiny.toml", tiny_element_scene(false)));
   const auto fe_model = make_model(fe_scene);
-  const core::RunSummary fe = core::run(*fe_model, fe_scene, core::RunOptions{});
+  const core::RunSummary fe = analysis::run(*fe_model, fe_scene, core::RunOptions{});
   const double v_fe = fe.final.bodies[0].momentum.z / fe.final.bodies[0].mass;
 
   const core::Scene scene = core::read_scene(dir.write("convert.toml", tiny_element_scene(true)));
   const auto model = make_model(scene);
-  const core::RunSummary s = core::run(*model, scene, core::RunOptions{});
+  const core::RunSummary s = analysis::run(*model, scene, core::RunOptions{});
   const double v = s.final.bodies[0].momentum.z / s.final.bodies[0].mass;
   const double grid_step = 0.3 * 0.5 / (c_bar + 10.0);
   std::printf("tiny element converted: %ld steps (%ld without), dt %.4g .. %.4g, %zu particle(s), "
@@ -225,7 +226,7 @@ bonded_to = "concrete"
 )",
                                               "truss.toml");
   const auto model = make_model(scene);
-  const core::RunSummary s = core::run(*model, scene, core::RunOptions{});
+  const core::RunSummary s = analysis::run(*model, scene, core::RunOptions{});
   const core::BodySums& c = s.final.bodies[0];
   const core::BodySums& t = s.final.bodies[1];
   const double v = (c.momentum.z + t.momentum.z) / (c.mass + t.mass);

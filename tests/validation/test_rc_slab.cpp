@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "analysis/reference_checks.hpp"
 #include "core/parallel.hpp"
 #include "core/scene.hpp"
 #include "coupling/coupled_model.hpp"
@@ -46,7 +47,7 @@ Row run_row(double striking) {
   CoupledModel model(scene);
   Row row;
   row.striking = striking;
-  row.summary = core::run(model, scene, {});
+  row.summary = analysis::run(model, scene, {});
   const core::BodySums& p = row.summary.final.bodies.at(static_cast<std::size_t>(rod));
   row.residual = -p.momentum.z / p.mass;
   const core::RunSummary& s = row.summary;

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "analysis/reference_checks.hpp"
 #include "core/parallel.hpp"
 #include "core/scene.hpp"
 #include "mpm/mpm_model.hpp"
@@ -27,7 +28,7 @@ core::RunSummary taylor_row(const std::string& method_lines, const char* label) 
   const core::Scene scene = core::parse_scene(scene_text, "examples/taylor_bar/mpm.toml");
   EXPECT_TRUE(scene.taylor_reference.has_value());
   MpmModel sim(scene);
-  const core::RunSummary s = core::run(sim, scene, {});
+  const core::RunSummary s = analysis::run(sim, scene, {});
   EXPECT_TRUE(s.taylor.has_value());
   const core::TaylorMeasures& m = *s.taylor;
   std::printf("| method | cell | particles | L | D | W | mean error | energy error | steps | wall s | threads |\n");

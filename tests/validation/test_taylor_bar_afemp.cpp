@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <string>
 
+#include "analysis/reference_checks.hpp"
 #include "core/parallel.hpp"
 #include "core/scene.hpp"
 #include "coupling/coupled_model.hpp"
@@ -69,15 +70,15 @@ Row run_row(Method method, double h) {
   std::size_t particles = 0, elements = 0;
   if (method == Method::fe) {
     fem::FeModel model(scene);
-    row.summary = core::run(model, scene, {});
+    row.summary = analysis::run(model, scene, {});
     elements = model.solver().live_hexahedra();
   } else if (method == Method::mpm) {
     mpm::MpmModel model(scene);
-    row.summary = core::run(model, scene, {});
+    row.summary = analysis::run(model, scene, {});
     particles = model.particle_count();
   } else {
     CoupledModel model(scene);
-    row.summary = core::run(model, scene, {});
+    row.summary = analysis::run(model, scene, {});
     particles = model.particle_count();
     elements = model.fe().live_hexahedra();
   }

@@ -18,6 +18,7 @@
 #include <sstream>
 #include <string>
 
+#include "analysis/reference_checks.hpp"
 #include "core/parallel.hpp"
 #include "core/scene.hpp"
 #include "fem/fe_model.hpp"
@@ -42,7 +43,7 @@ core::Scene taylor_bar(const std::string& extra) {
 core::RunSummary run_row(const std::string& label, const std::string& extra) {
   const core::Scene scene = taylor_bar(extra);
   FeModel model(scene);
-  const core::RunSummary s = core::run(model, scene, {});
+  const core::RunSummary s = analysis::run(model, scene, {});
   const core::TaylorMeasures& m = s.taylor.value();
   std::printf(
       "| afemp FE %s | %zu | %zu | %.2f | %.2f | %.2f | %.4f | %ld | %.3g | %.3g | %.1f | "

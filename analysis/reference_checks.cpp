@@ -1,15 +1,19 @@
-#include "core/reference_checks.hpp"
+#include "analysis/reference_checks.hpp"
 
 #include <cmath>
 #include <string>
 #include <variant>
 
-#include "core/taylor_metrics.hpp"
-#include "core/time_loop.hpp"
+#include "analysis/taylor_metrics.hpp"
 
-namespace afemp::core {
+namespace afemp::analysis {
 
-void check_references(const Model& model, const Scene& scene, RunSummary& sum) {
+using core::BodyPoints;
+using core::BodySums;
+using core::CylinderShape;
+using core::VelocityReference;
+
+void check_references(const core::Model& model, const core::Scene& scene, RunSummary& sum) {
   if (scene.taylor_reference) {
     for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
       const auto* bar = std::get_if<CylinderShape>(&scene.bodies[b].shape);
@@ -38,4 +42,12 @@ void check_references(const Model& model, const Scene& scene, RunSummary& sum) {
                           sum.max_energy_error, scene.energy_tolerance});
 }
 
-}  // namespace afemp::core
+RunSummary run(core::Model& model, const core::Scene& scene, const core::RunOptions& options) {
+  core::TimeLoop loop(model, scene, options);
+  while (!loop.finished()) loop.step(scene.run.end_time);
+  RunSummary summary = loop.finish();
+  check_references(model, scene, summary);
+  return summary;
+}
+
+}  // namespace afemp::analysis

@@ -8,9 +8,9 @@
 #include <numbers>
 #include <vector>
 
-#include "core/signal_metrics.hpp"
+#include "analysis/signal_metrics.hpp"
 
-namespace afemp::core {
+namespace afemp::analysis {
 namespace {
 
 // A step from q0 to q0 + jump arriving at t_a and rising linearly over `rise`, sampled at dt.
@@ -63,4 +63,4 @@ TEST(SignalMetrics, ZeroCrossingFrequencyOfSineAndSquareWaves) {
 }
 
 }  // namespace
-}  // namespace afemp::core
+}  // namespace afemp::analysis

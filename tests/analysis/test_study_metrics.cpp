@@ -14,12 +14,12 @@
 #include <sstream>
 #include <string>
 
-#include "core/study_file.hpp"
-#include "coupling/study.hpp"
+#include "analysis/study_file.hpp"
+#include "analysis/study.hpp"
 #include "fixed_free_bar_scene.hpp"
 #include "scratch_dir.hpp"
 
-namespace afemp::coupling {
+namespace afemp::analysis {
 namespace {
 
 const double c = std::sqrt(200e3 / 7.85e-3), length = 50.0;
@@ -76,7 +76,7 @@ std::string study_error(const std::string& study, const std::string& scene = bar
   test::ScratchDir dir;
   dir.write("bar.toml", scene);
   try {
-    core::read_study(dir.write("study.toml", study));
+    analysis::read_study(dir.write("study.toml", study));
   } catch (const core::InputError& e) {
     return e.what();
   }
@@ -94,7 +94,7 @@ std::string replaced(std::string s, const std::string& from, const std::string& 
 TEST(StudyMetrics, WaveFrontAndFrequencyOfTheFixedFreeBar) {
   test::ScratchDir dir;
   dir.write("bar.toml", bar_scene);
-  const core::StudyPlan plan = core::read_study(dir.write("study.toml", bar_study));
+  const analysis::StudyPlan plan = analysis::read_study(dir.write("study.toml", bar_study));
   const StudyResult result = run_study(plan);
   ASSERT_EQ(result.value_columns, (std::vector<std::string>{"front", "axial"}));
   ASSERT_EQ(result.error_columns, (std::vector<std::string>{"front.error", "axial.error"}));
@@ -110,8 +110,8 @@ TEST(StudyMetrics, WaveFrontAndFrequencyOfTheFixedFreeBar) {
   // so the half-peak arrival there is the first front's top and the speed reads low.
   test::ScratchDir dir2;
   dir2.write("bar.toml", bar_scene);
-  const core::StudyPlan whole =
-      core::read_study(dir2.write("study.toml", replaced(bar_study, "until = 0.0109\n", "")));
+  const analysis::StudyPlan whole =
+      analysis::read_study(dir2.write("study.toml", replaced(bar_study, "until = 0.0109\n", "")));
   const StudyResult whole_result = run_study(whole);
   const StudyRow& w = whole_result.rows.at(0);
   std::printf("front without until: %.1f m/s\n", w.values[0]);
@@ -163,7 +163,7 @@ name = "plate"
 material = "al"
 shape = { points = { file = "hole.xyz" } }
 )");
-  const core::StudyPlan plan = core::read_study(dir.write("study.toml", R"(
+  const analysis::StudyPlan plan = analysis::read_study(dir.write("study.toml", R"(
 [study]
 threads = 1
 [[metrics]]
@@ -240,4 +240,4 @@ TEST(StudyMetrics, MistakesNameTheFileLineKeyAndWhatIsAllowed) {
 }
 
 }  // namespace
-}  // namespace afemp::coupling
+}  // namespace afemp::analysis

@@ -5,7 +5,7 @@
 
 #include <span>
 
-namespace afemp::core {
+namespace afemp::analysis {
 
 // The first time |q(t) - q(t_0)| reaches `fraction` of its largest value over the history,
 // linearly interpolated between the samples around it. NaN when q never departs from q(t_0).
@@ -24,4 +24,4 @@ double front_speed(std::span<const double> distance, std::span<const double> arr
 // crosses more often.
 double zero_crossing_frequency(std::span<const double> t, std::span<const double> q);
 
-}  // namespace afemp::core
+}  // namespace afemp::analysis

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace afemp::core {
+namespace afemp::analysis {
 
 struct PlotSeries {
   std::string name;
@@ -21,4 +21,4 @@ struct LogLogPlot {
 // The SVG document. Axes span whole decades around the plotted points (at least one).
 std::string svg_loglog(const LogLogPlot& plot);
 
-}  // namespace afemp::core
+}  // namespace afemp::analysis

@@ -1,4 +1,4 @@
-#include "coupling/study.hpp"
+#include "analysis/study.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,15 +8,15 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/crater_metrics.hpp"
+#include "analysis/crater_metrics.hpp"
 #include "afemp/errors.hpp"
-#include "core/output/svg_plot.hpp"
+#include "analysis/svg_plot.hpp"
 #include "core/parallel.hpp"
-#include "core/signal_metrics.hpp"
-#include "core/taylor_metrics.hpp"
+#include "analysis/signal_metrics.hpp"
+#include "analysis/taylor_metrics.hpp"
 #include "coupling/make_model.hpp"
 
-namespace afemp::coupling {
+namespace afemp::analysis {
 
 namespace {
 
@@ -42,40 +42,40 @@ const core::ProbeSeries& probe_series(const core::RunSummary& s, const std::stri
 
 // The metric's values (in value_columns order) and its error (NaN without a reference).
 // initial_level: a crater metric's surface level at the start (core/crater_metrics.hpp).
-void measure(const core::MetricSpec& m, const core::Scene& scene, const core::Model& model,
+void measure(const MetricSpec& m, const core::Scene& scene, const core::Model& model,
              const core::RunSummary& summary, double initial_level, std::vector<double>& values,
              std::vector<double>& errors) {
   const int b = m.body.empty() ? -1 : body_index(scene, m.body);
   double value = nan;
   switch (m.kind) {
-    case core::MetricKind::taylor: {
+    case MetricKind::taylor: {
       const core::BodyPoints points = model.body_points(b);
       const core::TaylorMeasures t =
-          core::measure_taylor(scene, b, points.position, points.half_size);
+          measure_taylor(scene, b, points.position, points.half_size);
       values.insert(values.end(), {t.length, t.impact_diameter, t.bulge_diameter});
-      errors.push_back(core::taylor_mean_error(t, *m.taylor));
+      errors.push_back(taylor_mean_error(t, *m.taylor));
       return;
     }
-    case core::MetricKind::crater: {
+    case MetricKind::crater: {
       const std::vector<core::Vec3> points = model.body_points(b).position;
-      const core::CraterMeasures c =
-          core::measure_crater(points, m.point, m.normal, initial_level, m.ring, m.threshold);
+      const CraterMeasures c =
+          measure_crater(points, m.point, m.normal, initial_level, m.ring, m.threshold);
       values.insert(values.end(), {c.depth, c.diameter});
       if (m.crater)
         errors.push_back(0.5 * (relative_error(c.depth, m.crater->depth) +
                                 relative_error(c.diameter, m.crater->diameter)));
       return;
     }
-    case core::MetricKind::velocity: {
+    case MetricKind::velocity: {
       const core::BodySums body = model.energies().bodies[static_cast<std::size_t>(b)];
       const core::Vec3 v = (1.0 / body.mass) * body.momentum;
       value = m.component < 0 ? core::norm(v) : v[m.component];
       break;
     }
-    case core::MetricKind::hole:
-      value = core::measure_hole(model.body_points(b).position, m.point, m.normal, m.band);
+    case MetricKind::hole:
+      value = measure_hole(model.body_points(b).position, m.point, m.normal, m.band);
       break;
-    case core::MetricKind::wave_front: {
+    case MetricKind::wave_front: {
       // Distances along the path from the first probe's place at the start.
       std::vector<double> distance, arrival;
       core::Vec3 first;
@@ -90,14 +90,14 @@ void measure(const core::MetricSpec& m, const core::Scene& scene, const core::Mo
           n = static_cast<std::size_t>(std::upper_bound(p.time.begin(), p.time.end(), m.until) -
                                        p.time.begin());
         arrival.push_back(
-            core::arrival_time(std::span(p.time).first(n), std::span(q).first(n), m.fraction));
+            arrival_time(std::span(p.time).first(n), std::span(q).first(n), m.fraction));
       }
-      value = core::front_speed(distance, arrival);
+      value = front_speed(distance, arrival);
       break;
     }
-    case core::MetricKind::frequency: {
+    case MetricKind::frequency: {
       const core::ProbeSeries& p = probe_series(summary, m.probes[0]);
-      value = core::zero_crossing_frequency(
+      value = zero_crossing_frequency(
           p.time, p.series(static_cast<std::size_t>(p.column(m.quantity))));
       break;
     }
@@ -139,19 +139,19 @@ void write_file(const std::filesystem::path& path, const std::string& text) {
 
 }  // namespace
 
-double StudyResult::plotted_error(const core::StudyPlan& plan, const StudyRow& row) const {
+double StudyResult::plotted_error(const StudyPlan& plan, const StudyRow& row) const {
   if (plan.plot == "energy") return std::abs(row.energy_error);
   const auto it = std::find(error_columns.begin(), error_columns.end(), plan.plot + ".error");
   return it == error_columns.end() ? nan : row.errors[static_cast<std::size_t>(it - error_columns.begin())];
 }
 
-StudyResult run_study(const core::StudyPlan& plan,
+StudyResult run_study(const StudyPlan& plan,
                       const std::function<void(const StudyResult&, const StudyRow&)>& report) {
   StudyResult result;
-  for (const core::MetricSpec& m : plan.metrics) {
-    if (m.kind == core::MetricKind::taylor) {
+  for (const MetricSpec& m : plan.metrics) {
+    if (m.kind == MetricKind::taylor) {
       for (const char* c : {".L", ".D", ".W"}) result.value_columns.push_back(m.name + c);
-    } else if (m.kind == core::MetricKind::crater) {
+    } else if (m.kind == MetricKind::crater) {
       for (const char* c : {".depth", ".diameter"}) result.value_columns.push_back(m.name + c);
     } else {
       result.value_columns.push_back(m.name);
@@ -160,20 +160,20 @@ StudyResult run_study(const core::StudyPlan& plan,
   }
   const int threads_before = core::thread_count();
   if (plan.threads > 0) core::set_thread_count(plan.threads);
-  for (const core::StudyRun& run : plan.runs) {
-    const core::Scene scene = core::build_run_scene(plan, run);
+  for (const StudyRun& run : plan.runs) {
+    const core::Scene scene = build_run_scene(plan, run);
     StudyRow row;
     row.run = &run;
     row.threads = core::thread_count();
-    const std::unique_ptr<core::Model> model = make_model(scene);
+    const std::unique_ptr<core::Model> model = coupling::make_model(scene);
     row.elements = model->element_count();
     core::RunOptions options;  // no output directory: nothing written, nothing timed but the steps
     // Crater metrics: the target's surface level at the start, on the same points.
     std::vector<double> initial_level(plan.metrics.size(), nan);
     for (std::size_t k = 0; k < plan.metrics.size(); ++k) {
-      const core::MetricSpec& m = plan.metrics[k];
-      if (m.kind == core::MetricKind::crater)
-        initial_level[k] = core::surface_level(
+      const MetricSpec& m = plan.metrics[k];
+      if (m.kind == MetricKind::crater)
+        initial_level[k] = surface_level(
             model->body_points(body_index(scene, m.body)).position, m.point, m.normal);
     }
     try {
@@ -185,7 +185,7 @@ StudyResult run_study(const core::StudyPlan& plan,
       for (std::size_t k = 0; k < plan.metrics.size(); ++k)
         measure(plan.metrics[k], scene, *model, s, initial_level[k], row.values, row.errors);
       std::size_t e = 0;
-      for (const core::MetricSpec& m : plan.metrics) {
+      for (const MetricSpec& m : plan.metrics) {
         if (!m.has_reference()) continue;
         if (m.tolerance > 0.0 && !(row.errors[e] <= m.tolerance)) row.over_tolerance.push_back(m.name);
         ++e;
@@ -222,7 +222,7 @@ std::string describe_row(const StudyResult& result, const StudyRow& row) {
   return os.str();
 }
 
-void write_study(const core::StudyPlan& plan, const StudyResult& result, const std::string& directory) {
+void write_study(const StudyPlan& plan, const StudyResult& result, const std::string& directory) {
   const std::filesystem::path dir(directory);
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
@@ -278,14 +278,14 @@ void write_study(const core::StudyPlan& plan, const StudyResult& result, const s
   write_file(dir / files.markdown, md);
   // The plot: the plotted error against wall time, one line per method in order of first
   // appearance, runs in the study's order.
-  core::LogLogPlot plot;
+  LogLogPlot plot;
   plot.title = plan.title;
   plot.x_label = "wall time (s), " + std::to_string(result.rows.empty() ? 0 : result.rows[0].threads) +
                  " thread(s)";
   plot.y_label = plan.plot == "energy" ? "|energy-balance error|" : plan.plot + " error";
   for (const StudyRow& r : result.rows) {
     auto it = std::find_if(plot.series.begin(), plot.series.end(),
-                           [&](const core::PlotSeries& s) { return s.name == r.run->method; });
+                           [&](const PlotSeries& s) { return s.name == r.run->method; });
     if (it == plot.series.end()) {
       plot.series.push_back({r.run->method, {}, {}});
       it = plot.series.end() - 1;
@@ -293,7 +293,7 @@ void write_study(const core::StudyPlan& plan, const StudyResult& result, const s
     it->x.push_back(r.wall_seconds);
     it->y.push_back(result.plotted_error(plan, r));
   }
-  write_file(dir / files.plot, core::svg_loglog(plot));
+  write_file(dir / files.plot, svg_loglog(plot));
 }
 
-}  // namespace afemp::coupling
+}  // namespace afemp::analysis

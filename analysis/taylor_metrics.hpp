@@ -10,7 +10,7 @@
 #include "afemp/run.hpp"
 #include "core/scene.hpp"
 
-namespace afemp::core {
+namespace afemp::analysis {
 
 // Measures scene body `body`, a flat-ended cylinder whose base faces the wall, from its points
 // at `position`, each standing for material reaching half_size[i] beyond it. D and W are twice
@@ -25,4 +25,4 @@ TaylorMeasures measure_taylor(const Scene& scene, int body, std::span<const Vec3
 // Eq 2-42.
 double taylor_mean_error(const TaylorMeasures& m, const TaylorReference& ref);
 
-}  // namespace afemp::core
+}  // namespace afemp::analysis

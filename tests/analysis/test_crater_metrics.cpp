@@ -9,9 +9,9 @@
 #include <cmath>
 #include <vector>
 
-#include "core/crater_metrics.hpp"
+#include "analysis/crater_metrics.hpp"
 
-namespace afemp::core {
+namespace afemp::analysis {
 namespace {
 
 constexpr double spacing = 0.25;  // lattice spacing
@@ -107,4 +107,4 @@ TEST(CraterMetrics, HoleDiameterIsTheLargestFreeCircleInTheMidPlaneSlab) {
 }
 
 }  // namespace
-}  // namespace afemp::core
+}  // namespace afemp::analysis

@@ -1,4 +1,4 @@
-#include "core/output/svg_plot.hpp"
+#include "analysis/svg_plot.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,10 @@
 #include "core/appendf.hpp"
 #include "core/output/xml_escape.hpp"
 
-namespace afemp::core {
+namespace afemp::analysis {
+
+using core::appendf;
+using core::xml_escape;
 
 namespace {
 
@@ -125,4 +128,4 @@ std::string svg_loglog(const LogLogPlot& plot) {
   return out;
 }
 
-}  // namespace afemp::core
+}  // namespace afemp::analysis

@@ -1,10 +1,10 @@
-#include "core/taylor_metrics.hpp"
+#include "analysis/taylor_metrics.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-namespace afemp::core {
+namespace afemp::analysis {
 
 namespace {
 
@@ -64,4 +64,4 @@ double taylor_mean_error(const TaylorMeasures& m, const TaylorReference& ref) {
          3.0;
 }
 
-}  // namespace afemp::core
+}  // namespace afemp::analysis

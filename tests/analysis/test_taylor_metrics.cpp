@@ -9,9 +9,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "core/taylor_metrics.hpp"
+#include "analysis/taylor_metrics.hpp"
 
-namespace afemp::core {
+namespace afemp::analysis {
 namespace {
 
 Scene bar_scene(Discretisation d) {
@@ -61,4 +61,4 @@ TEST(TaylorMetrics, RefusesABodyThatIsNoFlatEndedCylinderOrHasNoPoints) {
 }
 
 }  // namespace
-}  // namespace afemp::core
+}  // namespace afemp::analysis

@@ -10,7 +10,7 @@
 
 #include "afemp/tensor.hpp"
 
-namespace afemp::core {
+namespace afemp::analysis {
 
 struct CraterMeasures {
   double depth = 0.0;     // NaN: no material left within `ring` of the axis (perforated)
@@ -39,4 +39,4 @@ CraterMeasures measure_crater(std::span<const Vec3> points, const Vec3& point, c
 // hole reads up to one particle spacing wide; nodes lie on the surface.
 double measure_hole(std::span<const Vec3> points, const Vec3& point, const Vec3& normal, double band);
 
-}  // namespace afemp::core
+}  // namespace afemp::analysis

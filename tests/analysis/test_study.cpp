@@ -13,14 +13,15 @@
 #include <sstream>
 #include <string>
 
+#include "analysis/reference_checks.hpp"
 #include "core/parallel.hpp"
-#include "core/study_file.hpp"
+#include "analysis/study_file.hpp"
 #include "coupling/make_model.hpp"
-#include "coupling/study.hpp"
+#include "analysis/study.hpp"
 #include "elastic_bar_scene.hpp"
 #include "scratch_dir.hpp"
 
-namespace afemp::coupling {
+namespace afemp::analysis {
 namespace {
 
 using test::elastic_bar_scene;
@@ -54,7 +55,7 @@ std::size_t count(const std::string& text, const std::string& what) {
 TEST(Study, ElasticBarRowsMatchDirectRunsAndTheFilesHoldThem) {
   test::ScratchDir dir;
   dir.write("bar.toml", elastic_bar_scene);
-  const core::StudyPlan plan = core::read_study(dir.write("study.toml", study_text));
+  const analysis::StudyPlan plan = analysis::read_study(dir.write("study.toml", study_text));
   const StudyResult result = run_study(plan);
   ASSERT_EQ(result.rows.size(), 3u);
   ASSERT_EQ(result.value_columns, std::vector<std::string>{"rebound"});
@@ -64,9 +65,9 @@ TEST(Study, ElasticBarRowsMatchDirectRunsAndTheFilesHoldThem) {
   for (std::size_t k = 0; k < 2; ++k) {
     const StudyRow& row = result.rows[k];
     // The direct run of the same scene.
-    const core::Scene scene = core::build_run_scene(plan, plan.runs[k]);
-    const auto model = make_model(scene);
-    const core::RunSummary s = core::run(*model, scene, core::RunOptions{});
+    const core::Scene scene = analysis::build_run_scene(plan, plan.runs[k]);
+    const auto model = coupling::make_model(scene);
+    const core::RunSummary s = analysis::run(*model, scene, core::RunOptions{});
     const core::BodySums bar = model->energies().bodies[0];
     const double v = bar.momentum.z / bar.mass;
     std::printf("%s: rebound %.2f m/s (direct run %.2f), error %.4f, %ld steps, %.2f s\n",
@@ -89,7 +90,7 @@ TEST(Study, ElasticBarRowsMatchDirectRunsAndTheFilesHoldThem) {
   EXPECT_TRUE(std::isnan(bad.errors[0]));
 
   // A stability criterion: the largest energy-balance error (1.5 % for the cell of 1 mm).
-  core::StudyPlan strict = plan;
+  analysis::StudyPlan strict = plan;
   strict.energy_tolerance = 0.005;
   strict.runs.resize(1);
   const StudyResult checked = run_study(strict);
@@ -118,4 +119,4 @@ TEST(Study, ElasticBarRowsMatchDirectRunsAndTheFilesHoldThem) {
 }
 
 }  // namespace
-}  // namespace afemp::coupling
+}  // namespace afemp::analysis

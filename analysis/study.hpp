@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "core/study_file.hpp"
+#include "analysis/study_file.hpp"
 
-namespace afemp::coupling {
+namespace afemp::analysis {
 
 struct StudyRow {
-  const core::StudyRun* run = nullptr;
+  const StudyRun* run = nullptr;
   std::size_t particles = 0;  // at the end (conversion adds particles)
   std::size_t elements = 0;   // at the start
   long steps = 0;
@@ -32,22 +32,22 @@ struct StudyResult {
   std::vector<std::string> error_columns;  // "taylor.error", ... (metrics with a reference)
   std::vector<StudyRow> rows;
   // The plotted error of a row: the plot metric's error, or |energy error|.
-  double plotted_error(const core::StudyPlan& plan, const StudyRow& row) const;
+  double plotted_error(const StudyPlan& plan, const StudyRow& row) const;
 };
 
 // Runs the study; `report` is called after each run with the result so far and its row.
 StudyResult run_study(
-    const core::StudyPlan& plan,
+    const StudyPlan& plan,
     const std::function<void(const StudyResult&, const StudyRow&)>& report = {});
 
 // The files written to `directory` (created if needed).
 struct StudyFiles {
   std::string csv = "study.csv", markdown = "study.md", plot = "error_vs_time.svg";
 };
-void write_study(const core::StudyPlan& plan, const StudyResult& result,
+void write_study(const StudyPlan& plan, const StudyResult& result,
                  const std::string& directory);
 
 // One line of text per run for the terminal.
 std::string describe_row(const StudyResult& result, const StudyRow& row);
 
-}  // namespace afemp::coupling
+}  // namespace afemp::analysis

@@ -5,12 +5,12 @@
 
 #include <string>
 
-#include "core/study_file.hpp"
+#include "analysis/study_file.hpp"
 #include "scene_errors.hpp"
 #include "elastic_bar_scene.hpp"
 #include "scratch_dir.hpp"
 
-namespace afemp::core {
+namespace afemp::analysis {
 namespace {
 
 using test::elastic_bar_scene;
@@ -124,4 +124,4 @@ TEST(StudyFile, MistakesNameTheFileLineKeyAndWhatIsAllowed) {
 }
 
 }  // namespace
-}  // namespace afemp::core
+}  // namespace afemp::analysis

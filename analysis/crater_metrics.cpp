@@ -1,12 +1,12 @@
 // Crater and hole measures (core/crater_metrics.hpp).
-#include "core/crater_metrics.hpp"
+#include "analysis/crater_metrics.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
 
-namespace afemp::core {
+namespace afemp::analysis {
 
 namespace {
 
@@ -74,4 +74,4 @@ double measure_hole(std::span<const Vec3> points, const Vec3& point, const Vec3&
   return std::isinf(r_min) ? std::nan("") : 2.0 * r_min;
 }
 
-}  // namespace afemp::core
+}  // namespace afemp::analysis

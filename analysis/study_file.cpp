@@ -1,7 +1,7 @@
 // The study file (docs/study-format.md): [study], [[metrics]] and [[runs]], read with the
 // scene parser's checked TableReader so that its mistakes read like a scene's, and each run's
 // scene built from its scene file with the run's overrides applied to the TOML tree.
-#include "core/study_file.hpp"
+#include "analysis/study_file.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -13,11 +13,11 @@
 
 #include "core/scene_parser.hpp"
 
-namespace afemp::core {
+namespace afemp::analysis {
 
-using scene_detail::join;
-using scene_detail::Range;
-using scene_detail::TableReader;
+using core::scene_detail::join;
+using core::scene_detail::Range;
+using core::scene_detail::TableReader;
 
 const char* to_string(MetricKind k) {
   switch (k) {
@@ -386,10 +386,10 @@ Scene build_run_scene(const StudyPlan& plan, const StudyRun& run) {
     value.get("v")->visit([&](const auto& v) { t->insert_or_assign(segments.back(), v); });
   }
   try {
-    return scene_detail::scene_from_toml(root, run.scene_path);
+    return core::scene_detail::scene_from_toml(root, run.scene_path);
   } catch (const InputError& e) {
     throw InputError(run.where, "runs", context + e.what());
   }
 }
 
-}  // namespace afemp::core
+}  // namespace afemp::analysis

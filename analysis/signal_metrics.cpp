@@ -1,11 +1,11 @@
 // Arrival times, front speed and zero-crossing frequency (core/signal_metrics.hpp).
-#include "core/signal_metrics.hpp"
+#include "analysis/signal_metrics.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 
-namespace afemp::core {
+namespace afemp::analysis {
 
 double arrival_time(std::span<const double> t, std::span<const double> q, double fraction) {
   const std::size_t n = std::min(t.size(), q.size());
@@ -54,4 +54,4 @@ double zero_crossing_frequency(std::span<const double> t, std::span<const double
   return (crossings - 1) / (2.0 * (last - first));
 }
 
-}  // namespace afemp::core
+}  // namespace afemp::analysis

@@ -13,7 +13,7 @@
 #include "afemp/errors.hpp"
 #include "core/scene.hpp"
 
-namespace afemp::core {
+namespace afemp::analysis {
 
 // What a metric measures at the end of a run.
 enum class MetricKind {
@@ -97,4 +97,4 @@ Scene build_run_scene(const StudyPlan& plan, const StudyRun& run);
 
 const char* to_string(MetricKind k);
 
-}  // namespace afemp::core
+}  // namespace afemp::analysis
