@@ -1,4 +1,4 @@
-// Crater and hole measures (core/crater_metrics.hpp).
+// Crater and hole measures (analysis/crater_metrics.hpp).
 #include "analysis/crater_metrics.hpp"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// Arrival times, front speed and zero-crossing frequency (core/signal_metrics.hpp).
+// Arrival times, front speed and zero-crossing frequency (analysis/signal_metrics.hpp).
 #include "analysis/signal_metrics.hpp"
 
 #include <algorithm>

@@ -41,7 +41,7 @@ const core::ProbeSeries& probe_series(const core::RunSummary& s, const std::stri
 }
 
 // The metric's values (in value_columns order) and its error (NaN without a reference).
-// initial_level: a crater metric's surface level at the start (core/crater_metrics.hpp).
+// initial_level: a crater metric's surface level at the start (analysis/crater_metrics.hpp).
 void measure(const MetricSpec& m, const core::Scene& scene, const core::Model& model,
              const core::RunSummary& summary, double initial_level, std::vector<double>& values,
              std::vector<double>& errors) {

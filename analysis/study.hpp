@@ -1,4 +1,4 @@
-// `afemp study`: runs each run of a study (core/study_file.hpp) to its end, measures its wall
+// `afemp study`: runs each run of a study (analysis/study_file.hpp) to its end, measures its wall
 // time and metrics, and writes a CSV row per run, a Markdown table and a log-log plot of the
 // plotted metric's error against wall time, one line per method (docs/study-format.md).
 #pragma once

@@ -19,10 +19,10 @@ namespace afemp::analysis {
 enum class MetricKind {
   taylor,      // a Taylor bar's L, D, W and the mean error (Ma 2005, eq 2-42)
   velocity,    // a body's mean velocity (one component or the magnitude): residual, rebound
-  crater,      // a target's crater depth and diameter (core/crater_metrics.hpp)
-  hole,        // the diameter of the hole in a plate (core/crater_metrics.hpp)
-  wave_front,  // a front's speed from its arrival at probes (core/signal_metrics.hpp)
-  frequency,   // a probe history's first natural frequency (core/signal_metrics.hpp)
+  crater,      // a target's crater depth and diameter (analysis/crater_metrics.hpp)
+  hole,        // the diameter of the hole in a plate (analysis/crater_metrics.hpp)
+  wave_front,  // a front's speed from its arrival at probes (analysis/signal_metrics.hpp)
+  frequency,   // a probe history's first natural frequency (analysis/signal_metrics.hpp)
 };
 
 // A crater's reference depth and diameter.

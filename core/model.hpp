@@ -69,7 +69,7 @@ class Model {
   virtual void resolve_probes(std::span<const ProbeSpec> probes) = 0;
   virtual void sample_probes(std::span<double> out) const = 0;
   // The points that carry body `body`'s material now: its particles and the nodes of its live
-  // elements (Taylor, crater and hole metrics: core/reference_checks.cpp, coupling/study.cpp).
+  // elements (Taylor, crater and hole metrics: analysis/reference_checks.cpp, analysis/study.cpp).
   virtual BodyPoints body_points(int body) const = 0;
 };
 

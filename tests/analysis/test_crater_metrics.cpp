@@ -1,4 +1,4 @@
-// Crater and hole measures (core/crater_metrics.hpp) on point sets of known geometry: a flat
+// Crater and hole measures (analysis/crater_metrics.hpp) on point sets of known geometry: a flat
 // plate of lattice points with a spherical-cap crater of depth d0 and rim radius a cut into its
 // top, and a plate with a round hole. References: the cap's depth d0 and its rim diameter 2a
 // for a threshold far below d0 (the drop reaches 0 at r = a), the cap's radius where its drop

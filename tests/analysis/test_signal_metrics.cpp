@@ -1,4 +1,4 @@
-// Arrival times, front speed and zero-crossing frequency (core/signal_metrics.hpp) on signals
+// Arrival times, front speed and zero-crossing frequency (analysis/signal_metrics.hpp) on signals
 // of known form: a ramp-up arriving at a known time, fronts at known speeds, and sine and
 // square waves of known frequency sampled off their crossings.
 #include <gtest/gtest.h>

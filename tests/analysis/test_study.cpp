@@ -1,4 +1,4 @@
-// `afemp study` (coupling/study.hpp) on the elastic bar of V1 (Ma 2005, §2.3.1: copper at
+// `afemp study` (analysis/study.hpp) on the elastic bar of V1 (Ma 2005, §2.3.1: copper at
 // 300 m/s on a rigid wall, "rebounds at about 300 m/s"). References: each run's metric is the
 // same number a direct run of the same scene gives (same thread count: same bits), its error
 // is |v - 300| / 300, the rebound lies within the V1 pass band's 10 % of 300 m/s (277.8 m/s

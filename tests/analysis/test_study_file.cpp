@@ -1,4 +1,4 @@
-// The study file (core/study_file.hpp): runs expand one per resolution, overrides reach the
+// The study file (analysis/study_file.hpp): runs expand one per resolution, overrides reach the
 // scene (tables, bodies by name, inline tables), and every mistake names the study file, its
 // line and key, and what is allowed, before anything runs.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Taylor-bar measures (core/taylor_metrics.hpp; Ma 2005, §2.3.2) on a handful of points of a
+// Taylor-bar measures (analysis/taylor_metrics.hpp; Ma 2005, §2.3.2) on a handful of points of a
 // bar 10 long of radius 1 standing on z = 0. References: L from the lowest to the highest reach
 // of the points (a particle reaches its half size beyond its centre), D and W twice the largest
 // radial reach near the wall and near 0.2 L0 from it, the band around 0.2 L0 half the largest
