@@ -8,12 +8,13 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "analysis/crater_metrics.hpp"
 #include "afemp/errors.hpp"
-#include "analysis/svg_plot.hpp"
-#include "core/parallel.hpp"
+#include "analysis/crater_metrics.hpp"
+#include "analysis/reference_checks.hpp"
 #include "analysis/signal_metrics.hpp"
+#include "analysis/svg_plot.hpp"
 #include "analysis/taylor_metrics.hpp"
+#include "core/parallel.hpp"
 #include "coupling/make_model.hpp"
 
 namespace afemp::analysis {
@@ -177,7 +178,7 @@ StudyResult run_study(const StudyPlan& plan,
             model->body_points(body_index(scene, m.body)).position, m.point, m.normal);
     }
     try {
-      const core::RunSummary s = core::run(*model, scene, options);
+      const core::RunSummary s = analysis::run(*model, scene, options);
       row.steps = s.steps;
       row.wall_seconds = s.wall_seconds;
       row.energy_error = s.energy_error;

@@ -1,8 +1,8 @@
 // The hexahedron stage: for every live element, the strain increment from v^{n+1/2} on the
 // mid-step geometry (Belytschko, Liu & Moran box 6.1), the Jaumann-rotated stress updated by
 // the shared material law (Ma 2005, eq 2-41), artificial bulk viscosity
-// q = rho l (C_q l eps_v'^2 - C_l c eps_v') in compression (LS-DYNA theory manual, "Artificial
-// bulk viscosity"), hourglass forces for one-point elements (Flanagan & Belytschko 1981 viscous
+// q = rho l (C_q l eps_v'^2 - C_l c eps_v') in compression (core/bulk_viscosity.hpp, shared with
+// the particles), hourglass forces for one-point elements (Flanagan & Belytschko 1981 viscous
 // or stiffness forms, or Belytschko & Bindeman 1993 assumed strain), the nodal forces on the
 // end-of-step geometry, the critical step l / (Q + sqrt(Q^2 + c^2)) with
 // Q = C_l c + C_q l |eps_v'|, and the erosion criteria. One std::visit per batch; one-point
@@ -10,6 +10,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/bulk_viscosity.hpp"
 #include "core/erosion_criteria.hpp"
 #include "core/materials/material.hpp"
 #include "core/materials/user_strength_chunk.hpp"
@@ -49,8 +50,7 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
   const core::BodySpec& body = scene_.bodies[static_cast<std::size_t>(b.body)];
   const core::Material& mat = scene_.materials[static_cast<std::size_t>(b.material)];
   const bool full = b.points_per_element == 8;
-  const core::BulkViscositySettings q = core::bulk_viscosity_of(scene_, body);
-  const double c_lin = q.linear, c_quad = q.quadratic;
+  const core::BulkViscositySettings viscosity = core::bulk_viscosity_of(scene_, body);
   const core::HourglassForm hg_form = body.hourglass.form;
   // Assumed strain: the elastic constants, the scene's coefficient scaling the stiffness.
   const double hg_shear = body.hourglass.coefficient * mat.shear_modulus();
@@ -85,7 +85,7 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
     }
     b.st.stress += core::jaumann_increment(b.st.stress, inc.w23, inc.w13, inc.w12);
     // Bulk-viscous heating by the q that acted over this step.
-    b.q_heat = -q_old * inc.d_eps.trace() / density;
+    b.q_heat = core::bulk_viscous_heat(q_old, inc.d_eps.trace(), density);
     return b;
   };
   auto end_point = [&](std::size_t p, PointStart& b, const core::PointUpdate& u,
@@ -135,14 +135,11 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
   // trace_rate, wave speed c).
   auto bulk_viscosity = [&](std::size_t e, double density, double length, double trace_rate,
                             double wave) {
-    const double q = trace_rate < 0.0 ? density * length *
-                                            (c_quad * length * trace_rate * trace_rate -
-                                             c_lin * wave * trace_rate)
-                                      : 0.0;
-    el.bulk_q[e] = q;
-    const double qv = c_lin * wave + c_quad * length * std::abs(std::min(trace_rate, 0.0));
-    el.critical_dt[e] = length / (qv + std::sqrt(qv * qv + wave * wave));
-    return q;
+    const core::ViscousState v =
+        core::bulk_viscosity(viscosity, density, length, trace_rate, wave);
+    el.bulk_q[e] = v.q;
+    el.critical_dt[e] = length / v.signal;
+    return v.q;
   };
   // After the forces f of element e: bad values, the erosion criteria, the forces stored.
   auto finish = [&](std::size_t e, std::size_t p0, double volume, const char* failure,

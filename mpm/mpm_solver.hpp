@@ -179,7 +179,7 @@ class MpmSolver {
   std::vector<std::uint8_t> wall_contact_;
 
   // Artificial bulk viscosity of each body's particles (core::BodySpec::bulk_viscosity;
-  // mpm/bulk_viscosity.hpp), and whether any body has it.
+  // core/bulk_viscosity.hpp), and whether any body has it.
   std::vector<core::BulkViscositySettings> bulk_viscosity_;
   bool viscous_ = false;
 

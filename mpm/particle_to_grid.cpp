@@ -72,7 +72,7 @@ void MpmSolver::p2g_kernel() {
       }
       const double m = p.mass[i];
       const Vec3 mv = m * p.velocity[i];
-      // The bulk-viscous pressure acts with the stress (mpm/bulk_viscosity.hpp).
+      // The bulk-viscous pressure acts with the stress (core/bulk_viscosity.hpp).
       const core::SymTensor sv =
           p.volume[i] * (p.stress[i] - p.bulk_q[i] * core::SymTensor::identity());
       for (int n = 0; n < N; ++n) {

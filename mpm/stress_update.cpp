@@ -2,13 +2,13 @@
 // from the nodal velocity the scheme names, Jaumann rotation of the stress, volume update
 // V <- V (1 + tr d eps) (eq 2-40), then the material's constitutive update, batch by batch:
 // one std::visit per material, one direct (inlined) call per point, and the bulk viscosity
-// (mpm/bulk_viscosity.hpp). USL also updates the particle velocity here, since it uses the
+// (core/bulk_viscosity.hpp). USL also updates the particle velocity here, since it uses the
 // same weights and the same grid velocity.
 #include <cmath>
 
+#include "core/bulk_viscosity.hpp"
 #include "core/materials/user_strength_chunk.hpp"
 #include "core/parallel.hpp"
-#include "mpm/bulk_viscosity.hpp"
 #include "mpm/mpm_solver.hpp"
 
 namespace afemp::mpm {
@@ -207,12 +207,12 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
       // roots per step instead of two per particle.
       double c_wave = core::wave_speed(mat, eos, st);
       if (viscous) {
-        const double q_heat = bulk_viscous_heat(p.bulk_q[i], d_eps.trace(), st.density);
+        const double q_heat = core::bulk_viscous_heat(p.bulk_q[i], d_eps.trace(), st.density);
         st.energy += q_heat;
         heat += p.mass[i] * q_heat;
-        const ViscousState vs =
-            bulk_viscosity(viscosity[static_cast<std::size_t>(p.body[i])], st.density, h,
-                           d_eps.trace() / dt, c_wave);
+        const core::ViscousState vs =
+            core::bulk_viscosity(viscosity[static_cast<std::size_t>(p.body[i])], st.density, h,
+                                 d_eps.trace() / dt, c_wave);
         p.bulk_q[i] = vs.q;
         c_wave = vs.signal;
       }

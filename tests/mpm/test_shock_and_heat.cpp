@@ -106,7 +106,7 @@ TEST(Shock, SpeedAndStressFollowTheMieGrueneisenHugoniot) {
 }
 
 // A km/s plate impact with and without the particles' artificial bulk viscosity
-// (mpm/bulk_viscosity.hpp): two 1 x 1 x 10 mm copper columns (side faces symmetric: uniaxial
+// (core/bulk_viscosity.hpp): two 1 x 1 x 10 mm copper columns (side faces symmetric: uniaxial
 // strain) meet at z = 0 at u_p each (2000 and 5000 m/s: 4 and 10 km/s closing), so each side
 // stops. Reference: the Rankine-Hugoniot jump conditions (e = u_p^2 / 2, p = rho0 U_s u_p,
 // mu = u_p / (U_s - u_p)) with the EOS the solver implements (Ma 2005, eq 2-25) with
