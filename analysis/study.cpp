@@ -1,6 +1,7 @@
 #include "analysis/study.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -177,6 +178,7 @@ StudyResult run_study(const StudyPlan& plan,
         initial_level[k] = surface_level(
             model->body_points(body_index(scene, m.body)).position, m.point, m.normal);
     }
+    const auto start = std::chrono::steady_clock::now();
     try {
       const core::RunSummary s = analysis::run(*model, scene, options);
       row.steps = s.steps;
@@ -194,6 +196,9 @@ StudyResult run_study(const StudyPlan& plan,
       if (plan.energy_tolerance > 0.0 && !(row.max_energy_error <= plan.energy_tolerance))
         row.over_tolerance.push_back("energy");
     } catch (const core::SimulationError& err) {
+      // The wall time up to the stop (the message names the step and time it stopped at).
+      row.wall_seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       row.stopped = err.what();
       row.steps = model->step_count();
       row.values.assign(result.value_columns.size(), nan);
@@ -248,7 +253,7 @@ void write_study(const StudyPlan& plan, const StudyResult& result, const std::st
     // Appended in two steps: "," + std::string trips GCC 12's -Wrestrict.
     for (double v : r.values) (csv += ',') += number(v, "%.6g");
     for (double v : r.errors) (csv += ',') += number(v, "%.6g");
-    csv += "," + csv_field(status(r)) + "\n";
+    ((csv += ',') += csv_field(status(r))) += '\n';
   }
   write_file(dir / files.csv, csv);
   // Markdown: the same table for reading.

@@ -88,6 +88,7 @@ TEST(Study, ElasticBarRowsMatchDirectRunsAndTheFilesHoldThem) {
   EXPECT_FALSE(bad.ok());
   EXPECT_NE(bad.stopped.find("step"), std::string::npos) << bad.stopped;
   EXPECT_TRUE(std::isnan(bad.errors[0]));
+  EXPECT_GT(bad.wall_seconds, 0.0);  // the time it ran before it stopped, not 0
 
   // A stability criterion: the largest energy-balance error (1.5 % for the cell of 1 mm).
   analysis::StudyPlan strict = plan;
