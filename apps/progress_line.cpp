@@ -54,7 +54,11 @@ void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSumm
     std::fprintf(out, "  stopped early    %s\n", s.terminated.c_str());
   std::fprintf(out, "  wall time        %.3f s with %d thread(s)\n", s.wall_seconds,
                core::thread_count());
-  if (s.final_particles != s.particles)
+  if (s.final.outflow_mass > 0.0)
+    std::fprintf(out, "  points           %zu particles (%zu at the end: outflow and converted "
+                      "elements), %zu elements, %.3g point-steps/s (initial points)\n",
+                 s.particles, s.final_particles, s.elements, s.point_steps_per_second);
+  else if (s.final_particles != s.particles)
     std::fprintf(out, "  points           %zu particles (%zu at the end: converted elements), %zu "
                       "elements, %.3g point-steps/s (initial points)\n",
                  s.particles, s.final_particles, s.elements, s.point_steps_per_second);
@@ -73,6 +77,10 @@ void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSumm
   if (s.final.hourglass != 0.0 || s.final.viscous != 0.0 || s.final.eroded != 0.0)
     std::fprintf(out, "                   hourglass %.6g  bulk-viscous %.6g  eroded %.6g\n",
                  s.final.hourglass, s.final.viscous, s.final.eroded);
+  if (s.final.outflow_mass > 0.0)
+    std::fprintf(out, "                   outflow: mass %.6g, kinetic + internal %.6g left the "
+                      "grid\n",
+                 s.final.outflow_mass, s.final.outflow);
   if (s.final.stabilisation != 0.0)
     std::fprintf(out, "                   assumed-strain stabilisation %.6g (part of internal)\n",
                  s.final.stabilisation);

@@ -30,6 +30,7 @@ const char* to_string(FaceCondition c) {
     case FaceCondition::fixed: return "fixed";
     case FaceCondition::symmetric: return "symmetric";
     case FaceCondition::wall: return "wall";
+    case FaceCondition::outflow: return "outflow";
   }
   return "?";
 }

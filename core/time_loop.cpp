@@ -38,6 +38,9 @@ HistoryRow history_row(const Model& m, const Energies& e, double dt, double erro
   r.external_work = e.external_work;
   r.total = e.total();
   r.energy_error = error;
+  r.outflow = e.outflow;
+  r.outflow_mass = e.outflow_mass;
+  r.outflow_momentum = e.outflow_momentum;
   for (const BodySums& b : e.bodies)
     r.bodies.push_back(
         {b.momentum, b.mass > 0.0 ? (1.0 / b.mass) * b.momentum : Vec3{}, b.kinetic, b.internal});
@@ -108,7 +111,9 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
       frames_ = std::make_unique<FieldWriter>(paths.directory, paths.fields_stem);
     std::vector<std::string> names;
     for (const auto& b : scene_.bodies) names.push_back(b.name);
-    history_ = std::make_unique<HistoryWriter>(history_path(paths), names);
+    bool outflow = false;
+    for (FaceCondition f : scene_.mpm.grid.faces) outflow = outflow || f == FaceCondition::outflow;
+    history_ = std::make_unique<HistoryWriter>(history_path(paths), names, outflow);
     events_ = std::make_unique<EventFiles>(paths.directory);
   }
   sum_.particles = model_.particle_count();

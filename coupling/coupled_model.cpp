@@ -23,6 +23,33 @@
 
 namespace afemp::coupling {
 
+namespace {
+
+// Outflow faces are for particles: a mesh body reaching one would keep nodes on the grid whose
+// particles (converted, or the host of bonded nodes) leave the run under them.
+void refuse_mesh_at_outflow_faces(const core::Scene& scene, const fem::FeNodes& n) {
+  const core::GridSettings& g = scene.mpm.grid;
+  for (int f = 0; f < 6; ++f) {
+    if (g.faces[static_cast<std::size_t>(f)] != core::FaceCondition::outflow) continue;
+    const int a = f / 2;
+    const bool high = f % 2 == 1;
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      if (n.body[i] < 0) continue;
+      const double x = n.position[i][a];
+      if (high ? x < g.max[a] : x > g.min[a]) continue;
+      const core::BodySpec& body = scene.bodies[static_cast<std::size_t>(n.body[i])];
+      throw core::InputError(
+          core::SourceLocation{scene.path, 0},
+          std::string("grid.boundary.") + core::to_string(static_cast<core::Face>(f)),
+          "mesh body \"" + body.name + "\" reaches the outflow face (node " + std::to_string(i) +
+              " at " + std::to_string(x) + "); \"outflow\" is for particles: keep meshes inside "
+              "an outflow face, or make the face \"free\", \"fixed\", \"symmetric\" or \"wall\"");
+    }
+  }
+}
+
+}  // namespace
+
 CoupledModel::CoupledModel(const core::Scene& scene) : scene_(scene), fe_(scene), mpm_(scene), points_(scene) {
   const std::size_t nb = scene.bodies.size();
   std::vector<char> in_contact(nb, 0);
@@ -33,6 +60,7 @@ CoupledModel::CoupledModel(const core::Scene& scene) : scene_(scene), fe_(scene)
     surface_body_[b] = in_contact[b] &&
                        scene.bodies[b].discretisation == core::Discretisation::hexahedra;
   const fem::FeNodes& n = fe().nodes();
+  refuse_mesh_at_outflow_faces(scene, n);
   driven_.assign(n.size(), 0);
   point_of_node_.assign(n.size(), -1);
   for (std::size_t i = 0; i < n.size(); ++i) {
@@ -212,6 +240,9 @@ core::Energies CoupledModel::energies() const {
   out.viscous += m.viscous;
   out.external_work += m.external_work;
   out.contact += m.contact;
+  out.outflow += m.outflow;
+  out.outflow_mass += m.outflow_mass;
+  out.outflow_momentum += m.outflow_momentum;
   for (std::size_t b = 0; b < out.bodies.size(); ++b) {
     out.bodies[b].mass += m.bodies[b].mass;
     out.bodies[b].momentum += m.bodies[b].momentum;

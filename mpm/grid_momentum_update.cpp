@@ -55,7 +55,8 @@ class FaceConstraints {
       case core::FaceCondition::fixed: c.always |= 7u; break;
       case core::FaceCondition::symmetric: c.always |= 1u << axis; break;
       case core::FaceCondition::wall: (high ? c.wall_high : c.wall_low) |= 1u << axis; break;
-      case core::FaceCondition::free: break;
+      case core::FaceCondition::free:
+      case core::FaceCondition::outflow: break;  // particles beyond it leave (outflow.cpp)
     }
   }
   core::FaceCondition lo_[3], hi_[3];

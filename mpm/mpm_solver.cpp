@@ -76,6 +76,8 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
   }
   stage_counts_.assign(plan_.stages.size(), 0);
   stage_seconds_.assign(plan_.stages.size(), 0.0);
+  for (std::size_t f = 0; f < 6; ++f)
+    outflow_[f] = scene.mpm.grid.faces[f] == core::FaceCondition::outflow;
   reorder_particles();
   signal_speed_ = max_signal_speed();
 }
@@ -130,6 +132,9 @@ void MpmSolver::step(double dt) {
   for (std::size_t i = 0; i < plan_.stages.size(); ++i) {
     const auto t0 = clock::now();
     switch (plan_.stages[i].kind) {
+      case StageKind::outflow:
+        remove_outflow();
+        break;
       case StageKind::bin_particles:
         bin_particles();
         break;
@@ -253,6 +258,9 @@ Energies MpmSolver::energies() const {
   out.viscous = viscous_work_;
   out.external_work = external_work_;
   out.contact = contact_energy_;
+  out.outflow = outflow_energy_;
+  out.outflow_mass = outflow_mass_;
+  out.outflow_momentum = outflow_momentum_;
   return out;
 }
 

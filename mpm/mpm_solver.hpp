@@ -4,6 +4,7 @@
 // particle_to_grid.cpp, grid_momentum_update.cpp, grid_to_particle.cpp, stress_update.cpp.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -52,6 +53,8 @@ class MpmSolver {
   const std::vector<long>& stage_counts() const { return stage_counts_; }
   const std::vector<double>& stage_seconds() const { return stage_seconds_; }
   double reorder_seconds() const { return reorder_seconds_; }
+  // Particles that have left through outflow faces so far.
+  long outflow_count() const { return outflow_count_; }
   // Points that join the grid step from now on (grid_points.hpp; coupling/ puts FE nodes on
   // the grid this way). nullptr: none. Throws std::invalid_argument with the USL scheme.
   void set_grid_points(GridPoints* points);
@@ -126,6 +129,10 @@ class MpmSolver {
   void strain_stress_batch(const MaterialBatch& batch, const Strength& strength, const Eos& eos,
                            double dt, int thread_slot_offset);
   void reorder_particles();
+  // Outflow faces (outflow.cpp): whether a position lies beyond the grid through outflow
+  // faces only, and the removal of such particles at the start of a step.
+  bool left_through_outflow(const Vec3& x) const;
+  void remove_outflow();
   void raise_if_bad(const char* field) const;
   double max_signal_speed() const;
 
@@ -182,6 +189,12 @@ class MpmSolver {
   // core/bulk_viscosity.hpp), and whether any body has it.
   std::vector<core::BulkViscositySettings> bulk_viscosity_;
   bool viscous_ = false;
+
+  // Outflow faces (xmin, xmax, ymin, ymax, zmin, zmax), and what left through them.
+  std::array<bool, 6> outflow_{};
+  double outflow_mass_ = 0.0, outflow_energy_ = 0.0;
+  Vec3 outflow_momentum_{};
+  long outflow_count_ = 0;
 
   // Accumulators and state.
   double plastic_work_ = 0.0;

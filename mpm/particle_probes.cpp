@@ -52,6 +52,10 @@ void ParticleProbes::sample(const Particles& p, std::span<double> out) const {
         i = static_cast<std::size_t>(std::find(p.id.begin(), p.id.end(), id_[k]) - p.id.begin());
         slot_[k] = i;
       }
+      if (i >= p.size()) {  // the particle left through an outflow face: nothing to read
+        std::fill(v, v + core::probe_stride, std::numeric_limits<double>::quiet_NaN());
+        continue;
+      }
       const core::Vec3 &x = p.position[i], &u = p.velocity[i];
       const double row[] = {x.x, x.y, x.z, u.x, u.y, u.z, core::pressure(p.stress[i]),
                             core::von_mises(p.stress[i]), p.plastic_strain[i]};

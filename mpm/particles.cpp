@@ -67,6 +67,11 @@ void Particles::permute(const std::vector<std::int32_t>& perm) {
                 &history[i * history_count]);
 }
 
+void Particles::select(const std::vector<std::int32_t>& kept) {
+  permute(kept);
+  resize(kept.size());
+}
+
 std::size_t Particles::bytes() const {
   std::size_t total = 0;
   for_each_array(*this, [&total](const auto& a) { total += a.capacity() * sizeof(a[0]); });

@@ -104,6 +104,15 @@ StepPlan build_step_plan(const core::Scene& scene) {
   const std::string velocity =
       plan.transfer == core::Transfer::apic ? "particle velocity and affine velocity (APIC)"
                                             : "particle velocity (PIC/FLIP blend)";
+  std::string outflow_faces;
+  for (int f = 0; f < 6; ++f)
+    if (scene.mpm.grid.faces[static_cast<std::size_t>(f)] == core::FaceCondition::outflow)
+      outflow_faces += std::string(outflow_faces.empty() ? "" : ", ") +
+                       core::to_string(static_cast<core::Face>(f));
+  if (!outflow_faces.empty())
+    s.push_back(stage(StageKind::outflow, "outflow",
+                      "particles beyond the outflow faces (" + outflow_faces +
+                          ") leave the run; their mass, momentum and energy are booked"));
   s.push_back(stage(StageKind::bin_particles, "bin particles",
                     "cells of the points, active grid blocks, colour layers for the P2G sweep"));
   switch (plan.scheme) {

@@ -11,6 +11,7 @@
 namespace afemp::mpm {
 
 enum class StageKind {
+  outflow,                // particles beyond an outflow face leave (outflow.cpp; eq 13 there)
   bin_particles,          // cells of the points; active grid blocks; colouring layers
   p2g_mass_momentum,      // eqs 2-29, 2-30 (USF: before the stress update)
   p2g_force,              // eqs 2-10, 2-11 (USF: after the stress update)

@@ -26,8 +26,8 @@ std::string errno_text(int err) { return std::error_code(err, std::generic_categ
 
 }  // namespace
 
-HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> body_names)
-    : path_(std::move(path)), body_names_(std::move(body_names)) {
+HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> body_names, bool outflow)
+    : path_(std::move(path)), body_names_(std::move(body_names)), outflow_(outflow) {
   for (const std::string& name : body_names_)
     if (name.empty() || name.find_first_of(",\"\r\n") != std::string::npos)
       throw std::invalid_argument("HistoryWriter: body name '" + name +
@@ -47,6 +47,7 @@ HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> body_nam
 
   std::string header = "step,time,dt,kinetic,internal,elastic,plastic,viscous,hourglass,"
                        "stabilisation,eroded,converted,contact,external_work,total,energy_error";
+  if (outflow_) header += ",outflow,outflow_mass,outflow_px,outflow_py,outflow_pz";
   for (const std::string& name : body_names_)
     for (const char* c : {".px", ".py", ".pz", ".vx", ".vy", ".vz", ".kinetic", ".internal"}) header += "," + name + c;
   header += '\n';
@@ -65,6 +66,11 @@ void HistoryWriter::write(const HistoryRow& row) {
                          row.viscous, row.hourglass, row.stabilisation, row.eroded, row.converted, row.contact, row.external_work, row.total,
                          row.energy_error})
     append_number(line_, v);
+  if (outflow_) {
+    append_number(line_, row.outflow);
+    append_number(line_, row.outflow_mass);
+    for (int i = 0; i < 3; ++i) append_number(line_, row.outflow_momentum[i]);
+  }
   for (const BodyHistory& b : row.bodies) {
     for (int i = 0; i < 3; ++i) append_number(line_, b.momentum[i]);
     for (int i = 0; i < 3; ++i) append_number(line_, b.mean_velocity[i]);

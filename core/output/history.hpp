@@ -24,9 +24,14 @@ struct HistoryRow {
   double time = 0.0, dt = 0.0, kinetic = 0.0, internal = 0.0, elastic = 0.0, plastic = 0.0,
          viscous = 0.0, hourglass = 0.0, stabilisation = 0.0, eroded = 0.0, converted = 0.0,
          contact = 0.0, external_work = 0.0, total = 0.0, energy_error = 0.0;
+  // What left through outflow faces (Energies::outflow*): written only by a writer made with
+  // outflow columns.
+  double outflow = 0.0, outflow_mass = 0.0;
+  Vec3 outflow_momentum{};
   // internal = elastic + plastic + viscous (bulk-viscous heating); elastic includes
   // stabilisation (the strain energy of assumed-strain hourglass control);
-  // total = kinetic + internal + hourglass + eroded + converted (contact is an estimate of what
+  // total = kinetic + internal + hourglass + eroded + converted + outflow (contact is an
+  // estimate of what
   // the grid contact dissipated, not part of it); energy_error: the caller's relative
   // balance error (core/energies.hpp).
   std::vector<BodyHistory> bodies;  // one per body name, in the writer's order
@@ -34,6 +39,7 @@ struct HistoryRow {
 
 // Columns: step,time,dt,kinetic,internal,elastic,plastic,viscous,hourglass,stabilisation,eroded,
 // converted,contact,external_work,total,energy_error,
+// with outflow faces also outflow,outflow_mass,outflow_px,outflow_py,outflow_pz,
 // then per body NAME: NAME.px,NAME.py,NAME.pz,NAME.vx,NAME.vy,NAME.vz,NAME.kinetic,
 // NAME.internal (like LS-DYNA's MATSUM per part).
 // step is printed as an integer, every other value with "%.10e" (11 significant digits).
@@ -42,7 +48,8 @@ class HistoryWriter {
   // Creates the parent directory if needed, truncates the file and writes the header.
   // Throws std::runtime_error naming the path and the reason if it cannot; throws
   // std::invalid_argument for an empty body name or one containing ',', '"' or a newline.
-  HistoryWriter(std::string path, std::vector<std::string> body_names);
+  // outflow: the scene has outflow faces (their columns are written).
+  HistoryWriter(std::string path, std::vector<std::string> body_names, bool outflow = false);
 
   // Appends and flushes one row. Throws std::invalid_argument if row.bodies does not have
   // one entry per body name, std::runtime_error if the write fails (e.g. disk full).
@@ -57,6 +64,7 @@ class HistoryWriter {
   };
   std::string path_;
   std::vector<std::string> body_names_;
+  bool outflow_ = false;
   std::unique_ptr<std::FILE, FileCloser> file_;
   std::string line_;  // reused row buffer
   std::size_t rows_ = 0;

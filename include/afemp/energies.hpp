@@ -41,9 +41,15 @@ struct Energies {
   /// total(): in the head-on test it is 1.2 to 2.7 times the energy the bodies actually lose,
   /// so a contact run's balance error includes what the contact dissipated.
   double contact = 0.0;
+  /// What particles carried out of the grid through outflow faces (mpm/outflow.cpp): their
+  /// kinetic + internal energy (part of total()), mass and momentum, summed at the step they
+  /// left. The bodies' sums no longer hold them.
+  double outflow = 0.0;
+  double outflow_mass = 0.0;
+  Vec3 outflow_momentum{};
   std::vector<BodySums> bodies{};
   /// Everything that must equal the initial total plus the external work.
-  double total() const { return kinetic + internal + hourglass + eroded + converted; }
+  double total() const { return kinetic + internal + hourglass + eroded + converted + outflow; }
 };
 
 /// Relative energy-balance error: (E - E0 - W_ext) / max(E0 + |W_ext|, max kinetic so far),

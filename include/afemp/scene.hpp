@@ -31,8 +31,11 @@ enum class Transfer { flip, apic };
 /// free: nothing; fixed: all velocity components zero (the material sticks);
 /// symmetric: normal component zero (a symmetry plane; tension is carried across it);
 /// wall: a rigid frictionless wall the material may not cross but may leave (the normal
-/// component is zeroed only at nodes whose updated velocity points into the wall).
-enum class FaceCondition { free, fixed, symmetric, wall };
+/// component is zeroed only at nodes whose updated velocity points into the wall);
+/// outflow: nothing imposed, and a particle that leaves the grid through the face takes no
+/// further part in the run (its mass, momentum and energy are booked in Energies::outflow*).
+/// Through the other faces a particle leaving the grid stops the run.
+enum class FaceCondition { free, fixed, symmetric, wall, outflow };
 /// The six faces of the grid domain, in the order of GridSettings::faces.
 enum class Face { xmin = 0, xmax, ymin, ymax, zmin, zmax };
 

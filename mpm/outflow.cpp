@@ -1,0 +1,57 @@
+// Outflow faces: the free-outflow boundary of the MPM paper on explosion and impact in
+// *Journal of Harbin Engineering University* (2020, issue 8; docs/references.md, item 3),
+// eq 13: at the start of each step a particle takes part only while it lies inside the grid
+// domain, x_min <= x_p <= x_max. A particle beyond a face declared "outflow" stops taking
+// part: it is taken out of the particle arrays, and its mass, momentum, kinetic and internal
+// energy are booked (Energies::outflow*), so mass + outflow mass and the energy balance
+// still close. A particle beyond any other face stops the run as before (binning names it).
+#include <cmath>
+#include <vector>
+
+#include "core/parallel.hpp"
+#include "mpm/mpm_solver.hpp"
+
+namespace afemp::mpm {
+
+bool MpmSolver::left_through_outflow(const Vec3& x) const {
+  if (!(std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z))) return false;
+  const std::array<int, 3> c = grid_.cell_of(x);
+  bool beyond = false;
+  for (int a = 0; a < 3; ++a) {
+    const auto k = static_cast<std::size_t>(a);
+    const int side = c[k] < 0 ? 0 : c[k] >= grid_.cells()[k] ? 1 : -1;
+    if (side < 0) continue;
+    if (!outflow_[static_cast<std::size_t>(2 * a + side)]) return false;  // a closed face
+    beyond = true;
+  }
+  return beyond;
+}
+
+void MpmSolver::remove_outflow() {
+  Particles& p = particles_;
+  const std::size_t n = p.size();
+  long leaving = 0;
+#pragma omp parallel for schedule(static) reduction(+ : leaving) if (core::worth_threads(n))
+  for (std::size_t i = 0; i < n; ++i) leaving += left_through_outflow(p.position[i]) ? 1 : 0;
+  if (leaving == 0) return;
+  // In particle order, on one thread: the same sums for any thread count.
+  std::vector<std::int32_t> kept;
+  kept.reserve(n - static_cast<std::size_t>(leaving));
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!left_through_outflow(p.position[i])) {
+      kept.push_back(static_cast<std::int32_t>(i));
+      continue;
+    }
+    const double m = p.mass[i];
+    const Vec3& v = p.velocity[i];
+    outflow_mass_ += m;
+    outflow_momentum_ += m * v;
+    outflow_energy_ += 0.5 * m * core::dot(v, v) + m * p.energy[i];
+  }
+  outflow_count_ += leaving;
+  p.select(kept);
+  if (plan_.shape == core::ShapeFunction::gimp) velocity_gradient_.resize(p.size());
+  reorder_particles();  // the material batches
+}
+
+}  // namespace afemp::mpm
