@@ -379,7 +379,7 @@ void read_grid(TableReader& r, GridSettings& grid) {
 }
 
 void read_mpm(TableReader& r, MpmSettings& mpm) {
-  r.known({"scheme", "shape_function", "transfer", "flip", "jaumann"});
+  r.known({"scheme", "shape_function", "transfer", "flip", "jaumann", "splitting"});
   r.check_unknown();
   mpm.scheme = static_cast<UpdateScheme>(r.choice("scheme", {"USF", "USL", "MUSL"}, 2, true));
   mpm.shape = static_cast<ShapeFunction>(r.choice("shape_function", {"linear", "gimp"}, 0));
@@ -398,6 +398,16 @@ void read_mpm(TableReader& r, MpmSettings& mpm) {
                      "transfer = \"flip\"");
   }
   mpm.jaumann = r.boolean("jaumann", true);
+  if (const toml::table* t = r.optional_table("splitting")) {
+    TableReader sr(*t, r.dotted("splitting"), r.file());
+    sr.known({"alpha", "max_particles"});
+    sr.check_unknown();
+    SplittingSettings s;
+    s.alpha = sr.number("alpha", 0.9, Range{0.5, 1.5, true, false});
+    s.max_particles =
+        static_cast<std::size_t>(sr.integer("max_particles", 10000000, 1, 2000000000));
+    mpm.splitting = s;
+  }
 }
 
 HolmquistJohnsonCook read_holmquist_johnson_cook(TableReader& r) {

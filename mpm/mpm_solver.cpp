@@ -53,6 +53,15 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
           std::min(0.5, 0.5 * std::cbrt(particles_.volume[i]) * grid_.inverse_cell());
     velocity_gradient_.resize(particles_.size());  // the kinematics pass's output
   }
+  // Splitting: each particle's lengths start as the edge of the cube of its volume.
+  if (plan_.splitting) {
+    particles_.length.resize(particles_.size());
+    particles_.length0.resize(particles_.size());
+    for (std::size_t i = 0; i < particles_.size(); ++i) {
+      const double l = std::cbrt(particles_.volume[i]);
+      particles_.length[i] = particles_.length0[i] = Vec3{l, l, l};
+    }
+  }
   // APIC: particles start with C_p = 0 (each body starts at a uniform velocity) unless the
   // caller gave them an affine velocity of their own.
   if (plan_.transfer == core::Transfer::apic && particles_.affine.size() != particles_.size())
@@ -107,6 +116,10 @@ void MpmSolver::add_particles(const Particles& more) {
                             p.history_count);
     if (!p.half_width.empty())
       p.half_width[i] = std::min(0.5, 0.5 * std::cbrt(p.volume[i]) * grid_.inverse_cell());
+    if (!p.length.empty()) {
+      const double l = std::cbrt(p.volume[i]);
+      p.length[i] = p.length0[i] = Vec3{l, l, l};
+    }
     if (!field_self_updated_.empty())
       field_self_updated_[static_cast<std::size_t>(
           field_of_body_[static_cast<std::size_t>(p.body[i])])] = 0;
@@ -134,6 +147,9 @@ void MpmSolver::step(double dt) {
     switch (plan_.stages[i].kind) {
       case StageKind::outflow:
         remove_outflow();
+        break;
+      case StageKind::split_particles:
+        split_particles();
         break;
       case StageKind::bin_particles:
         bin_particles();

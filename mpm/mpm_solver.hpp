@@ -55,6 +55,8 @@ class MpmSolver {
   double reorder_seconds() const { return reorder_seconds_; }
   // Particles that have left through outflow faces so far.
   long outflow_count() const { return outflow_count_; }
+  // Particles split so far (each split of one particle, into 2, 4 or 8, counts once).
+  long split_count() const { return split_count_; }
   // Points that join the grid step from now on (grid_points.hpp; coupling/ puts FE nodes on
   // the grid this way). nullptr: none. Throws std::invalid_argument with the USL scheme.
   void set_grid_points(GridPoints* points);
@@ -133,6 +135,9 @@ class MpmSolver {
   // faces only, and the removal of such particles at the start of a step.
   bool left_through_outflow(const Vec3& x) const;
   void remove_outflow();
+  // Splitting (particle_splitting.cpp): particles whose length along an axis reached 2 alpha
+  // times their initial length split along those axes.
+  void split_particles();
   void raise_if_bad(const char* field) const;
   double max_signal_speed() const;
 
@@ -195,6 +200,7 @@ class MpmSolver {
   double outflow_mass_ = 0.0, outflow_energy_ = 0.0;
   Vec3 outflow_momentum_{};
   long outflow_count_ = 0;
+  long split_count_ = 0;  // splits so far (one particle into 2, 4 or 8 counts once)
 
   // Accumulators and state.
   double plastic_work_ = 0.0;

@@ -16,6 +16,8 @@ void for_each_array(Particles& p, F&& f) {
   if (!p.strain.empty()) f(p.strain);
   if (!p.half_width.empty()) f(p.half_width);
   if (!p.affine.empty()) f(p.affine);
+  if (!p.length.empty()) f(p.length);
+  if (!p.length0.empty()) f(p.length0);
 }
 template <class F>
 void for_each_array(const Particles& p, F&& f) {
@@ -44,6 +46,8 @@ void Particles::push_back(const Vec3& x, const Vec3& v, double m, double vol, do
   if (!strain.empty()) strain.push_back({});
   if (!half_width.empty()) half_width.push_back(0.0);  // the solver sets it from the volume
   if (!affine.empty()) affine.push_back({});
+  if (!length.empty()) length.push_back({});  // the solver sets them from the volume
+  if (!length0.empty()) length0.push_back({});
   plastic_strain.push_back(0.0);
   temperature.push_back(temp);
   energy.push_back(0.0);

@@ -34,6 +34,10 @@ struct Particles {
   // Empty unless the scene asks for them:
   std::vector<double> half_width;      // uGIMP: half the particle's initial edge, in cells
   std::vector<core::Mat3> affine;      // APIC: the affine velocity C_p (a velocity gradient)
+  // Splitting: the particle's current length along x, y, z, and the length the particle it
+  // came from started with (particle_splitting.cpp).
+  std::vector<Vec3> length;
+  std::vector<Vec3> length0;
   // History variables of user strength models (afemp/user_material.hpp): history_count values
   // per point, point-major (point i's at history[i * history_count]); history_count is the
   // largest count of the scene's materials, 0 (and history empty) when none has any.

@@ -1,5 +1,6 @@
 #include "mpm/step_plan.hpp"
 
+#include <cstdio>
 #include <set>
 #include <sstream>
 
@@ -49,6 +50,7 @@ StepPlan build_step_plan(const core::Scene& scene) {
   plan.transfer = scene.mpm.transfer;
   plan.flip = scene.mpm.flip;
   plan.strain = scene.run.output_strain;
+  plan.splitting = scene.mpm.splitting.has_value();
   plan.jaumann = scene.mpm.jaumann;
   const core::Vec3& g = scene.run.gravity;
   plan.gravity = g.x != 0.0 || g.y != 0.0 || g.z != 0.0;
@@ -113,6 +115,14 @@ StepPlan build_step_plan(const core::Scene& scene) {
     s.push_back(stage(StageKind::outflow, "outflow",
                       "particles beyond the outflow faces (" + outflow_faces +
                           ") leave the run; their mass, momentum and energy are booked"));
+  if (plan.splitting) {
+    char why[200];
+    std::snprintf(why, sizeof why,
+                  "a particle whose length along an axis reached %g x its initial length splits "
+                  "in two along each such axis (at most %zu particles)",
+                  2.0 * scene.mpm.splitting->alpha, scene.mpm.splitting->max_particles);
+    s.push_back(stage(StageKind::split_particles, "split particles", why));
+  }
   s.push_back(stage(StageKind::bin_particles, "bin particles",
                     "cells of the points, active grid blocks, colour layers for the P2G sweep"));
   switch (plan.scheme) {

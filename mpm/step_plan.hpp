@@ -12,6 +12,7 @@ namespace afemp::mpm {
 
 enum class StageKind {
   outflow,                // particles beyond an outflow face leave (outflow.cpp; eq 13 there)
+  split_particles,        // long particles split (particle_splitting.cpp; eqs 14-17 there)
   bin_particles,          // cells of the points; active grid blocks; colouring layers
   p2g_mass_momentum,      // eqs 2-29, 2-30 (USF: before the stress update)
   p2g_force,              // eqs 2-10, 2-11 (USF: after the stress update)
@@ -52,6 +53,7 @@ struct StepPlan {
   core::Transfer transfer = core::Transfer::flip;
   double flip = 1.0;  // PIC/FLIP blend of the particle velocity update (transfer flip)
   bool strain = false;  // the strain tensor is integrated (run.output_strain)
+  bool splitting = false;  // particle lengths are tracked and long particles split
   std::vector<Stage> stages;
   std::vector<MaterialPlan> materials;  // only materials that some body uses
   bool gravity = false;                 // body force added in p2g_force

@@ -116,6 +116,7 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
   constexpr bool reads_damage = Strength::reads_damage;
   const bool jaumann = plan_.jaumann;
   const bool track_strain = plan_.strain;
+  const bool track_length = plan_.splitting;
   const double flip = scene_.mpm.flip;
   const bool viscous = viscous_;
   const core::BulkViscositySettings* viscosity = bulk_viscosity_.data();
@@ -202,6 +203,10 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
         p.max_compaction[i] = st.max_compaction;
       }
       if (track_strain) p.strain[i] += d_eps;
+      if (track_length) {  // the particle's extent along each axis stretches with the grid's
+        Vec3& l = p.length[i];
+        l = Vec3{l.x * (1.0 + d_eps.xx), l.y * (1.0 + d_eps.yy), l.z * (1.0 + d_eps.zz)};
+      }
       work += p.mass[i] * u.plastic_work;
       // The step bound uses max c + max |v| >= max (c + |v|): squares here, two square
       // roots per step instead of two per particle.

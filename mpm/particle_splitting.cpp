@@ -1,0 +1,108 @@
+// Adaptive multi-axis particle splitting: the MPM paper on explosion and impact in the
+// Journal of Harbin Engineering University (2020, issue 8; docs/references.md, item 3),
+// eqs 14-17. A particle whose length along an axis reaches 2 alpha l0 (l0 its length there at
+// the start, alpha 0.9 by default; eqs 14, 16) splits into two equal halves along that axis,
+// along every axis that meets the criterion in the same step: 2, 4 or 8 particles (the seven
+// 3-D patterns). Extensive quantities (mass, volume, length along the split axes) are shared
+// equally (eqs 15, 17: 0.5, 0.25, 0.125); intensive ones (velocity, stress, strain, plastic
+// strain, temperature, specific energy, damage, history) are copied, so mass and momentum are
+// split exactly and the kinetic and internal energies with them. l0 stays the original
+// particle's: a half (length alpha l0 just after the split) splits again only when it has
+// doubled in turn, so spacing stays below 2 alpha l0 along every axis. The halves sit at the
+// centres of the parent's halves, x +- l_a / 4 along each split axis. A split that would take
+// the particle count past max_particles stops the run.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "afemp/errors.hpp"
+#include "mpm/mpm_solver.hpp"
+
+namespace afemp::mpm {
+
+void MpmSolver::split_particles() {
+  Particles& p = particles_;
+  const core::SplittingSettings& settings = *scene_.mpm.splitting;
+  const std::size_t n = p.size();
+  // The axes each particle splits along (bit a: axis a), in particle order.
+  std::vector<std::uint8_t> axes(n, 0);
+  std::size_t added = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    unsigned bits = 0;
+    for (int a = 0; a < 3; ++a)
+      if (p.length[i][a] >= 2.0 * settings.alpha * p.length0[i][a]) bits |= 1u << a;
+    axes[i] = static_cast<std::uint8_t>(bits);
+    added += (std::size_t{1} << __builtin_popcount(bits)) - 1;
+  }
+  if (added == 0) return;
+  if (n + added > settings.max_particles)
+    throw core::SimulationError(
+        steps_, time_, "the particles (" + std::to_string(n) + ")", "particle count",
+        "splitting would make " + std::to_string(n + added) + " particles, more than " +
+            "[mpm] splitting max_particles = " + std::to_string(settings.max_particles) +
+            "; raise it, or use a coarser start or a larger alpha");
+  std::int32_t next_id = 0;
+  for (std::int32_t id : p.id) next_id = std::max(next_id, id + 1);
+  p.resize(n + added);  // new entries are filled below from their parent
+  const std::size_t hc = p.history_count;
+  std::size_t next = n;
+  for (std::size_t i = 0; i < n; ++i) {
+    const unsigned bits = axes[i];
+    if (bits == 0) continue;
+    const int pieces = 1 << __builtin_popcount(bits);
+    const double share = 1.0 / pieces;
+    // The parent's halves along the split axes; the parent keeps the first piece and its id.
+    Vec3 half = p.length[i];
+    for (int a = 0; a < 3; ++a)
+      if (bits & (1u << a)) half[a] *= 0.5;
+    const Vec3 centre = p.position[i];
+    for (int k = 0; k < pieces; ++k) {
+      // Piece k: along the j-th split axis, the lower (bit j of k clear) or upper half.
+      Vec3 offset;
+      int j = 0;
+      for (int a = 0; a < 3; ++a) {
+        if (!(bits & (1u << a))) continue;
+        offset[a] = ((k >> j) & 1 ? 0.25 : -0.25) * p.length[i][a];
+        ++j;
+      }
+      const std::size_t c = k == 0 ? i : next++;
+      if (c != i) {
+        p.velocity[c] = p.velocity[i];
+        p.stress[c] = p.stress[i];
+        p.plastic_strain[c] = p.plastic_strain[i];
+        p.temperature[c] = p.temperature[i];
+        p.energy[c] = p.energy[i];
+        p.damage[c] = p.damage[i];
+        p.max_compaction[c] = p.max_compaction[i];
+        p.bulk_q[c] = p.bulk_q[i];
+        p.body[c] = p.body[i];
+        p.material[c] = p.material[i];
+        p.id[c] = next_id++;
+        if (!p.strain.empty()) p.strain[c] = p.strain[i];
+        if (!p.affine.empty()) p.affine[c] = p.affine[i];
+        std::copy_n(p.history.data() + i * hc, hc, p.history.data() + c * hc);
+        p.mass[c] = share * p.mass[i];
+        p.volume[c] = share * p.volume[i];
+        p.length0[c] = p.length0[i];
+      }
+      p.position[c] = centre + offset;
+      p.length[c] = half;
+    }
+    // The parent last: its mass and volume were the pieces' source.
+    p.mass[i] *= share;
+    p.volume[i] *= share;
+    if (!p.half_width.empty()) {
+      const double w = std::min(0.5, 0.5 * std::cbrt(p.volume[i]) * grid_.inverse_cell());
+      p.half_width[i] = w;
+      for (std::size_t c = next - static_cast<std::size_t>(pieces - 1); c < next; ++c)
+        p.half_width[c] = w;
+    }
+    ++split_count_;
+  }
+  if (plan_.shape == core::ShapeFunction::gimp) velocity_gradient_.resize(p.size());
+  reorder_particles();  // the material batches, and locality for the new particles
+}
+
+}  // namespace afemp::mpm
