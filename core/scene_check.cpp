@@ -184,6 +184,17 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
     c.range(b.where, key + ".bulk_viscosity.quadratic",
             b.bulk_viscosity->quadratic, Range::closed(0.0, 10.0));
   }
+  // Trusses run the uniaxial update, which has no failed state: only a failure strain (their
+  // erosion criterion material_failure) applies to them.
+  if (b.discretisation == D::trusses && b.material >= 0 &&
+      static_cast<std::size_t>(b.material) < scene.materials.size()) {
+    const Material& m = scene.materials[static_cast<std::size_t>(b.material)];
+    if (m.fails() && !std::holds_alternative<PlasticStrainFailure>(m.failure))
+      c.fail(b.where, key + ".material",
+             "material \"" + m.name + "\" has a failure model, which trusses do not carry; "
+             "allowed for trusses: failure_strain (or failure = { model = \"plastic-strain\" }) "
+             "with erosion = { material_failure = true }");
+  }
   if (b.discretisation == D::particles) {
     if (b.erosion || b.conversion || b.bonded_to >= 0)
       c.fail(b.where, key + (b.erosion ? ".erosion" : b.conversion ? ".conversion" : ".bonded_to"),

@@ -606,9 +606,39 @@ EquationOfState read_eos(TableReader& r, double density, double bulk_modulus) {
   return equations_of_state[r.choice("model", names, std::nullopt)].read(r, density, bulk_modulus);
 }
 
+// [materials.NAME] failure = { model = "...", ... } (afemp/failure_models.hpp).
+FailureModel read_failure(TableReader& r) {
+  r.known({"model"});
+  const std::size_t model =
+      r.choice("model", {"johnson-cook", "plastic-strain", "spall"}, std::nullopt);
+  if (model == 0) {
+    r.known({"D1", "D2", "D3", "D4", "D5", "reference_strain_rate", "room_temperature",
+             "melt_temperature"});
+    r.check_unknown();
+    JohnsonCookFailure f;
+    f.D1 = r.required_number("D1", Range::any());
+    f.D2 = r.required_number("D2", Range::any());
+    f.D3 = r.required_number("D3", Range::any());
+    f.D4 = r.number("D4", 0.0, Range::any());
+    f.D5 = r.number("D5", 0.0, Range::any());
+    f.reference_strain_rate = r.number("reference_strain_rate", 1.0, Range::positive());
+    f.room_temperature = r.number("room_temperature", 293.0, Range::non_negative());
+    f.melt_temperature = r.number("melt_temperature", 0.0, Range::non_negative());
+    return f;
+  }
+  if (model == 1) {
+    r.known({"strain"});
+    r.check_unknown();
+    return PlasticStrainFailure{r.required_number("strain", Range::positive())};
+  }
+  r.known({"pressure"});
+  r.check_unknown();
+  return SpallFailure{r.required_number("pressure", Range::positive())};
+}
+
 Material read_material(TableReader& r, const std::string& name) {
   r.known({"density", "E", "nu", "G", "strength", "eos", "specific_heat", "taylor_quinney",
-           "temperature", "failure_strain"});
+           "temperature", "failure_strain", "failure"});
   r.check_unknown();
   Material m;
   m.name = name;
@@ -632,6 +662,15 @@ Material read_material(TableReader& r, const std::string& name) {
   m.thermal.taylor_quinney = r.number("taylor_quinney", 0.9, Range::closed(0.0, 1.0));
   m.thermal.initial_temperature = r.number("temperature", 293.0, Range::non_negative());
   m.failure_strain = r.number("failure_strain", 0.0, Range::non_negative());
+  if (const toml::table* t = r.optional_table("failure")) {
+    if (m.failure_strain > 0.0)
+      r.fail("failure_strain", "give failure_strain or failure, not both (failure_strain is "
+                               "failure = { model = \"plastic-strain\", strain = ... })");
+    TableReader fr(*t, r.dotted("failure"), r.file());
+    m.failure = read_failure(fr);
+  } else if (m.failure_strain > 0.0) {
+    m.failure = PlasticStrainFailure{m.failure_strain};
+  }
   try {
     m.validate();
   } catch (const std::invalid_argument& e) {

@@ -199,7 +199,8 @@ class FeSolver {
   void apply_walls(double dt);
   void update_hexahedra(double dt);
   void update_trusses(double dt);
-  template <class Strength, class Eos, bool Thermal>
+  // Fails: the material has a failure model (one instantiation each: core/materials/material.hpp).
+  template <class Strength, class Eos, bool Thermal, bool Fails>
   void hexahedron_batch(const ElementBatch& b, const Strength& s, const Eos& e, double dt);
   template <class Strength, class Eos, bool Thermal>
   void truss_batch(const ElementBatch& b, const Strength& s, const Eos& e, double dt);

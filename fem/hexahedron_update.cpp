@@ -44,7 +44,7 @@ constexpr std::size_t kPlastic = 0, kViscous = 1, kHourglass = 2, kStabilisation
 
 }  // namespace
 
-template <class Strength, class Eos, bool Thermal>
+template <class Strength, class Eos, bool Thermal, bool Fails>
 void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength, const Eos& eos,
                                 double dt) {
   const core::BodySpec& body = scene_.bodies[static_cast<std::size_t>(b.body)];
@@ -82,6 +82,8 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
     if constexpr (core::has_damage_state<Strength>) {
       b.st.damage = el.damage[p];
       b.st.max_compaction = el.max_compaction[p];
+    } else if constexpr (Fails) {  // a failure model reads and writes any model's damage
+      b.st.damage = el.damage[p];
     }
     b.st.stress += core::jaumann_increment(b.st.stress, inc.w23, inc.w13, inc.w12);
     // Bulk-viscous heating by the q that acted over this step.
@@ -102,6 +104,8 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
     if constexpr (core::has_damage_state<Strength>) {
       el.damage[p] = st.damage;
       el.max_compaction[p] = st.max_compaction;
+    } else if constexpr (Fails) {
+      el.damage[p] = st.damage;
     }
     return core::wave_speed(mat, eos, st);
   };
@@ -112,7 +116,8 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
     } else {
       PointStart b = begin_point(p, l, density, q_old);
       const core::PointUpdate u =
-          core::constitutive_update(mat, strength, eos, Thermal, b.st, b.d_eps, dt);
+          core::constitutive_update<Strength, Eos, Fails>(mat, strength, eos, Thermal, b.st,
+                                                          b.d_eps, dt);
       return end_point(p, b, u, sums);
     }
   };
@@ -121,14 +126,14 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
   [[maybe_unused]] const std::size_t hc = el.history_count;
   auto load_point = [&](auto& chunk, std::size_t j, std::size_t p, PointStart& b,
                         core::IncrementStart& in) {
-    in = core::start_increment(b.st, b.d_eps);
+    in = core::start_increment(b.st, b.d_eps, dt);
     chunk.load(j, b.st, in, el.history.data() + p * hc);
   };
   auto finish_point = [&](auto& chunk, std::size_t j, std::size_t p, PointStart& b,
                           const core::IncrementStart& in, double* sums) {
     chunk.store_history(j, el.history.data() + p * hc);
-    const core::PointUpdate u = core::finish_increment(mat, eos, Thermal, b.st, in,
-                                                       chunk.deviator(j), chunk.result(j));
+    const core::PointUpdate u = core::finish_increment<Eos, Fails>(
+        mat, eos, Thermal, b.st, in, chunk.deviator(j), chunk.result(j));
     return end_point(p, b, u, sums);
   };
   // Bulk-viscous pressure q and the critical step of an element (length l, dilatation rate
@@ -169,10 +174,13 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
       }
     }
     if (erosion && !failure) {
-      double eps_p = 0.0;
-      for (int g = 0; g < b.points_per_element; ++g)
+      double eps_p = 0.0, damage = 0.0;
+      for (int g = 0; g < b.points_per_element; ++g) {
         eps_p = std::max(eps_p, el.plastic_strain[p0 + static_cast<std::size_t>(g)]);
-      failure = core::erosion_reason(*erosion, mat, eps_p, volume, el.volume0[e], el.critical_dt[e]);
+        damage = std::max(damage, el.damage[p0 + static_cast<std::size_t>(g)]);
+      }
+      failure = core::erosion_reason(*erosion, mat, eps_p, volume, el.volume0[e],
+                                     el.critical_dt[e], damage);
     }
     if (failure) {
       if (!erosion) {
@@ -413,7 +421,10 @@ void FeSolver::update_hexahedra(double dt) {
   for_each_batch(hexes_, [&]<class S, class E, bool Thermal>(const ElementBatch& b, const S& s,
                                                          const E& e) {
     const double before = stabilisation();
-    hexahedron_batch<S, E, Thermal>(b, s, e, dt);
+    if (scene_.materials[static_cast<std::size_t>(b.material)].fails())
+      hexahedron_batch<S, E, Thermal, true>(b, s, e, dt);
+    else
+      hexahedron_batch<S, E, Thermal, false>(b, s, e, dt);
     body_stabilisation_[static_cast<std::size_t>(b.body)] += stabilisation() - before;
     raise_thread_errors();
     collect_erosions(hexes_, "hexahedron");

@@ -127,7 +127,7 @@ class MpmSolver {
   void strain_stress_update(double dt);
   // What the grid points' owner may read and write during a stage (grid_points.hpp).
   GridStepAccess access();
-  template <class Strength, class Eos, bool Thermal, bool Fused>
+  template <class Strength, class Eos, bool Thermal, bool Fused, bool Fails>
   void strain_stress_batch(const MaterialBatch& batch, const Strength& strength, const Eos& eos,
                            double dt, int thread_slot_offset);
   void reorder_particles();

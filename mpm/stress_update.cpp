@@ -51,16 +51,24 @@ void MpmSolver::strain_stress_update(double dt) {
         m, [&](const auto& strength, const auto& eos) {
           using S = std::decay_t<decltype(strength)>;
           using E = std::decay_t<decltype(eos)>;
+          // One instantiation per combination, so that a material without a failure model
+          // runs exactly the update it had (material.hpp, finish_increment).
+          auto run = [&]<bool Thermal, bool Fused>() {
+            if (m.fails())
+              strain_stress_batch<S, E, Thermal, Fused, true>(batch, strength, eos, dt, nt);
+            else
+              strain_stress_batch<S, E, Thermal, Fused, false>(batch, strength, eos, dt, nt);
+          };
           if (fused) {
             if (m.has_thermal_term())
-              strain_stress_batch<S, E, true, true>(batch, strength, eos, dt, nt);
+              run.template operator()<true, true>();
             else
-              strain_stress_batch<S, E, false, true>(batch, strength, eos, dt, nt);
+              run.template operator()<false, true>();
           } else {
             if (m.has_thermal_term())
-              strain_stress_batch<S, E, true, false>(batch, strength, eos, dt, nt);
+              run.template operator()<true, false>();
             else
-              strain_stress_batch<S, E, false, false>(batch, strength, eos, dt, nt);
+              run.template operator()<false, false>();
           }
         });
   }
@@ -101,7 +109,7 @@ void MpmSolver::kinematics_kernel(double dt) {
   });
 }
 
-template <class Strength, class Eos, bool Thermal, bool Fused>
+template <class Strength, class Eos, bool Thermal, bool Fused, bool Fails>
 void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& strength_in,
                                     const Eos& eos_in, double dt, int nt) {
   const core::BackgroundGrid& g = grid_;
@@ -186,6 +194,8 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
       if constexpr (reads_damage) {
         st.damage = p.damage[i];
         st.max_compaction = p.max_compaction[i];
+      } else if constexpr (Fails) {  // a failure model reads and writes any model's damage
+        st.damage = p.damage[i];
       }
       st.energy = p.energy[i];
       st.density = p.mass[i] / volume;
@@ -201,6 +211,8 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
       if constexpr (reads_damage) {
         p.damage[i] = st.damage;
         p.max_compaction[i] = st.max_compaction;
+      } else if constexpr (Fails) {
+        p.damage[i] = st.damage;
       }
       if (track_strain) p.strain[i] += d_eps;
       if (track_length) {  // the particle's extent along each axis stretches with the grid's
@@ -248,13 +260,13 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
         const std::size_t n = std::min(N, batch.begin + e - i0);
         for (std::size_t j = 0; j < n; ++j) {
           prepare(i0 + j, x[j], v_bar[j], v_p[j], d_eps[j], st[j]);
-          start[j] = core::start_increment(st[j], d_eps[j]);
+          start[j] = core::start_increment(st[j], d_eps[j], dt);
           chunk.load(j, st[j], start[j], p.history.data() + (i0 + j) * hc);
         }
         chunk.run(n, dt);
         for (std::size_t j = 0; j < n; ++j) {
           chunk.store_history(j, p.history.data() + (i0 + j) * hc);
-          const core::PointUpdate u = core::finish_increment(
+          const core::PointUpdate u = core::finish_increment<Eos, Fails>(
               mat, eos, Thermal, st[j], start[j], chunk.deviator(j), chunk.result(j));
           complete(i0 + j, x[j], v_bar[j], v_p[j], d_eps[j], st[j], u);
         }
@@ -265,8 +277,8 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
         core::SymTensor d_eps;
         core::PointState st;
         prepare(i, x, v_bar, v_p, d_eps, st);
-        const core::PointUpdate u =
-            core::constitutive_update(mat, strength, eos, Thermal, st, d_eps, dt);
+        const core::PointUpdate u = core::constitutive_update<Strength, Eos, Fails>(
+            mat, strength, eos, Thermal, st, d_eps, dt);
         complete(i, x, v_bar, v_p, d_eps, st, u);
       }
     }

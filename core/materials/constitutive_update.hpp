@@ -7,10 +7,14 @@
 #include <cmath>
 #include <type_traits>
 
+#include "core/materials/failure.hpp"
+
 namespace afemp::core {
 
-inline IncrementStart start_increment(const PointState& point, const SymTensor& d_eps) {
+inline IncrementStart start_increment(const PointState& point, const SymTensor& d_eps,
+                                      double dt) {
   IncrementStart in;
+  in.dt = dt;
   in.p_old = pressure(point.stress);
   in.s_old = point.stress.deviator();
   in.de_dev = d_eps.deviator();
@@ -22,11 +26,22 @@ inline IncrementStart start_increment(const PointState& point, const SymTensor& 
   return in;
 }
 
-template <class Eos>
+namespace failure_detail {
+inline constexpr SymTensor zero_deviator{};
+inline constexpr DeviatoricResult no_flow{};
+}  // namespace failure_detail
+
+template <class Eos, bool Fails>
 inline PointUpdate finish_increment(const Material& material, const Eos& eos, bool thermal,
                                     PointState& point, const IncrementStart& in,
-                                    const SymTensor& s_new, const DeviatoricResult& r) {
+                                    const SymTensor& s_deviator, const DeviatoricResult& r_model) {
   static_assert(!std::is_same_v<Eos, HjcCompaction>, "HjcCompaction pairs with HJC only");
+  // A failed point (failure.hpp) carries no shear and no tension: whatever the strength model
+  // returned, its deviator is zero, it flows no more, and its pressure is cut at zero.
+  bool failed = false;
+  if constexpr (Fails) failed = has_failed(point);
+  const SymTensor& s_new = failed ? failure_detail::zero_deviator : s_deviator;
+  const DeviatoricResult& r = failed ? failure_detail::no_flow : r_model;
   point.plastic_strain += r.plastic_strain_increment;
   const double plastic_work = r.flow_stress * r.plastic_strain_increment * in.inv_rho_work;
 
@@ -36,6 +51,9 @@ inline PointUpdate finish_increment(const Material& material, const Eos& eos, bo
   double p_new;
   if constexpr (std::is_same_v<Eos, NoEos>) {
     p_new = in.p_old - material.bulk_modulus() * d_vol;
+    // Selects, not branches: a branch here changes how the compiler fuses the multiply-adds
+    // of the energy equation, and with them the last bits of every run.
+    p_new = failed && p_new < 0.0 ? 0.0 : p_new;
     point.energy += deviatoric_work - 0.5 * (in.p_old + p_new) * d_vol * in.inv_rho_work;
   } else {
     const double mu = point.density / material.density - 1.0;
@@ -46,6 +64,10 @@ inline PointUpdate finish_increment(const Material& material, const Eos& eos, bo
     const double half_strain = 0.5 * d_vol * in.inv_rho_work;
     point.energy = (e_star - f.a * half_strain) / (1.0 + f.b * half_strain);
     p_new = f.a + f.b * point.energy;
+    // No tension: the increment's pressure work is then p_old's half (selects, as above).
+    const bool cut = failed && p_new < 0.0;
+    point.energy = cut ? e_star : point.energy;
+    p_new = cut ? 0.0 : p_new;
   }
 
   point.stress = s_new - p_new * SymTensor::identity();
@@ -53,10 +75,16 @@ inline PointUpdate finish_increment(const Material& material, const Eos& eos, bo
     point.temperature += material.thermal.taylor_quinney * plastic_work /
                          material.thermal.specific_heat;
   }
+  if constexpr (Fails) {
+    if (!failed)
+      point.damage = failure_damage(material.failure, point.damage, point.plastic_strain,
+                                    r.plastic_strain_increment, in.dt, p_new, s_new,
+                                    point.temperature);
+  }
   return {plastic_work};
 }
 
-template <class Strength, class Eos>
+template <class Strength, class Eos, bool Fails>
 inline PointUpdate constitutive_update(const Material& material, const Strength& strength,
                                        const Eos& eos, bool thermal, PointState& point,
                                        const SymTensor& d_eps, double dt) {
@@ -66,12 +94,16 @@ inline PointUpdate constitutive_update(const Material& material, const Strength&
   if constexpr (std::is_same_v<Strength, HolmquistJohnsonCook>) {
     return holmquist_johnson_cook_update(material, strength, eos, point, d_eps, dt);
   } else {
-    const IncrementStart in = start_increment(point, d_eps);
+    const IncrementStart in = start_increment(point, d_eps, dt);
     SymTensor s_new = in.s_old;
+    if constexpr (Fails) {
+      if (has_failed(point))  // no strength: finish_increment zeroes the deviator
+        return finish_increment<Eos, true>(material, eos, thermal, point, in, s_new, {});
+    }
     const StrengthContext context{material.shear_modulus(), point.plastic_strain,
                                   point.temperature, dt};
     const DeviatoricResult r = strength.update(s_new, in.de_dev, context);
-    return finish_increment(material, eos, thermal, point, in, s_new, r);
+    return finish_increment<Eos, Fails>(material, eos, thermal, point, in, s_new, r);
   }
 }
 

@@ -153,6 +153,22 @@ void Material::validate() const {
     require(std::abs(bulk_modulus() - k_e) <= 1e-9 * k_e, *this, "bulk modulus E / (3 (1 - 2 nu))",
             bulk_modulus(), "= PC / muc (set E and nu from G and PC / muc)");
   }
+  if (const auto* jc = std::get_if<JohnsonCookFailure>(&failure)) {
+    require(jc->reference_strain_rate > 0.0, *this, "failure reference_strain_rate",
+            jc->reference_strain_rate, "> 0");
+    // eps_f must stay positive at every triaxiality: D1 + D2 > 0 at sigma* = 0 and D1 >= 0
+    // where exp(D3 sigma*) vanishes (D3 < 0), D2 >= 0.
+    require(jc->D2 >= 0.0, *this, "failure D2", jc->D2, ">= 0");
+    require(jc->D1 + jc->D2 > 0.0, *this, "failure D1 + D2", jc->D1 + jc->D2, "> 0");
+  }
+  if (const auto* p = std::get_if<PlasticStrainFailure>(&failure))
+    require(p->strain > 0.0, *this, "failure strain", p->strain, "> 0");
+  if (const auto* s = std::get_if<SpallFailure>(&failure))
+    require(s->pressure > 0.0, *this, "failure pressure", s->pressure, "> 0");
+  if (fails() && std::holds_alternative<HolmquistJohnsonCook>(strength))
+    throw std::invalid_argument("material '" + name + "': holmquist-johnson-cook has its own "
+                                "damage; it takes no failure model (remove failure / "
+                                "failure_strain)");
   require(thermal.taylor_quinney >= 0.0 && thermal.taylor_quinney <= 1.0, *this,
           "taylor_quinney", thermal.taylor_quinney, "in [0, 1]");
   require(thermal.specific_heat >= 0.0, *this, "specific_heat", thermal.specific_heat, ">= 0");

@@ -57,13 +57,23 @@ struct IncrementStart {
   SymTensor de_dev;
   double d_vol = 0.0;
   double inv_rho_work = 0.0;
+  double dt = 0.0;  // the increment's time step (the failure models' strain rate)
 };
 
-inline IncrementStart start_increment(const PointState& point, const SymTensor& d_eps);
+inline IncrementStart start_increment(const PointState& point, const SymTensor& d_eps,
+                                      double dt);
+
+// A point of a material with a failure model that has failed (damage 1): it carries no shear
+// and no tension from the next increment on.
+inline bool has_failed(const PointState& point) { return point.damage >= 1.0; }
 
 // The volumetric half after the deviator s_new and the strength result r: plastic strain,
 // energy equation, EOS pressure, stress and adiabatic heating (any strength model but HJC).
-template <class Eos>
+// Fails: the material has a failure model (core/materials/failure.hpp); a failed point takes
+// no shear and no tension, and the others accumulate damage. A template parameter, so that
+// materials without one compile to exactly the update they had (a runtime branch changed how
+// the compiler fused the energy equation's multiply-adds, and so the last bits of every run).
+template <class Eos, bool Fails = false>
 PointUpdate finish_increment(const Material& material, const Eos& eos, bool thermal,
                              PointState& point, const IncrementStart& in, const SymTensor& s_new,
                              const DeviatoricResult& r);
@@ -76,7 +86,7 @@ PointUpdate finish_increment(const Material& material, const Eos& eos, bool ther
 //   taylor_quinney * plastic work / c_p when has_thermal_term().
 // Templated on the model types so that each batch runs one instantiation.
 // The Holmquist-Johnson-Cook pair takes holmquist_johnson_cook_update instead.
-template <class Strength, class Eos>
+template <class Strength, class Eos, bool Fails = false>
 PointUpdate constitutive_update(const Material& material, const Strength& strength, const Eos& eos,
                                 bool thermal, PointState& point, const SymTensor& d_eps, double dt);
 

@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "afemp/equations_of_state.hpp"
+#include "afemp/failure_models.hpp"
 #include "afemp/strength_models.hpp"
 #include "afemp/user_material.hpp"
 
@@ -40,6 +41,11 @@ struct Material {
   EquationOfState eos = NoEos{};
   ThermalProperties thermal{};
   double failure_strain = 0.0;  ///< equivalent plastic strain at failure; 0: none (erosion uses it)
+  /// When a point fails (afemp/failure_models.hpp); a failure_strain without one acts as
+  /// PlasticStrainFailure{failure_strain}.
+  FailureModel failure = NoFailure{};
+  /// Whether points of the material can fail.
+  bool fails() const { return !std::holds_alternative<NoFailure>(failure); }
 
   double shear_modulus() const { return youngs_modulus / (2.0 * (1.0 + poisson_ratio)); }
   double bulk_modulus() const { return youngs_modulus / (3.0 * (1.0 - 2.0 * poisson_ratio)); }

@@ -1,0 +1,51 @@
+// Failure models: when a material point fails, composed with any strength model and EOS
+// (core/materials/failure.hpp). A failed point keeps its mass and momentum, carries no shear
+// and no tension (its pressure is cut at zero; compression still goes through the EOS), and
+// shows damage 1 in the fields; elements of a body with erosion `material_failure` erode when
+// they fail. Damage D in [0, 1] is the fraction of the way to failure.
+#pragma once
+
+#include <variant>
+
+namespace afemp::core {
+
+/// No failure (the default).
+struct NoFailure {};
+
+/// Johnson & Cook (1985, Eng. Fract. Mech. 21(1) 31-48) damage: over each plastic
+/// strain increment D += d eps_p / eps_f with
+/// eps_f = [D1 + D2 exp(D3 sigma*)] [1 + D4 ln(epsdot*)] [1 + D5 T*],
+/// sigma* = -p / sigma_vm (the stress triaxiality), epsdot* = epsdot_p / epsdot_0 (taken as 1
+/// below epsdot_0, as LS-DYNA *MAT_015 does), T* = (T - T_room) / (T_melt - T_room) in [0, 1];
+/// the point fails at D = 1.
+struct JohnsonCookFailure {
+  double D1 = 0.0, D2 = 0.0, D3 = 0.0, D4 = 0.0, D5 = 0.0;
+  double reference_strain_rate = 1.0;  ///< epsdot_0, in the scene's time unit
+  double room_temperature = 293.0;
+  double melt_temperature = 0.0;       ///< 0: no temperature term
+};
+
+/// Failure at an equivalent plastic strain (D = eps_p / strain).
+struct PlasticStrainFailure {
+  double strain = 0.0;  ///< > 0
+};
+
+/// Spall: the point fails when its pressure falls below -pressure (hydrostatic tension
+/// beyond the spall strength; the pressure cutoff of LS-DYNA's spall models).
+struct SpallFailure {
+  double pressure = 0.0;  ///< spall strength, > 0
+};
+
+/// A material's failure model.
+using FailureModel = std::variant<NoFailure, JohnsonCookFailure, PlasticStrainFailure, SpallFailure>;
+
+}  ///< namespace afemp::core
+
+// The public names, in namespace afemp.
+namespace afemp {
+using core::FailureModel;
+using core::JohnsonCookFailure;
+using core::NoFailure;
+using core::PlasticStrainFailure;
+using core::SpallFailure;
+}  ///< namespace afemp
