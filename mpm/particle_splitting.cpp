@@ -12,6 +12,7 @@
 // centres of the parent's halves, x +- l_a / 4 along each split axis. A split that would take
 // the particle count past max_particles stops the run.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -34,7 +35,7 @@ void MpmSolver::split_particles() {
     for (int a = 0; a < 3; ++a)
       if (p.length[i][a] >= 2.0 * settings.alpha * p.length0[i][a]) bits |= 1u << a;
     axes[i] = static_cast<std::uint8_t>(bits);
-    added += (std::size_t{1} << __builtin_popcount(bits)) - 1;
+    added += (std::size_t{1} << std::popcount(bits)) - 1;
   }
   if (added == 0) return;
   if (n + added > settings.max_particles)
@@ -51,7 +52,7 @@ void MpmSolver::split_particles() {
   for (std::size_t i = 0; i < n; ++i) {
     const unsigned bits = axes[i];
     if (bits == 0) continue;
-    const int pieces = 1 << __builtin_popcount(bits);
+    const int pieces = 1 << std::popcount(bits);
     const double share = 1.0 / pieces;
     // The parent's halves along the split axes; the parent keeps the first piece and its id.
     Vec3 half = p.length[i];
