@@ -51,8 +51,8 @@ inline PointUpdate finish_increment(const Material& material, const Eos& eos, bo
   double p_new;
   if constexpr (std::is_same_v<Eos, NoEos>) {
     p_new = in.p_old - material.bulk_modulus() * d_vol;
-    // Selects, not branches: a branch here changes how the compiler fuses the multiply-adds
-    // of the energy equation, and with them the last bits of every run.
+    // Without a failure model `failed` is the constant false and this folds away, so the
+    // energy equation compiles as it did (material.hpp says why that matters).
     p_new = failed && p_new < 0.0 ? 0.0 : p_new;
     point.energy += deviatoric_work - 0.5 * (in.p_old + p_new) * d_vol * in.inv_rho_work;
   } else {
@@ -64,7 +64,7 @@ inline PointUpdate finish_increment(const Material& material, const Eos& eos, bo
     const double half_strain = 0.5 * d_vol * in.inv_rho_work;
     point.energy = (e_star - f.a * half_strain) / (1.0 + f.b * half_strain);
     p_new = f.a + f.b * point.energy;
-    // No tension: the increment's pressure work is then p_old's half (selects, as above).
+    // No tension: the increment's pressure work is then p_old's half (folds away as above).
     const bool cut = failed && p_new < 0.0;
     point.energy = cut ? e_star : point.energy;
     p_new = cut ? 0.0 : p_new;
