@@ -31,6 +31,7 @@ const char* to_string(FaceCondition c) {
     case FaceCondition::symmetric: return "symmetric";
     case FaceCondition::wall: return "wall";
     case FaceCondition::outflow: return "outflow";
+    case FaceCondition::absorbing: return "absorbing";
   }
   return "?";
 }

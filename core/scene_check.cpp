@@ -88,11 +88,13 @@ void check_grid(const Checker& c, const Scene& scene) {
   bool converts = false;
   for (const BodySpec& b : scene.bodies) converts = converts || b.conversion.has_value();
   for (int f = 0; f < 6; ++f)
-    if (g.faces[static_cast<std::size_t>(f)] == FaceCondition::outflow && !has_particles(scene) &&
-        !converts)
+    if ((g.faces[static_cast<std::size_t>(f)] == FaceCondition::outflow ||
+         g.faces[static_cast<std::size_t>(f)] == FaceCondition::absorbing) &&
+        !has_particles(scene) && !converts)
       c.fail(w, std::string("grid.boundary.") + to_string(static_cast<Face>(f)),
-             "\"outflow\" lets particles leave the grid, and the scene has none (no particle "
-             "body, no conversion); allowed here: \"free\", \"fixed\", \"symmetric\", \"wall\"");
+             std::string("\"") + to_string(g.faces[static_cast<std::size_t>(f)]) +
+                 "\" acts on particles, and the scene has none (no particle body, no "
+                 "conversion); allowed here: \"free\", \"fixed\", \"symmetric\", \"wall\"");
 }
 
 void check_material(const Checker& c, const Material& m) {

@@ -374,7 +374,8 @@ void read_grid(TableReader& r, GridSettings& grid) {
     br.check_unknown();
     for (int f = 0; f < 6; ++f)
       grid.faces[static_cast<std::size_t>(f)] =
-          static_cast<FaceCondition>(br.choice(face_names[f], {"free", "fixed", "symmetric", "wall", "outflow"}, 0));
+          static_cast<FaceCondition>(br.choice(
+              face_names[f], {"free", "fixed", "symmetric", "wall", "outflow", "absorbing"}, 0));
   }
 }
 

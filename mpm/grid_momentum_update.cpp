@@ -56,7 +56,8 @@ class FaceConstraints {
       case core::FaceCondition::symmetric: c.always |= 1u << axis; break;
       case core::FaceCondition::wall: (high ? c.wall_high : c.wall_low) |= 1u << axis; break;
       case core::FaceCondition::free:
-      case core::FaceCondition::outflow: break;  // particles beyond it leave (outflow.cpp)
+      case core::FaceCondition::outflow:  // particles beyond it leave (outflow.cpp)
+      case core::FaceCondition::absorbing: break;  // damped after the update (absorbing_faces.cpp)
     }
   }
   core::FaceCondition lo_[3], hi_[3];
@@ -179,6 +180,7 @@ void MpmSolver::grid_momentum_update(double dt) {
   }
   for (int t = 0; t < nt; ++t)
     external_work_ += thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles];
+  if (any_absorbing_) absorb(dt);
 }
 
 }  // namespace afemp::mpm

@@ -87,6 +87,7 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
   stage_seconds_.assign(plan_.stages.size(), 0.0);
   for (std::size_t f = 0; f < 6; ++f)
     outflow_[f] = scene.mpm.grid.faces[f] == core::FaceCondition::outflow;
+  setup_absorbing_faces();
   reorder_particles();
   signal_speed_ = max_signal_speed();
 }

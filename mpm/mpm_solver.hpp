@@ -135,6 +135,11 @@ class MpmSolver {
   // faces only, and the removal of such particles at the start of a step.
   bool left_through_outflow(const Vec3& x) const;
   void remove_outflow();
+  // Absorbing faces (absorbing_faces.cpp): their wave speeds from the material that meets
+  // each (throws core::InputError naming the face if none or several), and the damping of
+  // the face nodes' updated velocity after the momentum update.
+  void setup_absorbing_faces();
+  void absorb(double dt);
   // Splitting (particle_splitting.cpp): particles whose length along an axis reached 2 alpha
   // times their initial length split along those axes.
   void split_particles();
@@ -197,6 +202,12 @@ class MpmSolver {
 
   // Outflow faces (xmin, xmax, ymin, ymax, zmin, zmax), and what left through them.
   std::array<bool, 6> outflow_{};
+  struct Absorbing {
+    bool on = false;
+    double c_longitudinal = 0.0, c_shear = 0.0;
+  };
+  std::array<Absorbing, 6> absorbing_{};  // per face (xmin, xmax, ...)
+  bool any_absorbing_ = false;
   double outflow_mass_ = 0.0, outflow_energy_ = 0.0;
   Vec3 outflow_momentum_{};
   long outflow_count_ = 0;

@@ -26,9 +26,9 @@ inline double failure_damage(const FailureModel& model, double damage, double pl
     double strain = (jc->D1 + jc->D2 * std::exp(jc->D3 * triaxiality)) *
                     (1.0 + jc->D4 * std::log(std::max(rate, 1.0)));
     if (jc->melt_temperature > jc->room_temperature) {
-      const double t_star = std::clamp((temperature - jc->room_temperature) /
-                                           (jc->melt_temperature - jc->room_temperature),
-                                       0.0, 1.0);
+      const double t_star = std::clamp(
+          (temperature - jc->room_temperature) / (jc->melt_temperature - jc->room_temperature), 0.0,
+          1.0);
       strain *= 1.0 + jc->D5 * t_star;
     }
     // D1 < 0 (Armco iron) gives eps_f <= 0 at high triaxiality: failure at once.

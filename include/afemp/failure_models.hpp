@@ -22,7 +22,7 @@ struct JohnsonCookFailure {
   double D1 = 0.0, D2 = 0.0, D3 = 0.0, D4 = 0.0, D5 = 0.0;
   double reference_strain_rate = 1.0;  ///< epsdot_0, in the scene's time unit
   double room_temperature = 293.0;
-  double melt_temperature = 0.0;       ///< 0: no temperature term
+  double melt_temperature = 0.0;  ///< 0: no temperature term
 };
 
 /// Failure at an equivalent plastic strain (D = eps_p / strain).
@@ -37,9 +37,10 @@ struct SpallFailure {
 };
 
 /// A material's failure model.
-using FailureModel = std::variant<NoFailure, JohnsonCookFailure, PlasticStrainFailure, SpallFailure>;
+using FailureModel =
+    std::variant<NoFailure, JohnsonCookFailure, PlasticStrainFailure, SpallFailure>;
 
-}  ///< namespace afemp::core
+}  // namespace afemp::core
 
 // The public names, in namespace afemp.
 namespace afemp {
@@ -48,4 +49,4 @@ using core::JohnsonCookFailure;
 using core::NoFailure;
 using core::PlasticStrainFailure;
 using core::SpallFailure;
-}  ///< namespace afemp
+}  // namespace afemp

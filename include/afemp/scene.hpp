@@ -34,8 +34,10 @@ enum class Transfer { flip, apic };
 /// component is zeroed only at nodes whose updated velocity points into the wall);
 /// outflow: nothing imposed, and a particle that leaves the grid through the face takes no
 /// further part in the run (its mass, momentum and energy are booked in Energies::outflow*).
-/// Through the other faces a particle leaving the grid stops the run.
-enum class FaceCondition { free, fixed, symmetric, wall, outflow };
+/// Through the other faces a particle leaving the grid stops the run;
+/// absorbing: a viscous boundary (Lysmer & Kuhlemeyer 1969) for a body that continues beyond
+/// the face: tractions -rho c_L v_n and -rho c_S v_t let waves leave instead of reflecting.
+enum class FaceCondition { free, fixed, symmetric, wall, outflow, absorbing };
 /// The six faces of the grid domain, in the order of GridSettings::faces.
 enum class Face { xmin = 0, xmax, ymin, ymax, zmin, zmax };
 

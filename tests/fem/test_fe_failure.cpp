@@ -75,10 +75,11 @@ velocity = [0, 0, -1]
   ASSERT_GT(eps_at_failure, 0.0) << "no failure by t = 0.6 ms";
   const double eps_f = (0.13 + 0.13 * std::exp(-1.5 * triaxiality)) *
                        (1.0 + 0.011 * std::log(std::max(rate / 1e-3, 1.0)));
-  std::printf("JC failure in compression: eps_p %.4f at failure (previous step %.4f), "
-              "triaxiality %.4f, rate %.0f /s, eps_f %.4f (%+.2f %%)\n",
-              eps_at_failure, previous_eps, triaxiality, rate * 1e3, eps_f,
-              100.0 * (eps_at_failure / eps_f - 1.0));
+  std::printf(
+      "JC failure in compression: eps_p %.4f at failure (previous step %.4f), "
+      "triaxiality %.4f, rate %.0f /s, eps_f %.4f (%+.2f %%)\n",
+      eps_at_failure, previous_eps, triaxiality, rate * 1e3, eps_f,
+      100.0 * (eps_at_failure / eps_f - 1.0));
   EXPECT_NEAR(triaxiality, -1.0 / 3.0, 0.02);
   EXPECT_NEAR(eps_at_failure, eps_f, 0.05 * eps_f);
   // Every point fails together (homogeneous); a step later none carries shear.
@@ -109,21 +110,25 @@ TEST(FeFailure, FailureInputsTheModelsCannotCarryAreErrors) {
       "[run]\nend_time = 1.0\n" + material +
       "failure = { model = \"spall\", pressure = 1000 }\n"
       "[[bodies]]\nname = \"rod\"\ndiscretisation = \"trusses\"\nmaterial = \"steel\"\n"
-      "area = 1.0\nshape = { line = { from = [0, 0, 0], to = [10, 0, 0] } }\nmesh = { size = 2.5 }\n";
+      "area = 1.0\nshape = { line = { from = [0, 0, 0], to = [10, 0, 0] } }\nmesh = { size = 2.5 "
+      "}\n";
   const std::string e1 = error_of(truss);
   EXPECT_NE(e1.find("bodies.rod.material"), std::string::npos) << e1;
   EXPECT_NE(e1.find("failure_strain"), std::string::npos) << e1;
-  const std::string both = "[run]\nend_time = 1.0\n" + material +
-                           "failure_strain = 0.3\nfailure = { model = \"plastic-strain\", strain = 0.3 }\n";
+  const std::string both =
+      "[run]\nend_time = 1.0\n" + material +
+      "failure_strain = 0.3\nfailure = { model = \"plastic-strain\", strain = 0.3 }\n";
   const std::string e2 = error_of(both);
   EXPECT_NE(e2.find("failure_strain"), std::string::npos) << e2;
   EXPECT_NE(e2.find("not both"), std::string::npos) << e2;
-  const std::string unknown = "[run]\nend_time = 1.0\n" + material + "failure = { model = \"gurson\" }\n";
+  const std::string unknown =
+      "[run]\nend_time = 1.0\n" + material + "failure = { model = \"gurson\" }\n";
   const std::string e3 = error_of(unknown);
   EXPECT_NE(e3.find("materials.steel.failure.model"), std::string::npos) << e3;
   EXPECT_NE(e3.find("johnson-cook"), std::string::npos) << e3;
-  const std::string negative = "[run]\nend_time = 1.0\n" + material +
-                               "failure = { model = \"johnson-cook\", D1 = -0.5, D2 = 0.2, D3 = -1 }\n";
+  const std::string negative =
+      "[run]\nend_time = 1.0\n" + material +
+      "failure = { model = \"johnson-cook\", D1 = -0.5, D2 = 0.2, D3 = -1 }\n";
   const std::string e4 = error_of(negative);
   EXPECT_NE(e4.find("D1 + D2"), std::string::npos) << e4;
 }

@@ -16,8 +16,8 @@ namespace {
 struct Expansion {
   double min_pressure = 0.0;  // the most negative pressure any particle reached
   std::size_t failed = 0, particles = 0;
-  double failed_shear = 0.0;      // largest von Mises stress of a failed particle at the end
-  double failed_tension = 0.0;    // most negative pressure of a failed particle at the end
+  double failed_shear = 0.0;    // largest von Mises stress of a failed particle at the end
+  double failed_tension = 0.0;  // most negative pressure of a failed particle at the end
 };
 
 // An elastic copper column 1 x 1 x 10 mm in uniaxial strain (side faces symmetric) pulled
@@ -46,7 +46,8 @@ shape = { box = { min = [0, 0, 0], max = [1, 1, 10] } }
   const core::Scene scene = core::parse_scene(text, "expansion.toml");
   MpmSolver solver(scene, generate_particles(scene));
   Particles& p = solver.mutable_particles();
-  for (std::size_t i = 0; i < p.size(); ++i) p.velocity[i] = {0.0, 0.0, 10.0 * (p.position[i].z - 5.0)};
+  for (std::size_t i = 0; i < p.size(); ++i)
+    p.velocity[i] = {0.0, 0.0, 10.0 * (p.position[i].z - 5.0)};
   Expansion r;
   while (solver.time() < 1.2e-3) {
     solver.step(std::min(solver.stable_time_step(), 1.2e-3 - solver.time()));
@@ -61,17 +62,18 @@ shape = { box = { min = [0, 0, 0], max = [1, 1, 10] } }
     r.failed_shear = std::max(r.failed_shear, core::von_mises(q.stress[i]));
     r.failed_tension = std::min(r.failed_tension, core::pressure(q.stress[i]));
   }
-  std::printf("expansion %s: min pressure %.1f MPa, %zu of %zu particles failed, failed: von "
-              "Mises <= %.3g, pressure >= %.3g\n",
-              failure.empty() ? "without failure" : "with spall 1000 MPa", r.min_pressure,
-              r.failed, r.particles, r.failed_shear, r.failed_tension);
+  std::printf(
+      "expansion %s: min pressure %.1f MPa, %zu of %zu particles failed, failed: von "
+      "Mises <= %.3g, pressure >= %.3g\n",
+      failure.empty() ? "without failure" : "with spall 1000 MPa", r.min_pressure, r.failed,
+      r.particles, r.failed_shear, r.failed_tension);
   return r;
 }
 
 // Reference: the spall model's definition. Without it the column reaches -1318 MPa
 // (K epsdot t); with a spall strength of 1000 MPa no particle goes below -1000 MPa by more
-// than one step's growth (K epsdot dt, under 3 %; measured -1013.9), the particles that failed carry no shear
-// (von Mises < 1e-9 MPa) and no tension (pressure >= 0) afterwards.
+// than one step's growth (K epsdot dt, under 3 %; measured -1013.9), the particles that failed
+// carry no shear (von Mises < 1e-9 MPa) and no tension (pressure >= 0) afterwards.
 TEST(Failure, SpallStrengthBoundsTheTensionOfParticlesAndFailedOnesCarryNone) {
   const Expansion intact = expand("");
   const Expansion spalled = expand("failure = { model = \"spall\", pressure = 1000 }");

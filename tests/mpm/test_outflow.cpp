@@ -29,7 +29,8 @@ end_time = 1.0
 cell = 0.5
 min = [0, 0, 0]
 max = [2, 2, 6]
-boundary = { zmax = ")" + zmax + R"(" }
+boundary = { zmax = ")" +
+         zmax + R"(" }
 [materials.copper]
 density = 8.9e-3
 E = 1.2e5
@@ -51,7 +52,8 @@ TEST(Outflow, ParticlesLeavingThroughAnOutflowFaceKeepMassMomentumAndEnergyInThe
   const double m0 = e0.bodies[0].mass, energy0 = e0.total();
   const core::Vec3 p0 = e0.bodies[0].momentum;
   // The top reaches the face at 4 us, the bottom at 10 us: stop half way.
-  while (solver.time() < 7e-3) solver.step(std::min(solver.stable_time_step(), 7e-3 - solver.time()));
+  while (solver.time() < 7e-3)
+    solver.step(std::min(solver.stable_time_step(), 7e-3 - solver.time()));
   const core::Energies e = solver.energies();
   const std::size_t left = n0 - solver.particles().size();
   std::printf("outflow: %zu of %zu particles left; mass %.17g + %.17g of %.17g\n", left, n0,
@@ -95,7 +97,8 @@ time_step = 1e-5
 [grid]
 cell = 0.25
 min = [0, 0, 0]
-max = [1, 1, )" + std::to_string(zmax) + R"(]
+max = [1, 1, )" +
+           std::to_string(zmax) + R"(]
 boundary = { xmin = "symmetric", xmax = "symmetric", ymin = "symmetric", ymax = "symmetric", zmin = "wall", zmax = ")" +
            std::string(face) + R"(" }
 [materials.steel]
@@ -150,9 +153,10 @@ bodies = ["plate", "target"]
   const core::Energies ea = a.energies();
   *outflow_fraction = ea.outflow_mass / plate_mass;
   *plate_books = (ea.bodies[1].mass + ea.outflow_mass) / plate_mass - 1.0;
-  std::printf("outflow: target pressure differs by at most %.3g MPa of a %.4g MPa peak; %.4f "
-              "of the plate's mass left the small grid\n",
-              largest, peak, *outflow_fraction);
+  std::printf(
+      "outflow: target pressure differs by at most %.3g MPa of a %.4g MPa peak; %.4f "
+      "of the plate's mass left the small grid\n",
+      largest, peak, *outflow_fraction);
   return largest / peak;
 }
 

@@ -38,7 +38,8 @@ max = [2, 2, 30]
 [mpm]
 shape_function = "gimp"
 flip = 0.95
-)" + splitting + R"(
+)" + splitting +
+         R"(
 [materials.aluminium]
 density = 2.7e-3
 E = 7.0e4
@@ -54,9 +55,9 @@ shape = { box = { min = [0, 0, 0], max = [1, 1, 10] } }
 struct Stretch {
   std::size_t particles = 0;
   long splits = 0;
-  double length = 0.0;      // extent of the particles along z at the end
-  int empty_cells = 0;      // layers of cells between the ends holding no particle
-  double mass_error = 0.0;  // |M - M0| / M0
+  double length = 0.0;          // extent of the particles along z at the end
+  int empty_cells = 0;          // layers of cells between the ends holding no particle
+  double mass_error = 0.0;      // |M - M0| / M0
   double momentum_error = 0.0;  // |P - P0| / (M0 * 1000 m/s)
   double seconds = 0.0;
 };
@@ -65,13 +66,15 @@ Stretch stretch(const std::string& splitting) {
   const core::Scene scene = core::parse_scene(column(splitting), "column.toml");
   MpmSolver solver(scene, generate_particles(scene));
   Particles& p = solver.mutable_particles();
-  for (std::size_t i = 0; i < p.size(); ++i) p.velocity[i] = {0.0, 0.0, 200.0 * (p.position[i].z - 5.0)};
+  for (std::size_t i = 0; i < p.size(); ++i)
+    p.velocity[i] = {0.0, 0.0, 200.0 * (p.position[i].z - 5.0)};
   const core::Energies e0 = solver.energies();
   const auto start = std::chrono::steady_clock::now();
   // Until the particles span 4x their initial 9.75 mm (or 30 us).
   auto extent = [&] {
     double lo = 1e300, hi = -1e300;
-    for (const Vec3& x : solver.particles().position) lo = std::min(lo, x.z), hi = std::max(hi, x.z);
+    for (const Vec3& x : solver.particles().position)
+      lo = std::min(lo, x.z), hi = std::max(hi, x.z);
     return hi - lo;
   };
   while (extent() < 39.0 && solver.time() < 30e-3) solver.step(solver.stable_time_step());
@@ -82,8 +85,8 @@ Stretch stretch(const std::string& splitting) {
   r.particles = q.size();
   r.splits = solver.split_count();
   r.mass_error = std::abs(e.bodies[0].mass - e0.bodies[0].mass) / e0.bodies[0].mass;
-  r.momentum_error = core::norm(e.bodies[0].momentum - e0.bodies[0].momentum) /
-                     (e0.bodies[0].mass * 1000.0);
+  r.momentum_error =
+      core::norm(e.bodies[0].momentum - e0.bodies[0].momentum) / (e0.bodies[0].mass * 1000.0);
   // Continuity: every layer of cells (normal to z) between the two ends holds a particle.
   double lo = 1e300, hi = -1e300;
   std::set<int> layers;
@@ -97,17 +100,18 @@ Stretch stretch(const std::string& splitting) {
   const int last = solver.grid().cell_of({0.5, 0.5, hi})[2];
   for (int k = first; k <= last; ++k)
     if (!layers.count(k)) ++r.empty_cells;
-  std::printf("splitting %s: %zu particles, %ld splits, length %.3f mm, %d empty cells, mass "
-              "%.2e, momentum %.2e, %.3f s\n",
-              splitting.empty() ? "off" : "on", r.particles, r.splits, r.length, r.empty_cells,
-              r.mass_error, r.momentum_error, r.seconds);
+  std::printf(
+      "splitting %s: %zu particles, %ld splits, length %.3f mm, %d empty cells, mass "
+      "%.2e, momentum %.2e, %.3f s\n",
+      splitting.empty() ? "off" : "on", r.particles, r.splits, r.length, r.empty_cells,
+      r.mass_error, r.momentum_error, r.seconds);
   return r;
 }
 
 // Reference: the paper's claim (eqs 14-17) made testable. Stretched 4x, the bar without
 // splitting opens empty layers of cells (its particle layers drift 2 cells apart); with
-// splitting (alpha 0.9) it stays continuous, and mass and momentum are conserved to 1e-12 (the shares are exact
-// powers of two).
+// splitting (alpha 0.9) it stays continuous, and mass and momentum are conserved to 1e-12 (the
+// shares are exact powers of two).
 TEST(ParticleSplitting, ColumnStretchedFourTimesStaysContinuousWithMassAndMomentumKept) {
   const Stretch off = stretch("");
   const Stretch on = stretch("splitting = { alpha = 0.9 }");
@@ -126,7 +130,8 @@ TEST(ParticleSplitting, ACapOnTheParticleCountStopsTheRunWithAClearMessage) {
       core::parse_scene(column("splitting = { alpha = 0.9, max_particles = 1000 }"), "cap.toml");
   MpmSolver solver(scene, generate_particles(scene));
   Particles& p = solver.mutable_particles();
-  for (std::size_t i = 0; i < p.size(); ++i) p.velocity[i] = {0.0, 0.0, 200.0 * (p.position[i].z - 5.0)};
+  for (std::size_t i = 0; i < p.size(); ++i)
+    p.velocity[i] = {0.0, 0.0, 200.0 * (p.position[i].z - 5.0)};
   try {
     while (solver.time() < 30e-3) solver.step(solver.stable_time_step());
     FAIL() << "the particle count passed max_particles";
