@@ -54,14 +54,22 @@ void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSumm
     std::fprintf(out, "  stopped early    %s\n", s.terminated.c_str());
   std::fprintf(out, "  wall time        %.3f s with %d thread(s)\n", s.wall_seconds,
                core::thread_count());
-  if (s.final.outflow_mass > 0.0)
-    std::fprintf(out, "  points           %zu particles (%zu at the end: outflow and converted "
-                      "elements), %zu elements, %.3g point-steps/s (initial points)\n",
-                 s.particles, s.final_particles, s.elements, s.point_steps_per_second);
-  else if (s.final_particles != s.particles)
-    std::fprintf(out, "  points           %zu particles (%zu at the end: converted elements), %zu "
+  if (s.final_particles != s.particles) {
+    // What changed the count: particles that left, split or were made from elements.
+    std::string why;
+    auto add = [&](bool yes, const char* what) {
+      if (yes) why += (why.empty() ? "" : ", ") + std::string(what);
+    };
+    add(s.final.outflow_mass > 0.0, "outflow");
+    add(scene.mpm.splitting.has_value(), "splitting");
+    bool converts = false;
+    for (const core::BodySpec& b : scene.bodies) converts = converts || b.conversion.has_value();
+    add(converts, "converted elements");
+    std::fprintf(out, "  points           %zu particles (%zu at the end: %s), %zu "
                       "elements, %.3g point-steps/s (initial points)\n",
-                 s.particles, s.final_particles, s.elements, s.point_steps_per_second);
+                 s.particles, s.final_particles, why.c_str(), s.elements,
+                 s.point_steps_per_second);
+  }
   else
     std::fprintf(out, "  points           %zu particles, %zu elements, %.3g point-steps/s\n",
                  s.particles, s.elements, s.point_steps_per_second);

@@ -111,9 +111,8 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
       frames_ = std::make_unique<FieldWriter>(paths.directory, paths.fields_stem);
     std::vector<std::string> names;
     for (const auto& b : scene_.bodies) names.push_back(b.name);
-    bool outflow = false;
-    for (FaceCondition f : scene_.mpm.grid.faces) outflow = outflow || f == FaceCondition::outflow;
-    history_ = std::make_unique<HistoryWriter>(history_path(paths), names, outflow);
+    history_ = std::make_unique<HistoryWriter>(
+        history_path(paths), names, scene_.mpm.grid.has_face(FaceCondition::outflow));
     events_ = std::make_unique<EventFiles>(paths.directory);
   }
   sum_.particles = model_.particle_count();

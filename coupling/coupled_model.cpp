@@ -50,7 +50,8 @@ void refuse_mesh_at_outflow_faces(const core::Scene& scene, const fem::FeNodes& 
 
 }  // namespace
 
-CoupledModel::CoupledModel(const core::Scene& scene) : scene_(scene), fe_(scene), mpm_(scene), points_(scene) {
+CoupledModel::CoupledModel(const core::Scene& scene)
+    : scene_(scene), fe_(scene), mpm_(scene), points_(scene) {
   const std::size_t nb = scene.bodies.size();
   std::vector<char> in_contact(nb, 0);
   for (const core::ContactSpec& c : scene.contacts)

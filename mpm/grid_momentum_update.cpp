@@ -2,7 +2,10 @@
 // v^{k+1} = v + a dt, with the components a face constrains set to zero in both v and a
 // (fixed: all three; symmetric: the normal one), as MPM3D does (p = 0, f = 0 there). A wall
 // face holds the normal component of v and of v^{k+1} only where it points into the wall,
-// so material leaves it freely: a unilateral, frictionless rigid wall on the grid.
+// so material leaves it freely: a unilateral, frictionless rigid wall on the grid. An absorbing
+// face damps its nodes' updated velocity (absorbing_faces.hpp).
+#include <algorithm>
+
 #include "core/parallel.hpp"
 #include "mpm/mpm_solver.hpp"
 
@@ -16,6 +19,10 @@ struct NodeConstraint {
   unsigned always = 0;
   unsigned wall_low = 0;   // walls at a min face: constrain if v_a < 0
   unsigned wall_high = 0;  // walls at a max face: constrain if v_a > 0
+  // Absorbing faces (absorbing_faces.hpp): 2 c / h per component, c_L along the normal of each
+  // absorbing face the node lies on, c_S across it (the largest where faces meet).
+  bool damped = false;
+  Vec3 damping{};
   bool any() const { return (always | wall_low | wall_high) != 0; }
   // The mask to apply for the (unconstrained) updated velocity v.
   unsigned mask_for(const Vec3& v) const {
@@ -30,7 +37,14 @@ struct NodeConstraint {
 
 class FaceConstraints {
  public:
-  explicit FaceConstraints(const core::BackgroundGrid& g) : last_(g.nodes()) {
+  // absorbing: the solver's absorbing faces (their damping is applied by the momentum update
+  // only), or nullptr.
+  explicit FaceConstraints(const core::BackgroundGrid& g,
+                           const std::array<AbsorbingFace, 6>* absorbing = nullptr)
+      : last_(g.nodes()), two_over_h_(2.0 * g.inverse_cell()) {
+    if (absorbing)
+      for (const AbsorbingFace& f : *absorbing) any_absorbing_ = any_absorbing_ || f.on;
+    if (any_absorbing_) absorbing_ = *absorbing;
     const auto& f = g.settings().faces;
     for (int a = 0; a < 3; ++a) {
       lo_[a] = f[static_cast<std::size_t>(2 * a)];
@@ -42,9 +56,14 @@ class FaceConstraints {
     NodeConstraint c;
     for (int a = 0; a < 3; ++a) {
       // Halo nodes beyond a face (uGIMP) take the face's condition.
-      if (node[static_cast<std::size_t>(a)] <= 0) add(c, lo_[a], a, false);
-      if (node[static_cast<std::size_t>(a)] >= last_[static_cast<std::size_t>(a)])
+      if (node[static_cast<std::size_t>(a)] <= 0) {
+        add(c, lo_[a], a, false);
+        if (any_absorbing_) damp(c, absorbing_[static_cast<std::size_t>(2 * a)], a);
+      }
+      if (node[static_cast<std::size_t>(a)] >= last_[static_cast<std::size_t>(a)]) {
         add(c, hi_[a], a, true);
+        if (any_absorbing_) damp(c, absorbing_[static_cast<std::size_t>(2 * a + 1)], a);
+      }
     }
     return c;
   }
@@ -60,8 +79,18 @@ class FaceConstraints {
       case core::FaceCondition::absorbing: break;  // damped after the update (absorbing_faces.cpp)
     }
   }
+  void damp(NodeConstraint& c, const AbsorbingFace& f, int axis) const {
+    if (!f.on) return;
+    c.damped = true;
+    for (int b = 0; b < 3; ++b)
+      c.damping[b] =
+          std::max(c.damping[b], two_over_h_ * (b == axis ? f.c_longitudinal : f.c_shear));
+  }
   core::FaceCondition lo_[3], hi_[3];
   std::array<int, 3> last_;
+  double two_over_h_;
+  bool any_absorbing_ = false;
+  std::array<AbsorbingFace, 6> absorbing_{};
 };
 
 inline void constrain(Vec3& v, unsigned mask) {
@@ -122,7 +151,7 @@ void MpmSolver::grid_velocity() {
 
 void MpmSolver::grid_momentum_update(double dt) {
   core::BackgroundGrid& g = grid_;
-  const FaceConstraints constraints(g);
+  const FaceConstraints constraints(g, &absorbing_);
   const Vec3 gravity = scene_.run.gravity;
   const bool body_force = plan_.gravity;
   const int nt = core::thread_count();
@@ -133,7 +162,9 @@ void MpmSolver::grid_momentum_update(double dt) {
   const bool shared = shared_.any;
 #pragma omp parallel num_threads(nt) if (core::worth_threads(g.slot_count()))
   {
-    double work = 0.0;  // body-force work f_ext . (v + v_new) / 2 dt
+    // Body-force work f_ext . (v + v_new) / 2 dt, and the absorbing faces' (negative).
+    double work = 0.0;
+
     g.for_each_slot([&](std::size_t slot, const std::array<int, 3>& node) {
      const NodeConstraint c = constraints(node);
      for (int f = 0; f < fields; ++f) {  // each velocity field on its own (contact after)
@@ -151,6 +182,9 @@ void MpmSolver::grid_momentum_update(double dt) {
       if (c.any()) wall_contact_[s] = static_cast<std::uint8_t>(wall);
       g.velocity[s] = v;
       g.velocity_new[s] = v_new;
+      // An absorbing face damps the stored velocity; the gravity work and the shared-field
+      // shift below take the undamped one, as before the damping.
+      if (c.damped) work += absorb(m, c.damping, dt, v, g.velocity_new[s]);
       // A field of self-updating points only: their owner counted its gravity work.
       const bool counted =
           !field_self_updated_.empty() && field_self_updated_[static_cast<std::size_t>(f)];
@@ -180,7 +214,6 @@ void MpmSolver::grid_momentum_update(double dt) {
   }
   for (int t = 0; t < nt; ++t)
     external_work_ += thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles];
-  if (any_absorbing_) absorb(dt);
 }
 
 }  // namespace afemp::mpm

@@ -49,18 +49,14 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
   if (plan_.shape == core::ShapeFunction::gimp) {
     particles_.half_width.resize(particles_.size());
     for (std::size_t i = 0; i < particles_.size(); ++i)
-      particles_.half_width[i] =
-          std::min(0.5, 0.5 * std::cbrt(particles_.volume[i]) * grid_.inverse_cell());
+      particles_.half_width[i] = gimp_half_width(particles_.volume[i]);
     velocity_gradient_.resize(particles_.size());  // the kinematics pass's output
   }
   // Splitting: each particle's lengths start as the edge of the cube of its volume.
   if (plan_.splitting) {
     particles_.length.resize(particles_.size());
     particles_.length0.resize(particles_.size());
-    for (std::size_t i = 0; i < particles_.size(); ++i) {
-      const double l = std::cbrt(particles_.volume[i]);
-      particles_.length[i] = particles_.length0[i] = Vec3{l, l, l};
-    }
+    for (std::size_t i = 0; i < particles_.size(); ++i) start_lengths(i);
   }
   // APIC: particles start with C_p = 0 (each body starts at a uniform velocity) unless the
   // caller gave them an affine velocity of their own.
@@ -95,8 +91,7 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
 void MpmSolver::add_particles(const Particles& more) {
   if (more.size() == 0) return;
   Particles& p = particles_;
-  std::int32_t next_id = 0;
-  for (std::int32_t id : p.id) next_id = std::max(next_id, id + 1);
+  std::int32_t next_id = next_particle_id();
   const std::size_t n0 = p.size();
   p.reserve(n0 + more.size());
   for (std::size_t k = 0; k < more.size(); ++k) {
@@ -115,12 +110,8 @@ void MpmSolver::add_particles(const Particles& more) {
     else
       core::initial_history(*materials_[static_cast<std::size_t>(p.material[i])], history,
                             p.history_count);
-    if (!p.half_width.empty())
-      p.half_width[i] = std::min(0.5, 0.5 * std::cbrt(p.volume[i]) * grid_.inverse_cell());
-    if (!p.length.empty()) {
-      const double l = std::cbrt(p.volume[i]);
-      p.length[i] = p.length0[i] = Vec3{l, l, l};
-    }
+    if (!p.half_width.empty()) p.half_width[i] = gimp_half_width(p.volume[i]);
+    if (!p.length.empty()) start_lengths(i);
     if (!field_self_updated_.empty())
       field_self_updated_[static_cast<std::size_t>(
           field_of_body_[static_cast<std::size_t>(p.body[i])])] = 0;
@@ -128,6 +119,12 @@ void MpmSolver::add_particles(const Particles& more) {
   if (plan_.shape == core::ShapeFunction::gimp) velocity_gradient_.resize(p.size());
   reorder_particles();
   signal_speed_ = std::max(signal_speed_, max_signal_speed());
+}
+
+std::int32_t MpmSolver::next_particle_id() const {
+  std::int32_t next = 0;
+  for (std::int32_t id : particles_.id) next = std::max(next, id + 1);
+  return next;
 }
 
 double MpmSolver::stable_time_step() const {

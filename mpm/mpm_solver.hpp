@@ -4,13 +4,16 @@
 // particle_to_grid.cpp, grid_momentum_update.cpp, grid_to_particle.cpp, stress_update.cpp.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
 #include "afemp/energies.hpp"
 #include "core/grid/background_grid.hpp"
 #include "core/scene.hpp"
+#include "mpm/absorbing_faces.hpp"
 #include "mpm/grid_points.hpp"
 #include "mpm/particles.hpp"
 #include "mpm/stencil.hpp"
@@ -131,15 +134,25 @@ class MpmSolver {
   void strain_stress_batch(const MaterialBatch& batch, const Strength& strength, const Eos& eos,
                            double dt, int thread_slot_offset);
   void reorder_particles();
+  // Per-particle data made from a particle's volume, the same at the start, for particles
+  // added from elements and for the pieces of a split: uGIMP's half width (the cube of the
+  // volume, at most one cell) and, with splitting, its initial lengths; and the id that
+  // follows the largest so far.
+  double gimp_half_width(double volume) const {
+    return std::min(0.5, 0.5 * std::cbrt(volume) * grid_.inverse_cell());
+  }
+  void start_lengths(std::size_t i) {
+    const double l = std::cbrt(particles_.volume[i]);
+    particles_.length[i] = particles_.length0[i] = Vec3{l, l, l};
+  }
+  std::int32_t next_particle_id() const;
   // Outflow faces (outflow.cpp): whether a position lies beyond the grid through outflow
   // faces only, and the removal of such particles at the start of a step.
   bool left_through_outflow(const Vec3& x) const;
   void remove_outflow();
   // Absorbing faces (absorbing_faces.cpp): their wave speeds from the material that meets
-  // each (throws core::InputError naming the face if none or several), and the damping of
-  // the face nodes' updated velocity after the momentum update.
+  // each; throws core::InputError naming the face if none or several.
   void setup_absorbing_faces();
-  void absorb(double dt);
   // Splitting (particle_splitting.cpp): particles whose length along an axis reached 2 alpha
   // times their initial length split along those axes.
   void split_particles();
@@ -202,12 +215,7 @@ class MpmSolver {
 
   // Outflow faces (xmin, xmax, ymin, ymax, zmin, zmax), and what left through them.
   std::array<bool, 6> outflow_{};
-  struct Absorbing {
-    bool on = false;
-    double c_longitudinal = 0.0, c_shear = 0.0;
-  };
-  std::array<Absorbing, 6> absorbing_{};  // per face (xmin, xmax, ...)
-  bool any_absorbing_ = false;
+  std::array<AbsorbingFace, 6> absorbing_{};  // per face (xmin, xmax, ...)
   double outflow_mass_ = 0.0, outflow_energy_ = 0.0;
   Vec3 outflow_momentum_{};
   long outflow_count_ = 0;

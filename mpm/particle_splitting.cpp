@@ -13,12 +13,12 @@
 // the particle count past max_particles stops the run.
 #include <algorithm>
 #include <bit>
-#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "afemp/errors.hpp"
+#include "core/parallel.hpp"
 #include "mpm/mpm_solver.hpp"
 
 namespace afemp::mpm {
@@ -27,9 +27,11 @@ void MpmSolver::split_particles() {
   Particles& p = particles_;
   const core::SplittingSettings& settings = *scene_.mpm.splitting;
   const std::size_t n = p.size();
-  // The axes each particle splits along (bit a: axis a), in particle order.
+  // The axes each particle splits along (bit a: axis a), in particle order; the count is an
+  // integer sum, the same for any thread count.
   std::vector<std::uint8_t> axes(n, 0);
   std::size_t added = 0;
+#pragma omp parallel for schedule(static) reduction(+ : added) if (core::worth_threads(n))
   for (std::size_t i = 0; i < n; ++i) {
     unsigned bits = 0;
     for (int a = 0; a < 3; ++a)
@@ -44,8 +46,7 @@ void MpmSolver::split_particles() {
         "splitting would make " + std::to_string(n + added) + " particles, more than " +
             "[mpm] splitting max_particles = " + std::to_string(settings.max_particles) +
             "; raise it, or use a coarser start or a larger alpha");
-  std::int32_t next_id = 0;
-  for (std::int32_t id : p.id) next_id = std::max(next_id, id + 1);
+  std::int32_t next_id = next_particle_id();
   p.resize(n + added);  // new entries are filled below from their parent
   const std::size_t hc = p.history_count;
   std::size_t next = n;
@@ -95,7 +96,7 @@ void MpmSolver::split_particles() {
     p.mass[i] *= share;
     p.volume[i] *= share;
     if (!p.half_width.empty()) {
-      const double w = std::min(0.5, 0.5 * std::cbrt(p.volume[i]) * grid_.inverse_cell());
+      const double w = gimp_half_width(p.volume[i]);
       p.half_width[i] = w;
       for (std::size_t c = next - static_cast<std::size_t>(pieces - 1); c < next; ++c)
         p.half_width[c] = w;

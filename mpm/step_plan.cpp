@@ -100,14 +100,12 @@ StepPlan build_step_plan(const core::Scene& scene) {
   const std::string force_why = plan.gravity ? "internal force -V sigma.grad N and gravity m N g"
                                              : "internal force -V sigma.grad N (no body force)";
   // The one stage every scheme runs the same way.
-  bool absorbing = false;
-  for (core::FaceCondition f : scene.mpm.grid.faces)
-    absorbing = absorbing || f == core::FaceCondition::absorbing;
   const Stage grid_update = stage(
       StageKind::grid_momentum_update, "grid momentum update",
-      absorbing ? "explicit momentum update and boundary conditions; absorbing faces damp their "
-                  "nodes (Lysmer & Kuhlemeyer 1969)"
-                : "explicit momentum update and boundary conditions");
+      scene.mpm.grid.has_face(core::FaceCondition::absorbing)
+          ? "explicit momentum update and boundary conditions; absorbing faces damp their "
+              "nodes (Lysmer & Kuhlemeyer 1969)"
+          : "explicit momentum update and boundary conditions");
   auto& s = plan.stages;
   const std::string velocity =
       plan.transfer == core::Transfer::apic ? "particle velocity and affine velocity (APIC)"

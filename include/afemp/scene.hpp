@@ -79,10 +79,14 @@ struct GridSettings {
   std::array<FaceCondition, 6> faces{FaceCondition::free, FaceCondition::free,
                                      FaceCondition::free, FaceCondition::free,
                                      FaceCondition::free, FaceCondition::free};
+  /// Whether some face has condition c.
+  bool has_face(FaceCondition c) const {
+    for (FaceCondition f : faces)
+      if (f == c) return true;
+    return false;
+  }
 };
 
-
-/// The [mpm] section: scheme, shape function, transfer, and the grid.
 /// Adaptive multi-axis particle splitting (the 2020 Journal of Harbin Engineering University
 /// paper on MPM for explosion and impact, eqs 14-17): a particle whose length along an axis
 /// reaches 2 alpha l0 (l0 its initial length there) splits into two halves along that axis, on
@@ -92,6 +96,7 @@ struct SplittingSettings {
   std::size_t max_particles = 10000000;  ///< a split that would exceed it stops the run
 };
 
+/// The [mpm] section: scheme, shape function, transfer, splitting, and the grid.
 struct MpmSettings {
   UpdateScheme scheme = UpdateScheme::MUSL;    ///< USF, USL or MUSL
   ShapeFunction shape = ShapeFunction::linear;  ///< particle-grid weights
