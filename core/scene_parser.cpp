@@ -242,6 +242,31 @@ std::vector<double> TableReader::numbers(std::string_view key, const Range& rang
   return out;
 }
 
+std::vector<std::array<double, 2>> TableReader::pairs(std::string_view key) {
+  const toml::node* n = lookup(key);
+  std::vector<std::array<double, 2>> out;
+  if (!n) return out;
+  const auto* a = n->as_array();
+  if (!a || a->empty()) fail(key, "expected a non-empty array of [a, b] pairs of numbers");
+  auto number = [](const toml::node* e, double& v) {
+    if (const auto* ii = e ? e->as_integer() : nullptr)
+      v = static_cast<double>(ii->get());
+    else if (const auto* f = e ? e->as_floating_point() : nullptr)
+      v = f->get();
+    else
+      return false;
+    return std::isfinite(v);
+  };
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const auto* pair = a->get(i)->as_array();
+    std::array<double, 2> p{};
+    if (!pair || pair->size() != 2 || !number(pair->get(0), p[0]) || !number(pair->get(1), p[1]))
+      fail(key, "element " + std::to_string(i) + ": expected a pair [a, b] of finite numbers");
+    out.push_back(p);
+  }
+  return out;
+}
+
 std::array<int, 3> TableReader::integers3(std::string_view key, int lo, int hi) {
   const toml::node* n = lookup(key);
   std::array<int, 3> out{0, 0, 0};
@@ -632,9 +657,26 @@ FailureModel read_failure(TableReader& r) {
     r.check_unknown();
     return PlasticStrainFailure{r.required_number("strain", Range::positive())};
   }
-  r.known({"pressure"});
+  r.known({"pressure", "principal_stress", "impulse", "exponent"});
   r.check_unknown();
-  return SpallFailure{r.required_number("pressure", Range::positive())};
+  SpallFailure f;
+  const std::optional<double> pressure = r.optional_number("pressure", Range::positive());
+  const std::optional<double> principal = r.optional_number("principal_stress", Range::positive());
+  if (pressure.has_value() == principal.has_value())
+    r.fail(pressure ? "principal_stress" : "pressure",
+           "a spall model takes exactly one strength: pressure (fails when -p exceeds it) or "
+           "principal_stress (when the largest principal stress does)");
+  f.criterion =
+      pressure ? SpallFailure::Criterion::pressure : SpallFailure::Criterion::principal_stress;
+  f.strength = pressure ? *pressure : *principal;
+  f.impulse = r.number("impulse", 0.0, Range::non_negative());
+  f.exponent =
+      r.number("exponent", 2.0, Range::closed(1.0, std::numeric_limits<double>::infinity()));
+  if (r.has("exponent") && !(f.impulse > 0.0))
+    r.fail("exponent",
+           "the exponent is the cumulative (Tuler-Butcher) form's: give impulse > 0 "
+           "with it");
+  return f;
 }
 
 Material read_material(TableReader& r, const std::string& name) {
@@ -1020,8 +1062,19 @@ NodeSelector read_selector(TableReader& r) {
   return s;
 }
 
+// A piecewise-linear history: [time, factor] pairs, times >= 0 and strictly increasing.
+std::vector<std::array<double, 2>> read_curve(TableReader& r, std::string_view key) {
+  std::vector<std::array<double, 2>> curve = r.pairs(key);
+  for (std::size_t k = 0; k < curve.size(); ++k)
+    if (curve[k][0] < 0.0 || (k > 0 && !(curve[k][0] > curve[k - 1][0])))
+      r.fail(key, "point " + std::to_string(k) + ": time " + format_number(curve[k][0]) +
+                      " is negative or not after the previous point's; give [time, factor] "
+                      "pairs with times >= 0 and increasing");
+  return curve;
+}
+
 ConstraintSpec read_constraint(TableReader& r, const Scene& scene) {
-  r.known({"nodes", "body", "fixed", "velocity"});
+  r.known({"nodes", "body", "fixed", "velocity", "components", "curve"});
   r.check_unknown();
   ConstraintSpec c;
   c.where = r.where();
@@ -1035,23 +1088,39 @@ ConstraintSpec read_constraint(TableReader& r, const Scene& scene) {
   if (r.has("fixed") == r.has("velocity"))
     r.fail("fixed", "give either fixed = [\"x\", \"y\", \"z\"] (a subset, or \"all\") or "
                     "velocity = [vx, vy, vz]");
+  // The components a constraint acts on: fixed's list, or velocity's `components` (all three
+  // by default), each "x", "y", "z" or "all".
+  auto read_components = [&](std::string_view key) {
+    for (const std::string& comp : r.strings(key)) {
+      if (comp == "all") {
+        c.components = {true, true, true};
+      } else if (comp == "x" || comp == "y" || comp == "z") {
+        c.components[static_cast<std::size_t>(comp[0] - 'x')] = true;
+      } else {
+        r.fail(key, "unknown component \"" + comp +
+                        "\"; allowed values: \"x\", \"y\", "
+                        "\"z\", \"all\"");
+      }
+    }
+    if (!c.components[0] && !c.components[1] && !c.components[2])
+      r.fail(key, "name at least one component");
+  };
   if (r.has("velocity")) {
     c.velocity = r.required_vec3("velocity");
-    c.components = {true, true, true};
+    if (r.has("components"))
+      read_components("components");
+    else
+      c.components = {true, true, true};
+    if (r.has("curve")) c.curve = read_curve(r, "curve");
     return c;
   }
-  for (const std::string& comp : r.strings("fixed")) {
-    if (comp == "all") {
-      c.components = {true, true, true};
-    } else if (comp == "x" || comp == "y" || comp == "z") {
-      c.components[static_cast<std::size_t>(comp[0] - 'x')] = true;
-    } else {
-      r.fail("fixed", "unknown component \"" + comp + "\"; allowed values: \"x\", \"y\", "
-                      "\"z\", \"all\"");
-    }
-  }
-  if (!c.components[0] && !c.components[1] && !c.components[2])
-    r.fail("fixed", "name at least one component");
+  if (r.has("curve"))
+    r.fail("curve", "a curve scales a prescribed velocity over time; give velocity with it");
+  if (r.has("components"))
+    r.fail("components",
+           "components selects what a prescribed velocity acts on; with fixed, "
+           "name the components in fixed");
+  read_components("fixed");
   return c;
 }
 

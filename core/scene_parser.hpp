@@ -80,6 +80,8 @@ class TableReader {
   // A number or an array of numbers, each within `range` (a single number is a list of one);
   // empty when absent.
   std::vector<double> numbers(std::string_view key, const Range& range);
+  // An array of [a, b] pairs of finite numbers, at least one; empty when absent.
+  std::vector<std::array<double, 2>> pairs(std::string_view key);
   // An array of exactly three integers in [lo, hi].
   std::array<int, 3> integers3(std::string_view key, int lo, int hi);
   // One of `allowed` (the canonical spellings); returns the index into `allowed`.

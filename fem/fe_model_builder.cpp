@@ -300,14 +300,20 @@ void FeSolver::build(const core::Scene& scene) {
     el.batches.push_back(batch);
   }
 
-  // 3. Constraints: from the scene's selectors and from imported files.
-  for (const core::ConstraintSpec& c : scene.constraints) {
+  // 3. Constraints: from the scene's selectors and from imported files. owner: the constraint
+  // that imposes each node component last (for the velocity curves).
+  std::vector<std::int32_t> owner;
+  for (std::size_t ci = 0; ci < scene.constraints.size(); ++ci) {
+    const core::ConstraintSpec& c = scene.constraints[ci];
     std::size_t selected = 0;
     auto impose = [&](std::size_t n) {
       for (int a = 0; a < 3; ++a)
         if (c.components[static_cast<std::size_t>(a)]) {
           nodes_.imposed[n] |= static_cast<std::uint8_t>(1u << a);
           nodes_.imposed_velocity[n][a] = c.velocity[a];
+          if (!c.curve.empty() && owner.empty()) owner.assign(3 * n_nodes, -1);
+          if (!owner.empty())
+            owner[3 * n + static_cast<std::size_t>(a)] = static_cast<std::int32_t>(ci);
         }
       ++selected;
     };
@@ -337,6 +343,19 @@ void FeSolver::build(const core::Scene& scene) {
             nodes_.imposed[k] |= static_cast<std::uint8_t>(1u << a);
             nodes_.imposed_velocity[k][a] = 0.0;
           }
+  if (!owner.empty()) {
+    for (std::size_t ci = 0; ci < scene.constraints.size(); ++ci) {
+      const core::ConstraintSpec& c = scene.constraints[ci];
+      if (c.curve.empty()) continue;
+      VelocityCurve vc{c.curve, c.velocity, {}};
+      for (std::size_t k = 0; k < owner.size(); ++k)
+        if (owner[k] == static_cast<std::int32_t>(ci))
+          vc.components.emplace_back(static_cast<std::uint32_t>(k / 3),
+                                     static_cast<std::uint8_t>(k % 3));
+      if (!vc.components.empty()) velocity_curves_.push_back(std::move(vc));
+    }
+    apply_velocity_curves(0.0);
+  }
   // Imposed components start at their imposed value.
   for (std::size_t n = 0; n < n_nodes; ++n)
     for (int a = 0; a < 3; ++a)

@@ -244,6 +244,16 @@ class FeSolver {
          stabilisation_work_ = 0.0;
   std::vector<double> body_stabilisation_;  // stabilisation_work_ per body
   double eroded_energy_ = 0.0, external_work_ = 0.0;
+  // Prescribed velocities that follow a curve (ConstraintSpec::curve): the node components
+  // each owns (a later constraint on the same component takes it over), set to velocity x
+  // factor(t) at each step's mid-time before the nodal update.
+  struct VelocityCurve {
+    std::vector<std::array<double, 2>> curve;
+    Vec3 velocity;
+    std::vector<std::pair<std::uint32_t, std::uint8_t>> components;  // (node, axis)
+  };
+  std::vector<VelocityCurve> velocity_curves_;
+  void apply_velocity_curves(double t);
   double previous_dt_ = 0.0;
   long steps_ = 0;
   double time_ = 0.0;

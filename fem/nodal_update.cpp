@@ -63,7 +63,17 @@ void FeSolver::step(double dt) {
   finish_step(dt);
 }
 
+void FeSolver::apply_velocity_curves(double t) {
+  for (const VelocityCurve& vc : velocity_curves_) {
+    const double f = core::curve_factor(vc.curve, t);
+    for (const auto& [n, a] : vc.components) nodes_.imposed_velocity[n][a] = f * vc.velocity[a];
+  }
+}
+
 void FeSolver::begin_step(double dt) {
+  // A curved prescribed velocity takes its value at the step's mid-time, the time of the
+  // v^{n+1/2} that moves the nodes.
+  if (!velocity_curves_.empty()) apply_velocity_curves(time_ + 0.5 * dt);
   run_stage(FeStageKind::nodal_update, [&] { update_nodes(dt); });
   run_stage(FeStageKind::rigid_walls, [&] { apply_walls(dt); });
 }

@@ -2,7 +2,8 @@
 // model and EOS in finish_increment (constitutive_update.hpp): the damage after an increment
 // from the state at its end. Johnson & Cook (1985) accumulates over the plastic strain
 // increment; the plastic-strain model is D = eps_p / strain; spall fails at once when the
-// pressure falls below -pressure.
+// tension (-p or the largest principal stress) passes the strength, or accumulates Tuler &
+// Butcher's (1968) integral of its excess.
 #pragma once
 
 #include <algorithm>
@@ -36,7 +37,15 @@ inline double failure_damage(const FailureModel& model, double damage, double pl
   }
   if (const auto* e = std::get_if<PlasticStrainFailure>(&model))
     return std::min(plastic_strain / e->strain, 1.0);
-  if (const auto* sp = std::get_if<SpallFailure>(&model)) return p < -sp->pressure ? 1.0 : damage;
+  if (const auto* sp = std::get_if<SpallFailure>(&model)) {
+    const double tension = sp->criterion == SpallFailure::Criterion::pressure
+                               ? -p
+                               : largest_principal(s - p * SymTensor::identity());
+    if (!(tension > sp->strength)) return damage;
+    if (!(sp->impulse > 0.0)) return 1.0;
+    return std::min(damage + std::pow(tension - sp->strength, sp->exponent) * dt / sp->impulse,
+                    1.0);
+  }
   return damage;
 }
 

@@ -160,11 +160,20 @@ void Material::validate() const {
     // where exp(D3 sigma*) vanishes (D3 < 0), D2 >= 0.
     require(jc->D2 >= 0.0, *this, "failure D2", jc->D2, ">= 0");
     require(jc->D1 + jc->D2 > 0.0, *this, "failure D1 + D2", jc->D1 + jc->D2, "> 0");
+    // eps_f falls as the triaxiality rises (D3 <= 0), rises with the rate (D4 >= 0) and the
+    // temperature (D5 >= 0), as in every published set; other signs let eps_f reach zero or
+    // below at high rates or temperatures.
+    require(jc->D3 <= 0.0, *this, "failure D3", jc->D3, "<= 0");
+    require(jc->D4 >= 0.0, *this, "failure D4", jc->D4, ">= 0");
+    require(jc->D5 >= 0.0, *this, "failure D5", jc->D5, ">= 0");
   }
   if (const auto* p = std::get_if<PlasticStrainFailure>(&failure))
     require(p->strain > 0.0, *this, "failure strain", p->strain, "> 0");
-  if (const auto* s = std::get_if<SpallFailure>(&failure))
-    require(s->pressure > 0.0, *this, "failure pressure", s->pressure, "> 0");
+  if (const auto* s = std::get_if<SpallFailure>(&failure)) {
+    require(s->strength > 0.0, *this, "failure strength", s->strength, "> 0");
+    require(s->impulse >= 0.0, *this, "failure impulse", s->impulse, ">= 0");
+    require(s->exponent >= 1.0, *this, "failure exponent", s->exponent, ">= 1");
+  }
   if (fails() && std::holds_alternative<HolmquistJohnsonCook>(strength))
     throw std::invalid_argument("material '" + name + "': holmquist-johnson-cook has its own "
                                 "damage; it takes no failure model (remove failure / "

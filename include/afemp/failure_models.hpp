@@ -30,10 +30,17 @@ struct PlasticStrainFailure {
   double strain = 0.0;  ///< > 0
 };
 
-/// Spall: the point fails when its pressure falls below -pressure (hydrostatic tension
-/// beyond the spall strength; the pressure cutoff of LS-DYNA's spall models).
+/// Spall: the point fails when its tension passes the spall strength. The tension is -p
+/// (hydrostatic tension, the pressure cutoff of LS-DYNA's spall models) or the largest
+/// principal stress. Instantaneous (impulse = 0): it fails the step the tension exceeds the
+/// strength. Cumulative (impulse > 0), Tuler & Butcher (1968, Int. J. Fract. Mech. 4(4)
+/// 431-437): D += max(0, tension - strength)^exponent dt / impulse, failing at D = 1.
 struct SpallFailure {
-  double pressure = 0.0;  ///< spall strength, > 0
+  enum class Criterion { pressure, principal_stress };
+  Criterion criterion = Criterion::pressure;
+  double strength = 0.0;  ///< spall strength (the threshold stress), > 0
+  double impulse = 0.0;   ///< Tuler-Butcher K, stress^exponent x time; 0: instantaneous
+  double exponent = 2.0;  ///< Tuler-Butcher lambda, >= 1
 };
 
 /// A material's failure model.

@@ -288,8 +288,24 @@ struct ConstraintSpec {
   int body = -1;                       ///< restrict to one body; -1: every mesh body
   std::array<bool, 3> components{false, false, false};  ///< which components are imposed
   Vec3 velocity;                       ///< the imposed value (0 for fixed components)
+  /// A velocity's history: (time, factor) points, times increasing; the imposed value at t is
+  /// velocity times the factor interpolated linearly (the first factor before the first point,
+  /// the last after the last). Empty: constant.
+  std::vector<std::array<double, 2>> curve{};
   SourceLocation where{};
 };
+
+/// The factor of a constraint's curve at time t (1 without a curve).
+inline double curve_factor(const std::vector<std::array<double, 2>>& curve, double t) {
+  if (curve.empty()) return 1.0;
+  if (t <= curve.front()[0]) return curve.front()[1];
+  for (std::size_t k = 1; k < curve.size(); ++k)
+    if (t <= curve[k][0]) {
+      const double w = (t - curve[k - 1][0]) / (curve[k][0] - curve[k - 1][0]);
+      return curve[k - 1][1] + w * (curve[k][1] - curve[k - 1][1]);
+    }
+  return curve.back()[1];
+}
 
 /// A rigid planar wall for FE nodes (LS-DYNA *RIGIDWALL_PLANAR): nodes stay on the side the
 /// normal points to; the wall may move at a constant velocity; Coulomb friction.

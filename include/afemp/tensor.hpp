@@ -4,6 +4,7 @@
 // + 2 * sum of off-diagonal products.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 namespace afemp::core {
@@ -89,6 +90,19 @@ constexpr double double_dot(const SymTensor& a, const SymTensor& b) {
 inline double von_mises(const SymTensor& a) {
   const SymTensor s = a.deviator();
   return std::sqrt(1.5 * double_dot(s, s));
+}
+
+/// The largest principal value of a: its deviator's largest eigenvalue in the closed
+/// (trigonometric) form, 2 sqrt(J2 / 3) cos(theta) with cos(3 theta) = (3 sqrt(3) / 2)
+/// J3 / J2^(3/2), theta in [0, pi / 3], plus the mean.
+inline double largest_principal(const SymTensor& a) {
+  const SymTensor s = a.deviator();
+  const double j2 = 0.5 * double_dot(s, s);
+  if (!(j2 > 0.0)) return a.mean();
+  const double j3 = s.xx * (s.yy * s.zz - s.yz * s.yz) - s.xy * (s.xy * s.zz - s.yz * s.xz) +
+                    s.xz * (s.xy * s.yz - s.yy * s.xz);
+  const double c = std::clamp(1.5 * std::sqrt(3.0) * j3 / (j2 * std::sqrt(j2)), -1.0, 1.0);
+  return a.mean() + 2.0 * std::sqrt(j2 / 3.0) * std::cos(std::acos(c) / 3.0);
 }
 
 /// Pressure, positive in compression.
