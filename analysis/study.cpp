@@ -284,7 +284,7 @@ void write_study(const StudyPlan& plan, const StudyResult& result, const std::st
   write_file(dir / files.markdown, md);
   // The plot: the plotted error against wall time, one line per method in order of first
   // appearance, runs in the study's order.
-  LogLogPlot plot;
+  LinePlot plot;
   plot.title = plan.title;
   plot.x_label = "wall time (s), " + std::to_string(result.rows.empty() ? 0 : result.rows[0].threads) +
                  " thread(s)";
@@ -293,7 +293,7 @@ void write_study(const StudyPlan& plan, const StudyResult& result, const std::st
     auto it = std::find_if(plot.series.begin(), plot.series.end(),
                            [&](const PlotSeries& s) { return s.name == r.run->method; });
     if (it == plot.series.end()) {
-      plot.series.push_back({r.run->method, {}, {}});
+      plot.series.push_back({r.run->method, {}, {}, false});
       it = plot.series.end() - 1;
     }
     it->x.push_back(r.wall_seconds);
