@@ -173,6 +173,66 @@ std::string status(const StudyRow& row) {
   return s;
 }
 
+// The plot_value column against the runs' resolution (runs without one left out), one line per
+// method, and after them the references for it, dashed: "reference" for single values (a
+// crater's or Taylor bar's: the column's component), "reference low" and "reference high" for
+// bands. Each line runs in the order of resolution; runs of several methods at one resolution
+// share their reference's point.
+LinePlot value_plot(const StudyPlan& plan, const StudyResult& result) {
+  LinePlot plot;
+  plot.title = plan.title;
+  plot.x_label = plan.x_label;
+  plot.y_label = plan.plot_value;
+  const std::size_t column = static_cast<std::size_t>(
+      std::find(result.value_columns.begin(), result.value_columns.end(), plan.plot_value) -
+      result.value_columns.begin());
+  std::size_t metric = 0, component = 0;  // the column's metric, and which of its values
+  for (std::size_t k = 0; k < plan.metrics.size(); ++k) {
+    const std::vector<std::string> columns = value_columns(plan.metrics[k]);
+    const auto it = std::find(columns.begin(), columns.end(), plan.plot_value);
+    if (it != columns.end()) metric = k, component = static_cast<std::size_t>(it - columns.begin());
+  }
+  std::vector<PlotSeries> lines, references;
+  auto add = [&](std::vector<PlotSeries>& to, const std::string& name, double x, double y) {
+    auto it =
+        std::find_if(to.begin(), to.end(), [&](const PlotSeries& s) { return s.name == name; });
+    if (it == to.end()) it = to.insert(to.end(), PlotSeries{name, {}, {}, &to == &references});
+    it->x.push_back(x);
+    it->y.push_back(y);
+  };
+  for (const StudyRow& r : result.rows) {
+    if (!r.run->resolution) continue;
+    const double x = *r.run->resolution;
+    add(lines, r.run->method, x, r.values[column]);
+    const MetricReference& ref = r.run->references[metric];
+    if (ref.taylor) {
+      const double c[] = {ref.taylor->length, ref.taylor->impact_diameter,
+                          ref.taylor->bulge_diameter};
+      add(references, "reference", x, c[component]);
+    } else if (ref.crater) {
+      add(references, "reference", x, component == 0 ? ref.crater->depth : ref.crater->diameter);
+    } else if (ref.scalar && ref.scalar->band) {
+      add(references, "reference low", x, ref.scalar->low);
+      add(references, "reference high", x, ref.scalar->high);
+    } else if (ref.scalar) {
+      add(references, "reference", x, ref.scalar->low);
+    }
+  }
+  for (std::vector<PlotSeries>* group : {&lines, &references})
+    for (PlotSeries& s : *group) {
+      std::vector<std::pair<double, double>> points;
+      for (std::size_t i = 0; i < s.x.size(); ++i) points.emplace_back(s.x[i], s.y[i]);
+      std::stable_sort(points.begin(), points.end(),
+                       [](const auto& a, const auto& b) { return a.first < b.first; });
+      if (s.dashed) points.erase(std::unique(points.begin(), points.end()), points.end());
+      s.x.clear(), s.y.clear();
+      for (const auto& [x, y] : points) s.x.push_back(x), s.y.push_back(y);
+    }
+  plot.series = std::move(lines);
+  plot.series.insert(plot.series.end(), references.begin(), references.end());
+  return plot;
+}
+
 void write_file(const std::filesystem::path& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   out << text;
@@ -344,6 +404,8 @@ void write_study(const StudyPlan& plan, const StudyResult& result, const std::st
     md += " | " + st + " |\n";
   }
   md += "\n![error against wall time](" + files.plot + ")\n";
+  if (!plan.plot_value.empty())
+    md += "\n![" + plan.plot_value + " against " + plan.x_label + "](" + files.value_plot + ")\n";
   write_file(dir / files.markdown, md);
   // The plot: the plotted error against wall time, one line per method in order of first
   // appearance, runs in the study's order.
@@ -363,6 +425,8 @@ void write_study(const StudyPlan& plan, const StudyResult& result, const std::st
     it->y.push_back(result.plotted_error(plan, r));
   }
   write_file(dir / files.plot, svg_loglog(plot));
+  if (!plan.plot_value.empty())
+    write_file(dir / files.value_plot, svg_linear(value_plot(plan, result)));
 }
 
 }  // namespace afemp::analysis

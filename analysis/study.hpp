@@ -1,6 +1,7 @@
 // `afemp study`: runs each run of a study (analysis/study_file.hpp) to its end, measures its wall
-// time and metrics, and writes a CSV row per run, a Markdown table and a log-log plot of the
-// plotted metric's error against wall time, one line per method (docs/study-format.md).
+// time and metrics, and writes a CSV row per run, a Markdown table, a log-log plot of the
+// plotted metric's error against wall time, one line per method, and optionally a linear plot
+// of one value against the runs' resolution beside its references (docs/study-format.md).
 #pragma once
 
 #include <functional>
@@ -55,6 +56,7 @@ StudyResult run_study(
 // The files written to `directory` (created if needed).
 struct StudyFiles {
   std::string csv = "study.csv", markdown = "study.md", plot = "error_vs_time.svg";
+  std::string value_plot = "value_vs_resolution.svg";  // with [study] plot_value
 };
 void write_study(const StudyPlan& plan, const StudyResult& result,
                  const std::string& directory);

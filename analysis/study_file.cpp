@@ -346,7 +346,7 @@ StudyPlan parse_study(const std::string& text, const std::string& path) {
   plan.path = path;
   if (!top.has("study")) top.fail("study", "a study file needs a [study] table (title, threads, plot)");
   TableReader s(top.required_table("study"), "study", path);
-  s.known({"title", "threads", "plot", "energy_tolerance"});
+  s.known({"title", "threads", "plot", "energy_tolerance", "plot_value", "x_label"});
   s.check_unknown();
   plan.title = s.string("title", std::filesystem::path(path).stem().string());
   plan.threads = static_cast<int>(s.integer("threads", 0, 0, 4096));
@@ -404,6 +404,23 @@ StudyPlan parse_study(const std::string& text, const std::string& path) {
         break;
       }
   if (plan.plot.empty()) plan.plot = "energy";
+  // The value plotted against the runs' resolution.
+  plan.plot_value = s.string("plot_value", "");
+  plan.x_label = s.string("x_label", plan.x_label);
+  if (s.has("plot_value")) {
+    std::vector<std::string> columns;
+    for (const MetricSpec& m : plan.metrics)
+      for (const std::string& c : value_columns(m)) columns.push_back(c);
+    if (std::find(columns.begin(), columns.end(), plan.plot_value) == columns.end())
+      s.fail("plot_value",
+             "names the value column plotted against resolution: " +
+                 (columns.empty() ? std::string("this study has no metric") : join(columns, true)));
+    if (std::none_of(plan.runs.begin(), plan.runs.end(),
+                     [](const StudyRun& r) { return r.resolution.has_value(); }))
+      s.fail("plot_value",
+             "plots the value against the runs' resolution, and no [[runs]] table gives one: "
+             "resolution = ... (or [...], one run per value)");
+  }
   // Build every run's scene now: a mistake stops the study before the first run.
   for (const StudyRun& run : plan.runs) {
     const Scene scene = build_run_scene(plan, run);

@@ -106,6 +106,10 @@ struct StudyPlan {
   // The metric whose error is plotted against wall time ("energy": the energy-balance
   // error's magnitude); by default the first metric with a reference, else "energy".
   std::string plot;
+  // A value column ("hole", "crater.depth") plotted against the runs' resolution, labelled
+  // x_label (the resolution may be an impact speed); empty: no such plot.
+  std::string plot_value;
+  std::string x_label = "resolution";
   std::vector<StudyRun> runs;
   // Whether any run measures the metric (by its index) against a reference: the metric then
   // has an error column.

@@ -130,7 +130,10 @@ TEST(StudyFile, MistakesNameTheFileLineKeyAndWhatIsAllowed) {
 // run of the sweep; a crater and a Taylor bar with no study-wide reference, given theirs run
 // by run (the crater's tolerance is fine: the runs without a reference report it only).
 const std::string references_text =
-    replaced(test::elastic_bar_study("Elastic bar"), "reference = 300", "reference = [280, 320]") +
+    replaced(replaced(test::elastic_bar_study("Elastic bar"), "reference = 300",
+                      "reference = [280, 320]"),
+             "threads = 1\n",
+             "threads = 1\nplot_value = \"crater.depth\"\nx_label = \"impact speed (m/s)\"\n") +
     R"(
 [[metrics]]
 kind = "crater"
@@ -193,23 +196,30 @@ TEST(StudyFile, RunsTakeTheirOwnReferencesAndBands) {
   EXPECT_EQ(plan.runs[2].references[2].taylor->bulge_diameter, 4.5);
   for (std::size_t k = 0; k < 3; ++k) EXPECT_TRUE(plan.has_reference(k)) << k;
   EXPECT_EQ(plan.plot, "rebound");
+  EXPECT_EQ(plan.plot_value, "crater.depth");
+  EXPECT_EQ(plan.x_label, "impact speed (m/s)");
+  // Without the key, no value plot; the x label's default.
+  StudyFiles g(study_text);
+  const StudyPlan plain = read_study(g.study);
+  EXPECT_EQ(plain.plot_value, "");
+  EXPECT_EQ(plain.x_label, "resolution");
 }
 
 TEST(StudyFile, ReferenceMistakesNameTheFileLineKeyAndWhatIsAllowed) {
   const std::string sweep = "reference = { rebound = [300, [290, 310]], ";
   std::string e = study_error(replaced(references_text, "taylor = { L", "speed = 3, taylor = { L"));
-  EXPECT_NE(e.find("study.toml:38: key 'runs[1].reference.speed': no metric is named \"speed\"; "
+  EXPECT_NE(e.find("study.toml:40: key 'runs[1].reference.speed': no metric is named \"speed\"; "
                    "reference = { NAME = ... } takes a [[metrics]] name: \"rebound\", \"crater\", "
                    "\"taylor\""),
             std::string::npos)
       << e;
   e = study_error(replaced(references_text, sweep, "reference = { rebound = [300], "));
-  EXPECT_NE(e.find("study.toml:32: key 'runs[0].reference.rebound': with resolution = [2 values], "
+  EXPECT_NE(e.find("study.toml:34: key 'runs[0].reference.rebound': with resolution = [2 values], "
                    "every reference value must be an array of 2 values, one per run"),
             std::string::npos)
       << e;
   e = study_error(replaced(references_text, sweep, "reference = { rebound = [300, \"fast\"], "));
-  EXPECT_NE(e.find("study.toml:32: key 'runs[0].reference.rebound[1]': expected a number or a band "
+  EXPECT_NE(e.find("study.toml:34: key 'runs[0].reference.rebound[1]': expected a number or a band "
                    "[low, high] of two numbers, got a string"),
             std::string::npos)
       << e;
@@ -238,7 +248,7 @@ TEST(StudyFile, ReferenceMistakesNameTheFileLineKeyAndWhatIsAllowed) {
       << e;
   e = study_error(replaced(references_text, "reference = [280, 320]", "reference = [-10, 10]"));
   EXPECT_NE(
-      e.find("study.toml:11: key 'metrics[0].reference': a band's bounds must have one sign and "
+      e.find("study.toml:13: key 'metrics[0].reference': a band's bounds must have one sign and "
              "neither be 0"),
       std::string::npos)
       << e;
@@ -260,10 +270,22 @@ TEST(StudyFile, ReferenceMistakesNameTheFileLineKeyAndWhatIsAllowed) {
                            ", crater = [{ depth = 1, diameter = 4 }, { depth = 2, diameter = 5 }]",
                            ""));
   EXPECT_NE(
-      e.find("study.toml:21: key 'metrics[1].tolerance': a tolerance needs a reference to "
+      e.find("study.toml:23: key 'metrics[1].tolerance': a tolerance needs a reference to "
              "compare with: reference = ... here, or reference = { crater = ... } in a [[runs]] "
              "table"),
       std::string::npos)
+      << e;
+  e = study_error(replaced(references_text, "\"crater.depth\"", "\"crater.width\""));
+  EXPECT_NE(e.find("study.toml:5: key 'study.plot_value': names the value column plotted against "
+                   "resolution: \"rebound\", \"crater.depth\", \"crater.diameter\", \"taylor.L\", "
+                   "\"taylor.D\", \"taylor.W\""),
+            std::string::npos)
+      << e;
+  e = study_error(replaced(replaced(study_text, "resolution = [1.0, 0.5]\n", ""), "threads = 1\n",
+                           "threads = 1\nplot_value = \"rebound\"\n"));
+  EXPECT_NE(e.find("key 'study.plot_value': plots the value against the runs' resolution, and no "
+                   "[[runs]] table gives one"),
+            std::string::npos)
       << e;
 }
 

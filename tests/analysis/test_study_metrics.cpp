@@ -7,13 +7,14 @@
 //    steps: the metrics give the cut geometry within one particle spacing;
 //  - a band's error is 0 inside it and the distance to the nearer bound relative to that bound
 //    outside; each run is measured against its own reference where its [[runs]] table gives
-//    one, and the CSV says which;
+//    one, the CSV says which, and the value plot draws the references beside the runs;
 //  - the mistakes a study file can make with them name the file, line, key and what is allowed.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -270,13 +271,15 @@ TEST(StudyMetrics, BandErrorIsTheDistanceToTheNearerBoundRelativeToIt) {
 // outside radius 2 sit at (7, 15) / 8), measured against a band below it, one value, the
 // study-wide band about it, and a band above it: the run's own reference reaches its row, and
 // the crater, which has references in two runs only, is reported only in the others.
-TEST(StudyMetrics, PerRunReferencesAndBandsReachTheirRows) {
+TEST(StudyMetrics, PerRunReferencesAndBandsReachTheirRowsAndTheValuePlot) {
   test::ScratchDir dir;
   write_cut_targets(dir);
   const analysis::StudyPlan plan = analysis::read_study(dir.write("study.toml", R"toml(
 [study]
 title = "Cut plate"
 threads = 1
+plot_value = "hole"
+x_label = "impact speed (km/s)"
 [[metrics]]
 kind = "crater"
 body = "block"
@@ -366,6 +369,38 @@ reference = { hole = [3.0, 3.5] }
   EXPECT_NE(lines[2].find(",2,5,3,3,over tolerance: hole"), std::string::npos) << lines[2];
   EXPECT_NE(lines[3].find(",,,3.5,4.6,ok"), std::string::npos) << lines[3];
   EXPECT_NE(lines[4].find(",,,3,3.5,over tolerance: hole"), std::string::npos) << lines[4];
+  std::ifstream md_in(dir.file("out/study.md"));
+  const std::string md((std::istreambuf_iterator<char>(md_in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(md.find("![hole against impact speed (km/s)](value_vs_resolution.svg)"),
+            std::string::npos)
+      << md;
+  // The plot: x 5..7 and y 3..5 in steps of 0.5 (the plot area spans x 80..530, y 50..420).
+  // The methods' lines, then the references: the bands' bounds at 5 and 6 (two at 6, one per
+  // run, in the runs' order), the one value at 7 (a marker: one point, no line).
+  std::ifstream svg_in(dir.file("out/value_vs_resolution.svg"));
+  const std::string svg((std::istreambuf_iterator<char>(svg_in)), std::istreambuf_iterator<char>());
+  std::size_t series = 0;
+  for (auto p = svg.find("<g class=\"series\""); p != std::string::npos;
+       p = svg.find("<g class=\"series\"", p + 1))
+    ++series;
+  EXPECT_EQ(series, 5u);
+  const auto mpm = svg.find("data-name=\"MPM\""), again = svg.find("data-name=\"MPM again\""),
+             low = svg.find("data-name=\"reference low\""),
+             high = svg.find("data-name=\"reference high\""),
+             one = svg.find("data-name=\"reference\"");
+  ASSERT_NE(one, std::string::npos) << svg;
+  EXPECT_TRUE(mpm < again && again < low && low < high && high < one) << svg;
+  char points[160];
+  const double y = 50 + 370 * (1 - (v - 3.0) / (5.0 - 3.0));
+  std::snprintf(points, sizeof points, "<polyline points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f \"", 80.0,
+                y, 80 + 450 * ((6.0 - 5.0) / (7.0 - 5.0)), y, 530.0, y);
+  EXPECT_NE(svg.find(points, mpm), std::string::npos) << points << "\n" << svg;
+  std::snprintf(points, sizeof points, "<polyline points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f \"", 80.0,
+                50 + 370 * (1 - 1.5 / 2), 305.0, 50 + 370 * (1 - 0.5 / 2), 305.0,
+                50 + 370 * (1 - 0.0 / 2));
+  EXPECT_NE(svg.find(points, low), std::string::npos) << points << "\n" << svg;
+  EXPECT_NE(svg.find("<circle cx=\"530.00\" cy=\"420.00\"", one), std::string::npos) << svg;
+  EXPECT_NE(svg.find(">impact speed (km/s)</text>"), std::string::npos);
 }
 
 }  // namespace
