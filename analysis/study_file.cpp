@@ -4,6 +4,7 @@
 #include "analysis/study_file.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -15,6 +16,7 @@
 
 namespace afemp::analysis {
 
+using core::scene_detail::describe_type;
 using core::scene_detail::join;
 using core::scene_detail::Range;
 using core::scene_detail::TableReader;
@@ -29,6 +31,22 @@ const char* to_string(MetricKind k) {
     case MetricKind::frequency: return "frequency";
   }
   return "?";
+}
+
+std::vector<std::string> value_columns(const MetricSpec& m) {
+  switch (m.kind) {
+    case MetricKind::taylor:
+      return {m.name + ".L", m.name + ".D", m.name + ".W"};
+    case MetricKind::crater:
+      return {m.name + ".depth", m.name + ".diameter"};
+    default:
+      return {m.name};
+  }
+}
+
+bool StudyPlan::has_reference(std::size_t metric) const {
+  return std::any_of(runs.begin(), runs.end(),
+                     [&](const StudyRun& r) { return r.references[metric].has_value(); });
 }
 
 namespace {
@@ -90,6 +108,75 @@ const std::vector<MetricKey>& metric_keys() {
   return keys;
 }
 
+// A metric's reference from its TOML value: the study-wide `reference`, or one run's, which
+// `key` names in messages ("runs[1].reference.crater[2]").
+MetricReference read_reference(const MetricSpec& m, const toml::node& node, const std::string& key,
+                               const std::string& file) {
+  const SourceLocation at{file, line_of(node.source())};
+  MetricReference out;
+  if (m.kind == MetricKind::taylor || m.kind == MetricKind::crater) {
+    const bool taylor = m.kind == MetricKind::taylor;
+    const toml::table* t = node.as_table();
+    if (!t)
+      throw InputError(
+          at, key,
+          std::string("expected ") +
+              (taylor ? "{ L = ..., D = ..., W = ... }" : "{ depth = ..., diameter = ... }") +
+              ", got " + describe_type(node));
+    TableReader ref(*t, key, file);
+    if (taylor) {
+      ref.known({"L", "D", "W"});
+      ref.check_unknown();
+      TaylorReference tr;
+      tr.length = ref.required_number("L", Range::positive());
+      tr.impact_diameter = ref.required_number("D", Range::positive());
+      tr.bulge_diameter = ref.required_number("W", Range::positive());
+      tr.tolerance = m.tolerance;
+      out.taylor = tr;
+    } else {
+      ref.known({"depth", "diameter"});
+      ref.check_unknown();
+      out.crater = CraterReference{ref.required_number("depth", Range::positive()),
+                                   ref.required_number("diameter", Range::positive())};
+    }
+    return out;
+  }
+  auto number = [](const toml::node& n) -> std::optional<double> {
+    if (const auto* i = n.as_integer()) return static_cast<double>(i->get());
+    if (const auto* f = n.as_floating_point()) return f->get();
+    return std::nullopt;
+  };
+  ScalarReference s;
+  const toml::array* a = node.as_array();
+  if (a && a->size() == 2 && number(*a->get(0)) && number(*a->get(1))) {
+    s = {*number(*a->get(0)), *number(*a->get(1)), true};
+  } else if (const auto v = number(node)) {
+    s.low = s.high = *v;
+  } else {
+    std::string got = describe_type(node);
+    if (a && a->size() == 2)
+      got = "an array of " + describe_type(*a->get(0)) + " and " + describe_type(*a->get(1));
+    else if (a)
+      got =
+          "an array of " + std::to_string(a->size()) + (a->size() == 1 ? " element" : " elements");
+    throw InputError(at, key, "expected a number or a band [low, high] of two numbers, got " + got);
+  }
+  if (!std::isfinite(s.low) || !std::isfinite(s.high))
+    throw InputError(at, key, "a reference must be a finite number");
+  if (!s.band && s.low == 0.0)
+    throw InputError(at, key, "the error is relative to the reference, which must not be 0");
+  if (s.band && !(s.low <= s.high))
+    throw InputError(at, key,
+                     "a band [low, high] needs low <= high; got [" + format_number_short(s.low) +
+                         ", " + format_number_short(s.high) + "]");
+  if (s.band && !(s.low * s.high > 0.0))
+    throw InputError(at, key,
+                     "a band's bounds must have one sign and neither be 0: the error is relative "
+                     "to the nearer bound");
+  out.scalar = s;
+  return out;
+}
+
 MetricSpec read_metric(TableReader& r) {
   MetricSpec m;
   m.where = r.where();
@@ -109,21 +196,9 @@ MetricSpec read_metric(TableReader& r) {
   }
   m.tolerance = r.number("tolerance", 0.0, Range::non_negative());
   switch (m.kind) {
-    case MetricKind::taylor: {
+    case MetricKind::taylor:
       m.body = r.required_string("body");
-      if (!r.has("reference"))
-        r.fail("reference", "a taylor metric needs its reference: reference = { L = ..., D = ..., W = ... }");
-      TableReader ref(r.required_table("reference"), r.dotted("reference"), r.file());
-      ref.known({"L", "D", "W"});
-      ref.check_unknown();
-      TaylorReference t;
-      t.length = ref.required_number("L", Range::positive());
-      t.impact_diameter = ref.required_number("D", Range::positive());
-      t.bulge_diameter = ref.required_number("W", Range::positive());
-      t.tolerance = m.tolerance;
-      m.taylor = t;
-      return m;
-    }
+      break;
     case MetricKind::velocity:
       m.body = r.required_string("body");
       m.component = static_cast<int>(r.choice("component", {"x", "y", "z", "magnitude"}, 3));
@@ -142,16 +217,7 @@ MetricSpec read_metric(TableReader& r) {
       }
       m.ring = r.required_number("ring", Range::positive());
       m.threshold = r.required_number("threshold", Range::positive());
-      if (const toml::table* t = r.optional_table("reference")) {
-        TableReader ref(*t, r.dotted("reference"), r.file());
-        ref.known({"depth", "diameter"});
-        ref.check_unknown();
-        m.crater = CraterReference{ref.required_number("depth", Range::positive()),
-                                   ref.required_number("diameter", Range::positive())};
-      }
-      if (m.tolerance > 0.0 && !m.crater)
-        r.fail("tolerance", "a tolerance needs a reference to compare with");
-      return m;
+      break;
     }
     case MetricKind::wave_front:
       m.probes = r.strings("probes");
@@ -166,18 +232,16 @@ MetricSpec read_metric(TableReader& r) {
       m.quantity = r.required_string("quantity");
       break;
   }
-  m.reference = r.optional_number("reference", Range::any());
-  if (m.reference && *m.reference == 0.0)
-    r.fail("reference", "the error is relative to the reference, which must not be 0");
-  if (m.tolerance > 0.0 && !m.has_reference())
-    r.fail("tolerance", "a tolerance needs a reference to compare with");
+  if (r.has("reference"))
+    m.reference = read_reference(m, *r.table().get("reference"), r.dotted("reference"), r.file());
   return m;
 }
 
-// [[runs]]: one run, or one per value when `resolution` is an array (every `set` value is
-// then an array of as many values, the k-th for the k-th run).
-void read_runs(TableReader& r, const std::string& study_path, std::vector<StudyRun>& out) {
-  r.known({"method", "scene", "resolution", "set", "label"});
+// [[runs]]: one run, or one per value when `resolution` is an array (every `set` and
+// `reference` value is then an array of as many values, the k-th for the k-th run).
+void read_runs(TableReader& r, const std::string& study_path,
+               const std::vector<MetricSpec>& metrics, std::vector<StudyRun>& out) {
+  r.known({"method", "scene", "resolution", "set", "reference", "label"});
   r.check_unknown();
   StudyRun base;
   base.where = r.where();
@@ -219,11 +283,47 @@ void read_runs(TableReader& r, const std::string& study_path, std::vector<StudyR
       set.emplace_back(k, &node);
     }
   }
+  // reference = { NAME = ... }: the metric's reference for these runs, in place of its
+  // study-wide one.
+  for (const MetricSpec& m : metrics) base.references.push_back(m.reference);
+  std::vector<std::pair<std::size_t, const toml::node*>> references;  // metric index, value
+  if (const toml::table* t = r.optional_table("reference")) {
+    for (const auto& [key, node] : *t) {
+      const std::string name(key.str()), dotted = r.dotted("reference") + "." + name;
+      const SourceLocation at{r.file(), line_of(node.source())};
+      const auto m = std::find_if(metrics.begin(), metrics.end(),
+                                  [&](const MetricSpec& spec) { return spec.name == name; });
+      if (m == metrics.end()) {
+        std::vector<std::string> names;
+        for (const MetricSpec& spec : metrics) names.push_back(spec.name);
+        const std::string known = names.empty() ? "this study has none" : join(names, true);
+        throw InputError(at, dotted,
+                         "no metric is named \"" + name +
+                             "\"; reference = { NAME = ... } takes a [[metrics]] name: " + known);
+      }
+      if (sweep) {
+        const auto* a = node.as_array();
+        if (!a || a->size() != count)
+          throw InputError(at, dotted,
+                           "with resolution = [" + std::to_string(count) +
+                               " values], every reference value must be an array of " +
+                               std::to_string(count) +
+                               " values, one per run (a band: [[low, high], ...])");
+      }
+      references.emplace_back(static_cast<std::size_t>(m - metrics.begin()), &node);
+    }
+  }
   for (std::size_t i = 0; i < count; ++i) {
     StudyRun run = base;
     if (!resolutions.empty()) run.resolution = resolutions[i];
     for (const auto& [k, node] : set)
       run.overrides.push_back({k, toml_text(sweep ? *node->as_array()->get(i) : *node)});
+    for (const auto& [k, node] : references) {
+      const std::string key = r.dotted("reference") + "." + metrics[k].name;
+      run.references[k] = sweep ? read_reference(metrics[k], *node->as_array()->get(i),
+                                                 key + "[" + std::to_string(i) + "]", r.file())
+                                : read_reference(metrics[k], *node, key, r.file());
+    }
     std::ostringstream l;
     if (!label.empty())
       l << label;
@@ -246,7 +346,7 @@ StudyPlan parse_study(const std::string& text, const std::string& path) {
   plan.path = path;
   if (!top.has("study")) top.fail("study", "a study file needs a [study] table (title, threads, plot)");
   TableReader s(top.required_table("study"), "study", path);
-  s.known({"title", "threads", "plot", "energy_tolerance"});
+  s.known({"title", "threads", "plot", "energy_tolerance", "plot_value", "x_label"});
   s.check_unknown();
   plan.title = s.string("title", std::filesystem::path(path).stem().string());
   plan.threads = static_cast<int>(s.integer("threads", 0, 0, 4096));
@@ -271,28 +371,56 @@ StudyPlan parse_study(const std::string& text, const std::string& path) {
   const auto& ra = *runs->as_array();
   for (std::size_t i = 0; i < ra.size(); ++i) {
     TableReader rr(*ra.get(i)->as_table(), "runs[" + std::to_string(i) + "]", path);
-    read_runs(rr, path, plan.runs);
+    read_runs(rr, path, plan.metrics, plan.runs);
   }
+  // A tolerance needs a reference in some run (a run without one reports the value only).
+  for (std::size_t k = 0; k < plan.metrics.size(); ++k)
+    if (plan.metrics[k].tolerance > 0.0 && !plan.has_reference(k))
+      TableReader(*metrics->as_array()->get(k)->as_table(), "metrics[" + std::to_string(k) + "]",
+                  path)
+          .fail("tolerance",
+                "a tolerance needs a reference to compare with: reference = ... here, " +
+                    ("or reference = { " + plan.metrics[k].name + " = ... }") +
+                    " in a [[runs]] table");
   // The plotted metric: named, or the first with a reference.
   if (s.has("plot")) {
     plan.plot = s.required_string("plot");
     const auto it = std::find_if(plan.metrics.begin(), plan.metrics.end(),
                                  [&](const MetricSpec& m) { return m.name == plan.plot; });
     std::vector<std::string> with_reference;
-    for (const MetricSpec& m : plan.metrics)
-      if (m.has_reference()) with_reference.push_back(m.name);
-    if (plan.plot != "energy" && (it == plan.metrics.end() || !it->has_reference()))
+    for (std::size_t k = 0; k < plan.metrics.size(); ++k)
+      if (plan.has_reference(k)) with_reference.push_back(plan.metrics[k].name);
+    if (plan.plot != "energy" &&
+        (it == plan.metrics.end() ||
+         !plan.has_reference(static_cast<std::size_t>(it - plan.metrics.begin()))))
       s.fail("plot", "names the metric whose error is plotted: one with a reference (" +
                          (with_reference.empty() ? std::string("none here") : join(with_reference, true)) +
                          "), or \"energy\" for the energy-balance error");
   }
   if (plan.plot.empty())
-    for (const MetricSpec& m : plan.metrics)
-      if (m.has_reference()) {
-        plan.plot = m.name;
+    for (std::size_t k = 0; k < plan.metrics.size(); ++k)
+      if (plan.has_reference(k)) {
+        plan.plot = plan.metrics[k].name;
         break;
       }
   if (plan.plot.empty()) plan.plot = "energy";
+  // The value plotted against the runs' resolution.
+  plan.plot_value = s.string("plot_value", "");
+  plan.x_label = s.string("x_label", plan.x_label);
+  if (s.has("plot_value")) {
+    std::vector<std::string> columns;
+    for (const MetricSpec& m : plan.metrics)
+      for (const std::string& c : value_columns(m)) columns.push_back(c);
+    if (std::find(columns.begin(), columns.end(), plan.plot_value) == columns.end())
+      s.fail("plot_value",
+             "names the value column plotted against resolution: " +
+                 (columns.empty() ? std::string("this study has no metric") : join(columns, true)));
+    if (std::none_of(plan.runs.begin(), plan.runs.end(),
+                     [](const StudyRun& r) { return r.resolution.has_value(); }))
+      s.fail("plot_value",
+             "plots the value against the runs' resolution, and no [[runs]] table gives one: "
+             "resolution = ... (or [...], one run per value)");
+  }
   // Build every run's scene now: a mistake stops the study before the first run.
   for (const StudyRun& run : plan.runs) {
     const Scene scene = build_run_scene(plan, run);

@@ -30,6 +30,24 @@ struct CraterReference {
   double depth = 0.0, diameter = 0.0;
 };
 
+// A scalar metric's reference: one value (low = high), or a band [low, high] the value should
+// lie in, as two published laws bound a hole's diameter. Neither bound is 0 and both have one
+// sign: the error is relative to the nearer bound.
+struct ScalarReference {
+  double low = 0.0, high = 0.0;
+  bool band = false;  // written as [low, high]: listed and plotted as two bounds
+};
+
+// What a metric's value is compared with: a Taylor bar's L, D, W (its error is eq 2-42), a
+// crater's depth and diameter (the mean of the two relative errors), the other kinds' scalar
+// (analysis::reference_error); none: the value is reported only.
+struct MetricReference {
+  std::optional<TaylorReference> taylor;
+  std::optional<CraterReference> crater;
+  std::optional<ScalarReference> scalar;
+  bool has_value() const { return taylor || crater || scalar; }
+};
+
 struct MetricSpec {
   MetricKind kind = MetricKind::velocity;
   std::string name;  // column prefix, unique in the study
@@ -46,15 +64,16 @@ struct MetricSpec {
   std::string quantity;
   double fraction = 0.5;  // wave_front: the arrival threshold, a fraction of the peak
   double until = 0.0;     // wave_front: > 0: only the samples up to this time count
-  // References: taylor needs L, D, W (its error is eq 2-42); crater { depth, diameter } (the
-  // mean of the two relative errors); the others an optional number (|v - v_ref| / |v_ref|).
-  std::optional<double> reference;
-  std::optional<TaylorReference> taylor;
-  std::optional<CraterReference> crater;
+  // The study-wide reference; a [[runs]] table may give its runs their own
+  // (StudyRun::references).
+  MetricReference reference;
   double tolerance = 0.0;  // > 0: a run whose error exceeds it fails the study
   SourceLocation where;
-  bool has_reference() const { return reference || taylor || crater; }
 };
+
+// The metric's value columns: NAME.L, NAME.D, NAME.W (taylor), NAME.depth, NAME.diameter
+// (crater), NAME (the others).
+std::vector<std::string> value_columns(const MetricSpec& m);
 
 // One run: a scene and the overrides applied to it.
 struct StudyRun {
@@ -69,6 +88,10 @@ struct StudyRun {
     std::string value;
   };
   std::vector<Override> overrides;
+  // One per metric, in StudyPlan::metrics' order: what this run is measured against, the
+  // metric's study-wide reference unless the [[runs]] table gives its own (a crater struck at
+  // its own speed has its own published depth).
+  std::vector<MetricReference> references;
   SourceLocation where;  // the [[runs]] table
 };
 
@@ -83,7 +106,14 @@ struct StudyPlan {
   // The metric whose error is plotted against wall time ("energy": the energy-balance
   // error's magnitude); by default the first metric with a reference, else "energy".
   std::string plot;
+  // A value column ("hole", "crater.depth") plotted against the runs' resolution, labelled
+  // x_label (the resolution may be an impact speed); empty: no such plot.
+  std::string plot_value;
+  std::string x_label = "resolution";
   std::vector<StudyRun> runs;
+  // Whether any run measures the metric (by its index) against a reference: the metric then
+  // has an error column.
+  bool has_reference(std::size_t metric) const;
 };
 
 // Reads and checks a study file (every run's scene is built once here, so a bad scene or

@@ -36,34 +36,81 @@ void marker(std::string& out, const char* shape, double x, double y, const char*
   }
 }
 
-std::string decade_label(int k) {
+// One axis: where a value falls along it (0 at the low end, 1 at the high end) and its grid
+// lines, labelled (major) or faint (minor).
+struct Axis {
+  bool log = false;
+  double lo = 0.0, hi = 1.0;  // the ends; on a log axis their decade exponents
+  std::vector<double> major, minor;
+  bool shows(double v) const { return std::isfinite(v) && (!log || v > 0.0); }
+  double fraction(double v) const { return ((log ? std::log10(v) : v) - lo) / (hi - lo); }
+};
+
+// Whole decades from below `min` to above `max`, 2..9 times each decade faint.
+Axis log_axis(double min, double max) {
+  Axis a;
+  a.log = true;
+  if (!(min <= max)) min = 1.0, max = 10.0;  // nothing to plot
+  const int k0 = static_cast<int>(std::floor(std::log10(min)));
+  const int k1 = std::max(k0 + 1, static_cast<int>(std::ceil(std::log10(max))));
+  a.lo = k0, a.hi = k1;
+  for (int k = k0; k <= k1; ++k) {
+    a.major.push_back(std::pow(10.0, k));
+    for (int m = 2; m <= 9 && k < k1; ++m) a.minor.push_back(m * std::pow(10.0, k));
+  }
+  return a;
+}
+
+// Round ticks around [min, max]: the step is 1, 2 or 5 times a power of ten, the first of
+// those at least a fifth of the span, so that the labels read as the numbers they are.
+Axis linear_axis(double min, double max) {
+  Axis a;
+  if (!(min <= max)) min = 0.0, max = 1.0;  // nothing to plot
+  // One value (or one level): a span of 10 % about it.
+  if (min == max) {
+    const double pad = min == 0.0 ? 1.0 : 0.1 * std::abs(min);
+    min -= pad, max += pad;
+  }
+  const double raw = (max - min) / 5.0;
+  const double decade = std::pow(10.0, std::floor(std::log10(raw)));
+  // A span or a bound a rounding error past a round number does not take the next step.
+  const double m = raw / decade * (1.0 - 1e-9);
+  const double step = (m <= 1.0 ? 1.0 : m <= 2.0 ? 2.0 : m <= 5.0 ? 5.0 : 10.0) * decade;
+  const long k0 = std::lround(std::floor(min / step + 1e-9));
+  const long k1 = std::lround(std::ceil(max / step - 1e-9));
+  a.lo = static_cast<double>(k0) * step, a.hi = static_cast<double>(k1) * step;
+  for (long k = k0; k <= k1; ++k) a.major.push_back(static_cast<double>(k) * step);
+  return a;
+}
+
+std::string tick_label(double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", std::pow(10.0, k));
+  std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
 }
 
-}  // namespace
-
-std::string svg_loglog(const LogLogPlot& plot) {
-  double x_min = std::numeric_limits<double>::infinity(), x_max = 0.0;
-  double y_min = std::numeric_limits<double>::infinity(), y_max = 0.0;
+// The ends of each axis from the points both axes show.
+void data_range(const LinePlot& plot, bool log, double& x_min, double& x_max, double& y_min,
+                double& y_max) {
+  Axis probe;
+  probe.log = log;
+  x_min = y_min = std::numeric_limits<double>::infinity();
+  x_max = y_max = -std::numeric_limits<double>::infinity();
   for (const PlotSeries& s : plot.series)
     for (std::size_t i = 0; i < s.x.size(); ++i)
-      if (s.x[i] > 0.0 && s.y[i] > 0.0 && std::isfinite(s.x[i]) && std::isfinite(s.y[i])) {
+      if (probe.shows(s.x[i]) && probe.shows(s.y[i])) {
         x_min = std::min(x_min, s.x[i]);
         x_max = std::max(x_max, s.x[i]);
         y_min = std::min(y_min, s.y[i]);
         y_max = std::max(y_max, s.y[i]);
       }
-  if (!(x_max > 0.0)) x_min = 1.0, x_max = 10.0, y_min = 1.0, y_max = 10.0;  // nothing to plot
-  const int x0 = static_cast<int>(std::floor(std::log10(x_min)));
-  const int x1 = std::max(x0 + 1, static_cast<int>(std::ceil(std::log10(x_max))));
-  const int y0 = static_cast<int>(std::floor(std::log10(y_min)));
-  const int y1 = std::max(y0 + 1, static_cast<int>(std::ceil(std::log10(y_max))));
+}
+
+std::string svg(const LinePlot& plot, const Axis& ax, const Axis& ay) {
   const double width = 720, height = 480, left = 80, right = 190, top = 50, bottom = 60;
   const double pw = width - left - right, ph = height - top - bottom;
-  auto px = [&](double x) { return left + pw * (std::log10(x) - x0) / (x1 - x0); };
-  auto py = [&](double y) { return top + ph * (1.0 - (std::log10(y) - y0) / (y1 - y0)); };
+  auto px = [&](double x) { return left + pw * ax.fraction(x); };
+  auto py = [&](double y) { return top + ph * (1.0 - ay.fraction(y)); };
 
   std::string out;
   appendf(out,
@@ -74,24 +121,26 @@ std::string svg_loglog(const LogLogPlot& plot) {
   // User text goes in with +=: appendf's buffer is short.
   appendf(out, "<text x=\"%.1f\" y=\"28\" text-anchor=\"middle\" font-size=\"15\">", left + pw / 2);
   out += xml_escape(plot.title) + "</text>\n";
-  // Grid: decades solid, 2..9 faint.
-  for (int k = x0; k <= x1; ++k) {
-    for (int m = 1; m <= (k < x1 ? 9 : 1); ++m) {
-      const double x = px(m * std::pow(10.0, k));
-      appendf(out, "<line x1=\"%.2f\" y1=\"%.1f\" x2=\"%.2f\" y2=\"%.1f\" stroke=\"%s\"/>\n", x,
-              top, x, top + ph, m == 1 ? "#bbbbbb" : "#eeeeee");
-    }
-    appendf(out, "<text x=\"%.2f\" y=\"%.1f\" text-anchor=\"middle\">%s</text>\n", px(std::pow(10.0, k)),
-            top + ph + 20, decade_label(k).c_str());
+  // Grid: the faint lines first, so that the labelled ones lie on top.
+  for (const double x : ax.minor)
+    appendf(out, "<line x1=\"%.2f\" y1=\"%.1f\" x2=\"%.2f\" y2=\"%.1f\" stroke=\"#eeeeee\"/>\n",
+            px(x), top, px(x), top + ph);
+  for (const double y : ay.minor)
+    appendf(out, "<line x1=\"%.1f\" y1=\"%.2f\" x2=\"%.1f\" y2=\"%.2f\" stroke=\"#eeeeee\"/>\n",
+            left, py(y), left + pw, py(y));
+  for (const double x : ax.major) {
+    appendf(out, "<line x1=\"%.2f\" y1=\"%.1f\" x2=\"%.2f\" y2=\"%.1f\" stroke=\"#bbbbbb\"/>\n",
+            px(x), top, px(x), top + ph);
+    appendf(out, "<text x=\"%.2f\" y=\"%.1f\" text-anchor=\"middle\">%s</text>\n", px(x),
+            top + ph + 20, tick_label(x).c_str());
   }
-  for (int k = y0; k <= y1; ++k) {
-    for (int m = 1; m <= (k < y1 ? 9 : 1); ++m) {
-      const double y = py(m * std::pow(10.0, k));
-      appendf(out, "<line x1=\"%.1f\" y1=\"%.2f\" x2=\"%.1f\" y2=\"%.2f\" stroke=\"%s\"/>\n", left,
-              y, left + pw, y, m == 1 ? "#bbbbbb" : "#eeeeee");
-    }
-    appendf(out, "<text x=\"%.1f\" y=\"%.2f\" text-anchor=\"end\" dominant-baseline=\"middle\">%s</text>\n",
-            left - 8, py(std::pow(10.0, k)), decade_label(k).c_str());
+  for (const double y : ay.major) {
+    appendf(out, "<line x1=\"%.1f\" y1=\"%.2f\" x2=\"%.1f\" y2=\"%.2f\" stroke=\"#bbbbbb\"/>\n",
+            left, py(y), left + pw, py(y));
+    appendf(
+        out,
+        "<text x=\"%.1f\" y=\"%.2f\" text-anchor=\"end\" dominant-baseline=\"middle\">%s</text>\n",
+        left - 8, py(y), tick_label(y).c_str());
   }
   appendf(out, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"none\" stroke=\"black\"/>\n",
           left, top, pw, ph);
@@ -105,27 +154,42 @@ std::string svg_loglog(const LogLogPlot& plot) {
     const PlotSeries& s = plot.series[k];
     const char* colour = palette[k % std::size(palette)];
     const char* shape = markers[k % std::size(markers)];
+    const std::string stroke = std::string("\" stroke=\"") + colour + "\" stroke-width=\"2\"" +
+                               (s.dashed ? " stroke-dasharray=\"6 4\"" : "") + "/>\n";
     std::string points;
     std::vector<std::pair<double, double>> kept;
     for (std::size_t i = 0; i < s.x.size(); ++i)
-      if (s.x[i] > 0.0 && s.y[i] > 0.0 && std::isfinite(s.x[i]) && std::isfinite(s.y[i]))
-        kept.emplace_back(px(s.x[i]), py(s.y[i]));
+      if (ax.shows(s.x[i]) && ay.shows(s.y[i])) kept.emplace_back(px(s.x[i]), py(s.y[i]));
     out += "<g class=\"series\" data-name=\"" + xml_escape(s.name) + "\">\n";
     for (const auto& [x, y] : kept) appendf(points, "%.2f,%.2f ", x, y);
     if (kept.size() > 1)  // appendf's buffer is too short for a long point list
-      out += "<polyline points=\"" + points + "\" fill=\"none\" stroke=\"" + colour +
-             "\" stroke-width=\"2\"/>\n";
+      out += "<polyline points=\"" + points + "\" fill=\"none" + stroke;
     for (const auto& [x, y] : kept) marker(out, shape, x, y, colour);
     out += "</g>\n";
     const double ly = top + 12 + 24 * static_cast<double>(k);
-    appendf(out, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" stroke-width=\"2\"/>\n",
-            left + pw + 15, ly, left + pw + 45, ly, colour);
+    appendf(out, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f", left + pw + 15, ly,
+            left + pw + 45, ly);
+    out += stroke;
     marker(out, shape, left + pw + 30, ly, colour);
     appendf(out, "<text x=\"%.1f\" y=\"%.1f\" dominant-baseline=\"middle\">", left + pw + 52, ly);
     out += xml_escape(s.name) + "</text>\n";
   }
   out += "</svg>\n";
   return out;
+}
+
+}  // namespace
+
+std::string svg_loglog(const LinePlot& plot) {
+  double x_min, x_max, y_min, y_max;
+  data_range(plot, true, x_min, x_max, y_min, y_max);
+  return svg(plot, log_axis(x_min, x_max), log_axis(y_min, y_max));
+}
+
+std::string svg_linear(const LinePlot& plot) {
+  double x_min, x_max, y_min, y_max;
+  data_range(plot, false, x_min, x_max, y_min, y_max);
+  return svg(plot, linear_axis(x_min, x_max), linear_axis(y_min, y_max));
 }
 
 }  // namespace afemp::analysis

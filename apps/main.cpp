@@ -94,8 +94,10 @@ int study(const std::string& path, std::string out_dir, int threads) {
       });
   analysis::write_study(plan, result, out_dir);
   const analysis::StudyFiles files;
-  std::printf("output: %s/%s, %s/%s, %s/%s\n", out_dir.c_str(), files.csv.c_str(), out_dir.c_str(),
+  std::printf("output: %s/%s, %s/%s, %s/%s", out_dir.c_str(), files.csv.c_str(), out_dir.c_str(),
               files.markdown.c_str(), out_dir.c_str(), files.plot.c_str());
+  if (!plan.plot_value.empty()) std::printf(", %s/%s", out_dir.c_str(), files.value_plot.c_str());
+  std::printf("\n");
   const bool all_ok = std::all_of(result.rows.begin(), result.rows.end(),
                                   [](const analysis::StudyRow& r) { return r.ok(); });
   return all_ok ? 0 : exit_check_failed;

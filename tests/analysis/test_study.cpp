@@ -102,11 +102,16 @@ TEST(Study, ElasticBarRowsMatchDirectRunsAndTheFilesHoldThem) {
   write_study(plan, result, dir.str() + "/out");
   const std::string csv = text_of(dir.file("out/study.csv"));
   EXPECT_EQ(count(csv, "\n"), 4u) << csv;  // header + 3 runs
-  EXPECT_EQ(csv.rfind("run,method,label,resolution,particles,elements,steps,wall_seconds,threads,"
-                      "energy_error,max_energy_error,rebound,rebound.error,status\n", 0),
-            0u) << csv;
+  EXPECT_EQ(
+      csv.rfind("run,method,label,resolution,particles,elements,steps,wall_seconds,threads,"
+                "energy_error,max_energy_error,rebound,rebound.error,rebound.reference,status\n",
+                0),
+      0u)
+      << csv;
+  // Every run's reference, the stopped one's too.
+  EXPECT_EQ(count(csv, ",300,ok\n"), 2u) << csv;
+  EXPECT_EQ(count(csv, ",300,\"stopped: step"), 1u) << csv;
   EXPECT_NE(csv.find("1,MPM,\"MPM, resolution 1\",1,"), std::string::npos) << csv;
-  EXPECT_NE(csv.find(",\"stopped: step"), std::string::npos) << csv;
   const std::string md = text_of(dir.file("out/study.md"));
   EXPECT_EQ(count(md, "| MPM |"), 2u) << md;
   EXPECT_NE(md.find("error_vs_time.svg"), std::string::npos);

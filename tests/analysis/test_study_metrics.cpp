@@ -5,17 +5,21 @@
 //  - crater and hole on targets of particles made from point lists with a spherical-cap crater
 //    (depth 1.5, rim radius 3) and a round hole (radius 2) cut into them, at rest for a few
 //    steps: the metrics give the cut geometry within one particle spacing;
+//  - a band's error is 0 inside it and the distance to the nearer bound relative to that bound
+//    outside; each run is measured against its own reference where its [[runs]] table gives
+//    one, the CSV says which, and the value plot draws the references beside the runs;
 //  - the mistakes a study file can make with them name the file, line, key and what is allowed.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
-#include "analysis/study_file.hpp"
 #include "analysis/study.hpp"
+#include "analysis/study_file.hpp"
 #include "fixed_free_bar_scene.hpp"
 #include "scratch_dir.hpp"
 
@@ -131,10 +135,12 @@ std::string plate_points(double cx, double d, Cut cut) {
   return os.str();
 }
 
-TEST(StudyMetrics, CraterAndHoleOfCutTargets) {
-  const double d = 0.25, depth = 1.5, rim = 3.0, hole = 2.0;
+constexpr double d = 0.25, depth = 1.5, rim = 3.0, hole = 2.0;
+
+// targets.toml: a block with the crater cut (body "block", about the z axis) and a plate with
+// the hole cut (body "plate", about x = 20), at rest for three steps.
+void write_cut_targets(test::ScratchDir& dir) {
   const double sphere = (rim * rim + depth * depth) / (2 * depth);
-  test::ScratchDir dir;
   // The crater: points above the sphere through the rim circle and (0, 0, -depth) are cut.
   dir.write("crater.xyz", plate_points(0.0, d, [&](double x, double y, double z) {
               return std::hypot(x, y, z - (sphere - depth)) < sphere;
@@ -163,6 +169,11 @@ name = "plate"
 material = "al"
 shape = { points = { file = "hole.xyz" } }
 )");
+}
+
+TEST(StudyMetrics, CraterAndHoleOfCutTargets) {
+  test::ScratchDir dir;
+  write_cut_targets(dir);
   const analysis::StudyPlan plan = analysis::read_study(dir.write("study.toml", R"(
 [study]
 threads = 1
@@ -237,6 +248,159 @@ TEST(StudyMetrics, MistakesNameTheFileLineKeyAndWhatIsAllowed) {
   EXPECT_NE(e.find("key 'metrics[0].normal': the normal must be a non-zero vector"), std::string::npos) << e;
   e = study_error(replaced(replaced(crater, "tolerance = 0.1\n", ""), "body = \"bar\"", "body = \"slab\""));
   EXPECT_NE(e.find("measures body \"slab\""), std::string::npos) << e;
+}
+
+TEST(StudyMetrics, BandErrorIsTheDistanceToTheNearerBoundRelativeToIt) {
+  const ScalarReference band{4.0, 5.0, true}, negative{-5.0, -4.0, true},
+      value{300.0, 300.0, false};
+  EXPECT_DOUBLE_EQ(reference_error(3.0, band), 0.25);  // (4 - 3) / 4
+  EXPECT_EQ(reference_error(4.0, band), 0.0);
+  EXPECT_EQ(reference_error(4.5, band), 0.0);
+  EXPECT_EQ(reference_error(5.0, band), 0.0);
+  EXPECT_DOUBLE_EQ(reference_error(6.0, band), 0.2);        // (6 - 5) / 5
+  EXPECT_DOUBLE_EQ(reference_error(-6.0, negative), 0.2);   // (-5 - -6) / |-5|
+  EXPECT_DOUBLE_EQ(reference_error(-3.0, negative), 0.25);  // (-3 - -4) / |-4|
+  EXPECT_EQ(reference_error(-4.5, negative), 0.0);
+  // One value: |v - v_ref| / |v_ref| either side.
+  EXPECT_DOUBLE_EQ(reference_error(330.0, value), 0.1);
+  EXPECT_DOUBLE_EQ(reference_error(270.0, value), 0.1);
+  EXPECT_TRUE(std::isnan(reference_error(std::nan(""), band)));
+}
+
+// The hole of the cut plate, 2 sqrt(274) / 8 = 4.14 (the nearest lattice points to the axis
+// outside radius 2 sit at (7, 15) / 8), measured against a band below it, one value, the
+// study-wide band about it, and a band above it: the run's own reference reaches its row, and
+// the crater, which has references in two runs only, is reported only in the others.
+TEST(StudyMetrics, PerRunReferencesAndBandsReachTheirRowsAndTheValuePlot) {
+  test::ScratchDir dir;
+  write_cut_targets(dir);
+  const analysis::StudyPlan plan = analysis::read_study(dir.write("study.toml", R"toml(
+[study]
+title = "Cut plate"
+threads = 1
+plot_value = "hole"
+x_label = "impact speed (km/s)"
+[[metrics]]
+kind = "crater"
+body = "block"
+point = [0, 0, 0]
+normal = [0, 0, 1]
+ring = 0.25
+threshold = 0.1
+tolerance = 0.5
+[[metrics]]
+kind = "hole"
+body = "plate"
+point = [20, 0, -1]
+normal = [0, 0, 1]
+band = 0.5
+reference = [3.5, 4.6]
+tolerance = 0.1
+[[runs]]
+method = "MPM"
+scene = "targets.toml"
+resolution = [5, 7]
+reference = { crater = [{ depth = 1.5, diameter = 6.0 }, { depth = 2.0, diameter = 5.0 }], hole = [[4.5, 5.0], 3.0] }
+[[runs]]
+method = "MPM"
+scene = "targets.toml"
+resolution = 6
+[[runs]]
+method = "MPM again"
+scene = "targets.toml"
+resolution = 6
+reference = { hole = [3.0, 3.5] }
+)toml"));
+  const StudyResult result = run_study(plan);
+  ASSERT_EQ(result.error_columns, (std::vector<std::string>{"crater.error", "hole.error"}));
+  ASSERT_EQ(result.reference_columns,
+            (std::vector<std::string>{"crater.reference_depth", "crater.reference_diameter",
+                                      "hole.reference_low", "hole.reference_high"}));
+  ASSERT_EQ(result.rows.size(), 4u);
+  const double depth_0 = result.rows[0].values[0], diameter_0 = result.rows[0].values[1];
+  const double depth_1 = result.rows[1].values[0], diameter_1 = result.rows[1].values[1];
+  const double v = result.rows[0].values[2];
+  std::printf("hole %.4f (lattice 2 sqrt(274) / 8 = %.4f)\n", v, std::sqrt(274.0) / 4.0);
+  EXPECT_NEAR(v, std::sqrt(274.0) / 4.0, 1e-9);
+  for (const StudyRow& row : result.rows) {
+    EXPECT_EQ(row.values[2], v);  // the same target in every run
+    EXPECT_EQ(row.values[0], depth_0);
+  }
+  const double nan = std::nan("");
+  auto same = [](const std::vector<double>& a, const std::vector<double>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (!(a[i] == b[i] || (std::isnan(a[i]) && std::isnan(b[i])))) return false;
+    return true;
+  };
+  // Row 1: the sweep's first references; the hole below the band [4.5, 5].
+  EXPECT_TRUE(same(result.rows[0].references, {1.5, 6.0, 4.5, 5.0}));
+  EXPECT_DOUBLE_EQ(result.rows[0].errors[0],
+                   0.5 * (std::abs(depth_0 - 1.5) / 1.5 + std::abs(diameter_0 - 6.0) / 6.0));
+  EXPECT_DOUBLE_EQ(result.rows[0].errors[1], (4.5 - v) / 4.5);
+  EXPECT_TRUE(result.rows[0].ok()) << describe_row(result, result.rows[0]);
+  // Row 2: the second; the hole against the one value 3.
+  EXPECT_TRUE(same(result.rows[1].references, {2.0, 5.0, 3.0, 3.0}));
+  EXPECT_DOUBLE_EQ(result.rows[1].errors[0],
+                   0.5 * (std::abs(depth_1 - 2.0) / 2.0 + std::abs(diameter_1 - 5.0) / 5.0));
+  EXPECT_DOUBLE_EQ(result.rows[1].errors[1], (v - 3.0) / 3.0);
+  EXPECT_EQ(result.rows[1].over_tolerance, std::vector<std::string>{"hole"});
+  // Row 3: no crater reference (value only, no tolerance check), the study-wide band about it.
+  EXPECT_TRUE(same(result.rows[2].references, {nan, nan, 3.5, 4.6}));
+  EXPECT_TRUE(std::isnan(result.rows[2].errors[0]));
+  EXPECT_EQ(result.rows[2].errors[1], 0.0);
+  EXPECT_TRUE(result.rows[2].ok()) << describe_row(result, result.rows[2]);
+  // Row 4: a band [3, 3.5] below the hole.
+  EXPECT_TRUE(same(result.rows[3].references, {nan, nan, 3.0, 3.5}));
+  EXPECT_DOUBLE_EQ(result.rows[3].errors[1], (v - 3.5) / 3.5);
+  EXPECT_EQ(result.rows[3].over_tolerance, std::vector<std::string>{"hole"});
+
+  write_study(plan, result, dir.str() + "/out");
+  std::ifstream in(dir.file("out/study.csv"));
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 5u);
+  EXPECT_NE(lines[0].find(",crater.depth,crater.diameter,hole,crater.error,hole.error,"
+                          "crater.reference_depth,crater.reference_diameter,hole.reference_low,"
+                          "hole.reference_high,status"),
+            std::string::npos)
+      << lines[0];
+  EXPECT_NE(lines[1].find(",1.5,6,4.5,5,ok"), std::string::npos) << lines[1];
+  EXPECT_NE(lines[2].find(",2,5,3,3,over tolerance: hole"), std::string::npos) << lines[2];
+  EXPECT_NE(lines[3].find(",,,3.5,4.6,ok"), std::string::npos) << lines[3];
+  EXPECT_NE(lines[4].find(",,,3,3.5,over tolerance: hole"), std::string::npos) << lines[4];
+  std::ifstream md_in(dir.file("out/study.md"));
+  const std::string md((std::istreambuf_iterator<char>(md_in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(md.find("![hole against impact speed (km/s)](value_vs_resolution.svg)"),
+            std::string::npos)
+      << md;
+  // The plot: x 5..7 and y 3..5 in steps of 0.5 (the plot area spans x 80..530, y 50..420).
+  // The methods' lines, then the references: the bands' bounds at 5 and 6 (two at 6, one per
+  // run, in the runs' order), the one value at 7 (a marker: one point, no line).
+  std::ifstream svg_in(dir.file("out/value_vs_resolution.svg"));
+  const std::string svg((std::istreambuf_iterator<char>(svg_in)), std::istreambuf_iterator<char>());
+  std::size_t series = 0;
+  for (auto p = svg.find("<g class=\"series\""); p != std::string::npos;
+       p = svg.find("<g class=\"series\"", p + 1))
+    ++series;
+  EXPECT_EQ(series, 5u);
+  const auto mpm = svg.find("data-name=\"MPM\""), again = svg.find("data-name=\"MPM again\""),
+             low = svg.find("data-name=\"reference low\""),
+             high = svg.find("data-name=\"reference high\""),
+             one = svg.find("data-name=\"reference\"");
+  ASSERT_NE(one, std::string::npos) << svg;
+  EXPECT_TRUE(mpm < again && again < low && low < high && high < one) << svg;
+  char points[160];
+  const double y = 50 + 370 * (1 - (v - 3.0) / (5.0 - 3.0));
+  std::snprintf(points, sizeof points, "<polyline points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f \"", 80.0,
+                y, 80 + 450 * ((6.0 - 5.0) / (7.0 - 5.0)), y, 530.0, y);
+  EXPECT_NE(svg.find(points, mpm), std::string::npos) << points << "\n" << svg;
+  std::snprintf(points, sizeof points, "<polyline points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f \"", 80.0,
+                50 + 370 * (1 - 1.5 / 2), 305.0, 50 + 370 * (1 - 0.5 / 2), 305.0,
+                50 + 370 * (1 - 0.0 / 2));
+  EXPECT_NE(svg.find(points, low), std::string::npos) << points << "\n" << svg;
+  EXPECT_NE(svg.find("<circle cx=\"530.00\" cy=\"420.00\"", one), std::string::npos) << svg;
+  EXPECT_NE(svg.find(">impact speed (km/s)</text>"), std::string::npos);
 }
 
 }  // namespace
