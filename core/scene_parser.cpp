@@ -635,8 +635,8 @@ EquationOfState read_eos(TableReader& r, double density, double bulk_modulus) {
 // [materials.NAME] failure = { model = "...", ... } (afemp/failure_models.hpp).
 FailureModel read_failure(TableReader& r) {
   r.known({"model"});
-  const std::size_t model =
-      r.choice("model", {"johnson-cook", "plastic-strain", "spall"}, std::nullopt);
+  const std::size_t model = r.choice(
+      "model", {"johnson-cook", "plastic-strain", "spall", "principal-strain"}, std::nullopt);
   if (model == 0) {
     r.known({"D1", "D2", "D3", "D4", "D5", "reference_strain_rate", "room_temperature",
              "melt_temperature"});
@@ -652,10 +652,12 @@ FailureModel read_failure(TableReader& r) {
     f.melt_temperature = r.number("melt_temperature", 0.0, Range::non_negative());
     return f;
   }
-  if (model == 1) {
+  if (model == 1 || model == 3) {
     r.known({"strain"});
     r.check_unknown();
-    return PlasticStrainFailure{r.required_number("strain", Range::positive())};
+    const double strain = r.required_number("strain", Range::positive());
+    if (model == 3) return PrincipalStrainFailure{strain};
+    return PlasticStrainFailure{strain};
   }
   r.known({"pressure", "principal_stress", "impulse", "exponent"});
   r.check_unknown();
@@ -1340,8 +1342,8 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
   Scene scene;
   scene.path = path;
   TableReader r(root, "", path);
-  r.known({"run", "grid", "mpm", "materials", "bodies", "constraints", "walls", "contact",
-           "reference", "probes"});
+  r.known({"run", "grid", "mpm", "materials", "bodies", "constraints", "absorbing", "walls",
+           "contact", "reference", "probes"});
   r.check_unknown();
 
   {
@@ -1437,6 +1439,24 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
   read_table_array(r, "constraints", path, [&](TableReader& t) {
     scene.constraints.push_back(read_constraint(t, scene));
   });
+  read_table_array(r, "absorbing", path, [&](TableReader& t) {
+    t.known({"nodes", "body"});
+    t.check_unknown();
+    AbsorbingSpec a;
+    a.where = t.where();
+    TableReader nr(t.required_table("nodes"), t.dotted("nodes"), t.file());
+    a.nodes = read_selector(nr);
+    if (t.has("body")) {
+      a.body = body_index(t, "body", t.required_string("body"), scene);
+      if (scene.bodies[static_cast<std::size_t>(a.body)].discretisation !=
+          Discretisation::hexahedra)
+        t.fail("body", "an absorbing boundary lies on the faces of hexahedra; body \"" +
+                           scene.bodies[static_cast<std::size_t>(a.body)].name +
+                           "\" is not a body of hexahedra (particles take \"absorbing\" "
+                           "faces from [grid] boundary)");
+    }
+    scene.absorbing.push_back(a);
+  });
   read_table_array(r, "walls", path, [&](TableReader& t) {
     scene.walls.push_back(read_wall(t, scene));
   });
@@ -1466,10 +1486,15 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
       scene.run.terminate = term;
     }
   }
-  if ((!scene.constraints.empty() || !scene.walls.empty()) && !has_mesh(scene))
-    throw InputError(SourceLocation{path, 0}, scene.walls.empty() ? "constraints" : "walls",
-                     "constraints and walls act on mesh nodes, and the scene has no mesh body; "
-                     "particles take their boundary conditions from [grid] boundary");
+  if ((!scene.constraints.empty() || !scene.walls.empty() || !scene.absorbing.empty()) &&
+      !has_mesh(scene))
+    throw InputError(SourceLocation{path, 0},
+                     !scene.walls.empty()       ? "walls"
+                     : !scene.absorbing.empty() ? "absorbing"
+                                                : "constraints",
+                     "constraints, absorbing boundaries and walls act on mesh nodes, and the "
+                     "scene has no mesh body; particles take their boundary conditions from "
+                     "[grid] boundary");
 
   if (const toml::table* t = r.optional_table("reference")) {
     TableReader ref(*t, "reference", path);

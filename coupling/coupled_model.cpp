@@ -169,10 +169,10 @@ void CoupledModel::load_points(double dt) {
   if (std::any_of(surface_body_.begin(), surface_body_.end(), [](char c) { return c != 0; })) {
     const std::size_t live = fe().live_hexahedra();
     if (surface_.nodes.empty() || live != surface_live_) {
-      surface_ = boundary_faces(fe().hexahedra(), surface_body_);
+      surface_ = fem::boundary_faces(fe().hexahedra(), surface_body_);
       surface_live_ = live;
     }
-    surface_normals(surface_, fe().hexahedra(), n.position, normal_);
+    fem::surface_normals(surface_, fe().hexahedra(), n.position, normal_);
     for (std::size_t k = 0; k < fe_node_.size(); ++k)
       if (points_.surface[k]) points_.normal[k] = normal_[fe_node_[k]];
   }

@@ -28,8 +28,8 @@
 #include "core/scene.hpp"
 #include "core/time_loop.hpp"
 #include "coupling/node_points.hpp"
-#include "coupling/surface_normals.hpp"
 #include "fem/fe_model.hpp"
+#include "fem/surface_faces.hpp"
 #include "mpm/mpm_model.hpp"
 
 namespace afemp::coupling {
@@ -93,7 +93,7 @@ class CoupledModel final : public core::Model {
   std::vector<core::Vec3> start_velocity_;  // contact nodes: v^{n-1/2}
   // The surface of the hexahedral contact bodies, rebuilt when elements erode.
   std::vector<char> surface_body_;
-  SurfaceFaces surface_;
+  fem::SurfaceFaces surface_;
   std::size_t surface_live_ = 0;  // live hexahedra when surface_ was built
   std::vector<core::Vec3> normal_;  // per FE node
   double coupling_seconds_ = 0.0;

@@ -300,6 +300,10 @@ void FeSolver::build(const core::Scene& scene) {
     el.batches.push_back(batch);
   }
 
+  // Principal-strain failure reads the strain tensor of the hexahedra's points.
+  for (const core::Material& m : scene.materials)
+    if (m.needs_strain()) hexes_.strain.assign(hexes_.stress.size(), core::SymTensor{});
+
   // 3. Constraints: from the scene's selectors and from imported files. owner: the constraint
   // that imposes each node component last (for the velocity curves).
   std::vector<std::int32_t> owner;
@@ -360,6 +364,25 @@ void FeSolver::build(const core::Scene& scene) {
   for (std::size_t n = 0; n < n_nodes; ++n)
     for (int a = 0; a < 3; ++a)
       if (nodes_.imposed[n] & (1u << a)) nodes_.velocity[n][a] = nodes_.imposed_velocity[n][a];
+
+  // Absorbing boundaries: the nodes each selects (absorbing_boundary.cpp takes the faces).
+  for (const core::AbsorbingSpec& a : scene.absorbing) {
+    std::vector<char> selected(n_nodes, 0);
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+      if (a.body >= 0 && a.body != static_cast<int>(b)) continue;
+      if (scene.bodies[b].discretisation != Discretisation::hexahedra) continue;
+      if (a.nodes.kind == core::NodeSelector::Kind::set) {
+        for (const NamedSet& s : meshes[b].node_sets)
+          if (s.name == a.nodes.set)
+            for (std::int32_t n : s.members)
+              selected[node_begin[b] + static_cast<std::size_t>(n)] = 1;
+      } else {
+        for (std::size_t n = node_begin[b]; n < node_end[b]; ++n)
+          if (inside(a.nodes, nodes_.position[n])) selected[n] = 1;
+      }
+    }
+    setup_absorbing(a, selected);
+  }
 
   // 4. Walls: every node of the bodies they name.
   for (const core::WallSpec& w : scene.walls) {

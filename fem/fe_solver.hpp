@@ -61,6 +61,9 @@ struct ElementStore {
   std::vector<core::SymTensor> stress;
   std::vector<double> point_mass, plastic_strain, temperature, energy, density;
   std::vector<double> damage, max_compaction;  // D in [0, 1]; largest rho / rho0 - 1 reached
+  // The strain tensor (sum of D dt) of every point, kept only when some material's failure
+  // reads it (principal-strain failure); empty otherwise.
+  std::vector<core::SymTensor> strain;
   // History variables of user strength models (afemp/user_material.hpp): history_count per
   // integration point, point-major; history_count is the scene's (core::history_count).
   std::vector<double> history;
@@ -254,6 +257,17 @@ class FeSolver {
   };
   std::vector<VelocityCurve> velocity_curves_;
   void apply_velocity_curves(double t);
+  // Absorbing boundaries (absorbing_boundary.cpp): per node, the outward unit normal and the
+  // dashpots A rho c_L (along it) and A rho c_S (across it) of its boundary faces.
+  struct AbsorbingNode {
+    std::uint32_t node = 0;
+    Vec3 normal;
+    double normal_damping = 0.0, shear_damping = 0.0;
+  };
+  std::vector<AbsorbingNode> absorbing_nodes_;
+  std::vector<Vec3> absorbing_start_;  // their velocities at the step's start
+  void setup_absorbing(const core::AbsorbingSpec& spec, const std::vector<char>& selected);
+  void absorb(double dt);
   double previous_dt_ = 0.0;
   long steps_ = 0;
   double time_ = 0.0;

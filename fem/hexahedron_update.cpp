@@ -64,6 +64,7 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
                        core::wave_speed(mat, core::PointState{{}, 0.0, 0.0, 0.0, mat.density})
                  : 0.0;
   HexElements& el = hexes_;
+  [[maybe_unused]] const bool principal_strain = mat.needs_strain();
 
   // Update of one integration point with the velocity gradient l of the step, in two halves
   // around the strength model: a user model (afemp/user_material.hpp) runs between them on
@@ -106,6 +107,12 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
       el.max_compaction[p] = st.max_compaction;
     } else if constexpr (Fails) {
       el.damage[p] = st.damage;
+    }
+    if constexpr (Fails) {
+      if (principal_strain) {
+        el.strain[p] += b.d_eps;
+        el.damage[p] = core::principal_strain_damage(mat.failure, el.damage[p], el.strain[p]);
+      }
     }
     return core::wave_speed(mat, eos, st);
   };

@@ -74,7 +74,12 @@ void FeSolver::begin_step(double dt) {
   // A curved prescribed velocity takes its value at the step's mid-time, the time of the
   // v^{n+1/2} that moves the nodes.
   if (!velocity_curves_.empty()) apply_velocity_curves(time_ + 0.5 * dt);
-  run_stage(FeStageKind::nodal_update, [&] { update_nodes(dt); });
+  run_stage(FeStageKind::nodal_update, [&] {
+    for (std::size_t k = 0; k < absorbing_nodes_.size(); ++k)
+      absorbing_start_[k] = nodes_.velocity[absorbing_nodes_[k].node];
+    update_nodes(dt);
+    if (!absorbing_nodes_.empty()) absorb(dt);
+  });
   run_stage(FeStageKind::rigid_walls, [&] { apply_walls(dt); });
 }
 
@@ -204,9 +209,9 @@ std::size_t capacity_bytes(const V& x) {
 
 std::size_t ElementStore::bytes() const {
   auto v = [](const auto& x) { return capacity_bytes(x); };
-  return v(mass) + v(volume0) + v(volume) + v(critical_dt) + v(alive) + v(stress) +
-         v(point_mass) + v(plastic_strain) + v(temperature) + v(energy) + v(density) +
-         v(damage) + v(max_compaction) + v(history);
+  return v(mass) + v(volume0) + v(volume) + v(critical_dt) + v(alive) + v(stress) + v(point_mass) +
+         v(plastic_strain) + v(temperature) + v(energy) + v(density) + v(damage) +
+         v(max_compaction) + v(strain) + v(history);
 }
 
 std::size_t HexElements::bytes() const {

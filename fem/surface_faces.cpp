@@ -1,13 +1,13 @@
-// Boundary faces and node normals of hexahedral meshes (surface_normals.hpp). A face is on the
+// Boundary faces and node normals of hexahedral meshes (surface_faces.hpp). A face is on the
 // boundary when exactly one live hexahedron has it (faces compared by their sorted node ids);
 // its area vector is half the cross product of its diagonals, turned to point away from its
 // hexahedron's centroid, and each of its nodes adds it.
-#include "coupling/surface_normals.hpp"
+#include "fem/surface_faces.hpp"
 
 #include <algorithm>
 #include <tuple>
 
-namespace afemp::coupling {
+namespace afemp::fem {
 
 namespace {
 
@@ -17,7 +17,7 @@ constexpr int hex_faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
 
 }  // namespace
 
-SurfaceFaces boundary_faces(const fem::HexElements& hexes, const std::vector<char>& selected) {
+SurfaceFaces boundary_faces(const HexElements& hexes, const std::vector<char>& selected) {
   using Key = std::array<std::int32_t, 4>;
   std::vector<std::tuple<Key, Key, std::int32_t>> all;  // sorted ids, face, element
   for (const fem::ElementBatch& b : hexes.batches) {
@@ -49,18 +49,23 @@ SurfaceFaces boundary_faces(const fem::HexElements& hexes, const std::vector<cha
   return out;
 }
 
-void surface_normals(const SurfaceFaces& faces, const fem::HexElements& hexes,
+core::Vec3 face_area_vector(const SurfaceFaces& faces, std::size_t f, const HexElements& hexes,
+                            const std::vector<core::Vec3>& x) {
+  const auto& n = faces.nodes[f];
+  auto at = [&](int a) { return x[static_cast<std::size_t>(n[static_cast<std::size_t>(a)])]; };
+  core::Vec3 area = 0.5 * core::cross(at(2) - at(0), at(3) - at(1));
+  core::Vec3 centroid, centre = 0.25 * (at(0) + at(1) + at(2) + at(3));
+  for (std::int32_t k : hexes.nodes[static_cast<std::size_t>(faces.element[f])])
+    centroid += 0.125 * x[static_cast<std::size_t>(k)];
+  return core::dot(area, centre - centroid) < 0.0 ? -1.0 * area : area;
+}
+
+void surface_normals(const SurfaceFaces& faces, const HexElements& hexes,
                      const std::vector<core::Vec3>& x, std::vector<core::Vec3>& normal) {
   normal.assign(x.size(), core::Vec3{});
   for (std::size_t f = 0; f < faces.nodes.size(); ++f) {
-    const auto& n = faces.nodes[f];
-    auto at = [&](int a) { return x[static_cast<std::size_t>(n[static_cast<std::size_t>(a)])]; };
-    core::Vec3 area = 0.5 * core::cross(at(2) - at(0), at(3) - at(1));
-    core::Vec3 centroid, centre = 0.25 * (at(0) + at(1) + at(2) + at(3));
-    for (std::int32_t k : hexes.nodes[static_cast<std::size_t>(faces.element[f])])
-      centroid += 0.125 * x[static_cast<std::size_t>(k)];
-    if (core::dot(area, centre - centroid) < 0.0) area = -1.0 * area;
-    for (std::int32_t k : n) normal[static_cast<std::size_t>(k)] += area;
+    const core::Vec3 area = face_area_vector(faces, f, hexes, x);
+    for (std::int32_t k : faces.nodes[f]) normal[static_cast<std::size_t>(k)] += area;
   }
   for (core::Vec3& v : normal) {
     const double l = core::norm(v);
@@ -68,4 +73,4 @@ void surface_normals(const SurfaceFaces& faces, const fem::HexElements& hexes,
   }
 }
 
-}  // namespace afemp::coupling
+}  // namespace afemp::fem

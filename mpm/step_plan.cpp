@@ -50,6 +50,11 @@ StepPlan build_step_plan(const core::Scene& scene) {
   plan.transfer = scene.mpm.transfer;
   plan.flip = scene.mpm.flip;
   plan.strain = scene.run.output_strain;
+  // Principal-strain failure reads the strain tensor of its particles.
+  for (const core::BodySpec& b : scene.bodies)
+    if (b.discretisation == core::Discretisation::particles &&
+        scene.materials[static_cast<std::size_t>(b.material)].needs_strain())
+      plan.strain = true;
   plan.splitting = scene.mpm.splitting.has_value();
   plan.jaumann = scene.mpm.jaumann;
   const core::Vec3& g = scene.run.gravity;

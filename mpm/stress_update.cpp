@@ -124,6 +124,8 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
   constexpr bool reads_damage = Strength::reads_damage;
   const bool jaumann = plan_.jaumann;
   const bool track_strain = plan_.strain;
+  [[maybe_unused]] const bool principal_strain =
+      materials_[static_cast<std::size_t>(batch.material)]->needs_strain();
   const bool track_length = plan_.splitting;
   const double flip = scene_.mpm.flip;
   const bool viscous = viscous_;
@@ -215,6 +217,10 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
         p.damage[i] = st.damage;
       }
       if (track_strain) p.strain[i] += d_eps;
+      if constexpr (Fails) {
+        if (principal_strain)
+          p.damage[i] = core::principal_strain_damage(mat.failure, p.damage[i], p.strain[i]);
+      }
       if (track_length) {  // the particle's extent along each axis stretches with the grid's
         Vec3& l = p.length[i];
         l = Vec3{l.x * (1.0 + d_eps.xx), l.y * (1.0 + d_eps.yy), l.z * (1.0 + d_eps.zz)};

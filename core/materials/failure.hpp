@@ -46,6 +46,16 @@ inline double failure_damage(const FailureModel& model, double damage, double pl
     return std::min(damage + std::pow(tension - sp->strength, sp->exponent) * dt / sp->impulse,
                     1.0);
   }
+  // PrincipalStrainFailure: the solver holds the strain tensor (principal_strain_damage).
+  return damage;
+}
+
+// The damage of the principal-strain model from the point's strain tensor (the sum of its
+// increments), after the solver added this step's increment; other models: unchanged.
+inline double principal_strain_damage(const FailureModel& model, double damage,
+                                      const SymTensor& strain) {
+  if (const auto* e = std::get_if<PrincipalStrainFailure>(&model))
+    return std::max(damage, std::min(largest_principal(strain) / e->strain, 1.0));
   return damage;
 }
 

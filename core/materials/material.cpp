@@ -169,6 +169,8 @@ void Material::validate() const {
   }
   if (const auto* p = std::get_if<PlasticStrainFailure>(&failure))
     require(p->strain > 0.0, *this, "failure strain", p->strain, "> 0");
+  if (const auto* p = std::get_if<PrincipalStrainFailure>(&failure))
+    require(p->strain > 0.0, *this, "failure strain", p->strain, "> 0");
   if (const auto* s = std::get_if<SpallFailure>(&failure)) {
     require(s->strength > 0.0, *this, "failure strength", s->strength, "> 0");
     require(s->impulse >= 0.0, *this, "failure impulse", s->impulse, ">= 0");

@@ -43,9 +43,17 @@ struct SpallFailure {
   double exponent = 2.0;  ///< Tuler-Butcher lambda, >= 1
 };
 
+/// Failure at a principal strain (LS-DYNA *MAT_ADD_EROSION's MXEPS): the point fails when the
+/// largest principal value of its strain tensor, the sum of D dt over its steps (the
+/// logarithmic strain for coaxial stretching), reaches `strain`; D = eps_1 / strain, never
+/// falling. The solvers integrate the strain tensor of such points.
+struct PrincipalStrainFailure {
+  double strain = 0.0;  ///< > 0
+};
+
 /// A material's failure model.
-using FailureModel =
-    std::variant<NoFailure, JohnsonCookFailure, PlasticStrainFailure, SpallFailure>;
+using FailureModel = std::variant<NoFailure, JohnsonCookFailure, PlasticStrainFailure, SpallFailure,
+                                  PrincipalStrainFailure>;
 
 }  // namespace afemp::core
 
@@ -55,5 +63,6 @@ using core::FailureModel;
 using core::JohnsonCookFailure;
 using core::NoFailure;
 using core::PlasticStrainFailure;
+using core::PrincipalStrainFailure;
 using core::SpallFailure;
 }  // namespace afemp

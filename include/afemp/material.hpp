@@ -46,6 +46,8 @@ struct Material {
   FailureModel failure = NoFailure{};
   /// Whether points of the material can fail.
   bool fails() const { return !std::holds_alternative<NoFailure>(failure); }
+  /// The solvers integrate the strain tensor of its points (principal-strain failure).
+  bool needs_strain() const { return std::holds_alternative<PrincipalStrainFailure>(failure); }
 
   double shear_modulus() const { return youngs_modulus / (2.0 * (1.0 + poisson_ratio)); }
   double bulk_modulus() const { return youngs_modulus / (3.0 * (1.0 - 2.0 * poisson_ratio)); }

@@ -307,6 +307,15 @@ inline double curve_factor(const std::vector<std::array<double, 2>>& curve, doub
   return curve.back()[1];
 }
 
+/// An absorbing (non-reflecting) boundary on mesh nodes: the viscous boundary of Lysmer &
+/// Kuhlemeyer (1969), LS-DYNA's *BOUNDARY_NON_REFLECTING, on the boundary faces of hexahedra
+/// whose four nodes the selector holds (fem/absorbing_boundary.cpp).
+struct AbsorbingSpec {
+  NodeSelector nodes{};
+  int body = -1;  ///< restrict to one body; -1: every hexahedron body
+  SourceLocation where{};
+};
+
 /// A rigid planar wall for FE nodes (LS-DYNA *RIGIDWALL_PLANAR): nodes stay on the side the
 /// normal points to; the wall may move at a constant velocity; Coulomb friction.
 struct WallSpec {
@@ -337,6 +346,7 @@ struct Scene {
   std::vector<Material> materials{};
   std::vector<BodySpec> bodies{};
   std::vector<ConstraintSpec> constraints{};
+  std::vector<AbsorbingSpec> absorbing{};  ///< [[absorbing]]: non-reflecting mesh boundaries
   std::vector<WallSpec> walls{};
   std::vector<ContactSpec> contacts{};
   std::optional<TaylorReference> taylor_reference{};

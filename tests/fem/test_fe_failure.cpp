@@ -385,3 +385,59 @@ TEST(FeFailure, SpallPullBackOfTheFreeSurfaceGivesTheSpallStrength) {
 
 }  // namespace
 }  // namespace afemp::fem
+
+namespace afemp::fem {
+namespace {
+
+// The tension cube of the Johnson-Cook test, elastic, with principal-strain failure at 0.1:
+// its points' strain tensor (the sum of D dt) holds eps_zz = ln(L / L0), the largest principal
+// value, L the cube's height. Reference: the points fail when ln(L / L0) = 0.1, L = 1.1052 mm,
+// within one step's stretch (0.1 %).
+TEST(FeFailure, PrincipalStrainFailsWhenTheLargestPrincipalStrainReachesItsLimit) {
+  const std::string text = R"(
+[run]
+end_time = 1.0
+[materials.al]
+density = 2.77e-3
+E = 73100
+nu = 0.33
+failure = { model = "principal-strain", strain = 0.1 }
+[[bodies]]
+name = "cube"
+discretisation = "hexahedra"
+material = "al"
+shape = { box = { min = [0, 0, 0], max = [1, 1, 1] } }
+mesh = { divisions = [2, 2, 2] }
+[[constraints]]
+nodes = { plane = { point = [0, 0, 0], normal = [1, 0, 0] } }
+fixed = ["x"]
+[[constraints]]
+nodes = { plane = { point = [0, 0, 0], normal = [0, 1, 0] } }
+fixed = ["y"]
+[[constraints]]
+nodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }
+fixed = ["z"]
+[[constraints]]
+nodes = { plane = { point = [0, 0, 1], normal = [0, 0, 1] } }
+velocity = [0, 0, 1]
+components = ["z"]
+)";
+  const core::Scene scene = core::parse_scene(text, "principal.toml");
+  FeSolver solver(scene);
+  const HexElements& h = solver.hexahedra();
+  const FeNodes& nodes = solver.nodes();
+  double height = 0.0;
+  while (solver.time() < 0.2 && h.damage[0] < 1.0) {
+    solver.step(solver.stable_time_step());
+    for (const Vec3& x : nodes.position) height = std::max(height, x.z);
+  }
+  ASSERT_GE(h.damage[0], 1.0) << "no failure by t = 0.2 ms";
+  std::printf("principal strain 0.1 (hexahedra): failed at ln(L / L0) = %.5f\n", std::log(height));
+  EXPECT_NEAR(std::log(height), 0.1, 1e-3);
+  solver.step(solver.stable_time_step());
+  EXPECT_LT(core::von_mises(h.stress[0]), 1e-9);  // failed: no shear, no tension
+  EXPECT_GE(core::pressure(h.stress[0]), 0.0);
+}
+
+}  // namespace
+}  // namespace afemp::fem

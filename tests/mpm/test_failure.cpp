@@ -246,3 +246,24 @@ velocity = [0, 0, 30]
 
 }  // namespace
 }  // namespace afemp::mpm
+
+namespace afemp::mpm {
+namespace {
+
+// The column of `expand` with principal-strain failure at 0.005: its middle stretches along z
+// at the rate v_z' = 10 / ms, so its strain tensor (the sum of D dt) holds eps_zz =
+// ln(1 + 10 t), the largest principal value. Reference: the first particle fails when
+// ln(1 + 10 t) = 0.005, t = 0.5013 us, within a step (0.016 us; measured 0.5143); the failed
+// particles carry no tension.
+TEST(Failure, PrincipalStrainFailsWhenTheLargestPrincipalStrainReachesItsLimit) {
+  const Expansion r = expand("failure = { model = \"principal-strain\", strain = 0.005 }");
+  const double t_f = (std::exp(0.005) - 1.0) / 10.0;
+  std::printf("principal strain 0.005: first failure at %.4g us against %.4g us\n",
+              1e3 * r.first_failure, 1e3 * t_f);
+  EXPECT_NEAR(r.first_failure, t_f, 0.02e-3);
+  EXPECT_GT(r.failed, r.particles / 5);
+  EXPECT_GE(r.failed_tension, 0.0);
+}
+
+}  // namespace
+}  // namespace afemp::mpm
