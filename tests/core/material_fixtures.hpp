@@ -19,6 +19,18 @@ strength = { model = "johnson-cook", A = 157, B = 425, n = 1.0 }
 eos = { model = "mie-gruneisen", c0 = 3940, s = 1.49, gamma0 = 1.96 }
 )";
 
+// Scene text of the failure tests: 2024-T351 aluminium, material "al2024", with Johnson-Cook
+// strength (A 265, B 426, n 0.34, C 0.015; no heating) and the Johnson & Cook (1985) damage
+// constants of Johnson & Holmquist (1989): D1 = 0.13, D2 = 0.13, D3 = -1.5, D4 = 0.011
+// (epsdot_0 = 1/s, 1e-3 per ms).
+inline constexpr const char* kAl2024Toml = R"([materials.al2024]
+density = 2.77e-3
+E = 73100
+nu = 0.33
+strength = { model = "johnson-cook", A = 265, B = 426, n = 0.34, C = 0.015, reference_strain_rate = 1e-3 }
+failure = { model = "johnson-cook", D1 = 0.13, D2 = 0.13, D3 = -1.5, D4 = 0.011, reference_strain_rate = 1e-3 }
+)";
+
 inline Material steel(StrengthModel strength = Elastic{}) {
   Material m;
   m.name = "steel";

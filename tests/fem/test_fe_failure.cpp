@@ -7,11 +7,46 @@
 #include <string>
 
 #include "afemp/errors.hpp"
+#include "core/material_fixtures.hpp"
 #include "core/scene.hpp"
 #include "fem/fe_solver.hpp"
+#include "scene_errors.hpp"
 
 namespace afemp::fem {
 namespace {
+
+using core::fixtures::kAl2024Toml;
+
+// A 1 mm cube of `material` (2 x 2 x 2 one-point hexahedra) on the symmetry planes x = 0,
+// y = 0 and z = 0, loaded on its face z = 1 by `load` (a wall or a constraint).
+std::string cube_scene(const std::string& material, const std::string& material_name,
+                       const std::string& load) {
+  return "[run]\nend_time = 1.0\n" + material + R"(
+[[bodies]]
+name = "cube"
+discretisation = "hexahedra"
+material = ")" +
+         material_name + R"("
+shape = { box = { min = [0, 0, 0], max = [1, 1, 1] } }
+mesh = { divisions = [2, 2, 2] }
+[[constraints]]
+nodes = { plane = { point = [0, 0, 0], normal = [1, 0, 0] } }
+fixed = ["x"]
+[[constraints]]
+nodes = { plane = { point = [0, 0, 0], normal = [0, 1, 0] } }
+fixed = ["y"]
+[[constraints]]
+nodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }
+fixed = ["z"]
+)" + load;
+}
+
+// The face z = 1 drawn along z at 1 m/s, free to contract.
+constexpr const char* kPulledAlongZ = R"([[constraints]]
+nodes = { plane = { point = [0, 0, 1], normal = [0, 0, 1] } }
+velocity = [0, 0, 1]
+components = ["z"]
+)";
 
 // A 1 mm cube of 2024-T351 aluminium (2 x 2 x 2 one-point hexahedra; Johnson-Cook strength
 // A 265, B 426, n 0.34, C 0.015; no heating) compressed between a fixed, frictionless plane
@@ -24,35 +59,11 @@ namespace {
 // strain rate they have then (the wall's 1000/s over the shrinking height).
 // Within 5 % (measured: 0.3712 against 0.3719). After failing, a point carries no shear.
 TEST(FeFailure, JohnsonCookDamageFailsUniaxialCompressionAtTheStrainOfItsTriaxiality) {
-  const std::string text = R"(
-[run]
-end_time = 1.0
-[materials.al2024]
-density = 2.77e-3
-E = 73100
-nu = 0.33
-strength = { model = "johnson-cook", A = 265, B = 426, n = 0.34, C = 0.015, reference_strain_rate = 1e-3 }
-failure = { model = "johnson-cook", D1 = 0.13, D2 = 0.13, D3 = -1.5, D4 = 0.011, reference_strain_rate = 1e-3 }
-[[bodies]]
-name = "cube"
-discretisation = "hexahedra"
-material = "al2024"
-shape = { box = { min = [0, 0, 0], max = [1, 1, 1] } }
-mesh = { divisions = [2, 2, 2] }
-[[constraints]]
-nodes = { plane = { point = [0, 0, 0], normal = [1, 0, 0] } }
-fixed = ["x"]
-[[constraints]]
-nodes = { plane = { point = [0, 0, 0], normal = [0, 1, 0] } }
-fixed = ["y"]
-[[constraints]]
-nodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }
-fixed = ["z"]
-[[walls]]
+  const std::string text = cube_scene(kAl2024Toml, "al2024", R"([[walls]]
 point = [0, 0, 1]
 normal = [0, 0, -1]
 velocity = [0, 0, -1]
-)";
+)");
   const core::Scene scene = core::parse_scene(text, "compression.toml");
   FeSolver solver(scene);
   const HexElements& h = solver.hexahedra();
@@ -153,20 +164,13 @@ TEST(FeFailure, FailureInputsTheModelsCannotCarryAreErrors) {
 // Reference: the scene rules of [[constraints]]: a curve or components without a velocity, and
 // a curve whose times do not increase, are input errors naming the key and what is allowed.
 TEST(FeFailure, ConstraintCurveAndComponentMistakesAreErrors) {
-  auto error_of = [](const std::string& constraint) -> std::string {
-    const std::string text =
-        "[run]\nend_time = 1.0\n[materials.steel]\ndensity = 7.85e-3\nE = 2e5\nnu = 0.3\n"
-        "[[bodies]]\nname = \"cube\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-        "shape = { box = { min = [0, 0, 0], max = [1, 1, 1] } }\nmesh = { divisions = [1, 1, 1] }\n"
-        "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }\n" +
-        constraint;
-    try {
-      const core::Scene scene = core::parse_scene(text, "bad.toml");
-      core::check_scene(scene);
-    } catch (const core::InputError& e) {
-      return e.what();
-    }
-    return "";
+  auto error_of = [](const std::string& constraint) {
+    return test::error_of(
+        cube_scene("[materials.steel]\ndensity = 7.85e-3\nE = 2e5\nnu = 0.3\n", "steel",
+                   "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } "
+                   "}\n" +
+                       constraint),
+        "bad.toml");
   };
   const std::string a = error_of("fixed = [\"z\"]\ncurve = [[0, 1], [1, 0]]\n");
   EXPECT_NE(a.find("constraints"), std::string::npos) << a;
@@ -197,35 +201,7 @@ namespace {
 // triaxiality the points fail at eps_f = [D1 + D2 exp(D3 / 3)] [1 + D4 ln(epsdot_p /
 // epsdot_0)] = 0.2089 x the rate factor, within 5 %.
 TEST(FeFailure, JohnsonCookDamageFailsUniaxialTensionAtTheStrainOfItsTriaxiality) {
-  const std::string text = R"(
-[run]
-end_time = 1.0
-[materials.al2024]
-density = 2.77e-3
-E = 73100
-nu = 0.33
-strength = { model = "johnson-cook", A = 265, B = 426, n = 0.34, C = 0.015, reference_strain_rate = 1e-3 }
-failure = { model = "johnson-cook", D1 = 0.13, D2 = 0.13, D3 = -1.5, D4 = 0.011, reference_strain_rate = 1e-3 }
-[[bodies]]
-name = "cube"
-discretisation = "hexahedra"
-material = "al2024"
-shape = { box = { min = [0, 0, 0], max = [1, 1, 1] } }
-mesh = { divisions = [2, 2, 2] }
-[[constraints]]
-nodes = { plane = { point = [0, 0, 0], normal = [1, 0, 0] } }
-fixed = ["x"]
-[[constraints]]
-nodes = { plane = { point = [0, 0, 0], normal = [0, 1, 0] } }
-fixed = ["y"]
-[[constraints]]
-nodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }
-fixed = ["z"]
-[[constraints]]
-nodes = { plane = { point = [0, 0, 1], normal = [0, 0, 1] } }
-velocity = [0, 0, 1]
-components = ["z"]
-)";
+  const std::string text = cube_scene(kAl2024Toml, "al2024", kPulledAlongZ);
   const core::Scene scene = core::parse_scene(text, "tension.toml");
   FeSolver solver(scene);
   const HexElements& h = solver.hexahedra();
@@ -394,34 +370,13 @@ namespace {
 // value, L the cube's height. Reference: the points fail when ln(L / L0) = 0.1, L = 1.1052 mm,
 // within one step's stretch (0.1 %).
 TEST(FeFailure, PrincipalStrainFailsWhenTheLargestPrincipalStrainReachesItsLimit) {
-  const std::string text = R"(
-[run]
-end_time = 1.0
-[materials.al]
+  const std::string text = cube_scene(R"([materials.al]
 density = 2.77e-3
 E = 73100
 nu = 0.33
 failure = { model = "principal-strain", strain = 0.1 }
-[[bodies]]
-name = "cube"
-discretisation = "hexahedra"
-material = "al"
-shape = { box = { min = [0, 0, 0], max = [1, 1, 1] } }
-mesh = { divisions = [2, 2, 2] }
-[[constraints]]
-nodes = { plane = { point = [0, 0, 0], normal = [1, 0, 0] } }
-fixed = ["x"]
-[[constraints]]
-nodes = { plane = { point = [0, 0, 0], normal = [0, 1, 0] } }
-fixed = ["y"]
-[[constraints]]
-nodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }
-fixed = ["z"]
-[[constraints]]
-nodes = { plane = { point = [0, 0, 1], normal = [0, 0, 1] } }
-velocity = [0, 0, 1]
-components = ["z"]
-)";
+)",
+                                      "al", kPulledAlongZ);
   const core::Scene scene = core::parse_scene(text, "principal.toml");
   FeSolver solver(scene);
   const HexElements& h = solver.hexahedra();

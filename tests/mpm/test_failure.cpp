@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/material_fixtures.hpp"
 #include "core/scene.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
@@ -180,12 +181,8 @@ cell = 0.25
 min = [0, 0, 0]
 max = [3, 3, 10]
 boundary = { xmin = "symmetric", ymin = "symmetric", zmin = "symmetric" }
-[materials.al2024]
-density = 2.77e-3
-E = 73100
-nu = 0.33
-strength = { model = "johnson-cook", A = 265, B = 426, n = 0.34, C = 0.015, reference_strain_rate = 1e-3 }
-failure = { model = "johnson-cook", D1 = 0.13, D2 = 0.13, D3 = -1.5, D4 = 0.011, reference_strain_rate = 1e-3 }
+)" + std::string(core::fixtures::kAl2024Toml) +
+                           R"(
 [materials.grip]
 density = 2770
 E = 7.31e9
