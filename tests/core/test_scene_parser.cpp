@@ -273,7 +273,7 @@ TEST(SceneParser, UnknownTopLevelKeyNamesFileLineKeyAndAllowedKeys) {
   const std::string expected_prefix =
       "scene.toml:" + std::to_string(line_of(text, "[rnu]")) + ": key 'rnu': unknown key";
   EXPECT_EQ(what.rfind(expected_prefix, 0), 0u) << what;
-  EXPECT_NE(what.find("run, grid, mpm, materials, bodies, constraints, walls, contact, reference"), std::string::npos) << what;
+  EXPECT_NE(what.find("run, grid, mpm, materials, bodies, constraints, absorbing, walls, contact, reference"), std::string::npos) << what;
 }
 
 TEST(SceneParser, UnknownKeyInsideStrengthTableNamesDottedKeyLineAndAllowedKeys) {
