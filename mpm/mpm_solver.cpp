@@ -301,7 +301,16 @@ void MpmSolver::reorder_particles() {
     return key[ua] < key[ub];
   });
   p.permute(perm);
+  rebuild_batches();
+  // Colour layers run along the axis the material spans most, for the most parallel work.
+  sweep_axis_ = 0;
+  for (int a = 1; a < 3; ++a)
+    if (hi[a] - lo[a] > hi[sweep_axis_] - lo[sweep_axis_]) sweep_axis_ = a;
+}
 
+void MpmSolver::rebuild_batches() {
+  const Particles& p = particles_;
+  const std::size_t n = p.size();
   batches_.clear();
   for (std::size_t i = 0; i < n;) {
     std::size_t j = i;
@@ -309,10 +318,6 @@ void MpmSolver::reorder_particles() {
     batches_.push_back({p.material[i], i, j});
     i = j;
   }
-  // Colour layers run along the axis the material spans most, for the most parallel work.
-  sweep_axis_ = 0;
-  for (int a = 1; a < 3; ++a)
-    if (hi[a] - lo[a] > hi[sweep_axis_] - lo[sweep_axis_]) sweep_axis_ = a;
 }
 
 void MpmSolver::raise_if_bad(const char* field) const {

@@ -134,6 +134,8 @@ class MpmSolver {
   void strain_stress_batch(const MaterialBatch& batch, const Strength& strength, const Eos& eos,
                            double dt, int thread_slot_offset);
   void reorder_particles();
+  // The material batches from the particles' order (materials contiguous).
+  void rebuild_batches();
   // Per-particle data made from a particle's volume, the same at the start, for particles
   // added from elements and for the pieces of a split: uGIMP's half width (the cube of the
   // volume, at most one cell) and, with splitting, its initial lengths; and the id that

@@ -72,7 +72,16 @@ void Particles::permute(const std::vector<std::int32_t>& perm) {
 }
 
 void Particles::select(const std::vector<std::int32_t>& kept) {
-  permute(kept);
+  // kept increases, so the points before the first dropped one stay where they are and the
+  // others move down in place: a few particles leaving at the end of the order touch little.
+  std::size_t first = 0;
+  while (first < kept.size() && kept[first] == static_cast<std::int32_t>(first)) ++first;
+  for_each_array(*this, [&](auto& a) {
+    for (std::size_t i = first; i < kept.size(); ++i) a[i] = a[static_cast<std::size_t>(kept[i])];
+  });
+  for (std::size_t i = first; i < kept.size() && history_count > 0; ++i)
+    std::copy_n(&history[static_cast<std::size_t>(kept[i]) * history_count], history_count,
+                &history[i * history_count]);
   resize(kept.size());
 }
 

@@ -53,7 +53,7 @@ struct Particles {
                  std::int32_t body_id, std::int32_t material_id);
   // Reorders every array by perm: new[i] = old[perm[i]].
   void permute(const std::vector<std::int32_t>& perm);
-  // Keeps the points `kept` (indices, in their order) and drops the others.
+  // Keeps the points `kept` (increasing indices) in their order and drops the others.
   void select(const std::vector<std::int32_t>& kept);
   // Bytes held by the arrays (capacity), for memory estimates.
   std::size_t bytes() const;
