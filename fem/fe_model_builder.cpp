@@ -436,9 +436,13 @@ void FeSolver::build(const core::Scene& scene) {
       trusses_.critical_dt[e] = truss_time_step(trusses_.length0[e], modulus, mat.density);
   }
 
+  std::size_t curved = 0;
+  for (const VelocityCurve& vc : velocity_curves_) curved += vc.components.size();
   plan_ = build_fe_step_plan(
-      scene, static_cast<std::size_t>(std::count_if(nodes_.imposed.begin(), nodes_.imposed.end(),
-                                                    [](std::uint8_t m) { return m != 0; })));
+      scene,
+      static_cast<std::size_t>(std::count_if(nodes_.imposed.begin(), nodes_.imposed.end(),
+                                             [](std::uint8_t m) { return m != 0; })),
+      curved, absorbing_nodes_.size());
   stage_seconds_.assign(plan_.stages.size(), 0.0);
   thread_sums_.assign(static_cast<std::size_t>(core::thread_count()) * core::cache_line_doubles, 0.0);
   body_stabilisation_.assign(scene.bodies.size(), 0.0);

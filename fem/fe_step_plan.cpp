@@ -72,7 +72,8 @@ std::string conversion_criteria(const BodySpec& body) {
 
 }  // namespace
 
-FeStepPlan build_fe_step_plan(const core::Scene& scene, std::size_t imposed_nodes) {
+FeStepPlan build_fe_step_plan(const core::Scene& scene, std::size_t imposed_nodes,
+                              std::size_t curved_components, std::size_t absorbing_nodes) {
   FeStepPlan plan;
   auto& s = plan.stages;
   const core::Vec3& g = scene.run.gravity;
@@ -82,6 +83,14 @@ FeStepPlan build_fe_step_plan(const core::Scene& scene, std::size_t imposed_node
   if (imposed_nodes > 0)
     core::appendf(forces, "; imposed velocity components on %zu nodes (constraints)",
                   imposed_nodes);
+  if (curved_components > 0)
+    core::appendf(forces, ", %zu node components following a curve (taken at mid-step)",
+                  curved_components);
+  if (absorbing_nodes > 0)
+    core::appendf(forces,
+                  "; absorbing boundary on %zu nodes: Lysmer-Kuhlemeyer dashpots rho c_L along "
+                  "the face normal, rho c_S across it, applied implicitly",
+                  absorbing_nodes);
   s.push_back({FeStageKind::nodal_update, "nodal update", forces});
   if (!scene.walls.empty()) {
     std::string why;

@@ -39,6 +39,9 @@ struct FeStepPlan {
 
 // imposed_nodes: the nodes with an imposed velocity component, from the scene's constraints
 // and from a mesh file's (which only the built mesh knows).
-FeStepPlan build_fe_step_plan(const core::Scene& scene, std::size_t imposed_nodes);
+// imposed_nodes: nodes with an imposed velocity component; curved_components: node components
+// whose imposed velocity follows a curve; absorbing_nodes: nodes of absorbing boundaries.
+FeStepPlan build_fe_step_plan(const core::Scene& scene, std::size_t imposed_nodes,
+                              std::size_t curved_components = 0, std::size_t absorbing_nodes = 0);
 
 }  // namespace afemp::fem

@@ -53,6 +53,11 @@ curve = [[0, 0], [0.0005, 1], [0.001, 0]]
     text += "[[absorbing]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }\n";
   const core::Scene scene = core::parse_scene(text, "column.toml");
   FeSolver solver(scene);
+  // The plan says what the nodal update does: the 25 top nodes follow the curve along z, and
+  // the 25 bottom nodes carry the dashpots.
+  const std::string plan = solver.plan().describe();
+  EXPECT_NE(plan.find("25 node components following a curve"), std::string::npos) << plan;
+  EXPECT_EQ(plan.find("absorbing boundary on 25 nodes") != std::string::npos, absorbing) << plan;
   const FeNodes& nodes = solver.nodes();
   std::size_t probe = 0;
   for (std::size_t n = 0; n < nodes.size(); ++n)
