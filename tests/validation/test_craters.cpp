@@ -13,7 +13,6 @@
 // the two craters must agree within 2 %; the wall times are printed, not asserted.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <string>
