@@ -18,9 +18,8 @@
 
 namespace afemp::fem {
 
-void FeSolver::setup_absorbing(const core::AbsorbingSpec& spec, const std::vector<char>& selected) {
-  const std::vector<char> every_body(scene_.bodies.size(), 1);
-  const SurfaceFaces faces = boundary_faces(hexes_, every_body);
+void FeSolver::setup_absorbing(const core::AbsorbingSpec& spec, const std::vector<char>& selected,
+                               const SurfaceFaces& faces) {
   std::vector<Vec3> area(nodes_.size());
   std::vector<double> normal_damping(nodes_.size(), 0.0), shear_damping(nodes_.size(), 0.0);
   std::size_t taken = 0;

@@ -18,6 +18,7 @@
 #include "fem/hexahedron_one_point.hpp"
 #include "fem/mesh_generation.hpp"
 #include "fem/mesh_import.hpp"
+#include "fem/surface_faces.hpp"
 #include "fem/truss.hpp"
 
 namespace afemp::fem {
@@ -300,9 +301,29 @@ void FeSolver::build(const core::Scene& scene) {
     el.batches.push_back(batch);
   }
 
-  // Principal-strain failure reads the strain tensor of the hexahedra's points.
-  for (const core::Material& m : scene.materials)
-    if (m.needs_strain()) hexes_.strain.assign(hexes_.stress.size(), core::SymTensor{});
+  // Principal-strain failure reads the strain tensor of the hexahedra's points (only when a
+  // body of hexahedra has such a material; particles keep their own).
+  for (const BodySpec& body : scene.bodies)
+    if (body.discretisation == Discretisation::hexahedra &&
+        scene.materials[static_cast<std::size_t>(body.material)].needs_strain())
+      hexes_.strain.assign(hexes_.stress.size(), core::SymTensor{});
+
+  // The nodes a selector holds, of one body (body >= 0) or of every body accepted by `take`,
+  // each passed to f: the nodes of a named set, or those inside a box or on a plane.
+  auto for_selected = [&](const core::NodeSelector& sel, int body, auto&& take, auto&& f) {
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+      if ((body >= 0 && body != static_cast<int>(b)) || !take(scene.bodies[b])) continue;
+      if (sel.kind == core::NodeSelector::Kind::set) {
+        for (const NamedSet& s : meshes[b].node_sets)
+          if (s.name == sel.set)
+            for (std::int32_t n : s.members) f(node_begin[b] + static_cast<std::size_t>(n));
+      } else {
+        for (std::size_t n = node_begin[b]; n < node_end[b]; ++n)
+          if (inside(sel, nodes_.position[n])) f(n);
+      }
+    }
+  };
+  auto any_body = [](const BodySpec&) { return true; };
 
   // 3. Constraints: from the scene's selectors and from imported files. owner: the constraint
   // that imposes each node component last (for the velocity curves).
@@ -310,7 +331,7 @@ void FeSolver::build(const core::Scene& scene) {
   for (std::size_t ci = 0; ci < scene.constraints.size(); ++ci) {
     const core::ConstraintSpec& c = scene.constraints[ci];
     std::size_t selected = 0;
-    auto impose = [&](std::size_t n) {
+    for_selected(c.nodes, c.body, any_body, [&](std::size_t n) {
       for (int a = 0; a < 3; ++a)
         if (c.components[static_cast<std::size_t>(a)]) {
           nodes_.imposed[n] |= static_cast<std::uint8_t>(1u << a);
@@ -320,18 +341,7 @@ void FeSolver::build(const core::Scene& scene) {
             owner[3 * n + static_cast<std::size_t>(a)] = static_cast<std::int32_t>(ci);
         }
       ++selected;
-    };
-    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
-      if (c.body >= 0 && c.body != static_cast<int>(b)) continue;
-      if (c.nodes.kind == core::NodeSelector::Kind::set) {
-        for (const NamedSet& s : meshes[b].node_sets)
-          if (s.name == c.nodes.set)
-            for (std::int32_t n : s.members) impose(node_begin[b] + static_cast<std::size_t>(n));
-      } else {
-        for (std::size_t n = node_begin[b]; n < node_end[b]; ++n)
-          if (inside(c.nodes, nodes_.position[n])) impose(n);
-      }
-    }
+    });
     if (selected == 0)
       throw InputError(c.where, "constraints",
                        c.nodes.kind == core::NodeSelector::Kind::set
@@ -366,22 +376,16 @@ void FeSolver::build(const core::Scene& scene) {
       if (nodes_.imposed[n] & (1u << a)) nodes_.velocity[n][a] = nodes_.imposed_velocity[n][a];
 
   // Absorbing boundaries: the nodes each selects (absorbing_boundary.cpp takes the faces).
+  const SurfaceFaces surface =
+      scene.absorbing.empty() ? SurfaceFaces{}
+                              : boundary_faces(hexes_, std::vector<char>(scene.bodies.size(), 1));
   for (const core::AbsorbingSpec& a : scene.absorbing) {
     std::vector<char> selected(n_nodes, 0);
-    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
-      if (a.body >= 0 && a.body != static_cast<int>(b)) continue;
-      if (scene.bodies[b].discretisation != Discretisation::hexahedra) continue;
-      if (a.nodes.kind == core::NodeSelector::Kind::set) {
-        for (const NamedSet& s : meshes[b].node_sets)
-          if (s.name == a.nodes.set)
-            for (std::int32_t n : s.members)
-              selected[node_begin[b] + static_cast<std::size_t>(n)] = 1;
-      } else {
-        for (std::size_t n = node_begin[b]; n < node_end[b]; ++n)
-          if (inside(a.nodes, nodes_.position[n])) selected[n] = 1;
-      }
-    }
-    setup_absorbing(a, selected);
+    for_selected(
+        a.nodes, a.body,
+        [](const BodySpec& b) { return b.discretisation == Discretisation::hexahedra; },
+        [&](std::size_t n) { selected[n] = 1; });
+    setup_absorbing(a, selected, surface);
   }
 
   // 4. Walls: every node of the bodies they name.

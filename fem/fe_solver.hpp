@@ -24,6 +24,8 @@
 
 namespace afemp::fem {
 
+struct SurfaceFaces;  // surface_faces.hpp
+
 using core::Vec3;
 
 // Nodes as structures of arrays. Velocities live at half steps (v^{n+1/2}).
@@ -266,7 +268,9 @@ class FeSolver {
   };
   std::vector<AbsorbingNode> absorbing_nodes_;
   std::vector<Vec3> absorbing_start_;  // their velocities at the step's start
-  void setup_absorbing(const core::AbsorbingSpec& spec, const std::vector<char>& selected);
+  // The boundary faces of `surface` (every body's) whose four nodes are selected.
+  void setup_absorbing(const core::AbsorbingSpec& spec, const std::vector<char>& selected,
+                       const SurfaceFaces& surface);
   void absorb(double dt);
   double previous_dt_ = 0.0;
   long steps_ = 0;

@@ -2,6 +2,9 @@
 // OFHC copper with Johnson-Cook (Johnson & Cook 1983) and Mie-Grueneisen (Ma 2005 values).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/materials/material.hpp"
 
 namespace afemp::core::fixtures {
@@ -30,6 +33,14 @@ nu = 0.33
 strength = { model = "johnson-cook", A = 265, B = 426, n = 0.34, C = 0.015, reference_strain_rate = 1e-3 }
 failure = { model = "johnson-cook", D1 = 0.13, D2 = 0.13, D3 = -1.5, D4 = 0.011, reference_strain_rate = 1e-3 }
 )";
+
+// The failure strain kAl2024Toml's Johnson & Cook (1985) law gives at a constant triaxiality
+// sigma* and plastic strain rate (per ms): [D1 + D2 exp(D3 sigma*)] [1 + D4 ln(epsdot_p /
+// epsdot_0)], the rate term taken as 1 below epsdot_0.
+inline double al2024_failure_strain(double triaxiality, double rate_per_ms) {
+  return (0.13 + 0.13 * std::exp(-1.5 * triaxiality)) *
+         (1.0 + 0.011 * std::log(std::max(rate_per_ms / 1e-3, 1.0)));
+}
 
 inline Material steel(StrengthModel strength = Elastic{}) {
   Material m;

@@ -9,6 +9,7 @@
 
 #include "afemp/errors.hpp"
 #include "core/scene.hpp"
+#include "fem/driven_column_scene.hpp"
 #include "fem/fe_solver.hpp"
 
 namespace afemp::fem {
@@ -27,28 +28,8 @@ struct Echo {
 // by 3.4 us and the bottom's echo between 3.4 and 9 us (it arrives at 6.5 us; the driven face,
 // held after the pulse, would send it back at 10.8 us).
 Echo run_column(bool absorbing) {
-  std::string text = R"(
-[run]
-end_time = 1.0
-[materials.copper]
-density = 8.93e-3
-E = 1.24e5
-nu = 0.34
-[[bodies]]
-name = "column"
-discretisation = "hexahedra"
-material = "copper"
-shape = { box = { min = [0, 0, 0], max = [1, 1, 20] } }
-mesh = { divisions = [4, 4, 80] }
-[[constraints]]
-nodes = { box = { min = [-1, -1, -1], max = [2, 2, 21] } }
-fixed = ["x", "y"]
-[[constraints]]
-nodes = { plane = { point = [0, 0, 20], normal = [0, 0, 1] } }
-velocity = [0, 0, -10]
-components = ["z"]
-curve = [[0, 0], [0.0005, 1], [0.001, 0]]
-)";
+  std::string text = test::driven_copper_column("", 1.0, 0.0, 20.0, 4, 80, 10.0,
+                                                "[[0, 0], [0.0005, 1], [0.001, 0]]");
   if (absorbing)
     text += "[[absorbing]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }\n";
   const core::Scene scene = core::parse_scene(text, "column.toml");

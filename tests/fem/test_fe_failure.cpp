@@ -9,6 +9,7 @@
 #include "afemp/errors.hpp"
 #include "core/material_fixtures.hpp"
 #include "core/scene.hpp"
+#include "fem/driven_column_scene.hpp"
 #include "fem/fe_solver.hpp"
 #include "scene_errors.hpp"
 
@@ -48,6 +49,34 @@ velocity = [0, 0, 1]
 components = ["z"]
 )";
 
+// The state of hexahedron 0 of a homogeneously loaded cube when it fails: its plastic strain
+// then, and from the step before, its plastic strain, triaxiality -p / sigma_vm, plastic
+// strain rate (per ms) and |sigma_xx| / sigma_zz. eps_at_failure < 0: no failure by t_end.
+struct CubeFailure {
+  double eps_at_failure = -1.0, previous_eps = 0.0, triaxiality = 0.0, rate = 0.0, lateral = 0.0;
+};
+
+CubeFailure load_to_failure(FeSolver& solver, double t_end) {
+  const HexElements& h = solver.hexahedra();
+  CubeFailure r;
+  double previous_t = 0.0;
+  while (solver.time() < t_end) {
+    const double before = h.plastic_strain[0];
+    solver.step(solver.stable_time_step());
+    if (h.damage[0] >= 1.0) {
+      r.eps_at_failure = h.plastic_strain[0];
+      break;
+    }
+    const core::SymTensor& s = h.stress[0];
+    r.triaxiality = -core::pressure(s) / core::von_mises(s);
+    r.rate = (h.plastic_strain[0] - before) / (solver.time() - previous_t);
+    r.previous_eps = h.plastic_strain[0];
+    r.lateral = std::abs(s.xx) / s.zz;
+    previous_t = solver.time();
+  }
+  return r;
+}
+
 // A 1 mm cube of 2024-T351 aluminium (2 x 2 x 2 one-point hexahedra; Johnson-Cook strength
 // A 265, B 426, n 0.34, C 0.015; no heating) compressed between a fixed, frictionless plane
 // (z = 0) and a frictionless rigid wall moving down at 1 m/s, with symmetry planes x = 0 and
@@ -67,29 +96,14 @@ velocity = [0, 0, -1]
   const core::Scene scene = core::parse_scene(text, "compression.toml");
   FeSolver solver(scene);
   const HexElements& h = solver.hexahedra();
-  double eps_at_failure = -1.0, triaxiality = 0.0, rate = 0.0, previous_eps = 0.0, previous_t = 0.0;
-  while (solver.time() < 0.6 && eps_at_failure < 0.0) {
-    const double before = h.plastic_strain[0];
-    solver.step(solver.stable_time_step());
-    if (h.damage[0] >= 1.0) {
-      eps_at_failure = h.plastic_strain[0];
-      break;
-    }
-    // The state of the step before it fails: triaxiality and plastic strain rate (per ms).
-    const core::SymTensor& s = h.stress[0];
-    const double p = core::pressure(s);
-    triaxiality = -p / core::von_mises(s);
-    rate = (h.plastic_strain[0] - before) / (solver.time() - previous_t);
-    previous_eps = h.plastic_strain[0];
-    previous_t = solver.time();
-  }
-  ASSERT_GT(eps_at_failure, 0.0) << "no failure by t = 0.6 ms";
-  const double eps_f = (0.13 + 0.13 * std::exp(-1.5 * triaxiality)) *
-                       (1.0 + 0.011 * std::log(std::max(rate / 1e-3, 1.0)));
+  const CubeFailure r = load_to_failure(solver, 0.6);
+  ASSERT_GT(r.eps_at_failure, 0.0) << "no failure by t = 0.6 ms";
+  const double eps_at_failure = r.eps_at_failure, triaxiality = r.triaxiality;
+  const double eps_f = core::fixtures::al2024_failure_strain(triaxiality, r.rate);
   std::printf(
       "JC failure in compression: eps_p %.4f at failure (previous step %.4f), "
       "triaxiality %.4f, rate %.0f /s, eps_f %.4f (%+.2f %%)\n",
-      eps_at_failure, previous_eps, triaxiality, rate * 1e3, eps_f,
+      eps_at_failure, r.previous_eps, triaxiality, r.rate * 1e3, eps_f,
       100.0 * (eps_at_failure / eps_f - 1.0));
   EXPECT_NEAR(triaxiality, -1.0 / 3.0, 0.02);
   EXPECT_NEAR(eps_at_failure, eps_f, 0.05 * eps_f);
@@ -204,25 +218,10 @@ TEST(FeFailure, JohnsonCookDamageFailsUniaxialTensionAtTheStrainOfItsTriaxiality
   const std::string text = cube_scene(kAl2024Toml, "al2024", kPulledAlongZ);
   const core::Scene scene = core::parse_scene(text, "tension.toml");
   FeSolver solver(scene);
-  const HexElements& h = solver.hexahedra();
-  double eps_at_failure = -1.0, triaxiality = 0.0, rate = 0.0, previous_t = 0.0;
-  double lateral = 0.0;  // |sigma_xx| / sigma_zz the step before failure
-  while (solver.time() < 0.6) {
-    const double before = h.plastic_strain[0];
-    solver.step(solver.stable_time_step());
-    if (h.damage[0] >= 1.0) {
-      eps_at_failure = h.plastic_strain[0];
-      break;
-    }
-    const core::SymTensor& s = h.stress[0];
-    triaxiality = -core::pressure(s) / core::von_mises(s);
-    rate = (h.plastic_strain[0] - before) / (solver.time() - previous_t);
-    previous_t = solver.time();
-    lateral = std::abs(s.xx) / s.zz;
-  }
-  ASSERT_GT(eps_at_failure, 0.0) << "no failure by t = 0.6 ms";
-  const double eps_f = (0.13 + 0.13 * std::exp(-1.5 * triaxiality)) *
-                       (1.0 + 0.011 * std::log(std::max(rate / 1e-3, 1.0)));
+  const CubeFailure r = load_to_failure(solver, 0.6);
+  ASSERT_GT(r.eps_at_failure, 0.0) << "no failure by t = 0.6 ms";
+  const double eps_at_failure = r.eps_at_failure, triaxiality = r.triaxiality, rate = r.rate;
+  const double eps_f = core::fixtures::al2024_failure_strain(triaxiality, rate);
   std::printf(
       "JC failure in tension (hexahedra): eps_p %.4f at failure, triaxiality %.4f, "
       "rate %.0f /s, eps_f %.4f (%+.2f %%)\n",
@@ -230,7 +229,7 @@ TEST(FeFailure, JohnsonCookDamageFailsUniaxialTensionAtTheStrainOfItsTriaxiality
   EXPECT_NEAR(triaxiality, 1.0 / 3.0, 0.02);
   EXPECT_NEAR(eps_at_failure, eps_f, 0.05 * eps_f);
   // The lateral faces contracted freely: no lateral stress (uniaxial stress).
-  EXPECT_LT(lateral, 0.02);
+  EXPECT_LT(r.lateral, 0.02);
 }
 
 }  // namespace
@@ -258,29 +257,8 @@ struct PullBack {
 // to 2 u0, falls with the pulse's tail and rises again when the spall releases the tension:
 // the pull-back.
 PullBack spall_plate(const std::string& failure) {
-  const std::string text = R"(
-[run]
-end_time = 1.0
-[materials.copper]
-density = 8.93e-3
-E = 1.24e5
-nu = 0.34
-)" + failure + R"(
-[[bodies]]
-name = "plate"
-discretisation = "hexahedra"
-material = "copper"
-shape = { box = { min = [0, 0, -3], max = [0.05, 0.05, 0] } }
-mesh = { divisions = [1, 1, 60] }
-[[constraints]]
-nodes = { box = { min = [-1, -1, -4], max = [1, 1, 1] } }
-fixed = ["x", "y"]
-[[constraints]]
-nodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }
-velocity = [0, 0, -50]
-components = ["z"]
-curve = [[0, 1], [4.3262e-4, 0]]
-)";
+  const std::string text =
+      test::driven_copper_column(failure, 0.05, -3.0, 0.0, 1, 60, 50.0, "[[0, 1], [4.3262e-4, 0]]");
   const core::Scene scene = core::parse_scene(text, "spall_plate.toml");
   FeSolver solver(scene);
   const FeNodes& nodes = solver.nodes();

@@ -202,10 +202,7 @@ velocity = [0, 0, 30]
   Particles& p = solver.mutable_particles();
   for (std::size_t i = 0; i < p.size(); ++i)
     if (p.body[i] == 0) p.velocity[i] = {0.0, 0.0, 5.0 * p.position[i].z};  // 30 z / 6 m/s
-  auto eps_f = [](double triaxiality, double rate) {                        // rate per ms
-    return (0.13 + 0.13 * std::exp(-1.5 * triaxiality)) *
-           (1.0 + 0.011 * std::log(std::max(rate / 1e-3, 1.0)));
-  };
+  const auto eps_f = core::fixtures::al2024_failure_strain;  // (triaxiality, rate per ms)
   const Particles& q = solver.particles();
   const std::size_t n = q.size();
   // Per particle: the law's damage along the path, and the plastic-strain-weighted sums of
