@@ -71,6 +71,11 @@ class Model {
   // The points that carry body `body`'s material now: its particles and the nodes of its live
   // elements (Taylor, crater and hole metrics: analysis/reference_checks.cpp, analysis/study.cpp).
   virtual BodyPoints body_points(int body) const = 0;
+  // Interface forces the history writes each row after the body columns (penalty contacts,
+  // walls, rigid bodies): the column names, fixed for the run, and their current values in
+  // that order.
+  virtual std::vector<std::string> force_columns() const { return {}; }
+  virtual void force_values(std::vector<double>& out) const { out.clear(); }
 };
 
 }  // namespace afemp::core

@@ -48,6 +48,26 @@ const char* to_string(Face f) {
   return "?";
 }
 
+const char* to_string(ContactMethod m) { return m == ContactMethod::grid ? "grid" : "penalty"; }
+
+bool has_grid_contact(const Scene& scene) {
+  for (const ContactSpec& c : scene.contacts)
+    if (c.method == ContactMethod::grid) return true;
+  return false;
+}
+
+bool has_mesh_contact(const Scene& scene) {
+  for (const ContactSpec& c : scene.contacts)
+    if (c.method == ContactMethod::penalty) return true;
+  return false;
+}
+
+bool has_rigid_body(const Scene& scene) {
+  for (const BodySpec& b : scene.bodies)
+    if (b.rigid) return true;
+  return false;
+}
+
 const char* to_string(Discretisation d) {
   switch (d) {
     case Discretisation::particles: return "particles";
@@ -86,6 +106,7 @@ bool has_grid_coupling(const Scene& scene) {
   for (const BodySpec& b : scene.bodies)
     if (b.bonded_to >= 0 || b.conversion) return true;
   for (const ContactSpec& c : scene.contacts)
+    if (c.method == ContactMethod::grid)
     for (int b : c.bodies)
       if (scene.bodies[static_cast<std::size_t>(b)].discretisation != Discretisation::particles)
         return true;

@@ -18,6 +18,11 @@ bool has_mesh(const Scene& scene);
 // grid contact, or converting its elements into particles (coupling/).
 bool has_grid_coupling(const Scene& scene);
 
+// Whether the scene has a grid contact / a penalty contact between meshes / a rigid body.
+bool has_grid_contact(const Scene& scene);
+bool has_mesh_contact(const Scene& scene);
+bool has_rigid_body(const Scene& scene);
+
 // History variables per point the solvers store: the most any of the scene's materials has
 // (user strength models, afemp/user_material.hpp); 0 when none has any.
 std::size_t history_count(const Scene& scene);

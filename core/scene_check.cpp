@@ -197,6 +197,11 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
              "allowed for trusses: failure_strain (or failure = { model = \"plastic-strain\" }) "
              "with erosion = { material_failure = true }");
   }
+  if (b.rigid && b.discretisation != D::hexahedra)
+    c.fail(b.where, key + ".rigid", "a rigid body is made of hexahedra");
+  if (b.rigid && (b.erosion || b.conversion || b.bonded_to >= 0))
+    c.fail(b.where, key + ".rigid", "a rigid body's elements carry no stress; it cannot erode, "
+                                    "convert or bond");
   if (b.discretisation == D::particles) {
     if (b.erosion || b.conversion || b.bonded_to >= 0)
       c.fail(b.where, key + (b.erosion ? ".erosion" : b.conversion ? ".conversion" : ".bonded_to"),
@@ -215,7 +220,7 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
   if (b.erosion) {
     c.non_negative(b.where, key + ".erosion.plastic_strain", b.erosion->plastic_strain);
     c.range(b.where, key + ".erosion.volume_ratio",
-            b.erosion->volume_ratio, Range{0.0, 1.0, false, true});
+            b.erosion->volume_ratio, Range{0.0, 1.0, true, false});
     c.non_negative(b.where, key + ".erosion.time_step", b.erosion->time_step);
   }
   if (b.conversion) {
@@ -285,22 +290,40 @@ void check_scene(const Scene& scene) {
     if (!(norm(wl.normal) > 0.0))
       c.fail(wl.where, key + ".normal", "the normal must be a non-zero vector");
     c.non_negative(wl.where, key + ".friction", wl.friction);
-    for (int b : wl.bodies) c.body(wl.where, key + ".bodies", b, true);
+    for (int b : wl.bodies) {
+      c.body(wl.where, key + ".bodies", b, true);
+      if (scene.bodies[static_cast<std::size_t>(b)].rigid)
+        c.fail(wl.where, key + ".bodies", "walls act on deformable mesh bodies, not rigid ones");
+    }
   }
   for (std::size_t k = 0; k < scene.contacts.size(); ++k) {
     const ContactSpec& ct = scene.contacts[k];
     const std::string key = "contact[" + std::to_string(k) + "]";
     const int a = c.body(ct.where, key + ".bodies", ct.bodies[0], false);
     const int b = c.body(ct.where, key + ".bodies", ct.bodies[1], false);
-    if (a == b) c.fail(ct.where, key + ".bodies", "a body cannot be in contact with itself");
-    if (scene.bodies[static_cast<std::size_t>(a)].discretisation != Discretisation::particles &&
-        scene.bodies[static_cast<std::size_t>(b)].discretisation != Discretisation::particles)
+    const BodySpec& ba = scene.bodies[static_cast<std::size_t>(a)];
+    const BodySpec& bb = scene.bodies[static_cast<std::size_t>(b)];
+    const bool meshes = ba.discretisation != Discretisation::particles &&
+                        bb.discretisation != Discretisation::particles;
+    c.non_negative(ct.where, key + ".friction", ct.friction);
+    if (ct.method == ContactMethod::penalty) {
+      if (!meshes)
+        c.fail(ct.where, key + ".method", "penalty contact acts between meshes");
+      if (ba.discretisation == Discretisation::trusses &&
+          bb.discretisation == Discretisation::trusses)
+        c.fail(ct.where, key + ".bodies", "penalty contact needs a body of hexahedra on one side");
+      if (a == b && (ba.discretisation != Discretisation::hexahedra || ba.rigid))
+        c.fail(ct.where, key + ".bodies", "self-contact needs a deformable body of hexahedra");
+      c.range(ct.where, key + ".penalty", ct.penalty, Range{0.0, 1.0, true, false});
+      continue;
+    }
+    if (a == b) c.fail(ct.where, key + ".bodies", "a body cannot be in grid contact with itself");
+    if (meshes)
       c.fail(ct.where, key + ".bodies", "both bodies are meshes; grid contact needs a particle "
-                                        "body on one side");
+                                        "body on one side (meshes meet by method penalty)");
     if (!scene.has_grid) c.fail(ct.where, key + ".bodies", "grid contact needs a grid");
     if (scene.mpm.scheme == UpdateScheme::USL)
       c.fail(ct.where, key + ".bodies", "grid contact needs [mpm] scheme MUSL or USF");
-    c.non_negative(ct.where, key + ".friction", ct.friction);
     c.non_negative(ct.where, key + ".distance_factor", ct.distance_factor);
   }
   for (const VelocityReference& v : scene.velocity_references) {

@@ -892,7 +892,7 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
                    const std::vector<Material>& material_list, const std::string& scene_path) {
   r.known({"name", "material", "discretisation", "shape", "particles_per_cell", "velocity",
            "temperature", "internal_energy", "mesh", "element", "hourglass", "bulk_viscosity", "erosion", "area",
-           "bonded_to", "conversion"});
+           "bonded_to", "conversion", "rigid"});
   // Name the body in messages as soon as its name is readable, even for an unknown key.
   if (const toml::node* n = r.table().get("name"); n && n->is_string() && !n->as_string()->get().empty())
     r.set_prefix("bodies." + n->as_string()->get());
@@ -935,6 +935,10 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
   only_for("area", D::trusses, D::trusses);
   only_for("bonded_to", D::hexahedra, D::trusses);  // resolved once every body is read
   only_for("conversion", D::hexahedra, D::hexahedra);
+  if (r.has("rigid") && b.discretisation != D::hexahedra)
+    r.fail("rigid", std::string("a rigid body is made of hexahedra (its mass and inertia come from "
+                                "their volumes), not of ") + to_string(b.discretisation) +
+                        "; model a rigid indenter or anvil as hexahedra with rigid = true");
   b.particles_per_cell = static_cast<int>(r.integer("particles_per_cell", 2, 1, 8));
   // Unset, the default of core::bulk_viscosity_of applies.
   if (const toml::table* t = r.optional_table("bulk_viscosity")) {
@@ -1007,6 +1011,40 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
                            "volumetric_strain, jacobian_ratio, negative_jacobian, "
                            "time_step_fraction, damage");
     b.conversion = c;
+  }
+  if (const toml::node* n = r.table().get("rigid")) {
+    RigidSettings rigid;
+    bool set = true;
+    if (const auto* flag = n->as_boolean()) {
+      set = flag->get();
+    } else if (const toml::table* t = n->as_table()) {
+      TableReader rr(*t, r.dotted("rigid"), r.file());
+      rr.known({"fixed"});
+      rr.check_unknown();
+      static constexpr const char* dof[6] = {"x", "y", "z", "rx", "ry", "rz"};
+      for (const std::string& name : rr.strings("fixed")) {
+        if (name == "all") {
+          rigid.fixed.fill(true);
+          continue;
+        }
+        const auto* it = std::find_if(std::begin(dof), std::end(dof),
+                                      [&](const char* d) { return name == d; });
+        if (it == std::end(dof))
+          rr.fail("fixed", "unknown component \"" + name +
+                               "\"; allowed: \"x\", \"y\", \"z\", \"rx\", \"ry\", \"rz\", \"all\"");
+        rigid.fixed[static_cast<std::size_t>(it - std::begin(dof))] = true;
+      }
+    } else {
+      r.fail("rigid", "expected true or a table { fixed = [\"x\", ..., \"rz\"] }, got " +
+                          describe_type(*n));
+    }
+    if (set) {
+      for (const char* key : {"erosion", "conversion", "bonded_to"})
+        if (r.has(key))
+          r.fail(key, "a rigid body's elements carry no stress; remove " + std::string(key) +
+                          " or rigid");
+      b.rigid = rigid;
+    }
   }
   b.area = r.number("area", 0.0, Range::positive());
   if (b.discretisation == D::trusses && std::holds_alternative<LineShape>(b.shape) &&
@@ -1083,6 +1121,9 @@ ConstraintSpec read_constraint(TableReader& r, const Scene& scene) {
   TableReader nr(r.required_table("nodes"), r.dotted("nodes"), r.file());
   c.nodes = read_selector(nr);
   if (r.has("body")) c.body = body_index(r, "body", r.required_string("body"), scene);
+  if (c.body >= 0 && scene.bodies[static_cast<std::size_t>(c.body)].rigid)
+    r.fail("body", "body \"" + scene.bodies[static_cast<std::size_t>(c.body)].name +
+                       "\" is rigid; hold it with rigid = { fixed = [\"x\", ..., \"rz\"] } instead");
   if (c.body >= 0 && scene.bodies[static_cast<std::size_t>(c.body)].bonded_to >= 0)
     r.fail("body", "body \"" + scene.bodies[static_cast<std::size_t>(c.body)].name +
                        "\" is bonded to particles and moves with the grid; constrain the grid "
@@ -1139,6 +1180,10 @@ WallSpec read_wall(TableReader& r, const Scene& scene) {
   w.friction = r.number("friction", 0.0, Range::non_negative());
   for (const std::string& name : r.strings("bodies")) {
     w.bodies.push_back(body_index(r, "bodies", name, scene));
+    if (scene.bodies[static_cast<std::size_t>(w.bodies.back())].rigid)
+      r.fail("bodies", "body \"" + name + "\" is rigid; walls act on deformable mesh bodies (a "
+                       "rigid body meets others through [[contact]], and is held by its "
+                       "rigid.fixed components)");
     if (scene.bodies[static_cast<std::size_t>(w.bodies.back())].bonded_to >= 0)
       r.fail("bodies", "body \"" + name + "\" is bonded to particles and moves with the grid; "
                        "walls act on free mesh bodies (use a [grid] boundary wall face)");
@@ -1147,42 +1192,75 @@ WallSpec read_wall(TableReader& r, const Scene& scene) {
 }
 
 ContactSpec read_contact(TableReader& r, const Scene& scene) {
-  r.known({"bodies", "friction", "distance_factor"});
+  r.known({"bodies", "method", "friction", "distance_factor", "penalty", "name"});
   r.check_unknown();
   ContactSpec c;
   c.where = r.where();
   const std::vector<std::string> names = r.strings("bodies");
-  if (names.size() != 2)
-    r.fail("bodies", "name exactly two bodies, e.g. bodies = [\"projectile\", \"plate\"]");
+  if (names.size() != 2 && names.size() != 1)
+    r.fail("bodies", "name two bodies, e.g. bodies = [\"projectile\", \"plate\"], or one body "
+                     "of hexahedra for its self-contact");
   for (std::size_t k = 0; k < 2; ++k) {
-    c.bodies[k] = body_index(r, "bodies", names[k], scene, false);
+    const std::string& name = names[std::min(k, names.size() - 1)];
+    c.bodies[k] = body_index(r, "bodies", name, scene, false);
     const BodySpec& body = scene.bodies[static_cast<std::size_t>(c.bodies[k])];
     if (body.bonded_to >= 0)
-      r.fail("bodies", "body \"" + names[k] + "\" is bonded to \"" +
+      r.fail("bodies", "body \"" + name + "\" is bonded to \"" +
                            scene.bodies[static_cast<std::size_t>(body.bonded_to)].name +
                            "\" and moves in its velocity field; name that body in the contact");
   }
-  const auto mesh = [&](int b) {
-    return scene.bodies[static_cast<std::size_t>(b)].discretisation != Discretisation::particles;
+  const BodySpec& a = scene.bodies[static_cast<std::size_t>(c.bodies[0])];
+  const BodySpec& b = scene.bodies[static_cast<std::size_t>(c.bodies[1])];
+  const auto mesh = [](const BodySpec& body) {
+    return body.discretisation != Discretisation::particles;
   };
-  if (mesh(c.bodies[0]) && mesh(c.bodies[1]))
-    r.fail("bodies", "both bodies are meshes; grid contact needs a particle body on one side "
-                     "(mesh bodies meet each other only through rigid walls, [[walls]])");
-  if (!scene.has_grid)
-    r.fail("bodies", "grid contact needs a [grid] section covering the bodies (cell, min, max)");
-  if (c.bodies[0] == c.bodies[1]) r.fail("bodies", "a body cannot be in contact with itself");
-  // USL takes the strain from the contact-corrected velocity that also moves the particles,
-  // and in the head-on test of tests/mpm/test_grid_contact.cpp it lost 79 % of the energy
-  // (MUSL and USF: 9-10 %).
-  if (scene.mpm.scheme == UpdateScheme::USL)
-    r.fail("bodies", "grid contact needs [mpm] scheme = \"MUSL\" (the default) or \"USF\"; "
-                     "with USL the bodies lose most of their energy in contact");
+  const bool self = c.bodies[0] == c.bodies[1];
+  const bool meshes = mesh(a) && mesh(b);
+  c.method = static_cast<ContactMethod>(r.choice("method", {"grid", "penalty"}, meshes ? 1 : 0));
   for (const ContactSpec& other : scene.contacts)
     if ((other.bodies[0] == c.bodies[0] && other.bodies[1] == c.bodies[1]) ||
         (other.bodies[0] == c.bodies[1] && other.bodies[1] == c.bodies[0]))
       r.fail("bodies", "this pair already has a contact (line " +
                            std::to_string(other.where.line) + ")");
   c.friction = r.number("friction", 0.0, Range::non_negative());
+  c.name = r.string("name", self ? a.name + "-self" : a.name + "-" + b.name);
+  if (c.name.empty() || c.name.find_first_of(",\"\n") != std::string::npos)
+    r.fail("name", "a contact name is a history column prefix: not empty, without commas, "
+                   "quotes or line breaks");
+  if (c.method == ContactMethod::penalty) {
+    if (r.has("distance_factor"))
+      r.fail("distance_factor", "distance_factor sets where grid contact acts; penalty contact "
+                                "acts where the surfaces meet (remove it, or set method = \"grid\")");
+    if (!meshes)
+      r.fail("method", "penalty contact acts between meshes (hexahedra, or trusses on "
+                       "hexahedra); a body of particles meets others by method = \"grid\"");
+    if (a.discretisation == Discretisation::trusses && b.discretisation == Discretisation::trusses)
+      r.fail("bodies", "two bodies of trusses have no surface to meet: penalty contact needs a "
+                       "body of hexahedra on one side (truss nodes meet hexahedron faces)");
+    if (self && a.discretisation != Discretisation::hexahedra)
+      r.fail("bodies", "self-contact needs a body of hexahedra (a surface that may fold)");
+    if (self && a.rigid) r.fail("bodies", "a rigid body cannot fold onto itself");
+    // The fraction of the predicted penetration one step takes out (fem/mesh_contact.hpp):
+    // 1 closes it within the step; the correction never adds energy, so any value in (0, 1]
+    // is stable.
+    c.penalty = r.number("penalty", 1.0, Range{0.0, 1.0, true, false});
+    return c;
+  }
+  if (r.has("penalty"))
+    r.fail("penalty", "penalty scales the stiffness of penalty contact; grid contact has none "
+                      "(remove it, or set method = \"penalty\" between meshes)");
+  if (self) r.fail("bodies", "a body cannot be in grid contact with itself");
+  if (meshes)
+    r.fail("method", "both bodies are meshes; grid contact needs a particle body on one side "
+                     "(meshes meet each other by method = \"penalty\", the default)");
+  if (!scene.has_grid)
+    r.fail("bodies", "grid contact needs a [grid] section covering the bodies (cell, min, max)");
+  // USL takes the strain from the contact-corrected velocity that also moves the particles,
+  // and in the head-on test of tests/mpm/test_grid_contact.cpp it lost 79 % of the energy
+  // (MUSL and USF: 9-10 %).
+  if (scene.mpm.scheme == UpdateScheme::USL)
+    r.fail("bodies", "grid contact needs [mpm] scheme = \"MUSL\" (the default) or \"USF\"; "
+                     "with USL the bodies lose most of their energy in contact");
   c.distance_factor = r.number("distance_factor", 0.5, Range::non_negative());
   return c;
 }
@@ -1466,7 +1544,7 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
     int count = 0;
     for (const ContactSpec& c : scene.contacts)
       for (int b : c.bodies)
-        if (!named[static_cast<std::size_t>(b)]) {
+        if (c.method == ContactMethod::grid && !named[static_cast<std::size_t>(b)]) {
           named[static_cast<std::size_t>(b)] = true;
           ++count;
         }

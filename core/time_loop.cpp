@@ -111,8 +111,11 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
       frames_ = std::make_unique<FieldWriter>(paths.directory, paths.fields_stem);
     std::vector<std::string> names;
     for (const auto& b : scene_.bodies) names.push_back(b.name);
+    std::vector<std::string> extra;
+    if (has_mesh_contact(scene_)) extra = {"sliding", "friction"};
+    for (std::string& c : model_.force_columns()) extra.push_back(std::move(c));
     history_ = std::make_unique<HistoryWriter>(
-        history_path(paths), names, scene_.mpm.grid.has_face(FaceCondition::outflow));
+        history_path(paths), names, scene_.mpm.grid.has_face(FaceCondition::outflow), extra);
     events_ = std::make_unique<EventFiles>(paths.directory);
   }
   sum_.particles = model_.particle_count();
@@ -155,7 +158,13 @@ double TimeLoop::record(double dt) {
   max_kinetic_ = std::max(max_kinetic_, e.kinetic);
   const double err = energy_balance_error(e, sum_.initial, max_kinetic_);
   sum_.max_energy_error = std::max(sum_.max_energy_error, std::abs(err));
-  if (history_) history_->write(history_row(model_, e, dt, err));
+  if (history_) {
+    HistoryRow row = history_row(model_, e, dt, err);
+    if (has_mesh_contact(scene_)) row.extra = {e.sliding, e.friction};
+    model_.force_values(forces_);
+    row.extra.insert(row.extra.end(), forces_.begin(), forces_.end());
+    history_->write(row);
+  }
   if (events_) events_->write(model_.take_events());
   // Three rows in a row: a start-up transient (a velocity imposed on nodes at rest, before the
   // work it does has accumulated) can pass the limit for a row; a growing mode stays.

@@ -55,7 +55,8 @@ CoupledModel::CoupledModel(const core::Scene& scene)
   const std::size_t nb = scene.bodies.size();
   std::vector<char> in_contact(nb, 0);
   for (const core::ContactSpec& c : scene.contacts)
-    for (int b : c.bodies) in_contact[static_cast<std::size_t>(b)] = 1;
+    if (c.method == core::ContactMethod::grid)
+      for (int b : c.bodies) in_contact[static_cast<std::size_t>(b)] = 1;
   surface_body_.assign(nb, 0);
   for (std::size_t b = 0; b < nb; ++b)
     surface_body_[b] = in_contact[b] &&

@@ -71,6 +71,8 @@ void FeSolver::finish_erosion() {
                          "no element left", 0.5 * before[i] * core::dot(v, v), before[i]});
     }
   std::fill(converted_node_.begin(), converted_node_.end(), 0);
+  // Eroding contact: the surfaces now include the faces the lost elements exposed.
+  for (MeshContact& c : contacts_) rebuild_surfaces(c, scene_, hexes_, trusses_, nodes_);
 }
 
 }  // namespace afemp::fem

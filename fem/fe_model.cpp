@@ -154,6 +154,43 @@ std::vector<core::EventLog> FeModel::take_events() {
   return {log};
 }
 
+std::vector<std::string> FeModel::force_columns() const {
+  std::vector<std::string> out;
+  auto add = [&](const std::string& name, std::initializer_list<const char*> parts) {
+    for (const char* p : parts) out.push_back(name + p);
+  };
+  for (const MeshContact& c : solver_.mesh_contacts())
+    add(c.spec.name, {".fx", ".fy", ".fz", ".normal", ".tangential"});
+  for (std::size_t w = 0; w < scene_.walls.size(); ++w)
+    add("wall" + std::to_string(w + 1), {".fx", ".fy", ".fz", ".normal", ".tangential"});
+  for (const RigidBody& r : solver_.rigid_bodies())
+    add(scene_.bodies[static_cast<std::size_t>(r.body)].name,
+        {".fx", ".fy", ".fz", ".mx", ".my", ".mz"});
+  return out;
+}
+
+void FeModel::force_values(std::vector<double>& out) const {
+  out.clear();
+  auto add = [&](const core::Vec3& v) { out.insert(out.end(), {v.x, v.y, v.z}); };
+  for (const MeshContact& c : solver_.mesh_contacts()) {
+    add(c.normal_force + c.tangential_force);
+    out.push_back(core::norm(c.normal_force));
+    out.push_back(core::norm(c.tangential_force));
+  }
+  for (std::size_t w = 0; w < scene_.walls.size(); ++w) {
+    const core::Vec3 f = solver_.wall_forces()[w];
+    const core::Vec3& n = scene_.walls[w].normal;
+    const double fn = core::dot(f, n);
+    add(f);
+    out.push_back(std::abs(fn));
+    out.push_back(core::norm(f - fn * n));
+  }
+  for (const RigidBody& r : solver_.rigid_bodies()) {
+    add(r.force);
+    add(r.moment);
+  }
+}
+
 std::string FeModel::describe() const {
   std::string out = describe_mesh();
   out += "step plan (explicit FE, central differences; no particles, so no background grid is "

@@ -4,6 +4,7 @@
 // through which element forces are gathered without atomics.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <set>
@@ -298,6 +299,7 @@ void FeSolver::build(const core::Scene& scene) {
       }
     }
     batch.end = el.size();
+    batch.rigid = body.rigid.has_value();
     el.batches.push_back(batch);
   }
 
@@ -393,6 +395,7 @@ void FeSolver::build(const core::Scene& scene) {
     WallState state{w, {}};
     for (std::size_t n = 0; n < n_nodes; ++n) {
       const int b = nodes_.body[n];
+      if (b >= 0 && scene.bodies[static_cast<std::size_t>(b)].rigid) continue;  // deformable only
       if (w.bodies.empty() || std::find(w.bodies.begin(), w.bodies.end(), b) != w.bodies.end())
         state.nodes.push_back(static_cast<std::int32_t>(n));
     }
@@ -426,6 +429,10 @@ void FeSolver::build(const core::Scene& scene) {
   for (const ElementBatch& b : hexes_.batches) {
     const core::Material& mat = scene.materials[static_cast<std::size_t>(b.material)];
     for (std::size_t e = b.begin; e < b.end; ++e) {
+      if (b.rigid) {  // no stress waves: no step limit
+        hexes_.critical_dt[e] = std::numeric_limits<double>::infinity();
+        continue;
+      }
       HexVectors x;
       for (std::size_t a = 0; a < 8; ++a) x[a] = nodes_.position[static_cast<std::size_t>(hexes_.nodes[e][a])];
       core::PointState st{{}, 0.0, 0.0, 0.0, mat.density};
@@ -438,6 +445,35 @@ void FeSolver::build(const core::Scene& scene) {
     const double modulus = core::uniaxial_modulus(mat, st);
     for (std::size_t e = b.begin; e < b.end; ++e)
       trusses_.critical_dt[e] = truss_time_step(trusses_.length0[e], modulus, mat.density);
+  }
+
+  // 7. Rigid bodies and penalty contacts (after the node masses).
+  for (std::size_t n = 0; n < n_nodes; ++n) {
+    const int b = nodes_.body[n];
+    if (b >= 0 && scene.bodies[static_cast<std::size_t>(b)].rigid && nodes_.imposed[n])
+      throw InputError(scene.constraints.empty() ? scene.bodies[static_cast<std::size_t>(b)].where
+                                                 : scene.constraints.front().where,
+                       "constraints",
+                       "a constraint holds node " + std::to_string(n - node_begin[static_cast<std::size_t>(b)]) +
+                           " of rigid body \"" + scene.bodies[static_cast<std::size_t>(b)].name +
+                           "\"; restrict the constraint to deformable bodies (body = ...) and hold "
+                           "the rigid body with rigid = { fixed = [...] }");
+  }
+  setup_rigid_bodies();
+  wall_force_.assign(scene.walls.size(), Vec3{});
+  for (const core::ContactSpec& c : scene.contacts)
+    if (c.method == core::ContactMethod::penalty)
+      contacts_.push_back(make_mesh_contact(c, scene, hexes_, trusses_, nodes_));
+  if (!contacts_.empty()) {
+    predicted_.assign(n_nodes, Vec3{});
+    velocity_start_.assign(n_nodes, Vec3{});
+    contact_impulse_.assign(n_nodes, Vec3{});
+    std::vector<char> in(scene.bodies.size(), 0);
+    for (const MeshContact& c : contacts_)
+      for (int b : c.spec.bodies) in[static_cast<std::size_t>(b)] = 1;
+    for (std::size_t n = 0; n < n_nodes; ++n)
+      if (nodes_.body[n] >= 0 && in[static_cast<std::size_t>(nodes_.body[n])])
+        contact_nodes_.push_back(static_cast<std::int32_t>(n));
   }
 
   std::size_t curved = 0;

@@ -21,6 +21,8 @@
 #include "fem/fe_step_plan.hpp"
 #include "fem/hexahedron.hpp"
 #include "fem/mesh.hpp"
+#include "fem/mesh_contact.hpp"
+#include "fem/rigid_body.hpp"
 
 namespace afemp::fem {
 
@@ -51,6 +53,7 @@ struct ElementBatch {
   std::size_t begin = 0, end = 0;  // elements
   std::size_t point_begin = 0;     // first integration point
   int points_per_element = 1;      // 1 (one-point hexahedron, truss) or 8 (B-bar)
+  bool rigid = false;              // a rigid body's: no stress, no forces, no critical step
 };
 
 // What every element kind holds: per element arrays, the integration points' state, and the
@@ -195,6 +198,12 @@ class FeSolver {
   // Whether hexahedron e lies inside the retirement domain (where it may retire).
   bool inside_retirement_domain(std::size_t e) const;
   std::size_t bytes() const;
+  // Penalty contacts between meshes (their resultant forces of the last step) and rigid bodies.
+  const std::vector<MeshContact>& mesh_contacts() const { return contacts_; }
+  const std::vector<RigidBody>& rigid_bodies() const { return rigid_bodies_; }
+  // The resultant force the walls exerted on the nodes over the last step (impulse / dt),
+  // one per [[walls]] entry.
+  const std::vector<Vec3>& wall_forces() const { return wall_force_; }
   std::size_t live_hexahedra() const;
   std::size_t live_trusses() const;
 
@@ -202,6 +211,14 @@ class FeSolver {
   void build(const core::Scene& scene);
   void update_nodes(double dt);
   void apply_walls(double dt);
+  // Contact corrections of v^{n+1/2} at the predicted positions (mesh_contact.cpp).
+  void resolve_contacts(double dt);
+  // Rigid bodies (rigid_body.cpp): the resultant on each body -> momenta and node velocities;
+  // then, before the nodes move, the impulses other stages gave their nodes, and the pose.
+  void advance_rigid_bodies(double dt);
+  void gather_rigid_impulses();
+  void move_rigid_bodies(double dt);
+  void setup_rigid_bodies();
   void update_hexahedra(double dt);
   void update_trusses(double dt);
   // Fails: the material has a failure model (one instantiation each: core/materials/material.hpp).
@@ -238,6 +255,17 @@ class FeSolver {
   HexElements hexes_;
   TrussElements trusses_;
   std::vector<WallState> walls_;
+  std::vector<Vec3> wall_force_;
+  // Contacts between meshes; the nodes of their bodies and their predicted positions (per FE
+  // node), and the impulses rigid nodes got (per FE node, with rigid bodies only).
+  std::vector<MeshContact> contacts_;
+  std::vector<std::int32_t> contact_nodes_;
+  // and, per FE node, their velocities at the step's start and the impulse contact gave them.
+  std::vector<Vec3> predicted_, velocity_start_, contact_impulse_;
+  double sliding_energy_ = 0.0;
+  // Rigid bodies, and per node the rigid body it belongs to (-1: none; empty without any).
+  std::vector<RigidBody> rigid_bodies_;
+  std::vector<std::int32_t> rigid_of_node_;
   // Element nodal forces, gathered per node through the incidence lists (no atomics):
   // hexahedron e node a at 8 e + a, truss t end b at 8 n_hex + 2 t + b.
   std::vector<Vec3> element_force_;
@@ -305,6 +333,7 @@ void FeSolver::run_stage(FeStageKind kind, F&& f) {
 template <class Update>
 void FeSolver::for_each_batch(const ElementStore& elements, Update&& update) {
   for (const ElementBatch& b : elements.batches) {
+    if (b.rigid) continue;  // no stress, no forces (rigid_body_update.cpp moves its nodes)
     const core::Material& m = scene_.materials[static_cast<std::size_t>(b.material)];
     core::visit_models(
         m, [&](const auto& strength, const auto& eos) {

@@ -92,6 +92,33 @@ FeStepPlan build_fe_step_plan(const core::Scene& scene, std::size_t imposed_node
                   "the face normal, rho c_S across it, applied implicitly",
                   absorbing_nodes);
   s.push_back({FeStageKind::nodal_update, "nodal update", forces});
+  std::string rigid;
+  for (const BodySpec& body : scene.bodies)
+    if (body.rigid) {
+      std::string fixed;
+      static constexpr const char* dof[6] = {"x", "y", "z", "rx", "ry", "rz"};
+      for (int a = 0; a < 6; ++a)
+        if (body.rigid->fixed[static_cast<std::size_t>(a)]) fixed += std::string(fixed.empty() ? "" : " ") + dof[a];
+      add_body(rigid, body, fixed.empty() ? "free" : "fixed " + fixed);
+    }
+  if (!rigid.empty())
+    s.push_back({FeStageKind::rigid_bodies, "rigid bodies",
+                 "resultant force and moment -> momenta, rotation (Rodrigues), node velocities; " +
+                     rigid});
+  std::string contacts;
+  for (const core::ContactSpec& c : scene.contacts) {
+    if (c.method != core::ContactMethod::penalty) continue;
+    const bool self = c.bodies[0] == c.bodies[1];
+    core::appendf(contacts, "%s%s: %s, penalty s = %g (k = %g / (w dt^2), w the inverse mass of the pair), friction %g", contacts.empty() ? "" : "; ",
+                  c.name.c_str(), self ? "self-contact, node-to-surface" : "node-to-surface both ways",
+                  c.penalty, c.penalty, c.friction);
+  }
+  if (!contacts.empty())
+    s.push_back({FeStageKind::mesh_contact, "mesh contact",
+                 "slave nodes behind master faces at the predicted x^{n+1} = x^n + dt v^{n+1/2} "
+                 "(binned search) get the impulses that take the fraction s of the penetration "
+                 "out (projected Gauss-Seidel, Coulomb friction); surfaces rebuilt when elements "
+                 "erode or convert; " + contacts});
   if (!scene.walls.empty()) {
     std::string why;
     core::appendf(why, "%zu planar wall(s): nodes kept on their side", scene.walls.size());
@@ -101,7 +128,7 @@ FeStepPlan build_fe_step_plan(const core::Scene& scene, std::size_t imposed_node
   std::string hexahedra, erosion, conversion;
   bool trusses = false;
   for (const BodySpec& body : scene.bodies) {
-    if (body.discretisation == Discretisation::hexahedra)
+    if (body.discretisation == Discretisation::hexahedra && !body.rigid)
       add_body(hexahedra, body, hexahedron_formulation(scene, body));
     trusses = trusses || body.discretisation == Discretisation::trusses;
     if (body.discretisation != Discretisation::particles && body.erosion)

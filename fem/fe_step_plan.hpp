@@ -14,6 +14,8 @@ namespace afemp::fem {
 
 enum class FeStageKind {
   nodal_update,  // forces gathered per node -> v^{n+1/2}, imposed components (nodal_update.cpp)
+  rigid_bodies,  // rigid bodies' momenta, rotation and node velocities (rigid_body.cpp)
+  mesh_contact,  // contact corrections between meshes (mesh_contact.cpp)
   rigid_walls,   // rigid_wall.cpp
   hexahedra,     // strain rate, stress, bulk viscosity, hourglass, forces (hexahedron_update.cpp)
   trusses,       // truss_update.cpp

@@ -20,6 +20,7 @@ void FeSolver::update_nodes(double dt) {
   const bool gravity = g.x != 0.0 || g.y != 0.0 || g.z != 0.0;
   const std::size_t n = nodes_.size();
   const bool loads = !nodes_.external_force.empty();
+  const bool rigid = !rigid_of_node_.empty();
   std::fill(thread_sums_.begin(), thread_sums_.end(), 0.0);
   for (auto& e : thread_errors_) e.clear();
   core::parallel_chunks(n, [&](std::size_t begin, std::size_t end, int t) {
@@ -28,6 +29,7 @@ void FeSolver::update_nodes(double dt) {
       const double m = nodes_.mass[i];
       if (!(m > 0.0)) continue;  // no live element: out of the update
       if (nodes_.grid_driven[i]) continue;  // moved by the background grid (coupling/)
+      if (rigid && rigid_of_node_[i] >= 0) continue;  // moved by its body (rigid_body_update.cpp)
       const Vec3 f = node_force(i);
       Vec3& v = nodes_.velocity[i];
       v += (dt_force / m) * f;
@@ -75,20 +77,32 @@ void FeSolver::begin_step(double dt) {
   // v^{n+1/2} that moves the nodes.
   if (!velocity_curves_.empty()) apply_velocity_curves(time_ + 0.5 * dt);
   run_stage(FeStageKind::nodal_update, [&] {
+    for (std::int32_t k : contact_nodes_)
+      velocity_start_[static_cast<std::size_t>(k)] = nodes_.velocity[static_cast<std::size_t>(k)];
     for (std::size_t k = 0; k < absorbing_nodes_.size(); ++k)
       absorbing_start_[k] = nodes_.velocity[absorbing_nodes_[k].node];
     update_nodes(dt);
     if (!absorbing_nodes_.empty()) absorb(dt);
   });
+  run_stage(FeStageKind::rigid_bodies, [&] { advance_rigid_bodies(dt); });
+  run_stage(FeStageKind::mesh_contact, [&] { resolve_contacts(dt); });
   run_stage(FeStageKind::rigid_walls, [&] { apply_walls(dt); });
 }
 
 void FeSolver::finish_step(double dt) {
   // Positions after every velocity condition, so the walls see the final v^{n+1/2}.
+  // Rigid nodes: what the grid or walls changed joins their body's momenta, then they follow
+  // the body's motion exactly.
+  if (!rigid_bodies_.empty())
+    run_stage(FeStageKind::rigid_bodies, [&] {
+      gather_rigid_impulses();
+      move_rigid_bodies(dt);
+    });
   const std::size_t n = nodes_.size();
+  const bool rigid = !rigid_of_node_.empty();
   core::parallel_chunks(n, [&](std::size_t begin, std::size_t end, int) {
     for (std::size_t i = begin; i < end; ++i)
-      if (nodes_.mass[i] > 0.0 && !nodes_.grid_driven[i])
+      if (nodes_.mass[i] > 0.0 && !nodes_.grid_driven[i] && !(rigid && rigid_of_node_[i] >= 0))
         nodes_.position[i] += dt * nodes_.velocity[i];
   });
   run_stage(FeStageKind::hexahedra, [&] { update_hexahedra(dt); });
@@ -167,6 +181,8 @@ core::Energies FeSolver::energies() const {
   out.internal += stabilisation_work_;
   for (std::size_t b = 0; b < body_stabilisation_.size(); ++b)
     out.bodies[b].internal += body_stabilisation_[b];
+  out.sliding = sliding_energy_;
+  for (const MeshContact& c : contacts_) out.friction += c.friction_work;
   out.eroded = eroded_energy_;
   out.external_work = external_work_;
   return out;

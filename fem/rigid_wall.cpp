@@ -4,7 +4,8 @@
 // to mu times the normal one (stick below it, slide with the reduced velocity above it). A
 // moving wall does work m dv . v_wall on the nodes, which goes to the external work; the
 // kinetic energy a fixed wall takes from arriving nodes is not hidden and shows in the
-// energy balance. Imposed velocity components (constraints) are never changed by a wall.
+// energy balance. Imposed velocity components (constraints) are never changed by a wall. The
+// wall's force on the nodes is the impulse it gave them over the step dt^n.
 #include <cmath>
 #include <cstdint>
 
@@ -14,13 +15,15 @@
 namespace afemp::fem {
 
 void FeSolver::apply_walls(double dt) {
-  for (const WallState& w : walls_) {
+  for (std::size_t wi = 0; wi < walls_.size(); ++wi) {
+    const WallState& w = walls_[wi];
     const core::WallSpec& s = w.spec;
     const Vec3 wall_point = s.point + (time_ + dt) * s.velocity;
     const std::size_t n = w.nodes.size();
     std::fill(thread_sums_.begin(), thread_sums_.end(), 0.0);
     auto sweep = [&](std::size_t begin, std::size_t end, int t) {
       double work = 0.0;
+      Vec3 impulse;
       for (std::size_t k = begin; k < end; ++k) {
         const auto i = static_cast<std::size_t>(w.nodes[k]);
         const double m = nodes_.mass[i];
@@ -53,12 +56,23 @@ void FeSolver::apply_walls(double dt) {
           v -= (off / (dt * reach)) * free_normal;
         }
         work += m * core::dot(v - before, s.velocity);
+        impulse += m * (v - before);
       }
-      thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles] = work;
+      double* sums = &thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles];
+      sums[0] = work;
+      sums[1] = impulse.x;
+      sums[2] = impulse.y;
+      sums[3] = impulse.z;
     };
     core::parallel_chunks(n, sweep);
-    for (std::size_t t = 0; t < thread_errors_.size(); ++t)
-      external_work_ += thread_sums_[t * core::cache_line_doubles];
+    Vec3 impulse;
+    for (std::size_t t = 0; t < thread_errors_.size(); ++t) {
+      const double* sums = &thread_sums_[t * core::cache_line_doubles];
+      external_work_ += sums[0];
+      impulse += Vec3{sums[1], sums[2], sums[3]};
+    }
+    // The wall's force on the nodes: the impulse it gave them over the force step.
+    wall_force_[wi] = (1.0 / force_step(dt)) * impulse;
   }
 }
 

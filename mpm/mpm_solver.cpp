@@ -28,6 +28,7 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
   field_of_body_ = plan_.field_of_body;
   law_.assign(static_cast<std::size_t>(fields * fields), PairLaw{});
   for (const core::ContactSpec& c : scene.contacts) {
+    if (c.method != core::ContactMethod::grid) continue;
     const int a = field_of_body_[static_cast<std::size_t>(c.bodies[0])];
     const int b = field_of_body_[static_cast<std::size_t>(c.bodies[1])];
     const PairLaw law{true, c.friction, c.distance_factor};
@@ -39,7 +40,7 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
     for (int b = 0; b < fields; ++b)
       if (law_[static_cast<std::size_t>(a * fields + b)].contact)
         field_in_contact_[static_cast<std::size_t>(a)] = 1;
-  grid_.set_fields(fields, !scene.contacts.empty());
+  grid_.set_fields(fields, core::has_grid_contact(scene));
   // The strain tensor is integrated only for scenes that write it: it is the largest array
   // the strain sweep streams, and nothing in the physics reads it.
   if (plan_.strain && particles_.strain.size() != particles_.size())

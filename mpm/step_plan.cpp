@@ -72,7 +72,8 @@ StepPlan build_step_plan(const core::Scene& scene) {
   plan.field_of_body.assign(scene.bodies.size(), 0);
   std::vector<bool> in_contact(scene.bodies.size(), false);
   for (const auto& c : scene.contacts)
-    for (int b : c.bodies) in_contact[static_cast<std::size_t>(b)] = true;
+    if (c.method == core::ContactMethod::grid)
+      for (int b : c.bodies) in_contact[static_cast<std::size_t>(b)] = true;
   bool shared = false;
   for (std::size_t b = 0; b < scene.bodies.size(); ++b)
     shared = shared || (!in_contact[b] &&
@@ -85,9 +86,10 @@ StepPlan build_step_plan(const core::Scene& scene) {
   for (std::size_t b = 0; b < scene.bodies.size(); ++b)
     if (scene.bodies[b].bonded_to >= 0)
       plan.field_of_body[b] = plan.field_of_body[static_cast<std::size_t>(scene.bodies[b].bonded_to)];
-  const bool contact = !scene.contacts.empty();
+  const bool contact = core::has_grid_contact(scene);
   plan.velocity_fields = contact ? next : 1;
   for (const auto& c : scene.contacts) {
+    if (c.method != core::ContactMethod::grid) continue;
     std::ostringstream o;
     o << scene.bodies[static_cast<std::size_t>(c.bodies[0])].name << " - "
       << scene.bodies[static_cast<std::size_t>(c.bodies[1])].name << ": friction " << c.friction

@@ -26,8 +26,12 @@ std::string errno_text(int err) { return std::error_code(err, std::generic_categ
 
 }  // namespace
 
-HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> body_names, bool outflow)
-    : path_(std::move(path)), body_names_(std::move(body_names)), outflow_(outflow) {
+HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> body_names, bool outflow,
+                             std::vector<std::string> extra)
+    : path_(std::move(path)),
+      body_names_(std::move(body_names)),
+      outflow_(outflow),
+      extra_(std::move(extra)) {
   for (const std::string& name : body_names_)
     if (name.empty() || name.find_first_of(",\"\r\n") != std::string::npos)
       throw std::invalid_argument("HistoryWriter: body name '" + name +
@@ -50,6 +54,7 @@ HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> body_nam
   if (outflow_) header += ",outflow,outflow_mass,outflow_px,outflow_py,outflow_pz";
   for (const std::string& name : body_names_)
     for (const char* c : {".px", ".py", ".pz", ".vx", ".vy", ".vz", ".kinetic", ".internal"}) header += "," + name + c;
+  for (const std::string& name : extra_) header += "," + name;
   header += '\n';
   if (std::fwrite(header.data(), 1, header.size(), file_.get()) != header.size() ||
       std::fflush(file_.get()) != 0)
@@ -77,6 +82,11 @@ void HistoryWriter::write(const HistoryRow& row) {
     append_number(line_, b.kinetic);
     append_number(line_, b.internal);
   }
+  if (row.extra.size() != extra_.size())
+    throw std::invalid_argument("HistoryWriter::write: row has " + std::to_string(row.extra.size()) +
+                                " extra values, the file has " + std::to_string(extra_.size()) +
+                                " columns (" + path_ + ")");
+  for (const double v : row.extra) append_number(line_, v);
   line_ += '\n';
   if (std::fwrite(line_.data(), 1, line_.size(), file_.get()) != line_.size() ||
       std::fflush(file_.get()) != 0)

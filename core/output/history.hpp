@@ -35,13 +35,14 @@ struct HistoryRow {
   // the grid contact dissipated, not part of it); energy_error: the caller's relative
   // balance error (core/energies.hpp).
   std::vector<BodyHistory> bodies;  // one per body name, in the writer's order
+  std::vector<double> extra;        // one per extra column, in the writer's order
 };
 
 // Columns: step,time,dt,kinetic,internal,elastic,plastic,viscous,hourglass,stabilisation,eroded,
 // converted,contact,external_work,total,energy_error,
 // with outflow faces also outflow,outflow_mass,outflow_px,outflow_py,outflow_pz,
 // then per body NAME: NAME.px,NAME.py,NAME.pz,NAME.vx,NAME.vy,NAME.vz,NAME.kinetic,
-// NAME.internal (like LS-DYNA's MATSUM per part).
+// NAME.internal (like LS-DYNA's MATSUM per part), then the extra columns.
 // step is printed as an integer, every other value with "%.10e" (11 significant digits).
 class HistoryWriter {
  public:
@@ -49,7 +50,10 @@ class HistoryWriter {
   // Throws std::runtime_error naming the path and the reason if it cannot; throws
   // std::invalid_argument for an empty body name or one containing ',', '"' or a newline.
   // outflow: the scene has outflow faces (their columns are written).
-  HistoryWriter(std::string path, std::vector<std::string> body_names, bool outflow = false);
+  // extra: columns after the body columns (penalty contacts' sliding and friction energies,
+  // interface forces), written from HistoryRow::extra.
+  HistoryWriter(std::string path, std::vector<std::string> body_names, bool outflow = false,
+                std::vector<std::string> extra = {});
 
   // Appends and flushes one row. Throws std::invalid_argument if row.bodies does not have
   // one entry per body name, std::runtime_error if the write fails (e.g. disk full).
@@ -65,6 +69,7 @@ class HistoryWriter {
   std::string path_;
   std::vector<std::string> body_names_;
   bool outflow_ = false;
+  std::vector<std::string> extra_;
   std::unique_ptr<std::FILE, FileCloser> file_;
   std::string line_;  // reused row buffer
   std::size_t rows_ = 0;

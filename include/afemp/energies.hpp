@@ -41,6 +41,11 @@ struct Energies {
   /// total(): in the head-on test it is 1.2 to 2.7 times the energy the bodies actually lose,
   /// so a contact run's balance error includes what the contact dissipated.
   double contact = 0.0;
+  /// Penalty contacts between meshes (fem/mesh_contact.cpp): minus the work their forces did
+  /// on the nodes, i.e. the energy held in the contact springs plus what friction dissipated
+  /// (LS-DYNA's sliding interface energy). Exact, part of total().
+  double sliding = 0.0;
+  double friction = 0.0;  ///< the part of sliding friction dissipated
   /// What particles carried out of the grid through outflow faces (mpm/outflow.cpp): their
   /// kinetic + internal energy (part of total()), mass and momentum, summed at the step they
   /// left. The bodies' sums no longer hold them.
@@ -49,7 +54,9 @@ struct Energies {
   Vec3 outflow_momentum{};
   std::vector<BodySums> bodies{};
   /// Everything that must equal the initial total plus the external work.
-  double total() const { return kinetic + internal + hourglass + eroded + converted + outflow; }
+  double total() const {
+    return kinetic + internal + hourglass + eroded + converted + outflow + sliding;
+  }
 };
 
 /// Relative energy-balance error: (E - E0 - W_ext) / max(E0 + |W_ext|, max kinetic so far),

@@ -226,6 +226,15 @@ struct ConversionSettings {
   int points = 1;                   ///< particles per direction: 1 or 2
 };
 
+/// A rigid body of hexahedra (LS-DYNA *MAT_RIGID): its elements carry no stress; it moves
+/// with 6 degrees of freedom, its mass, centre of mass and inertia summed from its elements'
+/// lumped node masses (fem/rigid_body.cpp). Fixed components keep their initial value: the
+/// body's `velocity` for translations (zero: an anvil; non-zero: a die at constant speed), zero
+/// for rotations.
+struct RigidSettings {
+  std::array<bool, 6> fixed{false, false, false, false, false, false};  ///< x y z rx ry rz
+};
+
 /// One [[bodies]] entry: material (index into Scene::materials), discretisation, shape, and the
 /// settings of that discretisation; initial velocity, temperature and internal energy.
 struct BodySpec {
@@ -243,6 +252,7 @@ struct BodySpec {
   std::optional<BulkViscositySettings> bulk_viscosity{};
   std::optional<ErosionSettings> erosion{};  ///< set: the elements may erode
   std::optional<ConversionSettings> conversion{};  ///< hexahedra
+  std::optional<RigidSettings> rigid{};  ///< set: a rigid body (hexahedra)
   double area = 0.0;            ///< truss cross-section where the mesh gives none
   /// Bonded coupling (HFEMP, Lian et al. 2013, §2.6): the particle body whose velocity field this mesh
   /// body's nodes join; they move with the grid solution (perfect bond). -1: not bonded.
@@ -325,15 +335,27 @@ struct WallSpec {
   SourceLocation where{};
 };
 
-/// Grid contact between two bodies, at least one of particles (Lian et al. 2013, eqs 37-42): each body
-/// named in a contact gets its own velocity field on the grid (a mesh body's nodes map into
-/// theirs: contact coupling, CFEMP); where two fields meet at a node and approach, a normal
-/// correction makes their normal velocities equal, Coulomb friction limits the tangential one,
-/// and they may separate.
+/// How a contact acts.
+/// grid: grid contact between two bodies, at least one of particles (Lian et al. 2013, eqs
+/// 37-42): each body named in a contact gets its own velocity field on the grid (a mesh body's
+/// nodes map into theirs: contact coupling, CFEMP); where two fields meet at a node and
+/// approach, a normal correction makes their normal velocities equal, Coulomb friction limits
+/// the tangential one, and they may separate.
+/// penalty: between meshes (fem/mesh_contact.cpp): node-to-surface penalty contact in both
+/// directions (surface to surface), the stiffness scaled by the nodal mass and the step
+/// (LS-DYNA's SOFT=1), with Coulomb friction; one body named twice is its self-contact.
+enum class ContactMethod { grid, penalty };
+const char* to_string(ContactMethod m);
+
 struct ContactSpec {
-  std::array<int, 2> bodies{-1, -1};  ///< indices into Scene::bodies
+  std::array<int, 2> bodies{-1, -1};  ///< indices into Scene::bodies (equal: self-contact)
+  ContactMethod method = ContactMethod::grid;
   double friction = 0.0;              ///< Coulomb coefficient
-  double distance_factor = 0.5;       ///< lambda of eq 42: contact once the gap <= lambda h
+  double distance_factor = 0.5;       ///< grid: lambda of eq 42, contact once the gap <= lambda h
+  /// penalty: the stiffness k = penalty m / dt^2 of a node of mass m (the two sides' masses in
+  /// series) at step dt; stable for penalty < 4 - (2 f)^2 with f the element step factor.
+  double penalty = 0.1;
+  std::string name{};  ///< history columns NAME.fx ...; default "BODY1-BODY2" ("BODY-self")
   SourceLocation where{};
 };
 /// Everything a run needs. Bodies, constraints, walls, contacts and references refer to materials
@@ -391,6 +413,8 @@ using core::NodeSelector;
 using core::ConstraintSpec;
 using core::WallSpec;
 using core::ContactSpec;
+using core::ContactMethod;
+using core::RigidSettings;
 using core::Scene;
 using core::to_string;
 }  ///< namespace afemp

@@ -1,0 +1,511 @@
+// Contact between meshes (mesh_contact.hpp): node-to-face in both directions, the penalty on the
+// predicted penetration (Taylor & Flanagan 1989) resolved by projected Gauss-Seidel sweeps.
+#include "fem/mesh_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/parallel.hpp"
+#include "fem/fe_solver.hpp"
+#include "fem/surface_faces.hpp"
+
+namespace afemp::fem {
+
+namespace {
+
+using core::Discretisation;
+
+// The bilinear face: position, tangents and shape functions at (xi, eta), nodes counter-
+// clockwise seen from outside: (-1,-1), (1,-1), (1,1), (-1,1).
+struct FacePoint {
+  Vec3 x, t1, t2;
+  std::array<double, 4> n;
+};
+
+inline FacePoint face_point(const std::array<Vec3, 4>& p, double xi, double eta) {
+  FacePoint f;
+  f.n = {0.25 * (1 - xi) * (1 - eta), 0.25 * (1 + xi) * (1 - eta), 0.25 * (1 + xi) * (1 + eta),
+         0.25 * (1 - xi) * (1 + eta)};
+  f.x = f.n[0] * p[0] + f.n[1] * p[1] + f.n[2] * p[2] + f.n[3] * p[3];
+  f.t1 = 0.25 * ((1 - eta) * (p[1] - p[0]) + (1 + eta) * (p[2] - p[3]));
+  f.t2 = 0.25 * ((1 - xi) * (p[3] - p[0]) + (1 + xi) * (p[2] - p[1]));
+  return f;
+}
+
+// Closest-point projection of x on the face (Gauss-Newton from the centre): the point, its
+// unit outward normal, (xi, eta) and the signed gap. False when the face is degenerate.
+struct Projection {
+  FacePoint at;
+  Vec3 normal;
+  double xi = 0.0, eta = 0.0, gap = 0.0;
+};
+
+inline bool project(const std::array<Vec3, 4>& p, const Vec3& x, Projection& out) {
+  double xi = 0.0, eta = 0.0;
+  FacePoint f = face_point(p, xi, eta);
+  for (int it = 0; it < 4; ++it) {
+    const Vec3 r = x - f.x;
+    const double a11 = core::dot(f.t1, f.t1), a12 = core::dot(f.t1, f.t2),
+                 a22 = core::dot(f.t2, f.t2);
+    const double det = a11 * a22 - a12 * a12;
+    if (!(det > 0.0)) return false;
+    const double b1 = core::dot(r, f.t1), b2 = core::dot(r, f.t2);
+    xi += (a22 * b1 - a12 * b2) / det;
+    eta += (a11 * b2 - a12 * b1) / det;
+    // Far outside the face the answer does not matter; keep the iteration bounded.
+    xi = std::clamp(xi, -2.0, 2.0);
+    eta = std::clamp(eta, -2.0, 2.0);
+    f = face_point(p, xi, eta);
+  }
+  const Vec3 c = core::cross(f.t1, f.t2);
+  const double l = core::norm(c);
+  if (!(l > 0.0)) return false;
+  out.at = f;
+  out.normal = (1.0 / l) * c;
+  out.xi = xi;
+  out.eta = eta;
+  out.gap = core::dot(out.normal, x - f.x);
+  return true;
+}
+
+// How far outside [-1, 1] a projection may fall and still hold the node (a node sliding over
+// the edge between two faces stays in contact with one of them).
+constexpr double kEdgeTolerance = 0.02;
+
+std::array<Vec3, 4> corners(const std::array<std::int32_t, 4>& face, const std::vector<Vec3>& x) {
+  return {x[static_cast<std::size_t>(face[0])], x[static_cast<std::size_t>(face[1])],
+          x[static_cast<std::size_t>(face[2])], x[static_cast<std::size_t>(face[3])]};
+}
+
+// The master faces of body b, turned outward, with their reach (the thickness of their element
+// normal to them; half of it in self-contact, where the far side of the same body is near).
+void master_faces(ContactPass& pass, int body, bool self, const core::Scene& scene,
+                  const HexElements& hexes, const FeNodes& nodes) {
+  std::vector<char> selected(scene.bodies.size(), 0);
+  selected[static_cast<std::size_t>(body)] = 1;
+  const SurfaceFaces s = boundary_faces(hexes, selected);
+  pass.faces = s.nodes;
+  pass.face_element = s.element;
+  pass.reach.resize(s.nodes.size());
+  for (std::size_t f = 0; f < s.nodes.size(); ++f) {
+    const Vec3 area = face_area_vector(s, f, hexes, nodes.position);
+    auto& q = pass.faces[f];
+    const std::array<Vec3, 4> p = corners(q, nodes.position);
+    if (core::dot(core::cross(p[2] - p[0], p[3] - p[1]), area) < 0.0) std::swap(q[1], q[3]);
+    const double a = core::norm(area);
+    const double thickness = a > 0.0 ? hexes.volume[static_cast<std::size_t>(s.element[f])] / a : 0.0;
+    pass.reach[f] = (self ? 0.5 : 1.0) * thickness;
+  }
+}
+
+// The slave nodes of body b: the nodes of its live boundary faces (hexahedra) or of its live
+// trusses, ascending.
+std::vector<std::int32_t> slave_nodes(int body, const core::Scene& scene, const HexElements& hexes,
+                                      const TrussElements& trusses, const FeNodes& nodes) {
+  std::vector<char> on(nodes.size(), 0);
+  const core::BodySpec& spec = scene.bodies[static_cast<std::size_t>(body)];
+  if (spec.discretisation == Discretisation::hexahedra) {
+    std::vector<char> selected(scene.bodies.size(), 0);
+    selected[static_cast<std::size_t>(body)] = 1;
+    for (const auto& f : boundary_faces(hexes, selected).nodes)
+      for (std::int32_t k : f) on[static_cast<std::size_t>(k)] = 1;
+  } else {
+    for (const ElementBatch& b : trusses.batches)
+      if (b.body == body)
+        for (std::size_t e = b.begin; e < b.end; ++e)
+          if (trusses.alive[e])
+            for (std::int32_t k : trusses.nodes[e]) on[static_cast<std::size_t>(k)] = 1;
+  }
+  std::vector<std::int32_t> out;
+  for (std::size_t i = 0; i < on.size(); ++i)
+    if (on[i] && nodes.mass[i] > 0.0) out.push_back(static_cast<std::int32_t>(i));
+  return out;
+}
+
+// Bins of the faces at the current positions: cubic bins about the size of a face grown by its
+// reach, each face in every bin its grown box touches.
+void bin_faces(ContactPass& pass, const std::vector<Vec3>& position) {
+  const std::size_t nf = pass.faces.size();
+  pass.bin_offsets.clear();
+  pass.bin_faces.clear();
+  if (nf == 0) return;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  Vec3 lo{inf, inf, inf}, hi{-inf, -inf, -inf};
+  double extent = 0.0;
+  std::vector<std::array<Vec3, 2>> box(nf);
+  for (std::size_t f = 0; f < nf; ++f) {
+    Vec3 a{inf, inf, inf}, b{-inf, -inf, -inf};
+    for (std::int32_t k : pass.faces[f]) {
+      const Vec3& x = position[static_cast<std::size_t>(k)];
+      for (int d = 0; d < 3; ++d) a[d] = std::min(a[d], x[d]), b[d] = std::max(b[d], x[d]);
+    }
+    const double r = pass.reach[f];
+    for (int d = 0; d < 3; ++d) {
+      a[d] -= r;
+      b[d] += r;
+      lo[d] = std::min(lo[d], a[d]);
+      hi[d] = std::max(hi[d], b[d]);
+      extent += b[d] - a[d];
+    }
+    box[f] = {a, b};
+  }
+  double h = extent / (3.0 * static_cast<double>(nf));
+  // At most about 4 bins per face (a flat surface fills few of a box's bins).
+  for (;;) {
+    double cells = 1.0;
+    for (int d = 0; d < 3; ++d) cells *= std::floor((hi[d] - lo[d]) / h) + 1.0;
+    if (cells <= 4.0 * static_cast<double>(nf) + 64.0) break;
+    h *= 1.25;
+  }
+  pass.bin_min = lo;
+  pass.bin_size = h;
+  for (int d = 0; d < 3; ++d)
+    pass.bin_count[static_cast<std::size_t>(d)] =
+        static_cast<std::int64_t>(std::floor((hi[d] - lo[d]) / h)) + 1;
+  const auto [nx, ny, nz] = pass.bin_count;
+  auto cell = [&](const Vec3& x, int d) {
+    return std::clamp(static_cast<std::int64_t>(std::floor((x[d] - lo[d]) / h)), std::int64_t{0},
+                      pass.bin_count[static_cast<std::size_t>(d)] - 1);
+  };
+  pass.bin_offsets.assign(static_cast<std::size_t>(nx * ny * nz + 1), 0);
+  for (int sweep = 0; sweep < 2; ++sweep) {
+    if (sweep == 1) {
+      for (std::size_t c = 1; c < pass.bin_offsets.size(); ++c)
+        pass.bin_offsets[c] += pass.bin_offsets[c - 1];
+      pass.bin_faces.resize(static_cast<std::size_t>(pass.bin_offsets.back()));
+    }
+    std::vector<std::int64_t> fill;
+    if (sweep == 1) fill.assign(pass.bin_offsets.begin(), pass.bin_offsets.end() - 1);
+    for (std::size_t f = 0; f < nf; ++f) {
+      const std::int64_t i0 = cell(box[f][0], 0), i1 = cell(box[f][1], 0);
+      const std::int64_t j0 = cell(box[f][0], 1), j1 = cell(box[f][1], 1);
+      const std::int64_t k0 = cell(box[f][0], 2), k1 = cell(box[f][1], 2);
+      for (std::int64_t k = k0; k <= k1; ++k)
+        for (std::int64_t j = j0; j <= j1; ++j)
+          for (std::int64_t i = i0; i <= i1; ++i) {
+            const std::int64_t c = (k * ny + j) * nx + i;
+            if (sweep == 0)
+              ++pass.bin_offsets[static_cast<std::size_t>(c + 1)];
+            else
+              pass.bin_faces[static_cast<std::size_t>(fill[static_cast<std::size_t>(c)]++)] =
+                  static_cast<std::int32_t>(f);
+          }
+    }
+  }
+}
+
+void build_passes(MeshContact& c, const core::Scene& scene, const HexElements& hexes,
+                  const TrussElements& trusses, const FeNodes& nodes) {
+  const int a = c.spec.bodies[0], b = c.spec.bodies[1];
+  const auto hex = [&](int body) {
+    return scene.bodies[static_cast<std::size_t>(body)].discretisation == Discretisation::hexahedra;
+  };
+  std::vector<ContactPass> passes;
+  auto add = [&](int slave, int master, bool first) {
+    ContactPass p;
+    p.slaves_first_body = first;
+    p.slaves = slave_nodes(slave, scene, hexes, trusses, nodes);
+    master_faces(p, master, a == b, scene, hexes, nodes);
+    if (hex(slave)) {
+      ContactPass own;
+      master_faces(own, slave, false, scene, hexes, nodes);
+      p.slave_faces = std::move(own.faces);
+    }
+    passes.push_back(std::move(p));
+  };
+  if (a == b) {
+    add(a, a, true);
+  } else {
+    if (hex(b)) add(a, b, true);
+    if (hex(a)) add(b, a, false);
+  }
+  if (c.passes.empty()) {
+    c.passes = std::move(passes);
+    for (ContactPass& p : c.passes) {
+      p.last_face.assign(nodes.size(), -1);
+      if (!p.slave_faces.empty()) p.slave_normal.assign(nodes.size(), Vec3{});
+    }
+    return;
+  }
+  // A slave's last face follows it to the new list (faces compared by their sorted node ids).
+  for (std::size_t k = 0; k < passes.size(); ++k) {
+    ContactPass& old = c.passes[k];
+    ContactPass& now = passes[k];
+    using Key = std::array<std::int32_t, 4>;
+    std::vector<std::pair<Key, std::int32_t>> index(now.faces.size());
+    for (std::size_t f = 0; f < now.faces.size(); ++f) {
+      Key key = now.faces[f];
+      std::sort(key.begin(), key.end());
+      index[f] = {key, static_cast<std::int32_t>(f)};
+    }
+    std::sort(index.begin(), index.end());
+    for (std::int32_t& last : old.last_face) {
+      if (last < 0) continue;
+      Key key = old.faces[static_cast<std::size_t>(last)];
+      std::sort(key.begin(), key.end());
+      const auto it = std::lower_bound(index.begin(), index.end(), std::make_pair(key, std::int32_t{-1}));
+      last = (it != index.end() && it->first == key) ? it->second : -1;
+    }
+    now.last_face = std::move(old.last_face);
+    now.slave_normal = std::move(old.slave_normal);
+  }
+  c.passes = std::move(passes);
+}
+
+}  // namespace
+
+MeshContact make_mesh_contact(const core::ContactSpec& spec, const core::Scene& scene,
+                              const HexElements& hexes, const TrussElements& trusses,
+                              const FeNodes& nodes) {
+  MeshContact c;
+  c.spec = spec;
+  build_passes(c, scene, hexes, trusses, nodes);
+  c.thread_hits.resize(static_cast<std::size_t>(core::thread_count()));
+  return c;
+}
+
+void rebuild_surfaces(MeshContact& c, const core::Scene& scene, const HexElements& hexes,
+                      const TrussElements& trusses, const FeNodes& nodes) {
+  build_passes(c, scene, hexes, trusses, nodes);
+}
+
+void find_contacts(MeshContact& c, const FeNodes& nodes, const HexElements& hexes,
+                   const std::vector<Vec3>& x) {
+  c.hits.clear();
+  const bool self = c.spec.bodies[0] == c.spec.bodies[1];
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  for (ContactPass& pass : c.passes) {
+    bin_faces(pass, x);
+    if (pass.faces.empty()) continue;
+    const bool facing = !pass.slave_faces.empty();
+    for (const auto& f : pass.slave_faces)
+      for (std::int32_t k : f) pass.slave_normal[static_cast<std::size_t>(k)] = Vec3{};
+    for (const auto& f : pass.slave_faces) {
+      const std::array<Vec3, 4> p = corners(f, x);
+      const Vec3 area = 0.5 * core::cross(p[2] - p[0], p[3] - p[1]);
+      for (std::int32_t k : f) pass.slave_normal[static_cast<std::size_t>(k)] += area;
+    }
+    for (auto& h : c.thread_hits) h.clear();
+    const auto [nx, ny, nz] = pass.bin_count;
+    core::parallel_chunks(pass.slaves.size(), [&](std::size_t begin, std::size_t end, int t) {
+      std::vector<ContactHit>& hits = c.thread_hits[static_cast<std::size_t>(t)];
+      for (std::size_t k = begin; k < end; ++k) {
+        const std::int32_t slave = pass.slaves[k];
+        const auto s = static_cast<std::size_t>(slave);
+        if (!(nodes.mass[s] > 0.0)) continue;
+        const Vec3& xs = x[s];
+        std::int64_t ijk[3];
+        bool outside = false;
+        for (int d = 0; d < 3; ++d) {
+          const double u = std::floor((xs[d] - pass.bin_min[d]) / pass.bin_size);
+          outside = outside || u < 0.0 ||
+                    u >= static_cast<double>(pass.bin_count[static_cast<std::size_t>(d)]);
+          ijk[d] = static_cast<std::int64_t>(u);
+        }
+        // A face is near the node when the node projects inside it (within the edge tolerance)
+        // and lies less than the face's reach behind it; it holds the node when it lies behind.
+        auto near = [&](std::int32_t f, Projection& pr) AFEMP_INLINE {
+          const auto& q = pass.faces[static_cast<std::size_t>(f)];
+          if (q[0] == slave || q[1] == slave || q[2] == slave || q[3] == slave) return false;
+          if (self)  // not the faces of an element the node belongs to
+            for (std::int32_t n :
+                 hexes.nodes[static_cast<std::size_t>(pass.face_element[static_cast<std::size_t>(f)])])
+              if (n == slave) return false;
+          if (!project(corners(q, x), xs, pr)) return false;
+          if (facing && !(core::dot(pr.normal, pass.slave_normal[s]) < 0.0)) return false;
+          constexpr double lim = 1.0 + kEdgeTolerance;
+          return -pr.gap < pass.reach[static_cast<std::size_t>(f)] && std::abs(pr.xi) <= lim &&
+                 std::abs(pr.eta) <= lim;
+        };
+        // The face it met last while that one still holds it; else the nearest face (a node
+        // just past the edge of a side face is nearer the front face it has not crossed).
+        std::int32_t best = -1;
+        Projection bp, pr;
+        const std::int32_t last = pass.last_face[s];
+        if (last >= 0 && near(last, pr) && pr.gap < 0.0) {
+          best = last;
+          bp = pr;
+        } else if (!outside) {
+          const std::int64_t cell = (ijk[2] * ny + ijk[1]) * nx + ijk[0];
+          // Nearest by the distance to the face itself (the projection clamped to it); on a
+          // tie (a node on the edge two faces share), the face it projects into.
+          double distance = inf, overshoot = inf;
+          for (std::int64_t q = pass.bin_offsets[static_cast<std::size_t>(cell)];
+               q < pass.bin_offsets[static_cast<std::size_t>(cell + 1)]; ++q) {
+            const std::int32_t f = pass.bin_faces[static_cast<std::size_t>(q)];
+            if (!near(f, pr)) continue;
+            const double out = std::max({std::abs(pr.xi) - 1.0, std::abs(pr.eta) - 1.0, 0.0});
+            double d = std::abs(pr.gap);
+            if (out > 0.0)
+              d = core::norm(xs - face_point(corners(pass.faces[static_cast<std::size_t>(f)], x),
+                                             std::clamp(pr.xi, -1.0, 1.0),
+                                             std::clamp(pr.eta, -1.0, 1.0)).x);
+            const double tie = 1e-9 * pass.reach[static_cast<std::size_t>(f)];
+            if (d < distance - tie || (d <= distance + tie && out < overshoot)) {
+              distance = d;
+              overshoot = out;
+              best = f;
+              bp = pr;
+            }
+          }
+          if (best >= 0 && !(bp.gap < 0.0)) best = -1;
+        }
+        pass.last_face[s] = best;
+        if (best < 0) continue;
+        // The projection may lie just past an edge: share the impulse by the clamped point.
+        const double xi = std::clamp(bp.xi, -1.0, 1.0), eta = std::clamp(bp.eta, -1.0, 1.0);
+        ContactHit hit;
+        hit.slave = slave;
+        hit.face = pass.faces[static_cast<std::size_t>(best)];
+        hit.shape = face_point(corners(hit.face, x), xi, eta).n;
+        hit.normal = bp.normal;
+        hit.first_body = pass.slaves_first_body;
+        hits.push_back(hit);
+      }
+    });
+    // In slave order whatever the thread count: the sweeps see the same sequence.
+    for (const auto& hits : c.thread_hits) c.hits.insert(c.hits.end(), hits.begin(), hits.end());
+  }
+}
+
+}  // namespace afemp::fem
+
+namespace afemp::fem {
+
+void FeSolver::resolve_contacts(double dt) {
+  // Predicted end-of-step positions of the contact bodies' nodes.
+  for (std::int32_t k : contact_nodes_) {
+    const auto i = static_cast<std::size_t>(k);
+    predicted_[i] = nodes_.position[i] + dt * nodes_.velocity[i];
+    contact_impulse_[i] = Vec3{};
+  }
+  for (MeshContact& c : contacts_) find_contacts(c, nodes_, hexes_, predicted_);
+  // Inverse mass of node i along unit direction n: its free components' share of 1/m (imposed
+  // components take no impulse), or the rigid body's at that point.
+  auto inverse_mass = [&](std::size_t i, const Vec3& n) {
+    if (!rigid_of_node_.empty() && rigid_of_node_[i] >= 0) {
+      const RigidBody& r = rigid_bodies_[static_cast<std::size_t>(rigid_of_node_[i])];
+      return rigid_inverse_mass(r, nodes_.position[i] - r.centre, n);
+    }
+    double share = 1.0;
+    if (const std::uint8_t imposed = nodes_.imposed[i])
+      for (int a = 0; a < 3; ++a)
+        if (imposed & (1u << a)) share -= n[a] * n[a];
+    return share / nodes_.mass[i];
+  };
+  // Node i takes an impulse: a free node's free components change by J / m, a rigid node
+  // moves along with its body's response at that point (settled after the sweeps).
+  auto push = [&](std::size_t i, double w, const Vec3& n, const Vec3& impulse) {
+    if (!rigid_of_node_.empty() && rigid_of_node_[i] >= 0) {
+      nodes_.velocity[i] += w * core::dot(impulse, n) * n;
+      contact_impulse_[i] += impulse;
+      return;
+    }
+    Vec3 j = impulse;
+    if (const std::uint8_t imposed = nodes_.imposed[i])
+      for (int a = 0; a < 3; ++a)
+        if (imposed & (1u << a)) j[a] = 0.0;
+    nodes_.velocity[i] += (1.0 / nodes_.mass[i]) * j;
+    contact_impulse_[i] += j;
+  };
+  // Projected Gauss-Seidel: each pair in turn takes the impulse that brings its predicted gap
+  // to the target (none with s = 1), its total normal impulse kept >= 0, then friction.
+  constexpr int kSweeps = 4;
+  for (int sweep = 0; sweep < kSweeps; ++sweep)
+    for (MeshContact& c : contacts_) {
+      const double s = c.spec.penalty, mu = c.spec.friction;
+      for (ContactHit& h : c.hits) {
+        const auto sl = static_cast<std::size_t>(h.slave);
+        const Vec3& n = h.normal;
+        double w = inverse_mass(sl, n);
+        Vec3 x_face, v_face;
+        std::array<double, 4> wa{};
+        for (int a = 0; a < 4; ++a) {
+          const auto q = static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)]);
+          const double na = h.shape[static_cast<std::size_t>(a)];
+          wa[static_cast<std::size_t>(a)] = inverse_mass(q, n);
+          w += na * na * wa[static_cast<std::size_t>(a)];
+          x_face += na * (nodes_.position[q] + dt * nodes_.velocity[q]);
+          v_face += na * nodes_.velocity[q];
+        }
+        if (!(w > 0.0)) continue;  // two rigid bodies held fast: nothing can move
+        const double gap =
+            core::dot(n, nodes_.position[sl] + dt * nodes_.velocity[sl] - x_face);
+        if (sweep == 0) h.target = (1.0 - s) * std::min(gap, 0.0);
+        const double total = std::max(0.0, h.normal_impulse - (gap - h.target) / (dt * w));
+        const double dp = total - h.normal_impulse;
+        h.normal_impulse = total;
+        Vec3 impulse = dp * n;
+        if (mu > 0.0) {
+          const Vec3 rel = nodes_.velocity[sl] + (dp * w) * n - v_face;
+          const Vec3 vt = rel - core::dot(rel, n) * n;
+          Vec3 t = h.tangential_impulse - (1.0 / w) * vt;
+          const double l = core::norm(t), limit = mu * h.normal_impulse;
+          if (l > limit) t = (limit / l) * t;
+          impulse += t - h.tangential_impulse;
+          h.tangential_impulse = t;
+        }
+        push(sl, inverse_mass(sl, n), n, impulse);
+        for (int a = 0; a < 4; ++a)
+          push(static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)]),
+               wa[static_cast<std::size_t>(a)], n, -h.shape[static_cast<std::size_t>(a)] * impulse);
+      }
+    }
+  // Rigid bodies take the impulses their nodes got, and their nodes follow the bodies again.
+  for (RigidBody& r : rigid_bodies_) {
+      Vec3 impulse, angular;
+      for (std::int32_t k : r.nodes) {
+        const Vec3& j = contact_impulse_[static_cast<std::size_t>(k)];
+        impulse += j;
+        angular += core::cross(nodes_.position[static_cast<std::size_t>(k)] - r.centre, j);
+      }
+      const Vec3 before = r.velocity;
+      external_work_ += add_impulse(r, impulse, angular);
+      // Gravity's work was taken on the body's velocity before the impulse.
+      external_work_ += r.mass * core::dot(scene_.run.gravity, r.velocity - before) * dt;
+      for (std::int32_t k : r.nodes)
+        nodes_.velocity[static_cast<std::size_t>(k)] =
+            point_velocity(r, nodes_.position[static_cast<std::size_t>(k)] - r.centre);
+    }
+  // Resultants (impulse over the force step), friction's work (the tangential impulse on the
+  // relative slip left), and the sliding energy: what the corrections took from the kinetic
+  // energy.
+  const double dt_force = force_step(dt);
+  for (MeshContact& c : contacts_) {
+    c.normal_force = Vec3{};
+    c.tangential_force = Vec3{};
+    for (const ContactHit& h : c.hits) {
+      const double sign = h.first_body || c.spec.bodies[0] == c.spec.bodies[1] ? 1.0 : -1.0;
+      c.normal_force += (sign * h.normal_impulse / dt_force) * h.normal;
+      c.tangential_force += (sign / dt_force) * h.tangential_impulse;
+      if (c.spec.friction > 0.0) {
+        Vec3 v_face;
+        for (int a = 0; a < 4; ++a)
+          v_face += h.shape[static_cast<std::size_t>(a)] *
+                    nodes_.velocity[static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)])];
+        const Vec3 rel = nodes_.velocity[static_cast<std::size_t>(h.slave)] - v_face;
+        c.friction_work -= core::dot(h.tangential_impulse, rel - core::dot(rel, h.normal) * h.normal);
+      }
+    }
+  }
+  // The sliding energy is minus the contact impulses' work, booked like the element forces'
+  // in the central difference: J / dt^n acting over the motion dt^{n-1/2} v^{n-1/2} +
+  // dt^{n+1/2} v^{n+1/2}, halved. The holds' work is external work.
+  // Gravity's work in the nodal update was taken on the velocities before the corrections:
+  // it follows the change J / m (rigid bodies: above).
+  const Vec3 g = scene_.run.gravity;
+  double work = 0.0, gravity = 0.0;
+  for (std::int32_t k : contact_nodes_) {
+    const auto i = static_cast<std::size_t>(k);
+    work += core::dot(contact_impulse_[i],
+                      previous_dt_ * velocity_start_[i] + dt * nodes_.velocity[i]);
+    if (rigid_of_node_.empty() || rigid_of_node_[i] < 0)
+      gravity += core::dot(g, contact_impulse_[i]);
+  }
+  sliding_energy_ -= work / (2.0 * dt_force);
+  external_work_ += gravity * dt;
+
+}
+
+}  // namespace afemp::fem

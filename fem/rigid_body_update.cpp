@@ -1,0 +1,88 @@
+// The rigid bodies' part of the FE step (rigid_body.hpp): after the nodal update, each body
+// takes the resultant of its nodes' loads (program loads, gravity; its elements carry none)
+// and their moment about its centre, advances its momenta, and gives its nodes v + omega x r.
+// Mesh contacts hand it their impulses directly (mesh_contact.cpp); before the nodes move, the
+// velocity changes later stages gave its nodes (a grid contact) join the body's momenta; then
+// the body moves and its nodes follow exactly: x = c + R r0.
+#include "core/parallel.hpp"
+#include "fem/fe_solver.hpp"
+
+namespace afemp::fem {
+
+void FeSolver::setup_rigid_bodies() {
+  std::vector<std::vector<std::int32_t>> nodes(scene_.bodies.size());
+  for (std::size_t n = 0; n < nodes_.size(); ++n) {
+    const int b = nodes_.body[n];
+    if (b >= 0 && scene_.bodies[static_cast<std::size_t>(b)].rigid && nodes_.mass[n] > 0.0)
+      nodes[static_cast<std::size_t>(b)].push_back(static_cast<std::int32_t>(n));
+  }
+  for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
+    const core::BodySpec& body = scene_.bodies[b];
+    if (!body.rigid) continue;
+    if (rigid_of_node_.empty()) rigid_of_node_.assign(nodes_.size(), -1);
+    for (std::int32_t n : nodes[b])
+      rigid_of_node_[static_cast<std::size_t>(n)] = static_cast<std::int32_t>(rigid_bodies_.size());
+    rigid_bodies_.push_back(make_rigid_body(static_cast<int>(b), body.rigid->fixed,
+                                            std::move(nodes[b]), nodes_.position, nodes_.mass,
+                                            body.velocity));
+    RigidBody& r = rigid_bodies_.back();
+    for (std::size_t k = 0; k < r.nodes.size(); ++k)
+      nodes_.velocity[static_cast<std::size_t>(r.nodes[k])] = point_velocity(r, r.offset0[k]);
+  }
+}
+
+void FeSolver::advance_rigid_bodies(double dt) {
+  const double dt_force = force_step(dt);
+  const Vec3 g = scene_.run.gravity;
+  for (RigidBody& r : rigid_bodies_) {
+    Vec3 force = r.mass * g, moment;
+    for (std::size_t k = 0; k < r.nodes.size(); ++k) {
+      const auto i = static_cast<std::size_t>(r.nodes[k]);
+      Vec3 f;
+      if (!nodes_.external_force.empty()) f += nodes_.external_force[i];
+      force += f;
+      moment += core::cross(nodes_.position[i] - r.centre, f);
+    }
+    external_work_ += advance_momenta(r, force, moment, dt_force);
+    // Gravity and loads work on the body's motion over the step ahead (as in the nodal update).
+    Vec3 loads = r.mass * g;
+    if (!nodes_.external_force.empty())
+      for (std::int32_t k : r.nodes) loads += nodes_.external_force[static_cast<std::size_t>(k)];
+    external_work_ += core::dot(loads, r.velocity) * dt;
+    for (std::size_t k = 0; k < r.nodes.size(); ++k)
+      nodes_.velocity[static_cast<std::size_t>(r.nodes[k])] =
+          point_velocity(r, nodes_.position[static_cast<std::size_t>(r.nodes[k])] - r.centre);
+  }
+}
+
+void FeSolver::gather_rigid_impulses() {
+  for (RigidBody& r : rigid_bodies_) {
+    Vec3 impulse, angular;
+    for (std::int32_t k : r.nodes) {
+      const auto i = static_cast<std::size_t>(k);
+      const Vec3 offset = nodes_.position[i] - r.centre;
+      const Vec3 dv = nodes_.velocity[i] - point_velocity(r, offset);
+      if (dv.x == 0.0 && dv.y == 0.0 && dv.z == 0.0) continue;
+      impulse += nodes_.mass[i] * dv;
+      angular += core::cross(offset, nodes_.mass[i] * dv);
+    }
+    if (impulse.x == 0.0 && impulse.y == 0.0 && impulse.z == 0.0 && angular.x == 0.0 &&
+        angular.y == 0.0 && angular.z == 0.0)
+      continue;
+    external_work_ += add_impulse(r, impulse, angular);
+  }
+}
+
+void FeSolver::move_rigid_bodies(double dt) {
+  for (RigidBody& r : rigid_bodies_) {
+    advance_pose(r, dt);
+    for (std::size_t k = 0; k < r.nodes.size(); ++k) {
+      const auto i = static_cast<std::size_t>(r.nodes[k]);
+      const Vec3 offset = node_offset(r, k);
+      nodes_.position[i] = r.centre + offset;
+      nodes_.velocity[i] = point_velocity(r, offset);
+    }
+  }
+}
+
+}  // namespace afemp::fem

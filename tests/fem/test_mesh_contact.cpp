@@ -1,0 +1,244 @@
+// Contact between meshes and rigid bodies (fem/mesh_contact.cpp, fem/rigid_body.cpp). Units mm,
+// ms, g, N, MPa.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "core/scene.hpp"
+#include "fem/fe_solver.hpp"
+#include "scene_errors.hpp"
+
+namespace afemp::fem {
+namespace {
+
+// Elastic steel: rho 7.85e-3, E 2.1e5, nu 0.3 (c_L = 6001 m/s in uniaxial strain).
+constexpr const char* kSteel =
+    "[materials.steel]\ndensity = 7.85e-3\nE = 2.1e5\nnu = 0.3\n";
+
+double steel_bar_wave_speed() {
+  const double E = 2.1e5, nu = 0.3, rho = 7.85e-3;
+  return std::sqrt(E * (1 - nu) / ((1 + nu) * (1 - 2 * nu) * rho));
+}
+
+// Two identical elastic steel blocks, 2 x 2 x 10 mm (2 x 2 x 40 hexahedra), every node held
+// across (uniaxial strain), 0.1 mm apart, meeting head-on at 5 m/s each. No bulk viscosity: the
+// 1-D answer has none.
+std::string head_on_scene() {
+  std::string s = "[run]\nend_time = 0.02\n";
+  s += kSteel;
+  for (const char* side : {"left", "right"}) {
+    const bool left = side[0] == 'l';
+    char body[512];
+    std::snprintf(body, sizeof body,
+                  "[[bodies]]\nname = \"%s\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
+                  "shape = { box = { min = [0, 0, %g], max = [2, 2, %g] } }\n"
+                  "mesh = { divisions = [2, 2, 40] }\nvelocity = [0, 0, %g]\n"
+                  "bulk_viscosity = { linear = 0, quadratic = 0 }\n",
+                  side, left ? -10.05 : 0.05, left ? -0.05 : 10.05, left ? 5.0 : -5.0);
+    s += body;
+  }
+  s += "[[constraints]]\nnodes = { box = { min = [-1, -1, -20], max = [3, 3, 20] } }\n"
+       "fixed = [\"x\", \"y\"]\n[[contact]]\nbodies = [\"left\", \"right\"]\n";
+  return s;
+}
+
+// Reference: two identical elastic bars meeting head-on stay in contact for 2 L / c (the
+// compression wave's return trip) and separate with their speeds exchanged, momentum zero
+// throughout. Pass: momentum within 1e-12 of one block's, contact time within 5 % of 2 L / c,
+// kinetic + internal energy after separation within 2 % of the start (the node pairs of the
+// first contact meet plastically: a loss of the order of the interface layer's share of the
+// mass, 1/80 here), the balance with the sliding energy within 1 %.
+TEST(MeshContact, IdenticalBlocksHeadOnSeparateAfterTwoWaveTransits) {
+  const core::Scene scene = core::parse_scene(head_on_scene(), "head_on.toml");
+  FeSolver solver(scene);
+  const core::Energies e0 = solver.energies();
+  const double p_body = std::abs(e0.bodies[0].momentum.z);
+  double first = -1.0, last = -1.0, worst_momentum = 0.0, peak = 0.0;
+  while (solver.time() < 0.02) {
+    solver.step(std::min(solver.stable_time_step(), 0.02 - solver.time()));
+    const core::Energies e = solver.energies();
+    worst_momentum = std::max(worst_momentum,
+                              core::norm(e.bodies[0].momentum + e.bodies[1].momentum) / p_body);
+    const double f = core::norm(solver.mesh_contacts()[0].normal_force);
+    peak = std::max(peak, f);
+    if (f > 0.0) {
+      if (first < 0.0) first = solver.time();
+      last = solver.time();
+    }
+  }
+  const core::Energies e = solver.energies();
+  const double c = steel_bar_wave_speed();
+  const double expected = 2.0 * 10.0 / c;
+  const double duration = last - first;
+  const double kept = (e.kinetic + e.internal) / (e0.kinetic + e0.internal);
+  const double balance = (e.total() - e0.total()) / e0.total();
+  // The interface pressure rho c v on the 4 mm^2 face.
+  const double force = 7.85e-3 * c * 5.0 * 4.0;
+  std::printf("head-on: contact %.4g us (2L/c %.4g us, %+.2f %%), peak force %.1f N (rho c v A "
+              "%.1f N), momentum %.1e, kinetic + internal kept %.4f, sliding %.4g, balance %.1e\n",
+              1e3 * duration, 1e3 * expected, 100.0 * (duration / expected - 1.0), peak, force,
+              worst_momentum, kept, e.sliding, balance);
+  EXPECT_LT(worst_momentum, 1e-12);
+  EXPECT_NEAR(duration, expected, 0.05 * expected);
+  EXPECT_NEAR(peak, force, 0.05 * force);
+  EXPECT_GT(kept, 0.98);
+  EXPECT_LT(std::abs(balance), 0.01);
+  EXPECT_LT(e.bodies[0].momentum.z / p_body, -0.95);  // the left block turned back
+}
+
+// A steel block (10 x 10 x 4 mm, 4 x 4 x 2 hexahedra) on a fixed rigid plate of hexahedra under
+// gravity g = 10 mm/ms^2 (scaled so the slide takes 1300 steps), sliding at 1 m/s with
+// Coulomb friction mu.
+std::string sliding_scene(double mu, const char* plate) {
+  char s[1400];
+  std::snprintf(s, sizeof s,
+                "[run]\nend_time = 0.3\ngravity = [0, 0, -10]\n%s"
+                "[[bodies]]\nname = \"block\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
+                "shape = { box = { min = [0, 0, 0], max = [10, 10, 4] } }\n"
+                "mesh = { divisions = [4, 4, 2] }\nvelocity = [1, 0, 0]\n"
+                "[[bodies]]\nname = \"plate\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
+                "shape = { box = { min = [-5, -5, -2], max = [25, 15, 0] } }\n"
+                "mesh = { divisions = [6, 4, 1] }\n%s\n"
+                "[[contact]]\nbodies = [\"block\", \"plate\"]\nfriction = %g\n",
+                kSteel, plate, mu);
+  return s;
+}
+
+// Reference: a block sliding on a plane under Coulomb friction decelerates at mu g and stops
+// after v^2 / (2 mu g) (= 0.1 mm for v = 1 m/s, mu = 0.5, g = 10 mm/ms^2). Pass: the distance
+// within 2 %; friction's work equals the kinetic energy lost within 2 %; the history's force
+// on the block along x is -mu m g while it slides (within 2 %); the energy balance within 1 %.
+TEST(MeshContact, ABlockSlidingOnARigidPlateStopsAtTheCoulombDistance) {
+  const double mu = 0.5, g = 10.0, v = 1.0;
+  const core::Scene scene =
+      core::parse_scene(sliding_scene(mu, "rigid = { fixed = [\"all\"] }"), "slide.toml");
+  FeSolver solver(scene);
+  const std::string plan = solver.plan().describe();
+  EXPECT_NE(plan.find("rigid bodies"), std::string::npos) << plan;
+  const core::Energies e0 = solver.energies();
+  const double mass = e0.bodies[0].mass;
+  double travel = 0.0, drag = 0.0;
+  int drag_samples = 0;
+  while (solver.time() < 0.3) {
+    const double dt = std::min(solver.stable_time_step(), 0.3 - solver.time());
+    solver.step(dt);
+    const core::Energies e = solver.energies();
+    const double vx = e.bodies[0].momentum.x / mass;
+    travel += vx * dt;
+    if (solver.time() > 0.05 && solver.time() < 0.15) {
+      drag += solver.mesh_contacts()[0].tangential_force.x;
+      ++drag_samples;
+    }
+  }
+  const core::Energies e = solver.energies();
+  const double expected = v * v / (2.0 * mu * g);
+  const double balance = (e.total() - e0.total() - e.external_work) / e0.kinetic;
+  drag /= drag_samples;
+  std::printf("sliding: stopped after %.5g mm (v^2 / 2 mu g %.5g mm, %+.2f %%), final speed "
+              "%.2e, friction work %.5g vs kinetic energy %.5g, drag %.5g N (mu m g %.5g), "
+              "balance %.1e\n",
+              travel, expected, 100.0 * (travel / expected - 1.0),
+              e.bodies[0].momentum.x / mass, e.friction, 0.5 * mass * v * v, drag, mu * mass * g,
+              balance);
+  EXPECT_NEAR(travel, expected, 0.02 * expected);
+  EXPECT_LT(std::abs(e.bodies[0].momentum.x / mass), 0.01 * v);
+  EXPECT_NEAR(e.friction, 0.5 * mass * v * v, 0.02 * 0.5 * mass * v * v);
+  EXPECT_NEAR(-drag, mu * mass * g, 0.02 * mu * mass * g);
+  EXPECT_LT(std::abs(balance), 0.01);
+}
+
+// Reference: a free rigid body keeps its momentum; hitting a deformable block, the two share
+// the momentum exactly (the impulses are equal and opposite). A rigid steel cube (4 x 4 x 4 mm)
+// at 10 m/s strikes a resting steel block (8 x 8 x 4 mm) of four times its mass. Pass: total momentum within 1e-12
+// of the start throughout; the cube's nodes stay rigid (the distance between two opposite
+// corners unchanged to 1e-12); the balance with the sliding energy within 2 %.
+TEST(MeshContact, AFreeRigidBodyHandsItsMomentumToADeformableBlock) {
+  std::string s = "[run]\nend_time = 0.01\n";
+  s += kSteel;
+  s += "[[bodies]]\nname = \"cube\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
+       "shape = { box = { min = [0, 0, 0.05], max = [4, 4, 4.05] } }\nmesh = { divisions = [2, 2, 2] }\n"
+       "velocity = [0, 0, -10]\nrigid = true\n"
+       "[[bodies]]\nname = \"block\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
+       "shape = { box = { min = [-2, -2, -4], max = [6, 6, 0] } }\nmesh = { divisions = [4, 4, 4] }\n"
+       "[[contact]]\nbodies = [\"cube\", \"block\"]\n";
+  const core::Scene scene = core::parse_scene(s, "rigid_cube.toml");
+  FeSolver solver(scene);
+  const core::Energies e0 = solver.energies();
+  const core::Vec3 p0 = e0.bodies[0].momentum + e0.bodies[1].momentum;
+  const FeNodes& nodes = solver.nodes();
+  const RigidBody& cube = solver.rigid_bodies().at(0);
+  const std::size_t a = static_cast<std::size_t>(cube.nodes.front());
+  const std::size_t b = static_cast<std::size_t>(cube.nodes.back());
+  const double diagonal = core::norm(nodes.position[a] - nodes.position[b]);
+  double worst = 0.0, worst_shape = 0.0;
+  while (solver.time() < 0.01) {
+    solver.step(std::min(solver.stable_time_step(), 0.01 - solver.time()));
+    const core::Energies e = solver.energies();
+    worst = std::max(worst, core::norm(e.bodies[0].momentum + e.bodies[1].momentum - p0) /
+                                core::norm(p0));
+    worst_shape = std::max(
+        worst_shape,
+        std::abs(core::norm(nodes.position[a] - nodes.position[b]) - diagonal) / diagonal);
+  }
+  const core::Energies e = solver.energies();
+  const double balance = (e.total() - e0.total() - e.external_work) / e0.total();
+  std::printf("rigid cube on a block: momentum %.1e, cube's shape %.1e, cube now %.4g m/s, "
+              "block %.4g m/s, sliding %.4g of %.4g, balance %.1e\n",
+              worst, worst_shape, e.bodies[0].momentum.z / e.bodies[0].mass,
+              e.bodies[1].momentum.z / e.bodies[1].mass, e.sliding, e0.kinetic, balance);
+  EXPECT_LT(worst, 1e-12);
+  EXPECT_LT(worst_shape, 1e-12);
+  EXPECT_LT(e.bodies[0].momentum.z / e.bodies[0].mass, -0.0);  // still moving down, slower
+  EXPECT_GT(e.bodies[0].momentum.z / e.bodies[0].mass, -10.0 * 0.9);
+  EXPECT_LT(e.bodies[1].momentum.z, 0.0);  // the block was pushed down
+  EXPECT_LT(std::abs(balance), 0.02);
+}
+
+TEST(MeshContact, BadInputNamesTheFileLineAndKey) {
+  const std::string base = std::string("[run]\nend_time = 1\n") + kSteel +
+                           "[[bodies]]\nname = \"a\"\ndiscretisation = \"hexahedra\"\n"
+                           "material = \"steel\"\nshape = { box = { min = [0, 0, 0], max = [1, 1, 1] } }\n"
+                           "mesh = { divisions = [1, 1, 1] }\n"
+                           "[[bodies]]\nname = \"b\"\ndiscretisation = \"hexahedra\"\n"
+                           "material = \"steel\"\nshape = { box = { min = [0, 0, 2], max = [1, 1, 3] } }\n"
+                           "mesh = { divisions = [1, 1, 1] }\n";
+  // Contact naming an unknown body.
+  std::string text = base + "[[contact]]\nbodies = [\"a\", \"c\"]\n";
+  std::string msg = test::error_of(text, "scene.toml");
+  EXPECT_NE(msg.find("scene.toml:" + std::to_string(test::line_of(text, "bodies = [\"a\", \"c\"]"))),
+            std::string::npos) << msg;
+  EXPECT_NE(msg.find("contact[0].bodies"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("unknown body \"c\"; bodies: \"a\", \"b\""), std::string::npos) << msg;
+  // A penalty scale out of range.
+  text = base + "[[contact]]\nbodies = [\"a\", \"b\"]\npenalty = 1.5\n";
+  msg = test::error_of(text);
+  EXPECT_NE(msg.find("scene.toml:" + std::to_string(test::line_of(text, "penalty = 1.5"))),
+            std::string::npos) << msg;
+  EXPECT_NE(msg.find("contact[0].penalty"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("allowed: 0 < value <= 1"), std::string::npos) << msg;
+  // A rigid body of particles.
+  text = std::string("[run]\nend_time = 1\n[grid]\ncell = 1\nmin = [-2, -2, -2]\nmax = [4, 4, 4]\n") +
+         kSteel +
+         "[[bodies]]\nname = \"p\"\nmaterial = \"steel\"\n"
+         "shape = { box = { min = [0, 0, 0], max = [1, 1, 1] } }\nrigid = true\n";
+  msg = test::error_of(text);
+  EXPECT_NE(msg.find("scene.toml:" + std::to_string(test::line_of(text, "rigid = true"))),
+            std::string::npos) << msg;
+  EXPECT_NE(msg.find("bodies.p.rigid"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("a rigid body is made of hexahedra"), std::string::npos) << msg;
+  // A grid-only key on a contact between meshes.
+  text = base + "[[contact]]\nbodies = [\"a\", \"b\"]\ndistance_factor = 0.5\n";
+  msg = test::error_of(text);
+  EXPECT_NE(msg.find("contact[0].distance_factor"), std::string::npos) << msg;
+  // A wall on a rigid body.
+  text = base + "[[walls]]\npoint = [0, 0, -1]\nnormal = [0, 0, 1]\nbodies = [\"r\"]\n";
+  text.replace(text.find("name = \"a\""), 10, "name = \"r\"\nrigid = true");
+  msg = test::error_of(text);
+  EXPECT_NE(msg.find("walls[0].bodies"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("is rigid"), std::string::npos) << msg;
+}
+
+}  // namespace
+}  // namespace afemp::fem
