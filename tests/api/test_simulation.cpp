@@ -204,7 +204,7 @@ TEST(SimulationApi, BadInputThrowsNamingObjectFieldAndWhatIsAllowed) {
          c.bodies = {0, 0};
          s.contacts.push_back(c);
        },
-       "contact[0].bodies", "cannot be in contact with itself"},
+       "contact[0].bodies", "cannot be in grid contact with itself"},
       {"sphere of hexahedra",
        [](afemp::Scene& s) {
          s.bodies[0].discretisation = afemp::Discretisation::hexahedra;

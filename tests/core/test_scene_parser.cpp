@@ -775,9 +775,13 @@ TEST(SceneParser, CouplingKeysNameTheKeyAndWhatIsAllowed) {
   e = error_of(with_bond("ball") + "\n[[contact]]\nbodies = [\"bar\", \"plate\"]\n");
   EXPECT_NE(e.find("contact[0].bodies"), std::string::npos) << e;
   EXPECT_NE(e.find("is bonded to \"ball\""), std::string::npos) << e;
-  // Grid contact needs a particle body on one side; a mesh body with particles is coupled.
-  e = error_of(base + "\n[[contact]]\nbodies = [\"bar\", \"plate\"]\n");
+  // Grid contact needs a particle body on one side (two meshes meet by penalty contact, their
+  // default); a mesh body with particles is coupled.
+  e = error_of(base + "\n[[contact]]\nbodies = [\"bar\", \"plate\"]\nmethod = \"grid\"\n");
   EXPECT_NE(e.find("both bodies are meshes"), std::string::npos) << e;
+  const Scene meshes = parse_scene(base + "\n[[contact]]\nbodies = [\"bar\", \"plate\"]\n", "m.toml");
+  EXPECT_EQ(meshes.contacts.at(0).method, ContactMethod::penalty);
+  EXPECT_FALSE(has_grid_coupling(meshes));
   const Scene cfemp = parse_scene(base + "\n[[contact]]\nbodies = [\"plate\", \"ball\"]\n", "c.toml");
   EXPECT_TRUE(has_grid_coupling(cfemp));
   // A particle body without a grid is an error naming [grid].
