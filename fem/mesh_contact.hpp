@@ -53,6 +53,7 @@ struct ContactPass {
   std::array<std::int64_t, 3> bin_count{0, 0, 0};
   std::vector<std::int64_t> bin_offsets;
   std::vector<std::int32_t> bin_faces;
+  std::vector<std::array<Vec3, 2>> face_box;  // each face's box grown by its reach
 };
 
 // A slave node behind a master face at the predicted positions, and the impulses the
