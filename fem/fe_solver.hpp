@@ -201,6 +201,8 @@ class FeSolver {
   // Penalty contacts between meshes (their resultant forces of the last step) and rigid bodies.
   const std::vector<MeshContact>& mesh_contacts() const { return contacts_; }
   const std::vector<RigidBody>& rigid_bodies() const { return rigid_bodies_; }
+  // Wall seconds the contacts' search took (part of the mesh contact stage's).
+  double contact_search_seconds() const { return contact_search_seconds_; }
   // The resultant force the walls exerted on the nodes over the last step (impulse / dt),
   // one per [[walls]] entry.
   const std::vector<Vec3>& wall_forces() const { return wall_force_; }
@@ -262,7 +264,7 @@ class FeSolver {
   std::vector<std::int32_t> contact_nodes_;
   // and, per FE node, their velocities at the step's start and the impulse contact gave them.
   std::vector<Vec3> predicted_, velocity_start_, contact_impulse_;
-  double sliding_energy_ = 0.0;
+  double sliding_energy_ = 0.0, contact_search_seconds_ = 0.0;
   // Rigid bodies, and per node the rigid body it belongs to (-1: none; empty without any).
   std::vector<RigidBody> rigid_bodies_;
   std::vector<std::int32_t> rigid_of_node_;

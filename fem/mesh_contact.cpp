@@ -3,6 +3,7 @@
 #include "fem/mesh_contact.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -389,7 +390,10 @@ void FeSolver::resolve_contacts(double dt) {
     predicted_[i] = nodes_.position[i] + dt * nodes_.velocity[i];
     contact_impulse_[i] = Vec3{};
   }
+  const auto search = std::chrono::steady_clock::now();
   for (MeshContact& c : contacts_) find_contacts(c, nodes_, hexes_, predicted_);
+  contact_search_seconds_ +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - search).count();
   // Inverse mass of node i along unit direction n: its free components' share of 1/m (imposed
   // components take no impulse), or the rigid body's at that point.
   auto inverse_mass = [&](std::size_t i, const Vec3& n) {
