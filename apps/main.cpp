@@ -14,6 +14,7 @@
 #include "analysis/reference_checks.hpp"
 #include "analysis/study.hpp"
 #include "analysis/study_file.hpp"
+#include "core/contact_warnings.hpp"
 #include "core/output/run_directory.hpp"
 #include "core/parallel.hpp"
 #include "core/time_loop.hpp"
@@ -34,6 +35,8 @@ int check(const std::string& path) {
   const core::Scene scene = core::read_scene(path);
   const std::unique_ptr<core::Model> model = make_model(scene);
   model->resolve_probes(scene.probes);  // a probe naming a node the mesh lacks fails here too
+  for (const std::string& w : core::contact_warnings(scene, *model))
+    std::fprintf(stderr, "afemp: warning: %s\n", w.c_str());
   std::printf("scene %s%s%s\n", path.c_str(), scene.run.title.empty() ? "" : ": ",
               scene.run.title.c_str());
   std::fputs(model->describe().c_str(), stdout);
@@ -52,6 +55,8 @@ int run(const std::string& path, std::string out_dir) {
   const core::Scene scene = core::read_scene(path);
   if (out_dir.empty()) out_dir = core::default_output_directory(path);
   const std::unique_ptr<core::Model> model = make_model(scene);
+  for (const std::string& w : core::contact_warnings(scene, *model))
+    std::fprintf(stderr, "afemp: warning: %s\n", w.c_str());
   apps::ProgressReporter progress(stdout);
   core::RunOptions options;
   options.output_directory = out_dir;

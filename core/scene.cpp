@@ -48,7 +48,14 @@ const char* to_string(Face f) {
   return "?";
 }
 
-const char* to_string(ContactMethod m) { return m == ContactMethod::grid ? "grid" : "penalty"; }
+const char* to_string(ContactMethod m) {
+  switch (m) {
+    case ContactMethod::grid: return "grid";
+    case ContactMethod::penalty: return "penalty";
+    case ContactMethod::weld: return "weld";
+  }
+  return "?";
+}
 
 bool has_grid_contact(const Scene& scene) {
   for (const ContactSpec& c : scene.contacts)

@@ -134,7 +134,7 @@ void check_shape(const Checker& c, const BodySpec& b, const std::string& key) {
     if (!(norm(cyl->axis) > 0.0))
       c.fail(b.where, shape + ".cylinder.axis", "the axis must be a non-zero vector");
   } else if (const auto* s = std::get_if<SphereShape>(&b.shape)) {
-    if (!particles) c.fail(b.where, shape, "a sphere makes particles only");
+    if (b.discretisation == D::trusses) c.fail(b.where, shape, "a sphere makes particles or hexahedra");
     c.positive(b.where, shape + ".sphere.radius", s->radius);
   } else if (const auto* p = std::get_if<PointListShape>(&b.shape)) {
     if (!particles) c.fail(b.where, shape, "points make particles only");
@@ -306,6 +306,12 @@ void check_scene(const Scene& scene) {
     const bool meshes = ba.discretisation != Discretisation::particles &&
                         bb.discretisation != Discretisation::particles;
     c.non_negative(ct.where, key + ".friction", ct.friction);
+    if (ct.method == ContactMethod::weld) {
+      if (a == b || ba.discretisation != Discretisation::particles ||
+          bb.discretisation != Discretisation::particles)
+        c.fail(ct.where, key + ".method", "a weld names two different bodies of particles");
+      continue;
+    }
     if (ct.method == ContactMethod::penalty) {
       if (!meshes)
         c.fail(ct.where, key + ".method", "penalty contact acts between meshes");

@@ -735,7 +735,7 @@ std::string relative_to_scene(const std::string& file, const std::string& scene_
 std::vector<std::string> shapes_for(Discretisation d) {
   switch (d) {
     case Discretisation::particles: return {"box", "cylinder", "sphere", "points"};
-    case Discretisation::hexahedra: return {"box", "cylinder", "mesh"};
+    case Discretisation::hexahedra: return {"box", "cylinder", "sphere", "mesh"};
     case Discretisation::trusses: return {"line", "rebar", "mesh"};
   }
   return {};
@@ -861,7 +861,9 @@ void read_mesh_density(TableReader& r, const BodySpec& b, MeshDensity& m) {
   const bool cylinder = std::holds_alternative<CylinderShape>(b.shape);
   const bool line = std::holds_alternative<LineShape>(b.shape);
   const bool rebar = std::holds_alternative<RebarShape>(b.shape);
+  const bool sphere = std::holds_alternative<SphereShape>(b.shape);
   if (box) r.known({"size", "divisions"});
+  if (sphere) r.known({"size", "across", "sectors"});
   if (cylinder) r.known({"size", "core", "ring", "axial", "sectors"});
   if (line) r.known({"size", "segments"});
   if (rebar) r.known({"size"});
@@ -880,6 +882,16 @@ void read_mesh_density(TableReader& r, const BodySpec& b, MeshDensity& m) {
     if (m.sectors == 3) r.fail("sectors", "allowed values: 1 (quarter), 2 (half), 4 (full)");
     if (m.size == 0.0 && (m.core == 0 || m.ring == 0 || m.axial == 0))
       r.fail("core", "give core, ring and axial divisions, or an element size");
+  }
+  if (sphere) {
+    // Elements across the diameter: core n/2 and two shells of n/4 (fem/mesh_generation.hpp).
+    m.divisions[0] = static_cast<int>(r.integer("across", 0, 4, 10000));
+    if (m.divisions[0] % 4 != 0)
+      r.fail("across", "must be a multiple of 4 (a core of across/2 elements between two shells "
+                       "of across/4 layers)");
+    m.sectors = static_cast<int>(r.integer("sectors", 4, 1, 4));
+    if (m.sectors == 3) r.fail("sectors", "allowed values: 1 (quarter), 2 (half), 4 (full)");
+    if (m.size == 0.0 && m.divisions[0] == 0) r.fail("across", "give across or an element size");
   }
   if (line) {
     m.segments = static_cast<int>(r.integer("segments", 0, 1, 1000000));
@@ -1216,7 +1228,8 @@ ContactSpec read_contact(TableReader& r, const Scene& scene) {
   };
   const bool self = c.bodies[0] == c.bodies[1];
   const bool meshes = mesh(a) && mesh(b);
-  c.method = static_cast<ContactMethod>(r.choice("method", {"grid", "penalty"}, meshes ? 1 : 0));
+  c.method = static_cast<ContactMethod>(
+      r.choice("method", {"grid", "penalty", "weld"}, meshes ? 1 : 0));
   for (const ContactSpec& other : scene.contacts)
     if ((other.bodies[0] == c.bodies[0] && other.bodies[1] == c.bodies[1]) ||
         (other.bodies[0] == c.bodies[1] && other.bodies[1] == c.bodies[0]))
@@ -1227,6 +1240,17 @@ ContactSpec read_contact(TableReader& r, const Scene& scene) {
   if (c.name.empty() || c.name.find_first_of(",\"\n") != std::string::npos)
     r.fail("name", "a contact name is a history column prefix: not empty, without commas, "
                    "quotes or line breaks");
+  if (c.method == ContactMethod::weld) {
+    for (const char* key : {"friction", "distance_factor", "penalty"})
+      if (r.has(key))
+        r.fail(key, "a weld adds nothing to the step: the bodies share one velocity field; "
+                    "remove " + std::string(key));
+    if (self || a.discretisation != Discretisation::particles ||
+        b.discretisation != Discretisation::particles)
+      r.fail("method", "a weld names two different bodies of particles (meshes weld to "
+                       "particles by bonded_to)");
+    return c;
+  }
   if (c.method == ContactMethod::penalty) {
     if (r.has("distance_factor"))
       r.fail("distance_factor", "distance_factor sets where grid contact acts; penalty contact "

@@ -131,6 +131,11 @@ MeshData body_mesh(const BodySpec& b) {
       if (axial == 0) axial = divisions_for(c->length, d.size);
       return cylinder_mesh(*c, core_n, ring, axial, d.sectors);
     }
+    if (const auto* s = std::get_if<core::SphereShape>(&b.shape)) {
+      int n = d.divisions[0] > 0 ? d.divisions[0] : divisions_for(2.0 * s->radius, d.size);
+      n = std::max(4, (n + 3) / 4 * 4);
+      return sphere_mesh(*s, n, d.sectors);
+    }
     if (const auto* l = std::get_if<core::LineShape>(&b.shape)) {
       const int n = d.segments > 0 ? d.segments : divisions_for(core::norm(l->to - l->from), d.size);
       return truss_line(l->from, l->to, n, b.area);

@@ -4,6 +4,7 @@
 #include "fem/mesh_generation.hpp"
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -188,6 +189,107 @@ MeshData box_mesh(const core::BoxShape& box, std::array<int, 3> n) {
                                node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)});
         m.hexahedron_part.push_back(0);
       }
+  return m;
+}
+
+MeshData sphere_mesh(const core::SphereShape& s, int n, int sectors) {
+  require(s.radius > 0.0 && std::isfinite(s.radius), "sphere mesh: the radius must be positive");
+  require(n >= 4 && n % 4 == 0, "sphere mesh: the divisions across must be a multiple of 4");
+  require(sectors == 1 || sectors == 2 || sectors == 4,
+          "sphere mesh: sectors must be 1 (quarter), 2 (half) or 4 (whole)");
+  const int nc = n / 2, nr = n / 4, h = nc / 2;  // core lattice, shell layers
+  require_32bit_indices(std::int64_t{nc + 1} * (nc + 1) * (nc + 1) +
+                            std::int64_t{6} * (nc + 1) * (nc + 1) * nr,
+                        "sphere mesh");
+  const double a = 0.5 * s.radius;  // the core's half-width (before the bow)
+  // Nodes by key: a core lattice point (i, j, k) in [-h, h]^3 and a layer l (0: the core; 1..nr:
+  // along the ray from a core-surface point to the sphere).
+  std::map<std::array<int, 4>, std::int32_t> id;
+  std::vector<core::Vec3> x;
+  auto node = [&](int i, int j, int k, int l) {
+    const std::array<int, 4> key{i, j, k, l};
+    const auto it = id.find(key);
+    if (it != id.end()) return it->second;
+    const core::Vec3 q{static_cast<double>(i) / h, static_cast<double>(j) / h,
+                       static_cast<double>(k) / h};
+    const double t = static_cast<double>(l) / nr;
+    // The core bowed halfway to a sphere at its surface (cubic at the centre), so the rays from
+    // its corners are not much shorter than those from its faces' centres.
+    const double mq = std::max({std::abs(q.x), std::abs(q.y), std::abs(q.z)}), len = core::norm(q);
+    const core::Vec3 c = len > 0.0 ? (a * ((1.0 - 0.5 * mq) + 0.5 * mq * mq / len)) * q : q;
+    const core::Vec3 p = l == 0 ? c : (1.0 - t) * c + (t * s.radius / len) * q;
+    const auto n_id = static_cast<std::int32_t>(x.size());
+    x.push_back(s.centre + p);
+    id.emplace(key, n_id);
+    return n_id;
+  };
+  std::vector<std::array<std::int32_t, 8>> hexes;
+  std::vector<core::Vec3> centroid;
+  auto add = [&](std::array<std::int32_t, 8> e) {
+    // Node order of a positive volume: the first face counter-clockwise seen from the second.
+    const core::Vec3 d1 = x[static_cast<std::size_t>(e[1])] - x[static_cast<std::size_t>(e[0])];
+    const core::Vec3 d2 = x[static_cast<std::size_t>(e[3])] - x[static_cast<std::size_t>(e[0])];
+    const core::Vec3 d3 = x[static_cast<std::size_t>(e[4])] - x[static_cast<std::size_t>(e[0])];
+    if (core::dot(core::cross(d1, d2), d3) < 0.0) {
+      std::swap(e[1], e[3]);
+      std::swap(e[5], e[7]);
+    }
+    core::Vec3 c;
+    for (std::int32_t k : e) c += 0.125 * x[static_cast<std::size_t>(k)];
+    hexes.push_back(e);
+    centroid.push_back(c);
+  };
+  for (int k = -h; k < h; ++k)
+    for (int j = -h; j < h; ++j)
+      for (int i = -h; i < h; ++i)
+        add({node(i, j, k, 0), node(i + 1, j, k, 0), node(i + 1, j + 1, k, 0), node(i, j + 1, k, 0),
+             node(i, j, k + 1, 0), node(i + 1, j, k + 1, 0), node(i + 1, j + 1, k + 1, 0),
+             node(i, j + 1, k + 1, 0)});
+  // The six shells: face (axis d, side +-h), its quads (u, v) in the other two axes.
+  for (int d = 0; d < 3; ++d)
+    for (int side : {-h, h})
+      for (int u = -h; u < h; ++u)
+        for (int v = -h; v < h; ++v)
+          for (int l = 0; l < nr; ++l) {
+            auto at = [&](int du, int dv, int dl) {
+              std::array<int, 3> c{};
+              c[static_cast<std::size_t>(d)] = side;
+              c[static_cast<std::size_t>((d + 1) % 3)] = u + du;
+              c[static_cast<std::size_t>((d + 2) % 3)] = v + dv;
+              return node(c[0], c[1], c[2], l + dl);
+            };
+            add({at(0, 0, 0), at(1, 0, 0), at(1, 1, 0), at(0, 1, 0), at(0, 0, 1), at(1, 0, 1),
+                 at(1, 1, 1), at(0, 1, 1)});
+          }
+  // Keep the sectors' elements and the nodes they use.
+  MeshData m = one_part_mesh();
+  std::vector<std::int32_t> renumber(x.size(), -1);
+  for (std::size_t e = 0; e < hexes.size(); ++e) {
+    const core::Vec3 c = centroid[e] - s.centre;
+    if ((sectors == 1 && c.x < 0.0) || (sectors != 4 && c.y < 0.0)) continue;
+    std::array<std::int32_t, 8> kept;
+    for (std::size_t a8 = 0; a8 < 8; ++a8) {
+      std::int32_t& r = renumber[static_cast<std::size_t>(hexes[e][a8])];
+      if (r < 0) {
+        r = static_cast<std::int32_t>(m.nodes.size());
+        m.nodes.push_back(x[static_cast<std::size_t>(hexes[e][a8])]);
+      }
+      kept[a8] = r;
+    }
+    m.hexahedra.push_back(kept);
+    m.hexahedron_part.push_back(0);
+  }
+  m.node_sets.push_back({"surface", {}});
+  if (sectors != 4) m.node_sets.push_back({"cut_0", {}});
+  if (sectors == 1) m.node_sets.push_back({"cut_1", {}});
+  const double tol = 1e-9 * s.radius;
+  for (std::size_t k = 0; k < m.nodes.size(); ++k) {
+    const core::Vec3 p = m.nodes[k] - s.centre;
+    const auto kk = static_cast<std::int32_t>(k);
+    if (std::abs(core::norm(p) - s.radius) < tol) m.node_sets[0].members.push_back(kk);
+    if (sectors != 4 && std::abs(p.y) < tol) m.node_sets[1].members.push_back(kk);
+    if (sectors == 1 && std::abs(p.x) < tol) m.node_sets[2].members.push_back(kk);
+  }
   return m;
 }
 

@@ -50,6 +50,16 @@ CylinderFrame cylinder_frame(const core::Vec3& axis);
 MeshData cylinder_mesh(const core::CylinderShape& c, int n_core, int n_ring, int n_axial,
                        int sectors = 4);
 
+// A sphere of hexahedra (a cubed sphere): a cube core of half-width R / 2 divided into
+// n/2 x n/2 x n/2 elements, its lattice point q (|q|_inf = m) moved to R/2 q ((1 - m/2) +
+// m^2 / (2 |q|)), bowed halfway to a sphere at its surface, and on each of its faces a shell of n/4 layers along the rays from
+// the core's surface to the sphere (layer t of the ray from core point c: (1 - t) c + t R c/|c|),
+// so every element layer follows the sphere and the surface nodes lie on it. n, the elements
+// across the diameter, is a multiple of 4. `sectors` keeps 1 (the quarter x >= 0, y >= 0 about
+// the centre), 2 (y >= 0) or 4 (the whole sphere). One part "mesh"; node sets "surface", and
+// for the cuts "cut_0" (y = 0) and "cut_1" (x = 0).
+MeshData sphere_mesh(const core::SphereShape& s, int n, int sectors = 4);
+
 // A straight truss from a to b in `segments` equal 2-node lines of cross-section `area`, one
 // part "mesh"; node sets "start" (the node at a) and "end" (at b).
 MeshData truss_line(core::Vec3 a, core::Vec3 b, int segments, double area);

@@ -119,7 +119,7 @@ struct CylinderShape {
   double length = 0.0;     ///< overall, the nose included
   OgiveNose nose{};        ///< at the far end (base + length axis); crh 0: a flat end
 };
-/// A sphere (particles only).
+/// A sphere (particles, or hexahedra: fem/mesh_generation.hpp's blended cubed sphere).
 struct SphereShape {
   Vec3 centre{};          ///< centre
   double radius = 0.0;  ///< radius
@@ -185,9 +185,9 @@ const char* to_string(HourglassForm f);
 /// How finely a generated mesh divides its shape. `size` (a target edge length) fills what is
 /// not given explicitly.
 struct MeshDensity {
-  std::array<int, 3> divisions{0, 0, 0};  ///< box: elements along x, y, z
+  std::array<int, 3> divisions{0, 0, 0};  ///< box: elements along x, y, z; sphere: [0] across
   int core = 0, ring = 0, axial = 0;      ///< cylinder O-grid (fem/mesh_generation.hpp)
-  int sectors = 4;                        ///< cylinder: 1 quarter, 2 half, 4 full
+  int sectors = 4;                        ///< cylinder, sphere: 1 quarter, 2 half, 4 full
   int segments = 0;                       ///< line: trusses along the bar
   double size = 0.0;                      ///< target element edge / truss length
 };
@@ -344,7 +344,9 @@ struct WallSpec {
 /// penalty: between meshes (fem/mesh_contact.cpp): node-to-surface penalty contact in both
 /// directions (surface to surface), the stiffness scaled by the nodal mass and the step
 /// (LS-DYNA's SOFT=1), with Coulomb friction; one body named twice is its self-contact.
-enum class ContactMethod { grid, penalty };
+/// weld: two particle bodies meant to share one velocity field where they meet (stick, no
+/// separation): nothing is added, and `afemp check` and `run` do not warn about the pair.
+enum class ContactMethod { grid, penalty, weld };
 const char* to_string(ContactMethod m);
 
 struct ContactSpec {
