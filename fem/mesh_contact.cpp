@@ -449,7 +449,17 @@ void FeSolver::resolve_contacts(double dt) {
         if (!(w > 0.0)) continue;  // two rigid bodies held fast: nothing can move
         const double gap =
             core::dot(n, nodes_.position[sl] + dt * nodes_.velocity[sl] - x_face);
-        if (sweep == 0) h.target = (1.0 - s) * std::min(gap, 0.0);
+        if (sweep == 0) {
+          // A penetration already there at x^n (a surface exposed by erosion or conversion
+          // over a node that was inside the lost elements, or one the penalty s < 1 left)
+          // recedes by a tenth a step instead of being pushed out at once.
+          Vec3 x_now;
+          for (int a = 0; a < 4; ++a)
+            x_now += h.shape[static_cast<std::size_t>(a)] *
+                     nodes_.position[static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)])];
+          const double now = core::dot(n, nodes_.position[sl] - x_now);
+          h.target = std::min((1.0 - s) * std::min(gap, 0.0), 0.9 * std::min(now, 0.0));
+        }
         const double total =
             std::max(0.0, h.normal_impulse - share * (gap - h.target) / (dt * w));
         const double dp = total - h.normal_impulse;
