@@ -324,6 +324,8 @@ void check_scene(const Scene& scene) {
       continue;
     }
     if (a == b) c.fail(ct.where, key + ".bodies", "a body cannot be in grid contact with itself");
+    if (ba.rigid || bb.rigid)
+      c.fail(ct.where, key + ".bodies", "grid contact with particles does not take rigid bodies");
     if (meshes)
       c.fail(ct.where, key + ".bodies", "both bodies are meshes; grid contact needs a particle "
                                         "body on one side (meshes meet by method penalty)");

@@ -1274,6 +1274,11 @@ ContactSpec read_contact(TableReader& r, const Scene& scene) {
     r.fail("penalty", "penalty scales the stiffness of penalty contact; grid contact has none "
                       "(remove it, or set method = \"penalty\" between meshes)");
   if (self) r.fail("bodies", "a body cannot be in grid contact with itself");
+  if (a.rigid || b.rigid)
+    r.fail("bodies", "body \"" + (a.rigid ? a.name : b.name) +
+                         "\" is rigid; rigid bodies meet meshes through penalty contact, and "
+                         "grid contact with particles does not take them (model the body as "
+                         "deformable hexahedra of a stiff material)");
   if (meshes)
     r.fail("method", "both bodies are meshes; grid contact needs a particle body on one side "
                      "(meshes meet each other by method = \"penalty\", the default)");

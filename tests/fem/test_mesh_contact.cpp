@@ -341,6 +341,17 @@ TEST(MeshContact, BadInputNamesTheFileLineAndKey) {
             std::string::npos) << msg;
   EXPECT_NE(msg.find("bodies.p.rigid"), std::string::npos) << msg;
   EXPECT_NE(msg.find("a rigid body is made of hexahedra"), std::string::npos) << msg;
+  // A rigid body in grid contact with particles.
+  text = std::string("[run]\nend_time = 1\n[grid]\ncell = 1\nmin = [-2, -2, -2]\nmax = [4, 4, 4]\n") +
+         kSteel +
+         "[[bodies]]\nname = \"p\"\nmaterial = \"steel\"\n"
+         "shape = { box = { min = [0, 0, 0], max = [1, 1, 1] } }\n"
+         "[[bodies]]\nname = \"r\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
+         "shape = { box = { min = [0, 0, 2], max = [1, 1, 3] } }\nmesh = { divisions = [1, 1, 1] }\n"
+         "rigid = true\n[[contact]]\nbodies = [\"p\", \"r\"]\n";
+  msg = test::error_of(text);
+  EXPECT_NE(msg.find("contact[0].bodies"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("body \"r\" is rigid"), std::string::npos) << msg;
   // A grid-only key on a contact between meshes.
   text = base + "[[contact]]\nbodies = [\"a\", \"b\"]\ndistance_factor = 0.5\n";
   msg = test::error_of(text);
