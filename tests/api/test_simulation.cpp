@@ -205,12 +205,12 @@ TEST(SimulationApi, BadInputThrowsNamingObjectFieldAndWhatIsAllowed) {
          s.contacts.push_back(c);
        },
        "contact[0].bodies", "cannot be in grid contact with itself"},
-      {"sphere of hexahedra",
+      {"sphere of trusses",
        [](afemp::Scene& s) {
-         s.bodies[0].discretisation = afemp::Discretisation::hexahedra;
+         s.bodies[0].discretisation = afemp::Discretisation::trusses;
          s.bodies[0].shape = afemp::SphereShape{{5, 5, 5}, 2.0};
        },
-       "bodies.bar.shape", "particles only"},
+       "bodies.bar.shape", "particles or hexahedra"},
   };
   for (const Case& c : cases) {
     afemp::Scene s = taylor_in_code(false);
