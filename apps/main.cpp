@@ -119,13 +119,14 @@ int study(const std::string& path, std::string out_dir, int threads) {
 
 // `afemp import DECK -o SCENE [--units U]`: writes the scene and its side files, and lists
 // what the deck holds that the scene does not carry as the deck meant it.
-int import(const std::string& deck_path, const std::string& scene_path, const std::string& units) {
+int import_command(const std::string& deck_path, const std::string& scene_path,
+                   const std::string& units) {
   const core::DeckImport deck = core::import_deck(deck_path, scene_path, {units});
   core::write_deck_import(deck, scene_path);
   std::printf("afemp import %s -> %s (%s deck", deck_path.c_str(), scene_path.c_str(),
               core::to_string(core::deck_format(deck_path)));
   for (const core::DeckFile& f : deck.files) std::printf(", %s", f.name.c_str());
-  std::printf(")\n");
+  std::printf(")\nunits: %s\n", deck.units.c_str());
   std::size_t untranslated = 0;
   for (const core::DeckNote& n : deck.notes) {
     std::printf("  %s\n", core::describe(n).c_str());
@@ -176,7 +177,7 @@ int main(int argc, char** argv) {
   try {
     if (*run_cmd) return run(scene_path, out_dir);
     if (*study_cmd) return study(scene_path, out_dir, threads);
-    if (*import_cmd) return import(scene_path, out_dir, units);
+    if (*import_cmd) return import_command(scene_path, out_dir, units);
     return check(scene_path);
   } catch (const core::InputError& e) {
     std::fprintf(stderr, "afemp: %s\n", e.what());

@@ -65,8 +65,8 @@ std::string not_a_number(std::string_view field, const char* kind, const std::st
 
 }  // namespace
 
-std::int64_t to_integer(std::string_view field, const SourceLocation& at,
-                        const std::string& key, const std::string& what) {
+std::int64_t to_integer(std::string_view field, const SourceLocation& at, const std::string& key,
+                        const std::string& what) {
   std::string_view s = trim(field);
   if (!s.empty() && s.front() == '+') s.remove_prefix(1);
   std::int64_t v = 0;

@@ -34,8 +34,8 @@ std::vector<std::string_view> split_fields(std::string_view line, char separator
 
 // The whole field as a number ("what" names it in the message), or an InputError at `at`.
 // Reals accept the Fortran exponent letter D, as LS-DYNA decks written by old tools use it.
-std::int64_t to_integer(std::string_view field, const SourceLocation& at,
-                        const std::string& key, const std::string& what);
+std::int64_t to_integer(std::string_view field, const SourceLocation& at, const std::string& key,
+                        const std::string& what);
 double to_real(std::string_view field, const SourceLocation& at, const std::string& key,
                const std::string& what);
 

@@ -26,16 +26,20 @@ namespace {
 namespace dim = core::dimension;
 
 // Read by the mesh reader when the scene runs.
-const std::set<std::string> kMeshKeywords = {
-    "NODE",          "ELEMENT_SOLID",       "ELEMENT_BEAM",     "SET_NODE_LIST",
-    "SET_NODE_LIST_TITLE", "BOUNDARY_SPC_SET", "BOUNDARY_SPC_NODE"};
+const std::set<std::string> kMeshKeywords = {"NODE",
+                                             "ELEMENT_SOLID",
+                                             "ELEMENT_BEAM",
+                                             "SET_NODE_LIST",
+                                             "SET_NODE_LIST_TITLE",
+                                             "BOUNDARY_SPC_SET",
+                                             "BOUNDARY_SPC_NODE"};
 
 struct Material {
   std::string kind;  // "elastic", "plastic-kinematic", "johnson-cook", "hjc"
   core::SourceLocation at;
   std::string keyword;
   double density = 0;
-  std::string body;  // the material table's lines, EOS excepted
+  std::string body;         // the material table's lines, EOS excepted
   double bulk_modulus = 0;  // for E and nu from G (Johnson-Cook without E)
   double G = 0, E = 0, nu = 0;
 };
@@ -58,8 +62,8 @@ struct Wall {
 
 class LsDynaImport {
  public:
-  LsDynaImport(const std::string& text, const std::string& deck_path,
-               const std::string& scene_path, const core::DeckImportOptions& options)
+  LsDynaImport(const std::string& text, const std::string& deck_path, const std::string& scene_path,
+               const core::DeckImportOptions& options)
       : deck_(LsDynaDeck::parse(text, deck_path)),
         deck_path_(deck_path),
         scene_path_(scene_path),
@@ -74,6 +78,7 @@ class LsDynaImport {
     const std::string body = scene(mesh);
     core::DeckImport out;
     out.notes = notes_;
+    out.units = units_.description();
     out.scene = core::imported_scene_header(deck_path_, core::DeckFormat::lsdyna,
                                             units_.description(), notes_) +
                 "\n" + body;
@@ -106,8 +111,8 @@ class LsDynaImport {
               std::size_t i, const std::string& what, core::Dimension d = dim::none) const {
     return units_(card_real(card(cards, c), i, card_at(k, cards, c), key_, what), d);
   }
-  std::int64_t integer(const LsDynaKeyword& k, const std::vector<LsDynaCard>& cards,
-                       std::size_t c, std::size_t i, const std::string& what) const {
+  std::int64_t integer(const LsDynaKeyword& k, const std::vector<LsDynaCard>& cards, std::size_t c,
+                       std::size_t i, const std::string& what) const {
     return card_integer(card(cards, c), i, card_at(k, cards, c), key_, what);
   }
 
@@ -124,7 +129,8 @@ class LsDynaImport {
       if (!k.cards.empty()) title_ = std::string(core::trim(k.cards.front().text));
     } else if (n == "PART") {
       for (LsDynaPart& p : lsdyna_parts(k)) {
-        if (p.extra) note(p.card.at(), "GRAV, ADPOPT and TMID of part " + std::to_string(p.id), false);
+        if (p.extra)
+          note(p.card.at(), "GRAV, ADPOPT and TMID of part " + std::to_string(p.id), false);
         parts_[p.id] = std::move(p);
       }
     } else if (is(n, {"SECTION_SOLID"})) {
@@ -161,7 +167,8 @@ class LsDynaImport {
       tssfac_ = real(k, c, 0, 1, "TSSFAC");
       if (real(k, c, 0, 0, "DTINIT") != 0.0 || real(k, c, 0, 4, "DT2MS") != 0.0 ||
           integer(k, c, 0, 5, "LCTM") != 0)
-        note(k.at(), "DTINIT, DT2MS (mass scaling) and LCTM: afemp takes the stable step times TSSFAC",
+        note(k.at(),
+             "DTINIT, DT2MS (mass scaling) and LCTM: afemp takes the stable step times TSSFAC",
              false);
     } else if (n == "DATABASE_BINARY_D3PLOT") {
       const auto c = data_cards(k);
@@ -186,7 +193,8 @@ class LsDynaImport {
                                    "control) and 2 (fully integrated, written as afemp's 2x2x2 "
                                    "B-bar element)");
       if (elform == 2)
-        note(c[i].at(), "ELFORM 2 (selectively reduced) is afemp's fully integrated B-bar hexahedron", true);
+        note(c[i].at(),
+             "ELFORM 2 (selectively reduced) is afemp's fully integrated B-bar hexahedron", true);
       solid_elform_[id] = elform;
     }
   }
@@ -196,15 +204,18 @@ class LsDynaImport {
     const std::int64_t id = integer(k, c, 0, 0, "SECID");
     const std::int64_t elform = integer(k, c, 0, 1, "ELFORM");
     if (elform != 3)
-      note(c.front().at(), "beam section " + std::to_string(id) + " (ELFORM " + std::to_string(elform) +
-                               ") is read as trusses: axial force only, no bending", true);
+      note(c.front().at(),
+           "beam section " + std::to_string(id) + " (ELFORM " + std::to_string(elform) +
+               ") is read as trusses: axial force only, no bending",
+           true);
   }
 
   Material& new_material(const LsDynaKeyword& k, const std::vector<LsDynaCard>& c,
                          const std::string& kind) {
     const std::int64_t id = integer(k, c, 0, 0, "MID");
     if (materials_.count(id) != 0)
-      throw core::InputError(k.at(), key_, "material " + std::to_string(id) + " is already defined");
+      throw core::InputError(k.at(), key_,
+                             "material " + std::to_string(id) + " is already defined");
     Material& m = materials_[id];
     m.kind = kind;
     m.at = k.at();
@@ -237,10 +248,14 @@ class LsDynaImport {
     m.body = "strength = { model = \"j2\", yield = " + num(real(k, c, 0, 4, "SIGY", dim::stress)) +
              ", tangent_modulus = " + num(etan) + " }\n";
     if (beta != 1.0 && etan > 0.0)
-      note(k.at(), "BETA = " + num(beta) + ": kinematic hardening is written as isotropic (BETA = 1)", true);
+      note(k.at(),
+           "BETA = " + num(beta) + ": kinematic hardening is written as isotropic (BETA = 1)",
+           true);
     if (real(k, c, 1, 0, "SRC", dim::rate) != 0.0)
-      note(k.at(), "SRC and SRP (Cowper-Symonds rate factor): afemp's j2 is rate-independent", false);
-    if (const double fs = real(k, c, 1, 2, "FS"); fs > 0.0) m.body += "failure_strain = " + num(fs) + "\n";
+      note(k.at(), "SRC and SRP (Cowper-Symonds rate factor): afemp's j2 is rate-independent",
+           false);
+    if (const double fs = real(k, c, 1, 2, "FS"); fs > 0.0)
+      m.body += "failure_strain = " + num(fs) + "\n";
   }
 
   // MID RO G E PR DTF VP RATEOP / A B N C M TM TR EPSO / CP PC SPALL IT D1 D2 D3 D4 /
@@ -254,11 +269,14 @@ class LsDynaImport {
     const double tm = real(k, c, 1, 5, "TM"), tr = real(k, c, 1, 6, "TR");
     double epso = real(k, c, 1, 7, "EPSO", dim::rate);
     const double mexp = real(k, c, 1, 4, "M");
-    std::string s = "strength = { model = \"johnson-cook\", A = " + num(real(k, c, 1, 0, "A", dim::stress)) +
-                    ", B = " + num(real(k, c, 1, 1, "B", dim::stress)) + ", n = " + num(real(k, c, 1, 2, "N")) +
-                    ", C = " + num(real(k, c, 1, 3, "C"));
+    std::string s =
+        "strength = { model = \"johnson-cook\", A = " + num(real(k, c, 1, 0, "A", dim::stress)) +
+        ", B = " + num(real(k, c, 1, 1, "B", dim::stress)) + ", n = " + num(real(k, c, 1, 2, "N")) +
+        ", C = " + num(real(k, c, 1, 3, "C"));
     if (epso > 0.0) s += ", reference_strain_rate = " + num(epso);
-    if (mexp > 0.0) s += ", m = " + num(mexp) + ", room_temperature = " + num(tr) + ", melt_temperature = " + num(tm);
+    if (mexp > 0.0)
+      s += ", m = " + num(mexp) + ", room_temperature = " + num(tr) +
+           ", melt_temperature = " + num(tm);
     m.body = s + " }\n";
     if (const double cp = real(k, c, 2, 0, "CP", dim::specific_energy); cp > 0.0)
       m.body += "specific_heat = " + num(cp) + "\n";
@@ -274,16 +292,24 @@ class LsDynaImport {
       if (epso > 0.0) m.body += ", reference_strain_rate = " + num(epso);
       if (tm > 0.0) m.body += ", room_temperature = " + num(tr) + ", melt_temperature = " + num(tm);
       m.body += " }\n";
-      if (pc < 0.0) note(k.at(), "PC and SPALL beside the Johnson-Cook damage: afemp takes one failure model", false);
+      if (pc < 0.0)
+        note(k.at(), "PC and SPALL beside the Johnson-Cook damage: afemp takes one failure model",
+             false);
     } else if (pc < 0.0) {
       const bool principal = spall == 2.0;
-      m.body += std::string("failure = { model = \"spall\", ") + (principal ? "principal_stress" : "pressure") +
-                " = " + num(-pc) + " }\n";
-      note(k.at(), "PC with SPALL " + num(spall) + " is afemp's instantaneous spall failure (" +
-                       (principal ? "largest principal stress" : "-p") + " beyond -PC)", true);
+      m.body += std::string("failure = { model = \"spall\", ") +
+                (principal ? "principal_stress" : "pressure") + " = " + num(-pc) + " }\n";
+      note(k.at(),
+           "PC with SPALL " + num(spall) + " is afemp's instantaneous spall failure (" +
+               (principal ? "largest principal stress" : "-p") + " beyond -PC)",
+           true);
     }
-    if (real(k, c, 0, 6, "VP") != 0.0 || real(k, c, 0, 5, "DTF") != 0.0 || real(k, c, 3, 2, "EROD") != 0.0)
-      note(k.at(), "DTF, VP and EROD (afemp's Johnson-Cook is rate-dependent through C, erosion is the body's)", false);
+    if (real(k, c, 0, 6, "VP") != 0.0 || real(k, c, 0, 5, "DTF") != 0.0 ||
+        real(k, c, 3, 2, "EROD") != 0.0)
+      note(k.at(),
+           "DTF, VP and EROD (afemp's Johnson-Cook is rate-dependent through C, erosion is the "
+           "body's)",
+           false);
   }
 
   // MID RO G A B C N FC / T EPS0 EFMIN SFMAX PC UC PL UL / D1 D2 K1 K2 K3 FS
@@ -293,17 +319,24 @@ class LsDynaImport {
     const auto st = [&](std::size_t card, std::size_t i, const char* what) {
       return num(real(k, c, card, i, what, dim::stress));
     };
-    const auto nd = [&](std::size_t card, std::size_t i, const char* what) { return num(real(k, c, card, i, what)); };
-    m.body = "G = " + st(0, 2, "G") + "\nstrength = { model = \"holmquist-johnson-cook\", A = " + nd(0, 3, "A") +
-             ", B = " + nd(0, 4, "B") + ", C = " + nd(0, 5, "C") + ", N = " + nd(0, 6, "N") + ", fc = " +
-             st(0, 7, "FC") + ", T = " + st(1, 0, "T") + ", reference_strain_rate = " +
-             num(real(k, c, 1, 1, "EPS0", dim::rate)) + ", EFMIN = " + nd(1, 2, "EFMIN") + ", SFMAX = " +
-             nd(1, 3, "SFMAX") + ", D1 = " + nd(2, 0, "D1") + ", D2 = " + nd(2, 1, "D2") +
-             " }\neos = { model = \"hjc-compaction\", PC = " + st(1, 4, "PC") + ", muc = " + nd(1, 5, "UC") +
-             ", PL = " + st(1, 6, "PL") + ", mul = " + nd(1, 7, "UL") + ", K1 = " + st(2, 2, "K1") +
-             ", K2 = " + st(2, 3, "K2") + ", K3 = " + st(2, 4, "K3") + " }\n";
+    const auto nd = [&](std::size_t card, std::size_t i, const char* what) {
+      return num(real(k, c, card, i, what));
+    };
+    m.body = "G = " + st(0, 2, "G") +
+             "\nstrength = { model = \"holmquist-johnson-cook\", A = " + nd(0, 3, "A") +
+             ", B = " + nd(0, 4, "B") + ", C = " + nd(0, 5, "C") + ", N = " + nd(0, 6, "N") +
+             ", fc = " + st(0, 7, "FC") + ", T = " + st(1, 0, "T") +
+             ", reference_strain_rate = " + num(real(k, c, 1, 1, "EPS0", dim::rate)) +
+             ", EFMIN = " + nd(1, 2, "EFMIN") + ", SFMAX = " + nd(1, 3, "SFMAX") +
+             ", D1 = " + nd(2, 0, "D1") + ", D2 = " + nd(2, 1, "D2") +
+             " }\neos = { model = \"hjc-compaction\", PC = " + st(1, 4, "PC") +
+             ", muc = " + nd(1, 5, "UC") + ", PL = " + st(1, 6, "PL") +
+             ", mul = " + nd(1, 7, "UL") + ", K1 = " + st(2, 2, "K1") + ", K2 = " + st(2, 3, "K2") +
+             ", K3 = " + st(2, 4, "K3") + " }\n";
     if (real(k, c, 2, 5, "FS") != 0.0)
-      note(k.at(), "FS (failure type): afemp's HJC carries its damage to D = 1 and does not erode on it", false);
+      note(k.at(),
+           "FS (failure type): afemp's HJC carries its damage to D = 1 and does not erode on it",
+           false);
   }
 
   // EOSID C S1 S2 S3 GAMAO A E0 / V0
@@ -312,17 +345,20 @@ class LsDynaImport {
     const std::int64_t id = integer(k, c, 0, 0, "EOSID");
     const double c0 = real(k, c, 0, 1, "C", dim::velocity);
     Eos& e = new_eos(k, id);
-    e.table = "{ model = \"mie-gruneisen\", c0 = " + num(c0) + ", s = " + num(real(k, c, 0, 2, "S1")) +
+    e.table = "{ model = \"mie-gruneisen\", c0 = " + num(c0) +
+              ", s = " + num(real(k, c, 0, 2, "S1")) +
               ", gamma0 = " + num(real(k, c, 0, 5, "GAMAO")) + " }";
     e.e0 = real(k, c, 0, 7, "E0", dim::stress);
     e.bulk_modulus = c0 * c0;  // times rho0 where the part's material is known
     if (real(k, c, 0, 3, "S2") != 0.0 || real(k, c, 0, 4, "S3") != 0.0)
       note(k.at(), "S2 and S3: afemp's Hugoniot is linear in u_p (S1 only)", false);
-    if (real(k, c, 0, 6, "A") != 0.0) note(k.at(), "A (first-order volume correction to GAMAO)", false);
+    if (real(k, c, 0, 6, "A") != 0.0)
+      note(k.at(), "A (first-order volume correction to GAMAO)", false);
     if (const double v0 = real(k, c, 1, 0, "V0"); v0 != 0.0 && v0 != 1.0)
       note(k.at(), "V0 = " + num(v0) + ": afemp starts at the reference density", false);
-    note(k.at(), "the Hugoniot pressure is afemp's cubic expansion in mu (Ma 2005, eq 2-25), 1.4 % "
-                 "below LS-DYNA's rational form at mu = 0.4; in tension p = rho0 c0^2 mu",
+    note(k.at(),
+         "the Hugoniot pressure is afemp's cubic expansion in mu (Ma 2005, eq 2-25), 1.4 % "
+         "below LS-DYNA's rational form at mu = 0.4; in tension p = rho0 c0^2 mu",
          true);
   }
 
@@ -332,9 +368,11 @@ class LsDynaImport {
     const std::int64_t id = integer(k, c, 0, 0, "EOSID");
     Eos& e = new_eos(k, id);
     e.table = "{ model = \"linear-polynomial\"";
-    for (std::size_t i = 0; i < 7; ++i)
-      e.table += ", C" + std::to_string(i) + " = " +
-                 num(real(k, c, 0, 1 + i, "C" + std::to_string(i), i < 4 ? dim::stress : dim::none));
+    for (std::size_t i = 0; i < 7; ++i) {
+      const std::string name = std::string("C") + std::to_string(i);
+      e.table += ", " + name + " = " +
+                 num(real(k, c, 0, 1 + i, name, i < 4 ? dim::stress : dim::none));
+    }
     e.table += " }";
     e.bulk_modulus = real(k, c, 0, 2, "C1", dim::stress);
     e.e0 = real(k, c, 1, 0, "E0", dim::stress);
@@ -359,21 +397,30 @@ class LsDynaImport {
     if (ihq <= 3) {
       form = "viscous";
       if (ihq == 1 || ihq == 2)
-        note(k.at(), "IHQ " + std::to_string(ihq) + " is written as afemp's viscous form (LS-DYNA type 3)", true);
+        note(k.at(),
+             "IHQ " + std::to_string(ihq) + " is written as afemp's viscous form (LS-DYNA type 3)",
+             true);
     } else if (ihq == 4 || ihq == 5) {
       form = "stiffness";
-      if (ihq == 4) note(k.at(), "IHQ 4 is written as afemp's stiffness form (LS-DYNA type 5)", true);
+      if (ihq == 4)
+        note(k.at(), "IHQ 4 is written as afemp's stiffness form (LS-DYNA type 5)", true);
     } else if (ihq == 6) {
       form = "assumed_strain";
     } else {
       throw core::InputError(card_at(k, c, 0).at(), key_,
-                             "IHQ " + std::to_string(ihq) + " has no afemp form; allowed: 0-3 (viscous), "
-                             "4-5 (stiffness), 6 (assumed strain)");
+                             "IHQ " + std::to_string(ihq) +
+                                 " has no afemp form; allowed: 0-3 (viscous), "
+                                 "4-5 (stiffness), 6 (assumed strain)");
     }
-    h.hourglass = "{ form = \"" + form + "\"" + (qm > 0.0 ? ", coefficient = " + num(std::min(qm, form == "assumed_strain" ? 1.0 : 0.5)) : "") + " }";
+    h.hourglass =
+        "{ form = \"" + form + "\"" +
+        (qm > 0.0 ? ", coefficient = " + num(std::min(qm, form == "assumed_strain" ? 1.0 : 0.5))
+                  : "") +
+        " }";
     const double q1 = real(k, c, 0, 4, "Q1"), q2 = real(k, c, 0, 5, "Q2");
     if (q1 != 0.0 || q2 != 0.0)
-      h.bulk_viscosity = "{ quadratic = " + num(q1 != 0.0 ? q1 : 1.5) + ", linear = " + num(q2 != 0.0 ? q2 : 0.06) + " }";
+      h.bulk_viscosity = "{ quadratic = " + num(q1 != 0.0 ? q1 : 1.5) +
+                         ", linear = " + num(q2 != 0.0 ? q2 : 0.06) + " }";
     hourglass_[id] = h;
   }
 
@@ -383,15 +430,20 @@ class LsDynaImport {
     for (std::size_t i = 0; i < c.size(); i += 2) {
       const std::int64_t id = integer(k, c, i, 0, "ID");
       const std::int64_t styp = integer(k, c, i, 1, "STYP");
-      const core::Vec3 v{real(k, c, i, 3, "VX", dim::velocity), real(k, c, i, 4, "VY", dim::velocity),
+      const core::Vec3 v{real(k, c, i, 3, "VX", dim::velocity),
+                         real(k, c, i, 4, "VY", dim::velocity),
                          real(k, c, i, 5, "VZ", dim::velocity)};
       if (real(k, c, i, 2, "OMEGA", dim::rate) != 0.0)
-        note(c[i].at(), "OMEGA (an initial rotation): afemp gives a body one translational velocity", false);
+        note(c[i].at(),
+             "OMEGA (an initial rotation): afemp gives a body one translational velocity", false);
       if (styp != 2) {
-        note(c[i].at(), "STYP " + std::to_string(styp) + " (a part set or node set): only STYP 2 (a part) is translated", false);
+        note(c[i].at(),
+             "STYP " + std::to_string(styp) +
+                 " (a part set or node set): only STYP 2 (a part) is translated",
+             false);
         continue;
       }
-      velocity_[id] = v;  // id 0: every part
+      velocity_[id] = {v, c[i].at()};  // id 0: every part
     }
   }
 
@@ -405,14 +457,18 @@ class LsDynaImport {
                           real(k, c, 1, 5, "ZH", dim::length)};
     w.normal = {head.x - w.point.x, head.y - w.point.y, head.z - w.point.z};
     if (w.normal.x == 0.0 && w.normal.y == 0.0 && w.normal.z == 0.0)
-      throw core::InputError(card_at(k, c, 1).at(), key_, "the head (XH, YH, ZH) equals the tail: no normal");
+      throw core::InputError(card_at(k, c, 1).at(), key_,
+                             "the head (XH, YH, ZH) equals the tail: no normal");
     w.friction = real(k, c, 1, 6, "FRIC");
-    if (integer(k, c, 0, 0, "NSID") != 0 || integer(k, c, 0, 1, "NSIDEX") != 0 || integer(k, c, 0, 2, "BOXID") != 0)
+    if (integer(k, c, 0, 0, "NSID") != 0 || integer(k, c, 0, 1, "NSIDEX") != 0 ||
+        integer(k, c, 0, 2, "BOXID") != 0)
       note(k.at(), "NSID, NSIDEX and BOXID: the wall acts on every node of every mesh body", true);
-    if (real(k, c, 0, 3, "OFFSET") != 0.0 || real(k, c, 0, 4, "BIRTH") != 0.0 || real(k, c, 0, 5, "DEATH") != 0.0 ||
-        real(k, c, 1, 7, "WVEL") != 0.0)
+    if (real(k, c, 0, 3, "OFFSET") != 0.0 || real(k, c, 0, 4, "BIRTH") != 0.0 ||
+        real(k, c, 0, 5, "DEATH") != 0.0 || real(k, c, 1, 7, "WVEL") != 0.0)
       note(k.at(), "OFFSET, BIRTH, DEATH and WVEL", false);
-    if (w.friction >= 1.0) note(k.at(), "FRIC >= 1 (no sliding) is written as Coulomb friction " + num(w.friction), true);
+    if (w.friction >= 1.0)
+      note(k.at(), "FRIC >= 1 (no sliding) is written as Coulomb friction " + num(w.friction),
+           true);
     walls_.push_back(w);
   }
 
@@ -424,42 +480,53 @@ class LsDynaImport {
   std::string material_table(const LsDynaPart& p) {
     const auto m = materials_.find(p.material);
     if (m == materials_.end())
-      throw core::InputError(p.card.at(), "*PART",
-                             "part " + std::to_string(p.id) + " names material " + std::to_string(p.material) +
-                                 ", which is not defined; translated materials: *MAT_ELASTIC, "
-                                 "*MAT_PLASTIC_KINEMATIC, *MAT_JOHNSON_COOK, *MAT_JOHNSON_HOLMQUIST_CONCRETE");
+      throw core::InputError(
+          p.card.at(), "*PART",
+          "part " + std::to_string(p.id) + " names material " + std::to_string(p.material) +
+              ", which is not defined; translated materials: *MAT_ELASTIC, "
+              "*MAT_PLASTIC_KINEMATIC, *MAT_JOHNSON_COOK, *MAT_JOHNSON_HOLMQUIST_CONCRETE");
     const Material& mat = m->second;
     const Eos* eos = nullptr;
     if (p.eos != 0) {
       const auto e = eos_.find(p.eos);
       if (e == eos_.end())
-        throw core::InputError(p.card.at(), "*PART",
-                               "part " + std::to_string(p.id) + " names EOS " + std::to_string(p.eos) +
-                                   ", which is not defined; translated: *EOS_GRUNEISEN, *EOS_LINEAR_POLYNOMIAL");
+        throw core::InputError(
+            p.card.at(), "*PART",
+            "part " + std::to_string(p.id) + " names EOS " + std::to_string(p.eos) +
+                ", which is not defined; translated: *EOS_GRUNEISEN, *EOS_LINEAR_POLYNOMIAL");
       eos = &e->second;
     }
     std::string s = "density = " + num(mat.density) + "\n";
     if (mat.kind == "hjc") {
       if (eos != nullptr)
-        notes_.push_back({p.card.at(), "*PART", "EOS " + std::to_string(p.eos) + " of part " + std::to_string(p.id) +
-                                                    ": *MAT_JOHNSON_HOLMQUIST_CONCRETE has its own compaction EOS", false});
+        notes_.push_back({p.card.at(), "*PART",
+                          "EOS " + std::to_string(p.eos) + " of part " + std::to_string(p.id) +
+                              ": *MAT_JOHNSON_HOLMQUIST_CONCRETE has its own compaction EOS",
+                          false});
       return s + mat.body;
     }
     double E = mat.E, nu = mat.nu;
     if (mat.kind == "johnson-cook") {
       if (eos == nullptr)
-        throw core::InputError(p.card.at(), "*PART",
-                               "part " + std::to_string(p.id) + ": *MAT_JOHNSON_COOK needs an EOS (EOSID)");
-      const double K = eos->table.find("mie-gruneisen") != std::string::npos ? mat.density * eos->bulk_modulus
-                                                                             : eos->bulk_modulus;
+        throw core::InputError(
+            p.card.at(), "*PART",
+            "part " + std::to_string(p.id) + ": *MAT_JOHNSON_COOK needs an EOS (EOSID)");
+      const double K = eos->table.find("mie-gruneisen") != std::string::npos
+                           ? mat.density * eos->bulk_modulus
+                           : eos->bulk_modulus;
       if (E <= 0.0 || nu <= 0.0) {
         if (mat.G <= 0.0 || K <= 0.0)
-          throw core::InputError(mat.at, mat.keyword, "G and a bulk modulus from the EOS are needed for E and nu");
+          throw core::InputError(mat.at, mat.keyword,
+                                 "G and a bulk modulus from the EOS are needed for E and nu");
         E = 9.0 * K * mat.G / (3.0 * K + mat.G);
         nu = (3.0 * K - 2.0 * mat.G) / (2.0 * (3.0 * K + mat.G));
-        notes_.push_back({mat.at, mat.keyword, "E and PR (blank) follow from G and the EOS's bulk modulus " + num(K), true});
+        notes_.push_back({mat.at, mat.keyword,
+                          "E and PR (blank) follow from G and the EOS's bulk modulus " + num(K),
+                          true});
       } else if (mat.G > 0.0 && std::abs(E / (2.0 * (1.0 + nu)) - mat.G) > 0.01 * mat.G) {
-        notes_.push_back({mat.at, mat.keyword, "G differs from E / (2 (1 + PR)) by more than 1 %; afemp uses E and PR", true});
+        notes_.push_back({mat.at, mat.keyword,
+                          "G differs from E / (2 (1 + PR)) by more than 1 %; afemp uses E and PR",
+                          true});
       }
     }
     s += "E = " + num(E) + "\nnu = " + num(nu) + "\n" + mat.body;
@@ -471,8 +538,9 @@ class LsDynaImport {
     std::string s = "[run]\n";
     if (!title_.empty()) s += "title = " + core::toml_string(title_) + "\n";
     if (end_time_ <= 0.0)
-      throw core::InputError({deck_path_, 0}, "*CONTROL_TERMINATION",
-                             "the deck gives no end time: ENDTIM of *CONTROL_TERMINATION is needed");
+      throw core::InputError(
+          {deck_path_, 0}, "*CONTROL_TERMINATION",
+          "the deck gives no end time: ENDTIM of *CONTROL_TERMINATION is needed");
     s += "end_time = " + num(end_time_) + "\n";
     if (output_every_ > 0.0) s += "output_every = " + num(output_every_) + "\n";
     if (tssfac_ > 0.0) s += "element_time_step_factor = " + num(std::min(tssfac_, 1.0)) + "\n";
@@ -490,61 +558,85 @@ class LsDynaImport {
                    materials_[key.first].keyword + "\n" + material_table(p->second);
     }
     for (const auto& [mid, m] : materials_)
-      if (std::none_of(written.begin(), written.end(), [&](const auto& w) { return w.first == mid; }))
-        notes_.push_back({m.at, m.keyword, "material " + std::to_string(mid) + " is used by no part with elements", false});
+      if (std::none_of(written.begin(), written.end(),
+                       [&](const auto& w) { return w.first == mid; }))
+        notes_.push_back({m.at, m.keyword,
+                          "material " + std::to_string(mid) + " is used by no part with elements",
+                          false});
     s += materials;
 
     const std::filesystem::path scene_dir = std::filesystem::absolute(scene_path_).parent_path();
-    const std::string mesh_file =
-        std::filesystem::absolute(deck_path_).lexically_normal().lexically_relative(scene_dir).generic_string();
+    const std::string mesh_file = std::filesystem::absolute(deck_path_)
+                                      .lexically_normal()
+                                      .lexically_relative(scene_dir)
+                                      .generic_string();
     const double scale = units_(1.0, dim::length);
     for (std::size_t i = 0; i < mesh.part_names.size(); ++i) {
       const std::int64_t label = mesh.part_labels[i];
       const auto p = parts_.find(label);
       if (p == parts_.end())
-        throw core::InputError({deck_path_, 0}, "*PART",
-                               "elements name part " + std::to_string(label) + ", which no *PART defines");
+        throw core::InputError(
+            {deck_path_, 0}, "*PART",
+            "elements name part " + std::to_string(label) + ", which no *PART defines");
       const LsDynaPart& part = p->second;
       const bool hexahedra = std::find(mesh.hexahedron_part.begin(), mesh.hexahedron_part.end(),
                                        static_cast<std::int32_t>(i)) != mesh.hexahedron_part.end();
       if (!hexahedra && scale != 1.0)
-        throw core::InputError(part.card.at(), "--units",
-                               "part " + std::to_string(label) + " has beams, whose section areas are "
-                               "read from the deck unconverted; import this deck without --units");
-      s += "\n[[bodies]]\nname = " + core::toml_string(mesh.part_names[i]) + "  # *PART " + std::to_string(label) +
-           "\ndiscretisation = \"" + (hexahedra ? "hexahedra" : "trusses") + "\"\nmaterial = \"" +
-           material_name(part.material, part.eos) + "\"\nshape = { mesh = { file = " + core::toml_string(mesh_file) +
-           ", parts = [" + core::toml_string(mesh.part_names[i]) + "]" + (scale != 1.0 ? ", scale = " + num(scale) : "") +
-           " } }\n";
+        throw core::InputError(
+            part.card.at(), "--units",
+            "part " + std::to_string(label) +
+                " has beams, whose section areas are "
+                "read from the deck unconverted; import this deck without --units");
+      s += "\n[[bodies]]\nname = " + core::toml_string(mesh.part_names[i]) + "  # *PART " +
+           std::to_string(label) + "\ndiscretisation = \"" + (hexahedra ? "hexahedra" : "trusses") +
+           "\"\nmaterial = \"" + material_name(part.material, part.eos) +
+           "\"\nshape = { mesh = { file = " + core::toml_string(mesh_file) + ", parts = [" +
+           core::toml_string(mesh.part_names[i]) + "]" +
+           (scale != 1.0 ? ", scale = " + num(scale) : "") + " } }\n";
       if (hexahedra) {
         const auto sec = solid_elform_.find(part.section);
         if (sec == solid_elform_.end())
-          throw core::InputError(part.card.at(), "*PART",
-                                 "part " + std::to_string(label) + " of solid elements names section " +
-                                     std::to_string(part.section) + ", which no *SECTION_SOLID defines");
+          throw core::InputError(
+              part.card.at(), "*PART",
+              "part " + std::to_string(label) + " of solid elements names section " +
+                  std::to_string(part.section) + ", which no *SECTION_SOLID defines");
         if (sec->second == 2) s += "element = \"full\"\n";
       }
       if (part.hourglass != 0) {
         const auto h = hourglass_.find(part.hourglass);
         if (h == hourglass_.end())
           throw core::InputError(part.card.at(), "*PART",
-                                 "part " + std::to_string(label) + " names hourglass " + std::to_string(part.hourglass) +
+                                 "part " + std::to_string(label) + " names hourglass " +
+                                     std::to_string(part.hourglass) +
                                      ", which no *HOURGLASS defines");
-        if (hexahedra && solid_elform_[part.section] == 1) s += "hourglass = " + h->second.hourglass + "\n";
-        if (!h->second.bulk_viscosity.empty()) s += "bulk_viscosity = " + h->second.bulk_viscosity + "\n";
+        if (hexahedra && solid_elform_[part.section] == 1)
+          s += "hourglass = " + h->second.hourglass + "\n";
+        if (!h->second.bulk_viscosity.empty())
+          s += "bulk_viscosity = " + h->second.bulk_viscosity + "\n";
       }
       const auto v = velocity_.count(label) != 0 ? velocity_.find(label) : velocity_.find(0);
-      if (v != velocity_.end()) s += "velocity = " + core::toml_vec3(v->second.x, v->second.y, v->second.z) + "\n";
-      if (const auto e = eos_.find(part.eos); part.eos != 0 && e != eos_.end() && e->second.e0 != 0.0)
-        s += "internal_energy = " + num(e->second.e0 / materials_[part.material].density) + "  # E0 / RO\n";
+      if (v != velocity_.end()) {
+        const core::Vec3& u = v->second.first;
+        s += "velocity = " + core::toml_vec3(u.x, u.y, u.z) + "\n";
+      }
+      if (const auto e = eos_.find(part.eos);
+          part.eos != 0 && e != eos_.end() && e->second.e0 != 0.0)
+        s += "internal_energy = " + num(e->second.e0 / materials_[part.material].density) +
+             "  # E0 / RO\n";
     }
-    for (const auto& [label, v] : velocity_)
-      if (label != 0 && std::find(mesh.part_labels.begin(), mesh.part_labels.end(), label) == mesh.part_labels.end())
-        notes_.push_back({{deck_path_, 0}, "*INITIAL_VELOCITY_GENERATION",
-                          "part " + std::to_string(label) + " has no elements", false});
+    for (const auto& [label, v] : velocity_) {
+      if (label == 0 || std::find(mesh.part_labels.begin(), mesh.part_labels.end(), label) !=
+                            mesh.part_labels.end())
+        continue;
+      core::DeckNote n;
+      n.at = v.second;
+      n.keyword = "*INITIAL_VELOCITY_GENERATION";
+      n.what = "part " + std::to_string(label) + " has no elements";
+      notes_.push_back(std::move(n));
+    }
     for (const Wall& w : walls_) {
-      s += "\n[[walls]]\npoint = " + core::toml_vec3(w.point.x, w.point.y, w.point.z) + "\nnormal = " +
-           core::toml_vec3(w.normal.x, w.normal.y, w.normal.z) + "\n";
+      s += "\n[[walls]]\npoint = " + core::toml_vec3(w.point.x, w.point.y, w.point.z) +
+           "\nnormal = " + core::toml_vec3(w.normal.x, w.normal.y, w.normal.z) + "\n";
       if (w.friction > 0.0) s += "friction = " + num(w.friction) + "\n";
     }
     return s;
@@ -564,7 +656,7 @@ class LsDynaImport {
   std::map<std::int64_t, Material> materials_;
   std::map<std::int64_t, Eos> eos_;
   std::map<std::int64_t, Hourglass> hourglass_;
-  std::map<std::int64_t, core::Vec3> velocity_;
+  std::map<std::int64_t, std::pair<core::Vec3, core::SourceLocation>> velocity_;
   std::vector<Wall> walls_;
 };
 

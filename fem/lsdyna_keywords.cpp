@@ -69,8 +69,9 @@ void LsDynaDeck::add_file(std::string text, const std::string& path,
     } else if (in_include) {
       const std::string_view name = core::trim(line);
       if (name.empty()) continue;
-      const std::string file =
-          (std::filesystem::path(path).parent_path() / std::string(name)).lexically_normal().string();
+      const std::string file = (std::filesystem::path(path).parent_path() / std::string(name))
+                                   .lexically_normal()
+                                   .string();
       if (std::find(open.begin(), open.end(), file) != open.end())
         throw core::InputError(src.at(i), "*INCLUDE", "'" + file + "' includes itself");
       add_file(read_text(file, src.at(i), "*INCLUDE"), file, open);

@@ -194,8 +194,8 @@ class LsDynaReader {
       const auto f1 = card_fields(c1, kStandardColumns);
       const std::int64_t secid = integer(f1, 0, c1, "the section id");
       const std::int64_t elform = integer(f1, 1, c1, "ELFORM");
-      const double area = elform == 2 || elform == 3 ? real(card_fields(c2, kStandardColumns), 0, c2,
-                                                            "the cross-section area A")
+      const double area = elform == 2 || elform == 3 ? real(card_fields(c2, kStandardColumns), 0,
+                                                            c2, "the cross-section area A")
                                                      : 0.0;
       if (!beam_area_.emplace(secid, area).second)
         throw core::InputError(at(c1), key_,
@@ -287,8 +287,8 @@ class LsDynaReader {
     for (const auto& [sid, list] : node_lists_) {
       NamedSet set{list.name, {}};
       for (const auto& [nid, card] : list.nodes)
-        set.members.push_back(numbering_.index(nid, card->at(), "*SET_NODE_LIST",
-                                               "node set " + std::to_string(sid)));
+        set.members.push_back(
+            numbering_.index(nid, card->at(), "*SET_NODE_LIST", "node set " + std::to_string(sid)));
       std::sort(set.members.begin(), set.members.end());
       set.members.erase(std::unique(set.members.begin(), set.members.end()), set.members.end());
       set_index_.emplace(sid, static_cast<std::int32_t>(mesh_.node_sets.size()));

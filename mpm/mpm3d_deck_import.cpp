@@ -62,8 +62,7 @@ class Words {
   std::string_view peek() const { return done() ? std::string_view{} : tokens_[next_].text; }
 
   std::string_view word(const std::string& key, const std::string& what) {
-    if (done())
-      throw core::InputError(at(), key, "the deck ends where " + what + " should follow");
+    if (done()) throw core::InputError(at(), key, "the deck ends where " + what + " should follow");
     return tokens_[next_++].text;
   }
   double real(const std::string& key, const std::string& what) {
@@ -79,7 +78,8 @@ class Words {
     std::vector<std::string_view> out;
     if (done()) return out;
     const std::size_t line = next_ > 0 ? tokens_[next_ - 1].line : tokens_[next_].line;
-    while (next_ < tokens_.size() && tokens_[next_].line == line) out.push_back(tokens_[next_++].text);
+    while (next_ < tokens_.size() && tokens_[next_].line == line)
+      out.push_back(tokens_[next_++].text);
     return out;
   }
   const core::SourceText& source() const { return src_; }
@@ -140,6 +140,7 @@ class Mpm3dImport {
     core::DeckImport out;
     const std::string body = scene(out.files);  // may add notes
     out.notes = notes_;
+    out.units = units_.description();
     out.scene = core::imported_scene_header(deck_path_, core::DeckFormat::mpm3d,
                                             units_.description(), notes_) +
                 "\n" + body;
@@ -212,9 +213,10 @@ class Mpm3dImport {
       for (int f = 0; f < 6; ++f) {
         const long c = words_.integer(key_, "a face condition (0 free, 1 fixed, 2 symmetric)");
         if (c < 0 || c > 2)
-          throw core::InputError(words_.at(), key_,
-                                 "face conditions are 0 (free), 1 (fixed) or 2 (symmetric), found " +
-                                     std::to_string(c));
+          throw core::InputError(
+              words_.at(), key_,
+              "face conditions are 0 (free), 1 (fixed) or 2 (symmetric), found " +
+                  std::to_string(c));
         faces_[f] = static_cast<int>(c);
       }
     } else if (k == "mate") {
@@ -260,13 +262,14 @@ class Mpm3dImport {
       words_.real(key_, "its value");
       note(key_, "quasi-static loading and damping are not part of afemp", false);
     } else {
-      throw core::InputError(words_.at(), key_,
-                             "unknown MPM3D keyword; known: mpm3d, nbmp, nmat, nbco, nbbo, ppc, "
-                             "nbgn, endtime, dt, tstep, ostep, outtime, rpttime, grid, spx, spy, "
-                             "spz, dcell, dtscale, fixed, material, seos, particle, musl, usf, usl, "
-                             "jaum, gimp, bulk, velo, load, contact, outres, curv, curx, pt2d, "
-                             "tecp, para, deto, drda, bimp, sgmp, smoo, TLmp, UVFp, QuLo, Damp, "
-                             "endi");
+      throw core::InputError(
+          words_.at(), key_,
+          "unknown MPM3D keyword; known: mpm3d, nbmp, nmat, nbco, nbbo, ppc, "
+          "nbgn, endtime, dt, tstep, ostep, outtime, rpttime, grid, spx, spy, "
+          "spz, dcell, dtscale, fixed, material, seos, particle, musl, usf, usl, "
+          "jaum, gimp, bulk, velo, load, contact, outres, curv, curx, pt2d, "
+          "tecp, para, deto, drda, bimp, sgmp, smoo, TLmp, UVFp, QuLo, Damp, "
+          "endi");
     }
   }
 
@@ -287,8 +290,8 @@ class Mpm3dImport {
       id = words_.integer(key_, "a material number");
       if (id <= 0 || id > nmat_)
         throw core::InputError(words_.at(), key_,
-                               "material number " + std::to_string(id) + ": allowed 1 to nmat = " +
-                                   std::to_string(nmat_));
+                               "material number " + std::to_string(id) +
+                                   ": allowed 1 to nmat = " + std::to_string(nmat_));
       Material m;
       m.id = id;
       m.type = key_of(words_.word(key_, "a material type"));
@@ -310,17 +313,24 @@ class Mpm3dImport {
                                    fields + "; found " + std::to_string(v.size()) + " values");
     };
     const auto stress = [&](double s) { return core::toml_number(units_(s, dim::stress)); };
-    if (m.type == "elas") want({3}, "density, E, nu");
-    else if (m.type == "pla1") want({4}, "density, E, nu, yield");
-    else if (m.type == "pla2") want({5}, "density, E, nu, yield, tangent modulus");
-    else if (m.type == "sjc") want({8}, "density, E, nu, A, B, n, C, epso");
-    else if (m.type == "sjcf") want({9}, "density, E, nu, A, B, n, C, epso, epf");
+    if (m.type == "elas")
+      want({3}, "density, E, nu");
+    else if (m.type == "pla1")
+      want({4}, "density, E, nu, yield");
+    else if (m.type == "pla2")
+      want({5}, "density, E, nu, yield, tangent modulus");
+    else if (m.type == "sjc")
+      want({8}, "density, E, nu, A, B, n, C, epso");
+    else if (m.type == "sjcf")
+      want({9}, "density, E, nu, A, B, n, C, epso, epf");
     else if (m.type == "john")
-      want({7, 12}, "density, E, nu, A, B, n, C (MPM3D 2005) or those and m, room and melt "
-                    "temperature, specific heat, epso (MPM3D-F90)");
+      want({7, 12},
+           "density, E, nu, A, B, n, C (MPM3D 2005) or those and m, room and melt "
+           "temperature, specific heat, epso (MPM3D-F90)");
     else if (m.type == "jcf")
-      want({13}, "density, E, nu, A, B, n, C, m, room and melt temperature, specific heat, epso, "
-                 "epf");
+      want({13},
+           "density, E, nu, A, B, n, C, m, room and melt temperature, specific heat, epso, "
+           "epf");
     else
       throw core::InputError(
           m.at, key_,
@@ -371,15 +381,17 @@ class Mpm3dImport {
     const core::SourceLocation at = words_.at();
     const auto it = materials_.find(set);
     if (it == materials_.end())
-      throw core::InputError(at, key_, "material " + std::to_string(set) + " is not defined (seos comes after material)");
+      throw core::InputError(
+          at, key_,
+          "material " + std::to_string(set) + " is not defined (seos comes after material)");
     std::vector<double> v;
     for (std::string_view w : words_.rest_of_line())
       v.push_back(core::to_real(w, at, key_, "an EOS value"));
     Material& m = it->second;
     const auto speed = [&](double c) { return core::toml_number(units_(c, dim::velocity)); };
     if ((type == 2 && v.size() == 4) || (type == 1 && v.size() == 3)) {
-      m.eos = "{ model = \"mie-gruneisen\", c0 = " + speed(v[0]) + ", s = " +
-              core::toml_number(v[1]) + ", gamma0 = " + core::toml_number(v[2]) + " }";
+      m.eos = "{ model = \"mie-gruneisen\", c0 = " + speed(v[0]) +
+              ", s = " + core::toml_number(v[1]) + ", gamma0 = " + core::toml_number(v[2]) + " }";
       if (v.size() == 4) m.e0 = v[3];
     } else if (type == 1 && v.size() == 8) {
       m.eos = "{ model = \"linear-polynomial\"";
@@ -388,13 +400,15 @@ class Mpm3dImport {
       m.eos += " }";
       m.e0 = v[7];
     } else if (type == 3 || type == 4) {
-      throw core::InputError(at, key_,
-                             std::string(type == 3 ? "the JWL EOS (type 3)" : "the weakly compressible EOS (type 4)") +
-                                 " has no afemp counterpart; translated: 1 (linear polynomial: "
-                                 "C0..C6, E0), 2 (Grueneisen: c0, lambda, gamma0, E0)");
+      throw core::InputError(
+          at, key_,
+          std::string(type == 3 ? "the JWL EOS (type 3)" : "the weakly compressible EOS (type 4)") +
+              " has no afemp counterpart; translated: 1 (linear polynomial: "
+              "C0..C6, E0), 2 (Grueneisen: c0, lambda, gamma0, E0)");
     } else {
       throw core::InputError(at, key_,
-                             "EOS type " + std::to_string(type) + " with " + std::to_string(v.size()) +
+                             "EOS type " + std::to_string(type) + " with " +
+                                 std::to_string(v.size()) +
                                  " values; allowed: 1 with C0..C6, E0 (8 values), 2 with c0, "
                                  "lambda, gamma0, E0 (4 values)");
     }
@@ -404,8 +418,10 @@ class Mpm3dImport {
     const long id = words_.integer(key_, what);
     if (materials_.find(id) == materials_.end())
       throw core::InputError(words_.at(), key_,
-                             "material " + std::to_string(id) + " is not defined; define it under "
-                             "'material' (nmat " + std::to_string(nmat_) + ") before the particles");
+                             "material " + std::to_string(id) +
+                                 " is not defined; define it under "
+                                 "'material' (nmat " +
+                                 std::to_string(nmat_) + ") before the particles");
     return id;
   }
 
@@ -446,14 +462,17 @@ class Mpm3dImport {
     }
     if (option != "bloc" && option != "sphe" && option != "blod" && option != "cicl")
       throw core::InputError(words_.at(), key_,
-                             "particle option '" + option + "'; allowed: point, block, sphere, "
-                             "blod, cicl");
+                             "particle option '" + option +
+                                 "'; allowed: point, block, sphere, "
+                                 "blod, cicl");
     Body& body = new_body(component, material_id("the material"));
     const double density = units_(words_.real(key_, "the density"), dim::density);
     const double dp = length();
     const double mass = density * dp * dp * dp;
     const core::Vec3 o{length(), length(), length()};
-    const auto add = [&](double x, double y, double z) { body.points.push_back({{x, y, z}, mass}); };
+    const auto add = [&](double x, double y, double z) {
+      body.points.push_back({{x, y, z}, mass});
+    };
     if (option == "bloc" || option == "blod") {
       const long nx = words_.integer(key_, "nx"), ny = words_.integer(key_, "ny"),
                  nz = words_.integer(key_, "nz");
@@ -461,7 +480,8 @@ class Mpm3dImport {
       double r2 = -1.0;
       if (option == "blod") {
         hole = {length(), length(), length()};
-        const double nr = static_cast<double>(words_.integer(key_, "the hole's radius in spacings"));
+        const double nr =
+            static_cast<double>(words_.integer(key_, "the hole's radius in spacings"));
         r2 = nr * dp * nr * dp;
       }
       for (long iz = 0; iz < nz; ++iz)
@@ -519,13 +539,15 @@ class Mpm3dImport {
   Body& body_numbered(long n, const char* by) {
     if (n < 1 || n > static_cast<long>(bodies_.size()))
       throw core::InputError(words_.at(), key_,
-                             std::string(by) + " " + std::to_string(n) + " is not defined; bodies 1 to " +
-                                 std::to_string(bodies_.size()) + " (in the order of the particle sets)");
+                             std::string(by) + " " + std::to_string(n) +
+                                 " is not defined; bodies 1 to " + std::to_string(bodies_.size()) +
+                                 " (in the order of the particle sets)");
     return bodies_[static_cast<std::size_t>(n - 1)];
   }
 
   core::Vec3 velocity() {
-    const double x = words_.real(key_, "vx"), y = words_.real(key_, "vy"), z = words_.real(key_, "vz");
+    const double x = words_.real(key_, "vx"), y = words_.real(key_, "vy"),
+                 z = words_.real(key_, "vz");
     return {units_(x, dim::velocity), units_(y, dim::velocity), units_(z, dim::velocity)};
   }
 
@@ -552,8 +574,10 @@ class Mpm3dImport {
       } else if (k == "node") {
         const long p = words_.integer(key_, "the particle number");
         velocity();
-        note(key_, "the initial velocity of particle " + std::to_string(p) +
-                       " alone (afemp gives a body one initial velocity)", false);
+        note(key_,
+             "the initial velocity of particle " + std::to_string(p) +
+                 " alone (afemp gives a body one initial velocity)",
+             false);
       } else if (k == "ksin" || k == "nuli" || k == "vsin") {
         words_.rest_of_line();
         note(key_, "a velocity profile built into MPM3D-F90 for one test case", false);
@@ -571,16 +595,20 @@ class Mpm3dImport {
       if (k == "endl") return;
       if (k == "grav") {
         Body& b = body_numbered(words_.integer(key_, "the body number"), "body");
-        const double x = words_.real(key_, "gx"), y = words_.real(key_, "gy"), z = words_.real(key_, "gz");
+        const double x = words_.real(key_, "gx"), y = words_.real(key_, "gy"),
+                     z = words_.real(key_, "gz");
         b.gravity = core::Vec3{units_(x, dim::acceleration), units_(y, dim::acceleration),
                                units_(z, dim::acceleration)};
       } else if (k == "body" || k == "part") {
         words_.integer(key_, "the number");
         for (int a = 0; a < 3; ++a) words_.real(key_, "a force component");
-        note(key_, "a constant force on a " + std::string(k == "body" ? "body" : "particle") +
-                       " (afemp's scenes take gravity, not point forces)", false);
+        note(key_,
+             "a constant force on a " + std::string(k == "body" ? "body" : "particle") +
+                 " (afemp's scenes take gravity, not point forces)",
+             false);
       } else {
-        throw core::InputError(words_.at(), key_, "'" + k + "' in load; allowed: grav, body, part, endl");
+        throw core::InputError(words_.at(), key_,
+                               "'" + k + "' in load; allowed: grav, body, part, endl");
       }
     }
   }
@@ -596,14 +624,17 @@ class Mpm3dImport {
       throw core::InputError(words_.at(), key_, "'" + k + "'; allowed: lagr, others, on, off");
     friction_ = words_.real(key_, "the friction coefficient");
     words_.integer(key_, "the normal's method");
-    note(key_, "Bardenhagen's grid contact is written as afemp's (Lian et al. 2013, eqs 37-42: "
-               "collinear normals, the distance criterion)", true);
+    note(key_,
+         "Bardenhagen's grid contact is written as afemp's (Lian et al. 2013, eqs 37-42: "
+         "collinear normals, the distance criterion)",
+         true);
   }
 
   void check_counts() {
     std::size_t particles = 0;
     for (const Body& b : bodies_) particles += b.points.size();
-    if (bodies_.empty()) throw core::InputError({deck_path_, 0}, "particle", "the deck defines no particles");
+    if (bodies_.empty())
+      throw core::InputError({deck_path_, 0}, "particle", "the deck defines no particles");
     if (nbmp_ > 0 && static_cast<std::size_t>(nbmp_) != particles)
       throw core::InputError({deck_path_, 0}, "nbmp",
                              "nbmp is " + std::to_string(nbmp_) + " but the particle sets make " +
@@ -612,54 +643,67 @@ class Mpm3dImport {
       throw core::InputError({deck_path_, 0}, "nbbo",
                              "nbbo is " + std::to_string(nbbo_) + " but the deck has " +
                                  std::to_string(bodies_.size()) + " particle sets");
-    if (cell_ <= 0.0) throw core::InputError({deck_path_, 0}, "dcell", "the deck gives no cell size (dcell)");
+    if (cell_ <= 0.0)
+      throw core::InputError({deck_path_, 0}, "dcell", "the deck gives no cell size (dcell)");
     for (int a = 0; a < 3; ++a)
       if (!(span_max_[a] > span_min_[a]))
-        throw core::InputError({deck_path_, 0}, std::string("sp") + char('x' + a),
-                               "the grid's extent along " + std::string(1, char('x' + a)) +
-                                   " is missing or empty");
+        throw core::InputError(
+            {deck_path_, 0}, std::string("sp") + char('x' + a),
+            "the grid's extent along " + std::string(1, char('x' + a)) + " is missing or empty");
   }
 
   std::string scene(std::vector<core::DeckFile>& files) {
     std::string s = "[run]\n";
     if (!title_.empty()) s += "title = " + core::toml_string(title_) + "\n";
     double end_time = end_time_;
-    if (time_step_ > 0.0 && steps_ > 0 && end_time <= 0.0) end_time = time_step_ * static_cast<double>(steps_);
+    if (time_step_ > 0.0 && steps_ > 0 && end_time <= 0.0)
+      end_time = time_step_ * static_cast<double>(steps_);
     if (end_time <= 0.0)
-      throw core::InputError({deck_path_, 0}, "endtime", "the deck gives no end time (endtime, or dt and tstep)");
+      throw core::InputError({deck_path_, 0}, "endtime",
+                             "the deck gives no end time (endtime, or dt and tstep)");
     s += "end_time = " + core::toml_number(end_time) + "\n";
     double output = output_every_;
-    if (output <= 0.0 && output_steps_ > 0 && time_step_ > 0.0) output = time_step_ * static_cast<double>(output_steps_);
+    if (output <= 0.0 && output_steps_ > 0 && time_step_ > 0.0)
+      output = time_step_ * static_cast<double>(output_steps_);
     s += "output_every = " + core::toml_number(output > 0.0 ? output : end_time) + "\n";
     if (time_step_ > 0.0) {
       s += "time_step = " + core::toml_number(time_step_) + "\n";
     } else {
       double f = dtscale_;
       if (f > 1.0) {
-        notes_.push_back({dtscale_at_, "dtscale", "dtscale " + core::toml_number(f) + " is above afemp's largest factor 1; written as 1", true});
+        notes_.push_back(
+            {dtscale_at_, "dtscale",
+             "dtscale " + core::toml_number(f) + " is above afemp's largest factor 1; written as 1",
+             true});
         f = 1.0;
       }
-      s += "time_step_factor = " + core::toml_number(f) + (dtscale_at_.line == 0 ? "  # MPM3D-F90's default dtscale" : "") + "\n";
+      s += "time_step_factor = " + core::toml_number(f) +
+           (dtscale_at_.line == 0 ? "  # MPM3D-F90's default dtscale" : "") + "\n";
     }
     // One gravity for the scene: the bodies' own, when they agree.
     std::optional<core::Vec3> gravity;
     for (const Body& b : bodies_)
       if (b.gravity) {
-        if (gravity && (gravity->x != b.gravity->x || gravity->y != b.gravity->y || gravity->z != b.gravity->z))
-          notes_.push_back({b.at, "load grav", "bodies with different gravity: afemp's scene has one; the first is written", true});
+        if (gravity && (gravity->x != b.gravity->x || gravity->y != b.gravity->y ||
+                        gravity->z != b.gravity->z))
+          notes_.push_back(
+              {b.at, "load grav",
+               "bodies with different gravity: afemp's scene has one; the first is written", true});
         if (!gravity) gravity = b.gravity;
       }
     if (gravity) s += "gravity = " + core::toml_vec3(gravity->x, gravity->y, gravity->z) + "\n";
 
-    static constexpr std::array<const char*, 6> face_names{"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+    static constexpr std::array<const char*, 6> face_names{"xmin", "xmax", "ymin",
+                                                           "ymax", "zmin", "zmax"};
     static constexpr std::array<const char*, 3> conditions{"free", "fixed", "symmetric"};
-    s += "\n[grid]\ncell = " + core::toml_number(cell_) + "\nmin = " +
-         core::toml_vec3(span_min_[0], span_min_[1], span_min_[2]) + "\nmax = " +
-         core::toml_vec3(span_max_[0], span_max_[1], span_max_[2]) + "\n";
+    s += "\n[grid]\ncell = " + core::toml_number(cell_) +
+         "\nmin = " + core::toml_vec3(span_min_[0], span_min_[1], span_min_[2]) +
+         "\nmax = " + core::toml_vec3(span_max_[0], span_max_[1], span_max_[2]) + "\n";
     std::string faces;
     for (int f = 0; f < 6; ++f)
       if (faces_[f] != 0)
-        faces += std::string(faces.empty() ? "" : ", ") + face_names[f] + " = \"" + conditions[faces_[f]] + "\"";
+        faces += std::string(faces.empty() ? "" : ", ") + face_names[f] + " = \"" +
+                 conditions[faces_[f]] + "\"";
     if (!faces.empty()) s += "boundary = { " + faces + " }\n";
 
     if (contact_ && bodies_.size() > 1 && scheme_ == "USL") {
@@ -670,24 +714,30 @@ class Mpm3dImport {
       scheme_ = "MUSL";
       scheme_set_ = true;
     }
-    s += "\n[mpm]\nscheme = \"" + scheme_ + "\"" + (scheme_set_ ? "" : "  # MPM3D's default") + "\njaumann = " + (jaumann_ ? "true" : "false") + "\n";
+    s += "\n[mpm]\nscheme = \"" + scheme_ + "\"" + (scheme_set_ ? "" : "  # MPM3D's default") +
+         "\njaumann = " + (jaumann_ ? "true" : "false") + "\n";
     if (gimp_) s += "shape_function = \"gimp\"\n";
 
     std::set<long> used;
     for (const Body& b : bodies_) used.insert(b.material);
     for (const auto& [id, m] : materials_) {
       if (used.count(id) == 0) {
-        notes_.push_back({m.at, "material", "material " + std::to_string(id) + " is used by no particle set and is left out", false});
+        notes_.push_back(
+            {m.at, "material",
+             "material " + std::to_string(id) + " is used by no particle set and is left out",
+             false});
         continue;
       }
       s += "\n[materials.material" + std::to_string(id) + "]  # " + m.type + "\n";
       s += "density = " + core::toml_number(m.density) + "\nE = " + core::toml_number(m.E) +
            "\nnu = " + core::toml_number(m.nu) + "\nstrength = " + m.strength + "\n";
       if (!m.eos.empty()) s += "eos = " + m.eos + "\n";
-      if (m.specific_heat > 0.0) s += "specific_heat = " + core::toml_number(m.specific_heat) + "\n";
+      if (m.specific_heat > 0.0)
+        s += "specific_heat = " + core::toml_number(m.specific_heat) + "\n";
       if (m.temperature >= 0.0) s += "temperature = " + core::toml_number(m.temperature) + "\n";
       if (m.failure_strain > 0.0)
-        s += "failure = { model = \"plastic-strain\", strain = " + core::toml_number(m.failure_strain) + " }\n";
+        s += "failure = { model = \"plastic-strain\", strain = " +
+             core::toml_number(m.failure_strain) + " }\n";
     }
 
     for (std::size_t i = 0; i < bodies_.size(); ++i) {
@@ -699,27 +749,33 @@ class Mpm3dImport {
                            std::to_string(b.component) + "): x y z volume\n";
       char line[128];
       for (const Point& p : b.points) {
-        std::snprintf(line, sizeof line, "%.9g %.9g %.9g %.9g\n", p.x.x, p.x.y, p.x.z, p.mass / m.density);
+        std::snprintf(line, sizeof line, "%.9g %.9g %.9g %.9g\n", p.x.x, p.x.y, p.x.z,
+                      p.mass / m.density);
         points += line;
       }
       files.push_back({file, std::move(points)});
       s += "\n[[bodies]]\nname = \"" + name + "\"  # component " + std::to_string(b.component) +
            ", " + std::to_string(b.points.size()) + " particles\nmaterial = \"material" +
-           std::to_string(b.material) + "\"\nshape = { points = { file = " + core::toml_string(file) + " } }\n";
-      if (b.velocity) s += "velocity = " + core::toml_vec3(b.velocity->x, b.velocity->y, b.velocity->z) + "\n";
+           std::to_string(b.material) +
+           "\"\nshape = { points = { file = " + core::toml_string(file) + " } }\n";
+      if (b.velocity)
+        s += "velocity = " + core::toml_vec3(b.velocity->x, b.velocity->y, b.velocity->z) + "\n";
       if (m.e0 != 0.0)
-        s += "internal_energy = " + core::toml_number(units_(m.e0, dim::stress) / m.density) + "  # E0 / density\n";
+        s += "internal_energy = " + core::toml_number(units_(m.e0, dim::stress) / m.density) +
+             "  # E0 / density\n";
       if (bulk_)
-        s += "bulk_viscosity = { quadratic = " + core::toml_number((*bulk_)[0]) + ", linear = " + core::toml_number((*bulk_)[1]) + " }\n";
+        s += "bulk_viscosity = { quadratic = " + core::toml_number((*bulk_)[0]) +
+             ", linear = " + core::toml_number((*bulk_)[1]) + " }\n";
     }
 
     if (contact_) {
       if (bodies_.size() < 2)
-        notes_.push_back({contact_at_, "contact", "contact with one body has nothing to act on", false});
+        notes_.push_back(
+            {contact_at_, "contact", "contact with one body has nothing to act on", false});
       for (std::size_t i = 0; i < bodies_.size(); ++i)
         for (std::size_t j = i + 1; j < bodies_.size(); ++j)
-          s += "\n[[contact]]\nbodies = [\"body" + std::to_string(i + 1) + "\", \"body" + std::to_string(j + 1) +
-               "\"]\nfriction = " + core::toml_number(friction_) + "\n";
+          s += "\n[[contact]]\nbodies = [\"body" + std::to_string(i + 1) + "\", \"body" +
+               std::to_string(j + 1) + "\"]\nfriction = " + core::toml_number(friction_) + "\n";
     }
     return s;
   }

@@ -20,8 +20,7 @@ DeckFormat deck_format(const std::string& path) {
   std::string line;
   while (std::getline(in, line)) {
     const std::string first = upper(trim(line));
-    if (first.empty() || first.starts_with('$') || first.starts_with('!') ||
-        first.starts_with('#'))
+    if (first.empty() || first.starts_with('$') || first.starts_with('!') || first.starts_with('#'))
       continue;
     if (first.starts_with("*KEYWORD")) return DeckFormat::lsdyna;
     if (first.starts_with("MPM3")) return DeckFormat::mpm3d;
@@ -32,9 +31,12 @@ DeckFormat deck_format(const std::string& path) {
 
 const char* to_string(DeckFormat format) {
   switch (format) {
-    case DeckFormat::lsdyna: return "LS-DYNA";
-    case DeckFormat::mpm3d: return "MPM3D";
-    case DeckFormat::none: break;
+    case DeckFormat::lsdyna:
+      return "LS-DYNA";
+    case DeckFormat::mpm3d:
+      return "MPM3D";
+    case DeckFormat::none:
+      break;
   }
   return "scene";
 }
@@ -64,7 +66,13 @@ std::string toml_string(std::string_view s) {
 }
 
 std::string toml_vec3(double x, double y, double z) {
-  return "[" + toml_number(x) + ", " + toml_number(y) + ", " + toml_number(z) + "]";
+  std::string s = "[";  // appended piece by piece: "[" + std::string trips GCC 12's -Wrestrict
+  s += toml_number(x);
+  s += ", ";
+  s += toml_number(y);
+  s += ", ";
+  s += toml_number(z);
+  return s + "]";
 }
 
 std::string imported_scene_header(const std::string& deck_path, DeckFormat format,

@@ -40,7 +40,11 @@ UnitConversion::UnitConversion(const std::string& system, const SourceLocation& 
       description_ = std::string("mm, ms, g, N, MPa (the deck's ") + s.units + " converted)";
       return;
     }
-    known += (known.empty() ? "" : ", ") + std::string(s.name) + " (" + s.units + ")";
+    if (!known.empty()) known += ", ";
+    known += s.name;
+    known += " (";
+    known += s.units;
+    known += ")";
   }
   throw InputError(at, "--units", "unknown unit system '" + system + "'; known: " + known);
 }

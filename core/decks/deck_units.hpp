@@ -22,8 +22,8 @@ inline constexpr Dimension mass{0, 0, 1};
 inline constexpr Dimension velocity{1, -1, 0};
 inline constexpr Dimension acceleration{1, -2, 0};
 inline constexpr Dimension density{-3, 0, 1};
-inline constexpr Dimension stress{-1, -2, 1};             // also energy per volume
-inline constexpr Dimension specific_energy{2, -2, 0};     // per mass; c_p per kelvin
+inline constexpr Dimension stress{-1, -2, 1};          // also energy per volume
+inline constexpr Dimension specific_energy{2, -2, 0};  // per mass; c_p per kelvin
 inline constexpr Dimension volume{3, 0, 0};
 }  // namespace dimension
 

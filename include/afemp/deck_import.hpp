@@ -36,6 +36,7 @@ struct DeckFile {
 /// notes, and the files to write beside it.
 struct DeckImport {
   std::string scene;
+  std::string units;  // the units the scene is in, and whether the deck's were converted
   std::vector<DeckNote> notes;
   std::vector<DeckFile> files;
 };
@@ -64,12 +65,12 @@ std::string describe(const DeckNote& note);
 }  // namespace afemp::core
 
 namespace afemp {
+using core::deck_format;
 using core::DeckFile;
 using core::DeckFormat;
 using core::DeckImport;
 using core::DeckImportOptions;
 using core::DeckNote;
-using core::deck_format;
 using core::import_deck;
 using core::write_deck_import;
 }  // namespace afemp

@@ -39,25 +39,26 @@ std::string cube_mesh(int part = 1) {
 // Copper (Johnson-Cook with damage, Grueneisen EOS with E0) striking a wall; the lines of the
 // keywords the tests name are counted in comments.
 const std::string kDeck =
-    "*KEYWORD\n"                                                          // 1
-    "*TITLE\ncube on a wall\n"                                            // 2-3
-    "*CONTROL_TERMINATION\n0.02,5000\n"                                   // 4-5
-    "*CONTROL_TIMESTEP\n0.0,0.67\n"                                       // 6-7
-    "*DATABASE_BINARY_D3PLOT\n0.001\n"                                    // 8-9
-    "*PART\ncube\n1,1,1,1,1\n"                                            // 10-12
-    "*SECTION_SOLID\n1,1\n"                                               // 13-14
-    "*MAT_JOHNSON_COOK\n"                                                 // 15
-    "1,8.93e-3,46000.,124000.,0.34\n"                                     // 16
-    "90.,292.,0.31,0.025,1.09,1356.,293.,1.0e-3\n"                        // 17
-    "383.,0.,0.,0.,0.54,4.89,-3.03,0.014\n"                               // 18
-    "1.12\n"                                                              // 19
-    "*EOS_GRUNEISEN\n1,3940.,1.49,0.,0.,1.96,0.,0.0893\n"                 // 20-21
-    "*HOURGLASS\n1,6,1.0\n"                                               // 22-23
-    "*INITIAL_VELOCITY_GENERATION\n1,2,0.,0.,0.,-300.\n0,0,0,0,0,0\n"     // 24-26
-    "*RIGIDWALL_PLANAR\n0\n0.,0.,-0.5,0.,0.,1.,0.1\n"                     // 27-29
-    "*CONTACT_AUTOMATIC_SINGLE_SURFACE\n0,0\n"                            // 30-31
-    "*DATABASE_GLSTAT\n1.0e-4\n" +                                        // 32-33
-    cube_mesh() + "*END\n";
+    "*KEYWORD\n"                                                       // 1
+    "*TITLE\ncube on a wall\n"                                         // 2-3
+    "*CONTROL_TERMINATION\n0.02,5000\n"                                // 4-5
+    "*CONTROL_TIMESTEP\n0.0,0.67\n"                                    // 6-7
+    "*DATABASE_BINARY_D3PLOT\n0.001\n"                                 // 8-9
+    "*PART\ncube\n1,1,1,1,1\n"                                         // 10-12
+    "*SECTION_SOLID\n1,1\n"                                            // 13-14
+    "*MAT_JOHNSON_COOK\n"                                              // 15
+    "1,8.93e-3,46000.,124000.,0.34\n"                                  // 16
+    "90.,292.,0.31,0.025,1.09,1356.,293.,1.0e-3\n"                     // 17
+    "383.,0.,0.,0.,0.54,4.89,-3.03,0.014\n"                            // 18
+    "1.12\n"                                                           // 19
+    "*EOS_GRUNEISEN\n1,3940.,1.49,0.,0.,1.96,0.,0.0893\n"              // 20-21
+    "*HOURGLASS\n1,6,1.0\n"                                            // 22-23
+    "*INITIAL_VELOCITY_GENERATION\n1,2,0.,0.,0.,-300.\n0,0,0,0,0,0\n"  // 24-26
+    "*RIGIDWALL_PLANAR\n0\n0.,0.,-0.5,0.,0.,1.,0.1\n"                  // 27-29
+    "*CONTACT_AUTOMATIC_SINGLE_SURFACE\n0,0\n"                         // 30-31
+    "*DATABASE_GLSTAT\n1.0e-4\n" +                                     // 32-33
+    cube_mesh() +
+    "*END\n";
 
 struct Imported {
   core::DeckImport deck;
@@ -224,8 +225,10 @@ TEST(LsDynaDeckImport, ErrorsNameFileLineKeywordAndWhatIsAllowed) {
   EXPECT_NE(e.find("bad.k:6:"), std::string::npos) << e;
   EXPECT_NE(e.find("material 1, which is not defined"), std::string::npos) << e;
 
-  e = error_of(head + "*SECTION_SOLID\n1,1\n*MAT_JOHNSON_COOK\n1,8.93e-3,46000.,1.24e5,0.34\n"
-                      "90.,292.,0.31\n" + cube_mesh());
+  e = error_of(head +
+               "*SECTION_SOLID\n1,1\n*MAT_JOHNSON_COOK\n1,8.93e-3,46000.,1.24e5,0.34\n"
+               "90.,292.,0.31\n" +
+               cube_mesh());
   EXPECT_NE(e.find("EOS 1, which is not defined"), std::string::npos) << e;
 
   e = error_of(head + "*SECTION_SOLID\n1,1\n*MAT_ELASTIC\n1,7.85e-3,2oo.0e3,0.3\n" + cube_mesh());

@@ -6,8 +6,8 @@
 
 #include <array>
 #include <fstream>
-#include <sstream>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <variant>
 
@@ -23,26 +23,26 @@ namespace {
 // A sphere (nR = 2 spacings of 0.5 mm) of steel at 1000 m/s onto a block (4 x 4 x 2 particles)
 // of copper with a Grueneisen EOS, MUSL, gravity, contact, output options.
 const std::string kDeck =
-    "mpm3d *** sphere onto a plate\n"                                        // 1
-    "nbco 2\nnbbo 2\n"                                                       // 2-3
-    "nbmp 64\n"                                                              // 4
-    "nmat 2\n"                                                               // 5
-    "spx -4 4\nspy -4 4\nspz -4 6\ndcell 1.0\n"                              // 6-9
-    "dtscale 0.5\nendtime 0.01\nouttime 0.002\n"                             // 10-12
-    "musl on\njaum off\n"                                                    // 13-14
-    "fixed 0 0 0 0 1 2\n"                                                    // 15
-    "outr seqv\n"                                                            // 16
-    "tecp\n"                                                                 // 17
-    "material\n"                                                             // 18
+    "mpm3d *** sphere onto a plate\n"                                          // 1
+    "nbco 2\nnbbo 2\n"                                                         // 2-3
+    "nbmp 64\n"                                                                // 4
+    "nmat 2\n"                                                                 // 5
+    "spx -4 4\nspy -4 4\nspz -4 6\ndcell 1.0\n"                                // 6-9
+    "dtscale 0.5\nendtime 0.01\nouttime 0.002\n"                               // 10-12
+    "musl on\njaum off\n"                                                      // 13-14
+    "fixed 0 0 0 0 1 2\n"                                                      // 15
+    "outr seqv\n"                                                              // 16
+    "tecp\n"                                                                   // 17
+    "material\n"                                                               // 18
     " 1 john 8.93d-3 117.0d3 0.35 90 292 0.31 0.025 1.09 293 1356 383 1e-3\n"  // 19
-    " 2 pla2 7.85d-3 200.0d3 0.3 500 2000\n"                                 // 20
-    "seos 1 2 3940 1.49 1.96 0\n"                                            // 21
-    "particle block 1 1 8.93e-3 0.5 -1 -1 -1\n 4 4 2\n"                     // 22-23
-    "particle sphere 2 2 7.85e-3 0.5 0 0 2 2\n"                              // 24
-    "velo\nbody 2 0 0 -1000\nendv\n"                                         // 25-27
-    "load\ngrav 1 0 0 -9.81e-3\ngrav 2 0 0 -9.81e-3\nendl\n"                 // 28-31
-    "contact lagr 0.2 1\n"                                                   // 32
-    "deto 0 0 0\n"                                                           // 33
+    " 2 pla2 7.85d-3 200.0d3 0.3 500 2000\n"                                   // 20
+    "seos 1 2 3940 1.49 1.96 0\n"                                              // 21
+    "particle block 1 1 8.93e-3 0.5 -1 -1 -1\n 4 4 2\n"                        // 22-23
+    "particle sphere 2 2 7.85e-3 0.5 0 0 2 2\n"                                // 24
+    "velo\nbody 2 0 0 -1000\nendv\n"                                           // 25-27
+    "load\ngrav 1 0 0 -9.81e-3\ngrav 2 0 0 -9.81e-3\nendl\n"                   // 28-31
+    "contact lagr 0.2 1\n"                                                     // 32
+    "deto 0 0 0\n"                                                             // 33
     "endi\n";
 
 // The sphere generator's count for nR = 2 (DataIn.f90): lattice centres (i - 1/2) dp, i from
@@ -54,7 +54,8 @@ struct Imported {
   core::Scene scene;
 };
 
-Imported import_text(const test::ScratchDir& dir, const std::string& deck, const std::string& units = "") {
+Imported import_text(const test::ScratchDir& dir, const std::string& deck,
+                     const std::string& units = "") {
   const std::string deck_path = dir.write("deck.mpm", deck);
   const std::string scene_path = (dir.path() / "scene.toml").string();
   core::DeckImport d = core::import_deck(deck_path, scene_path, {units});
@@ -143,7 +144,8 @@ TEST(Mpm3dDeckImport, KeywordsBecomeTheSceneFields) {
 TEST(Mpm3dDeckImport, GeneratorsMakeTheParticlesMpm3dMakes) {
   test::ScratchDir dir;
   const Imported im = import_text(dir, kDeck);
-  EXPECT_EQ(std::get<core::PointListShape>(im.scene.bodies[1].shape).path, dir.file("scene.body2.txt"));
+  EXPECT_EQ(std::get<core::PointListShape>(im.scene.bodies[1].shape).path,
+            dir.file("scene.body2.txt"));
   const std::vector<std::array<double, 4>> block = points_of(dir.file("scene.body1.txt"));
   const std::vector<std::array<double, 4>> sphere = points_of(dir.file("scene.body2.txt"));
   ASSERT_EQ(block.size(), 32u);
@@ -241,8 +243,9 @@ TEST(Mpm3dDeckImport, ErrorsNameFileLineKeywordAndWhatIsAllowed) {
   EXPECT_NE(e.find("bad.mpm:4:"), std::string::npos) << e;
   EXPECT_NE(e.find("found 4 values"), std::string::npos) << e;
 
-  e = error_of("nbmp 1\nnmat 1\nmaterial\n 1 elas 8.93e-3 117e3 0.35\ndcell 0.5\n"
-               "particle block 1 1 8.93e-3 0.5 0 0 0 2 1 1\n");
+  e = error_of(
+      "nbmp 1\nnmat 1\nmaterial\n 1 elas 8.93e-3 117e3 0.35\ndcell 0.5\n"
+      "particle block 1 1 8.93e-3 0.5 0 0 0 2 1 1\n");
   EXPECT_NE(e.find("nbmp is 1 but the particle sets make 2"), std::string::npos) << e;
 
   e = error_of("nbmp 1\nnmat 1\nmaterial\n 1 elas 8.93e-3 117e3 x.35\n");
@@ -262,12 +265,14 @@ TEST(Mpm3dDeckImport, CommandRefusesToRunADeckAndImportsIt) {
   for (const char* cmd : {"check", "run"}) {
     const test::CommandResult r = test::run_afemp(std::string(cmd) + " \"" + deck + "\"", dir);
     EXPECT_EQ(r.exit_code, 1);
-    EXPECT_NE(r.err.find("this is an MPM3D deck, not a scene; import it with `afemp import " + deck),
-              std::string::npos)
+    EXPECT_NE(
+        r.err.find("this is an MPM3D deck, not a scene; import it with `afemp import " + deck),
+        std::string::npos)
         << r.err;
   }
   const std::string scene = dir.file("scene.toml");
-  const test::CommandResult r = test::run_afemp("import \"" + deck + "\" -o \"" + scene + "\"", dir);
+  const test::CommandResult r =
+      test::run_afemp("import \"" + deck + "\" -o \"" + scene + "\"", dir);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find(deck + ":33: deto: not translated"), std::string::npos) << r.out;
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "scene.body2.txt"));
