@@ -56,9 +56,6 @@ class Words {
     const std::size_t i = next_ == 0 ? 0 : next_ - 1;
     return src_.at(tokens_.empty() ? 0 : tokens_[std::min(i, tokens_.size() - 1)].line);
   }
-  bool more_on_line() const {
-    return next_ > 0 && next_ < tokens_.size() && tokens_[next_].line == tokens_[next_ - 1].line;
-  }
   std::string_view peek() const { return done() ? std::string_view{} : tokens_[next_].text; }
 
   std::string_view word(const std::string& key, const std::string& what) {
@@ -82,7 +79,6 @@ class Words {
       out.push_back(tokens_[next_++].text);
     return out;
   }
-  const core::SourceText& source() const { return src_; }
 
  private:
   static bool is_separator(char c) { return c == ' ' || c == '\t' || c == ',' || c == '\r'; }
