@@ -11,6 +11,7 @@
 #include "afemp/deck_import.hpp"
 #include "core/scene.hpp"
 #include "fem/lsdyna_deck_import.hpp"
+#include "mpm/test_support.hpp"
 #include "scratch_dir.hpp"
 
 namespace afemp::fem {
@@ -242,6 +243,39 @@ TEST(LsDynaDeckImport, ErrorsNameFileLineKeywordAndWhatIsAllowed) {
 
   e = error_of("*KEYWORD\n*PART\nblock\n1,1,1\n" + cube_mesh());
   EXPECT_NE(e.find("*CONTROL_TERMINATION"), std::string::npos) << e;
+}
+
+// Fixed-column cards (10 characters a field), as most decks write them.
+TEST(LsDynaDeckImport, FixedColumnCardsAreRead) {
+  test::ScratchDir dir;
+  const std::string deck =
+      "*KEYWORD\n*CONTROL_TERMINATION\n$   endtim\n     0.015\n*PART\nblock\n"
+      "$      pid     secid       mid\n         1         1         7\n*SECTION_SOLID\n"
+      "         1         1\n*MAT_ELASTIC\n$      mid        ro         e        pr\n"
+      "         7   7.85e-3   2.0e+05      0.29\n" +
+      cube_mesh() + "*END\n";
+  const Imported im = import_text(dir, deck);
+  EXPECT_DOUBLE_EQ(im.scene.run.end_time, 0.015);
+  EXPECT_DOUBLE_EQ(im.scene.materials[0].youngs_modulus, 2.0e5);
+  EXPECT_DOUBLE_EQ(im.scene.materials[0].poisson_ratio, 0.29);
+  EXPECT_EQ(im.deck.notes.size(), 0u);
+  EXPECT_NE(im.deck.scene.find("Everything the deck holds is translated"), std::string::npos);
+}
+
+// `afemp check` and `afemp run` given an LS-DYNA deck say to import it, not "TOML syntax
+// error".
+TEST(LsDynaDeckImport, CommandSaysToImportADeck) {
+  test::ScratchDir dir;
+  const std::string deck = dir.write("cube.k", kDeck);
+  for (const char* cmd : {"check", "run"}) {
+    const mpm::test::CommandResult r =
+        mpm::test::run_afemp(std::string(cmd) + " \"" + deck + "\"", dir);
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(r.err.find("this is an LS-DYNA deck, not a scene; import it with `afemp import " +
+                         deck + " -o SCENE.toml`"),
+              std::string::npos)
+        << r.err;
+  }
 }
 
 }  // namespace
