@@ -39,15 +39,15 @@ struct Material {
   core::SourceLocation at;
   std::string keyword;
   double density = 0;
-  std::string body;         // the material table's lines, EOS excepted
-  double bulk_modulus = 0;  // for E and nu from G (Johnson-Cook without E)
-  double G = 0, E = 0, nu = 0;
+  std::string body;             // the material table's lines, EOS excepted
+  double G = 0, E = 0, nu = 0;  // G: for E and nu when a Johnson-Cook card leaves them blank
 };
 
 struct Eos {
   std::string table;
-  double bulk_modulus = 0;  // rho0 c0^2 or C1
-  double e0 = 0;            // initial internal energy per unit reference volume (converted)
+  double bulk_modulus = 0;         // C1 of the linear polynomial
+  double sound_speed_squared = 0;  // c0^2 of Gruneisen: the bulk modulus is rho0 c0^2
+  double e0 = 0;                   // initial internal energy per unit reference volume (converted)
 };
 
 struct Hourglass {
@@ -159,9 +159,10 @@ class LsDynaImport {
       const auto c = data_cards(k);
       end_time_ = real(k, c, 0, 0, "ENDTIM", dim::time);
       max_steps_ = integer(k, c, 0, 1, "ENDCYC");
+      bool other = false;
       for (std::size_t i = 2; i < 5; ++i)
-        if (real(k, c, 0, i, "DTMIN, ENDENG or ENDMAS") != 0.0)
-          note(k.at(), "DTMIN, ENDENG and ENDMAS (afemp stops at ENDTIM or ENDCYC)", false);
+        other = other || real(k, c, 0, i, "DTMIN, ENDENG or ENDMAS") != 0.0;
+      if (other) note(k.at(), "DTMIN, ENDENG and ENDMAS (afemp stops at ENDTIM or ENDCYC)", false);
     } else if (n == "CONTROL_TIMESTEP") {
       const auto c = data_cards(k);
       tssfac_ = real(k, c, 0, 1, "TSSFAC");
@@ -267,7 +268,7 @@ class LsDynaImport {
     m.E = real(k, c, 0, 3, "E", dim::stress);
     m.nu = real(k, c, 0, 4, "PR");
     const double tm = real(k, c, 1, 5, "TM"), tr = real(k, c, 1, 6, "TR");
-    double epso = real(k, c, 1, 7, "EPSO", dim::rate);
+    const double epso = real(k, c, 1, 7, "EPSO", dim::rate);
     const double mexp = real(k, c, 1, 4, "M");
     std::string s =
         "strength = { model = \"johnson-cook\", A = " + num(real(k, c, 1, 0, "A", dim::stress)) +
@@ -349,7 +350,7 @@ class LsDynaImport {
               ", s = " + num(real(k, c, 0, 2, "S1")) +
               ", gamma0 = " + num(real(k, c, 0, 5, "GAMAO")) + " }";
     e.e0 = real(k, c, 0, 7, "E0", dim::stress);
-    e.bulk_modulus = c0 * c0;  // times rho0 where the part's material is known
+    e.sound_speed_squared = c0 * c0;
     if (real(k, c, 0, 3, "S2") != 0.0 || real(k, c, 0, 4, "S3") != 0.0)
       note(k.at(), "S2 and S3: afemp's Hugoniot is linear in u_p (S1 only)", false);
     if (real(k, c, 0, 6, "A") != 0.0)
@@ -370,8 +371,8 @@ class LsDynaImport {
     e.table = "{ model = \"linear-polynomial\"";
     for (std::size_t i = 0; i < 7; ++i) {
       const std::string name = std::string("C") + std::to_string(i);
-      e.table += ", " + name + " = " +
-                 num(real(k, c, 0, 1 + i, name, i < 4 ? dim::stress : dim::none));
+      e.table +=
+          ", " + name + " = " + num(real(k, c, 0, 1 + i, name, i < 4 ? dim::stress : dim::none));
     }
     e.table += " }";
     e.bulk_modulus = real(k, c, 0, 2, "C1", dim::stress);
@@ -394,7 +395,7 @@ class LsDynaImport {
     const double qm = real(k, c, 0, 2, "QM");
     Hourglass h;
     std::string form;
-    if (ihq <= 3) {
+    if (ihq >= 0 && ihq <= 3) {
       form = "viscous";
       if (ihq == 1 || ihq == 2)
         note(k.at(),
@@ -412,11 +413,16 @@ class LsDynaImport {
                                  " has no afemp form; allowed: 0-3 (viscous), "
                                  "4-5 (stiffness), 6 (assumed strain)");
     }
+    // QM blank is LS-DYNA's 0.1 for every form (afemp's stiffness default is 0.05).
+    const double wanted = qm > 0.0 ? qm : 0.1;
+    const double largest = form == "assumed_strain" ? 1.0 : 0.5;
+    if (wanted > largest)
+      note(k.at(),
+           "QM " + num(wanted) + " is above afemp's largest " + num(largest) + " for the " + form +
+               " form; written as " + num(largest),
+           true);
     h.hourglass =
-        "{ form = \"" + form + "\"" +
-        (qm > 0.0 ? ", coefficient = " + num(std::min(qm, form == "assumed_strain" ? 1.0 : 0.5))
-                  : "") +
-        " }";
+        "{ form = \"" + form + "\", coefficient = " + num(std::min(wanted, largest)) + " }";
     const double q1 = real(k, c, 0, 4, "Q1"), q2 = real(k, c, 0, 5, "Q2");
     if (q1 != 0.0 || q2 != 0.0)
       h.bulk_viscosity = "{ quadratic = " + num(q1 != 0.0 ? q1 : 1.5) +
@@ -511,9 +517,8 @@ class LsDynaImport {
         throw core::InputError(
             p.card.at(), "*PART",
             "part " + std::to_string(p.id) + ": *MAT_JOHNSON_COOK needs an EOS (EOSID)");
-      const double K = eos->table.find("mie-gruneisen") != std::string::npos
-                           ? mat.density * eos->bulk_modulus
-                           : eos->bulk_modulus;
+      const double K =
+          eos->bulk_modulus > 0.0 ? eos->bulk_modulus : mat.density * eos->sound_speed_squared;
       if (E <= 0.0 || nu <= 0.0) {
         if (mat.G <= 0.0 || K <= 0.0)
           throw core::InputError(mat.at, mat.keyword,
@@ -554,8 +559,9 @@ class LsDynaImport {
       if (p == parts_.end()) continue;
       const auto key = std::make_pair(p->second.material, p->second.eos);
       if (!written.insert(key).second) continue;
+      const std::string table = material_table(p->second);  // refuses an undefined MID first
       materials += "\n[materials." + material_name(key.first, key.second) + "]  # " +
-                   materials_[key.first].keyword + "\n" + material_table(p->second);
+                   materials_.at(key.first).keyword + "\n" + table;
     }
     for (const auto& [mid, m] : materials_)
       if (std::none_of(written.begin(), written.end(),
@@ -621,7 +627,7 @@ class LsDynaImport {
       }
       if (const auto e = eos_.find(part.eos);
           part.eos != 0 && e != eos_.end() && e->second.e0 != 0.0)
-        s += "internal_energy = " + num(e->second.e0 / materials_[part.material].density) +
+        s += "internal_energy = " + num(e->second.e0 / materials_.at(part.material).density) +
              "  # E0 / RO\n";
     }
     for (const auto& [label, v] : velocity_) {

@@ -245,6 +245,27 @@ TEST(LsDynaDeckImport, ErrorsNameFileLineKeywordAndWhatIsAllowed) {
   EXPECT_NE(e.find("*CONTROL_TERMINATION"), std::string::npos) << e;
 }
 
+// Reference: LS-DYNA's *MAT_015 takes its solids' elasticity from G and the EOS; with E and PR
+// blank the scene's E and nu are those of G and K = rho0 c0^2 (K = 8.93e-3 x 3940^2 =
+// 138,622 MPa, G = 43,333 MPa: E = 9 K G / (3 K + G) = 117,700, nu = 0.3581). The stiffness
+// hourglass form with QM blank takes LS-DYNA's 0.1, not afemp's own 0.05.
+TEST(LsDynaDeckImport, JohnsonCookWithoutEAndPrTakesThemFromGAndTheEos) {
+  test::ScratchDir dir;
+  const std::string deck =
+      "*KEYWORD\n*CONTROL_TERMINATION\n0.01\n*PART\nbar\n1,1,1,1,1\n*SECTION_SOLID\n1,1\n"
+      "*MAT_JOHNSON_COOK\n1,8.93e-3,43333.33\n157.,425.,1.0\n"
+      "*EOS_GRUNEISEN\n1,3940.,1.49,0.,0.,1.96\n*HOURGLASS\n1,5\n" +
+      cube_mesh() + "*END\n";
+  const Imported im = import_text(dir, deck);
+  const core::Material& m = im.scene.materials[0];
+  const double K = 8.93e-3 * 3940.0 * 3940.0, G = 43333.33;
+  EXPECT_NEAR(m.youngs_modulus, 9 * K * G / (3 * K + G), 1e-6);
+  EXPECT_NEAR(m.poisson_ratio, (3 * K - 2 * G) / (2 * (3 * K + G)), 1e-12);
+  EXPECT_NEAR(m.shear_modulus(), G, 1e-6);
+  EXPECT_EQ(im.scene.bodies[0].hourglass.form, core::HourglassForm::stiffness);
+  EXPECT_DOUBLE_EQ(im.scene.bodies[0].hourglass.coefficient, 0.1);
+}
+
 // Fixed-column cards (10 characters a field), as most decks write them.
 TEST(LsDynaDeckImport, FixedColumnCardsAreRead) {
   test::ScratchDir dir;
