@@ -41,7 +41,7 @@ std::vector<std::string> LsDynaDeck::files() const {
 // `open` holds the files being read (the chain of includes), to refuse a cycle.
 void LsDynaDeck::add_file(std::string text, const std::string& path,
                           std::vector<std::string>& open) {
-  open.push_back(path);
+  open.push_back(std::filesystem::path(path).lexically_normal().string());
   const core::SourceText& src = sources_.emplace_back(texts_.emplace_back(std::move(text)), path);
   bool in_include = false;
   for (std::size_t i = 0; i < src.size(); ++i) {
