@@ -1,6 +1,7 @@
 // The `afemp` command: a thin layer over the library. `afemp check` reads a scene and prints
 // the plan (the starter); `afemp run` runs it with progress, output and a summary; `afemp
-// study` runs a study file's variations and writes their error against run time.
+// study` runs a study file's variations and writes their error against run time; `afemp
+// import` turns an LS-DYNA or MPM3D deck into a scene.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <string>
 
 #include "apps/progress_line.hpp"
+#include "afemp/deck_import.hpp"
 #include "afemp/errors.hpp"
 #include "analysis/reference_checks.hpp"
 #include "analysis/study.hpp"
@@ -31,7 +33,18 @@ constexpr int exit_check_failed = 4;  // a reference or tolerance the results mi
 
 using coupling::make_model;
 
+// A deck given where a scene belongs: say how to import it, not that it is bad TOML.
+void refuse_deck(const std::string& path) {
+  const core::DeckFormat format = core::deck_format(path);
+  if (format == core::DeckFormat::none) return;
+  throw core::InputError({path, 0}, "scene",
+                         std::string("this is an ") + core::to_string(format) +
+                             " deck, not a scene; import it with `afemp import " + path +
+                             " -o SCENE.toml` and run the scene (docs/import.md)");
+}
+
 int check(const std::string& path) {
+  refuse_deck(path);
   const core::Scene scene = core::read_scene(path);
   const std::unique_ptr<core::Model> model = make_model(scene);
   model->resolve_probes(scene.probes);  // a probe naming a node the mesh lacks fails here too
@@ -52,6 +65,7 @@ int check(const std::string& path) {
 }
 
 int run(const std::string& path, std::string out_dir) {
+  refuse_deck(path);
   const core::Scene scene = core::read_scene(path);
   if (out_dir.empty()) out_dir = core::default_output_directory(path);
   const std::unique_ptr<core::Model> model = make_model(scene);
@@ -108,6 +122,27 @@ int study(const std::string& path, std::string out_dir, int threads) {
   return all_ok ? 0 : exit_check_failed;
 }
 
+// `afemp import DECK -o SCENE [--units U]`: writes the scene and its side files, and lists
+// what the deck holds that the scene does not carry as the deck meant it.
+int import_command(const std::string& deck_path, const std::string& scene_path,
+                   const std::string& units) {
+  const core::DeckImport deck = core::import_deck(deck_path, scene_path, {units});
+  core::write_deck_import(deck, scene_path);
+  std::printf("afemp import %s -> %s (%s deck", deck_path.c_str(), scene_path.c_str(),
+              core::to_string(core::deck_format(deck_path)));
+  for (const core::DeckFile& f : deck.files) std::printf(", %s", f.name.c_str());
+  std::printf(")\nunits: %s\n", deck.units.c_str());
+  std::size_t untranslated = 0;
+  for (const core::DeckNote& n : deck.notes) {
+    std::printf("  %s\n", core::describe(n).c_str());
+    if (!n.approximated) ++untranslated;
+  }
+  std::printf("%zu not translated, %zu approximated (listed at the top of the scene too); check "
+              "it with `afemp check %s`\n",
+              untranslated, deck.notes.size() - untranslated, scene_path.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -133,11 +168,21 @@ int main(int argc, char** argv) {
   study_cmd->add_option("--threads", threads, "OpenMP threads for every run (default: the study's)")
       ->check(CLI::PositiveNumber);
 
+  std::string units;
+  auto* import_cmd = app.add_subcommand(
+      "import", "turn an LS-DYNA keyword deck or an MPM3D deck into a scene (docs/import.md)");
+  import_cmd->add_option("DECK", scene_path, "deck (.k, .key, .dyn; .mpm)")->required();
+  import_cmd->add_option("-o,--output", out_dir, "the scene to write (TOML)")->required();
+  import_cmd->add_option("--units", units,
+                         "the deck's unit system, converted into mm, ms, g, N, MPa: mm-ms-g, "
+                         "m-s-kg, mm-s-t, mm-ms-kg, cm-us-g (default: numbers kept as they are)");
+
   CLI11_PARSE(app, argc, argv);
   if (!*study_cmd) core::set_thread_count(threads);
   try {
     if (*run_cmd) return run(scene_path, out_dir);
     if (*study_cmd) return study(scene_path, out_dir, threads);
+    if (*import_cmd) return import_command(scene_path, out_dir, units);
     return check(scene_path);
   } catch (const core::InputError& e) {
     std::fprintf(stderr, "afemp: %s\n", e.what());

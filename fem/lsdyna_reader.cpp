@@ -1,6 +1,7 @@
 // LS-DYNA keyword decks (.k, .key, .dyn; LS-DYNA Keyword User's Manual, Vol. I), the subset a
 // hexahedron-and-truss mesh needs: *NODE, *ELEMENT_SOLID, *ELEMENT_BEAM, *PART, *SECTION_BEAM,
-// *SET_NODE_LIST, *BOUNDARY_SPC_SET/NODE. Cards are fixed-column, or free format with commas.
+// *SET_NODE_LIST, *BOUNDARY_SPC_SET/NODE, in the deck and the files it includes
+// (fem/lsdyna_keywords.hpp). Other keywords are the deck importer's (fem/lsdyna_deck_import.cpp).
 #include <algorithm>
 #include <array>
 #include <iterator>
@@ -8,6 +9,7 @@
 #include <unordered_set>
 #include <utility>
 
+#include "fem/lsdyna_keywords.hpp"
 #include "fem/mesh_import.hpp"
 
 namespace afemp::fem {
@@ -16,21 +18,8 @@ namespace {
 
 using namespace import_detail;
 
-struct Card {
-  std::size_t index;  // in the SourceText
-  std::string_view text;
-};
-
-struct Keyword {
-  std::string name;  // upper case, without '*'
-  std::size_t index;
-  std::vector<Card> cards;  // comment lines ('$') removed; blank cards kept
-};
-
-// Card layouts: field widths of the fixed-column form.
-constexpr std::array<std::size_t, 6> kNodeColumns{8, 16, 16, 16, 8, 8};
-constexpr std::array<std::size_t, 10> kElementColumns{8, 8, 8, 8, 8, 8, 8, 8, 8, 8};
-constexpr std::array<std::size_t, 8> kStandardColumns{10, 10, 10, 10, 10, 10, 10, 10};
+using Card = LsDynaCard;
+using Keyword = LsDynaKeyword;
 
 // Keywords read here, and the options of theirs that are not: a deck using one of those would
 // otherwise lose elements or constraints without a word.
@@ -45,45 +34,6 @@ const std::vector<std::string> kSupported = {"NODE",
                                              "BOUNDARY_SPC_SET",
                                              "BOUNDARY_SPC_NODE"};
 
-std::vector<Keyword> split_keywords(const SourceText& src) {
-  std::vector<Keyword> keywords;
-  for (std::size_t i = 0; i < src.size(); ++i) {
-    const std::string_view line = src.line(i);
-    if (line.starts_with('$')) continue;
-    if (line.starts_with('*')) {
-      const auto words = split_words(line.substr(1));
-      const std::string name = words.empty() ? "" : upper(words.front());
-      if (name.ends_with('+') || name.ends_with('%') ||
-          (name == "KEYWORD" && upper(line).find("LONG=") != std::string::npos))
-        throw core::InputError(src.at(i), "*" + name,
-                               "long (20-column) and i10 formats are not supported; write the "
-                               "deck in the standard format");
-      keywords.push_back({name, i, {}});
-      if (name == "END") break;
-    } else if (!keywords.empty()) {
-      keywords.back().cards.push_back({i, line});
-    }
-  }
-  return keywords;
-}
-
-bool blank(const Card& c) {
-  return trim(c.text).empty();
-}
-
-// The card's fields: split at commas when it has any (free format), else cut into columns.
-template <std::size_t N>
-std::vector<std::string_view> fields(const Card& c, const std::array<std::size_t, N>& columns) {
-  if (c.text.find(',') != std::string_view::npos) return split_fields(c.text, ',');
-  std::vector<std::string_view> out;
-  std::size_t begin = 0;
-  for (std::size_t w : columns) {
-    out.push_back(begin < c.text.size() ? trim(c.text.substr(begin, w)) : std::string_view{});
-    begin += w;
-  }
-  return out;
-}
-
 struct PartCard {
   std::string title;
   std::int64_t section;
@@ -93,20 +43,20 @@ struct Spc {
   std::int64_t target;  // node set id, or node id when on_node
   bool on_node;
   std::array<bool, 3> fixed;
-  std::size_t index;
+  const Card* card;
 };
 
 struct NodeList {
   std::string name;
-  std::vector<std::pair<std::int64_t, std::size_t>> nodes;  // (node id, card index)
+  std::vector<std::pair<std::int64_t, const Card*>> nodes;  // (node id, its card)
 };
 
 class LsDynaReader {
  public:
-  explicit LsDynaReader(const SourceText& src) : src_(src) {}
+  explicit LsDynaReader(const LsDynaDeck& deck) : deck_(deck) {}
 
   MeshData read() {
-    for (const Keyword& k : split_keywords(src_)) {
+    for (const Keyword& k : deck_.keywords()) {
       key_ = "*" + k.name;
       if (k.name == "NODE")
         read_nodes(k);
@@ -122,13 +72,10 @@ class LsDynaReader {
         read_node_list(k);
       else if (k.name.starts_with("BOUNDARY_SPC_") && supported(k))
         read_spc(k);
-      else if (k.name.starts_with("INCLUDE"))
-        throw core::InputError(src_.at(k.index), key_,
-                               "included files are not read; merge them into one deck");
       else
         for (const std::string& s : kSupported)
           if (k.name.starts_with(s + "_"))
-            throw core::InputError(src_.at(k.index), key_,
+            throw core::InputError(k.at(), key_,
                                    "this option of *" + s +
                                        " is not supported; supported "
                                        "keywords: " +
@@ -137,7 +84,7 @@ class LsDynaReader {
     add_elements();
     add_node_sets();
     add_constraints();
-    validate(mesh_, src_.path());
+    validate(mesh_, deck_.files().front());
     return std::move(mesh_);
   }
 
@@ -152,22 +99,21 @@ class LsDynaReader {
     return s;
   }
 
-  core::SourceLocation at(const Card& c) const { return src_.at(c.index); }
+  static core::SourceLocation at(const Card& c) { return c.at(); }
 
-  // Field i of the card; a blank or missing field is 0, as in LS-DYNA.
   std::int64_t integer(const std::vector<std::string_view>& f, std::size_t i, const Card& c,
                        const std::string& what) const {
-    return i < f.size() && !f[i].empty() ? to_integer(f[i], at(c), key_, what) : 0;
+    return card_integer(f, i, c, key_, what);
   }
   double real(const std::vector<std::string_view>& f, std::size_t i, const Card& c,
               const std::string& what) const {
-    return i < f.size() && !f[i].empty() ? to_real(f[i], at(c), key_, what) : 0.0;
+    return card_real(f, i, c, key_, what);
   }
 
   void read_nodes(const Keyword& k) {
     for (const Card& c : k.cards) {
-      if (blank(c)) continue;
-      const auto f = fields(c, kNodeColumns);
+      if (c.blank()) continue;
+      const auto f = card_fields(c, kNodeColumns);
       const std::int64_t nid = integer(f, 0, c, "the node id");
       if (nid <= 0) throw core::InputError(at(c), key_, "node ids must be positive");
       const std::string what = "a coordinate of node " + std::to_string(nid);
@@ -180,8 +126,8 @@ class LsDynaReader {
   void read_solids(const Keyword& k) {
     for (std::size_t i = 0; i < k.cards.size(); ++i) {
       const Card& c = k.cards[i];
-      if (blank(c)) continue;
-      auto f = fields(c, kElementColumns);
+      if (c.blank()) continue;
+      auto f = card_fields(c, kElementColumns);
       const std::int64_t eid = integer(f, 0, c, "the element id");
       const std::int64_t pid = integer(f, 1, c, "the part id of element " + std::to_string(eid));
       const std::string who = "element " + std::to_string(eid);
@@ -191,7 +137,7 @@ class LsDynaReader {
         if (i + 1 == k.cards.size())
           throw core::InputError(at(c), key_, who + ": the card with its nodes is missing");
         node_card = &k.cards[++i];
-        f = fields(*node_card, kElementColumns);
+        f = card_fields(*node_card, kElementColumns);
         if (integer(f, 8, *node_card, "node 9 of " + who) != 0 ||
             integer(f, 9, *node_card, "node 10 of " + who) != 0)
           throw core::InputError(at(*node_card), key_,
@@ -206,8 +152,8 @@ class LsDynaReader {
 
   void read_beams(const Keyword& k) {
     for (const Card& c : k.cards) {
-      if (blank(c)) continue;
-      const auto f = fields(c, kElementColumns);
+      if (c.blank()) continue;
+      const auto f = card_fields(c, kElementColumns);
       const std::int64_t eid = integer(f, 0, c, "the element id");
       const std::string who = "element " + std::to_string(eid);
       RawElement raw{eid,
@@ -228,21 +174,11 @@ class LsDynaReader {
     pids.push_back(pid);
   }
 
-  // Pairs of cards: the heading, then "pid secid mid ...".
   void read_parts(const Keyword& k) {
-    for (std::size_t i = 0; i < k.cards.size(); i += 2) {
-      if (i + 1 == k.cards.size())
-        throw core::InputError(at(k.cards[i]), key_,
-                               "the card 'pid secid mid ...' after the heading is missing");
-      const Card& c = k.cards[i + 1];
-      const auto f = fields(c, kStandardColumns);
-      const std::int64_t pid = integer(f, 0, c, "the part id");
-      if (!parts_
-               .emplace(pid, PartCard{std::string(trim(k.cards[i].text)),
-                                      integer(f, 1, c, "the section id")})
-               .second)
-        throw core::InputError(at(c), key_, "part " + std::to_string(pid) + " is already defined");
-    }
+    for (const LsDynaPart& p : lsdyna_parts(k))
+      if (!parts_.emplace(p.id, PartCard{p.title, p.section}).second)
+        throw core::InputError(p.card.at(), key_,
+                               "part " + std::to_string(p.id) + " is already defined");
   }
 
   // "secid elform ..." then, for resultant beams (ELFORM 2) and trusses (3), "A ..." (with
@@ -255,11 +191,11 @@ class LsDynaReader {
                                "a section needs " + std::to_string(per_section) + " cards");
       const Card& c1 = k.cards[i + per_section - 2];
       const Card& c2 = k.cards[i + per_section - 1];
-      const auto f1 = fields(c1, kStandardColumns);
+      const auto f1 = card_fields(c1, kStandardColumns);
       const std::int64_t secid = integer(f1, 0, c1, "the section id");
       const std::int64_t elform = integer(f1, 1, c1, "ELFORM");
-      const double area = elform == 2 || elform == 3 ? real(fields(c2, kStandardColumns), 0, c2,
-                                                            "the cross-section area A")
+      const double area = elform == 2 || elform == 3 ? real(card_fields(c2, kStandardColumns), 0,
+                                                            c2, "the cross-section area A")
                                                      : 0.0;
       if (!beam_area_.emplace(secid, area).second)
         throw core::InputError(at(c1), key_,
@@ -272,17 +208,17 @@ class LsDynaReader {
     const bool titled = k.name.ends_with("_TITLE");
     std::size_t i = 0;
     if (k.cards.size() < (titled ? 2u : 1u))
-      throw core::InputError(src_.at(k.index), key_, "the card 'sid ...' is missing");
+      throw core::InputError(k.at(), key_, "the card 'sid ...' is missing");
     const std::string title = titled ? std::string(trim(k.cards[i++].text)) : "";
     const Card& c = k.cards[i++];
-    const std::int64_t sid = integer(fields(c, kStandardColumns), 0, c, "the set id");
+    const std::int64_t sid = integer(card_fields(c, kStandardColumns), 0, c, "the set id");
     NodeList list{title.empty() ? "set " + std::to_string(sid) : title, {}};
     for (; i < k.cards.size(); ++i) {
       const Card& n = k.cards[i];
-      const auto f = fields(n, kStandardColumns);
+      const auto f = card_fields(n, kStandardColumns);
       for (std::size_t a = 0; a < f.size(); ++a)
         if (const std::int64_t nid = integer(f, a, n, "a node id"); nid != 0)
-          list.nodes.emplace_back(nid, n.index);
+          list.nodes.emplace_back(nid, &n);
     }
     if (!node_lists_.emplace(sid, std::move(list)).second)
       throw core::InputError(at(c), key_,
@@ -293,13 +229,13 @@ class LsDynaReader {
   void read_spc(const Keyword& k) {
     const bool on_node = k.name == "BOUNDARY_SPC_NODE";
     for (const Card& c : k.cards) {
-      if (blank(c)) continue;
-      const auto f = fields(c, kStandardColumns);
+      if (c.blank()) continue;
+      const auto f = card_fields(c, kStandardColumns);
       if (integer(f, 1, c, "CID") != 0)
         throw core::InputError(at(c), key_,
                                "constraints in a local coordinate system (CID) are not "
                                "supported; use CID = 0");
-      Spc spc{integer(f, 0, c, on_node ? "the node id" : "the node set id"), on_node, {}, c.index};
+      Spc spc{integer(f, 0, c, on_node ? "the node id" : "the node set id"), on_node, {}, &c};
       for (std::size_t d = 0; d < 6; ++d) {
         const std::int64_t dof = integer(f, 2 + d, c, "a dof flag");
         if (dof != 0 && dof != 1)
@@ -322,6 +258,7 @@ class LsDynaReader {
     if (std::find(mesh_.part_names.begin(), mesh_.part_names.end(), name) != mesh_.part_names.end())
       name += " (part " + std::to_string(pid) + ")";
     mesh_.part_names.push_back(name);
+    mesh_.part_labels.push_back(pid);
     const auto index = static_cast<std::int32_t>(mesh_.part_names.size() - 1);
     part_index_.emplace(pid, index);
     return index;
@@ -349,9 +286,9 @@ class LsDynaReader {
   void add_node_sets() {
     for (const auto& [sid, list] : node_lists_) {
       NamedSet set{list.name, {}};
-      for (const auto& [nid, index] : list.nodes)
-        set.members.push_back(numbering_.index(nid, src_.at(index), "*SET_NODE_LIST",
-                                               "node set " + std::to_string(sid)));
+      for (const auto& [nid, card] : list.nodes)
+        set.members.push_back(
+            numbering_.index(nid, card->at(), "*SET_NODE_LIST", "node set " + std::to_string(sid)));
       std::sort(set.members.begin(), set.members.end());
       set.members.erase(std::unique(set.members.begin(), set.members.end()), set.members.end());
       set_index_.emplace(sid, static_cast<std::int32_t>(mesh_.node_sets.size()));
@@ -361,7 +298,7 @@ class LsDynaReader {
 
   void add_constraints() {
     for (const Spc& spc : spcs_) {
-      const core::SourceLocation where = src_.at(spc.index);
+      const core::SourceLocation where = spc.card->at();
       std::int32_t set = -1;
       if (spc.on_node) {
         set = single_node_set(
@@ -378,7 +315,7 @@ class LsDynaReader {
     }
   }
 
-  const SourceText& src_;
+  const LsDynaDeck& deck_;
   std::string key_;  // the keyword being read, for messages
   MeshData mesh_;
   NodeNumbering numbering_;
@@ -395,9 +332,12 @@ class LsDynaReader {
 
 }  // namespace
 
+MeshData lsdyna_mesh(const LsDynaDeck& deck) {
+  return LsDynaReader(deck).read();
+}
+
 MeshData parse_lsdyna(const std::string& text, const std::string& path) {
-  const SourceText src(text, path);
-  return LsDynaReader(src).read();
+  return lsdyna_mesh(LsDynaDeck::parse(text, path));
 }
 
 }  // namespace afemp::fem

@@ -46,7 +46,8 @@ struct MeshData {
   std::vector<std::int32_t> line_part;  // one per line, index into part_names
   std::vector<double> line_area;        // one per line; 0 where the source gives none
 
-  std::vector<std::string> part_names;  // "part 1", "PLATE", ...: at least one when any element
+  std::vector<std::string> part_names;    // "part 1", "PLATE", ...: at least one when any element
+  std::vector<std::int64_t> part_labels;  // the source's part ids (LS-DYNA *PART); may be empty
 
   std::vector<NamedSet> node_sets;
   std::vector<NamedSet> hexahedron_sets;

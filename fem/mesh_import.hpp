@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "afemp/errors.hpp"
+#include "core/source_text.hpp"
 #include "fem/mesh.hpp"
 
 namespace afemp::fem {
@@ -29,38 +30,22 @@ MeshData read_mesh(const std::string& path);
 MeshData parse_gmsh(const std::string& text, const std::string& path);
 MeshData parse_abaqus(const std::string& text, const std::string& path);
 MeshData parse_lsdyna(const std::string& text, const std::string& path);
+// The mesh of a deck already cut into keywords (its *PART ids in MeshData::part_labels).
+class LsDynaDeck;
+MeshData lsdyna_mesh(const LsDynaDeck& deck);
 
-// What the three readers share: numbered lines, numbers that must parse completely, and node
-// labels that elements and sets refer to (which may be defined later in the file).
+// What the three readers share: numbered lines and numbers that must parse completely
+// (core/source_text.hpp), and node labels that elements and sets refer to (which may be
+// defined later in the file).
 namespace import_detail {
 
-// The lines of a file ('\r' removed), line i numbered i + 1 in messages. The lines are views
-// into `text`, which must outlive this object.
-class SourceText {
- public:
-  SourceText(const std::string& text, std::string path);
-  std::size_t size() const { return lines_.size(); }
-  std::string_view line(std::size_t i) const { return lines_[i]; }
-  core::SourceLocation at(std::size_t i) const { return {path_, static_cast<int>(i) + 1}; }
-  const std::string& path() const { return path_; }
-
- private:
-  std::string path_;
-  std::vector<std::string_view> lines_;
-};
-
-std::string_view trim(std::string_view s);
-std::string upper(std::string_view s);
-std::vector<std::string_view> split_words(std::string_view line);  // on blanks and tabs
-// Fields between separators, each trimmed; "a,,b," gives {"a", "", "b", ""}.
-std::vector<std::string_view> split_fields(std::string_view line, char separator);
-
-// The whole field as a number ("what" names it in the message), or an InputError at `at`.
-// Reals accept the Fortran exponent letter D, as LS-DYNA decks written by old tools use it.
-std::int64_t to_integer(std::string_view field, const core::SourceLocation& at,
-                        const std::string& key, const std::string& what);
-double to_real(std::string_view field, const core::SourceLocation& at, const std::string& key,
-               const std::string& what);
+using core::SourceText;
+using core::split_fields;
+using core::split_words;
+using core::to_integer;
+using core::to_real;
+using core::trim;
+using core::upper;
 
 // An element as the file lists it, resolved to node indices once every node is known.
 struct RawElement {

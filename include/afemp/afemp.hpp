@@ -3,6 +3,7 @@
 // docs/library.md is the tutorial.
 #pragma once
 
+#include "afemp/deck_import.hpp"
 #include "afemp/energies.hpp"
 #include "afemp/errors.hpp"
 #include "afemp/material.hpp"

@@ -1,0 +1,44 @@
+// The unit systems decks are written in, and the factors that bring their numbers into mm, ms,
+// g, N, MPa (afemp's examples; docs/scene-format.md "Units"). A quantity is named by the
+// powers of length, time and mass in it.
+#pragma once
+
+#include <string>
+
+#include "afemp/errors.hpp"
+
+namespace afemp::core {
+
+struct Dimension {
+  int length = 0, time = 0, mass = 0;
+};
+
+namespace dimension {
+inline constexpr Dimension none{0, 0, 0};
+inline constexpr Dimension length{1, 0, 0};
+inline constexpr Dimension time{0, 1, 0};
+inline constexpr Dimension rate{0, -1, 0};
+inline constexpr Dimension mass{0, 0, 1};
+inline constexpr Dimension velocity{1, -1, 0};
+inline constexpr Dimension acceleration{1, -2, 0};
+inline constexpr Dimension density{-3, 0, 1};
+inline constexpr Dimension stress{-1, -2, 1};          // also energy per volume
+inline constexpr Dimension specific_energy{2, -2, 0};  // per mass; c_p per kelvin
+inline constexpr Dimension volume{3, 0, 0};
+}  // namespace dimension
+
+class UnitConversion {
+ public:
+  // `system` as DeckImportOptions::units; empty keeps the numbers. An unknown name is an
+  // InputError at `at` listing the known ones.
+  UnitConversion(const std::string& system, const SourceLocation& at);
+  double operator()(double value, Dimension d) const;
+  // "mm, ms, g, N, MPa (converted from m, s, kg, N, Pa)" or "the deck's own (...)".
+  const std::string& description() const { return description_; }
+
+ private:
+  double length_ = 1.0, time_ = 1.0, mass_ = 1.0;  // one deck unit in mm, ms, g
+  std::string description_;
+};
+
+}  // namespace afemp::core

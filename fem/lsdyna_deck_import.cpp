@@ -1,0 +1,677 @@
+// LS-DYNA keyword decks into afemp scenes (fem/lsdyna_deck_import.hpp). The mesh keywords are
+// read by fem/lsdyna_reader.cpp when the scene runs; here every other keyword is translated,
+// approximated with a note, or listed as not translated. Card layouts follow the LS-DYNA
+// Keyword User's Manual (R13): Vol. I for *PART, *SECTION_SOLID, *SECTION_BEAM, *HOURGLASS,
+// *INITIAL_VELOCITY_GENERATION, *RIGIDWALL_PLANAR, *CONTROL_TERMINATION, *CONTROL_TIMESTEP,
+// *DATABASE_BINARY_D3PLOT; Vol. II for *MAT_ELASTIC (001), *MAT_PLASTIC_KINEMATIC (003),
+// *MAT_JOHNSON_COOK (015), *MAT_JOHNSON_HOLMQUIST_CONCRETE (111), *EOS_LINEAR_POLYNOMIAL (001)
+// and *EOS_GRUNEISEN (004).
+#include "fem/lsdyna_deck_import.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include "core/decks/deck_units.hpp"
+#include "core/decks/scene_text.hpp"
+#include "fem/lsdyna_keywords.hpp"
+#include "fem/mesh_import.hpp"
+
+namespace afemp::fem {
+
+namespace {
+
+namespace dim = core::dimension;
+
+// Read by the mesh reader when the scene runs.
+const std::set<std::string> kMeshKeywords = {"NODE",
+                                             "ELEMENT_SOLID",
+                                             "ELEMENT_BEAM",
+                                             "SET_NODE_LIST",
+                                             "SET_NODE_LIST_TITLE",
+                                             "BOUNDARY_SPC_SET",
+                                             "BOUNDARY_SPC_NODE"};
+
+struct Material {
+  std::string kind;  // "elastic", "plastic-kinematic", "johnson-cook", "hjc"
+  core::SourceLocation at;
+  std::string keyword;
+  double density = 0;
+  std::string body;             // the material table's lines, EOS excepted
+  double G = 0, E = 0, nu = 0;  // G: for E and nu when a Johnson-Cook card leaves them blank
+};
+
+struct Eos {
+  std::string table;
+  double bulk_modulus = 0;         // C1 of the linear polynomial
+  double sound_speed_squared = 0;  // c0^2 of Gruneisen: the bulk modulus is rho0 c0^2
+  double e0 = 0;                   // initial internal energy per unit reference volume (converted)
+};
+
+struct Hourglass {
+  std::string hourglass;  // the body's `hourglass = ...`, empty for the default
+  std::string bulk_viscosity;
+};
+
+struct Wall {
+  core::Vec3 point, normal;
+  double friction = 0;
+};
+
+class LsDynaImport {
+ public:
+  LsDynaImport(const std::string& text, const std::string& deck_path, const std::string& scene_path,
+               const core::DeckImportOptions& options)
+      : deck_(LsDynaDeck::parse(text, deck_path)),
+        deck_path_(deck_path),
+        scene_path_(scene_path),
+        units_(options.units, {deck_path, 0}) {}
+
+  core::DeckImport run() {
+    for (const LsDynaKeyword& k : deck_.keywords()) {
+      key_ = "*" + k.name;
+      keyword(k);
+    }
+    const MeshData mesh = lsdyna_mesh(deck_);
+    const std::string body = scene(mesh);
+    core::DeckImport out;
+    out.notes = notes_;
+    out.units = units_.description();
+    out.scene = core::imported_scene_header(deck_path_, core::DeckFormat::lsdyna,
+                                            units_.description(), notes_) +
+                "\n" + body;
+    return out;
+  }
+
+ private:
+  void note(const core::SourceLocation& at, const std::string& what, bool approximated) {
+    notes_.push_back({at, key_, what, approximated});
+  }
+
+  // The cards holding data: a _TITLE keyword's first card is its title.
+  static std::vector<LsDynaCard> data_cards(const LsDynaKeyword& k) {
+    std::vector<LsDynaCard> cards = k.cards;
+    if (k.name.ends_with("_TITLE") && !cards.empty()) cards.erase(cards.begin());
+    return cards;
+  }
+
+  // Card i of the keyword's data as fields; a card left out reads as blank (defaults).
+  std::vector<std::string_view> card(const std::vector<LsDynaCard>& cards, std::size_t i) const {
+    return i < cards.size() ? card_fields(cards[i], kStandardColumns)
+                            : std::vector<std::string_view>{};
+  }
+  const LsDynaCard& card_at(const LsDynaKeyword& k, const std::vector<LsDynaCard>& cards,
+                            std::size_t i) const {
+    if (cards.empty()) throw core::InputError(k.at(), key_, "the keyword has no card");
+    return cards[std::min(i, cards.size() - 1)];
+  }
+  double real(const LsDynaKeyword& k, const std::vector<LsDynaCard>& cards, std::size_t c,
+              std::size_t i, const std::string& what, core::Dimension d = dim::none) const {
+    return units_(card_real(card(cards, c), i, card_at(k, cards, c), key_, what), d);
+  }
+  std::int64_t integer(const LsDynaKeyword& k, const std::vector<LsDynaCard>& cards, std::size_t c,
+                       std::size_t i, const std::string& what) const {
+    return card_integer(card(cards, c), i, card_at(k, cards, c), key_, what);
+  }
+
+  static bool is(const std::string& name, std::initializer_list<const char*> names) {
+    for (const char* n : names)
+      if (name == n || name == std::string(n) + "_TITLE") return true;
+    return false;
+  }
+
+  void keyword(const LsDynaKeyword& k) {
+    const std::string& n = k.name;
+    if (n == "KEYWORD" || kMeshKeywords.count(n) != 0) return;
+    if (n == "TITLE") {
+      if (!k.cards.empty()) title_ = std::string(core::trim(k.cards.front().text));
+    } else if (n == "PART") {
+      for (LsDynaPart& p : lsdyna_parts(k)) {
+        if (p.extra)
+          note(p.card.at(), "GRAV, ADPOPT and TMID of part " + std::to_string(p.id), false);
+        parts_[p.id] = std::move(p);
+      }
+    } else if (is(n, {"SECTION_SOLID"})) {
+      section_solid(k);
+    } else if (is(n, {"SECTION_BEAM"})) {
+      section_beam(k);
+    } else if (is(n, {"MAT_ELASTIC", "MAT_001"})) {
+      mat_elastic(k);
+    } else if (is(n, {"MAT_PLASTIC_KINEMATIC", "MAT_003"})) {
+      mat_plastic_kinematic(k);
+    } else if (is(n, {"MAT_JOHNSON_COOK", "MAT_015"})) {
+      mat_johnson_cook(k);
+    } else if (is(n, {"MAT_JOHNSON_HOLMQUIST_CONCRETE", "MAT_111"})) {
+      mat_hjc(k);
+    } else if (is(n, {"EOS_GRUNEISEN", "EOS_004"})) {
+      eos_gruneisen(k);
+    } else if (is(n, {"EOS_LINEAR_POLYNOMIAL", "EOS_001"})) {
+      eos_linear_polynomial(k);
+    } else if (n == "HOURGLASS" || n == "HOURGLASS_TITLE") {
+      hourglass(k);
+    } else if (n == "INITIAL_VELOCITY_GENERATION") {
+      initial_velocity(k);
+    } else if (n == "RIGIDWALL_PLANAR") {
+      rigid_wall(k);
+    } else if (n == "CONTROL_TERMINATION") {
+      const auto c = data_cards(k);
+      end_time_ = real(k, c, 0, 0, "ENDTIM", dim::time);
+      max_steps_ = integer(k, c, 0, 1, "ENDCYC");
+      bool other = false;
+      for (std::size_t i = 2; i < 5; ++i)
+        other = other || real(k, c, 0, i, "DTMIN, ENDENG or ENDMAS") != 0.0;
+      if (other) note(k.at(), "DTMIN, ENDENG and ENDMAS (afemp stops at ENDTIM or ENDCYC)", false);
+    } else if (n == "CONTROL_TIMESTEP") {
+      const auto c = data_cards(k);
+      tssfac_ = real(k, c, 0, 1, "TSSFAC");
+      if (real(k, c, 0, 0, "DTINIT") != 0.0 || real(k, c, 0, 4, "DT2MS") != 0.0 ||
+          integer(k, c, 0, 5, "LCTM") != 0)
+        note(k.at(),
+             "DTINIT, DT2MS (mass scaling) and LCTM: afemp takes the stable step times TSSFAC",
+             false);
+    } else if (n == "DATABASE_BINARY_D3PLOT") {
+      const auto c = data_cards(k);
+      output_every_ = real(k, c, 0, 0, "DT", dim::time);
+      note(k.at(), "written as afemp's fields.xmf + fields.h5 every DT (not a d3plot file)", true);
+    } else {
+      note(k.at(), "outside the subset afemp imports (docs/import.md)", false);
+    }
+  }
+
+  void section_solid(const LsDynaKeyword& k) {
+    const auto c = data_cards(k);
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      if (c[i].blank()) continue;
+      const std::int64_t id = integer(k, c, i, 0, "SECID");
+      std::int64_t elform = integer(k, c, i, 1, "ELFORM");
+      if (elform == 0) elform = 1;
+      if (elform != 1 && elform != 2)
+        throw core::InputError(c[i].at(), key_,
+                               "ELFORM " + std::to_string(elform) +
+                                   " has no afemp element; allowed: 1 (one-point, hourglass "
+                                   "control) and 2 (fully integrated, written as afemp's 2x2x2 "
+                                   "B-bar element)");
+      if (elform == 2)
+        note(c[i].at(),
+             "ELFORM 2 (selectively reduced) is afemp's fully integrated B-bar hexahedron", true);
+      solid_elform_[id] = elform;
+    }
+  }
+
+  void section_beam(const LsDynaKeyword& k) {
+    const auto c = data_cards(k);
+    const std::int64_t id = integer(k, c, 0, 0, "SECID");
+    const std::int64_t elform = integer(k, c, 0, 1, "ELFORM");
+    if (elform != 3)
+      note(c.front().at(),
+           "beam section " + std::to_string(id) + " (ELFORM " + std::to_string(elform) +
+               ") is read as trusses: axial force only, no bending",
+           true);
+  }
+
+  Material& new_material(const LsDynaKeyword& k, const std::vector<LsDynaCard>& c,
+                         const std::string& kind) {
+    const std::int64_t id = integer(k, c, 0, 0, "MID");
+    if (materials_.count(id) != 0)
+      throw core::InputError(k.at(), key_,
+                             "material " + std::to_string(id) + " is already defined");
+    Material& m = materials_[id];
+    m.kind = kind;
+    m.at = k.at();
+    m.keyword = key_;
+    m.density = real(k, c, 0, 1, "RO", dim::density);
+    return m;
+  }
+
+  std::string num(double v) const { return core::toml_number(v); }
+
+  // MID RO E PR DA DB K
+  void mat_elastic(const LsDynaKeyword& k) {
+    const auto c = data_cards(k);
+    Material& m = new_material(k, c, "elastic");
+    m.E = real(k, c, 0, 2, "E", dim::stress);
+    m.nu = real(k, c, 0, 3, "PR");
+    m.body = "strength = { model = \"elastic\" }\n";
+    if (real(k, c, 0, 4, "DA") != 0.0 || real(k, c, 0, 5, "DB") != 0.0)
+      note(k.at(), "DA and DB (axial and bending damping of beams)", false);
+  }
+
+  // MID RO E PR SIGY ETAN BETA / SRC SRP FS VP
+  void mat_plastic_kinematic(const LsDynaKeyword& k) {
+    const auto c = data_cards(k);
+    Material& m = new_material(k, c, "plastic-kinematic");
+    m.E = real(k, c, 0, 2, "E", dim::stress);
+    m.nu = real(k, c, 0, 3, "PR");
+    const double etan = real(k, c, 0, 5, "ETAN", dim::stress);
+    const double beta = real(k, c, 0, 6, "BETA");
+    m.body = "strength = { model = \"j2\", yield = " + num(real(k, c, 0, 4, "SIGY", dim::stress)) +
+             ", tangent_modulus = " + num(etan) + " }\n";
+    if (beta != 1.0 && etan > 0.0)
+      note(k.at(),
+           "BETA = " + num(beta) + ": kinematic hardening is written as isotropic (BETA = 1)",
+           true);
+    if (real(k, c, 1, 0, "SRC", dim::rate) != 0.0)
+      note(k.at(), "SRC and SRP (Cowper-Symonds rate factor): afemp's j2 is rate-independent",
+           false);
+    if (const double fs = real(k, c, 1, 2, "FS"); fs > 0.0)
+      m.body += "failure_strain = " + num(fs) + "\n";
+  }
+
+  // MID RO G E PR DTF VP RATEOP / A B N C M TM TR EPSO / CP PC SPALL IT D1 D2 D3 D4 /
+  // D5 C2/P/XNP EROD EFMIN NUMINT
+  void mat_johnson_cook(const LsDynaKeyword& k) {
+    const auto c = data_cards(k);
+    Material& m = new_material(k, c, "johnson-cook");
+    m.G = real(k, c, 0, 2, "G", dim::stress);
+    m.E = real(k, c, 0, 3, "E", dim::stress);
+    m.nu = real(k, c, 0, 4, "PR");
+    const double tm = real(k, c, 1, 5, "TM"), tr = real(k, c, 1, 6, "TR");
+    const double epso = real(k, c, 1, 7, "EPSO", dim::rate);
+    const double mexp = real(k, c, 1, 4, "M");
+    std::string s =
+        "strength = { model = \"johnson-cook\", A = " + num(real(k, c, 1, 0, "A", dim::stress)) +
+        ", B = " + num(real(k, c, 1, 1, "B", dim::stress)) + ", n = " + num(real(k, c, 1, 2, "N")) +
+        ", C = " + num(real(k, c, 1, 3, "C"));
+    if (epso > 0.0) s += ", reference_strain_rate = " + num(epso);
+    if (mexp > 0.0)
+      s += ", m = " + num(mexp) + ", room_temperature = " + num(tr) +
+           ", melt_temperature = " + num(tm);
+    m.body = s + " }\n";
+    if (const double cp = real(k, c, 2, 0, "CP", dim::specific_energy); cp > 0.0)
+      m.body += "specific_heat = " + num(cp) + "\n";
+    if (tr > 0.0) m.body += "temperature = " + num(tr) + "\n";
+    std::array<double, 5> d{};
+    for (std::size_t i = 0; i < 4; ++i) d[i] = real(k, c, 2, 4 + i, "D" + std::to_string(i + 1));
+    d[4] = real(k, c, 3, 0, "D5");
+    const double pc = real(k, c, 2, 1, "PC", dim::stress);
+    const double spall = real(k, c, 2, 2, "SPALL");
+    if (std::any_of(d.begin(), d.end(), [](double v) { return v != 0.0; })) {
+      m.body += "failure = { model = \"johnson-cook\", D1 = " + num(d[0]) + ", D2 = " + num(d[1]) +
+                ", D3 = " + num(d[2]) + ", D4 = " + num(d[3]) + ", D5 = " + num(d[4]);
+      if (epso > 0.0) m.body += ", reference_strain_rate = " + num(epso);
+      if (tm > 0.0) m.body += ", room_temperature = " + num(tr) + ", melt_temperature = " + num(tm);
+      m.body += " }\n";
+      if (pc < 0.0)
+        note(k.at(), "PC and SPALL beside the Johnson-Cook damage: afemp takes one failure model",
+             false);
+    } else if (pc < 0.0) {
+      const bool principal = spall == 2.0;
+      m.body += std::string("failure = { model = \"spall\", ") +
+                (principal ? "principal_stress" : "pressure") + " = " + num(-pc) + " }\n";
+      note(k.at(),
+           "PC with SPALL " + num(spall) + " is afemp's instantaneous spall failure (" +
+               (principal ? "largest principal stress" : "-p") + " beyond -PC)",
+           true);
+    }
+    if (real(k, c, 0, 6, "VP") != 0.0 || real(k, c, 0, 5, "DTF") != 0.0 ||
+        real(k, c, 3, 2, "EROD") != 0.0)
+      note(k.at(),
+           "DTF, VP and EROD (afemp's Johnson-Cook is rate-dependent through C, erosion is the "
+           "body's)",
+           false);
+  }
+
+  // MID RO G A B C N FC / T EPS0 EFMIN SFMAX PC UC PL UL / D1 D2 K1 K2 K3 FS
+  void mat_hjc(const LsDynaKeyword& k) {
+    const auto c = data_cards(k);
+    Material& m = new_material(k, c, "hjc");
+    const auto st = [&](std::size_t card, std::size_t i, const char* what) {
+      return num(real(k, c, card, i, what, dim::stress));
+    };
+    const auto nd = [&](std::size_t card, std::size_t i, const char* what) {
+      return num(real(k, c, card, i, what));
+    };
+    m.body = "G = " + st(0, 2, "G") +
+             "\nstrength = { model = \"holmquist-johnson-cook\", A = " + nd(0, 3, "A") +
+             ", B = " + nd(0, 4, "B") + ", C = " + nd(0, 5, "C") + ", N = " + nd(0, 6, "N") +
+             ", fc = " + st(0, 7, "FC") + ", T = " + st(1, 0, "T") +
+             ", reference_strain_rate = " + num(real(k, c, 1, 1, "EPS0", dim::rate)) +
+             ", EFMIN = " + nd(1, 2, "EFMIN") + ", SFMAX = " + nd(1, 3, "SFMAX") +
+             ", D1 = " + nd(2, 0, "D1") + ", D2 = " + nd(2, 1, "D2") +
+             " }\neos = { model = \"hjc-compaction\", PC = " + st(1, 4, "PC") +
+             ", muc = " + nd(1, 5, "UC") + ", PL = " + st(1, 6, "PL") +
+             ", mul = " + nd(1, 7, "UL") + ", K1 = " + st(2, 2, "K1") + ", K2 = " + st(2, 3, "K2") +
+             ", K3 = " + st(2, 4, "K3") + " }\n";
+    if (real(k, c, 2, 5, "FS") != 0.0)
+      note(k.at(),
+           "FS (failure type): afemp's HJC carries its damage to D = 1 and does not erode on it",
+           false);
+  }
+
+  // EOSID C S1 S2 S3 GAMAO A E0 / V0
+  void eos_gruneisen(const LsDynaKeyword& k) {
+    const auto c = data_cards(k);
+    const std::int64_t id = integer(k, c, 0, 0, "EOSID");
+    const double c0 = real(k, c, 0, 1, "C", dim::velocity);
+    Eos& e = new_eos(k, id);
+    e.table = "{ model = \"mie-gruneisen\", c0 = " + num(c0) +
+              ", s = " + num(real(k, c, 0, 2, "S1")) +
+              ", gamma0 = " + num(real(k, c, 0, 5, "GAMAO")) + " }";
+    e.e0 = real(k, c, 0, 7, "E0", dim::stress);
+    e.sound_speed_squared = c0 * c0;
+    if (real(k, c, 0, 3, "S2") != 0.0 || real(k, c, 0, 4, "S3") != 0.0)
+      note(k.at(), "S2 and S3: afemp's Hugoniot is linear in u_p (S1 only)", false);
+    if (real(k, c, 0, 6, "A") != 0.0)
+      note(k.at(), "A (first-order volume correction to GAMAO)", false);
+    if (const double v0 = real(k, c, 1, 0, "V0"); v0 != 0.0 && v0 != 1.0)
+      note(k.at(), "V0 = " + num(v0) + ": afemp starts at the reference density", false);
+    note(k.at(),
+         "the Hugoniot pressure is afemp's cubic expansion in mu (Ma 2005, eq 2-25), 1.4 % "
+         "below LS-DYNA's rational form at mu = 0.4; in tension p = rho0 c0^2 mu",
+         true);
+  }
+
+  // EOSID C0 C1 C2 C3 C4 C5 C6 / E0 V0
+  void eos_linear_polynomial(const LsDynaKeyword& k) {
+    const auto c = data_cards(k);
+    const std::int64_t id = integer(k, c, 0, 0, "EOSID");
+    Eos& e = new_eos(k, id);
+    e.table = "{ model = \"linear-polynomial\"";
+    for (std::size_t i = 0; i < 7; ++i) {
+      const std::string name = std::string("C") + std::to_string(i);
+      e.table +=
+          ", " + name + " = " + num(real(k, c, 0, 1 + i, name, i < 4 ? dim::stress : dim::none));
+    }
+    e.table += " }";
+    e.bulk_modulus = real(k, c, 0, 2, "C1", dim::stress);
+    e.e0 = real(k, c, 1, 0, "E0", dim::stress);
+    if (const double v0 = real(k, c, 1, 1, "V0"); v0 != 0.0 && v0 != 1.0)
+      note(k.at(), "V0 = " + num(v0) + ": afemp starts at the reference density", false);
+  }
+
+  Eos& new_eos(const LsDynaKeyword& k, std::int64_t id) {
+    if (eos_.count(id) != 0)
+      throw core::InputError(k.at(), key_, "EOS " + std::to_string(id) + " is already defined");
+    return eos_[id];
+  }
+
+  // HGID IHQ QM IBQ Q1 Q2 QB/VDC QW
+  void hourglass(const LsDynaKeyword& k) {
+    const auto c = data_cards(k);
+    const std::int64_t id = integer(k, c, 0, 0, "HGID");
+    const std::int64_t ihq = integer(k, c, 0, 1, "IHQ");
+    const double qm = real(k, c, 0, 2, "QM");
+    Hourglass h;
+    std::string form;
+    if (ihq >= 0 && ihq <= 3) {
+      form = "viscous";
+      if (ihq == 1 || ihq == 2)
+        note(k.at(),
+             "IHQ " + std::to_string(ihq) + " is written as afemp's viscous form (LS-DYNA type 3)",
+             true);
+    } else if (ihq == 4 || ihq == 5) {
+      form = "stiffness";
+      if (ihq == 4)
+        note(k.at(), "IHQ 4 is written as afemp's stiffness form (LS-DYNA type 5)", true);
+    } else if (ihq == 6) {
+      form = "assumed_strain";
+    } else {
+      throw core::InputError(card_at(k, c, 0).at(), key_,
+                             "IHQ " + std::to_string(ihq) +
+                                 " has no afemp form; allowed: 0-3 (viscous), "
+                                 "4-5 (stiffness), 6 (assumed strain)");
+    }
+    // QM blank is LS-DYNA's 0.1 for every form (afemp's stiffness default is 0.05).
+    const double wanted = qm > 0.0 ? qm : 0.1;
+    const double largest = form == "assumed_strain" ? 1.0 : 0.5;
+    if (wanted > largest)
+      note(k.at(),
+           "QM " + num(wanted) + " is above afemp's largest " + num(largest) + " for the " + form +
+               " form; written as " + num(largest),
+           true);
+    h.hourglass =
+        "{ form = \"" + form + "\", coefficient = " + num(std::min(wanted, largest)) + " }";
+    const double q1 = real(k, c, 0, 4, "Q1"), q2 = real(k, c, 0, 5, "Q2");
+    if (q1 != 0.0 || q2 != 0.0)
+      h.bulk_viscosity = "{ quadratic = " + num(q1 != 0.0 ? q1 : 1.5) +
+                         ", linear = " + num(q2 != 0.0 ? q2 : 0.06) + " }";
+    hourglass_[id] = h;
+  }
+
+  // ID STYP OMEGA VX VY VZ IVATN ICID / XC YC ZC NX NY NZ PHASE IRIGID
+  void initial_velocity(const LsDynaKeyword& k) {
+    const auto c = data_cards(k);
+    for (std::size_t i = 0; i < c.size(); i += 2) {
+      const std::int64_t id = integer(k, c, i, 0, "ID");
+      const std::int64_t styp = integer(k, c, i, 1, "STYP");
+      const core::Vec3 v{real(k, c, i, 3, "VX", dim::velocity),
+                         real(k, c, i, 4, "VY", dim::velocity),
+                         real(k, c, i, 5, "VZ", dim::velocity)};
+      if (real(k, c, i, 2, "OMEGA", dim::rate) != 0.0)
+        note(c[i].at(),
+             "OMEGA (an initial rotation): afemp gives a body one translational velocity", false);
+      if (styp != 2) {
+        note(c[i].at(),
+             "STYP " + std::to_string(styp) +
+                 " (a part set or node set): only STYP 2 (a part) is translated",
+             false);
+        continue;
+      }
+      velocity_[id] = {v, c[i].at()};  // id 0: every part
+    }
+  }
+
+  // NSID NSIDEX BOXID OFFSET BIRTH DEATH RWKSF / XT YT ZT XH YH ZH FRIC WVEL
+  void rigid_wall(const LsDynaKeyword& k) {
+    const auto c = data_cards(k);
+    Wall w;
+    w.point = {real(k, c, 1, 0, "XT", dim::length), real(k, c, 1, 1, "YT", dim::length),
+               real(k, c, 1, 2, "ZT", dim::length)};
+    const core::Vec3 head{real(k, c, 1, 3, "XH", dim::length), real(k, c, 1, 4, "YH", dim::length),
+                          real(k, c, 1, 5, "ZH", dim::length)};
+    w.normal = {head.x - w.point.x, head.y - w.point.y, head.z - w.point.z};
+    if (w.normal.x == 0.0 && w.normal.y == 0.0 && w.normal.z == 0.0)
+      throw core::InputError(card_at(k, c, 1).at(), key_,
+                             "the head (XH, YH, ZH) equals the tail: no normal");
+    w.friction = real(k, c, 1, 6, "FRIC");
+    if (integer(k, c, 0, 0, "NSID") != 0 || integer(k, c, 0, 1, "NSIDEX") != 0 ||
+        integer(k, c, 0, 2, "BOXID") != 0)
+      note(k.at(), "NSID, NSIDEX and BOXID: the wall acts on every node of every mesh body", true);
+    if (real(k, c, 0, 3, "OFFSET") != 0.0 || real(k, c, 0, 4, "BIRTH") != 0.0 ||
+        real(k, c, 0, 5, "DEATH") != 0.0 || real(k, c, 1, 7, "WVEL") != 0.0)
+      note(k.at(), "OFFSET, BIRTH, DEATH and WVEL", false);
+    if (w.friction >= 1.0)
+      note(k.at(), "FRIC >= 1 (no sliding) is written as Coulomb friction " + num(w.friction),
+           true);
+    walls_.push_back(w);
+  }
+
+  std::string material_name(std::int64_t mid, std::int64_t eosid) const {
+    return "mat" + std::to_string(mid) + (eosid != 0 ? "_eos" + std::to_string(eosid) : "");
+  }
+
+  // The material table of a part's MID with its EOSID.
+  std::string material_table(const LsDynaPart& p) {
+    const auto m = materials_.find(p.material);
+    if (m == materials_.end())
+      throw core::InputError(
+          p.card.at(), "*PART",
+          "part " + std::to_string(p.id) + " names material " + std::to_string(p.material) +
+              ", which is not defined; translated materials: *MAT_ELASTIC, "
+              "*MAT_PLASTIC_KINEMATIC, *MAT_JOHNSON_COOK, *MAT_JOHNSON_HOLMQUIST_CONCRETE");
+    const Material& mat = m->second;
+    const Eos* eos = nullptr;
+    if (p.eos != 0) {
+      const auto e = eos_.find(p.eos);
+      if (e == eos_.end())
+        throw core::InputError(
+            p.card.at(), "*PART",
+            "part " + std::to_string(p.id) + " names EOS " + std::to_string(p.eos) +
+                ", which is not defined; translated: *EOS_GRUNEISEN, *EOS_LINEAR_POLYNOMIAL");
+      eos = &e->second;
+    }
+    std::string s = "density = " + num(mat.density) + "\n";
+    if (mat.kind == "hjc") {
+      if (eos != nullptr)
+        notes_.push_back({p.card.at(), "*PART",
+                          "EOS " + std::to_string(p.eos) + " of part " + std::to_string(p.id) +
+                              ": *MAT_JOHNSON_HOLMQUIST_CONCRETE has its own compaction EOS",
+                          false});
+      return s + mat.body;
+    }
+    double E = mat.E, nu = mat.nu;
+    if (mat.kind == "johnson-cook") {
+      if (eos == nullptr)
+        throw core::InputError(
+            p.card.at(), "*PART",
+            "part " + std::to_string(p.id) + ": *MAT_JOHNSON_COOK needs an EOS (EOSID)");
+      const double K =
+          eos->bulk_modulus > 0.0 ? eos->bulk_modulus : mat.density * eos->sound_speed_squared;
+      if (E <= 0.0 || nu <= 0.0) {
+        if (mat.G <= 0.0 || K <= 0.0)
+          throw core::InputError(mat.at, mat.keyword,
+                                 "G and a bulk modulus from the EOS are needed for E and nu");
+        E = 9.0 * K * mat.G / (3.0 * K + mat.G);
+        nu = (3.0 * K - 2.0 * mat.G) / (2.0 * (3.0 * K + mat.G));
+        notes_.push_back({mat.at, mat.keyword,
+                          "E and PR (blank) follow from G and the EOS's bulk modulus " + num(K),
+                          true});
+      } else if (mat.G > 0.0 && std::abs(E / (2.0 * (1.0 + nu)) - mat.G) > 0.01 * mat.G) {
+        notes_.push_back({mat.at, mat.keyword,
+                          "G differs from E / (2 (1 + PR)) by more than 1 %; afemp uses E and PR",
+                          true});
+      }
+    }
+    s += "E = " + num(E) + "\nnu = " + num(nu) + "\n" + mat.body;
+    if (eos != nullptr) s += "eos = " + eos->table + "\n";
+    return s;
+  }
+
+  std::string scene(const MeshData& mesh) {
+    std::string s = "[run]\n";
+    if (!title_.empty()) s += "title = " + core::toml_string(title_) + "\n";
+    if (end_time_ <= 0.0)
+      throw core::InputError(
+          {deck_path_, 0}, "*CONTROL_TERMINATION",
+          "the deck gives no end time: ENDTIM of *CONTROL_TERMINATION is needed");
+    s += "end_time = " + num(end_time_) + "\n";
+    if (output_every_ > 0.0) s += "output_every = " + num(output_every_) + "\n";
+    if (tssfac_ > 0.0) s += "element_time_step_factor = " + num(std::min(tssfac_, 1.0)) + "\n";
+    if (max_steps_ > 0) s += "max_steps = " + std::to_string(max_steps_) + "\n";
+
+    // A material table for each (MID, EOSID) the parts use.
+    std::set<std::pair<std::int64_t, std::int64_t>> written;
+    std::string materials;
+    for (const std::int64_t label : mesh.part_labels) {
+      const auto p = parts_.find(label);
+      if (p == parts_.end()) continue;
+      const auto key = std::make_pair(p->second.material, p->second.eos);
+      if (!written.insert(key).second) continue;
+      const std::string table = material_table(p->second);  // refuses an undefined MID first
+      materials += "\n[materials." + material_name(key.first, key.second) + "]  # " +
+                   materials_.at(key.first).keyword + "\n" + table;
+    }
+    for (const auto& [mid, m] : materials_)
+      if (std::none_of(written.begin(), written.end(),
+                       [&](const auto& w) { return w.first == mid; }))
+        notes_.push_back({m.at, m.keyword,
+                          "material " + std::to_string(mid) + " is used by no part with elements",
+                          false});
+    s += materials;
+
+    const std::filesystem::path scene_dir = std::filesystem::absolute(scene_path_).parent_path();
+    const std::string mesh_file = std::filesystem::absolute(deck_path_)
+                                      .lexically_normal()
+                                      .lexically_relative(scene_dir)
+                                      .generic_string();
+    const double scale = units_(1.0, dim::length);
+    for (std::size_t i = 0; i < mesh.part_names.size(); ++i) {
+      const std::int64_t label = mesh.part_labels[i];
+      const auto p = parts_.find(label);
+      if (p == parts_.end())
+        throw core::InputError(
+            {deck_path_, 0}, "*PART",
+            "elements name part " + std::to_string(label) + ", which no *PART defines");
+      const LsDynaPart& part = p->second;
+      const bool hexahedra = std::find(mesh.hexahedron_part.begin(), mesh.hexahedron_part.end(),
+                                       static_cast<std::int32_t>(i)) != mesh.hexahedron_part.end();
+      if (!hexahedra && scale != 1.0)
+        throw core::InputError(
+            part.card.at(), "--units",
+            "part " + std::to_string(label) +
+                " has beams, whose section areas are "
+                "read from the deck unconverted; import this deck without --units");
+      s += "\n[[bodies]]\nname = " + core::toml_string(mesh.part_names[i]) + "  # *PART " +
+           std::to_string(label) + "\ndiscretisation = \"" + (hexahedra ? "hexahedra" : "trusses") +
+           "\"\nmaterial = \"" + material_name(part.material, part.eos) +
+           "\"\nshape = { mesh = { file = " + core::toml_string(mesh_file) + ", parts = [" +
+           core::toml_string(mesh.part_names[i]) + "]" +
+           (scale != 1.0 ? ", scale = " + num(scale) : "") + " } }\n";
+      if (hexahedra) {
+        const auto sec = solid_elform_.find(part.section);
+        if (sec == solid_elform_.end())
+          throw core::InputError(
+              part.card.at(), "*PART",
+              "part " + std::to_string(label) + " of solid elements names section " +
+                  std::to_string(part.section) + ", which no *SECTION_SOLID defines");
+        if (sec->second == 2) s += "element = \"full\"\n";
+      }
+      if (part.hourglass != 0) {
+        const auto h = hourglass_.find(part.hourglass);
+        if (h == hourglass_.end())
+          throw core::InputError(part.card.at(), "*PART",
+                                 "part " + std::to_string(label) + " names hourglass " +
+                                     std::to_string(part.hourglass) +
+                                     ", which no *HOURGLASS defines");
+        if (hexahedra && solid_elform_[part.section] == 1)
+          s += "hourglass = " + h->second.hourglass + "\n";
+        if (!h->second.bulk_viscosity.empty())
+          s += "bulk_viscosity = " + h->second.bulk_viscosity + "\n";
+      }
+      const auto v = velocity_.count(label) != 0 ? velocity_.find(label) : velocity_.find(0);
+      if (v != velocity_.end()) {
+        const core::Vec3& u = v->second.first;
+        s += "velocity = " + core::toml_vec3(u.x, u.y, u.z) + "\n";
+      }
+      if (const auto e = eos_.find(part.eos);
+          part.eos != 0 && e != eos_.end() && e->second.e0 != 0.0)
+        s += "internal_energy = " + num(e->second.e0 / materials_.at(part.material).density) +
+             "  # E0 / RO\n";
+    }
+    for (const auto& [label, v] : velocity_) {
+      if (label == 0 || std::find(mesh.part_labels.begin(), mesh.part_labels.end(), label) !=
+                            mesh.part_labels.end())
+        continue;
+      core::DeckNote n;
+      n.at = v.second;
+      n.keyword = "*INITIAL_VELOCITY_GENERATION";
+      n.what = "part " + std::to_string(label) + " has no elements";
+      notes_.push_back(std::move(n));
+    }
+    for (const Wall& w : walls_) {
+      s += "\n[[walls]]\npoint = " + core::toml_vec3(w.point.x, w.point.y, w.point.z) +
+           "\nnormal = " + core::toml_vec3(w.normal.x, w.normal.y, w.normal.z) + "\n";
+      if (w.friction > 0.0) s += "friction = " + num(w.friction) + "\n";
+    }
+    return s;
+  }
+
+  LsDynaDeck deck_;
+  std::string deck_path_, scene_path_;
+  core::UnitConversion units_;
+  std::string key_;
+  std::vector<core::DeckNote> notes_;
+
+  std::string title_;
+  double end_time_ = 0, output_every_ = 0, tssfac_ = 0;
+  std::int64_t max_steps_ = 0;
+  std::map<std::int64_t, LsDynaPart> parts_;
+  std::map<std::int64_t, std::int64_t> solid_elform_;
+  std::map<std::int64_t, Material> materials_;
+  std::map<std::int64_t, Eos> eos_;
+  std::map<std::int64_t, Hourglass> hourglass_;
+  std::map<std::int64_t, std::pair<core::Vec3, core::SourceLocation>> velocity_;
+  std::vector<Wall> walls_;
+};
+
+}  // namespace
+
+core::DeckImport import_lsdyna_deck(const std::string& text, const std::string& deck_path,
+                                    const std::string& scene_path,
+                                    const core::DeckImportOptions& options) {
+  return LsDynaImport(text, deck_path, scene_path, options).run();
+}
+
+}  // namespace afemp::fem

@@ -1,0 +1,303 @@
+// LS-DYNA keyword decks into scenes (fem/lsdyna_deck_import.cpp): each keyword of the subset
+// into the scene's fields (reference: the card layouts of the LS-DYNA Keyword User's Manual,
+// Vol. I and II), unit conversion, *INCLUDE, keywords outside the subset listed with their
+// line, and errors that name the file, the line and the keyword.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <variant>
+
+#include "afemp/deck_import.hpp"
+#include "core/scene.hpp"
+#include "fem/lsdyna_deck_import.hpp"
+#include "mpm/test_support.hpp"
+#include "scratch_dir.hpp"
+
+namespace afemp::fem {
+namespace {
+
+// A cube of 2 x 2 x 2 one-mm hexahedra, nodes 1..27 at (i, j, k) mm.
+std::string cube_mesh(int part = 1) {
+  std::string s = "*NODE\n";
+  for (int k = 0, n = 1; k < 3; ++k)
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i, ++n)
+        s += std::to_string(n) + "," + std::to_string(i) + "," + std::to_string(j) + "," +
+             std::to_string(k) + "\n";
+  s += "*ELEMENT_SOLID\n";
+  const auto node = [](int i, int j, int k) { return std::to_string(1 + i + 3 * j + 9 * k); };
+  for (int k = 0, e = 1; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i, ++e)
+        s += std::to_string(e) + "," + std::to_string(part) + "," + node(i, j, k) + "," +
+             node(i + 1, j, k) + "," + node(i + 1, j + 1, k) + "," + node(i, j + 1, k) + "," +
+             node(i, j, k + 1) + "," + node(i + 1, j, k + 1) + "," + node(i + 1, j + 1, k + 1) +
+             "," + node(i, j + 1, k + 1) + "\n";
+  return s;
+}
+
+// Copper (Johnson-Cook with damage, Grueneisen EOS with E0) striking a wall; the lines of the
+// keywords the tests name are counted in comments.
+const std::string kDeck =
+    "*KEYWORD\n"                                                       // 1
+    "*TITLE\ncube on a wall\n"                                         // 2-3
+    "*CONTROL_TERMINATION\n0.02,5000\n"                                // 4-5
+    "*CONTROL_TIMESTEP\n0.0,0.67\n"                                    // 6-7
+    "*DATABASE_BINARY_D3PLOT\n0.001\n"                                 // 8-9
+    "*PART\ncube\n1,1,1,1,1\n"                                         // 10-12
+    "*SECTION_SOLID\n1,1\n"                                            // 13-14
+    "*MAT_JOHNSON_COOK\n"                                              // 15
+    "1,8.93e-3,46000.,124000.,0.34\n"                                  // 16
+    "90.,292.,0.31,0.025,1.09,1356.,293.,1.0e-3\n"                     // 17
+    "383.,0.,0.,0.,0.54,4.89,-3.03,0.014\n"                            // 18
+    "1.12\n"                                                           // 19
+    "*EOS_GRUNEISEN\n1,3940.,1.49,0.,0.,1.96,0.,0.0893\n"              // 20-21
+    "*HOURGLASS\n1,6,1.0\n"                                            // 22-23
+    "*INITIAL_VELOCITY_GENERATION\n1,2,0.,0.,0.,-300.\n0,0,0,0,0,0\n"  // 24-26
+    "*RIGIDWALL_PLANAR\n0\n0.,0.,-0.5,0.,0.,1.,0.1\n"                  // 27-29
+    "*CONTACT_AUTOMATIC_SINGLE_SURFACE\n0,0\n"                         // 30-31
+    "*DATABASE_GLSTAT\n1.0e-4\n" +                                     // 32-33
+    cube_mesh() +
+    "*END\n";
+
+struct Imported {
+  core::DeckImport deck;
+  core::Scene scene;
+};
+
+Imported import_text(const test::ScratchDir& dir, const std::string& deck,
+                     const std::string& units = "") {
+  const std::string deck_path = dir.write("deck.k", deck);
+  const std::string scene_path = dir.file("scene.toml");
+  core::DeckImport d = core::import_deck(deck_path, scene_path, {units});
+  core::write_deck_import(d, scene_path);
+  return {std::move(d), core::read_scene(scene_path)};
+}
+
+std::string error_of(const std::string& deck) {
+  try {
+    import_lsdyna_deck(deck, "bad.k", "scene.toml", {});
+  } catch (const core::InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError";
+  return "";
+}
+
+TEST(LsDynaDeckImport, KeywordsBecomeTheSceneFields) {
+  test::ScratchDir dir;
+  const Imported im = import_text(dir, kDeck);
+  const core::Scene& s = im.scene;
+  EXPECT_EQ(s.run.title, "cube on a wall");
+  EXPECT_DOUBLE_EQ(s.run.end_time, 0.02);
+  EXPECT_EQ(s.run.max_steps, 5000);
+  EXPECT_DOUBLE_EQ(s.run.element_time_step_factor, 0.67);
+  EXPECT_DOUBLE_EQ(s.run.output_every, 0.001);
+
+  ASSERT_EQ(s.materials.size(), 1u);
+  const core::Material& m = s.materials[0];
+  EXPECT_DOUBLE_EQ(m.density, 8.93e-3);
+  EXPECT_DOUBLE_EQ(m.youngs_modulus, 124000.);
+  EXPECT_DOUBLE_EQ(m.poisson_ratio, 0.34);
+  const auto& jc = std::get<core::JohnsonCook>(m.strength);
+  EXPECT_DOUBLE_EQ(jc.A, 90.);
+  EXPECT_DOUBLE_EQ(jc.B, 292.);
+  EXPECT_DOUBLE_EQ(jc.n, 0.31);
+  EXPECT_DOUBLE_EQ(jc.C, 0.025);
+  EXPECT_DOUBLE_EQ(jc.m, 1.09);
+  EXPECT_DOUBLE_EQ(jc.melt_temperature, 1356.);
+  EXPECT_DOUBLE_EQ(jc.room_temperature, 293.);
+  EXPECT_DOUBLE_EQ(jc.reference_strain_rate, 1e-3);
+  const auto& mg = std::get<core::MieGruneisen>(m.eos);
+  EXPECT_DOUBLE_EQ(mg.c0, 3940.);
+  EXPECT_DOUBLE_EQ(mg.s, 1.49);
+  EXPECT_DOUBLE_EQ(mg.gamma0, 1.96);
+  EXPECT_NE(im.deck.scene.find("failure = { model = \"johnson-cook\", D1 = 0.54, D2 = 4.89, "
+                               "D3 = -3.03, D4 = 0.014, D5 = 1.12"),
+            std::string::npos)
+      << im.deck.scene;
+
+  ASSERT_EQ(s.bodies.size(), 1u);
+  const core::BodySpec& b = s.bodies[0];
+  EXPECT_EQ(b.name, "cube");
+  EXPECT_EQ(b.discretisation, core::Discretisation::hexahedra);
+  EXPECT_EQ(b.element, core::HexFormulation::one_point);
+  EXPECT_EQ(b.hourglass.form, core::HourglassForm::assumed_strain);
+  EXPECT_DOUBLE_EQ(b.hourglass.coefficient, 1.0);
+  EXPECT_DOUBLE_EQ(b.velocity.z, -300.);
+  EXPECT_DOUBLE_EQ(b.internal_energy, 0.0893 / 8.93e-3);  // E0 per volume over RO
+  EXPECT_EQ(std::get<core::MeshFileShape>(b.shape).parts, std::vector<std::string>{"cube"});
+
+  ASSERT_EQ(s.walls.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.walls[0].point.z, -0.5);
+  EXPECT_DOUBLE_EQ(s.walls[0].normal.z, 1.0);
+  EXPECT_DOUBLE_EQ(s.walls[0].friction, 0.1);
+}
+
+// Reference: nothing of the deck is dropped without a line: the two keywords outside the
+// subset are listed with their lines, in the notes and as comments at the top of the scene.
+TEST(LsDynaDeckImport, KeywordsOutsideTheSubsetAreListedWithTheirLines) {
+  test::ScratchDir dir;
+  const Imported im = import_text(dir, kDeck);
+  std::vector<std::string> listed;
+  for (const core::DeckNote& n : im.deck.notes)
+    if (!n.approximated) listed.push_back(n.keyword + ":" + std::to_string(n.at.line));
+  EXPECT_EQ(listed, (std::vector<std::string>{"*CONTACT_AUTOMATIC_SINGLE_SURFACE:30",
+                                              "*DATABASE_GLSTAT:32"}));
+  EXPECT_NE(im.deck.scene.find("#   " + dir.file("deck.k") +
+                               ":30: *CONTACT_AUTOMATIC_SINGLE_SURFACE: not translated"),
+            std::string::npos)
+      << im.deck.scene;
+}
+
+// Reference: 1 kg/m^3 = 1e-6 g/mm^3, 1 Pa = 1e-6 MPa, 1 m = 1000 mm, 1 s = 1000 ms; the mesh
+// keeps its numbers and is scaled by 1000 on reading.
+TEST(LsDynaDeckImport, SiDeckIsConvertedIntoMillimetresMilliseconds) {
+  test::ScratchDir dir;
+  const std::string deck =
+      "*KEYWORD\n*CONTROL_TERMINATION\n2.0e-5\n*PART\nblock\n1,1,1\n*SECTION_SOLID\n1,2\n"
+      "*MAT_PLASTIC_KINEMATIC\n1,7850.,200.0e9,0.3,500.0e6,2.0e9,1.0\n"
+      "*INITIAL_VELOCITY_GENERATION\n1,2,0.,0.,100.,0.\n0,0,0,0,0,0\n"
+      "*RIGIDWALL_PLANAR\n0\n0.,0.,-0.001,0.,0.,1.\n" +
+      cube_mesh() + "*END\n";
+  const Imported im = import_text(dir, deck, "m-s-kg");
+  const core::Scene& s = im.scene;
+  EXPECT_NEAR(s.run.end_time, 0.02, 1e-15);
+  EXPECT_NEAR(s.materials[0].density, 7.85e-3, 1e-15);
+  EXPECT_NEAR(s.materials[0].youngs_modulus, 200e3, 1e-9);
+  const auto& j2 = std::get<core::J2Plasticity>(s.materials[0].strength);
+  EXPECT_NEAR(j2.yield_stress, 500, 1e-9);
+  EXPECT_NEAR(j2.hardening, 200e3 * 2e3 / (200e3 - 2e3), 1e-6);
+  EXPECT_NEAR(s.bodies[0].velocity.y, 100, 1e-12);
+  EXPECT_EQ(s.bodies[0].element, core::HexFormulation::full);  // ELFORM 2
+  EXPECT_DOUBLE_EQ(std::get<core::MeshFileShape>(s.bodies[0].shape).scale, 1000.0);
+  EXPECT_NEAR(s.walls[0].point.z, -1.0, 1e-12);
+}
+
+// *INCLUDE: the mesh in a file beside the deck; the scene's body reads it through the deck.
+TEST(LsDynaDeckImport, IncludedMeshIsRead) {
+  test::ScratchDir dir;
+  dir.write("mesh.k", "*KEYWORD\n" + cube_mesh() + "*END\n");
+  const std::string deck =
+      "*KEYWORD\n*CONTROL_TERMINATION\n0.01\n*PART\nblock\n1,1,1\n*SECTION_SOLID\n1,1\n"
+      "*MAT_ELASTIC\n1,7.85e-3,200.0e3,0.3\n*INCLUDE\nmesh.k\n*END\n";
+  const Imported im = import_text(dir, deck);
+  EXPECT_EQ(std::get<core::MeshFileShape>(im.scene.bodies[0].shape).parts,
+            std::vector<std::string>{"block"});
+  EXPECT_TRUE(std::holds_alternative<core::Elastic>(im.scene.materials[0].strength));
+}
+
+// Holmquist-Johnson-Cook concrete (MAT_111; the 48 MPa concrete of docs/scene-format.md, SI).
+TEST(LsDynaDeckImport, HolmquistJohnsonCookConcreteMapsEveryField) {
+  test::ScratchDir dir;
+  const std::string deck =
+      "*KEYWORD\n*CONTROL_TERMINATION\n1.0e-4\n*PART\nslab\n1,1,1\n*SECTION_SOLID\n1,1\n"
+      "*MAT_JOHNSON_HOLMQUIST_CONCRETE\n"
+      "1,2440.,14.86e9,0.79,1.60,0.007,0.61,48.0e6\n"
+      "4.0e6,1.0,0.01,7.0,16.0e6,0.001,800.0e6,0.10\n"
+      "0.04,1.0,85.0e9,-171.0e9,208.0e9,0.0\n" +
+      cube_mesh() + "*END\n";
+  const Imported im = import_text(dir, deck);
+  const core::Material& m = im.scene.materials[0];
+  const auto& hjc = std::get<core::HolmquistJohnsonCook>(m.strength);
+  EXPECT_DOUBLE_EQ(hjc.A, 0.79);
+  EXPECT_DOUBLE_EQ(hjc.B, 1.60);
+  EXPECT_DOUBLE_EQ(hjc.N, 0.61);
+  EXPECT_DOUBLE_EQ(hjc.C, 0.007);
+  EXPECT_DOUBLE_EQ(hjc.compressive_strength, 48e6);
+  EXPECT_DOUBLE_EQ(hjc.tensile_strength, 4e6);
+  EXPECT_DOUBLE_EQ(hjc.min_fracture_strain, 0.01);
+  EXPECT_DOUBLE_EQ(hjc.max_strength, 7.0);
+  EXPECT_DOUBLE_EQ(hjc.D1, 0.04);
+  EXPECT_DOUBLE_EQ(hjc.D2, 1.0);
+  EXPECT_NEAR(m.shear_modulus(), 14.86e9, 1e-3);
+}
+
+TEST(LsDynaDeckImport, ErrorsNameFileLineKeywordAndWhatIsAllowed) {
+  const std::string head = "*KEYWORD\n*CONTROL_TERMINATION\n0.01\n*PART\nblock\n1,1,1,1\n";
+  std::string e = error_of(head + "*SECTION_SOLID\n1,10\n" + cube_mesh());
+  EXPECT_NE(e.find("bad.k:8:"), std::string::npos) << e;
+  EXPECT_NE(e.find("*SECTION_SOLID"), std::string::npos) << e;
+  EXPECT_NE(e.find("ELFORM 10"), std::string::npos) << e;
+  EXPECT_NE(e.find("allowed: 1"), std::string::npos) << e;
+
+  e = error_of(head + "*SECTION_SOLID\n1,1\n" + cube_mesh());
+  EXPECT_NE(e.find("bad.k:6:"), std::string::npos) << e;
+  EXPECT_NE(e.find("material 1, which is not defined"), std::string::npos) << e;
+
+  e = error_of(head +
+               "*SECTION_SOLID\n1,1\n*MAT_JOHNSON_COOK\n1,8.93e-3,46000.,1.24e5,0.34\n"
+               "90.,292.,0.31\n" +
+               cube_mesh());
+  EXPECT_NE(e.find("EOS 1, which is not defined"), std::string::npos) << e;
+
+  e = error_of(head + "*SECTION_SOLID\n1,1\n*MAT_ELASTIC\n1,7.85e-3,2oo.0e3,0.3\n" + cube_mesh());
+  EXPECT_NE(e.find("bad.k:10:"), std::string::npos) << e;
+  EXPECT_NE(e.find("*MAT_ELASTIC"), std::string::npos) << e;
+  EXPECT_NE(e.find("'2oo.0e3'"), std::string::npos) << e;
+
+  e = error_of("*KEYWORD\n*INCLUDE\nmissing.k\n");
+  EXPECT_NE(e.find("bad.k:3:"), std::string::npos) << e;
+  EXPECT_NE(e.find("cannot open"), std::string::npos) << e;
+
+  e = error_of("*KEYWORD\n*PART\nblock\n1,1,1\n" + cube_mesh());
+  EXPECT_NE(e.find("*CONTROL_TERMINATION"), std::string::npos) << e;
+}
+
+// Reference: LS-DYNA's *MAT_015 takes its solids' elasticity from G and the EOS; with E and PR
+// blank the scene's E and nu are those of G and K = rho0 c0^2 (K = 8.93e-3 x 3940^2 =
+// 138,622 MPa, G = 43,333 MPa: E = 9 K G / (3 K + G) = 117,700, nu = 0.3581). The stiffness
+// hourglass form with QM blank takes LS-DYNA's 0.1, not afemp's own 0.05.
+TEST(LsDynaDeckImport, JohnsonCookWithoutEAndPrTakesThemFromGAndTheEos) {
+  test::ScratchDir dir;
+  const std::string deck =
+      "*KEYWORD\n*CONTROL_TERMINATION\n0.01\n*PART\nbar\n1,1,1,1,1\n*SECTION_SOLID\n1,1\n"
+      "*MAT_JOHNSON_COOK\n1,8.93e-3,43333.33\n157.,425.,1.0\n"
+      "*EOS_GRUNEISEN\n1,3940.,1.49,0.,0.,1.96\n*HOURGLASS\n1,5\n" +
+      cube_mesh() + "*END\n";
+  const Imported im = import_text(dir, deck);
+  const core::Material& m = im.scene.materials[0];
+  const double K = 8.93e-3 * 3940.0 * 3940.0, G = 43333.33;
+  EXPECT_NEAR(m.youngs_modulus, 9 * K * G / (3 * K + G), 1e-6);
+  EXPECT_NEAR(m.poisson_ratio, (3 * K - 2 * G) / (2 * (3 * K + G)), 1e-12);
+  EXPECT_NEAR(m.shear_modulus(), G, 1e-6);
+  EXPECT_EQ(im.scene.bodies[0].hourglass.form, core::HourglassForm::stiffness);
+  EXPECT_DOUBLE_EQ(im.scene.bodies[0].hourglass.coefficient, 0.1);
+}
+
+// Fixed-column cards (10 characters a field), as most decks write them.
+TEST(LsDynaDeckImport, FixedColumnCardsAreRead) {
+  test::ScratchDir dir;
+  const std::string deck =
+      "*KEYWORD\n*CONTROL_TERMINATION\n$   endtim\n     0.015\n*PART\nblock\n"
+      "$      pid     secid       mid\n         1         1         7\n*SECTION_SOLID\n"
+      "         1         1\n*MAT_ELASTIC\n$      mid        ro         e        pr\n"
+      "         7   7.85e-3   2.0e+05      0.29\n" +
+      cube_mesh() + "*END\n";
+  const Imported im = import_text(dir, deck);
+  EXPECT_DOUBLE_EQ(im.scene.run.end_time, 0.015);
+  EXPECT_DOUBLE_EQ(im.scene.materials[0].youngs_modulus, 2.0e5);
+  EXPECT_DOUBLE_EQ(im.scene.materials[0].poisson_ratio, 0.29);
+  EXPECT_EQ(im.deck.notes.size(), 0u);
+  EXPECT_NE(im.deck.scene.find("Everything the deck holds is translated"), std::string::npos);
+}
+
+// `afemp check` and `afemp run` given an LS-DYNA deck say to import it, not "TOML syntax
+// error".
+TEST(LsDynaDeckImport, CommandSaysToImportADeck) {
+  test::ScratchDir dir;
+  const std::string deck = dir.write("cube.k", kDeck);
+  for (const char* cmd : {"check", "run"}) {
+    const mpm::test::CommandResult r =
+        mpm::test::run_afemp(std::string(cmd) + " \"" + deck + "\"", dir);
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(r.err.find("this is an LS-DYNA deck, not a scene; import it with `afemp import " +
+                         deck + " -o SCENE.toml`"),
+              std::string::npos)
+        << r.err;
+  }
+}
+
+}  // namespace
+}  // namespace afemp::fem

@@ -1,0 +1,284 @@
+// MPM3D decks into scenes (mpm/mpm3d_deck_import.cpp): keyword by keyword into the scene's
+// fields (reference: MPM3D-F90's DataIn.f90, the deck's meaning; Ma 2005, appendix A), the
+// generators' particles, unit conversion, the list of what is not translated, and errors that
+// name the file, the line and the keyword.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <variant>
+
+#include "afemp/deck_import.hpp"
+#include "core/scene.hpp"
+#include "mpm/mpm3d_deck_import.hpp"
+#include "scratch_dir.hpp"
+#include "test_support.hpp"
+
+namespace afemp::mpm {
+namespace {
+
+// A sphere (nR = 2 spacings of 0.5 mm) of steel at 1000 m/s onto a block (4 x 4 x 2 particles)
+// of copper with a Grueneisen EOS, MUSL, gravity, contact, output options.
+const std::string kDeck =
+    "mpm3d *** sphere onto a plate\n"                                          // 1
+    "nbco 2\nnbbo 2\n"                                                         // 2-3
+    "nbmp 64\n"                                                                // 4
+    "nmat 2\n"                                                                 // 5
+    "spx -4 4\nspy -4 4\nspz -4 6\ndcell 1.0\n"                                // 6-9
+    "dtscale 0.5\nendtime 0.01\nouttime 0.002\n"                               // 10-12
+    "musl on\njaum off\n"                                                      // 13-14
+    "fixed 0 0 0 0 1 2\n"                                                      // 15
+    "outr seqv\n"                                                              // 16
+    "tecp\n"                                                                   // 17
+    "material\n"                                                               // 18
+    " 1 john 8.93d-3 117.0d3 0.35 90 292 0.31 0.025 1.09 293 1356 383 1e-3\n"  // 19
+    " 2 pla2 7.85d-3 200.0d3 0.3 500 2000\n"                                   // 20
+    "seos 1 2 3940 1.49 1.96 0\n"                                              // 21
+    "particle block 1 1 8.93e-3 0.5 -1 -1 -1\n 4 4 2\n"                        // 22-23
+    "particle sphere 2 2 7.85e-3 0.5 0 0 2 2\n"                                // 24
+    "velo\nbody 2 0 0 -1000\nendv\n"                                           // 25-27
+    "load\ngrav 1 0 0 -9.81e-3\ngrav 2 0 0 -9.81e-3\nendl\n"                   // 28-31
+    "contact lagr 0.2 1\n"                                                     // 32
+    "deto 0 0 0\n"                                                             // 33
+    "endi\n";
+
+// The sphere generator's count for nR = 2 (DataIn.f90): lattice centres (i - 1/2) dp, i from
+// 1 - nR to nR per axis, strictly inside the radius nR dp: 32 of the 64 candidates.
+constexpr std::size_t kSphereParticles = 32;
+
+struct Imported {
+  core::DeckImport deck;
+  core::Scene scene;
+};
+
+Imported import_text(const test::ScratchDir& dir, const std::string& deck,
+                     const std::string& units = "") {
+  const std::string deck_path = dir.write("deck.mpm", deck);
+  const std::string scene_path = (dir.path() / "scene.toml").string();
+  core::DeckImport d = core::import_deck(deck_path, scene_path, {units});
+  core::write_deck_import(d, scene_path);
+  return {std::move(d), core::read_scene(scene_path)};
+}
+
+// The rows "x y z volume" of a point list the importer wrote.
+std::vector<std::array<double, 4>> points_of(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::array<double, 4>> out;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.starts_with('#')) continue;
+    std::istringstream row(line);
+    std::array<double, 4> p{};
+    row >> p[0] >> p[1] >> p[2] >> p[3];
+    out.push_back(p);
+  }
+  return out;
+}
+
+std::string error_of(const std::string& deck) {
+  try {
+    import_mpm3d_deck(deck, "bad.mpm", "scene.toml", {});
+  } catch (const core::InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError";
+  return "";
+}
+
+TEST(Mpm3dDeckImport, KeywordsBecomeTheSceneFields) {
+  test::ScratchDir dir;
+  const Imported im = import_text(dir, kDeck);
+  const core::Scene& s = im.scene;
+  EXPECT_EQ(s.run.title, "sphere onto a plate");
+  EXPECT_DOUBLE_EQ(s.run.end_time, 0.01);
+  EXPECT_DOUBLE_EQ(s.run.output_every, 0.002);
+  EXPECT_DOUBLE_EQ(s.run.time_step_factor, 0.5);
+  EXPECT_DOUBLE_EQ(s.run.gravity.z, -9.81e-3);
+  EXPECT_DOUBLE_EQ(s.mpm.grid.cell, 1.0);
+  EXPECT_DOUBLE_EQ(s.mpm.grid.min.z, -4.0);
+  EXPECT_DOUBLE_EQ(s.mpm.grid.max.z, 6.0);
+  EXPECT_EQ(s.mpm.grid.faces[4], core::FaceCondition::fixed);      // zmin: 1
+  EXPECT_EQ(s.mpm.grid.faces[5], core::FaceCondition::symmetric);  // zmax: 2
+  EXPECT_EQ(s.mpm.grid.faces[0], core::FaceCondition::free);
+  EXPECT_EQ(s.mpm.scheme, core::UpdateScheme::MUSL);
+  EXPECT_FALSE(s.mpm.jaumann);
+
+  ASSERT_EQ(s.materials.size(), 2u);
+  const core::Material& cu = s.materials[0];
+  EXPECT_DOUBLE_EQ(cu.density, 8.93e-3);
+  EXPECT_DOUBLE_EQ(cu.youngs_modulus, 117e3);
+  EXPECT_DOUBLE_EQ(cu.poisson_ratio, 0.35);
+  const auto& jc = std::get<core::JohnsonCook>(cu.strength);
+  EXPECT_DOUBLE_EQ(jc.A, 90);
+  EXPECT_DOUBLE_EQ(jc.B, 292);
+  EXPECT_DOUBLE_EQ(jc.n, 0.31);
+  EXPECT_DOUBLE_EQ(jc.C, 0.025);
+  EXPECT_DOUBLE_EQ(jc.m, 1.09);
+  EXPECT_DOUBLE_EQ(jc.room_temperature, 293);
+  EXPECT_DOUBLE_EQ(jc.melt_temperature, 1356);
+  EXPECT_DOUBLE_EQ(jc.reference_strain_rate, 1e-3);
+  const auto& mg = std::get<core::MieGruneisen>(cu.eos);
+  EXPECT_DOUBLE_EQ(mg.c0, 3940);
+  EXPECT_DOUBLE_EQ(mg.s, 1.49);
+  EXPECT_DOUBLE_EQ(mg.gamma0, 1.96);
+  // pla2: Et 2000 is the tangent modulus, H = E Et / (E - Et) (as Constitution.f90's PlaMod).
+  const auto& j2 = std::get<core::J2Plasticity>(s.materials[1].strength);
+  EXPECT_DOUBLE_EQ(j2.yield_stress, 500);
+  EXPECT_NEAR(j2.hardening, 200e3 * 2000 / (200e3 - 2000), 1e-9);
+
+  ASSERT_EQ(s.bodies.size(), 2u);
+  EXPECT_EQ(s.bodies[0].material, 0);
+  EXPECT_EQ(s.bodies[1].material, 1);
+  EXPECT_DOUBLE_EQ(s.bodies[1].velocity.z, -1000);
+  EXPECT_DOUBLE_EQ(s.bodies[0].velocity.z, 0);
+  ASSERT_EQ(s.contacts.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.contacts[0].friction, 0.2);
+}
+
+// Reference: DataIn.f90's generators. The block of 4 x 4 x 2 at dp 0.5 from (-1, -1, -1) puts
+// particles at -1 + (i + 1/2) 0.5; the sphere's particles lie within nR dp = 1 of (0, 0, 2).
+// Each particle's mass is density dp^3, so the volume written is dp^3 exactly.
+TEST(Mpm3dDeckImport, GeneratorsMakeTheParticlesMpm3dMakes) {
+  test::ScratchDir dir;
+  const Imported im = import_text(dir, kDeck);
+  EXPECT_EQ(std::get<core::PointListShape>(im.scene.bodies[1].shape).path,
+            dir.file("scene.body2.txt"));
+  const std::vector<std::array<double, 4>> block = points_of(dir.file("scene.body1.txt"));
+  const std::vector<std::array<double, 4>> sphere = points_of(dir.file("scene.body2.txt"));
+  ASSERT_EQ(block.size(), 32u);
+  ASSERT_EQ(sphere.size(), kSphereParticles);
+  EXPECT_DOUBLE_EQ(block.front()[0], -0.75);
+  EXPECT_DOUBLE_EQ(block.back()[0], 0.75);
+  EXPECT_DOUBLE_EQ(block.back()[2], -0.25);
+  for (const auto& p : sphere) {
+    EXPECT_LT(p[0] * p[0] + p[1] * p[1] + (p[2] - 2.0) * (p[2] - 2.0), 1.0);
+    EXPECT_NEAR(p[3], 0.125, 1e-12);
+  }
+}
+
+TEST(Mpm3dDeckImport, WhatIsNotTranslatedIsListedWithItsLineAndInTheScene) {
+  test::ScratchDir dir;
+  const Imported im = import_text(dir, kDeck);
+  std::vector<std::string> listed;
+  for (const core::DeckNote& n : im.deck.notes)
+    if (!n.approximated) listed.push_back(n.keyword + ":" + std::to_string(n.at.line));
+  EXPECT_EQ(listed, (std::vector<std::string>{"outr:16", "tecp:17", "deto:33"}));
+  EXPECT_NE(im.deck.scene.find("deck.mpm:33: deto: not translated"), std::string::npos)
+      << im.deck.scene;
+  EXPECT_NE(im.deck.scene.find("# Units: the deck's own"), std::string::npos);
+  bool contact_noted = false;
+  for (const core::DeckNote& n : im.deck.notes)
+    contact_noted = contact_noted || (n.approximated && n.keyword == "contact" && n.at.line == 32);
+  EXPECT_TRUE(contact_noted);
+}
+
+// Reference: 1 kg/m^3 = 1e-6 g/mm^3, 1 Pa = 1e-6 MPa, 1 m = 1000 mm, 1 s = 1000 ms, so the
+// SI deck's numbers become the mm-ms-g deck's.
+TEST(Mpm3dDeckImport, SiDeckIsConvertedIntoMillimetresMilliseconds) {
+  test::ScratchDir dir;
+  const std::string si =
+      "mpm3d *** SI\nnbmp 8\nnmat 1\nspx 0 0.004\nspy 0 0.004\nspz 0 0.004\ndcell 0.001\n"
+      "endtime 1e-5\nmaterial\n 1 pla1 8930 117e9 0.35 240e6\n"
+      "particle block 1 1 8930 0.001 0.001 0.001 0.001 2 2 2\nvelo\nbody 1 0 0 -200\nendv\nload\n"
+      "grav 1 0 0 -9.81\nendl\nendi\n";
+  const Imported im = import_text(dir, si, "m-s-kg");
+  const core::Scene& s = im.scene;
+  EXPECT_NEAR(s.materials[0].density, 8.93e-3, 1e-15);
+  EXPECT_NEAR(s.materials[0].youngs_modulus, 117e3, 1e-9);
+  EXPECT_NEAR(std::get<core::J2Plasticity>(s.materials[0].strength).yield_stress, 240, 1e-12);
+  EXPECT_NEAR(s.run.end_time, 0.01, 1e-15);
+  EXPECT_NEAR(s.mpm.grid.cell, 1.0, 1e-12);
+  EXPECT_NEAR(s.bodies[0].velocity.z, -200, 1e-12);
+  EXPECT_NEAR(s.run.gravity.z, -9.81e-3, 1e-15);
+  const auto p = points_of(dir.file("scene.body1.txt"));
+  EXPECT_NEAR(p[0][0], 1.5, 1e-12);
+  EXPECT_NEAR(p[0][3], 1.0, 1e-9);
+  EXPECT_NE(im.deck.scene.find("m, s, kg, N, Pa"), std::string::npos);
+}
+
+// MPM3D (2005, appendix A): a particle table "id material component x y z" of volume
+// dcell^3 / ppc, velocities by component, seos type 1 with c0, lambda, gamma0, dt and tstep.
+TEST(Mpm3dDeckImport, ThesisFormatDeckIsRead) {
+  test::ScratchDir dir;
+  const std::string deck =
+      "mpm3d *** test\nppc 8\nnbmp 2\nnmat 1\nncomp 2\nspx 0 4\nspy 0 4\nspz 0 4\ndcell 1.0\n"
+      "dt 1.0d-4\ntstep 400\nostep 4\njaum on\ncont on\nfixed 2 0 2 0 2 0\n"
+      "material\n 1 john 8.9d-3 100.0d3 0.3d0 90 392 0.5 0.0\nseos 1 1 3.3d3 1.49 1.96\n"
+      "particle\n 1 1 1 0.25 0.25 0.25\n 2 1 2 0.75 0.25 2.25\n"
+      "velo\n comp 1 0 0 200\n node 2 0 0 0\nendv\nendi\n";
+  const Imported im = import_text(dir, deck);
+  const core::Scene& s = im.scene;
+  EXPECT_DOUBLE_EQ(s.run.fixed_time_step, 1e-4);
+  EXPECT_DOUBLE_EQ(s.run.end_time, 0.04);
+  EXPECT_DOUBLE_EQ(s.run.output_every, 4e-4);
+  // MPM3D's default USL, which afemp's contact refuses: MUSL, with a note.
+  EXPECT_EQ(s.mpm.scheme, core::UpdateScheme::MUSL);
+  ASSERT_EQ(s.bodies.size(), 2u);
+  EXPECT_DOUBLE_EQ(s.bodies[0].velocity.z, 200);
+  EXPECT_DOUBLE_EQ(points_of(dir.file("scene.body1.txt"))[0][3], 0.125);
+  EXPECT_DOUBLE_EQ(std::get<core::MieGruneisen>(s.materials[0].eos).c0, 3300);
+  EXPECT_EQ(s.contacts.size(), 1u);
+  ASSERT_EQ(im.deck.notes.size(), 2u);
+  EXPECT_EQ(im.deck.notes[0].keyword, "velo");  // node 2's own velocity
+  EXPECT_FALSE(im.deck.notes[0].approximated);
+  EXPECT_EQ(im.deck.notes[1].keyword, "contact");
+  EXPECT_TRUE(im.deck.notes[1].approximated);
+}
+
+TEST(Mpm3dDeckImport, ErrorsNameFileLineKeywordAndWhatIsAllowed) {
+  std::string e = error_of("mpm3d *** x\nnbmp 1\nspx 0 1\nfoo 3\n");
+  EXPECT_NE(e.find("bad.mpm:4:"), std::string::npos) << e;
+  EXPECT_NE(e.find("'foo'"), std::string::npos) << e;
+  EXPECT_NE(e.find("known: mpm3d"), std::string::npos) << e;
+
+  e = error_of("nbmp 1\nnmat 1\nmaterial\n 1 hiex 1.6e-3 6.9\n");
+  EXPECT_NE(e.find("bad.mpm:4:"), std::string::npos) << e;
+  EXPECT_NE(e.find("'hiex'"), std::string::npos) << e;
+  EXPECT_NE(e.find("translated: elas, pla1"), std::string::npos) << e;
+
+  e = error_of("nbmp 1\nnmat 1\nmaterial\n 1 sjc 8.93e-3 117e3 0.35 157\n");
+  EXPECT_NE(e.find("bad.mpm:4:"), std::string::npos) << e;
+  EXPECT_NE(e.find("found 4 values"), std::string::npos) << e;
+
+  e = error_of(
+      "nbmp 1\nnmat 1\nmaterial\n 1 elas 8.93e-3 117e3 0.35\ndcell 0.5\n"
+      "particle block 1 1 8.93e-3 0.5 0 0 0 2 1 1\n");
+  EXPECT_NE(e.find("nbmp is 1 but the particle sets make 2"), std::string::npos) << e;
+
+  e = error_of("nbmp 1\nnmat 1\nmaterial\n 1 elas 8.93e-3 117e3 x.35\n");
+  EXPECT_NE(e.find("bad.mpm:4:"), std::string::npos) << e;
+  EXPECT_NE(e.find("'x.35'"), std::string::npos) << e;
+
+  e = error_of("nbmp 1\nnmat 1\nmaterial\n 1 elas 8.93e-3 117e3 0.35\nseos 1 3 1 2 3 4 5 6\n");
+  EXPECT_NE(e.find("bad.mpm:5:"), std::string::npos) << e;
+  EXPECT_NE(e.find("JWL"), std::string::npos) << e;
+}
+
+// `afemp check` and `afemp run` given a deck say to import it; `afemp import` writes the scene
+// and lists what it left out.
+TEST(Mpm3dDeckImport, CommandRefusesToRunADeckAndImportsIt) {
+  test::ScratchDir dir;
+  const std::string deck = dir.write("deck.mpm", kDeck);
+  for (const char* cmd : {"check", "run"}) {
+    const test::CommandResult r = test::run_afemp(std::string(cmd) + " \"" + deck + "\"", dir);
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(
+        r.err.find("this is an MPM3D deck, not a scene; import it with `afemp import " + deck),
+        std::string::npos)
+        << r.err;
+  }
+  const std::string scene = dir.file("scene.toml");
+  const test::CommandResult r =
+      test::run_afemp("import \"" + deck + "\" -o \"" + scene + "\"", dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find(deck + ":33: deto: not translated"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "scene.body2.txt"));
+  const test::CommandResult check = test::run_afemp("check \"" + scene + "\"", dir);
+  EXPECT_EQ(check.exit_code, 0) << check.err;
+}
+
+}  // namespace
+}  // namespace afemp::mpm
