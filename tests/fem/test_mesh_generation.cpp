@@ -555,7 +555,9 @@ TEST(SphereMesh, CubedSphereFillsTheSphereWithWellShapedElements) {
     const MeshData quarter = sphere_mesh(s, n, 1);
     EXPECT_EQ(4 * quarter.hexahedra.size(), whole.hexahedra.size());
     EXPECT_NEAR(4.0 * mesh_quality(quarter).total_volume, r.total_volume, 1e-10 * exact);
-    if (n == 32) EXPECT_GT(closest_pair(whole), 1e-9);
+    if (n == 32) {
+      EXPECT_GT(closest_pair(whole), 1e-9);
+    }
   }
   EXPECT_NE(error_of([&] { sphere_mesh(s, 30, 4); }).find("multiple of 4"), std::string::npos);
 }

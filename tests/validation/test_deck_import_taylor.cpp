@@ -153,7 +153,10 @@ std::string lsdyna_taylor_deck() {
   s += "*ELEMENT_SOLID\n";
   for (std::size_t e = 0; e < mesh.hexahedra.size(); ++e) {
     s += std::to_string(e + 1) + ",1";
-    for (const std::int32_t n : mesh.hexahedra[e]) s += "," + std::to_string(n + 1);
+    for (const std::int32_t n : mesh.hexahedra[e]) {
+      s += ',';  // not "," + string: GCC 12 warns falsely (-Wrestrict) on that concatenation
+      s += std::to_string(n + 1);
+    }
     s += "\n";
   }
   return s + "*END\n";
