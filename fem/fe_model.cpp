@@ -174,8 +174,9 @@ void FeModel::force_values(std::vector<double>& out) const {
   auto add = [&](const core::Vec3& v) { out.insert(out.end(), {v.x, v.y, v.z}); };
   for (const MeshContact& c : solver_.mesh_contacts()) {
     add(c.normal_force + c.tangential_force);
-    out.push_back(core::norm(c.normal_force));
-    out.push_back(core::norm(c.tangential_force));
+    const bool self = c.spec.bodies[0] == c.spec.bodies[1];
+    out.push_back(self ? c.normal_sum : core::norm(c.normal_force));
+    out.push_back(self ? c.tangential_sum : core::norm(c.tangential_force));
   }
   for (std::size_t w = 0; w < scene_.walls.size(); ++w) {
     const core::Vec3 f = solver_.wall_forces()[w];

@@ -42,7 +42,8 @@ class FeModel final : public core::Model {
   void sample_probes(std::span<double> out) const override { probes_.sample(solver_, out); }
   // The nodes of the body's live elements, each with half size 0 (on the surface).
   // Per penalty contact NAME: NAME.fx, .fy, .fz (the force on its first body), NAME.normal and
-  // NAME.tangential (the lengths of the resultant normal and tangential forces); per [[walls]]
+  // NAME.tangential (the lengths of the resultant normal and tangential forces; a self-contact,
+  // whose resultant on its body is zero: the sums of its pairs' force magnitudes); per [[walls]]
   // entry wallK (K from 1) the same of the force the wall exerts on the nodes; per rigid body
   // NAME: NAME.fx, .fy, .fz, .mx, .my, .mz (the resultant on it and its moment about the
   // centre of mass, gravity included).

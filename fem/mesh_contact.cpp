@@ -503,7 +503,10 @@ void FeSolver::resolve_contacts(double dt) {
   for (MeshContact& c : contacts_) {
     c.normal_force = Vec3{};
     c.tangential_force = Vec3{};
+    c.normal_sum = c.tangential_sum = 0.0;
     for (const ContactHit& h : c.hits) {
+      c.normal_sum += h.normal_impulse / dt_force;
+      c.tangential_sum += core::norm(h.tangential_impulse) / dt_force;
       const double sign = h.first_body || c.spec.bodies[0] == c.spec.bodies[1] ? 1.0 : -1.0;
       c.normal_force += (sign * h.normal_impulse / dt_force) * h.normal;
       c.tangential_force += (sign / dt_force) * h.tangential_impulse;

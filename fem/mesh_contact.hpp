@@ -76,6 +76,9 @@ struct MeshContact {
   // This step's resultant normal and tangential forces on the first body (impulse over the
   // step; self-contact: on the slave nodes), and the work friction dissipated so far.
   Vec3 normal_force, tangential_force;
+  // The sums of the pairs' force magnitudes (what a self-contact transmits: its resultant on
+  // the body is zero).
+  double normal_sum = 0.0, tangential_sum = 0.0;
   double friction_work = 0.0;
   std::vector<std::vector<ContactHit>> thread_hits;
 };
