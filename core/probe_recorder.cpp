@@ -15,11 +15,36 @@ ProbeRecorder::ProbeRecorder(Model& model, const std::vector<ProbeSpec>& probes,
     : specs_(probes), next_(probes.size(), 0.0), due_(probes.size(), 0),
       buffer_(probe_stride * probes.size()) {
   model.resolve_probes(specs_);
+  const std::vector<std::string> force_names = model.force_columns();
   for (const ProbeSpec& p : specs_) {
     ProbeSeries s;
     s.name = p.name;
     s.kind = p.kind;
     s.columns = probe_columns(p.kind);
+    std::vector<std::size_t> reads;
+    if (p.kind == ProbeKind::force) {
+      // The model's columns TARGET.*, whose suffixes become the probe's columns.
+      s.columns.clear();
+      const std::string prefix = p.target + ".";
+      std::vector<std::string> groups;
+      for (std::size_t c = 0; c < force_names.size(); ++c) {
+        const std::string& n = force_names[c];
+        if (n.compare(0, prefix.size(), prefix) == 0) {
+          reads.push_back(c);
+          s.columns.push_back(n.substr(prefix.size()));
+        }
+        const std::string group = n.substr(0, n.rfind('.'));
+        if (groups.empty() || groups.back() != group) groups.push_back(group);
+      }
+      if (reads.empty()) {
+        std::string known;
+        for (const std::string& g : groups) known += (known.empty() ? "\"" : ", \"") + g + "\"";
+        throw InputError(p.where, p.key + ".force",
+                         "no penalty contact, wall or rigid body reports forces as \"" + p.target +
+                             "\"; those of this scene: " + (known.empty() ? "(none)" : known));
+      }
+    }
+    force_columns_.push_back(std::move(reads));
     series_.push_back(std::move(s));
   }
   if (directory.empty() || specs_.empty()) return;
@@ -54,12 +79,17 @@ void ProbeRecorder::sample(const Model& model, bool history_row, bool last) {
   if (!any) return;
   std::fill(buffer_.begin(), buffer_.end(), std::numeric_limits<double>::quiet_NaN());
   model.sample_probes(buffer_);
+  forces_.clear();
   bool energies_read = false;
   Energies e;
   for (std::size_t k = 0; k < specs_.size(); ++k) {
     if (!due_[k]) continue;
     const ProbeSpec& p = specs_[k];
     double* v = buffer_.data() + k * probe_stride;
+    if (p.kind == ProbeKind::force) {
+      if (forces_.empty()) model.force_values(forces_);
+      for (std::size_t c = 0; c < force_columns_[k].size(); ++c) v[c] = forces_[force_columns_[k][c]];
+    }
     if (p.kind == ProbeKind::mean_velocity) {
       if (!energies_read) e = model.energies(), energies_read = true;
       const BodySums& b = e.bodies.at(static_cast<std::size_t>(p.body));

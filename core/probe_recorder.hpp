@@ -30,6 +30,9 @@ class ProbeRecorder {
   std::vector<double> next_;    // time of the next sample (probes with an interval)
   std::vector<char> due_;
   std::vector<double> buffer_;  // probe_stride values per probe
+  // Force probes: per probe the model's force columns it reads (empty for other kinds).
+  std::vector<std::vector<std::size_t>> force_columns_;
+  std::vector<double> forces_;
   std::vector<std::ofstream> files_;
 };
 

@@ -12,6 +12,7 @@ const char* to_string(ProbeKind k) {
     case ProbeKind::element: return "element";
     case ProbeKind::mean_velocity: return "mean_velocity";
     case ProbeKind::extreme: return "extreme";
+    case ProbeKind::force: return "force";
   }
   return "?";
 }
@@ -37,6 +38,7 @@ std::vector<std::string> probe_columns(ProbeKind k) {
     case ProbeKind::node: return {"x", "y", "z", "vx", "vy", "vz"};
     case ProbeKind::mean_velocity: return {"vx", "vy", "vz"};
     case ProbeKind::extreme: return {"value", "x", "y", "z"};
+    case ProbeKind::force: return {"fx", "fy", "fz", "normal", "tangential"};
   }
   return {};
 }

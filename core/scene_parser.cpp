@@ -1372,7 +1372,7 @@ void read_reference(TableReader& r, Scene& scene) {
 // index names an existing particle, node or element is known once the model is built: the
 // model checks it at the start of the run (Model::resolve_probes) with this table's line.
 ProbeSpec read_probe(TableReader& r, const Scene& scene) {
-  r.known({"name", "particle", "node", "element", "mean_velocity", "extreme", "interval"});
+  r.known({"name", "particle", "node", "element", "mean_velocity", "extreme", "force", "interval"});
   r.check_unknown();
   ProbeSpec p;
   p.where = r.where();
@@ -1387,7 +1387,7 @@ ProbeSpec read_probe(TableReader& r, const Scene& scene) {
       r.fail("name", "duplicate probe name \"" + p.name + "\" (first defined at line " +
                          std::to_string(other.where.line) + ")");
   const std::vector<std::string_view> kinds = {"particle", "node", "element", "mean_velocity",
-                                               "extreme"};
+                                               "extreme", "force"};
   int given = 0;
   for (std::size_t k = 0; k < kinds.size(); ++k)
     if (r.has(kinds[k])) {
@@ -1397,13 +1397,19 @@ ProbeSpec read_probe(TableReader& r, const Scene& scene) {
   if (given != 1)
     throw InputError(r.where(), r.prefix(),
                      "give exactly one of particle = { body, index | near }, node = { ... }, "
-                     "element = { ... }, mean_velocity = \"BODY\", extreme = { field, of, box, body }");
+                     "element = { ... }, mean_velocity = \"BODY\", extreme = { field, of, box, body "
+                     "}, force = \"CONTACT\" (a [[contact]]'s name, \"wallK\" or a rigid body)");
   p.interval = r.number("interval", 0.0, Range::positive());
   const auto is_particles = [&](int b) {
     return scene.bodies[static_cast<std::size_t>(b)].discretisation == Discretisation::particles;
   };
   if (p.kind == ProbeKind::mean_velocity) {
     p.body = body_index(r, "mean_velocity", r.required_string("mean_velocity"), scene, false);
+    return p;
+  }
+  // Which contacts, walls and rigid bodies report forces the model knows (core/probe_recorder.cpp).
+  if (p.kind == ProbeKind::force) {
+    p.target = r.required_string("force");
     return p;
   }
   const std::string kind = to_string(p.kind);

@@ -23,6 +23,9 @@ enum class ProbeKind {
   element,        ///< centroid, mean nodal velocity, and the point-averaged stress measures
   mean_velocity,  ///< vx, vy, vz: the body's momentum / mass
   extreme,        ///< value, x, y, z: the largest (or smallest) field value in a box, and where
+  /// The interface force of a penalty contact or a wall (fx, fy, fz, normal, tangential) or a
+  /// rigid body (fx, fy, fz, mx, my, mz): the model's history columns NAME.*.
+  force,
 };
 
 /// Fields an extreme probe reads at each point (particles; element centroids with their
@@ -44,6 +47,7 @@ struct ProbeSpec {
   long index = -1;
   Vec3 near{};
   ProbeField field = ProbeField::pressure;  ///< extreme
+  std::string target{};                     ///< force: the contact's, wall's or body's name
   bool maximum = true;                      ///< extreme: max, or min
   Vec3 box_min{}, box_max{};                    ///< extreme
   double interval = 0.0;  ///< > 0: simulated time between samples; 0: every history row

@@ -8,7 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "analysis/reference_checks.hpp"
 #include "core/scene.hpp"
+#include "fem/fe_model.hpp"
 #include "fem/fe_solver.hpp"
 #include "scene_errors.hpp"
 #include "scratch_dir.hpp"
@@ -447,6 +449,44 @@ TEST(MeshContact, SelfContactHoldsOnePartOfABodyOnAnother) {
   EXPECT_NEAR(force, weight, 0.02 * weight);
   EXPECT_LT(deep, 1e-4);
   EXPECT_GT(through, 0.1);
+}
+
+}  // namespace
+}  // namespace afemp::fem
+
+namespace afemp::fem {
+namespace {
+
+// Reference: the head-on blocks' interface force rho c v A (942 N) while they are in contact.
+// Pass: a force probe on the contact records fz on the left block within 5 % of -942 N at its
+// largest (the right block pushes it back); a probe naming no contact is an error listing the
+// scene's.
+TEST(MeshContact, AForceProbeRecordsTheContactForce) {
+  std::string text = head_on_scene();
+  text += "[[probes]]\nname = \"interface\"\nforce = \"left-right\"\n";
+  text = text.replace(text.find("end_time = 0.02"), 15, "end_time = 0.014");
+  const core::Scene scene = core::parse_scene(text, "probe.toml");
+  FeModel model(scene);
+  const core::RunSummary s = analysis::run(model, scene, {});
+  ASSERT_EQ(s.probes.size(), 1u);
+  const core::ProbeSeries& p = s.probes[0];
+  ASSERT_EQ(p.columns, (std::vector<std::string>{"fx", "fy", "fz", "normal", "tangential"}));
+  double lowest = 0.0;
+  for (std::size_t r = 0; r < p.rows(); ++r) lowest = std::min(lowest, p.at(r, 2));
+  const double force = 7.85e-3 * steel_bar_wave_speed() * 5.0 * 4.0;
+  std::printf("force probe: %zu rows, fz down to %.1f N (rho c v A %.1f N)\n", p.rows(), lowest, force);
+  EXPECT_NEAR(-lowest, force, 0.05 * force);
+  text += "[[probes]]\nname = \"nothing\"\nforce = \"left-middle\"\n";
+  const core::Scene bad = core::parse_scene(text, "probe.toml");
+  FeModel again(bad);
+  try {
+    analysis::run(again, bad, {});
+    ADD_FAILURE() << "no error";
+  } catch (const core::InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("probes[1].force"), std::string::npos) << m;
+    EXPECT_NE(m.find("those of this scene: \"left-right\""), std::string::npos) << m;
+  }
 }
 
 }  // namespace
