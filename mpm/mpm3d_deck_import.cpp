@@ -687,7 +687,16 @@ class Mpm3dImport {
                "bodies with different gravity: afemp's scene has one; the first is written", true});
         if (!gravity) gravity = b.gravity;
       }
-    if (gravity) s += "gravity = " + core::toml_vec3(gravity->x, gravity->y, gravity->z) + "\n";
+    if (gravity) {
+      s += "gravity = " + core::toml_vec3(gravity->x, gravity->y, gravity->z) + "\n";
+      for (const Body& b : bodies_)
+        if (!b.gravity) {
+          notes_.push_back({b.at, "load grav",
+                            "gravity acts on every body in afemp, on some bodies in the deck",
+                            true});
+          break;
+        }
+    }
 
     static constexpr std::array<const char*, 6> face_names{"xmin", "xmax", "ymin",
                                                            "ymax", "zmin", "zmax"};
