@@ -134,19 +134,29 @@ void bin_faces(ContactPass& pass, const std::vector<Vec3>& position) {
   const std::size_t nf = pass.faces.size();
   pass.bin_offsets.clear();
   pass.bin_faces.clear();
+  pass.binned = true;
   if (nf == 0) return;
   constexpr double inf = std::numeric_limits<double>::infinity();
   Vec3 lo{inf, inf, inf}, hi{-inf, -inf, -inf};
-  double extent = 0.0;
   std::vector<std::array<Vec3, 2>>& box = pass.face_box;
   box.resize(nf);
+  // The faces' own boxes, and their mean extent, which sets the margin: a quarter of it.
+  double extent = 0.0;
   for (std::size_t f = 0; f < nf; ++f) {
     Vec3 a{inf, inf, inf}, b{-inf, -inf, -inf};
     for (std::int32_t k : pass.faces[f]) {
       const Vec3& x = position[static_cast<std::size_t>(k)];
       for (int d = 0; d < 3; ++d) a[d] = std::min(a[d], x[d]), b[d] = std::max(b[d], x[d]);
     }
-    const double r = pass.reach[f];
+    box[f] = {a, b};
+    extent += std::max({b.x - a.x, b.y - a.y, b.z - a.z});
+  }
+  pass.margin = 0.25 * extent / static_cast<double>(nf);
+  extent = 0.0;
+  for (std::size_t f = 0; f < nf; ++f) {
+    Vec3& a = box[f][0];
+    Vec3& b = box[f][1];
+    const double r = pass.reach[f] + pass.margin;
     for (int d = 0; d < 3; ++d) {
       a[d] -= r;
       b[d] += r;
@@ -154,8 +164,9 @@ void bin_faces(ContactPass& pass, const std::vector<Vec3>& position) {
       hi[d] = std::max(hi[d], b[d]);
       extent += b[d] - a[d];
     }
-    box[f] = {a, b};
   }
+  for (std::size_t k = 0; k < pass.face_nodes.size(); ++k)
+    pass.binned_position[k] = position[static_cast<std::size_t>(pass.face_nodes[k])];
   double h = extent / (3.0 * static_cast<double>(nf));
   // At most about 4 bins per face (a flat surface fills few of a box's bins).
   for (;;) {
@@ -226,6 +237,32 @@ void build_passes(MeshContact& c, const core::Scene& scene, const HexElements& h
     if (hex(b)) add(a, b, true);
     if (hex(a)) add(b, a, false);
   }
+  for (ContactPass& p : passes) {
+    std::vector<char> on(nodes.size(), 0);
+    for (const auto& f : p.faces)
+      for (std::int32_t k : f) on[static_cast<std::size_t>(k)] = 1;
+    for (std::size_t k = 0; k < on.size(); ++k)
+      if (on[k]) p.face_nodes.push_back(static_cast<std::int32_t>(k));
+    p.binned_position.resize(p.face_nodes.size());
+    // Each slave's own faces, for its normal.
+    if (!p.slave_faces.empty()) {
+      std::vector<std::int32_t> index(nodes.size(), -1);
+      for (std::size_t k = 0; k < p.slaves.size(); ++k)
+        index[static_cast<std::size_t>(p.slaves[k])] = static_cast<std::int32_t>(k);
+      p.slave_face_offsets.assign(p.slaves.size() + 1, 0);
+      for (const auto& f : p.slave_faces)
+        for (std::int32_t k : f)
+          if (index[static_cast<std::size_t>(k)] >= 0) ++p.slave_face_offsets[static_cast<std::size_t>(index[static_cast<std::size_t>(k)]) + 1];
+      for (std::size_t k = 0; k < p.slaves.size(); ++k) p.slave_face_offsets[k + 1] += p.slave_face_offsets[k];
+      p.slave_face_list.resize(static_cast<std::size_t>(p.slave_face_offsets.back()));
+      std::vector<std::int32_t> fill(p.slave_face_offsets.begin(), p.slave_face_offsets.end() - 1);
+      for (std::size_t f = 0; f < p.slave_faces.size(); ++f)
+        for (std::int32_t k : p.slave_faces[f])
+          if (const std::int32_t s = index[static_cast<std::size_t>(k)]; s >= 0)
+            p.slave_face_list[static_cast<std::size_t>(fill[static_cast<std::size_t>(s)]++)] =
+                static_cast<std::int32_t>(f);
+    }
+  }
   if (c.passes.empty()) {
     c.passes = std::move(passes);
     for (ContactPass& p : c.passes) {
@@ -282,16 +319,38 @@ void find_contacts(MeshContact& c, const FeNodes& nodes, const HexElements& hexe
   const bool self = c.spec.bodies[0] == c.spec.bodies[1];
   constexpr double inf = std::numeric_limits<double>::infinity();
   for (ContactPass& pass : c.passes) {
-    bin_faces(pass, x);
     if (pass.faces.empty()) continue;
-    const bool facing = !pass.slave_faces.empty();
-    for (const auto& f : pass.slave_faces)
-      for (std::int32_t k : f) pass.slave_normal[static_cast<std::size_t>(k)] = Vec3{};
-    for (const auto& f : pass.slave_faces) {
-      const std::array<Vec3, 4> p = corners(f, x);
-      const Vec3 area = 0.5 * core::cross(p[2] - p[0], p[3] - p[1]);
-      for (std::int32_t k : f) pass.slave_normal[static_cast<std::size_t>(k)] += area;
+    // New bins once a face node has moved by the margin since the last ones.
+    bool stale = !pass.binned;
+    if (!stale) {
+      std::vector<char> moved(c.thread_hits.size(), 0);
+      const double limit = pass.margin * pass.margin;
+      core::parallel_chunks(pass.face_nodes.size(), [&](std::size_t begin, std::size_t end, int t) {
+        for (std::size_t k = begin; k < end; ++k) {
+          const Vec3 d = x[static_cast<std::size_t>(pass.face_nodes[k])] - pass.binned_position[k];
+          if (core::dot(d, d) > limit) {
+            moved[static_cast<std::size_t>(t)] = 1;
+            break;
+          }
+        }
+      });
+      stale = std::find(moved.begin(), moved.end(), 1) != moved.end();
     }
+    if (stale) bin_faces(pass, x);
+    // The slaves' own normals: the sums of their faces' area vectors.
+    const bool facing = !pass.slave_faces.empty();
+    if (facing)
+      core::parallel_chunks(pass.slaves.size(), [&](std::size_t begin, std::size_t end, int) {
+        for (std::size_t k = begin; k < end; ++k) {
+          Vec3 n;
+          for (std::int32_t q = pass.slave_face_offsets[k]; q < pass.slave_face_offsets[k + 1]; ++q) {
+            const std::array<Vec3, 4> p =
+                corners(pass.slave_faces[static_cast<std::size_t>(pass.slave_face_list[static_cast<std::size_t>(q)])], x);
+            n += 0.5 * core::cross(p[2] - p[0], p[3] - p[1]);
+          }
+          pass.slave_normal[static_cast<std::size_t>(pass.slaves[k])] = n;
+        }
+      });
     for (auto& h : c.thread_hits) h.clear();
     const auto [nx, ny, nz] = pass.bin_count;
     core::parallel_chunks(pass.slaves.size(), [&](std::size_t begin, std::size_t end, int t) {

@@ -15,7 +15,8 @@
 // impulse to mu P. A slave keeps the face it met last while that face still holds it (a node
 // that entered a thin plate is pushed back out of the side it came in by). The faces are found
 // through bins whose cost grows with the surface (a face in every bin its box, grown by its
-// reach, touches; a slave in its own bin). The surfaces are rebuilt from the live elements
+// reach and a margin of a quarter face, touches; a slave in its own bin), remade only when a
+// face node has moved by the margin. The surfaces are rebuilt from the live elements
 // whenever elements erode or convert (eroding contact).
 #pragma once
 
@@ -41,6 +42,8 @@ struct ContactPass {
   // slides along.
   std::vector<std::array<std::int32_t, 4>> slave_faces;
   std::vector<Vec3> slave_normal;  // per FE node, this step's (unnormalised)
+  // Per slave (in `slaves` order): its own faces (CSR into slave_faces), for the normals.
+  std::vector<std::int32_t> slave_face_offsets, slave_face_list;
   std::vector<std::array<std::int32_t, 4>> faces;  // master faces, node order outward
   std::vector<std::int32_t> face_element;           // the hexahedron of each face
   std::vector<double> reach;  // the largest penetration the face holds a node at
@@ -53,7 +56,13 @@ struct ContactPass {
   std::array<std::int64_t, 3> bin_count{0, 0, 0};
   std::vector<std::int64_t> bin_offsets;
   std::vector<std::int32_t> bin_faces;
-  std::vector<std::array<Vec3, 2>> face_box;  // each face's box grown by its reach
+  std::vector<std::array<Vec3, 2>> face_box;  // each face's box grown by its reach and margin
+  // The bins hold while no face node has moved more than `margin` since they were made (the
+  // boxes are grown by it): the face nodes and their positions then.
+  double margin = 0.0;
+  std::vector<std::int32_t> face_nodes;
+  std::vector<Vec3> binned_position;
+  bool binned = false;
 };
 
 // A slave node behind a master face at the predicted positions, and the impulses the
