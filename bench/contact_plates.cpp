@@ -1,8 +1,8 @@
 // CONTACT-PLATES (bench/README.md): two steel plates, 150 x 150 x 10 and 149 x 149 x 10
 // one-point hexahedra (meshes that do not match across the interface), meeting at 1 m/s each
-// with their backs driven on at that speed; the contact between them searches 101,598 faces (every boundary
-// face of both plates) both ways each step. 100 automatic steps, no output. Checks first, then
-// prints the contact search's seconds per step against the element update's, and the
+// with their backs driven on at that speed; the contact between them searches 101,598 faces (every
+// boundary face of both plates) both ways each step. 100 automatic steps, no output. Checks first,
+// then prints the contact search's seconds per step against the element update's, and the
 // element-steps per second.
 //
 // Check (references in closed form, uniaxial strain in the plates' middle before the release
@@ -59,20 +59,23 @@ int main(int argc, char** argv) {
   for (std::size_t i = 0; i < solver.plan().stages.size(); ++i) {
     std::printf("  stage %-28s %7.3f s\n", solver.plan().stages[i].name.c_str(),
                 solver.stage_seconds()[i]);
-    if (solver.plan().stages[i].kind == fem::FeStageKind::hexahedra) hexahedra = solver.stage_seconds()[i];
-    if (solver.plan().stages[i].kind == fem::FeStageKind::mesh_contact) contact = solver.stage_seconds()[i];
+    if (solver.plan().stages[i].kind == fem::FeStageKind::hexahedra)
+      hexahedra = solver.stage_seconds()[i];
+    if (solver.plan().stages[i].kind == fem::FeStageKind::mesh_contact)
+      contact = solver.stage_seconds()[i];
   }
   std::printf("check: %s\n", ok ? "passed" : "FAILED");
   const double wall = std::chrono::duration<double>(end - start).count();
   const double stepping = std::chrono::duration<double>(end - step_start).count();
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
-  std::printf("threads %d  contact faces %zu  search %.2f ms/step (%.1f %% of the element update "
-              "%.2f ms/step; whole contact stage %.2f ms/step)  elements %zu  wall %.3f s (steps "
-              "%.3f s)  %.3f M element-steps/s  peak RSS %.0f MiB\n",
-              core::thread_count(), faces, 1e3 * search / steps, 100.0 * search / hexahedra,
-              1e3 * hexahedra / steps, 1e3 * contact / steps, n, wall, stepping,
-              static_cast<double>(n) * steps / stepping / 1e6,
-              static_cast<double>(usage.ru_maxrss) / 1024.0);
+  std::printf(
+      "threads %d  contact faces %zu  search %.2f ms/step (%.1f %% of the element update "
+      "%.2f ms/step; whole contact stage %.2f ms/step)  elements %zu  wall %.3f s (steps "
+      "%.3f s)  %.3f M element-steps/s  peak RSS %.0f MiB\n",
+      core::thread_count(), faces, 1e3 * search / steps, 100.0 * search / hexahedra,
+      1e3 * hexahedra / steps, 1e3 * contact / steps, n, wall, stepping,
+      static_cast<double>(n) * steps / stepping / 1e6,
+      static_cast<double>(usage.ru_maxrss) / 1024.0);
   return ok ? 0 : 1;
 }

@@ -42,11 +42,14 @@ double gap(const Box& a, const Box& b) {
 std::vector<std::string> contact_warnings(const Scene& scene, const Model& model) {
   const std::size_t n = scene.bodies.size();
   std::vector<Box> boxes;
-  for (std::size_t b = 0; b < n; ++b) boxes.push_back(box_of(model.body_points(static_cast<int>(b))));
+  for (std::size_t b = 0; b < n; ++b)
+    boxes.push_back(box_of(model.body_points(static_cast<int>(b))));
   auto covered = [&](std::size_t a, std::size_t b) {
     for (const ContactSpec& c : scene.contacts)
-      if ((static_cast<std::size_t>(c.bodies[0]) == a && static_cast<std::size_t>(c.bodies[1]) == b) ||
-          (static_cast<std::size_t>(c.bodies[0]) == b && static_cast<std::size_t>(c.bodies[1]) == a))
+      if ((static_cast<std::size_t>(c.bodies[0]) == a &&
+           static_cast<std::size_t>(c.bodies[1]) == b) ||
+          (static_cast<std::size_t>(c.bodies[0]) == b &&
+           static_cast<std::size_t>(c.bodies[1]) == a))
         return true;
     const BodySpec& x = scene.bodies[a];
     const BodySpec& y = scene.bodies[b];
@@ -72,17 +75,20 @@ std::vector<std::string> contact_warnings(const Scene& scene, const Model& model
       const std::string pair = "bodies \"" + x.name + "\" and \"" + y.name + "\"";
       if (px && py) {
         if (x.material == y.material) continue;  // one material: a body made of parts
-        out.push_back(pair + " (materials " + scene.materials[static_cast<std::size_t>(x.material)].name +
-                      " and " + scene.materials[static_cast<std::size_t>(y.material)].name + ") " +
-                      where + " with no [[contact]] between them: they share the grid's velocity "
+        out.push_back(pair + " (materials " +
+                      scene.materials[static_cast<std::size_t>(x.material)].name + " and " +
+                      scene.materials[static_cast<std::size_t>(y.material)].name + ") " + where +
+                      " with no [[contact]] between them: they share the grid's velocity "
                       "field and weld where they meet (no slip, no separation); add [[contact]] "
-                      "bodies = [\"" + x.name + "\", \"" + y.name + "\"], or method = \"weld\" "
+                      "bodies = [\"" +
+                      x.name + "\", \"" + y.name +
+                      "\"], or method = \"weld\" "
                       "if welding is meant");
       } else {
         out.push_back(pair + " " + where + " with no [[contact]] between them: " +
                       (px || py ? "particles and a mesh" : "two meshes") +
-                      " pass through each other; add [[contact]] bodies = [\"" + x.name +
-                      "\", \"" + y.name + "\"]" + (px || py ? " (or bond the mesh: bonded_to)" : ""));
+                      " pass through each other; add [[contact]] bodies = [\"" + x.name + "\", \"" +
+                      y.name + "\"]" + (px || py ? " (or bond the mesh: bonded_to)" : ""));
       }
     }
   return out;

@@ -99,7 +99,8 @@ void master_faces(ContactPass& pass, int body, bool self, const core::Scene& sce
     const std::array<Vec3, 4> p = corners(q, nodes.position);
     if (core::dot(core::cross(p[2] - p[0], p[3] - p[1]), area) < 0.0) std::swap(q[1], q[3]);
     const double a = core::norm(area);
-    const double thickness = a > 0.0 ? hexes.volume[static_cast<std::size_t>(s.element[f])] / a : 0.0;
+    const double thickness =
+        a > 0.0 ? hexes.volume[static_cast<std::size_t>(s.element[f])] / a : 0.0;
     pass.reach[f] = (self ? 0.5 : 1.0) * thickness;
   }
 }
@@ -252,8 +253,11 @@ void build_passes(MeshContact& c, const core::Scene& scene, const HexElements& h
       p.slave_face_offsets.assign(p.slaves.size() + 1, 0);
       for (const auto& f : p.slave_faces)
         for (std::int32_t k : f)
-          if (index[static_cast<std::size_t>(k)] >= 0) ++p.slave_face_offsets[static_cast<std::size_t>(index[static_cast<std::size_t>(k)]) + 1];
-      for (std::size_t k = 0; k < p.slaves.size(); ++k) p.slave_face_offsets[k + 1] += p.slave_face_offsets[k];
+          if (index[static_cast<std::size_t>(k)] >= 0)
+            ++p.slave_face_offsets[static_cast<std::size_t>(index[static_cast<std::size_t>(k)]) +
+                                   1];
+      for (std::size_t k = 0; k < p.slaves.size(); ++k)
+        p.slave_face_offsets[k + 1] += p.slave_face_offsets[k];
       p.slave_face_list.resize(static_cast<std::size_t>(p.slave_face_offsets.back()));
       std::vector<std::int32_t> fill(p.slave_face_offsets.begin(), p.slave_face_offsets.end() - 1);
       for (std::size_t f = 0; f < p.slave_faces.size(); ++f)
@@ -287,7 +291,8 @@ void build_passes(MeshContact& c, const core::Scene& scene, const HexElements& h
       if (last < 0) continue;
       Key key = old.faces[static_cast<std::size_t>(last)];
       std::sort(key.begin(), key.end());
-      const auto it = std::lower_bound(index.begin(), index.end(), std::make_pair(key, std::int32_t{-1}));
+      const auto it =
+          std::lower_bound(index.begin(), index.end(), std::make_pair(key, std::int32_t{-1}));
       last = (it != index.end() && it->first == key) ? it->second : -1;
     }
     now.last_face = std::move(old.last_face);
@@ -343,9 +348,12 @@ void find_contacts(MeshContact& c, const FeNodes& nodes, const HexElements& hexe
       core::parallel_chunks(pass.slaves.size(), [&](std::size_t begin, std::size_t end, int) {
         for (std::size_t k = begin; k < end; ++k) {
           Vec3 n;
-          for (std::int32_t q = pass.slave_face_offsets[k]; q < pass.slave_face_offsets[k + 1]; ++q) {
+          for (std::int32_t q = pass.slave_face_offsets[k]; q < pass.slave_face_offsets[k + 1];
+               ++q) {
             const std::array<Vec3, 4> p =
-                corners(pass.slave_faces[static_cast<std::size_t>(pass.slave_face_list[static_cast<std::size_t>(q)])], x);
+                corners(pass.slave_faces[static_cast<std::size_t>(
+                            pass.slave_face_list[static_cast<std::size_t>(q)])],
+                        x);
             n += 0.5 * core::cross(p[2] - p[0], p[3] - p[1]);
           }
           pass.slave_normal[static_cast<std::size_t>(pass.slaves[k])] = n;
@@ -378,8 +386,8 @@ void find_contacts(MeshContact& c, const FeNodes& nodes, const HexElements& hexe
             return false;
           if (q[0] == slave || q[1] == slave || q[2] == slave || q[3] == slave) return false;
           if (self)  // not the faces of an element the node belongs to
-            for (std::int32_t n :
-                 hexes.nodes[static_cast<std::size_t>(pass.face_element[static_cast<std::size_t>(f)])])
+            for (std::int32_t n : hexes.nodes[static_cast<std::size_t>(
+                     pass.face_element[static_cast<std::size_t>(f)])])
               if (n == slave) return false;
           if (!project(corners(q, x), xs, pr)) return false;
           if (facing && !(core::dot(pr.normal, pass.slave_normal[s]) < 0.0)) return false;
@@ -409,7 +417,8 @@ void find_contacts(MeshContact& c, const FeNodes& nodes, const HexElements& hexe
             if (out > 0.0)
               d = core::norm(xs - face_point(corners(pass.faces[static_cast<std::size_t>(f)], x),
                                              std::clamp(pr.xi, -1.0, 1.0),
-                                             std::clamp(pr.eta, -1.0, 1.0)).x);
+                                             std::clamp(pr.eta, -1.0, 1.0))
+                                      .x);
             const double tie = 1e-9 * pass.reach[static_cast<std::size_t>(f)];
             if (d < distance - tie || (d <= distance + tie && out < overshoot)) {
               distance = d;
@@ -488,8 +497,8 @@ void FeSolver::resolve_contacts(double dt) {
     for (MeshContact& c : contacts_) {
       const double s = c.spec.penalty, mu = c.spec.friction;
       // Both passes constrain the same interface: each takes half of what is left per sweep,
-      // so the load is shared between them (the symmetric treatment that passes the patch
-      // test with meshes that do not match) instead of going to the first.
+      // so the load is shared between them (the symmetric two-pass treatment) instead of
+      // going to the first.
       const double share = c.passes.size() == 2 ? 0.5 : 1.0;
       for (ContactHit& h : c.hits) {
         const auto sl = static_cast<std::size_t>(h.slave);
@@ -506,8 +515,7 @@ void FeSolver::resolve_contacts(double dt) {
           v_face += na * nodes_.velocity[q];
         }
         if (!(w > 0.0)) continue;  // two rigid bodies held fast: nothing can move
-        const double gap =
-            core::dot(n, nodes_.position[sl] + dt * nodes_.velocity[sl] - x_face);
+        const double gap = core::dot(n, nodes_.position[sl] + dt * nodes_.velocity[sl] - x_face);
         if (sweep == 0) {
           // A penetration already there at x^n (a surface exposed by erosion or conversion
           // over a node that was inside the lost elements, or one the penalty s < 1 left)
@@ -519,8 +527,7 @@ void FeSolver::resolve_contacts(double dt) {
           const double now = core::dot(n, nodes_.position[sl] - x_now);
           h.target = std::min((1.0 - s) * std::min(gap, 0.0), 0.9 * std::min(now, 0.0));
         }
-        const double total =
-            std::max(0.0, h.normal_impulse - share * (gap - h.target) / (dt * w));
+        const double total = std::max(0.0, h.normal_impulse - share * (gap - h.target) / (dt * w));
         const double dp = total - h.normal_impulse;
         h.normal_impulse = total;
         Vec3 impulse = dp * n;
@@ -541,23 +548,22 @@ void FeSolver::resolve_contacts(double dt) {
     }
   // Rigid bodies take the impulses their nodes got, and their nodes follow the bodies again.
   for (RigidBody& r : rigid_bodies_) {
-      Vec3 impulse, angular;
-      for (std::int32_t k : r.nodes) {
-        const Vec3& j = contact_impulse_[static_cast<std::size_t>(k)];
-        impulse += j;
-        angular += core::cross(nodes_.position[static_cast<std::size_t>(k)] - r.centre, j);
-      }
-      const Vec3 before = r.velocity;
-      external_work_ += add_impulse(r, impulse, angular);
-      // Gravity's work was taken on the body's velocity before the impulse.
-      external_work_ += r.mass * core::dot(scene_.run.gravity, r.velocity - before) * dt;
-      for (std::int32_t k : r.nodes)
-        nodes_.velocity[static_cast<std::size_t>(k)] =
-            point_velocity(r, nodes_.position[static_cast<std::size_t>(k)] - r.centre);
+    Vec3 impulse, angular;
+    for (std::int32_t k : r.nodes) {
+      const Vec3& j = contact_impulse_[static_cast<std::size_t>(k)];
+      impulse += j;
+      angular += core::cross(nodes_.position[static_cast<std::size_t>(k)] - r.centre, j);
     }
-  // Resultants (impulse over the force step), friction's work (the tangential impulse on the
-  // relative slip left), and the sliding energy: what the corrections took from the kinetic
-  // energy.
+    const Vec3 before = r.velocity;
+    external_work_ += add_impulse(r, impulse, angular);
+    // Gravity's work was taken on the body's velocity before the impulse.
+    external_work_ += r.mass * core::dot(scene_.run.gravity, r.velocity - before) * dt;
+    for (std::int32_t k : r.nodes)
+      nodes_.velocity[static_cast<std::size_t>(k)] =
+          point_velocity(r, nodes_.position[static_cast<std::size_t>(k)] - r.centre);
+  }
+  // Resultants (impulse over the force step), and friction's work (the tangential impulse on
+  // the relative slip left).
   const double dt_force = force_step(dt);
   for (MeshContact& c : contacts_) {
     c.normal_force = Vec3{};
@@ -575,7 +581,8 @@ void FeSolver::resolve_contacts(double dt) {
           v_face += h.shape[static_cast<std::size_t>(a)] *
                     nodes_.velocity[static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)])];
         const Vec3 rel = nodes_.velocity[static_cast<std::size_t>(h.slave)] - v_face;
-        c.friction_work -= core::dot(h.tangential_impulse, rel - core::dot(rel, h.normal) * h.normal);
+        c.friction_work -=
+            core::dot(h.tangential_impulse, rel - core::dot(rel, h.normal) * h.normal);
       }
     }
   }
@@ -588,14 +595,13 @@ void FeSolver::resolve_contacts(double dt) {
   double work = 0.0, gravity = 0.0;
   for (std::int32_t k : contact_nodes_) {
     const auto i = static_cast<std::size_t>(k);
-    work += core::dot(contact_impulse_[i],
-                      previous_dt_ * velocity_start_[i] + dt * nodes_.velocity[i]);
+    work +=
+        core::dot(contact_impulse_[i], previous_dt_ * velocity_start_[i] + dt * nodes_.velocity[i]);
     if (rigid_of_node_.empty() || rigid_of_node_[i] < 0)
       gravity += core::dot(g, contact_impulse_[i]);
   }
   sliding_energy_ -= work / (2.0 * dt_force);
   external_work_ += gravity * dt;
-
 }
 
 }  // namespace afemp::fem

@@ -45,8 +45,8 @@ struct ContactPass {
   // Per slave (in `slaves` order): its own faces (CSR into slave_faces), for the normals.
   std::vector<std::int32_t> slave_face_offsets, slave_face_list;
   std::vector<std::array<std::int32_t, 4>> faces;  // master faces, node order outward
-  std::vector<std::int32_t> face_element;           // the hexahedron of each face
-  std::vector<double> reach;  // the largest penetration the face holds a node at
+  std::vector<std::int32_t> face_element;          // the hexahedron of each face
+  std::vector<double> reach;      // the largest penetration the face holds a node at
   bool slaves_first_body = true;  // the slaves are nodes of the contact's first body
   // Per FE node (sized on the first build): the face it met last (-1: none).
   std::vector<std::int32_t> last_face;
@@ -71,11 +71,11 @@ struct ContactHit {
   std::int32_t slave = 0;
   std::array<std::int32_t, 4> face{};  // the master face's nodes
   std::array<double, 4> shape{};       // their shape functions at the projection
-  Vec3 normal;                    // the face's outward unit normal there
-  double normal_impulse = 0.0;    // P >= 0, on the slave along the normal
-  double target = 0.0;            // the predicted gap the sweeps aim at, (1 - s) g0
-  Vec3 tangential_impulse;        // on the slave, |T| <= mu P
-  bool first_body = true;         // the slave is a node of the contact's first body
+  Vec3 normal;                         // the face's outward unit normal there
+  double normal_impulse = 0.0;         // P >= 0, on the slave along the normal
+  double target = 0.0;                 // the predicted gap the sweeps aim at, (1 - s) g0
+  Vec3 tangential_impulse;             // on the slave, |T| <= mu P
+  bool first_body = true;              // the slave is a node of the contact's first body
 };
 
 struct MeshContact {

@@ -26,8 +26,12 @@ Mat3 from_eigen(const Eigen::Matrix3d& m) {
   return a;
 }
 
-Eigen::Vector3d to_eigen(const Vec3& v) { return {v.x, v.y, v.z}; }
-Vec3 from_eigen(const Eigen::Vector3d& v) { return {v(0), v(1), v(2)}; }
+Eigen::Vector3d to_eigen(const Vec3& v) {
+  return {v.x, v.y, v.z};
+}
+Vec3 from_eigen(const Eigen::Vector3d& v) {
+  return {v(0), v(1), v(2)};
+}
 
 // Fixed translation components keep their initial value; returns the reaction's work
 // (reaction impulse M (v_fixed - v_free) times the prescribed velocity).

@@ -67,6 +67,8 @@ inline Vec3 point_velocity(const RigidBody& r, const Vec3& offset) {
 void advance_pose(RigidBody& r, double dt);
 
 // The current offset of node k of the body (R offset0).
-inline Vec3 node_offset(const RigidBody& r, std::size_t k) { return r.rotation * r.offset0[k]; }
+inline Vec3 node_offset(const RigidBody& r, std::size_t k) {
+  return r.rotation * r.offset0[k];
+}
 
 }  // namespace afemp::fem

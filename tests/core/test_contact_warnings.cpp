@@ -56,14 +56,16 @@ TEST(ContactWarnings, MeshesThatWouldPassThroughEachOtherAreNamed) {
       "[[bodies]]\nname = \"rod\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
       "shape = { box = { min = [0, 0, 0], max = [1, 1, 5] } }\nmesh = { divisions = [1, 1, 5] }\n"
       "[[bodies]]\nname = \"plate\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-      "shape = { box = { min = [-3, -3, -1], max = [3, 3, 0] } }\nmesh = { divisions = [6, 6, 1] }\n";
+      "shape = { box = { min = [-3, -3, -1], max = [3, 3, 0] } }\nmesh = { divisions = [6, 6, 1] "
+      "}\n";
   const std::vector<std::string> w = warnings_of(meshes);
   ASSERT_EQ(w.size(), 1u);
   EXPECT_NE(w[0].find("two meshes pass through each other"), std::string::npos) << w[0];
   EXPECT_TRUE(warnings_of(meshes + "[[contact]]\nbodies = [\"rod\", \"plate\"]\n").empty());
   // A weld is for particles: on meshes it is an error naming the key.
   try {
-    parse_scene(meshes + "[[contact]]\nbodies = [\"rod\", \"plate\"]\nmethod = \"weld\"\n", "w.toml");
+    parse_scene(meshes + "[[contact]]\nbodies = [\"rod\", \"plate\"]\nmethod = \"weld\"\n",
+                "w.toml");
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("contact[0].method"), std::string::npos) << e.what();

@@ -19,8 +19,7 @@ namespace afemp::fem {
 namespace {
 
 // Elastic steel: rho 7.85e-3, E 2.1e5, nu 0.3 (c_L = 6001 m/s in uniaxial strain).
-constexpr const char* kSteel =
-    "[materials.steel]\ndensity = 7.85e-3\nE = 2.1e5\nnu = 0.3\n";
+constexpr const char* kSteel = "[materials.steel]\ndensity = 7.85e-3\nE = 2.1e5\nnu = 0.3\n";
 
 double steel_bar_wave_speed() {
   const double E = 2.1e5, nu = 0.3, rho = 7.85e-3;
@@ -36,12 +35,13 @@ std::string head_on_scene() {
   for (const char* side : {"left", "right"}) {
     const bool left = side[0] == 'l';
     char body[512];
-    std::snprintf(body, sizeof body,
-                  "[[bodies]]\nname = \"%s\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-                  "shape = { box = { min = [0, 0, %g], max = [2, 2, %g] } }\n"
-                  "mesh = { divisions = [2, 2, 40] }\nvelocity = [0, 0, %g]\n"
-                  "bulk_viscosity = { linear = 0, quadratic = 0 }\n",
-                  side, left ? -10.05 : 0.05, left ? -0.05 : 10.05, left ? 5.0 : -5.0);
+    std::snprintf(
+        body, sizeof body,
+        "[[bodies]]\nname = \"%s\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
+        "shape = { box = { min = [0, 0, %g], max = [2, 2, %g] } }\n"
+        "mesh = { divisions = [2, 2, 40] }\nvelocity = [0, 0, %g]\n"
+        "bulk_viscosity = { linear = 0, quadratic = 0 }\n",
+        side, left ? -10.05 : 0.05, left ? -0.05 : 10.05, left ? 5.0 : -5.0);
     s += body;
   }
   s += "[[constraints]]\nnodes = { box = { min = [-1, -1, -20], max = [3, 3, 20] } }\n"
@@ -64,8 +64,8 @@ TEST(MeshContact, IdenticalBlocksHeadOnSeparateAfterTwoWaveTransits) {
   while (solver.time() < 0.02) {
     solver.step(std::min(solver.stable_time_step(), 0.02 - solver.time()));
     const core::Energies e = solver.energies();
-    worst_momentum = std::max(worst_momentum,
-                              core::norm(e.bodies[0].momentum + e.bodies[1].momentum) / p_body);
+    worst_momentum =
+        std::max(worst_momentum, core::norm(e.bodies[0].momentum + e.bodies[1].momentum) / p_body);
     const double f = core::norm(solver.mesh_contacts()[0].normal_force);
     peak = std::max(peak, f);
     if (f > 0.0) {
@@ -81,10 +81,11 @@ TEST(MeshContact, IdenticalBlocksHeadOnSeparateAfterTwoWaveTransits) {
   const double balance = (e.total() - e0.total()) / e0.total();
   // The interface pressure rho c v on the 4 mm^2 face.
   const double force = 7.85e-3 * c * 5.0 * 4.0;
-  std::printf("head-on: contact %.4g us (2L/c %.4g us, %+.2f %%), peak force %.1f N (rho c v A "
-              "%.1f N), momentum %.1e, kinetic + internal kept %.4f, sliding %.4g, balance %.1e\n",
-              1e3 * duration, 1e3 * expected, 100.0 * (duration / expected - 1.0), peak, force,
-              worst_momentum, kept, e.sliding, balance);
+  std::printf(
+      "head-on: contact %.4g us (2L/c %.4g us, %+.2f %%), peak force %.1f N (rho c v A "
+      "%.1f N), momentum %.1e, kinetic + internal kept %.4f, sliding %.4g, balance %.1e\n",
+      1e3 * duration, 1e3 * expected, 100.0 * (duration / expected - 1.0), peak, force,
+      worst_momentum, kept, e.sliding, balance);
   EXPECT_LT(worst_momentum, 1e-12);
   EXPECT_NEAR(duration, expected, 0.05 * expected);
   EXPECT_NEAR(peak, force, 0.05 * force);
@@ -98,16 +99,17 @@ TEST(MeshContact, IdenticalBlocksHeadOnSeparateAfterTwoWaveTransits) {
 // Coulomb friction mu.
 std::string sliding_scene(double mu, const char* plate) {
   char s[1400];
-  std::snprintf(s, sizeof s,
-                "[run]\nend_time = 0.3\ngravity = [0, 0, -10]\n%s"
-                "[[bodies]]\nname = \"block\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-                "shape = { box = { min = [0, 0, 0], max = [10, 10, 4] } }\n"
-                "mesh = { divisions = [4, 4, 2] }\nvelocity = [1, 0, 0]\n"
-                "[[bodies]]\nname = \"plate\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-                "shape = { box = { min = [-5, -5, -2], max = [25, 15, 0] } }\n"
-                "mesh = { divisions = [6, 4, 1] }\n%s\n"
-                "[[contact]]\nbodies = [\"block\", \"plate\"]\nfriction = %g\n",
-                kSteel, plate, mu);
+  std::snprintf(
+      s, sizeof s,
+      "[run]\nend_time = 0.3\ngravity = [0, 0, -10]\n%s"
+      "[[bodies]]\nname = \"block\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
+      "shape = { box = { min = [0, 0, 0], max = [10, 10, 4] } }\n"
+      "mesh = { divisions = [4, 4, 2] }\nvelocity = [1, 0, 0]\n"
+      "[[bodies]]\nname = \"plate\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
+      "shape = { box = { min = [-5, -5, -2], max = [25, 15, 0] } }\n"
+      "mesh = { divisions = [6, 4, 1] }\n%s\n"
+      "[[contact]]\nbodies = [\"block\", \"plate\"]\nfriction = %g\n",
+      kSteel, plate, mu);
   return s;
 }
 
@@ -141,12 +143,12 @@ TEST(MeshContact, ABlockSlidingOnARigidPlateStopsAtTheCoulombDistance) {
   const double expected = v * v / (2.0 * mu * g);
   const double balance = (e.total() - e0.total() - e.external_work) / e0.kinetic;
   drag /= drag_samples;
-  std::printf("sliding: stopped after %.5g mm (v^2 / 2 mu g %.5g mm, %+.2f %%), final speed "
-              "%.2e, friction work %.5g vs kinetic energy %.5g, drag %.5g N (mu m g %.5g), "
-              "balance %.1e\n",
-              travel, expected, 100.0 * (travel / expected - 1.0),
-              e.bodies[0].momentum.x / mass, e.friction, 0.5 * mass * v * v, drag, mu * mass * g,
-              balance);
+  std::printf(
+      "sliding: stopped after %.5g mm (v^2 / 2 mu g %.5g mm, %+.2f %%), final speed "
+      "%.2e, friction work %.5g vs kinetic energy %.5g, drag %.5g N (mu m g %.5g), "
+      "balance %.1e\n",
+      travel, expected, 100.0 * (travel / expected - 1.0), e.bodies[0].momentum.x / mass,
+      e.friction, 0.5 * mass * v * v, drag, mu * mass * g, balance);
   EXPECT_NEAR(travel, expected, 0.02 * expected);
   EXPECT_LT(std::abs(e.bodies[0].momentum.x / mass), 0.01 * v);
   EXPECT_NEAR(e.friction, 0.5 * mass * v * v, 0.02 * 0.5 * mass * v * v);
@@ -156,17 +158,19 @@ TEST(MeshContact, ABlockSlidingOnARigidPlateStopsAtTheCoulombDistance) {
 
 // Reference: a free rigid body keeps its momentum; hitting a deformable block, the two share
 // the momentum exactly (the impulses are equal and opposite). A rigid steel cube (4 x 4 x 4 mm)
-// at 10 m/s strikes a resting steel block (8 x 8 x 4 mm) of four times its mass. Pass: total momentum within 1e-12
-// of the start throughout; the cube's nodes stay rigid (the distance between two opposite
-// corners unchanged to 1e-12); the balance with the sliding energy within 2 %.
+// at 10 m/s strikes a resting steel block (8 x 8 x 4 mm) of four times its mass. Pass: total
+// momentum within 1e-12 of the start throughout; the cube's nodes stay rigid (the distance between
+// two opposite corners unchanged to 1e-12); the balance with the sliding energy within 2 %.
 TEST(MeshContact, AFreeRigidBodyHandsItsMomentumToADeformableBlock) {
   std::string s = "[run]\nend_time = 0.01\n";
   s += kSteel;
   s += "[[bodies]]\nname = \"cube\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-       "shape = { box = { min = [0, 0, 0.05], max = [4, 4, 4.05] } }\nmesh = { divisions = [2, 2, 2] }\n"
+       "shape = { box = { min = [0, 0, 0.05], max = [4, 4, 4.05] } }\nmesh = { divisions = [2, 2, "
+       "2] }\n"
        "velocity = [0, 0, -10]\nrigid = true\n"
        "[[bodies]]\nname = \"block\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-       "shape = { box = { min = [-2, -2, -4], max = [6, 6, 0] } }\nmesh = { divisions = [4, 4, 4] }\n"
+       "shape = { box = { min = [-2, -2, -4], max = [6, 6, 0] } }\nmesh = { divisions = [4, 4, 4] "
+       "}\n"
        "[[contact]]\nbodies = [\"cube\", \"block\"]\n";
   const core::Scene scene = core::parse_scene(s, "rigid_cube.toml");
   FeSolver solver(scene);
@@ -181,18 +185,19 @@ TEST(MeshContact, AFreeRigidBodyHandsItsMomentumToADeformableBlock) {
   while (solver.time() < 0.01) {
     solver.step(std::min(solver.stable_time_step(), 0.01 - solver.time()));
     const core::Energies e = solver.energies();
-    worst = std::max(worst, core::norm(e.bodies[0].momentum + e.bodies[1].momentum - p0) /
-                                core::norm(p0));
-    worst_shape = std::max(
-        worst_shape,
-        std::abs(core::norm(nodes.position[a] - nodes.position[b]) - diagonal) / diagonal);
+    worst = std::max(worst,
+                     core::norm(e.bodies[0].momentum + e.bodies[1].momentum - p0) / core::norm(p0));
+    worst_shape =
+        std::max(worst_shape,
+                 std::abs(core::norm(nodes.position[a] - nodes.position[b]) - diagonal) / diagonal);
   }
   const core::Energies e = solver.energies();
   const double balance = (e.total() - e0.total() - e.external_work) / e0.total();
-  std::printf("rigid cube on a block: momentum %.1e, cube's shape %.1e, cube now %.4g m/s, "
-              "block %.4g m/s, sliding %.4g of %.4g, balance %.1e\n",
-              worst, worst_shape, e.bodies[0].momentum.z / e.bodies[0].mass,
-              e.bodies[1].momentum.z / e.bodies[1].mass, e.sliding, e0.kinetic, balance);
+  std::printf(
+      "rigid cube on a block: momentum %.1e, cube's shape %.1e, cube now %.4g m/s, "
+      "block %.4g m/s, sliding %.4g of %.4g, balance %.1e\n",
+      worst, worst_shape, e.bodies[0].momentum.z / e.bodies[0].mass,
+      e.bodies[1].momentum.z / e.bodies[1].mass, e.sliding, e0.kinetic, balance);
   EXPECT_LT(worst, 1e-12);
   EXPECT_LT(worst_shape, 1e-12);
   EXPECT_LT(e.bodies[0].momentum.z / e.bodies[0].mass, -0.0);  // still moving down, slower
@@ -204,7 +209,7 @@ TEST(MeshContact, AFreeRigidBodyHandsItsMomentumToADeformableBlock) {
 struct Patch {
   double force = 0.0, weight = 0.0;  // mean contact force, the upper block's weight
   std::vector<double> szz;           // mean sigma_zz of the column's top-layer elements
-  double deepest = 0.0;  // deepest penetration of the upper block's bottom nodes
+  double deepest = 0.0;              // deepest penetration of the upper block's bottom nodes
 };
 
 // A steel block (10 x 10 x 5 mm, n x n x 2 hexahedra) resting on a steel column of the same
@@ -216,13 +221,16 @@ Patch run_patch(int n) {
   s += kSteel;
   if (n == 0) {
     s += "[[bodies]]\nname = \"base\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-         "shape = { box = { min = [0, 0, -5], max = [10, 10, 5] } }\nmesh = { divisions = [4, 4, 4] }\n";
+         "shape = { box = { min = [0, 0, -5], max = [10, 10, 5] } }\nmesh = { divisions = [4, 4, "
+         "4] }\n";
   } else {
     s += "[[bodies]]\nname = \"base\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-         "shape = { box = { min = [0, 0, -5], max = [10, 10, 0] } }\nmesh = { divisions = [4, 4, 2] }\n"
+         "shape = { box = { min = [0, 0, -5], max = [10, 10, 0] } }\nmesh = { divisions = [4, 4, "
+         "2] }\n"
          "[[bodies]]\nname = \"top\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
          "shape = { box = { min = [0, 0, 0], max = [10, 10, 5] } }\nmesh = { divisions = [" +
-         std::to_string(n) + ", " + std::to_string(n) + ", 2] }\n"
+         std::to_string(n) + ", " + std::to_string(n) +
+         ", 2] }\n"
          "[[contact]]\nbodies = [\"top\", \"base\"]\n";
   }
   s += "[[constraints]]\nnodes = { plane = { point = [0, 0, -5], normal = [0, 0, 1] } }\n"
@@ -239,7 +247,8 @@ Patch run_patch(int n) {
   const ElementBatch& base = hexes.batches.at(0);
   for (std::size_t e = base.begin; e < base.end; ++e) {
     Vec3 c;
-    for (std::int32_t k : hexes.nodes[e]) c += 0.125 * nodes.initial_position[static_cast<std::size_t>(k)];
+    for (std::int32_t k : hexes.nodes[e])
+      c += 0.125 * nodes.initial_position[static_cast<std::size_t>(k)];
     if (c.z > -2.5 && c.z < 0.0) layer.emplace_back(c.x + 100.0 * c.y, e);
   }
   std::sort(layer.begin(), layer.end());
@@ -271,7 +280,8 @@ Patch run_patch(int n) {
       out.deepest = std::max(out.deepest, z - x.z);
     }
     if (solver.time() > 1.0) {
-      if (!solver.mesh_contacts().empty()) out.force += solver.mesh_contacts()[0].normal_force.z * dt;
+      if (!solver.mesh_contacts().empty())
+        out.force += solver.mesh_contacts()[0].normal_force.z * dt;
       for (std::size_t k = 0; k < layer.size(); ++k)
         out.szz[k] += hexes.stress[layer[k].second].zz * dt;
       window += dt;
@@ -301,11 +311,11 @@ TEST(MeshContact, PatchTestABlockRestingOnAnotherTransmitsItsWeightUniformly) {
     double worst = 0.0;
     for (std::size_t k = 0; k < p.szz.size(); ++k)
       worst = std::max(worst, std::abs(p.szz[k] - welded.szz[k]) / pressure);
-    std::printf("patch test, %d x %d on 4 x 4: mean contact force %.5g N (m g %.5g, %+.3f %%), "
-                "top-layer sigma_zz within %.3f %% of m g / A from the welded body's, deepest "
-                "penetration %.2e mm\n",
-                n, n, p.force, p.weight, 100.0 * (p.force / p.weight - 1.0), 100.0 * worst,
-                p.deepest);
+    std::printf(
+        "patch test, %d x %d on 4 x 4: mean contact force %.5g N (m g %.5g, %+.3f %%), "
+        "top-layer sigma_zz within %.3f %% of m g / A from the welded body's, deepest "
+        "penetration %.2e mm\n",
+        n, n, p.force, p.weight, 100.0 * (p.force / p.weight - 1.0), 100.0 * worst, p.deepest);
     EXPECT_NEAR(p.force, p.weight, 0.01 * p.weight);
     EXPECT_LT(worst, n == 4 ? 0.01 : 0.15);
     EXPECT_LT(p.deepest, 1e-6 * 2.5);
@@ -313,45 +323,52 @@ TEST(MeshContact, PatchTestABlockRestingOnAnotherTransmitsItsWeightUniformly) {
 }
 
 TEST(MeshContact, BadInputNamesTheFileLineAndKey) {
-  const std::string base = std::string("[run]\nend_time = 1\n") + kSteel +
-                           "[[bodies]]\nname = \"a\"\ndiscretisation = \"hexahedra\"\n"
-                           "material = \"steel\"\nshape = { box = { min = [0, 0, 0], max = [1, 1, 1] } }\n"
-                           "mesh = { divisions = [1, 1, 1] }\n"
-                           "[[bodies]]\nname = \"b\"\ndiscretisation = \"hexahedra\"\n"
-                           "material = \"steel\"\nshape = { box = { min = [0, 0, 2], max = [1, 1, 3] } }\n"
-                           "mesh = { divisions = [1, 1, 1] }\n";
+  const std::string base =
+      std::string("[run]\nend_time = 1\n") + kSteel +
+      "[[bodies]]\nname = \"a\"\ndiscretisation = \"hexahedra\"\n"
+      "material = \"steel\"\nshape = { box = { min = [0, 0, 0], max = [1, 1, 1] } }\n"
+      "mesh = { divisions = [1, 1, 1] }\n"
+      "[[bodies]]\nname = \"b\"\ndiscretisation = \"hexahedra\"\n"
+      "material = \"steel\"\nshape = { box = { min = [0, 0, 2], max = [1, 1, 3] } }\n"
+      "mesh = { divisions = [1, 1, 1] }\n";
   // Contact naming an unknown body.
   std::string text = base + "[[contact]]\nbodies = [\"a\", \"c\"]\n";
   std::string msg = test::error_of(text, "scene.toml");
-  EXPECT_NE(msg.find("scene.toml:" + std::to_string(test::line_of(text, "bodies = [\"a\", \"c\"]"))),
-            std::string::npos) << msg;
+  EXPECT_NE(
+      msg.find("scene.toml:" + std::to_string(test::line_of(text, "bodies = [\"a\", \"c\"]"))),
+      std::string::npos)
+      << msg;
   EXPECT_NE(msg.find("contact[0].bodies"), std::string::npos) << msg;
   EXPECT_NE(msg.find("unknown body \"c\"; bodies: \"a\", \"b\""), std::string::npos) << msg;
   // A penalty scale out of range.
   text = base + "[[contact]]\nbodies = [\"a\", \"b\"]\npenalty = 1.5\n";
   msg = test::error_of(text);
   EXPECT_NE(msg.find("scene.toml:" + std::to_string(test::line_of(text, "penalty = 1.5"))),
-            std::string::npos) << msg;
+            std::string::npos)
+      << msg;
   EXPECT_NE(msg.find("contact[0].penalty"), std::string::npos) << msg;
   EXPECT_NE(msg.find("allowed: 0 < value <= 1"), std::string::npos) << msg;
   // A rigid body of particles.
-  text = std::string("[run]\nend_time = 1\n[grid]\ncell = 1\nmin = [-2, -2, -2]\nmax = [4, 4, 4]\n") +
-         kSteel +
-         "[[bodies]]\nname = \"p\"\nmaterial = \"steel\"\n"
-         "shape = { box = { min = [0, 0, 0], max = [1, 1, 1] } }\nrigid = true\n";
+  text =
+      std::string("[run]\nend_time = 1\n[grid]\ncell = 1\nmin = [-2, -2, -2]\nmax = [4, 4, 4]\n") +
+      kSteel +
+      "[[bodies]]\nname = \"p\"\nmaterial = \"steel\"\n"
+      "shape = { box = { min = [0, 0, 0], max = [1, 1, 1] } }\nrigid = true\n";
   msg = test::error_of(text);
   EXPECT_NE(msg.find("scene.toml:" + std::to_string(test::line_of(text, "rigid = true"))),
-            std::string::npos) << msg;
+            std::string::npos)
+      << msg;
   EXPECT_NE(msg.find("bodies.p.rigid"), std::string::npos) << msg;
   EXPECT_NE(msg.find("a rigid body is made of hexahedra"), std::string::npos) << msg;
   // A rigid body in grid contact with particles.
-  text = std::string("[run]\nend_time = 1\n[grid]\ncell = 1\nmin = [-2, -2, -2]\nmax = [4, 4, 4]\n") +
-         kSteel +
-         "[[bodies]]\nname = \"p\"\nmaterial = \"steel\"\n"
-         "shape = { box = { min = [0, 0, 0], max = [1, 1, 1] } }\n"
-         "[[bodies]]\nname = \"r\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-         "shape = { box = { min = [0, 0, 2], max = [1, 1, 3] } }\nmesh = { divisions = [1, 1, 1] }\n"
-         "rigid = true\n[[contact]]\nbodies = [\"p\", \"r\"]\n";
+  text =
+      std::string("[run]\nend_time = 1\n[grid]\ncell = 1\nmin = [-2, -2, -2]\nmax = [4, 4, 4]\n") +
+      kSteel +
+      "[[bodies]]\nname = \"p\"\nmaterial = \"steel\"\n"
+      "shape = { box = { min = [0, 0, 0], max = [1, 1, 1] } }\n"
+      "[[bodies]]\nname = \"r\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
+      "shape = { box = { min = [0, 0, 2], max = [1, 1, 3] } }\nmesh = { divisions = [1, 1, 1] }\n"
+      "rigid = true\n[[contact]]\nbodies = [\"p\", \"r\"]\n";
   msg = test::error_of(text);
   EXPECT_NE(msg.find("contact[0].bodies"), std::string::npos) << msg;
   EXPECT_NE(msg.find("body \"r\" is rigid"), std::string::npos) << msg;
@@ -407,9 +424,12 @@ double self_contact_run(const std::string& contact, double& penetration) {
   const std::string text =
       std::string("[run]\nend_time = 1\ngravity = [0, 0, -10]\n") + kSteel +
       "[[bodies]]\nname = \"blocks\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-      "shape = { mesh = { file = \"" + deck + "\" } }\n"
+      "shape = { mesh = { file = \"" +
+      deck +
+      "\" } }\n"
       "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }\n"
-      "fixed = [\"z\"]\n" + contact;
+      "fixed = [\"z\"]\n" +
+      contact;
   const core::Scene scene = core::parse_scene(text, dir.file("blocks.toml"));
   FeSolver solver(scene);
   const FeNodes& nodes = solver.nodes();
@@ -438,14 +458,14 @@ double self_contact_run(const std::string& contact, double& penetration) {
 // (more than 0.1 mm).
 TEST(MeshContact, SelfContactHoldsOnePartOfABodyOnAnother) {
   double deep = 0.0;
-  const double force =
-      self_contact_run("[[contact]]\nbodies = [\"blocks\"]\n", deep);
+  const double force = self_contact_run("[[contact]]\nbodies = [\"blocks\"]\n", deep);
   const double weight = 7.85e-3 * 8.0 * 10.0;
   double through = 0.0;
   self_contact_run("", through);
-  std::printf("self-contact: mean force %.5g N (m g %.5g, %+.2f %%), deepest %.2e mm; without "
-              "it the blocks overlap by %.3g mm\n",
-              force, weight, 100.0 * (force / weight - 1.0), deep, through);
+  std::printf(
+      "self-contact: mean force %.5g N (m g %.5g, %+.2f %%), deepest %.2e mm; without "
+      "it the blocks overlap by %.3g mm\n",
+      force, weight, 100.0 * (force / weight - 1.0), deep, through);
   EXPECT_NEAR(force, weight, 0.02 * weight);
   EXPECT_LT(deep, 1e-4);
   EXPECT_GT(through, 0.1);
@@ -474,7 +494,8 @@ TEST(MeshContact, AForceProbeRecordsTheContactForce) {
   double lowest = 0.0;
   for (std::size_t r = 0; r < p.rows(); ++r) lowest = std::min(lowest, p.at(r, 2));
   const double force = 7.85e-3 * steel_bar_wave_speed() * 5.0 * 4.0;
-  std::printf("force probe: %zu rows, fz down to %.1f N (rho c v A %.1f N)\n", p.rows(), lowest, force);
+  std::printf("force probe: %zu rows, fz down to %.1f N (rho c v A %.1f N)\n", p.rows(), lowest,
+              force);
   EXPECT_NEAR(-lowest, force, 0.05 * force);
   text += "[[probes]]\nname = \"nothing\"\nforce = \"left-middle\"\n";
   const core::Scene bad = core::parse_scene(text, "probe.toml");

@@ -87,11 +87,11 @@ TEST(ErodingContact, AProjectileMeetsTheMaterialBehindEachErodedLayer) {
   }
   const core::Energies e = solver.energies();
   const double v = e.bodies[0].momentum.z / e.bodies[0].mass;
-  std::printf("eroding contact: %zu events, push past mid-plane %.4g N, nose at %.3g mm, residual "
-              "velocity %.1f m/s, eroded %.4g, sliding %.4g of %.4g, worst balance %.2e, %d "
-              "threads\n",
-              eroded, deep_push, nose, -v, e.eroded, e.sliding, e0.total(), worst,
-              core::thread_count());
+  std::printf(
+      "eroding contact: %zu events, push past mid-plane %.4g N, nose at %.3g mm, residual "
+      "velocity %.1f m/s, eroded %.4g, sliding %.4g of %.4g, worst balance %.2e, %d "
+      "threads\n",
+      eroded, deep_push, nose, -v, e.eroded, e.sliding, e0.total(), worst, core::thread_count());
   EXPECT_GT(eroded, 0u);
   EXPECT_GT(deep_push, 0.0);
   EXPECT_LT(nose, -4.0);

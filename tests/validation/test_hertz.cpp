@@ -3,8 +3,9 @@
 // at the pole) dropped at 10 m/s on a rigid wall ([[walls]]) and on a thick block of the same
 // steel (6 x 6 x 6 mm quarter, 0.2 mm hexahedra, its bottom held along z) met through mesh
 // contact. Measured (2 threads, this project's 2-core machine):
-//   | rigid wall    | duration 16.69 us vs Hertz 16.52 (+1.1 %) | peak force 9394 N vs 9145 (+2.7 %) |
-//   | thick block   | duration 21.49 us vs Hertz 21.79 (-1.4 %) | peak force 7313 N vs 6931 (+5.5 %) |
+//   | rigid wall    | duration 16.69 us vs Hertz 16.52 (+1.1 %) | peak force 9394 N vs 9145 (+2.7
+//   %) | | thick block   | duration 21.49 us vs Hertz 21.79 (-1.4 %) | peak force 7313 N vs 6931
+//   (+5.5 %) |
 // At 30 m/s on the wall: duration -3.5 %, peak +6.0 % (the contact radius reaches 0.16 R).
 #include <gtest/gtest.h>
 
@@ -23,16 +24,17 @@ constexpr double kRadius = 5.0, kSpeed = 10.0, kE = 2.1e5, kNu = 0.3;
 
 std::string sphere_scene(const std::string& target, double end_time) {
   char head[900];
-  std::snprintf(head, sizeof head,
-                "[run]\nend_time = %g\n[materials.steel]\ndensity = 7.85e-3\nE = %g\nnu = %g\n"
-                "[[bodies]]\nname = \"ball\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-                "shape = { sphere = { centre = [0, 0, %.17g], radius = %g } }\n"
-                "mesh = { across = 64, sectors = 1 }\nvelocity = [0, 0, %g]\n"
-                "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [1, 0, 0] } }\n"
-                "fixed = [\"x\"]\n"
-                "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 1, 0] } }\n"
-                "fixed = [\"y\"]\n",
-                end_time, kE, kNu, kRadius + 0.001, kRadius, -kSpeed);
+  std::snprintf(
+      head, sizeof head,
+      "[run]\nend_time = %g\n[materials.steel]\ndensity = 7.85e-3\nE = %g\nnu = %g\n"
+      "[[bodies]]\nname = \"ball\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
+      "shape = { sphere = { centre = [0, 0, %.17g], radius = %g } }\n"
+      "mesh = { across = 64, sectors = 1 }\nvelocity = [0, 0, %g]\n"
+      "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [1, 0, 0] } }\n"
+      "fixed = [\"x\"]\n"
+      "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 1, 0] } }\n"
+      "fixed = [\"y\"]\n",
+      end_time, kE, kNu, kRadius + 0.001, kRadius, -kSpeed);
   return head + target;
 }
 
@@ -66,13 +68,15 @@ Impact run(const std::string& text, Force force) {
 // F_max = 4/3 E* sqrt(R) delta_max^(3/2), contact time 2.9432 delta_max / v; E* = E / (1 - nu^2)
 // on a rigid flat, E / (2 (1 - nu^2)) against the same material.
 void check(const char* label, const Impact& got, double e_star) {
-  const double d = std::pow(15.0 * got.mass * kSpeed * kSpeed / (16.0 * e_star * std::sqrt(kRadius)), 0.4);
+  const double d =
+      std::pow(15.0 * got.mass * kSpeed * kSpeed / (16.0 * e_star * std::sqrt(kRadius)), 0.4);
   const double force = 4.0 / 3.0 * e_star * std::sqrt(kRadius) * std::pow(d, 1.5);
   const double time = 2.9432 * d / kSpeed;
-  std::printf("Hertz, %s: contact %.4g us (Hertz %.4g, %+.1f %%), peak force %.5g N (Hertz %.5g, "
-              "%+.1f %%), %d threads\n",
-              label, 1e3 * got.duration, 1e3 * time, 100.0 * (got.duration / time - 1.0), got.peak,
-              force, 100.0 * (got.peak / force - 1.0), core::thread_count());
+  std::printf(
+      "Hertz, %s: contact %.4g us (Hertz %.4g, %+.1f %%), peak force %.5g N (Hertz %.5g, "
+      "%+.1f %%), %d threads\n",
+      label, 1e3 * got.duration, 1e3 * time, 100.0 * (got.duration / time - 1.0), got.peak, force,
+      100.0 * (got.peak / force - 1.0), core::thread_count());
   EXPECT_NEAR(got.duration, time, 0.1 * time);
   EXPECT_NEAR(got.peak, force, 0.1 * force);
 }
@@ -87,7 +91,8 @@ TEST(Hertz, ElasticSphereOnARigidWall) {
 TEST(Hertz, ElasticSphereOnAThickBlockThroughMeshContact) {
   const std::string block =
       "[[bodies]]\nname = \"block\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-      "shape = { box = { min = [0, 0, -6], max = [6, 6, 0] } }\nmesh = { divisions = [30, 30, 30] }\n"
+      "shape = { box = { min = [0, 0, -6], max = [6, 6, 0] } }\nmesh = { divisions = [30, 30, 30] "
+      "}\n"
       "[[constraints]]\nnodes = { plane = { point = [0, 0, -6], normal = [0, 0, 1] } }\n"
       "fixed = [\"z\"]\n[[contact]]\nbodies = [\"ball\", \"block\"]\n";
   const Impact got = run(sphere_scene(block, 0.03),

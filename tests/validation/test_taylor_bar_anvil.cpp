@@ -43,10 +43,11 @@ core::RunSummary run_taylor(const std::string& label, const std::string& anvil, 
   FeModel model(scene);
   const core::RunSummary s = analysis::run(model, scene, {});
   const core::TaylorMeasures& m = s.taylor.value();
-  std::printf("| %s | L %.3f | D %.3f | W %.3f | steps %ld | max energy error %.2f %% | %.1f s "
-              "| %d threads |\n",
-              label.c_str(), m.length, m.impact_diameter, m.bulge_diameter, s.steps,
-              100.0 * s.max_energy_error, s.wall_seconds, core::thread_count());
+  std::printf(
+      "| %s | L %.3f | D %.3f | W %.3f | steps %ld | max energy error %.2f %% | %.1f s "
+      "| %d threads |\n",
+      label.c_str(), m.length, m.impact_diameter, m.bulge_diameter, s.steps,
+      100.0 * s.max_energy_error, s.wall_seconds, core::thread_count());
   std::fflush(stdout);
   return s;
 }
@@ -66,11 +67,12 @@ TEST(TaylorBarAnvil, RigidAndSteelAnvilsGiveTheWallsShape) {
       "rigid anvil",
       std::string(kAnvil) + "mesh = { divisions = [8, 8, 2] }\nrigid = { fixed = [\"all\"] }\n",
       true);
-  const core::RunSummary on_steel = run_taylor(
-      "steel anvil",
-      std::string(kAnvil) + "mesh = { divisions = [16, 16, 8] }\n[[constraints]]\nnodes = { "
-                            "plane = { point = [0, 0, -4], normal = [0, 0, 1] } }\nfixed = [\"z\"]\n",
-      false);
+  const core::RunSummary on_steel =
+      run_taylor("steel anvil",
+                 std::string(kAnvil) +
+                     "mesh = { divisions = [16, 16, 8] }\n[[constraints]]\nnodes = { "
+                     "plane = { point = [0, 0, -4], normal = [0, 0, 1] } }\nfixed = [\"z\"]\n",
+                 false);
   const core::TaylorMeasures& w = wall.taylor.value();
   for (const core::RunSummary* s : {&on_rigid, &on_steel}) {
     const core::TaylorMeasures& m = s->taylor.value();
