@@ -1265,8 +1265,8 @@ ContactSpec read_contact(TableReader& r, const Scene& scene) {
       r.fail("bodies", "self-contact needs a body of hexahedra (a surface that may fold)");
     if (self && a.rigid) r.fail("bodies", "a rigid body cannot fold onto itself");
     // The fraction of the predicted penetration one step takes out (fem/mesh_contact.hpp):
-    // 1 closes it within the step; the correction never adds energy, so any value in (0, 1]
-    // is stable.
+    // 1 closes it within the step; a velocity correction, not a spring the step must resolve,
+    // so any value in (0, 1] is stable.
     c.penalty = r.number("penalty", 1.0, Range{0.0, 1.0, true, false});
     return c;
   }

@@ -8,8 +8,9 @@
 // P = s (-g) / (dt w), w = 1/m_s + sum N_a^2 / m_a the pair's inverse mass: a penalty spring of
 // stiffness k = s / (w dt^2) (LS-DYNA's SOFT=1 form, the nodal masses over the step squared)
 // on the predicted penetration. s = 1 closes it within the step (kinematic contact); below 1
-// the remainder is taken over the next steps. Being a velocity correction that never adds
-// energy, it is stable for s in (0, 1] at any step. The pairs share nodes, so the impulses are
+// the remainder is taken over the next steps. Being a velocity correction that takes out at
+// most the penetration predicted for the step (and a tenth of one already there), not a spring
+// the step must resolve, it is stable for s in (0, 1] at any step. The pairs share nodes, so the impulses are
 // found by projected Gauss-Seidel sweeps in slave order (the total normal impulse of a pair
 // stays >= 0: surfaces separate freely), with Coulomb friction limiting the tangential
 // impulse to mu P. A slave keeps the face it met last while that face still holds it (a node
