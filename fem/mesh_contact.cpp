@@ -85,11 +85,8 @@ std::array<Vec3, 4> corners(const std::array<std::int32_t, 4>& face, const std::
 
 // The master faces of body b, turned outward, with their reach (the thickness of their element
 // normal to them; half of it in self-contact, where the far side of the same body is near).
-void master_faces(ContactPass& pass, int body, bool self, const core::Scene& scene,
-                  const HexElements& hexes, const FeNodes& nodes) {
-  std::vector<char> selected(scene.bodies.size(), 0);
-  selected[static_cast<std::size_t>(body)] = 1;
-  const SurfaceFaces s = boundary_faces(hexes, selected);
+void master_faces(ContactPass& pass, const SurfaceFaces& s, bool self, const HexElements& hexes,
+                  const FeNodes& nodes) {
   pass.faces = s.nodes;
   pass.face_element = s.element;
   pass.reach.resize(s.nodes.size());
@@ -107,14 +104,13 @@ void master_faces(ContactPass& pass, int body, bool self, const core::Scene& sce
 
 // The slave nodes of body b: the nodes of its live boundary faces (hexahedra) or of its live
 // trusses, ascending.
-std::vector<std::int32_t> slave_nodes(int body, const core::Scene& scene, const HexElements& hexes,
-                                      const TrussElements& trusses, const FeNodes& nodes) {
+std::vector<std::int32_t> slave_nodes(int body, const SurfaceFaces& surface,
+                                      const core::Scene& scene, const TrussElements& trusses,
+                                      const FeNodes& nodes) {
   std::vector<char> on(nodes.size(), 0);
   const core::BodySpec& spec = scene.bodies[static_cast<std::size_t>(body)];
   if (spec.discretisation == Discretisation::hexahedra) {
-    std::vector<char> selected(scene.bodies.size(), 0);
-    selected[static_cast<std::size_t>(body)] = 1;
-    for (const auto& f : boundary_faces(hexes, selected).nodes)
+    for (const auto& f : surface.nodes)
       for (std::int32_t k : f) on[static_cast<std::size_t>(k)] = 1;
   } else {
     for (const ElementBatch& b : trusses.batches)
@@ -219,15 +215,28 @@ void build_passes(MeshContact& c, const core::Scene& scene, const HexElements& h
   const auto hex = [&](int body) {
     return scene.bodies[static_cast<std::size_t>(body)].discretisation == Discretisation::hexahedra;
   };
+  // Each body's boundary faces, found once (a body of trusses has none).
+  auto surface_of = [&](int body) {
+    SurfaceFaces s;
+    if (hex(body)) {
+      std::vector<char> selected(scene.bodies.size(), 0);
+      selected[static_cast<std::size_t>(body)] = 1;
+      s = boundary_faces(hexes, selected);
+    }
+    return s;
+  };
+  const SurfaceFaces surface_a = surface_of(a);
+  const SurfaceFaces surface_b = a == b ? SurfaceFaces{} : surface_of(b);
+  auto surface = [&](int body) -> const SurfaceFaces& { return body == a ? surface_a : surface_b; };
   std::vector<ContactPass> passes;
   auto add = [&](int slave, int master, bool first) {
     ContactPass p;
     p.slaves_first_body = first;
-    p.slaves = slave_nodes(slave, scene, hexes, trusses, nodes);
-    master_faces(p, master, a == b, scene, hexes, nodes);
+    p.slaves = slave_nodes(slave, surface(slave), scene, trusses, nodes);
+    master_faces(p, surface(master), a == b, hexes, nodes);
     if (hex(slave)) {
       ContactPass own;
-      master_faces(own, slave, false, scene, hexes, nodes);
+      master_faces(own, surface(slave), false, hexes, nodes);
       p.slave_faces = std::move(own.faces);
     }
     passes.push_back(std::move(p));
