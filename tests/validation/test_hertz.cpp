@@ -2,10 +2,10 @@
 // quarter model of the cubed-sphere mesh, 64 elements across: 32,768 hexahedra, about 0.25 mm
 // at the pole) dropped at 10 m/s on a rigid wall ([[walls]]) and on a thick block of the same
 // steel (6 x 6 x 6 mm quarter, 0.2 mm hexahedra, its bottom held along z) met through mesh
-// contact. Measured (2 threads, this project's 2-core machine):
-//   | rigid wall    | duration 16.69 us vs Hertz 16.52 (+1.1 %) | peak force 9394 N vs 9145 (+2.7
-//   %) | | thick block   | duration 21.49 us vs Hertz 21.79 (-1.4 %) | peak force 7313 N vs 6931
-//   (+5.5 %) |
+// contact. Measured (2 threads, this project's 2-core machine, 7.8 s and 19.4 s):
+//   rigid wall:  duration 16.69 us against Hertz's 16.52 (+1.1 %), peak 9394 N against 9145
+//                (+2.7 %);
+//   thick block: duration 21.51 us against 21.79 (-1.3 %), peak 7302 N against 6931 (+5.4 %).
 // At 30 m/s on the wall: duration -3.5 %, peak +6.0 % (the contact radius reaches 0.16 R).
 #include <gtest/gtest.h>
 
