@@ -1567,6 +1567,9 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
                            scene.bodies[static_cast<std::size_t>(a.body)].name +
                            "\" is not a body of hexahedra (particles take \"absorbing\" "
                            "faces from [grid] boundary)");
+      if (scene.bodies[static_cast<std::size_t>(a.body)].rigid)
+        t.fail("body", "body \"" + scene.bodies[static_cast<std::size_t>(a.body)].name +
+                           "\" is rigid: no waves cross it to absorb");
     }
     scene.absorbing.push_back(a);
   });

@@ -332,6 +332,16 @@ void FeSolver::build(const core::Scene& scene) {
   };
   auto any_body = [](const BodySpec&) { return true; };
 
+  // A rigid body is held by its own components, never node by node.
+  auto refuse_rigid = [&](const core::SourceLocation& where, std::size_t n) {
+    const auto b = static_cast<std::size_t>(nodes_.body[n]);
+    if (!scene.bodies[b].rigid) return;
+    throw InputError(where, "constraints",
+                     "a constraint holds node " + std::to_string(n - node_begin[b]) +
+                         " of rigid body \"" + scene.bodies[b].name +
+                         "\"; restrict the constraint to deformable bodies (body = ...) and hold "
+                         "the rigid body with rigid = { fixed = [...] }");
+  };
   // 3. Constraints: from the scene's selectors and from imported files. owner: the constraint
   // that imposes each node component last (for the velocity curves).
   std::vector<std::int32_t> owner;
@@ -339,6 +349,7 @@ void FeSolver::build(const core::Scene& scene) {
     const core::ConstraintSpec& c = scene.constraints[ci];
     std::size_t selected = 0;
     for_selected(c.nodes, c.body, any_body, [&](std::size_t n) {
+      refuse_rigid(c.where, n);
       for (int a = 0; a < 3; ++a)
         if (c.components[static_cast<std::size_t>(a)]) {
           nodes_.imposed[n] |= static_cast<std::uint8_t>(1u << a);
@@ -361,6 +372,7 @@ void FeSolver::build(const core::Scene& scene) {
         for (int a = 0; a < 3; ++a)
           if (c.fixed[static_cast<std::size_t>(a)]) {
             const std::size_t k = node_begin[b] + static_cast<std::size_t>(n);
+            refuse_rigid(scene.bodies[b].where, k);
             nodes_.imposed[k] |= static_cast<std::uint8_t>(1u << a);
             nodes_.imposed_velocity[k][a] = 0.0;
           }
@@ -390,7 +402,7 @@ void FeSolver::build(const core::Scene& scene) {
     std::vector<char> selected(n_nodes, 0);
     for_selected(
         a.nodes, a.body,
-        [](const BodySpec& b) { return b.discretisation == Discretisation::hexahedra; },
+        [](const BodySpec& b) { return b.discretisation == Discretisation::hexahedra && !b.rigid; },
         [&](std::size_t n) { selected[n] = 1; });
     setup_absorbing(a, selected, surface);
   }
@@ -453,17 +465,6 @@ void FeSolver::build(const core::Scene& scene) {
   }
 
   // 7. Rigid bodies and penalty contacts (after the node masses).
-  for (std::size_t n = 0; n < n_nodes; ++n) {
-    const int b = nodes_.body[n];
-    if (b >= 0 && scene.bodies[static_cast<std::size_t>(b)].rigid && nodes_.imposed[n])
-      throw InputError(scene.constraints.empty() ? scene.bodies[static_cast<std::size_t>(b)].where
-                                                 : scene.constraints.front().where,
-                       "constraints",
-                       "a constraint holds node " + std::to_string(n - node_begin[static_cast<std::size_t>(b)]) +
-                           " of rigid body \"" + scene.bodies[static_cast<std::size_t>(b)].name +
-                           "\"; restrict the constraint to deformable bodies (body = ...) and hold "
-                           "the rigid body with rigid = { fixed = [...] }");
-  }
   setup_rigid_bodies();
   wall_force_.assign(scene.walls.size(), Vec3{});
   for (const core::ContactSpec& c : scene.contacts)

@@ -215,10 +215,9 @@ class FeSolver {
   void apply_walls(double dt);
   // Contact corrections of v^{n+1/2} at the predicted positions (mesh_contact.cpp).
   void resolve_contacts(double dt);
-  // Rigid bodies (rigid_body.cpp): the resultant on each body -> momenta and node velocities;
-  // then, before the nodes move, the impulses other stages gave their nodes, and the pose.
+  // Rigid bodies (rigid_body_update.cpp): the resultant on each body -> momenta and node
+  // velocities; then, before the nodes move, the pose.
   void advance_rigid_bodies(double dt);
-  void gather_rigid_impulses();
   void move_rigid_bodies(double dt);
   void setup_rigid_bodies();
   void update_hexahedra(double dt);

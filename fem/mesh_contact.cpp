@@ -512,7 +512,8 @@ void FeSolver::resolve_contacts(double dt) {
       for (ContactHit& h : c.hits) {
         const auto sl = static_cast<std::size_t>(h.slave);
         const Vec3& n = h.normal;
-        double w = inverse_mass(sl, n);
+        const double ws = inverse_mass(sl, n);
+        double w = ws;
         Vec3 x_face, v_face;
         std::array<double, 4> wa{};
         for (int a = 0; a < 4; ++a) {
@@ -549,7 +550,7 @@ void FeSolver::resolve_contacts(double dt) {
           impulse += t - h.tangential_impulse;
           h.tangential_impulse = t;
         }
-        push(sl, inverse_mass(sl, n), n, impulse);
+        push(sl, ws, n, impulse);
         for (int a = 0; a < 4; ++a)
           push(static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)]),
                wa[static_cast<std::size_t>(a)], n, -h.shape[static_cast<std::size_t>(a)] * impulse);

@@ -90,14 +90,10 @@ void FeSolver::begin_step(double dt) {
 }
 
 void FeSolver::finish_step(double dt) {
-  // Positions after every velocity condition, so the walls see the final v^{n+1/2}.
-  // Rigid nodes: what the grid or walls changed joins their body's momenta, then they follow
-  // the body's motion exactly.
-  if (!rigid_bodies_.empty())
-    run_stage(FeStageKind::rigid_bodies, [&] {
-      gather_rigid_impulses();
-      move_rigid_bodies(dt);
-    });
+  // Positions after every velocity condition, so the walls see the final v^{n+1/2}. Rigid
+  // nodes follow their body's motion exactly (no later stage changes their velocities: walls,
+  // constraints, absorbing boundaries and grid contact leave rigid bodies out).
+  if (!rigid_bodies_.empty()) run_stage(FeStageKind::rigid_bodies, [&] { move_rigid_bodies(dt); });
   const std::size_t n = nodes_.size();
   const bool rigid = !rigid_of_node_.empty();
   core::parallel_chunks(n, [&](std::size_t begin, std::size_t end, int) {

@@ -4,9 +4,8 @@
 // differences: v^{n+1/2} = v^{n-1/2} + dt F / M for the centre, and for the rotation the
 // angular momentum L^{n+1/2} = L^{n-1/2} + dt M_c (Euler's equations in their conserving form),
 // omega = R I0^-1 R^T L, R^{n+1} = exp(dt [omega]) R^n (Rodrigues' formula). Fixed components
-// keep their initial value. Impulses other stages hand the body's nodes within a step (the grid
-// of a grid contact) are gathered into the body's momenta before the nodes move (nothing else
-// changes a rigid node's velocity).
+// keep their initial value. Contact impulses on the body's nodes join its momenta
+// (add_impulse); no other stage changes a rigid node's velocity.
 #pragma once
 
 #include <array>

@@ -1,9 +1,8 @@
 // The rigid bodies' part of the FE step (rigid_body.hpp): after the nodal update, each body
 // takes the resultant of its nodes' loads (program loads, gravity; its elements carry none)
 // and their moment about its centre, advances its momenta, and gives its nodes v + omega x r.
-// Mesh contacts hand it their impulses directly (mesh_contact.cpp); before the nodes move, the
-// velocity changes later stages gave its nodes (a grid contact) join the body's momenta; then
-// the body moves and its nodes follow exactly: x = c + R r0.
+// Mesh contacts hand it their impulses directly (mesh_contact.cpp); then the body moves and its
+// nodes follow exactly: x = c + R r0.
 #include "core/parallel.hpp"
 #include "fem/fe_solver.hpp"
 
@@ -52,24 +51,6 @@ void FeSolver::advance_rigid_bodies(double dt) {
     for (std::size_t k = 0; k < r.nodes.size(); ++k)
       nodes_.velocity[static_cast<std::size_t>(r.nodes[k])] =
           point_velocity(r, nodes_.position[static_cast<std::size_t>(r.nodes[k])] - r.centre);
-  }
-}
-
-void FeSolver::gather_rigid_impulses() {
-  for (RigidBody& r : rigid_bodies_) {
-    Vec3 impulse, angular;
-    for (std::int32_t k : r.nodes) {
-      const auto i = static_cast<std::size_t>(k);
-      const Vec3 offset = nodes_.position[i] - r.centre;
-      const Vec3 dv = nodes_.velocity[i] - point_velocity(r, offset);
-      if (dv.x == 0.0 && dv.y == 0.0 && dv.z == 0.0) continue;
-      impulse += nodes_.mass[i] * dv;
-      angular += core::cross(offset, nodes_.mass[i] * dv);
-    }
-    if (impulse.x == 0.0 && impulse.y == 0.0 && impulse.z == 0.0 && angular.x == 0.0 &&
-        angular.y == 0.0 && angular.z == 0.0)
-      continue;
-    external_work_ += add_impulse(r, impulse, angular);
   }
 }
 

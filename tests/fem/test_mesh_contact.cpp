@@ -348,12 +348,37 @@ TEST(MeshContact, BadInputNamesTheFileLineAndKey) {
       << msg;
   EXPECT_NE(msg.find("contact[0].penalty"), std::string::npos) << msg;
   EXPECT_NE(msg.find("allowed: 0 < value <= 1"), std::string::npos) << msg;
-  // A rigid body of particles.
-  text =
+  // An absorbing boundary on a rigid body, and a constraint holding its nodes.
+  std::string rigid = base;
+  rigid.replace(rigid.find("name = \"a\""), 10, "name = \"a\"\nrigid = true");
+  text = rigid +
+         "[[absorbing]]\nbody = \"a\"\nnodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } "
+         "}\n";
+  msg = test::error_of(text);
+  EXPECT_NE(msg.find("absorbing[0].body"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("is rigid"), std::string::npos) << msg;
+  text = rigid +
+         "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }\n"
+         "fixed = [\"z\"]\n";
+  try {
+    const core::Scene scene = core::parse_scene(text, "scene.toml");
+    FeSolver solver(scene);
+    ADD_FAILURE() << "no error";
+  } catch (const core::InputError& e) {
+    msg = e.what();
+    EXPECT_NE(msg.find("scene.toml:" + std::to_string(test::line_of(text, "[[constraints]]"))),
+              std::string::npos)
+        << msg;
+    EXPECT_NE(msg.find("of rigid body \"a\""), std::string::npos) << msg;
+  }
+  // A body of particles on a grid, for the next two.
+  const std::string particles =
       std::string("[run]\nend_time = 1\n[grid]\ncell = 1\nmin = [-2, -2, -2]\nmax = [4, 4, 4]\n") +
       kSteel +
       "[[bodies]]\nname = \"p\"\nmaterial = \"steel\"\n"
-      "shape = { box = { min = [0, 0, 0], max = [1, 1, 1] } }\nrigid = true\n";
+      "shape = { box = { min = [0, 0, 0], max = [1, 1, 1] } }\n";
+  // A rigid body of particles.
+  text = particles + "rigid = true\n";
   msg = test::error_of(text);
   EXPECT_NE(msg.find("scene.toml:" + std::to_string(test::line_of(text, "rigid = true"))),
             std::string::npos)
@@ -362,10 +387,7 @@ TEST(MeshContact, BadInputNamesTheFileLineAndKey) {
   EXPECT_NE(msg.find("a rigid body is made of hexahedra"), std::string::npos) << msg;
   // A rigid body in grid contact with particles.
   text =
-      std::string("[run]\nend_time = 1\n[grid]\ncell = 1\nmin = [-2, -2, -2]\nmax = [4, 4, 4]\n") +
-      kSteel +
-      "[[bodies]]\nname = \"p\"\nmaterial = \"steel\"\n"
-      "shape = { box = { min = [0, 0, 0], max = [1, 1, 1] } }\n"
+      particles +
       "[[bodies]]\nname = \"r\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
       "shape = { box = { min = [0, 0, 2], max = [1, 1, 3] } }\nmesh = { divisions = [1, 1, 1] }\n"
       "rigid = true\n[[contact]]\nbodies = [\"p\", \"r\"]\n";
