@@ -62,7 +62,15 @@ inline PointUpdate finish_increment(const Material& material, const Eos& eos, bo
     // midpoint-rule energy and the EOS pressure are consistent without iteration.
     const double e_star = point.energy + deviatoric_work - 0.5 * in.p_old * d_vol * in.inv_rho_work;
     const double half_strain = 0.5 * d_vol * in.inv_rho_work;
-    point.energy = (e_star - f.a * half_strain) / (1.0 + f.b * half_strain);
+    // The implicit form needs 1 + b tr/(2 rho) > 0. Near the reference density that is any
+    // step short of halving the volume, but b = Gamma rho0 (Gamma = Gamma0 rho0 / rho) over a
+    // density 150 times below the reference (failed debris of V5) makes it 0.5 Gamma tr(de), and
+    // a compression of 0.7 % per step then flips its sign: the point took e = 1e9 and 43 km/s.
+    // There the increment's end pressure is estimated from e* instead (explicit; the step is
+    // far beyond this point's own stable one, which a cut pressure does not limit).
+    const double denominator = 1.0 + f.b * half_strain;
+    point.energy = denominator > 0.5 ? (e_star - f.a * half_strain) / denominator
+                                     : e_star - (f.a + f.b * e_star) * half_strain;
     p_new = f.a + f.b * point.energy;
     // No tension: the increment's pressure work is then p_old's half (folds away as above).
     const bool cut = failed && p_new < 0.0;
@@ -128,7 +136,21 @@ inline double wave_speed(const Material& material, const Eos& eos, const PointSt
   // instead let a few debris particles, expanded 20 to 30 times, cut the stable step to a
   // third (V6), and failed copper debris of a plate perforated at 2 km/s to a twentieth (V5).
   // Without a failure model the damage stays 0 (HJC aside) and the branch is never taken.
-  if (point.damage >= 1.0 && point.density < material.density) return 0.0;
+  // Only a point whose pressure is cut is silent: failed debris that is hot enough to push
+  // (p > 0 below the reference density, a gas) carries the isentropic signal below; treating
+  // it as silent let one such copper particle in V5 run away to 1e7 m/s.
+  if (point.damage >= 1.0 && point.density < material.density) {
+    if constexpr (std::is_same_v<Eos, NoEos> || std::is_same_v<Eos, HjcCompaction>) {
+      return 0.0;
+    } else {
+      const EosLinearForm f = eos.form(point.density / material.density - 1.0);
+      const double p = f.a + f.b * point.energy;
+      if (!(p > 0.0)) return 0.0;
+      const double k = std::max(tangent_bulk_modulus(material, eos, point), 0.0) +
+                       std::max(f.b, 0.0) * p / point.density;
+      return std::sqrt(k / point.density);
+    }
+  }
   double k_tangent = tangent_bulk_modulus(material, eos, point);
   if constexpr (!std::is_same_v<Eos, NoEos> && !std::is_same_v<Eos, HjcCompaction>) {
     // Along the isentrope de = p / rho^2 drho, so rho dp/drho|_s = K_e + (dp/de) p / rho: for

@@ -375,6 +375,54 @@ TEST(WaveSpeed, MieGruneisenAtReferenceStateGivesC0WhenShearVanishes) {
   EXPECT_NEAR(wave_speed(m, point), 3940.0, 1e-12 * 3940.0);
 }
 
+TEST(FailedDebris, CompressedExpandedCutPointDoesNoPressureWork) {
+  // Reference: a failed point whose EOS pressure is tensile is cut to p = 0, so with no
+  // deviator its increment does no work: e_new = e_old and p_new = 0 exactly. Here copper
+  // debris expanded 150 times (rho0 / rho = 150, as V5's spray reaches) is compressed by 5 %
+  // in one step; its Mie-Grueneisen energy coefficient over rho is Gamma0 rho0 / rho = 294, so
+  // the implicit energy solve's denominator 1 + 0.5 Gamma tr(d_eps) is -6.3. Solved through
+  // it, the point took e ~ 1e9 and p ~ 2e7 MPa, and flew off at 43 km/s.
+  Material m = copper();
+  m.failure = PlasticStrainFailure{1.0};
+  const MieGruneisen eos = std::get<MieGruneisen>(m.eos);
+  PointState point = at_rest(m);
+  point.damage = 1.0;
+  point.density = m.density / 150.0;
+  point.energy = 2.0e5;  // mm^2/ms^2: the shock heating of a copper impact at 2 km/s
+  const SymTensor d_eps{-0.05 / 3.0, -0.05 / 3.0, -0.05 / 3.0, 0.0, 0.0, 0.0};
+  point.density /= 1.0 + d_eps.trace();
+  constitutive_update<JohnsonCook, MieGruneisen, true>(m, std::get<JohnsonCook>(m.strength), eos,
+                                                       false, point, d_eps, 1e-5);
+  EXPECT_EQ(point.energy, 2.0e5);
+  EXPECT_EQ(pressure(point.stress), 0.0);
+}
+
+TEST(WaveSpeed, FailedDebrisIsSilentWhenCutAndAGasWhenHot) {
+  // Reference: a failed point below its reference density whose pressure is cut carries no
+  // signal (c = 0); one hot enough to push (p > 0) has the isentropic sound speed
+  // c^2 = dp/drho at fixed e + (dp/de) p / rho^2, here taken by central differences of the EOS
+  // (1e-6 relative). Copper at rho0 / 2 with e set for p = 1000 MPa.
+  Material m = copper();
+  m.failure = PlasticStrainFailure{1.0};
+  const MieGruneisen eos = std::get<MieGruneisen>(m.eos);
+  PointState point = at_rest(m);
+  point.damage = 1.0;
+  point.density = 0.5 * m.density;
+  auto p_of = [&](double rho, double e) {
+    const EosLinearForm f = eos.form(rho / m.density - 1.0);
+    return f.a + f.b * e;
+  };
+  point.energy = 0.0;
+  ASSERT_LT(p_of(point.density, 0.0), 0.0);
+  EXPECT_EQ(wave_speed(m, point), 0.0);
+  const EosLinearForm f = eos.form(point.density / m.density - 1.0);
+  point.energy = (1000.0 - f.a) / f.b;
+  const double rho = point.density, e = point.energy, h = 1e-6 * rho;
+  const double dp_drho_e = (p_of(rho + h, e) - p_of(rho - h, e)) / (2.0 * h);
+  const double expected = std::sqrt(dp_drho_e + f.b * 1000.0 / (rho * rho));
+  EXPECT_NEAR(wave_speed(m, point), expected, 1e-6 * expected);
+}
+
 void expect_rejected(const Material& m, const std::string& parameter) {
   try {
     m.validate();
