@@ -69,6 +69,14 @@ bool has_mesh_contact(const Scene& scene) {
   return false;
 }
 
+bool has_particle_walls(const Scene& scene) {
+  for (const WallSpec& w : scene.walls)
+    for (int b : w.bodies)
+      if (scene.bodies[static_cast<std::size_t>(b)].discretisation == Discretisation::particles)
+        return true;
+  return false;
+}
+
 bool has_rigid_body(const Scene& scene) {
   for (const BodySpec& b : scene.bodies)
     if (b.rigid) return true;

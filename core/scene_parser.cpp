@@ -1191,7 +1191,7 @@ WallSpec read_wall(TableReader& r, const Scene& scene) {
   w.velocity = r.vec3("velocity", Vec3{});
   w.friction = r.number("friction", 0.0, Range::non_negative());
   for (const std::string& name : r.strings("bodies")) {
-    w.bodies.push_back(body_index(r, "bodies", name, scene));
+    w.bodies.push_back(body_index(r, "bodies", name, scene, false));
     if (scene.bodies[static_cast<std::size_t>(w.bodies.back())].rigid)
       r.fail("bodies", "body \"" + name + "\" is rigid; walls act on deformable mesh bodies (a "
                        "rigid body meets others through [[contact]], and is held by its "
@@ -1602,15 +1602,17 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
       scene.run.terminate = term;
     }
   }
-  if ((!scene.constraints.empty() || !scene.walls.empty() || !scene.absorbing.empty()) &&
-      !has_mesh(scene))
-    throw InputError(SourceLocation{path, 0},
-                     !scene.walls.empty()       ? "walls"
-                     : !scene.absorbing.empty() ? "absorbing"
-                                                : "constraints",
-                     "constraints, absorbing boundaries and walls act on mesh nodes, and the "
-                     "scene has no mesh body; particles take their boundary conditions from "
-                     "[grid] boundary");
+  if ((!scene.constraints.empty() || !scene.absorbing.empty()) && !has_mesh(scene))
+    throw InputError(SourceLocation{path, 0}, !scene.absorbing.empty() ? "absorbing" : "constraints",
+                     "constraints and absorbing boundaries act on mesh nodes, and the scene has "
+                     "no mesh body; particles take their boundary conditions from [grid] "
+                     "boundary (and [[walls]] that name them)");
+  for (const WallSpec& w : scene.walls)
+    if (w.bodies.empty() && !has_mesh(scene))
+      throw InputError(w.where, "walls.bodies",
+                       "a wall without bodies acts on every mesh body, and the scene has none; "
+                       "name the particle bodies it meets (bodies = [\"...\"]): it then acts at "
+                       "their particles' boundary");
 
   if (const toml::table* t = r.optional_table("reference")) {
     TableReader ref(*t, "reference", path);

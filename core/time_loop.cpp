@@ -112,7 +112,7 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
     std::vector<std::string> names;
     for (const auto& b : scene_.bodies) names.push_back(b.name);
     std::vector<std::string> extra;
-    if (has_mesh_contact(scene_)) extra = {"sliding", "friction"};
+    if (has_mesh_contact(scene_) || has_particle_walls(scene_)) extra = {"sliding", "friction"};
     for (std::string& c : model_.force_columns()) extra.push_back(std::move(c));
     history_ = std::make_unique<HistoryWriter>(
         history_path(paths), names, scene_.mpm.grid.has_face(FaceCondition::outflow), extra);
@@ -160,7 +160,7 @@ double TimeLoop::record(double dt) {
   sum_.max_energy_error = std::max(sum_.max_energy_error, std::abs(err));
   if (history_) {
     HistoryRow row = history_row(model_, e, dt, err);
-    if (has_mesh_contact(scene_)) row.extra = {e.sliding, e.friction};
+    if (has_mesh_contact(scene_) || has_particle_walls(scene_)) row.extra = {e.sliding, e.friction};
     model_.force_values(forces_);
     row.extra.insert(row.extra.end(), forces_.begin(), forces_.end());
     history_->write(row);

@@ -242,6 +242,8 @@ core::Energies CoupledModel::energies() const {
   out.viscous += m.viscous;
   out.external_work += m.external_work;
   out.contact += m.contact;
+  out.sliding += m.sliding;
+  out.friction += m.friction;
   out.outflow += m.outflow;
   out.outflow_mass += m.outflow_mass;
   out.outflow_momentum += m.outflow_momentum;
@@ -252,6 +254,27 @@ core::Energies CoupledModel::energies() const {
     out.bodies[b].internal += m.bodies[b].internal;
   }
   return out;
+}
+
+// The FE side's forces, each wall's with what it gave the particles it names added (a wall may
+// name mesh and particle bodies alike; FeModel::force_values orders contacts, walls, rigid
+// bodies).
+void CoupledModel::force_values(std::vector<double>& out) const {
+  fe_.force_values(out);
+  const std::size_t first = 5 * fe().mesh_contacts().size();
+  for (std::size_t w = 0; w < scene_.walls.size(); ++w) {
+    const core::Vec3 particles = mpm().wall_forces()[w];
+    if (particles.x == 0.0 && particles.y == 0.0 && particles.z == 0.0) continue;
+    double* v = out.data() + first + 5 * w;
+    const core::Vec3 f = core::Vec3{v[0], v[1], v[2]} + particles;
+    const core::Vec3& n = scene_.walls[w].normal;
+    const double fn = core::dot(f, n);
+    v[0] = f.x;
+    v[1] = f.y;
+    v[2] = f.z;
+    v[3] = std::abs(fn);
+    v[4] = core::norm(f - fn * n);
+  }
 }
 
 void CoupledModel::write_fields(core::FieldWriter& writer) {

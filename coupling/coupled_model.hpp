@@ -54,7 +54,7 @@ class CoupledModel final : public core::Model {
   // FE and MPM energies added; per-body sums from whichever holds the body.
   core::Energies energies() const override;
   std::vector<std::string> force_columns() const override { return fe_.force_columns(); }
-  void force_values(std::vector<double>& out) const override { fe_.force_values(out); }
+  void force_values(std::vector<double>& out) const override;
   std::size_t particle_count() const override { return mpm_.particle_count(); }
   std::size_t element_count() const override { return fe_.element_count(); }
   void write_fields(core::FieldWriter& writer) override;

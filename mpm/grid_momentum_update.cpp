@@ -7,97 +7,12 @@
 #include <algorithm>
 
 #include "core/parallel.hpp"
+#include "mpm/face_constraints.hpp"
 #include "mpm/mpm_solver.hpp"
 
 namespace afemp::mpm {
 
 namespace {
-
-// The velocity components constrained at a node (bit a: component a): always, and only
-// when the velocity points out of the domain through a wall face.
-struct NodeConstraint {
-  unsigned always = 0;
-  unsigned wall_low = 0;   // walls at a min face: constrain if v_a < 0
-  unsigned wall_high = 0;  // walls at a max face: constrain if v_a > 0
-  // Absorbing faces (absorbing_faces.hpp): 2 c / h per component, c_L along the normal of each
-  // absorbing face the node lies on, c_S across it (the largest where faces meet).
-  bool damped = false;
-  Vec3 damping{};
-  bool any() const { return (always | wall_low | wall_high) != 0; }
-  // The mask to apply for the (unconstrained) updated velocity v.
-  unsigned mask_for(const Vec3& v) const {
-    unsigned m = always;
-    for (int a = 0; a < 3; ++a) {
-      if ((wall_low >> a) & 1u && v[a] < 0.0) m |= 1u << a;
-      if ((wall_high >> a) & 1u && v[a] > 0.0) m |= 1u << a;
-    }
-    return m;
-  }
-};
-
-class FaceConstraints {
- public:
-  // absorbing: the solver's absorbing faces (their damping is applied by the momentum update
-  // only), or nullptr.
-  explicit FaceConstraints(const core::BackgroundGrid& g,
-                           const std::array<AbsorbingFace, 6>* absorbing = nullptr)
-      : last_(g.nodes()), two_over_h_(2.0 * g.inverse_cell()) {
-    if (absorbing)
-      for (const AbsorbingFace& f : *absorbing) any_absorbing_ = any_absorbing_ || f.on;
-    if (any_absorbing_) absorbing_ = *absorbing;
-    const auto& f = g.settings().faces;
-    for (int a = 0; a < 3; ++a) {
-      lo_[a] = f[static_cast<std::size_t>(2 * a)];
-      hi_[a] = f[static_cast<std::size_t>(2 * a + 1)];
-      last_[static_cast<std::size_t>(a)] -= 1;
-    }
-  }
-  NodeConstraint operator()(const std::array<int, 3>& node) const {
-    NodeConstraint c;
-    for (int a = 0; a < 3; ++a) {
-      // Halo nodes beyond a face (uGIMP) take the face's condition.
-      if (node[static_cast<std::size_t>(a)] <= 0) {
-        add(c, lo_[a], a, false);
-        if (any_absorbing_) damp(c, absorbing_[static_cast<std::size_t>(2 * a)], a);
-      }
-      if (node[static_cast<std::size_t>(a)] >= last_[static_cast<std::size_t>(a)]) {
-        add(c, hi_[a], a, true);
-        if (any_absorbing_) damp(c, absorbing_[static_cast<std::size_t>(2 * a + 1)], a);
-      }
-    }
-    return c;
-  }
-
- private:
-  static void add(NodeConstraint& c, core::FaceCondition f, int axis, bool high) {
-    switch (f) {
-      case core::FaceCondition::fixed: c.always |= 7u; break;
-      case core::FaceCondition::symmetric: c.always |= 1u << axis; break;
-      case core::FaceCondition::wall: (high ? c.wall_high : c.wall_low) |= 1u << axis; break;
-      case core::FaceCondition::free:
-      case core::FaceCondition::outflow:  // particles beyond it leave (outflow.cpp)
-      case core::FaceCondition::absorbing: break;  // damped after the update (absorbing_faces.cpp)
-    }
-  }
-  void damp(NodeConstraint& c, const AbsorbingFace& f, int axis) const {
-    if (!f.on) return;
-    c.damped = true;
-    for (int b = 0; b < 3; ++b)
-      c.damping[b] =
-          std::max(c.damping[b], two_over_h_ * (b == axis ? f.c_longitudinal : f.c_shear));
-  }
-  core::FaceCondition lo_[3], hi_[3];
-  std::array<int, 3> last_;
-  double two_over_h_;
-  bool any_absorbing_ = false;
-  std::array<AbsorbingFace, 6> absorbing_{};
-};
-
-inline void constrain(Vec3& v, unsigned mask) {
-  if (mask & 1u) v.x = 0.0;
-  if (mask & 2u) v.y = 0.0;
-  if (mask & 4u) v.z = 0.0;
-}
 
 // Eq 2-32 at one node with its conditions: v = p / m and v_new = v + dt f / m. A wall holds a
 // node whose start velocity v points into it (rigid-body contact as in Bardenhagen et al.

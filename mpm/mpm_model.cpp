@@ -83,6 +83,26 @@ const char* shape_name(const core::Shape& s) {
 
 }  // namespace
 
+// Walls are the only force reporters of a scene of particles alone (penalty contacts and rigid
+// bodies need meshes): wallK, as FeModel::force_columns names them.
+std::vector<std::string> MpmModel::force_columns() const {
+  std::vector<std::string> out;
+  for (std::size_t w = 0; w < scene_.walls.size(); ++w)
+    for (const char* part : {".fx", ".fy", ".fz", ".normal", ".tangential"})
+      out.push_back("wall" + std::to_string(w + 1) + part);
+  return out;
+}
+
+void MpmModel::force_values(std::vector<double>& out) const {
+  out.clear();
+  for (std::size_t w = 0; w < scene_.walls.size(); ++w) {
+    const core::Vec3 f = solver_.wall_forces()[w];
+    const core::Vec3& n = scene_.walls[w].normal;
+    const double fn = core::dot(f, n);
+    out.insert(out.end(), {f.x, f.y, f.z, std::abs(fn), core::norm(f - fn * n)});
+  }
+}
+
 std::string MpmModel::describe() const {
   solver_.prepare();
   const core::Scene& scene = scene_;

@@ -22,6 +22,8 @@ class MpmModel final : public core::Model {
   long step_count() const override { return solver_.step_count(); }
   double time() const override { return solver_.time(); }
   core::Energies energies() const override { return solver_.energies(); }
+  std::vector<std::string> force_columns() const override;
+  void force_values(std::vector<double>& out) const override;
   std::size_t particle_count() const override { return solver_.particles().size(); }
   std::size_t element_count() const override { return 0; }
   void write_fields(core::FieldWriter& writer) override;

@@ -85,6 +85,17 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
   for (std::size_t f = 0; f < 6; ++f)
     outflow_[f] = scene.mpm.grid.faces[f] == core::FaceCondition::outflow;
   setup_absorbing_faces();
+  // Walls that name particle bodies act on them here (particle_wall_contact.cpp).
+  wall_bodies_.assign(scene.walls.size(), {});
+  wall_force_.assign(scene.walls.size(), Vec3{});
+  for (std::size_t w = 0; w < scene.walls.size(); ++w)
+    for (int b : scene.walls[w].bodies) {
+      if (scene.bodies[static_cast<std::size_t>(b)].discretisation !=
+          core::Discretisation::particles)
+        continue;
+      if (wall_bodies_[w].empty()) wall_bodies_[w].assign(scene.bodies.size(), 0);
+      wall_bodies_[w][static_cast<std::size_t>(b)] = 1;
+    }
   reorder_particles();
   signal_speed_ = max_signal_speed();
 }
@@ -193,6 +204,9 @@ void MpmSolver::step(double dt) {
       case StageKind::contact_remap:
         grid_contact(ContactPass::remap);
         break;
+      case StageKind::particle_walls:
+        particle_wall_contact(dt);
+        break;
     }
     ++stage_counts_[i];
     stage_seconds_[i] += std::chrono::duration<double>(clock::now() - t0).count();
@@ -276,6 +290,8 @@ Energies MpmSolver::energies() const {
   out.outflow = outflow_energy_;
   out.outflow_mass = outflow_mass_;
   out.outflow_momentum = outflow_momentum_;
+  out.sliding = wall_sliding_;
+  out.friction = wall_friction_;
   return out;
 }
 

@@ -60,6 +60,9 @@ class MpmSolver {
   long outflow_count() const { return outflow_count_; }
   // Particles split so far (each split of one particle, into 2, 4 or 8, counts once).
   long split_count() const { return split_count_; }
+  // Each [[walls]] entry's force on the particles over the last step (0 for a wall that
+  // names no particle body), as the history's wallK columns report it.
+  const std::vector<Vec3>& wall_forces() const { return wall_force_; }
   // Points that join the grid step from now on (grid_points.hpp; coupling/ puts FE nodes on
   // the grid this way). nullptr: none. Throws std::invalid_argument with the USL scheme.
   void set_grid_points(GridPoints* points);
@@ -158,6 +161,10 @@ class MpmSolver {
   // Splitting (particle_splitting.cpp): particles whose length along an axis reached 2 alpha
   // times their initial length split along those axes.
   void split_particles();
+  // Rigid walls met at the particles' boundary (particle_wall_contact.cpp).
+  void particle_wall_contact(double dt);
+  template <class Stencil>
+  void particle_wall_kernel(std::size_t wall, double dt);
   void raise_if_bad(const char* field) const;
   double max_signal_speed() const;
 
@@ -222,6 +229,17 @@ class MpmSolver {
   Vec3 outflow_momentum_{};
   long outflow_count_ = 0;
   long split_count_ = 0;  // splits so far (one particle into 2, 4 or 8 counts once)
+
+  // Particle walls: per scene wall, the bodies it acts on (empty: none of this solver's), its
+  // force over the last step; the work of their impulses (Energies::sliding, friction); the
+  // contact scratch of one wall (candidates, their stencils' slots and weights, impulses).
+  std::vector<std::vector<char>> wall_bodies_;
+  std::vector<Vec3> wall_force_;
+  double wall_sliding_ = 0.0, wall_friction_ = 0.0;
+  std::vector<std::uint32_t> wall_candidates_;
+  std::vector<std::int64_t> wall_slots_;
+  std::vector<double> wall_weights_, wall_inverse_mass_, wall_gap_, wall_normal_impulse_;
+  std::vector<Vec3> wall_tangent_impulse_;
 
   // Accumulators and state.
   double plastic_work_ = 0.0;

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/materials/user_strength_chunk.hpp"
+#include "core/scene.hpp"
 
 namespace afemp::mpm {
 
@@ -113,6 +114,13 @@ StepPlan build_step_plan(const core::Scene& scene) {
           ? "explicit momentum update and boundary conditions; absorbing faces damp their "
               "nodes (Lysmer & Kuhlemeyer 1969)"
           : "explicit momentum update and boundary conditions");
+  // Rigid walls ([[walls]] naming particle bodies) act on the updated grid velocity, after
+  // grid contact, at the particles' boundary.
+  const bool particle_walls = core::has_particle_walls(scene);
+  const Stage walls = stage(StageKind::particle_walls, "particle walls",
+                            "rigid walls ([[walls]]) met where the particles' boundary reaches "
+                            "them: the impulse that keeps each particle's predicted domain off "
+                            "the wall, through its nodes, Coulomb friction");
   auto& s = plan.stages;
   const std::string velocity =
       plan.transfer == core::Transfer::apic ? "particle velocity and affine velocity (APIC)"
@@ -151,6 +159,7 @@ StepPlan build_step_plan(const core::Scene& scene) {
       s.push_back(stage(StageKind::p2g_force, "p2g force", force_why));
       s.push_back(grid_update);
       if (contact) s.push_back(grid_contact);
+      if (particle_walls) s.push_back(walls);
       s.push_back(stage(StageKind::g2p_velocity_position, "g2p velocity position",
                         velocity + " and position"));
       break;
@@ -161,6 +170,7 @@ StepPlan build_step_plan(const core::Scene& scene) {
       if (contact) s.push_back(surfaces);
       s.push_back(grid_update);
       if (contact) s.push_back(grid_contact);
+      if (particle_walls) s.push_back(walls);
       if (plan.scheme == UpdateScheme::USL) {
         s.push_back(stage(StageKind::g2p_velocity_strain_stress, "g2p velocity strain stress",
                           "USL: " + velocity +

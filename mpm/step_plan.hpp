@@ -28,6 +28,7 @@ enum class StageKind {
   contact_start,          // grid contact on the start velocity (USF: the strain reads it)
   grid_contact,           // Lian et al. 2013, eqs 38-42 on the updated velocity, Coulomb friction
   contact_remap,          // MUSL: the same on the remapped velocity
+  particle_walls,         // rigid walls met at the particles' boundary (particle_wall_contact.cpp)
 };
 
 // Which nodal velocity a grid-contact stage corrects.
