@@ -53,6 +53,7 @@ const char* to_string(ContactMethod m) {
     case ContactMethod::grid: return "grid";
     case ContactMethod::penalty: return "penalty";
     case ContactMethod::weld: return "weld";
+    case ContactMethod::surface: return "surface";
   }
   return "?";
 }
@@ -66,6 +67,12 @@ bool has_grid_contact(const Scene& scene) {
 bool has_mesh_contact(const Scene& scene) {
   for (const ContactSpec& c : scene.contacts)
     if (c.method == ContactMethod::penalty) return true;
+  return false;
+}
+
+bool has_surface_contact(const Scene& scene) {
+  for (const ContactSpec& c : scene.contacts)
+    if (c.method == ContactMethod::surface) return true;
   return false;
 }
 

@@ -24,6 +24,8 @@ bool has_mesh_contact(const Scene& scene);
 bool has_rigid_body(const Scene& scene);
 // Whether a [[walls]] entry names a body of particles (mpm/particle_wall_contact.cpp).
 bool has_particle_walls(const Scene& scene);
+// Whether a [[contact]] has method "surface" (particles at a mesh's faces).
+bool has_surface_contact(const Scene& scene);
 
 // History variables per point the solvers store: the most any of the scene's materials has
 // (user strength models, afemp/user_material.hpp); 0 when none has any.

@@ -323,6 +323,16 @@ void check_scene(const Scene& scene) {
       c.range(ct.where, key + ".penalty", ct.penalty, Range{0.0, 1.0, true, false});
       continue;
     }
+    if (ct.method == ContactMethod::surface) {
+      const bool one_each = (ba.discretisation == Discretisation::particles) !=
+                            (bb.discretisation == Discretisation::particles);
+      const BodySpec& m = ba.discretisation == Discretisation::particles ? bb : ba;
+      if (a == b || !one_each || m.discretisation != Discretisation::hexahedra)
+        c.fail(ct.where, key + ".method",
+               "surface contact is between a body of particles and a body of hexahedra");
+      c.range(ct.where, key + ".penalty", ct.penalty, Range{0.0, 1.0, true, false});
+      continue;
+    }
     if (a == b) c.fail(ct.where, key + ".bodies", "a body cannot be in grid contact with itself");
     if (ba.rigid || bb.rigid)
       c.fail(ct.where, key + ".bodies", "grid contact with particles does not take rigid bodies");

@@ -1229,7 +1229,7 @@ ContactSpec read_contact(TableReader& r, const Scene& scene) {
   const bool self = c.bodies[0] == c.bodies[1];
   const bool meshes = mesh(a) && mesh(b);
   c.method = static_cast<ContactMethod>(
-      r.choice("method", {"grid", "penalty", "weld"}, meshes ? 1 : 0));
+      r.choice("method", {"grid", "penalty", "weld", "surface"}, meshes ? 1 : 0));
   for (const ContactSpec& other : scene.contacts)
     if ((other.bodies[0] == c.bodies[0] && other.bodies[1] == c.bodies[1]) ||
         (other.bodies[0] == c.bodies[1] && other.bodies[1] == c.bodies[0]))
@@ -1270,15 +1270,30 @@ ContactSpec read_contact(TableReader& r, const Scene& scene) {
     c.penalty = r.number("penalty", 1.0, Range{0.0, 1.0, true, false});
     return c;
   }
+  if (c.method == ContactMethod::surface) {
+    if (r.has("distance_factor"))
+      r.fail("distance_factor", "distance_factor sets where grid contact acts; surface contact "
+                                "acts where the particles' boundary meets the faces (remove it)");
+    const bool one_each = (a.discretisation == Discretisation::particles) !=
+                          (b.discretisation == Discretisation::particles);
+    const BodySpec& m = a.discretisation == Discretisation::particles ? b : a;
+    if (self || !one_each || m.discretisation != Discretisation::hexahedra)
+      r.fail("method", "surface contact is between a body of particles and a body of hexahedra "
+                       "(deformable or rigid); meshes meet each other by method = \"penalty\", "
+                       "particles by method = \"grid\"");
+    // The fraction of the predicted penetration one step takes out, as for penalty contact.
+    c.penalty = r.number("penalty", 1.0, Range{0.0, 1.0, true, false});
+    return c;
+  }
   if (r.has("penalty"))
     r.fail("penalty", "penalty scales the stiffness of penalty contact; grid contact has none "
                       "(remove it, or set method = \"penalty\" between meshes)");
   if (self) r.fail("bodies", "a body cannot be in grid contact with itself");
   if (a.rigid || b.rigid)
     r.fail("bodies", "body \"" + (a.rigid ? a.name : b.name) +
-                         "\" is rigid; rigid bodies meet meshes through penalty contact, and "
-                         "grid contact with particles does not take them (model the body as "
-                         "deformable hexahedra of a stiff material)");
+                         "\" is rigid; rigid bodies meet meshes through penalty contact and "
+                         "particles through method = \"surface\" (grid contact does not take "
+                         "them)");
   if (meshes)
     r.fail("method", "both bodies are meshes; grid contact needs a particle body on one side "
                      "(meshes meet each other by method = \"penalty\", the default)");

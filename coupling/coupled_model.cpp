@@ -85,6 +85,10 @@ CoupledModel::CoupledModel(const core::Scene& scene)
   bool converts = false;
   for (const core::BodySpec& body : scene.bodies) converts = converts || body.conversion;
   if (!fe_node_.empty() || converts) mpm().set_grid_points(&points_);
+  if (core::has_surface_contact(scene)) {
+    surface_contacts_ = std::make_unique<ParticleSurfaceContacts>(scene, fe());
+    mpm().set_surface_contacts(surface_contacts_.get());
+  }
 }
 
 std::size_t CoupledModel::add_point(std::size_t i, bool bonded, bool surface) {
@@ -155,7 +159,8 @@ void CoupledModel::convert_elements() {
 double CoupledModel::stable_time_step() const {
   // A body whose elements have all converted leaves the FE side without a step of its own.
   double dt = mpm().stable_time_step();
-  if (fe().live_hexahedra() + fe().live_trusses() > 0) dt = std::min(dt, fe().stable_time_step());
+  // (A rigid body's elements set no step.)
+  if (fe().limits_time_step()) dt = std::min(dt, fe().stable_time_step());
   if (scene_.run.fixed_time_step > 0.0) return scene_.run.fixed_time_step;
   // Coupled nodes cross the grid too: at most factor h per step.
   double speed2 = 0.0;
@@ -203,6 +208,7 @@ void CoupledModel::step(double dt) {
   const auto t0 = std::chrono::steady_clock::now();
   load_points(dt);
   mpm().step(dt);
+  fe().settle_contact_impulses(dt);  // rigid bodies take what surface contacts gave their nodes
   for (std::size_t k = 0; k < fe_node_.size(); ++k) {
     const std::size_t i = fe_node_[k];
     if (!(n.mass[i] > 0.0)) continue;
@@ -244,6 +250,12 @@ core::Energies CoupledModel::energies() const {
   out.contact += m.contact;
   out.sliding += m.sliding;
   out.friction += m.friction;
+  if (surface_contacts_) {
+    // Friction's dissipation at the particles' contact with mesh faces (the normal catch, as a
+    // kinematic wall's, shows in the balance).
+    out.sliding += surface_contacts_->friction_work();
+    out.friction += surface_contacts_->friction_work();
+  }
   out.outflow += m.outflow;
   out.outflow_mass += m.outflow_mass;
   out.outflow_momentum += m.outflow_momentum;
@@ -256,9 +268,19 @@ core::Energies CoupledModel::energies() const {
   return out;
 }
 
+// The FE side's columns, then each surface contact's (its force on the particle body).
+std::vector<std::string> CoupledModel::force_columns() const {
+  std::vector<std::string> out = fe_.force_columns();
+  if (surface_contacts_)
+    for (const ParticleSurfaceContacts::Pair& p : surface_contacts_->pairs())
+      for (const char* part : {".fx", ".fy", ".fz", ".normal", ".tangential"})
+        out.push_back(p.spec.name + part);
+  return out;
+}
+
 // The FE side's forces, each wall's with what it gave the particles it names added (a wall may
 // name mesh and particle bodies alike; FeModel::force_values orders contacts, walls, rigid
-// bodies).
+// bodies), then the surface contacts'.
 void CoupledModel::force_values(std::vector<double>& out) const {
   fe_.force_values(out);
   const std::size_t first = 5 * fe().mesh_contacts().size();
@@ -275,6 +297,12 @@ void CoupledModel::force_values(std::vector<double>& out) const {
     v[3] = std::abs(fn);
     v[4] = core::norm(f - fn * n);
   }
+  if (surface_contacts_)
+    for (const ParticleSurfaceContacts::Pair& p : surface_contacts_->pairs()) {
+      const core::Vec3 f = p.normal_force + p.tangential_force;
+      out.insert(out.end(), {f.x, f.y, f.z, core::norm(p.normal_force),
+                             core::norm(p.tangential_force)});
+    }
 }
 
 void CoupledModel::write_fields(core::FieldWriter& writer) {

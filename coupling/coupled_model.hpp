@@ -18,6 +18,8 @@
 //      MPM solver's grid-points hook), the scene's MPM scheme;
 //   3. contact nodes add the contact change; bonded nodes move with the grid velocity;
 //   4. FE: x^{n+1} of the other nodes, then element stress and forces at x^{n+1}.
+// Surface contacts (particles at mesh faces) act in step 2 on the grid's updated velocity and
+// the nodes' v^{n+1/2}; rigid bodies take their impulses before step 4.
 #pragma once
 
 #include <cstdint>
@@ -28,6 +30,7 @@
 #include "core/scene.hpp"
 #include "core/time_loop.hpp"
 #include "coupling/node_points.hpp"
+#include "coupling/particle_surface_contact.hpp"
 #include "fem/fe_model.hpp"
 #include "fem/surface_faces.hpp"
 #include "mpm/mpm_model.hpp"
@@ -53,7 +56,7 @@ class CoupledModel final : public core::Model {
   double time() const override { return mpm().time(); }
   // FE and MPM energies added; per-body sums from whichever holds the body.
   core::Energies energies() const override;
-  std::vector<std::string> force_columns() const override { return fe_.force_columns(); }
+  std::vector<std::string> force_columns() const override;
   void force_values(std::vector<double>& out) const override;
   std::size_t particle_count() const override { return mpm_.particle_count(); }
   std::size_t element_count() const override { return fe_.element_count(); }
@@ -100,6 +103,8 @@ class CoupledModel final : public core::Model {
   std::vector<core::Vec3> normal_;  // per FE node
   double coupling_seconds_ = 0.0;
   double converted_energy_ = 0.0;  // Energies::converted: what conversion's interpolation lost
+  // Particles at mesh faces ([[contact]] method "surface"), when the scene has any.
+  std::unique_ptr<ParticleSurfaceContacts> surface_contacts_;
 };
 
 }  // namespace afemp::coupling

@@ -208,6 +208,17 @@ class FeSolver {
   const std::vector<Vec3>& wall_forces() const { return wall_force_; }
   std::size_t live_hexahedra() const;
   std::size_t live_trusses() const;
+  // Whether a live element bounds the step (rigid bodies' elements do not).
+  bool limits_time_step() const;
+  // Contact impulses from outside the FE update, between begin_step and finish_step (particles
+  // at a mesh surface, coupling/particle_surface_contact.cpp), as the mesh contacts give them:
+  // node i's inverse mass along unit n (its free components' share of 1/m, or its rigid body's
+  // at that point); an impulse on node i (a free node's free components change by J / m; a
+  // rigid node moves with w (J . n) n until settled); then rigid bodies take the impulses their
+  // nodes got and their nodes follow the bodies again.
+  double contact_inverse_mass(std::size_t i, const Vec3& n) const;
+  void push_contact_impulse(std::size_t i, double w, const Vec3& n, const Vec3& impulse);
+  void settle_contact_impulses(double dt);
 
  private:
   void build(const core::Scene& scene);
@@ -264,6 +275,9 @@ class FeSolver {
   // and, per FE node, their velocities at the step's start and the impulse contact gave them.
   std::vector<Vec3> predicted_, velocity_start_, contact_impulse_;
   double sliding_energy_ = 0.0, contact_search_seconds_ = 0.0;
+  // Impulses pushed from outside this step on rigid nodes (push_contact_impulse), per node.
+  std::vector<Vec3> outside_impulse_;
+  Vec3 outside_free_impulse_;  // their sum on free nodes (for gravity's work)
   // Rigid bodies, and per node the rigid body it belongs to (-1: none; empty without any).
   std::vector<RigidBody> rigid_bodies_;
   std::vector<std::int32_t> rigid_of_node_;

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "core/parallel.hpp"
+#include "fem/face_projection.hpp"
 #include "fem/fe_solver.hpp"
 #include "fem/surface_faces.hpp"
 
@@ -16,63 +17,6 @@ namespace afemp::fem {
 namespace {
 
 using core::Discretisation;
-
-// The bilinear face: position, tangents and shape functions at (xi, eta), nodes counter-
-// clockwise seen from outside: (-1,-1), (1,-1), (1,1), (-1,1).
-struct FacePoint {
-  Vec3 x, t1, t2;
-  std::array<double, 4> n;
-};
-
-inline FacePoint face_point(const std::array<Vec3, 4>& p, double xi, double eta) {
-  FacePoint f;
-  f.n = {0.25 * (1 - xi) * (1 - eta), 0.25 * (1 + xi) * (1 - eta), 0.25 * (1 + xi) * (1 + eta),
-         0.25 * (1 - xi) * (1 + eta)};
-  f.x = f.n[0] * p[0] + f.n[1] * p[1] + f.n[2] * p[2] + f.n[3] * p[3];
-  f.t1 = 0.25 * ((1 - eta) * (p[1] - p[0]) + (1 + eta) * (p[2] - p[3]));
-  f.t2 = 0.25 * ((1 - xi) * (p[3] - p[0]) + (1 + xi) * (p[2] - p[1]));
-  return f;
-}
-
-// Closest-point projection of x on the face (Gauss-Newton from the centre): the point, its
-// unit outward normal, (xi, eta) and the signed gap. False when the face is degenerate.
-struct Projection {
-  FacePoint at;
-  Vec3 normal;
-  double xi = 0.0, eta = 0.0, gap = 0.0;
-};
-
-inline bool project(const std::array<Vec3, 4>& p, const Vec3& x, Projection& out) {
-  double xi = 0.0, eta = 0.0;
-  FacePoint f = face_point(p, xi, eta);
-  for (int it = 0; it < 4; ++it) {
-    const Vec3 r = x - f.x;
-    const double a11 = core::dot(f.t1, f.t1), a12 = core::dot(f.t1, f.t2),
-                 a22 = core::dot(f.t2, f.t2);
-    const double det = a11 * a22 - a12 * a12;
-    if (!(det > 0.0)) return false;
-    const double b1 = core::dot(r, f.t1), b2 = core::dot(r, f.t2);
-    const double dxi = (a22 * b1 - a12 * b2) / det, deta = (a11 * b2 - a12 * b1) / det;
-    xi += dxi;
-    eta += deta;
-    // A flat parallelogram maps linearly: the first step is exact.
-    const bool converged = std::abs(dxi) + std::abs(deta) < 1e-12;
-    // Far outside the face the answer does not matter; keep the iteration bounded.
-    xi = std::clamp(xi, -2.0, 2.0);
-    eta = std::clamp(eta, -2.0, 2.0);
-    f = face_point(p, xi, eta);
-    if (converged) break;
-  }
-  const Vec3 c = core::cross(f.t1, f.t2);
-  const double l = core::norm(c);
-  if (!(l > 0.0)) return false;
-  out.at = f;
-  out.normal = (1.0 / l) * c;
-  out.xi = xi;
-  out.eta = eta;
-  out.gap = core::dot(out.normal, x - f.x);
-  return true;
-}
 
 // How far outside [-1, 1] a projection may fall and still hold the node (a node sliding over
 // the edge between two faces stays in contact with one of them).
@@ -612,6 +556,63 @@ void FeSolver::resolve_contacts(double dt) {
   }
   sliding_energy_ -= work / (2.0 * dt_force);
   external_work_ += gravity * dt;
+}
+
+double FeSolver::contact_inverse_mass(std::size_t i, const Vec3& n) const {
+  if (!rigid_of_node_.empty() && rigid_of_node_[i] >= 0) {
+    const RigidBody& r = rigid_bodies_[static_cast<std::size_t>(rigid_of_node_[i])];
+    return rigid_inverse_mass(r, nodes_.position[i] - r.centre, n);
+  }
+  if (!(nodes_.mass[i] > 0.0)) return 0.0;
+  double share = 1.0;
+  if (const std::uint8_t imposed = nodes_.imposed[i])
+    for (int a = 0; a < 3; ++a)
+      if (imposed & (1u << a)) share -= n[a] * n[a];
+  return share / nodes_.mass[i];
+}
+
+void FeSolver::push_contact_impulse(std::size_t i, double w, const Vec3& n, const Vec3& impulse) {
+  if (!rigid_of_node_.empty() && rigid_of_node_[i] >= 0) {
+    nodes_.velocity[i] += w * core::dot(impulse, n) * n;
+    outside_impulse_.resize(nodes_.size());
+    outside_impulse_[i] += impulse;
+    return;
+  }
+  if (!(nodes_.mass[i] > 0.0)) return;
+  Vec3 j = impulse;
+  if (const std::uint8_t imposed = nodes_.imposed[i])
+    for (int a = 0; a < 3; ++a)
+      if (imposed & (1u << a)) j[a] = 0.0;
+  nodes_.velocity[i] += (1.0 / nodes_.mass[i]) * j;
+  outside_free_impulse_ += j;
+}
+
+void FeSolver::settle_contact_impulses(double dt) {
+  // Gravity's work in the nodal update was taken on the velocities before the pushes.
+  external_work_ += core::dot(scene_.run.gravity, outside_free_impulse_) * dt;
+  outside_free_impulse_ = Vec3{};
+  if (outside_impulse_.empty()) return;
+  for (RigidBody& r : rigid_bodies_) {
+    Vec3 impulse, angular;
+    for (std::int32_t k : r.nodes) {
+      Vec3& j = outside_impulse_[static_cast<std::size_t>(k)];
+      impulse += j;
+      angular += core::cross(nodes_.position[static_cast<std::size_t>(k)] - r.centre, j);
+      j = Vec3{};
+    }
+    if (impulse.x == 0.0 && impulse.y == 0.0 && impulse.z == 0.0 && angular.x == 0.0 &&
+        angular.y == 0.0 && angular.z == 0.0)
+      continue;
+    const Vec3 before = r.velocity;
+    external_work_ += add_impulse(r, impulse, angular);
+    external_work_ += r.mass * core::dot(scene_.run.gravity, r.velocity - before) * dt;
+    const double dt_force = force_step(dt);
+    r.force += (1.0 / dt_force) * impulse;
+    r.moment += (1.0 / dt_force) * angular;
+    for (std::int32_t k : r.nodes)
+      nodes_.velocity[static_cast<std::size_t>(k)] =
+          point_velocity(r, nodes_.position[static_cast<std::size_t>(k)] - r.centre);
+  }
 }
 
 }  // namespace afemp::fem

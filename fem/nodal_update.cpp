@@ -114,6 +114,14 @@ void FeSolver::finish_step(double dt) {
               [&] { finish_erosion(); });
 }
 
+bool FeSolver::limits_time_step() const {
+  for (const ElementStore* el : {static_cast<const ElementStore*>(&hexes_),
+                                 static_cast<const ElementStore*>(&trusses_)})
+    for (std::size_t e = 0; e < el->size(); ++e)
+      if (el->alive[e] && std::isfinite(el->critical_dt[e])) return true;
+  return false;
+}
+
 double FeSolver::stable_time_step() const {
   if (scene_.run.fixed_time_step > 0.0) return scene_.run.fixed_time_step;
   double dt = std::numeric_limits<double>::infinity();

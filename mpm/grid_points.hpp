@@ -83,4 +83,13 @@ class GridPoints {
   virtual void remap(const GridStepAccess& access) = 0;
 };
 
+// Contacts their owner resolves on the updated grid velocity, once a step after grid contact
+// and the particle walls (coupling/: particles at mesh faces, `[[contact]]` method "surface"):
+// it reads the particles and changes the grid's updated velocity.
+class SurfaceContacts {
+ public:
+  virtual ~SurfaceContacts() = default;
+  virtual void resolve(const GridStepAccess& access) = 0;
+};
+
 }  // namespace afemp::mpm

@@ -66,6 +66,9 @@ class MpmSolver {
   // Points that join the grid step from now on (grid_points.hpp; coupling/ puts FE nodes on
   // the grid this way). nullptr: none. Throws std::invalid_argument with the USL scheme.
   void set_grid_points(GridPoints* points);
+  // Contacts resolved on the updated grid velocity after the particle walls (grid_points.hpp);
+  // nullptr: none. The plan runs that stage when the scene has a surface contact.
+  void set_surface_contacts(SurfaceContacts* contacts) { surface_contacts_ = contacts; }
   // Appends particles made during the run (hexahedra converted into particles, coupling/):
   // their ids continue after the largest so far, the arrays the scene asks for (strain, uGIMP
   // half width, APIC affine velocity) are filled as at the start, and the material batches are
@@ -205,6 +208,7 @@ class MpmSolver {
   // field_self_updated_: the field holds self-updating points only, whose gravity work their
   // owner counts.
   GridPoints* points_ = nullptr;
+  SurfaceContacts* surface_contacts_ = nullptr;
   std::vector<Vec3> contact_change_;
   std::vector<char> field_self_updated_;
   // Self-updating points in a field shared with particles (grid_points.hpp).

@@ -38,6 +38,8 @@ void MpmSolver::particle_wall_contact(double dt) {
     if (wall_bodies_[w].empty()) continue;
     with_stencil([&]<class Stencil, bool>() { particle_wall_kernel<Stencil>(w, dt); });
   }
+  // Particles at mesh faces (coupling/particle_surface_contact.cpp), on the same velocity.
+  if (surface_contacts_) surface_contacts_->resolve(access());
 }
 
 template <class Stencil>

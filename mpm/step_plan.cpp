@@ -116,11 +116,14 @@ StepPlan build_step_plan(const core::Scene& scene) {
           : "explicit momentum update and boundary conditions");
   // Rigid walls ([[walls]] naming particle bodies) act on the updated grid velocity, after
   // grid contact, at the particles' boundary.
-  const bool particle_walls = core::has_particle_walls(scene);
-  const Stage walls = stage(StageKind::particle_walls, "particle walls",
-                            "rigid walls ([[walls]]) met where the particles' boundary reaches "
-                            "them: the impulse that keeps each particle's predicted domain off "
-                            "the wall, through its nodes, Coulomb friction");
+  const bool particle_walls = core::has_particle_walls(scene) || core::has_surface_contact(scene);
+  const Stage walls = stage(
+      StageKind::particle_walls, "surface contact",
+      std::string(core::has_particle_walls(scene) ? "rigid walls ([[walls]])" : "") +
+          (core::has_particle_walls(scene) && core::has_surface_contact(scene) ? " and " : "") +
+          (core::has_surface_contact(scene) ? "mesh faces ([[contact]] method \"surface\")" : "") +
+          " met where the particles' boundary reaches them: the impulse that keeps each "
+          "particle's predicted domain off them, through its nodes, Coulomb friction");
   auto& s = plan.stages;
   const std::string velocity =
       plan.transfer == core::Transfer::apic ? "particle velocity and affine velocity (APIC)"

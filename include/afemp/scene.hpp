@@ -346,7 +346,9 @@ struct WallSpec {
 /// (LS-DYNA's SOFT=1), with Coulomb friction; one body named twice is its self-contact.
 /// weld: two particle bodies meant to share one velocity field where they meet (stick, no
 /// separation): nothing is added, and `afemp check` and `run` do not warn about the pair.
-enum class ContactMethod { grid, penalty, weld };
+/// surface: a body of particles and a body of hexahedra (deformable or rigid) meet where the
+/// particles' boundary reaches the mesh's faces (coupling/particle_surface_contact.cpp).
+enum class ContactMethod { grid, penalty, weld, surface };
 const char* to_string(ContactMethod m);
 
 struct ContactSpec {

@@ -58,7 +58,9 @@ Impact impact(bool particle_wall) {
     const core::Energies e = solver.energies();
     const double force = (e.bodies[0].momentum.z - pz) / dt;
     pz = e.bodies[0].momentum.z;
-    if (particle_wall) EXPECT_NEAR(solver.wall_forces()[0].z, force, 1e-9 * std::abs(force) + 1e-9);
+    if (particle_wall) {
+      EXPECT_NEAR(solver.wall_forces()[0].z, force, 1e-9 * std::abs(force) + 1e-9);
+    }
     if (force > 1e-6 * mass) {
       if (first < 0.0) first = t0;
       last = solver.time();

@@ -1,0 +1,302 @@
+// Particles at the faces of a mesh (coupling/particle_surface_contact.hpp).
+#include "coupling/particle_surface_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "fem/face_projection.hpp"
+#include "fem/fe_solver.hpp"
+#include "mpm/face_constraints.hpp"
+#include "mpm/stencil.hpp"
+
+namespace afemp::coupling {
+
+namespace {
+
+constexpr int kSweeps = 8;
+// How far outside [-1, 1] a projection may fall and still hold the particle (as the mesh
+// contacts allow a node sliding over an edge).
+constexpr double kEdgeTolerance = 0.02;
+
+std::array<Vec3, 4> corners(const std::array<std::int32_t, 4>& face, const std::vector<Vec3>& x) {
+  return {x[static_cast<std::size_t>(face[0])], x[static_cast<std::size_t>(face[1])],
+          x[static_cast<std::size_t>(face[2])], x[static_cast<std::size_t>(face[3])]};
+}
+
+}  // namespace
+
+ParticleSurfaceContacts::ParticleSurfaceContacts(const core::Scene& scene, fem::FeSolver& fe)
+    : scene_(scene), fe_(fe) {
+  for (const core::ContactSpec& c : scene.contacts) {
+    if (c.method != core::ContactMethod::surface) continue;
+    Pair p;
+    p.spec = c;
+    const bool first_particles =
+        scene.bodies[static_cast<std::size_t>(c.bodies[0])].discretisation ==
+        core::Discretisation::particles;
+    p.particles = first_particles ? c.bodies[0] : c.bodies[1];
+    p.mesh = first_particles ? c.bodies[1] : c.bodies[0];
+    p.selected.assign(scene.bodies.size(), 0);
+    p.selected[static_cast<std::size_t>(p.mesh)] = 1;
+    pairs_.push_back(std::move(p));
+  }
+}
+
+double ParticleSurfaceContacts::friction_work() const {
+  double w = 0.0;
+  for (const Pair& p : pairs_) w += p.friction_work;
+  return w;
+}
+
+void ParticleSurfaceContacts::resolve(const mpm::GridStepAccess& access) {
+  const fem::FeNodes& n = fe_.nodes();
+  predicted_.resize(n.size());
+  for (std::size_t i = 0; i < n.size(); ++i)
+    predicted_[i] = n.position[i] + access.dt * n.velocity[i];
+  for (Pair& pair : pairs_) {
+    if (access.plan.shape == core::ShapeFunction::gimp)
+      resolve_pair<mpm::GimpStencil>(pair, access);
+    else
+      resolve_pair<mpm::LinearStencil>(pair, access);
+  }
+}
+
+template <class Stencil>
+void ParticleSurfaceContacts::resolve_pair(Pair& pair, const mpm::GridStepAccess& access) {
+  constexpr int K = Stencil::nodes;
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  core::BackgroundGrid& g = access.grid;
+  const mpm::Particles& p = access.particles;
+  const fem::FeNodes& nodes = fe_.nodes();
+  const double dt = access.dt;
+  pair.normal_force = pair.tangential_force = Vec3{};
+  // The mesh's boundary faces, made again when elements erode or convert.
+  if (fe_.live_hexahedra() != pair.live) {
+    pair.faces = fem::boundary_faces(fe_.hexahedra(), pair.selected);
+    pair.live = fe_.live_hexahedra();
+  }
+  const std::size_t nf = pair.faces.nodes.size();
+  if (nf == 0) return;
+  // Outward normals and the boxes of the faces at the predicted positions; each face holds a
+  // particle up to half its own size behind it (its reach).
+  pair.outward.resize(nf);
+  std::vector<std::array<Vec3, 2>> box(nf);
+  std::vector<double> reach(nf);
+  double largest = 0.0;
+  Vec3 lo{inf, inf, inf}, hi{-inf, -inf, -inf};
+  for (std::size_t f = 0; f < nf; ++f) {
+    pair.outward[f] = fem::face_area_vector(pair.faces, f, fe_.hexahedra(), predicted_);
+    const std::array<Vec3, 4> q = corners(pair.faces.nodes[f], predicted_);
+    Vec3 a = q[0], b = q[0];
+    for (const Vec3& x : q)
+      for (int d = 0; d < 3; ++d) {
+        a[d] = std::min(a[d], x[d]);
+        b[d] = std::max(b[d], x[d]);
+      }
+    reach[f] = 0.5 * std::max(core::norm(q[2] - q[0]), core::norm(q[3] - q[1]));
+    const double grow = reach[f] + g.cell();  // a particle's half width is at most about a cell
+    for (int d = 0; d < 3; ++d) {
+      a[d] -= grow;
+      b[d] += grow;
+      lo[d] = std::min(lo[d], a[d]);
+      hi[d] = std::max(hi[d], b[d]);
+      largest = std::max(largest, b[d] - a[d]);
+    }
+    box[f] = {a, b};
+  }
+  // Bins of the size of the largest grown face; a face in each bin its box touches.
+  const double size = largest;
+  std::array<std::int64_t, 3> count{};
+  for (int d = 0; d < 3; ++d)
+    count[static_cast<std::size_t>(d)] =
+        std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil((hi[d] - lo[d]) / size)));
+  auto bin_of = [&](const Vec3& x, int d) {
+    return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((x[d] - lo[d]) / size)), 0,
+                                    count[static_cast<std::size_t>(d)] - 1);
+  };
+  auto key = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+    return (k * count[1] + j) * count[0] + i;
+  };
+  std::vector<std::pair<std::int64_t, std::int32_t>> entries;
+  for (std::size_t f = 0; f < nf; ++f)
+    for (std::int64_t k = bin_of(box[f][0], 2); k <= bin_of(box[f][1], 2); ++k)
+      for (std::int64_t j = bin_of(box[f][0], 1); j <= bin_of(box[f][1], 1); ++j)
+        for (std::int64_t i = bin_of(box[f][0], 0); i <= bin_of(box[f][1], 0); ++i)
+          entries.emplace_back(key(i, j, k), static_cast<std::int32_t>(f));
+  std::sort(entries.begin(), entries.end());
+  bin_key_.resize(entries.size());
+  bin_face_.resize(entries.size());
+  for (std::size_t e = 0; e < entries.size(); ++e) {
+    bin_key_[e] = entries[e].first;
+    bin_face_[e] = entries[e].second;
+  }
+
+  // Hits: each particle of the body whose predicted boundary lies behind a face.
+  hits_.clear();
+  slots_.clear();
+  weights_.clear();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.body[i] != pair.particles) continue;
+    const Vec3& x0 = p.position[i];
+    const double travel = dt * core::norm(p.velocity[i]) + g.cell();
+    bool outside = false;
+    for (int d = 0; d < 3; ++d)
+      outside = outside || x0[d] < lo[d] - travel || x0[d] > hi[d] + travel;
+    if (outside) continue;
+    const Stencil st(g, p, i, x0);
+    typename Stencil::Slots slot;
+    st.slots(g, slot);
+    const std::size_t field = access.field_offset(p.body[i]);
+    Vec3 v;
+    for (int k = 0; k < K; ++k)
+      v += st.w(k) *
+           g.velocity_new[static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]) + field];
+    const Vec3 x = x0 + dt * v;
+    const double r = 0.5 * std::cbrt(p.volume[i]);
+    const std::int64_t b = key(bin_of(x, 0), bin_of(x, 1), bin_of(x, 2));
+    const auto [first, last] = std::equal_range(bin_key_.begin(), bin_key_.end(), b);
+    // The nearest face that holds it (by the distance to the face itself).
+    double distance = inf;
+    Hit best;
+    bool found = false;
+    for (auto it = first; it != last; ++it) {
+      const auto f =
+          static_cast<std::size_t>(bin_face_[static_cast<std::size_t>(it - bin_key_.begin())]);
+      const auto& bx = box[f];
+      if (x.x < bx[0].x || x.x > bx[1].x || x.y < bx[0].y || x.y > bx[1].y || x.z < bx[0].z ||
+          x.z > bx[1].z)
+        continue;
+      fem::Projection pr;
+      if (!fem::project(corners(pair.faces.nodes[f], predicted_), x, pr)) continue;
+      constexpr double lim = 1.0 + kEdgeTolerance;
+      if (std::abs(pr.xi) > lim || std::abs(pr.eta) > lim) continue;
+      const double sign = core::dot(pr.normal, pair.outward[f]) < 0.0 ? -1.0 : 1.0;
+      const double gap = sign * pr.gap - r;
+      if (!(gap < 0.0) || -gap > reach[f] + r) continue;
+      if (std::abs(gap) < distance) {
+        distance = std::abs(gap);
+        best.face = pair.faces.nodes[f];
+        best.shape = fem::face_point(corners(best.face, predicted_), std::clamp(pr.xi, -1.0, 1.0),
+                                     std::clamp(pr.eta, -1.0, 1.0))
+                         .n;
+        best.normal = sign * pr.normal;
+        found = true;
+      }
+    }
+    if (!found) continue;
+    best.particle = static_cast<std::uint32_t>(i);
+    best.radius = r;
+    best.stencil = slots_.size();
+    for (int k = 0; k < K; ++k) {
+      const auto s = static_cast<std::int64_t>(slot[static_cast<std::size_t>(k)] + field);
+      const bool live = st.w(k) > 0.0 && g.mass[static_cast<std::size_t>(s)] > 0.0;
+      slots_.push_back(live ? s : -1);
+      weights_.push_back(live ? st.w(k) : 0.0);
+    }
+    hits_.push_back(best);
+  }
+  if (hits_.empty()) return;
+
+  const mpm::FaceConstraints constraints(g);
+  auto v_particle = [&](const Hit& h) {
+    Vec3 v;
+    for (int k = 0; k < K; ++k) {
+      const std::int64_t s = slots_[h.stencil + static_cast<std::size_t>(k)];
+      if (s >= 0)
+        v += weights_[h.stencil + static_cast<std::size_t>(k)] *
+             g.velocity_new[static_cast<std::size_t>(s)];
+    }
+    return v;
+  };
+  auto w_particle = [&](const Hit& h) {
+    double w = 0.0;
+    for (int k = 0; k < K; ++k) {
+      const std::int64_t s = slots_[h.stencil + static_cast<std::size_t>(k)];
+      const double wk = weights_[h.stencil + static_cast<std::size_t>(k)];
+      if (s >= 0) w += wk * wk / g.mass[static_cast<std::size_t>(s)];
+    }
+    return w;
+  };
+  auto push_particle = [&](const Hit& h, const Vec3& impulse) {
+    for (int k = 0; k < K; ++k) {
+      const std::int64_t s = slots_[h.stencil + static_cast<std::size_t>(k)];
+      if (s < 0) continue;
+      const auto su = static_cast<std::size_t>(s);
+      Vec3& v = g.velocity_new[su];
+      v += (weights_[h.stencil + static_cast<std::size_t>(k)] / g.mass[su]) * impulse;
+      const mpm::NodeConstraint c = constraints(g.node_of_slot(su % g.slot_count()));
+      if (c.any()) mpm::constrain(v, c.mask_for(v));
+    }
+  };
+  auto face_state = [&](const Hit& h, Vec3& x_face, Vec3& v_face) {
+    x_face = v_face = Vec3{};
+    for (int a = 0; a < 4; ++a) {
+      const auto q = static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)]);
+      const double na = h.shape[static_cast<std::size_t>(a)];
+      x_face += na * (nodes.position[q] + dt * nodes.velocity[q]);
+      v_face += na * nodes.velocity[q];
+    }
+  };
+  const double s_pen = pair.spec.penalty, mu = pair.spec.friction;
+  for (int sweep = 0; sweep < kSweeps; ++sweep)
+    for (Hit& h : hits_) {
+      const Vec3& nrm = h.normal;
+      const double wp = w_particle(h);
+      double w = wp;
+      std::array<double, 4> wa{};
+      for (int a = 0; a < 4; ++a) {
+        const auto q = static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)]);
+        const double na = h.shape[static_cast<std::size_t>(a)];
+        wa[static_cast<std::size_t>(a)] = fe_.contact_inverse_mass(q, nrm);
+        w += na * na * wa[static_cast<std::size_t>(a)];
+      }
+      if (!(w > 0.0)) continue;
+      const Vec3 xp = p.position[h.particle];
+      Vec3 x_face, v_face;
+      face_state(h, x_face, v_face);
+      const double gap = core::dot(nrm, xp + dt * v_particle(h) - x_face) - h.radius;
+      if (sweep == 0) {
+        Vec3 x_now;
+        for (int a = 0; a < 4; ++a)
+          x_now += h.shape[static_cast<std::size_t>(a)] *
+                   nodes.position[static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)])];
+        const double now = core::dot(nrm, xp - x_now) - h.radius;
+        h.target = std::min((1.0 - s_pen) * std::min(gap, 0.0), 0.9 * std::min(now, 0.0));
+      }
+      const double total = std::max(0.0, h.normal_impulse - (gap - h.target) / (dt * w));
+      const double dj = total - h.normal_impulse;
+      h.normal_impulse = total;
+      Vec3 impulse = dj * nrm;
+      if (mu > 0.0) {
+        // The relative velocity after the normal impulse, and the stick impulse within mu J.
+        const Vec3 rel = v_particle(h) - v_face;  // its normal part does not matter here
+        const Vec3 slip = rel - core::dot(rel, nrm) * nrm;
+        Vec3 t = h.tangential_impulse - (1.0 / w) * slip;
+        const double l = core::norm(t), limit = mu * h.normal_impulse;
+        if (l > limit) t = (limit / l) * t;
+        impulse += t - h.tangential_impulse;
+        h.tangential_impulse = t;
+      }
+      push_particle(h, impulse);
+      for (int a = 0; a < 4; ++a)
+        fe_.push_contact_impulse(static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)]),
+                                 wa[static_cast<std::size_t>(a)], nrm,
+                                 -h.shape[static_cast<std::size_t>(a)] * impulse);
+    }
+  // Resultants on the particle body (impulse over the step) and friction's work (the
+  // tangential impulse against the slip it left).
+  for (const Hit& h : hits_) {
+    pair.normal_force += (h.normal_impulse / dt) * h.normal;
+    pair.tangential_force += (1.0 / dt) * h.tangential_impulse;
+    if (mu > 0.0) {
+      Vec3 x_face, v_face;
+      face_state(h, x_face, v_face);
+      const Vec3 rel = v_particle(h) - v_face;
+      pair.friction_work -=
+          core::dot(h.tangential_impulse, rel - core::dot(rel, h.normal) * h.normal);
+    }
+  }
+}
+
+}  // namespace afemp::coupling

@@ -1,0 +1,83 @@
+// Particles at the faces of a mesh (`[[contact]]` method "surface"): a body of particles and a
+// body of hexahedra, deformable or rigid, meet where the particles' boundary reaches the mesh's
+// boundary faces, not a cell early as in grid contact. Each particle is a slave of half width
+// r = V^(1/3) / 2 at its predicted position x + dt v_p (v_p = sum N v_new, this step's grid
+// velocity at it); a master face at its nodes' predicted positions x_a + dt v_a (v^{n+1/2} of
+// the nodal update) holds it when the particle projects inside the face and its boundary lies
+// behind it, g = n . (x_p - x_c) - r < 0 (n the face's outward normal). The pair takes the
+// impulse that brings g to zero (penalty s: to (1 - s) g; a penetration already there at x^n
+// recedes by a tenth a step), J n on the particle's grid nodes by their shape functions and
+// -phi_a J n on the face's nodes, with the pair's inverse mass w = sum N^2 / m_I + sum phi_a^2 w_a
+// (w_a a free node's 1/m, a rigid body's effective inverse mass at the node): the node-to-surface
+// scheme of the mesh contacts (fem/mesh_contact.hpp; Taylor & Flanagan 1989) with the particle's
+// domain as the slave, and the nodal form of a contact force on a particle (Sulsky, Chen &
+// Schreyer 1994, eq 20). Projected Gauss-Seidel sweeps in particle order resolve the pairs that
+// share nodes (J >= 0: the bodies separate freely), Coulomb friction limits the tangential
+// impulse to mu J. The faces are rebuilt when elements erode or convert.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "afemp/scene.hpp"
+#include "fem/surface_faces.hpp"
+#include "mpm/grid_points.hpp"
+
+namespace afemp::fem {
+class FeSolver;
+}
+
+namespace afemp::coupling {
+
+using core::Vec3;
+
+class ParticleSurfaceContacts final : public mpm::SurfaceContacts {
+ public:
+  struct Pair {
+    core::ContactSpec spec;
+    int particles = -1, mesh = -1;  // the particle body and the mesh body
+    std::vector<char> selected;     // per scene body: the mesh body
+    fem::SurfaceFaces faces;
+    std::vector<Vec3> outward;                        // each face's outward area vector (this step)
+    std::size_t live = static_cast<std::size_t>(-1);  // live hexahedra when the faces were made
+    // This step's resultant forces on the particle body (impulse over the step), the sums of
+    // the pairs' force magnitudes, and the work friction dissipated so far.
+    Vec3 normal_force, tangential_force;
+    double friction_work = 0.0;
+  };
+
+  ParticleSurfaceContacts(const core::Scene& scene, fem::FeSolver& fe);
+  void resolve(const mpm::GridStepAccess& access) override;
+  const std::vector<Pair>& pairs() const { return pairs_; }
+  double friction_work() const;
+
+ private:
+  // One particle held by one face this step.
+  struct Hit {
+    std::uint32_t particle = 0;
+    double radius = 0.0;
+    std::array<std::int32_t, 4> face{};
+    std::array<double, 4> shape{};
+    Vec3 normal;
+    double target = 0.0, normal_impulse = 0.0;
+    Vec3 tangential_impulse;
+    std::size_t stencil = 0;  // offset of its slots and weights
+  };
+  template <class Stencil>
+  void resolve_pair(Pair& pair, const mpm::GridStepAccess& access);
+
+  const core::Scene& scene_;
+  fem::FeSolver& fe_;
+  std::vector<Pair> pairs_;
+  // Scratch: predicted node positions, face bins, hits and their stencils.
+  std::vector<Vec3> predicted_;
+  std::vector<std::int64_t> bin_key_;
+  std::vector<std::int32_t> bin_face_;
+  std::vector<Hit> hits_;
+  std::vector<std::int64_t> slots_;
+  std::vector<double> weights_;
+};
+
+}  // namespace afemp::coupling
