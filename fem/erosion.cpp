@@ -2,7 +2,8 @@
 // strain, the material's failure strain, volume ratio, critical time step, or inversion) is
 // removed; its internal energy and the kinetic energy of its share of the node masses leave with
 // it, booked as eroded energy and written in its erosion.csv record, so the records add up to
-// the eroded energy. Node masses are then recomputed from the live elements (one source of
+// the eroded energy. The plastic work and bulk-viscous heat it had taken (part of that internal
+// energy) leave the plastic and viscous totals, which so stay the live material's. Node masses are then recomputed from the live elements (one source of
 // truth), and nodes left with no element drop out of the update, with a record of their own
 // that reports their mass and kinetic energy (already counted in their elements' records).
 // Retired elements (element_retirement.cpp) share the mass recomputation.
@@ -29,8 +30,16 @@ void FeSolver::collect_erosions(Elements& el, const char* kind) {
       const std::size_t p0 =
           batch->point_begin + (e - batch->begin) * static_cast<std::size_t>(batch->points_per_element);
       double energy = 0.0;
-      for (int g = 0; g < batch->points_per_element; ++g)
-        energy += el.point_mass[p0 + static_cast<std::size_t>(g)] * el.energy[p0 + static_cast<std::size_t>(g)];
+      for (int g = 0; g < batch->points_per_element; ++g) {
+        const std::size_t p = p0 + static_cast<std::size_t>(g);
+        energy += el.point_mass[p] * el.energy[p];
+        // Its dissipated work leaves the live totals with it (it is in its internal energy,
+        // now eroded).
+        if (!el.plastic_heat.empty()) {
+          plastic_work_ -= el.point_mass[p] * el.plastic_heat[p];
+          viscous_work_ -= el.point_mass[p] * el.viscous_heat[p];
+        }
+      }
       // The element's mass leaves its nodes (a lumped share each) at their velocity v^{n+1/2}.
       constexpr std::size_t corners = Elements::corners;
       for (std::size_t a = 0; a < corners; ++a) {

@@ -308,6 +308,16 @@ void FeSolver::build(const core::Scene& scene) {
     el.batches.push_back(batch);
   }
 
+  // What each point dissipated, where elements may erode (ElementStore::plastic_heat).
+  for (const BodySpec& body : scene.bodies) {
+    if (!body.erosion) continue;
+    ElementStore& el = body.discretisation == Discretisation::trusses
+                           ? static_cast<ElementStore&>(trusses_)
+                           : static_cast<ElementStore&>(hexes_);
+    el.plastic_heat.assign(el.stress.size(), 0.0);
+    el.viscous_heat.assign(el.stress.size(), 0.0);
+  }
+
   // Principal-strain failure reads the strain tensor of the hexahedra's points (only when a
   // body of hexahedra has such a material; particles keep their own).
   for (const BodySpec& body : scene.bodies)

@@ -69,6 +69,11 @@ struct ElementStore {
   // The strain tensor (sum of D dt) of every point, kept only when some material's failure
   // reads it (principal-strain failure); empty otherwise.
   std::vector<core::SymTensor> strain;
+  // The plastic work and the bulk-viscous heat each point has taken (per unit mass), kept only
+  // where elements may erode (empty otherwise): an eroded element takes its share out of the
+  // plastic and viscous totals, which then hold the live material's (the elastic column,
+  // internal - plastic - viscous, stays the live elements' strain energy).
+  std::vector<double> plastic_heat, viscous_heat;
   // History variables of user strength models (afemp/user_material.hpp): history_count per
   // integration point, point-major; history_count is the scene's (core::history_count).
   std::vector<double> history;

@@ -97,6 +97,10 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
     st.energy += b.q_heat;
     sums[kPlastic] += el.point_mass[p] * u.plastic_work;
     sums[kViscous] += el.point_mass[p] * b.q_heat;
+    if (!el.plastic_heat.empty()) {  // elements may erode (the same for every point)
+      el.plastic_heat[p] += u.plastic_work;
+      el.viscous_heat[p] += b.q_heat;
+    }
     el.stress[p] = st.stress;
     el.plastic_strain[p] = st.plastic_strain;
     el.temperature[p] = st.temperature;

@@ -44,6 +44,7 @@ void FeSolver::truss_batch(const ElementBatch& b, const Strength& strength, cons
                       const core::UniaxialUpdate& u, int t, double* sums) AFEMP_INLINE {
     const std::size_t p = b.point_begin + (e - b.begin);
     sums[0] += el.point_mass[p] * u.point.plastic_work;
+    if (!el.plastic_heat.empty()) el.plastic_heat[p] += u.point.plastic_work;
     el.stress[p] = st.stress;
     el.plastic_strain[p] = st.plastic_strain;
     el.temperature[p] = st.temperature;
