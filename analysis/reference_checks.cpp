@@ -44,8 +44,16 @@ void check_references(const core::Model& model, const core::Scene& scene, RunSum
 
 RunSummary run(core::Model& model, const core::Scene& scene, const core::RunOptions& options) {
   core::TimeLoop loop(model, scene, options);
-  while (!loop.finished()) loop.step(scene.run.end_time);
+  bool interrupted = false;
+  while (!loop.finished()) {
+    if (options.stop_requested && options.stop_requested()) {
+      interrupted = true;
+      break;
+    }
+    loop.step(scene.run.end_time);
+  }
   RunSummary summary = loop.finish();
+  summary.interrupted = interrupted;
   check_references(model, scene, summary);
   return summary;
 }

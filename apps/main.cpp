@@ -17,6 +17,7 @@
 #include "analysis/study.hpp"
 #include "analysis/study_file.hpp"
 #include "core/contact_warnings.hpp"
+#include "core/interrupt.hpp"
 #include "core/output/run_directory.hpp"
 #include "core/parallel.hpp"
 #include "core/time_loop.hpp"
@@ -30,6 +31,8 @@ constexpr int exit_input_error = 1;
 constexpr int exit_simulation_error = 3;
 
 constexpr int exit_check_failed = 4;  // a reference or tolerance the results miss
+// A run stopped by SIGINT or SIGTERM after writing its final row, frame and summary exits
+// with 128 + the signal's number (130, 143), as a shell reports a process the signal ended.
 
 using coupling::make_model;
 
@@ -78,10 +81,22 @@ int run(const std::string& path, std::string out_dir) {
   options.progress_seconds = progress.interval();
   std::printf("afemp run %s -> %s (%d thread(s))\n", path.c_str(), out_dir.c_str(),
               core::thread_count());
+  const core::InterruptHandler interrupts;
+  options.stop_requested = [] { return core::interrupt_signal() != 0; };
   try {
     const core::RunSummary s = analysis::run(*model, scene, options);
     progress.finish();
     apps::print_summary(stdout, scene, s);
+    if (s.interrupted) {
+      const int signal = core::interrupt_signal();
+      std::fprintf(stderr,
+                   "afemp: stopped by %s after step %ld (t = %.6g of %.6g): the final history "
+                   "row, frame and summary are written in %s; a run cannot be continued yet "
+                   "(no restart)\n",
+                   core::signal_name(signal), s.steps, s.time, scene.run.end_time,
+                   out_dir.c_str());
+      return 128 + signal;
+    }
     core::OutputPaths paths;
     std::printf("output: %s/%s.xmf (%zu frames), %s/%s\n", out_dir.c_str(),
                 paths.fields_stem.c_str(), s.field_frames, out_dir.c_str(),

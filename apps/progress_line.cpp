@@ -52,6 +52,9 @@ void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSumm
                s.min_dt, s.max_dt);
   if (!s.terminated.empty())
     std::fprintf(out, "  stopped early    %s\n", s.terminated.c_str());
+  if (s.interrupted)
+    std::fprintf(out, "  stopped early    on request at t = %.6g of %.6g\n", s.time,
+                 scene.run.end_time);
   std::fprintf(out, "  wall time        %.3f s with %d thread(s)\n", s.wall_seconds,
                core::thread_count());
   if (s.final_particles != s.particles) {

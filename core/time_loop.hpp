@@ -27,6 +27,9 @@ struct RunOptions {
   // Called about every progress_seconds of wall time (and at the end).
   std::function<void(const Progress&)> progress;
   double progress_seconds = 0.5;
+  // Asked before each step: true ends the run there, with the final history row, frame and
+  // summary written (`afemp run` asks whether SIGINT or SIGTERM came, core/interrupt.hpp).
+  std::function<bool()> stop_requested;
 };
 
 class EventFiles;

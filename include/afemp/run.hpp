@@ -59,6 +59,9 @@ struct RunSummary {
   std::size_t field_frames = 0;
   /// Set when [run] terminate stopped the run before end_time: what ended it.
   std::string terminated{};
+  /// Set when RunOptions::stop_requested ended the run before its end (a signal, for
+  /// `afemp run`): the step and time it stopped at.
+  bool interrupted = false;
   std::optional<TaylorMeasures> taylor{};  ///< when the scene states a Taylor reference
   double taylor_error = 0.0;
   /// Every [reference] check, the Taylor one included, in the scene's order.

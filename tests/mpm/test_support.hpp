@@ -43,6 +43,19 @@ inline CommandResult run_afemp(const std::string& args, const ScratchDir& dir) {
   return r;
 }
 
+// Runs a shell command line with stdout and stderr captured in files of dir; the exit code is
+// the command line's (a process a signal ended: 128 + the signal, as the shell reports it).
+inline CommandResult run_shell(const std::string& line, const ScratchDir& dir) {
+  const std::string out = dir.file("sh.stdout"), err = dir.file("sh.stderr");
+  const std::string cmd = "sh -c '" + line + "' >\"" + out + "\" 2>\"" + err + "\"";
+  const int status = std::system(cmd.c_str());
+  CommandResult r;
+  r.exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
 inline std::string vec(double x, double y, double z) {
   char buf[128];
   std::snprintf(buf, sizeof buf, "[%.17g, %.17g, %.17g]", x, y, z);
