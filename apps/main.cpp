@@ -18,6 +18,7 @@
 #include "analysis/study_file.hpp"
 #include "core/contact_warnings.hpp"
 #include "core/interrupt.hpp"
+#include "core/resource_guard.hpp"
 #include "core/output/run_directory.hpp"
 #include "core/parallel.hpp"
 #include "core/time_loop.hpp"
@@ -46,6 +47,20 @@ void refuse_deck(const std::string& path) {
                              " -o SCENE.toml` and run the scene (docs/import.md)");
 }
 
+// A step count past a billion is a unit slip far more often than a plan: say so (the scene's
+// max_steps, when set, bounds the run anyway).
+void warn_step_count(const core::Scene& scene, const core::Model& model, double dt) {
+  const double steps = scene.run.end_time / dt;
+  if (!(steps > 1e9) || scene.run.max_steps > 0) return;
+  const double points = static_cast<double>(model.particle_count() + model.element_count());
+  std::fprintf(stderr,
+               "afemp: warning: about %s steps to end_time = %g at dt = %.3g: %s point-steps, "
+               "days of computing at tens of millions a second; check end_time and the units "
+               "(mm, ms, g: 1 s is 1000), or bound the run with [run] max_steps\n",
+               core::readable_count(steps).c_str(), scene.run.end_time, dt,
+               core::readable_count(steps * points).c_str());
+}
+
 int check(const std::string& path) {
   refuse_deck(path);
   const core::Scene scene = core::read_scene(path);
@@ -57,9 +72,10 @@ int check(const std::string& path) {
               scene.run.title.c_str());
   std::fputs(model->describe().c_str(), stdout);
   const double dt = model->stable_time_step();
-  std::printf("time step: %.6g (%s), about %.0f steps to t = %g\n", dt,
+  std::printf("time step: %.6g (%s), about %s steps to t = %g\n", dt,
               scene.run.fixed_time_step > 0.0 ? "fixed" : "stable step x time_step_factor",
-              scene.run.end_time / dt, scene.run.end_time);
+              core::readable_count(scene.run.end_time / dt).c_str(), scene.run.end_time);
+  warn_step_count(scene, *model, dt);
   const double points = static_cast<double>(model->particle_count() + model->element_count());
   std::printf("memory estimate: %.1f MiB (%.0f bytes per particle or element)\n",
               static_cast<double>(model->bytes()) / (1024.0 * 1024.0),
@@ -79,6 +95,7 @@ int run(const std::string& path, std::string out_dir) {
   options.output_directory = out_dir;
   options.progress = [&](const core::Progress& pr) { progress(pr); };
   options.progress_seconds = progress.interval();
+  warn_step_count(scene, *model, model->stable_time_step());
   std::printf("afemp run %s -> %s (%d thread(s))\n", path.c_str(), out_dir.c_str(),
               core::thread_count());
   const core::InterruptHandler interrupts;

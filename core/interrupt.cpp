@@ -33,7 +33,9 @@ InterruptHandler::~InterruptHandler() {
   sigaction(SIGTERM, &previous_term, nullptr);
 }
 
-int interrupt_signal() { return received; }
+int interrupt_signal() {
+  return received;
+}
 
 const char* signal_name(int signal) {
   if (signal == SIGINT) return "SIGINT";

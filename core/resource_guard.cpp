@@ -1,0 +1,113 @@
+// Sizing a scene before it is built (core/resource_guard.hpp).
+#include "core/resource_guard.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <variant>
+
+#include "afemp/errors.hpp"
+
+namespace afemp::core {
+
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+double shape_volume(const Shape& shape) {
+  if (const auto* b = std::get_if<BoxShape>(&shape))
+    return std::abs((b->max.x - b->min.x) * (b->max.y - b->min.y) * (b->max.z - b->min.z));
+  if (const auto* c = std::get_if<CylinderShape>(&shape))
+    return pi * c->radius * c->radius * c->length;
+  if (const auto* s = std::get_if<SphereShape>(&shape))
+    return 4.0 / 3.0 * pi * s->radius * s->radius * s->radius;
+  return 0.0;
+}
+
+std::string gib(double bytes) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.3g GiB", bytes / (1024.0 * 1024.0 * 1024.0));
+  return buf;
+}
+
+}  // namespace
+
+SizeEstimate estimate_size(const Scene& scene) {
+  SizeEstimate e;
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    const BodySpec& body = scene.bodies[b];
+    double points = 0.0;
+    if (body.discretisation == Discretisation::particles) {
+      if (const auto* list = std::get_if<PointListShape>(&body.shape)) {
+        points = static_cast<double>(list->points.size());
+      } else if (scene.has_grid && scene.mpm.grid.cell > 0.0) {
+        const double spacing = scene.mpm.grid.cell / body.particles_per_cell;
+        points = shape_volume(body.shape) / (spacing * spacing * spacing);
+      }
+      e.particles += points;
+    } else if (const auto* mesh = std::get_if<MeshFileShape>(&body.shape)) {
+      points = static_cast<double>(mesh->arrays.hexahedra.size() + mesh->arrays.trusses.size());
+      e.elements += points;
+    } else if (body.discretisation == Discretisation::hexahedra) {
+      const MeshDensity& m = body.mesh;
+      if (const auto* box = std::get_if<BoxShape>(&body.shape); box && m.divisions[0] > 0)
+        points = static_cast<double>(m.divisions[0]) * m.divisions[1] * m.divisions[2];
+      else if (m.size > 0.0)
+        points = shape_volume(body.shape) / (m.size * m.size * m.size) *
+                 (m.sectors > 0 && m.sectors < 4 ? m.sectors / 4.0 : 1.0);
+      e.elements += points;
+    }
+    if (points > e.largest_points) {
+      e.largest_points = points;
+      e.largest_body = static_cast<int>(b);
+    }
+  }
+  e.bytes = (e.particles + e.elements) * SizeEstimate::bytes_per_point;
+  return e;
+}
+
+double available_memory() {
+  std::ifstream in("/proc/meminfo");
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream s(line);
+    std::string key;
+    double kib = 0.0;
+    if (s >> key >> kib && key == "MemAvailable:") return kib * 1024.0;
+  }
+  return 0.0;
+}
+
+void refuse_oversized_scene(const Scene& scene) {
+  const SizeEstimate e = estimate_size(scene);
+  const double available = available_memory();
+  if (!(available > 0.0) || e.bytes <= available || e.largest_body < 0) return;
+  const BodySpec& body = scene.bodies[static_cast<std::size_t>(e.largest_body)];
+  char buf[400];
+  std::snprintf(buf, sizeof buf,
+                "the scene would make about %s particles and %s elements (body \"%s\": %s), "
+                "at least %s of memory, and this machine has %s available; coarsen the "
+                "[grid] cell, particles_per_cell or the mesh, or use a symmetry model",
+                readable_count(e.particles).c_str(), readable_count(e.elements).c_str(),
+                body.name.c_str(), readable_count(e.largest_points).c_str(), gib(e.bytes).c_str(),
+                gib(available).c_str());
+  throw InputError(body.where, "bodies", buf);
+}
+
+std::string readable_count(double count) {
+  char buf[64];
+  if (!std::isfinite(count)) return "more than 1e+308";
+  if (!(count < 1e9)) {
+    std::snprintf(buf, sizeof buf, "%.1e", count);
+    return buf;
+  }
+  std::snprintf(buf, sizeof buf, "%.0f", std::round(count));
+  std::string digits = buf, out;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+}  // namespace afemp::core

@@ -1,0 +1,34 @@
+// Sizes a scene before anything is allocated: the particles and elements its bodies will make,
+// estimated from their shapes (a shape's volume over the particle spacing or element size
+// cubed; lists and meshes given as arrays by their counts; mesh files are left to their
+// reader, which holds them in memory once), the memory they will take, and what this machine
+// has available (Linux's MemAvailable). make_model refuses a scene that cannot fit before
+// building it, naming the body that makes the most points and both figures.
+#pragma once
+
+#include <string>
+
+#include "core/scene.hpp"
+
+namespace afemp::core {
+
+struct SizeEstimate {
+  double particles = 0.0, elements = 0.0;
+  double bytes = 0.0;     // at bytes_per_point each
+  int largest_body = -1;  // the body that makes the most points
+  double largest_points = 0.0;
+  // The lower of the bytes a particle and an element take in the solvers, measured by `afemp
+  // check` on the examples (319-380); the estimate is a floor, so a refusal is certain.
+  static constexpr double bytes_per_point = 300.0;
+};
+
+SizeEstimate estimate_size(const Scene& scene);
+// MemAvailable from /proc/meminfo in bytes, or 0 where it cannot be read.
+double available_memory();
+// Throws InputError (at the largest body's line, key 'bodies') when the estimate exceeds the
+// available memory, with both figures.
+void refuse_oversized_scene(const Scene& scene);
+// A step count as a person reads it: "12,345" below 1e9, "1.0e+300" above.
+std::string readable_count(double count);
+
+}  // namespace afemp::core

@@ -1,0 +1,78 @@
+// Sizing a scene before it is built (core/resource_guard.hpp).
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "afemp/errors.hpp"
+#include "core/resource_guard.hpp"
+#include "core/scene.hpp"
+#include "coupling/make_model.hpp"
+#include "scene_errors.hpp"
+
+namespace afemp::core {
+namespace {
+
+// The Taylor bar (a quarter cylinder, radius 3.8, length 25.4) with cells of `cell` and n
+// particles per cell per direction.
+std::string taylor(double cell, int n) {
+  return "[run]\nend_time = 0.072\n[grid]\ncell = " + std::to_string(cell) +
+         "\nmin = [0, 0, 0]\nmax = [10, 10, 26]\n[materials.copper]\ndensity = 8.93e-3\n"
+         "E = 117e3\nnu = 0.35\n[[bodies]]\nname = \"bar\"\nmaterial = \"copper\"\n"
+         "shape = { cylinder = { base = [0, 0, 0], axis = [0, 0, 1], radius = 3.8, length = "
+         "25.4 } }\nparticles_per_cell = " +
+         std::to_string(n) + "\n";
+}
+
+// Reference: the estimate is the shape's volume over the particle spacing cubed: pi 3.8^2 25.4
+// / (0.5 / 2)^3 = 73,774 for the full cylinder the shape describes (the generator keeps what
+// lies inside the grid, a quarter of it: 18,666 in the V2 example), within 1e-12; a box mesh
+// by its divisions exactly.
+TEST(ResourceGuard, TheEstimateIsTheShapeVolumeOverTheSpacingCubed) {
+  const Scene s = parse_scene(taylor(0.5, 2), "taylor.toml");
+  const SizeEstimate e = estimate_size(s);
+  const double expected = 3.14159265358979323846 * 3.8 * 3.8 * 25.4 / (0.25 * 0.25 * 0.25);
+  EXPECT_NEAR(e.particles, expected, 1e-12 * expected);
+  EXPECT_EQ(e.elements, 0.0);
+  EXPECT_EQ(e.largest_body, 0);
+  const Scene m = parse_scene(
+      "[run]\nend_time = 1\n[materials.steel]\ndensity = 7.85e-3\nE = 2e5\nnu = 0.3\n"
+      "[[bodies]]\nname = \"block\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
+      "shape = { box = { min = [0, 0, 0], max = [1, 1, 1] } }\nmesh = { divisions = [3, 4, 5] }\n",
+      "block.toml");
+  EXPECT_EQ(estimate_size(m).elements, 60.0);
+}
+
+// Reference: the scene of the issue (cells of 0.05 mm, 8 particles per cell per direction:
+// about 4.7e9 particles, over 1.3 TiB) is refused before anything is allocated, at the body's
+// line, naming both memory figures; it takes no time (no particle is made).
+TEST(ResourceGuard, AScenePastTheMachinesMemoryIsRefusedWithBothFigures) {
+  ASSERT_GT(available_memory(), 0.0);
+  ASSERT_LT(available_memory(), 1e12);  // this test needs a machine with less than 1 TB free
+  const std::string text = taylor(0.05, 8);
+  const Scene s = parse_scene(text, "taylor.toml");
+  try {
+    coupling::make_model(s);
+    ADD_FAILURE() << "make_model built a scene of 4.7e9 particles";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    const std::string at =
+        "taylor.toml:" + std::to_string(afemp::test::line_of(text, "[[bodies]]")) +
+        ": key 'bodies'";
+    EXPECT_NE(what.find(at), std::string::npos) << what;
+    EXPECT_NE(what.find("about 4.7e+09 particles"), std::string::npos) << what;
+    EXPECT_NE(what.find("GiB of memory"), std::string::npos) << what;
+    EXPECT_NE(what.find("GiB available"), std::string::npos) << what;
+  }
+}
+
+TEST(ResourceGuard, CountsReadAsAPersonWritesThem) {
+  EXPECT_EQ(readable_count(0.0), "0");
+  EXPECT_EQ(readable_count(999.0), "999");
+  EXPECT_EQ(readable_count(12345.4), "12,345");
+  EXPECT_EQ(readable_count(123456789.0), "123,456,789");
+  EXPECT_EQ(readable_count(3.2e304), "3.2e+304");
+  EXPECT_EQ(readable_count(1e308 * 10.0), "more than 1e+308");
+}
+
+}  // namespace
+}  // namespace afemp::core
