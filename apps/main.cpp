@@ -18,6 +18,7 @@
 #include "analysis/study_file.hpp"
 #include "core/contact_warnings.hpp"
 #include "core/interrupt.hpp"
+#include "core/plausibility.hpp"
 #include "core/resource_guard.hpp"
 #include "core/output/run_directory.hpp"
 #include "core/parallel.hpp"
@@ -68,6 +69,8 @@ int check(const std::string& path) {
   model->resolve_probes(scene.probes);  // a probe naming a node the mesh lacks fails here too
   for (const std::string& w : core::contact_warnings(scene, *model))
     std::fprintf(stderr, "afemp: warning: %s\n", w.c_str());
+  for (const core::SceneWarning& w : core::plausibility_warnings(scene))
+    std::fprintf(stderr, "afemp: warning: %s\n", w.text().c_str());
   std::printf("scene %s%s%s\n", path.c_str(), scene.run.title.empty() ? "" : ": ",
               scene.run.title.c_str());
   std::fputs(model->describe().c_str(), stdout);
@@ -90,6 +93,8 @@ int run(const std::string& path, std::string out_dir) {
   const std::unique_ptr<core::Model> model = make_model(scene);
   for (const std::string& w : core::contact_warnings(scene, *model))
     std::fprintf(stderr, "afemp: warning: %s\n", w.c_str());
+  for (const core::SceneWarning& w : core::plausibility_warnings(scene))
+    std::fprintf(stderr, "afemp: warning: %s\n", w.text().c_str());
   apps::ProgressReporter progress(stdout);
   core::RunOptions options;
   options.output_directory = out_dir;

@@ -365,7 +365,8 @@ namespace {
 
 void read_run(TableReader& r, RunSettings& run) {
   r.known({"title", "end_time", "time_step_factor", "element_time_step_factor", "time_step", "max_steps", "output_every",
-           "history_every", "energy_error_limit", "output_strain", "gravity", "terminate"});
+           "history_every", "energy_error_limit", "output_strain", "gravity", "terminate",
+           "units", "quiet"});
   r.check_unknown();
   run.title = r.string("title", "");
   run.end_time = r.required_number("end_time", Range::positive());
@@ -378,6 +379,11 @@ void read_run(TableReader& r, RunSettings& run) {
   run.energy_error_limit = r.number("energy_error_limit", 1.0, Range::non_negative());
   run.output_strain = r.boolean("output_strain", false);
   run.gravity = r.vec3("gravity", Vec3{});
+  if (r.has("units")) {
+    static const std::vector<std::string> systems{"mm-ms-g", "SI"};
+    run.units = systems[static_cast<std::size_t>(r.choice("units", {"mm-ms-g", "SI"}, 0))];
+  }
+  if (r.has("quiet")) run.quiet = r.strings("quiet");
 }
 
 void read_grid(TableReader& r, GridSettings& grid) {
@@ -1482,6 +1488,7 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
     TableReader grid(*t, "grid", path);
     read_grid(grid, scene.mpm.grid);
     scene.has_grid = true;
+    scene.grid_where = grid.where("max");
   }
   if (const toml::table* t = r.optional_table("mpm")) {
     TableReader mpm(*t, "mpm", path);
@@ -1507,6 +1514,7 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
     TableReader mr(*t, key, path);
     material_index[std::string(k->str())] = static_cast<int>(scene.materials.size());
     scene.materials.push_back(read_material(mr, std::string(k->str())));
+    scene.material_where.push_back(mr.where());
   }
   if (scene.materials.empty())
     throw InputError(r.where("materials"), "materials", "define at least one material");

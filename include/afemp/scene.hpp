@@ -70,6 +70,11 @@ struct RunSettings {
     double travel = 0.0;
   };
   std::optional<Termination> terminate{};
+  /// The unit system the scene's numbers are in, for plausibility warnings
+  /// (core/plausibility.hpp): "mm-ms-g" (mm, ms, g, N, MPa), "SI", or empty (none checked).
+  std::string units{};
+  /// Keys whose plausibility warnings are silenced (dotted, as the warning names them).
+  std::vector<std::string> quiet{};
 };
 
 /// The [grid] section: the background grid of cubic cells and its face conditions.
@@ -370,6 +375,9 @@ struct Scene {
   bool has_grid = false;        ///< a [grid] section: needed by particle bodies
   MpmSettings mpm{};
   std::vector<Material> materials{};
+  /// Where each [materials.NAME] table is (messages; empty for scenes built in code).
+  std::vector<SourceLocation> material_where{};
+  SourceLocation grid_where{};  ///< the [grid] table
   std::vector<BodySpec> bodies{};
   std::vector<ConstraintSpec> constraints{};
   std::vector<AbsorbingSpec> absorbing{};  ///< [[absorbing]]: non-reflecting mesh boundaries

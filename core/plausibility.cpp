@@ -1,0 +1,176 @@
+// Plausibility warnings (core/plausibility.hpp).
+#include "core/plausibility.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <variant>
+
+namespace afemp::core {
+
+namespace {
+
+std::string num(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", x);
+  return buf;
+}
+
+// Real materials' densities (aerogels and gases to osmium) and wave speeds in each unit system.
+struct UnitRanges {
+  const char* name;
+  double density_low, density_high;
+  const char* density_unit;
+  const char* steel_density;
+};
+constexpr UnitRanges mm_ms_g{"mm-ms-g", 1e-7, 3e-2, "g/mm^3", "7.85e-3"};
+constexpr UnitRanges si{"SI", 0.1, 3e4, "kg/m^3", "7850"};
+constexpr double wave_low = 100.0, wave_high = 2e4;  // m/s (= mm/ms)
+
+// Whether a constraint holds the normal component of the nodes on the plane through `point`
+// with axis-aligned normal `axis` (a plane or box selector through it, or the body's named
+// cut set).
+bool holds_plane(const Scene& scene, int body, int axis, double coordinate, const char* set) {
+  for (const ConstraintSpec& c : scene.constraints) {
+    if (c.body >= 0 && c.body != body) continue;
+    if (!c.components[static_cast<std::size_t>(axis)]) continue;
+    const NodeSelector& s = c.nodes;
+    switch (s.kind) {
+      case NodeSelector::Kind::plane: {
+        const double n = std::abs(s.normal[axis]);
+        if (n > 1.0 - 1e-9 && std::abs(s.point[axis] - coordinate) <= s.tolerance + 1e-9)
+          return true;
+        break;
+      }
+      case NodeSelector::Kind::box:
+        if (s.min[axis] <= coordinate && coordinate <= s.max[axis]) return true;
+        break;
+      case NodeSelector::Kind::set:
+        if (s.set == set) return true;
+        break;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+std::string SceneWarning::text() const {
+  return where.file + ":" + std::to_string(where.line) + ": key '" + key + "': " + message;
+}
+
+std::vector<SceneWarning> plausibility_warnings(const Scene& scene) {
+  std::vector<SceneWarning> out;
+  auto warn = [&](const SourceLocation& where, const std::string& key, const std::string& message) {
+    if (std::find(scene.run.quiet.begin(), scene.run.quiet.end(), key) != scene.run.quiet.end())
+      return;
+    out.push_back({where, key, message + " (silence with [run] quiet = [\"" + key + "\"])"});
+  };
+
+  // Materials, from the declared units.
+  const UnitRanges* u = scene.run.units == "mm-ms-g" ? &mm_ms_g
+                        : scene.run.units == "SI"    ? &si
+                                                     : nullptr;
+  for (std::size_t m = 0; u && m < scene.materials.size(); ++m) {
+    const Material& mat = scene.materials[m];
+    const std::string key = "materials." + mat.name;
+    const SourceLocation at =
+        m < scene.material_where.size() ? scene.material_where[m] : SourceLocation{scene.path, 0};
+    if (mat.density < u->density_low || mat.density > u->density_high)
+      warn(at, key + ".density",
+           "density " + num(mat.density) + " lies outside real materials' " + num(u->density_low) +
+               " .. " + num(u->density_high) + " " + u->density_unit + " in " + u->name +
+               " units (steel: " + u->steel_density + ")");
+    const double c =
+        std::sqrt((mat.bulk_modulus() + 4.0 / 3.0 * mat.shear_modulus()) / mat.density);
+    if (std::isfinite(c) && (c < wave_low || c > wave_high))
+      warn(at, key + ".E",
+           "its elastic wave speed sqrt((K + 4G/3) / rho) is " + num(c) + " m/s, outside the " +
+               num(wave_low) + " .. " + num(wave_high) + " m/s of real solids (" + u->name +
+               " units: a modulus or the density in another unit?)");
+    double yield = 0.0;
+    if (const auto* j2 = std::get_if<J2Plasticity>(&mat.strength)) yield = j2->yield_stress;
+    if (const auto* jc = std::get_if<JohnsonCook>(&mat.strength)) yield = jc->A;
+    const double e_mod = 9.0 * mat.bulk_modulus() * mat.shear_modulus() /
+                         (3.0 * mat.bulk_modulus() + mat.shear_modulus());
+    if (yield > 0.1 * e_mod)
+      warn(at, key + ".strength",
+           "a yield stress of " + num(yield) + " is above E / 10 = " + num(0.1 * e_mod) +
+               " (metals yield near E / 300 to E / 100: E and the yield stress in different "
+               "units?)");
+    double strain = mat.failure_strain;
+    const char* which = "failure_strain";
+    if (const auto* f = std::get_if<PlasticStrainFailure>(&mat.failure)) {
+      strain = f->strain;
+      which = "failure";
+    }
+    if (const auto* f = std::get_if<PrincipalStrainFailure>(&mat.failure)) {
+      strain = f->strain;
+      which = "failure";
+    }
+    if (mat.failure_strain > 0.0) {  // given as failure_strain (it acts as the model above)
+      strain = mat.failure_strain;
+      which = "failure_strain";
+    }
+    if (strain > 10.0)
+      warn(at, key + "." + which,
+           "a failure strain of " + num(strain) + " is above 10 (a strain, not a percentage)");
+  }
+  for (const BodySpec& body : scene.bodies)
+    if (body.erosion && body.erosion->plastic_strain > 10.0)
+      warn(body.where, "bodies." + body.name + ".erosion.plastic_strain",
+           "an erosion plastic strain of " + num(body.erosion->plastic_strain) +
+               " is above 10 (a strain, not a percentage)");
+
+  // The grid: a whole number of cells along each axis (the grid is extended to the next one).
+  if (scene.has_grid) {
+    const GridSettings& g = scene.mpm.grid;
+    for (int a = 0; a < 3; ++a) {
+      const double cells = (g.max[a] - g.min[a]) / g.cell;
+      if (std::abs(cells - std::round(cells)) > 1e-9 * std::max(1.0, cells)) {
+        const char* axis = a == 0 ? "x" : a == 1 ? "y" : "z";
+        warn(scene.grid_where, "grid.max",
+             std::string("the grid spans ") + num(g.max[a] - g.min[a]) + " along " + axis + ", " +
+                 num(cells) + " cells of " + num(g.cell) + ": it is extended to " +
+                 num(std::ceil(cells)) + " cells (max " + axis + " = " +
+                 num(g.min[a] + std::ceil(cells) * g.cell) + ")");
+      }
+    }
+  }
+
+  // Quarter and half meshes (generated cylinders along z, spheres) need their cut planes held.
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    const BodySpec& body = scene.bodies[b];
+    if (body.discretisation != Discretisation::hexahedra || body.rigid) continue;
+    const int sectors = body.mesh.sectors;
+    if (sectors != 1 && sectors != 2) continue;
+    Vec3 origin;
+    if (const auto* c = std::get_if<CylinderShape>(&body.shape)) {
+      if (std::abs(std::abs(c->axis.z) - 1.0) > 1e-9) continue;  // only along z is checked
+      origin = c->base;
+    } else if (const auto* s = std::get_if<SphereShape>(&body.shape)) {
+      origin = s->centre;
+    } else {
+      continue;
+    }
+    // Cut planes: y = origin (sectors 1 and 2), x = origin (sectors 1).
+    for (int axis : {1, 0}) {
+      if (axis == 0 && sectors != 1) continue;
+      const char* set = axis == 1 ? "cut_0" : "cut_1";
+      if (holds_plane(scene, static_cast<int>(b), axis, origin[axis], set)) continue;
+      const char* name = axis == 0 ? "x" : "y";
+      warn(body.where, "bodies." + body.name + ".mesh.sectors",
+           std::string("a ") + (sectors == 1 ? "quarter" : "half") +
+               " mesh (sectors = " + std::to_string(sectors) +
+               ") with no [[constraints]] holding its nodes on the cut "
+               "plane " +
+               name + " = " + num(origin[axis]) + " along " + name +
+               ": it is free to drift off the symmetry plane; add nodes = { plane = { point = "
+               "[...], normal = [...] } } with fixed = [\"" +
+               name + "\"]");
+    }
+  }
+  return out;
+}
+
+}  // namespace afemp::core
