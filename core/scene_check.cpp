@@ -64,6 +64,11 @@ void check_run(const Checker& c, const RunSettings& run) {
   if (run.max_steps < 0) c.fail(w, "run.max_steps", "must be >= 0");
   c.non_negative(w, "run.output_every", run.output_every);
   if (run.history_every < 1) c.fail(w, "run.history_every", "must be >= 1");
+  c.non_negative(w, "run.history_interval", run.history_interval);
+  for (std::size_t k = 0; k < run.output_times.size(); ++k)
+    if (!(run.output_times[k] > (k > 0 ? run.output_times[k - 1] : 0.0)) ||
+        run.output_times[k] > run.end_time)
+      c.fail(w, "run.output_times", "times must be positive, increasing and at most end_time");
   c.non_negative(w, "run.energy_error_limit", run.energy_error_limit);
   c.finite(w, "run.gravity", run.gravity);
 }

@@ -366,7 +366,7 @@ namespace {
 void read_run(TableReader& r, RunSettings& run) {
   r.known({"title", "end_time", "time_step_factor", "element_time_step_factor", "time_step", "max_steps", "output_every",
            "history_every", "energy_error_limit", "output_strain", "gravity", "terminate",
-           "units", "quiet"});
+           "units", "quiet", "history_interval", "output_times"});
   r.check_unknown();
   run.title = r.string("title", "");
   run.end_time = r.required_number("end_time", Range::positive());
@@ -376,6 +376,22 @@ void read_run(TableReader& r, RunSettings& run) {
   run.max_steps = r.integer("max_steps", 0, 0, std::numeric_limits<long>::max());
   run.output_every = r.number("output_every", 0.0, Range::non_negative());
   run.history_every = r.integer("history_every", 10, 1, std::numeric_limits<long>::max());
+  run.history_interval = r.number("history_interval", 0.0, Range::positive());
+  if (r.has("history_interval") && r.has("history_every"))
+    r.fail("history_interval", "give history_every (steps) or history_interval (simulated "
+                               "time) between history rows, not both");
+  if (r.has("output_times")) {
+    run.output_times = r.numbers("output_times", Range::positive());
+    for (std::size_t k = 0; k < run.output_times.size(); ++k) {
+      if (k > 0 && !(run.output_times[k] > run.output_times[k - 1]))
+        r.fail("output_times", "the times must increase; " + format_number(run.output_times[k]) +
+                                   " follows " + format_number(run.output_times[k - 1]));
+      if (run.output_times[k] > run.end_time)
+        r.fail("output_times", "time " + format_number(run.output_times[k]) +
+                                   " lies beyond end_time = " + format_number(run.end_time) +
+                                   " (the final state is always written)");
+    }
+  }
   run.energy_error_limit = r.number("energy_error_limit", 1.0, Range::non_negative());
   run.output_strain = r.boolean("output_strain", false);
   run.gravity = r.vec3("gravity", Vec3{});

@@ -130,6 +130,7 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
   probes_->sample(model_, true);
   if (frames_) model_.write_fields(*frames_);
   next_output_ = scene_.run.output_every > 0.0 ? scene_.run.output_every : 1e300;
+  next_history_ = scene_.run.history_interval;
   next_progress_ = options_.progress_seconds;
 }
 
@@ -196,13 +197,27 @@ void TimeLoop::step(double until) {
     throw;
   }
   const long k = model_.step_count();
-  if (k % rs.history_every == 0) last_error_ = record(dt_);
-  probes_->sample(model_, k % rs.history_every == 0);
-  if (frames_ && model_.time() >= next_output_ * (1.0 - 1e-9) &&
-      model_.time() < end * (1.0 - 1e-12)) {
-    model_.write_fields(*frames_);
-    next_output_ += rs.output_every;
+  const double t = model_.time();
+  // A history row every history_every steps, or at the first step end at or past each multiple
+  // of history_interval.
+  bool row = k % rs.history_every == 0;
+  if (rs.history_interval > 0.0) {
+    row = t >= next_history_ * (1.0 - 1e-9);
+    while (next_history_ <= t * (1.0 + 1e-9)) next_history_ += rs.history_interval;
   }
+  last_step_recorded_ = row;
+  if (row) last_error_ = record(dt_);
+  probes_->sample(model_, row);
+  // Frames every output_every and at each of output_times (the first step end at or past it;
+  // one frame when both fall due); the final state is written by finish().
+  bool frame = t >= next_output_ * (1.0 - 1e-9);
+  if (frame) next_output_ += rs.output_every;
+  while (next_listed_ < rs.output_times.size() &&
+         t >= rs.output_times[next_listed_] * (1.0 - 1e-9)) {
+    frame = true;
+    ++next_listed_;
+  }
+  if (frames_ && frame && t < end * (1.0 - 1e-12)) model_.write_fields(*frames_);
   if (options_.progress && elapsed() >= next_progress_) {
     const Energies e = model_.energies();
     options_.progress({k, model_.time(), dt_, end, elapsed(),
@@ -213,7 +228,7 @@ void TimeLoop::step(double until) {
 
 RunSummary TimeLoop::finish() {
   const RunSettings& rs = scene_.run;
-  if (model_.step_count() % rs.history_every != 0) last_error_ = record(dt_);
+  if (!last_step_recorded_) last_error_ = record(dt_);
   probes_->sample(model_, false, true);
   sum_.probes = probes_->take();
   if (frames_) model_.write_fields(*frames_);  // the final state, always

@@ -77,6 +77,9 @@ class TimeLoop {
   int rows_beyond_ = 0;  // consecutive history rows with the energy balance beyond its limit
   double dt_ = 0.0;
   double next_output_ = 0.0, next_progress_ = 0.0, last_error_ = 0.0;
+  double next_history_ = 0.0;      // [run] history_interval: the next row's time
+  std::size_t next_listed_ = 0;    // [run] output_times: the next listed frame
+  bool last_step_recorded_ = true;  // the last step wrote a history row (the start did)
 };
 
 }  // namespace afemp::core

@@ -58,6 +58,12 @@ struct RunSettings {
   long max_steps = 0;              ///< > 0: stop after this many steps
   double output_every = 0.0;       ///< simulated time between field outputs; 0: final state only
   long history_every = 10;         ///< steps between history rows
+  /// > 0: simulated time between history rows instead (a row at the first step end at or past
+  /// each multiple); 0: history_every steps.
+  double history_interval = 0.0;
+  /// Times of field frames (increasing, in (0, end_time]), besides output_every's: a frame at
+  /// the first step end at or past each.
+  std::vector<double> output_times{};
   /// > 0: stop the run as unstable once |energy-balance error| exceeds this at a history row
   /// (energy created or destroyed beyond any physical account); 0: no such guard.
   double energy_error_limit = 1.0;
