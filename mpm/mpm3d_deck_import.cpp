@@ -421,6 +421,24 @@ class Mpm3dImport {
     return id;
   }
 
+  // A particle set's size before it is made (the lattice it scans, an upper bound): far past
+  // the nbmp the deck declares (MPM3D allocates that many; the exact count is checked once all
+  // are made), or past 1e8 where it declares none, it is refused. Found by fuzzing: a block of
+  // 4294967296 x 4 x 2 took minutes and then all the memory.
+  void expect_particles(double count) {
+    double made = 0.0;
+    for (const Body& b : bodies_) made += static_cast<double>(b.points.size());
+    const double limit = nbmp_ > 0 ? 4.0 * static_cast<double>(nbmp_) + 1e4 : 1e8;
+    if (!(count >= 0.0) || made + count > limit)
+      throw core::InputError(
+          words_.at(), key_,
+          "this particle set scans " + std::to_string(static_cast<long long>(count)) +
+              " lattice sites; with the " + std::to_string(static_cast<long long>(made)) +
+              " particles before it that is far more than " +
+              (nbmp_ > 0 ? "nbmp = " + std::to_string(nbmp_) + " declares"
+                         : std::string("a deck without nbmp may make (1e8)")));
+  }
+
   Body& new_body(long component, long material) {
     Body& b = bodies_.emplace_back();
     b.component = component;
@@ -441,6 +459,7 @@ class Mpm3dImport {
     const long component = words_.integer(key_, "the component number");
     if (option == "poin") {
       const long count = words_.integer(key_, "the number of particles");
+      expect_particles(static_cast<double>(count));
       Body* body = nullptr;
       for (long p = 0; p < count; ++p) {
         words_.integer(key_, "a particle id");
@@ -472,6 +491,10 @@ class Mpm3dImport {
     if (option == "bloc" || option == "blod") {
       const long nx = words_.integer(key_, "nx"), ny = words_.integer(key_, "ny"),
                  nz = words_.integer(key_, "nz");
+      expect_particles(nx < 0 || ny < 0 || nz < 0
+                           ? -1.0
+                           : static_cast<double>(nx) * static_cast<double>(ny) *
+                                 static_cast<double>(nz));
       core::Vec3 hole{};
       double r2 = -1.0;
       if (option == "blod") {
@@ -490,7 +513,13 @@ class Mpm3dImport {
       return;
     }
     // sphere and cicl (a disc one particle thick): nR spacings of radius about the origin.
-    const long n = static_cast<long>(words_.real(key_, "the radius in spacings"));
+    const double radius = words_.real(key_, "the radius in spacings");
+    // The lattice it scans: (2n)^3, (2n)^2 for a disc.
+    const double side = 2.0 * std::floor(std::abs(radius));
+    expect_particles(!std::isfinite(radius) ? -1.0
+                     : option == "sphe"     ? side * side * side
+                                            : side * side);
+    const long n = static_cast<long>(radius);
     const double r2 = (n * dp) * (n * dp);
     for (long ix = 1 - n; ix <= n; ++ix)
       for (long iy = 1 - n; iy <= n; ++iy)
