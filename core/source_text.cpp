@@ -5,6 +5,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 
 namespace afemp::core {
 
@@ -87,6 +88,15 @@ double to_real(std::string_view field, const SourceLocation& at, const std::stri
   if (s.empty() || ec != std::errc() || end != s.data() + s.size() || !std::isfinite(v))
     throw InputError(at, key, not_a_number(field, "a finite number", what));
   return v;
+}
+
+std::string format_count(double count) {
+  char buf[48];
+  if (std::abs(count) < 1e15)
+    std::snprintf(buf, sizeof buf, "%.0f", count);
+  else
+    std::snprintf(buf, sizeof buf, "%.3g", count);
+  return buf;
 }
 
 }  // namespace afemp::core

@@ -38,5 +38,7 @@ std::int64_t to_integer(std::string_view field, const SourceLocation& at, const 
                         const std::string& what);
 double to_real(std::string_view field, const SourceLocation& at, const std::string& key,
                const std::string& what);
+// A count for a message: its digits below 1e15, else "%.3g" (any double, NaN and inf too).
+std::string format_count(double count);
 
 }  // namespace afemp::core

@@ -247,14 +247,15 @@ class AbaqusReader {
         // Every member names a node or element of this file, each a line of its own: a range
         // of far more labels than that is a typing slip (found by fuzzing: 101 .. 4294967296
         // took minutes and then all the memory).
-        const double count =
-            std::floor(static_cast<double>(last - first) / static_cast<double>(step)) + 1.0;
+        const double count = std::floor((static_cast<double>(last) - static_cast<double>(first)) /
+                                        static_cast<double>(step)) +
+                             1.0;
         const double most = std::max(1e6, 8.0 * static_cast<double>(src_.size()));
         if (count > most)
           throw core::InputError(at(d.index), key,
                                  "GENERATE " + std::to_string(first) + " .. " +
                                      std::to_string(last) + " step " + std::to_string(step) +
-                                     " lists " + std::to_string(static_cast<long long>(count)) +
+                                     " lists " + core::format_count(count) +
                                      " labels, more than this file of " +
                                      std::to_string(src_.size()) + " lines can define");
         const auto n = static_cast<std::int64_t>(count);

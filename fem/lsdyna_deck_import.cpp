@@ -563,12 +563,14 @@ class LsDynaImport {
       materials += "\n[materials." + material_name(key.first, key.second) + "]  # " +
                    materials_.at(key.first).keyword + "\n" + table;
     }
-    for (const auto& [mid, m] : materials_)
+    for (const auto& entry : materials_) {
+      const std::int64_t mid = entry.first;  // (a structured binding: clang 14 cannot capture it)
       if (std::none_of(written.begin(), written.end(),
                        [&](const auto& w) { return w.first == mid; }))
-        notes_.push_back({m.at, m.keyword,
+        notes_.push_back({entry.second.at, entry.second.keyword,
                           "material " + std::to_string(mid) + " is used by no part with elements",
                           false});
+    }
     s += materials;
 
     const std::filesystem::path scene_dir = std::filesystem::absolute(scene_path_).parent_path();

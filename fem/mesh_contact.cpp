@@ -313,7 +313,8 @@ void find_contacts(MeshContact& c, const FeNodes& nodes, const HexElements& hexe
         }
       });
     for (auto& h : c.thread_hits) h.clear();
-    const auto [nx, ny, nz] = pass.bin_count;
+    const std::int64_t nx = pass.bin_count[0],
+                       ny = pass.bin_count[1];  // (clang 14 cannot capture bindings)
     core::parallel_chunks(pass.slaves.size(), [&](std::size_t begin, std::size_t end, int t) {
       std::vector<ContactHit>& hits = c.thread_hits[static_cast<std::size_t>(t)];
       for (std::size_t k = begin; k < end; ++k) {

@@ -423,20 +423,21 @@ class Mpm3dImport {
 
   // A particle set's size before it is made (the lattice it scans, an upper bound): far past
   // the nbmp the deck declares (MPM3D allocates that many; the exact count is checked once all
-  // are made), or past 1e8 where it declares none, it is refused. Found by fuzzing: a block of
-  // 4294967296 x 4 x 2 took minutes and then all the memory.
+  // are made), or past 2e7 in any case (nbmp itself may be absurd), it is refused. Found by
+  // fuzzing: a block of 4294967296 x 4 x 2 took minutes and then all the memory.
   void expect_particles(double count) {
     double made = 0.0;
     for (const Body& b : bodies_) made += static_cast<double>(b.points.size());
-    const double limit = nbmp_ > 0 ? 4.0 * static_cast<double>(nbmp_) + 1e4 : 1e8;
+    const double limit = std::min(nbmp_ > 0 ? 4.0 * static_cast<double>(nbmp_) + 1e4 : 2e7, 2e7);
     if (!(count >= 0.0) || made + count > limit)
       throw core::InputError(
           words_.at(), key_,
-          "this particle set scans " + std::to_string(static_cast<long long>(count)) +
-              " lattice sites; with the " + std::to_string(static_cast<long long>(made)) +
-              " particles before it that is far more than " +
-              (nbmp_ > 0 ? "nbmp = " + std::to_string(nbmp_) + " declares"
-                         : std::string("a deck without nbmp may make (1e8)")));
+          "this particle set scans " + core::format_count(count) + " lattice sites; with the " +
+              core::format_count(made) + " particles before it that is far more than " +
+              (nbmp_ > 0 && 4.0 * static_cast<double>(nbmp_) + 1e4 < 2e7
+                   ? "nbmp = " + std::to_string(nbmp_) + " declares"
+                   : std::string("an imported deck may make (2e7; its point list would take "
+                                 "gigabytes)")));
   }
 
   Body& new_body(long component, long material) {
@@ -491,10 +492,14 @@ class Mpm3dImport {
     if (option == "bloc" || option == "blod") {
       const long nx = words_.integer(key_, "nx"), ny = words_.integer(key_, "ny"),
                  nz = words_.integer(key_, "nz");
-      expect_particles(nx < 0 || ny < 0 || nz < 0
-                           ? -1.0
-                           : static_cast<double>(nx) * static_cast<double>(ny) *
-                                 static_cast<double>(nz));
+      // Each count at least 1 (fuzzing found 0 x 4 x 2e18: no particle, and the outer loops
+      // ran for ever).
+      if (nx < 1 || ny < 1 || nz < 1)
+        throw core::InputError(words_.at(), key_,
+                               "a block needs nx, ny and nz of at least 1; got " +
+                                   std::to_string(nx) + " x " + std::to_string(ny) + " x " +
+                                   std::to_string(nz));
+      expect_particles(static_cast<double>(nx) * static_cast<double>(ny) * static_cast<double>(nz));
       core::Vec3 hole{};
       double r2 = -1.0;
       if (option == "blod") {

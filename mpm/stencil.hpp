@@ -51,8 +51,8 @@ struct GimpStencil {
   GimpStencil(const core::BackgroundGrid& g, const Particles& p, std::size_t i, const Vec3& x) {
     weights = g.gimp_weights(x, p.half_width[i]);
     const auto& b = weights.base;
-    key = (static_cast<std::int64_t>(b[2] + 1) << 42) | (static_cast<std::int64_t>(b[1] + 1) << 21) |
-          static_cast<std::int64_t>(b[0] + 1);
+    key = (static_cast<std::int64_t>(b[2] + 1) << 42) |
+          (static_cast<std::int64_t>(b[1] + 1) << 21) | static_cast<std::int64_t>(b[0] + 1);
   }
   void slots(const core::BackgroundGrid& g, Slots& out) const {
     g.stencil_slots<3>(weights.base, out);
@@ -93,7 +93,8 @@ void for_each_particle_stencil(const core::BackgroundGrid& g, Particles& p, F&& 
 template <int Colours, class Body>
 void sweep_layers(const std::vector<std::int64_t>& offsets, Body&& body) {
   const std::int64_t layers = static_cast<std::int64_t>(offsets.size()) - 1;
-  const bool threads = core::worth_threads(static_cast<std::size_t>(offsets.back()));
+  [[maybe_unused]] const bool threads =  // read by the pragma (unused without OpenMP)
+      core::worth_threads(static_cast<std::size_t>(offsets.back()));
   for (int colour = 0; colour < Colours; ++colour) {
 #pragma omp parallel for schedule(dynamic, 1) if (threads)
     for (std::int64_t l = colour; l < layers; l += Colours)
