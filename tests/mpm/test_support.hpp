@@ -30,11 +30,11 @@ struct CommandResult {
   std::string out, err;
 };
 
-// Runs `AFEMP_BINARY args` through the shell with stdout and stderr captured in files of dir.
-inline CommandResult run_afemp(const std::string& args, const ScratchDir& dir) {
+// Runs `command` (shell syntax) with stdout and stderr captured in files of dir; the exit code
+// is the shell's (a process a signal ended: 128 + the signal).
+inline CommandResult run_captured(const std::string& command, const ScratchDir& dir) {
   const std::string out = dir.file("cmd.stdout"), err = dir.file("cmd.stderr");
-  const std::string cmd = std::string("\"") + AFEMP_BINARY + "\" " + args + " >\"" + out +
-                          "\" 2>\"" + err + "\"";
+  const std::string cmd = command + " >\"" + out + "\" 2>\"" + err + "\"";
   const int status = std::system(cmd.c_str());
   CommandResult r;
   r.exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
@@ -43,17 +43,14 @@ inline CommandResult run_afemp(const std::string& args, const ScratchDir& dir) {
   return r;
 }
 
-// Runs a shell command line with stdout and stderr captured in files of dir; the exit code is
-// the command line's (a process a signal ended: 128 + the signal, as the shell reports it).
+// Runs `AFEMP_BINARY args` through the shell.
+inline CommandResult run_afemp(const std::string& args, const ScratchDir& dir) {
+  return run_captured(std::string("\"") + AFEMP_BINARY + "\" " + args, dir);
+}
+
+// Runs a shell command line (background jobs, kill, wait) under sh -c.
 inline CommandResult run_shell(const std::string& line, const ScratchDir& dir) {
-  const std::string out = dir.file("sh.stdout"), err = dir.file("sh.stderr");
-  const std::string cmd = "sh -c '" + line + "' >\"" + out + "\" 2>\"" + err + "\"";
-  const int status = std::system(cmd.c_str());
-  CommandResult r;
-  r.exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
+  return run_captured("sh -c '" + line + "'", dir);
 }
 
 inline std::string vec(double x, double y, double z) {
