@@ -88,7 +88,10 @@ std::vector<std::string> contact_warnings(const Scene& scene, const Model& model
         out.push_back(pair + " " + where + " with no [[contact]] between them: " +
                       (px || py ? "particles and a mesh" : "two meshes") +
                       " pass through each other; add [[contact]] bodies = [\"" + x.name + "\", \"" +
-                      y.name + "\"]" + (px || py ? " (or bond the mesh: bonded_to)" : ""));
+                      y.name + "\"]" +
+                      (px || py ? " (method \"surface\" meets the mesh's faces at the "
+                                  "particles' boundary; or bond the mesh: bonded_to)"
+                                : ""));
       }
     }
   return out;
