@@ -78,4 +78,16 @@ class Model {
   virtual void force_values(std::vector<double>& out) const { out.clear(); }
 };
 
+// The five columns of an interface force (a contact or a wall): NAME.fx, .fy, .fz, .normal,
+// .tangential, appended to `columns`; and their values for the force f, split along the unit
+// normal n (the lengths of its normal and tangential parts).
+inline void append_force_columns(std::vector<std::string>& columns, const std::string& name) {
+  for (const char* part : {".fx", ".fy", ".fz", ".normal", ".tangential"})
+    columns.push_back(name + part);
+}
+inline void append_force_values(std::vector<double>& out, const Vec3& f, const Vec3& n) {
+  const double fn = dot(f, n);
+  out.insert(out.end(), {f.x, f.y, f.z, fn < 0.0 ? -fn : fn, norm(f - fn * n)});
+}
+
 }  // namespace afemp::core

@@ -17,9 +17,9 @@
 #include <limits>
 #include <string>
 
+#include "afemp/errors.hpp"
 #include "core/appendf.hpp"
 #include "coupling/element_conversion.hpp"
-#include "afemp/errors.hpp"
 
 namespace afemp::coupling {
 
@@ -273,30 +273,15 @@ std::vector<std::string> CoupledModel::force_columns() const {
   std::vector<std::string> out = fe_.force_columns();
   if (surface_contacts_)
     for (const ParticleSurfaceContacts::Pair& p : surface_contacts_->pairs())
-      for (const char* part : {".fx", ".fy", ".fz", ".normal", ".tangential"})
-        out.push_back(p.spec.name + part);
+      core::append_force_columns(out, p.spec.name);
   return out;
 }
 
 // The FE side's forces, each wall's with what it gave the particles it names added (a wall may
-// name mesh and particle bodies alike; FeModel::force_values orders contacts, walls, rigid
-// bodies), then the surface contacts'.
+// name mesh and particle bodies alike), then the surface contacts' (on the particle body, split
+// along its normal and tangential parts).
 void CoupledModel::force_values(std::vector<double>& out) const {
-  fe_.force_values(out);
-  const std::size_t first = 5 * fe().mesh_contacts().size();
-  for (std::size_t w = 0; w < scene_.walls.size(); ++w) {
-    const core::Vec3 particles = mpm().wall_forces()[w];
-    if (particles.x == 0.0 && particles.y == 0.0 && particles.z == 0.0) continue;
-    double* v = out.data() + first + 5 * w;
-    const core::Vec3 f = core::Vec3{v[0], v[1], v[2]} + particles;
-    const core::Vec3& n = scene_.walls[w].normal;
-    const double fn = core::dot(f, n);
-    v[0] = f.x;
-    v[1] = f.y;
-    v[2] = f.z;
-    v[3] = std::abs(fn);
-    v[4] = core::norm(f - fn * n);
-  }
+  fe_.force_values(out, mpm().wall_forces());
   if (surface_contacts_)
     for (const ParticleSurfaceContacts::Pair& p : surface_contacts_->pairs()) {
       const core::Vec3 f = p.normal_force + p.tangential_force;

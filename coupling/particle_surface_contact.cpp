@@ -81,8 +81,10 @@ void ParticleSurfaceContacts::resolve_pair(Pair& pair, const mpm::GridStepAccess
   // Outward normals and the boxes of the faces at the predicted positions; each face holds a
   // particle up to half its own size behind it (its reach).
   pair.outward.resize(nf);
-  std::vector<std::array<Vec3, 2>> box(nf);
-  std::vector<double> reach(nf);
+  std::vector<std::array<Vec3, 2>>& box = face_box_;
+  std::vector<double>& reach = face_reach_;
+  box.resize(nf);
+  reach.resize(nf);
   double largest = 0.0;
   Vec3 lo{inf, inf, inf}, hi{-inf, -inf, -inf};
   for (std::size_t f = 0; f < nf; ++f) {
@@ -118,19 +120,17 @@ void ParticleSurfaceContacts::resolve_pair(Pair& pair, const mpm::GridStepAccess
   auto key = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
     return (k * count[1] + j) * count[0] + i;
   };
-  std::vector<std::pair<std::int64_t, std::int32_t>> entries;
+  std::vector<std::pair<std::int64_t, std::int32_t>>& entries = bin_entries_;
+  entries.clear();
   for (std::size_t f = 0; f < nf; ++f)
     for (std::int64_t k = bin_of(box[f][0], 2); k <= bin_of(box[f][1], 2); ++k)
       for (std::int64_t j = bin_of(box[f][0], 1); j <= bin_of(box[f][1], 1); ++j)
         for (std::int64_t i = bin_of(box[f][0], 0); i <= bin_of(box[f][1], 0); ++i)
           entries.emplace_back(key(i, j, k), static_cast<std::int32_t>(f));
   std::sort(entries.begin(), entries.end());
-  bin_key_.resize(entries.size());
-  bin_face_.resize(entries.size());
-  for (std::size_t e = 0; e < entries.size(); ++e) {
-    bin_key_[e] = entries[e].first;
-    bin_face_[e] = entries[e].second;
-  }
+  const auto by_bin = [](const std::pair<std::int64_t, std::int32_t>& e, std::int64_t bin) {
+    return e.first < bin;
+  };
 
   // Hits: each particle of the body whose predicted boundary lies behind a face.
   hits_.clear();
@@ -153,16 +153,15 @@ void ParticleSurfaceContacts::resolve_pair(Pair& pair, const mpm::GridStepAccess
       v += st.w(k) *
            g.velocity_new[static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]) + field];
     const Vec3 x = x0 + dt * v;
-    const double r = 0.5 * std::cbrt(p.volume[i]);
+    const double r = mpm::particle_half_width(p.volume[i]);
     const std::int64_t b = key(bin_of(x, 0), bin_of(x, 1), bin_of(x, 2));
-    const auto [first, last] = std::equal_range(bin_key_.begin(), bin_key_.end(), b);
+    const auto first = std::lower_bound(entries.begin(), entries.end(), b, by_bin);
     // The nearest face that holds it (by the distance to the face itself).
     double distance = inf;
     Hit best;
     bool found = false;
-    for (auto it = first; it != last; ++it) {
-      const auto f =
-          static_cast<std::size_t>(bin_face_[static_cast<std::size_t>(it - bin_key_.begin())]);
+    for (auto it = first; it != entries.end() && it->first == b; ++it) {
+      const auto f = static_cast<std::size_t>(it->second);
       const auto& bx = box[f];
       if (x.x < bx[0].x || x.x > bx[1].x || x.y < bx[0].y || x.y > bx[1].y || x.z < bx[0].z ||
           x.z > bx[1].z)
@@ -242,15 +241,17 @@ void ParticleSurfaceContacts::resolve_pair(Pair& pair, const mpm::GridStepAccess
   for (int sweep = 0; sweep < kSweeps; ++sweep)
     for (Hit& h : hits_) {
       const Vec3& nrm = h.normal;
-      const double wp = w_particle(h);
-      double w = wp;
-      std::array<double, 4> wa{};
-      for (int a = 0; a < 4; ++a) {
-        const auto q = static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)]);
-        const double na = h.shape[static_cast<std::size_t>(a)];
-        wa[static_cast<std::size_t>(a)] = fe_.contact_inverse_mass(q, nrm);
-        w += na * na * wa[static_cast<std::size_t>(a)];
+      if (sweep == 0) {  // the inverse masses hold through the sweeps
+        h.w = w_particle(h);
+        for (int a = 0; a < 4; ++a) {
+          const auto q = static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)]);
+          const double na = h.shape[static_cast<std::size_t>(a)];
+          h.w_face[static_cast<std::size_t>(a)] = fe_.contact_inverse_mass(q, nrm);
+          h.w += na * na * h.w_face[static_cast<std::size_t>(a)];
+        }
       }
+      const double w = h.w;
+      const std::array<double, 4>& wa = h.w_face;
       if (!(w > 0.0)) continue;
       const Vec3 xp = p.position[h.particle];
       Vec3 x_face, v_face;

@@ -19,6 +19,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "afemp/scene.hpp"
@@ -64,6 +65,10 @@ class ParticleSurfaceContacts final : public mpm::SurfaceContacts {
     double target = 0.0, normal_impulse = 0.0;
     Vec3 tangential_impulse;
     std::size_t stencil = 0;  // offset of its slots and weights
+    // Inverse masses along the normal: the pair's (the particle's sum N^2 / m_I plus the face
+    // nodes' shares), and each face node's.
+    double w = 0.0;
+    std::array<double, 4> w_face{};
   };
   template <class Stencil>
   void resolve_pair(Pair& pair, const mpm::GridStepAccess& access);
@@ -73,8 +78,9 @@ class ParticleSurfaceContacts final : public mpm::SurfaceContacts {
   std::vector<Pair> pairs_;
   // Scratch: predicted node positions, face bins, hits and their stencils.
   std::vector<Vec3> predicted_;
-  std::vector<std::int64_t> bin_key_;
-  std::vector<std::int32_t> bin_face_;
+  std::vector<std::array<Vec3, 2>> face_box_;  // each face's box, grown by its reach and a cell
+  std::vector<double> face_reach_;
+  std::vector<std::pair<std::int64_t, std::int32_t>> bin_entries_;  // (bin, face), sorted
   std::vector<Hit> hits_;
   std::vector<std::int64_t> slots_;
   std::vector<double> weights_;

@@ -159,17 +159,16 @@ std::vector<std::string> FeModel::force_columns() const {
   auto add = [&](const std::string& name, std::initializer_list<const char*> parts) {
     for (const char* p : parts) out.push_back(name + p);
   };
-  for (const MeshContact& c : solver_.mesh_contacts())
-    add(c.spec.name, {".fx", ".fy", ".fz", ".normal", ".tangential"});
+  for (const MeshContact& c : solver_.mesh_contacts()) core::append_force_columns(out, c.spec.name);
   for (std::size_t w = 0; w < scene_.walls.size(); ++w)
-    add("wall" + std::to_string(w + 1), {".fx", ".fy", ".fz", ".normal", ".tangential"});
+    core::append_force_columns(out, "wall" + std::to_string(w + 1));
   for (const RigidBody& r : solver_.rigid_bodies())
     add(scene_.bodies[static_cast<std::size_t>(r.body)].name,
         {".fx", ".fy", ".fz", ".mx", ".my", ".mz"});
   return out;
 }
 
-void FeModel::force_values(std::vector<double>& out) const {
+void FeModel::force_values(std::vector<double>& out, std::span<const core::Vec3> wall_extra) const {
   out.clear();
   auto add = [&](const core::Vec3& v) { out.insert(out.end(), {v.x, v.y, v.z}); };
   for (const MeshContact& c : solver_.mesh_contacts()) {
@@ -178,14 +177,10 @@ void FeModel::force_values(std::vector<double>& out) const {
     out.push_back(self ? c.normal_sum : core::norm(c.normal_force));
     out.push_back(self ? c.tangential_sum : core::norm(c.tangential_force));
   }
-  for (std::size_t w = 0; w < scene_.walls.size(); ++w) {
-    const core::Vec3 f = solver_.wall_forces()[w];
-    const core::Vec3& n = scene_.walls[w].normal;
-    const double fn = core::dot(f, n);
-    add(f);
-    out.push_back(std::abs(fn));
-    out.push_back(core::norm(f - fn * n));
-  }
+  for (std::size_t w = 0; w < scene_.walls.size(); ++w)
+    core::append_force_values(
+        out, solver_.wall_forces()[w] + (wall_extra.empty() ? core::Vec3{} : wall_extra[w]),
+        scene_.walls[w].normal);
   for (const RigidBody& r : solver_.rigid_bodies()) {
     add(r.force);
     add(r.moment);

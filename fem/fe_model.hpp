@@ -48,7 +48,10 @@ class FeModel final : public core::Model {
   // NAME: NAME.fx, .fy, .fz, .mx, .my, .mz (the resultant on it and its moment about the
   // centre of mass, gravity included).
   std::vector<std::string> force_columns() const override;
-  void force_values(std::vector<double>& out) const override;
+  void force_values(std::vector<double>& out) const override { force_values(out, {}); }
+  // The same, each wall's force with what it gave other points added (one per wall, or empty):
+  // a coupled scene's walls also act on particles.
+  void force_values(std::vector<double>& out, std::span<const core::Vec3> wall_extra) const;
   core::BodyPoints body_points(int body) const override {
     core::BodyPoints out{live_node_positions(solver_, body), {}};
     out.half_size.assign(out.position.size(), 0.0);

@@ -88,19 +88,14 @@ const char* shape_name(const core::Shape& s) {
 std::vector<std::string> MpmModel::force_columns() const {
   std::vector<std::string> out;
   for (std::size_t w = 0; w < scene_.walls.size(); ++w)
-    for (const char* part : {".fx", ".fy", ".fz", ".normal", ".tangential"})
-      out.push_back("wall" + std::to_string(w + 1) + part);
+    core::append_force_columns(out, "wall" + std::to_string(w + 1));
   return out;
 }
 
 void MpmModel::force_values(std::vector<double>& out) const {
   out.clear();
-  for (std::size_t w = 0; w < scene_.walls.size(); ++w) {
-    const core::Vec3 f = solver_.wall_forces()[w];
-    const core::Vec3& n = scene_.walls[w].normal;
-    const double fn = core::dot(f, n);
-    out.insert(out.end(), {f.x, f.y, f.z, std::abs(fn), core::norm(f - fn * n)});
-  }
+  for (std::size_t w = 0; w < scene_.walls.size(); ++w)
+    core::append_force_values(out, solver_.wall_forces()[w], scene_.walls[w].normal);
 }
 
 std::string MpmModel::describe() const {

@@ -147,7 +147,7 @@ class MpmSolver {
   // volume, at most one cell) and, with splitting, its initial lengths; and the id that
   // follows the largest so far.
   double gimp_half_width(double volume) const {
-    return std::min(0.5, 0.5 * std::cbrt(volume) * grid_.inverse_cell());
+    return std::min(0.5, particle_half_width(volume) * grid_.inverse_cell());
   }
   void start_lengths(std::size_t i) {
     const double l = std::cbrt(particles_.volume[i]);
@@ -236,7 +236,8 @@ class MpmSolver {
 
   // Particle walls: per scene wall, the bodies it acts on (empty: none of this solver's), its
   // force over the last step; the work of their impulses (Energies::sliding, friction); the
-  // contact scratch of one wall (candidates, their stencils' slots and weights, impulses).
+  // contact scratch of one wall (candidates and their gaps at the step's start, their stencils'
+  // slots and weights, impulses).
   std::vector<std::vector<char>> wall_bodies_;
   std::vector<Vec3> wall_force_;
   double wall_sliding_ = 0.0, wall_friction_ = 0.0;

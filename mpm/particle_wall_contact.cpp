@@ -49,26 +49,28 @@ void MpmSolver::particle_wall_kernel(std::size_t w, double dt) {
   const core::WallSpec& spec = scene_.walls[w];
   const Vec3 n = spec.normal;
   const Vec3 start_point = spec.point + time_ * spec.velocity;
-  const Vec3 end_point = start_point + dt * spec.velocity;
   const double wall_speed = core::norm(spec.velocity);
   const std::vector<char>& acts = wall_bodies_[w];
   constexpr int K = Stencil::nodes;
 
   // Candidates: particles of the wall's bodies within one cell plus their reach this step.
+  // Each keeps its gap at the step's start, n . (x - x_wall) - r.
   wall_candidates_.clear();
+  wall_gap_.clear();
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!acts[static_cast<std::size_t>(p.body[i])]) continue;
-    const double r = 0.5 * std::cbrt(p.volume[i]);
-    const double gap = core::dot(p.position[i] - start_point, n) - r;
+    const double gap = core::dot(p.position[i] - start_point, n) - particle_half_width(p.volume[i]);
     const double reach = g.cell() + dt * (core::norm(p.velocity[i]) + wall_speed);
-    if (gap < reach) wall_candidates_.push_back(static_cast<std::uint32_t>(i));
+    if (gap < reach) {
+      wall_candidates_.push_back(static_cast<std::uint32_t>(i));
+      wall_gap_.push_back(gap);
+    }
   }
   const std::size_t nc = wall_candidates_.size();
   if (nc == 0) return;
   wall_slots_.resize(nc * K);
   wall_weights_.resize(nc * K);
   wall_inverse_mass_.resize(nc);
-  wall_gap_.resize(nc);
   wall_normal_impulse_.assign(nc, 0.0);
   wall_tangent_impulse_.assign(nc, Vec3{});
   for (std::size_t c = 0; c < nc; ++c) {
@@ -89,8 +91,6 @@ void MpmSolver::particle_wall_kernel(std::size_t w, double dt) {
       if (live) inverse_mass += wk * wk / m;
     }
     wall_inverse_mass_[c] = inverse_mass;
-    const double gap0 = core::dot(p.position[i] - start_point, n) - 0.5 * std::cbrt(p.volume[i]);
-    wall_gap_[c] = gap0 < 0.0 ? kRecede * gap0 : 0.0;  // the gap allowed at the step's end
   }
 
   const FaceConstraints constraints(g);
@@ -123,14 +123,14 @@ void MpmSolver::particle_wall_kernel(std::size_t w, double dt) {
   for (int sweep = 0; sweep < kSweeps; ++sweep) {
     for (std::size_t c = 0; c < nc; ++c) {
       if (!(wall_inverse_mass_[c] > 0.0)) continue;
-      const std::size_t i = wall_candidates_[c];
-      const double r = 0.5 * std::cbrt(p.volume[i]);
       Vec3 v = v_of(c);
-      const double gap = core::dot(p.position[i] + dt * v - end_point, n) - r;
+      // The predicted gap (the wall moves dt v_wall), and the one allowed at the step's end.
+      const double gap = wall_gap_[c] + dt * core::dot(v - spec.velocity, n);
+      const double allowed = kRecede * std::min(wall_gap_[c], 0.0);
       // The normal velocity change that puts the boundary at the allowed gap; accumulated
       // impulses stay >= 0 (a wall pushes, never pulls).
-      const double total = std::max(
-          0.0, wall_normal_impulse_[c] + (wall_gap_[c] - gap) / (dt * wall_inverse_mass_[c]));
+      const double total =
+          std::max(0.0, wall_normal_impulse_[c] + (allowed - gap) / (dt * wall_inverse_mass_[c]));
       const double dj = total - wall_normal_impulse_[c];
       wall_normal_impulse_[c] = total;
       if (dj != 0.0) apply(c, dj * n);

@@ -3,6 +3,7 @@
 // constitutive update runs per material batch.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -14,6 +15,13 @@ namespace afemp::mpm {
 using core::Mat3;
 using core::SymTensor;
 using core::Vec3;
+
+// The half width of a particle's domain, the half edge of the cube of its volume: where its
+// boundary lies for contact at the surface (particle_wall_contact.cpp,
+// coupling/particle_surface_contact.cpp).
+inline double particle_half_width(double volume) {
+  return 0.5 * std::cbrt(volume);
+}
 
 struct Particles {
   std::vector<Vec3> position;

@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/materials/material.hpp"
 #include "core/material_fixtures.hpp"
+#include "core/materials/material.hpp"
 
 namespace afemp::core {
 namespace {
@@ -375,6 +375,19 @@ TEST(WaveSpeed, MieGruneisenAtReferenceStateGivesC0WhenShearVanishes) {
   EXPECT_NEAR(wave_speed(m, point), 3940.0, 1e-12 * 3940.0);
 }
 
+// Copper with a failure model, and a point of it that has failed, at density rho0 / expansion.
+Material failing_copper() {
+  Material m = copper();
+  m.failure = PlasticStrainFailure{1.0};
+  return m;
+}
+PointState failed_point(const Material& m, double expansion) {
+  PointState point = at_rest(m);
+  point.damage = 1.0;
+  point.density = m.density / expansion;
+  return point;
+}
+
 TEST(FailedDebris, CompressedExpandedCutPointDoesNoPressureWork) {
   // Reference: a failed point whose EOS pressure is tensile is cut to p = 0, so with no
   // deviator its increment does no work: e_new = e_old and p_new = 0 exactly. Here copper
@@ -382,12 +395,9 @@ TEST(FailedDebris, CompressedExpandedCutPointDoesNoPressureWork) {
   // in one step; its Mie-Grueneisen energy coefficient over rho is Gamma0 rho0 / rho = 294, so
   // the implicit energy solve's denominator 1 + 0.5 Gamma tr(d_eps) is -6.3. Solved through
   // it, the point took e ~ 1e9 and p ~ 2e7 MPa, and flew off at 43 km/s.
-  Material m = copper();
-  m.failure = PlasticStrainFailure{1.0};
+  const Material m = failing_copper();
   const MieGruneisen eos = std::get<MieGruneisen>(m.eos);
-  PointState point = at_rest(m);
-  point.damage = 1.0;
-  point.density = m.density / 150.0;
+  PointState point = failed_point(m, 150.0);
   point.energy = 2.0e5;  // mm^2/ms^2: the shock heating of a copper impact at 2 km/s
   const SymTensor d_eps{-0.05 / 3.0, -0.05 / 3.0, -0.05 / 3.0, 0.0, 0.0, 0.0};
   point.density /= 1.0 + d_eps.trace();
@@ -402,12 +412,9 @@ TEST(WaveSpeed, FailedDebrisIsSilentWhenCutAndAGasWhenHot) {
   // signal (c = 0); one hot enough to push (p > 0) has the isentropic sound speed
   // c^2 = dp/drho at fixed e + (dp/de) p / rho^2, here taken by central differences of the EOS
   // (1e-6 relative). Copper at rho0 / 2 with e set for p = 1000 MPa.
-  Material m = copper();
-  m.failure = PlasticStrainFailure{1.0};
+  const Material m = failing_copper();
   const MieGruneisen eos = std::get<MieGruneisen>(m.eos);
-  PointState point = at_rest(m);
-  point.damage = 1.0;
-  point.density = 0.5 * m.density;
+  PointState point = failed_point(m, 2.0);
   auto p_of = [&](double rho, double e) {
     const EosLinearForm f = eos.form(rho / m.density - 1.0);
     return f.a + f.b * e;

@@ -38,6 +38,15 @@ std::string scene(const std::string& target) {
   return s;
 }
 
+// A rigid steel block of 3 x 3 x 2 hexahedra under the column, from z = bottom to 0; `rigid`
+// is the value of its key (true, or { fixed = [...] }).
+std::string rigid_block(double bottom, const std::string& rigid) {
+  return "[[bodies]]\nname = \"target\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
+         "shape = { box = { min = [-1, -1, " +
+         std::to_string(bottom) +
+         "], max = [2, 2, 0] } }\nmesh = { divisions = [3, 3, 2] }\nrigid = " + rigid + "\n";
+}
+
 struct Outcome {
   double duration = 0.0, plateau = 0.0;
   core::Energies start, end;
@@ -96,12 +105,7 @@ Outcome run(const std::string& text, double t_end, bool conserved) {
 // hexahedra. Pass: contact time and plateau within 5 %, rebound within 5 % (the column leaves
 // ringing: 4.77 m/s, as on a [[walls]] plane, tests/mpm/test_particle_walls.cpp).
 TEST(ParticleSurfaceContact, ColumnOnAFixedRigidBlockRestsTwoWaveTransits) {
-  const std::string target =
-      "[[bodies]]\nname = \"target\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-      "shape = { box = { min = [-1, -1, -2], max = [2, 2, 0] } }\nmesh = { divisions = [3, 3, 2] "
-      "}\n"
-      "rigid = { fixed = [\"all\"] }\n";
-  const Outcome r = run(scene(target), 0.01, false);
+  const Outcome r = run(scene(rigid_block(-2.0, "{ fixed = [\"all\"] }")), 0.01, false);
   const double c = wave_speed(), duration = 20.0 / c, force = 7.85e-3 * c * 5.0;
   const double rebound = r.end.bodies[0].momentum.z / r.end.bodies[0].mass;
   std::printf(
@@ -118,12 +122,7 @@ TEST(ParticleSurfaceContact, ColumnOnAFixedRigidBlockRestsTwoWaveTransits) {
 // column + block stays that of the start (to 1e-9 of m v, every step), and the block leaves with
 // the momentum the column lost.
 TEST(ParticleSurfaceContact, AFreeRigidBlockTakesTheImpulseTheParticlesGiveUp) {
-  const std::string target =
-      "[[bodies]]\nname = \"target\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-      "shape = { box = { min = [-1, -1, -4], max = [2, 2, 0] } }\nmesh = { divisions = [3, 3, 2] "
-      "}\n"
-      "rigid = true\n";
-  const Outcome r = run(scene(target), 0.006, true);
+  const Outcome r = run(scene(rigid_block(-4.0, "true")), 0.006, true);
   const double block = r.end.bodies[1].momentum.z;
   // What the column gave up (its momentum points down: the change is negative too).
   const double given = r.start.bodies[0].momentum.z - r.end.bodies[0].momentum.z;
