@@ -5,10 +5,12 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "apps/progress_line.hpp"
 #include "afemp/deck_import.hpp"
@@ -16,8 +18,10 @@
 #include "analysis/reference_checks.hpp"
 #include "analysis/study.hpp"
 #include "analysis/study_file.hpp"
+#include "core/checkpoint.hpp"
 #include "core/contact_warnings.hpp"
 #include "core/interrupt.hpp"
+#include "core/output/field_writer.hpp"
 #include "core/plausibility.hpp"
 #include "core/resource_guard.hpp"
 #include "core/output/run_directory.hpp"
@@ -33,6 +37,7 @@ constexpr int exit_input_error = 1;
 constexpr int exit_simulation_error = 3;
 
 constexpr int exit_check_failed = 4;  // a reference or tolerance the results miss
+constexpr int exit_output_error = 5;  // output or a checkpoint could not be written (disk full)
 // A run stopped by SIGINT or SIGTERM after writing its final row, frame and summary exits
 // with 128 + the signal's number (130, 143), as a shell reports a process the signal ended.
 
@@ -86,9 +91,27 @@ int check(const std::string& path) {
   return 0;
 }
 
-int run(const std::string& path, std::string out_dir) {
+int run(const std::string& path, std::string out_dir, const std::string& restart_dir) {
   refuse_deck(path);
   const core::Scene scene = core::read_scene(path);
+  std::string checkpoint;
+  if (!restart_dir.empty()) {
+    if (!out_dir.empty() && out_dir != restart_dir)
+      throw std::runtime_error("--restart " + restart_dir + " continues that run's files; leave "
+                               "out -o " + out_dir);
+    out_dir = restart_dir;
+    checkpoint = core::newest_checkpoint(restart_dir);
+    // The scene check first, before the model is built: a refused restart touches nothing.
+    const std::vector<std::string> changes =
+        core::scene_changes(core::read_checkpoint_header(checkpoint), scene);
+    if (!changes.empty()) {
+      std::string text = "cannot restart from " + checkpoint +
+                         ": the scene changed since the checkpoint (only the end time, output, "
+                         "history and checkpoint settings may):";
+      for (const std::string& c : changes) text += "\n  " + c;
+      throw std::runtime_error(text);
+    }
+  }
   if (out_dir.empty()) out_dir = core::default_output_directory(path);
   const std::unique_ptr<core::Model> model = make_model(scene);
   for (const std::string& w : core::contact_warnings(scene, *model))
@@ -98,13 +121,29 @@ int run(const std::string& path, std::string out_dir) {
   apps::ProgressReporter progress(stdout);
   core::RunOptions options;
   options.output_directory = out_dir;
+  options.restart_from = checkpoint;
   options.progress = [&](const core::Progress& pr) { progress(pr); };
   options.progress_seconds = progress.interval();
-  warn_step_count(scene, *model, model->stable_time_step());
-  std::printf("afemp run %s -> %s (%d thread(s))\n", path.c_str(), out_dir.c_str(),
-              core::thread_count());
+  if (checkpoint.empty()) {
+    warn_step_count(scene, *model, model->stable_time_step());
+    std::printf("afemp run %s -> %s (%d thread(s))\n", path.c_str(), out_dir.c_str(),
+                core::thread_count());
+  } else {
+    const core::CheckpointHeader h = core::read_checkpoint_header(checkpoint);
+    std::printf("afemp run %s -> %s (%d thread(s)), continuing from %s (step %ld, t = %.6g)\n",
+                path.c_str(), out_dir.c_str(), core::thread_count(), checkpoint.c_str(), h.step,
+                h.time);
+    if (h.threads != core::thread_count())
+      std::fprintf(stderr,
+                   "afemp: warning: the checkpoint was written with %d thread(s), this run has "
+                   "%d: the results go on correctly but not bit for bit as an uninterrupted run "
+                   "(the sums of the grid transfer are added in another order); give --threads %d "
+                   "for that\n",
+                   h.threads, core::thread_count(), h.threads);
+  }
   const core::InterruptHandler interrupts;
   options.stop_requested = [] { return core::interrupt_signal() != 0; };
+  options.checkpoint_requested = [] { return core::take_checkpoint_request(); };
   try {
     const core::RunSummary s = analysis::run(*model, scene, options);
     progress.finish();
@@ -113,10 +152,15 @@ int run(const std::string& path, std::string out_dir) {
       const int signal = core::interrupt_signal();
       std::fprintf(stderr,
                    "afemp: stopped by %s after step %ld (t = %.6g of %.6g): the final history "
-                   "row, frame and summary are written in %s; a run cannot be continued yet "
-                   "(no restart)\n",
+                   "row, frame and summary are written in %s\n",
                    core::signal_name(signal), s.steps, s.time, scene.run.end_time,
                    out_dir.c_str());
+      if (!s.checkpoint.empty())
+        std::fprintf(stderr, "afemp: checkpoint %s; continue with: afemp run %s --restart %s\n",
+                     s.checkpoint.c_str(), path.c_str(), out_dir.c_str());
+      else
+        std::fprintf(stderr, "afemp: no checkpoint could be written: %s\n",
+                     s.checkpoint_error.c_str());
       return 128 + signal;
     }
     core::OutputPaths paths;
@@ -131,11 +175,24 @@ int run(const std::string& path, std::string out_dir) {
     std::fprintf(stderr, "afemp: simulation stopped: %s\n", e.what());
     std::fprintf(stderr, "afemp: output written so far is kept in %s\n", out_dir.c_str());
     return exit_simulation_error;
+  } catch (const core::InputError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    // Output that cannot be written (a full disk, a removed directory): what was written stays.
+    progress.finish();
+    std::fprintf(stderr, "afemp: run stopped: %s%s\n", e.what(),
+                 core::disk_full_note(out_dir).c_str());
+    const std::vector<std::string> saved = core::list_checkpoints(out_dir);
+    std::fprintf(stderr, "afemp: output written so far is kept in %s; %s\n", out_dir.c_str(),
+                 saved.empty() ? "no checkpoint was written"
+                               : ("the newest checkpoint is " + saved.back() +
+                                  " (afemp run " + path + " --restart " + out_dir + ")")
+                                     .c_str());
+    return exit_output_error;
   }
   return 0;
 }
 
-// `afemp study FILE [-o DIR] [--threads N]`: --threads overrides the study's own threads.
 int study(const std::string& path, std::string out_dir, int threads) {
   analysis::StudyPlan plan = analysis::read_study(path);
   if (threads > 0) plan.threads = threads;
@@ -193,6 +250,10 @@ int main(int argc, char** argv) {
   run_cmd->add_option("-o,--output", out_dir, "output directory (default runs/<scene name>)");
   run_cmd->add_option("--threads", threads, "OpenMP threads (default: OMP_NUM_THREADS or all)")
       ->check(CLI::PositiveNumber);
+  std::string restart_dir;
+  run_cmd->add_option("--restart", restart_dir,
+                      "continue the run in this directory from its newest checkpoint "
+                      "(docs/restart.md)");
 
   auto* check_cmd = app.add_subcommand("check", "read and validate a scene, print the plan");
   check_cmd->add_option("SCENE", scene_path, "scene file (TOML)")->required();
@@ -215,9 +276,13 @@ int main(int argc, char** argv) {
                          "m-s-kg, mm-s-t, mm-ms-kg, cm-us-g (default: numbers kept as they are)");
 
   CLI11_PARSE(app, argc, argv);
+  // A file-size limit (ulimit -f) then fails the write like a full disk, which the run reports
+  // and survives, instead of killing the process.
+  std::signal(SIGXFSZ, SIG_IGN);
+  core::skip_hdf5_exit_cleanup();
   if (!*study_cmd) core::set_thread_count(threads);
   try {
-    if (*run_cmd) return run(scene_path, out_dir);
+    if (*run_cmd) return run(scene_path, out_dir, restart_dir);
     if (*study_cmd) return study(scene_path, out_dir, threads);
     if (*import_cmd) return import_command(scene_path, out_dir, units);
     return check(scene_path);

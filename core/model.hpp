@@ -17,6 +17,8 @@
 
 namespace afemp::core {
 
+class StateArchive;  // core/state_archive.hpp
+
 // A record the model wants in the run directory beside the history (eroded elements, ...):
 // a CSV file name, its header and rows appended since the last call.
 struct EventLog {
@@ -76,6 +78,10 @@ class Model {
   // that order.
   virtual std::vector<std::string> force_columns() const { return {}; }
   virtual void force_values(std::vector<double>& out) const { out.clear(); }
+  // A checkpoint (core/checkpoint.hpp): saves the whole state that carries from one step to the
+  // next through `archive`, or restores it into a model built from the same scene. Events must
+  // have been taken (take_events) before saving.
+  virtual void state(StateArchive& archive) = 0;
 };
 
 // The five columns of an interface force (a contact or a wall): NAME.fx, .fy, .fz, .normal,

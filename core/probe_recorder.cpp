@@ -8,10 +8,12 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/state_archive.hpp"
+
 namespace afemp::core {
 
 ProbeRecorder::ProbeRecorder(Model& model, const std::vector<ProbeSpec>& probes,
-                             const std::string& directory)
+                             const std::string& directory, bool resume)
     : specs_(probes), next_(probes.size(), 0.0), due_(probes.size(), 0),
       buffer_(probe_stride * probes.size()) {
   model.resolve_probes(specs_);
@@ -49,16 +51,61 @@ ProbeRecorder::ProbeRecorder(Model& model, const std::vector<ProbeSpec>& probes,
   }
   if (directory.empty() || specs_.empty()) return;
   const std::filesystem::path dir = std::filesystem::path(directory) / "probes";
+  directory_ = dir.string();
+  if (resume) return;
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw std::runtime_error(dir.string() + ": cannot create: " + ec.message());
   for (const ProbeSeries& s : series_) {
-    const std::string path = (dir / (s.name + ".csv")).string();
-    files_.emplace_back(path, std::ios::trunc);
-    if (!files_.back()) throw std::runtime_error(path + ": cannot write");
+    const std::string file = path(s);
+    files_.emplace_back(file, std::ios::trunc);
+    if (!files_.back()) throw std::runtime_error(file + ": cannot write");
     files_.back() << "time";
     for (const std::string& c : s.columns) files_.back() << ',' << c;
     files_.back() << '\n';
+  }
+}
+
+std::string ProbeRecorder::path(const ProbeSeries& s) const {
+  return (std::filesystem::path(directory_) / (s.name + ".csv")).string();
+}
+
+void ProbeRecorder::state(StateArchive& a) {
+  const StateArchive::Group group(a, "probes");
+  std::vector<std::uint64_t> bytes;
+  if (!a.loading())
+    for (std::ofstream& f : files_) {
+      f.flush();
+      if (!f) throw std::runtime_error("probe file: cannot write (disk full?)");
+      bytes.push_back(static_cast<std::uint64_t>(f.tellp()));
+    }
+  a.item("bytes", bytes);
+  a.item("next", next_);
+  std::uint64_t n = series_.size();
+  a.item("count", n);
+  if (n != series_.size())
+    throw CheckpointError(a.where("count") + ": " + std::to_string(n) +
+                          " probes in the checkpoint, " + std::to_string(series_.size()) +
+                          " in the scene");
+  for (std::size_t k = 0; k < series_.size(); ++k) {
+    const StateArchive::Group one(a, std::to_string(k));
+    a.item("time", series_[k].time);
+    a.item("values", series_[k].values);
+  }
+  if (!a.loading() || directory_.empty()) return;
+  if (bytes.size() != series_.size())
+    throw CheckpointError(a.where("bytes") + ": the checkpointed run wrote no probe files");
+  for (std::size_t k = 0; k < series_.size(); ++k) {
+    const std::string file = path(series_[k]);
+    std::error_code ec;
+    const std::uintmax_t size = std::filesystem::file_size(file, ec);
+    if (ec || size < bytes[k])
+      throw std::runtime_error(file + ": cannot continue the probe: " +
+                               (ec ? ec.message() : "shorter than at the checkpoint"));
+    std::filesystem::resize_file(file, bytes[k], ec);
+    if (ec) throw std::runtime_error(file + ": cannot cut to the checkpoint: " + ec.message());
+    files_.emplace_back(file, std::ios::app);
+    if (!files_.back()) throw std::runtime_error(file + ": cannot write");
   }
 }
 

@@ -17,7 +17,12 @@ class ProbeRecorder {
  public:
   // Resolves the probes on the model (Model::resolve_probes: throws InputError for a probe
   // naming what the model does not have) and opens their files when `directory` is not empty.
-  ProbeRecorder(Model& model, const std::vector<ProbeSpec>& probes, const std::string& directory);
+  // `resume`: the files of an earlier run are continued by state() (a restart) instead.
+  ProbeRecorder(Model& model, const std::vector<ProbeSpec>& probes, const std::string& directory,
+                bool resume = false);
+  // Saves or restores (a checkpoint) the rows so far, the next sample times and the files'
+  // lengths; restoring cuts each file to its length then and appends from there.
+  void state(StateArchive& archive);
   // Samples the probes due at the model's time: a probe without interval at each history row
   // (history_row), one with an interval once the next multiple of it is reached; `last`:
   // every probe not yet sampled at this time (the end of the run).
@@ -34,6 +39,8 @@ class ProbeRecorder {
   std::vector<std::vector<std::size_t>> force_columns_;
   std::vector<double> forces_;
   std::vector<std::ofstream> files_;
+  std::string directory_;  // DIRECTORY/probes, or empty
+  std::string path(const ProbeSeries& s) const;
 };
 
 }  // namespace afemp::core

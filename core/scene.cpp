@@ -177,7 +177,9 @@ Scene parse_scene(const std::string& text, const std::string& path) {
     throw InputError(SourceLocation{path, static_cast<int>(e.source().begin.line)}, "",
                      "TOML syntax error: " + std::string(e.description()));
   }
-  return scene_detail::scene_from_toml(root, path);
+  Scene scene = scene_detail::scene_from_toml(root, path);
+  scene.source = text;
+  return scene;
 }
 
 }  // namespace afemp::core

@@ -366,7 +366,8 @@ namespace {
 void read_run(TableReader& r, RunSettings& run) {
   r.known({"title", "end_time", "time_step_factor", "element_time_step_factor", "time_step", "max_steps", "output_every",
            "history_every", "energy_error_limit", "output_strain", "gravity", "terminate",
-           "units", "quiet", "history_interval", "output_times"});
+           "units", "quiet", "history_interval", "output_times", "checkpoint_every",
+           "checkpoint_wall_every", "checkpoint_keep"});
   r.check_unknown();
   run.title = r.string("title", "");
   run.end_time = r.required_number("end_time", Range::positive());
@@ -400,6 +401,9 @@ void read_run(TableReader& r, RunSettings& run) {
     run.units = systems[static_cast<std::size_t>(r.choice("units", {"mm-ms-g", "SI"}, 0))];
   }
   if (r.has("quiet")) run.quiet = r.strings("quiet");
+  run.checkpoint_every = r.number("checkpoint_every", 0.0, Range::non_negative());
+  run.checkpoint_wall_every = r.number("checkpoint_wall_every", 1800.0, Range::non_negative());
+  run.checkpoint_keep = static_cast<int>(r.integer("checkpoint_keep", 2, 1, 1000));
 }
 
 void read_grid(TableReader& r, GridSettings& grid) {

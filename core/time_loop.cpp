@@ -4,17 +4,26 @@
 // share it.
 #include "core/time_loop.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
 
+#include "core/checkpoint.hpp"
+#include "core/fault_injection.hpp"
 #include "core/output/history.hpp"
-#include "core/probe_recorder.hpp"
 #include "core/output/run_directory.hpp"
+#include "core/probe_recorder.hpp"
+#include "core/state_archive.hpp"
 
 namespace afemp::core {
 
@@ -72,6 +81,39 @@ HistoryRow history_row(const Model& m, const Energies& e, double dt, double erro
   throw SimulationError(model.step_count(), model.time(), body, "energy balance", detail);
 }
 
+std::vector<std::string> history_bodies(const Scene& scene) {
+  std::vector<std::string> names;
+  for (const auto& b : scene.bodies) names.push_back(b.name);
+  return names;
+}
+
+std::vector<std::string> history_extra(const Scene& scene, const Model& model) {
+  std::vector<std::string> extra;
+  if (has_mesh_contact(scene) || has_particle_walls(scene)) extra = {"sliding", "friction"};
+  for (std::string& c : model.force_columns()) extra.push_back(std::move(c));
+  return extra;
+}
+
+void visit_energies(StateArchive& a, const char* name, Energies& e) {
+  const StateArchive::Group group(a, name);
+  a.item("kinetic", e.kinetic);
+  a.item("internal", e.internal);
+  a.item("plastic", e.plastic);
+  a.item("viscous", e.viscous);
+  a.item("hourglass", e.hourglass);
+  a.item("stabilisation", e.stabilisation);
+  a.item("eroded", e.eroded);
+  a.item("converted", e.converted);
+  a.item("external_work", e.external_work);
+  a.item("contact", e.contact);
+  a.item("sliding", e.sliding);
+  a.item("friction", e.friction);
+  a.item("outflow", e.outflow);
+  a.item("outflow_mass", e.outflow_mass);
+  a.item("outflow_momentum", e.outflow_momentum);
+  a.item("bodies", e.bodies);
+}
+
 }  // namespace
 
 // Appends a model's event rows to their CSV files in the run directory (header first).
@@ -91,6 +133,35 @@ class EventFiles {
       it->second.flush();
     }
   }
+  // A checkpoint: the files and their lengths; restoring cuts each to its length and appends.
+  void state(StateArchive& a) {
+    std::vector<std::string> names;
+    std::vector<std::uint64_t> bytes;
+    for (auto& [name, file] : files_) {
+      file.flush();
+      if (!file) throw std::runtime_error(directory_ + "/" + name + ": cannot write");
+      names.push_back(name);
+      bytes.push_back(static_cast<std::uint64_t>(file.tellp()));
+    }
+    const StateArchive::Group group(a, "events");
+    a.item("files", names);
+    a.item("bytes", bytes);
+    if (!a.loading() || directory_.empty()) return;
+    if (bytes.size() != names.size()) throw CheckpointError(a.where("bytes") + ": one per file");
+    for (std::size_t k = 0; k < names.size(); ++k) {
+      const std::string path = directory_ + "/" + names[k];
+      std::error_code ec;
+      const std::uintmax_t size = std::filesystem::file_size(path, ec);
+      if (ec || size < bytes[k])
+        throw std::runtime_error(path + ": cannot continue: " +
+                                 (ec ? ec.message() : "shorter than at the checkpoint"));
+      std::filesystem::resize_file(path, bytes[k], ec);
+      if (ec) throw std::runtime_error(path + ": cannot cut to the checkpoint: " + ec.message());
+      std::ofstream& f = files_[names[k]];
+      f.open(path, std::ios::app);
+      if (!f) throw std::runtime_error(path + ": cannot write");
+    }
+  }
 
  private:
   std::string directory_;
@@ -103,19 +174,20 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
       options_(options),
       start_(std::chrono::steady_clock::now()),
       // First: a probe naming a node or element the mesh lacks stops the run before any output.
-      probes_(std::make_unique<ProbeRecorder>(model, scene.probes, options.output_directory)) {
+      probes_(std::make_unique<ProbeRecorder>(model, scene.probes, options.output_directory,
+                                              !options.restart_from.empty())) {
+  if (!options_.restart_from.empty()) {
+    restore(options_.restart_from);
+    return;
+  }
   if (!options_.output_directory.empty()) {
     OutputPaths paths;
     paths.directory = options_.output_directory;
     if (options_.write_fields)
       frames_ = std::make_unique<FieldWriter>(paths.directory, paths.fields_stem);
-    std::vector<std::string> names;
-    for (const auto& b : scene_.bodies) names.push_back(b.name);
-    std::vector<std::string> extra;
-    if (has_mesh_contact(scene_) || has_particle_walls(scene_)) extra = {"sliding", "friction"};
-    for (std::string& c : model_.force_columns()) extra.push_back(std::move(c));
-    history_ = std::make_unique<HistoryWriter>(
-        history_path(paths), names, scene_.mpm.grid.has_face(FaceCondition::outflow), extra);
+    history_ = std::make_unique<HistoryWriter>(history_path(paths), history_bodies(scene_),
+                                               scene_.mpm.grid.has_face(FaceCondition::outflow),
+                                               history_extra(scene_, model_));
     events_ = std::make_unique<EventFiles>(paths.directory);
   }
   sum_.particles = model_.particle_count();
@@ -132,12 +204,15 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
   next_output_ = scene_.run.output_every > 0.0 ? scene_.run.output_every : 1e300;
   next_history_ = scene_.run.history_interval;
   next_progress_ = options_.progress_seconds;
+  if (scene_.run.checkpoint_every > 0.0) next_checkpoint_ = scene_.run.checkpoint_every;
+  if (scene_.run.checkpoint_wall_every > 0.0) next_checkpoint_wall_ = scene_.run.checkpoint_wall_every;
 }
 
 TimeLoop::~TimeLoop() = default;
 
 double TimeLoop::elapsed() const {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  return wall_offset_ +
+         std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
 
 // [run] terminate: the body's centre of mass moves with its mean velocity p / m, integrated
@@ -218,6 +293,19 @@ void TimeLoop::step(double until) {
     ++next_listed_;
   }
   if (frames_ && frame && t < end * (1.0 - 1e-12)) model_.write_fields(*frames_);
+  // Checkpoints at [run] checkpoint_every, every checkpoint_wall_every seconds and on request
+  // (SIGUSR1), after the step's output; none at the end (the run is complete).
+  std::string reason;
+  if (t >= next_checkpoint_ * (1.0 - 1e-9)) {
+    reason = "checkpoint_every";
+    while (next_checkpoint_ <= t * (1.0 + 1e-9)) next_checkpoint_ += rs.checkpoint_every;
+  }
+  if (elapsed() >= next_checkpoint_wall_) {
+    reason = "checkpoint_wall_every";
+    next_checkpoint_wall_ = elapsed() + rs.checkpoint_wall_every;
+  }
+  if (options_.checkpoint_requested && options_.checkpoint_requested()) reason = "SIGUSR1";
+  if (!reason.empty() && !finished()) checkpoint(reason);
   if (options_.progress && elapsed() >= next_progress_) {
     const Energies e = model_.energies();
     options_.progress({k, model_.time(), dt_, end, elapsed(),
@@ -257,6 +345,169 @@ RunSummary TimeLoop::finish() {
   if (options_.progress)
     options_.progress({sum.steps, sum.time, dt_, rs.end_time, sum.wall_seconds, sum.energy_error});
   return sum;
+}
+
+}  // namespace afemp::core
+
+namespace afemp::core {
+
+namespace {
+
+// Flushes a written file to the disk (a checkpoint must be whole before it replaces the
+// previous one, even across a power cut).
+void sync_file(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0) throw CheckpointError(path + ": cannot reopen to sync: " + std::strerror(errno));
+  const int rc = ::fsync(fd);
+  const int err = errno;
+  ::close(fd);
+  if (rc != 0) throw CheckpointError(path + ": cannot sync: " + std::strerror(err));
+}
+
+// The next multiple-of-`every` time after t (an interval changed on restart), or never.
+double next_after(double t, double every) {
+  if (!(every > 0.0)) return 1e300;
+  double next = every * std::floor(t / every + 1e-9);
+  while (next <= t * (1.0 + 1e-9)) next += every;
+  return next;
+}
+
+}  // namespace
+
+std::string TimeLoop::checkpoint(const std::string& reason) {
+  // The model's pending events go to their files first: its state holds none.
+  std::vector<EventLog> pending = model_.take_events();
+  if (events_) events_->write(pending);
+  if (options_.output_directory.empty()) return "";
+  const std::string& dir = options_.output_directory;
+  const std::string path = checkpoint_path(dir, model_.step_count());
+  const std::string tmp = path + ".tmp";
+  std::error_code ec;
+  std::filesystem::create_directories(checkpoint_directory(dir), ec);
+  if (ec) throw CheckpointError(checkpoint_directory(dir) + ": cannot create: " + ec.message());
+  try {
+    StateArchive a(tmp, StateArchive::Mode::save);
+    CheckpointHeader h = checkpoint_header(scene_, model_.step_count(), model_.time(), reason);
+    visit_header(a, h);
+    model_.state(a);
+    fault_point("checkpoint");
+    visit(a);
+    a.close();
+    sync_file(tmp);
+    std::filesystem::rename(tmp, path);
+  } catch (const std::exception& e) {
+    std::filesystem::remove(tmp, ec);
+    throw CheckpointError(std::string(e.what()) + disk_full_note(dir) +
+                          "; the previous checkpoints are kept");
+  }
+  ++checkpoints_written_;
+  std::vector<std::string> all = list_checkpoints(dir);
+  for (std::size_t k = 0; k + static_cast<std::size_t>(scene_.run.checkpoint_keep) < all.size();
+       ++k)
+    std::filesystem::remove(all[k], ec);
+  return path;
+}
+
+void TimeLoop::restore(const std::string& path) {
+  StateArchive a(path, StateArchive::Mode::load);
+  CheckpointHeader h;
+  visit_header(a, h);
+  const std::vector<std::string> changes = scene_changes(h, scene_);
+  if (!changes.empty()) {
+    std::string text = path + ": restart refused: the scene changed since the checkpoint (only "
+                              "the end time, output, history and checkpoint settings may):";
+    for (const std::string& c : changes) text += "\n  " + c;
+    throw CheckpointError(text);
+  }
+  model_.state(a);
+  visit(a);
+  restarted_at_ = model_.step_count();
+  // A checkpoint half written when the run was killed: never complete, never read.
+  std::error_code ec;
+  if (!options_.output_directory.empty())
+    for (std::filesystem::directory_iterator it(checkpoint_directory(options_.output_directory), ec),
+         end;
+         !ec && it != end; it.increment(ec))
+    if (it->path().extension() == ".tmp") std::filesystem::remove(it->path(), ec);
+  start_ = std::chrono::steady_clock::now();
+  next_progress_ = elapsed() + options_.progress_seconds;
+  if (scene_.run.checkpoint_wall_every > 0.0)
+    next_checkpoint_wall_ = elapsed() + scene_.run.checkpoint_wall_every;
+}
+
+// The loop's bookkeeping and the output files' state, both ways.
+void TimeLoop::visit(StateArchive& a) {
+  const RunSettings& rs = scene_.run;
+  {
+    const StateArchive::Group group(a, "loop");
+    a.item("particles", sum_.particles);
+    a.item("elements", sum_.elements);
+    visit_energies(a, "initial", sum_.initial);
+    a.item("min_dt", sum_.min_dt);
+    a.item("max_dt", sum_.max_dt);
+    a.item("max_energy_error", sum_.max_energy_error);
+    a.item("max_kinetic", max_kinetic_);
+    a.item("travelled", travelled_);
+    a.item("last_velocity", last_velocity_);
+    a.item("last_time", last_time_);
+    a.item("through", through_);
+    a.item("rows_beyond", rows_beyond_);
+    a.item("dt", dt_);
+    a.item("last_error", last_error_);
+    a.item("last_step_recorded", last_step_recorded_);
+    double wall = elapsed();
+    a.item("wall_seconds", wall);
+    if (a.loading()) wall_offset_ = wall;
+    // The next output, history row and checkpoint times, with the settings they were made
+    // from: a setting changed on restart starts its own sequence after the present time.
+    double every[3] = {rs.output_every, rs.history_interval, rs.checkpoint_every};
+    a.item("output_every", every[0]);
+    a.item("history_interval", every[1]);
+    a.item("checkpoint_every", every[2]);
+    a.item("next_output", next_output_);
+    a.item("next_history", next_history_);
+    a.item("next_checkpoint", next_checkpoint_);
+    a.item("next_listed", next_listed_);
+    if (a.loading()) {
+      const double t = model_.time();
+      if (every[0] != rs.output_every) next_output_ = next_after(t, rs.output_every);
+      if (every[1] != rs.history_interval)
+        next_history_ = rs.history_interval > 0.0 ? next_after(t, rs.history_interval) : 0.0;
+      if (every[2] != rs.checkpoint_every) next_checkpoint_ = next_after(t, rs.checkpoint_every);
+      next_listed_ = 0;
+      while (next_listed_ < rs.output_times.size() &&
+             t >= rs.output_times[next_listed_] * (1.0 - 1e-9))
+        ++next_listed_;
+    }
+  }
+  const StateArchive::Group group(a, "output");
+  std::string index = frames_ ? frames_->index_text() : std::string();
+  std::uint8_t has_fields = frames_ ? 1 : 0;
+  std::uint64_t history_bytes = history_ ? history_->bytes() : 0;
+  std::uint64_t history_rows = history_ ? history_->rows() : 0;
+  a.item("has_fields", has_fields);
+  a.item("fields_index", index);
+  a.item("history_bytes", history_bytes);
+  a.item("history_rows", history_rows);
+  if (a.loading() && !options_.output_directory.empty()) {
+    OutputPaths paths;
+    paths.directory = options_.output_directory;
+    if (options_.write_fields)
+      frames_ = has_fields ? std::make_unique<FieldWriter>(paths.directory, paths.fields_stem, index)
+                           : std::make_unique<FieldWriter>(paths.directory, paths.fields_stem);
+    const bool outflow = scene_.mpm.grid.has_face(FaceCondition::outflow);
+    if (history_bytes > 0)
+      history_ = std::make_unique<HistoryWriter>(
+          history_path(paths), history_bodies(scene_), outflow, history_extra(scene_, model_),
+          HistoryWriter::Resume{history_bytes, history_rows});
+    else
+      history_ = std::make_unique<HistoryWriter>(history_path(paths), history_bodies(scene_),
+                                                 outflow, history_extra(scene_, model_));
+    events_ = std::make_unique<EventFiles>(paths.directory);
+  }
+  EventFiles none("");
+  (events_ ? *events_ : none).state(a);
+  probes_->state(a);
 }
 
 }  // namespace afemp::core

@@ -30,9 +30,18 @@ struct RunOptions {
   // Asked before each step: true ends the run there, with the final history row, frame and
   // summary written (`afemp run` asks whether SIGINT or SIGTERM came, core/interrupt.hpp).
   std::function<bool()> stop_requested;
+  // Asked after each step: true writes a checkpoint there and the run goes on (`afemp run`
+  // asks whether SIGUSR1 came; the answer must clear the request).
+  std::function<bool()> checkpoint_requested;
+  // A checkpoint file (core/checkpoint.hpp) to continue from: the model, built from the same
+  // scene, takes its state, and the run's files in output_directory are continued from their
+  // lengths then (rows, probe samples and frames written after it are dropped and written
+  // again). Throws CheckpointError naming the scene keys that changed, if any.
+  std::string restart_from;
 };
 
 class EventFiles;
+class StateArchive;
 class HistoryWriter;
 class ProbeRecorder;
 
@@ -53,8 +62,18 @@ class TimeLoop {
   // The final history row, probe sample and frame, and the summary (without the scene's
   // reference checks: analysis/reference_checks.hpp adds them).
   RunSummary finish();
+  // Writes a checkpoint of the state now into OUTPUT/checkpoints (keeping the newest
+  // [run] checkpoint_keep) and returns its path; "" when the run has no output directory.
+  // `reason` is kept in its header. Throws CheckpointError (the previous checkpoints intact)
+  // when it cannot be written, e.g. on a full disk.
+  std::string checkpoint(const std::string& reason);
+  // The checkpoints written by this loop, and the step the run continued from (0: none).
+  int checkpoints_written() const { return checkpoints_written_; }
+  long restarted_at() const { return restarted_at_; }
 
  private:
+  void restore(const std::string& path);
+  void visit(StateArchive& archive);
   double elapsed() const;
   Vec3 mean_velocity(const Energies& e) const;
   // A history row (and the terminate and energy guards); returns the energy-balance error.
@@ -80,6 +99,11 @@ class TimeLoop {
   double next_history_ = 0.0;      // [run] history_interval: the next row's time
   std::size_t next_listed_ = 0;    // [run] output_times: the next listed frame
   bool last_step_recorded_ = true;  // the last step wrote a history row (the start did)
+  double wall_offset_ = 0.0;         // wall seconds of the run before a restart
+  double next_checkpoint_ = 1e300;   // [run] checkpoint_every: the next one's time
+  double next_checkpoint_wall_ = 1e300;
+  int checkpoints_written_ = 0;
+  long restarted_at_ = 0;
 };
 
 }  // namespace afemp::core

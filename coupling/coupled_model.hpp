@@ -77,6 +77,7 @@ class CoupledModel final : public core::Model {
   }
   // The body's particles (converted elements' included) and the nodes of its live elements.
   core::BodyPoints body_points(int body) const override;
+  void state(core::StateArchive& archive) override;
 
  private:
   // Copies the FE nodes' state into the node points before the grid step.

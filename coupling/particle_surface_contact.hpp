@@ -26,6 +26,10 @@
 #include "fem/surface_faces.hpp"
 #include "mpm/grid_points.hpp"
 
+namespace afemp::core {
+class StateArchive;
+}
+
 namespace afemp::fem {
 class FeSolver;
 }
@@ -53,6 +57,8 @@ class ParticleSurfaceContacts final : public mpm::SurfaceContacts {
   void resolve(const mpm::GridStepAccess& access) override;
   const std::vector<Pair>& pairs() const { return pairs_; }
   double friction_work() const;
+  // Saves or restores the pairs' forces and friction work (coupled_state.cpp).
+  void state(core::StateArchive& archive);
 
  private:
   // One particle held by one face this step.

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/appendf.hpp"
+#include "core/state_archive.hpp"
 #include "fem/mesh_quality.hpp"
 
 namespace afemp::fem {
@@ -234,6 +235,12 @@ std::string FeModel::describe_mesh() const {
          solver_.stable_time_step() / scene_.run.element_time_step_factor,
          solver_.smallest_step_element().c_str());
   return out;
+}
+
+void FeModel::state(core::StateArchive& archive) {
+  solver_.state(archive);
+  const core::StateArchive::Group group(archive, "fe_model");
+  archive.item("hourglass_warning_step", hourglass_warning_step_);
 }
 
 }  // namespace afemp::fem

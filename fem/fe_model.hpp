@@ -57,6 +57,7 @@ class FeModel final : public core::Model {
     out.half_size.assign(out.position.size(), 0.0);
     return out;
   }
+  void state(core::StateArchive& archive) override;
 
  private:
   const core::Scene& scene_;

@@ -24,6 +24,10 @@
 #include "fem/mesh_contact.hpp"
 #include "fem/rigid_body.hpp"
 
+namespace afemp::core {
+class StateArchive;
+}
+
 namespace afemp::fem {
 
 struct SurfaceFaces;  // surface_faces.hpp
@@ -224,6 +228,10 @@ class FeSolver {
   double contact_inverse_mass(std::size_t i, const Vec3& n) const;
   void push_contact_impulse(std::size_t i, double w, const Vec3& n, const Vec3& impulse);
   void settle_contact_impulses(double dt);
+
+  // Saves or restores the solver's state (a checkpoint, core/state_archive.hpp; fe_state.cpp).
+  // Restoring needs a solver built from the same scene; events must have been taken.
+  void state(core::StateArchive& archive);
 
  private:
   void build(const core::Scene& scene);

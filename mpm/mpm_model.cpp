@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/appendf.hpp"
+#include "core/state_archive.hpp"
 #include "mpm/particle_generation.hpp"
 
 namespace afemp::mpm {
@@ -149,6 +150,10 @@ core::BodyPoints MpmModel::body_points(int body) const {
     out.half_size.push_back(0.5 * std::cbrt(p.volume[i]));  // a particle fills a cube of its volume
   }
   return out;
+}
+
+void MpmModel::state(core::StateArchive& archive) {
+  solver_.state(archive);
 }
 
 }  // namespace afemp::mpm

@@ -36,6 +36,7 @@ class MpmModel final : public core::Model {
   }
   void sample_probes(std::span<double> out) const override { probes_.sample(solver_.particles(), out); }
   core::BodyPoints body_points(int body) const override;
+  void state(core::StateArchive& archive) override;
   // The particles' block of one output frame (valid until the next call).
   core::PointBlock particle_block();
 

@@ -19,6 +19,10 @@
 #include "mpm/stencil.hpp"
 #include "mpm/step_plan.hpp"
 
+namespace afemp::core {
+class StateArchive;
+}
+
 namespace afemp::mpm {
 
 using core::BodySums;
@@ -81,6 +85,9 @@ class MpmSolver {
   // Bins the particles and activates their grid blocks without advancing, so that
   // active_cells() and bytes() describe the first step (`afemp check`).
   void prepare() { bin_particles(); }
+  // Saves or restores the solver's state (a checkpoint, core/state_archive.hpp; mpm_state.cpp).
+  // Restoring needs a solver built from the same scene.
+  void state(core::StateArchive& archive);
   // Active grid cells of the last binning.
   std::size_t active_cells() const;
   // Bytes held by particles, grid and solver scratch.

@@ -11,11 +11,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <system_error>
 #include <type_traits>
 #include <utility>
 
+#include "core/fault_injection.hpp"
+#include "core/output/hdf5_support.hpp"
 #include "core/output/xml_escape.hpp"
 
 namespace afemp::core {
@@ -24,77 +27,13 @@ static_assert(std::is_same_v<hid_t, std::int64_t>, "FieldWriter stores hid_t as 
 
 namespace {
 
-// Owns one HDF5 id and closes it with the matching H5?close.
-class Handle {
- public:
-  using Closer = herr_t (*)(hid_t);
-  Handle(hid_t id, Closer close) : id_(id), close_(close) {}
-  ~Handle() {
-    if (id_ >= 0) close_(id_);
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  Handle(Handle&& o) noexcept : id_(o.id_), close_(o.close_) { o.id_ = -1; }
-  Handle& operator=(Handle&&) = delete;
-  hid_t get() const { return id_; }
-  bool valid() const { return id_ >= 0; }
-
- private:
-  hid_t id_;
-  Closer close_;
-};
-
-// Silences HDF5's automatic error printing for the scope: we report through exceptions,
-// and a library that writes stack dumps to stderr on a missing file is noise for callers.
-class QuietErrors {
- public:
-  QuietErrors() {
-    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
-  QuietErrors(const QuietErrors&) = delete;
-  QuietErrors& operator=(const QuietErrors&) = delete;
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* data_ = nullptr;
-};
-
-herr_t collect_innermost(unsigned, const H5E_error2_t* err, void* out) {
-  // Walking downward, the last entry is the innermost: the most specific reason
-  // (e.g. "unable to open file: ... errno = 13, error message = 'Permission denied'").
-  if (err->desc != nullptr && err->desc[0] != '\0') *static_cast<std::string*>(out) = err->desc;
-  return 0;
-}
-
-// The current HDF5 error stack, summarised in one line; clears the stack.
-std::string hdf5_reason() {
-  std::string reason;
-  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, collect_innermost, &reason);
-  H5Eclear2(H5E_DEFAULT);
-  return reason.empty() ? std::string("HDF5 error") : reason;
-}
-
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw std::runtime_error(path + ": " + what + ": " + hdf5_reason());
-}
-
-void check(herr_t status, const std::string& path, const std::string& what) {
-  if (status < 0) fail(path, what);
-}
-
-// Object creation property list without modification times, so that the same calls give
-// the same bytes (HDF5 stamps datasets with the wall clock by default).
-hid_t untimed_plist(hid_t cls, const std::string& path) {
-  const hid_t plist = H5Pcreate(cls);
-  if (plist < 0) fail(path, "cannot create property list");
-  if (H5Pset_obj_track_times(plist, false) < 0) {
-    H5Pclose(plist);
-    fail(path, "cannot disable time tracking");
-  }
-  return plist;
-}
+using hdf5::check;
+using hdf5::fail;
+using hdf5::Handle;
+using hdf5::hdf5_reason;
+using hdf5::QuietErrors;
+using hdf5::unlocked_fapl;
+using hdf5::untimed_plist;
 
 void write_attribute(hid_t object, const char* name, hid_t file_type, hid_t mem_type,
                      const void* value, const std::string& path) {
@@ -181,22 +120,6 @@ std::string dimensions(std::size_t n, int components) {
 // XDMF component k is afemp component kTensor6FromAfemp[k].
 constexpr int kTensor6FromAfemp[6] = {0, 5, 4, 1, 3, 2};
 constexpr const char* kTensor6Order = "xx,xy,xz,yy,yz,zz";
-
-// File access without a lock: a viewer may open the file while the run goes on (it reads
-// the frames the index lists, all flushed); the writer's default exclusive lock would make
-// its open fail. The readers use it too, because HDF5 refuses to reopen a file in the same
-// process with different locking flags.
-hid_t unlocked_fapl(const std::string& path) {
-  const hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-  if (fapl < 0) fail(path, "cannot create file access property list");
-#if H5_VERSION_GE(1, 10, 7)
-  if (H5Pset_file_locking(fapl, false, true) < 0) {
-    H5Pclose(fapl);
-    fail(path, "cannot disable file locking");
-  }
-#endif
-  return fapl;
-}
 
 // Returns an open file id; the caller owns it (wraps it in a Handle at once).
 hid_t open_for_reading(const std::string& h5_path) {
@@ -287,6 +210,171 @@ FieldWriter::FieldWriter(std::string directory, std::string stem)
     H5Fclose(static_cast<hid_t>(file_));
     throw;
   }
+}
+
+// The index text: one line per frame ("F time"), per block ("B npc points cells
+// connectivity-frame name"), per node and cell field ("N components name", "C ..."), and per
+// stored connectivity ("S frame kind block"); times in hexadecimal, exact.
+std::string FieldWriter::index_text() const {
+  std::string out;
+  char buf[96];
+  for (const FrameRecord& f : frames_) {
+    std::snprintf(buf, sizeof buf, "F %a\n", f.time);
+    out += buf;
+    for (const BlockRecord& b : f.blocks) {
+      std::snprintf(buf, sizeof buf, "B %d %zu %zu %zu ", b.nodes_per_cell, b.n_points, b.n_cells,
+                    b.connectivity_frame);
+      out += buf + b.name + "\n";
+      for (const FieldRecord& r : b.node_fields) out += "N " + std::to_string(r.components) + " " + r.name + "\n";
+      for (const FieldRecord& r : b.cell_fields) out += "C " + std::to_string(r.components) + " " + r.name + "\n";
+    }
+  }
+  for (const StoredConnectivity& c : connectivity_)
+    out += "S " + std::to_string(c.frame) + " " + std::to_string(static_cast<int>(c.kind)) + " " +
+           c.block + "\n";
+  return out;
+}
+
+FieldWriter::FieldWriter(std::string directory, std::string stem, const std::string& index)
+    : directory_(std::move(directory)), stem_(std::move(stem)) {
+  const std::filesystem::path dir(directory_.empty() ? "." : directory_);
+  h5_path_ = (dir / (stem_ + ".h5")).string();
+  xmf_path_ = (dir / (stem_ + ".xmf")).string();
+  const auto bad = [&](const std::string& what) {
+    throw std::runtime_error(h5_path_ + ": cannot continue the field series: " + what);
+  };
+  // The records.
+  std::istringstream in(index);
+  std::string line;
+  std::vector<StoredConnectivity> stored;
+  while (std::getline(in, line)) {
+    if (line.size() < 2) bad("bad index line '" + line + "'");
+    std::istringstream l(line.substr(2));
+    const auto rest = [&] {
+      std::string name;
+      l >> std::ws;
+      std::getline(l, name);
+      return name;
+    };
+    if (line[0] == 'F') {
+      std::string t;
+      l >> t;
+      frames_.push_back({std::strtod(t.c_str(), nullptr), {}});
+    } else if (line[0] == 'B' && !frames_.empty()) {
+      BlockRecord b;
+      l >> b.nodes_per_cell >> b.n_points >> b.n_cells >> b.connectivity_frame;
+      b.name = rest();
+      frames_.back().blocks.push_back(std::move(b));
+    } else if ((line[0] == 'N' || line[0] == 'C') && !frames_.empty() &&
+               !frames_.back().blocks.empty()) {
+      FieldRecord r;
+      l >> r.components;
+      r.name = rest();
+      BlockRecord& b = frames_.back().blocks.back();
+      (line[0] == 'N' ? b.node_fields : b.cell_fields).push_back(std::move(r));
+    } else if (line[0] == 'S') {
+      StoredConnectivity c;
+      int kind = 0;
+      l >> c.frame >> kind;
+      c.kind = kind == 0 ? CellKind::hexahedron : CellKind::line;
+      c.block = rest();
+      stored.push_back(std::move(c));
+    } else {
+      bad("bad index line '" + line + "'");
+    }
+    if (!l && line[0] != 'F') bad("bad index line '" + line + "'");
+  }
+
+  const QuietErrors quiet;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(h5_path_, ec)) bad("no such file");
+  // In place: the listed frames kept, later ones dropped. A file whose last write failed (a
+  // full disk) or was cut off (a crash) may refuse that; the listed frames are then copied
+  // into a fresh file that replaces it.
+  std::string failure;
+  if (!drop_frames_after(stored, failure)) {
+    if (file_ >= 0) H5Fclose(static_cast<hid_t>(file_));
+    file_ = -1;
+    H5Eclear2(H5E_DEFAULT);
+    copy_listed_frames(failure);
+    if (!drop_frames_after(stored, failure)) {
+      if (file_ >= 0) H5Fclose(static_cast<hid_t>(file_));
+      file_ = -1;
+      bad(failure);
+    }
+  }
+  connectivity_ = std::move(stored);
+  write_index();
+}
+
+// Opens the file for writing, checks the listed frames are there, deletes later ones and
+// reads the stored connectivities; false with the reason when any of it fails.
+bool FieldWriter::drop_frames_after(std::vector<StoredConnectivity>& stored, std::string& failure) {
+  const Handle fapl(unlocked_fapl(h5_path_), H5Pclose);
+  file_ = H5Fopen(h5_path_.c_str(), H5F_ACC_RDWR, fapl.get());
+  if (file_ < 0) {
+    failure = "cannot open it for writing (" + hdf5_reason() + ")";
+    return false;
+  }
+  const hid_t file = static_cast<hid_t>(file_);
+  for (std::size_t f = 0; f < frames_.size(); ++f)
+    if (H5Lexists(file, frame_name(f).c_str(), H5P_DEFAULT) <= 0) {
+      failure = "frame " + std::to_string(f) + " of the " + std::to_string(frames_.size()) +
+                " the checkpoint lists is missing";
+      return false;
+    }
+  for (std::size_t f = frames_.size();; ++f) {
+    const std::string name = frame_name(f);
+    if (H5Lexists(file, name.c_str(), H5P_DEFAULT) <= 0) break;
+    if (H5Ldelete(file, name.c_str(), H5P_DEFAULT) < 0) {
+      failure = "cannot drop " + name + " (" + hdf5_reason() + ")";
+      return false;
+    }
+  }
+  H5Eclear2(H5E_DEFAULT);
+  for (StoredConnectivity& c : stored) {
+    const std::string dataset = frame_name(c.frame) + "/" + c.block + "/connectivity";
+    const Handle dset(H5Dopen2(file, dataset.c_str(), H5P_DEFAULT), H5Dclose);
+    const Handle space(dset.valid() ? H5Dget_space(dset.get()) : -1, H5Sclose);
+    const hssize_t count = space.valid() ? H5Sget_simple_extent_npoints(space.get()) : -1;
+    c.cells.resize(count > 0 ? static_cast<std::size_t>(count) : 0);
+    if (count < 0 ||
+        (!c.cells.empty() && H5Dread(dset.get(), H5T_NATIVE_INT32, H5S_ALL, H5S_ALL,
+                                     H5P_DEFAULT, c.cells.data()) < 0)) {
+      failure = "cannot read " + dataset + " (" + hdf5_reason() + ")";
+      return false;
+    }
+  }
+  if (H5Fflush(file, H5F_SCOPE_LOCAL) < 0) {
+    failure = "cannot flush (" + hdf5_reason() + ")";
+    return false;
+  }
+  return true;
+}
+
+// Copies the frames the index lists into DIR/STEM.h5.rebuilt and renames it over the file.
+void FieldWriter::copy_listed_frames(const std::string& why) {
+  const auto bad = [&](const std::string& what) {
+    throw std::runtime_error(h5_path_ + ": cannot continue the field series: " + why +
+                             "; copying its frames into a new file failed too: " + what);
+  };
+  const std::string fresh = h5_path_ + ".rebuilt";
+  {
+    const Handle fapl(unlocked_fapl(h5_path_), H5Pclose);
+    const Handle from(H5Fopen(h5_path_.c_str(), H5F_ACC_RDONLY, fapl.get()), H5Fclose);
+    if (!from.valid()) bad("cannot open it (" + hdf5_reason() + ")");
+    const Handle to(H5Fcreate(fresh.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
+    if (!to.valid()) bad("cannot create " + fresh + " (" + hdf5_reason() + ")");
+    for (std::size_t f = 0; f < frames_.size(); ++f) {
+      const std::string name = frame_name(f);
+      if (H5Ocopy(from.get(), name.c_str(), to.get(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT) < 0)
+        bad("frame " + name + " (" + hdf5_reason() + ")");
+    }
+    if (H5Fflush(to.get(), H5F_SCOPE_LOCAL) < 0) bad("cannot flush " + fresh);
+  }
+  std::error_code ec;
+  std::filesystem::rename(fresh, h5_path_, ec);
+  if (ec) bad("cannot rename " + fresh + ": " + ec.message());
 }
 
 FieldWriter::~FieldWriter() {
@@ -417,6 +505,7 @@ void FieldWriter::write_frame(double time, long step, std::span<const PointBlock
     H5Eclear2(H5E_DEFAULT);
     throw;
   }
+  fault_point("frame");
   // Data on disk before the index that points at it.
   check(H5Fflush(file, H5F_SCOPE_LOCAL), h5_path_, "cannot flush");
   for (std::size_t m = 0; m < meshes.size(); ++m) {
@@ -506,6 +595,8 @@ void FieldWriter::write_index() const {
   std::filesystem::rename(tmp, xmf_path_, ec);
   if (ec) throw std::runtime_error(xmf_path_ + ": cannot replace XDMF index: " + ec.message());
 }
+
+void skip_hdf5_exit_cleanup() { H5dont_atexit(); }
 
 std::vector<double> read_dataset(const std::string& h5_path, const std::string& dataset,
                                  std::vector<std::size_t>* dims) {

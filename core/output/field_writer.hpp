@@ -120,6 +120,11 @@ class FieldWriter {
   // Creates the directory (and parents) and truncates both files. Throws std::runtime_error
   // naming the path and the reason if either cannot be created.
   explicit FieldWriter(std::string directory, std::string stem = "fields");
+  // Continues the series of an earlier run (a restart): opens DIR/STEM.h5 for writing, keeps
+  // the frames `index` lists (index_text() of the writer then), drops any later ones (written
+  // after the checkpoint) and rewrites the XDMF index. Throws std::runtime_error naming the
+  // file when it cannot be opened or lacks a listed frame.
+  FieldWriter(std::string directory, std::string stem, const std::string& index);
   ~FieldWriter();
   FieldWriter(const FieldWriter&) = delete;
   FieldWriter& operator=(const FieldWriter&) = delete;
@@ -137,6 +142,8 @@ class FieldWriter {
                    std::span<const FieldView> fields);
 
   std::size_t frames() const { return frames_.size(); }
+  // What a restart needs to continue the series: the frames written so far, as text.
+  std::string index_text() const;
   const std::string& h5_path() const { return h5_path_; }
   const std::string& xmf_path() const { return xmf_path_; }
 
@@ -166,6 +173,8 @@ class FieldWriter {
   };
 
   void write_index() const;
+  bool drop_frames_after(std::vector<StoredConnectivity>& stored, std::string& failure);
+  void copy_listed_frames(const std::string& why);
 
   std::string directory_;
   std::string stem_;
@@ -180,6 +189,11 @@ class FieldWriter {
 // Readers for tests and tools. Throw std::runtime_error naming the file and object when
 // something is missing.
 // The whole dataset as doubles in row-major order; dims (if given) receives its shape.
+// For a program's main(), before any HDF5 call: the process ends without HDF5's exit-time
+// cleanup, which (HDF5 1.10) crashes on a file whose writes failed (a full disk) and would turn
+// a reported output error into a segmentation fault; the operating system closes the files.
+void skip_hdf5_exit_cleanup();
+
 std::vector<double> read_dataset(const std::string& h5_path, const std::string& dataset,
                                  std::vector<std::size_t>* dims = nullptr);
 // A numeric scalar attribute of a group or dataset (integers are converted to double).

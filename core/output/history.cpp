@@ -48,7 +48,46 @@ HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> body_nam
   errno = 0;
   file_.reset(std::fopen(path_.c_str(), "w"));
   if (!file_) throw std::runtime_error(path_ + ": cannot create history file: " + errno_text(errno));
+  const std::string head = header();
+  if (std::fwrite(head.data(), 1, head.size(), file_.get()) != head.size() ||
+      std::fflush(file_.get()) != 0)
+    throw std::runtime_error(path_ + ": cannot write history header: " + errno_text(errno));
+  bytes_ = head.size();
+}
 
+HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> body_names, bool outflow,
+                             std::vector<std::string> extra, Resume resume)
+    : path_(std::move(path)),
+      body_names_(std::move(body_names)),
+      outflow_(outflow),
+      extra_(std::move(extra)) {
+  const std::string head = header();
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path_, ec);
+  if (ec)
+    throw std::runtime_error(path_ + ": cannot continue the history: " + ec.message());
+  if (size < resume.bytes || resume.bytes < head.size())
+    throw std::runtime_error(path_ + ": cannot continue the history: the file has " +
+                             std::to_string(size) + " bytes, the checkpoint counts " +
+                             std::to_string(resume.bytes));
+  {
+    std::ifstream in(path_, std::ios::binary);
+    std::string first(head.size(), '\0');
+    in.read(first.data(), static_cast<std::streamsize>(first.size()));
+    if (first != head)
+      throw std::runtime_error(path_ + ": cannot continue the history: its columns are not the "
+                               "ones this scene writes");
+  }
+  std::filesystem::resize_file(path_, resume.bytes, ec);
+  if (ec) throw std::runtime_error(path_ + ": cannot cut the history to the checkpoint: " + ec.message());
+  errno = 0;
+  file_.reset(std::fopen(path_.c_str(), "ab"));
+  if (!file_) throw std::runtime_error(path_ + ": cannot append to the history: " + errno_text(errno));
+  bytes_ = resume.bytes;
+  rows_ = resume.rows;
+}
+
+std::string HistoryWriter::header() const {
   std::string header = "step,time,dt,kinetic,internal,elastic,plastic,viscous,hourglass,"
                        "stabilisation,eroded,converted,contact,external_work,total,energy_error";
   if (outflow_) header += ",outflow,outflow_mass,outflow_px,outflow_py,outflow_pz";
@@ -56,9 +95,7 @@ HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> body_nam
     for (const char* c : {".px", ".py", ".pz", ".vx", ".vy", ".vz", ".kinetic", ".internal"}) header += "," + name + c;
   for (const std::string& name : extra_) header += "," + name;
   header += '\n';
-  if (std::fwrite(header.data(), 1, header.size(), file_.get()) != header.size() ||
-      std::fflush(file_.get()) != 0)
-    throw std::runtime_error(path_ + ": cannot write history header: " + errno_text(errno));
+  return header;
 }
 
 void HistoryWriter::write(const HistoryRow& row) {
@@ -93,6 +130,7 @@ void HistoryWriter::write(const HistoryRow& row) {
     throw std::runtime_error(path_ + ": cannot write history row at step " +
                              std::to_string(row.step) + ": " + errno_text(errno));
   ++rows_;
+  bytes_ += line_.size();
 }
 
 std::size_t CsvTable::column(const std::string& name) const {

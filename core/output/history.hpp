@@ -54,6 +54,14 @@ class HistoryWriter {
   // interface forces), written from HistoryRow::extra.
   HistoryWriter(std::string path, std::vector<std::string> body_names, bool outflow = false,
                 std::vector<std::string> extra = {});
+  // Continues the file of an earlier run (a restart): checks its header is the one these
+  // columns give, cuts it to `bytes` (its length at the checkpoint: rows written after it go)
+  // and appends from there; `rows` is the count written up to then.
+  struct Resume {
+    std::size_t bytes = 0, rows = 0;
+  };
+  HistoryWriter(std::string path, std::vector<std::string> body_names, bool outflow,
+                std::vector<std::string> extra, Resume resume);
 
   // Appends and flushes one row. Throws std::invalid_argument if row.bodies does not have
   // one entry per body name, std::runtime_error if the write fails (e.g. disk full).
@@ -61,6 +69,8 @@ class HistoryWriter {
 
   const std::string& path() const { return path_; }
   std::size_t rows() const { return rows_; }
+  // Bytes in the file so far (all flushed).
+  std::size_t bytes() const { return bytes_; }
 
  private:
   struct FileCloser {
@@ -73,6 +83,8 @@ class HistoryWriter {
   std::unique_ptr<std::FILE, FileCloser> file_;
   std::string line_;  // reused row buffer
   std::size_t rows_ = 0;
+  std::size_t bytes_ = 0;
+  std::string header() const;
 };
 
 // A numeric CSV read back (for tests and tools): the first line is the header, every other

@@ -62,6 +62,12 @@ struct RunSummary {
   /// Set when RunOptions::stop_requested ended the run before its end (a signal, for
   /// `afemp run`): the step and time it stopped at.
   bool interrupted = false;
+  /// An interrupted run: the checkpoint written before it stopped (empty: none written, see
+  /// checkpoint_error), to continue with `afemp run SCENE --restart DIR`.
+  std::string checkpoint{};
+  std::string checkpoint_error{};
+  /// A restarted run: the step it continued from (0: it started at the beginning).
+  long restarted_at = 0;
   std::optional<TaylorMeasures> taylor{};  ///< when the scene states a Taylor reference
   double taylor_error = 0.0;
   /// Every [reference] check, the Taylor one included, in the scene's order.

@@ -81,6 +81,11 @@ struct RunSettings {
   std::string units{};
   /// Keys whose plausibility warnings are silenced (dotted, as the warning names them).
   std::vector<std::string> quiet{};
+  /// Checkpoints (docs/restart.md): every checkpoint_every of simulated time (0: none) and every
+  /// checkpoint_wall_every seconds of wall time (0: none), keeping the newest checkpoint_keep.
+  double checkpoint_every = 0.0;
+  double checkpoint_wall_every = 1800.0;
+  int checkpoint_keep = 2;
 };
 
 /// The [grid] section: the background grid of cubic cells and its face conditions.
@@ -377,6 +382,9 @@ struct ContactSpec {
 /// and bodies by index into the vectors here.
 struct Scene {
   std::string path{};             ///< the scene file, as given
+  /// The scene's TOML text as read (a checkpoint keeps it: a restart compares the scene with
+  /// it); empty for scenes built in code.
+  std::string source{};
   RunSettings run{};
   bool has_grid = false;        ///< a [grid] section: needed by particle bodies
   MpmSettings mpm{};

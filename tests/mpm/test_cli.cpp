@@ -3,6 +3,8 @@
 // writes the field output and a history whose first row is the scene's initial state.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <vector>
@@ -82,8 +84,10 @@ TEST(Cli, RunWritesFieldsAndHistoryStartingFromTheSceneKineticEnergy) {
 
 // Reference: SIGINT during `afemp run` ends it cleanly after the step it is in: exit code 130
 // (128 + SIGINT), a message naming the signal, the step and the output directory, the summary,
-// and a history whose last row is a time before the end (the final row written at the stop),
-// with the first frame and the final one in the XDMF. The scene (a free cube translating, a
+// a history whose last row is a time before the end (the final row written at the stop), with
+// the first frame and the final one in the XDMF, and a checkpoint at the step it stopped after
+// with the command that continues the run (docs/restart.md). SIGUSR1 before it wrote another
+// checkpoint without stopping the run. The scene (a free cube translating, a
 // billion steps nominal) cannot end by itself within the test.
 TEST(Cli, SigintStopsTheRunCleanlyWithItsFinalRowFrameAndSummary) {
   test::ScratchDir dir;
@@ -102,7 +106,8 @@ TEST(Cli, SigintStopsTheRunCleanlyWithItsFinalRowFrameAndSummary) {
   line += path;
   line += "\" -o \"";
   line += out;
-  line += "\" --threads 1 & pid=$!; sleep 1; kill -INT $pid; wait $pid";
+  line += "\" --threads 1 & pid=$!; sleep 1; kill -USR1 $pid; sleep 0.5; kill -INT $pid; "
+          "wait $pid";
   const test::CommandResult r = test::run_shell(line, dir);
   EXPECT_EQ(r.exit_code, 130) << r.out << r.err;
   EXPECT_NE(r.err.find("afemp: stopped by SIGINT after step"), std::string::npos) << r.err;
@@ -116,6 +121,18 @@ TEST(Cli, SigintStopsTheRunCleanlyWithItsFinalRowFrameAndSummary) {
   std::size_t frames = 0;
   for (auto p = xmf.find("<Time "); p != std::string::npos; p = xmf.find("<Time ", p + 1)) ++frames;
   EXPECT_EQ(frames, 2u) << xmf.substr(0, 400);
+  // Two checkpoints: SIGUSR1's, and the stop's at the last step of the history.
+  std::vector<std::string> checkpoints;
+  for (const auto& f : std::filesystem::directory_iterator(out + "/checkpoints"))
+    checkpoints.push_back(f.path().filename().string());
+  std::sort(checkpoints.begin(), checkpoints.end());
+  ASSERT_EQ(checkpoints.size(), 2u);
+  char last[40];
+  std::snprintf(last, sizeof last, "step_%012ld.h5",
+                static_cast<long>(h.rows.back()[h.column("step")]));
+  EXPECT_EQ(checkpoints[1], last);
+  EXPECT_NE(r.err.find("continue with: afemp run " + path + " --restart " + out), std::string::npos)
+      << r.err;
 }
 
 // [reference] in a scene: a free rigid translation keeps its mean velocity (3, -4, 12) m/s

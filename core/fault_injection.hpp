@@ -1,0 +1,13 @@
+// Crash tests' hook (tests/core/test_restart.cpp): with AFEMP_FAULT="NAME:N" in the environment,
+// the Nth pass through fault_point(NAME) kills the process with SIGKILL on the spot, nothing
+// flushed or closed, as a power cut or the kernel's OOM killer would. Without it (every user's
+// run) a point costs one comparison. Points: "frame" (inside a field frame's write, its data
+// written but not flushed) and "checkpoint" (inside a checkpoint's write, the model's state
+// written but not the rest).
+#pragma once
+
+namespace afemp::core {
+
+void fault_point(const char* name);
+
+}  // namespace afemp::core

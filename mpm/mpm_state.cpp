@@ -1,0 +1,71 @@
+// The MPM solver's part of a checkpoint (core/state_archive.hpp): the particles in their
+// present order, and every member that carries over from one step to the next. What the
+// constructor derives from the scene (plan, grid, contact laws, absorbing faces) is rebuilt by
+// constructing the solver from the same scene; the grid itself holds nothing between steps
+// (every step starts by clearing and rebinning it).
+#include "core/state_archive.hpp"
+#include "mpm/mpm_solver.hpp"
+
+namespace afemp::mpm {
+
+void visit_particles(core::StateArchive& a, Particles& p) {
+  const core::StateArchive::Group group(a, "particles");
+  a.item("position", p.position);
+  a.item("velocity", p.velocity);
+  a.item("mass", p.mass);
+  a.item("volume", p.volume);
+  a.item("stress", p.stress);
+  a.item("strain", p.strain);
+  a.item("plastic_strain", p.plastic_strain);
+  a.item("temperature", p.temperature);
+  a.item("energy", p.energy);
+  a.item("damage", p.damage);
+  a.item("max_compaction", p.max_compaction);
+  a.item("bulk_q", p.bulk_q);
+  a.item("body", p.body);
+  a.item("material", p.material);
+  a.item("id", p.id);
+  a.item("half_width", p.half_width);
+  a.item("affine", p.affine);
+  a.item("length", p.length);
+  a.item("length0", p.length0);
+  a.item("history", p.history);
+  a.item("history_count", p.history_count);
+}
+
+void MpmSolver::state(core::StateArchive& a) {
+  const core::StateArchive::Group group(a, "mpm");
+  visit_particles(a, particles_);
+  a.item("steps", steps_);
+  a.item("time", time_);
+  a.item("step_dt", step_dt_);
+  a.item("signal_speed", signal_speed_);
+  a.item("sweep_axis", sweep_axis_);
+  a.item("velocity_gradient", velocity_gradient_);
+  a.item("field_self_updated", field_self_updated_);
+  a.item("contact_energy", contact_energy_);
+  a.item("plastic_work", plastic_work_);
+  a.item("viscous_work", viscous_work_);
+  a.item("external_work", external_work_);
+  a.item("outflow_mass", outflow_mass_);
+  a.item("outflow_energy", outflow_energy_);
+  a.item("outflow_momentum", outflow_momentum_);
+  a.item("outflow_count", outflow_count_);
+  a.item("split_count", split_count_);
+  a.item("wall_force", wall_force_);
+  a.item("wall_sliding", wall_sliding_);
+  a.item("wall_friction", wall_friction_);
+  a.item("stage_counts", stage_counts_);
+  a.item("stage_seconds", stage_seconds_);
+  a.item("reorder_seconds", reorder_seconds_);
+  if (a.loading()) {
+    if (stage_counts_.size() != plan_.stages.size())
+      throw core::CheckpointError(a.where("stage_counts") + ": " +
+                                  std::to_string(stage_counts_.size()) +
+                                  " stages, the scene's plan has " +
+                                  std::to_string(plan_.stages.size()));
+    rebuild_batches();
+  }
+}
+
+}  // namespace afemp::mpm
