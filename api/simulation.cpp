@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "analysis/reference_checks.hpp"
+#include "core/checkpoint.hpp"
 #include "core/scene.hpp"
 #include "core/time_loop.hpp"
 #include "coupling/coupled_model.hpp"
@@ -19,6 +20,10 @@ namespace afemp {
 Scene read_scene(const std::string& path) { return core::read_scene(path); }
 
 void check_scene(const Scene& scene) { core::check_scene(scene); }
+
+std::string newest_checkpoint(const std::string& run_directory) {
+  return core::newest_checkpoint(run_directory);
+}
 
 struct Simulation::Impl {
   Impl(Scene s, SimulationOptions o) : scene(std::move(s)), options(std::move(o)) {
@@ -35,6 +40,7 @@ struct Simulation::Impl {
     run.write_fields = options.write_fields;
     run.progress = options.progress;
     run.progress_seconds = options.progress_seconds;
+    run.restart_from = options.restart_from;
     loop = std::make_unique<core::TimeLoop>(*model, scene, run);
   }
 
@@ -125,6 +131,8 @@ RunSummary Simulation::finish() {
 }
 
 void Simulation::on_step(StepCallback callback) { impl_->callbacks.push_back(std::move(callback)); }
+
+std::string Simulation::checkpoint() { return impl_->loop->checkpoint("program"); }
 
 ParticleFields Simulation::particles() {
   if (impl_->mpm == nullptr) return {};

@@ -67,6 +67,17 @@ void warn_step_count(const core::Scene& scene, const core::Model& model, double 
                core::readable_count(steps * points).c_str());
 }
 
+// A run estimated to take more than a day at the nominal pace (core/resource_guard.hpp); not
+// where the step count has been warned of already.
+void warn_wall_time(const core::Scene& scene, const core::Model& model, double dt) {
+  double steps = scene.run.end_time / dt;
+  if (scene.run.max_steps > 0) steps = std::min(steps, static_cast<double>(scene.run.max_steps));
+  else if (steps > 1e9) return;
+  const double points = static_cast<double>(model.particle_count() + model.element_count());
+  const std::string w = core::wall_time_warning(points * steps, core::thread_count());
+  if (!w.empty()) std::fprintf(stderr, "afemp: warning: %s\n", w.c_str());
+}
+
 int check(const std::string& path) {
   refuse_deck(path);
   const core::Scene scene = core::read_scene(path);
@@ -84,10 +95,20 @@ int check(const std::string& path) {
               scene.run.fixed_time_step > 0.0 ? "fixed" : "stable step x time_step_factor",
               core::readable_count(scene.run.end_time / dt).c_str(), scene.run.end_time);
   warn_step_count(scene, *model, dt);
+  warn_wall_time(scene, *model, dt);
   const double points = static_cast<double>(model->particle_count() + model->element_count());
   std::printf("memory estimate: %.1f MiB (%.0f bytes per particle or element)\n",
               static_cast<double>(model->bytes()) / (1024.0 * 1024.0),
               static_cast<double>(model->bytes()) / points);
+  double steps = scene.run.end_time / dt;
+  if (scene.run.max_steps > 0) steps = std::min(steps, static_cast<double>(scene.run.max_steps));
+  std::printf("wall time estimate: about %s on %d thread(s) (%s point-steps at a nominal 1.5 "
+              "million per thread and second; plasticity, contact and coupling cost more, simple "
+              "elastic particles less)\n",
+              core::readable_duration(points * steps / (core::nominal_point_steps_per_thread_second *
+                                                        core::thread_count()))
+                  .c_str(),
+              core::thread_count(), core::readable_count(points * steps).c_str());
   return 0;
 }
 
@@ -126,6 +147,7 @@ int run(const std::string& path, std::string out_dir, const std::string& restart
   options.progress_seconds = progress.interval();
   if (checkpoint.empty()) {
     warn_step_count(scene, *model, model->stable_time_step());
+    warn_wall_time(scene, *model, model->stable_time_step());
     std::printf("afemp run %s -> %s (%d thread(s))\n", path.c_str(), out_dir.c_str(),
                 core::thread_count());
   } else {

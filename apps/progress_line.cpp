@@ -1,6 +1,7 @@
 #include "apps/progress_line.hpp"
 
 #include "core/parallel.hpp"
+#include "core/resource_guard.hpp"
 
 #include <unistd.h>
 
@@ -39,6 +40,15 @@ void ProgressReporter::operator()(const core::Progress& p) {
     std::fprintf(out_, "%s\n", line);
   }
   std::fflush(out_);
+  // Once, when the pace so far says the run will take days.
+  if (!pace_warned_) {
+    const std::string w = core::pace_warning(p.elapsed_seconds, fraction);
+    if (!w.empty()) {
+      finish();
+      std::fprintf(stderr, "afemp: warning: %s\n", w.c_str());
+      pace_warned_ = true;
+    }
+  }
 }
 
 void ProgressReporter::finish() {

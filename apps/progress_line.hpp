@@ -23,6 +23,7 @@ class ProgressReporter {
   std::FILE* out_;
   bool live_;
   bool pending_newline_ = false;
+  bool pace_warned_ = false;
 };
 
 void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSummary& s);

@@ -1,6 +1,7 @@
 // Sizing a scene before it is built (core/resource_guard.hpp).
 #include "core/resource_guard.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -108,6 +109,44 @@ std::string readable_count(double count) {
     out += digits[i];
   }
   return out;
+}
+
+std::string readable_duration(double seconds) {
+  char buf[48];
+  if (!(seconds < 1e300)) return "forever";
+  if (seconds < 120.0)
+    std::snprintf(buf, sizeof buf, "%.0f s", seconds);
+  else if (seconds < 7200.0)
+    std::snprintf(buf, sizeof buf, "%.1f min", seconds / 60.0);
+  else if (seconds < 2.0 * 86400.0)
+    std::snprintf(buf, sizeof buf, "%.1f h", seconds / 3600.0);
+  else if (seconds < 1000.0 * 86400.0)
+    std::snprintf(buf, sizeof buf, "%.1f days", seconds / 86400.0);
+  else
+    std::snprintf(buf, sizeof buf, "%.2g years", seconds / (365.25 * 86400.0));
+  return buf;
+}
+
+std::string wall_time_warning(double point_steps, int threads) {
+  const double seconds =
+      point_steps / (nominal_point_steps_per_thread_second * std::max(threads, 1));
+  if (!(seconds > 86400.0)) return "";
+  return "the run is estimated to take " + readable_duration(seconds) + " (" +
+         readable_count(point_steps) + " point-steps on " + std::to_string(threads) +
+         " thread(s) at about 1.5 million per thread and second); check end_time, the cell and "
+         "mesh sizes and the units, and keep checkpoints on ([run] checkpoint_wall_every, "
+         "docs/restart.md)";
+}
+
+std::string pace_warning(double elapsed, double fraction) {
+  if (!(elapsed >= 20.0) || !(fraction > 0.0)) return "";
+  const double rest = elapsed * (1.0 - fraction) / fraction;
+  if (!(rest > 86400.0)) return "";
+  char pct[32];
+  std::snprintf(pct, sizeof pct, "%.3g %%", 100.0 * fraction);
+  return "at its pace so far (" + std::string(pct) + " of the end time in " +
+         readable_duration(elapsed) + ") the run needs " + readable_duration(rest) +
+         " more; checkpoints keep it restartable ([run] checkpoint_wall_every, docs/restart.md)";
 }
 
 }  // namespace afemp::core

@@ -31,4 +31,19 @@ void refuse_oversized_scene(const Scene& scene);
 // A step count as a person reads it: "12,345" below 1e9, "1.0e+300" above.
 std::string readable_count(double count);
 
+// The nominal pace for wall-time estimates before a run has a pace of its own: 1.5 million
+// point-steps a second per thread, a fifth of COLUMN-G's 7.5 million on one thread of the
+// 2-core development machine (bench/README.md), for scenes with plasticity, contact and
+// coupling (the restart test's scene, tests/coupling/test_restart.cpp: 2.5 million per thread
+// there). An estimate to flag runs of days, not a promise.
+inline constexpr double nominal_point_steps_per_thread_second = 1.5e6;
+// A duration as a person reads it: "45 s", "3.2 min", "5.1 h", "12.4 days", "3.1e+04 years".
+std::string readable_duration(double seconds);
+// What `afemp check` and `run` warn when a run is estimated to take more than a day:
+// `point_steps` (points x steps to the end) at the nominal pace on `threads`; "" below a day.
+std::string wall_time_warning(double point_steps, int threads);
+// The same from a run's own pace: after `elapsed` seconds it reached `fraction` of its end
+// time; "" while elapsed is under 20 s or the rest is under a day.
+std::string pace_warning(double elapsed, double fraction);
+
 }  // namespace afemp::core

@@ -20,15 +20,10 @@
 #include <type_traits>
 #include <vector>
 
+#include "afemp/errors.hpp"
 #include "afemp/tensor.hpp"
 
 namespace afemp::core {
-
-// A checkpoint that cannot be written or read: names the file, the item and the reason.
-class CheckpointError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 namespace state_detail {
 

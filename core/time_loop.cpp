@@ -375,10 +375,9 @@ double next_after(double t, double every) {
 }  // namespace
 
 std::string TimeLoop::checkpoint(const std::string& reason) {
-  // The model's pending events go to their files first: its state holds none.
-  std::vector<EventLog> pending = model_.take_events();
-  if (events_) events_->write(pending);
   if (options_.output_directory.empty()) return "";
+  // The model's pending events go to their files first: its state holds none.
+  if (events_) events_->write(model_.take_events());
   const std::string& dir = options_.output_directory;
   const std::string path = checkpoint_path(dir, model_.step_count());
   const std::string tmp = path + ".tmp";

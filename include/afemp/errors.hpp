@@ -37,6 +37,13 @@ class SimulationError : public std::runtime_error {
   long step_;
 };
 
+/// A checkpoint that cannot be written or read, or a restart refused (the scene changed):
+/// what() names the file, the item or keys and the reason (docs/restart.md).
+class CheckpointError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 }  ///< namespace afemp::core
 
 // The public names, in namespace afemp.
@@ -44,4 +51,5 @@ namespace afemp {
 using core::SourceLocation;
 using core::InputError;
 using core::SimulationError;
+using core::CheckpointError;
 }  ///< namespace afemp

@@ -93,7 +93,17 @@ struct SimulationOptions {
   /// Called about every progress_seconds of wall time while run() or run_to() step.
   std::function<void(const Progress&)> progress;
   double progress_seconds = 0.5;
+  /// A checkpoint to continue from (newest_checkpoint(output_directory), docs/restart.md): the
+  /// model, built from the same scene, takes its state and the run's files in
+  /// output_directory are continued. A scene read from a file is compared with the one the
+  /// checkpoint was written for (only end time, output, history and checkpoint settings may
+  /// differ; CheckpointError names the keys otherwise); one built in code is not.
+  std::string restart_from;
 };
+
+/// The newest checkpoint in a run directory (RUN_DIR/checkpoints/step_N.h5); throws when there
+/// is none, saying what writes one.
+std::string newest_checkpoint(const std::string& run_directory);
 
 /// A model made from a scene: MPM, FE, or both coupled on the background grid, as the scene
 /// asks; the same model `afemp run` makes from the same scene, stepped by the same loop
@@ -137,6 +147,10 @@ class Simulation {
 
   /// Adds a callback run after every step, in the order added.
   void on_step(StepCallback callback);
+  /// Writes a checkpoint of the state now into OUTPUT/checkpoints and returns its path (""
+  /// without an output directory); the run goes on. Throws CheckpointError, the previous
+  /// checkpoints kept, when it cannot be written.
+  std::string checkpoint();
 
   ParticleFields particles();  ///< empty without particle bodies
   NodeFields nodes();          ///< empty without mesh bodies

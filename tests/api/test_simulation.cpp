@@ -179,6 +179,40 @@ TEST(SimulationApi, StepCallbacksRunAfterEveryStepInOrder) {
   EXPECT_NEAR(r.time, 0.01, 1e-12);
 }
 
+// Reference: determinism (docs/restart.md). A program's run checkpointed after 60 steps and
+// continued by a second Simulation from that checkpoint ends with the uninterrupted run's
+// particles, bit for bit, and the same step count. (Steps, not run_to: run_to cuts its last
+// step to land on the time asked, which the uninterrupted run does not.)
+TEST(SimulationApi, ARunContinuedFromItsCheckpointEndsAsTheUninterruptedOne) {
+  afemp::test::ScratchDir dir;
+  const afemp::Scene scene = afemp::core::parse_scene(taylor_toml(false), "taylor_mpm.toml");
+  afemp::Simulation whole(scene);
+  const afemp::RunSummary w = whole.run();
+
+  afemp::SimulationOptions first_options;
+  first_options.output_directory = dir.file("run");
+  std::string checkpoint;
+  {
+    afemp::Simulation first(scene, first_options);
+    for (int k = 0; k < 60; ++k) first.step();
+    checkpoint = first.checkpoint();
+    EXPECT_EQ(checkpoint, afemp::newest_checkpoint(dir.file("run")));
+  }
+  afemp::SimulationOptions options = first_options;
+  options.restart_from = checkpoint;
+  afemp::Simulation second(scene, options);
+  EXPECT_EQ(second.step_count(), 60);
+  const afemp::RunSummary r = second.run();
+  EXPECT_EQ(r.steps, w.steps);
+  const afemp::ParticleFields a = whole.particles(), b = second.particles();
+  ASSERT_EQ(a.position.size(), b.position.size());
+  for (std::size_t i = 0; i < a.position.size(); ++i) {
+    ASSERT_EQ(a.position[i].x, b.position[i].x) << i;
+    ASSERT_EQ(a.position[i].z, b.position[i].z) << i;
+    ASSERT_EQ(a.stress[i].zz, b.stress[i].zz) << i;
+  }
+}
+
 // Bad input through the API: InputError naming the object and field by the scene file's key and
 // what is allowed; nothing printed.
 TEST(SimulationApi, BadInputThrowsNamingObjectFieldAndWhatIsAllowed) {

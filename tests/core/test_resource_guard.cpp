@@ -74,5 +74,41 @@ TEST(ResourceGuard, CountsReadAsAPersonWritesThem) {
   EXPECT_EQ(readable_count(1e308 * 10.0), "more than 1e+308");
 }
 
+TEST(ResourceGuard, DurationsReadAsAPersonWritesThem) {
+  EXPECT_EQ(readable_duration(45.2), "45 s");
+  EXPECT_EQ(readable_duration(600.0), "10.0 min");
+  EXPECT_EQ(readable_duration(5.0 * 3600.0), "5.0 h");
+  EXPECT_EQ(readable_duration(3.0 * 86400.0), "3.0 days");
+  EXPECT_EQ(readable_duration(1e20), "3.2e+12 years");
+  EXPECT_EQ(readable_duration(1e308 * 10.0), "forever");
+}
+
+// Reference: the nominal pace, 1.5e6 point-steps per thread and second. 3e11 point-steps on one
+// thread take 2e5 s = 2.3 days (warned of); on four, 0.58 days (not); 1e11 on one, 0.77 days.
+TEST(ResourceGuard, ARunOfDaysAtTheNominalPaceIsWarnedOfWithItsFigures) {
+  const std::string w = wall_time_warning(3e11, 1);
+  EXPECT_EQ(w.rfind("the run is estimated to take 2.3 days (3.0e+11 point-steps on 1 thread(s) at "
+                    "about 1.5 million per thread and second)",
+                    0),
+            0u)
+      << w;
+  EXPECT_NE(w.find("checkpoint_wall_every"), std::string::npos) << w;
+  EXPECT_EQ(wall_time_warning(3e11, 4), "");
+  EXPECT_EQ(wall_time_warning(1e11, 1), "");
+}
+
+// Reference: at 0.01 % of the end time after 30 s, the rest takes 30 x 0.9999 / 1e-4 s = 3.5
+// days; the pace is not judged before 20 s, and half done after 30 s leaves 30 s.
+TEST(ResourceGuard, ARunWhosePaceSaysDaysIsWarnedOfOnce) {
+  const std::string w = pace_warning(30.0, 1e-4);
+  EXPECT_EQ(w.rfind("at its pace so far (0.01 % of the end time in 30 s) the run needs 3.5 days "
+                    "more",
+                    0),
+            0u)
+      << w;
+  EXPECT_EQ(pace_warning(10.0, 1e-4), "");
+  EXPECT_EQ(pace_warning(30.0, 0.5), "");
+}
+
 }  // namespace
 }  // namespace afemp::core

@@ -82,6 +82,28 @@ TEST(Cli, RunWritesFieldsAndHistoryStartingFromTheSceneKineticEnergy) {
   EXPECT_NEAR(h.rows.back()[h.column("kinetic")], kinetic, 1e-10 * kinetic);
 }
 
+// Reference: `afemp check` prints the wall time estimate at the nominal 1.5e6 point-steps per
+// thread and second, and warns of a run of days: 512 particles (a 4-cell cube at 2 per cell per
+// direction) at dt = 5.1226e-5 ms to t = 40,000 ms make 7.8e8 steps, 4.0e11 point-steps, 3.1 days
+// on one thread (the step count itself, under 1e9, is not warned of).
+TEST(Cli, CheckEstimatesTheWallTimeAndWarnsOfARunOfDays) {
+  test::ScratchDir dir;
+  const std::string path = dir.write("days.toml",
+                                     "[run]\nend_time = 40000\n"
+                                     "[grid]\ncell = 1.0\nmin = [-4, -4, -4]\nmax = [8, 8, 8]\n"
+                                     "[materials.steel]\ndensity = 7.85e-3\nE = 200e3\nnu = 0.3\n"
+                                     "[[bodies]]\nname = \"cube\"\nmaterial = \"steel\"\n"
+                                     "particles_per_cell = 2\n"
+                                     "shape = { box = { min = [0, 0, 0], max = [4, 4, 4] } }\n");
+  const test::CommandResult r = test::run_afemp("check \"" + path + "\" --threads 1", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("wall time estimate: about 3.1 days on 1 thread(s)"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.err.find("afemp: warning: the run is estimated to take 3.1 days"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("steps to end_time"), std::string::npos) << r.err;
+}
+
 // Reference: SIGINT during `afemp run` ends it cleanly after the step it is in: exit code 130
 // (128 + SIGINT), a message naming the signal, the step and the output directory, the summary,
 // a history whose last row is a time before the end (the final row written at the stop), with
