@@ -84,6 +84,10 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
   stage_seconds_.assign(plan_.stages.size(), 0.0);
   for (std::size_t f = 0; f < 6; ++f)
     outflow_[f] = scene.mpm.grid.faces[f] == core::FaceCondition::outflow;
+  if (scene.mpm.grid.has_face(core::FaceCondition::outflow)) {
+    particles_.plastic_heat.assign(particles_.size(), 0.0);
+    particles_.viscous_heat.assign(particles_.size(), 0.0);
+  }
   setup_absorbing_faces();
   // Walls that name particle bodies act on them here (particle_wall_contact.cpp).
   wall_bodies_.assign(scene.walls.size(), {});

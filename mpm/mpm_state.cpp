@@ -29,6 +29,8 @@ void visit_particles(core::StateArchive& a, Particles& p) {
   a.item("affine", p.affine);
   a.item("length", p.length);
   a.item("length0", p.length0);
+  a.item("plastic_heat", p.plastic_heat);
+  a.item("viscous_heat", p.viscous_heat);
   a.item("history", p.history);
   a.item("history_count", p.history_count);
 }

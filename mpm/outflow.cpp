@@ -4,7 +4,7 @@
 // domain, x_min <= x_p <= x_max. A particle beyond a face declared "outflow" stops taking
 // part: it is taken out of the particle arrays, and its mass, momentum, kinetic and internal
 // energy are booked (Energies::outflow*), so mass + outflow mass and the energy balance
-// still close. A particle beyond any other face stops the run as before (binning names it).
+// still close; its plastic work and viscous heat leave the plastic and viscous totals. A particle beyond any other face stops the run as before (binning names it).
 #include <cmath>
 #include <vector>
 
@@ -47,6 +47,9 @@ void MpmSolver::remove_outflow() {
     outflow_mass_ += m;
     outflow_momentum_ += m * v;
     outflow_energy_ += 0.5 * m * core::dot(v, v) + m * p.energy[i];
+    // Its plastic work and viscous heat leave the totals with it.
+    plastic_work_ -= m * p.plastic_heat[i];
+    viscous_work_ -= m * p.viscous_heat[i];
   }
   outflow_count_ += leaving;
   p.select(kept);

@@ -84,6 +84,8 @@ void MpmSolver::split_particles() {
         p.id[c] = next_id++;
         if (!p.strain.empty()) p.strain[c] = p.strain[i];
         if (!p.affine.empty()) p.affine[c] = p.affine[i];
+        if (!p.plastic_heat.empty()) p.plastic_heat[c] = p.plastic_heat[i];
+        if (!p.viscous_heat.empty()) p.viscous_heat[c] = p.viscous_heat[i];
         std::copy_n(p.history.data() + i * hc, hc, p.history.data() + c * hc);
         p.mass[c] = share * p.mass[i];
         p.volume[c] = share * p.volume[i];

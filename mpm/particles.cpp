@@ -18,6 +18,8 @@ void for_each_array(Particles& p, F&& f) {
   if (!p.affine.empty()) f(p.affine);
   if (!p.length.empty()) f(p.length);
   if (!p.length0.empty()) f(p.length0);
+  if (!p.plastic_heat.empty()) f(p.plastic_heat);
+  if (!p.viscous_heat.empty()) f(p.viscous_heat);
 }
 template <class F>
 void for_each_array(const Particles& p, F&& f) {
@@ -48,6 +50,8 @@ void Particles::push_back(const Vec3& x, const Vec3& v, double m, double vol, do
   if (!affine.empty()) affine.push_back({});
   if (!length.empty()) length.push_back({});  // the solver sets them from the volume
   if (!length0.empty()) length0.push_back({});
+  if (!plastic_heat.empty()) plastic_heat.push_back(0.0);
+  if (!viscous_heat.empty()) viscous_heat.push_back(0.0);
   plastic_strain.push_back(0.0);
   temperature.push_back(temp);
   energy.push_back(0.0);

@@ -49,6 +49,11 @@ struct Particles {
   // History variables of user strength models (afemp/user_material.hpp): history_count values
   // per point, point-major (point i's at history[i * history_count]); history_count is the
   // largest count of the scene's materials, 0 (and history empty) when none has any.
+  // The plastic work and bulk-viscous heat each particle has taken (per unit mass), kept only
+  // where particles may leave through outflow faces (empty otherwise): a particle that leaves
+  // takes its share out of the plastic and viscous totals, as its m e leaves the internal
+  // energy, so the elastic column (internal - plastic - viscous) stays the particles' own.
+  std::vector<double> plastic_heat, viscous_heat;
   std::vector<double> history;
   std::size_t history_count = 0;
 

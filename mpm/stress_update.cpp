@@ -127,6 +127,8 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
   [[maybe_unused]] const bool principal_strain =
       materials_[static_cast<std::size_t>(batch.material)]->needs_strain();
   const bool track_length = plan_.splitting;
+  // Outflow: each particle's plastic work and viscous heat (Particles::plastic_heat).
+  const bool track_heat = !p.plastic_heat.empty();
   const double flip = scene_.mpm.flip;
   const bool viscous = viscous_;
   const core::BulkViscositySettings* viscosity = bulk_viscosity_.data();
@@ -226,6 +228,7 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
         l = Vec3{l.x * (1.0 + d_eps.xx), l.y * (1.0 + d_eps.yy), l.z * (1.0 + d_eps.zz)};
       }
       work += p.mass[i] * u.plastic_work;
+      if (track_heat) p.plastic_heat[i] += u.plastic_work;
       // The step bound uses max c + max |v| >= max (c + |v|): squares here, two square
       // roots per step instead of two per particle.
       double c_wave = core::wave_speed(mat, eos, st);
@@ -233,6 +236,7 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
         const double q_heat = core::bulk_viscous_heat(p.bulk_q[i], d_eps.trace(), st.density);
         st.energy += q_heat;
         heat += p.mass[i] * q_heat;
+        if (track_heat) p.viscous_heat[i] += q_heat;
         const core::ViscousState vs =
             core::bulk_viscosity(viscosity[static_cast<std::size_t>(p.body[i])], st.density, h,
                                  d_eps.trace() / dt, c_wave);
