@@ -202,8 +202,11 @@ int run(const std::string& path, std::string out_dir, const std::string& restart
   } catch (const std::runtime_error& e) {
     // Output that cannot be written (a full disk, a removed directory): what was written stays.
     progress.finish();
-    std::fprintf(stderr, "afemp: run stopped: %s%s\n", e.what(),
-                 core::disk_full_note(out_dir).c_str());
+    const std::string what = e.what();
+    std::fprintf(stderr, "afemp: run stopped: %s%s\n", what.c_str(),
+                 what.find("it is full") == std::string::npos
+                     ? core::disk_full_note(out_dir).c_str()
+                     : "");
     const std::vector<std::string> saved = core::list_checkpoints(out_dir);
     std::fprintf(stderr, "afemp: output written so far is kept in %s; %s\n", out_dir.c_str(),
                  saved.empty() ? "no checkpoint was written"

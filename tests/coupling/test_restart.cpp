@@ -262,7 +262,7 @@ TEST(Restart, ACheckpointThatCannotBeWrittenLeavesThePreviousOne) {
   EXPECT_EQ(core::read_checkpoint_header(first).step, 10);
 }
 
-// The command line: a run with checkpoints every 0.012 (at steps 87 and 174) and frames every
+// The command line: a run with checkpoints every 0.012 (at steps 87 and 173) and frames every
 // 0.005, killed or stopped as named, then `afemp run SCENE --restart DIR`, compared with the
 // uninterrupted run.
 class RestartCli : public ::testing::Test {
@@ -328,7 +328,7 @@ TEST_F(RestartCli, KilledWhileWritingAFrameEveryEarlierFrameLoadsAndTheRestartEn
 // the reason, keeps the checkpoint, and the restart with room again ends as the full run.
 TEST_F(RestartCli, AFullDiskStopsTheRunWithAClearMessageAndTheCheckpointStaysUsable) {
   const std::string out = dir_.file("full_disk");
-  const test::CommandResult stopped = test::run_shell(
+  const test::CommandResult stopped = test::run_captured(
       "trap '' XFSZ; ulimit -f 12000; \"" + std::string(AFEMP_BINARY) + "\" run \"" + scene_ +
           "\" -o \"" + out + "\" --threads 1",
       dir_);
@@ -342,6 +342,42 @@ TEST_F(RestartCli, AFullDiskStopsTheRunWithAClearMessageAndTheCheckpointStaysUsa
   const test::CommandResult again = afemp("run \"" + scene_ + "\" --restart \"" + out + "\"");
   ASSERT_EQ(again.exit_code, 0) << again.out << again.err;
   expect_same_run(full_, out);
+}
+
+// A disk that is really full: an 11 MiB tmpfs mounted in a user and mount namespace of its
+// own (unshare; skipped where the system allows no such namespace). Five frames (7.9 MB) and the
+// first checkpoint (2.0 MB) fit; the second checkpoint does not. The run stops with exit code 5,
+// "No space left on device", the free space, and the first checkpoint, which is kept whole; the
+// run directory, copied out of the tmpfs, restarts and ends as the uninterrupted run.
+TEST_F(RestartCli, ADiskThatFillsUpDuringACheckpointKeepsThePreviousOne) {
+  const std::string mount = dir_.file("tmpfs"), copy = dir_.file("copied");
+  fs::create_directories(mount);
+  const test::CommandResult probe = test::run_captured(
+      "unshare --user --map-root-user --mount sh -c 'mount -t tmpfs -o size=11m tmpfs \"" + mount +
+          "\"' 2>&1",
+      dir_);
+  if (probe.exit_code != 0)
+    GTEST_SKIP() << "no user and mount namespace for a tmpfs here: " << probe.out << probe.err;
+  const test::CommandResult stopped = test::run_captured(
+      "unshare --user --map-root-user --mount sh -c 'mount -t tmpfs -o size=11m tmpfs \"" + mount +
+          "\" && \"" + std::string(AFEMP_BINARY) + "\" run \"" + scene_ + "\" -o \"" + mount +
+          "/run\" --threads 1; code=$?; cp -r \"" + mount + "/run\" \"" + copy +
+          "\"; exit $code'",
+      dir_);
+  EXPECT_EQ(stopped.exit_code, 5) << stopped.out << stopped.err;
+  EXPECT_NE(stopped.err.find("checkpoints/step_000000000173.h5.tmp: "), std::string::npos)
+      << stopped.err;
+  EXPECT_NE(stopped.err.find("No space left on device (the disk holding " + mount +
+                             "/run has "),
+            std::string::npos)
+      << stopped.err;
+  EXPECT_NE(stopped.err.find("bytes free: it is full); the previous checkpoints are kept"),
+            std::string::npos)
+      << stopped.err;
+  EXPECT_EQ(core::list_checkpoints(copy), std::vector<std::string>{core::checkpoint_path(copy, 87)});
+  const test::CommandResult again = afemp("run \"" + scene_ + "\" --restart \"" + copy + "\"");
+  ASSERT_EQ(again.exit_code, 0) << again.out << again.err;
+  expect_same_run(full_, copy);
 }
 
 }  // namespace
