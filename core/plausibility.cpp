@@ -83,7 +83,8 @@ std::vector<SceneWarning> plausibility_warnings(const Scene& scene) {
                " units (steel: " + u->steel_density + ")");
     const double c =
         std::sqrt((mat.bulk_modulus() + 4.0 / 3.0 * mat.shear_modulus()) / mat.density);
-    if (std::isfinite(c) && (c < wave_low || c > wave_high))
+    // (A fluid given without E has no elastic wave speed of its own: its EOS sets it.)
+    if (mat.youngs_modulus > 0.0 && std::isfinite(c) && (c < wave_low || c > wave_high))
       warn(at, key + ".E",
            "its elastic wave speed sqrt((K + 4G/3) / rho) is " + num(c) + " m/s, outside the " +
                num(wave_low) + " .. " + num(wave_high) + " m/s of real solids (" + u->name +

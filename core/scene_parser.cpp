@@ -574,6 +574,11 @@ StrengthModel read_johnson_cook(TableReader& r, double) {
 
 StrengthModel read_hjc_strength(TableReader& r, double) { return read_holmquist_johnson_cook(r); }
 
+StrengthModel read_fluid(TableReader& r, double) {
+  r.check_unknown();
+  return Fluid{};
+}
+
 struct StrengthEntry {
   std::string_view name;
   StrengthModel (*read)(TableReader&, double youngs_modulus);
@@ -581,7 +586,8 @@ struct StrengthEntry {
 constexpr StrengthEntry strength_models[] = {{"elastic", read_elastic},
                                              {"j2", read_j2},
                                              {"johnson-cook", read_johnson_cook},
-                                             {"holmquist-johnson-cook", read_hjc_strength}};
+                                             {"holmquist-johnson-cook", read_hjc_strength},
+                                             {"fluid", read_fluid}};
 
 template <class Entries>
 std::vector<std::string_view> entry_names(const Entries& entries) {
@@ -643,6 +649,20 @@ EquationOfState read_linear_polynomial(TableReader& r, double density, double) {
 
 EquationOfState read_hjc_eos(TableReader& r, double, double) { return read_hjc_compaction(r); }
 
+EquationOfState read_jwl(TableReader& r, double density, double) {
+  r.known({"A", "B", "R1", "R2", "omega", "E0"});
+  r.check_unknown();
+  Jwl j;
+  j.rho0 = density;
+  j.A = r.required_number("A", Range::positive());
+  j.B = r.required_number("B", Range::positive());
+  j.R1 = r.required_number("R1", Range::positive());
+  j.R2 = r.required_number("R2", Range::positive());
+  j.omega = r.required_number("omega", Range::positive());
+  j.E0 = r.required_number("E0", Range::non_negative());
+  return j;
+}
+
 struct EosEntry {
   std::string_view name;
   EquationOfState (*read)(TableReader&, double density, double bulk_modulus);
@@ -650,7 +670,8 @@ struct EosEntry {
 constexpr EosEntry equations_of_state[] = {{"linear", read_linear_eos},
                                            {"mie-gruneisen", read_mie_gruneisen},
                                            {"linear-polynomial", read_linear_polynomial},
-                                           {"hjc-compaction", read_hjc_eos}};
+                                           {"hjc-compaction", read_hjc_eos},
+                                           {"jwl", read_jwl}};
 
 EquationOfState read_eos(TableReader& r, double density, double bulk_modulus) {
   r.known({"model"});
@@ -709,14 +730,18 @@ FailureModel read_failure(TableReader& r) {
 
 Material read_material(TableReader& r, const std::string& name) {
   r.known({"density", "E", "nu", "G", "strength", "eos", "specific_heat", "taylor_quinney",
-           "temperature", "failure_strain", "failure"});
+           "temperature", "failure_strain", "failure", "burn"});
   r.check_unknown();
   Material m;
   m.name = name;
   m.density = r.required_number("density", Range::positive());
   // A material with the HJC compaction law gives G; PC / muc is its bulk modulus.
   const std::optional<double> shear_modulus = r.optional_number("G", Range::positive());
-  if (!shear_modulus) {
+  // A fluid (strength model "fluid") may leave out E and nu: it has no shear.
+  bool fluid = false;
+  if (const toml::table* t = r.optional_table("strength"))
+    if (const auto* model = t->get_as<std::string>("model")) fluid = model->get() == "fluid";
+  if (!shear_modulus && !(fluid && !r.has("E") && !r.has("nu"))) {
     m.youngs_modulus = r.required_number("E", Range::positive());
     m.poisson_ratio = r.required_number("nu", {0.0, 0.5, false, true});
   }
@@ -741,6 +766,24 @@ Material read_material(TableReader& r, const std::string& name) {
     m.failure = read_failure(fr);
   } else if (m.failure_strain > 0.0) {
     m.failure = PlasticStrainFailure{m.failure_strain};
+  }
+  if (const toml::table* t = r.optional_table("burn")) {
+    TableReader br(*t, r.dotted("burn"), r.file());
+    br.known({"D", "pcj", "mode"});
+    br.check_unknown();
+    ProgrammedBurn b;
+    b.detonation_velocity = br.required_number("D", Range::positive());
+    b.cj_pressure = br.required_number("pcj", Range::positive());
+    if (br.has("mode")) {
+      const std::size_t mode =
+          br.choice("mode", {"lighting-time+volumetric", "lighting-time", "volumetric"}, 0);
+      b.lighting_time = mode != 2;
+      b.volumetric = mode != 1;
+    }
+    if (!std::holds_alternative<Jwl>(m.eos))
+      r.fail("burn", "a burn (high explosive) needs eos = { model = \"jwl\", ... }: the burn "
+                     "fraction scales the detonation products' pressure");
+    m.burn = b;
   }
   try {
     m.validate();
@@ -1497,7 +1540,7 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
   scene.path = path;
   TableReader r(root, "", path);
   r.known({"run", "grid", "mpm", "materials", "bodies", "constraints", "absorbing", "walls",
-           "contact", "reference", "probes"});
+           "contact", "reference", "probes", "detonations"});
   r.check_unknown();
 
   {
@@ -1657,6 +1700,60 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
                        "name the particle bodies it meets (bodies = [\"...\"]): it then acts at "
                        "their particles' boundary");
 
+  read_table_array(r, "detonations", path, [&](TableReader& t) {
+    t.known({"point", "plane", "line", "time"});
+    t.check_unknown();
+    DetonationSpec d;
+    d.where = t.where();
+    const int given = (t.has("point") ? 1 : 0) + (t.has("plane") ? 1 : 0) + (t.has("line") ? 1 : 0);
+    if (given != 1)
+      t.fail("point", "give one of point = [x, y, z], plane = { point = [..], normal = [..] } "
+                      "or line = { from = [..], to = [..] }");
+    if (t.has("point")) {
+      d.point = t.required_vec3("point");
+    } else if (const toml::table* p = t.optional_table("plane")) {
+      TableReader pr(*p, t.dotted("plane"), path);
+      pr.known({"point", "normal"});
+      pr.check_unknown();
+      d.kind = DetonationSpec::Kind::plane;
+      d.point = pr.required_vec3("point");
+      const Vec3 n = pr.required_vec3("normal");
+      if (!(norm(n) > 0.0)) pr.fail("normal", "the normal must be a non-zero vector");
+      d.normal = (1.0 / norm(n)) * n;
+    } else if (const toml::table* l = t.optional_table("line")) {
+      TableReader lr(*l, t.dotted("line"), path);
+      lr.known({"from", "to"});
+      lr.check_unknown();
+      d.kind = DetonationSpec::Kind::line;
+      d.point = lr.required_vec3("from");
+      d.end = lr.required_vec3("to");
+    }
+    d.time = t.number("time", 0.0, Range::non_negative());
+    scene.detonations.push_back(d);
+  });
+  {
+    // An explosive body needs something to light it; detonations need an explosive.
+    const BodySpec* explosive = nullptr;
+    for (const BodySpec& b : scene.bodies) {
+      if (!scene.materials[static_cast<std::size_t>(b.material)].is_explosive()) continue;
+      explosive = &b;
+      if (b.discretisation == Discretisation::trusses)
+        throw InputError(b.where, "material", "body \"" + b.name + "\" is a body of trusses "
+                         "of a high explosive; explosives are particles or hexahedra");
+      if (b.conversion)
+        throw InputError(b.where, "conversion", "body \"" + b.name + "\" is a high explosive; "
+                         "its hexahedra burn where they are and do not convert into particles");
+    }
+    if (explosive != nullptr && scene.detonations.empty())
+      throw InputError(explosive->where, "detonations",
+                       "body \"" + explosive->name + "\" is a high explosive (its material has a "
+                       "burn) and the scene has no [[detonations]] to light it: add one (point, "
+                       "plane or line, and a time)");
+    if (explosive == nullptr && !scene.detonations.empty())
+      throw InputError(scene.detonations.front().where, "detonations",
+                       "no body is of a high explosive (a material with burn = { D, pcj }) for "
+                       "the detonation to light");
+  }
   if (const toml::table* t = r.optional_table("reference")) {
     TableReader ref(*t, "reference", path);
     read_reference(ref, scene);

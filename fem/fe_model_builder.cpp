@@ -14,6 +14,7 @@
 #include "core/materials/uniaxial_update.hpp"
 #include "core/materials/user_strength_chunk.hpp"
 #include "core/parallel.hpp"
+#include "core/programmed_burn.hpp"
 #include "fem/fe_solver.hpp"
 #include "fem/hexahedron_full.hpp"
 #include "fem/hexahedron_one_point.hpp"
@@ -227,6 +228,9 @@ void FeSolver::build(const core::Scene& scene) {
   };
   auto add_point_state = [](ElementStore& el, const core::Material& m, double temperature,
                             double point_mass, double energy) {
+    // Detonation products start with the EOS's detonation energy E0 (per reference volume).
+    if (const auto* jwl = std::get_if<core::Jwl>(&m.eos); jwl && energy == 0.0)
+      energy = jwl->E0 / m.density;
     el.history.resize(el.history.size() + el.history_count);
     core::initial_history(m, el.history.data() + el.history.size() - el.history_count,
                           el.history_count);
@@ -316,6 +320,31 @@ void FeSolver::build(const core::Scene& scene) {
                            : static_cast<ElementStore&>(hexes_);
     el.plastic_heat.assign(el.stress.size(), 0.0);
     el.viscous_heat.assign(el.stress.size(), 0.0);
+  }
+
+  // High explosives (core/programmed_burn.hpp): each point of an explosive hexahedron lights
+  // at its element centre's distance from the nearest detonation over D, burns over 1.5 times
+  // the element's initial edge cbrt(V0), and starts unburnt; other points hold 0 and 1, unread.
+  for (const ElementBatch& b : hexes_.batches) {
+    const core::Material& m = scene.materials[static_cast<std::size_t>(b.material)];
+    if (!m.is_explosive()) continue;
+    if (hexes_.light_time.empty()) {
+      hexes_.light_time.assign(hexes_.stress.size(), 0.0);
+      hexes_.burn.assign(hexes_.stress.size(), 1.0);
+      hexes_.burn_length.assign(hexes_.stress.size(), 0.0);
+    }
+    for (std::size_t e = b.begin; e < b.end; ++e) {
+      Vec3 centre;
+      for (std::int32_t n : hexes_.nodes[e]) centre += 0.125 * nodes_.position[static_cast<std::size_t>(n)];
+      const double t = core::lighting_time(centre, scene.detonations, m.burn->detonation_velocity);
+      const double length = std::cbrt(hexes_.volume0[e]);
+      const std::size_t first = b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
+      for (int g = 0; g < b.points_per_element; ++g) {
+        hexes_.light_time[first + static_cast<std::size_t>(g)] = t;
+        hexes_.burn[first + static_cast<std::size_t>(g)] = 0.0;
+        hexes_.burn_length[first + static_cast<std::size_t>(g)] = length;
+      }
+    }
   }
 
   // Principal-strain failure reads the strain tensor of the hexahedra's points (only when a

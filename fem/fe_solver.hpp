@@ -78,6 +78,10 @@ struct ElementStore {
   // plastic and viscous totals, which then hold the live material's (the elastic column,
   // internal - plastic - viscous, stays the live elements' strain energy).
   std::vector<double> plastic_heat, viscous_heat;
+  // High explosives (core/programmed_burn.hpp), per point, kept only when some body is one
+  // (empty otherwise): the time the point lights, its burn fraction and the length it burns
+  // over.
+  std::vector<double> light_time, burn, burn_length;
   // History variables of user strength models (afemp/user_material.hpp): history_count per
   // integration point, point-major; history_count is the scene's (core::history_count).
   std::vector<double> history;

@@ -31,6 +31,9 @@ void visit_store(StateArchive& a, ElementStore& e) {
   a.item("strain", e.strain);
   a.item("plastic_heat", e.plastic_heat);
   a.item("viscous_heat", e.viscous_heat);
+  a.item("light_time", e.light_time);
+  a.item("burn", e.burn);
+  a.item("burn_length", e.burn_length);
   a.item("history", e.history);
   a.item("history_count", e.history_count);
 }

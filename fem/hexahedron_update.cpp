@@ -15,6 +15,7 @@
 #include "core/materials/material.hpp"
 #include "core/materials/user_strength_chunk.hpp"
 #include "core/parallel.hpp"
+#include "core/programmed_burn.hpp"
 #include "fem/fe_solver.hpp"
 #include "fem/hexahedron_full.hpp"
 #include "fem/hexahedron_lanes.hpp"
@@ -65,6 +66,8 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
                  : 0.0;
   HexElements& el = hexes_;
   [[maybe_unused]] const bool principal_strain = mat.needs_strain();
+  // A high explosive: burn fractions at the step's end (time_ is already there).
+  const bool explosive = mat.is_explosive();
 
   // Update of one integration point with the velocity gradient l of the step, in two halves
   // around the strength model: a user model (afemp/user_material.hpp) runs between them on
@@ -87,6 +90,9 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
       b.st.damage = el.damage[p];
     }
     b.st.stress += core::jaumann_increment(b.st.stress, inc.w23, inc.w13, inc.w12);
+    if (explosive)
+      b.st.burn = core::burn_fraction(*mat.burn, mat.density, el.burn[p], time_, el.light_time[p],
+                                      el.burn_length[p], mat.density / density);
     // Bulk-viscous heating by the q that acted over this step.
     b.q_heat = core::bulk_viscous_heat(q_old, inc.d_eps.trace(), density);
     return b;
@@ -102,6 +108,7 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
       el.viscous_heat[p] += b.q_heat;
     }
     el.stress[p] = st.stress;
+    if (explosive) el.burn[p] = st.burn;
     el.plastic_strain[p] = st.plastic_strain;
     el.temperature[p] = st.temperature;
     el.energy[p] = st.energy;

@@ -11,6 +11,7 @@
 #include "afemp/errors.hpp"
 #include "core/materials/user_strength_chunk.hpp"
 #include "core/parallel.hpp"
+#include "core/programmed_burn.hpp"
 #include "core/scene.hpp"
 
 namespace afemp::mpm {
@@ -84,6 +85,7 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
   stage_seconds_.assign(plan_.stages.size(), 0.0);
   for (std::size_t f = 0; f < 6; ++f)
     outflow_[f] = scene.mpm.grid.faces[f] == core::FaceCondition::outflow;
+  setup_explosives();
   if (scene.mpm.grid.has_face(core::FaceCondition::outflow)) {
     particles_.plastic_heat.assign(particles_.size(), 0.0);
     particles_.viscous_heat.assign(particles_.size(), 0.0);
@@ -135,6 +137,30 @@ void MpmSolver::add_particles(const Particles& more) {
   if (plan_.shape == core::ShapeFunction::gimp) velocity_gradient_.resize(p.size());
   reorder_particles();
   signal_speed_ = std::max(signal_speed_, max_signal_speed());
+}
+
+// Detonation products start with the EOS's detonation energy E0 (per unit reference volume):
+// e = E0 / rho0. A high explosive's particles light at their distance from the nearest
+// detonation over D (core/programmed_burn.hpp) and start unburnt.
+void MpmSolver::setup_explosives() {
+  Particles& p = particles_;
+  bool explosive = false;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const core::Material& m = *materials_[static_cast<std::size_t>(p.material[i])];
+    if (const auto* jwl = std::get_if<core::Jwl>(&m.eos); jwl && p.energy[i] == 0.0)
+      p.energy[i] = jwl->E0 / m.density;
+    explosive = explosive || m.is_explosive();
+  }
+  if (!explosive) return;
+  p.light_time.assign(p.size(), 0.0);
+  p.burn.assign(p.size(), 1.0);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const core::Material& m = *materials_[static_cast<std::size_t>(p.material[i])];
+    if (!m.is_explosive()) continue;
+    p.light_time[i] =
+        core::lighting_time(p.position[i], scene_.detonations, m.burn->detonation_velocity);
+    p.burn[i] = 0.0;
+  }
 }
 
 std::int32_t MpmSolver::next_particle_id() const {

@@ -161,6 +161,7 @@ class MpmSolver {
     particles_.length[i] = particles_.length0[i] = Vec3{l, l, l};
   }
   std::int32_t next_particle_id() const;
+  void setup_explosives();
   // Outflow faces (outflow.cpp): whether a position lies beyond the grid through outflow
   // faces only, and the removal of such particles at the start of a step.
   bool left_through_outflow(const Vec3& x) const;

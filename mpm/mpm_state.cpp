@@ -31,6 +31,8 @@ void visit_particles(core::StateArchive& a, Particles& p) {
   a.item("length0", p.length0);
   a.item("plastic_heat", p.plastic_heat);
   a.item("viscous_heat", p.viscous_heat);
+  a.item("light_time", p.light_time);
+  a.item("burn", p.burn);
   a.item("history", p.history);
   a.item("history_count", p.history_count);
 }

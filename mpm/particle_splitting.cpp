@@ -86,6 +86,8 @@ void MpmSolver::split_particles() {
         if (!p.affine.empty()) p.affine[c] = p.affine[i];
         if (!p.plastic_heat.empty()) p.plastic_heat[c] = p.plastic_heat[i];
         if (!p.viscous_heat.empty()) p.viscous_heat[c] = p.viscous_heat[i];
+        if (!p.light_time.empty()) p.light_time[c] = p.light_time[i];
+        if (!p.burn.empty()) p.burn[c] = p.burn[i];
         std::copy_n(p.history.data() + i * hc, hc, p.history.data() + c * hc);
         p.mass[c] = share * p.mass[i];
         p.volume[c] = share * p.volume[i];

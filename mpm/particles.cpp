@@ -20,6 +20,8 @@ void for_each_array(Particles& p, F&& f) {
   if (!p.length0.empty()) f(p.length0);
   if (!p.plastic_heat.empty()) f(p.plastic_heat);
   if (!p.viscous_heat.empty()) f(p.viscous_heat);
+  if (!p.light_time.empty()) f(p.light_time);
+  if (!p.burn.empty()) f(p.burn);
 }
 template <class F>
 void for_each_array(const Particles& p, F&& f) {
@@ -52,6 +54,8 @@ void Particles::push_back(const Vec3& x, const Vec3& v, double m, double vol, do
   if (!length0.empty()) length0.push_back({});
   if (!plastic_heat.empty()) plastic_heat.push_back(0.0);
   if (!viscous_heat.empty()) viscous_heat.push_back(0.0);
+  if (!light_time.empty()) light_time.push_back(0.0);  // no explosive point is added later
+  if (!burn.empty()) burn.push_back(1.0);
   plastic_strain.push_back(0.0);
   temperature.push_back(temp);
   energy.push_back(0.0);

@@ -54,6 +54,10 @@ struct Particles {
   // takes its share out of the plastic and viscous totals, as its m e leaves the internal
   // energy, so the elastic column (internal - plastic - viscous) stays the particles' own.
   std::vector<double> plastic_heat, viscous_heat;
+  // High explosives (programmed burn): the time each particle lights and its burn fraction;
+  // kept only when some material is an explosive (empty otherwise; other particles hold 0
+  // and 1, unread).
+  std::vector<double> light_time, burn;
   std::vector<double> history;
   std::size_t history_count = 0;
 

@@ -14,6 +14,7 @@ namespace {
 std::string strength_name(const core::StrengthModel& s) {
   struct {
     std::string operator()(const core::Elastic&) const { return "elastic"; }
+    std::string operator()(const core::Fluid&) const { return "fluid"; }
     std::string operator()(const core::J2Plasticity&) const { return "j2"; }
     std::string operator()(const core::JohnsonCook&) const { return "johnson-cook"; }
     std::string operator()(const core::HolmquistJohnsonCook&) const { return "holmquist-johnson-cook"; }
@@ -33,6 +34,7 @@ std::string eos_name(const core::EquationOfState& e) {
     std::string operator()(const core::MieGruneisen&) const { return "mie-gruneisen"; }
     std::string operator()(const core::LinearPolynomialEos&) const { return "linear-polynomial"; }
     std::string operator()(const core::HjcCompaction&) const { return "hjc-compaction"; }
+    std::string operator()(const core::Jwl&) const { return "jwl"; }
   } v;
   return std::visit(v, e);
 }

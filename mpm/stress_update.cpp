@@ -9,6 +9,7 @@
 #include "core/bulk_viscosity.hpp"
 #include "core/materials/user_strength_chunk.hpp"
 #include "core/parallel.hpp"
+#include "core/programmed_burn.hpp"
 #include "mpm/mpm_solver.hpp"
 
 namespace afemp::mpm {
@@ -129,6 +130,10 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
   const bool track_length = plan_.splitting;
   // Outflow: each particle's plastic work and viscous heat (Particles::plastic_heat).
   const bool track_heat = !p.plastic_heat.empty();
+  // Programmed burn: the fraction at the end of the step, burning over 1.5 cells.
+  const bool explosive = materials_[static_cast<std::size_t>(batch.material)]->is_explosive();
+  const double burn_time = time_ + dt;
+  const double cell = grid_.cell();
   const double flip = scene_.mpm.flip;
   const bool viscous = viscous_;
   const core::BulkViscositySettings* viscosity = bulk_viscosity_.data();
@@ -203,6 +208,10 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
       }
       st.energy = p.energy[i];
       st.density = p.mass[i] / volume;
+      // A high explosive: its burn fraction at the step's end (core/programmed_burn.hpp).
+      if (explosive)
+        st.burn = core::burn_fraction(*mat.burn, mat.density, p.burn[i], burn_time,
+                                      p.light_time[i], cell, mat.density / st.density);
     };
     // The state stored after the constitutive update u, the bulk viscosity, the move and the
     // step bound of particle i.
@@ -210,6 +219,7 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
                         const core::SymTensor& d_eps, core::PointState& st,
                         const core::PointUpdate& u) AFEMP_INLINE {
       p.stress[i] = st.stress;
+      if (explosive) p.burn[i] = st.burn;
       if constexpr (reads_plastic_strain) p.plastic_strain[i] = st.plastic_strain;
       if constexpr (Thermal) p.temperature[i] = st.temperature;
       if constexpr (reads_damage) {

@@ -57,7 +57,12 @@ inline PointUpdate finish_increment(const Material& material, const Eos& eos, bo
     point.energy += deviatoric_work - 0.5 * (in.p_old + p_new) * d_vol * in.inv_rho_work;
   } else {
     const double mu = point.density / material.density - 1.0;
-    const EosLinearForm f = eos.form(mu);
+    EosLinearForm f = eos.form(mu);
+    // A high explosive's products push with its burn fraction (programmed_burn.hpp): p = F p_JWL.
+    if constexpr (std::is_same_v<Eos, Jwl>) {
+      f.a *= point.burn;
+      f.b *= point.burn;
+    }
     // e_new = e* - p_new tr/(2 rho) with p_new = a + b e_new: linear in e_new, so the
     // midpoint-rule energy and the EOS pressure are consistent without iteration.
     const double e_star = point.energy + deviatoric_work - 0.5 * in.p_old * d_vol * in.inv_rho_work;

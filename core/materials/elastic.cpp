@@ -11,4 +11,10 @@ DeviatoricResult Elastic::update(SymTensor& s, const SymTensor& de_dev,
   return {0.0, 0.0};
 }
 
+// Fluid: no shear strength; the EOS carries the pressure.
+DeviatoricResult Fluid::update(SymTensor& s, const SymTensor&, const StrengthContext&) const {
+  s = SymTensor{};
+  return {0.0, 0.0};
+}
+
 }  // namespace afemp::core

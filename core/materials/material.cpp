@@ -23,6 +23,12 @@ void require(bool ok, const Material& m, const char* parameter, double value, co
 
 void validate_strength(const Material& m, const Elastic&) { (void)m; }
 
+void validate_strength(const Material& m, const Fluid&) {
+  if (!m.has_eos())
+    throw std::invalid_argument("material '" + m.name + "': strength model fluid needs an eos "
+                                "(a fluid has no shear and no bulk law of its own)");
+}
+
 void validate_strength(const Material& m, const J2Plasticity& j2) {
   require(j2.yield_stress >= 0.0, m, "yield_stress", j2.yield_stress, ">= 0");
   require(j2.hardening >= 0.0, m, "hardening", j2.hardening, ">= 0");
@@ -121,6 +127,21 @@ void validate_eos(const Material& m, const HjcCompaction& eos) {
           "<= PC / muc (crushing is softer than the elastic response)");
 }
 
+void validate_eos(const Material& m, const Jwl& eos) {
+  require(eos.rho0 > 0.0, m, "rho0", eos.rho0, "> 0");
+  require(eos.A > 0.0, m, "eos A", eos.A, "> 0");
+  require(eos.B > 0.0 && eos.B < eos.A, m, "eos B", eos.B, "in (0, A) (detonation products)");
+  require(eos.R2 > 0.0, m, "eos R2", eos.R2, "> 0");
+  require(eos.R1 > eos.R2, m, "eos R1", eos.R1, "> R2");
+  require(eos.omega > 0.0, m, "eos omega", eos.omega, "> 0");
+  require(eos.E0 >= 0.0, m, "eos E0", eos.E0, ">= 0");
+  // The products at the reference volume with the detonation energy must push: a negative
+  // pressure there is a set of parameters in another unit system, or mistyped.
+  const double p1 = eos.pressure(1.0, eos.E0);
+  require(p1 > 0.0, m, "eos pressure at V = 1 and E = E0", p1,
+          "> 0 (check A, B, R1, R2, omega and E0 and their units)");
+}
+
 }  // namespace
 
 bool Material::has_thermal_term() const {
@@ -135,7 +156,10 @@ std::size_t Material::history_count() const {
 
 void Material::validate() const {
   require(density > 0.0, *this, "density", density, "> 0");
-  require(youngs_modulus > 0.0, *this, "youngs_modulus", youngs_modulus, "> 0");
+  // A fluid's E and nu may be left out (0): it has no shear and its EOS the pressure.
+  const bool fluid = std::holds_alternative<Fluid>(strength);
+  require(youngs_modulus > 0.0 || (fluid && youngs_modulus == 0.0), *this, "youngs_modulus",
+          youngs_modulus, "> 0");
   require(poisson_ratio >= 0.0 && poisson_ratio < 0.5, *this, "poisson_ratio", poisson_ratio,
           "in [0, 0.5)");
   std::visit([this](const auto& model) { validate_strength(*this, model); }, strength);
@@ -152,6 +176,15 @@ void Material::validate() const {
     const double k_e = compaction->elastic_modulus();
     require(std::abs(bulk_modulus() - k_e) <= 1e-9 * k_e, *this, "bulk modulus E / (3 (1 - 2 nu))",
             bulk_modulus(), "= PC / muc (set E and nu from G and PC / muc)");
+  }
+  if (burn) {
+    if (!std::holds_alternative<Jwl>(eos))
+      throw std::invalid_argument("material '" + name + "': a burn (high explosive) needs eos jwl");
+    require(burn->detonation_velocity > 0.0, *this, "burn D", burn->detonation_velocity, "> 0");
+    require(burn->cj_pressure > 0.0, *this, "burn pcj", burn->cj_pressure, "> 0");
+    const double v_cj = burn->cj_volume(density);
+    require(v_cj > 0.0 && v_cj < 1.0, *this, "burn V_CJ = 1 - pcj / (density D^2)", v_cj,
+            "in (0, 1) (check pcj, D and density and their units)");
   }
   if (const auto* jc = std::get_if<JohnsonCookFailure>(&failure)) {
     require(jc->reference_strain_rate > 0.0, *this, "failure reference_strain_rate",

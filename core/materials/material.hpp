@@ -40,6 +40,7 @@ struct PointState {
   double density = 0.0;         // current density rho^{k+1}
   double damage = 0.0;          // scalar damage D in [0, 1]
   double max_compaction = 0.0;  // largest volumetric strain mu = rho / rho0 - 1 reached
+  double burn = 1.0;            // a high explosive's burn fraction F (core/programmed_burn.hpp)
 };
 
 struct PointUpdate {

@@ -44,6 +44,19 @@ struct LinearPolynomialEos {
   double tangent_bulk_modulus(double mu, double e) const;
 };
 
+/// Jones-Wilkins-Lee EOS of detonation products (Lee, Hornig & Kury 1968; LS-DYNA *EOS_JWL):
+/// p = A (1 - omega / (R1 V)) e^(-R1 V) + B (1 - omega / (R2 V)) e^(-R2 V) + omega E / V,
+/// V = rho0 / rho the relative volume and E = rho0 e the internal energy per unit reference
+/// volume; E0 is its initial value (the detonation energy per unit volume), which the points
+/// of the material start with. Linear in e: a(V) the first two terms, b = omega rho0 / V.
+struct Jwl {
+  double rho0 = 0.0, A = 0.0, B = 0.0, R1 = 0.0, R2 = 0.0, omega = 0.0, E0 = 0.0;
+  EosLinearForm form(double mu) const;
+  double tangent_bulk_modulus(double mu, double e) const;
+  /// p at relative volume V and energy per unit reference volume E.
+  double pressure(double V, double E) const;
+};
+
 /// Pressure-compaction law of the Holmquist-Johnson-Cook concrete model (hjc_compaction.cpp):
 /// elastic up to the crush point (mu_c, P_c), linear crushing of the air voids up to the lock
 /// pressure P_l, then the fully dense cubic in mubar = (mu - mu_l) / (1 + mu_l). Unloading
@@ -96,5 +109,6 @@ using core::NoEos;
 using core::LinearEos;
 using core::MieGruneisen;
 using core::LinearPolynomialEos;
+using core::Jwl;
 using core::HjcCompaction;
 }  ///< namespace afemp

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <variant>
 
@@ -18,10 +19,28 @@ namespace afemp::core {
 /// The deviatoric half of a material: one of the built-in strength models, or a user model
 /// registered through afemp/user_material.hpp.
 using StrengthModel =
-    std::variant<Elastic, J2Plasticity, JohnsonCook, HolmquistJohnsonCook, UserStrength>;
+    std::variant<Elastic, J2Plasticity, JohnsonCook, HolmquistJohnsonCook, UserStrength, Fluid>;
 /// The volumetric half of a material: no EOS (hypoelastic bulk law) or one of the built-in EOS.
 using EquationOfState =
-    std::variant<NoEos, LinearEos, MieGruneisen, LinearPolynomialEos, HjcCompaction>;
+    std::variant<NoEos, LinearEos, MieGruneisen, LinearPolynomialEos, HjcCompaction, Jwl>;
+
+/// Programmed burn of a high explosive (LS-DYNA *MAT_HIGH_EXPLOSIVE_BURN; Wilkins' beta burn):
+/// a point lights at t_l, its distance from the nearest detonation (Scene::detonations) over
+/// the detonation velocity D plus that detonation's time; its burn fraction is
+/// F = min(1, max(F1, F2)), never decreasing, with the lighting-time fraction
+/// F1 = 2 (t - t_l) D / (3 l) after lighting (l the element's volume over its largest face,
+/// for particles the grid cell: the front burns over 1.5 l) and the volumetric fraction
+/// F2 = (1 - V) / (1 - V_CJ), V_CJ = 1 - p_CJ / (rho0 D^2); the pressure is F times the EOS's.
+struct ProgrammedBurn {
+  double detonation_velocity = 0.0;  ///< D
+  double cj_pressure = 0.0;          ///< p_CJ
+  bool lighting_time = true;         ///< F1 on
+  bool volumetric = true;            ///< F2 on
+  /// V_CJ = 1 - p_CJ / (rho0 D^2), the relative volume at the Chapman-Jouguet state.
+  double cj_volume(double rho0) const {
+    return 1.0 - cj_pressure / (rho0 * detonation_velocity * detonation_velocity);
+  }
+};
 
 /// Adiabatic heating: the share of plastic work that becomes heat.
 struct ThermalProperties {
@@ -44,6 +63,9 @@ struct Material {
   /// When a point fails (afemp/failure_models.hpp); a failure_strain without one acts as
   /// PlasticStrainFailure{failure_strain}.
   FailureModel failure = NoFailure{};
+  /// A high explosive: programmed burn of its JWL products (with eos Jwl only).
+  std::optional<ProgrammedBurn> burn{};
+  bool is_explosive() const { return burn.has_value(); }
   /// Whether points of the material can fail.
   bool fails() const { return !std::holds_alternative<NoFailure>(failure); }
   /// The solvers integrate the strain tensor of its points (principal-strain failure).
@@ -74,4 +96,5 @@ using core::Material;
 using core::ThermalProperties;
 using core::StrengthModel;
 using core::EquationOfState;
+using core::ProgrammedBurn;
 }  ///< namespace afemp

@@ -378,6 +378,20 @@ struct ContactSpec {
   std::string name{};  ///< history columns NAME.fx ...; default "BODY1-BODY2" ("BODY-self")
   SourceLocation where{};
 };
+
+/// A detonation that lights the high explosives (programmed burn, afemp/material.hpp): a
+/// point, a plane (points on either side light at their distance from it) or a line segment,
+/// at a time. A point lights at min over detonations of (time + distance / D).
+struct DetonationSpec {
+  enum class Kind { point, plane, line };
+  Kind kind = Kind::point;
+  Vec3 point{};   ///< the point; a point of the plane; the segment's start
+  Vec3 normal{};  ///< plane: unit normal
+  Vec3 end{};     ///< line: the segment's end
+  double time = 0.0;
+  SourceLocation where{};
+};
+
 /// Everything a run needs. Bodies, constraints, walls, contacts and references refer to materials
 /// and bodies by index into the vectors here.
 struct Scene {
@@ -397,6 +411,7 @@ struct Scene {
   std::vector<AbsorbingSpec> absorbing{};  ///< [[absorbing]]: non-reflecting mesh boundaries
   std::vector<WallSpec> walls{};
   std::vector<ContactSpec> contacts{};
+  std::vector<DetonationSpec> detonations{};  ///< [[detonations]]: what lights the explosives
   std::optional<TaylorReference> taylor_reference{};
   std::vector<VelocityReference> velocity_references{};
   double energy_tolerance = 0.0;  ///< > 0: the largest |energy-balance error| allowed
@@ -439,6 +454,7 @@ using core::NodeSelector;
 using core::ConstraintSpec;
 using core::WallSpec;
 using core::ContactSpec;
+using core::DetonationSpec;
 using core::ContactMethod;
 using core::RigidSettings;
 using core::Scene;

@@ -32,6 +32,15 @@ struct Elastic {
   static constexpr bool reads_damage = false;  ///< damage and largest compaction
 };
 
+/// No shear strength: a fluid, or detonation products (with an EOS). The deviator is zero.
+struct Fluid {
+  DeviatoricResult update(SymTensor& s, const SymTensor& de_dev, const StrengthContext& c) const;
+  bool thermal() const { return false; }
+  static constexpr bool reads_plastic_strain = false;
+  static constexpr bool reads_temperature = false;
+  static constexpr bool reads_damage = false;
+};
+
 /// J2 plasticity with linear isotropic hardening (perfect plasticity when hardening = 0):
 /// sigma_y = yield_stress + hardening * eps_p, radial return (Simo & Hughes box 3.2).
 struct J2Plasticity {
@@ -95,6 +104,7 @@ struct HolmquistJohnsonCook {
 // The public names, in namespace afemp.
 namespace afemp {
 using core::Elastic;
+using core::Fluid;
 using core::J2Plasticity;
 using core::JohnsonCook;
 using core::HolmquistJohnsonCook;
