@@ -730,7 +730,7 @@ FailureModel read_failure(TableReader& r) {
 
 Material read_material(TableReader& r, const std::string& name) {
   r.known({"density", "E", "nu", "G", "strength", "eos", "specific_heat", "taylor_quinney",
-           "temperature", "failure_strain", "failure", "burn"});
+           "temperature", "failure_strain", "failure", "burn", "pressure_cutoff"});
   r.check_unknown();
   Material m;
   m.name = name;
@@ -766,6 +766,13 @@ Material read_material(TableReader& r, const std::string& name) {
     m.failure = read_failure(fr);
   } else if (m.failure_strain > 0.0) {
     m.failure = PlasticStrainFailure{m.failure_strain};
+  }
+  if (r.has("pressure_cutoff")) {
+    m.pressure_cutoff = r.number("pressure_cutoff", 0.0, {-std::numeric_limits<double>::infinity(), 0.0, true, false});
+    if (!m.has_eos() || std::holds_alternative<HjcCompaction>(m.eos))
+      r.fail("pressure_cutoff", "a pressure cutoff (cavitation) acts on an eos's pressure: give "
+                                "eos = { model = \"mie-gruneisen\" } or another, not "
+                                "hjc-compaction, which has its own tension limit");
   }
   if (const toml::table* t = r.optional_table("burn")) {
     TableReader br(*t, r.dotted("burn"), r.file());

@@ -81,6 +81,12 @@ inline PointUpdate finish_increment(const Material& material, const Eos& eos, bo
     const bool cut = failed && p_new < 0.0;
     point.energy = cut ? e_star : point.energy;
     p_new = cut ? 0.0 : p_new;
+    // A fluid's cavitation (Material::pressure_cutoff, -inf unless set): the pressure stays at
+    // or above it, the increment's work done at it.
+    if (p_new < material.pressure_cutoff) {
+      point.energy = e_star - material.pressure_cutoff * half_strain;
+      p_new = material.pressure_cutoff;
+    }
   }
 
   point.stress = s_new - p_new * SymTensor::identity();

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <limits>
 #include <optional>
 #include <string>
 #include <variant>
@@ -63,6 +64,9 @@ struct Material {
   /// When a point fails (afemp/failure_models.hpp); a failure_strain without one acts as
   /// PlasticStrainFailure{failure_strain}.
   FailureModel failure = NoFailure{};
+  /// The least pressure an EOS material carries (LS-DYNA's PC, <= 0): a fluid cavitates there,
+  /// the pressure cut and the work done at it. -inf: no cutoff.
+  double pressure_cutoff = -std::numeric_limits<double>::infinity();
   /// A high explosive: programmed burn of its JWL products (with eos Jwl only).
   std::optional<ProgrammedBurn> burn{};
   bool is_explosive() const { return burn.has_value(); }
