@@ -980,7 +980,7 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
                    const std::vector<Material>& material_list, const std::string& scene_path) {
   r.known({"name", "material", "discretisation", "shape", "particles_per_cell", "velocity",
            "temperature", "internal_energy", "mesh", "element", "hourglass", "bulk_viscosity", "erosion", "area",
-           "bonded_to", "conversion", "rigid"});
+           "bonded_to", "conversion", "rigid", "outside"});
   // Name the body in messages as soon as its name is readable, even for an unknown key.
   if (const toml::node* n = r.table().get("name"); n && n->is_string() && !n->as_string()->get().empty())
     r.set_prefix("bodies." + n->as_string()->get());
@@ -1022,6 +1022,7 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
   only_for("erosion", D::hexahedra, D::trusses);
   only_for("area", D::trusses, D::trusses);
   only_for("bonded_to", D::hexahedra, D::trusses);  // resolved once every body is read
+  only_for("outside", D::particles, D::particles);   // resolved once every body is read
   only_for("conversion", D::hexahedra, D::hexahedra);
   if (r.has("rigid") && b.discretisation != D::hexahedra)
     r.fail("rigid", std::string("a rigid body is made of hexahedra (its mass and inertia come from "
@@ -1626,6 +1627,23 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
     if (t.contains("bonded_to"))
       br.fail("conversion", "a body bonded to particles cannot also convert; remove one of "
                             "bonded_to and conversion");
+  }
+  // Particle bodies placed around others (water around a charge): the bodies named by outside.
+  for (std::size_t i = 0; i < bodies->size(); ++i) {
+    const toml::table& t = *bodies->get(i)->as_table();
+    if (!t.contains("outside")) continue;
+    TableReader br(t, "bodies." + scene.bodies[i].name, path);
+    for (const std::string& name : br.strings("outside")) {
+      const int o = body_index(br, "outside", name, scene, false);
+      const BodySpec& other = scene.bodies[static_cast<std::size_t>(o)];
+      if (static_cast<std::size_t>(o) == i)
+        br.fail("outside", "a body cannot lie outside itself");
+      if (std::holds_alternative<PointListShape>(other.shape) ||
+          std::holds_alternative<MeshFileShape>(other.shape))
+        br.fail("outside", "body \"" + name + "\" has no inside to leave out (a point list or "
+                           "a mesh file); name bodies with a box, cylinder or sphere");
+      scene.bodies[i].outside.push_back(o);
+    }
   }
   // Bonded coupling: the host named by each mesh body's bonded_to.
   for (std::size_t i = 0; i < bodies->size(); ++i) {

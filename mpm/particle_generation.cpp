@@ -256,6 +256,15 @@ void generate_point_list(const PointListShape& shape, const GridSettings& grid,
                      "read error in points file of body '" + body.name + "'");
 }
 
+// Whether x lies inside a box, cylinder or sphere shape (the parser lets `outside` name no
+// other).
+bool inside_shape(const core::Shape& shape, const Vec3& x) {
+  if (const auto* s = std::get_if<BoxShape>(&shape)) return BoxTest{*s}.inside(x);
+  if (const auto* s = std::get_if<CylinderShape>(&shape)) return CylinderTest{*s}.inside(x);
+  if (const auto* s = std::get_if<SphereShape>(&shape)) return SphereTest{*s}.inside(x);
+  return false;
+}
+
 }  // namespace
 
 Particles generate_particles(const core::Scene& scene) {
@@ -292,6 +301,19 @@ Particles generate_particles(const core::Scene& scene) {
                              "this shape makes a mesh, not particles");
         },
         body.shape);
+    // Left out: what lies inside the shapes of the bodies named by `outside`.
+    if (!body.outside.empty()) {
+      std::vector<std::int32_t> kept;
+      for (std::size_t p = 0; p < out.size(); ++p) {
+        bool inside = false;
+        for (int o : body.outside)
+          if (p >= before)
+            inside = inside || inside_shape(scene.bodies[static_cast<std::size_t>(o)].shape,
+                                            out.position[p]);
+        if (!inside) kept.push_back(static_cast<std::int32_t>(p));
+      }
+      out.select(kept);
+    }
     for (std::size_t p = before; p < out.size(); ++p) out.energy[p] = body.internal_energy;
     if (out.size() == before)
       throw InputError(body.where, "bodies." + body.name + ".shape",

@@ -273,6 +273,8 @@ struct BodySpec {
   /// Bonded coupling (HFEMP, Lian et al. 2013, §2.6): the particle body whose velocity field this mesh
   /// body's nodes join; they move with the grid solution (perfect bond). -1: not bonded.
   int bonded_to = -1;
+  /// Particles: none is placed inside the shapes of these bodies (water around a charge).
+  std::vector<int> outside{};
   Vec3 velocity{};                ///< initial velocity
   std::optional<double> temperature{};  ///< initial temperature; default the material's
   /// Initial specific internal energy e0 (per unit mass; J/kg = mm^2/ms^2): with an EOS that

@@ -112,6 +112,41 @@ TEST(ParticleGeneration, AdjacentBoxesSharingAFaceDoNotShareAPoint) {
     EXPECT_EQ(p.body[i], p.position[i].x < 2.25 ? 0 : 1);
 }
 
+// Reference: counting. A body placed outside another (water around a charge) leaves out its
+// lattice points inside the other's shape: a 4^3 box at 2 per cell per direction (512 points)
+// around a box of 2^3 cells (64 of its points) keeps 448, and the two bodies together fill the
+// 4^3 grid exactly once; a sphere of radius 1.2 at a box corner leaves out the 1/8 of the
+// points within 1.2 of it (counted directly).
+TEST(ParticleGeneration, ABodyOutsideAnotherLeavesOutThePointsInsideIt) {
+  Scene s = make_scene({0, 0, 0}, {4, 4, 4}, 1.0);
+  s.bodies.push_back(make_body("charge", BoxShape{{0, 0, 0}, {2, 2, 2}}, 2));
+  s.bodies.push_back(make_body("water", BoxShape{{0, 0, 0}, {4, 4, 4}}, 2));
+  s.bodies[1].outside = {0};
+  const Particles p = generate_particles(s);
+  std::size_t water = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) water += p.body[i] == 1;
+  EXPECT_EQ(water, 448u);
+  EXPECT_EQ(p.size(), 512u);
+
+  Scene t = make_scene({0, 0, 0}, {4, 4, 4}, 1.0);
+  for (int f : {0, 2, 4}) t.mpm.grid.faces[static_cast<std::size_t>(f)] = core::FaceCondition::symmetric;
+  t.bodies.push_back(make_body("charge", SphereShape{{0, 0, 0}, 1.2}, 2));
+  t.bodies.push_back(make_body("water", BoxShape{{0, 0, 0}, {4, 4, 4}}, 2));
+  t.bodies[1].outside = {0};
+  const Particles q = generate_particles(t);
+  std::size_t inside = 0;  // lattice points (k + 0.5) / 2 within 1.2 of the origin
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j)
+      for (int k = 0; k < 8; ++k) {
+        const double x = 0.25 + 0.5 * i, y = 0.25 + 0.5 * j, z = 0.25 + 0.5 * k;
+        inside += x * x + y * y + z * z <= 1.2 * 1.2;
+      }
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < q.size(); ++i) kept += q.body[i] == 1;
+  EXPECT_EQ(kept, 512u - inside);
+  EXPECT_GT(inside, 0u);
+}
+
 TEST(ParticleGeneration, QuarterCylinderFromSymmetricFacesHasAQuarterOfTheMass) {
   // Cylinder on the z axis, r = 8 cells, L = 16 cells; x >= 0 and y >= 0 kept by symmetry.
   const double r = 8.0, length = 16.0;
