@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/scene.hpp"
+#include "explosive_scenes.hpp"
 #include "fem/fe_solver.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
@@ -24,16 +25,7 @@ namespace {
 
 constexpr double kD = 6930.0, kPcj = 2.1e4;
 
-const char* kTnt = R"(
-[materials.tnt]
-density = 1.63e-3
-strength = { model = "fluid" }
-eos = { model = "jwl", A = 3.712e5, B = 3.231e3, R1 = 4.15, R2 = 0.95, omega = 0.30, E0 = 7.0e3 }
-burn = { D = 6930, pcj = 2.1e4 }
-
-[[detonations]]
-plane = { point = [0, 0, 0], normal = [0, 0, 1] }
-)";
+const std::string kTnt = test::tnt_material() + test::plane_detonation(0.0);
 
 struct Front {
   double z = 0.0, peak = 0.0;
@@ -127,20 +119,8 @@ fixed = ["x", "y"]
 // 30 us (the plate still gains a little then: the products keep part of their energy at the
 // volumes reached).
 TEST(Detonation, AnOpenFacedSandwichDrivesItsPlateAtTheGurneyVelocity) {
-  const core::Scene scene = core::parse_scene(std::string(R"([run]
-end_time = 0.03
-[grid]
-cell = 0.25
-min = [0, 0, -60]
-max = [0.5, 0.5, 60]
-boundary = { xmin = "symmetric", xmax = "symmetric", ymin = "symmetric", ymax = "symmetric", zmin = "outflow", zmax = "outflow" }
-[mpm]
-scheme = "MUSL"
-[materials.steel]
-density = 7.85e-3
-E = 200e3
-nu = 0.3
-strength = { model = "j2", yield = 1000 }
+  const core::Scene scene = core::parse_scene(
+      test::sandwich_column(0.03, -60, 60, false) + test::steel_plate_material() + R"(
 [[bodies]]
 name = "charge"
 material = "tnt"
@@ -149,7 +129,7 @@ shape = { box = { min = [0, 0, 0], max = [0.5, 0.5, 10] } }
 name = "plate"
 material = "steel"
 shape = { box = { min = [0, 0, 10], max = [0.5, 0.5, 12.0764] } }
-)") + kTnt, "sandwich.toml");
+)" + kTnt, "sandwich.toml");
   MpmSolver solver(scene, generate_particles(scene));
   const double e0 = solver.energies().total();
   while (solver.time() < 0.03) solver.step(std::min(solver.stable_time_step(), 0.03 - solver.time()));

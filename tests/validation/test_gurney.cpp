@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/scene.hpp"
+#include "explosive_scenes.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
 
@@ -18,26 +19,9 @@ namespace afemp::mpm {
 namespace {
 
 TEST(Gurney, SymmetricSandwichDrivesBothPlatesAtTheGurneyVelocity) {
-  const core::Scene scene = core::parse_scene(R"([run]
-end_time = 0.06
-[grid]
-cell = 0.25
-min = [0, 0, -120]
-max = [0.5, 0.5, 120]
-boundary = { xmin = "symmetric", xmax = "symmetric", ymin = "symmetric", ymax = "symmetric", zmin = "outflow", zmax = "outflow" }
-[mpm]
-scheme = "MUSL"
-splitting = {}
-[materials.tnt]
-density = 1.63e-3
-strength = { model = "fluid" }
-eos = { model = "jwl", A = 3.712e5, B = 3.231e3, R1 = 4.15, R2 = 0.95, omega = 0.30, E0 = 7.0e3 }
-burn = { D = 6930, pcj = 2.1e4 }
-[materials.steel]
-density = 7.85e-3
-E = 200e3
-nu = 0.3
-strength = { model = "j2", yield = 1000 }
+  const core::Scene scene = core::parse_scene(
+      test::sandwich_column(0.06, -120, 120, true) + test::tnt_material() +
+          test::steel_plate_material() + R"(
 [[bodies]]
 name = "charge"
 material = "tnt"
@@ -50,9 +34,8 @@ shape = { box = { min = [0, 0, 10], max = [0.5, 0.5, 12.0764] } }
 name = "back"
 material = "steel"
 shape = { box = { min = [0, 0, -2.0764], max = [0.5, 0.5, 0] } }
-[[detonations]]
-plane = { point = [0, 0, 5], normal = [0, 0, 1] }
-)", "sandwich.toml");
+)" + test::plane_detonation(5.0),
+      "sandwich.toml");
   MpmSolver solver(scene, generate_particles(scene));
   const double e0 = solver.energies().total();
   while (solver.time() < 0.06) solver.step(std::min(solver.stable_time_step(), 0.06 - solver.time()));

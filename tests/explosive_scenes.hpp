@@ -1,0 +1,49 @@
+#pragma once
+
+// Scene text the explosive tests share (tests/mpm/test_detonation.cpp,
+// tests/validation/test_gurney.cpp): TNT (LS-DYNA's example set, which passes through its own
+// Chapman-Jouguet state: tests/core/test_jwl.cpp) lit by a plane through `plane_point`, and a
+// J2 steel for the plates it drives. Units: mm, ms, g, MPa.
+
+#include <string>
+
+namespace afemp::test {
+
+inline std::string tnt_material() {
+  return R"(
+[materials.tnt]
+density = 1.63e-3
+strength = { model = "fluid" }
+eos = { model = "jwl", A = 3.712e5, B = 3.231e3, R1 = 4.15, R2 = 0.95, omega = 0.30, E0 = 7.0e3 }
+burn = { D = 6930, pcj = 2.1e4 }
+)";
+}
+
+inline std::string plane_detonation(double z) {
+  return "\n[[detonations]]\nplane = { point = [0, 0, " + std::to_string(z) +
+         "], normal = [0, 0, 1] }\n";
+}
+
+inline std::string steel_plate_material() {
+  return R"(
+[materials.steel]
+density = 7.85e-3
+E = 200e3
+nu = 0.3
+strength = { model = "j2", yield = 1000 }
+)";
+}
+
+// A column 0.5 mm square, held laterally, from z_min to z_max, with outflow faces at its ends:
+// the [run], [grid] and [mpm] sections of the sandwich tests.
+inline std::string sandwich_column(double end_time, double z_min, double z_max, bool splitting) {
+  return "[run]\nend_time = " + std::to_string(end_time) +
+         "\n[grid]\ncell = 0.25\nmin = [0, 0, " + std::to_string(z_min) + "]\nmax = [0.5, 0.5, " +
+         std::to_string(z_max) +
+         "]\nboundary = { xmin = \"symmetric\", xmax = \"symmetric\", ymin = \"symmetric\", "
+         "ymax = \"symmetric\", zmin = \"outflow\", zmax = \"outflow\" }\n[mpm]\nscheme = "
+         "\"MUSL\"\n" +
+         (splitting ? "splitting = {}\n" : "");
+}
+
+}  // namespace afemp::test
