@@ -70,9 +70,8 @@ void warn_step_count(const core::Scene& scene, const core::Model& model, double 
 // A run estimated to take more than a day at the nominal pace (core/resource_guard.hpp); not
 // where the step count has been warned of already.
 void warn_wall_time(const core::Scene& scene, const core::Model& model, double dt) {
-  double steps = scene.run.end_time / dt;
-  if (scene.run.max_steps > 0) steps = std::min(steps, static_cast<double>(scene.run.max_steps));
-  else if (steps > 1e9) return;
+  const double steps = core::planned_steps(scene, dt);
+  if (scene.run.max_steps <= 0 && steps > 1e9) return;
   const double points = static_cast<double>(model.particle_count() + model.element_count());
   const std::string w = core::wall_time_warning(points * steps, core::thread_count());
   if (!w.empty()) std::fprintf(stderr, "afemp: warning: %s\n", w.c_str());
@@ -100,15 +99,14 @@ int check(const std::string& path) {
   std::printf("memory estimate: %.1f MiB (%.0f bytes per particle or element)\n",
               static_cast<double>(model->bytes()) / (1024.0 * 1024.0),
               static_cast<double>(model->bytes()) / points);
-  double steps = scene.run.end_time / dt;
-  if (scene.run.max_steps > 0) steps = std::min(steps, static_cast<double>(scene.run.max_steps));
+  const double point_steps = points * core::planned_steps(scene, dt);
   std::printf("wall time estimate: about %s on %d thread(s) (%s point-steps at a nominal 1.5 "
               "million per thread and second; plasticity, contact and coupling cost more, simple "
               "elastic particles less)\n",
-              core::readable_duration(points * steps / (core::nominal_point_steps_per_thread_second *
-                                                        core::thread_count()))
+              core::readable_duration(core::estimated_wall_seconds(point_steps,
+                                                                   core::thread_count()))
                   .c_str(),
-              core::thread_count(), core::readable_count(points * steps).c_str());
+              core::thread_count(), core::readable_count(point_steps).c_str());
   return 0;
 }
 

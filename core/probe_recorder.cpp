@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/output/run_directory.hpp"
 #include "core/state_archive.hpp"
 
 namespace afemp::core {
@@ -97,13 +98,7 @@ void ProbeRecorder::state(StateArchive& a) {
     throw CheckpointError(a.where("bytes") + ": the checkpointed run wrote no probe files");
   for (std::size_t k = 0; k < series_.size(); ++k) {
     const std::string file = path(series_[k]);
-    std::error_code ec;
-    const std::uintmax_t size = std::filesystem::file_size(file, ec);
-    if (ec || size < bytes[k])
-      throw std::runtime_error(file + ": cannot continue the probe: " +
-                               (ec ? ec.message() : "shorter than at the checkpoint"));
-    std::filesystem::resize_file(file, bytes[k], ec);
-    if (ec) throw std::runtime_error(file + ": cannot cut to the checkpoint: " + ec.message());
+    cut_to_checkpoint(file, bytes[k]);
     files_.emplace_back(file, std::ios::app);
     if (!files_.back()) throw std::runtime_error(file + ": cannot write");
   }

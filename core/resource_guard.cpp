@@ -127,9 +127,18 @@ std::string readable_duration(double seconds) {
   return buf;
 }
 
+double estimated_wall_seconds(double point_steps, int threads) {
+  return point_steps / (nominal_point_steps_per_thread_second * std::max(threads, 1));
+}
+
+double planned_steps(const Scene& scene, double dt) {
+  const double steps = scene.run.end_time / dt;
+  return scene.run.max_steps > 0 ? std::min(steps, static_cast<double>(scene.run.max_steps))
+                                 : steps;
+}
+
 std::string wall_time_warning(double point_steps, int threads) {
-  const double seconds =
-      point_steps / (nominal_point_steps_per_thread_second * std::max(threads, 1));
+  const double seconds = estimated_wall_seconds(point_steps, threads);
   if (!(seconds > 86400.0)) return "";
   return "the run is estimated to take " + readable_duration(seconds) + " (" +
          readable_count(point_steps) + " point-steps on " + std::to_string(threads) +

@@ -37,6 +37,10 @@ std::string readable_count(double count);
 // coupling (the restart test's scene, tests/coupling/test_restart.cpp: 2.5 million per thread
 // there). An estimate to flag runs of days, not a promise.
 inline constexpr double nominal_point_steps_per_thread_second = 1.5e6;
+// Seconds `point_steps` take on `threads` at the nominal pace.
+double estimated_wall_seconds(double point_steps, int threads);
+// The steps a scene plans at step dt: to its end time, or max_steps when that comes first.
+double planned_steps(const Scene& scene, double dt);
 // A duration as a person reads it: "45 s", "3.2 min", "5.1 h", "12.4 days", "3.1e+04 years".
 std::string readable_duration(double seconds);
 // What `afemp check` and `run` warn when a run is estimated to take more than a day:

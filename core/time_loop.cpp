@@ -150,13 +150,7 @@ class EventFiles {
     if (bytes.size() != names.size()) throw CheckpointError(a.where("bytes") + ": one per file");
     for (std::size_t k = 0; k < names.size(); ++k) {
       const std::string path = directory_ + "/" + names[k];
-      std::error_code ec;
-      const std::uintmax_t size = std::filesystem::file_size(path, ec);
-      if (ec || size < bytes[k])
-        throw std::runtime_error(path + ": cannot continue: " +
-                                 (ec ? ec.message() : "shorter than at the checkpoint"));
-      std::filesystem::resize_file(path, bytes[k], ec);
-      if (ec) throw std::runtime_error(path + ": cannot cut to the checkpoint: " + ec.message());
+      cut_to_checkpoint(path, bytes[k]);
       std::ofstream& f = files_[names[k]];
       f.open(path, std::ios::app);
       if (!f) throw std::runtime_error(path + ": cannot write");

@@ -4,6 +4,8 @@
 // the contact nodes' start velocities, the surface contacts' forces and friction work, and the
 // energy conversion lost. The boundary faces are rebuilt from the live elements at the next
 // step, as the run rebuilds them whenever elements leave.
+#include <stdexcept>
+
 #include "core/state_archive.hpp"
 #include "coupling/coupled_model.hpp"
 #include "coupling/particle_surface_contact.hpp"
@@ -30,6 +32,8 @@ void ParticleSurfaceContacts::state(StateArchive& a) {
 }
 
 void CoupledModel::state(StateArchive& a) {
+  if (!conversion_rows_.empty())
+    throw std::logic_error("CoupledModel::state: conversion rows not yet taken");
   fe_.state(a);
   mpm_.state(a);
   const StateArchive::Group group(a, "coupling");
@@ -52,8 +56,6 @@ void CoupledModel::state(StateArchive& a) {
   a.item("converted_energy", converted_energy_);
   if (surface_contacts_) surface_contacts_->state(a);
   if (a.loading()) {
-    if (!conversion_rows_.empty())
-      throw std::logic_error("CoupledModel::state: conversion rows not yet taken");
     surface_live_ = static_cast<std::size_t>(-1);  // rebuilt from the live elements
     surface_ = {};
   }

@@ -15,19 +15,13 @@ namespace afemp::coupling {
 namespace {
 
 constexpr int kSweeps = 8;
-// How far outside [-1, 1] a projection may fall and still hold the particle (as the mesh
-// contacts allow a node sliding over an edge).
-constexpr double kEdgeTolerance = 0.02;
-
-std::array<Vec3, 4> corners(const std::array<std::int32_t, 4>& face, const std::vector<Vec3>& x) {
-  return {x[static_cast<std::size_t>(face[0])], x[static_cast<std::size_t>(face[1])],
-          x[static_cast<std::size_t>(face[2])], x[static_cast<std::size_t>(face[3])]};
-}
+using fem::corners;
+using fem::kEdgeTolerance;
 
 }  // namespace
 
 ParticleSurfaceContacts::ParticleSurfaceContacts(const core::Scene& scene, fem::FeSolver& fe)
-    : scene_(scene), fe_(fe) {
+    : fe_(fe) {
   for (const core::ContactSpec& c : scene.contacts) {
     if (c.method != core::ContactMethod::surface) continue;
     Pair p;
@@ -256,7 +250,8 @@ void ParticleSurfaceContacts::resolve_pair(Pair& pair, const mpm::GridStepAccess
       const Vec3 xp = p.position[h.particle];
       Vec3 x_face, v_face;
       face_state(h, x_face, v_face);
-      const double gap = core::dot(nrm, xp + dt * v_particle(h) - x_face) - h.radius;
+      const Vec3 vp = v_particle(h);  // nothing is pushed before the friction below reads it
+      const double gap = core::dot(nrm, xp + dt * vp - x_face) - h.radius;
       if (sweep == 0) {
         Vec3 x_now;
         for (int a = 0; a < 4; ++a)
@@ -270,8 +265,9 @@ void ParticleSurfaceContacts::resolve_pair(Pair& pair, const mpm::GridStepAccess
       h.normal_impulse = total;
       Vec3 impulse = dj * nrm;
       if (mu > 0.0) {
-        // The relative velocity after the normal impulse, and the stick impulse within mu J.
-        const Vec3 rel = v_particle(h) - v_face;  // its normal part does not matter here
+        // The relative velocity (the normal impulse would change only its normal part, which
+        // does not matter here), and the stick impulse within mu J.
+        const Vec3 rel = vp - v_face;
         const Vec3 slip = rel - core::dot(rel, nrm) * nrm;
         Vec3 t = h.tangential_impulse - (1.0 / w) * slip;
         const double l = core::norm(t), limit = mu * h.normal_impulse;

@@ -47,8 +47,8 @@ class ParticleSurfaceContacts final : public mpm::SurfaceContacts {
     fem::SurfaceFaces faces;
     std::vector<Vec3> outward;                        // each face's outward area vector (this step)
     std::size_t live = static_cast<std::size_t>(-1);  // live hexahedra when the faces were made
-    // This step's resultant forces on the particle body (impulse over the step), the sums of
-    // the pairs' force magnitudes, and the work friction dissipated so far.
+    // This step's resultant forces on the particle body (impulse over the step) and the work
+    // friction dissipated so far.
     Vec3 normal_force, tangential_force;
     double friction_work = 0.0;
   };
@@ -79,7 +79,6 @@ class ParticleSurfaceContacts final : public mpm::SurfaceContacts {
   template <class Stencil>
   void resolve_pair(Pair& pair, const mpm::GridStepAccess& access);
 
-  const core::Scene& scene_;
   fem::FeSolver& fe_;
   std::vector<Pair> pairs_;
   // Scratch: predicted node positions, face bins, hits and their stencils.

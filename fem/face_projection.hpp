@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include "afemp/tensor.hpp"
 
@@ -18,6 +20,17 @@ struct FacePoint {
   Vec3 x, t1, t2;
   std::array<double, 4> n;
 };
+
+// How far outside [-1, 1] a projection may fall and still hold a point (a node or particle
+// sliding over the edge between two faces stays in contact with one of them).
+inline constexpr double kEdgeTolerance = 0.02;
+
+// The four corner positions of a face from the node positions x.
+inline std::array<Vec3, 4> corners(const std::array<std::int32_t, 4>& face,
+                                   const std::vector<Vec3>& x) {
+  return {x[static_cast<std::size_t>(face[0])], x[static_cast<std::size_t>(face[1])],
+          x[static_cast<std::size_t>(face[2])], x[static_cast<std::size_t>(face[3])]};
+}
 
 inline FacePoint face_point(const std::array<Vec3, 4>& p, double xi, double eta) {
   FacePoint f;

@@ -228,9 +228,7 @@ void FeSolver::build(const core::Scene& scene) {
   };
   auto add_point_state = [](ElementStore& el, const core::Material& m, double temperature,
                             double point_mass, double energy) {
-    // Detonation products start with the EOS's detonation energy E0 (per reference volume).
-    if (const auto* jwl = std::get_if<core::Jwl>(&m.eos); jwl && energy == 0.0)
-      energy = jwl->E0 / m.density;
+    if (energy == 0.0) energy = m.initial_energy();  // detonation products: E0 / rho0
     el.history.resize(el.history.size() + el.history_count);
     core::initial_history(m, el.history.data() + el.history.size() - el.history_count,
                           el.history_count);

@@ -18,15 +18,6 @@ namespace {
 
 using core::Discretisation;
 
-// How far outside [-1, 1] a projection may fall and still hold the node (a node sliding over
-// the edge between two faces stays in contact with one of them).
-constexpr double kEdgeTolerance = 0.02;
-
-std::array<Vec3, 4> corners(const std::array<std::int32_t, 4>& face, const std::vector<Vec3>& x) {
-  return {x[static_cast<std::size_t>(face[0])], x[static_cast<std::size_t>(face[1])],
-          x[static_cast<std::size_t>(face[2])], x[static_cast<std::size_t>(face[3])]};
-}
-
 // The master faces of body b, turned outward, with their reach (the thickness of their element
 // normal to them; half of it in self-contact, where the far side of the same body is near).
 void master_faces(ContactPass& pass, const SurfaceFaces& s, bool self, const HexElements& hexes,

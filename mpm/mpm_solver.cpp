@@ -147,8 +147,7 @@ void MpmSolver::setup_explosives() {
   bool explosive = false;
   for (std::size_t i = 0; i < p.size(); ++i) {
     const core::Material& m = *materials_[static_cast<std::size_t>(p.material[i])];
-    if (const auto* jwl = std::get_if<core::Jwl>(&m.eos); jwl && p.energy[i] == 0.0)
-      p.energy[i] = jwl->E0 / m.density;
+    if (p.energy[i] == 0.0) p.energy[i] = m.initial_energy();
     explosive = explosive || m.is_explosive();
   }
   if (!explosive) return;

@@ -149,6 +149,11 @@ bool Material::has_thermal_term() const {
   return softens && thermal.specific_heat > 0.0;
 }
 
+double Material::initial_energy() const {
+  const auto* jwl = std::get_if<Jwl>(&eos);
+  return jwl ? jwl->E0 / density : 0.0;
+}
+
 std::size_t Material::history_count() const {
   const auto* user = std::get_if<UserStrength>(&strength);
   return user ? user->history_count() : 0;

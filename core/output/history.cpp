@@ -12,6 +12,8 @@
 #include <system_error>
 #include <utility>
 
+#include "core/output/run_directory.hpp"
+
 namespace afemp::core {
 
 namespace {
@@ -62,14 +64,9 @@ HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> body_nam
       outflow_(outflow),
       extra_(std::move(extra)) {
   const std::string head = header();
-  std::error_code ec;
-  const std::uintmax_t size = std::filesystem::file_size(path_, ec);
-  if (ec)
-    throw std::runtime_error(path_ + ": cannot continue the history: " + ec.message());
-  if (size < resume.bytes || resume.bytes < head.size())
-    throw std::runtime_error(path_ + ": cannot continue the history: the file has " +
-                             std::to_string(size) + " bytes, the checkpoint counts " +
-                             std::to_string(resume.bytes));
+  if (resume.bytes < head.size())
+    throw std::runtime_error(path_ + ": cannot continue the history: the checkpoint counts " +
+                             std::to_string(resume.bytes) + " bytes, less than its header");
   {
     std::ifstream in(path_, std::ios::binary);
     std::string first(head.size(), '\0');
@@ -78,8 +75,7 @@ HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> body_nam
       throw std::runtime_error(path_ + ": cannot continue the history: its columns are not the "
                                "ones this scene writes");
   }
-  std::filesystem::resize_file(path_, resume.bytes, ec);
-  if (ec) throw std::runtime_error(path_ + ": cannot cut the history to the checkpoint: " + ec.message());
+  cut_to_checkpoint(path_, resume.bytes);
   errno = 0;
   file_.reset(std::fopen(path_.c_str(), "ab"));
   if (!file_) throw std::runtime_error(path_ + ": cannot append to the history: " + errno_text(errno));

@@ -3,6 +3,7 @@
 #include "core/output/run_directory.hpp"
 
 #include <filesystem>
+#include <stdexcept>
 
 namespace afemp::core {
 
@@ -34,6 +35,18 @@ std::string fields_xmf_path(const OutputPaths& paths) {
 
 std::string history_path(const OutputPaths& paths) {
   return (std::filesystem::path(paths.directory) / paths.history_file).string();
+}
+
+void cut_to_checkpoint(const std::string& path, std::uintmax_t bytes) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (ec) throw std::runtime_error(path + ": cannot continue from the checkpoint: " + ec.message());
+  if (size < bytes)
+    throw std::runtime_error(path + ": cannot continue from the checkpoint: the file has " +
+                             std::to_string(size) + " bytes, the checkpoint counts " +
+                             std::to_string(bytes));
+  std::filesystem::resize_file(path, bytes, ec);
+  if (ec) throw std::runtime_error(path + ": cannot cut to the checkpoint: " + ec.message());
 }
 
 }  // namespace afemp::core

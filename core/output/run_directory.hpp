@@ -3,6 +3,7 @@
 // examples tree and rerunning a scene replaces its previous results.
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 namespace afemp::core {
@@ -26,5 +27,10 @@ OutputPaths default_output_paths(const std::string& scene_path);
 std::string fields_h5_path(const OutputPaths& paths);
 std::string fields_xmf_path(const OutputPaths& paths);
 std::string history_path(const OutputPaths& paths);
+
+// A restart (core/checkpoint.hpp): cuts a run file back to its length `bytes` at the
+// checkpoint, dropping what was written after it, before the caller appends. Throws
+// std::runtime_error naming the file when it is missing, shorter, or cannot be cut.
+void cut_to_checkpoint(const std::string& path, std::uintmax_t bytes);
 
 }  // namespace afemp::core

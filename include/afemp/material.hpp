@@ -70,6 +70,9 @@ struct Material {
   /// A high explosive: programmed burn of its JWL products (with eos Jwl only).
   std::optional<ProgrammedBurn> burn{};
   bool is_explosive() const { return burn.has_value(); }
+  /// The specific internal energy its points start with where the body gives none: JWL
+  /// products' detonation energy E0 / rho0 (E0 per unit reference volume), else 0.
+  double initial_energy() const;
   /// Whether points of the material can fail.
   bool fails() const { return !std::holds_alternative<NoFailure>(failure); }
   /// The solvers integrate the strain tensor of its points (principal-strain failure).
