@@ -5,7 +5,8 @@
 // a cutoff the water pulls beyond 80 % of that (46 MPa: the release rings); with
 // pressure_cutoff = 0 no particle's pressure ever falls below 0 (exactly: the cut pressure is
 // the value set), and the energy balance closes to 1 % (the cut's work is done at the cut
-// pressure; the uncut water's ringing ends 1.7 % off).
+// pressure; the uncut water's ringing ends 1.7 % off). With a cutoff of -10 MPa the water
+// reaches it and stays there, the balance again within 1 %.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -73,6 +74,12 @@ TEST(Cavitation, WaterCarriesNoTensionBelowItsCutoff) {
   EXPECT_LT(free.lowest, -0.8 * 32.9);
   EXPECT_GE(cut.lowest, 0.0);
   EXPECT_LT(std::abs(cut.balance), 0.01);
+  // A cutoff below zero: the water pulls down to it, never beyond, and the work done at the
+  // cut pressure keeps the balance.
+  const Pull deep = pull("pressure_cutoff = -10.0");
+  EXPECT_GE(deep.lowest, -10.0);
+  EXPECT_LT(deep.lowest, -9.9);
+  EXPECT_LT(std::abs(deep.balance), 0.01);
 }
 
 TEST(Cavitation, ACutoffWithoutAnEosIsRefused) {

@@ -239,7 +239,15 @@ plane = { point = [0, 0, 0], normal = [0, 0, 1] }
     return dynamic_cast<const mpm::MpmModel&>(*model).solver().particles();
   };
   const mpm::Particles whole = final_particles(dir.file("whole"), 0, "");
-  final_particles(dir.file("parts"), 100, "");
+  // At the stop the column is partly burnt: some particles unlit, some burning, some done.
+  const mpm::Particles at_stop = final_particles(dir.file("parts"), 100, "");
+  int unlit = 0, burning = 0;
+  for (double f : at_stop.burn) {
+    unlit += f == 0.0;
+    burning += f > 0.0 && f < 1.0;
+  }
+  EXPECT_GT(unlit, 0);
+  EXPECT_GT(burning, 0);
   const mpm::Particles parts =
       final_particles(dir.file("parts"), 0, core::newest_checkpoint(dir.file("parts")));
   ASSERT_FALSE(whole.burn.empty());
@@ -374,6 +382,8 @@ TEST_F(RestartCli, KilledWhileWritingAFrameEveryEarlierFrameLoadsAndTheRestartEn
   EXPECT_EQ(core::newest_checkpoint(out), core::checkpoint_path(out, 87));
   const test::CommandResult again = afemp("run \"" + scene_ + "\" --restart \"" + out + "\"");
   ASSERT_EQ(again.exit_code, 0) << again.out << again.err;
+  EXPECT_NE(again.out.find("continuing from " + core::checkpoint_path(out, 87)), std::string::npos)
+      << again.out;
   expect_same_run(full_, out);
 }
 
@@ -396,6 +406,8 @@ TEST_F(RestartCli, AFullDiskStopsTheRunWithAClearMessageAndTheCheckpointStaysUsa
       << stopped.err;
   const test::CommandResult again = afemp("run \"" + scene_ + "\" --restart \"" + out + "\"");
   ASSERT_EQ(again.exit_code, 0) << again.out << again.err;
+  EXPECT_NE(again.out.find("continuing from " + core::checkpoint_path(out, 87)), std::string::npos)
+      << again.out;
   expect_same_run(full_, out);
 }
 
@@ -432,6 +444,9 @@ TEST_F(RestartCli, ADiskThatFillsUpDuringACheckpointKeepsThePreviousOne) {
   EXPECT_EQ(core::list_checkpoints(copy), std::vector<std::string>{core::checkpoint_path(copy, 87)});
   const test::CommandResult again = afemp("run \"" + scene_ + "\" --restart \"" + copy + "\"");
   ASSERT_EQ(again.exit_code, 0) << again.out << again.err;
+  EXPECT_NE(again.out.find("continuing from " + core::checkpoint_path(copy, 87)),
+            std::string::npos)
+      << again.out;
   expect_same_run(full_, copy);
 }
 

@@ -149,6 +149,12 @@ struct LiveTotals {
   std::size_t eroded = 0;
 };
 
+// The elastic column of the history's last row.
+double history_elastic_last(const std::string& path) {
+  const core::CsvTable h = core::read_csv(path);
+  return h.rows.back()[h.column("elastic")];
+}
+
 LiveTotals live_totals(const HexElements& h) {
   const double E = 200e3, nu = 0.3, G = E / (2 * (1 + nu)), K = E / (3 * (1 - 2 * nu));
   LiveTotals t;
@@ -183,10 +189,14 @@ TEST(Erosion, TheElasticColumnIsTheLiveElementsStrainEnergyAfterErosion) {
   options.output_directory = dir.str();
   options.write_fields = false;
   const core::RunSummary s = analysis::run(model, scene, options);
+  ASSERT_EQ(model.solver().hexahedra().plastic_heat.size(), model.solver().hexahedra().size());
   const LiveTotals live = live_totals(model.solver().hexahedra());
   const double strain_energy = live.strain_energy;
   const std::size_t eroded = live.eroded;
   ASSERT_GT(eroded, 0u);
+  // The plastic column is the live points' own plastic work (what the column relies on).
+  EXPECT_NEAR(s.final.plastic, live.plastic, 1e-9 * s.final.plastic);
+  EXPECT_GT(history_elastic_last(dir.file("history.csv")), 0.0);
   const core::CsvTable history = core::read_csv(dir.file("history.csv"));
   double lowest = 0.0;
   for (const auto& row : history.rows) lowest = std::min(lowest, row[history.column("elastic")]);
