@@ -7,28 +7,26 @@
 
 namespace afemp::core {
 
+Vec3 nearest_point(const DetonationSpec& d, const Vec3& x) {
+  switch (d.kind) {
+    case DetonationSpec::Kind::point:
+      return d.point;
+    case DetonationSpec::Kind::plane:
+      return x - dot(x - d.point, d.normal) * d.normal;
+    case DetonationSpec::Kind::line: {
+      const Vec3 axis = d.end - d.point;
+      const double length2 = dot(axis, axis);
+      const double s =
+          length2 > 0.0 ? std::clamp(dot(x - d.point, axis) / length2, 0.0, 1.0) : 0.0;
+      return d.point + s * axis;
+    }
+  }
+  return d.point;
+}
+
 double lighting_time(const Vec3& x, std::span<const DetonationSpec> detonations, double D) {
   double t = std::numeric_limits<double>::infinity();
-  for (const DetonationSpec& d : detonations) {
-    double distance = 0.0;
-    switch (d.kind) {
-      case DetonationSpec::Kind::point:
-        distance = norm(x - d.point);
-        break;
-      case DetonationSpec::Kind::plane:
-        distance = std::abs(dot(x - d.point, d.normal));
-        break;
-      case DetonationSpec::Kind::line: {
-        const Vec3 axis = d.end - d.point;
-        const double length2 = dot(axis, axis);
-        const double s =
-            length2 > 0.0 ? std::clamp(dot(x - d.point, axis) / length2, 0.0, 1.0) : 0.0;
-        distance = norm(x - (d.point + s * axis));
-        break;
-      }
-    }
-    t = std::min(t, d.time + distance / D);
-  }
+  for (const DetonationSpec& d : detonations) t = std::min(t, d.time + norm(x - nearest_point(d, x)) / D);
   return t;
 }
 

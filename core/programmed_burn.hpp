@@ -11,7 +11,12 @@
 
 namespace afemp::core {
 
-// min over the detonations of (time + distance from x / D); +inf without detonations.
+// The detonation's point nearest to x: the point itself, x's foot on the plane, or the
+// segment's point nearest to x.
+Vec3 nearest_point(const DetonationSpec& d, const Vec3& x);
+
+// min over the detonations of (time + distance from x / D); +inf without detonations. The
+// straight-line time: shadowed detonations (core/detonation_paths.hpp) take a longer path.
 double lighting_time(const Vec3& x, std::span<const DetonationSpec> detonations, double D);
 
 // The burn fraction at time t of a point that lit at t_light, had `previous`, measures `length`

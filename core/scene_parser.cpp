@@ -1726,7 +1726,7 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
                        "their particles' boundary");
 
   read_table_array(r, "detonations", path, [&](TableReader& t) {
-    t.known({"point", "plane", "line", "time"});
+    t.known({"point", "plane", "line", "time", "shadow"});
     t.check_unknown();
     DetonationSpec d;
     d.where = t.where();
@@ -1754,6 +1754,7 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
       d.end = lr.required_vec3("to");
     }
     d.time = t.number("time", 0.0, Range::non_negative());
+    d.shadow = t.boolean("shadow", false);
     scene.detonations.push_back(d);
   });
   {

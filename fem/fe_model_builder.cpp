@@ -14,7 +14,7 @@
 #include "core/materials/uniaxial_update.hpp"
 #include "core/materials/user_strength_chunk.hpp"
 #include "core/parallel.hpp"
-#include "core/programmed_burn.hpp"
+#include "core/detonation_paths.hpp"
 #include "fem/fe_solver.hpp"
 #include "fem/hexahedron_full.hpp"
 #include "fem/hexahedron_one_point.hpp"
@@ -320,27 +320,45 @@ void FeSolver::build(const core::Scene& scene) {
     el.viscous_heat.assign(el.stress.size(), 0.0);
   }
 
-  // High explosives (core/programmed_burn.hpp): each point of an explosive hexahedron lights
-  // at its element centre's distance from the nearest detonation over D, burns over 1.5 times
-  // the element's initial edge cbrt(V0), and starts unburnt; other points hold 0 and 1, unread.
-  for (const ElementBatch& b : hexes_.batches) {
-    const core::Material& m = scene.materials[static_cast<std::size_t>(b.material)];
-    if (!m.is_explosive()) continue;
-    if (hexes_.light_time.empty()) {
+  // High explosives (core/detonation_paths.hpp): each point of an explosive hexahedron lights
+  // at its element centre's distance (straight, or around inert bodies for a shadowed
+  // detonation) from the nearest detonation over D, burns over 1.5 times the element's initial
+  // edge cbrt(V0), and starts unburnt; other points hold 0 and 1, unread.
+  {
+    std::vector<std::size_t> which;
+    std::vector<Vec3> centres;
+    std::vector<double> D;
+    std::vector<std::int32_t> body;
+    double spacing = 0.0;  // the largest element edge: the voxels of a shadowed detonation
+    for (const ElementBatch& b : hexes_.batches) {
+      const core::Material& m = scene.materials[static_cast<std::size_t>(b.material)];
+      if (!m.is_explosive()) continue;
+      for (std::size_t e = b.begin; e < b.end; ++e) {
+        Vec3 centre;
+        for (std::int32_t n : hexes_.nodes[e]) centre += 0.125 * nodes_.position[static_cast<std::size_t>(n)];
+        which.push_back(e);
+        centres.push_back(centre);
+        D.push_back(m.burn->detonation_velocity);
+        body.push_back(b.body);
+        spacing = std::max(spacing, std::cbrt(hexes_.volume0[e]));
+      }
+    }
+    if (!which.empty()) {
+      const std::vector<double> t = core::explosive_lighting_times(centres, D, body, spacing, scene);
       hexes_.light_time.assign(hexes_.stress.size(), 0.0);
       hexes_.burn.assign(hexes_.stress.size(), 1.0);
       hexes_.burn_length.assign(hexes_.stress.size(), 0.0);
-    }
-    for (std::size_t e = b.begin; e < b.end; ++e) {
-      Vec3 centre;
-      for (std::int32_t n : hexes_.nodes[e]) centre += 0.125 * nodes_.position[static_cast<std::size_t>(n)];
-      const double t = core::lighting_time(centre, scene.detonations, m.burn->detonation_velocity);
-      const double length = std::cbrt(hexes_.volume0[e]);
-      const std::size_t first = b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
-      for (int g = 0; g < b.points_per_element; ++g) {
-        hexes_.light_time[first + static_cast<std::size_t>(g)] = t;
-        hexes_.burn[first + static_cast<std::size_t>(g)] = 0.0;
-        hexes_.burn_length[first + static_cast<std::size_t>(g)] = length;
+      std::size_t k = 0;
+      for (const ElementBatch& b : hexes_.batches) {
+        if (!scene.materials[static_cast<std::size_t>(b.material)].is_explosive()) continue;
+        for (std::size_t e = b.begin; e < b.end; ++e, ++k) {
+          const std::size_t first = b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
+          for (int g = 0; g < b.points_per_element; ++g) {
+            hexes_.light_time[first + static_cast<std::size_t>(g)] = t[k];
+            hexes_.burn[first + static_cast<std::size_t>(g)] = 0.0;
+            hexes_.burn_length[first + static_cast<std::size_t>(g)] = std::cbrt(hexes_.volume0[e]);
+          }
+        }
       }
     }
   }

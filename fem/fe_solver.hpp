@@ -78,7 +78,7 @@ struct ElementStore {
   // plastic and viscous totals, which then hold the live material's (the elastic column,
   // internal - plastic - viscous, stays the live elements' strain energy).
   std::vector<double> plastic_heat, viscous_heat;
-  // High explosives (core/programmed_burn.hpp), per point, kept only when some body is one
+  // High explosives (core/detonation_paths.hpp), per point, kept only when some body is one
   // (empty otherwise): the time the point lights, its burn fraction and the length it burns
   // over.
   std::vector<double> light_time, burn, burn_length;

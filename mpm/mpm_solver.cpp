@@ -11,7 +11,7 @@
 #include "afemp/errors.hpp"
 #include "core/materials/user_strength_chunk.hpp"
 #include "core/parallel.hpp"
-#include "core/programmed_burn.hpp"
+#include "core/detonation_paths.hpp"
 #include "core/scene.hpp"
 
 namespace afemp::mpm {
@@ -140,8 +140,9 @@ void MpmSolver::add_particles(const Particles& more) {
 }
 
 // Detonation products start with the EOS's detonation energy E0 (per unit reference volume):
-// e = E0 / rho0. A high explosive's particles light at their distance from the nearest
-// detonation over D (core/programmed_burn.hpp) and start unburnt.
+// e = E0 / rho0. A high explosive's particles light at their distance (straight, or around
+// inert bodies for a shadowed detonation) from the nearest detonation over D
+// (core/detonation_paths.hpp) and start unburnt.
 void MpmSolver::setup_explosives() {
   Particles& p = particles_;
   bool explosive = false;
@@ -153,13 +154,23 @@ void MpmSolver::setup_explosives() {
   if (!explosive) return;
   p.light_time.assign(p.size(), 0.0);
   p.burn.assign(p.size(), 1.0);
+  std::vector<std::size_t> which;
+  std::vector<Vec3> x;
+  std::vector<double> D;
+  std::vector<std::int32_t> body;
+  double spacing = 0.0;  // the particles' largest edge: the voxels of a shadowed detonation
   for (std::size_t i = 0; i < p.size(); ++i) {
     const core::Material& m = *materials_[static_cast<std::size_t>(p.material[i])];
     if (!m.is_explosive()) continue;
-    p.light_time[i] =
-        core::lighting_time(p.position[i], scene_.detonations, m.burn->detonation_velocity);
+    which.push_back(i);
+    x.push_back(p.position[i]);
+    D.push_back(m.burn->detonation_velocity);
+    body.push_back(p.body[i]);
+    spacing = std::max(spacing, std::cbrt(p.volume[i]));
     p.burn[i] = 0.0;
   }
+  const std::vector<double> t = core::explosive_lighting_times(x, D, body, spacing, scene_);
+  for (std::size_t k = 0; k < which.size(); ++k) p.light_time[which[k]] = t[k];
 }
 
 std::int32_t MpmSolver::next_particle_id() const {

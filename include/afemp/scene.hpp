@@ -383,7 +383,9 @@ struct ContactSpec {
 
 /// A detonation that lights the high explosives (programmed burn, afemp/material.hpp): a
 /// point, a plane (points on either side light at their distance from it) or a line segment,
-/// at a time. A point lights at min over detonations of (time + distance / D).
+/// at a time. A point lights at min over detonations of (time + distance / D); the distance is
+/// the straight line, or with `shadow` the shortest path that stays in the explosive (around
+/// inert bodies and voids: core/detonation_paths.hpp).
 struct DetonationSpec {
   enum class Kind { point, plane, line };
   Kind kind = Kind::point;
@@ -391,6 +393,7 @@ struct DetonationSpec {
   Vec3 normal{};  ///< plane: unit normal
   Vec3 end{};     ///< line: the segment's end
   double time = 0.0;
+  bool shadow = false;  ///< the wave travels through explosive only (Huygens), not straight
   SourceLocation where{};
 };
 
