@@ -16,6 +16,7 @@ const char* to_string(UpdateScheme s) {
     case UpdateScheme::USF: return "USF";
     case UpdateScheme::USL: return "USL";
     case UpdateScheme::MUSL: return "MUSL";
+    case UpdateScheme::USAVG: return "USAVG";
   }
   return "?";
 }

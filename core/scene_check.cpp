@@ -236,6 +236,8 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
                                            "background grid; the scene needs a grid");
     if (b.bonded_to >= 0)
       c.fail(b.where, key + ".conversion", "a body bonded to particles cannot also convert");
+    if (scene.mpm.scheme == UpdateScheme::USL || scene.mpm.scheme == UpdateScheme::USAVG)
+      c.fail(b.where, key + ".conversion", "conversion needs [mpm] scheme MUSL or USF");
     const ConversionSettings& v = *b.conversion;
     if (v.points < 1 || v.points > 2)
       c.fail(b.where, key + ".conversion.points", "allowed: 1 or 2");
@@ -247,7 +249,7 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
     if (static_cast<std::size_t>(b.bonded_to) >= scene.bodies.size() ||
         scene.bodies[static_cast<std::size_t>(b.bonded_to)].discretisation != D::particles)
       c.fail(b.where, key + ".bonded_to", "a mesh body bonds to a body of particles");
-    if (scene.mpm.scheme == UpdateScheme::USL)
+    if (scene.mpm.scheme == UpdateScheme::USL || scene.mpm.scheme == UpdateScheme::USAVG)
       c.fail(b.where, key + ".bonded_to", "bonded coupling needs [mpm] scheme MUSL or USF");
   }
 }
@@ -347,6 +349,9 @@ void check_scene(const Scene& scene) {
     if (!scene.has_grid) c.fail(ct.where, key + ".bodies", "grid contact needs a grid");
     if (scene.mpm.scheme == UpdateScheme::USL)
       c.fail(ct.where, key + ".bodies", "grid contact needs [mpm] scheme MUSL or USF");
+    if (scene.mpm.scheme == UpdateScheme::USAVG &&
+        (ba.discretisation != Discretisation::particles || bb.discretisation != Discretisation::particles))
+      c.fail(ct.where, key + ".bodies", "grid contact of a mesh with particles needs [mpm] scheme MUSL or USF");
     c.non_negative(ct.where, key + ".distance_factor", ct.distance_factor);
   }
   for (const VelocityReference& v : scene.velocity_references) {

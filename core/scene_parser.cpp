@@ -433,7 +433,7 @@ void read_grid(TableReader& r, GridSettings& grid) {
 void read_mpm(TableReader& r, MpmSettings& mpm) {
   r.known({"scheme", "shape_function", "transfer", "flip", "jaumann", "splitting"});
   r.check_unknown();
-  mpm.scheme = static_cast<UpdateScheme>(r.choice("scheme", {"USF", "USL", "MUSL"}, 2, true));
+  mpm.scheme = static_cast<UpdateScheme>(r.choice("scheme", {"USF", "USL", "MUSL", "USAVG"}, 2, true));
   mpm.shape = static_cast<ShapeFunction>(r.choice("shape_function", {"linear", "gimp"}, 0));
   mpm.transfer = static_cast<Transfer>(r.choice("transfer", {"flip", "apic"}, 0));
   mpm.flip = r.number("flip", 1.0, Range::closed(0.0, 1.0));
@@ -1374,6 +1374,10 @@ ContactSpec read_contact(TableReader& r, const Scene& scene) {
   if (meshes)
     r.fail("method", "both bodies are meshes; grid contact needs a particle body on one side "
                      "(meshes meet each other by method = \"penalty\", the default)");
+  if (scene.mpm.scheme == UpdateScheme::USAVG &&
+      (a.discretisation != Discretisation::particles || b.discretisation != Discretisation::particles))
+    r.fail("bodies", "grid contact of a mesh with particles needs [mpm] scheme = \"MUSL\" (the "
+                     "default) or \"USF\"; USAVG takes grid contact between bodies of particles");
   if (!scene.has_grid)
     r.fail("bodies", "grid contact needs a [grid] section covering the bodies (cell, min, max)");
   // USL takes the strain from the contact-corrected velocity that also moves the particles,
@@ -1621,7 +1625,7 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
     if (!scene.has_grid)
       br.fail("conversion", "converted elements become particles on the background grid; add a "
                             "[grid] section (cell, min, max) covering where they may convert");
-    if (scene.mpm.scheme == UpdateScheme::USL)
+    if (scene.mpm.scheme == UpdateScheme::USL || scene.mpm.scheme == UpdateScheme::USAVG)
       br.fail("conversion", "conversion bonds the remaining elements to the new particles, which "
                             "needs [mpm] scheme = \"MUSL\" (the default) or \"USF\"");
     if (t.contains("bonded_to"))
@@ -1655,7 +1659,7 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
     if (scene.bodies[static_cast<std::size_t>(h)].discretisation != Discretisation::particles)
       br.fail("bonded_to", "body \"" + host + "\" is a mesh; a mesh body bonds to a body of "
                            "particles (its nodes join that body's velocity field on the grid)");
-    if (scene.mpm.scheme == UpdateScheme::USL)
+    if (scene.mpm.scheme == UpdateScheme::USL || scene.mpm.scheme == UpdateScheme::USAVG)
       br.fail("bonded_to", "bonded coupling needs [mpm] scheme = \"MUSL\" (the default) or "
                            "\"USF\"");
     scene.bodies[i].bonded_to = h;

@@ -10,8 +10,9 @@
 namespace afemp::mpm {
 
 void MpmSolver::set_grid_points(GridPoints* points) {
-  // USL updates the stress before the points could take their update.
-  if (points && plan_.scheme == core::UpdateScheme::USL)
+  // USL updates the stress before the points could take their update; USAVG's two half
+  // updates are not built for them.
+  if (points && (plan_.scheme == core::UpdateScheme::USL || plan_.scheme == core::UpdateScheme::USAVG))
     throw std::invalid_argument(
         "points on the grid beside the particles need the MUSL or USF scheme (the scene "
         "parser says so too)");

@@ -22,7 +22,8 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
       particles_(std::move(particles)),
       grid_(scene.mpm.grid, scene.mpm.shape == core::ShapeFunction::gimp ? 1 : 0) {
   for (const auto& m : scene.materials) materials_.push_back(&m);
-  grid_.enable_remap_field(scene.mpm.scheme == core::UpdateScheme::MUSL);
+  grid_.enable_remap_field(scene.mpm.scheme == core::UpdateScheme::MUSL ||
+                           scene.mpm.scheme == core::UpdateScheme::USAVG);
   // Grid contact: one velocity field per contact body and one shared by the rest.
   const int fields = plan_.velocity_fields;
   multi_field_ = fields > 1;
@@ -228,9 +229,13 @@ void MpmSolver::step(double dt) {
       case StageKind::p2g_remap:
         remap_to_grid();
         break;
+      case StageKind::strain_stress_start:
+        strain_stress_update(dt, StrainPart::start_half);
+        break;
       case StageKind::strain_stress_update:
       case StageKind::g2p_velocity_strain_stress:
-        strain_stress_update(dt);
+        strain_stress_update(dt, plan_.scheme == core::UpdateScheme::USAVG ? StrainPart::end_half
+                                                                            : StrainPart::whole);
         break;
       case StageKind::contact_surfaces:
         contact_surfaces();

@@ -122,8 +122,18 @@ class MpmSolver {
   void remap_kernel();
   template <class Stencil, bool Affine>
   void g2p_kernel(double dt, bool move_positions);
+  // Which part of the step's strain increment a stress update takes (USAVG splits it).
+  enum class StrainPart { whole, start_half, end_half };
+  // Which nodal velocities a strain sweep reads, what else it updates, and over what time.
+  struct StrainSweep {
+    const Vec3* strain_velocity = nullptr;  // USF, USAVG start: v^k; USL: v^{k+1}; else remapped
+    bool move = false;                      // USL, MUSL, USAVG end: x += dt sum N v^{k+1}
+    bool flip_update = false;               // USL: the particle velocity update of G2P
+    double strain_dt = 0.0;                 // the strain increment is strain_dt sym(L)
+    double time_after = 0.0;                // the time the updated state belongs to
+  };
   template <class Stencil, bool Affine>
-  void kinematics_kernel(double dt);
+  void kinematics_kernel(double dt, const StrainSweep& sweep);
   // Calls f.template operator()<Stencil, Affine>() for the scene's shape function and
   // transfer (the parser allows the affine transfer with uGIMP only).
   template <class F>
@@ -140,12 +150,12 @@ class MpmSolver {
   // Turns a nodal momentum field into velocity (when divide_by_mass) and zeroes the
   // components the face conditions constrain.
   void apply_velocity_conditions(std::vector<Vec3>& field, bool divide_by_mass);
-  void strain_stress_update(double dt);
+  void strain_stress_update(double dt, StrainPart part);
   // What the grid points' owner may read and write during a stage (grid_points.hpp).
   GridStepAccess access();
   template <class Strength, class Eos, bool Thermal, bool Fused, bool Fails>
   void strain_stress_batch(const MaterialBatch& batch, const Strength& strength, const Eos& eos,
-                           double dt, int thread_slot_offset);
+                           double dt, const StrainSweep& sweep, int thread_slot_offset);
   void reorder_particles();
   // The material batches from the particles' order (materials contiguous).
   void rebuild_batches();

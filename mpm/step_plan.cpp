@@ -168,6 +168,33 @@ StepPlan build_step_plan(const core::Scene& scene) {
       s.push_back(stage(StageKind::g2p_velocity_position, "g2p velocity position",
                         velocity + " and position"));
       break;
+    case UpdateScheme::USAVG:
+      s.push_back(stage(StageKind::p2g_mass_momentum, "p2g mass momentum",
+                        "USAVG: nodal mass and momentum first"));
+      if (contact) s.push_back(surfaces);
+      s.push_back(stage(StageKind::grid_velocity, "grid velocity",
+                        "USAVG: the start velocity the first half of the strain is taken from"));
+      if (contact)
+        s.push_back(stage(StageKind::contact_start, "contact start velocity",
+                          "grid contact on the start velocity the strain rate is taken from"));
+      s.push_back(stage(StageKind::strain_stress_start, "strain stress start",
+                        "USAVG: half the strain increment from the start velocity, so the "
+                        "forces come from the mid-step stress"));
+      s.push_back(stage(StageKind::p2g_force, "p2g force", force_why));
+      s.push_back(grid_update);
+      if (contact) s.push_back(grid_contact);
+      if (particle_walls) s.push_back(walls);
+      s.push_back(stage(StageKind::g2p_velocity, "g2p velocity",
+                        velocity + "; positions move with the strain"));
+      s.push_back(stage(StageKind::p2g_remap, "p2g remap",
+                        "USAVG: updated particle momentum mapped back to the grid"));
+      if (contact)
+        s.push_back(stage(StageKind::contact_remap, "contact remap",
+                          "grid contact on the remapped velocity the strain rate is taken from"));
+      s.push_back(stage(StageKind::strain_stress_update, "strain stress update",
+                        "USAVG: the other half of the strain increment from the remapped grid "
+                        "velocity; positions move"));
+      break;
     case UpdateScheme::USL:
     case UpdateScheme::MUSL:
       s.push_back(stage(StageKind::p2g_mass_momentum_force, "p2g mass momentum force",

@@ -22,6 +22,7 @@ enum class StageKind {
   g2p_velocity_position,  // eqs 2-33..2-36, PIC/FLIP blend (USF)
   g2p_velocity,           // eq 2-36 only (USL, MUSL); positions move in the strain pass
   p2g_remap,              // MUSL: eq 2-37
+  strain_stress_start,    // USAVG: eqs 2-38..2-41 over half the step from the start velocity
   strain_stress_update,   // eqs 2-38..2-41 from the velocity the scheme names
   g2p_velocity_strain_stress,  // USL: eqs 2-33..2-41 in one sweep (same weights, same field)
   contact_surfaces,       // grid contact: normals (Lian et al. 2013, eq 37) and reach (eq 42)

@@ -14,27 +14,25 @@
 
 namespace afemp::mpm {
 
-namespace {
 
-// Which nodal velocities a strain sweep reads, and what else it updates.
-struct StrainSweep {
-  const Vec3* strain_velocity;  // USF: v^k; USL: v^{k+1}; MUSL: remapped
-  bool move;                    // USL, MUSL: x += dt sum N v^{k+1} (eq 2-35)
-  bool flip_update;             // USL: the particle velocity update of grid_to_particle
-};
-
-StrainSweep strain_sweep(const core::BackgroundGrid& g, core::UpdateScheme scheme) {
-  switch (scheme) {
-    case core::UpdateScheme::USF: return {g.velocity.data(), false, false};
-    case core::UpdateScheme::USL: return {g.velocity_new.data(), true, true};
-    case core::UpdateScheme::MUSL: break;
+// The nodal velocity the scheme's strain reads, and the part of the step it covers. USAVG
+// (D. M. Wallstedt & J. E. Guilkey, "An evaluation of explicit time integration schemes for use
+// with the generalized interpolation material point method", J. Comput. Phys. 227 (2008) 9628,
+// §3): half the strain increment from the start velocity before the forces, so that they come
+// from the mid-step stress, and half from the remapped end velocity after, as MUSL.
+void MpmSolver::strain_stress_update(double dt, StrainPart part) {
+  const core::BackgroundGrid& g = grid_;
+  StrainSweep sweep;
+  sweep.strain_dt = part == StrainPart::whole ? dt : 0.5 * dt;
+  sweep.time_after = part == StrainPart::start_half ? time_ + 0.5 * dt : time_ + dt;
+  if (part == StrainPart::start_half || plan_.scheme == core::UpdateScheme::USF) {
+    sweep.strain_velocity = g.velocity.data();
+  } else if (plan_.scheme == core::UpdateScheme::USL) {
+    sweep = {g.velocity_new.data(), true, true, dt, time_ + dt};
+  } else {
+    sweep.strain_velocity = g.velocity_remap.data();
+    sweep.move = true;
   }
-  return {g.velocity_remap.data(), true, false};
-}
-
-}  // namespace
-
-void MpmSolver::strain_stress_update(double dt) {
   const int nt = core::thread_count();
   thread_sums_.assign(static_cast<std::size_t>(nt) * core::cache_line_doubles, 0.0);
   thread_bad_.assign(static_cast<std::size_t>(nt), -1);
@@ -44,7 +42,7 @@ void MpmSolver::strain_stress_update(double dt) {
   const bool fused = plan_.shape == core::ShapeFunction::linear;
   if (!fused) {
     velocity_gradient_.resize(particles_.size());
-    with_stencil([&]<class Stencil, bool Affine>() { kinematics_kernel<Stencil, Affine>(dt); });
+    with_stencil([&]<class Stencil, bool Affine>() { kinematics_kernel<Stencil, Affine>(dt, sweep); });
   }
   for (const MaterialBatch& batch : batches_) {
     const core::Material& m = *materials_[static_cast<std::size_t>(batch.material)];
@@ -56,9 +54,9 @@ void MpmSolver::strain_stress_update(double dt) {
           // runs exactly the update it had (material.hpp, finish_increment).
           auto run = [&]<bool Thermal, bool Fused>() {
             if (m.fails())
-              strain_stress_batch<S, E, Thermal, Fused, true>(batch, strength, eos, dt, nt);
+              strain_stress_batch<S, E, Thermal, Fused, true>(batch, strength, eos, dt, sweep, nt);
             else
-              strain_stress_batch<S, E, Thermal, Fused, false>(batch, strength, eos, dt, nt);
+              strain_stress_batch<S, E, Thermal, Fused, false>(batch, strength, eos, dt, sweep, nt);
           };
           if (fused) {
             if (m.has_thermal_term())
@@ -88,10 +86,9 @@ void MpmSolver::strain_stress_update(double dt) {
 }
 
 template <class Stencil, bool Affine>
-void MpmSolver::kinematics_kernel(double dt) {
+void MpmSolver::kinematics_kernel(double dt, const StrainSweep& sweep) {
   const core::BackgroundGrid& g = grid_;
   Particles& p = particles_;
-  const StrainSweep sweep = strain_sweep(g, plan_.scheme);
   const Vec3* v_old = g.velocity.data();
   const Vec3* v_new = g.velocity_new.data();
   const double flip = scene_.mpm.flip;
@@ -112,10 +109,11 @@ void MpmSolver::kinematics_kernel(double dt) {
 
 template <class Strength, class Eos, bool Thermal, bool Fused, bool Fails>
 void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& strength_in,
-                                    const Eos& eos_in, double dt, int nt) {
+                                    const Eos& eos_in, double step_dt,
+                                    const StrainSweep& sweep, int nt) {
   const core::BackgroundGrid& g = grid_;
   Particles& p = particles_;
-  const StrainSweep sweep = strain_sweep(g, plan_.scheme);
+  const double dt = sweep.strain_dt;  // of the strain increment; positions move over step_dt
   const Vec3* v_old = g.velocity.data();
   const Vec3* v_new = g.velocity_new.data();
   // What the model declares it reads (include/afemp/strength_models.hpp), and the temperature
@@ -130,9 +128,10 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
   const bool track_length = plan_.splitting;
   // Outflow: each particle's plastic work and viscous heat (Particles::plastic_heat).
   const bool track_heat = !p.plastic_heat.empty();
-  // Programmed burn: the fraction at the end of the step, burning over 1.5 cells.
+  // Programmed burn: the fraction at the end of the update (mid-step for the first half of
+  // USAVG), burning over 1.5 cells.
   const bool explosive = materials_[static_cast<std::size_t>(batch.material)]->is_explosive();
-  const double burn_time = time_ + dt;
+  const double burn_time = sweep.time_after;
   const double cell = grid_.cell();
   const double flip = scene_.mpm.flip;
   const bool viscous = viscous_;
@@ -255,7 +254,7 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
       }
       p.energy[i] = st.energy;
       if (Fused && sweep.move) {
-        x += dt * v_bar;
+        x += step_dt * v_bar;
         p.position[i] = x;
       }
       const double v2 = core::dot(v_p, v_p);

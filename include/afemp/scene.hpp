@@ -21,7 +21,9 @@ namespace afemp::core {
 
 
 /// MPM update scheme: stress update before or after the grid update, or both (modified USL).
-enum class UpdateScheme { USF, USL, MUSL };  ///< Lian et al. 2013, eqs 25-27
+/// Lian et al. 2013, eqs 25-27; USAVG: half the strain increment from the start velocity before
+/// the forces, half from the remapped end velocity after (Wallstedt & Guilkey 2008).
+enum class UpdateScheme { USF, USL, MUSL, USAVG };
 /// Particle-grid weights: the trilinear hat of the node (Ma 2005, eq 2-5), or uGIMP, the hat
 /// averaged over the particle's cubic domain (Bardenhagen & Kober 2004), smooth across cells.
 enum class ShapeFunction { linear, gimp };

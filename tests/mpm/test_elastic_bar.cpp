@@ -79,6 +79,15 @@ TEST(ElasticBar, UsfReboundsAndClosesEnergyBalance) {
   EXPECT_LT(r.max_error, 0.02);
 }
 
+// USAVG (Wallstedt & Guilkey 2008: half the strain from the start velocity, half from the
+// remapped end velocity) meets the marks at the default factor 0.3 as MUSL does.
+TEST(ElasticBar, UsavgReboundsAndClosesEnergyBalance) {
+  const Rebound r = run("USAVG", 0.3);
+  EXPECT_GT(r.speed, 270.0);
+  EXPECT_LT(r.speed, 305.0);
+  EXPECT_LT(r.max_error, 0.02);
+}
+
 TEST(ElasticBar, UslFiguresAreReportedBesideTheOthers) {
   // USL dissipates and is unstable at free surfaces (Lian et al. 2013, §2.1.2); its figures are
   // reported, and the only assertion is that it neither blows up nor gains energy beyond

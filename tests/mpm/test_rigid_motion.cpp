@@ -2,7 +2,7 @@
 // deformation, so an objective stress update must leave an unstressed body unstressed, and
 // kinetic energy is conserved. Steel box of 4 x 4 x 4 cells at 2 particles per cell per
 // direction (512 particles), h = 1 mm, in a 28^3-cell grid with free faces, no gravity;
-// units mm, ms, g, MPa; time_step_factor 0.3, 1000 steps, schemes USF, USL, MUSL, with the
+// units mm, ms, g, MPa; time_step_factor 0.3, 1000 steps, schemes USF, USL, MUSL, USAVG, with the
 // linear hat and FLIP (the default) and with uGIMP weights and FLIP or APIC.
 #include <gtest/gtest.h>
 
@@ -24,7 +24,7 @@ namespace {
 using core::Vec3;
 
 constexpr double youngs = 200e3;  // MPa
-const char* const schemes[] = {"USF", "USL", "MUSL"};
+const char* const schemes[] = {"USF", "USL", "MUSL", "USAVG"};
 
 // Shape function and velocity transfer, as the scene spells them.
 struct Method {
@@ -136,6 +136,7 @@ void expect_translation_is_rigid(const char* scheme, Method method = linear_flip
 
 TEST(Rigid, TranslationStaysStressFreeAndKeepsKineticEnergyUSF) { expect_translation_is_rigid("USF"); }
 TEST(Rigid, TranslationStaysStressFreeAndKeepsKineticEnergyMUSL) { expect_translation_is_rigid("MUSL"); }
+TEST(Rigid, TranslationStaysStressFreeAndKeepsKineticEnergyUSAVG) { expect_translation_is_rigid("USAVG"); }
 
 // With uGIMP weights every scheme translates rigidly, USL included: a node the body barely
 // reaches gets a weight that fades as the square of the overlap and a gradient that fades
@@ -152,7 +153,7 @@ TEST(Rigid, TranslationWithGimpStaysStressFreeInEveryScheme) {
 // (|v| <= 5.7 m/s), Jaumann rate on, 1000 steps (0.1 rad).
 // What is guaranteed, and asserted:
 //  * after the first step the particles of the core cells [1, 3]^3 are stress-free to
-//    round-off (1e-12 E; measured 4e-20 E): all their nodes have full support, the lumped
+//    round-off (1e-12 E; measured 4e-20 E; USAVG: below): all their nodes have full support, the lumped
 //    nodal velocity is exactly the linear field omega x (x_I - c), L = W is skew and d = 0;
 //  * linear momentum stays zero (1e-12 sum m |v|; free faces, internal forces only).
 // What W5 asks and the linear hat with FLIP does NOT meet (see (c) for the method that does):
@@ -180,7 +181,11 @@ TEST(Rigid, RotationStaysStressFreeInTheCoreAndBoundedAtTheSurface) {
                 scheme, r.max_stress_over_e, r.interior_stress_over_e_step1, r.max_kinetic_drift,
                 r.energy_drift, r.max_energy_drift);
     ASSERT_TRUE(r.error.empty()) << r.error;
-    EXPECT_LT(r.interior_stress_over_e_step1, 1e-12);
+    // USAVG takes its forces from the mid-step stress: the surface particles' spurious stress
+    // of the first half step (about 2e-5 E) already pushes the nodes the core shares with them,
+    // so the core is not stress-free after step 1 (measured 2.8e-8 E); the others take the
+    // initial, zero, stress.
+    EXPECT_LT(r.interior_stress_over_e_step1, std::string(scheme) == "USAVG" ? 1e-7 : 1e-12);
     EXPECT_LT(r.max_stress_over_e, 3e-4);
     EXPECT_LT(r.max_kinetic_drift, 0.03);
     if (std::string(scheme) == "USL") {

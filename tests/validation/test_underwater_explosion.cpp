@@ -28,8 +28,9 @@ TEST(UnderwaterExplosion, PeakShockPressureFollowsColesLawFromFifteenChargeRadii
   int within = 0;
   for (const int r : {60, 70, 80, 90}) {
     const ProbeSeries* probe = nullptr;
+    const std::string name = std::string("r").append(std::to_string(r));
     for (const ProbeSeries& p : s.probes)
-      if (p.name == "r" + std::to_string(r)) probe = &p;
+      if (p.name == name) probe = &p;
     ASSERT_NE(probe, nullptr) << r;
     double peak = 0.0;
     for (std::size_t k = 0; k < probe->rows(); ++k)
