@@ -980,7 +980,7 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
                    const std::vector<Material>& material_list, const std::string& scene_path) {
   r.known({"name", "material", "discretisation", "shape", "particles_per_cell", "velocity",
            "temperature", "internal_energy", "mesh", "element", "hourglass", "bulk_viscosity", "erosion", "area",
-           "bonded_to", "conversion", "rigid", "outside"});
+           "bonded_to", "conversion", "rigid", "outside", "layout"});
   // Name the body in messages as soon as its name is readable, even for an unknown key.
   if (const toml::node* n = r.table().get("name"); n && n->is_string() && !n->as_string()->get().empty())
     r.set_prefix("bodies." + n->as_string()->get());
@@ -1029,6 +1029,11 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
                                 "their volumes), not of ") + to_string(b.discretisation) +
                         "; model a rigid indenter or anvil as hexahedra with rigid = true");
   b.particles_per_cell = static_cast<int>(r.integer("particles_per_cell", 2, 1, 8));
+  only_for("layout", D::particles, D::particles);
+  b.layout = static_cast<BodySpec::Layout>(r.choice("layout", {"lattice", "shells"}, 0));
+  if (b.layout == BodySpec::Layout::shells && !std::holds_alternative<SphereShape>(b.shape))
+    r.fail("layout", "layout = \"shells\" places particles in shells that follow a sphere; "
+                     "the body's shape is not a sphere (allowed for other shapes: \"lattice\")");
   // Unset, the default of core::bulk_viscosity_of applies.
   if (const toml::table* t = r.optional_table("bulk_viscosity")) {
     TableReader vr(*t, r.dotted("bulk_viscosity"), r.file());

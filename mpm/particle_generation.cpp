@@ -13,6 +13,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "mpm/sphere_shells.hpp"
+
 namespace afemp::mpm {
 
 namespace {
@@ -108,6 +110,30 @@ double initial_temperature(const BodySpec& body, const Material& m) {
   return body.temperature ? *body.temperature : m.thermal.initial_temperature;
 }
 
+// Whether a point of a body's shape lies in the grid: beyond a symmetric face it is the mirrored
+// half the face stands for (dropped by design, false); beyond any other face the body crosses
+// it, an error naming the face.
+bool keep_in_grid(const Vec3& x, const GridSettings& grid, const core::SourceLocation& where,
+                  const std::string& key, const char* what) {
+  bool outside_grid = false;
+  for (int a = 0; a < 3; ++a) {
+    for (bool max_side : {false, true}) {
+      const bool beyond = max_side ? x[a] > grid.max[a] : x[a] < grid.min[a];
+      if (!beyond) continue;
+      outside_grid = true;
+      const FaceCondition c = face_condition(grid, a, max_side);
+      if (c == FaceCondition::symmetric) continue;
+      throw InputError(
+          where, key,
+          std::string("the body crosses grid face ") + core::to_string(face_of(a, max_side)) +
+              " (boundary \"" + core::to_string(c) + "\"): " + what + " " + fmt(x) +
+              " lies inside the shape but outside the grid " + fmt(grid.min) + " - " +
+              fmt(grid.max) + "; move the body inside the grid or make that face \"symmetric\"");
+    }
+  }
+  return !outside_grid;
+}
+
 // Lattice points x_j = grid.min + (j + 0.5) h/n along each axis that fall inside the shape.
 // The index range covers the shape's bounding box, clipped to the grid on symmetric sides (the
 // part beyond is the mirrored half that the symmetry condition stands for) and left unclipped on
@@ -149,24 +175,7 @@ void generate_lattice(const Test& shape, const GridSettings& grid, const BodySpe
                      grid.min.y + (static_cast<double>(j) + 0.5) * d,
                      grid.min.z + (static_cast<double>(k) + 0.5) * d};
         if (!shape.inside(x)) continue;
-        for (int a = 0; a < 3; ++a) {
-          for (bool max_side : {false, true}) {
-            const bool beyond = max_side ? x[a] > grid.max[a] : x[a] < grid.min[a];
-            if (!beyond) continue;
-            const FaceCondition c = face_condition(grid, a, max_side);
-            if (c == FaceCondition::symmetric) continue;  // unreachable after clipping
-            throw InputError(
-                body.where, key,
-                std::string("the body crosses grid face ") + core::to_string(face_of(a, max_side)) +
-                    " (boundary \"" + core::to_string(c) + "\"): lattice point " + fmt(x) +
-                    " lies inside the shape but outside the grid " + fmt(grid.min) + " - " +
-                    fmt(grid.max) + "; move the body inside the grid or make that face \"symmetric\"");
-          }
-        }
-        bool outside_grid = false;
-        for (int a = 0; a < 3; ++a)
-          outside_grid = outside_grid || x[a] < grid.min[a] || x[a] > grid.max[a];
-        if (outside_grid) continue;  // beyond a symmetric face only: dropped by design
+        if (!keep_in_grid(x, grid, body.where, key, "lattice point")) continue;
         out.push_back(x, body.velocity, mass, volume, temperature, body_id, body.material);
       }
     }
@@ -186,6 +195,19 @@ bool parse_numbers(const std::string& line, std::vector<double>& values) {
     if (*end != '\0' && *end != ' ' && *end != '\t' && *end != '\r' && *end != ',') return false;
     values.push_back(v);
     p = end;
+  }
+}
+
+// A sphere's particles in shells that follow its surface (mpm/sphere_shells.hpp).
+void generate_sphere_shells(const SphereShape& sphere, const GridSettings& grid,
+                            const BodySpec& body, int body_id, const Material& material,
+                            Particles& out) {
+  const double temperature = initial_temperature(body, material);
+  const std::string key = "bodies." + body.name + ".shape";
+  for (const ShellParticle& q : sphere_shell_particles(sphere, grid.cell / body.particles_per_cell)) {
+    if (!keep_in_grid(q.position, grid, body.where, key, "particle")) continue;
+    out.push_back(q.position, body.velocity, material.density * q.volume, q.volume, temperature,
+                  body_id, body.material);
   }
 }
 
@@ -292,8 +314,12 @@ Particles generate_particles(const core::Scene& scene) {
               throw InputError(body.where, "bodies." + body.name + ".shape.cylinder.axis",
                                "the axis must be a non-zero vector");
             generate_lattice(CylinderTest{s}, grid, body, body_id, material, out);
-          } else if constexpr (std::is_same_v<S, SphereShape>)
-            generate_lattice(SphereTest{s}, grid, body, body_id, material, out);
+          } else if constexpr (std::is_same_v<S, SphereShape>) {
+            if (body.layout == BodySpec::Layout::shells)
+              generate_sphere_shells(s, grid, body, body_id, material, out);
+            else
+              generate_lattice(SphereTest{s}, grid, body, body_id, material, out);
+          }
           else if constexpr (std::is_same_v<S, PointListShape>)
             generate_point_list(s, grid, body, body_id, material, out);
           else  // the parser gives particle bodies particle shapes only

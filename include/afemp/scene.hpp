@@ -261,6 +261,10 @@ struct BodySpec {
   Discretisation discretisation = Discretisation::particles;  ///< particles, hexahedra or trusses
   Shape shape{};                  ///< where the body's material is
   int particles_per_cell = 2;   ///< per direction (particles)
+  /// Particles of a sphere: on the grid's lattice (a staircase surface), or in shells that
+  /// follow the sphere (mpm/sphere_shells.hpp), one particle per cell of a cubed-sphere grid.
+  enum class Layout { lattice, shells };
+  Layout layout = Layout::lattice;
   /// Meshes (hexahedra, trusses).
   MeshDensity mesh{};             ///< how finely a generated mesh divides the shape
   HexFormulation element = HexFormulation::one_point;  ///< one-point or fully integrated
