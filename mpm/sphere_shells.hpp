@@ -3,7 +3,7 @@
 // Hertz contact, so the sphere lands as a flat punch (at 20 cells per radius and 10 m/s, -42 %
 // of Hertz's contact time and +49 % of its peak force on a rigid wall). Here concentric shells
 // of equal thickness t = R / round(R / s) are each cut by an equal-angle cubed-sphere grid
-// (C. Ronchi, R. Iacono & P. S. Paolucci, "The cubed sphere", J. Comput. Phys. 124 (1996) 93)
+// (Ronchi, Iacono & Paolucci 1996, "The cubed sphere", J. Comput. Phys. 124)
 // of N x N cells per cube face, N the even number nearest (pi / 2) r_mid / s, so that every cell
 // is about s wide; one particle per cell, at the cell's centroid, with the cell's exact volume.
 // The shells need not match: particles need no conforming mesh. N even makes the coordinate

@@ -16,10 +16,10 @@ namespace afemp::mpm {
 
 
 // The nodal velocity the scheme's strain reads, and the part of the step it covers. USAVG
-// (D. M. Wallstedt & J. E. Guilkey, "An evaluation of explicit time integration schemes for use
-// with the generalized interpolation material point method", J. Comput. Phys. 227 (2008) 9628,
-// §3): half the strain increment from the start velocity before the forces, so that they come
-// from the mid-step stress, and half from the remapped end velocity after, as MUSL.
+// (Wallstedt & Guilkey 2008, "An evaluation of explicit time integration schemes for use with
+// the generalized interpolation material point method", J. Comput. Phys. 227): half the strain
+// increment from the start velocity before the forces, so that they come from the mid-step
+// stress, and half from the remapped end velocity after, as MUSL.
 void MpmSolver::strain_stress_update(double dt, StrainPart part) {
   const core::BackgroundGrid& g = grid_;
   StrainSweep sweep;

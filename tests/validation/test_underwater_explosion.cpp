@@ -1,4 +1,4 @@
-// The underwater explosion of examples/underwater_explosion (validation label: about 4 min on 2
+// The underwater explosion of examples/underwater_explosion (validation label: about 6 min on 2
 // threads): a 4 mm TNT sphere (W = 0.437 g) lit at its centre in water, an eighth of it, 1 mm
 // cells. Reference: Cole's empirical law for TNT, P_max = 52.4 (W^(1/3) / R)^1.13 MPa (W in kg,
 // R in m; R. H. Cole, Underwater Explosions, 1948), which holds from about 10 charge radii out.
