@@ -13,10 +13,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 
 #include "core/parallel.hpp"
 #include "core/scene.hpp"
+#include "coupling/make_model.hpp"
 #include "fem/fe_solver.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
@@ -134,6 +136,40 @@ TEST(Hertz, ParticleSphereInShellsOnARigidWall) {
                        : "particles in shells, rigid wall, 10 m/s",
           got, kE / (1.0 - kNu * kNu), speed);
   }
+}
+
+// The sphere of particles in shells on the thick steel block of hexahedra (the block of the
+// mesh-contact test), met through [[contact]] method "surface" (the particles' boundary against
+// the block's faces), 10 m/s. The contact force is the ball's momentum change per step (no other
+// force acts on it). Pass: within 10 % of Hertz with E* = E / (2 (1 - nu^2)). Measured with
+// this test, 2 threads: -4.9 % and +3.8 %, 32 s.
+TEST(Hertz, ParticleSphereInShellsOnAThickBlockThroughSurfaceContact) {
+  char text[1600];
+  std::snprintf(
+      text, sizeof text,
+      "[run]\nend_time = 0.03\n[grid]\ncell = 0.25\nmin = [0, 0, -1]\nmax = [6, 6, 11]\n"
+      "boundary = { xmin = \"symmetric\", ymin = \"symmetric\" }\n[mpm]\nscheme = \"MUSL\"\n"
+      "[materials.steel]\ndensity = 7.85e-3\nE = %g\nnu = %g\n"
+      "[[bodies]]\nname = \"ball\"\nmaterial = \"steel\"\nlayout = \"shells\"\n"
+      "shape = { sphere = { centre = [0, 0, %.17g], radius = %g } }\nvelocity = [0, 0, %g]\n"
+      "[[bodies]]\nname = \"block\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
+      "shape = { box = { min = [0, 0, -6], max = [6, 6, 0] } }\nmesh = { divisions = [30, 30, 30] }\n"
+      "[[constraints]]\nnodes = { plane = { point = [0, 0, -6], normal = [0, 0, 1] } }\nfixed = [\"z\"]\n"
+      "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [1, 0, 0] } }\nfixed = [\"x\"]\n"
+      "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 1, 0] } }\nfixed = [\"y\"]\n"
+      "[[contact]]\nbodies = [\"ball\", \"block\"]\nmethod = \"surface\"\n",
+      kE, kNu, kRadius + 0.01, kRadius, -kSpeed);
+  const core::Scene scene = core::parse_scene(text, "hertz_particles_block.toml");
+  const std::unique_ptr<core::Model> model = coupling::make_model(scene);
+  double pz = model->energies().bodies[0].momentum.z, t = 0.0;
+  const Impact got = run_solver(*model, scene.run.end_time, [&](const core::Model& m) {
+    const double p = m.energies().bodies[0].momentum.z;
+    const double f = (p - pz) / (m.time() - t);
+    pz = p;
+    t = m.time();
+    return std::abs(f) > 1e-3 ? f : 0.0;  // round-off of a free flight is far below a mN
+  });
+  check("particles in shells, thick block", got, kE / (2.0 * (1.0 - kNu * kNu)));
 }
 
 }  // namespace
