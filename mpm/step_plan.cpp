@@ -149,60 +149,59 @@ StepPlan build_step_plan(const core::Scene& scene) {
   }
   s.push_back(stage(StageKind::bin_particles, "bin particles",
                     "cells of the points, active grid blocks, colour layers for the P2G sweep"));
+  // The parts the schemes share: the start of a step that updates the stress before the forces
+  // (USF; USAVG's first half), what follows the forces, and MUSL's remap (MUSL; USAVG's second
+  // half).
+  auto stress_first_start = [&](const std::string& scheme, const std::string& velocity_why) {
+    s.push_back(stage(StageKind::p2g_mass_momentum, "p2g mass momentum",
+                      scheme + ": nodal mass and momentum first"));
+    if (contact) s.push_back(surfaces);
+    s.push_back(stage(StageKind::grid_velocity, "grid velocity", scheme + ": " + velocity_why));
+    if (contact)
+      s.push_back(stage(StageKind::contact_start, "contact start velocity",
+                        "grid contact on the start velocity the strain rate is taken from"));
+  };
+  auto after_forces = [&] {
+    s.push_back(grid_update);
+    if (contact) s.push_back(grid_contact);
+    if (particle_walls) s.push_back(walls);
+  };
+  auto remap = [&](const std::string& scheme, const std::string& strain_why) {
+    s.push_back(stage(StageKind::g2p_velocity, "g2p velocity",
+                      velocity + "; positions move with the strain"));
+    s.push_back(stage(StageKind::p2g_remap, "p2g remap",
+                      scheme + ": updated particle momentum mapped back to the grid"));
+    if (contact)
+      s.push_back(stage(StageKind::contact_remap, "contact remap",
+                        "grid contact on the remapped velocity the strain rate is taken from"));
+    s.push_back(stage(StageKind::strain_stress_update, "strain stress update", scheme + ": " + strain_why));
+  };
   switch (plan.scheme) {
     case UpdateScheme::USF:
-      s.push_back(stage(StageKind::p2g_mass_momentum, "p2g mass momentum",
-                        "USF: nodal mass and momentum first"));
-      if (contact) s.push_back(surfaces);
-      s.push_back(stage(StageKind::grid_velocity, "grid velocity",
-                        "USF: stress is updated from the velocity at the start of the step"));
-      if (contact)
-        s.push_back(stage(StageKind::contact_start, "contact start velocity",
-                          "grid contact on the start velocity the strain rate is taken from"));
+      stress_first_start("USF", "stress is updated from the velocity at the start of the step");
       s.push_back(stage(StageKind::strain_stress_update, "strain stress update",
                         "USF: strain rate from the grid velocity before the momentum update"));
       s.push_back(stage(StageKind::p2g_force, "p2g force", force_why));
-      s.push_back(grid_update);
-      if (contact) s.push_back(grid_contact);
-      if (particle_walls) s.push_back(walls);
+      after_forces();
       s.push_back(stage(StageKind::g2p_velocity_position, "g2p velocity position",
                         velocity + " and position"));
       break;
     case UpdateScheme::USAVG:
-      s.push_back(stage(StageKind::p2g_mass_momentum, "p2g mass momentum",
-                        "USAVG: nodal mass and momentum first"));
-      if (contact) s.push_back(surfaces);
-      s.push_back(stage(StageKind::grid_velocity, "grid velocity",
-                        "USAVG: the start velocity the first half of the strain is taken from"));
-      if (contact)
-        s.push_back(stage(StageKind::contact_start, "contact start velocity",
-                          "grid contact on the start velocity the strain rate is taken from"));
+      stress_first_start("USAVG", "the start velocity the first half of the strain is taken from");
       s.push_back(stage(StageKind::strain_stress_start, "strain stress start",
                         "USAVG: half the strain increment from the start velocity, so the "
                         "forces come from the mid-step stress"));
       s.push_back(stage(StageKind::p2g_force, "p2g force", force_why));
-      s.push_back(grid_update);
-      if (contact) s.push_back(grid_contact);
-      if (particle_walls) s.push_back(walls);
-      s.push_back(stage(StageKind::g2p_velocity, "g2p velocity",
-                        velocity + "; positions move with the strain"));
-      s.push_back(stage(StageKind::p2g_remap, "p2g remap",
-                        "USAVG: updated particle momentum mapped back to the grid"));
-      if (contact)
-        s.push_back(stage(StageKind::contact_remap, "contact remap",
-                          "grid contact on the remapped velocity the strain rate is taken from"));
-      s.push_back(stage(StageKind::strain_stress_update, "strain stress update",
-                        "USAVG: the other half of the strain increment from the remapped grid "
-                        "velocity; positions move"));
+      after_forces();
+      remap("USAVG", "the other half of the strain increment from the remapped grid velocity; "
+                     "positions move");
       break;
     case UpdateScheme::USL:
     case UpdateScheme::MUSL:
       s.push_back(stage(StageKind::p2g_mass_momentum_force, "p2g mass momentum force",
                         "nodal mass, momentum and " + force_why));
       if (contact) s.push_back(surfaces);
-      s.push_back(grid_update);
-      if (contact) s.push_back(grid_contact);
-      if (particle_walls) s.push_back(walls);
+      after_forces();
       if (plan.scheme == UpdateScheme::USL) {
         s.push_back(stage(StageKind::g2p_velocity_strain_stress, "g2p velocity strain stress",
                           "USL: " + velocity +
@@ -210,15 +209,7 @@ StepPlan build_step_plan(const core::Scene& scene) {
                               "one sweep"));
         break;
       }
-      s.push_back(stage(StageKind::g2p_velocity, "g2p velocity",
-                        velocity + "; positions move with the strain"));
-      s.push_back(stage(StageKind::p2g_remap, "p2g remap",
-                        "MUSL: updated particle momentum mapped back to the grid"));
-      if (contact)
-        s.push_back(stage(StageKind::contact_remap, "contact remap",
-                          "grid contact on the remapped velocity the strain rate is taken from"));
-      s.push_back(stage(StageKind::strain_stress_update, "strain stress update",
-                        "MUSL: strain rate from the remapped grid velocity; positions move"));
+      remap("MUSL", "strain rate from the remapped grid velocity; positions move");
       break;
   }
   return plan;
