@@ -17,7 +17,7 @@ void check_references(const core::Model& model, const core::Scene& scene, RunSum
   if (scene.taylor_reference) {
     for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
       const auto* bar = std::get_if<CylinderShape>(&scene.bodies[b].shape);
-      if (bar == nullptr || bar->nose.crh > 0.0) continue;
+      if (bar == nullptr || bar->nose.crh > 0.0 || bar->top_radius >= 0.0) continue;
       const BodyPoints points = model.body_points(static_cast<int>(b));
       sum.taylor = measure_taylor(scene, static_cast<int>(b), points.position, points.half_size);
       sum.taylor_error = taylor_mean_error(*sum.taylor, *scene.taylor_reference);

@@ -450,7 +450,8 @@ StudyPlan parse_study(const std::string& text, const std::string& path) {
         throw InputError(m.where, "metrics.body",
                          "metric \"" + m.name + "\" measures body \"" + m.body + "\", which run \"" +
                              run.label + "\" (scene " + run.scene_path + ") does not have");
-      if (m.kind == MetricKind::taylor && !std::holds_alternative<CylinderShape>(b->shape))
+      const auto* bar = std::get_if<CylinderShape>(&b->shape);
+      if (m.kind == MetricKind::taylor && (bar == nullptr || bar->top_radius >= 0.0))
         throw InputError(m.where, "metrics.body",
                          "a taylor metric measures a cylinder; body \"" + m.body + "\" of " +
                              run.scene_path + " is not one");

@@ -19,8 +19,12 @@ constexpr double pi = 3.14159265358979323846;
 double shape_volume(const Shape& shape) {
   if (const auto* b = std::get_if<BoxShape>(&shape))
     return std::abs((b->max.x - b->min.x) * (b->max.y - b->min.y) * (b->max.z - b->min.z));
-  if (const auto* c = std::get_if<CylinderShape>(&shape))
+  if (const auto* c = std::get_if<CylinderShape>(&shape)) {
+    if (c->top_radius >= 0.0)  // a frustum
+      return pi * c->length *
+             (c->radius * c->radius + c->radius * c->top_radius + c->top_radius * c->top_radius) / 3.0;
     return pi * c->radius * c->radius * c->length;
+  }
   if (const auto* s = std::get_if<SphereShape>(&shape))
     return 4.0 / 3.0 * pi * s->radius * s->radius * s->radius;
   return 0.0;

@@ -134,6 +134,8 @@ void check_shape(const Checker& c, const BodySpec& b, const std::string& key) {
   } else if (const auto* cyl = std::get_if<CylinderShape>(&b.shape)) {
     if (b.discretisation == D::trusses)
       c.fail(b.where, shape, "a cylinder makes particles or hexahedra");
+    if (cyl->top_radius >= 0.0 && !particles)
+      c.fail(b.where, shape + ".cone", "a cone makes particles only");
     c.positive(b.where, shape + ".cylinder.radius", cyl->radius);
     c.positive(b.where, shape + ".cylinder.length", cyl->length);
     if (!(norm(cyl->axis) > 0.0))

@@ -452,7 +452,7 @@ void read_mpm(TableReader& r, MpmSettings& mpm) {
   mpm.jaumann = r.boolean("jaumann", true);
   if (const toml::table* t = r.optional_table("splitting")) {
     TableReader sr(*t, r.dotted("splitting"), r.file());
-    sr.known({"alpha", "max_particles"});
+    sr.known({"alpha", "max_particles", "bodies"});  // bodies: resolved once they are read
     sr.check_unknown();
     SplittingSettings s;
     s.alpha = sr.number("alpha", 0.9, Range{0.5, 1.5, true, false});
@@ -810,7 +810,7 @@ std::string relative_to_scene(const std::string& file, const std::string& scene_
 // The shapes each discretisation accepts.
 std::vector<std::string> shapes_for(Discretisation d) {
   switch (d) {
-    case Discretisation::particles: return {"box", "cylinder", "sphere", "points"};
+    case Discretisation::particles: return {"box", "cylinder", "cone", "sphere", "points"};
     case Discretisation::hexahedra: return {"box", "cylinder", "sphere", "mesh"};
     case Discretisation::trusses: return {"line", "rebar", "mesh"};
   }
@@ -818,11 +818,11 @@ std::vector<std::string> shapes_for(Discretisation d) {
 }
 
 Shape read_shape(TableReader& r, const std::string& scene_path, Discretisation d) {
-  r.known({"box", "cylinder", "sphere", "points", "mesh", "line", "rebar"});
+  r.known({"box", "cylinder", "cone", "sphere", "points", "mesh", "line", "rebar"});
   r.check_unknown();
   const std::vector<std::string> allowed = shapes_for(d);
   std::vector<std::string> given;
-  for (std::string_view k : {"box", "cylinder", "sphere", "points", "mesh", "line", "rebar"})
+  for (std::string_view k : {"box", "cylinder", "cone", "sphere", "points", "mesh", "line", "rebar"})
     if (r.has(k)) given.emplace_back(k);
   if (given.size() != 1)
     throw InputError(r.where(), r.prefix(),
@@ -872,6 +872,22 @@ Shape read_shape(TableReader& r, const std::string& scene_path, Discretisation d
         n.fail("crh", "the nose (" + format_number(nose) + " long) must be shorter than the "
                       "cylinder's length, " + format_number(c.length));
     }
+    return c;
+  }
+  if (kind == "cone") {
+    s.known({"base", "axis", "radius", "top_radius", "length", "wall"});
+    s.check_unknown();
+    CylinderShape c;
+    c.base = s.required_vec3("base");
+    const Vec3 axis = s.vec3("axis", Vec3{0, 0, 1});
+    if (!(norm(axis) > 0.0)) s.fail("axis", "the axis must be a non-zero vector");
+    c.axis = (1.0 / norm(axis)) * axis;
+    c.radius = s.required_number("radius", Range::non_negative());
+    c.top_radius = s.required_number("top_radius", Range::non_negative());
+    c.length = s.required_number("length", Range::positive());
+    if (!(c.radius > 0.0 || c.top_radius > 0.0))
+      s.fail("top_radius", "a cone needs a radius > 0 at one end at least");
+    c.wall = s.number("wall", 0.0, Range::non_negative());
     return c;
   }
   if (kind == "sphere") {
@@ -1637,6 +1653,17 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
       br.fail("conversion", "a body bonded to particles cannot also convert; remove one of "
                             "bonded_to and conversion");
   }
+  // The bodies that split ([mpm] splitting.bodies), once the bodies are read.
+  if (const toml::table* m = r.optional_table("mpm"))
+    if (const toml::table* t = m->get_as<toml::table>("splitting"); t != nullptr && t->contains("bodies")) {
+      TableReader sr(*t, "mpm.splitting", path);
+      for (const std::string& name : sr.strings("bodies")) {
+        const int b = body_index(sr, "bodies", name, scene, false);
+        if (scene.bodies[static_cast<std::size_t>(b)].discretisation != Discretisation::particles)
+          sr.fail("bodies", "body \"" + name + "\" is not of particles; only particles split");
+        scene.mpm.splitting->bodies.push_back(b);
+      }
+    }
   // Particle bodies placed around others (water around a charge): the bodies named by outside.
   for (std::size_t i = 0; i < bodies->size(); ++i) {
     const toml::table& t = *bodies->get(i)->as_table();

@@ -86,6 +86,12 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
   stage_seconds_.assign(plan_.stages.size(), 0.0);
   for (std::size_t f = 0; f < 6; ++f)
     outflow_[f] = scene.mpm.grid.faces[f] == core::FaceCondition::outflow;
+  splits_.assign(scene.bodies.size(), 0);
+  if (scene.mpm.splitting)
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+      splits_[b] = scene.mpm.splitting->bodies.empty() ||
+                   std::find(scene.mpm.splitting->bodies.begin(), scene.mpm.splitting->bodies.end(),
+                             static_cast<int>(b)) != scene.mpm.splitting->bodies.end();
   setup_explosives();
   if (scene.mpm.grid.has_face(core::FaceCondition::outflow)) {
     particles_.plastic_heat.assign(particles_.size(), 0.0);

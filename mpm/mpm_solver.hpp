@@ -176,6 +176,8 @@ class MpmSolver {
   // faces only, and the removal of such particles at the start of a step.
   bool left_through_outflow(const Vec3& x) const;
   void remove_outflow();
+  // Mirrors particles carried past a symmetric face back (mpm/symmetric_faces.cpp).
+  void reflect_at_symmetric_faces();
   // Absorbing faces (absorbing_faces.cpp): their wave speeds from the material that meets
   // each; throws core::InputError naming the face if none or several.
   void setup_absorbing_faces();
@@ -246,6 +248,8 @@ class MpmSolver {
 
   // Outflow faces (xmin, xmax, ymin, ymax, zmin, zmax), and what left through them.
   std::array<bool, 6> outflow_{};
+  // Per scene body: whether its particles split ([mpm] splitting, its `bodies`).
+  std::vector<char> splits_;
   std::array<AbsorbingFace, 6> absorbing_{};  // per face (xmin, xmax, ...)
   double outflow_mass_ = 0.0, outflow_energy_ = 0.0;
   Vec3 outflow_momentum_{};

@@ -54,10 +54,12 @@ struct BoxTest {
 };
 
 // Axial extent half-open [0, length) for the same reason as the box; radial closed.
-// With an ogive nose (core/ogive_nose.hpp) the radius falls along the last stretch of the axis.
+// With an ogive nose (core/ogive_nose.hpp) the radius falls along the last stretch of the axis;
+// a cone's (top_radius >= 0) changes linearly from the base to the far end.
 struct CylinderTest {
   Vec3 base, axis;
-  double radius, length;
+  double radius, length, top_radius;
+  double wall_radial;  // a walled cone: wall / cos(half-angle) radially; 0: solid
   core::OgiveNose nose;
   double shank;  // axial distance at which the nose starts (length without one)
   explicit CylinderTest(const CylinderShape& c)
@@ -65,6 +67,10 @@ struct CylinderTest {
         axis((1.0 / norm(c.axis)) * c.axis),
         radius(c.radius),
         length(c.length),
+        top_radius(c.top_radius),
+        wall_radial(c.top_radius >= 0.0 && c.wall > 0.0
+                        ? c.wall * std::hypot(c.length, c.radius - c.top_radius) / c.length
+                        : 0.0),
         nose(c.nose),
         shank(c.nose.crh > 0.0 ? c.length - core::ogive_nose_length(c.nose, c.radius) : c.length) {}
   Aabb bounds() const {
@@ -72,7 +78,8 @@ struct CylinderTest {
     Aabb b;
     for (int a = 0; a < 3; ++a) {
       // The end discs reach radius * sqrt(1 - axis_a^2) from their centres along axis a.
-      const double ext = radius * std::sqrt(std::max(0.0, 1.0 - axis[a] * axis[a]));
+      const double ext =
+          std::max(radius, top_radius) * std::sqrt(std::max(0.0, 1.0 - axis[a] * axis[a]));
       b.lo[a] = std::min(base[a], top[a]) - ext;
       b.hi[a] = std::max(base[a], top[a]) + ext;
     }
@@ -83,8 +90,13 @@ struct CylinderTest {
     const double s = dot(v, axis);
     if (!(s >= 0.0 && s < length)) return false;
     const Vec3 radial = v - s * axis;
-    const double r = s > shank ? core::ogive_radius(nose, radius, s - shank) : radius;
-    return dot(radial, radial) <= r * r;
+    const double r = top_radius >= 0.0 ? radius + (top_radius - radius) * s / length
+                     : s > shank       ? core::ogive_radius(nose, radius, s - shank)
+                                       : radius;
+    const double rr = dot(radial, radial);
+    if (wall_radial > 0.0 && r > wall_radial && rr <= (r - wall_radial) * (r - wall_radial))
+      return false;  // in the hollow of a walled cone
+    return rr <= r * r;
   }
 };
 
@@ -279,10 +291,15 @@ void generate_point_list(const PointListShape& shape, const GridSettings& grid,
 }
 
 // Whether x lies inside a box, cylinder or sphere shape (the parser lets `outside` name no
-// other).
+// other). A walled cone counts with its hollow: a charge outside a liner leaves the liner's
+// cavity empty.
 bool inside_shape(const core::Shape& shape, const Vec3& x) {
   if (const auto* s = std::get_if<BoxShape>(&shape)) return BoxTest{*s}.inside(x);
-  if (const auto* s = std::get_if<CylinderShape>(&shape)) return CylinderTest{*s}.inside(x);
+  if (const auto* s = std::get_if<CylinderShape>(&shape)) {
+    CylinderShape solid = *s;
+    solid.wall = 0.0;
+    return CylinderTest{solid}.inside(x);
+  }
   if (const auto* s = std::get_if<SphereShape>(&shape)) return SphereTest{*s}.inside(x);
   return false;
 }

@@ -34,6 +34,10 @@ void MpmSolver::split_particles() {
 #pragma omp parallel for schedule(static) reduction(+ : added) if (core::worth_threads(n))
   for (std::size_t i = 0; i < n; ++i) {
     unsigned bits = 0;
+    if (!splits_[static_cast<std::size_t>(p.body[i])]) {
+      axes[i] = 0;
+      continue;
+    }
     for (int a = 0; a < 3; ++a)
       if (p.length[i][a] >= 2.0 * settings.alpha * p.length0[i][a]) bits |= 1u << a;
     axes[i] = static_cast<std::uint8_t>(bits);

@@ -135,10 +135,7 @@ StepPlan build_step_plan(const core::Scene& scene) {
     if (scene.mpm.grid.faces[static_cast<std::size_t>(f)] == core::FaceCondition::outflow)
       outflow_faces += std::string(outflow_faces.empty() ? "" : ", ") +
                        core::to_string(static_cast<core::Face>(f));
-  if (!outflow_faces.empty())
-    s.push_back(stage(StageKind::outflow, "outflow",
-                      "particles beyond the outflow faces (" + outflow_faces +
-                          ") leave the run; their mass, momentum and energy are booked"));
+  // Splitting before outflow: a child placed beyond an outflow face leaves with it.
   if (plan.splitting) {
     char why[200];
     std::snprintf(why, sizeof why,
@@ -147,6 +144,10 @@ StepPlan build_step_plan(const core::Scene& scene) {
                   2.0 * scene.mpm.splitting->alpha, scene.mpm.splitting->max_particles);
     s.push_back(stage(StageKind::split_particles, "split particles", why));
   }
+  if (!outflow_faces.empty())
+    s.push_back(stage(StageKind::outflow, "outflow",
+                      "particles beyond the outflow faces (" + outflow_faces +
+                          ") leave the run; their mass, momentum and energy are booked"));
   s.push_back(stage(StageKind::bin_particles, "bin particles",
                     "cells of the points, active grid blocks, colour layers for the P2G sweep"));
   // The parts the schemes share: the start of a step that updates the stress before the forces

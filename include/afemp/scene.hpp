@@ -112,6 +112,7 @@ struct GridSettings {
 struct SplittingSettings {
   double alpha = 0.9;                ///< split factor, in (0.5, 1.5]
   std::size_t max_particles = 10000000;  ///< a split that would exceed it stops the run
+  std::vector<int> bodies{};  ///< the particle bodies that split (indices); empty: all
 };
 
 /// The [mpm] section: scheme, shape function, transfer, splitting, and the grid.
@@ -136,6 +137,12 @@ struct CylinderShape {
   double radius = 0.0;
   double length = 0.0;     ///< overall, the nose included
   OgiveNose nose{};        ///< at the far end (base + length axis); crh 0: a flat end
+  /// A cone or frustum (the scene's `cone`, particles only): the radius at the far end, the
+  /// radius falling linearly from `radius` at the base; < 0: a cylinder.
+  double top_radius = -1.0;
+  /// A cone's wall thickness normal to its surface (a conical liner, open at the base, solid
+  /// near the apex); 0: a solid cone.
+  double wall = 0.0;
 };
 /// A sphere (particles, or hexahedra: fem/mesh_generation.hpp's blended cubed sphere).
 struct SphereShape {

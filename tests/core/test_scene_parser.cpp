@@ -387,7 +387,7 @@ TEST(SceneParser, StructuralMistakesAreReported) {
   // Two shapes for one body.
   std::string tail = minimal_tail;
   tail.replace(tail.find("} }"), 3, "}, sphere = { centre = [5, 5, 5], radius = 1 } }");
-  EXPECT_NE(error_of(minimal_head + tail).find("give exactly one of box, cylinder, sphere, points"),
+  EXPECT_NE(error_of(minimal_head + tail).find("give exactly one of box, cylinder, cone, sphere, points"),
             std::string::npos);
   // Grid max not above min.
   std::string head = minimal_head;

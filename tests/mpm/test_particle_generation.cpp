@@ -200,6 +200,43 @@ TEST(ParticleGeneration, OgiveNosedCylinderHoldsItsMassAndNoPointOutsideTheArc) 
   EXPECT_NEAR(static_cast<double>(in_nose), expected_nose, 0.05 * expected_nose);
 }
 
+TEST(ParticleGeneration, ConicalLinerHoldsItsShellsMassAndAChargeOutsideItLeavesItsCavityEmpty) {
+  // A quarter of a 60-degree conical liner 2 mm thick: the cone of base radius 20 and length
+  // 34.641 along -z from z = 50 (a sharp apex) with wall = 2, i.e. without the cone inside it
+  // (radius 20 - 2 / cos 30 = 17.690, length 30.641). Reference: rho pi (R^2 L - r^2 l) / 3 / 4;
+  // 3 % as for the quarter cylinder (the shell is 8 spacings thick). Every point lies between the
+  // two cone surfaces, and a charge placed outside the liner leaves its cavity empty.
+  CylinderShape liner{{0, 0, 50}, {0, 0, -1}, 20.0, 34.641, {}};
+  liner.top_radius = 0.0;
+  liner.wall = 2.0;
+  Scene s = make_scene({0, 0, 10}, {22, 22, 52}, 0.5);
+  set_face(s, Face::xmin, FaceCondition::symmetric);
+  set_face(s, Face::ymin, FaceCondition::symmetric);
+  s.bodies.push_back(make_body("liner", liner, 2));
+  s.bodies.push_back(make_body("charge", CylinderShape{{0, 0, 11}, {0, 0, 1}, 20.0, 39.0, {}}, 1));
+  s.bodies[1].outside = {0};
+  const Particles p = generate_particles(s);
+  double mass = 0.0;
+  std::size_t charge = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec3& x = p.position[i];
+    const double r = std::hypot(x.x, x.y);
+    const double outer = 20.0 * (x.z - 15.359) / 34.641, inner = 17.690 * (x.z - 19.359) / 30.641;
+    if (p.body[i] == 1) {  // the charge: never inside the liner's cone, hollow included
+      ++charge;
+      EXPECT_TRUE(x.z <= 15.359 || r > outer - 1e-9) << x.z << " " << r;
+      continue;
+    }
+    mass += p.mass[i];
+    EXPECT_LE(r, outer + 1e-9) << x.z;  // inside the outer cone
+    EXPECT_GT(r, inner - 1e-9) << x.z;  // outside the inner one
+  }
+  EXPECT_GT(charge, 0u);
+  const double exact = rho * std::numbers::pi *
+                       (20.0 * 20.0 * 34.641 - 17.690 * 17.690 * 30.641) / 3.0 / 4.0;
+  EXPECT_NEAR(mass, exact, 0.03 * exact);
+}
+
 TEST(ParticleGeneration, TaylorBarQuarterModelFromTheDocumentedSceneHasTheBarMass) {
   const std::string text = R"([run]
 end_time = 0.08

@@ -27,7 +27,7 @@ namespace {
 // particles leave their lattice and the strain-tracked length lags their spacing), and with
 // a yield of 50 MPa 5 open (the perfectly plastic bar necks and separates: fragments, which
 // splitting must not fill).
-std::string column(const std::string& splitting) {
+std::string column(const std::string& splitting, const std::string& more_bodies = "") {
   return R"(
 [run]
 end_time = 1.0
@@ -49,7 +49,7 @@ strength = { model = "j2", yield = 5 }
 name = "column"
 material = "aluminium"
 shape = { box = { min = [0, 0, 0], max = [1, 1, 10] } }
-)";
+)" + more_bodies;
 }
 
 struct Stretch {
@@ -62,12 +62,12 @@ struct Stretch {
   double seconds = 0.0;
 };
 
-Stretch stretch(const std::string& splitting) {
-  const core::Scene scene = core::parse_scene(column(splitting), "column.toml");
+Stretch stretch(const std::string& splitting, const std::string& more_bodies = "") {
+  const core::Scene scene = core::parse_scene(column(splitting, more_bodies), "column.toml");
   MpmSolver solver(scene, generate_particles(scene));
   Particles& p = solver.mutable_particles();
-  for (std::size_t i = 0; i < p.size(); ++i)
-    p.velocity[i] = {0.0, 0.0, 200.0 * (p.position[i].z - 5.0)};
+  for (std::size_t i = 0; i < p.size(); ++i)  // the column (a second body stays at rest)
+    if (p.body[i] == 0) p.velocity[i] = {0.0, 0.0, 200.0 * (p.position[i].z - 5.0)};
   const core::Energies e0 = solver.energies();
   const auto start = std::chrono::steady_clock::now();
   // Until the particles span 4x their initial 9.75 mm (or 30 us).
@@ -123,6 +123,36 @@ TEST(ParticleSplitting, ColumnStretchedFourTimesStaysContinuousWithMassAndMoment
   EXPECT_GT(on.particles, 3 * off.particles);
   EXPECT_LT(on.mass_error, 1e-12);
   EXPECT_LT(on.momentum_error, 1e-12);
+}
+
+// [mpm] splitting.bodies: only the bodies named split. A column not named keeps its particles
+// (and opens gaps as without splitting); named, it splits as with all bodies splitting. A
+// name that is not a body of particles is an error naming the key.
+TEST(ParticleSplitting, OnlyTheBodiesNamedSplit) {
+  const std::string block =
+      "[[bodies]]\nname = \"block\"\nmaterial = \"aluminium\"\n"
+      "shape = { box = { min = [1.5, 0, 4.75], max = [2, 0.5, 5.25] } }\n";
+  // The column named: its particles split once it has doubled (about 5 us at this rate).
+  const core::Scene scene = core::parse_scene(
+      column("splitting = { alpha = 0.9, bodies = [\"column\"] }", block), "named.toml");
+  MpmSolver solver(scene, generate_particles(scene));
+  Particles& p = solver.mutable_particles();
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.body[i] == 0) p.velocity[i] = {0.0, 0.0, 200.0 * (p.position[i].z - 5.0)};
+  const std::size_t start = p.size();
+  while (solver.time() < 10e-3 && solver.particles().size() == start)
+    solver.step(solver.stable_time_step());
+  EXPECT_GT(solver.particles().size(), start);
+  // Only the block named: the column stretches to 4x without a split and opens gaps.
+  const Stretch other = stretch("splitting = { alpha = 0.9, bodies = [\"block\"] }", block);
+  EXPECT_EQ(other.splits, 0);
+  EXPECT_GT(other.empty_cells, 0);
+  try {
+    core::parse_scene(column("splitting = { bodies = [\"nothing\"] }"), "names.toml");
+    FAIL() << "an unknown body was taken";
+  } catch (const core::InputError& e) {
+    EXPECT_EQ(e.key(), "mpm.splitting.bodies") << e.what();
+  }
 }
 
 TEST(ParticleSplitting, ACapOnTheParticleCountStopsTheRunWithAClearMessage) {
