@@ -253,16 +253,10 @@ std::vector<double> lighting_times(std::span<const Vec3> x, std::span<const doub
                                    std::span<const DetonationSpec> detonations) {
   std::vector<double> t(x.size(), kInf);
   if (x.empty()) return t;
-  bool any_shadow = false;
-  for (const DetonationSpec& d : detonations) {
-    if (d.shadow) {
-      any_shadow = true;
-      continue;
-    }
-    for (std::size_t i = 0; i < x.size(); ++i)
-      t[i] = std::min(t[i], d.time + norm(x[i] - nearest_point(d, x[i])) / D[i]);
-  }
-  if (!any_shadow) return t;
+  for (std::size_t i = 0; i < x.size(); ++i) t[i] = lighting_time(x[i], detonations, D[i]);
+  if (std::none_of(detonations.begin(), detonations.end(),
+                   [](const DetonationSpec& d) { return d.shadow; }))
+    return t;
   Voxels vox;
   try {
     vox = make_voxels(x, D, spacing);

@@ -26,7 +26,8 @@ Vec3 nearest_point(const DetonationSpec& d, const Vec3& x) {
 
 double lighting_time(const Vec3& x, std::span<const DetonationSpec> detonations, double D) {
   double t = std::numeric_limits<double>::infinity();
-  for (const DetonationSpec& d : detonations) t = std::min(t, d.time + norm(x - nearest_point(d, x)) / D);
+  for (const DetonationSpec& d : detonations)
+    if (!d.shadow) t = std::min(t, d.time + norm(x - nearest_point(d, x)) / D);
   return t;
 }
 

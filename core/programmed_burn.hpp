@@ -15,8 +15,9 @@ namespace afemp::core {
 // segment's point nearest to x.
 Vec3 nearest_point(const DetonationSpec& d, const Vec3& x);
 
-// min over the detonations of (time + distance from x / D); +inf without detonations. The
-// straight-line time: shadowed detonations (core/detonation_paths.hpp) take a longer path.
+// min over the detonations without `shadow` of (time + distance from x / D); +inf without
+// such detonations. Shadowed detonations take a path around inert bodies instead
+// (core/detonation_paths.hpp).
 double lighting_time(const Vec3& x, std::span<const DetonationSpec> detonations, double D);
 
 // The burn fraction at time t of a point that lit at t_light, had `previous`, measures `length`

@@ -99,22 +99,6 @@ void refuse_oversized_scene(const Scene& scene) {
   throw InputError(body.where, "bodies", buf);
 }
 
-std::string readable_count(double count) {
-  char buf[64];
-  if (!std::isfinite(count)) return "more than 1e+308";
-  if (!(count < 1e9)) {
-    std::snprintf(buf, sizeof buf, "%.1e", count);
-    return buf;
-  }
-  std::snprintf(buf, sizeof buf, "%.0f", std::round(count));
-  std::string digits = buf, out;
-  for (std::size_t i = 0; i < digits.size(); ++i) {
-    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-    out += digits[i];
-  }
-  return out;
-}
-
 std::string readable_duration(double seconds) {
   char buf[48];
   if (!(seconds < 1e300)) return "forever";

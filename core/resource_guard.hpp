@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/scene.hpp"
+#include "core/source_text.hpp"  // readable_count
 
 namespace afemp::core {
 
@@ -28,8 +29,6 @@ double available_memory();
 // Throws InputError (at the largest body's line, key 'bodies') when the estimate exceeds the
 // available memory, with both figures.
 void refuse_oversized_scene(const Scene& scene);
-// A step count as a person reads it: "12,345" below 1e9, "1.0e+300" above.
-std::string readable_count(double count);
 
 // The nominal pace for wall-time estimates before a run has a pace of its own: 1.5 million
 // point-steps a second per thread, a fifth of COLUMN-G's 7.5 million on one thread of the

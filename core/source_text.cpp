@@ -90,13 +90,21 @@ double to_real(std::string_view field, const SourceLocation& at, const std::stri
   return v;
 }
 
-std::string format_count(double count) {
-  char buf[48];
-  if (std::abs(count) < 1e15)
-    std::snprintf(buf, sizeof buf, "%.0f", count);
-  else
-    std::snprintf(buf, sizeof buf, "%.3g", count);
-  return buf;
+std::string readable_count(double count) {
+  char buf[64];
+  if (std::isnan(count)) return "nan";
+  if (!std::isfinite(count)) return "more than 1e+308";
+  if (!(std::abs(count) < 1e9)) {
+    std::snprintf(buf, sizeof buf, "%.1e", count);
+    return buf;
+  }
+  std::snprintf(buf, sizeof buf, "%.0f", std::round(std::abs(count)));
+  std::string digits = buf, out = count < 0.0 ? "-" : "";
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
 }
 
 }  // namespace afemp::core

@@ -38,7 +38,8 @@ std::int64_t to_integer(std::string_view field, const SourceLocation& at, const 
                         const std::string& what);
 double to_real(std::string_view field, const SourceLocation& at, const std::string& key,
                const std::string& what);
-// A count for a message: its digits below 1e15, else "%.3g" (any double, NaN and inf too).
-std::string format_count(double count);
+// A count as a person reads it: "12,345" below 1e9, "1.0e+300" above, "more than 1e+308"
+// past the doubles, "nan" for NaN.
+std::string readable_count(double count);
 
 }  // namespace afemp::core

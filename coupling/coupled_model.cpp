@@ -157,11 +157,9 @@ void CoupledModel::convert_elements() {
 }
 
 double CoupledModel::stable_time_step() const {
-  // A body whose elements have all converted leaves the FE side without a step of its own.
-  double dt = mpm().stable_time_step();
-  // (A rigid body's elements set no step.)
-  if (fe().limits_time_step()) dt = std::min(dt, fe().stable_time_step());
   if (scene_.run.fixed_time_step > 0.0) return scene_.run.fixed_time_step;
+  // A body whose elements have all converted, or a rigid body's elements, set no step (+inf).
+  double dt = std::min(mpm().stable_time_step(), fe().element_step_limit());
   // Coupled nodes cross the grid too: at most factor h per step.
   double speed2 = 0.0;
   for (std::size_t i : fe_node_)

@@ -255,7 +255,7 @@ class AbaqusReader {
           throw core::InputError(at(d.index), key,
                                  "GENERATE " + std::to_string(first) + " .. " +
                                      std::to_string(last) + " step " + std::to_string(step) +
-                                     " lists " + core::format_count(count) +
+                                     " lists " + core::readable_count(count) +
                                      " labels, more than this file of " +
                                      std::to_string(src_.size()) + " lines can define");
         const auto n = static_cast<std::int64_t>(count);

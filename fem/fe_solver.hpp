@@ -221,8 +221,10 @@ class FeSolver {
   const std::vector<Vec3>& wall_forces() const { return wall_force_; }
   std::size_t live_hexahedra() const;
   std::size_t live_trusses() const;
-  // Whether a live element bounds the step (rigid bodies' elements do not).
-  bool limits_time_step() const;
+  // The live elements' stable step (element_time_step_factor x their least critical step);
+  // +inf when none bounds it (rigid bodies' elements do not). stable_time_step() is this,
+  // or the fixed step, and an error when it is +inf.
+  double element_step_limit() const;
   // Contact impulses from outside the FE update, between begin_step and finish_step (particles
   // at a mesh surface, coupling/particle_surface_contact.cpp), as the mesh contacts give them:
   // node i's inverse mass along unit n (its free components' share of 1/m, or its rigid body's

@@ -114,25 +114,22 @@ void FeSolver::finish_step(double dt) {
               [&] { finish_erosion(); });
 }
 
-bool FeSolver::limits_time_step() const {
-  for (const ElementStore* el : {static_cast<const ElementStore*>(&hexes_),
-                                 static_cast<const ElementStore*>(&trusses_)})
-    for (std::size_t e = 0; e < el->size(); ++e)
-      if (el->alive[e] && std::isfinite(el->critical_dt[e])) return true;
-  return false;
-}
-
-double FeSolver::stable_time_step() const {
-  if (scene_.run.fixed_time_step > 0.0) return scene_.run.fixed_time_step;
+double FeSolver::element_step_limit() const {
   double dt = std::numeric_limits<double>::infinity();
   for (const ElementStore* el : {static_cast<const ElementStore*>(&hexes_),
                                  static_cast<const ElementStore*>(&trusses_)})
     for (std::size_t e = 0; e < el->size(); ++e)
       if (el->alive[e]) dt = std::min(dt, el->critical_dt[e]);
+  return scene_.run.element_time_step_factor * dt;
+}
+
+double FeSolver::stable_time_step() const {
+  if (scene_.run.fixed_time_step > 0.0) return scene_.run.fixed_time_step;
+  const double dt = element_step_limit();
   if (!std::isfinite(dt))
     throw core::SimulationError(steps_, time_, "mesh", "time step",
                                 "no live element is left to set the time step");
-  return scene_.run.element_time_step_factor * dt;
+  return dt;
 }
 
 std::string FeSolver::smallest_step_element() const {

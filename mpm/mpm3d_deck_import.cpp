@@ -432,8 +432,8 @@ class Mpm3dImport {
     if (!(count >= 0.0) || made + count > limit)
       throw core::InputError(
           words_.at(), key_,
-          "this particle set scans " + core::format_count(count) + " lattice sites; with the " +
-              core::format_count(made) + " particles before it that is far more than " +
+          "this particle set scans " + core::readable_count(count) + " lattice sites; with the " +
+              core::readable_count(made) + " particles before it that is far more than " +
               (nbmp_ > 0 && 4.0 * static_cast<double>(nbmp_) + 1e4 < 2e7
                    ? "nbmp = " + std::to_string(nbmp_) + " declares"
                    : std::string("an imported deck may make (2e7; its point list would take "

@@ -5,9 +5,23 @@
 // Chapman-Jouguet state: tests/core/test_jwl.cpp) lit by a plane through `plane_point`, and a
 // J2 steel for the plates it drives. Units: mm, ms, g, MPa.
 
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace afemp::test {
+
+// A Gurney case: prints it and checks the driven velocity v within 10 % of Gurney's and the
+// energy balance (the chemical energy released booked as a source) within 3 %.
+inline void expect_gurney(const char* what, double mass_ratio, double v, double gurney,
+                          double balance) {
+  std::printf("%s, M/C = %.3f: %.1f m/s, Gurney %.1f m/s (%+.1f %%); energy balance %+.2f %%\n",
+              what, mass_ratio, v, gurney, 100.0 * (v / gurney - 1.0), 100.0 * balance);
+  EXPECT_NEAR(v, gurney, 0.10 * gurney) << what;
+  EXPECT_LT(std::abs(balance), 0.03) << what;
+}
 
 inline std::string tnt_material() {
   return R"(

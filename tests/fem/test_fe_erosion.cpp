@@ -26,14 +26,16 @@ namespace {
 // plasticity (yield 300 MPa, no hardening) whose elements erode at an equivalent plastic strain
 // of 0.3, held at z = 0 and pulled at 20 m/s at z = 4 (a slow pull: no impulsive wall or
 // start-up losses hide the erosion booking in the balance).
-const char* kPulledBar = R"([run]
-end_time = 0.025
-history_every = 1
+// The J2 steel (yield 300 MPa, no hardening) of the erosion scenes.
+const std::string kSteel = R"(
 [materials.steel]
 density = 7.85e-3
 E = 200e3
 nu = 0.3
 strength = { model = "j2", yield = 300 }
+)";
+
+const std::string kPulledBar = "[run]\nend_time = 0.025\nhistory_every = 1\n" + kSteel + R"(
 [[bodies]]
 name = "bar"
 discretisation = "hexahedra"
@@ -224,14 +226,7 @@ TEST(Erosion, TheElasticColumnIsTheLiveElementsStrainEnergyAfterErosion) {
 // closes to 0.5 %.
 TEST(Erosion, HalfAPlateErodedLeavesEveryHistoryColumnBalanced) {
   test::ScratchDir dir;
-  std::string text = R"([run]
-end_time = 0.03
-history_every = 1
-[materials.steel]
-density = 7.85e-3
-E = 200e3
-nu = 0.3
-strength = { model = "j2", yield = 300 }
+  std::string text = "[run]\nend_time = 0.03\nhistory_every = 1\n" + kSteel + R"(
 [[bodies]]
 name = "plate"
 discretisation = "hexahedra"
