@@ -5,6 +5,7 @@
 #include <set>
 #include <string>
 
+#include "core/materials/initial_pressure.hpp"
 #include "core/scene.hpp"
 #include "core/scene_parser.hpp"
 
@@ -100,6 +101,19 @@ void check_grid(const Checker& c, const Scene& scene) {
              std::string("\"") + to_string(g.faces[static_cast<std::size_t>(f)]) +
                  "\" acts on particles, and the scene has none (no particle body, no "
                  "conversion); allowed here: \"free\", \"fixed\", \"symmetric\", \"wall\"");
+  if (g.far_field) {
+    c.finite(w, "grid.far_field.centre", g.far_field->centre);
+    c.non_negative(w, "grid.far_field.pressure", g.far_field->pressure);
+    if (!g.has_face(FaceCondition::absorbing))
+      c.fail(w, "grid.far_field", "the far field acts through absorbing faces, and no face of "
+                                  "grid.boundary is \"absorbing\"");
+    for (const BodySpec& b : scene.bodies)
+      if (b.discretisation != Discretisation::particles)
+        c.fail(w, "grid.far_field",
+               "the far field's ambient pressure acts on bodies of particles, and body \"" +
+                   b.name + "\" is of " + to_string(b.discretisation) +
+                   "; model the fluid and what it surrounds as particles");
+  }
 }
 
 void check_material(const Checker& c, const Material& m) {
@@ -182,6 +196,17 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
   c.finite(b.where, key + ".velocity", b.velocity);
   if (b.temperature) c.non_negative(b.where, key + ".temperature", *b.temperature);
   c.non_negative(b.where, key + ".internal_energy", b.internal_energy);
+  if (b.pressure) {
+    c.non_negative(b.where, key + ".pressure", *b.pressure);
+    if (b.discretisation != D::particles)
+      c.fail(b.where, key + ".pressure", "an initial pressure applies to bodies of particles");
+    if (b.material >= 0 && static_cast<std::size_t>(b.material) < scene.materials.size() &&
+        !compression_at_pressure(scene.materials[static_cast<std::size_t>(b.material)],
+                                 *b.pressure, b.internal_energy))
+      c.fail(b.where, key + ".pressure",
+             "the material cannot start at this pressure (an explosive, the HJC compaction law, "
+             "or an EOS that does not reach it below twice the reference density)");
+  }
   if (b.particles_per_cell < 1 || b.particles_per_cell > 8)
     c.fail(b.where, key + ".particles_per_cell",
            "out of range: " + std::to_string(b.particles_per_cell) + "; allowed: 1 to 8");

@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/materials/initial_pressure.hpp"
+
 namespace afemp::core::scene_detail {
 
 // ---------------------------------------------------------------------------------------------
@@ -407,7 +409,7 @@ void read_run(TableReader& r, RunSettings& run) {
 }
 
 void read_grid(TableReader& r, GridSettings& grid) {
-  r.known({"cell", "min", "max", "boundary"});
+  r.known({"cell", "min", "max", "boundary", "far_field"});
   r.check_unknown();
   grid.cell = r.required_number("cell", Range::positive());
   grid.min = r.required_vec3("min");
@@ -427,6 +429,19 @@ void read_grid(TableReader& r, GridSettings& grid) {
       grid.faces[static_cast<std::size_t>(f)] =
           static_cast<FaceCondition>(br.choice(
               face_names[f], {"free", "fixed", "symmetric", "wall", "outflow", "absorbing"}, 0));
+  }
+  if (const toml::table* t = r.optional_table("far_field")) {
+    TableReader fr(*t, r.dotted("far_field"), r.file());
+    fr.known({"centre", "pressure"});
+    fr.check_unknown();
+    FarField far;
+    far.centre = fr.required_vec3("centre");
+    far.pressure = fr.number("pressure", 0.0, Range::non_negative());
+    if (!grid.has_face(FaceCondition::absorbing))
+      r.fail("far_field", "the far field acts through absorbing faces, and no face of "
+                          "boundary is \"absorbing\"; set boundary = { xmax = \"absorbing\", "
+                          "... } on the faces that open onto the fluid");
+    grid.far_field = far;
   }
 }
 
@@ -996,7 +1011,7 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
                    const std::vector<Material>& material_list, const std::string& scene_path) {
   r.known({"name", "material", "discretisation", "shape", "particles_per_cell", "velocity",
            "temperature", "internal_energy", "mesh", "element", "hourglass", "bulk_viscosity", "erosion", "area",
-           "bonded_to", "conversion", "rigid", "outside", "layout"});
+           "bonded_to", "conversion", "rigid", "outside", "layout", "pressure"});
   // Name the body in messages as soon as its name is readable, even for an unknown key.
   if (const toml::node* n = r.table().get("name"); n && n->is_string() && !n->as_string()->get().empty())
     r.set_prefix("bodies." + n->as_string()->get());
@@ -1040,6 +1055,20 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
   only_for("bonded_to", D::hexahedra, D::trusses);  // resolved once every body is read
   only_for("outside", D::particles, D::particles);   // resolved once every body is read
   only_for("conversion", D::hexahedra, D::hexahedra);
+  only_for("pressure", D::particles, D::particles);
+  b.pressure = r.optional_number("pressure", Range::non_negative());
+  if (b.pressure) {
+    const Material& m = material_list[static_cast<std::size_t>(b.material)];
+    if (!compression_at_pressure(m, *b.pressure, b.internal_energy))
+      r.fail("pressure", "material \"" + m.name + "\" cannot start at a pressure: " +
+                             (m.is_explosive() ? std::string("an explosive's state comes from its burn")
+                              : std::holds_alternative<HjcCompaction>(m.eos)
+                                  ? std::string("the HJC compaction law depends on its history")
+                                  : "its EOS does not reach " + format_number(*b.pressure) +
+                                        " below twice the reference density") +
+                             "; allowed: a material with a Mie-Grueneisen, linear, linear-"
+                             "polynomial or no EOS, at a pressure it reaches");
+  }
   if (r.has("rigid") && b.discretisation != D::hexahedra)
     r.fail("rigid", std::string("a rigid body is made of hexahedra (its mass and inertia come from "
                                 "their volumes), not of ") + to_string(b.discretisation) +

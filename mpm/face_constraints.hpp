@@ -21,6 +21,9 @@ struct NodeConstraint {
   // absorbing face the node lies on, c_S across it (the largest where faces meet).
   bool damped = false;
   Vec3 damping{};
+  // Far-field faces whose plane the node lies on (bit f: face f, xmin, xmax, ...): their normal
+  // component takes far_field_update instead of the damping.
+  unsigned far = 0;
   bool any() const { return (always | wall_low | wall_high) != 0; }
   // The mask to apply for the (unconstrained) updated velocity v.
   unsigned mask_for(const Vec3& v) const {
@@ -56,11 +59,15 @@ class FaceConstraints {
       // Halo nodes beyond a face (uGIMP) take the face's condition.
       if (node[static_cast<std::size_t>(a)] <= 0) {
         add(c, lo_[a], a, false);
-        if (any_absorbing_) damp(c, absorbing_[static_cast<std::size_t>(2 * a)], a);
+        if (any_absorbing_)
+          damp(c, absorbing_[static_cast<std::size_t>(2 * a)], 2 * a,
+               node[static_cast<std::size_t>(a)] == 0);
       }
       if (node[static_cast<std::size_t>(a)] >= last_[static_cast<std::size_t>(a)]) {
         add(c, hi_[a], a, true);
-        if (any_absorbing_) damp(c, absorbing_[static_cast<std::size_t>(2 * a + 1)], a);
+        if (any_absorbing_)
+          damp(c, absorbing_[static_cast<std::size_t>(2 * a + 1)], 2 * a + 1,
+               node[static_cast<std::size_t>(a)] == last_[static_cast<std::size_t>(a)]);
       }
     }
     return c;
@@ -84,12 +91,18 @@ class FaceConstraints {
         break;  // damped after the update (absorbing_faces.cpp)
     }
   }
-  void damp(NodeConstraint& c, const AbsorbingFace& f, int axis) const {
+  // on_plane: the node lies on the face's plane (not in the halo beyond it).
+  void damp(NodeConstraint& c, const AbsorbingFace& f, int face, bool on_plane) const {
     if (!f.on) return;
-    c.damped = true;
-    for (int b = 0; b < 3; ++b)
-      c.damping[b] =
-          std::max(c.damping[b], two_over_h_ * (b == axis ? f.c_longitudinal : f.c_shear));
+    const int axis = face / 2;
+    const bool far = f.far && on_plane;
+    if (far) c.far |= 1u << face;
+    for (int b = 0; b < 3; ++b) {
+      if (b == axis && far) continue;
+      const double rate = two_over_h_ * (b == axis ? f.c_longitudinal : f.c_shear);
+      if (rate > 0.0) c.damped = true;
+      c.damping[b] = std::max(c.damping[b], rate);
+    }
   }
   core::FaceCondition lo_[3], hi_[3];
   std::array<int, 3> last_;

@@ -64,9 +64,60 @@ void MpmSolver::grid_velocity() {
   apply_velocity_conditions(g.velocity, true);
 }
 
+double MpmSolver::far_field(const std::array<int, 3>& node, int field, unsigned faces, double m,
+                            double dt, const Vec3& v, Vec3& v_new) {
+  const core::BackgroundGrid& g = grid_;
+  const double h = g.cell();
+  const Vec3 x = g.settings().min + h * Vec3{static_cast<double>(node[0]),
+                                             static_cast<double>(node[1]),
+                                             static_cast<double>(node[2])};
+  double work = 0.0;
+  for (int face = 0; face < 6; ++face) {
+    if (!((faces >> face) & 1u)) continue;
+    const AbsorbingFace& af = absorbing_[static_cast<std::size_t>(face)];
+    const int a = face / 2, b = (a + 1) % 3, c = (a + 2) % 3;
+    const std::array<int, 3> n = g.nodes();
+    // The node's share of the face plane: half a cell along an axis where it sits on an edge.
+    auto share = [&](int axis) {
+      const int i = node[static_cast<std::size_t>(axis)], last = n[static_cast<std::size_t>(axis)] - 1;
+      return i < 0 || i > last ? 0.0 : i == 0 || i == last ? 0.5 * h : h;
+    };
+    const Vec3 d = x - af.centre;
+    const double r = core::norm(d);
+    FarFieldNode fn;
+    fn.sign = face % 2 == 1 ? 1.0 : -1.0;
+    fn.area = share(b) * share(c);
+    if (fn.area == 0.0) continue;  // a halo node beside the face (uGIMP): outside its plane
+    // cos(theta) of the outgoing ray with the face normal; kept away from grazing rays, which
+    // a face through the centre would meet (a symmetric face is the place for those).
+    const double cosine = r > 0.0 ? std::max(fn.sign * d[a] / r, 0.1) : 1.0;
+    fn.impedance = af.impedance / cosine;
+    fn.rate = r > 0.0 ? af.c_longitudinal / r : 0.0;
+    const std::size_t per_field = static_cast<std::size_t>(n[static_cast<std::size_t>(b)]) *
+                                  static_cast<std::size_t>(n[static_cast<std::size_t>(c)]);
+    double& lag = far_lag_[static_cast<std::size_t>(face)]
+                          [static_cast<std::size_t>(field) * per_field +
+                           static_cast<std::size_t>(node[static_cast<std::size_t>(b)]) *
+                               static_cast<std::size_t>(n[static_cast<std::size_t>(c)]) +
+                           static_cast<std::size_t>(node[static_cast<std::size_t>(c)])];
+    work += far_field_update(fn, m, dt, v[a], v_new[a], lag);
+  }
+  return work;
+}
+
 void MpmSolver::grid_momentum_update(double dt) {
   core::BackgroundGrid& g = grid_;
   const FaceConstraints constraints(g, &absorbing_);
+  // Far-field faces keep a lag per node of their plane and velocity field (zero at the start).
+  for (int face = 0; face < 6; ++face) {
+    if (!absorbing_[static_cast<std::size_t>(face)].far) continue;
+    const int a = face / 2;
+    const std::size_t size = static_cast<std::size_t>(g.field_count()) *
+                             static_cast<std::size_t>(g.nodes()[static_cast<std::size_t>((a + 1) % 3)]) *
+                             static_cast<std::size_t>(g.nodes()[static_cast<std::size_t>((a + 2) % 3)]);
+    if (far_lag_[static_cast<std::size_t>(face)].size() != size)
+      far_lag_[static_cast<std::size_t>(face)].assign(size, 0.0);
+  }
   const Vec3 gravity = scene_.run.gravity;
   const bool body_force = plan_.gravity;
   const int nt = core::thread_count();
@@ -100,6 +151,7 @@ void MpmSolver::grid_momentum_update(double dt) {
       // An absorbing face damps the stored velocity; the gravity work and the shared-field
       // shift below take the undamped one, as before the damping.
       if (c.damped) work += absorb(m, c.damping, dt, v, g.velocity_new[s]);
+      if (c.far) work += far_field(node, f, c.far, m, dt, v, g.velocity_new[s]);
       // A field of self-updating points only: their owner counted its gravity work.
       const bool counted =
           !field_self_updated_.empty() && field_self_updated_[static_cast<std::size_t>(f)];

@@ -181,6 +181,12 @@ class MpmSolver {
   // Absorbing faces (absorbing_faces.cpp): their wave speeds from the material that meets
   // each; throws core::InputError naming the face if none or several.
   void setup_absorbing_faces();
+  // Particles carried past a far-field face are put back on its plane (absorbing_faces.cpp).
+  void hold_at_far_field_faces();
+  // A far-field node's update on the faces in `faces` (bits; absorbing_faces.hpp) for velocity
+  // field `field`: its normal components of v_new and its lags; returns the work.
+  double far_field(const std::array<int, 3>& node, int field, unsigned faces, double m, double dt,
+                   const Vec3& v, Vec3& v_new);
   // Splitting (particle_splitting.cpp): particles whose length along an axis reached 2 alpha
   // times their initial length split along those axes.
   void split_particles();
@@ -251,6 +257,11 @@ class MpmSolver {
   // Per scene body: whether its particles split ([mpm] splitting, its `bodies`).
   std::vector<char> splits_;
   std::array<AbsorbingFace, 6> absorbing_{};  // per face (xmin, xmax, ...)
+  // Far-field faces: the lag w of each node on the face plane, per velocity field
+  // (field-major, then the two other axes in cyclic order); empty for the other faces.
+  std::vector<std::vector<double>> far_lag_ = std::vector<std::vector<double>>(6);
+  // A far field's ambient pressure, taken off the stress in the internal force; 0 without one.
+  double ambient_pressure_ = 0.0;
   double outflow_mass_ = 0.0, outflow_energy_ = 0.0;
   Vec3 outflow_momentum_{};
   long outflow_count_ = 0;

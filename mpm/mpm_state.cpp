@@ -56,6 +56,7 @@ void MpmSolver::state(core::StateArchive& a) {
   a.item("outflow_momentum", outflow_momentum_);
   a.item("outflow_count", outflow_count_);
   a.item("split_count", split_count_);
+  a.item("far_field_lag", far_lag_);
   a.item("wall_force", wall_force_);
   a.item("wall_sliding", wall_sliding_);
   a.item("wall_friction", wall_friction_);

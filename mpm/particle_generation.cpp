@@ -13,6 +13,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/materials/initial_pressure.hpp"
 #include "mpm/sphere_shells.hpp"
 
 namespace afemp::mpm {
@@ -358,6 +359,19 @@ Particles generate_particles(const core::Scene& scene) {
       out.select(kept);
     }
     for (std::size_t p = before; p < out.size(); ++p) out.energy[p] = body.internal_energy;
+    // An initial pressure: the density at which the EOS gives it (the mass grows with it, the
+    // volume is the lattice's), and the stress -p I that goes with it.
+    if (body.pressure) {
+      const std::optional<double> mu =
+          core::compression_at_pressure(material, *body.pressure, body.internal_energy);
+      if (!mu)
+        throw InputError(body.where, "bodies." + body.name + ".pressure",
+                         "material \"" + material.name + "\" cannot start at this pressure");
+      for (std::size_t p = before; p < out.size(); ++p) {
+        out.mass[p] *= 1.0 + *mu;
+        out.stress[p] = -*body.pressure * core::SymTensor::identity();
+      }
+    }
     if (out.size() == before)
       throw InputError(body.where, "bodies." + body.name + ".shape",
                        "the body has no particle: the shape lies outside the grid or is smaller "

@@ -33,6 +33,7 @@ void MpmSolver::p2g_kernel() {
   }
   const Particles& p = particles_;
   const Vec3 gravity = scene_.run.gravity;
+  const double ambient = ambient_pressure_;
   constexpr int N = Stencil::nodes;
   // Particles of one cell mostly follow each other (the arrays are kept in cell order), so
   // each sweep sums a run of particles that reach the same nodes locally and adds the sums
@@ -73,8 +74,9 @@ void MpmSolver::p2g_kernel() {
       const double m = p.mass[i];
       const Vec3 mv = m * p.velocity[i];
       // The bulk-viscous pressure acts with the stress (core/bulk_viscosity.hpp).
+      // A far field's ambient pressure is taken off (absorbing_faces.hpp); 0 otherwise.
       const core::SymTensor sv =
-          p.volume[i] * (p.stress[i] - p.bulk_q[i] * core::SymTensor::identity());
+          p.volume[i] * (p.stress[i] - (p.bulk_q[i] - ambient) * core::SymTensor::identity());
       for (int n = 0; n < N; ++n) {
         const double wn = st.w(n);
         const auto k = static_cast<std::size_t>(n);

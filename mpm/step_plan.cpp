@@ -112,7 +112,10 @@ StepPlan build_step_plan(const core::Scene& scene) {
   // The one stage every scheme runs the same way.
   const Stage grid_update = stage(
       StageKind::grid_momentum_update, "grid momentum update",
-      scene.mpm.grid.has_face(core::FaceCondition::absorbing)
+      scene.mpm.grid.far_field
+          ? "explicit momentum update and boundary conditions; absorbing faces hold the far "
+            "field's pressure and its spherical-wave response (Geers 1978, DAA1)"
+      : scene.mpm.grid.has_face(core::FaceCondition::absorbing)
           ? "explicit momentum update and boundary conditions; absorbing faces damp their "
               "nodes (Lysmer & Kuhlemeyer 1969)"
           : "explicit momentum update and boundary conditions");

@@ -71,16 +71,19 @@ void MpmSolver::strain_stress_update(double dt, StrainPart part) {
           }
         });
   }
-  double work = 0.0, wave = 0.0, speed2 = 0.0, heat = 0.0;
+  double work = 0.0, wave = 0.0, speed2 = 0.0, heat = 0.0, swept = 0.0;
   for (int t = 0; t < nt; ++t) {
     const double* sums = thread_sums_.data() + static_cast<std::size_t>(t) * core::cache_line_doubles;
     work += sums[0];
     heat += sums[3];
+    swept += sums[4];
     wave = std::max(wave, sums[1]);
     speed2 = std::max(speed2, sums[2]);
   }
   plastic_work_ += work;
   viscous_work_ += heat;
+  // A far field's ambient pressure does -p_inf dV on the particles (absorbing_faces.hpp).
+  if (ambient_pressure_ != 0.0) external_work_ -= ambient_pressure_ * swept;
   signal_speed_ = wave + std::sqrt(speed2);
   raise_if_bad("stress");
 }
@@ -147,7 +150,7 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
     const Eos eos = eos_in;
     const int t = core::thread_index();
     const auto [b, e] = core::static_range(batch.end - batch.begin, t, core::team_size());
-    double work = 0.0, wave = 0.0, speed2 = 0.0, heat = 0.0;
+    double work = 0.0, wave = 0.0, speed2 = 0.0, heat = 0.0, swept = 0.0;
     std::int64_t bad = -1;
     // The kinematics, objective rotation and volume of particle i, and its start state: the
     // position x (moved by dt v_bar at the end), the particle velocity v_p, the strain
@@ -195,6 +198,7 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
                                              0.5 * dt * (l.m[0][1] - l.m[1][0]));
       }
       const double volume = p.volume[i] * (1.0 + d_eps.trace());
+      swept += volume - p.volume[i];
       p.volume[i] = volume;
       // History an elastic batch never reads stays in memory: less to stream per point.
       if constexpr (reads_plastic_strain) st.plastic_strain = p.plastic_strain[i];
@@ -306,6 +310,7 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
     out[1] = std::max(out[1], wave);
     out[2] = std::max(out[2], speed2);
     out[3] += heat;
+    out[4] += swept;
     auto& tb = thread_bad_[static_cast<std::size_t>(t)];
     if (bad >= 0 && (tb < 0 || bad < tb)) tb = bad;
   }

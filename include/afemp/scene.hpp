@@ -90,6 +90,15 @@ struct RunSettings {
   int checkpoint_keep = 2;
 };
 
+/// What lies beyond the absorbing faces of a grid (mpm/absorbing_faces.hpp): an unbounded fluid
+/// at a hydrostatic pressure, into which waves and flow leave as spherical ones from a centre
+/// (Geers's doubly asymptotic approximation, exact for a source at the centre: it keeps the
+/// outer fluid's added mass, which a pulsating bubble feels, as well as its radiation damping).
+struct FarField {
+  Vec3 centre{};          ///< where the outgoing waves come from (an explosion's centre)
+  double pressure = 0.0;  ///< the ambient pressure held beyond the faces (depth: rho g z + p_atm)
+};
+
 /// The [grid] section: the background grid of cubic cells and its face conditions.
 struct GridSettings {
   double cell = 0.0;  ///< cell edge length h (cubic cells)
@@ -97,6 +106,9 @@ struct GridSettings {
   std::array<FaceCondition, 6> faces{FaceCondition::free, FaceCondition::free,
                                      FaceCondition::free, FaceCondition::free,
                                      FaceCondition::free, FaceCondition::free};
+  /// Set: the absorbing faces open onto an unbounded fluid (FarField); unset: plane-wave
+  /// (Lysmer-Kuhlemeyer) faces at zero pressure.
+  std::optional<FarField> far_field{};
   /// Whether some face has condition c.
   bool has_face(FaceCondition c) const {
     for (FaceCondition f : faces)
@@ -294,6 +306,9 @@ struct BodySpec {
   /// depends on e it is an initial pressure (a hot or pressurised body, a gas charge), like
   /// LS-DYNA's E0 on the EOS card (which is per unit reference volume, rho0 e0).
   double internal_energy = 0.0;
+  /// Particles: an initial pressure (water at depth): the particles start at the density at
+  /// which the material's EOS gives it (core/materials/initial_pressure.hpp), with stress -p I.
+  std::optional<double> pressure{};
   SourceLocation where{};         ///< the [[bodies]] table, for messages
 };
 

@@ -1,0 +1,35 @@
+// The compression at which an EOS gives an initial pressure (initial_pressure.hpp).
+#include "core/materials/initial_pressure.hpp"
+
+#include <type_traits>
+#include <variant>
+
+namespace afemp::core {
+
+std::optional<double> compression_at_pressure(const Material& material, double p, double e) {
+  if (material.is_explosive()) return std::nullopt;
+  return std::visit(
+      [&](const auto& eos) -> std::optional<double> {
+        using E = std::decay_t<decltype(eos)>;
+        if constexpr (std::is_same_v<E, NoEos>) {
+          return 0.0;
+        } else if constexpr (std::is_same_v<E, HjcCompaction>) {
+          return std::nullopt;
+        } else {
+          auto excess = [&](double mu) {
+            const EosLinearForm f = eos.form(mu);
+            return f.a + f.b * e - p;
+          };
+          double lo = -0.5, hi = 1.0;
+          if (excess(hi) < 0.0 || excess(lo) > 0.0) return std::nullopt;
+          for (int i = 0; i < 200 && hi - lo > 1e-15; ++i) {
+            const double mid = 0.5 * (lo + hi);
+            (excess(mid) < 0.0 ? lo : hi) = mid;
+          }
+          return 0.5 * (lo + hi);
+        }
+      },
+      material.eos);
+}
+
+}  // namespace afemp::core

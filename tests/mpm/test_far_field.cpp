@@ -1,0 +1,195 @@
+// Far-field faces (mpm/absorbing_faces.hpp: the ambient pressure taken off the internal force,
+// Geers's doubly asymptotic approximation at the faces) and bodies that start at a pressure
+// (core/materials/initial_pressure.hpp).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "afemp/errors.hpp"
+#include "core/materials/initial_pressure.hpp"
+#include "core/scene.hpp"
+#include "mpm/mpm_solver.hpp"
+#include "mpm/particle_generation.hpp"
+#include "scene_errors.hpp"
+
+namespace afemp::mpm {
+namespace {
+
+// An eighth of a sphere of radius 5 mm of `inner` in water, on a 15 mm grid of 1 mm cells whose
+// outer faces open onto water at 10 MPa. Units mm, ms, g, MPa.
+std::string sphere_in_water(const std::string& inner_material, const std::string& inner_keys) {
+  return R"(
+[run]
+end_time = 1.0
+[grid]
+cell = 1.0
+min = [0, 0, 0]
+max = [15, 15, 15]
+boundary = { xmin = "symmetric", ymin = "symmetric", zmin = "symmetric", xmax = "absorbing", ymax = "absorbing", zmax = "absorbing" }
+far_field = { centre = [0, 0, 0], pressure = 10.0 }
+[mpm]
+scheme = "USAVG"
+[materials.gas]
+density = 1.0e-5
+strength = { model = "fluid" }
+eos = { model = "linear-polynomial", C4 = 0.4, C5 = 0.4 }
+[materials.water]
+density = 1.0e-3
+strength = { model = "fluid" }
+eos = { model = "mie-gruneisen", c0 = 1647, s = 1.921, gamma0 = 0.28 }
+[[bodies]]
+name = "inner"
+material = ")" + inner_material + R"("
+shape = { sphere = { centre = [0, 0, 0], radius = 5 } }
+)" + inner_keys + R"(
+[[bodies]]
+name = "water"
+material = "water"
+shape = { box = { min = [0, 0, 0], max = [15, 15, 15] } }
+outside = ["inner"]
+particles_per_cell = 1
+pressure = 10.0
+[[contact]]
+bodies = ["inner", "water"]
+method = "weld"
+)";
+}
+
+// Reference: a uniform pressure exerts no net force on any node, and the far field holds the
+// ambient pressure, so water that starts at it stays at rest: the particles' speed stays below
+// 1e-9 mm/ms (roundoff) over 200 steps, and every pressure at 10 MPa within 1e-9. The sphere's
+// lattice of 2 particles per direction against the water's 1 per cell seeds every mode; the
+// internal force from the absolute stress (a prestress of 10 MPa) let them grow tenfold every
+// 30 us.
+TEST(FarField, WaterAtTheAmbientPressureStaysAtRest) {
+  const core::Scene scene =
+      core::parse_scene(sphere_in_water("water", "pressure = 10.0"), "still.toml");
+  const Particles start = generate_particles(scene);
+  // The EOS gives the ambient pressure at the compressed density the body starts at.
+  const double mu = start.mass[start.size() - 1] / (1.0e-3 * start.volume[start.size() - 1]) - 1.0;
+  EXPECT_NEAR(mu, *core::compression_at_pressure(scene.materials[1], 10.0, 0.0), 1e-15);
+  EXPECT_NEAR(std::get<core::MieGruneisen>(scene.materials[1].eos).form(mu).a, 10.0, 1e-9);
+  EXPECT_NEAR(mu, 10.0 / (1.0e-3 * 1647.0 * 1647.0), 4e-5);  // mu = p / (rho0 c0^2), first order
+  MpmSolver solver(scene, start);
+  for (int s = 0; s < 200; ++s) solver.step(solver.stable_time_step());
+  const Particles& p = solver.particles();
+  double speed = 0.0, off = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    speed = std::max(speed, core::norm(p.velocity[i]));
+    off = std::max(off, std::abs(core::pressure(p.stress[i]) - 10.0));
+  }
+  std::printf("after 200 steps (t = %.4f ms): largest speed %.2e mm/ms, pressure off by %.2e MPa\n",
+              solver.time(), speed, off);
+  EXPECT_LT(speed, 1e-9);
+  EXPECT_LT(off, 1e-9);
+}
+
+// Reference: Minnaert's frequency of a gas bubble in an unbounded liquid (Minnaert 1933),
+// f = sqrt(3 gamma p_inf / rho) / (2 pi R) for adiabatic gas (gamma 1.4, the linear-polynomial
+// ideal gas C4 = C5 = gamma - 1), about its equilibrium radius R = R0 (p0 / p_inf)^(1 / (3 gamma)).
+// A 5 mm bubble at 10.5 MPa in water at 10 MPa: R = 5.058 mm, period 0.1551 ms. Tolerance 3 %
+// (the water's compressibility lengthens it by about (k R)^2 / 2 = 0.8 %, the gas's inertia by
+// rho_gas / (5 rho) = 0.2 %). The water modelled reaches 3 R only: without the far field's added
+// mass (a free surface at 15 mm) the period would be sqrt(1 - R / 15 mm) = 0.81 of it.
+TEST(FarField, GasBubblePulsatesAtTheMinnaertFrequency) {
+  const core::Scene scene = core::parse_scene(
+      sphere_in_water("gas", "internal_energy = 2.5e6\npressure = 10.5"), "bubble.toml");
+  MpmSolver solver(scene, generate_particles(scene));
+  const core::Energies e0 = solver.energies();
+  // Downward crossings of the gas's mean pressure through the ambient, linearly interpolated:
+  // the first comes a quarter period in, the second a period later.
+  std::vector<double> down;
+  double t_prev = 0.0, p_prev = 10.5;
+  while (solver.time() < 0.3 && down.size() < 2) {
+    solver.step(solver.stable_time_step());
+    const Particles& p = solver.particles();
+    double m = 0.0, mp = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (p.body[i] == 0) m += p.mass[i], mp += p.mass[i] * core::pressure(p.stress[i]);
+    const double mean = mp / m;
+    if (p_prev > 10.0 && mean <= 10.0)
+      down.push_back(t_prev + (solver.time() - t_prev) * (p_prev - 10.0) / (p_prev - mean));
+    t_prev = solver.time();
+    p_prev = mean;
+  }
+  ASSERT_GE(down.size(), 2u);
+  const double pi = std::acos(-1.0);
+  const double radius = 5.0 * std::pow(10.5 / 10.0, 1.0 / (3.0 * 1.4));
+  const double minnaert = 2.0 * pi * radius / std::sqrt(3.0 * 1.4 * 10.0 / 1.0e-3);
+  const double period = down[1] - down[0];
+  const core::Energies e = solver.energies();
+  const double balance = (e.total() - e0.total() - e.external_work) / e0.total();
+  std::printf("period %.5f ms (downward crossings at %.5f, %.5f ms), Minnaert %.5f ms: %+.2f %%; "
+              "energy balance %+.2e\n",
+              period, down[0], down[1], minnaert, 100.0 * (period / minnaert - 1.0), balance);
+  EXPECT_NEAR(period / minnaert, 1.0, 0.03);
+  EXPECT_LT(std::abs(balance), 0.01);
+}
+
+TEST(FarField, InputErrorsNameTheKey) {
+  const std::string ok = sphere_in_water("water", "pressure = 10.0");
+  // No absorbing face for the far field to act through.
+  std::string text = ok;
+  const std::string faces = R"(xmax = "absorbing", ymax = "absorbing", zmax = "absorbing")";
+  text.replace(text.find(faces), faces.size(), R"(xmax = "outflow", ymax = "outflow", zmax = "outflow")");
+  std::string what = test::error_of(text);
+  EXPECT_NE(what.find("grid.far_field"), std::string::npos) << what;
+  EXPECT_NE(what.find("absorbing"), std::string::npos) << what;
+  // An explosive cannot start at a pressure.
+  text = ok + R"(
+[materials.tnt]
+density = 1.63e-3
+strength = { model = "fluid" }
+eos = { model = "jwl", A = 3.712e5, B = 3.231e3, R1 = 4.15, R2 = 0.95, omega = 0.30, E0 = 7.0e3 }
+burn = { D = 6930, pcj = 2.1e4 }
+[[bodies]]
+name = "charge"
+material = "tnt"
+shape = { sphere = { centre = [10, 10, 10], radius = 1 } }
+pressure = 10.0
+[[detonations]]
+point = [10, 10, 10]
+)";
+  what = test::error_of(text);
+  EXPECT_NE(what.find("bodies.charge.pressure"), std::string::npos) << what;
+  EXPECT_NE(what.find("explosive"), std::string::npos) << what;
+  EXPECT_NE(what.find(":" + std::to_string(test::line_of(text, "pressure = 10.0\n[[detonations]]")) + ":"),
+            std::string::npos) << what;
+  // A body of hexahedra takes no initial pressure.
+  text = ok + R"(
+[materials.steel]
+density = 7.85e-3
+E = 2.0e5
+nu = 0.3
+[[bodies]]
+name = "plate"
+material = "steel"
+discretisation = "hexahedra"
+shape = { box = { min = [10, 10, 10], max = [12, 12, 12] } }
+mesh = { size = 1.0 }
+pressure = 10.0
+)";
+  what = test::error_of(text);
+  EXPECT_NE(what.find("bodies.plate.pressure"), std::string::npos) << what;
+  EXPECT_NE(what.find("particles"), std::string::npos) << what;
+  // Water that meets the far field at another pressure.
+  text = ok;
+  text.replace(text.rfind("pressure = 10.0"), 15, "pressure = 5.0");
+  const core::Scene scene = core::parse_scene(text, "scene.toml");
+  try {
+    MpmSolver solver(scene, generate_particles(scene));
+    ADD_FAILURE() << "no InputError for water at 5 MPa against a far field at 10 MPa";
+  } catch (const core::InputError& e) {
+    what = e.what();
+    EXPECT_NE(what.find("bodies.water.pressure"), std::string::npos) << what;
+    EXPECT_NE(what.find("pressure = 10"), std::string::npos) << what;
+  }
+}
+
+}  // namespace
+}  // namespace afemp::mpm
