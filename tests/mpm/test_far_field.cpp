@@ -15,6 +15,7 @@
 #include "core/scene.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
+#include "explosive_scenes.hpp"
 #include "scene_errors.hpp"
 
 namespace afemp::mpm {
@@ -141,12 +142,7 @@ TEST(FarField, InputErrorsNameTheKey) {
   EXPECT_NE(what.find("grid.far_field"), std::string::npos) << what;
   EXPECT_NE(what.find("absorbing"), std::string::npos) << what;
   // An explosive cannot start at a pressure.
-  text = ok + R"(
-[materials.tnt]
-density = 1.63e-3
-strength = { model = "fluid" }
-eos = { model = "jwl", A = 3.712e5, B = 3.231e3, R1 = 4.15, R2 = 0.95, omega = 0.30, E0 = 7.0e3 }
-burn = { D = 6930, pcj = 2.1e4 }
+  text = ok + test::tnt_material() + R"(
 [[bodies]]
 name = "charge"
 material = "tnt"
@@ -161,11 +157,7 @@ point = [10, 10, 10]
   EXPECT_NE(what.find(":" + std::to_string(test::line_of(text, "pressure = 10.0\n[[detonations]]")) + ":"),
             std::string::npos) << what;
   // A body of hexahedra takes no initial pressure.
-  text = ok + R"(
-[materials.steel]
-density = 7.85e-3
-E = 2.0e5
-nu = 0.3
+  text = ok + test::steel_plate_material() + R"(
 [[bodies]]
 name = "plate"
 material = "steel"
