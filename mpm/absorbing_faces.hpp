@@ -19,7 +19,11 @@
 // -p_inf times the particles' volume change, is booked as external work (stress_update.cpp).
 // Forces from the absolute stress would hold a particle lattice under a prestress of p_inf, whose
 // negative geometric stiffness made the zero-energy modes of one particle per cell grow
-// (measured: a still sphere of water at 10 MPa, kinetic energy x10 every 30 us).
+// (measured: a still sphere of water at 10 MPa, kinetic energy x10 every 30 us). The price: a
+// gas far below the ambient (a detonation bubble near its largest) is in tension in the
+// internal force, and its particles clump until it holds the ambient again, so an explosion
+// bubble does not slow down (docs/explosives.md, "The bubble period"); a gas near the ambient
+// (the Minnaert test) is unaffected.
 // At a node on the face, at distance r from the centre and with
 // cos(theta) = n . (x - centre) / r, the fluid beyond pushes back with the pressure q (relative
 // to p_inf), which follows the first doubly asymptotic approximation (Geers 1978, J. Acoust.

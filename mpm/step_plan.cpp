@@ -113,8 +113,9 @@ StepPlan build_step_plan(const core::Scene& scene) {
   const Stage grid_update = stage(
       StageKind::grid_momentum_update, "grid momentum update",
       scene.mpm.grid.far_field
-          ? "explicit momentum update and boundary conditions; absorbing faces hold the far "
-            "field's pressure and its spherical-wave response (Geers 1978, DAA1)"
+          ? "explicit momentum update and boundary conditions; the far field's ambient "
+            "pressure is taken off the internal force, and absorbing faces answer as the "
+            "unbounded fluid beyond (Geers 1978, DAA1)"
       : scene.mpm.grid.has_face(core::FaceCondition::absorbing)
           ? "explicit momentum update and boundary conditions; absorbing faces damp their "
               "nodes (Lysmer & Kuhlemeyer 1969)"

@@ -2,7 +2,8 @@
 // the material's equation of state gives that pressure at the body's initial specific internal
 // energy, so that the state is in equilibrium with its own EOS from the first step. The EOS are
 // linear in e at fixed density (p = a(mu) + b(mu) e, equations_of_state.hpp), and a(mu) + b e
-// rises with compression, so mu is found by bisection on [0, mu_max].
+// rises with compression, so mu is found by bisection on [-0.5, 1] (below zero where the
+// internal energy alone gives more than p).
 #pragma once
 
 #include <optional>
