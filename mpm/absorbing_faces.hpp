@@ -23,7 +23,8 @@
 // gas far below the ambient (a detonation bubble near its largest) is in tension in the
 // internal force, and its particles clump until it holds the ambient again, so an explosion
 // bubble does not slow down (docs/explosives.md, "The bubble period"); a gas near the ambient
-// (the Minnaert test) is unaffected.
+// (the Minnaert test) is unaffected. The absolute stress with water of two particles per
+// direction slowed that bubble in a trial, but threw a light gas near the ambient off.
 // At a node on the face, at distance r from the centre and with
 // cos(theta) = n . (x - centre) / r, the fluid beyond pushes back with the pressure q (relative
 // to p_inf), which follows the first doubly asymptotic approximation (Geers 1978, J. Acoust.
