@@ -200,12 +200,11 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
     c.non_negative(b.where, key + ".pressure", *b.pressure);
     if (b.discretisation != D::particles)
       c.fail(b.where, key + ".pressure", "an initial pressure applies to bodies of particles");
-    if (b.material >= 0 && static_cast<std::size_t>(b.material) < scene.materials.size() &&
-        !compression_at_pressure(scene.materials[static_cast<std::size_t>(b.material)],
-                                 *b.pressure, b.internal_energy))
-      c.fail(b.where, key + ".pressure",
-             "the material cannot start at this pressure (an explosive, the HJC compaction law, "
-             "or an EOS that does not reach it below twice the reference density)");
+    if (b.material >= 0 && static_cast<std::size_t>(b.material) < scene.materials.size())
+      if (const std::optional<std::string> why = initial_pressure_refusal(
+              scene.materials[static_cast<std::size_t>(b.material)], *b.pressure,
+              b.internal_energy))
+        c.fail(b.where, key + ".pressure", *why);
   }
   if (b.particles_per_cell < 1 || b.particles_per_cell > 8)
     c.fail(b.where, key + ".particles_per_cell",

@@ -1057,18 +1057,10 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
   only_for("conversion", D::hexahedra, D::hexahedra);
   only_for("pressure", D::particles, D::particles);
   b.pressure = r.optional_number("pressure", Range::non_negative());
-  if (b.pressure) {
-    const Material& m = material_list[static_cast<std::size_t>(b.material)];
-    if (!compression_at_pressure(m, *b.pressure, b.internal_energy))
-      r.fail("pressure", "material \"" + m.name + "\" cannot start at a pressure: " +
-                             (m.is_explosive() ? std::string("an explosive's state comes from its burn")
-                              : std::holds_alternative<HjcCompaction>(m.eos)
-                                  ? std::string("the HJC compaction law depends on its history")
-                                  : "its EOS does not reach " + format_number(*b.pressure) +
-                                        " below twice the reference density") +
-                             "; allowed: a material with a Mie-Grueneisen, linear, linear-"
-                             "polynomial or no EOS, at a pressure it reaches");
-  }
+  if (b.pressure)
+    if (const std::optional<std::string> why = initial_pressure_refusal(
+            material_list[static_cast<std::size_t>(b.material)], *b.pressure, b.internal_energy))
+      r.fail("pressure", *why);
   if (r.has("rigid") && b.discretisation != D::hexahedra)
     r.fail("rigid", std::string("a rigid body is made of hexahedra (its mass and inertia come from "
                                 "their volumes), not of ") + to_string(b.discretisation) +

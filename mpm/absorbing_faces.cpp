@@ -20,10 +20,18 @@ void MpmSolver::setup_absorbing_faces() {
     const int a = static_cast<int>(f / 2);
     const bool high = f % 2 == 1;
     const double plane = high ? g.max[a] : g.min[a];
+    // The materials within a cell of the face, and (with a far field) the first particle there
+    // that does not start at the ambient pressure.
     std::set<int> touching;
-    for (std::size_t i = 0; i < particles_.size(); ++i)
-      if (std::abs(particles_.position[i][a] - plane) < g.cell)
-        touching.insert(particles_.material[i]);
+    std::size_t off_ambient = particles_.size();
+    for (std::size_t i = 0; i < particles_.size(); ++i) {
+      if (!(std::abs(particles_.position[i][a] - plane) < g.cell)) continue;
+      touching.insert(particles_.material[i]);
+      if (g.far_field && off_ambient == particles_.size() &&
+          std::abs(core::pressure(particles_.stress[i]) - g.far_field->pressure) >
+              1e-6 * std::max(g.far_field->pressure, 1.0))
+        off_ambient = i;
+    }
     const std::string key =
         std::string("grid.boundary.") + core::to_string(static_cast<core::Face>(f));
     if (touching.size() != 1)
@@ -49,47 +57,17 @@ void MpmSolver::setup_absorbing_faces() {
       absorbing_[f].centre = far->centre;
       // The fluid at the face must start at the ambient pressure, or it would be pulled in or
       // pushed out from the first step.
-      for (std::size_t i = 0; i < particles_.size(); ++i) {
-        if (!(std::abs(particles_.position[i][a] - plane) < g.cell)) continue;
-        const double p0 = core::pressure(particles_.stress[i]);
-        if (std::abs(p0 - far->pressure) > 1e-6 * std::max(far->pressure, 1.0))
-          throw core::InputError(
-              scene_.bodies[static_cast<std::size_t>(particles_.body[i])].where,
-              "bodies." + scene_.bodies[static_cast<std::size_t>(particles_.body[i])].name +
-                  ".pressure",
-              "the body meets the far field at " + key + " and starts at pressure " +
-                  std::to_string(p0) + "; give it pressure = " +
-                  std::to_string(far->pressure) + ", the far field's");
+      if (off_ambient < particles_.size()) {
+        const core::BodySpec& b =
+            scene_.bodies[static_cast<std::size_t>(particles_.body[off_ambient])];
+        throw core::InputError(
+            b.where, "bodies." + b.name + ".pressure",
+            "the body meets the far field at " + key + " and starts at pressure " +
+                std::to_string(core::pressure(particles_.stress[off_ambient])) +
+                "; give it pressure = " + std::to_string(far->pressure) + ", the far field's");
       }
     }
   }
-}
-
-// A far-field face stands for the fluid beyond it, which the flow through the face joins. The
-// grid is fixed, so a particle that the outgoing flow carries past the face's plane (the water
-// a growing bubble displaces: 0.5-1 mm at the faces in the bubble trial of docs/explosives.md)
-// is put back on the plane, keeping its mass, momentum and state; when the flow turns (the
-// bubble collapses) it moves in again. Taking such particles out instead (as an outflow face does) left the face
-// nodes without mass once the outermost layer had gone: the water then had a free surface at
-// the ambient pressure, released it, and cavitated through the domain.
-void MpmSolver::hold_at_far_field_faces() {
-  bool any = false;
-  for (const AbsorbingFace& f : absorbing_) any = any || f.far;
-  if (!any) return;
-  const core::GridSettings& g = grid_.settings();
-  Particles& p = particles_;
-  const std::size_t n = p.size();
-  // Just inside the plane, so that the particle's cell is the last one.
-  const double inset = 1e-9 * grid_.cell();
-#pragma omp parallel for schedule(static) if (core::worth_threads(n))
-  for (std::size_t i = 0; i < n; ++i)
-    for (int a = 0; a < 3; ++a) {
-      const double lo = g.min[a];
-      const double hi = g.min[a] + grid_.cells()[static_cast<std::size_t>(a)] * grid_.cell();
-      double& x = p.position[i][a];
-      if (absorbing_[static_cast<std::size_t>(2 * a)].far && x < lo) x = lo + inset;
-      if (absorbing_[static_cast<std::size_t>(2 * a + 1)].far && x > hi) x = hi - inset;
-    }
 }
 
 }  // namespace afemp::mpm

@@ -176,13 +176,12 @@ class MpmSolver {
   // faces only, and the removal of such particles at the start of a step.
   bool left_through_outflow(const Vec3& x) const;
   void remove_outflow();
-  // Mirrors particles carried past a symmetric face back (mpm/symmetric_faces.cpp).
-  void reflect_at_symmetric_faces();
+  // Particles carried past a symmetric face are mirrored back, past a far-field face put back
+  // on its plane (face_crossings.cpp).
+  void return_particles_past_faces();
   // Absorbing faces (absorbing_faces.cpp): their wave speeds from the material that meets
   // each; throws core::InputError naming the face if none or several.
   void setup_absorbing_faces();
-  // Particles carried past a far-field face are put back on its plane (absorbing_faces.cpp).
-  void hold_at_far_field_faces();
   // A far-field node's update on the faces in `faces` (bits; absorbing_faces.hpp) for velocity
   // field `field`: its normal components of v_new and its lags; returns the work.
   double far_field(const std::array<int, 3>& node, int field, unsigned faces, double m, double dt,

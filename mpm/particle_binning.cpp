@@ -15,8 +15,7 @@
 namespace afemp::mpm {
 
 void MpmSolver::bin_particles() {
-  reflect_at_symmetric_faces();
-  hold_at_far_field_faces();
+  return_particles_past_faces();
   const Particles& p = particles_;
   const std::size_t n = p.size();
   cell_.resize(n);

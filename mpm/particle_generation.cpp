@@ -366,7 +366,8 @@ Particles generate_particles(const core::Scene& scene) {
           core::compression_at_pressure(material, *body.pressure, body.internal_energy);
       if (!mu)
         throw InputError(body.where, "bodies." + body.name + ".pressure",
-                         "material \"" + material.name + "\" cannot start at this pressure");
+                         *core::initial_pressure_refusal(material, *body.pressure,
+                                                         body.internal_energy));
       for (std::size_t p = before; p < out.size(); ++p) {
         out.mass[p] *= 1.0 + *mu;
         out.stress[p] = -*body.pressure * core::SymTensor::identity();

@@ -1,6 +1,7 @@
 // The compression at which an EOS gives an initial pressure (initial_pressure.hpp).
 #include "core/materials/initial_pressure.hpp"
 
+#include <cstdio>
 #include <type_traits>
 #include <variant>
 
@@ -30,6 +31,25 @@ std::optional<double> compression_at_pressure(const Material& material, double p
         }
       },
       material.eos);
+}
+
+std::optional<std::string> initial_pressure_refusal(const Material& material, double p,
+                                                    double e) {
+  if (compression_at_pressure(material, p, e)) return std::nullopt;
+  std::string why;
+  if (material.is_explosive()) {
+    why = "an explosive's state comes from its burn";
+  } else if (std::holds_alternative<HjcCompaction>(material.eos)) {
+    why = "the HJC compaction law depends on its history";
+  } else {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "its EOS does not reach %.10g below twice the reference density",
+                  p);
+    why = buf;
+  }
+  return "material \"" + material.name + "\" cannot start at a pressure: " + why +
+         "; allowed: a material with a Mie-Grueneisen, linear, linear-polynomial or no EOS, at "
+         "a pressure it reaches";
 }
 
 }  // namespace afemp::core

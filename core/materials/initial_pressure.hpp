@@ -7,6 +7,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 
 #include "afemp/material.hpp"
 
@@ -19,5 +20,9 @@ namespace afemp::core {
 /// explosive (its products' state comes from the burn), or an EOS that does not reach p
 /// before mu = 1 (twice the reference density).
 std::optional<double> compression_at_pressure(const Material& material, double p, double e);
+
+/// Why the material cannot start at pressure p at energy e, with what is allowed (the message
+/// of the parser, the scene check and particle generation alike); empty when it can.
+std::optional<std::string> initial_pressure_refusal(const Material& material, double p, double e);
 
 }  // namespace afemp::core
