@@ -162,6 +162,18 @@ inline double wave_speed(const Material& material, const Eos& eos, const PointSt
       return std::sqrt(k / point.density);
     }
   }
+  if constexpr (!std::is_same_v<Eos, NoEos> && !std::is_same_v<Eos, HjcCompaction>) {
+    // A point cavitated below its reference density, its pressure held at the cutoff
+    // (Material::pressure_cutoff): dp/drho = 0 there, and only shear carries a signal (none in
+    // a fluid) until it is compressed again. The EOS's tangent over the current density
+    // instead let one cavitated water particle, stretched fiftyfold at an explosion bubble's
+    // wall, cut the stable step to a fifth (examples/underwater_explosion/bubble.toml).
+    if (point.density < material.density) {
+      const EosLinearForm f = eos.form(point.density / material.density - 1.0);
+      if (f.a + f.b * point.energy <= material.pressure_cutoff)
+        return std::sqrt(4.0 / 3.0 * material.shear_modulus() / point.density);
+    }
+  }
   double k_tangent = tangent_bulk_modulus(material, eos, point);
   if constexpr (!std::is_same_v<Eos, NoEos> && !std::is_same_v<Eos, HjcCompaction>) {
     // Along the isentrope de = p / rho^2 drho, so rho dp/drho|_s = K_e + (dp/de) p / rho: for

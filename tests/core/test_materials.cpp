@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -428,6 +429,27 @@ TEST(WaveSpeed, FailedDebrisIsSilentWhenCutAndAGasWhenHot) {
   const double dp_drho_e = (p_of(rho + h, e) - p_of(rho - h, e)) / (2.0 * h);
   const double expected = std::sqrt(dp_drho_e + f.b * 1000.0 / (rho * rho));
   EXPECT_NEAR(wave_speed(m, point), expected, 1e-6 * expected);
+}
+
+TEST(WaveSpeed, WaterHeldAtItsCavitationCutoffIsSilent) {
+  // Reference: a fluid whose pressure is held at its cutoff below its reference density has
+  // dp/drho = 0 and no shear, so no signal (c = 0), however far it is stretched; compressed
+  // back to rho0 it carries c0 again (Mie-Grueneisen at mu = 0: K = rho0 c0^2), and without a
+  // cutoff the stretched point keeps the EOS's tangent sqrt(K_t / rho) > 0. Steinberg's water.
+  Material m;
+  m.name = "water";
+  m.density = 1.0e-3;
+  m.strength = Fluid{};
+  m.eos = MieGruneisen{1.0e-3, 1647.0, 1.921, 0.28};
+  m.pressure_cutoff = 0.0;
+  PointState point;
+  point.density = m.density / 50.0;  // stretched fiftyfold at a bubble's wall
+  EXPECT_EQ(wave_speed(m, point), 0.0);
+  point.density = m.density;
+  EXPECT_NEAR(wave_speed(m, point), 1647.0, 1e-9);
+  m.pressure_cutoff = -std::numeric_limits<double>::infinity();
+  point.density = m.density / 50.0;
+  EXPECT_GT(wave_speed(m, point), 1647.0);  // sqrt(K_t / rho): the step it used to cut
 }
 
 void expect_rejected(const Material& m, const std::string& parameter) {
