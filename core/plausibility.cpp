@@ -1,6 +1,9 @@
 // Plausibility warnings (core/plausibility.hpp).
 #include "core/plausibility.hpp"
 
+#include "core/materials/initial_pressure.hpp"
+#include "core/materials/material.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -169,6 +172,47 @@ std::vector<SceneWarning> plausibility_warnings(const Scene& scene) {
                ": it is free to drift off the symmetry plane; add nodes = { plane = { point = "
                "[...], normal = [...] } } with fixed = [\"" +
                name + "\"]");
+    }
+  }
+
+  // Under the gauge form an empty cell reads as the ambient pressure, so an explosion's
+  // products, expanding far below it, clump until they hold it and the bubble never slows
+  // (docs/explosives.md, "The bubble period").
+  if (scene.mpm.grid.far_field && !scene.mpm.grid.far_field->absolute_stress) {
+    for (const BodySpec& body : scene.bodies) {
+      if (body.material < 0 ||
+          !scene.materials[static_cast<std::size_t>(body.material)].is_explosive())
+        continue;
+      warn(scene.grid_where, "grid.far_field.stress",
+           "the far field's gauge stress holds the products of explosive body \"" + body.name +
+               "\" at the ambient pressure once they expand below it, and the bubble does not "
+               "slow down; for the bubble's period use stress = \"absolute\" (water at 2 "
+               "particles per cell direction)");
+      break;
+    }
+  }
+  // The far field's absolute stress holds a prestressed body under its pressure in the internal
+  // force, which destabilises its zero-energy modes unless its bulk modulus dwarfs the pressure:
+  // water at 10-20 MPa (K / p = 135-270) stays still at 2 particles per cell direction, a gas
+  // at 10 MPa (K = 1.4 p) was thrown between 3 and 30 MPa (mpm/absorbing_faces.hpp).
+  if (scene.mpm.grid.far_field && scene.mpm.grid.far_field->absolute_stress) {
+    for (const BodySpec& body : scene.bodies) {
+      if (!body.pressure || !(*body.pressure > 0.0) || body.material < 0) continue;
+      const Material& mat = scene.materials[static_cast<std::size_t>(body.material)];
+      const std::optional<double> mu =
+          compression_at_pressure(mat, *body.pressure, body.internal_energy);
+      if (!mu) continue;  // refused elsewhere, with its reason
+      PointState start;
+      start.density = mat.density * (1.0 + *mu);
+      start.energy = body.internal_energy;
+      const double c = wave_speed(mat, start);
+      const double k = start.density * c * c;
+      if (k < 10.0 * *body.pressure)
+        warn(body.where, "bodies." + body.name + ".pressure",
+             "under grid.far_field.stress = \"absolute\" the body starts at pressure " +
+                 num(*body.pressure) + " with a bulk modulus of only " + num(k) +
+                 " (below 10 times it): the prestress makes its particles' zero-energy modes "
+                 "grow (a gas near the ambient); use stress = \"gauge\" for it");
     }
   }
   return out;

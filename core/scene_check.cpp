@@ -5,6 +5,7 @@
 #include <set>
 #include <string>
 
+#include "core/far_field_refusals.hpp"
 #include "core/materials/initial_pressure.hpp"
 #include "core/scene.hpp"
 #include "core/scene_parser.hpp"
@@ -113,6 +114,14 @@ void check_grid(const Checker& c, const Scene& scene) {
                "the far field's ambient pressure acts on bodies of particles, and body \"" +
                    b.name + "\" is of " + to_string(b.discretisation) +
                    "; model the fluid and what it surrounds as particles");
+    if (g.far_field->absolute_stress) {
+      for (const BodySpec& b : scene.bodies)
+        if (b.pressure && *b.pressure > 0.0 && b.particles_per_cell < 2)
+          c.fail(b.where, "bodies." + b.name + ".particles_per_cell",
+                 absolute_stress_lattice_refusal());
+      if (scene.mpm.shape != ShapeFunction::linear)
+        c.fail(w, "mpm.shape_function", absolute_stress_shape_refusal());
+    }
   }
 }
 

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/far_field_refusals.hpp"
 #include "core/materials/initial_pressure.hpp"
 
 namespace afemp::core::scene_detail {
@@ -432,11 +433,12 @@ void read_grid(TableReader& r, GridSettings& grid) {
   }
   if (const toml::table* t = r.optional_table("far_field")) {
     TableReader fr(*t, r.dotted("far_field"), r.file());
-    fr.known({"centre", "pressure"});
+    fr.known({"centre", "pressure", "stress"});
     fr.check_unknown();
     FarField far;
     far.centre = fr.required_vec3("centre");
     far.pressure = fr.number("pressure", 0.0, Range::non_negative());
+    far.absolute_stress = fr.choice("stress", {"gauge", "absolute"}, 0) == 1;
     if (!grid.has_face(FaceCondition::absorbing))
       r.fail("far_field", "the far field acts through absorbing faces, and no face of "
                           "boundary is \"absorbing\"; set boundary = { xmax = \"absorbing\", "
@@ -464,6 +466,9 @@ void read_mpm(TableReader& r, MpmSettings& mpm) {
       r.fail("flip", "the PIC/FLIP blend applies to transfer = \"flip\" only; remove it or set "
                      "transfer = \"flip\"");
   }
+  if (mpm.grid.far_field && mpm.grid.far_field->absolute_stress &&
+      mpm.shape != ShapeFunction::linear)
+    r.fail("shape_function", absolute_stress_shape_refusal());
   mpm.jaumann = r.boolean("jaumann", true);
   if (const toml::table* t = r.optional_table("splitting")) {
     TableReader sr(*t, r.dotted("splitting"), r.file());
@@ -1650,6 +1655,9 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
     const toml::table& t = *bodies->get(i)->as_table();
     TableReader br(t, "bodies[" + std::to_string(i) + "]", path);
     BodySpec b = read_body(br, material_index, scene.materials, path);
+    const std::optional<FarField>& far = scene.mpm.grid.far_field;
+    if (far && far->absolute_stress && b.pressure && *b.pressure > 0.0 && b.particles_per_cell < 2)
+      br.fail("particles_per_cell", absolute_stress_lattice_refusal());
     for (const BodySpec& other : scene.bodies)
       if (other.name == b.name)
         br.fail("name", "duplicate body name \"" + b.name + "\" (first defined at line " +

@@ -12,19 +12,26 @@
 //
 // With a far field ([grid] far_field, core::FarField) the faces open onto an unbounded fluid at
 // the ambient pressure p_inf, into which the flow leaves as a spherical one from the far
-// field's centre. The ambient pressure itself acts through the whole grid: the internal force
-// takes the stress relative to it, sigma + p_inf I (particle_to_grid.cpp), which changes no
-// interior node's force (a uniform pressure has none) and makes the faces' static traction
-// zero, while the EOS and the energy equation keep the absolute pressure; the ambient's work,
-// -p_inf times the particles' volume change, is booked as external work (stress_update.cpp).
-// Forces from the absolute stress would hold a particle lattice under a prestress of p_inf, whose
-// negative geometric stiffness made the zero-energy modes of one particle per cell grow
-// (measured: a still sphere of water at 10 MPa, kinetic energy x10 every 30 us). The price: a
-// gas far below the ambient (a detonation bubble near its largest) is in tension in the
-// internal force, and its particles clump until it holds the ambient again, so an explosion
-// bubble does not slow down (docs/explosives.md, "The bubble period"); a gas near the ambient
-// (the Minnaert test) is unaffected. The absolute stress with water of two particles per
-// direction slowed that bubble in a trial, but threw a light gas near the ambient off.
+// field's centre. The ambient pressure enters in one of two forms (far_field.stress):
+// - gauge (the default): the internal force takes the stress relative to the ambient,
+//   sigma + p_inf I (particle_to_grid.cpp), which changes no interior node's force (a uniform
+//   pressure has none) and makes the faces' static traction zero, while the EOS and the energy
+//   equation keep the absolute pressure; the ambient's work, -p_inf times the particles'
+//   volume change, is booked as external work (stress_update.cpp). A prestressed lattice of one
+//   particle per cell is then stable, and a gas near the ambient (the Minnaert test) is right.
+//   But an empty cell reads as the ambient: a gas far below it (an explosion bubble near its
+//   largest) is in tension in the internal force, its particles clump until it holds the
+//   ambient again, and the bubble does not slow down (docs/explosives.md, "The bubble period").
+// - absolute: the internal force takes the stress itself, and the ambient acts on the face
+//   plane's nodes as a static traction p_inf A (A the node's tributary area, which balances a
+//   uniform -p_inf I exactly with linear shape functions and a full lattice). An empty cell
+//   reads as vacuum: a cavity of air at 1 % of the ambient closes in Rayleigh's time (within
+//   2.3 %), and an explosion bubble slows and recollapses (first period 11 % over
+//   Rayleigh-Willis at 2 mm cells, 5 % at 1 mm; examples/underwater_explosion/bubble.toml).
+//   The prestress destabilises zero-energy modes instead: water needs two particles per cell
+//   direction (at one, the kinetic energy of still water at 10 MPa grew x10 every 30 us), and
+//   a gas whose bulk modulus is near its pressure (gamma p) at the ambient is thrown off (the
+//   Minnaert gas jumped 3-30 MPa): use the gauge form there.
 // At a node on the face, at distance r from the centre and with
 // cos(theta) = n . (x - centre) / r, the fluid beyond pushes back with the pressure q (relative
 // to p_inf), which follows the first doubly asymptotic approximation (Geers 1978, J. Acoust.
@@ -54,18 +61,19 @@ struct AbsorbingFace {
 };
 
 // One far-field face node (see above): its tributary area A on the face, Z = rho c / cos theta,
-// k = c / r, and the outward sign s of the face normal (+1 on a max face).
+// k = c / r, the outward sign s of the face normal (+1 on a max face), and the static pressure
+// p_s pushing on it from beyond (the ambient under the absolute stress; 0 under the gauge).
 struct FarFieldNode {
-  double area = 0.0, impedance = 0.0, rate = 0.0, sign = 1.0;
+  double area = 0.0, impedance = 0.0, rate = 0.0, sign = 1.0, static_pressure = 0.0;
 };
 
 // Updates the normal component v_new_a (after the grid forces) of a far-field face node of
 // mass m with its start value v_a, and the node's lag w; returns the work of the far field's
-// impulse over the step, J (u + u_new) / 2.
+// impulse (the static traction's with it) over the step, J (u + u_new) / 2.
 inline double far_field_update(const FarFieldNode& f, double m, double dt, double v_a,
                                double& v_new_a, double& lag) {
   const double u = f.sign * v_a;
-  const double u_trial = f.sign * v_new_a;
+  const double u_trial = f.sign * v_new_a - dt * f.static_pressure * f.area / m;
   const double relax = 1.0 + dt * f.rate;
   const double beta = dt * f.area * f.impedance / (m * relax);
   const double u_new = (u_trial + beta * lag) / (1.0 + beta);

@@ -87,6 +87,7 @@ double MpmSolver::far_field(const std::array<int, 3>& node, int field, unsigned 
     FarFieldNode fn;
     fn.sign = face % 2 == 1 ? 1.0 : -1.0;
     fn.area = share(b) * share(c);
+    fn.static_pressure = face_pressure_;
     if (fn.area == 0.0) continue;  // a halo node beside the face (uGIMP): outside its plane
     // cos(theta) of the outgoing ray with the face normal; kept away from grazing rays, which
     // a face through the centre would meet (a symmetric face is the place for those).

@@ -98,7 +98,8 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
     particles_.viscous_heat.assign(particles_.size(), 0.0);
   }
   setup_absorbing_faces();
-  if (scene.mpm.grid.far_field) ambient_pressure_ = scene.mpm.grid.far_field->pressure;
+  if (const std::optional<core::FarField>& far = scene.mpm.grid.far_field)
+    (far->absolute_stress ? face_pressure_ : ambient_pressure_) = far->pressure;
   // Walls that name particle bodies act on them here (particle_wall_contact.cpp).
   wall_bodies_.assign(scene.walls.size(), {});
   wall_force_.assign(scene.walls.size(), Vec3{});

@@ -259,8 +259,9 @@ class MpmSolver {
   // Far-field faces: the lag w of each node on the face plane, per velocity field
   // (field-major, then the two other axes in cyclic order); empty for the other faces.
   std::vector<std::vector<double>> far_lag_ = std::vector<std::vector<double>>(6);
-  // A far field's ambient pressure, taken off the stress in the internal force; 0 without one.
-  double ambient_pressure_ = 0.0;
+  // A far field's ambient pressure: taken off the stress in the internal force (gauge), or
+  // applied to the far-field faces' nodes as a static traction (absolute); 0 where unused.
+  double ambient_pressure_ = 0.0, face_pressure_ = 0.0;
   double outflow_mass_ = 0.0, outflow_energy_ = 0.0;
   Vec3 outflow_momentum_{};
   long outflow_count_ = 0;

@@ -74,7 +74,8 @@ void MpmSolver::p2g_kernel() {
       const double m = p.mass[i];
       const Vec3 mv = m * p.velocity[i];
       // The bulk-viscous pressure acts with the stress (core/bulk_viscosity.hpp).
-      // A far field's ambient pressure is taken off (absorbing_faces.hpp); 0 otherwise.
+      // A far field's ambient pressure is taken off under its gauge form (absorbing_faces.hpp);
+      // 0 otherwise.
       const core::SymTensor sv =
           p.volume[i] * (p.stress[i] - (p.bulk_q[i] - ambient) * core::SymTensor::identity());
       for (int n = 0; n < N; ++n) {

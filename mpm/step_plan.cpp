@@ -113,9 +113,12 @@ StepPlan build_step_plan(const core::Scene& scene) {
   const Stage grid_update = stage(
       StageKind::grid_momentum_update, "grid momentum update",
       scene.mpm.grid.far_field
-          ? "explicit momentum update and boundary conditions; the far field's ambient "
-            "pressure is taken off the internal force, and absorbing faces answer as the "
-            "unbounded fluid beyond (Geers 1978, DAA1)"
+          ? std::string("explicit momentum update and boundary conditions; the far field's "
+                        "ambient pressure is ") +
+                (scene.mpm.grid.far_field->absolute_stress
+                     ? "a static traction on the faces"
+                     : "taken off the internal force") +
+                ", and absorbing faces answer as the unbounded fluid beyond (Geers 1978, DAA1)"
       : scene.mpm.grid.has_face(core::FaceCondition::absorbing)
           ? "explicit momentum update and boundary conditions; absorbing faces damp their "
               "nodes (Lysmer & Kuhlemeyer 1969)"

@@ -97,6 +97,12 @@ struct RunSettings {
 struct FarField {
   Vec3 centre{};          ///< where the outgoing waves come from (an explosion's centre)
   double pressure = 0.0;  ///< the ambient pressure held beyond the faces (depth: rho g z + p_atm)
+  /// How the ambient pressure enters the internal force (mpm/absorbing_faces.hpp):
+  /// gauge: the stress relative to it, sigma + p I (a gas near the ambient; a void reads as
+  /// the ambient); absolute: the stress itself, with the ambient as a static traction on the
+  /// faces (a gas far below the ambient, as an explosion bubble near its largest; a void
+  /// reads as vacuum; prestressed bodies need two or more particles per cell direction).
+  bool absolute_stress = false;
 };
 
 /// The [grid] section: the background grid of cubic cells and its face conditions.
