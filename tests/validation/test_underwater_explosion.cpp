@@ -48,14 +48,14 @@ TEST(UnderwaterExplosion, PeakShockPressureFollowsColesLawFromFifteenChargeRadii
   EXPECT_GE(within, 3);
 }
 
-// Reference: the Rayleigh-Willis formula with Cole's constant for TNT (Cole 1948, ch. 8),
+// Reference: the Rayleigh-Willis formula with Cole's constant for TNT (Cole 1948),
 // T = 2.11 W^(1/3) / H^(5/6) s, W in kg, H in m the head of water that gives the ambient
 // pressure (H = p / (rho g), the atmosphere included): 0.2797 ms for W = 0.437 g at 20 MPa
-// (H = 2039 m). Tolerance 20 % (the mark; the formula itself is empirical, within about
-// 10 % of tests). The bubble's radius is read from the water particle next to the charge (the
-// probe "wall", initially at r0 = 5 mm): the water between the charge and it keeps its volume
-// to within its compression (under 1 % here), so R = (r^3 - r0^3 + a^3)^(1/3) with a the
-// charge's radius. The period is the time of the first minimum after the maximum, refined by
+// (H = 2039 m). Tolerance 20 % (the mark; the formula itself is an empirical fit).
+// The bubble's radius is read from the water particle next to the charge (the probe "wall",
+// initially at r0 = 4.33 mm on the diagonal): the water between the charge and it keeps its
+// volume to within its compression (under 1 % here), so R = (r^3 - r0^3 + a^3)^(1/3) with a
+// the charge's radius. The period is the time of the first minimum after the maximum, refined by
 // a parabola through the three samples around it. Also checked: the radius rises and falls by
 // more than half (a bubble, not a drift), and the energy balance within 3 %.
 TEST(UnderwaterExplosion, BubblePeriodFollowsRayleighWillis) {
