@@ -114,14 +114,11 @@ void check_grid(const Checker& c, const Scene& scene) {
                "the far field's ambient pressure acts on bodies of particles, and body \"" +
                    b.name + "\" is of " + to_string(b.discretisation) +
                    "; model the fluid and what it surrounds as particles");
-    if (g.far_field->absolute_stress) {
-      for (const BodySpec& b : scene.bodies)
-        if (b.pressure && *b.pressure > 0.0 && b.particles_per_cell < 2)
-          c.fail(b.where, "bodies." + b.name + ".particles_per_cell",
-                 absolute_stress_lattice_refusal());
-      if (scene.mpm.shape != ShapeFunction::linear)
-        c.fail(w, "mpm.shape_function", absolute_stress_shape_refusal());
-    }
+    for (const BodySpec& b : scene.bodies)
+      if (const std::optional<std::string> why = absolute_stress_lattice_refusal(g, b))
+        c.fail(b.where, "bodies." + b.name + ".particles_per_cell", *why);
+    if (const std::optional<std::string> why = absolute_stress_shape_refusal(g, scene.mpm.shape))
+      c.fail(w, "mpm.shape_function", *why);
   }
 }
 

@@ -466,9 +466,8 @@ void read_mpm(TableReader& r, MpmSettings& mpm) {
       r.fail("flip", "the PIC/FLIP blend applies to transfer = \"flip\" only; remove it or set "
                      "transfer = \"flip\"");
   }
-  if (mpm.grid.far_field && mpm.grid.far_field->absolute_stress &&
-      mpm.shape != ShapeFunction::linear)
-    r.fail("shape_function", absolute_stress_shape_refusal());
+  if (const std::optional<std::string> why = absolute_stress_shape_refusal(mpm.grid, mpm.shape))
+    r.fail("shape_function", *why);
   mpm.jaumann = r.boolean("jaumann", true);
   if (const toml::table* t = r.optional_table("splitting")) {
     TableReader sr(*t, r.dotted("splitting"), r.file());
@@ -1655,9 +1654,8 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
     const toml::table& t = *bodies->get(i)->as_table();
     TableReader br(t, "bodies[" + std::to_string(i) + "]", path);
     BodySpec b = read_body(br, material_index, scene.materials, path);
-    const std::optional<FarField>& far = scene.mpm.grid.far_field;
-    if (far && far->absolute_stress && b.pressure && *b.pressure > 0.0 && b.particles_per_cell < 2)
-      br.fail("particles_per_cell", absolute_stress_lattice_refusal());
+    if (const std::optional<std::string> why = absolute_stress_lattice_refusal(scene.mpm.grid, b))
+      br.fail("particles_per_cell", *why);
     for (const BodySpec& other : scene.bodies)
       if (other.name == b.name)
         br.fail("name", "duplicate body name \"" + b.name + "\" (first defined at line " +

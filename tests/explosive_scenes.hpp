@@ -1,9 +1,10 @@
 #pragma once
 
-// Scene text the explosive tests share (tests/mpm/test_detonation.cpp,
-// tests/validation/test_gurney.cpp): TNT (LS-DYNA's example set, which passes through its own
-// Chapman-Jouguet state: tests/core/test_jwl.cpp) lit by a plane through `plane_point`, and a
-// J2 steel for the plates it drives. Units: mm, ms, g, MPa.
+// Scene text the explosive and fluid tests share (tests/mpm/test_detonation.cpp,
+// tests/validation/test_gurney.cpp, the water tests): TNT (LS-DYNA's example set, which passes
+// through its own Chapman-Jouguet state: tests/core/test_jwl.cpp) lit by a plane through
+// `plane_point`, a J2 steel for the plates it drives, and Steinberg's water. Units: mm, ms, g,
+// MPa.
 
 #include <gtest/gtest.h>
 
@@ -30,6 +31,16 @@ density = 1.63e-3
 strength = { model = "fluid" }
 eos = { model = "jwl", A = 3.712e5, B = 3.231e3, R1 = 4.15, R2 = 0.95, omega = 0.30, E0 = 7.0e3 }
 burn = { D = 6930, pcj = 2.1e4 }
+)";
+}
+
+// Water: Steinberg's Mie-Grueneisen set (c0 1647 m/s, s 1.921, Gamma0 0.28), a fluid; the
+// caller adds keys to the table (a pressure_cutoff) after it.
+inline std::string water_material(const std::string& name = "water") {
+  return "\n[materials." + name + R"(]
+density = 1.0e-3
+strength = { model = "fluid" }
+eos = { model = "mie-gruneisen", c0 = 1647, s = 1.921, gamma0 = 0.28 }
 )";
 }
 

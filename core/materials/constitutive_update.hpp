@@ -4,6 +4,7 @@
 // the Holmquist-Johnson-Cook pair branches to its own update (holmquist_johnson_cook.cpp).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 
@@ -141,49 +142,40 @@ inline double tangent_bulk_modulus(const Material& material, const Eos& eos,
 
 template <class Eos>
 inline double wave_speed(const Material& material, const Eos& eos, const PointState& point) {
-  // A failed point (a failure model's, or fully damaged HJC concrete: D = 1) below its
-  // reference density carries no pressure (cut off at zero, or at -T (1 - D) = 0) and no shear:
-  // no signal crosses it until it is compacted again. Counting 4G/3 over its current density
-  // instead let a few debris particles, expanded 20 to 30 times, cut the stable step to a
-  // third (V6), and failed copper debris of a plate perforated at 2 km/s to a twentieth (V5).
-  // Without a failure model the damage stays 0 (HJC aside) and the branch is never taken.
-  // Only a point whose pressure is cut is silent: failed debris that is hot enough to push
-  // (p > 0 below the reference density, a gas) carries the isentropic signal below; treating
-  // it as silent let one such copper particle in V5 run away to 1e7 m/s.
-  if (point.damage >= 1.0 && point.density < material.density) {
-    if constexpr (std::is_same_v<Eos, NoEos> || std::is_same_v<Eos, HjcCompaction>) {
-      return 0.0;
-    } else {
-      const EosLinearForm f = eos.form(point.density / material.density - 1.0);
-      const double p = f.a + f.b * point.energy;
-      if (!(p > 0.0)) return 0.0;
-      const double k = std::max(tangent_bulk_modulus(material, eos, point), 0.0) +
-                       std::max(f.b, 0.0) * p / point.density;
-      return std::sqrt(k / point.density);
-    }
-  }
-  if constexpr (!std::is_same_v<Eos, NoEos> && !std::is_same_v<Eos, HjcCompaction>) {
-    // A point cavitated below its reference density, its pressure held at the cutoff
-    // (Material::pressure_cutoff): dp/drho = 0 there, and only shear carries a signal (none in
-    // a fluid) until it is compressed again. The EOS's tangent over the current density
-    // instead let one cavitated water particle, stretched fiftyfold at an explosion bubble's
-    // wall, cut the stable step to a fifth (examples/underwater_explosion/bubble.toml).
-    if (point.density < material.density) {
-      const EosLinearForm f = eos.form(point.density / material.density - 1.0);
-      if (f.a + f.b * point.energy <= material.pressure_cutoff)
-        return std::sqrt(4.0 / 3.0 * material.shear_modulus() / point.density);
-    }
-  }
-  double k_tangent = tangent_bulk_modulus(material, eos, point);
-  if constexpr (!std::is_same_v<Eos, NoEos> && !std::is_same_v<Eos, HjcCompaction>) {
+  // Below its reference density a point's pressure may be held at a floor, where dp/drho = 0:
+  // - A failed point (a failure model's, or fully damaged HJC concrete: D = 1) carries no
+  //   pressure (cut off at zero, or at -T (1 - D) = 0) and no shear: no signal crosses it until
+  //   it is compacted again. Counting 4G/3 over its current density instead let a few debris
+  //   particles, expanded 20 to 30 times, cut the stable step to a third (V6), and failed copper
+  //   debris of a plate perforated at 2 km/s to a twentieth (V5). Without a failure model the
+  //   damage stays 0 (HJC aside). Only a point whose pressure is cut is silent: failed debris
+  //   that is hot enough to push (p > 0 below the reference density, a gas) carries the
+  //   isentropic signal below, without shear; treating it as silent let one such copper
+  //   particle in V5 run away to 1e7 m/s.
+  // - A point cavitated at its cutoff (Material::pressure_cutoff) carries only its shear signal
+  //   (none in a fluid) until it is compressed again. The EOS's tangent over the current density
+  //   instead let one cavitated water particle, stretched fiftyfold at an explosion bubble's
+  //   wall, cut the stable step to a fifth (examples/underwater_explosion/bubble.toml).
+  const bool expanded = point.density < material.density;
+  const bool failed = point.damage >= 1.0 && expanded;
+  const double shear = 4.0 / 3.0 * material.shear_modulus();
+  if constexpr (std::is_same_v<Eos, NoEos> || std::is_same_v<Eos, HjcCompaction>) {
+    if (failed) return 0.0;
+    return std::sqrt((tangent_bulk_modulus(material, eos, point) + shear) / point.density);
+  } else {
+    const EosLinearForm f = eos.form(point.density / material.density - 1.0);
+    const double p = f.a + f.b * point.energy;
+    if (failed && !(p > 0.0)) return 0.0;
+    if (!failed && expanded && p <= material.pressure_cutoff)
+      return std::sqrt(shear / point.density);
     // Along the isentrope de = p / rho^2 drho, so rho dp/drho|_s = K_e + (dp/de) p / rho: for
     // an ideal gas (p = (gamma - 1) rho e) c^2 = gamma p / rho, not p / rho. Only compression
     // (p > 0) adds; a tensile state keeps the fixed-e value, which is then the larger.
-    const EosLinearForm f = eos.form(point.density / material.density - 1.0);
-    const double p = f.a + f.b * point.energy;
-    if (p > 0.0 && f.b > 0.0) k_tangent += f.b * p / point.density;
+    const double k_e = tangent_bulk_modulus(material, eos, point);
+    const double heat = p > 0.0 && f.b > 0.0 ? f.b * p / point.density : 0.0;
+    if (failed) return std::sqrt((std::max(k_e, 0.0) + heat) / point.density);
+    return std::sqrt((k_e + heat + shear) / point.density);
   }
-  return std::sqrt((k_tangent + 4.0 / 3.0 * material.shear_modulus()) / point.density);
 }
 
 }  // namespace afemp::core

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "afemp/errors.hpp"
+#include "explosive_scenes.hpp"
 #include "core/scene.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
@@ -29,11 +30,7 @@ cell = 0.5
 min = [0, 0, -10]
 max = [1, 1, 10]
 boundary = { xmin = "symmetric", xmax = "symmetric", ymin = "symmetric", ymax = "symmetric" }
-[materials.water]
-density = 1.0e-3
-strength = { model = "fluid" }
-eos = { model = "mie-gruneisen", c0 = 1647, s = 1.921, gamma0 = 0.28 }
-)" + cutoff + R"(
+)" + test::water_material() + cutoff + R"(
 [[bodies]]
 name = "lower"
 material = "water"

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "afemp/errors.hpp"
+#include "explosive_scenes.hpp"
 #include "core/scene.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
@@ -21,12 +22,7 @@ density = 8.93e-3
 E = 1.24e5
 nu = 0.34
 )";
-const std::string kWater = R"(
-[materials.medium]
-density = 1.0e-3
-strength = { model = "fluid" }
-eos = { model = "mie-gruneisen", c0 = 1647, s = 1.921, gamma0 = 0.28 }
-)";
+const std::string kWater = test::water_material("medium");
 
 std::string column(const std::string& ends, const std::string& material = kCopper) {
   return R"(

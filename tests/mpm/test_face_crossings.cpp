@@ -4,12 +4,26 @@
 // puts the particle back on its plane with its mass, momentum and state.
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "core/scene.hpp"
+#include "explosive_scenes.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
 
 namespace afemp::mpm {
 namespace {
+
+// A 4 mm cube of 1 mm cells with the given grid keys (faces), materials and bodies.
+std::string cube(const std::string& grid_keys, const std::string& rest) {
+  return R"([run]
+end_time = 1.0
+[grid]
+cell = 1.0
+min = [0, 0, 0]
+max = [4, 4, 4]
+)" + grid_keys + rest;
+}
 
 // The particle that started first (id 0) wherever binning has put it.
 std::size_t first_particle(const Particles& q) {
@@ -19,13 +33,7 @@ std::size_t first_particle(const Particles& q) {
 }
 
 TEST(FaceCrossings, AParticlePastASymmetricFaceIsMirroredBack) {
-  const core::Scene scene = core::parse_scene(R"([run]
-end_time = 1.0
-[grid]
-cell = 1.0
-min = [0, 0, 0]
-max = [4, 4, 4]
-boundary = { xmin = "symmetric" }
+  const core::Scene scene = core::parse_scene(cube("boundary = { xmin = \"symmetric\" }", R"(
 [materials.steel]
 density = 7.85e-3
 E = 200e3
@@ -34,7 +42,7 @@ nu = 0.3
 name = "block"
 material = "steel"
 shape = { box = { min = [0, 1, 1], max = [2, 3, 3] } }
-)",
+)"),
                                               "mirror.toml");
   Particles p = generate_particles(scene);
   // The first particle as if the last step had carried it 0.05 past x = 0.
@@ -58,24 +66,15 @@ shape = { box = { min = [0, 1, 1], max = [2, 3, 3] } }
 }
 
 TEST(FaceCrossings, AParticlePastAFarFieldFaceIsPutBackOnItsPlane) {
-  const core::Scene scene = core::parse_scene(R"([run]
-end_time = 1.0
-[grid]
-cell = 1.0
-min = [0, 0, 0]
-max = [4, 4, 4]
-boundary = { xmax = "absorbing" }
+  const core::Scene scene = core::parse_scene(cube(R"(boundary = { xmax = "absorbing" }
 far_field = { centre = [0, 0, 0], pressure = 10.0 }
-[materials.water]
-density = 1.0e-3
-strength = { model = "fluid" }
-eos = { model = "mie-gruneisen", c0 = 1647, s = 1.921, gamma0 = 0.28 }
+)", test::water_material() + R"(
 [[bodies]]
 name = "water"
 material = "water"
 shape = { box = { min = [0, 0, 0], max = [4, 4, 4] } }
 pressure = 10.0
-)",
+)"),
                                               "hold.toml");
   Particles p = generate_particles(scene);
   // The first particle carried 0.3 past x = 4 by an outgoing flow.

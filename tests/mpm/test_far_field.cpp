@@ -41,10 +41,7 @@ scheme = "USAVG"
 density = 1.0e-5
 strength = { model = "fluid" }
 eos = { model = "linear-polynomial", C4 = 0.4, C5 = 0.4 }
-[materials.water]
-density = 1.0e-3
-strength = { model = "fluid" }
-eos = { model = "mie-gruneisen", c0 = 1647, s = 1.921, gamma0 = 0.28 }
+)" + test::water_material() + R"(
 [[bodies]]
 name = "inner"
 material = ")" + inner_material + R"("
