@@ -471,12 +471,23 @@ void read_mpm(TableReader& r, MpmSettings& mpm) {
   mpm.jaumann = r.boolean("jaumann", true);
   if (const toml::table* t = r.optional_table("splitting")) {
     TableReader sr(*t, r.dotted("splitting"), r.file());
-    sr.known({"alpha", "max_particles", "bodies"});  // bodies: resolved once they are read
+    sr.known({"alpha", "max_particles", "bodies", "axes"});  // bodies: resolved once read
     sr.check_unknown();
     SplittingSettings s;
     s.alpha = sr.number("alpha", 0.9, Range{0.5, 1.5, true, false});
     s.max_particles =
         static_cast<std::size_t>(sr.integer("max_particles", 10000000, 1, 2000000000));
+    if (sr.has("axes")) {
+      s.axes = {false, false, false};
+      for (const std::string& axis : sr.strings("axes")) {
+        if (axis != "x" && axis != "y" && axis != "z")
+          sr.fail("axes", "unknown axis \"" + axis + "\"; allowed: \"x\", \"y\", \"z\"");
+        s.axes[static_cast<std::size_t>(axis[0] - 'x')] = true;
+      }
+      if (!s.axes[0] && !s.axes[1] && !s.axes[2])
+        sr.fail("axes", "name at least one axis (\"x\", \"y\", \"z\"), or leave the key out "
+                        "to split along all three");
+    }
     mpm.splitting = s;
   }
 }

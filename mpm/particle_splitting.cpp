@@ -10,7 +10,9 @@
 // particle's: a half (length alpha l0 just after the split) splits again only when it has
 // doubled in turn, so spacing stays below 2 alpha l0 along every axis. The halves sit at the
 // centres of the parent's halves, x +- l_a / 4 along each split axis. A split that would take
-// the particle count past max_particles stops the run.
+// the particle count past max_particles stops the run. `axes` limits the axes a particle may
+// split along (all three by default): a shaped charge's liner splits along its jet's axis only
+// (docs/scene-format.md says why).
 #include <algorithm>
 #include <bit>
 #include <cstdint>
@@ -39,7 +41,9 @@ void MpmSolver::split_particles() {
       continue;
     }
     for (int a = 0; a < 3; ++a)
-      if (p.length[i][a] >= 2.0 * settings.alpha * p.length0[i][a]) bits |= 1u << a;
+      if (settings.axes[static_cast<std::size_t>(a)] &&
+          p.length[i][a] >= 2.0 * settings.alpha * p.length0[i][a])
+        bits |= 1u << a;
     axes[i] = static_cast<std::uint8_t>(bits);
     added += (std::size_t{1} << std::popcount(bits)) - 1;
   }

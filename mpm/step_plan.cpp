@@ -144,11 +144,15 @@ StepPlan build_step_plan(const core::Scene& scene) {
                        core::to_string(static_cast<core::Face>(f));
   // Splitting before outflow: a child placed beyond an outflow face leaves with it.
   if (plan.splitting) {
-    char why[200];
+    const core::SplittingSettings& split = *scene.mpm.splitting;
+    std::string axes;
+    for (int a = 0; a < 3; ++a)
+      if (split.axes[static_cast<std::size_t>(a)]) axes += static_cast<char>('x' + a);
+    char why[240];
     std::snprintf(why, sizeof why,
-                  "a particle whose length along an axis reached %g x its initial length splits "
-                  "in two along each such axis (at most %zu particles)",
-                  2.0 * scene.mpm.splitting->alpha, scene.mpm.splitting->max_particles);
+                  "a particle whose length along an axis (%s) reached %g x its initial length "
+                  "splits in two along each such axis (at most %zu particles)",
+                  axes.c_str(), 2.0 * split.alpha, split.max_particles);
     s.push_back(stage(StageKind::split_particles, "split particles", why));
   }
   if (!outflow_faces.empty())

@@ -131,6 +131,7 @@ struct SplittingSettings {
   double alpha = 0.9;                ///< split factor, in (0.5, 1.5]
   std::size_t max_particles = 10000000;  ///< a split that would exceed it stops the run
   std::vector<int> bodies{};  ///< the particle bodies that split (indices); empty: all
+  std::array<bool, 3> axes{true, true, true};  ///< the axes (x, y, z) a particle may split along
 };
 
 /// The [mpm] section: scheme, shape function, transfer, splitting, and the grid.

@@ -155,6 +155,35 @@ TEST(ParticleSplitting, OnlyTheBodiesNamedSplit) {
   }
 }
 
+// [mpm] splitting.axes: a particle splits only along the axes named. The column stretches
+// along z: split along z only, it stays continuous with the same splits as with all three axes
+// (its x and y lengths shrink, so they never split); split along x and y only, it never
+// splits and opens gaps as without splitting. An unknown axis, or none, is an error naming
+// the key.
+TEST(ParticleSplitting, OnlyTheAxesNamedSplit) {
+  const Stretch all = stretch("splitting = { alpha = 0.9 }");
+  const Stretch along = stretch("splitting = { alpha = 0.9, axes = [\"z\"] }");
+  EXPECT_GT(along.splits, 0);
+  EXPECT_EQ(along.splits, all.splits);
+  EXPECT_EQ(along.particles, all.particles);
+  EXPECT_EQ(along.empty_cells, 0);
+  EXPECT_LT(along.mass_error, 1e-12);
+  EXPECT_LT(along.momentum_error, 1e-12);
+  const Stretch across = stretch("splitting = { alpha = 0.9, axes = [\"x\", \"y\"] }");
+  EXPECT_EQ(across.splits, 0);
+  EXPECT_GT(across.empty_cells, 0);
+  for (const char* axes : {"[\"w\"]", "[]"}) {
+    try {
+      core::parse_scene(column(std::string("splitting = { axes = ") + axes + " }"), "axes.toml");
+      FAIL() << "axes = " << axes << " was taken";
+    } catch (const core::InputError& e) {
+      EXPECT_EQ(e.key(), "mpm.splitting.axes") << e.what();
+      EXPECT_NE(std::string(e.what()).find("\"x\", \"y\", \"z\""), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 TEST(ParticleSplitting, ACapOnTheParticleCountStopsTheRunWithAClearMessage) {
   const core::Scene scene =
       core::parse_scene(column("splitting = { alpha = 0.9, max_particles = 1000 }"), "cap.toml");
