@@ -26,6 +26,9 @@ const char* to_string(ProbeField f) {
     case ProbeField::vx: return "vx";
     case ProbeField::vy: return "vy";
     case ProbeField::vz: return "vz";
+    case ProbeField::x: return "x";
+    case ProbeField::y: return "y";
+    case ProbeField::z: return "z";
   }
   return "?";
 }
@@ -55,7 +58,8 @@ std::vector<double> ProbeSeries::series(std::size_t c) const {
   return out;
 }
 
-double probe_field_value(ProbeField f, const SymTensor& s, double plastic_strain, const Vec3& v) {
+double probe_field_value(ProbeField f, const SymTensor& s, double plastic_strain, const Vec3& v,
+                         const Vec3& position) {
   switch (f) {
     case ProbeField::pressure: return pressure(s);
     case ProbeField::von_mises: return von_mises(s);
@@ -64,6 +68,9 @@ double probe_field_value(ProbeField f, const SymTensor& s, double plastic_strain
     case ProbeField::vx: return v.x;
     case ProbeField::vy: return v.y;
     case ProbeField::vz: return v.z;
+    case ProbeField::x: return position.x;
+    case ProbeField::y: return position.y;
+    case ProbeField::z: return position.z;
   }
   return std::nan("");
 }

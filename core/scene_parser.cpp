@@ -1571,7 +1571,8 @@ ProbeSpec read_probe(TableReader& r, const Scene& scene) {
     t.known({"field", "of", "box", "body"});
     t.check_unknown();
     p.field = static_cast<ProbeField>(t.choice(
-        "field", {"pressure", "von_mises", "plastic_strain", "speed", "vx", "vy", "vz"}, std::nullopt));
+        "field", {"pressure", "von_mises", "plastic_strain", "speed", "vx", "vy", "vz", "x", "y", "z"},
+        std::nullopt));
     p.maximum = t.choice("of", {"max", "min"}, 0) == 0;
     if (t.has("body")) p.body = body_index(t, "body", t.required_string("body"), scene, false);
     TableReader b(t.required_table("box"), t.dotted("box"), r.file());

@@ -132,7 +132,9 @@ void MeshProbes::sample(const FeSolver& fe, std::span<double> out) const {
             const ElementState st = element_state(fe, el, b, e);
             if (!core::in_probe_box(s, st.centroid)) continue;
             core::merge_extreme(
-                s, core::probe_field_value(s.field, st.stress, st.plastic_strain, st.velocity),
+                s,
+                core::probe_field_value(s.field, st.stress, st.plastic_strain, st.velocity,
+                                        st.centroid),
                 st.centroid, v);
           }
         }

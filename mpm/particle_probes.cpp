@@ -64,7 +64,9 @@ void ParticleProbes::sample(const Particles& p, std::span<double> out) const {
       for (std::size_t i = 0; i < p.size(); ++i) {
         if ((s.body >= 0 && p.body[i] != s.body) || !core::in_probe_box(s, p.position[i])) continue;
         core::merge_extreme(
-            s, core::probe_field_value(s.field, p.stress[i], p.plastic_strain[i], p.velocity[i]),
+            s,
+            core::probe_field_value(s.field, p.stress[i], p.plastic_strain[i], p.velocity[i],
+                                    p.position[i]),
             p.position[i], v);
       }
     }

@@ -29,8 +29,9 @@ enum class ProbeKind {
 };
 
 /// Fields an extreme probe reads at each point (particles; element centroids with their
-/// point-averaged stress and mean nodal velocity).
-enum class ProbeField { pressure, von_mises, plastic_strain, speed, vx, vy, vz };
+/// point-averaged stress and mean nodal velocity); x, y, z: the point's position (the
+/// furthest point along an axis: a jet's tip).
+enum class ProbeField { pressure, von_mises, plastic_strain, speed, vx, vy, vz, x, y, z };
 
 /// The scene file's name of a probe kind or field.
 const char* to_string(ProbeKind k);
@@ -92,8 +93,10 @@ inline bool in_probe_box(const ProbeSpec& p, const Vec3& x) {
          x.z >= p.box_min.z && x.z <= p.box_max.z;
 }
 
-/// The field an extreme probe reads, at a point with stress s, plastic strain ep, velocity v.
-double probe_field_value(ProbeField f, const SymTensor& s, double plastic_strain, const Vec3& v);
+/// The field an extreme probe reads, at a point at `position` with stress s, plastic strain ep,
+/// velocity v.
+double probe_field_value(ProbeField f, const SymTensor& s, double plastic_strain, const Vec3& v,
+                         const Vec3& position);
 
 }  ///< namespace afemp::core
 

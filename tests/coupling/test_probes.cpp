@@ -93,13 +93,19 @@ extreme = { field = "vz", of = "max", box = { min = [-5, -5, -5], max = [30, 5, 
 [[probes]]
 name = "fastest"
 extreme = { field = "speed", box = { min = [-5, -5, -5], max = [30, 5, 10] } }
+[[probes]]
+name = "cube_top"
+extreme = { field = "z", of = "max", box = { min = [-5, -5, -5], max = [30, 5, 10] }, body = "cube" }
+[[probes]]
+name = "brick_bottom"
+extreme = { field = "z", of = "min", box = { min = [-5, -5, -5], max = [30, 5, 10] }, body = "brick" }
 )";
 
 TEST(Probes, RigidTranslationReadsX0PlusV0TAndMeanVelocityIsMomentumOverMass) {
   const core::Scene scene = core::parse_scene(free_blocks, "scene.toml");
   const auto model = make_model(scene);
   const core::RunSummary s = analysis::run(*model, scene, {});
-  ASSERT_EQ(s.probes.size(), 6u);
+  ASSERT_EQ(s.probes.size(), 8u);
   // The particle nearest (2, 2, 4): the lattice's top corner particle at (1.75, 1.75, 3.75).
   const core::ProbeSeries& p = series(s, "corner");
   ASSERT_EQ(p.columns.size(), 9u);
@@ -143,6 +149,18 @@ TEST(Probes, RigidTranslationReadsX0PlusV0TAndMeanVelocityIsMomentumOverMass) {
     EXPECT_LT(up.at(r, 1), 2.0);
     EXPECT_NEAR(fast.at(r, 0), std::hypot(20.0, 50.0), 1e-9);
     EXPECT_GT(fast.at(r, 1), 20.0);
+  }
+  // Positions: the cube's highest particle rises with it, 3.75 + 30 t; the brick's lowest
+  // element centroids (z = 0.5 at the start) sink with it, 0.5 - 50 t. The value is the
+  // point's coordinate, so the columns after it repeat it.
+  const core::ProbeSeries& top = series(s, "cube_top");
+  const core::ProbeSeries& bottom = series(s, "brick_bottom");
+  ASSERT_GE(top.rows(), 10u);
+  for (std::size_t r = 0; r < top.rows(); ++r) {
+    EXPECT_NEAR(top.at(r, 0), 3.75 + 30.0 * top.time[r], 1e-9);
+    EXPECT_EQ(top.at(r, 3), top.at(r, 0));
+    EXPECT_NEAR(bottom.at(r, 0), 0.5 - 50.0 * bottom.time[r], 1e-9);
+    EXPECT_GT(bottom.at(r, 1), 20.0);
   }
 }
 
@@ -317,7 +335,7 @@ TEST(Probes, NamingWhatTheBodyLacksStopsTheRunWithLineKeyAndRange) {
                                    "not exist; its elements are 0..49"),
             std::string::npos);
   text = free_blocks + "[[probes]]\nname = \"far\"\nparticle = { body = \"cube\", index = 64 }\n";
-  EXPECT_NE(start_error(text).find("key 'probes[6].particle.index': particle 64 of body 'cube' does "
+  EXPECT_NE(start_error(text).find("key 'probes[8].particle.index': particle 64 of body 'cube' does "
                                    "not exist; its particles are 0..63"),
             std::string::npos);
 }
