@@ -9,8 +9,7 @@
 // tip holds a liner particle; without splitting, the stretched jet leaves empty cells there
 // (its particles drift more than a cell apart). Both runs keep the energy balance within 3 %
 // (the mark for explosive cases; the released chemical energy booked as a source).
-// This holds at the example's 0.75 mm; at 0.5 mm (tried with the charge at 1 particle per
-// cell direction) the split jet's tip draws away and both balances end outside 3 %
+// This holds at the example's 0.75 mm; at 0.5 mm the split jet's tip draws away from the rest
 // (examples/shaped_charge/README.md).
 //
 // Not asserted: the jet's tip velocity. No published value for this charge (or for the
