@@ -1,13 +1,13 @@
 // Plausibility warnings (core/plausibility.hpp).
 #include "core/plausibility.hpp"
 
-#include "core/materials/initial_pressure.hpp"
-#include "core/materials/material.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <variant>
+
+#include "core/materials/initial_pressure.hpp"
+#include "core/materials/material.hpp"
 
 namespace afemp::core {
 

@@ -304,16 +304,21 @@ pressure = 10.0
   }
 }
 
+// The keys of the plausibility warnings a scene's text gets.
+std::vector<std::string> warning_keys(const std::string& text, const std::string& file) {
+  std::vector<std::string> out;
+  for (const core::SceneWarning& w : core::plausibility_warnings(core::parse_scene(text, file)))
+    out.push_back(w.key);
+  return out;
+}
+
 // A gas near the ambient under the absolute stress (bulk modulus gamma p = 1.4 p, below 10 p)
 // gets a warning naming its pressure; the water (K = 2712 MPa at 10 MPa) gets none.
 TEST(FarField, AbsoluteStressWarnsOfAPrestressedGas) {
-  const core::Scene scene = core::parse_scene(
-      absolute(sphere_in_water("gas", "internal_energy = 2.5e6\npressure = 10.5\n"
-                                      "particles_per_cell = 2")),
-      "bubble.toml");
-  std::vector<std::string> keys;
-  for (const core::SceneWarning& w : core::plausibility_warnings(scene)) keys.push_back(w.key);
-  EXPECT_EQ(keys, std::vector<std::string>{"bodies.inner.pressure"});
+  EXPECT_EQ(warning_keys(absolute(sphere_in_water("gas", "internal_energy = 2.5e6\n"
+                                                         "pressure = 10.5\nparticles_per_cell = 2")),
+                         "bubble.toml"),
+            std::vector<std::string>{"bodies.inner.pressure"});
 }
 
 // An explosive under the gauge form (its products would hold the ambient and the bubble would
@@ -327,16 +332,10 @@ shape = { sphere = { centre = [10, 10, 10], radius = 1 } }
 [[detonations]]
 point = [10, 10, 10]
 )";
-  auto keys = [](const std::string& text) {
-    std::vector<std::string> out;
-    for (const core::SceneWarning& w :
-         core::plausibility_warnings(core::parse_scene(text, "charge.toml")))
-      out.push_back(w.key);
-    return out;
-  };
   const std::string water = sphere_in_water("water", "pressure = 10.0");
-  EXPECT_EQ(keys(water + charge), std::vector<std::string>{"grid.far_field.stress"});
-  EXPECT_EQ(keys(absolute(water) + charge), std::vector<std::string>{});
+  EXPECT_EQ(warning_keys(water + charge, "charge.toml"),
+            std::vector<std::string>{"grid.far_field.stress"});
+  EXPECT_EQ(warning_keys(absolute(water) + charge, "charge.toml"), std::vector<std::string>{});
 }
 
 }  // namespace
