@@ -36,14 +36,37 @@ std::string hexahedron_formulation(const core::Scene& scene, const BodySpec& bod
   return out;
 }
 
+// When a point of the material fails (core/materials/failure.hpp): the material's failure
+// model, or its failure_strain where it has none.
+std::string failure_model(const core::Material& m) {
+  std::string out;
+  if (const auto* jc = std::get_if<core::JohnsonCookFailure>(&m.failure))
+    core::appendf(out, "Johnson-Cook damage, D1 .. D5 = %g, %g, %g, %g, %g", jc->D1, jc->D2, jc->D3,
+                  jc->D4, jc->D5);
+  else if (const auto* p = std::get_if<core::PlasticStrainFailure>(&m.failure))
+    core::appendf(out, "plastic strain %g", p->strain);
+  else if (const auto* sp = std::get_if<core::SpallFailure>(&m.failure))
+    core::appendf(out, "spall, %s %g%s",
+                  sp->criterion == core::SpallFailure::Criterion::pressure ? "tension -p"
+                                                                           : "largest principal stress",
+                  sp->strength, sp->impulse > 0.0 ? ", cumulative (Tuler-Butcher)" : "");
+  else if (const auto* e = std::get_if<core::PrincipalStrainFailure>(&m.failure))
+    core::appendf(out, "principal strain %g", e->strain);
+  else if (m.failure_strain > 0.0)
+    core::appendf(out, "plastic strain %g", m.failure_strain);
+  else
+    out = "none: the material has no failure model";
+  return out;
+}
+
 // The criteria of body's erosion (fem/hexahedron_update.cpp, truss_update.cpp).
 std::string erosion_criteria(const core::Scene& scene, const BodySpec& body) {
   const core::ErosionSettings& e = *body.erosion;
   std::string out;
   if (e.plastic_strain > 0.0) core::appendf(out, "plastic strain %g, ", e.plastic_strain);
   if (e.material_failure)
-    core::appendf(out, "material failure strain %g, ",
-                  scene.materials[static_cast<std::size_t>(body.material)].failure_strain);
+    out += "material failure (" +
+           failure_model(scene.materials[static_cast<std::size_t>(body.material)]) + "), ";
   if (e.volume_ratio > 0.0) core::appendf(out, "volume ratio %g, ", e.volume_ratio);
   if (e.time_step > 0.0) core::appendf(out, "time step %g, ", e.time_step);
   return out + "inverted elements";

@@ -116,6 +116,18 @@ TEST(FeStepPlan, WallTrussGravityAndErosionAddTheirStagesInStepOrder) {
   EXPECT_NE(plan.stages[4].why.find("block: plastic strain 0.5"), std::string::npos)
       << plan.stages[4].why;
   EXPECT_EQ(plan.stages[4].why.find("rod"), std::string::npos) << "the rod does not erode";
+  // Eroding at material failure, the plan names the material's failure model.
+  std::string jc = block_wall_truss;
+  jc.replace(jc.find("erosion = { plastic_strain = 0.5 }"),
+             std::string("erosion = { plastic_strain = 0.5 }").size(),
+             "erosion = { material_failure = true }");
+  jc.replace(jc.find("[[bodies]]"), 0,
+             "failure = { model = \"johnson-cook\", D1 = 0.05, D2 = 3.44, D3 = -2.12 }\n");
+  const FeStepPlan failing = plan_of(jc);
+  EXPECT_NE(failing.stages[4].why.find(
+                "block: material failure (Johnson-Cook damage, D1 .. D5 = 0.05, 3.44, -2.12, 0, 0)"),
+            std::string::npos)
+      << failing.stages[4].why;
 }
 
 // Reference: conversion comes last (the coupled step takes the particles after the FE step),
