@@ -198,11 +198,12 @@ void Material::validate() const {
     // where exp(D3 sigma*) vanishes (D3 < 0), D2 >= 0.
     require(jc->D2 >= 0.0, *this, "failure D2", jc->D2, ">= 0");
     require(jc->D1 + jc->D2 > 0.0, *this, "failure D1 + D2", jc->D1 + jc->D2, "> 0");
-    // eps_f falls as the triaxiality rises (D3 <= 0), rises with the rate (D4 >= 0) and the
-    // temperature (D5 >= 0), as in every published set; other signs let eps_f reach zero or
-    // below at high rates or temperatures.
+    // eps_f falls as the triaxiality rises (D3 <= 0) and rises with the temperature (D5 >= 0),
+    // as in every published set; a D5 < 0 would bring it to zero below the melt. D4 takes
+    // either sign: steels that lose ductility with the rate have D4 < 0 (Weldox 460 E,
+    // -0.0123: Borvik et al. 2001), whose rate factor would reach zero only at
+    // epsdot* = exp(-1/D4), e^81 there; a point that got there would fail at once.
     require(jc->D3 <= 0.0, *this, "failure D3", jc->D3, "<= 0");
-    require(jc->D4 >= 0.0, *this, "failure D4", jc->D4, ">= 0");
     require(jc->D5 >= 0.0, *this, "failure D5", jc->D5, ">= 0");
   }
   if (const auto* p = std::get_if<PlasticStrainFailure>(&failure))

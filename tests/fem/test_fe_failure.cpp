@@ -8,6 +8,7 @@
 
 #include "afemp/errors.hpp"
 #include "core/material_fixtures.hpp"
+#include "core/materials/failure.hpp"
 #include "core/scene.hpp"
 #include "fem/driven_column_scene.hpp"
 #include "fem/fe_solver.hpp"
@@ -115,6 +116,27 @@ velocity = [0, 0, -1]
   }
 }
 
+// Reference: the Johnson-Cook fracture strain with Weldox 460 E's constants (Borvik et al.
+// 2001: D1 0.0705, D2 1.732, D3 -0.54, D4 -0.0123) at zero triaxiality (pure shear, p = 0):
+// eps_f = (D1 + D2) (1 + D4 ln epsdot*), 1.8025 at the reference rate and 1.8025 (1 - 0.123)
+// at epsdot* = e^10, so a plastic increment of 0.01 adds 0.01 / eps_f to the damage (1e-12).
+TEST(FeFailure, JohnsonCookDamageWithANegativeRateTermFailsSoonerWhenFaster) {
+  core::JohnsonCookFailure jc;
+  jc.D1 = 0.0705;
+  jc.D2 = 1.732;
+  jc.D3 = -0.54;
+  jc.D4 = -0.0123;
+  jc.reference_strain_rate = 5e-7;
+  const core::FailureModel model = jc;
+  core::SymTensor shear;
+  shear.xy = 100.0;  // pure shear: no pressure, triaxiality 0
+  const double slow = core::failure_damage(model, 0.0, 0.5, 0.01, 0.01 / 5e-7, 0.0, shear, 293.0);
+  const double fast =
+      core::failure_damage(model, 0.0, 0.5, 0.01, 0.01 / (5e-7 * std::exp(10.0)), 0.0, shear, 293.0);
+  EXPECT_NEAR(slow, 0.01 / 1.8025, 1e-12);
+  EXPECT_NEAR(fast, 0.01 / (1.8025 * (1.0 - 0.123)), 1e-12);
+}
+
 // Reference: the scene rules. A failure model on a truss material, both failure keys, and a
 // failure model with Holmquist-Johnson-Cook (which has its own damage) are input errors that
 // name the key and what is allowed.
@@ -162,6 +184,14 @@ TEST(FeFailure, FailureInputsTheModelsCannotCarryAreErrors) {
                "failure = { model = \"johnson-cook\", D1 = 0.1, D2 = 0.2, D3 = 1 }\n");
   EXPECT_NE(d3.find("D3"), std::string::npos) << d3;
   EXPECT_NE(d3.find("<= 0"), std::string::npos) << d3;
+  // D4 < 0, a steel that loses ductility with the rate (Weldox 460 E, Borvik et al. 2001), is
+  // accepted: the scene fails only for want of a body.
+  const std::string d4 =
+      error_of("[run]\nend_time = 1.0\n" + material +
+               "failure = { model = \"johnson-cook\", D1 = 0.0705, D2 = 1.732, D3 = -0.54, "
+               "D4 = -0.0123, reference_strain_rate = 5e-7 }\n");
+  EXPECT_EQ(d4.find("D4"), std::string::npos) << d4;
+  EXPECT_NE(d4.find("at least one body"), std::string::npos) << d4;
   // A spall model takes exactly one strength; its exponent belongs to the cumulative form.
   const std::string two =
       error_of("[run]\nend_time = 1.0\n" + material +
