@@ -56,9 +56,17 @@ SizeEstimate estimate_size(const Scene& scene) {
       e.elements += points;
     } else if (body.discretisation == Discretisation::hexahedra) {
       const MeshDensity& m = body.mesh;
-      if (const auto* box = std::get_if<BoxShape>(&body.shape); box && m.divisions[0] > 0)
+      const auto* box = std::get_if<BoxShape>(&body.shape);
+      if (box && m.divisions[0] > 0)
         points = static_cast<double>(m.divisions[0]) * m.divisions[1] * m.divisions[2];
-      else if (m.size > 0.0)
+      else if (box && (!m.graded[0].empty() || !m.graded[1].empty() || !m.graded[2].empty())) {
+        points = 1.0;
+        for (std::size_t d = 0; d < 3; ++d) {
+          double n = 0.0;
+          for (const auto& segment : m.graded[d]) n += segment[1];
+          points *= m.graded[d].empty() ? std::ceil((box->max[d] - box->min[d]) / m.size - 1e-9) : n;
+        }
+      } else if (m.size > 0.0)
         points = shape_volume(body.shape) / (m.size * m.size * m.size) *
                  (m.sectors > 0 && m.sectors < 4 ? m.sectors / 4.0 : 1.0);
       e.elements += points;

@@ -978,13 +978,37 @@ Shape read_shape(TableReader& r, const std::string& scene_path, Discretisation d
   return points;
 }
 
+// A graded box axis: [end, elements] segments from lo to hi, the ends increasing and the last
+// one hi, each segment divided into that many equal elements; empty when the key is absent.
+std::vector<std::array<double, 2>> read_graded_axis(TableReader& r, const char* key, double lo,
+                                                    double hi) {
+  std::vector<std::array<double, 2>> segments = r.pairs(key);
+  double start = lo;
+  for (std::size_t k = 0; k < segments.size(); ++k) {
+    const double end = segments[k][0], n = segments[k][1];
+    const std::string which = "segment " + std::to_string(k) + " ([" + format_number(end) + ", " +
+                              format_number(n) + "])";
+    if (!(end > start))
+      r.fail(key, which + ": its end must lie beyond " + format_number(start) +
+                      "; allowed: [end, elements] pairs with ends increasing from the box's "
+                      "min to its max");
+    if (!(n >= 1.0 && n <= 100000.0 && n == std::floor(n)))
+      r.fail(key, which + ": the element count must be a whole number in [1, 100000]");
+    start = end;
+  }
+  if (!segments.empty() && std::abs(start - hi) > 1e-9 * (hi - lo))
+    r.fail(key, "the last segment ends at " + format_number(start) + ", not at the box's max " +
+                    format_number(hi) + "; allowed: [end, elements] pairs ending at the max");
+  return segments;
+}
+
 void read_mesh_density(TableReader& r, const BodySpec& b, MeshDensity& m) {
   const bool box = std::holds_alternative<BoxShape>(b.shape);
   const bool cylinder = std::holds_alternative<CylinderShape>(b.shape);
   const bool line = std::holds_alternative<LineShape>(b.shape);
   const bool rebar = std::holds_alternative<RebarShape>(b.shape);
   const bool sphere = std::holds_alternative<SphereShape>(b.shape);
-  if (box) r.known({"size", "divisions"});
+  if (box) r.known({"size", "divisions", "x", "y", "z"});
   if (sphere) r.known({"size", "across", "sectors"});
   if (cylinder) r.known({"size", "core", "ring", "axial", "sectors"});
   if (line) r.known({"size", "segments"});
@@ -993,8 +1017,19 @@ void read_mesh_density(TableReader& r, const BodySpec& b, MeshDensity& m) {
   m.size = r.number("size", 0.0, Range::positive());
   if (box) {
     m.divisions = r.integers3("divisions", 1, 100000);
-    if (m.size == 0.0 && m.divisions[0] == 0)
-      r.fail("divisions", "give divisions = [nx, ny, nz] or an element size");
+    const BoxShape& shape = std::get<BoxShape>(b.shape);
+    bool all_graded = true;
+    for (std::size_t d = 0; d < 3; ++d) {
+      const char* axis = d == 0 ? "x" : d == 1 ? "y" : "z";
+      m.graded[d] = read_graded_axis(r, axis, shape.min[d], shape.max[d]);
+      all_graded = all_graded && !m.graded[d].empty();
+      if (!m.graded[d].empty() && m.divisions[0] > 0)
+        r.fail(axis, "give divisions or graded axes (with size for the others), not both");
+    }
+    if (m.size == 0.0 && m.divisions[0] == 0 && !all_graded)
+      r.fail("divisions",
+             "give divisions = [nx, ny, nz], an element size, or x, y and z as [end, elements] "
+             "segments");
   }
   if (cylinder) {
     m.core = static_cast<int>(r.integer("core", 0, 1, 10000));

@@ -118,9 +118,24 @@ MeshData body_mesh(const BodySpec& b) {
   try {
     if (const auto* box = std::get_if<core::BoxShape>(&b.shape)) {
       std::array<int, 3> n = d.divisions;
-      if (n[0] == 0)
-        for (int a = 0; a < 3; ++a) n[static_cast<std::size_t>(a)] = divisions_for(box->max[a] - box->min[a], d.size);
-      return box_mesh(*box, n);
+      if (d.graded[0].empty() && d.graded[1].empty() && d.graded[2].empty()) {
+        if (n[0] == 0)
+          for (int a = 0; a < 3; ++a) n[static_cast<std::size_t>(a)] = divisions_for(box->max[a] - box->min[a], d.size);
+        return box_mesh(*box, n);
+      }
+      // A graded box: its graded axes from their segments, the others evenly at the size.
+      std::array<std::vector<double>, 3> lines;
+      for (int a = 0; a < 3; ++a) {
+        const auto u = static_cast<std::size_t>(a);
+        if (!d.graded[u].empty()) {
+          lines[u] = graded_lines(box->min[a], d.graded[u]);
+          continue;
+        }
+        const int m = divisions_for(box->max[a] - box->min[a], d.size);
+        for (int i = 0; i <= m; ++i)
+          lines[u].push_back(std::lerp(box->min[a], box->max[a], static_cast<double>(i) / m));
+      }
+      return box_mesh(*box, lines);
     }
     if (const auto* c = std::get_if<core::CylinderShape>(&b.shape)) {
       int core_n = d.core, ring = d.ring, axial = d.axial;

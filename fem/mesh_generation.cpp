@@ -158,11 +158,39 @@ Section o_grid_section(double radius, int n, int n_ring, int sectors) {
 }  // namespace
 
 MeshData box_mesh(const core::BoxShape& box, std::array<int, 3> n) {
+  std::array<std::vector<double>, 3> lines;
   for (int d = 0; d < 3; ++d) {
     require(n[d] >= 1, std::string("box mesh: divisions must be at least 1 along each axis; got ") +
                            std::to_string(n[d]) + " along " + kAxisName[d]);
     require(box.max[d] > box.min[d],
             std::string("box mesh: the box's max must exceed its min along ") + kAxisName[d]);
+    for (int i = 0; i <= n[d]; ++i)
+      lines[static_cast<std::size_t>(d)].push_back(
+          std::lerp(box.min[d], box.max[d], static_cast<double>(i) / n[d]));
+  }
+  return box_mesh(box, lines);
+}
+
+std::vector<double> graded_lines(double lo, const std::vector<std::array<double, 2>>& segments) {
+  std::vector<double> lines{lo};
+  double start = lo;
+  for (const auto& [end, elements] : segments) {
+    const int n = static_cast<int>(elements);
+    for (int i = 1; i <= n; ++i) lines.push_back(std::lerp(start, end, static_cast<double>(i) / n));
+    start = end;
+  }
+  return lines;
+}
+
+MeshData box_mesh(const core::BoxShape& box, const std::array<std::vector<double>, 3>& lines) {
+  std::array<int, 3> n{};
+  for (int d = 0; d < 3; ++d) {
+    const std::vector<double>& l = lines[static_cast<std::size_t>(d)];
+    require(l.size() >= 2, std::string("box mesh: at least one element along ") + kAxisName[d]);
+    for (std::size_t i = 1; i < l.size(); ++i)
+      require(l[i] > l[i - 1],
+              std::string("box mesh: the node planes must increase along ") + kAxisName[d]);
+    n[d] = static_cast<int>(l.size()) - 1;
   }
   require_32bit_indices(std::int64_t{n[0] + 1} * (n[1] + 1) * (n[2] + 1), "box mesh");
   MeshData m = one_part_mesh();
@@ -175,7 +203,7 @@ MeshData box_mesh(const core::BoxShape& box, std::array<int, 3> n) {
         const std::array<int, 3> ijk{i, j, k};
         core::Vec3 x;
         for (int d = 0; d < 3; ++d) {
-          x[d] = std::lerp(box.min[d], box.max[d], static_cast<double>(ijk[d]) / n[d]);
+          x[d] = lines[static_cast<std::size_t>(d)][static_cast<std::size_t>(ijk[d])];
           if (ijk[d] == 0) m.node_sets[2 * d].members.push_back(node(i, j, k));
           if (ijk[d] == n[d]) m.node_sets[2 * d + 1].members.push_back(node(i, j, k));
         }

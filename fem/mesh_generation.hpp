@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "core/scene.hpp"
 #include "afemp/tensor.hpp"
@@ -15,6 +16,14 @@ namespace afemp::fem {
 // "mesh" (callers rename part_names[0]). Node sets "xmin", "xmax", "ymin", "ymax", "zmin" and
 // "zmax" hold the nodes of each face.
 MeshData box_mesh(const core::BoxShape& box, std::array<int, 3> divisions);
+
+// The same box with its node planes at lines[d] along axis d (increasing, from the box's min to
+// its max, at least two each): a graded box, finer where the planes lie closer.
+MeshData box_mesh(const core::BoxShape& box, const std::array<std::vector<double>, 3>& lines);
+
+// The node planes of an axis from lo to hi graded as [end, elements] segments, each divided
+// evenly (the scene's graded box axes, core::MeshDensity::graded).
+std::vector<double> graded_lines(double lo, const std::vector<std::array<double, 2>>& segments);
 
 // The right-handed orthonormal frame (x, y, z = axis) in which a cylinder's cross-section is
 // laid out: the global frame turned by the smallest rotation that takes the global z onto the

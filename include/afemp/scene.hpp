@@ -234,6 +234,9 @@ struct MeshDensity {
   int sectors = 4;                        ///< cylinder, sphere: 1 quarter, 2 half, 4 full
   int segments = 0;                       ///< line: trusses along the bar
   double size = 0.0;                      ///< target element edge / truss length
+  /// box: a graded axis, as [end, elements] segments from the box's min to its max (the
+  /// last end is the max), each divided evenly; empty: the axis takes divisions or size.
+  std::array<std::vector<std::array<double, 2>>, 3> graded{};
 };
 
 /// Hourglass control of one-point hexahedra: form and coefficient.

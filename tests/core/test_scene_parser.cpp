@@ -641,6 +641,35 @@ TEST(SceneParser, MeshMistakesNameTheKeyAndWhatIsAllowed) {
   EXPECT_NE(e.find("1"), std::string::npos) << e;
 }
 
+TEST(SceneParser, GradedBoxAxesReadTheirSegmentsAndNameWhatIsWrong) {
+  // The box runs from 0 to 4 along x: segments must rise to 4 with whole element counts.
+  auto with = [](const std::string& mesh) {
+    std::string s = mesh_scene;
+    const std::string from = "mesh = { divisions = [8, 4, 2] }";
+    s.replace(s.find(from), from.size(), mesh);
+    return s;
+  };
+  const Scene s = parse_scene(with("mesh = { x = [[1, 4], [4, 3]], size = 0.5 }"), "mesh.toml");
+  const core::MeshDensity& m = s.bodies[0].mesh;
+  ASSERT_EQ(m.graded[0].size(), 2u);
+  EXPECT_EQ(m.graded[0][1][0], 4.0);
+  EXPECT_EQ(m.graded[0][1][1], 3.0);
+  EXPECT_TRUE(m.graded[1].empty());
+  EXPECT_EQ(m.size, 0.5);
+  std::string e = error_of(with("mesh = { x = [[1, 4], [3, 3]], size = 0.5 }"));
+  EXPECT_NE(e.find("scene.toml:15"), std::string::npos) << e;
+  EXPECT_NE(e.find("bodies.plate.mesh.x"), std::string::npos) << e;
+  EXPECT_NE(e.find("not at the box's max 4"), std::string::npos) << e;
+  e = error_of(with("mesh = { x = [[2, 4], [1, 3]], size = 0.5 }"));
+  EXPECT_NE(e.find("must lie beyond 2"), std::string::npos) << e;
+  e = error_of(with("mesh = { x = [[4, 2.5]], size = 0.5 }"));
+  EXPECT_NE(e.find("whole number"), std::string::npos) << e;
+  e = error_of(with("mesh = { x = [[4, 8]], divisions = [8, 4, 2] }"));
+  EXPECT_NE(e.find("not both"), std::string::npos) << e;
+  e = error_of(with("mesh = { x = [[4, 8]] }"));
+  EXPECT_NE(e.find("[end, elements]"), std::string::npos) << e;
+}
+
 // Artificial bulk viscosity: hexahedra have LS-DYNA's (0.06, 1.5) by default; particles have
 // it by default only where the material has an EOS (shocks), and take the key too; trusses
 // refuse it by name.

@@ -97,6 +97,30 @@ TEST(BoxMesh, RejectsMissingDivisionsAndEmptyBoxes) {
             std::string::npos);
 }
 
+TEST(BoxMesh, GradedAxesPlaceTheNodePlanesOfTheirSegments) {
+  // Reference: x as [[1, 4], [4, 3]] from 0 puts planes every 0.25 to 1, then every 1 to 4;
+  // y and z even. Volume 4 x 1 x 2 = 8 (1e-12), 7 x 2 x 2 elements, every element a right
+  // box (scaled Jacobian 1), the largest aspect 1 / 0.25 = 4.
+  const std::vector<double> x = graded_lines(0.0, {{1.0, 4.0}, {4.0, 3.0}});
+  const std::vector<double> expected{0, 0.25, 0.5, 0.75, 1, 2, 3, 4};
+  ASSERT_EQ(x.size(), expected.size());
+  for (std::size_t i = 0; i < x.size(); ++i) EXPECT_NEAR(x[i], expected[i], 1e-15);
+  const MeshData m = box_mesh({{0, 0, 0}, {4, 1, 2}}, {x, {0.0, 0.5, 1.0}, {0.0, 1.0, 2.0}});
+  EXPECT_NO_THROW(validate(m, "graded box"));
+  EXPECT_EQ(m.hexahedra.size(), 7u * 2u * 2u);
+  const MeshQualityReport r = mesh_quality(m);
+  EXPECT_NEAR(r.total_volume, 8.0, 1e-12 * 8.0);
+  EXPECT_NEAR(r.min_scaled_jacobian, 1.0, 1e-12);
+  EXPECT_NEAR(r.max_aspect_ratio, 4.0, 1e-12);
+  EXPECT_EQ(node_set(m, "xmax").members.size(), 3u * 3u);
+  EXPECT_NE(error_of([] {
+              box_mesh({{0, 0, 0}, {1, 1, 1}}, {std::vector<double>{0.0, 0.5, 0.5, 1.0},
+                                                std::vector<double>{0.0, 1.0},
+                                                std::vector<double>{0.0, 1.0}});
+            }).find("increase along x"),
+            std::string::npos);
+}
+
 // Exact volume of the mesh of a cylinder: the cross-section's boundary is the inscribed polygon
 // with 4 n_core chords round the full circle, tiled exactly by straight-sided quadrilaterals
 // (a quarter or half is that fraction of the polygon, its cut edges through the centre).
