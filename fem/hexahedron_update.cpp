@@ -395,7 +395,22 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
           }
           sums[kHourglass] += work;
         } else {
-          const double a_h = viscous_hourglass_factor(q_hg, density, wave, vol[l]);
+          double a_h = viscous_hourglass_factor(q_hg, density, wave, vol[l]);
+          // A mode's velocity decays at a rate a_h sum_a gamma_ka^2 / m_a. In a parallelepiped
+          // sum_a gamma_ka^2 = 8; in a sheared element it grows with the aspect ratio
+          // squared, and, explicit, the force then reverses its mode within the step while the
+          // energy booked, a_h q^2 dt, is work it does not do (in a steel plate a blunt
+          // projectile shears a plug out of, the hourglass energy jumped by 0.6 % of the total
+          // in ten steps, and the balance drifted by 1.7 %). The factor is scaled so that no
+          // mode decays faster than twice as fast as in the parallelepiped of its volume:
+          // regular meshes are untouched.
+          double modes = 0.0;
+          for (int k = 0; k < 4; ++k) {
+            double sum = 0.0;
+            for (int a = 0; a < 8; ++a) sum += gamma[k][a][l] * gamma[k][a][l];
+            modes = std::max(modes, sum);
+          }
+          if (modes > 16.0) a_h *= 16.0 / modes;
           double power = 0.0;
           for (int k = 0; k < 4; ++k)
             for (int i = 0; i < 3; ++i) {
