@@ -251,7 +251,9 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
             b.hourglass.coefficient, Range::closed(0.0, hi));
   }
   const bool generated = !std::holds_alternative<MeshFileShape>(b.shape);
-  if (generated && !(b.mesh.size > 0.0) && b.mesh.divisions[0] == 0 && b.mesh.graded[0].empty() &&
+  const bool all_graded =
+      !b.mesh.graded[0].empty() && !b.mesh.graded[1].empty() && !b.mesh.graded[2].empty();
+  if (generated && !(b.mesh.size > 0.0) && b.mesh.divisions[0] == 0 && !all_graded &&
       (b.mesh.core == 0 || b.mesh.ring == 0 || b.mesh.axial == 0) && b.mesh.segments == 0)
     c.fail(b.where, key + ".mesh", "a generated mesh needs its density: a size or divisions");
   if (b.erosion) {

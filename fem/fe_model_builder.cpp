@@ -129,13 +129,16 @@ MeshData body_mesh(const BodySpec& b) {
         const auto u = static_cast<std::size_t>(a);
         if (!d.graded[u].empty()) {
           lines[u] = graded_lines(box->min[a], d.graded[u]);
+          const double extent = box->max[a] - box->min[a];
+          if (!(std::abs(lines[u].back() - box->max[a]) <= 1e-9 * extent))
+            throw std::invalid_argument("a graded axis must end at the box's max");
           continue;
         }
         const int m = divisions_for(box->max[a] - box->min[a], d.size);
         for (int i = 0; i <= m; ++i)
           lines[u].push_back(std::lerp(box->min[a], box->max[a], static_cast<double>(i) / m));
       }
-      return box_mesh(*box, lines);
+      return box_mesh(lines);
     }
     if (const auto* c = std::get_if<core::CylinderShape>(&b.shape)) {
       int core_n = d.core, ring = d.ring, axial = d.axial;

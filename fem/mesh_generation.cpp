@@ -168,7 +168,7 @@ MeshData box_mesh(const core::BoxShape& box, std::array<int, 3> n) {
       lines[static_cast<std::size_t>(d)].push_back(
           std::lerp(box.min[d], box.max[d], static_cast<double>(i) / n[d]));
   }
-  return box_mesh(box, lines);
+  return box_mesh(lines);
 }
 
 std::vector<double> graded_lines(double lo, const std::vector<std::array<double, 2>>& segments) {
@@ -182,7 +182,7 @@ std::vector<double> graded_lines(double lo, const std::vector<std::array<double,
   return lines;
 }
 
-MeshData box_mesh(const core::BoxShape& box, const std::array<std::vector<double>, 3>& lines) {
+MeshData box_mesh(const std::array<std::vector<double>, 3>& lines) {
   std::array<int, 3> n{};
   for (int d = 0; d < 3; ++d) {
     const std::vector<double>& l = lines[static_cast<std::size_t>(d)];

@@ -17,9 +17,9 @@ namespace afemp::fem {
 // "zmax" hold the nodes of each face.
 MeshData box_mesh(const core::BoxShape& box, std::array<int, 3> divisions);
 
-// The same box with its node planes at lines[d] along axis d (increasing, from the box's min to
-// its max, at least two each): a graded box, finer where the planes lie closer.
-MeshData box_mesh(const core::BoxShape& box, const std::array<std::vector<double>, 3>& lines);
+// A box with its node planes at lines[d] along axis d (increasing, at least two each; the box
+// runs from the first to the last): a graded box, finer where the planes lie closer.
+MeshData box_mesh(const std::array<std::vector<double>, 3>& lines);
 
 // The node planes of an axis from lo to hi graded as [end, elements] segments, each divided
 // evenly (the scene's graded box axes, core::MeshDensity::graded).

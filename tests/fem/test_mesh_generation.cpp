@@ -105,7 +105,7 @@ TEST(BoxMesh, GradedAxesPlaceTheNodePlanesOfTheirSegments) {
   const std::vector<double> expected{0, 0.25, 0.5, 0.75, 1, 2, 3, 4};
   ASSERT_EQ(x.size(), expected.size());
   for (std::size_t i = 0; i < x.size(); ++i) EXPECT_NEAR(x[i], expected[i], 1e-15);
-  const MeshData m = box_mesh({{0, 0, 0}, {4, 1, 2}}, {x, {0.0, 0.5, 1.0}, {0.0, 1.0, 2.0}});
+  const MeshData m = box_mesh({x, {0.0, 0.5, 1.0}, {0.0, 1.0, 2.0}});
   EXPECT_NO_THROW(validate(m, "graded box"));
   EXPECT_EQ(m.hexahedra.size(), 7u * 2u * 2u);
   const MeshQualityReport r = mesh_quality(m);
@@ -114,9 +114,8 @@ TEST(BoxMesh, GradedAxesPlaceTheNodePlanesOfTheirSegments) {
   EXPECT_NEAR(r.max_aspect_ratio, 4.0, 1e-12);
   EXPECT_EQ(node_set(m, "xmax").members.size(), 3u * 3u);
   EXPECT_NE(error_of([] {
-              box_mesh({{0, 0, 0}, {1, 1, 1}}, {std::vector<double>{0.0, 0.5, 0.5, 1.0},
-                                                std::vector<double>{0.0, 1.0},
-                                                std::vector<double>{0.0, 1.0}});
+              box_mesh({std::vector<double>{0.0, 0.5, 0.5, 1.0}, std::vector<double>{0.0, 1.0},
+                        std::vector<double>{0.0, 1.0}});
             }).find("increase along x"),
             std::string::npos);
 }
