@@ -123,20 +123,17 @@ MeshData body_mesh(const BodySpec& b) {
           for (int a = 0; a < 3; ++a) n[static_cast<std::size_t>(a)] = divisions_for(box->max[a] - box->min[a], d.size);
         return box_mesh(*box, n);
       }
-      // A graded box: its graded axes from their segments, the others evenly at the size.
+      // A graded box: its graded axes from their segments, the others one even segment at the
+      // size.
       std::array<std::vector<double>, 3> lines;
       for (int a = 0; a < 3; ++a) {
         const auto u = static_cast<std::size_t>(a);
-        if (!d.graded[u].empty()) {
-          lines[u] = graded_lines(box->min[a], d.graded[u]);
-          const double extent = box->max[a] - box->min[a];
-          if (!(std::abs(lines[u].back() - box->max[a]) <= 1e-9 * extent))
-            throw std::invalid_argument("a graded axis must end at the box's max");
-          continue;
-        }
-        const int m = divisions_for(box->max[a] - box->min[a], d.size);
-        for (int i = 0; i <= m; ++i)
-          lines[u].push_back(std::lerp(box->min[a], box->max[a], static_cast<double>(i) / m));
+        const double extent = box->max[a] - box->min[a];
+        lines[u] = graded_lines(box->min[a], d.graded[u].empty()
+                                                 ? std::vector<std::array<double, 2>>{{box->max[a], double(divisions_for(extent, d.size))}}
+                                                 : d.graded[u]);
+        if (!(std::abs(lines[u].back() - box->max[a]) <= 1e-9 * extent))
+          throw std::invalid_argument("a graded axis must end at the box's max");
       }
       return box_mesh(lines);
     }

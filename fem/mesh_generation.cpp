@@ -164,9 +164,7 @@ MeshData box_mesh(const core::BoxShape& box, std::array<int, 3> n) {
                            std::to_string(n[d]) + " along " + kAxisName[d]);
     require(box.max[d] > box.min[d],
             std::string("box mesh: the box's max must exceed its min along ") + kAxisName[d]);
-    for (int i = 0; i <= n[d]; ++i)
-      lines[static_cast<std::size_t>(d)].push_back(
-          std::lerp(box.min[d], box.max[d], static_cast<double>(i) / n[d]));
+    lines[static_cast<std::size_t>(d)] = graded_lines(box.min[d], {{box.max[d], double(n[d])}});
   }
   return box_mesh(lines);
 }

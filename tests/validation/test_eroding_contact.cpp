@@ -23,6 +23,26 @@
 namespace afemp::fem {
 namespace {
 
+// What a run to `end` kept: its erosion events and the worst relative energy-balance error
+// (eroded and sliding energy booked); after_step(solver) runs after every step.
+struct ErodingRun {
+  std::size_t eroded = 0;
+  double worst = 0.0;
+};
+template <class AfterStep>
+ErodingRun run_eroding(FeSolver& solver, double end, AfterStep&& after_step) {
+  const core::Energies e0 = solver.energies();
+  ErodingRun r;
+  while (solver.time() < end) {
+    solver.step(std::min(solver.stable_time_step(), end - solver.time()));
+    r.eroded += solver.take_erosion_events().size();
+    after_step(solver);
+    const core::Energies e = solver.energies();
+    r.worst = std::max(r.worst, std::abs(e.total() - e0.total() - e.external_work) / e0.total());
+  }
+  return r;
+}
+
 // Reference: the plate resists the projectile over its whole thickness, which needs the
 // contact to find the faces each eroded layer exposes; and the energy balance holds with the
 // eroded energy and the contact's sliding energy booked. Pass: elements erode; the contact
@@ -35,18 +55,13 @@ TEST(ErodingContact, AProjectileMeetsTheMaterialBehindEachErodedLayer) {
   FeSolver solver(scene);
   const core::Energies e0 = solver.energies();
   const FeNodes& nodes = solver.nodes();
-  double worst = 0.0, deep_push = 0.0, nose = 0.0;
-  std::size_t eroded = 0;
-  while (solver.time() < 0.03) {
-    solver.step(std::min(solver.stable_time_step(), 0.03 - solver.time()));
-    eroded += solver.take_erosion_events().size();
+  double deep_push = 0.0, nose = 0.0;
+  const auto [eroded, worst] = run_eroding(solver, 0.03, [&](const FeSolver& s) {
     nose = 1e9;
     for (std::size_t i = 0; i < nodes.size(); ++i)
       if (nodes.body[i] == 0) nose = std::min(nose, nodes.position[i].z);
-    if (nose < -2.0) deep_push = std::max(deep_push, solver.mesh_contacts()[0].normal_force.z);
-    const core::Energies e = solver.energies();
-    worst = std::max(worst, std::abs(e.total() - e0.total() - e.external_work) / e0.total());
-  }
+    if (nose < -2.0) deep_push = std::max(deep_push, s.mesh_contacts()[0].normal_force.z);
+  });
   const core::Energies e = solver.energies();
   const double v = e.bodies[0].momentum.z / e.bodies[0].mass;
   std::printf(
@@ -61,12 +76,6 @@ TEST(ErodingContact, AProjectileMeetsTheMaterialBehindEachErodedLayer) {
   EXPECT_LT(v, 0.0);
   EXPECT_LT(worst, 0.03);
 }
-
-}  // namespace
-}  // namespace afemp::fem
-
-namespace afemp::fem {
-namespace {
 
 // Plugging (label `validation`): examples/fe_contact/plugging.toml, the blunt projectile of
 // Borvik, Langseth, Hopperstad & Malo (2002, Part I: 20 mm diameter, 80 mm long, 197 g,
@@ -88,14 +97,7 @@ TEST(ErodingContact, ABluntProjectilePlugsAWeldoxPlateAtTheRechtIpsonResidualVel
   FeSolver solver(scene);
   const core::Energies e0 = solver.energies();
   const FeNodes& nodes = solver.nodes();
-  double worst = 0.0;
-  std::size_t eroded = 0;
-  while (solver.time() < end) {
-    solver.step(std::min(solver.stable_time_step(), end - solver.time()));
-    eroded += solver.take_erosion_events().size();
-    const core::Energies e = solver.energies();
-    worst = std::max(worst, std::abs(e.total() - e0.total() - e.external_work) / e0.total());
-  }
+  const auto [eroded, worst] = run_eroding(solver, end, [](const FeSolver&) {});
   const core::Energies e = solver.energies();
   // The quarter's masses stand in the same ratio as the whole's.
   const double m_p = e0.bodies[0].mass, thickness = 12.0, radius = 10.0;
