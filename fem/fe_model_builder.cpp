@@ -464,6 +464,8 @@ void FeSolver::build(const core::Scene& scene) {
     for (int a = 0; a < 3; ++a)
       if (nodes_.imposed[n] & (1u << a)) nodes_.velocity[n][a] = nodes_.imposed_velocity[n][a];
 
+  // The face links the surface searches sweep (erosion and conversion redo them often).
+  link_faces(hexes_);
   // Absorbing boundaries: the nodes each selects (absorbing_boundary.cpp takes the faces).
   const SurfaceFaces surface =
       scene.absorbing.empty() ? SurfaceFaces{}

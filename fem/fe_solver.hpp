@@ -101,6 +101,12 @@ struct HexElements : ElementStore {
   // The stiffness form's generalised hourglass forces (global axes), or the assumed strain
   // form's generalised stresses (the element's corotational frame).
   std::vector<std::array<Vec3, 4>> hourglass_force;
+  // The mesh's face links (fem/surface_faces.cpp, link_faces; set once, as the node lists never
+  // change): per element and face, the element across it (-1: none), or -2 - g when three or
+  // more elements share the face (an invalid mesh), g a group of shared_faces (CSR, entries
+  // 6 e + face). The boundary faces then follow from the live flags in one sweep.
+  std::vector<std::array<std::int32_t, 6>> across;
+  std::vector<std::int32_t> shared_offsets, shared_faces;
   std::size_t bytes() const;
 };
 

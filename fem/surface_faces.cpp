@@ -1,5 +1,6 @@
 // Boundary faces and node normals of hexahedral meshes (surface_faces.hpp). A face is on the
-// boundary when exactly one live hexahedron has it (faces compared by their sorted node ids);
+// boundary when exactly one live hexahedron has it: the faces are compared by their sorted
+// node ids once per mesh (link_faces), and each later search is one sweep of the live flags;
 // its area vector is half the cross product of its diagonals, turned to point away from its
 // hexahedron's centroid, and each of its nodes adds it.
 #include "fem/surface_faces.hpp"
@@ -17,36 +18,99 @@ constexpr int hex_faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
 
 }  // namespace
 
-SurfaceFaces boundary_faces(const HexElements& hexes, const std::vector<char>& selected) {
+namespace {
+
+struct Links {
+  std::vector<std::array<std::int32_t, 6>> across;
+  std::vector<std::int32_t> shared_offsets{0}, shared_faces;
+};
+
+// Faces compared by their sorted node ids: one sort of all faces, once per mesh.
+Links find_links(const HexElements& hexes) {
   using Key = std::array<std::int32_t, 4>;
-  std::vector<std::tuple<Key, Key, std::int32_t>> all;  // sorted ids, face, element
-  for (const fem::ElementBatch& b : hexes.batches) {
-    if (!selected[static_cast<std::size_t>(b.body)]) continue;
-    for (std::size_t e = b.begin; e < b.end; ++e) {
-      if (!hexes.alive[e]) continue;
-      for (const auto& f : hex_faces) {
-        Key face{hexes.nodes[e][static_cast<std::size_t>(f[0])],
-                 hexes.nodes[e][static_cast<std::size_t>(f[1])],
-                 hexes.nodes[e][static_cast<std::size_t>(f[2])],
-                 hexes.nodes[e][static_cast<std::size_t>(f[3])]};
-        Key key = face;
-        std::sort(key.begin(), key.end());
-        all.emplace_back(key, face, static_cast<std::int32_t>(e));
-      }
+  std::vector<std::pair<Key, std::int32_t>> all;  // sorted ids, 6 e + face
+  all.reserve(6 * hexes.size());
+  for (std::size_t e = 0; e < hexes.size(); ++e)
+    for (int f = 0; f < 6; ++f) {
+      Key key;
+      for (int a = 0; a < 4; ++a)
+        key[static_cast<std::size_t>(a)] =
+            hexes.nodes[e][static_cast<std::size_t>(hex_faces[f][a])];
+      std::sort(key.begin(), key.end());
+      all.emplace_back(key, static_cast<std::int32_t>(6 * e) + f);
     }
-  }
   std::sort(all.begin(), all.end());
-  SurfaceFaces out;
+  Links out;
+  out.across.assign(hexes.size(), {-1, -1, -1, -1, -1, -1});
+  auto at = [&](std::int32_t ef) -> std::int32_t& {
+    return out.across[static_cast<std::size_t>(ef / 6)][static_cast<std::size_t>(ef % 6)];
+  };
   for (std::size_t i = 0; i < all.size();) {
     std::size_t j = i + 1;
-    while (j < all.size() && std::get<0>(all[j]) == std::get<0>(all[i])) ++j;
-    if (j - i == 1) {
-      out.nodes.push_back(std::get<1>(all[i]));
-      out.element.push_back(std::get<2>(all[i]));
+    while (j < all.size() && all[j].first == all[i].first) ++j;
+    if (j - i == 2) {
+      at(all[i].second) = all[i + 1].second / 6;
+      at(all[i + 1].second) = all[i].second / 6;
+    } else if (j - i > 2) {
+      const auto g = static_cast<std::int32_t>(out.shared_offsets.size() - 1);
+      for (std::size_t k = i; k < j; ++k) {
+        at(all[k].second) = -2 - g;
+        out.shared_faces.push_back(all[k].second);
+      }
+      out.shared_offsets.push_back(static_cast<std::int32_t>(out.shared_faces.size()));
     }
     i = j;
   }
   return out;
+}
+
+SurfaceFaces sweep(const HexElements& hexes, const std::vector<char>& selected,
+                   const std::vector<std::array<std::int32_t, 6>>& across,
+                   const std::vector<std::int32_t>& shared_offsets,
+                   const std::vector<std::int32_t>& shared_faces) {
+  // The elements that count: live ones of the selected bodies.
+  std::vector<char> counts(hexes.size(), 0);
+  for (const fem::ElementBatch& b : hexes.batches)
+    if (selected[static_cast<std::size_t>(b.body)])
+      for (std::size_t e = b.begin; e < b.end; ++e) counts[e] = hexes.alive[e] ? 1 : 0;
+  SurfaceFaces out;
+  for (std::size_t e = 0; e < hexes.size(); ++e) {
+    if (!counts[e]) continue;
+    for (int f = 0; f < 6; ++f) {
+      const std::int32_t other = across[e][static_cast<std::size_t>(f)];
+      bool boundary = other == -1 || (other >= 0 && !counts[static_cast<std::size_t>(other)]);
+      if (other <= -2) {  // exactly one counting element of the group has it
+        const auto g = static_cast<std::size_t>(-2 - other);
+        int n = 0;
+        for (std::int32_t k = shared_offsets[g]; k < shared_offsets[g + 1]; ++k)
+          n += counts[static_cast<std::size_t>(shared_faces[static_cast<std::size_t>(k)] / 6)];
+        boundary = n == 1;
+      }
+      if (!boundary) continue;
+      out.nodes.push_back({hexes.nodes[e][static_cast<std::size_t>(hex_faces[f][0])],
+                           hexes.nodes[e][static_cast<std::size_t>(hex_faces[f][1])],
+                           hexes.nodes[e][static_cast<std::size_t>(hex_faces[f][2])],
+                           hexes.nodes[e][static_cast<std::size_t>(hex_faces[f][3])]});
+      out.element.push_back(static_cast<std::int32_t>(e));
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+void link_faces(HexElements& hexes) {
+  Links l = find_links(hexes);
+  hexes.across = std::move(l.across);
+  hexes.shared_offsets = std::move(l.shared_offsets);
+  hexes.shared_faces = std::move(l.shared_faces);
+}
+
+SurfaceFaces boundary_faces(const HexElements& hexes, const std::vector<char>& selected) {
+  if (hexes.across.size() == hexes.size() && !hexes.shared_offsets.empty())
+    return sweep(hexes, selected, hexes.across, hexes.shared_offsets, hexes.shared_faces);
+  const Links l = find_links(hexes);  // elements assembled by hand, not linked
+  return sweep(hexes, selected, l.across, l.shared_offsets, l.shared_faces);
 }
 
 core::Vec3 face_area_vector(const SurfaceFaces& faces, std::size_t f, const HexElements& hexes,

@@ -17,7 +17,13 @@ struct SurfaceFaces {
   std::vector<std::int32_t> element;               // its hexahedron
 };
 
-// Boundary faces of the live hexahedra of the bodies with selected[body] != 0.
+// Sets hexes.across and its groups from the node lists (once, when the mesh is built).
+void link_faces(HexElements& hexes);
+
+// Boundary faces of the live hexahedra of the bodies with selected[body] != 0, in element
+// order (each element's faces in the order of core::CellKind::hexahedron's). Linear in the
+// elements once link_faces has run (elements that have not been linked are compared by
+// sorting, as link_faces does).
 SurfaceFaces boundary_faces(const HexElements& hexes, const std::vector<char>& selected);
 
 // Face f's outward area vector at positions x: half the cross product of its diagonals, turned
