@@ -55,10 +55,11 @@ DeviatoricResult JohnsonCook::update(SymTensor& s, const SymTensor& de_dev,
   double slope = 0.0;
   auto residual = [&](double dp) {
     const double eps = eps0 + dp;
-    const double h = A + B * std::pow(eps, n);
+    const double power = std::pow(eps, n);  // one pow a residual: eps^(n-1) = eps^n / eps
+    const double h = A + B * power;
     double dh;
     if (eps > 0.0) {
-      dh = B * n * std::pow(eps, n - 1.0);
+      dh = B * n * power / eps;
     } else {
       // eps_p = 0 with n < 1: d(eps^n)/d eps is infinite; the Newton step then stays on
       // the bracket end and the loop bisects instead.
