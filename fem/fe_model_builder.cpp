@@ -290,6 +290,7 @@ void FeSolver::build(const core::Scene& scene) {
         hexes_.nodes.push_back(nodes);
         hexes_.bulk_q.push_back(0.0);
         hexes_.hourglass_force.push_back({});
+        hexes_.hourglass_power.push_back(0.0);
         add_element(el, mat.density * volume, volume);
         if (full) {
           const FullHex f = full_hex(x);

@@ -98,9 +98,13 @@ struct HexElements : ElementStore {
   static constexpr int corners = 8;
   std::vector<std::array<std::int32_t, 8>> nodes;
   std::vector<double> bulk_q;  // bulk-viscous pressure acting this step
-  // The stiffness form's generalised hourglass forces (global axes), or the assumed strain
-  // form's generalised stresses (the element's corotational frame).
+  // The stiffness form's generalised hourglass forces (global axes), the viscous form's
+  // a_h q of the last update (global axes), or the assumed strain form's generalised
+  // stresses (the element's corotational frame).
   std::vector<std::array<Vec3, 4>> hourglass_force;
+  // The viscous form: the power of the forces above at the velocities they were found from
+  // (their work is booked once the next step has moved the nodes, hexahedron_update.cpp).
+  std::vector<double> hourglass_power;
   // The mesh's face links (fem/surface_faces.cpp, link_faces; set once, as the node lists never
   // change): per element and face, the element across it (-1: none), or -2 - g when three or
   // more elements share the face (an invalid mesh), g a group of shared_faces (CSR, entries

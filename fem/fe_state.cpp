@@ -104,6 +104,7 @@ void FeSolver::state(StateArchive& a) {
     visit_store(a, hexes_);
     a.item("bulk_q", hexes_.bulk_q);
     a.item("hourglass_force", hexes_.hourglass_force);
+    a.item("hourglass_power", hexes_.hourglass_power);
   }
   {
     const StateArchive::Group trusses(a, "trusses");

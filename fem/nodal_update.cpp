@@ -233,7 +233,8 @@ std::size_t ElementStore::bytes() const {
 
 std::size_t HexElements::bytes() const {
   return ElementStore::bytes() + capacity_bytes(nodes) + capacity_bytes(bulk_q) +
-         capacity_bytes(hourglass_force) + capacity_bytes(across) +
+         capacity_bytes(hourglass_force) + capacity_bytes(hourglass_power) +
+         capacity_bytes(across) +
          capacity_bytes(shared_offsets) + capacity_bytes(shared_faces);
 }
 

@@ -158,11 +158,17 @@ TEST(MeshContact, ABlockSlidingOnARigidPlateStopsAtTheCoulombDistance) {
 
 // Reference: a free rigid body keeps its momentum; hitting a deformable block, the two share
 // the momentum exactly (the impulses are equal and opposite). A rigid steel cube (4 x 4 x 4 mm)
-// at 10 m/s strikes a resting steel block (8 x 8 x 4 mm) of four times its mass. Pass: total
-// momentum within 1e-12 of the start throughout; the cube's nodes stay rigid (the distance between
-// two opposite corners unchanged to 1e-12); the balance with the sliding energy within 2 %.
-TEST(MeshContact, AFreeRigidBodyHandsItsMomentumToADeformableBlock) {
-  std::string s = "[run]\nend_time = 0.01\n";
+// at 10 m/s strikes a resting steel block (8 x 8 x 4 mm) of four times its mass, at the default
+// step factor 0.9 and at 0.3. Pass: total momentum within 1e-12 of the start throughout; the
+// cube's nodes stay rigid (the distance between two opposite corners unchanged to 1e-12); the
+// balance with the sliding energy within 3 % at 0.9 and 1 % at 0.3. The block, 4 elements
+// across, hourglasses: its hourglass energy is 31 % of the start's, and the balance's error is
+// first order in the step (measured -2.4 %, -0.38 %, -0.04 % at factors 0.9, 0.3, 0.1).
+class RigidCubeOnABlock : public ::testing::TestWithParam<double> {};
+
+TEST_P(RigidCubeOnABlock, AFreeRigidBodyHandsItsMomentumToADeformableBlock) {
+  std::string s = "[run]\nend_time = 0.01\nelement_time_step_factor = " +
+                  std::to_string(GetParam()) + "\n";
   s += kSteel;
   s += "[[bodies]]\nname = \"cube\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
        "shape = { box = { min = [0, 0, 0.05], max = [4, 4, 4.05] } }\nmesh = { divisions = [2, 2, "
@@ -194,17 +200,19 @@ TEST(MeshContact, AFreeRigidBodyHandsItsMomentumToADeformableBlock) {
   const core::Energies e = solver.energies();
   const double balance = (e.total() - e0.total() - e.external_work) / e0.total();
   std::printf(
-      "rigid cube on a block: momentum %.1e, cube's shape %.1e, cube now %.4g m/s, "
-      "block %.4g m/s, sliding %.4g of %.4g, balance %.1e\n",
-      worst, worst_shape, e.bodies[0].momentum.z / e.bodies[0].mass,
-      e.bodies[1].momentum.z / e.bodies[1].mass, e.sliding, e0.kinetic, balance);
+      "rigid cube on a block, step factor %.1f: momentum %.1e, cube's shape %.1e, cube now "
+      "%.4g m/s, block %.4g m/s, sliding %.4g of %.4g, hourglass %.4g, balance %.1e\n",
+      GetParam(), worst, worst_shape, e.bodies[0].momentum.z / e.bodies[0].mass,
+      e.bodies[1].momentum.z / e.bodies[1].mass, e.sliding, e0.kinetic, e.hourglass, balance);
   EXPECT_LT(worst, 1e-12);
   EXPECT_LT(worst_shape, 1e-12);
   EXPECT_LT(e.bodies[0].momentum.z / e.bodies[0].mass, -0.0);  // still moving down, slower
   EXPECT_GT(e.bodies[0].momentum.z / e.bodies[0].mass, -10.0 * 0.9);
   EXPECT_LT(e.bodies[1].momentum.z, 0.0);  // the block was pushed down
-  EXPECT_LT(std::abs(balance), 0.02);
+  EXPECT_LT(std::abs(balance), GetParam() > 0.5 ? 0.03 : 0.01);
 }
+
+INSTANTIATE_TEST_SUITE_P(MeshContact, RigidCubeOnABlock, ::testing::Values(0.9, 0.3));
 
 struct Patch {
   double force = 0.0, weight = 0.0;  // mean contact force, the upper block's weight
