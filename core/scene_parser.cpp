@@ -324,13 +324,13 @@ Vec3 TableReader::vec3(std::string_view key, const Vec3& fallback) {
 }
 
 std::size_t TableReader::choice(std::string_view key, std::initializer_list<std::string_view> allowed,
-                                std::optional<std::size_t> fallback, bool ignore_case) {
+                                const std::optional<std::size_t>& fallback, bool ignore_case) {
   return choice(key, std::span<const std::string_view>(allowed.begin(), allowed.size()), fallback,
                 ignore_case);
 }
 
 std::size_t TableReader::choice(std::string_view key, std::span<const std::string_view> allowed,
-                                std::optional<std::size_t> fallback, bool ignore_case) {
+                                const std::optional<std::size_t>& fallback, bool ignore_case) {
   std::vector<std::string> names(allowed.begin(), allowed.end());
   const toml::node* n = lookup(key);
   if (!n) {
@@ -716,7 +716,7 @@ FailureModel read_failure(TableReader& r) {
       "model", {"johnson-cook", "plastic-strain", "spall", "principal-strain"}, std::nullopt);
   if (model == 0) {
     r.known({"D1", "D2", "D3", "D4", "D5", "reference_strain_rate", "room_temperature",
-             "melt_temperature"});
+             "melt_temperature", "damage_threshold", "critical_damage"});
     r.check_unknown();
     JohnsonCookFailure f;
     f.D1 = r.required_number("D1", Range::any());
@@ -727,6 +727,9 @@ FailureModel read_failure(TableReader& r) {
     f.reference_strain_rate = r.number("reference_strain_rate", 1.0, Range::positive());
     f.room_temperature = r.number("room_temperature", 293.0, Range::non_negative());
     f.melt_temperature = r.number("melt_temperature", 0.0, Range::non_negative());
+    f.damage_threshold = r.number("damage_threshold", 0.0, Range::non_negative());
+    // D_C = 1 would soften the deviator to zero, from which the effective one is lost.
+    f.critical_damage = r.number("critical_damage", 0.0, {0.0, 1.0, false, true});
     return f;
   }
   if (model == 1 || model == 3) {

@@ -86,9 +86,9 @@ class TableReader {
   std::array<int, 3> integers3(std::string_view key, int lo, int hi);
   // One of `allowed` (the canonical spellings); returns the index into `allowed`.
   std::size_t choice(std::string_view key, std::initializer_list<std::string_view> allowed,
-                     std::optional<std::size_t> fallback, bool ignore_case = false);
+                     const std::optional<std::size_t>& fallback, bool ignore_case = false);
   std::size_t choice(std::string_view key, std::span<const std::string_view> allowed,
-                     std::optional<std::size_t> fallback, bool ignore_case = false);
+                     const std::optional<std::size_t>& fallback, bool ignore_case = false);
   // A sub-table (inline or not); nullptr when absent.
   const toml::table* optional_table(std::string_view key);
   const toml::table& required_table(std::string_view key);

@@ -146,7 +146,7 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
   [[maybe_unused]] const std::size_t hc = el.history_count;
   auto load_point = [&](auto& chunk, std::size_t j, std::size_t p, PointStart& b,
                         core::IncrementStart& in) {
-    in = core::start_increment(b.st, b.d_eps, dt);
+    in = core::start_increment<Fails>(mat, b.st, b.d_eps, dt);
     chunk.load(j, b.st, in, el.history.data() + p * hc);
   };
   auto finish_point = [&](auto& chunk, std::size_t j, std::size_t p, PointStart& b,

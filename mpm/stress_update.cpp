@@ -283,7 +283,7 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
         const std::size_t n = std::min(N, batch.begin + e - i0);
         for (std::size_t j = 0; j < n; ++j) {
           prepare(i0 + j, x[j], v_bar[j], v_p[j], d_eps[j], st[j]);
-          start[j] = core::start_increment(st[j], d_eps[j], dt);
+          start[j] = core::start_increment<Fails>(mat, st[j], d_eps[j], dt);
           chunk.load(j, st[j], start[j], p.history.data() + (i0 + j) * hc);
         }
         chunk.run(n, dt);

@@ -12,8 +12,9 @@
 
 namespace afemp::core {
 
-inline IncrementStart start_increment(const PointState& point, const SymTensor& d_eps,
-                                      double dt) {
+template <bool Fails>
+inline IncrementStart start_increment([[maybe_unused]] const Material& material,
+                                      const PointState& point, const SymTensor& d_eps, double dt) {
   IncrementStart in;
   in.dt = dt;
   in.p_old = pressure(point.stress);
@@ -24,6 +25,11 @@ inline IncrementStart start_increment(const PointState& point, const SymTensor& 
   // V_new = V_old (1 + tr d eps), so sigma : d eps V_old / m = sigma : d eps / rho_old, which
   // makes the volumetric work exact over a compress-release cycle (second order overall).
   in.inv_rho_work = 1.0 / (point.density * (1.0 + in.d_vol));  // one division per point
+  if constexpr (Fails) {
+    // Coupled damage (failure.hpp): the stress holds (1 - D_C D) times the effective deviator.
+    in.softening = damage_softening(material.failure, point.damage);
+    if (in.softening != 1.0) in.s_old = in.s_old * (1.0 / in.softening);
+  }
   return in;
 }
 
@@ -44,10 +50,16 @@ inline PointUpdate finish_increment(const Material& material, const Eos& eos, bo
   const SymTensor& s_new = failed ? failure_detail::zero_deviator : s_deviator;
   const DeviatoricResult& r = failed ? failure_detail::no_flow : r_model;
   point.plastic_strain += r.plastic_strain_increment;
-  const double plastic_work = r.flow_stress * r.plastic_strain_increment * in.inv_rho_work;
+  double plastic_work = r.flow_stress * r.plastic_strain_increment * in.inv_rho_work;
 
   // Trapezoidal deviatoric work: elastic (recoverable) and plastic parts together.
-  const double deviatoric_work = 0.5 * double_dot(in.s_old + s_new, in.de_dev) * in.inv_rho_work;
+  double deviatoric_work = 0.5 * double_dot(in.s_old + s_new, in.de_dev) * in.inv_rho_work;
+  if constexpr (Fails) {
+    // Coupled damage: the stress is the effective one softened by the damage at the start;
+    // the damage this increment adds drops it at the end, at fixed strain (no work).
+    plastic_work *= in.softening;
+    deviatoric_work *= in.softening;
+  }
   const double d_vol = in.d_vol;
   double p_new;
   if constexpr (std::is_same_v<Eos, NoEos>) {
@@ -96,10 +108,15 @@ inline PointUpdate finish_increment(const Material& material, const Eos& eos, bo
                          material.thermal.specific_heat;
   }
   if constexpr (Fails) {
-    if (!failed)
+    if (!failed) {
+      // The triaxiality is the stress's: -p over the softened deviator's von Mises stress
+      // (in uniaxial stress the pressure softens with the deviator, the EOS's with the strain).
       point.damage = failure_damage(material.failure, point.damage, point.plastic_strain,
-                                    r.plastic_strain_increment, in.dt, p_new, s_new,
-                                    point.temperature);
+                                    r.plastic_strain_increment, in.dt, p_new,
+                                    in.softening * s_new, point.temperature);
+      const double softening = damage_softening(material.failure, point.damage);
+      if (softening != 1.0) point.stress = softening * s_new - p_new * SymTensor::identity();
+    }
   }
   return {plastic_work};
 }
@@ -114,7 +131,7 @@ inline PointUpdate constitutive_update(const Material& material, const Strength&
   if constexpr (std::is_same_v<Strength, HolmquistJohnsonCook>) {
     return holmquist_johnson_cook_update(material, strength, eos, point, d_eps, dt);
   } else {
-    const IncrementStart in = start_increment(point, d_eps, dt);
+    const IncrementStart in = start_increment<Fails>(material, point, d_eps, dt);
     SymTensor s_new = in.s_old;
     if constexpr (Fails) {
       if (has_failed(point))  // no strength: finish_increment zeroes the deviator

@@ -3,7 +3,8 @@
 // from the state at its end. Johnson & Cook (1985) accumulates over the plastic strain
 // increment; the plastic-strain model is D = eps_p / strain; spall fails at once when the
 // tension (-p or the largest principal stress) passes the strength, or accumulates Tuler &
-// Butcher's (1968) integral of its excess.
+// Butcher's (1968) integral of its excess. Johnson-Cook damage may soften the deviator
+// (damage_softening; Borvik et al. 2001).
 #pragma once
 
 #include <algorithm>
@@ -15,7 +16,8 @@
 
 namespace afemp::core {
 
-// d_eps_p: the increment's plastic strain over dt; p and s: pressure and deviator at its end.
+// plastic_strain: the point's at the increment's end, d_eps_p: the increment's, over dt; p and
+// s: pressure and deviator at its end (the stress's, softened where the damage softens it).
 inline double failure_damage(const FailureModel& model, double damage, double plastic_strain,
                              double d_eps_p, double dt, double p, const SymTensor& s,
                              double temperature) {
@@ -32,8 +34,11 @@ inline double failure_damage(const FailureModel& model, double damage, double pl
           1.0);
       strain *= 1.0 + jc->D5 * t_star;
     }
+    // Borvik et al. (2001): damage grows over the part of the increment above the threshold.
+    const double grows = std::min(d_eps_p, plastic_strain - jc->damage_threshold);
+    if (!(grows > 0.0)) return damage;
     // D1 < 0 (Armco iron) gives eps_f <= 0 at high triaxiality: failure at once.
-    return std::min(damage + d_eps_p / std::max(strain, 1e-9), 1.0);
+    return std::min(damage + grows / std::max(strain - jc->damage_threshold, 1e-9), 1.0);
   }
   if (const auto* e = std::get_if<PlasticStrainFailure>(&model))
     return std::min(plastic_strain / e->strain, 1.0);
@@ -48,6 +53,14 @@ inline double failure_damage(const FailureModel& model, double damage, double pl
   }
   // PrincipalStrainFailure: the solver holds the strain tensor (principal_strain_damage).
   return damage;
+}
+
+// The factor on the stress deviator of a point with damage D: 1 - D_C D for Johnson-Cook
+// damage coupled to the strength (Borvik et al. 2001: critical_damage D_C > 0), 1 otherwise.
+inline double damage_softening(const FailureModel& model, double damage) {
+  if (!(damage > 0.0)) return 1.0;
+  const auto* jc = std::get_if<JohnsonCookFailure>(&model);
+  return jc ? 1.0 - jc->critical_damage * std::min(damage, 1.0) : 1.0;
 }
 
 // The damage of the principal-strain model from the point's strain tensor (the sum of its

@@ -205,6 +205,10 @@ void Material::validate() const {
     // epsdot* = exp(-1/D4), e^81 there; a point that got there would fail at once.
     require(jc->D3 <= 0.0, *this, "failure D3", jc->D3, "<= 0");
     require(jc->D5 >= 0.0, *this, "failure D5", jc->D5, ">= 0");
+    require(jc->damage_threshold >= 0.0, *this, "failure damage_threshold", jc->damage_threshold,
+            ">= 0");
+    require(jc->critical_damage >= 0.0 && jc->critical_damage < 1.0, *this,
+            "failure critical_damage", jc->critical_damage, "in [0, 1)");
   }
   if (const auto* p = std::get_if<PlasticStrainFailure>(&failure))
     require(p->strain > 0.0, *this, "failure strain", p->strain, "> 0");

@@ -52,17 +52,22 @@ struct PointUpdate {
 // constitutive_update is start_increment, the strength model's update of the deviator, then
 // finish_increment; a user strength model (afemp/user_material.hpp) runs between the two on
 // a batch of points.
+// With damage coupled to the strength (failure.hpp, damage_softening) s_old is the effective
+// (undamaged) deviator the strength model starts from, softening times it the stress's.
 struct IncrementStart {
   double p_old = 0.0;
   SymTensor s_old;
   SymTensor de_dev;
   double d_vol = 0.0;
   double inv_rho_work = 0.0;
-  double dt = 0.0;  // the increment's time step (the failure models' strain rate)
+  double dt = 0.0;          // the increment's time step (the failure models' strain rate)
+  double softening = 1.0;   // the deviator's factor 1 - D_C D at the start (failure.hpp)
 };
 
-inline IncrementStart start_increment(const PointState& point, const SymTensor& d_eps,
-                                      double dt);
+// Fails as in finish_increment: only a material with a failure model may soften.
+template <bool Fails = false>
+inline IncrementStart start_increment(const Material& material, const PointState& point,
+                                      const SymTensor& d_eps, double dt);
 
 // A point of a material with a failure model that has failed (damage 1): it carries no shear
 // and no tension from the next increment on.

@@ -189,7 +189,7 @@ void uniaxial_update_user(const Material& material, UserStrengthChunk& chunk, co
     for (std::size_t j = 0; j < n; ++j) {
       if (search[j].done()) continue;
       trial[count] = search[j].trial_state();
-      start[count] = start_increment(trial[count], search[j].trial_increment(), dt);
+      start[count] = start_increment(material, trial[count], search[j].trial_increment(), dt);
       chunk.load(count, trial[count], start[count], history[j]);
       point_of_slot[count++] = j;
     }

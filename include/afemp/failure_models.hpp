@@ -18,11 +18,26 @@ struct NoFailure {};
 /// sigma* = -p / sigma_vm (the stress triaxiality), epsdot* = epsdot_p / epsdot_0 (taken as 1
 /// below epsdot_0, as LS-DYNA *MAT_015 does), T* = (T - T_room) / (T_melt - T_room) in [0, 1];
 /// the point fails at D = 1.
+///
+/// Optionally with the damage threshold and the coupling of Borvik, Hopperstad, Berstad &
+/// Langseth (2001, Eur. J. Mech. A/Solids 20, 685-712; LS-DYNA *MAT_107's PD, DC and BETA = 1):
+/// damage grows only while eps_p > damage_threshold, D += d eps_p / (eps_f - damage_threshold)
+/// (the part of the increment above it), and the material softens as it grows: its stress
+/// deviator is (1 - critical_damage D) times the undamaged one, which the strength model
+/// evolves (the effective stress, Lemaitre's strain equivalence). Borvik's damage is
+/// critical_damage D here, failing at D_C. Only the deviator softens: the pressure stays the
+/// EOS's (a closed crack carries compression); the triaxiality is the stress's, -p over the
+/// softened deviator's von Mises stress.
+/// The strength model hardens with the plastic strain p itself: Borvik's damage-weighted r,
+/// dr = (1 - D_C D) dp, is not kept apart, so the hardening runs a little ahead of his (r is
+/// about (1 - D_C / 2) p at failure where the damage grows evenly).
 struct JohnsonCookFailure {
   double D1 = 0.0, D2 = 0.0, D3 = 0.0, D4 = 0.0, D5 = 0.0;
   double reference_strain_rate = 1.0;  ///< epsdot_0, in the scene's time unit
   double room_temperature = 293.0;
   double melt_temperature = 0.0;  ///< 0: no temperature term
+  double damage_threshold = 0.0;  ///< p_d: plastic strain before damage grows, >= 0
+  double critical_damage = 0.0;   ///< D_C in [0, 1): 0, no coupling (Johnson & Cook 1985)
 };
 
 /// Failure at an equivalent plastic strain (D = eps_p / strain).

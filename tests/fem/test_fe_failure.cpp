@@ -137,6 +137,80 @@ TEST(FeFailure, JohnsonCookDamageWithANegativeRateTermFailsSoonerWhenFaster) {
   EXPECT_NEAR(fast, 0.01 / (1.8025 * (1.0 - 0.123)), 1e-12);
 }
 
+// Reference: the coupled damage of Borvik, Hopperstad, Berstad & Langseth (2001): the stress
+// deviator is (1 - D_C D) times the undamaged material's, D the Johnson-Cook damage. The
+// 2024-T351 cube of the test above, compressed in lockstep (the same steps) with D_C = 0 and
+// D_C = 0.3: the wall drives both through the same strain, so up to the elastic strain (0.5 %
+// of a plastic strain of 0.37) they flow alike, and the coupled cube's von Mises stress is
+// (1 - 0.3 D) times the uncoupled one's at every step (within 1 %); the lateral stress stays
+// zero, so the triaxiality is -1/3 in both and the coupled cube fails at the same strain (1 %).
+TEST(FeFailure, CoupledJohnsonCookDamageSoftensTheDeviatorByOneMinusDcTimesTheDamage) {
+  const std::string wall = R"([[walls]]
+point = [0, 0, 1]
+normal = [0, 0, -1]
+velocity = [0, 0, -1]
+)";
+  std::string coupled_material = kAl2024Toml;
+  const std::size_t at = coupled_material.rfind("reference_strain_rate = 1e-3 }");
+  ASSERT_NE(at, std::string::npos);
+  coupled_material.insert(at, "critical_damage = 0.3, ");
+  const core::Scene plain_scene = core::parse_scene(cube_scene(kAl2024Toml, "al2024", wall), "a.toml");
+  const core::Scene coupled_scene =
+      core::parse_scene(cube_scene(coupled_material, "al2024", wall), "b.toml");
+  FeSolver plain(plain_scene), coupled(coupled_scene);
+  const HexElements& a = plain.hexahedra();
+  const HexElements& b = coupled.hexahedra();
+  double worst = 0.0, last_damage = 0.0, eps_plain = -1.0, eps_coupled = -1.0;
+  // Each cube steps until it fails (a cube whose elements all failed has none left to step).
+  while (plain.time() < 0.6 && (eps_plain < 0.0 || eps_coupled < 0.0)) {
+    const double dt = std::min(plain.stable_time_step(), coupled.stable_time_step());
+    if (eps_plain < 0.0) plain.step(dt);
+    if (eps_coupled < 0.0) coupled.step(dt);
+    if (eps_plain < 0.0 && a.damage[0] >= 1.0) eps_plain = a.plastic_strain[0];
+    if (eps_coupled < 0.0 && b.damage[0] >= 1.0) eps_coupled = b.plastic_strain[0];
+    if (eps_plain >= 0.0 || eps_coupled >= 0.0 || a.plastic_strain[0] < 0.01) continue;
+    const double expected = (1.0 - 0.3 * b.damage[0]) * core::von_mises(a.stress[0]);
+    worst = std::max(worst, std::abs(core::von_mises(b.stress[0]) / expected - 1.0));
+    last_damage = b.damage[0];
+  }
+  std::printf("coupled damage: worst |sigma_vm / ((1 - 0.3 D) sigma_vm uncoupled) - 1| %.2e up "
+              "to D = %.3f; failure at eps_p %.4f coupled, %.4f uncoupled\n",
+              worst, last_damage, eps_coupled, eps_plain);
+  ASSERT_GT(eps_plain, 0.0);
+  ASSERT_GT(eps_coupled, 0.0);
+  EXPECT_GT(last_damage, 0.95);
+  EXPECT_LT(worst, 0.01);
+  EXPECT_NEAR(eps_coupled, eps_plain, 0.01 * eps_plain);
+}
+
+// Reference: Borvik et al.'s (2001) damage threshold p_d: damage grows only over the plastic
+// strain beyond it, D += d eps_p / (eps_f - p_d). Weldox 460 E's law at zero triaxiality and the
+// reference rate, eps_f = D1 + D2 = 1.8025, with p_d = 0.2: an increment from 0.15 to 0.25 adds
+// 0.05 / 1.6025 (the half above the threshold), one from 0.25 to 0.35 adds 0.1 / 1.6025, and one
+// ending at 0.2 adds nothing (1e-12).
+TEST(FeFailure, JohnsonCookDamageGrowsOnlyBeyondItsThreshold) {
+  core::JohnsonCookFailure jc;
+  jc.D1 = 0.0705;
+  jc.D2 = 1.732;
+  jc.D3 = -0.54;
+  jc.reference_strain_rate = 5e-7;
+  jc.damage_threshold = 0.2;
+  const core::FailureModel model = jc;
+  core::SymTensor shear;
+  shear.xy = 100.0;
+  const double dt = 0.1 / 5e-7;  // the reference rate
+  EXPECT_EQ(core::failure_damage(model, 0.0, 0.2, 0.1, dt, 0.0, shear, 293.0), 0.0);
+  EXPECT_NEAR(core::failure_damage(model, 0.0, 0.25, 0.1, dt, 0.0, shear, 293.0), 0.05 / 1.6025,
+              1e-12);
+  EXPECT_NEAR(core::failure_damage(model, 0.1, 0.35, 0.1, dt, 0.0, shear, 293.0),
+              0.1 + 0.1 / 1.6025, 1e-12);
+  // Softening: 1 - D_C D, and 1 without coupling.
+  EXPECT_EQ(core::damage_softening(model, 0.5), 1.0);
+  jc.critical_damage = 0.3;
+  EXPECT_NEAR(core::damage_softening(jc, 0.5), 0.85, 1e-15);
+  EXPECT_NEAR(core::damage_softening(jc, 1.0), 0.7, 1e-15);
+}
+
 // Reference: the scene rules. A failure model on a truss material, both failure keys, and a
 // failure model with Holmquist-Johnson-Cook (which has its own damage) are input errors that
 // name the key and what is allowed.
@@ -192,6 +266,19 @@ TEST(FeFailure, FailureInputsTheModelsCannotCarryAreErrors) {
                "D4 = -0.0123, reference_strain_rate = 5e-7 }\n");
   EXPECT_EQ(d4.find("D4"), std::string::npos) << d4;
   EXPECT_NE(d4.find("at least one body"), std::string::npos) << d4;
+  // Borvik's critical damage D_C lies in [0, 1) (1 would leave no stress to soften from), and
+  // the damage threshold is a plastic strain, >= 0.
+  const std::string dc =
+      error_of("[run]\nend_time = 1.0\n" + material +
+               "failure = { model = \"johnson-cook\", D1 = 0.1, D2 = 0.2, D3 = -1, "
+               "critical_damage = 1 }\n");
+  EXPECT_NE(dc.find("materials.steel.failure.critical_damage"), std::string::npos) << dc;
+  EXPECT_NE(dc.find("0 <= value < 1"), std::string::npos) << dc;
+  const std::string pd =
+      error_of("[run]\nend_time = 1.0\n" + material +
+               "failure = { model = \"johnson-cook\", D1 = 0.1, D2 = 0.2, D3 = -1, "
+               "damage_threshold = -0.1 }\n");
+  EXPECT_NE(pd.find("materials.steel.failure.damage_threshold"), std::string::npos) << pd;
   // A spall model takes exactly one strength; its exponent belongs to the cumulative form.
   const std::string two =
       error_of("[run]\nend_time = 1.0\n" + material +
