@@ -80,16 +80,16 @@ TEST(ErodingContact, AProjectileMeetsTheMaterialBehindEachErodedLayer) {
 // Plugging (label `validation`): examples/fe_contact/plugging.toml, the blunt projectile of
 // Borvik, Langseth, Hopperstad & Malo (2002, Part I: 20 mm diameter, 80 mm long, 197 g,
 // hardened to 1900 MPa) at 300 m/s through a 12 mm Weldox 460 E plate (Johnson-Cook strength
-// and damage of Borvik et al. 2001, adiabatic heating, elements eroding at failure), quarter
+// and damage of Borvik et al. 2001, the damage coupled to the strength as in their model with
+// critical damage 0.3, adiabatic heating, elements eroding at failure), quarter
 // model, the plate graded from 0.33 mm hexahedra within 12 mm of the axis to 3 mm at its held
 // edge 60 mm out. Reference: the Recht & Ipson (1963) residual velocity of a plugging impact,
 // v_r = a (v_i^2 - v_bl^2)^(1/2) with a = m_p / (m_p + m_plug) (the plug a disc of the
 // projectile's diameter through the plate), and the ballistic limit Borvik et al. (2002)
-// measured, 184.5 m/s: 205.7 m/s. Pass: within 25 %; the plug has left the plate (the mean
-// z of the plate's material within 9 mm of the axis below its back face); the energy balance,
-// eroded energy booked, within 3 % throughout. The issue asked for 10 %, which this mesh
-// does not meet (examples/fe_contact/README.md has the figures): the residual velocity comes
-// out low, the plate resisting as if its ballistic limit were about a quarter higher.
+// measured, 184.5 m/s: 205.7 m/s. Pass: within 10 % (measured: 189.4 m/s, -7.9 %; -19.8 %
+// with the damage uncoupled, examples/fe_contact/README.md); the plug has left the plate (the
+// mean z of the plate's material within 9 mm of the axis below its back face); the energy
+// balance, eroded energy booked, within 3 % throughout.
 TEST(ErodingContact, ABluntProjectilePlugsAWeldoxPlateAtTheRechtIpsonResidualVelocity) {
   const core::Scene scene =
       core::parse_scene(test::example_text("fe_contact/plugging.toml"), "plugging.toml");
@@ -121,7 +121,7 @@ TEST(ErodingContact, ABluntProjectilePlugsAWeldoxPlateAtTheRechtIpsonResidualVel
       "%.4g; worst balance %.2e, %d threads\n",
       v_r, recht_ipson, m_p / (m_p + m_plug), 100.0 * (v_r / recht_ipson - 1.0), plug_z, eroded,
       e.eroded, e.hourglass, e0.total(), worst, core::thread_count());
-  EXPECT_NEAR(v_r, recht_ipson, 0.25 * recht_ipson);
+  EXPECT_NEAR(v_r, recht_ipson, 0.10 * recht_ipson);
   EXPECT_LT(plug_z, -thickness);
   EXPECT_LT(worst, 0.03);
 }
