@@ -244,6 +244,48 @@ TEST(JohnsonCook, MoltenPointCarriesNoDeviatoricStress) {
   EXPECT_NEAR(von_mises(s), 0.0, 1e-12 * q_trial);
 }
 
+// Reference: the coupled damage of Borvik, Hopperstad, Berstad & Langseth (2001) in the shared
+// update (particles and hexahedra alike): the strength model evolves the effective deviator,
+// which the stress carries times 1 - D_C D. In pure shear (no pressure, triaxiality 0) the
+// effective path is the uncoupled one, so at every increment the coupled point's shear stress
+// is (1 - 0.3 D) times the uncoupled point's, with the same plastic strain and damage (1e-10,
+// the effective deviator being recovered from the stress each increment), up to failure. Then
+// it carries no shear. Copper's Johnson-Cook strength and damage constants (OFHC, Johnson & Cook
+// 1985) on steel's elastic constants, no heating.
+TEST(CoupledDamage, PureShearCarriesTheUncoupledShearTimesOneMinusDcDUpToFailure) {
+  Material plain = steel(copper_jc());
+  JohnsonCookFailure f;
+  f.D1 = 0.54;
+  f.D2 = 4.89;
+  f.D3 = -3.03;
+  f.reference_strain_rate = 1e-3;
+  plain.failure = f;
+  Material coupled = plain;
+  f.critical_damage = 0.3;
+  coupled.failure = f;
+  PointState a = at_rest(plain), b = at_rest(coupled);
+  const JohnsonCook& jc = std::get<JohnsonCook>(plain.strength);
+  double worst = 0.0;
+  int steps = 0;
+  while (b.damage < 1.0 && steps < 5000) {
+    const SymTensor d_eps{0, 0, 0, 0, 0, 0.005};
+    constitutive_update<JohnsonCook, NoEos, true>(plain, jc, NoEos{}, false, a, d_eps, 1e-3);
+    constitutive_update<JohnsonCook, NoEos, true>(coupled, jc, NoEos{}, false, b, d_eps, 1e-3);
+    ++steps;
+    ASSERT_NEAR(b.plastic_strain, a.plastic_strain, 1e-10 * a.plastic_strain) << steps;
+    ASSERT_NEAR(b.damage, a.damage, 1e-10) << steps;
+    if (b.damage >= 1.0) break;
+    worst = std::max(worst, std::abs(b.stress.xy / ((1.0 - 0.3 * b.damage) * a.stress.xy) - 1.0));
+  }
+  EXPECT_GE(b.damage, 1.0) << "no failure in " << steps << " increments";
+  EXPECT_GT(a.stress.xy, 0.0);
+  EXPECT_LT(worst, 1e-10);
+  EXPECT_EQ(pressure(b.stress), 0.0);
+  const SymTensor d_eps{0, 0, 0, 0, 0, 0.005};
+  constitutive_update<JohnsonCook, NoEos, true>(coupled, jc, NoEos{}, false, b, d_eps, 1e-3);
+  EXPECT_EQ(b.stress.xy, 0.0);
+}
+
 TEST(MaterialEnergy, ElasticClosedCycleReturnsSpecificEnergyToZero) {
   // Reference: for an isochoric path (density fixed) the trapezoidal work of a linear law is
   // exact, so after loading e = sigma:eps / (2 rho) (1e-12 rel) and after unloading along
