@@ -40,16 +40,14 @@ std::string hexahedron_formulation(const core::Scene& scene, const BodySpec& bod
 // model, or its failure_strain where it has none.
 std::string failure_model(const core::Material& m) {
   std::string out;
-  if (const auto* jc = std::get_if<core::JohnsonCookFailure>(&m.failure))
-  {
+  if (const auto* jc = std::get_if<core::JohnsonCookFailure>(&m.failure)) {
     core::appendf(out, "Johnson-Cook damage, D1 .. D5 = %g, %g, %g, %g, %g", jc->D1, jc->D2, jc->D3,
                   jc->D4, jc->D5);
     if (jc->damage_threshold > 0.0)
       core::appendf(out, ", from plastic strain %g", jc->damage_threshold);
     if (jc->critical_damage > 0.0)
       core::appendf(out, ", softening the deviator to %g at failure", 1.0 - jc->critical_damage);
-  }
-  else if (const auto* p = std::get_if<core::PlasticStrainFailure>(&m.failure))
+  } else if (const auto* p = std::get_if<core::PlasticStrainFailure>(&m.failure))
     core::appendf(out, "plastic strain %g", p->strain);
   else if (const auto* sp = std::get_if<core::SpallFailure>(&m.failure))
     core::appendf(out, "spall, %s %g%s",

@@ -60,8 +60,8 @@ struct IncrementStart {
   SymTensor de_dev;
   double d_vol = 0.0;
   double inv_rho_work = 0.0;
-  double dt = 0.0;          // the increment's time step (the failure models' strain rate)
-  double softening = 1.0;   // the deviator's factor 1 - D_C D at the start (failure.hpp)
+  double dt = 0.0;         // the increment's time step (the failure models' strain rate)
+  double softening = 1.0;  // the deviator's factor 1 - D_C D at the start (failure.hpp)
 };
 
 // Fails as in finish_increment: only a material with a failure model may soften.

@@ -154,7 +154,8 @@ velocity = [0, 0, -1]
   const std::size_t at = coupled_material.rfind("reference_strain_rate = 1e-3 }");
   ASSERT_NE(at, std::string::npos);
   coupled_material.insert(at, "critical_damage = 0.3, ");
-  const core::Scene plain_scene = core::parse_scene(cube_scene(kAl2024Toml, "al2024", wall), "a.toml");
+  const core::Scene plain_scene =
+      core::parse_scene(cube_scene(kAl2024Toml, "al2024", wall), "a.toml");
   const core::Scene coupled_scene =
       core::parse_scene(cube_scene(coupled_material, "al2024", wall), "b.toml");
   FeSolver plain(plain_scene), coupled(coupled_scene);
@@ -173,9 +174,10 @@ velocity = [0, 0, -1]
     worst = std::max(worst, std::abs(core::von_mises(b.stress[0]) / expected - 1.0));
     last_damage = b.damage[0];
   }
-  std::printf("coupled damage: worst |sigma_vm / ((1 - 0.3 D) sigma_vm uncoupled) - 1| %.2e up "
-              "to D = %.3f; failure at eps_p %.4f coupled, %.4f uncoupled\n",
-              worst, last_damage, eps_coupled, eps_plain);
+  std::printf(
+      "coupled damage: worst |sigma_vm / ((1 - 0.3 D) sigma_vm uncoupled) - 1| %.2e up "
+      "to D = %.3f; failure at eps_p %.4f coupled, %.4f uncoupled\n",
+      worst, last_damage, eps_coupled, eps_plain);
   ASSERT_GT(eps_plain, 0.0);
   ASSERT_GT(eps_coupled, 0.0);
   EXPECT_GT(last_damage, 0.95);
