@@ -50,6 +50,13 @@ velocity = [0, 0, 1]
 components = ["z"]
 )";
 
+// A frictionless rigid wall on the face z = 1 moving down at 1 m/s: uniaxial compression.
+constexpr const char* kCompressingWall = R"([[walls]]
+point = [0, 0, 1]
+normal = [0, 0, -1]
+velocity = [0, 0, -1]
+)";
+
 // The state of hexahedron 0 of a homogeneously loaded cube when it fails: its plastic strain
 // then, and from the step before, its plastic strain, triaxiality -p / sigma_vm, plastic
 // strain rate (per ms) and |sigma_xx| / sigma_zz. eps_at_failure < 0: no failure by t_end.
@@ -89,11 +96,7 @@ CubeFailure load_to_failure(FeSolver& solver, double t_end) {
 // strain rate they have then (the wall's 1000/s over the shrinking height).
 // Within 5 % (measured: 0.3712 against 0.3719). After failing, a point carries no shear.
 TEST(FeFailure, JohnsonCookDamageFailsUniaxialCompressionAtTheStrainOfItsTriaxiality) {
-  const std::string text = cube_scene(kAl2024Toml, "al2024", R"([[walls]]
-point = [0, 0, 1]
-normal = [0, 0, -1]
-velocity = [0, 0, -1]
-)");
+  const std::string text = cube_scene(kAl2024Toml, "al2024", kCompressingWall);
   const core::Scene scene = core::parse_scene(text, "compression.toml");
   FeSolver solver(scene);
   const HexElements& h = solver.hexahedra();
@@ -145,19 +148,14 @@ TEST(FeFailure, JohnsonCookDamageWithANegativeRateTermFailsSoonerWhenFaster) {
 // (1 - 0.3 D) times the uncoupled one's at every step (within 1 %); the lateral stress stays
 // zero, so the triaxiality is -1/3 in both and the coupled cube fails at the same strain (1 %).
 TEST(FeFailure, CoupledJohnsonCookDamageSoftensTheDeviatorByOneMinusDcTimesTheDamage) {
-  const std::string wall = R"([[walls]]
-point = [0, 0, 1]
-normal = [0, 0, -1]
-velocity = [0, 0, -1]
-)";
   std::string coupled_material = kAl2024Toml;
   const std::size_t at = coupled_material.rfind("reference_strain_rate = 1e-3 }");
   ASSERT_NE(at, std::string::npos);
   coupled_material.insert(at, "critical_damage = 0.3, ");
   const core::Scene plain_scene =
-      core::parse_scene(cube_scene(kAl2024Toml, "al2024", wall), "a.toml");
+      core::parse_scene(cube_scene(kAl2024Toml, "al2024", kCompressingWall), "a.toml");
   const core::Scene coupled_scene =
-      core::parse_scene(cube_scene(coupled_material, "al2024", wall), "b.toml");
+      core::parse_scene(cube_scene(coupled_material, "al2024", kCompressingWall), "b.toml");
   FeSolver plain(plain_scene), coupled(coupled_scene);
   const HexElements& a = plain.hexahedra();
   const HexElements& b = coupled.hexahedra();
@@ -229,6 +227,10 @@ TEST(FeFailure, FailureInputsTheModelsCannotCarryAreErrors) {
   const std::string material =
       "[materials.steel]\ndensity = 7.85e-3\nE = 2e5\nnu = 0.3\n"
       "strength = { model = \"j2\", yield = 500 }\n";
+  // The error of a scene with no body whose material has `failure = table`.
+  auto failure_error = [&](const std::string& table) {
+    return error_of("[run]\nend_time = 1.0\n" + material + "failure = " + table + "\n");
+  };
   const std::string truss =
       "[run]\nend_time = 1.0\n" + material +
       "failure = { model = \"spall\", pressure = 1000 }\n"
@@ -244,52 +246,40 @@ TEST(FeFailure, FailureInputsTheModelsCannotCarryAreErrors) {
   const std::string e2 = error_of(both);
   EXPECT_NE(e2.find("failure_strain"), std::string::npos) << e2;
   EXPECT_NE(e2.find("not both"), std::string::npos) << e2;
-  const std::string unknown =
-      "[run]\nend_time = 1.0\n" + material + "failure = { model = \"gurson\" }\n";
-  const std::string e3 = error_of(unknown);
+  const std::string e3 = failure_error("{ model = \"gurson\" }");
   EXPECT_NE(e3.find("materials.steel.failure.model"), std::string::npos) << e3;
   EXPECT_NE(e3.find("johnson-cook"), std::string::npos) << e3;
-  const std::string negative =
-      "[run]\nend_time = 1.0\n" + material +
-      "failure = { model = \"johnson-cook\", D1 = -0.5, D2 = 0.2, D3 = -1 }\n";
-  const std::string e4 = error_of(negative);
+  const std::string e4 =
+      failure_error("{ model = \"johnson-cook\", D1 = -0.5, D2 = 0.2, D3 = -1 }");
   EXPECT_NE(e4.find("D1 + D2"), std::string::npos) << e4;
   // D3 > 0 would let eps_f grow with the triaxiality: out of range, named.
-  const std::string d3 =
-      error_of("[run]\nend_time = 1.0\n" + material +
-               "failure = { model = \"johnson-cook\", D1 = 0.1, D2 = 0.2, D3 = 1 }\n");
+  const std::string d3 = failure_error("{ model = \"johnson-cook\", D1 = 0.1, D2 = 0.2, D3 = 1 }");
   EXPECT_NE(d3.find("D3"), std::string::npos) << d3;
   EXPECT_NE(d3.find("<= 0"), std::string::npos) << d3;
   // D4 < 0, a steel that loses ductility with the rate (Weldox 460 E, Borvik et al. 2001), is
   // accepted: the scene fails only for want of a body.
-  const std::string d4 =
-      error_of("[run]\nend_time = 1.0\n" + material +
-               "failure = { model = \"johnson-cook\", D1 = 0.0705, D2 = 1.732, D3 = -0.54, "
-               "D4 = -0.0123, reference_strain_rate = 5e-7 }\n");
+  const std::string d4 = failure_error(
+      "{ model = \"johnson-cook\", D1 = 0.0705, D2 = 1.732, D3 = -0.54, "
+      "D4 = -0.0123, reference_strain_rate = 5e-7 }");
   EXPECT_EQ(d4.find("D4"), std::string::npos) << d4;
   EXPECT_NE(d4.find("at least one body"), std::string::npos) << d4;
   // Borvik's critical damage D_C lies in [0, 1) (1 would leave no stress to soften from), and
   // the damage threshold is a plastic strain, >= 0.
-  const std::string dc =
-      error_of("[run]\nend_time = 1.0\n" + material +
-               "failure = { model = \"johnson-cook\", D1 = 0.1, D2 = 0.2, D3 = -1, "
-               "critical_damage = 1 }\n");
+  const std::string dc = failure_error(
+      "{ model = \"johnson-cook\", D1 = 0.1, D2 = 0.2, D3 = -1, "
+      "critical_damage = 1 }");
   EXPECT_NE(dc.find("materials.steel.failure.critical_damage"), std::string::npos) << dc;
   EXPECT_NE(dc.find("0 <= value < 1"), std::string::npos) << dc;
-  const std::string pd =
-      error_of("[run]\nend_time = 1.0\n" + material +
-               "failure = { model = \"johnson-cook\", D1 = 0.1, D2 = 0.2, D3 = -1, "
-               "damage_threshold = -0.1 }\n");
+  const std::string pd = failure_error(
+      "{ model = \"johnson-cook\", D1 = 0.1, D2 = 0.2, D3 = -1, "
+      "damage_threshold = -0.1 }");
   EXPECT_NE(pd.find("materials.steel.failure.damage_threshold"), std::string::npos) << pd;
   // A spall model takes exactly one strength; its exponent belongs to the cumulative form.
   const std::string two =
-      error_of("[run]\nend_time = 1.0\n" + material +
-               "failure = { model = \"spall\", pressure = 1, principal_stress = 2 }\n");
+      failure_error("{ model = \"spall\", pressure = 1, principal_stress = 2 }");
   EXPECT_NE(two.find("materials.steel.failure.principal_stress"), std::string::npos) << two;
   EXPECT_NE(two.find("exactly one"), std::string::npos) << two;
-  const std::string exponent =
-      error_of("[run]\nend_time = 1.0\n" + material +
-               "failure = { model = \"spall\", pressure = 1, exponent = 2 }\n");
+  const std::string exponent = failure_error("{ model = \"spall\", pressure = 1, exponent = 2 }");
   EXPECT_NE(exponent.find("materials.steel.failure.exponent"), std::string::npos) << exponent;
   EXPECT_NE(exponent.find("impulse"), std::string::npos) << exponent;
 }
