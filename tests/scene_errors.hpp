@@ -31,4 +31,17 @@ inline std::string error_of(const std::string& text, const std::string& path = "
   return "";
 }
 
+// what() of the InputError that parsing `text` or checking the parsed scene as a whole
+// (core::check_scene: rules across tables) throws ("" and a failure when neither throws).
+inline std::string checked_error_of(const std::string& text,
+                                    const std::string& path = "scene.toml") {
+  try {
+    core::check_scene(core::parse_scene(text, path));
+  } catch (const core::InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError for:\n" << text;
+  return "";
+}
+
 }  // namespace afemp::test

@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <string>
 
-#include "afemp/errors.hpp"
 #include "core/material_fixtures.hpp"
 #include "core/materials/failure.hpp"
 #include "core/scene.hpp"
@@ -215,15 +214,7 @@ TEST(FeFailure, JohnsonCookDamageGrowsOnlyBeyondItsThreshold) {
 // failure model with Holmquist-Johnson-Cook (which has its own damage) are input errors that
 // name the key and what is allowed.
 TEST(FeFailure, FailureInputsTheModelsCannotCarryAreErrors) {
-  auto error_of = [](const std::string& text) -> std::string {
-    try {
-      const core::Scene scene = core::parse_scene(text, "bad.toml");
-      core::check_scene(scene);
-    } catch (const core::InputError& e) {
-      return e.what();
-    }
-    return "";
-  };
+  auto error_of = [](const std::string& text) { return test::checked_error_of(text, "bad.toml"); };
   const std::string material =
       "[materials.steel]\ndensity = 7.85e-3\nE = 2e5\nnu = 0.3\n"
       "strength = { model = \"j2\", yield = 500 }\n";
