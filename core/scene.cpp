@@ -148,9 +148,8 @@ std::vector<std::string> history_field_names(const Scene& scene) {
     std::string name;
     bool shared = true;
     for (const Material& m : scene.materials) {
-      const auto* u = std::get_if<UserStrength>(&m.strength);
-      if (!u || k >= u->history_count()) continue;
-      const std::string& own = u->definition->history_variables[k];
+      if (k >= m.history_count()) continue;
+      const std::string own = m.history_name(k);
       if (name.empty()) name = own;
       shared = shared && own == name;
     }

@@ -131,7 +131,6 @@ void CoupledModel::convert_elements() {
       more.plastic_strain[j] = q.plastic_strain;
       more.energy[j] = q.energy;
       more.damage[j] = q.damage;
-      more.max_compaction[j] = q.max_compaction;
       std::copy(q.history.begin(), q.history.end(),
                 more.history.begin() + static_cast<std::ptrdiff_t>(j * more.history_count));
     }

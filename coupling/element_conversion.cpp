@@ -51,7 +51,6 @@ Conversion convert_element(const fem::FeSolver& fe, const core::Scene& scene,
       q.temperature = el.temperature[p];
       q.energy = el.energy[p];
       q.damage = el.damage[p];
-      q.max_compaction = el.max_compaction[p];
       q.history.assign(el.history.begin() + static_cast<std::ptrdiff_t>(p * el.history_count),
                        el.history.begin() + static_cast<std::ptrdiff_t>((p + 1) * el.history_count));
       return el.density[p];
@@ -69,7 +68,6 @@ Conversion convert_element(const fem::FeSolver& fe, const core::Scene& scene,
       q.temperature += w * el.temperature[p];
       q.energy += w * el.energy[p];
       q.damage += w * el.damage[p];
-      q.max_compaction += w * el.max_compaction[p];
       volume += w / el.density[p];
     }
     q.stress = (1.0 / m) * q.stress;
@@ -77,7 +75,6 @@ Conversion convert_element(const fem::FeSolver& fe, const core::Scene& scene,
     q.temperature /= m;
     q.energy /= m;
     q.damage /= m;
-    q.max_compaction /= m;
     for (double& v : q.history) v /= m;
     return m / volume;
   };

@@ -17,8 +17,8 @@ struct ConvertedPoint {
   double mass = 0.0, volume = 0.0;
   core::SymTensor stress;
   double plastic_strain = 0.0, temperature = 0.0, energy = 0.0;  // energy: per unit mass
-  double damage = 0.0, max_compaction = 0.0;
-  std::vector<double> history;  // the user strength model's history variables
+  double damage = 0.0;
+  std::vector<double> history;  // the strength model's history variables
   int body = 0, material = 0;
 };
 

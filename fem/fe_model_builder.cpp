@@ -254,7 +254,6 @@ void FeSolver::build(const core::Scene& scene) {
     el.energy.push_back(energy);
     el.density.push_back(m.density);
     el.damage.push_back(0.0);
-    el.max_compaction.push_back(0.0);
   };
   std::size_t hex_cursor = 0, line_cursor = 0;
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {

@@ -69,7 +69,7 @@ struct ElementStore {
   // Integration points (trusses: the axial stress in the bar frame, sigma_xx).
   std::vector<core::SymTensor> stress;
   std::vector<double> point_mass, plastic_strain, temperature, energy, density;
-  std::vector<double> damage, max_compaction;  // D in [0, 1]; largest rho / rho0 - 1 reached
+  std::vector<double> damage;  // D in [0, 1]
   // The strain tensor (sum of D dt) of every point, kept only when some material's failure
   // reads it (principal-strain failure); empty otherwise.
   std::vector<core::SymTensor> strain;
@@ -82,8 +82,9 @@ struct ElementStore {
   // (empty otherwise): the time the point lights, its burn fraction and the length it burns
   // over.
   std::vector<double> light_time, burn, burn_length;
-  // History variables of user strength models (afemp/user_material.hpp): history_count per
-  // integration point, point-major; history_count is the scene's (core::history_count).
+  // The strength models' history variables (a user model's, or a built-in model's own;
+  // core::Material::history_count): history_count per integration point, point-major;
+  // history_count is the scene's (core::history_count).
   std::vector<double> history;
   std::size_t history_count = 0;
   std::vector<ElementBatch> batches;

@@ -27,7 +27,6 @@ void visit_store(StateArchive& a, ElementStore& e) {
   a.item("energy", e.energy);
   a.item("density", e.density);
   a.item("damage", e.damage);
-  a.item("max_compaction", e.max_compaction);
   a.item("strain", e.strain);
   a.item("plastic_heat", e.plastic_heat);
   a.item("viscous_heat", e.viscous_heat);

@@ -85,12 +85,9 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
     PointStart b{core::PointState{el.stress[p], el.plastic_strain[p], el.temperature[p],
                                   el.energy[p], density},
                  inc.d_eps};
-    if constexpr (core::has_damage_state<Strength>) {
-      b.st.damage = el.damage[p];
-      b.st.max_compaction = el.max_compaction[p];
-    } else if constexpr (Fails) {  // a failure model reads and writes any model's damage
-      b.st.damage = el.damage[p];
-    }
+    // A failure model reads and writes any model's damage.
+    if constexpr (core::has_damage_state<Strength> || Fails) b.st.damage = el.damage[p];
+    core::load_model_history<Strength>(b.st, el.history.data() + p * el.history_count);
     b.st.stress += core::jaumann_increment(b.st.stress, inc.w23, inc.w13, inc.w12);
     if (explosive)
       b.st.burn = core::burn_fraction(*mat.burn, mat.density, el.burn[p], time_, el.light_time[p],
@@ -115,12 +112,8 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
     el.temperature[p] = st.temperature;
     el.energy[p] = st.energy;
     el.density[p] = st.density;
-    if constexpr (core::has_damage_state<Strength>) {
-      el.damage[p] = st.damage;
-      el.max_compaction[p] = st.max_compaction;
-    } else if constexpr (Fails) {
-      el.damage[p] = st.damage;
-    }
+    if constexpr (core::has_damage_state<Strength> || Fails) el.damage[p] = st.damage;
+    core::store_model_history<Strength>(st, el.history.data() + p * el.history_count);
     if constexpr (Fails) {
       if (principal_strain) {
         el.strain[p] += b.d_eps;

@@ -228,7 +228,7 @@ std::size_t ElementStore::bytes() const {
   auto v = [](const auto& x) { return capacity_bytes(x); };
   return v(mass) + v(volume0) + v(volume) + v(critical_dt) + v(alive) + v(stress) + v(point_mass) +
          v(plastic_strain) + v(temperature) + v(energy) + v(density) + v(damage) +
-         v(max_compaction) + v(strain) + v(plastic_heat) + v(viscous_heat) + v(history);
+         v(strain) + v(plastic_heat) + v(viscous_heat) + v(history);
 }
 
 std::size_t HexElements::bytes() const {

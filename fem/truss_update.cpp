@@ -36,7 +36,8 @@ void FeSolver::truss_batch(const ElementBatch& b, const Strength& strength, cons
     const TrussKinematics mid =
         truss_kinematics(xv[0] - (0.5 * dt) * xv[2], xv[1] - (0.5 * dt) * xv[3], xv[2], xv[3]);
     st = core::PointState{el.stress[p], el.plastic_strain[p], el.temperature[p], el.energy[p],
-                          el.density[p], el.damage[p], el.max_compaction[p]};
+                          el.density[p], el.damage[p]};
+    core::load_model_history<Strength>(st, el.history.data() + p * el.history_count);
     d_axial = mid.axial_strain_rate * dt;
   };
   // The state stored after the uniaxial update u, the forces, the critical step and erosion.
@@ -51,7 +52,7 @@ void FeSolver::truss_batch(const ElementBatch& b, const Strength& strength, cons
     el.energy[p] = st.energy;
     el.density[p] = st.density;
     el.damage[p] = st.damage;
-    el.max_compaction[p] = st.max_compaction;
+    core::store_model_history<Strength>(st, el.history.data() + p * el.history_count);
     const TrussKinematics now = truss_kinematics(xv[0], xv[1], xv[2], xv[3]);
     const double area = current_area(el.area0[e], el.length0[e], mat.density, now.length, st.density);
     el.volume[e] = area * now.length;

@@ -130,7 +130,6 @@ void MpmSolver::add_particles(const Particles& more) {
     p.plastic_strain[i] = more.plastic_strain[k];
     p.energy[i] = more.energy[k];
     p.damage[i] = more.damage[k];
-    p.max_compaction[i] = more.max_compaction[k];
     double* history = p.history.data() + i * p.history_count;
     if (more.history_count == p.history_count)
       std::copy_n(more.history.data() + k * p.history_count, p.history_count, history);

@@ -20,7 +20,6 @@ void visit_particles(core::StateArchive& a, Particles& p) {
   a.item("temperature", p.temperature);
   a.item("energy", p.energy);
   a.item("damage", p.damage);
-  a.item("max_compaction", p.max_compaction);
   a.item("bulk_q", p.bulk_q);
   a.item("body", p.body);
   a.item("material", p.material);

@@ -85,7 +85,6 @@ void MpmSolver::split_particles() {
         p.temperature[c] = p.temperature[i];
         p.energy[c] = p.energy[i];
         p.damage[c] = p.damage[i];
-        p.max_compaction[c] = p.max_compaction[i];
         p.bulk_q[c] = p.bulk_q[i];
         p.body[c] = p.body[i];
         p.material[c] = p.material[i];

@@ -9,7 +9,7 @@ namespace {
 template <class F>
 void for_each_array(Particles& p, F&& f) {
   f(p.position); f(p.velocity); f(p.mass); f(p.volume); f(p.stress);
-  f(p.plastic_strain); f(p.temperature); f(p.energy); f(p.damage); f(p.max_compaction);
+  f(p.plastic_strain); f(p.temperature); f(p.energy); f(p.damage);
   f(p.bulk_q);
   f(p.body); f(p.material); f(p.id);
   // Only when the scene asks for them:
@@ -60,7 +60,6 @@ void Particles::push_back(const Vec3& x, const Vec3& v, double m, double vol, do
   temperature.push_back(temp);
   energy.push_back(0.0);
   damage.push_back(0.0);
-  max_compaction.push_back(0.0);
   bulk_q.push_back(0.0);
   history.resize(history.size() + history_count, 0.0);
   body.push_back(body_id);

@@ -34,7 +34,6 @@ struct Particles {
   std::vector<double> temperature;
   std::vector<double> energy;          // specific internal energy (per unit mass)
   std::vector<double> damage;          // scalar damage D in [0, 1]
-  std::vector<double> max_compaction;  // largest volumetric strain rho / rho0 - 1 reached
   std::vector<double> bulk_q;          // artificial bulk-viscous pressure acting this step
   std::vector<std::int32_t> body;
   std::vector<std::int32_t> material;
@@ -46,9 +45,6 @@ struct Particles {
   // came from started with (particle_splitting.cpp).
   std::vector<Vec3> length;
   std::vector<Vec3> length0;
-  // History variables of user strength models (afemp/user_material.hpp): history_count values
-  // per point, point-major (point i's at history[i * history_count]); history_count is the
-  // largest count of the scene's materials, 0 (and history empty) when none has any.
   // The plastic work and bulk-viscous heat each particle has taken (per unit mass), kept only
   // where particles may leave through outflow faces (empty otherwise): a particle that leaves
   // takes its share out of the plastic and viscous totals, as its m e leaves the internal
@@ -58,6 +54,10 @@ struct Particles {
   // kept only when some material is an explosive (empty otherwise; other particles hold 0
   // and 1, unread).
   std::vector<double> light_time, burn;
+  // The strength models' history variables (a user model's, or a built-in model's own, such as
+  // the largest compaction of HJC concrete; core::Material::history_count): history_count
+  // values per point, point-major (point i's at history[i * history_count]); history_count is
+  // the largest count of the scene's materials, 0 (and history empty) when none has any.
   std::vector<double> history;
   std::size_t history_count = 0;
 

@@ -203,12 +203,9 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
       // History an elastic batch never reads stays in memory: less to stream per point.
       if constexpr (reads_plastic_strain) st.plastic_strain = p.plastic_strain[i];
       if constexpr (reads_temperature) st.temperature = p.temperature[i];
-      if constexpr (reads_damage) {
-        st.damage = p.damage[i];
-        st.max_compaction = p.max_compaction[i];
-      } else if constexpr (Fails) {  // a failure model reads and writes any model's damage
-        st.damage = p.damage[i];
-      }
+      // A failure model reads and writes any model's damage.
+      if constexpr (reads_damage || Fails) st.damage = p.damage[i];
+      core::load_model_history<Strength>(st, p.history.data() + i * p.history_count);
       st.energy = p.energy[i];
       st.density = p.mass[i] / volume;
       // A high explosive: its burn fraction at the step's end (core/programmed_burn.hpp).
@@ -225,12 +222,8 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
       if (explosive) p.burn[i] = st.burn;
       if constexpr (reads_plastic_strain) p.plastic_strain[i] = st.plastic_strain;
       if constexpr (Thermal) p.temperature[i] = st.temperature;
-      if constexpr (reads_damage) {
-        p.damage[i] = st.damage;
-        p.max_compaction[i] = st.max_compaction;
-      } else if constexpr (Fails) {
-        p.damage[i] = st.damage;
-      }
+      if constexpr (reads_damage || Fails) p.damage[i] = st.damage;
+      core::store_model_history<Strength>(st, p.history.data() + i * p.history_count);
       if (track_strain) p.strain[i] += d_eps;
       if constexpr (Fails) {
         if (principal_strain)

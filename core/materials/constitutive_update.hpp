@@ -9,6 +9,7 @@
 #include <type_traits>
 
 #include "core/materials/failure.hpp"
+#include "core/materials/holmquist_johnson_cook.hpp"
 
 namespace afemp::core {
 
@@ -151,7 +152,7 @@ inline double tangent_bulk_modulus(const Material& material, const Eos& eos,
   if constexpr (std::is_same_v<Eos, NoEos>) {
     return material.bulk_modulus();
   } else if constexpr (std::is_same_v<Eos, HjcCompaction>) {
-    return eos.tangent_bulk_modulus(mu, point.max_compaction);
+    return hjc_tangent_bulk_modulus(eos, mu, point);
   } else {
     return eos.tangent_bulk_modulus(mu, point.energy);
   }

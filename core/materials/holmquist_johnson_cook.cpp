@@ -14,7 +14,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/materials/material.hpp"
+#include "core/materials/holmquist_johnson_cook.hpp"
 
 namespace afemp::core {
 
@@ -26,6 +26,10 @@ double HolmquistJohnsonCook::normalised_strength(double p_star, double damage,
     return std::min(max_strength, (A * (1.0 - damage) + B * std::pow(p_star, N)) * rate_factor);
   const double t_star = tensile_strength / compressive_strength;
   return std::max(A * (1.0 - damage) * (1.0 + p_star / t_star) * rate_factor, 0.0);
+}
+
+const char* HolmquistJohnsonCook::history_name(std::size_t k) {
+  return k == kMaxCompaction ? "max_compaction" : "";
 }
 
 double HolmquistJohnsonCook::fracture_strain(double p_star) const {
@@ -46,14 +50,15 @@ PointUpdate holmquist_johnson_cook_update(const Material& material,
 
   // Pressure from the compaction law at the new density.
   const double mu = point.density / material.density - 1.0;
-  const double mu_max_old = point.max_compaction;
-  point.max_compaction = std::max(mu_max_old, mu);
+  double& mu_max = point.history[kMaxCompaction];
+  const double mu_max_old = mu_max;
+  mu_max = std::max(mu_max_old, mu);
   const double p_min = -strength.tensile_strength * (1.0 - point.damage);
-  const double p_new = std::max(eos.pressure(mu, point.max_compaction), p_min);
+  const double p_new = std::max(eos.pressure(mu, mu_max), p_min);
   // Permanent compaction never shrinks: the max only guards parameter sets whose unloading
   // lines cross.
   const double d_mu_p = std::max(
-      eos.plastic_compaction(point.max_compaction) - eos.plastic_compaction(mu_max_old), 0.0);
+      eos.plastic_compaction(mu_max) - eos.plastic_compaction(mu_max_old), 0.0);
 
   // Deviator: elastic trial, radial return onto the yield surface at the new pressure.
   const double g = material.shear_modulus();

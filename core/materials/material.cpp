@@ -155,8 +155,30 @@ double Material::initial_energy() const {
 }
 
 std::size_t Material::history_count() const {
-  const auto* user = std::get_if<UserStrength>(&strength);
-  return user ? user->history_count() : 0;
+  return std::visit(
+      [](const auto& model) {
+        if constexpr (is_user_strength<std::decay_t<decltype(model)>>)
+          return model.history_count();
+        else
+          return model_history_size<std::decay_t<decltype(model)>>;
+      },
+      strength);
+}
+
+std::string Material::history_name(std::size_t k) const {
+  return std::visit(
+      [k](const auto& model) -> std::string {
+        using Model = std::decay_t<decltype(model)>;
+        if constexpr (is_user_strength<Model>)
+          return model.definition && k < model.history_count()
+                     ? model.definition->history_variables[k]
+                     : std::string{};
+        else if constexpr (model_history_size<Model> > 0)
+          return k < model_history_size<Model> ? Model::history_name(k) : "";
+        else
+          return std::string{};
+      },
+      strength);
 }
 
 void Material::validate() const {

@@ -4,6 +4,9 @@
 // contiguous batches of points: std::visit once per batch, then a direct call per point.
 #pragma once
 
+#include <algorithm>
+#include <array>
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -26,10 +29,30 @@ inline constexpr bool composable =
 template <class Strength>
 inline constexpr bool is_user_strength = std::is_same_v<Strength, UserStrength>;
 
-// Whether a strength model's update reads and writes PointState::damage and max_compaction;
-// solvers leave that history in memory for the others. Each model declares it.
+// Whether a strength model's update reads and writes PointState::damage; solvers leave it in
+// memory for the others. Each model declares it.
 template <class Strength>
 inline constexpr bool has_damage_state = Strength::reads_damage;
+
+// The history variables a built-in strength model keeps of its own (beyond the plastic strain,
+// temperature, energy and damage every point has): a model that has some declares their count
+// as `history_size` and names them with `history_name(k)` in its own file; the others have
+// none. They live in the points' history store (the user models' store, carried through
+// reordering, splitting, conversion, checkpoints and output) and reach the point-wise update in
+// PointState::history.
+template <class Strength>
+inline constexpr std::size_t model_history_size = [] {
+  if constexpr (requires { Strength::history_size; })
+    return std::size_t{Strength::history_size};
+  else
+    return std::size_t{0};
+}();
+
+template <class Variant>
+inline constexpr std::size_t largest_model_history = 0;
+template <class... Strength>
+inline constexpr std::size_t largest_model_history<std::variant<Strength...>> =
+    std::max({std::size_t{1}, model_history_size<Strength>...});
 
 // State of one material point through a constitutive update.
 struct PointState {
@@ -39,9 +62,21 @@ struct PointState {
   double energy = 0.0;          // specific internal energy (per unit mass)
   double density = 0.0;         // current density rho^{k+1}
   double damage = 0.0;          // scalar damage D in [0, 1]
-  double max_compaction = 0.0;  // largest volumetric strain mu = rho / rho0 - 1 reached
   double burn = 1.0;            // a high explosive's burn fraction F (core/programmed_burn.hpp)
+  // The strength model's own history variables (model_history_size of them are used).
+  std::array<double, largest_model_history<StrengthModel>> history{};
 };
+
+// Moves a point's own history variables of model Strength between the points' history store
+// (`stored`: the point's values, history_count of them) and its PointState.
+template <class Strength>
+inline void load_model_history(PointState& point, const double* stored) {
+  for (std::size_t k = 0; k < model_history_size<Strength>; ++k) point.history[k] = stored[k];
+}
+template <class Strength>
+inline void store_model_history(const PointState& point, double* stored) {
+  for (std::size_t k = 0; k < model_history_size<Strength>; ++k) stored[k] = point.history[k];
+}
 
 struct PointUpdate {
   double plastic_work = 0.0;  // plastic work per unit mass done in this increment
@@ -95,15 +130,6 @@ PointUpdate finish_increment(const Material& material, const Eos& eos, bool ther
 template <class Strength, class Eos, bool Fails = false>
 PointUpdate constitutive_update(const Material& material, const Strength& strength, const Eos& eos,
                                 bool thermal, PointState& point, const SymTensor& d_eps, double dt);
-
-// Holmquist-Johnson-Cook update of one point (holmquist_johnson_cook.cpp): pressure from the
-// compaction law with the tension cutoff -T (1 - D), deviator returned radially onto the yield
-// surface at that pressure, damage from the plastic and crushing strain increments, and the
-// same energy equation as constitutive_update (the pressure does not depend on e).
-PointUpdate holmquist_johnson_cook_update(const Material& material,
-                                          const HolmquistJohnsonCook& strength,
-                                          const HjcCompaction& eos, PointState& point,
-                                          const SymTensor& d_eps, double dt);
 
 // Calls f(strength, eos) with the material's model types, instantiating only composable pairs:
 // the one visit per batch of the solvers. Throws std::invalid_argument for a pair that

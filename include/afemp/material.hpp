@@ -86,8 +86,11 @@ struct Material {
     poisson_ratio = (3.0 * k - 2.0 * g) / (2.0 * (3.0 * k + g));
   }
   bool has_eos() const { return !std::holds_alternative<NoEos>(eos); }
-  /// History variables each point of the material carries (user strength models only).
+  /// History variables each point of the material carries: a user strength model's, or a
+  /// built-in model's own (the largest compaction of Holmquist-Johnson-Cook concrete).
   std::size_t history_count() const;
+  /// The name of history variable k (empty past history_count()).
+  std::string history_name(std::size_t k) const;
   /// True when temperature must be integrated: a strength model that softens with
   /// temperature and a specific heat to turn plastic work into heat.
   bool has_thermal_term() const;

@@ -42,7 +42,8 @@ struct ParticleFields {
   std::span<double> temperature{};      ///< temperature
   std::span<double> energy{};           ///< specific internal energy (per unit mass)
   std::span<double> damage{};           ///< scalar damage in [0, 1]
-  /// User strength models' history variables, history_count per particle, point-major:
+  /// Strength models' history variables (a user model's, or a built-in model's own such as
+  /// HJC's largest compaction), history_count per particle, point-major:
   /// particle i's variable v is history[i * history_count + v].
   std::span<double> history{};
   std::size_t history_count = 0;  ///< the most any of the scene's materials declares
@@ -79,7 +80,7 @@ struct ElementFields {
   std::span<double> temperature{};     ///< per point
   std::span<double> energy{};          ///< per point, specific internal energy
   std::span<double> damage{};          ///< per point
-  /// User strength models' history variables, history_count per point, point-major.
+  /// Strength models' history variables (as for particles), history_count per point, point-major.
   std::span<double> history{};
   std::size_t history_count = 0;  ///< the most any of the scene's materials declares
   std::size_t size() const { return alive.size(); }

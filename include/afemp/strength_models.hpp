@@ -4,6 +4,8 @@
 // material batch loops.
 #pragma once
 
+#include <cstddef>
+
 #include "afemp/tensor.hpp"
 
 namespace afemp::core {
@@ -29,7 +31,7 @@ struct Elastic {
   /// What the model reads of a point's history; solvers load only that (every model states it).
   static constexpr bool reads_plastic_strain = false;
   static constexpr bool reads_temperature = false;
-  static constexpr bool reads_damage = false;  ///< damage and largest compaction
+  static constexpr bool reads_damage = false;
 };
 
 /// No shear strength: a fluid, or detonation products (with an EOS). The deviator is zero.
@@ -51,7 +53,7 @@ struct J2Plasticity {
   /// What the model reads of a point's history; solvers load only that (every model states it).
   static constexpr bool reads_plastic_strain = true;
   static constexpr bool reads_temperature = false;
-  static constexpr bool reads_damage = false;  ///< damage and largest compaction
+  static constexpr bool reads_damage = false;
 };
 
 /// Johnson-Cook flow stress (Ma 2005, eq 2-20):
@@ -69,7 +71,7 @@ struct JohnsonCook {
   /// What the model reads of a point's history; solvers load only that (every model states it).
   static constexpr bool reads_plastic_strain = true;
   static constexpr bool reads_temperature = true;
-  static constexpr bool reads_damage = false;  ///< damage and largest compaction
+  static constexpr bool reads_damage = false;
 };
 
 /// Holmquist-Johnson-Cook concrete strength and damage (holmquist_johnson_cook.cpp), with
@@ -96,7 +98,11 @@ struct HolmquistJohnsonCook {
   /// What the model reads of a point's history; solvers load only that (every model states it).
   static constexpr bool reads_plastic_strain = true;
   static constexpr bool reads_temperature = false;
-  static constexpr bool reads_damage = true;  ///< damage and largest compaction
+  static constexpr bool reads_damage = true;
+  /// Its own history variables (core/materials/material.hpp, model_history_size): one, named
+  /// by history_name in holmquist_johnson_cook.cpp.
+  static constexpr std::size_t history_size = 1;
+  static const char* history_name(std::size_t k);
 };
 
 }  ///< namespace afemp::core

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "afemp/errors.hpp"
+#include "core/materials/holmquist_johnson_cook.hpp"
 #include "core/materials/material.hpp"
 #include "core/scene.hpp"
 #include "scene_errors.hpp"
@@ -114,7 +115,7 @@ TEST(HjcCompaction, UnloadingFromCrushKeepsPermanentCompaction) {
   PointState p = at_rest(m);
   for (int i = 1; i <= 200; ++i) step_to(m, p, mu_max * i / 200.0);
   EXPECT_NEAR(p_of(p), 408e6, 1e-9 * 408e6);
-  EXPECT_DOUBLE_EQ(p.max_compaction, mu_max);
+  EXPECT_DOUBLE_EQ(p.history[core::kMaxCompaction], mu_max);
   const double mu_p = mu_max - 408e6 / 50.5e9;
   EXPECT_NEAR(mu_p, 0.0476979358844316, 1e-12);
   EXPECT_NEAR(eos.plastic_compaction(mu_max), mu_p, 1e-15);
@@ -125,7 +126,7 @@ TEST(HjcCompaction, UnloadingFromCrushKeepsPermanentCompaction) {
   }
   EXPECT_NEAR(p_of(p), 0.0, 1e-9 * 408e6);  // P = 0 with mu = mu_p > 0 left
   EXPECT_GT(mu_of(m, p), 0.047);
-  EXPECT_DOUBLE_EQ(p.max_compaction, mu_max);
+  EXPECT_DOUBLE_EQ(p.history[core::kMaxCompaction], mu_max);
   // Reloading retraces the unloading line back to (mu_max, 408 MPa).
   step_to(m, p, mu_max);
   EXPECT_NEAR(p_of(p), 408e6, 1e-9 * 408e6);
@@ -186,7 +187,7 @@ TEST(HolmquistJohnsonCook, UniaxialStrainReturnsToYieldSurfaceAtCurrentPressureA
   ASSERT_GT(p.plastic_strain, eps_p_before);  // the last step flowed
   const double mu = mu_of(m, p);
   EXPECT_GT(mu, 0.001);  // crushing
-  EXPECT_DOUBLE_EQ(p.max_compaction, mu);
+  EXPECT_DOUBLE_EQ(p.history[core::kMaxCompaction], mu);
   const double p_ref = eos.loading_pressure(mu);
   EXPECT_NEAR(p_of(p), p_ref, 1e-12 * p_ref);
   const double q_ref = kFc * (s.A * (1.0 - d_before) + s.B * std::pow(p_ref / kFc, s.N)) *
