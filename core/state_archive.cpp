@@ -80,11 +80,15 @@ void StateArchive::close() {
   groups_.resize(1);
   names_.resize(1);
   const herr_t flushed = mode_ == Mode::save ? H5Fflush(file_, H5F_SCOPE_LOCAL) : 0;
+  // The flush's reason (a full disk) before the close clears the error stack: a close after a
+  // failed flush fails too, with an internal error of the metadata cache that says nothing.
+  const std::string flush_reason = flushed < 0 ? hdf5::hdf5_reason() : std::string();
   const herr_t closed = H5Fclose(static_cast<hid_t>(file_));
   file_ = -1;
   groups_.clear();
   if (flushed < 0 || closed < 0)
-    throw CheckpointError(path_ + ": cannot write checkpoint: " + hdf5::hdf5_reason());
+    throw CheckpointError(path_ + ": cannot write checkpoint: " +
+                          (flushed < 0 ? flush_reason : hdf5::hdf5_reason()));
 }
 
 std::string StateArchive::where(const char* name) const {
