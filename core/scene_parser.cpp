@@ -15,6 +15,7 @@
 
 #include "core/far_field_refusals.hpp"
 #include "core/materials/initial_pressure.hpp"
+#include "core/materials/model_parameters.hpp"
 
 namespace afemp::core::scene_detail {
 
@@ -62,23 +63,6 @@ std::string lower(std::string_view s) {
 int line_of(const toml::source_region& r) { return static_cast<int>(r.begin.line); }
 
 }  // namespace
-
-bool Range::contains(double v) const {
-  if (std::isnan(v)) return false;
-  const bool lo_ok = lo_open ? v > lo : v >= lo;
-  const bool hi_ok = hi_open ? v < hi : v <= hi;
-  return lo_ok && hi_ok;
-}
-
-std::string Range::describe() const {
-  const bool has_lo = std::isfinite(lo);
-  const bool has_hi = std::isfinite(hi);
-  if (!has_lo && !has_hi) return "any finite number";
-  if (has_lo && !has_hi) return std::string("value ") + (lo_open ? "> " : ">= ") + format_number(lo);
-  if (!has_lo) return std::string("value ") + (hi_open ? "< " : "<= ") + format_number(hi);
-  return format_number(lo) + (lo_open ? " < " : " <= ") + "value" + (hi_open ? " < " : " <= ") +
-         format_number(hi);
-}
 
 // ---------------------------------------------------------------------------------------------
 // TableReader
@@ -492,138 +476,99 @@ void read_mpm(TableReader& r, MpmSettings& mpm) {
   }
 }
 
-HolmquistJohnsonCook read_holmquist_johnson_cook(TableReader& r) {
-  r.known({"A", "B", "N", "C", "fc", "T", "reference_strain_rate", "EFMIN", "SFMAX", "D1", "D2"});
-  r.check_unknown();
-  HolmquistJohnsonCook hjc;
-  hjc.A = r.required_number("A", Range::non_negative());
-  hjc.B = r.required_number("B", Range::non_negative());
-  hjc.N = r.required_number("N", Range::positive());
-  hjc.C = r.number("C", 0.0, Range::non_negative());
-  hjc.compressive_strength = r.required_number("fc", Range::positive());
-  hjc.tensile_strength = r.required_number("T", Range::positive());
-  hjc.reference_strain_rate = r.number("reference_strain_rate", 1.0, Range::positive());
-  hjc.min_fracture_strain = r.required_number("EFMIN", Range::positive());
-  hjc.max_strength = r.required_number("SFMAX", Range::positive());
-  hjc.D1 = r.required_number("D1", Range::non_negative());
-  hjc.D2 = r.required_number("D2", Range::non_negative());
-  return hjc;
-}
-
-// The compaction law's own ranges; the checks that need the derived mu_plock (K1 against
-// PC / muc, the dense curve rising, crushing softer than elasticity) are Material::validate's.
-HjcCompaction read_hjc_compaction(TableReader& r) {
-  r.known({"PC", "muc", "PL", "mul", "K1", "K2", "K3"});
-  r.check_unknown();
-  const double pc = r.required_number("PC", Range::positive());
-  const double muc = r.required_number("muc", {0.0, 1.0, true, true});
-  const double pl = r.required_number("PL", {pc, Range::positive().hi, true, false});
-  const double mul = r.required_number("mul", {muc, 1.0, true, true});
-  const double k1 = r.required_number("K1", {pc / muc, Range::positive().hi, false, false});
-  const double k2 = r.required_number("K2", Range::any());
-  const double k3 = r.required_number("K3", Range::non_negative());
-  return {pc, muc, pl, mul, k1, k2, k3};
-}
-
-// The HJC strength model and compaction law go together, and the material's elastic constants
-// come from G and the compaction law's bulk modulus K_e = PC / muc.
-void pair_holmquist_johnson_cook(TableReader& r, Material& m, std::optional<double> shear_modulus) {
-  const auto* compaction = std::get_if<HjcCompaction>(&m.eos);
-  const bool hjc_strength = std::holds_alternative<HolmquistJohnsonCook>(m.strength);
-  if (hjc_strength && !compaction)
-    r.fail(r.has("eos") ? "eos" : "strength",
-           "strength model \"holmquist-johnson-cook\" needs eos = { model = \"hjc-compaction\", "
-           "PC, muc, PL, mul, K1, K2, K3 }");
-  if (compaction && !hjc_strength)
-    r.fail("eos", "eos model \"hjc-compaction\" is the pressure law of strength model "
-                  "\"holmquist-johnson-cook\" and goes with it only");
-  if (!compaction) {
+// A strength model with a pressure law of its own (Holmquist-Johnson-Cook concrete) goes with
+// that law, and no other model takes it; the material's elastic constants then come from G and
+// the law's bulk modulus.
+void pair_own_pressure_law(TableReader& r, Material& m, std::optional<double> shear_modulus) {
+  std::string needs, needs_keys, law_of;
+  double k = 0.0;
+  std::visit(
+      [&](const auto& s, const auto& e) {
+        using S = std::decay_t<decltype(s)>;
+        using E = std::decay_t<decltype(e)>;
+        if constexpr (HasOwnPressureLaw<S>) {
+          needs = S::PressureLaw::name;
+          for (const std::string& key : parameter_keys<typename S::PressureLaw>({}))
+            needs_keys += ", " + key;
+        }
+        if constexpr (IsOwnPressureLaw<E>) {
+          law_of = E::strength_model;
+          k = e.elastic_modulus();
+        }
+      },
+      m.strength, m.eos);
+  const std::string strength(model_name(m.strength)), eos(model_name(m.eos));
+  if (!needs.empty() && eos != needs)
+    r.fail(r.has("eos") ? "eos" : "strength", "strength model \"" + strength +
+                                                "\" needs eos = { model = \"" + needs + "\"" +
+                                                needs_keys + " }");
+  if (!law_of.empty() && strength != law_of)
+    r.fail("eos", "eos model \"" + eos + "\" is the pressure law of strength model \"" + law_of +
+                      "\" and goes with it only");
+  if (law_of.empty()) {
     if (shear_modulus)
-      r.fail("G", "G is for eos hjc-compaction, whose PC / muc is the bulk modulus; give E and nu");
+      r.fail("G", "G is for a strength model with a pressure law of its own (eos hjc-compaction), "
+                  "whose bulk modulus it completes; give E and nu");
     return;
   }
   if (!shear_modulus)
-    r.fail("eos", "eos model \"hjc-compaction\" sets the bulk modulus PC / muc; give the "
-                  "material's shear modulus G instead of E and nu");
+    r.fail("eos", "eos model \"" + eos + "\" sets the bulk modulus; give the material's shear "
+                  "modulus G instead of E and nu");
   if (r.has("E") || r.has("nu"))
-    r.fail(r.has("E") ? "E" : "nu", "give G only: eos hjc-compaction sets the bulk modulus");
-  const double k = compaction->elastic_modulus();
+    r.fail(r.has("E") ? "E" : "nu", "give G only: eos " + eos + " sets the bulk modulus");
   if (!(3.0 * k >= 2.0 * *shear_modulus))
-    r.fail("G", "value " + format_number(*shear_modulus) + " needs PC / muc = " +
-                    format_number(k) + " >= 2 G / 3 (Poisson's ratio >= 0)");
+    r.fail("G", "value " + format_number(*shear_modulus) + " needs the bulk modulus of eos " + eos +
+                    ", " + format_number(k) + ", >= 2 G / 3 (Poisson's ratio >= 0)");
   m.set_shear_and_bulk_modulus(*shear_modulus, k);
 }
 
-// Strength models by the scene file's name: each reads its own keys. A new model is its reader
-// here and one row of strength_models.
-StrengthModel read_elastic(TableReader& r, double) {
-  r.check_unknown();
-  return Elastic{};
-}
-
-StrengthModel read_j2(TableReader& r, double youngs_modulus) {
-  r.known({"yield", "hardening", "tangent_modulus"});
-  r.check_unknown();
-  J2Plasticity j2;
-  j2.yield_stress = r.required_number("yield", Range::positive());
-  if (r.has("hardening") && r.has("tangent_modulus"))
-    r.fail("tangent_modulus",
-           "give either hardening (plastic modulus H) or tangent_modulus (Et), not both");
-  j2.hardening = r.number("hardening", 0.0, Range::non_negative());
-  // Et is the slope of the uniaxial stress-strain curve after yield; the radial return
-  // wants the plastic modulus, H = E Et / (E - Et).
-  if (const auto et = r.optional_number("tangent_modulus", {0.0, youngs_modulus, false, true}))
-    j2.hardening = youngs_modulus * *et / (youngs_modulus - *et);
-  return j2;
-}
-
-StrengthModel read_johnson_cook(TableReader& r, double) {
-  r.known({"A", "B", "n", "C", "m", "reference_strain_rate", "room_temperature",
-           "melt_temperature"});
-  r.check_unknown();
-  JohnsonCook jc;
-  jc.A = r.required_number("A", Range::non_negative());
-  jc.B = r.required_number("B", Range::non_negative());
-  jc.n = r.required_number("n", Range::positive());
-  jc.C = r.number("C", 0.0, Range::non_negative());
-  jc.m = r.number("m", 0.0, Range::non_negative());
-  jc.reference_strain_rate = r.number("reference_strain_rate", 1.0, Range::positive());
-  jc.room_temperature = r.number("room_temperature", 293.0, Range::non_negative());
-  if (jc.m > 0.0) {
-    // Thermal softening divides by (T_melt - T_room): it needs a melt temperature above room.
-    if (!r.has("melt_temperature"))
-      r.fail("melt_temperature", "required when m > 0 (thermal softening); allowed: value > " +
-                                     format_number(jc.room_temperature) + " (room_temperature)");
-    jc.melt_temperature =
-        r.required_number("melt_temperature", {jc.room_temperature, Range::positive().hi, true, false});
-  } else {
-    jc.melt_temperature = r.number("melt_temperature", 0.0, Range::non_negative());
+// Reads a model's parameters (Model::parameters, in the model's own file) from its table:
+// every key it names is allowed, each value range-checked with the file, line and key.
+class SceneParameters final : public ParameterVisitor {
+ public:
+  SceneParameters(TableReader& r, const MaterialConstants& material) : r_(r), material_(material) {}
+  void required(std::string_view key, double& value, const Range& range) override {
+    value = r_.required_number(key, range);
   }
-  return jc;
-}
+  void optional(std::string_view key, double& value, double fallback, const Range& range) override {
+    value = r_.number(key, fallback, range);
+  }
+  void require(bool ok, std::string_view key, const std::string& message) override {
+    if (!ok) r_.fail(key, message);
+  }
+  bool has(std::string_view key) const override { return r_.has(key); }
+  bool reading() const override { return true; }
+  const MaterialConstants& material() const override { return material_; }
 
-StrengthModel read_hjc_strength(TableReader& r, double) { return read_holmquist_johnson_cook(r); }
-
-StrengthModel read_fluid(TableReader& r, double) {
-  r.check_unknown();
-  return Fluid{};
-}
-
-struct StrengthEntry {
-  std::string_view name;
-  StrengthModel (*read)(TableReader&, double youngs_modulus);
+ private:
+  TableReader& r_;
+  const MaterialConstants& material_;
 };
-constexpr StrengthEntry strength_models[] = {{"elastic", read_elastic},
-                                             {"j2", read_j2},
-                                             {"johnson-cook", read_johnson_cook},
-                                             {"holmquist-johnson-cook", read_hjc_strength},
-                                             {"fluid", read_fluid}};
 
-template <class Entries>
-std::vector<std::string_view> entry_names(const Entries& entries) {
-  std::vector<std::string_view> names;
-  for (const auto& e : entries) names.push_back(e.name);
-  return names;
+// The model of Variant the scene names `name` (one of model_names<Variant>()), read from r.
+template <class Variant>
+Variant read_named_model(TableReader& r, std::string_view name, const MaterialConstants& material) {
+  std::optional<Variant> result;
+  for_each_alternative<Variant>([&]<class Model>(std::size_t) {
+    if constexpr (requires { Model::name; }) {
+      if (result || Model::name != name) return;
+      r.known(parameter_keys<Model>(material));
+      r.check_unknown();
+      Model model{};
+      SceneParameters v(r, material);
+      visit_parameters(model, v);
+      result = model;
+    }
+  });
+  return *result;
+}
+
+// A model chosen by `model = "NAME"` among the named alternatives of Variant.
+template <class Variant>
+Variant read_model(TableReader& r, const MaterialConstants& material) {
+  r.known({"model"});
+  static const std::vector<std::string_view> names = model_names<Variant>();
+  return read_named_model<Variant>(r, names[r.choice("model", names, std::nullopt)], material);
 }
 
 // A registered user strength model (afemp/user_material.hpp): its parameters by name, every
@@ -638,127 +583,16 @@ StrengthModel read_user_strength(TableReader& r, const std::string& name) {
   return u;
 }
 
-StrengthModel read_strength(TableReader& r, double youngs_modulus) {
+StrengthModel read_strength(TableReader& r, const MaterialConstants& material) {
   r.known({"model"});
   // The built-in models, then the user models registered by the program reading the scene.
   const std::vector<std::string> user = registered_strength_models();
-  std::vector<std::string_view> names = entry_names(strength_models);
+  std::vector<std::string_view> names = model_names<StrengthModel>();
+  const std::size_t builtin = names.size();
   for (const std::string& name : user) names.push_back(name);
   const std::size_t i = r.choice("model", names, std::nullopt);
-  if (i < std::size(strength_models)) return strength_models[i].read(r, youngs_modulus);
-  return read_user_strength(r, user[i - std::size(strength_models)]);
-}
-
-// Equations of state by the scene file's name, as the strength models above.
-EquationOfState read_linear_eos(TableReader& r, double, double bulk_modulus) {
-  r.known({"bulk_modulus"});
-  r.check_unknown();
-  return LinearEos{r.number("bulk_modulus", bulk_modulus, Range::positive())};
-}
-
-EquationOfState read_mie_gruneisen(TableReader& r, double density, double) {
-  r.known({"c0", "s", "gamma0"});
-  r.check_unknown();
-  MieGruneisen mg;
-  mg.rho0 = density;
-  mg.c0 = r.required_number("c0", Range::positive());
-  mg.s = r.required_number("s", Range::non_negative());
-  mg.gamma0 = r.required_number("gamma0", Range::non_negative());
-  return mg;
-}
-
-EquationOfState read_linear_polynomial(TableReader& r, double density, double) {
-  r.known({"C0", "C1", "C2", "C3", "C4", "C5", "C6"});
-  r.check_unknown();
-  LinearPolynomialEos lp;
-  lp.rho0 = density;
-  static constexpr std::string_view names[7] = {"C0", "C1", "C2", "C3", "C4", "C5", "C6"};
-  for (int i = 0; i < 7; ++i) lp.c[i] = r.number(names[i], 0.0, Range::any());
-  return lp;
-}
-
-EquationOfState read_hjc_eos(TableReader& r, double, double) { return read_hjc_compaction(r); }
-
-EquationOfState read_jwl(TableReader& r, double density, double) {
-  r.known({"A", "B", "R1", "R2", "omega", "E0"});
-  r.check_unknown();
-  Jwl j;
-  j.rho0 = density;
-  j.A = r.required_number("A", Range::positive());
-  j.B = r.required_number("B", Range::positive());
-  j.R1 = r.required_number("R1", Range::positive());
-  j.R2 = r.required_number("R2", Range::positive());
-  j.omega = r.required_number("omega", Range::positive());
-  j.E0 = r.required_number("E0", Range::non_negative());
-  return j;
-}
-
-struct EosEntry {
-  std::string_view name;
-  EquationOfState (*read)(TableReader&, double density, double bulk_modulus);
-};
-constexpr EosEntry equations_of_state[] = {{"linear", read_linear_eos},
-                                           {"mie-gruneisen", read_mie_gruneisen},
-                                           {"linear-polynomial", read_linear_polynomial},
-                                           {"hjc-compaction", read_hjc_eos},
-                                           {"jwl", read_jwl}};
-
-EquationOfState read_eos(TableReader& r, double density, double bulk_modulus) {
-  r.known({"model"});
-  static const std::vector<std::string_view> names = entry_names(equations_of_state);
-  return equations_of_state[r.choice("model", names, std::nullopt)].read(r, density, bulk_modulus);
-}
-
-// [materials.NAME] failure = { model = "...", ... } (afemp/failure_models.hpp).
-FailureModel read_failure(TableReader& r) {
-  r.known({"model"});
-  const std::size_t model = r.choice(
-      "model", {"johnson-cook", "plastic-strain", "spall", "principal-strain"}, std::nullopt);
-  if (model == 0) {
-    r.known({"D1", "D2", "D3", "D4", "D5", "reference_strain_rate", "room_temperature",
-             "melt_temperature", "damage_threshold", "critical_damage"});
-    r.check_unknown();
-    JohnsonCookFailure f;
-    f.D1 = r.required_number("D1", Range::any());
-    f.D2 = r.required_number("D2", Range::any());
-    f.D3 = r.required_number("D3", Range::any());
-    f.D4 = r.number("D4", 0.0, Range::any());
-    f.D5 = r.number("D5", 0.0, Range::any());
-    f.reference_strain_rate = r.number("reference_strain_rate", 1.0, Range::positive());
-    f.room_temperature = r.number("room_temperature", 293.0, Range::non_negative());
-    f.melt_temperature = r.number("melt_temperature", 0.0, Range::non_negative());
-    f.damage_threshold = r.number("damage_threshold", 0.0, Range::non_negative());
-    // D_C = 1 would soften the deviator to zero, from which the effective one is lost.
-    f.critical_damage = r.number("critical_damage", 0.0, {0.0, 1.0, false, true});
-    return f;
-  }
-  if (model == 1 || model == 3) {
-    r.known({"strain"});
-    r.check_unknown();
-    const double strain = r.required_number("strain", Range::positive());
-    if (model == 3) return PrincipalStrainFailure{strain};
-    return PlasticStrainFailure{strain};
-  }
-  r.known({"pressure", "principal_stress", "impulse", "exponent"});
-  r.check_unknown();
-  SpallFailure f;
-  const std::optional<double> pressure = r.optional_number("pressure", Range::positive());
-  const std::optional<double> principal = r.optional_number("principal_stress", Range::positive());
-  if (pressure.has_value() == principal.has_value())
-    r.fail(pressure ? "principal_stress" : "pressure",
-           "a spall model takes exactly one strength: pressure (fails when -p exceeds it) or "
-           "principal_stress (when the largest principal stress does)");
-  f.criterion =
-      pressure ? SpallFailure::Criterion::pressure : SpallFailure::Criterion::principal_stress;
-  f.strength = pressure ? *pressure : *principal;
-  f.impulse = r.number("impulse", 0.0, Range::non_negative());
-  f.exponent =
-      r.number("exponent", 2.0, Range::closed(1.0, std::numeric_limits<double>::infinity()));
-  if (r.has("exponent") && !(f.impulse > 0.0))
-    r.fail("exponent",
-           "the exponent is the cumulative (Tuler-Butcher) form's: give impulse > 0 "
-           "with it");
-  return f;
+  if (i < builtin) return read_named_model<StrengthModel>(r, names[i], material);
+  return read_user_strength(r, user[i - builtin]);
 }
 
 Material read_material(TableReader& r, const std::string& name) {
@@ -778,15 +612,16 @@ Material read_material(TableReader& r, const std::string& name) {
     m.youngs_modulus = r.required_number("E", Range::positive());
     m.poisson_ratio = r.required_number("nu", {0.0, 0.5, false, true});
   }
+  const MaterialConstants constants{m.density, m.youngs_modulus, m.bulk_modulus()};
   if (const toml::table* t = r.optional_table("strength")) {
     TableReader sr(*t, r.dotted("strength"), r.file());
-    m.strength = read_strength(sr, m.youngs_modulus);
+    m.strength = read_strength(sr, constants);
   }
   if (const toml::table* t = r.optional_table("eos")) {
     TableReader er(*t, r.dotted("eos"), r.file());
-    m.eos = read_eos(er, m.density, m.bulk_modulus());
+    m.eos = read_model<EquationOfState>(er, constants);
   }
-  pair_holmquist_johnson_cook(r, m, shear_modulus);
+  pair_own_pressure_law(r, m, shear_modulus);
   m.thermal.specific_heat = r.number("specific_heat", 0.0, Range::non_negative());
   m.thermal.taylor_quinney = r.number("taylor_quinney", 0.9, Range::closed(0.0, 1.0));
   m.thermal.initial_temperature = r.number("temperature", 293.0, Range::non_negative());
@@ -796,16 +631,17 @@ Material read_material(TableReader& r, const std::string& name) {
       r.fail("failure_strain", "give failure_strain or failure, not both (failure_strain is "
                                "failure = { model = \"plastic-strain\", strain = ... })");
     TableReader fr(*t, r.dotted("failure"), r.file());
-    m.failure = read_failure(fr);
+    m.failure = read_model<FailureModel>(fr, constants);
   } else if (m.failure_strain > 0.0) {
     m.failure = PlasticStrainFailure{m.failure_strain};
   }
   if (r.has("pressure_cutoff")) {
     m.pressure_cutoff = r.number("pressure_cutoff", 0.0, {-std::numeric_limits<double>::infinity(), 0.0, true, false});
-    if (!m.has_eos() || std::holds_alternative<HjcCompaction>(m.eos))
+    if (!m.has_eos() || has_own_pressure_law(m))
       r.fail("pressure_cutoff", "a pressure cutoff (cavitation) acts on an eos's pressure: give "
-                                "eos = { model = \"mie-gruneisen\" } or another, not "
-                                "hjc-compaction, which has its own tension limit");
+                                "eos = { model = \"mie-gruneisen\" } or another, not a strength "
+                                "model's own pressure law (hjc-compaction), which has its own "
+                                "tension limit");
   }
   if (const toml::table* t = r.optional_table("burn")) {
     TableReader br(*t, r.dotted("burn"), r.file());
@@ -1641,7 +1477,7 @@ ProbeSpec read_probe(TableReader& r, const Scene& scene) {
 
 }  // namespace
 
-std::vector<std::string_view> builtin_strength_models() { return entry_names(strength_models); }
+std::vector<std::string_view> builtin_strength_models() { return model_names<StrengthModel>(); }
 
 Scene scene_from_toml(const toml::table& root, const std::string& path) {
   Scene scene;

@@ -14,28 +14,13 @@
 #include <toml++/toml.h>
 
 #include "afemp/errors.hpp"
+#include "afemp/model_parameters.hpp"
 #include "core/scene.hpp"
 #include "afemp/tensor.hpp"
 
 namespace afemp::core::scene_detail {
 
-// An allowed interval for a number; each end may be open, closed or absent.
-struct Range {
-  double lo = -std::numeric_limits<double>::infinity();
-  double hi = std::numeric_limits<double>::infinity();
-  bool lo_open = false;
-  bool hi_open = false;
-
-  static Range positive() { return {0.0, std::numeric_limits<double>::infinity(), true, false}; }
-  static Range non_negative() { return {0.0, std::numeric_limits<double>::infinity(), false, false}; }
-  static Range any() { return {}; }
-  static Range closed(double lo, double hi) { return {lo, hi, false, false}; }
-
-  // NaN is never contained: a scene must not smuggle "nan" through a range check.
-  bool contains(double v) const;
-  // "0 < value <= 1", "value > 0", "any number".
-  std::string describe() const;
-};
+using core::Range;  // afemp/model_parameters.hpp
 
 // Reads the keys of one TOML table. It remembers every key it was told about (known) and every
 // key it read (consumed), so check_unknown() can reject a typo and list the keys that exist.

@@ -2,6 +2,9 @@
 // FeSolver::begin_step and finish_step run them, with its reason.
 #include "fem/fe_step_plan.hpp"
 
+#include <type_traits>
+#include <variant>
+
 #include "core/appendf.hpp"
 
 namespace afemp::fem {
@@ -40,26 +43,37 @@ std::string hexahedron_formulation(const core::Scene& scene, const BodySpec& bod
 // model, or its failure_strain where it has none.
 std::string failure_model(const core::Material& m) {
   std::string out;
-  if (const auto* jc = std::get_if<core::JohnsonCookFailure>(&m.failure)) {
-    core::appendf(out, "Johnson-Cook damage, D1 .. D5 = %g, %g, %g, %g, %g", jc->D1, jc->D2, jc->D3,
-                  jc->D4, jc->D5);
-    if (jc->damage_threshold > 0.0)
-      core::appendf(out, ", from plastic strain %g", jc->damage_threshold);
-    if (jc->critical_damage > 0.0)
-      core::appendf(out, ", softening the deviator to %g at failure", 1.0 - jc->critical_damage);
-  } else if (const auto* p = std::get_if<core::PlasticStrainFailure>(&m.failure))
-    core::appendf(out, "plastic strain %g", p->strain);
-  else if (const auto* sp = std::get_if<core::SpallFailure>(&m.failure))
-    core::appendf(out, "spall, %s %g%s",
-                  sp->criterion == core::SpallFailure::Criterion::pressure ? "tension -p"
-                                                                           : "largest principal stress",
-                  sp->strength, sp->impulse > 0.0 ? ", cumulative (Tuler-Butcher)" : "");
-  else if (const auto* e = std::get_if<core::PrincipalStrainFailure>(&m.failure))
-    core::appendf(out, "principal strain %g", e->strain);
-  else if (m.failure_strain > 0.0)
-    core::appendf(out, "plastic strain %g", m.failure_strain);
-  else
-    out = "none: the material has no failure model";
+  std::visit(
+      [&](const auto& f) {
+        using F = std::decay_t<decltype(f)>;
+        if constexpr (std::is_same_v<F, core::JohnsonCookFailure>) {
+          core::appendf(out, "Johnson-Cook damage, D1 .. D5 = %g, %g, %g, %g, %g", f.D1, f.D2,
+                        f.D3, f.D4, f.D5);
+          if (f.damage_threshold > 0.0)
+            core::appendf(out, ", from plastic strain %g", f.damage_threshold);
+          if (f.critical_damage > 0.0)
+            core::appendf(out, ", softening the deviator to %g at failure",
+                          1.0 - f.critical_damage);
+        } else if constexpr (std::is_same_v<F, core::PlasticStrainFailure>) {
+          core::appendf(out, "plastic strain %g", f.strain);
+        } else if constexpr (std::is_same_v<F, core::SpallFailure>) {
+          core::appendf(out, "spall, %s %g%s",
+                        f.criterion == core::SpallFailure::Criterion::pressure
+                            ? "tension -p"
+                            : "largest principal stress",
+                        f.strength, f.impulse > 0.0 ? ", cumulative (Tuler-Butcher)" : "");
+        } else if constexpr (std::is_same_v<F, core::PrincipalStrainFailure>) {
+          core::appendf(out, "principal strain %g", f.strain);
+        } else if constexpr (std::is_same_v<F, core::NoFailure>) {
+          if (m.failure_strain > 0.0)
+            core::appendf(out, "plastic strain %g", m.failure_strain);
+          else
+            out = "none: the material has no failure model";
+        } else {
+          static_assert(sizeof(F) == 0, "a failure model the step plan does not describe");
+        }
+      },
+      m.failure);
   return out;
 }
 

@@ -4,6 +4,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/materials/model_parameters.hpp"
 #include "core/materials/user_strength_chunk.hpp"
 #include "core/scene.hpp"
 
@@ -12,31 +13,16 @@ namespace afemp::mpm {
 namespace {
 
 std::string strength_name(const core::StrengthModel& s) {
-  struct {
-    std::string operator()(const core::Elastic&) const { return "elastic"; }
-    std::string operator()(const core::Fluid&) const { return "fluid"; }
-    std::string operator()(const core::J2Plasticity&) const { return "j2"; }
-    std::string operator()(const core::JohnsonCook&) const { return "johnson-cook"; }
-    std::string operator()(const core::HolmquistJohnsonCook&) const { return "holmquist-johnson-cook"; }
-    std::string operator()(const core::UserStrength& u) const {
-      return "user model " + (u.definition ? u.definition->name : std::string("?")) + " (" +
-             std::to_string(u.history_count()) + " history variables, batches of " +
-             std::to_string(core::kUserChunk) + ")";
-    }
-  } v;
-  return std::visit(v, s);
+  if (const auto* u = std::get_if<core::UserStrength>(&s))
+    return "user model " + (u->definition ? u->definition->name : std::string("?")) + " (" +
+           std::to_string(u->history_count()) + " history variables, batches of " +
+           std::to_string(core::kUserChunk) + ")";
+  return std::string(core::model_name(s));
 }
 
 std::string eos_name(const core::EquationOfState& e) {
-  struct {
-    std::string operator()(const core::NoEos&) const { return "none"; }
-    std::string operator()(const core::LinearEos&) const { return "linear"; }
-    std::string operator()(const core::MieGruneisen&) const { return "mie-gruneisen"; }
-    std::string operator()(const core::LinearPolynomialEos&) const { return "linear-polynomial"; }
-    std::string operator()(const core::HjcCompaction&) const { return "hjc-compaction"; }
-    std::string operator()(const core::Jwl&) const { return "jwl"; }
-  } v;
-  return std::visit(v, e);
+  const std::string_view name = core::model_name(e);
+  return name.empty() ? "none" : std::string(name);
 }
 
 Stage stage(StageKind kind, std::string name, std::string why) {

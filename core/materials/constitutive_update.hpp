@@ -1,7 +1,7 @@
 // Definition of constitutive_update (declared in material.hpp, which includes this file at its
 // end: include material.hpp, not this header). Eq 2-41 of Ma 2005 with the energy equation
 // de = (s_mid : de_dev - p_mid tr(d eps)) / rho solved in closed form with p = a(mu) + b(mu) e;
-// the Holmquist-Johnson-Cook pair branches to its own update (holmquist_johnson_cook.cpp).
+// a model with its own pressure law (Holmquist-Johnson-Cook concrete) updates the whole point.
 #pragma once
 
 #include <algorithm>
@@ -9,7 +9,6 @@
 #include <type_traits>
 
 #include "core/materials/failure.hpp"
-#include "core/materials/holmquist_johnson_cook.hpp"
 
 namespace afemp::core {
 
@@ -43,7 +42,7 @@ template <class Eos, bool Fails>
 inline PointUpdate finish_increment(const Material& material, const Eos& eos, bool thermal,
                                     PointState& point, const IncrementStart& in,
                                     const SymTensor& s_deviator, const DeviatoricResult& r_model) {
-  static_assert(!std::is_same_v<Eos, HjcCompaction>, "HjcCompaction pairs with HJC only");
+  static_assert(!IsOwnPressureLaw<Eos>, "a model's own pressure law goes with that model only");
   // A failed point (failure.hpp) carries no shear and no tension: whatever the strength model
   // returned, its deviator is zero, it flows no more, and its pressure is cut at zero.
   bool failed = false;
@@ -126,11 +125,11 @@ template <class Strength, class Eos, bool Fails>
 inline PointUpdate constitutive_update(const Material& material, const Strength& strength,
                                        const Eos& eos, bool thermal, PointState& point,
                                        const SymTensor& d_eps, double dt) {
-  static_assert(composable<Strength, Eos>, "HolmquistJohnsonCook pairs with HjcCompaction only");
+  static_assert(composable<Strength, Eos>, "a model's own pressure law goes with it only");
   static_assert(!std::is_same_v<Strength, UserStrength>,
                 "user strength models run on batches (user_strength_chunk.hpp), never per point");
-  if constexpr (std::is_same_v<Strength, HolmquistJohnsonCook>) {
-    return holmquist_johnson_cook_update(material, strength, eos, point, d_eps, dt);
+  if constexpr (HasOwnPressureLaw<Strength>) {
+    return strength.update_point(material, eos, point, d_eps, dt);
   } else {
     const IncrementStart in = start_increment<Fails>(material, point, d_eps, dt);
     SymTensor s_new = in.s_old;
@@ -151,8 +150,8 @@ inline double tangent_bulk_modulus(const Material& material, const Eos& eos,
   const double mu = point.density / material.density - 1.0;
   if constexpr (std::is_same_v<Eos, NoEos>) {
     return material.bulk_modulus();
-  } else if constexpr (std::is_same_v<Eos, HjcCompaction>) {
-    return hjc_tangent_bulk_modulus(eos, mu, point);
+  } else if constexpr (IsOwnPressureLaw<Eos>) {
+    return eos.tangent_bulk_modulus(mu, point);  // it reads the point's history
   } else {
     return eos.tangent_bulk_modulus(mu, point.energy);
   }
@@ -177,7 +176,7 @@ inline double wave_speed(const Material& material, const Eos& eos, const PointSt
   const bool expanded = point.density < material.density;
   const bool failed = point.damage >= 1.0 && expanded;
   const double shear = 4.0 / 3.0 * material.shear_modulus();
-  if constexpr (std::is_same_v<Eos, NoEos> || std::is_same_v<Eos, HjcCompaction>) {
+  if constexpr (std::is_same_v<Eos, NoEos> || IsOwnPressureLaw<Eos>) {
     if (failed) return 0.0;
     return std::sqrt((tangent_bulk_modulus(material, eos, point) + shear) / point.density);
   } else {

@@ -19,6 +19,8 @@
 #include <limits>
 
 #include "afemp/equations_of_state.hpp"
+#include "core/materials/holmquist_johnson_cook.hpp"
+#include "core/materials/model_parameters.hpp"
 
 namespace afemp::core {
 
@@ -95,6 +97,41 @@ double HjcCompaction::plastic_compaction(double mu_max) const {
 double HjcCompaction::tangent_bulk_modulus(double mu, double mu_max) const {
   const double slope = std::max(loading_slope(mu_max), unloading_modulus(mu_max));
   return std::max((1.0 + mu) * slope, 0.0);
+}
+
+double HjcCompaction::tangent_bulk_modulus(double mu, const PointState& point) const {
+  return tangent_bulk_modulus(mu, point.history[kMaxCompaction]);
+}
+
+void HjcCompaction::parameters(ParameterVisitor& v) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  v.required("PC", crush_pressure_, Range::positive());
+  v.required("muc", crush_strain_, {0.0, 1.0, true, true});
+  v.required("PL", lock_pressure_, Range::above(crush_pressure_));
+  v.required("mul", lock_strain_, {crush_strain_, 1.0, true, true});
+  // Unloading stiffens as the voids close: K1 >= K_e = PC / muc.
+  v.required("K1", k1_, Range::at_least(crush_pressure_ / crush_strain_));
+  v.required("K2", k2_, Range::any());
+  v.required("K3", k3_, Range::non_negative());
+  if (v.reading()) *this = HjcCompaction(crush_pressure_, crush_strain_, lock_pressure_,
+                                         lock_strain_, k1_, k2_, k3_);
+  // The dense curve must rise for every mubar >= 0: its slope K1 + 2 K2 x + 3 K3 x^2 is
+  // smallest at x = max(0, -K2 / (3 K3)) (K3 > 0) or grows without bound only if K2 >= 0.
+  if (k3_ > 0.0) {
+    const double x = std::max(0.0, -k2_ / (3.0 * k3_));
+    v.require(k1_ + x * (2.0 * k2_ + 3.0 * k3_ * x) > 0.0, "K2",
+              out_of_range(k2_, "such that K1 + 2 K2 x + 3 K3 x^2 > 0 for x >= 0 (pressure "
+                                "rises with compaction)"));
+  } else {
+    v.require(k2_ >= 0.0, "K2", out_of_range(k2_, "value >= 0 when K3 = 0"));
+  }
+  v.require(plock_strain_ > crush_strain_ && plock_strain_ < inf, "PL",
+            "mu_plock = " + format_value(plock_strain_) +
+                ", where the dense curve reaches PL, must be > muc (lower PL or mul)");
+  const double crush_slope = loading_slope(0.5 * (crush_strain_ + plock_strain_));
+  v.require(crush_slope <= elastic_modulus(), "PL",
+            "(PL - PC) / (mu_plock - muc) = " + format_value(crush_slope) +
+                " must be <= PC / muc (crushing is softer than the elastic response)");
 }
 
 }  // namespace afemp::core

@@ -15,6 +15,7 @@
 #include <cmath>
 
 #include "core/materials/holmquist_johnson_cook.hpp"
+#include "core/materials/model_parameters.hpp"
 
 namespace afemp::core {
 
@@ -37,10 +38,10 @@ double HolmquistJohnsonCook::fracture_strain(double p_star) const {
   return std::max(min_fracture_strain, D1 * std::pow(std::max(p_star + t_star, 0.0), D2));
 }
 
-PointUpdate holmquist_johnson_cook_update(const Material& material,
-                                          const HolmquistJohnsonCook& strength,
-                                          const HjcCompaction& eos, PointState& point,
-                                          const SymTensor& d_eps, double dt) {
+PointUpdate HolmquistJohnsonCook::update_point(const Material& material, const HjcCompaction& eos,
+                                               PointState& point, const SymTensor& d_eps,
+                                               double dt) const {
+  const HolmquistJohnsonCook& strength = *this;
   const double p_old = pressure(point.stress);
   const SymTensor s_old = point.stress.deviator();
   const SymTensor de_dev = d_eps.deviator();
@@ -84,6 +85,20 @@ PointUpdate holmquist_johnson_cook_update(const Material& material,
       (0.5 * double_dot(s_old + s_new, de_dev) - 0.5 * (p_old + p_new) * d_vol) * inv_rho_work;
   point.stress = s_new - p_new * SymTensor::identity();
   return {yield * d_eps_p * inv_rho_work};
+}
+
+void HolmquistJohnsonCook::parameters(ParameterVisitor& v) {
+  v.required("A", A, Range::non_negative());
+  v.required("B", B, Range::non_negative());
+  v.required("N", N, Range::positive());
+  v.optional("C", C, 0.0, Range::non_negative());
+  v.required("fc", compressive_strength, Range::positive());
+  v.required("T", tensile_strength, Range::positive());
+  v.optional("reference_strain_rate", reference_strain_rate, 1.0, Range::positive());
+  v.required("EFMIN", min_fracture_strain, Range::positive());
+  v.required("SFMAX", max_strength, Range::positive());
+  v.required("D1", D1, Range::non_negative());
+  v.required("D2", D2, Range::non_negative());
 }
 
 }  // namespace afemp::core

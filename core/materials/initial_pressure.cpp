@@ -5,6 +5,9 @@
 #include <type_traits>
 #include <variant>
 
+#include "core/materials/material.hpp"
+#include "core/materials/model_parameters.hpp"
+
 namespace afemp::core {
 
 std::optional<double> compression_at_pressure(const Material& material, double p, double e) {
@@ -14,8 +17,8 @@ std::optional<double> compression_at_pressure(const Material& material, double p
         using E = std::decay_t<decltype(eos)>;
         if constexpr (std::is_same_v<E, NoEos>) {
           return 0.0;
-        } else if constexpr (std::is_same_v<E, HjcCompaction>) {
-          return std::nullopt;
+        } else if constexpr (IsOwnPressureLaw<E>) {
+          return std::nullopt;  // its pressure depends on the point's history
         } else {
           auto excess = [&](double mu) {
             const EosLinearForm f = eos.form(mu);
@@ -39,8 +42,8 @@ std::optional<std::string> initial_pressure_refusal(const Material& material, do
   std::string why;
   if (material.is_explosive()) {
     why = "an explosive's state comes from its burn";
-  } else if (std::holds_alternative<HjcCompaction>(material.eos)) {
-    why = "the HJC compaction law depends on its history";
+  } else if (has_own_pressure_law(material)) {
+    why = "the pressure law " + std::string(model_name(material.eos)) + " depends on its history";
   } else {
     char buf[96];
     std::snprintf(buf, sizeof buf, "its EOS does not reach %.10g below twice the reference density",

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "afemp/strength_models.hpp"
+#include "core/materials/model_parameters.hpp"
 
 namespace afemp::core {
 
@@ -112,6 +113,25 @@ DeviatoricResult JohnsonCook::update(SymTensor& s, const SymTensor& de_dev,
   sigma_y = std::min(sigma_y, q_trial);
   s *= sigma_y / q_trial;
   return {dp, sigma_y};
+}
+
+void JohnsonCook::parameters(ParameterVisitor& v) {
+  v.required("A", A, Range::non_negative());
+  v.required("B", B, Range::non_negative());
+  v.required("n", n, Range::positive());
+  v.optional("C", C, 0.0, Range::non_negative());
+  v.optional("m", m, 0.0, Range::non_negative());
+  v.optional("reference_strain_rate", reference_strain_rate, 1.0, Range::positive());
+  v.optional("room_temperature", room_temperature, 293.0, Range::non_negative());
+  if (m > 0.0) {
+    // Thermal softening divides by (T_melt - T_room): it needs a melt temperature above room.
+    v.require(v.has("melt_temperature"), "melt_temperature",
+              "required when m > 0 (thermal softening); allowed: value > " +
+                  format_value(room_temperature) + " (room_temperature)");
+    v.required("melt_temperature", melt_temperature, Range::above(room_temperature));
+  } else {
+    v.optional("melt_temperature", melt_temperature, 0.0, Range::non_negative());
+  }
 }
 
 }  // namespace afemp::core

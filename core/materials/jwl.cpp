@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "afemp/equations_of_state.hpp"
+#include "core/materials/model_parameters.hpp"
 
 namespace afemp::core {
 
@@ -30,6 +31,25 @@ double Jwl::tangent_bulk_modulus(double mu, double e) const {
   const double db = -omega * rho0 / (V * V);
   const double k = -V * (da + db * e);
   return k > 0.0 ? k : 0.0;
+}
+
+void Jwl::parameters(ParameterVisitor& v) {
+  if (v.reading()) rho0 = v.material().density;
+  v.require(rho0 > 0.0, "rho0", out_of_range(rho0, "value > 0 (the material's density)"));
+  v.required("A", A, Range::positive());
+  v.required("B", B, Range::positive());
+  v.required("R1", R1, Range::positive());
+  v.required("R2", R2, Range::positive());
+  v.required("omega", omega, Range::positive());
+  v.required("E0", E0, Range::non_negative());
+  v.require(B < A, "B", out_of_range(B, "value < A (detonation products)"));
+  v.require(R1 > R2, "R1", out_of_range(R1, "value > R2"));
+  // The products at the reference volume with the detonation energy must push: a negative
+  // pressure there is a set of parameters in another unit system, or mistyped.
+  const double p1 = pressure(1.0, E0);
+  v.require(p1 > 0.0, "E0",
+            "eos pressure at V = 1 and E = E0 is " + format_value(p1) +
+                ", must be > 0 (check A, B, R1, R2, omega and E0 and their units)");
 }
 
 }  // namespace afemp::core

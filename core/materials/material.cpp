@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/materials/material.hpp"
+#include "core/materials/model_parameters.hpp"
 
 namespace afemp::core {
 
@@ -21,46 +22,14 @@ void require(bool ok, const Material& m, const char* parameter, double value, co
                               std::to_string(value) + ", must be " + range);
 }
 
-void validate_strength(const Material& m, const Elastic&) { (void)m; }
+// What a strength model needs of the rest of the material (beyond its own parameters).
+template <class Model>
+void validate_strength(const Material&, const Model&) {}
 
 void validate_strength(const Material& m, const Fluid&) {
   if (!m.has_eos())
     throw std::invalid_argument("material '" + m.name + "': strength model fluid needs an eos "
                                 "(a fluid has no shear and no bulk law of its own)");
-}
-
-void validate_strength(const Material& m, const J2Plasticity& j2) {
-  require(j2.yield_stress >= 0.0, m, "yield_stress", j2.yield_stress, ">= 0");
-  require(j2.hardening >= 0.0, m, "hardening", j2.hardening, ">= 0");
-}
-
-void validate_strength(const Material& m, const JohnsonCook& jc) {
-  require(jc.A >= 0.0, m, "A", jc.A, ">= 0");
-  require(jc.B >= 0.0, m, "B", jc.B, ">= 0");
-  require(jc.n > 0.0, m, "n", jc.n, "> 0");
-  require(jc.C >= 0.0, m, "C", jc.C, ">= 0");
-  require(jc.m >= 0.0, m, "m", jc.m, ">= 0");
-  require(jc.reference_strain_rate > 0.0, m, "reference_strain_rate", jc.reference_strain_rate,
-          "> 0");
-  if (jc.m > 0.0) {
-    require(jc.melt_temperature > jc.room_temperature, m, "melt_temperature",
-            jc.melt_temperature, "> room_temperature when m > 0");
-  }
-}
-
-void validate_strength(const Material& m, const HolmquistJohnsonCook& hjc) {
-  require(hjc.A >= 0.0, m, "A", hjc.A, ">= 0");
-  require(hjc.B >= 0.0, m, "B", hjc.B, ">= 0");
-  require(hjc.N > 0.0, m, "N", hjc.N, "> 0");
-  require(hjc.C >= 0.0, m, "C", hjc.C, ">= 0");
-  require(hjc.compressive_strength > 0.0, m, "fc", hjc.compressive_strength, "> 0");
-  require(hjc.tensile_strength > 0.0, m, "T", hjc.tensile_strength, "> 0");
-  require(hjc.reference_strain_rate > 0.0, m, "reference_strain_rate",
-          hjc.reference_strain_rate, "> 0");
-  require(hjc.min_fracture_strain > 0.0, m, "EFMIN", hjc.min_fracture_strain, "> 0");
-  require(hjc.max_strength > 0.0, m, "SFMAX", hjc.max_strength, "> 0");
-  require(hjc.D1 >= 0.0, m, "D1", hjc.D1, ">= 0");
-  require(hjc.D2 >= 0.0, m, "D2", hjc.D2, ">= 0");
 }
 
 void validate_strength(const Material& m, const UserStrength& u) {
@@ -83,63 +52,6 @@ void validate_strength(const Material& m, const UserStrength& u) {
                                   u.definition->name + "': " + e.what());
     }
   }
-}
-
-void validate_eos(const Material&, const NoEos&) {}
-
-void validate_eos(const Material& m, const LinearEos& eos) {
-  require(eos.bulk_modulus > 0.0, m, "bulk_modulus", eos.bulk_modulus, "> 0");
-}
-
-void validate_eos(const Material& m, const MieGruneisen& eos) {
-  require(eos.rho0 > 0.0, m, "rho0", eos.rho0, "> 0");
-  require(eos.c0 > 0.0, m, "c0", eos.c0, "> 0");
-  require(eos.s >= 0.0, m, "s", eos.s, ">= 0");
-  require(eos.gamma0 >= 0.0, m, "gamma0", eos.gamma0, ">= 0");
-}
-
-void validate_eos(const Material& m, const LinearPolynomialEos& eos) {
-  require(eos.rho0 > 0.0, m, "rho0", eos.rho0, "> 0");
-}
-
-void validate_eos(const Material& m, const HjcCompaction& eos) {
-  require(eos.crush_pressure() > 0.0, m, "PC", eos.crush_pressure(), "> 0");
-  require(eos.crush_strain() > 0.0, m, "muc", eos.crush_strain(), "> 0");
-  require(eos.lock_pressure() > eos.crush_pressure(), m, "PL", eos.lock_pressure(), "> PC");
-  require(eos.lock_strain() > eos.crush_strain(), m, "mul", eos.lock_strain(), "> muc");
-  const double k_e = eos.elastic_modulus();
-  require(eos.k1() >= k_e, m, "K1", eos.k1(), ">= PC / muc (unloading stiffens as voids close)");
-  // The dense curve must rise for every mubar >= 0: its slope K1 + 2 K2 x + 3 K3 x^2 is
-  // smallest at x = max(0, -K2 / (3 K3)) (K3 > 0) or grows without bound only if K2 >= 0.
-  require(eos.k3() >= 0.0, m, "K3", eos.k3(), ">= 0");
-  if (eos.k3() > 0.0) {
-    const double x = std::max(0.0, -eos.k2() / (3.0 * eos.k3()));
-    const double slope = eos.k1() + x * (2.0 * eos.k2() + 3.0 * eos.k3() * x);
-    require(slope > 0.0, m, "K2", eos.k2(),
-            "such that K1 + 2 K2 x + 3 K3 x^2 > 0 for x >= 0 (pressure rises with compaction)");
-  } else {
-    require(eos.k2() >= 0.0, m, "K2", eos.k2(), ">= 0 when K3 = 0");
-  }
-  require(eos.plock_strain() > eos.crush_strain(), m, "mu_plock", eos.plock_strain(),
-          "> muc (where the dense curve reaches PL; lower PL or mul)");
-  const double crush_slope = eos.loading_slope(0.5 * (eos.crush_strain() + eos.plock_strain()));
-  require(crush_slope <= k_e, m, "(PL - PC) / (mu_plock - muc)", crush_slope,
-          "<= PC / muc (crushing is softer than the elastic response)");
-}
-
-void validate_eos(const Material& m, const Jwl& eos) {
-  require(eos.rho0 > 0.0, m, "rho0", eos.rho0, "> 0");
-  require(eos.A > 0.0, m, "eos A", eos.A, "> 0");
-  require(eos.B > 0.0 && eos.B < eos.A, m, "eos B", eos.B, "in (0, A) (detonation products)");
-  require(eos.R2 > 0.0, m, "eos R2", eos.R2, "> 0");
-  require(eos.R1 > eos.R2, m, "eos R1", eos.R1, "> R2");
-  require(eos.omega > 0.0, m, "eos omega", eos.omega, "> 0");
-  require(eos.E0 >= 0.0, m, "eos E0", eos.E0, ">= 0");
-  // The products at the reference volume with the detonation energy must push: a negative
-  // pressure there is a set of parameters in another unit system, or mistyped.
-  const double p1 = eos.pressure(1.0, eos.E0);
-  require(p1 > 0.0, m, "eos pressure at V = 1 and E = E0", p1,
-          "> 0 (check A, B, R1, R2, omega and E0 and their units)");
 }
 
 }  // namespace
@@ -189,21 +101,49 @@ void Material::validate() const {
           youngs_modulus, "> 0");
   require(poisson_ratio >= 0.0 && poisson_ratio < 0.5, *this, "poisson_ratio", poisson_ratio,
           "in [0, 0.5)");
-  std::visit([this](const auto& model) { validate_strength(*this, model); }, strength);
-  std::visit([this](const auto& model) { validate_eos(*this, model); }, eos);
-  const bool hjc_strength = std::holds_alternative<HolmquistJohnsonCook>(strength);
-  if (hjc_strength != std::holds_alternative<HjcCompaction>(eos)) {
-    throw std::invalid_argument("material '" + name + "': strength model " +
-                                (hjc_strength ? "holmquist-johnson-cook needs eos hjc-compaction"
-                                              : "other than holmquist-johnson-cook cannot use "
-                                                "eos hjc-compaction"));
-  }
-  if (const auto* compaction = std::get_if<HjcCompaction>(&eos)) {
-    // The deviator uses G from E and nu, the compaction law K_e = PC / muc: they must agree.
-    const double k_e = compaction->elastic_modulus();
-    require(std::abs(bulk_modulus() - k_e) <= 1e-9 * k_e, *this, "bulk modulus E / (3 (1 - 2 nu))",
-            bulk_modulus(), "= PC / muc (set E and nu from G and PC / muc)");
-  }
+  // Each model's own ranges and rules (its parameters(), the scene parser's too).
+  const MaterialConstants constants{density, youngs_modulus, bulk_modulus()};
+  std::visit(
+      [&](const auto& model) {
+        check_parameters(model, name, "", constants);
+        validate_strength(*this, model);
+      },
+      strength);
+  std::visit([&](const auto& model) { check_parameters(model, name, "eos ", constants); }, eos);
+  std::visit([&](const auto& model) { check_parameters(model, name, "failure ", constants); },
+             failure);
+  // A strength model with a pressure law of its own (Holmquist-Johnson-Cook concrete) takes
+  // that law and no failure model (it has its own damage), and no other model takes the law.
+  std::visit(
+      [&](const auto& s, const auto& e) {
+        using S = std::decay_t<decltype(s)>;
+        using E = std::decay_t<decltype(e)>;
+        if constexpr (HasOwnPressureLaw<S>) {
+          if constexpr (!composable<S, E>) {
+            throw std::invalid_argument("material '" + name + "': strength model " +
+                                        std::string(S::name) + " needs eos " +
+                                        std::string(S::PressureLaw::name));
+          } else {
+            // The deviator uses G from E and nu, the law its bulk modulus: they must agree.
+            const double k_e = e.elastic_modulus();
+            if (!(std::abs(bulk_modulus() - k_e) <= 1e-9 * k_e))
+              throw std::invalid_argument(
+                  "material '" + name + "': bulk modulus E / (3 (1 - 2 nu)) = " +
+                  format_value(bulk_modulus()) + ", must be the bulk modulus of eos " +
+                  std::string(E::name) + ", " + format_value(k_e) +
+                  " (set E and nu from G and it)");
+            if (fails())
+              throw std::invalid_argument("material '" + name + "': " + std::string(S::name) +
+                                          " has its own damage; it takes no failure model "
+                                          "(remove failure / failure_strain)");
+          }
+        } else if constexpr (IsOwnPressureLaw<E>) {
+          throw std::invalid_argument("material '" + name + "': strength model other than " +
+                                      std::string(E::strength_model) + " cannot use eos " +
+                                      std::string(E::name));
+        }
+      },
+      strength, eos);
   if (burn) {
     if (!std::holds_alternative<Jwl>(eos))
       throw std::invalid_argument("material '" + name + "': a burn (high explosive) needs eos jwl");
@@ -213,38 +153,6 @@ void Material::validate() const {
     require(v_cj > 0.0 && v_cj < 1.0, *this, "burn V_CJ = 1 - pcj / (density D^2)", v_cj,
             "in (0, 1) (check pcj, D and density and their units)");
   }
-  if (const auto* jc = std::get_if<JohnsonCookFailure>(&failure)) {
-    require(jc->reference_strain_rate > 0.0, *this, "failure reference_strain_rate",
-            jc->reference_strain_rate, "> 0");
-    // eps_f must stay positive at every triaxiality: D1 + D2 > 0 at sigma* = 0 and D1 >= 0
-    // where exp(D3 sigma*) vanishes (D3 < 0), D2 >= 0.
-    require(jc->D2 >= 0.0, *this, "failure D2", jc->D2, ">= 0");
-    require(jc->D1 + jc->D2 > 0.0, *this, "failure D1 + D2", jc->D1 + jc->D2, "> 0");
-    // eps_f falls as the triaxiality rises (D3 <= 0) and rises with the temperature (D5 >= 0),
-    // as in every published set; a D5 < 0 would bring it to zero below the melt. D4 takes
-    // either sign: steels that lose ductility with the rate have D4 < 0 (Weldox 460 E,
-    // -0.0123: Borvik et al. 2001), whose rate factor would reach zero only at
-    // epsdot* = exp(-1/D4), e^81 there; a point that got there would fail at once.
-    require(jc->D3 <= 0.0, *this, "failure D3", jc->D3, "<= 0");
-    require(jc->D5 >= 0.0, *this, "failure D5", jc->D5, ">= 0");
-    require(jc->damage_threshold >= 0.0, *this, "failure damage_threshold", jc->damage_threshold,
-            ">= 0");
-    require(jc->critical_damage >= 0.0 && jc->critical_damage < 1.0, *this,
-            "failure critical_damage", jc->critical_damage, "in [0, 1)");
-  }
-  if (const auto* p = std::get_if<PlasticStrainFailure>(&failure))
-    require(p->strain > 0.0, *this, "failure strain", p->strain, "> 0");
-  if (const auto* p = std::get_if<PrincipalStrainFailure>(&failure))
-    require(p->strain > 0.0, *this, "failure strain", p->strain, "> 0");
-  if (const auto* s = std::get_if<SpallFailure>(&failure)) {
-    require(s->strength > 0.0, *this, "failure strength", s->strength, "> 0");
-    require(s->impulse >= 0.0, *this, "failure impulse", s->impulse, ">= 0");
-    require(s->exponent >= 1.0, *this, "failure exponent", s->exponent, ">= 1");
-  }
-  if (fails() && std::holds_alternative<HolmquistJohnsonCook>(strength))
-    throw std::invalid_argument("material '" + name + "': holmquist-johnson-cook has its own "
-                                "damage; it takes no failure model (remove failure / "
-                                "failure_strain)");
   require(thermal.taylor_quinney >= 0.0 && thermal.taylor_quinney <= 1.0, *this,
           "taylor_quinney", thermal.taylor_quinney, "in [0, 1]");
   require(thermal.specific_heat >= 0.0, *this, "specific_heat", thermal.specific_heat, ">= 0");

@@ -18,11 +18,29 @@
 
 namespace afemp::core {
 
-// The strength and EOS pairs that form a material: the Holmquist-Johnson-Cook strength goes
-// with its compaction law and nothing else does (Material::validate checks it).
+// A strength model with a pressure law of its own (Strength::PressureLaw, its update_point
+// updates the whole point, as the Holmquist-Johnson-Cook concrete does), and such a law (which
+// names its model, Eos::strength_model).
+template <class Strength>
+concept HasOwnPressureLaw = requires { typename Strength::PressureLaw; };
+template <class Eos>
+concept IsOwnPressureLaw = requires { Eos::strength_model; };
+
+// Whether the material's EOS is a strength model's own pressure law.
+inline bool has_own_pressure_law(const Material& material) {
+  return std::visit([](const auto& eos) { return IsOwnPressureLaw<std::decay_t<decltype(eos)>>; },
+                    material.eos);
+}
+
+// The strength and EOS pairs that form a material: a model with its own pressure law goes with
+// that law, and no other model takes one (Material::validate checks it).
 template <class Strength, class Eos>
-inline constexpr bool composable =
-    std::is_same_v<Strength, HolmquistJohnsonCook> == std::is_same_v<Eos, HjcCompaction>;
+inline constexpr bool composable = [] {
+  if constexpr (HasOwnPressureLaw<Strength>)
+    return std::is_same_v<Eos, typename Strength::PressureLaw>;
+  else
+    return !IsOwnPressureLaw<Eos>;
+}();
 
 // Whether the model runs on batches through a user's function (afemp/user_material.hpp)
 // rather than per point.
@@ -126,7 +144,7 @@ PointUpdate finish_increment(const Material& material, const Eos& eos, bool ther
 //   every EOS is linear in e), or p -= K tr(d_eps) without an EOS; temperature rises by
 //   taylor_quinney * plastic work / c_p when has_thermal_term().
 // Templated on the model types so that each batch runs one instantiation.
-// The Holmquist-Johnson-Cook pair takes holmquist_johnson_cook_update instead.
+// A model with its own pressure law takes its update_point instead.
 template <class Strength, class Eos, bool Fails = false>
 PointUpdate constitutive_update(const Material& material, const Strength& strength, const Eos& eos,
                                 bool thermal, PointState& point, const SymTensor& d_eps, double dt);
@@ -143,8 +161,8 @@ decltype(auto) visit_models(const Material& material, F&& f) {
           return f(strength, eos);
         } else {
           throw std::invalid_argument("material '" + material.name +
-                                      "': strength model holmquist-johnson-cook and eos "
-                                      "hjc-compaction go together only");
+                                      "': a strength model with a pressure law of its own goes "
+                                      "with that law only, and the law with it only");
         }
       },
       material.strength, material.eos);

@@ -12,6 +12,7 @@
 // km/s impact then collapses.) This is LS-DYNA's *EOS_GRUNEISEN numerator
 // rho0 c0^2 mu (1 + (1 - gamma0 / 2) mu) over (1 + mu), with the cubic Hugoniot.
 #include "afemp/equations_of_state.hpp"
+#include "core/materials/model_parameters.hpp"
 
 namespace afemp::core {
 
@@ -51,6 +52,15 @@ double MieGruneisen::tangent_bulk_modulus(double mu, double /*e*/) const {
   const double dfactor = -0.5 * gamma0 / ((1.0 + mu) * (1.0 + mu));
   const double k = (1.0 + mu) * (h.dp * factor + h.p * dfactor);  // rho dp/drho
   return k > 0.0 ? k : 0.0;
+}
+
+void MieGruneisen::parameters(ParameterVisitor& v) {
+  // The reference density is the material's.
+  if (v.reading()) rho0 = v.material().density;
+  v.require(rho0 > 0.0, "rho0", out_of_range(rho0, "value > 0 (the material's density)"));
+  v.required("c0", c0, Range::positive());
+  v.required("s", s, Range::non_negative());
+  v.required("gamma0", gamma0, Range::non_negative());
 }
 
 }  // namespace afemp::core

@@ -4,6 +4,14 @@
 // (material.hpp). HjcCompaction is independent of e but depends on the compaction history.
 #pragma once
 
+#include <string_view>
+
+#include "afemp/model_parameters.hpp"
+
+namespace afemp::core {
+struct PointState;  // the internal point state of a constitutive update
+}
+
 namespace afemp::core {
 
 /// An EOS at fixed density as p = a + b e (e the specific internal energy).
@@ -18,7 +26,10 @@ struct NoEos {};
 
 /// Linear EOS: p = K mu.
 struct LinearEos {
+  static constexpr std::string_view name = "linear";  ///< in the scene file
   double bulk_modulus = 0.0;
+  /// Its scene-file keys, ranges and rules (afemp/model_parameters.hpp), in linear_eos.cpp.
+  void parameters(ParameterVisitor& v);
   EosLinearForm form(double mu) const;
   double tangent_bulk_modulus(double mu, double e) const;  ///< rho dp/drho
 };
@@ -29,7 +40,10 @@ struct LinearEos {
 /// pH = C1 mu + C2 mu^2 + C3 mu^3 (mu >= 0), pH = C1 mu (mu < 0),
 /// C1 = rho0 c0^2, C2 = C1 (2s - 1), C3 = C1 (s - 1)(3s - 1).
 struct MieGruneisen {
+  static constexpr std::string_view name = "mie-gruneisen";
   double rho0 = 0.0, c0 = 0.0, s = 0.0, gamma0 = 0.0;
+  /// Its scene-file keys, ranges and rules (afemp/model_parameters.hpp), in mie_gruneisen.cpp.
+  void parameters(ParameterVisitor& v);
   EosLinearForm form(double mu) const;
   double tangent_bulk_modulus(double mu, double e) const;
 };
@@ -38,8 +52,11 @@ struct MieGruneisen {
 /// p = C0 + C1 mu + C2 mu^2 + C3 mu^3 + (C4 + C5 mu + C6 mu^2) rho0 e,
 /// with C2 and C6 terms dropped in tension (mu < 0).
 struct LinearPolynomialEos {
+  static constexpr std::string_view name = "linear-polynomial";
   double rho0 = 0.0;
   double c[7] = {0, 0, 0, 0, 0, 0, 0};
+  /// Its scene-file keys, ranges and rules (afemp/model_parameters.hpp), in linear_polynomial_eos.cpp.
+  void parameters(ParameterVisitor& v);
   EosLinearForm form(double mu) const;
   double tangent_bulk_modulus(double mu, double e) const;
 };
@@ -50,7 +67,10 @@ struct LinearPolynomialEos {
 /// volume; E0 is its initial value (the detonation energy per unit volume), which the points
 /// of the material start with. Linear in e: a(V) the first two terms, b = omega rho0 / V.
 struct Jwl {
+  static constexpr std::string_view name = "jwl";
   double rho0 = 0.0, A = 0.0, B = 0.0, R1 = 0.0, R2 = 0.0, omega = 0.0, E0 = 0.0;
+  /// Its scene-file keys, ranges and rules (afemp/model_parameters.hpp), in jwl.cpp.
+  void parameters(ParameterVisitor& v);
   EosLinearForm form(double mu) const;
   double tangent_bulk_modulus(double mu, double e) const;
   /// p at relative volume V and energy per unit reference volume E.
@@ -65,6 +85,9 @@ struct Jwl {
 /// -T (1 - D) belongs to the strength model and is applied there.
 class HjcCompaction {
  public:
+  static constexpr std::string_view name = "hjc-compaction";
+  /// The strength model whose own pressure law this is (it goes with that model only).
+  static constexpr std::string_view strength_model = "holmquist-johnson-cook";
   HjcCompaction() = default;
   /// Finds mu_plock, the strain at which the fully dense curve reaches lock_pressure (NaN when
   /// it never does; Material::validate reports that).
@@ -94,6 +117,10 @@ class HjcCompaction {
   /// rho dp/drho for the time step: the stiffer of the loading and unloading slopes at mu_max,
   /// because a point loading now may unload in the next step.
   double tangent_bulk_modulus(double mu, double mu_max) const;
+  /// The same at a point's own largest compaction (its history, holmquist_johnson_cook.hpp).
+  double tangent_bulk_modulus(double mu, const PointState& point) const;
+  /// Its scene-file keys, ranges and rules (afemp/model_parameters.hpp), in hjc_compaction.cpp.
+  void parameters(ParameterVisitor& v);
 
  private:
   double crush_pressure_ = 0.0, crush_strain_ = 0.0, lock_pressure_ = 0.0, lock_strain_ = 0.0;

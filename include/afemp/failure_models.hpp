@@ -5,7 +5,10 @@
 // they fail. Damage D in [0, 1] is the fraction of the way to failure.
 #pragma once
 
+#include <string_view>
 #include <variant>
+
+#include "afemp/model_parameters.hpp"
 
 namespace afemp::core {
 
@@ -32,17 +35,23 @@ struct NoFailure {};
 /// dr = (1 - D_C D) dp, is not kept apart, so the hardening runs a little ahead of his (r is
 /// about (1 - D_C / 2) p at failure where the damage grows evenly).
 struct JohnsonCookFailure {
+  static constexpr std::string_view name = "johnson-cook";  ///< in the scene file
   double D1 = 0.0, D2 = 0.0, D3 = 0.0, D4 = 0.0, D5 = 0.0;
   double reference_strain_rate = 1.0;  ///< epsdot_0, in the scene's time unit
   double room_temperature = 293.0;
   double melt_temperature = 0.0;  ///< 0: no temperature term
   double damage_threshold = 0.0;  ///< p_d: plastic strain before damage grows, >= 0
   double critical_damage = 0.0;   ///< D_C in [0, 1): 0, no coupling (Johnson & Cook 1985)
+  /// Its scene-file keys, ranges and rules (afemp/model_parameters.hpp), in failure_models.cpp.
+  void parameters(ParameterVisitor& v);
 };
 
 /// Failure at an equivalent plastic strain (D = eps_p / strain).
 struct PlasticStrainFailure {
+  static constexpr std::string_view name = "plastic-strain";
   double strain = 0.0;  ///< > 0
+  /// Its scene-file keys, ranges and rules (afemp/model_parameters.hpp), in failure_models.cpp.
+  void parameters(ParameterVisitor& v);
 };
 
 /// Spall: the point fails when its tension passes the spall strength. The tension is -p
@@ -51,11 +60,14 @@ struct PlasticStrainFailure {
 /// strength. Cumulative (impulse > 0), Tuler & Butcher (1968, Int. J. Fract. Mech. 4(4)
 /// 431-437): D += max(0, tension - strength)^exponent dt / impulse, failing at D = 1.
 struct SpallFailure {
+  static constexpr std::string_view name = "spall";
   enum class Criterion { pressure, principal_stress };
   Criterion criterion = Criterion::pressure;
   double strength = 0.0;  ///< spall strength (the threshold stress), > 0
   double impulse = 0.0;   ///< Tuler-Butcher K, stress^exponent x time; 0: instantaneous
   double exponent = 2.0;  ///< Tuler-Butcher lambda, >= 1
+  /// Its scene-file keys, ranges and rules (afemp/model_parameters.hpp), in failure_models.cpp.
+  void parameters(ParameterVisitor& v);
 };
 
 /// Failure at a principal strain (LS-DYNA *MAT_ADD_EROSION's MXEPS): the point fails when the
@@ -63,7 +75,10 @@ struct SpallFailure {
 /// logarithmic strain for coaxial stretching), reaches `strain`; D = eps_1 / strain, never
 /// falling. The solvers integrate the strain tensor of such points.
 struct PrincipalStrainFailure {
+  static constexpr std::string_view name = "principal-strain";
   double strain = 0.0;  ///< > 0
+  /// Its scene-file keys, ranges and rules (afemp/model_parameters.hpp), in failure_models.cpp.
+  void parameters(ParameterVisitor& v);
 };
 
 /// A material's failure model.

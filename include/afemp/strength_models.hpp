@@ -5,10 +5,17 @@
 #pragma once
 
 #include <cstddef>
+#include <string_view>
 
+#include "afemp/model_parameters.hpp"
 #include "afemp/tensor.hpp"
 
 namespace afemp::core {
+
+struct Material;     // afemp/material.hpp
+struct PointState;   // the internal point state of a constitutive update
+struct PointUpdate;  // and what it reports
+class HjcCompaction;  // afemp/equations_of_state.hpp
 
 /// What a deviatoric update reports back to the composition in material.hpp.
 struct DeviatoricResult {
@@ -26,6 +33,7 @@ struct StrengthContext {
 
 /// Linear (hypo)elastic deviatoric response: s += 2 G de.
 struct Elastic {
+  static constexpr std::string_view name = "elastic";  ///< in the scene file
   DeviatoricResult update(SymTensor& s, const SymTensor& de_dev, const StrengthContext& c) const;
   bool thermal() const { return false; }
   /// What the model reads of a point's history; solvers load only that (every model states it).
@@ -36,6 +44,7 @@ struct Elastic {
 
 /// No shear strength: a fluid, or detonation products (with an EOS). The deviator is zero.
 struct Fluid {
+  static constexpr std::string_view name = "fluid";
   DeviatoricResult update(SymTensor& s, const SymTensor& de_dev, const StrengthContext& c) const;
   bool thermal() const { return false; }
   static constexpr bool reads_plastic_strain = false;
@@ -46,8 +55,11 @@ struct Fluid {
 /// J2 plasticity with linear isotropic hardening (perfect plasticity when hardening = 0):
 /// sigma_y = yield_stress + hardening * eps_p, radial return (Simo & Hughes box 3.2).
 struct J2Plasticity {
+  static constexpr std::string_view name = "j2";
   double yield_stress = 0.0;  ///< initial yield stress
   double hardening = 0.0;     ///< plastic modulus H = E Et / (E - Et)
+  /// Its scene-file keys, ranges and rules (afemp/model_parameters.hpp), in j2_plasticity.cpp.
+  void parameters(ParameterVisitor& v);
   DeviatoricResult update(SymTensor& s, const SymTensor& de_dev, const StrengthContext& c) const;
   bool thermal() const { return false; }
   /// What the model reads of a point's history; solvers load only that (every model states it).
@@ -61,10 +73,13 @@ struct J2Plasticity {
 /// T* = (T - T_room) / (T_melt - T_room); the rate term is used only for epsdot_p > epsdot_0
 /// (as LS-DYNA *MAT_015 does) and the thermal term only when m > 0 and T_melt > T_room.
 struct JohnsonCook {
+  static constexpr std::string_view name = "johnson-cook";
   double A = 0.0, B = 0.0, n = 1.0, C = 0.0, m = 0.0;
   double reference_strain_rate = 1.0;  ///< epsdot_0, in the scene's time unit
   double room_temperature = 293.0;
   double melt_temperature = 0.0;       ///< 0: no thermal softening
+  /// Its scene-file keys, ranges and rules (afemp/model_parameters.hpp), in johnson_cook.cpp.
+  void parameters(ParameterVisitor& v);
   double flow_stress(double eps_p, double eps_rate, double temperature) const;
   DeviatoricResult update(SymTensor& s, const SymTensor& de_dev, const StrengthContext& c) const;
   bool thermal() const { return m > 0.0 && melt_temperature > room_temperature; }
@@ -80,9 +95,10 @@ struct JohnsonCook {
 ///   sigma* = A (1 - D)(1 + P* / T*) r             for -T* <= P* < 0
 ///   D += (d eps_p + d mu_p) / max(EFMIN, D1 (P* + T*)^D2).
 /// Its yield stress depends on the pressure and its damage on the crushing of the pressure law,
-/// so it is paired with HjcCompaction and updated by holmquist_johnson_cook_update
-/// (material.hpp), not through update() like the models above.
+/// so it is paired with its own pressure law HjcCompaction and updates a whole point
+/// (update_point), not the deviator through update() like the models above.
 struct HolmquistJohnsonCook {
+  static constexpr std::string_view name = "holmquist-johnson-cook";
   double A = 0.0, B = 0.0, N = 1.0, C = 0.0;
   double compressive_strength = 0.0;   ///< fc, the quasi-static uniaxial compressive strength
   double tensile_strength = 0.0;       ///< T, the largest hydrostatic tension
@@ -90,6 +106,16 @@ struct HolmquistJohnsonCook {
   double min_fracture_strain = 0.0;    ///< EFMIN
   double max_strength = 0.0;           ///< SFMAX, normalised
   double D1 = 0.0, D2 = 0.0;
+  /// Its own pressure law: a material with this strength model takes that EOS and no other.
+  using PressureLaw = HjcCompaction;
+  /// The update of one point (holmquist_johnson_cook.cpp): pressure from the compaction law
+  /// with the tension cutoff -T (1 - D), deviator returned radially onto the yield surface at
+  /// that pressure, damage from the plastic and crushing strain increments, and the energy
+  /// equation of the other models (the pressure does not depend on e).
+  PointUpdate update_point(const Material& material, const HjcCompaction& eos, PointState& point,
+                           const SymTensor& d_eps, double dt) const;
+  /// Its scene-file keys, ranges and rules (afemp/model_parameters.hpp), in holmquist_johnson_cook.cpp.
+  void parameters(ParameterVisitor& v);
   /// sigma* at normalised pressure p_star, damage and equivalent strain rate.
   double normalised_strength(double p_star, double damage, double strain_rate) const;
   /// Plastic strain to fracture at normalised pressure p_star, max(EFMIN, D1 (P* + T*)^D2).
