@@ -12,6 +12,7 @@
 
 #include "afemp/equations_of_state.hpp"
 #include "afemp/failure_models.hpp"
+#include "afemp/johnson_holmquist_ceramic.hpp"
 #include "afemp/strength_models.hpp"
 #include "afemp/user_material.hpp"
 
@@ -19,11 +20,11 @@ namespace afemp::core {
 
 /// The deviatoric half of a material: one of the built-in strength models, or a user model
 /// registered through afemp/user_material.hpp.
-using StrengthModel =
-    std::variant<Elastic, J2Plasticity, JohnsonCook, HolmquistJohnsonCook, UserStrength, Fluid>;
+using StrengthModel = std::variant<Elastic, J2Plasticity, JohnsonCook, HolmquistJohnsonCook,
+                                   UserStrength, Fluid, JohnsonHolmquist2>;
 /// The volumetric half of a material: no EOS (hypoelastic bulk law) or one of the built-in EOS.
-using EquationOfState =
-    std::variant<NoEos, LinearEos, MieGruneisen, LinearPolynomialEos, HjcCompaction, Jwl>;
+using EquationOfState = std::variant<NoEos, LinearEos, MieGruneisen, LinearPolynomialEos,
+                                     HjcCompaction, Jwl, Jh2Pressure>;
 
 /// Programmed burn of a high explosive (LS-DYNA *MAT_HIGH_EXPLOSIVE_BURN; Wilkins' beta burn):
 /// a point lights at t_l, its distance from the nearest detonation (Scene::detonations) over
