@@ -46,9 +46,9 @@ std::vector<std::string> probe_columns(ProbeKind k) {
   return {};
 }
 
-int ProbeSeries::column(const std::string& name) const {
+int ProbeSeries::column(const std::string& column_name) const {
   for (std::size_t c = 0; c < columns.size(); ++c)
-    if (columns[c] == name) return static_cast<int>(c);
+    if (columns[c] == column_name) return static_cast<int>(c);
   return -1;
 }
 

@@ -1047,12 +1047,12 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
           rigid.fixed.fill(true);
           continue;
         }
-        const auto* it = std::find_if(std::begin(dof), std::end(dof),
-                                      [&](const char* d) { return name == d; });
-        if (it == std::end(dof))
+        const auto* component = std::find_if(std::begin(dof), std::end(dof),
+                                             [&](const char* d) { return name == d; });
+        if (component == std::end(dof))
           rr.fail("fixed", "unknown component \"" + name +
                                "\"; allowed: \"x\", \"y\", \"z\", \"rx\", \"ry\", \"rz\", \"all\"");
-        rigid.fixed[static_cast<std::size_t>(it - std::begin(dof))] = true;
+        rigid.fixed[static_cast<std::size_t>(component - std::begin(dof))] = true;
       }
     } else {
       r.fail("rigid", "expected true or a table { fixed = [\"x\", ..., \"rz\"] }, got " +

@@ -60,8 +60,8 @@ Conversion convert_element(const fem::FeSolver& fe, const core::Scene& scene,
     for (int h = 0; h < ppe; ++h) {
       const std::size_t p = p0 + static_cast<std::size_t>(h);
       const double w = el.point_mass[p];
-      for (std::size_t v = 0; v < el.history_count; ++v)
-        q.history[v] += w * el.history[p * el.history_count + v];
+      for (std::size_t k = 0; k < el.history_count; ++k)
+        q.history[k] += w * el.history[p * el.history_count + k];
       m += w;
       q.stress += w * el.stress[p];
       q.plastic_strain += w * el.plastic_strain[p];
@@ -75,7 +75,7 @@ Conversion convert_element(const fem::FeSolver& fe, const core::Scene& scene,
     q.temperature /= m;
     q.energy /= m;
     q.damage /= m;
-    for (double& v : q.history) v /= m;
+    for (double& value : q.history) value /= m;
     return m / volume;
   };
 

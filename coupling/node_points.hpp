@@ -28,7 +28,7 @@ class NodePoints final : public mpm::GridPoints {
  public:
   // Contact nodes take their own (FE) update; a bonded_to body's nodes move with the grid.
   explicit NodePoints(const core::Scene& scene) {
-    for (const core::BodySpec& body : scene.bodies) updates_itself_.push_back(body.bonded_to < 0);
+    for (const core::BodySpec& b : scene.bodies) updates_itself_.push_back(b.bonded_to < 0);
   }
 
   // Set by the caller before each step.
@@ -67,8 +67,8 @@ class NodePoints final : public mpm::GridPoints {
 
   // The hook (node_transfers.cpp). A body's nodes that are not bonded take their own update,
   // even where conversion bonds some of them: the grid learns that from its particles.
-  bool updates_itself(int body) const override {
-    return updates_itself_[static_cast<std::size_t>(body)] != 0;
+  bool updates_itself(int b) const override {
+    return updates_itself_[static_cast<std::size_t>(b)] != 0;
   }
   void bin(const mpm::GridStepAccess& access, std::vector<std::int64_t>& cells) override;
   void to_grid(const mpm::GridStepAccess& access, bool mass_momentum, bool force) override;

@@ -173,14 +173,14 @@ void NodePoints::contact_surfaces(const GridStepAccess& a, bool gradient) {
                                            : m * st.grad(n);
         continue;
       }
-      const Vec3& normal = a.contact_normal[s];
-      if (st.w(n) <= 0.0 || (normal.x == 0.0 && normal.y == 0.0 && normal.z == 0.0)) continue;
+      const Vec3& towards = a.contact_normal[s];
+      if (st.w(n) <= 0.0 || (towards.x == 0.0 && towards.y == 0.0 && towards.z == 0.0)) continue;
       const auto node = st.node(n);
       // Eq 42 measures from the particles' centres, which lie a quarter cell inside the
       // surface at 2 per cell (lambda = 0.5: the surfaces touch). FE nodes lie on the surface,
       // so they count as reaching a quarter cell less, and lambda keeps its meaning.
       const double r = mpm::reach_along(q.position[k] - g.node_position(node[0], node[1], node[2]),
-                                        normal, g.cell()) -
+                                        towards, g.cell()) -
                        0.25 * g.cell();
       if (r > g.reach[s]) g.reach[s] = r;
     }

@@ -82,29 +82,29 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
   auto begin_point = [&](std::size_t p, const core::Mat3& l, double density,
                          double q_old) AFEMP_INLINE {
     const StrainIncrement inc = increment(l, dt);
-    PointStart b{core::PointState{el.stress[p], el.plastic_strain[p], el.temperature[p],
+    PointStart ps{core::PointState{el.stress[p], el.plastic_strain[p], el.temperature[p],
                                   el.energy[p], density},
                  inc.d_eps};
     // A failure model reads and writes any model's damage.
-    if constexpr (core::has_damage_state<Strength> || Fails) b.st.damage = el.damage[p];
-    core::load_model_history<Strength>(b.st, el.history.data() + p * el.history_count);
-    b.st.stress += core::jaumann_increment(b.st.stress, inc.w23, inc.w13, inc.w12);
+    if constexpr (core::has_damage_state<Strength> || Fails) ps.st.damage = el.damage[p];
+    core::load_model_history<Strength>(ps.st, el.history.data() + p * el.history_count);
+    ps.st.stress += core::jaumann_increment(ps.st.stress, inc.w23, inc.w13, inc.w12);
     if (explosive)
-      b.st.burn = core::burn_fraction(*mat.burn, mat.density, el.burn[p], time_, el.light_time[p],
+      ps.st.burn = core::burn_fraction(*mat.burn, mat.density, el.burn[p], time_, el.light_time[p],
                                       el.burn_length[p], mat.density / density);
     // Bulk-viscous heating by the q that acted over this step.
-    b.q_heat = core::bulk_viscous_heat(q_old, inc.d_eps.trace(), density);
-    return b;
+    ps.q_heat = core::bulk_viscous_heat(q_old, inc.d_eps.trace(), density);
+    return ps;
   };
-  auto end_point = [&](std::size_t p, PointStart& b, const core::PointUpdate& u,
+  auto end_point = [&](std::size_t p, PointStart& ps, const core::PointUpdate& u,
                        double* sums) AFEMP_INLINE {
-    core::PointState& st = b.st;
-    st.energy += b.q_heat;
+    core::PointState& st = ps.st;
+    st.energy += ps.q_heat;
     sums[kPlastic] += el.point_mass[p] * u.plastic_work;
-    sums[kViscous] += el.point_mass[p] * b.q_heat;
+    sums[kViscous] += el.point_mass[p] * ps.q_heat;
     if (!el.plastic_heat.empty()) {  // elements may erode (the same for every point)
       el.plastic_heat[p] += u.plastic_work;
-      el.viscous_heat[p] += b.q_heat;
+      el.viscous_heat[p] += ps.q_heat;
     }
     el.stress[p] = st.stress;
     if (explosive) el.burn[p] = st.burn;
@@ -116,7 +116,7 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
     core::store_model_history<Strength>(st, el.history.data() + p * el.history_count);
     if constexpr (Fails) {
       if (principal_strain) {
-        el.strain[p] += b.d_eps;
+        el.strain[p] += ps.d_eps;
         el.damage[p] = core::principal_strain_damage(mat.failure, el.damage[p], el.strain[p]);
       }
     }
@@ -127,27 +127,27 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
     if constexpr (core::is_user_strength<Strength>) {
       return 0.0;  // user models take load_point, run and finish_point below
     } else {
-      PointStart b = begin_point(p, l, density, q_old);
+      PointStart ps = begin_point(p, l, density, q_old);
       const core::PointUpdate u =
-          core::constitutive_update<Strength, Eos, Fails>(mat, strength, eos, Thermal, b.st,
-                                                          b.d_eps, dt);
-      return end_point(p, b, u, sums);
+          core::constitutive_update<Strength, Eos, Fails>(mat, strength, eos, Thermal, ps.st,
+                                                          ps.d_eps, dt);
+      return end_point(p, ps, u, sums);
     }
   };
   // A user model's chunk: load point p into slot j, then (after run) finish slot j.
   constexpr bool user = core::is_user_strength<Strength>;
   [[maybe_unused]] const std::size_t hc = el.history_count;
-  auto load_point = [&](auto& chunk, std::size_t j, std::size_t p, PointStart& b,
+  auto load_point = [&](auto& chunk, std::size_t j, std::size_t p, PointStart& ps,
                         core::IncrementStart& in) {
-    in = core::start_increment<Fails>(mat, b.st, b.d_eps, dt);
-    chunk.load(j, b.st, in, el.history.data() + p * hc);
+    in = core::start_increment<Fails>(mat, ps.st, ps.d_eps, dt);
+    chunk.load(j, ps.st, in, el.history.data() + p * hc);
   };
-  auto finish_point = [&](auto& chunk, std::size_t j, std::size_t p, PointStart& b,
+  auto finish_point = [&](auto& chunk, std::size_t j, std::size_t p, PointStart& ps,
                           const core::IncrementStart& in, double* sums) {
     chunk.store_history(j, el.history.data() + p * hc);
     const core::PointUpdate u = core::finish_increment<Eos, Fails>(
-        mat, eos, Thermal, b.st, in, chunk.deviator(j), chunk.result(j));
-    return end_point(p, b, u, sums);
+        mat, eos, Thermal, ps.st, in, chunk.deviator(j), chunk.result(j));
+    return end_point(p, ps, u, sums);
   };
   // Bulk-viscous pressure q and the critical step of an element (length l, dilatation rate
   // trace_rate, wave speed c).

@@ -164,10 +164,10 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
       v_p = p.velocity[i];
       st = core::PointState{};
       if constexpr (Fused) {
-        const auto cell = g.cell_of(x);
-        const core::CellWeights w = g.weights(x, cell);
+        const auto cell_index = g.cell_of(x);
+        const core::CellWeights w = g.weights(x, cell_index);
         std::array<std::int32_t, 8> slot;
-        g.node_slots(cell, slot);
+        g.node_slots(cell_index, slot);
         const std::size_t field = field_offset(i);
         Vec3 dv;
         for (int k = 0; k < 8; ++k) {

@@ -94,10 +94,10 @@ class BackgroundGrid {
       for (std::size_t b = 0; b < 3; ++b) {
         const double wyz = ay.w[b] * az.w[c];
         const double gy = ay.grad[b] * az.w[c], gz = ay.w[b] * az.grad[c];
-        for (std::size_t a = 0; a < 3; ++a) {
-          const std::size_t n = a + 3 * b + 9 * c;
-          r.w[n] = ax.w[a] * wyz;
-          r.grad[n] = {ax.grad[a] * wyz, ax.w[a] * gy, ax.w[a] * gz};
+        for (std::size_t i = 0; i < 3; ++i) {
+          const std::size_t n = i + 3 * b + 9 * c;
+          r.w[n] = ax.w[i] * wyz;
+          r.grad[n] = {ax.grad[i] * wyz, ax.w[i] * gy, ax.w[i] * gz};
         }
       }
     return r;
