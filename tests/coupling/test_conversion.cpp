@@ -151,9 +151,9 @@ TEST_P(Conversion, ConservesMassAndMomentumAndBooksTheKineticEnergyItLoses) {
 INSTANTIATE_TEST_SUITE_P(PointsAndElements, Conversion,
                          ::testing::Values(Case{1, "one-point"}, Case{2, "one-point"},
                                            Case{1, "full"}, Case{2, "full"}),
-                         [](const auto& info) {
-                           return std::string(info.param.element == std::string("full") ? "Full" : "OnePoint") +
-                                  std::to_string(info.param.points);
+                         [](const auto& test) {
+                           return std::string(test.param.element == std::string("full") ? "Full" : "OnePoint") +
+                                  std::to_string(test.param.points);
                          });
 
 // The same cube in grid contact (CFEMP) with a block of particles it never reaches: its

@@ -135,8 +135,8 @@ TEST_P(FeRigidMotion, DrivenRotationLeavesStressAndEnergiesUnchanged) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BothHexahedra, FeRigidMotion, ::testing::Values("one-point", "full"),
-                         [](const auto& info) {
-                           return std::string(info.param) == "full" ? "FullBbar" : "OnePoint";
+                         [](const auto& test) {
+                           return std::string(test.param) == "full" ? "FullBbar" : "OnePoint";
                          });
 
 }  // namespace

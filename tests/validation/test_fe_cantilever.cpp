@@ -150,8 +150,8 @@ INSTANTIATE_TEST_SUITE_P(Meshes, FeCantileverMeshStudy,
                                                     "one-point", "assumed_strain", 1, 2, 40, 0.0},
                                            MeshCase{"one-point assumed strain, 4 layers",
                                                     "one-point", "assumed_strain", 1, 4, 80, 0.0}),
-                         [](const auto& info) {
-                           const MeshCase& c = info.param;
+                         [](const auto& test) {
+                           const MeshCase& c = test.param;
                            const std::string element = std::string(c.element) == "full" ? "FullBbar"
                                                        : std::string(c.hourglass) == "viscous"
                                                            ? "OnePointViscous"
