@@ -65,7 +65,8 @@ CraterMeasures measure_crater(std::span<const Vec3> points, const Vec3& point, c
   return m;
 }
 
-double measure_hole(std::span<const Vec3> points, const Vec3& point, const Vec3& normal, double band) {
+double measure_hole(std::span<const Vec3> points, const Vec3& point, const Vec3& normal,
+                    double band) {
   double r_min = inf;
   for (const Vec3& x : points) {
     const AxisCoordinates c = about_axis(x, point, normal);

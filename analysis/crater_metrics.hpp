@@ -13,7 +13,7 @@
 namespace afemp::analysis {
 
 struct CraterMeasures {
-  double depth = 0.0;     // NaN: no material left within `ring` of the axis (perforated)
+  double depth = 0.0;  // NaN: no material left within `ring` of the axis (perforated)
   double diameter = 0.0;
 };
 
@@ -37,6 +37,7 @@ CraterMeasures measure_crater(std::span<const Vec3> points, const Vec3& point, c
 // axis free of that material. NaN when no point lies in the slab. Points sit inside the
 // material (a particle's material reaches half a spacing beyond it), so with particles the
 // hole reads up to one particle spacing wide; nodes lie on the surface.
-double measure_hole(std::span<const Vec3> points, const Vec3& point, const Vec3& normal, double band);
+double measure_hole(std::span<const Vec3> points, const Vec3& point, const Vec3& normal,
+                    double band);
 
 }  // namespace afemp::analysis

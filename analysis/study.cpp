@@ -53,8 +53,7 @@ double measure(const MetricSpec& m, const MetricReference& reference, const core
   switch (m.kind) {
     case MetricKind::taylor: {
       const core::BodyPoints points = model.body_points(b);
-      const core::TaylorMeasures t =
-          measure_taylor(scene, b, points.position, points.half_size);
+      const core::TaylorMeasures t = measure_taylor(scene, b, points.position, points.half_size);
       values.insert(values.end(), {t.length, t.impact_diameter, t.bulge_diameter});
       return reference.taylor ? taylor_mean_error(t, *reference.taylor) : nan;
     }
@@ -98,8 +97,8 @@ double measure(const MetricSpec& m, const MetricReference& reference, const core
     }
     case MetricKind::frequency: {
       const core::ProbeSeries& p = probe_series(summary, m.probes[0]);
-      value = zero_crossing_frequency(
-          p.time, p.series(static_cast<std::size_t>(p.column(m.quantity))));
+      value =
+          zero_crossing_frequency(p.time, p.series(static_cast<std::size_t>(p.column(m.quantity))));
       break;
     }
   }
@@ -253,7 +252,9 @@ double reference_error(double value, const ScalarReference& reference) {
 double StudyResult::plotted_error(const StudyPlan& plan, const StudyRow& row) const {
   if (plan.plot == "energy") return std::abs(row.energy_error);
   const auto it = std::find(error_columns.begin(), error_columns.end(), plan.plot + ".error");
-  return it == error_columns.end() ? nan : row.errors[static_cast<std::size_t>(it - error_columns.begin())];
+  return it == error_columns.end()
+             ? nan
+             : row.errors[static_cast<std::size_t>(it - error_columns.begin())];
 }
 
 StudyResult run_study(const StudyPlan& plan,
@@ -288,8 +289,8 @@ StudyResult run_study(const StudyPlan& plan,
     for (std::size_t k = 0; k < plan.metrics.size(); ++k) {
       const MetricSpec& m = plan.metrics[k];
       if (m.kind == MetricKind::crater)
-        initial_level[k] = surface_level(
-            model->body_points(body_index(scene, m.body)).position, m.point, m.normal);
+        initial_level[k] = surface_level(model->body_points(body_index(scene, m.body)).position,
+                                         m.point, m.normal);
     }
     const auto start = std::chrono::steady_clock::now();
     try {
@@ -364,11 +365,12 @@ void write_study(const StudyPlan& plan, const StudyResult& result, const std::st
   csv += ",status\n";
   for (std::size_t k = 0; k < result.rows.size(); ++k) {
     const StudyRow& r = result.rows[k];
-    csv += std::to_string(k + 1) + "," + csv_field(r.run->method) + "," + csv_field(r.run->label) + "," +
-           (r.run->resolution ? number(*r.run->resolution) : "") + "," + std::to_string(r.particles) +
-           "," + std::to_string(r.elements) + "," + std::to_string(r.steps) + "," +
-           number(r.wall_seconds, "%.4f") + "," + std::to_string(r.threads) + "," +
-           number(r.energy_error, "%.6g") + "," + number(r.max_energy_error, "%.6g");
+    csv += std::to_string(k + 1) + "," + csv_field(r.run->method) + "," + csv_field(r.run->label) +
+           "," + (r.run->resolution ? number(*r.run->resolution) : "") + "," +
+           std::to_string(r.particles) + "," + std::to_string(r.elements) + "," +
+           std::to_string(r.steps) + "," + number(r.wall_seconds, "%.4f") + "," +
+           std::to_string(r.threads) + "," + number(r.energy_error, "%.6g") + "," +
+           number(r.max_energy_error, "%.6g");
     // Appended in two steps: "," + std::string trips GCC 12's -Wrestrict.
     for (double v : r.values) (csv += ',') += number(v, "%.6g");
     for (double v : r.errors) (csv += ',') += number(v, "%.6g");
@@ -379,22 +381,23 @@ void write_study(const StudyPlan& plan, const StudyResult& result, const std::st
   // Markdown: the same table for reading.
   std::string md = "# " + plan.title + "\n\n";
   md += "Study file `" + plan.path + "`; wall time of the time loop (no output written).\n\n";
-  md += "| method | resolution | particles | elements | steps | wall time (s) | threads | energy error "
-        "(largest)";
+  md +=
+      "| method | resolution | particles | elements | steps | wall time (s) | threads | energy "
+      "error "
+      "(largest)";
   std::string rule = "|---|---|---|---|---|---|---|---";
   for (const std::string& c : result.value_columns) md += " | " + c, rule += "|---";
   for (const std::string& c : result.error_columns) md += " | " + c, rule += "|---";
   for (const std::string& c : result.reference_columns) md += " | " + c, rule += "|---";
   md += " | status |\n" + rule + "|---|\n";
   for (const StudyRow& r : result.rows) {
-    md += "| " + r.run->method + " | " + (r.run->resolution ? number(*r.run->resolution) : "-") + " | " +
-          std::to_string(r.particles) + " | " + std::to_string(r.elements) + " | " +
+    md += "| " + r.run->method + " | " + (r.run->resolution ? number(*r.run->resolution) : "-") +
+          " | " + std::to_string(r.particles) + " | " + std::to_string(r.elements) + " | " +
           std::to_string(r.steps) + " | " + number(r.wall_seconds, "%.3g") + " | " +
           std::to_string(r.threads) + " | " +
-          (std::isnan(r.energy_error)
-               ? std::string("-")
-               : number(100.0 * r.energy_error, "%+.2f") + " % (" +
-                     number(100.0 * r.max_energy_error, "%.2f") + " %)");
+          (std::isnan(r.energy_error) ? std::string("-")
+                                      : number(100.0 * r.energy_error, "%+.2f") + " % (" +
+                                            number(100.0 * r.max_energy_error, "%.2f") + " %)");
     for (double v : r.values) md += " | " + (std::isnan(v) ? std::string("-") : number(v, "%.4g"));
     for (double v : r.errors) md += " | " + (std::isnan(v) ? std::string("-") : number(v, "%.4f"));
     for (double v : r.references)
@@ -411,8 +414,8 @@ void write_study(const StudyPlan& plan, const StudyResult& result, const std::st
   // appearance, runs in the study's order.
   LinePlot plot;
   plot.title = plan.title;
-  plot.x_label = "wall time (s), " + std::to_string(result.rows.empty() ? 0 : result.rows[0].threads) +
-                 " thread(s)";
+  plot.x_label = "wall time (s), " +
+                 std::to_string(result.rows.empty() ? 0 : result.rows[0].threads) + " thread(s)";
   plot.y_label = plan.plot == "energy" ? "|energy-balance error|" : plan.plot + " error";
   for (const StudyRow& r : result.rows) {
     auto it = std::find_if(plot.series.begin(), plot.series.end(),

@@ -19,13 +19,13 @@ struct StudyRow {
   long steps = 0;
   double wall_seconds = 0.0;  // of the time loop, no output written
   int threads = 0;
-  double energy_error = 0.0;  // the energy-balance error at the end
+  double energy_error = 0.0;      // the energy-balance error at the end
   double max_energy_error = 0.0;  // its largest magnitude over the run
-  std::vector<double> values;  // StudyResult::value_columns
+  std::vector<double> values;     // StudyResult::value_columns
   // StudyResult::error_columns (NaN: the run stopped, or has no reference for the metric)
   std::vector<double> errors;
   std::vector<double> references;  // StudyResult::reference_columns (NaN: none in this run)
-  std::string stopped;         // the simulation error that stopped the run, if one did
+  std::string stopped;             // the simulation error that stopped the run, if one did
   std::vector<std::string> over_tolerance;  // metrics whose error exceeds their tolerance
   bool ok() const { return stopped.empty() && over_tolerance.empty(); }
 };
@@ -49,17 +49,15 @@ struct StudyResult {
 double reference_error(double value, const ScalarReference& reference);
 
 // Runs the study; `report` is called after each run with the result so far and its row.
-StudyResult run_study(
-    const StudyPlan& plan,
-    const std::function<void(const StudyResult&, const StudyRow&)>& report = {});
+StudyResult run_study(const StudyPlan& plan,
+                      const std::function<void(const StudyResult&, const StudyRow&)>& report = {});
 
 // The files written to `directory` (created if needed).
 struct StudyFiles {
   std::string csv = "study.csv", markdown = "study.md", plot = "error_vs_time.svg";
   std::string value_plot = "value_vs_resolution.svg";  // with [study] plot_value
 };
-void write_study(const StudyPlan& plan, const StudyResult& result,
-                 const std::string& directory);
+void write_study(const StudyPlan& plan, const StudyResult& result, const std::string& directory);
 
 // One line of text per run for the terminal.
 std::string describe_row(const StudyResult& result, const StudyRow& row);

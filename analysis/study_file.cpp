@@ -3,14 +3,14 @@
 // scene built from its scene file with the run's overrides applied to the TOML tree.
 #include "analysis/study_file.hpp"
 
+#include <toml++/toml.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
-
-#include <toml++/toml.h>
 
 #include "core/scene_parser.hpp"
 
@@ -23,12 +23,18 @@ using core::scene_detail::TableReader;
 
 const char* to_string(MetricKind k) {
   switch (k) {
-    case MetricKind::taylor: return "taylor";
-    case MetricKind::velocity: return "velocity";
-    case MetricKind::crater: return "crater";
-    case MetricKind::hole: return "hole";
-    case MetricKind::wave_front: return "wave_front";
-    case MetricKind::frequency: return "frequency";
+    case MetricKind::taylor:
+      return "taylor";
+    case MetricKind::velocity:
+      return "velocity";
+    case MetricKind::crater:
+      return "crater";
+    case MetricKind::hole:
+      return "hole";
+    case MetricKind::wave_front:
+      return "wave_front";
+    case MetricKind::frequency:
+      return "frequency";
   }
   return "?";
 }
@@ -51,7 +57,9 @@ bool StudyPlan::has_reference(std::size_t metric) const {
 
 namespace {
 
-int line_of(const toml::source_region& r) { return static_cast<int>(r.begin.line); }
+int line_of(const toml::source_region& r) {
+  return static_cast<int>(r.begin.line);
+}
 
 std::string format_number_short(double v) {
   std::ostringstream os;
@@ -70,7 +78,9 @@ toml::table parse_toml(const std::string& text, const std::string& path) {
 
 std::string read_text(const std::string& path, const char* what) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(SourceLocation{path, 0}, "", std::string("cannot open ") + what + " '" + path + "'");
+  if (!in)
+    throw InputError(SourceLocation{path, 0}, "",
+                     std::string("cannot open ") + what + " '" + path + "'");
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
@@ -189,10 +199,12 @@ MetricSpec read_metric(TableReader& r) {
   if (m.name.empty() || m.name.find_first_of(",.\"\n") != std::string::npos)
     r.fail("name", "a metric name must be non-empty and hold no comma, dot, quote or newline");
   for (const MetricKey& k : metric_keys()) {
-    if (!r.has(k.key) || std::find(k.kinds.begin(), k.kinds.end(), m.kind) != k.kinds.end()) continue;
+    if (!r.has(k.key) || std::find(k.kinds.begin(), k.kinds.end(), m.kind) != k.kinds.end())
+      continue;
     std::vector<std::string> kinds;
     for (MetricKind kind : k.kinds) kinds.push_back(to_string(kind));
-    r.fail(k.key, "applies to kind " + join(kinds, true) + " only, not \"" + to_string(m.kind) + "\"");
+    r.fail(k.key,
+           "applies to kind " + join(kinds, true) + " only, not \"" + to_string(m.kind) + "\"");
   }
   m.tolerance = r.number("tolerance", 0.0, Range::non_negative());
   switch (m.kind) {
@@ -222,7 +234,8 @@ MetricSpec read_metric(TableReader& r) {
     case MetricKind::wave_front:
       m.probes = r.strings("probes");
       if (m.probes.size() < 2)
-        r.fail("probes", "name two or more probes along the wave's path, e.g. probes = [\"near\", \"far\"]");
+        r.fail("probes",
+               "name two or more probes along the wave's path, e.g. probes = [\"near\", \"far\"]");
       m.quantity = r.required_string("quantity");
       m.fraction = r.number("fraction", 0.5, {0.0, 1.0, true, false});
       m.until = r.number("until", 0.0, Range::positive());
@@ -275,7 +288,8 @@ void read_runs(TableReader& r, const std::string& study_path,
       if (sweep) {
         const auto* a = node.as_array();
         if (!a || a->size() != count)
-          throw InputError(SourceLocation{r.file(), line_of(node.source())}, r.dotted("set") + "." + k,
+          throw InputError(SourceLocation{r.file(), line_of(node.source())},
+                           r.dotted("set") + "." + k,
                            "with resolution = [" + std::to_string(count) +
                                " values], every set value must be an array of " +
                                std::to_string(count) + " values, one per run");
@@ -344,7 +358,8 @@ StudyPlan parse_study(const std::string& text, const std::string& path) {
   top.check_unknown();
   StudyPlan plan;
   plan.path = path;
-  if (!top.has("study")) top.fail("study", "a study file needs a [study] table (title, threads, plot)");
+  if (!top.has("study"))
+    top.fail("study", "a study file needs a [study] table (title, threads, plot)");
   TableReader s(top.required_table("study"), "study", path);
   s.known({"title", "threads", "plot", "energy_tolerance", "plot_value", "x_label"});
   s.check_unknown();
@@ -352,8 +367,7 @@ StudyPlan parse_study(const std::string& text, const std::string& path) {
   plan.threads = static_cast<int>(s.integer("threads", 0, 0, 4096));
   plan.energy_tolerance = s.number("energy_tolerance", 0.0, Range::non_negative());
   const toml::node* metrics = root.get("metrics");
-  if (metrics && !metrics->is_array_of_tables())
-    top.fail("metrics", "expected [[metrics]] tables");
+  if (metrics && !metrics->is_array_of_tables()) top.fail("metrics", "expected [[metrics]] tables");
   std::set<std::string> names;
   if (metrics) {
     const auto& a = *metrics->as_array();
@@ -393,9 +407,10 @@ StudyPlan parse_study(const std::string& text, const std::string& path) {
     if (plan.plot != "energy" &&
         (it == plan.metrics.end() ||
          !plan.has_reference(static_cast<std::size_t>(it - plan.metrics.begin()))))
-      s.fail("plot", "names the metric whose error is plotted: one with a reference (" +
-                         (with_reference.empty() ? std::string("none here") : join(with_reference, true)) +
-                         "), or \"energy\" for the energy-balance error");
+      s.fail("plot",
+             "names the metric whose error is plotted: one with a reference (" +
+                 (with_reference.empty() ? std::string("none here") : join(with_reference, true)) +
+                 "), or \"energy\" for the energy-balance error");
   }
   if (plan.plot.empty())
     for (std::size_t k = 0; k < plan.metrics.size(); ++k)
@@ -429,27 +444,31 @@ StudyPlan parse_study(const std::string& text, const std::string& path) {
         const auto p = std::find_if(scene.probes.begin(), scene.probes.end(),
                                     [&](const ProbeSpec& probe) { return probe.name == name; });
         if (p == scene.probes.end())
-          throw InputError(m.where, m.kind == MetricKind::frequency ? "metrics.probe" : "metrics.probes",
+          throw InputError(m.where,
+                           m.kind == MetricKind::frequency ? "metrics.probe" : "metrics.probes",
                            "metric \"" + m.name + "\" reads probe \"" + name + "\", which run \"" +
                                run.label + "\" (scene " + run.scene_path + ") does not have");
         const std::vector<std::string> columns = probe_columns(p->kind);
         if (std::find(columns.begin(), columns.end(), m.quantity) == columns.end())
           throw InputError(m.where, "metrics.quantity",
-                           "probe \"" + name + "\" is a " + to_string(p->kind) + " probe; its columns are " +
-                               join(columns, true));
+                           "probe \"" + name + "\" is a " + to_string(p->kind) +
+                               " probe; its columns are " + join(columns, true));
         if (m.kind == MetricKind::wave_front &&
             (p->kind == ProbeKind::mean_velocity || p->kind == ProbeKind::extreme))
-          throw InputError(m.where, "metrics.probes",
-                           "a wave front is timed at probes with a place (particle, node, element); "
-                           "probe \"" + name + "\" is a " + to_string(p->kind) + " probe");
+          throw InputError(
+              m.where, "metrics.probes",
+              "a wave front is timed at probes with a place (particle, node, element); "
+              "probe \"" +
+                  name + "\" is a " + to_string(p->kind) + " probe");
       }
       if (m.body.empty()) continue;
       const auto b = std::find_if(scene.bodies.begin(), scene.bodies.end(),
                                   [&](const BodySpec& body) { return body.name == m.body; });
       if (b == scene.bodies.end())
         throw InputError(m.where, "metrics.body",
-                         "metric \"" + m.name + "\" measures body \"" + m.body + "\", which run \"" +
-                             run.label + "\" (scene " + run.scene_path + ") does not have");
+                         "metric \"" + m.name + "\" measures body \"" + m.body +
+                             "\", which run \"" + run.label + "\" (scene " + run.scene_path +
+                             ") does not have");
       const auto* bar = std::get_if<CylinderShape>(&b->shape);
       if (m.kind == MetricKind::taylor && (bar == nullptr || bar->top_radius >= 0.0))
         throw InputError(m.where, "metrics.body",
@@ -460,7 +479,9 @@ StudyPlan parse_study(const std::string& text, const std::string& path) {
   return plan;
 }
 
-StudyPlan read_study(const std::string& path) { return parse_study(read_text(path, "study file"), path); }
+StudyPlan read_study(const std::string& path) {
+  return parse_study(read_text(path, "study file"), path);
+}
 
 Scene build_run_scene(const StudyPlan& plan, const StudyRun& run) {
   const std::string text = read_text(run.scene_path, "scene file");

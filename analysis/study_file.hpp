@@ -50,9 +50,9 @@ struct MetricReference {
 
 struct MetricSpec {
   MetricKind kind = MetricKind::velocity;
-  std::string name;  // column prefix, unique in the study
-  std::string body;  // the scene body it measures (every run's scene must have it); empty
-                     // for wave_front and frequency, which read probes
+  std::string name;    // column prefix, unique in the study
+  std::string body;    // the scene body it measures (every run's scene must have it); empty
+                       // for wave_front and frequency, which read probes
   int component = -1;  // velocity: 0, 1, 2 for x, y, z; -1 for the magnitude
   // crater, hole: the impact axis, through `point` along the unit `normal` of the struck face.
   Vec3 point, normal;
@@ -77,10 +77,10 @@ std::vector<std::string> value_columns(const MetricSpec& m);
 
 // One run: a scene and the overrides applied to it.
 struct StudyRun {
-  std::string method;      // the plot's line ("MPM", "FE", "AFEMP", ...)
-  std::string label;       // "MPM, resolution 0.5"
+  std::string method;                // the plot's line ("MPM", "FE", "AFEMP", ...)
+  std::string label;                 // "MPM, resolution 0.5"
   std::optional<double> resolution;  // the resolution column (cell or element size, ...)
-  std::string scene_path;  // resolved against the study file's folder
+  std::string scene_path;            // resolved against the study file's folder
   // Overrides: a dotted path into the scene ("grid.cell", "bodies.bar.mesh.size") and the
   // value as TOML text.
   struct Override {
@@ -96,9 +96,9 @@ struct StudyRun {
 };
 
 struct StudyPlan {
-  std::string path;   // the study file
+  std::string path;  // the study file
   std::string title;
-  int threads = 0;    // OpenMP threads for every run; 0: the default
+  int threads = 0;  // OpenMP threads for every run; 0: the default
   // > 0: a run whose energy-balance error ever exceeds this in magnitude fails ("energy"):
   // the stability criterion of a time-step or scheme sweep.
   double energy_tolerance = 0.0;

@@ -28,8 +28,8 @@ void marker(std::string& out, const char* shape, double x, double y, const char*
     appendf(out, "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.1f\" height=\"%.1f\" fill=\"%s\"/>\n",
             x - r, y - r, 2 * r, 2 * r, colour);
   } else if (std::string(shape) == "diamond") {
-    appendf(out, "<polygon points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f %.2f,%.2f\" fill=\"%s\"/>\n",
-            x, y - 1.3 * r, x + 1.3 * r, y, x, y + 1.3 * r, x - 1.3 * r, y, colour);
+    appendf(out, "<polygon points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f %.2f,%.2f\" fill=\"%s\"/>\n", x,
+            y - 1.3 * r, x + 1.3 * r, y, x, y + 1.3 * r, x - 1.3 * r, y, colour);
   } else {
     appendf(out, "<polygon points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f\" fill=\"%s\"/>\n", x,
             y - 1.3 * r, x + 1.2 * r, y + r, x - 1.2 * r, y + r, colour);
@@ -142,11 +142,14 @@ std::string svg(const LinePlot& plot, const Axis& ax, const Axis& ay) {
         "<text x=\"%.1f\" y=\"%.2f\" text-anchor=\"end\" dominant-baseline=\"middle\">%s</text>\n",
         left - 8, py(y), tick_label(y).c_str());
   }
-  appendf(out, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"none\" stroke=\"black\"/>\n",
+  appendf(out,
+          "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"none\" "
+          "stroke=\"black\"/>\n",
           left, top, pw, ph);
   appendf(out, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">", left + pw / 2, height - 15);
   out += xml_escape(plot.x_label) + "</text>\n";
-  appendf(out, "<text x=\"20\" y=\"%.1f\" text-anchor=\"middle\" transform=\"rotate(-90 20 %.1f)\">",
+  appendf(out,
+          "<text x=\"20\" y=\"%.1f\" text-anchor=\"middle\" transform=\"rotate(-90 20 %.1f)\">",
           top + ph / 2, top + ph / 2);
   out += xml_escape(plot.y_label) + "</text>\n";
   // Series and legend.

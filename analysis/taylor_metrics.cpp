@@ -21,8 +21,11 @@ const CylinderShape& taylor_bar(const BodySpec& spec) {
 
 // Half an initial element length along the axis of a meshed bar.
 double element_band(const BodySpec& spec, const CylinderShape& bar) {
-  return 0.5 * bar.length / std::max(1, spec.mesh.axial > 0 ? spec.mesh.axial
-      : static_cast<int>(std::ceil(bar.length / std::max(spec.mesh.size, 1e-300))));
+  return 0.5 * bar.length /
+         std::max(1,
+                  spec.mesh.axial > 0
+                      ? spec.mesh.axial
+                      : static_cast<int>(std::ceil(bar.length / std::max(spec.mesh.size, 1e-300))));
 }
 
 }  // namespace

@@ -17,9 +17,13 @@
 
 namespace afemp {
 
-Scene read_scene(const std::string& path) { return core::read_scene(path); }
+Scene read_scene(const std::string& path) {
+  return core::read_scene(path);
+}
 
-void check_scene(const Scene& scene) { core::check_scene(scene); }
+void check_scene(const Scene& scene) {
+  core::check_scene(scene);
+}
 
 std::string newest_checkpoint(const std::string& run_directory) {
   return core::newest_checkpoint(run_directory);
@@ -100,13 +104,27 @@ Simulation::Simulation(Scene scene, SimulationOptions options)
 
 Simulation::~Simulation() = default;
 
-const Scene& Simulation::scene() const { return impl_->scene; }
-std::string Simulation::describe() const { return impl_->model->describe(); }
-double Simulation::stable_time_step() const { return impl_->model->stable_time_step(); }
-double Simulation::time() const { return impl_->model->time(); }
-long Simulation::step_count() const { return impl_->model->step_count(); }
-bool Simulation::finished() const { return impl_->finished_run || impl_->loop->finished(); }
-Energies Simulation::energies() const { return impl_->model->energies(); }
+const Scene& Simulation::scene() const {
+  return impl_->scene;
+}
+std::string Simulation::describe() const {
+  return impl_->model->describe();
+}
+double Simulation::stable_time_step() const {
+  return impl_->model->stable_time_step();
+}
+double Simulation::time() const {
+  return impl_->model->time();
+}
+long Simulation::step_count() const {
+  return impl_->model->step_count();
+}
+bool Simulation::finished() const {
+  return impl_->finished_run || impl_->loop->finished();
+}
+Energies Simulation::energies() const {
+  return impl_->model->energies();
+}
 
 void Simulation::step() {
   if (!finished()) impl_->step(*this, impl_->scene.run.end_time);
@@ -122,24 +140,27 @@ RunSummary Simulation::run() {
 }
 
 RunSummary Simulation::finish() {
-  if (impl_->finished_run)
-    throw std::logic_error("afemp::Simulation: finish() was called already");
+  if (impl_->finished_run) throw std::logic_error("afemp::Simulation: finish() was called already");
   impl_->finished_run = true;
   RunSummary summary = impl_->loop->finish();
   analysis::check_references(*impl_->model, impl_->scene, summary);
   return summary;
 }
 
-void Simulation::on_step(StepCallback callback) { impl_->callbacks.push_back(std::move(callback)); }
+void Simulation::on_step(StepCallback callback) {
+  impl_->callbacks.push_back(std::move(callback));
+}
 
-std::string Simulation::checkpoint() { return impl_->loop->checkpoint("program"); }
+std::string Simulation::checkpoint() {
+  return impl_->loop->checkpoint("program");
+}
 
 ParticleFields Simulation::particles() {
   if (impl_->mpm == nullptr) return {};
   mpm::Particles& p = impl_->mpm->mutable_particles();
-  return {p.position,    p.velocity, p.mass,    p.volume,          p.stress, p.plastic_strain,
-          p.temperature, p.energy,   p.damage,  p.history,         p.history_count,
-          p.body,        p.id};
+  return {p.position,       p.velocity,    p.mass,   p.volume, p.stress,
+          p.plastic_strain, p.temperature, p.energy, p.damage, p.history,
+          p.history_count,  p.body,        p.id};
 }
 
 NodeFields Simulation::nodes() {
@@ -151,12 +172,12 @@ NodeFields Simulation::nodes() {
 
 ElementFields Simulation::hexahedra() {
   return impl_->fe ? Impl::elements(impl_->fe->mutable_hexahedra(), impl_->hex_body)
-                    : ElementFields{};
+                   : ElementFields{};
 }
 
 ElementFields Simulation::trusses() {
   return impl_->fe ? Impl::elements(impl_->fe->mutable_trusses(), impl_->truss_body)
-                    : ElementFields{};
+                   : ElementFields{};
 }
 
 std::vector<Vec3> Simulation::node_forces() const {

@@ -3,7 +3,6 @@
 // study` runs a study file's variations and writes their error against run time; `afemp
 // import` turns an LS-DYNA or MPM3D deck into a scene.
 #include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
@@ -12,20 +11,20 @@
 #include <string>
 #include <vector>
 
-#include "apps/progress_line.hpp"
 #include "afemp/deck_import.hpp"
 #include "afemp/errors.hpp"
 #include "analysis/reference_checks.hpp"
 #include "analysis/study.hpp"
 #include "analysis/study_file.hpp"
+#include "apps/progress_line.hpp"
 #include "core/checkpoint.hpp"
 #include "core/contact_warnings.hpp"
 #include "core/interrupt.hpp"
 #include "core/output/field_writer.hpp"
-#include "core/plausibility.hpp"
-#include "core/resource_guard.hpp"
 #include "core/output/run_directory.hpp"
 #include "core/parallel.hpp"
+#include "core/plausibility.hpp"
+#include "core/resource_guard.hpp"
 #include "core/time_loop.hpp"
 #include "coupling/make_model.hpp"
 
@@ -100,13 +99,13 @@ int check(const std::string& path) {
               static_cast<double>(model->bytes()) / (1024.0 * 1024.0),
               static_cast<double>(model->bytes()) / points);
   const double point_steps = points * core::planned_steps(scene, dt);
-  std::printf("wall time estimate: about %s on %d thread(s) (%s point-steps at a nominal 1.5 "
-              "million per thread and second; plasticity, contact and coupling cost more, simple "
-              "elastic particles less)\n",
-              core::readable_duration(core::estimated_wall_seconds(point_steps,
-                                                                   core::thread_count()))
-                  .c_str(),
-              core::thread_count(), core::readable_count(point_steps).c_str());
+  std::printf(
+      "wall time estimate: about %s on %d thread(s) (%s point-steps at a nominal 1.5 "
+      "million per thread and second; plasticity, contact and coupling cost more, simple "
+      "elastic particles less)\n",
+      core::readable_duration(core::estimated_wall_seconds(point_steps, core::thread_count()))
+          .c_str(),
+      core::thread_count(), core::readable_count(point_steps).c_str());
   return 0;
 }
 
@@ -116,8 +115,10 @@ int run(const std::string& path, std::string out_dir, const std::string& restart
   std::string checkpoint;
   if (!restart_dir.empty()) {
     if (!out_dir.empty() && out_dir != restart_dir)
-      throw std::runtime_error("--restart " + restart_dir + " continues that run's files; leave "
-                               "out -o " + out_dir);
+      throw std::runtime_error("--restart " + restart_dir +
+                               " continues that run's files; leave "
+                               "out -o " +
+                               out_dir);
     out_dir = restart_dir;
     checkpoint = core::newest_checkpoint(restart_dir);
     // The scene check first, before the model is built: a refused restart touches nothing.
@@ -173,8 +174,7 @@ int run(const std::string& path, std::string out_dir, const std::string& restart
       std::fprintf(stderr,
                    "afemp: stopped by %s after step %ld (t = %.6g of %.6g): the final history "
                    "row, frame and summary are written in %s\n",
-                   core::signal_name(signal), s.steps, s.time, scene.run.end_time,
-                   out_dir.c_str());
+                   core::signal_name(signal), s.steps, s.time, scene.run.end_time, out_dir.c_str());
       if (!s.checkpoint.empty())
         std::fprintf(stderr, "afemp: checkpoint %s; continue with: afemp run %s --restart %s\n",
                      s.checkpoint.c_str(), path.c_str(), out_dir.c_str());
@@ -201,15 +201,14 @@ int run(const std::string& path, std::string out_dir, const std::string& restart
     // Output that cannot be written (a full disk, a removed directory): what was written stays.
     progress.finish();
     const std::string what = e.what();
-    std::fprintf(stderr, "afemp: run stopped: %s%s\n", what.c_str(),
-                 what.find("it is full") == std::string::npos
-                     ? core::disk_full_note(out_dir).c_str()
-                     : "");
+    std::fprintf(
+        stderr, "afemp: run stopped: %s%s\n", what.c_str(),
+        what.find("it is full") == std::string::npos ? core::disk_full_note(out_dir).c_str() : "");
     const std::vector<std::string> saved = core::list_checkpoints(out_dir);
     std::fprintf(stderr, "afemp: output written so far is kept in %s; %s\n", out_dir.c_str(),
                  saved.empty() ? "no checkpoint was written"
-                               : ("the newest checkpoint is " + saved.back() +
-                                  " (afemp run " + path + " --restart " + out_dir + ")")
+                               : ("the newest checkpoint is " + saved.back() + " (afemp run " +
+                                  path + " --restart " + out_dir + ")")
                                      .c_str());
     return exit_output_error;
   }
@@ -222,8 +221,8 @@ int study(const std::string& path, std::string out_dir, int threads) {
   if (out_dir.empty()) out_dir = core::default_output_directory(path);
   std::printf("afemp study %s -> %s: %zu runs\n", path.c_str(), out_dir.c_str(), plan.runs.size());
   std::size_t done = 0;
-  const analysis::StudyResult result =
-      analysis::run_study(plan, [&](const analysis::StudyResult& so_far, const analysis::StudyRow& row) {
+  const analysis::StudyResult result = analysis::run_study(
+      plan, [&](const analysis::StudyResult& so_far, const analysis::StudyRow& row) {
         std::printf("[%zu/%zu] %s\n", ++done, plan.runs.size(),
                     analysis::describe_row(so_far, row).c_str());
         std::fflush(stdout);
@@ -254,9 +253,10 @@ int import_command(const std::string& deck_path, const std::string& scene_path,
     std::printf("  %s\n", core::describe(n).c_str());
     if (!n.approximated) ++untranslated;
   }
-  std::printf("%zu not translated, %zu approximated (listed at the top of the scene too); check "
-              "it with `afemp check %s`\n",
-              untranslated, deck.notes.size() - untranslated, scene_path.c_str());
+  std::printf(
+      "%zu not translated, %zu approximated (listed at the top of the scene too); check "
+      "it with `afemp check %s`\n",
+      untranslated, deck.notes.size() - untranslated, scene_path.c_str());
   return 0;
 }
 
@@ -283,7 +283,8 @@ int main(int argc, char** argv) {
   check_cmd->add_option("--threads", threads, "OpenMP threads")->check(CLI::PositiveNumber);
 
   auto* study_cmd = app.add_subcommand(
-      "study", "run a study file's variations; write a CSV, a Markdown table and an error-vs-time plot");
+      "study",
+      "run a study file's variations; write a CSV, a Markdown table and an error-vs-time plot");
   study_cmd->add_option("STUDY", scene_path, "study file (TOML, docs/study-format.md)")->required();
   study_cmd->add_option("-o,--output", out_dir, "output directory (default runs/<study name>)");
   study_cmd->add_option("--threads", threads, "OpenMP threads for every run (default: the study's)")

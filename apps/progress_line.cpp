@@ -1,12 +1,12 @@
 #include "apps/progress_line.hpp"
 
-#include "core/parallel.hpp"
-#include "core/resource_guard.hpp"
-
 #include <unistd.h>
 
 #include <cmath>
 #include <string>
+
+#include "core/parallel.hpp"
+#include "core/resource_guard.hpp"
 
 namespace afemp::apps {
 
@@ -60,8 +60,7 @@ void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSumm
   std::fprintf(out, "summary\n");
   std::fprintf(out, "  steps            %ld to t = %.6g (dt %.4g .. %.4g)\n", s.steps, s.time,
                s.min_dt, s.max_dt);
-  if (!s.terminated.empty())
-    std::fprintf(out, "  stopped early    %s\n", s.terminated.c_str());
+  if (!s.terminated.empty()) std::fprintf(out, "  stopped early    %s\n", s.terminated.c_str());
   if (s.interrupted)
     std::fprintf(out, "  stopped early    on request at t = %.6g of %.6g\n", s.time,
                  scene.run.end_time);
@@ -78,12 +77,11 @@ void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSumm
     bool converts = false;
     for (const core::BodySpec& b : scene.bodies) converts = converts || b.conversion.has_value();
     add(converts, "converted elements");
-    std::fprintf(out, "  points           %zu particles (%zu at the end: %s), %zu "
-                      "elements, %.3g point-steps/s (initial points)\n",
-                 s.particles, s.final_particles, why.c_str(), s.elements,
-                 s.point_steps_per_second);
-  }
-  else
+    std::fprintf(out,
+                 "  points           %zu particles (%zu at the end: %s), %zu "
+                 "elements, %.3g point-steps/s (initial points)\n",
+                 s.particles, s.final_particles, why.c_str(), s.elements, s.point_steps_per_second);
+  } else
     std::fprintf(out, "  points           %zu particles, %zu elements, %.3g point-steps/s\n",
                  s.particles, s.elements, s.point_steps_per_second);
   std::fprintf(out, "  stage seconds   ");
@@ -92,15 +90,17 @@ void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSumm
                  i + 1 < s.stages.size() ? "," : "\n");
   std::fprintf(out, "  energy  initial  kinetic %.6g  internal %.6g\n", s.initial.kinetic,
                s.initial.internal);
-  std::fprintf(out, "          final    kinetic %.6g  internal %.6g (plastic work %.6g)  "
+  std::fprintf(out,
+               "          final    kinetic %.6g  internal %.6g (plastic work %.6g)  "
                "external work %.6g\n",
                s.final.kinetic, s.final.internal, s.final.plastic, s.final.external_work);
   if (s.final.hourglass != 0.0 || s.final.viscous != 0.0 || s.final.eroded != 0.0)
     std::fprintf(out, "                   hourglass %.6g  bulk-viscous %.6g  eroded %.6g\n",
                  s.final.hourglass, s.final.viscous, s.final.eroded);
   if (s.final.outflow_mass > 0.0)
-    std::fprintf(out, "                   outflow: mass %.6g, kinetic + internal %.6g left the "
-                      "grid\n",
+    std::fprintf(out,
+                 "                   outflow: mass %.6g, kinetic + internal %.6g left the "
+                 "grid\n",
                  s.final.outflow_mass, s.final.outflow);
   if (s.final.stabilisation != 0.0)
     std::fprintf(out, "                   assumed-strain stabilisation %.6g (part of internal)\n",
@@ -117,8 +117,9 @@ void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSumm
     if (c.name.rfind("taylor", 0) == 0) continue;  // the Taylor line below says more
     std::fprintf(out, "  reference        %s: %.6g", c.name.c_str(), c.value);
     if (c.reference != 0.0) std::fprintf(out, " (ref %.6g, error %.4f)", c.reference, c.error);
-    std::fprintf(out, "%s\n", c.tolerance > 0.0 ? (c.passed() ? "  (within tolerance)" : "  (OUTSIDE tolerance)")
-                                               : "");
+    std::fprintf(
+        out, "%s\n",
+        c.tolerance > 0.0 ? (c.passed() ? "  (within tolerance)" : "  (OUTSIDE tolerance)") : "");
   }
   if (s.taylor && scene.taylor_reference) {
     const auto& r = *scene.taylor_reference;
@@ -127,9 +128,9 @@ void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSumm
                  "mean error %.4f%s\n",
                  s.taylor->length, r.length, s.taylor->impact_diameter, r.impact_diameter,
                  s.taylor->bulge_diameter, r.bulge_diameter, s.taylor_error,
-                 r.tolerance > 0.0
-                     ? (s.taylor_error <= r.tolerance ? "  (within tolerance)" : "  (OUTSIDE tolerance)")
-                     : "");
+                 r.tolerance > 0.0 ? (s.taylor_error <= r.tolerance ? "  (within tolerance)"
+                                                                    : "  (OUTSIDE tolerance)")
+                                   : "");
   }
 }
 

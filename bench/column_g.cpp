@@ -49,10 +49,11 @@ int main(int argc, char** argv) {
     std::printf("  stage %-28s %7.3f s\n", solver.plan().stages[i].name.c_str(),
                 solver.stage_seconds()[i]);
   std::printf("  reorder particles            %7.3f s\n", solver.reorder_seconds());
-  std::printf("threads %d  particles %zu  steps %ld  wall %.3f s  %.3f M particle-steps/s  "
-              "peak RSS %.1f MiB = %.0f bytes/particle\n",
-              core::thread_count(), n, steps, wall,
-              static_cast<double>(n) * static_cast<double>(steps) / wall / 1e6,
-              rss_bytes / (1024.0 * 1024.0), rss_bytes / static_cast<double>(n));
+  std::printf(
+      "threads %d  particles %zu  steps %ld  wall %.3f s  %.3f M particle-steps/s  "
+      "peak RSS %.1f MiB = %.0f bytes/particle\n",
+      core::thread_count(), n, steps, wall,
+      static_cast<double>(n) * static_cast<double>(steps) / wall / 1e6,
+      rss_bytes / (1024.0 * 1024.0), rss_bytes / static_cast<double>(n));
   return ok ? 0 : 1;
 }

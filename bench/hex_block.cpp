@@ -18,8 +18,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -59,7 +59,8 @@ int main(int argc, char** argv) {
   const double bulk = e_mod / (3.0 * (1.0 - 2.0 * nu)), shear = e_mod / (2.0 * (1.0 + nu));
   const double yield = 500.0, tangent = 1000.0, hardening = e_mod * tangent / (e_mod - tangent);
   const double c_l = std::sqrt((bulk + 4.0 * shear / 3.0) / rho);
-  const double c_p = std::sqrt((bulk + 4.0 / 3.0 * shear * hardening / (hardening + 3.0 * shear)) / rho);
+  const double c_p =
+      std::sqrt((bulk + 4.0 / 3.0 * shear * hardening / (hardening + 3.0 * shear)) / rho);
   const double hel = yield * (1.0 - nu) / (1.0 - 2.0 * nu);
   const double v0 = 50.0, dv_elastic = hel / (rho * c_l), h = 25.0 / 20.0;
 
@@ -109,7 +110,8 @@ int main(int argc, char** argv) {
   }
   const auto end = std::chrono::steady_clock::now();
   const core::Energies e1 = solver.energies();
-  report("energy balance after 500 steps (relative)", (e1.total() - e0.total()) / e0.total(), 0.0, 0.01);
+  report("energy balance after 500 steps (relative)", (e1.total() - e0.total()) / e0.total(), 0.0,
+         0.01);
   std::printf("  t = %.4g ms, kinetic %.4g N mm, internal %.4g, hourglass %.4g\n", solver.time(),
               e1.kinetic, e1.internal, e1.hourglass);
   // The final node state as a hash of its bits: the same for every run at one thread count.
@@ -138,10 +140,11 @@ int main(int argc, char** argv) {
     std::printf("  stage %-28s %7.3f s\n", solver.plan().stages[i].name.c_str(),
                 solver.stage_seconds()[i]);
   const double element_steps = static_cast<double>(n) * static_cast<double>(steps);
-  std::printf("threads %d  elements %zu  steps %ld  wall %.3f s (steps %.3f s)  %.3f M "
-              "element-steps/s (steps alone %.3f M)  peak RSS %.1f MiB = %.0f bytes/element\n",
-              core::thread_count(), n, steps, wall, stepping, element_steps / wall / 1e6,
-              element_steps / stepping / 1e6, rss_bytes / (1024.0 * 1024.0),
-              rss_bytes / static_cast<double>(n));
+  std::printf(
+      "threads %d  elements %zu  steps %ld  wall %.3f s (steps %.3f s)  %.3f M "
+      "element-steps/s (steps alone %.3f M)  peak RSS %.1f MiB = %.0f bytes/element\n",
+      core::thread_count(), n, steps, wall, stepping, element_steps / wall / 1e6,
+      element_steps / stepping / 1e6, rss_bytes / (1024.0 * 1024.0),
+      rss_bytes / static_cast<double>(n));
   return ok ? 0 : 1;
 }

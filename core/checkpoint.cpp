@@ -113,7 +113,8 @@ std::vector<std::string> list_checkpoints(const std::string& run_directory) {
 std::string newest_checkpoint(const std::string& run_directory) {
   std::error_code ec;
   if (!fs::is_directory(run_directory, ec))
-    throw CheckpointError(run_directory + ": no such run directory (--restart takes the "
+    throw CheckpointError(run_directory +
+                          ": no such run directory (--restart takes the "
                           "directory a run wrote, e.g. runs/NAME)");
   const std::vector<std::string> all = list_checkpoints(run_directory);
   if (all.empty())
@@ -134,15 +135,17 @@ struct FlatValue {
 
 // Every leaf of a TOML document by its dotted key (arrays of tables by index: bodies[1].name);
 // an array of plain values is one leaf.
-void flatten(const toml::node& node, const std::string& key, std::map<std::string, FlatValue>& out) {
+void flatten(const toml::node& node, const std::string& key,
+             std::map<std::string, FlatValue>& out) {
   if (const toml::table* t = node.as_table()) {
     for (const auto& [k, v] : *t)
       flatten(v, key.empty() ? std::string(k.str()) : key + "." + std::string(k.str()), out);
     return;
   }
   if (const toml::array* a = node.as_array()) {
-    const bool tables = !a->empty() && std::all_of(a->begin(), a->end(),
-                                                   [](const toml::node& n) { return n.is_table(); });
+    const bool tables = !a->empty() && std::all_of(a->begin(), a->end(), [](const toml::node& n) {
+      return n.is_table();
+    });
     if (tables) {
       for (std::size_t i = 0; i < a->size(); ++i)
         flatten(*a->get(i), key + "[" + std::to_string(i) + "]", out);
@@ -155,12 +158,19 @@ void flatten(const toml::node& node, const std::string& key, std::map<std::strin
 }
 
 bool may_change(const std::string& key) {
-  static const std::set<std::string> allowed = {
-      "run.end_time",       "run.max_steps",        "run.output_every",
-      "run.output_times",   "run.history_every",    "run.history_interval",
-      "run.title",          "run.quiet",            "run.units",
-      "run.energy_error_limit", "run.checkpoint_every", "run.checkpoint_wall_every",
-      "run.checkpoint_keep"};
+  static const std::set<std::string> allowed = {"run.end_time",
+                                                "run.max_steps",
+                                                "run.output_every",
+                                                "run.output_times",
+                                                "run.history_every",
+                                                "run.history_interval",
+                                                "run.title",
+                                                "run.quiet",
+                                                "run.units",
+                                                "run.energy_error_limit",
+                                                "run.checkpoint_every",
+                                                "run.checkpoint_wall_every",
+                                                "run.checkpoint_keep"};
   return allowed.contains(key);
 }
 

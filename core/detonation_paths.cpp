@@ -55,7 +55,8 @@ struct Voxels {
   Vec3 centre(std::size_t v) const {
     std::int64_t c[3];
     coords(v, c);
-    return origin + Vec3{(static_cast<double>(c[0]) + 0.5) * s, (static_cast<double>(c[1]) + 0.5) * s,
+    return origin + Vec3{(static_cast<double>(c[0]) + 0.5) * s,
+                         (static_cast<double>(c[1]) + 0.5) * s,
                          (static_cast<double>(c[2]) + 0.5) * s};
   }
   // The voxel holding y, or false outside the box.
@@ -101,8 +102,10 @@ Voxels make_voxels(std::span<const Vec3> x, std::span<const double> D, double sp
   for (std::size_t i = 0; i < x.size(); ++i) {
     std::int64_t a0[3], a1[3];
     for (int a = 0; a < 3; ++a) {
-      a0[a] = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::floor((x[i][a] - r - vox.origin[a]) / s)));
-      a1[a] = std::min<std::int64_t>(vox.n[a] - 1, static_cast<std::int64_t>(std::floor((x[i][a] + r - vox.origin[a]) / s)));
+      a0[a] = std::max<std::int64_t>(
+          0, static_cast<std::int64_t>(std::floor((x[i][a] - r - vox.origin[a]) / s)));
+      a1[a] = std::min<std::int64_t>(
+          vox.n[a] - 1, static_cast<std::int64_t>(std::floor((x[i][a] + r - vox.origin[a]) / s)));
     }
     for (std::int64_t k = a0[2]; k <= a1[2]; ++k)
       for (std::int64_t j = a0[1]; j <= a1[1]; ++j)
@@ -249,8 +252,8 @@ void shadowed(const Voxels& vox, std::span<const Vec3> x, std::span<const double
 
 }  // namespace
 
-std::vector<double> lighting_times(std::span<const Vec3> x, std::span<const double> D, double spacing,
-                                   std::span<const DetonationSpec> detonations) {
+std::vector<double> lighting_times(std::span<const Vec3> x, std::span<const double> D,
+                                   double spacing, std::span<const DetonationSpec> detonations) {
   std::vector<double> t(x.size(), kInf);
   if (x.empty()) return t;
   for (std::size_t i = 0; i < x.size(); ++i) t[i] = lighting_time(x[i], detonations, D[i]);
@@ -271,8 +274,7 @@ std::vector<double> lighting_times(std::span<const Vec3> x, std::span<const doub
     if (nearest > 2.0 * spacing)
       throw InputError(d.where, "shadow",
                        "this detonation lies " + number(nearest) +
-                           " from the nearest explosive point (the points are " +
-                           number(spacing) +
+                           " from the nearest explosive point (the points are " + number(spacing) +
                            " apart); a shadowed detonation travels through explosive only and "
                            "must lie in or on it (within two point spacings)");
     shadowed(vox, x, D, d, t);
@@ -292,7 +294,8 @@ std::vector<double> explosive_lighting_times(std::span<const Vec3> x, std::span<
   for (const DetonationSpec& d : scene.detonations)
     if (d.shadow && shadow == nullptr) shadow = &d;
   const BodySpec& b = scene.bodies[static_cast<std::size_t>(body[first])];
-  const std::string where = "(" + number(x[first].x) + ", " + number(x[first].y) + ", " + number(x[first].z) + ")";
+  const std::string where =
+      "(" + number(x[first].x) + ", " + number(x[first].y) + ", " + number(x[first].z) + ")";
   throw InputError(shadow != nullptr ? shadow->where : b.where, "shadow",
                    std::to_string(unlit) + " point(s) of the high explosive \"" + b.name +
                        "\" are never lit, the first at " + where +

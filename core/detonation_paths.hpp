@@ -24,8 +24,8 @@ namespace afemp::core {
 // stand about `spacing` apart and fill the explosive). +inf where no detonation reaches the
 // point (a shadowed detonation cannot reach explosive cut off from it). Throws InputError
 // naming a shadowed detonation that lies farther than two spacings from every explosive point.
-std::vector<double> lighting_times(std::span<const Vec3> x, std::span<const double> D, double spacing,
-                                   std::span<const DetonationSpec> detonations);
+std::vector<double> lighting_times(std::span<const Vec3> x, std::span<const double> D,
+                                   double spacing, std::span<const DetonationSpec> detonations);
 
 // lighting_times for a solver's explosive points of the scene's bodies (`body`: each point's
 // index into scene.bodies). Throws InputError at the first shadowed detonation, naming the

@@ -14,8 +14,8 @@ namespace afemp::core {
 // plastic strain of the element's points and damage their largest damage; volume and volume0
 // its current and initial volume; critical_dt its stable step at the current state.
 inline const char* erosion_reason(const ErosionSettings& erosion, const Material& material,
-                                  double eps_p, double volume, double volume0,
-                                  double critical_dt, double damage = 0.0) {
+                                  double eps_p, double volume, double volume0, double critical_dt,
+                                  double damage = 0.0) {
   if (erosion.plastic_strain > 0.0 && eps_p >= erosion.plastic_strain) return "plastic strain";
   if (erosion.material_failure && material.failure_strain > 0.0 && eps_p >= material.failure_strain)
     return "material failure strain";

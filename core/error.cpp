@@ -1,6 +1,6 @@
-#include "afemp/errors.hpp"
-
 #include <sstream>
+
+#include "afemp/errors.hpp"
 
 namespace afemp::core {
 

@@ -66,7 +66,9 @@ inline std::pair<std::size_t, std::size_t> static_range(std::size_t n, int t, in
 // and barriers cost more than the work, and on a loaded machine far more (a waiting thread
 // spins on a core another process needs). Decided per loop from its size, so a given scene
 // and thread count always take the same path.
-inline bool worth_threads(std::size_t items) { return items >= 2048; }
+inline bool worth_threads(std::size_t items) {
+  return items >= 2048;
+}
 
 // Runs body(begin, end, thread) over the static partition of [0, n) among the threads, or as
 // one serial chunk (thread 0) when n is not worth_threads: the sweep shape of every loop that

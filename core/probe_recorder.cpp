@@ -15,7 +15,9 @@ namespace afemp::core {
 
 ProbeRecorder::ProbeRecorder(Model& model, const std::vector<ProbeSpec>& probes,
                              const std::string& directory, bool resume)
-    : specs_(probes), next_(probes.size(), 0.0), due_(probes.size(), 0),
+    : specs_(probes),
+      next_(probes.size(), 0.0),
+      due_(probes.size(), 0),
       buffer_(probe_stride * probes.size()) {
   model.resolve_probes(specs_);
   const std::vector<std::string> force_names = model.force_columns();
@@ -130,7 +132,8 @@ void ProbeRecorder::sample(const Model& model, bool history_row, bool last) {
     double* v = buffer_.data() + k * probe_stride;
     if (p.kind == ProbeKind::force) {
       if (forces_.empty()) model.force_values(forces_);
-      for (std::size_t c = 0; c < force_columns_[k].size(); ++c) v[c] = forces_[force_columns_[k][c]];
+      for (std::size_t c = 0; c < force_columns_[k].size(); ++c)
+        v[c] = forces_[force_columns_[k][c]];
     }
     if (p.kind == ProbeKind::mean_velocity) {
       if (!energies_read) e = model.energies(), energies_read = true;

@@ -32,7 +32,7 @@ class ProbeRecorder {
  private:
   std::vector<ProbeSpec> specs_;
   std::vector<ProbeSeries> series_;
-  std::vector<double> next_;    // time of the next sample (probes with an interval)
+  std::vector<double> next_;  // time of the next sample (probes with an interval)
   std::vector<char> due_;
   std::vector<double> buffer_;  // probe_stride values per probe
   // Force probes: per probe the model's force columns it reads (empty for other kinds).

@@ -16,8 +16,7 @@ Vec3 nearest_point(const DetonationSpec& d, const Vec3& x) {
     case DetonationSpec::Kind::line: {
       const Vec3 axis = d.end - d.point;
       const double length2 = dot(axis, axis);
-      const double s =
-          length2 > 0.0 ? std::clamp(dot(x - d.point, axis) / length2, 0.0, 1.0) : 0.0;
+      const double s = length2 > 0.0 ? std::clamp(dot(x - d.point, axis) / length2, 0.0, 1.0) : 0.0;
       return d.point + s * axis;
     }
   }

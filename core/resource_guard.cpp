@@ -22,7 +22,8 @@ double shape_volume(const Shape& shape) {
   if (const auto* c = std::get_if<CylinderShape>(&shape)) {
     if (c->top_radius >= 0.0)  // a frustum
       return pi * c->length *
-             (c->radius * c->radius + c->radius * c->top_radius + c->top_radius * c->top_radius) / 3.0;
+             (c->radius * c->radius + c->radius * c->top_radius + c->top_radius * c->top_radius) /
+             3.0;
     return pi * c->radius * c->radius * c->length;
   }
   if (const auto* s = std::get_if<SphereShape>(&shape))
@@ -64,7 +65,8 @@ SizeEstimate estimate_size(const Scene& scene) {
         for (std::size_t d = 0; d < 3; ++d) {
           double n = 0.0;
           for (const auto& segment : m.graded[d]) n += segment[1];
-          points *= m.graded[d].empty() ? std::ceil((box->max[d] - box->min[d]) / m.size - 1e-9) : n;
+          points *=
+              m.graded[d].empty() ? std::ceil((box->max[d] - box->min[d]) / m.size - 1e-9) : n;
         }
       } else if (m.size > 0.0)
         points = shape_volume(body.shape) / (m.size * m.size * m.size) *

@@ -13,48 +13,72 @@ namespace afemp::core {
 
 const char* to_string(UpdateScheme s) {
   switch (s) {
-    case UpdateScheme::USF: return "USF";
-    case UpdateScheme::USL: return "USL";
-    case UpdateScheme::MUSL: return "MUSL";
-    case UpdateScheme::USAVG: return "USAVG";
+    case UpdateScheme::USF:
+      return "USF";
+    case UpdateScheme::USL:
+      return "USL";
+    case UpdateScheme::MUSL:
+      return "MUSL";
+    case UpdateScheme::USAVG:
+      return "USAVG";
   }
   return "?";
 }
 
-const char* to_string(ShapeFunction s) { return s == ShapeFunction::gimp ? "gimp" : "linear"; }
+const char* to_string(ShapeFunction s) {
+  return s == ShapeFunction::gimp ? "gimp" : "linear";
+}
 
-const char* to_string(Transfer t) { return t == Transfer::apic ? "apic" : "flip"; }
+const char* to_string(Transfer t) {
+  return t == Transfer::apic ? "apic" : "flip";
+}
 
 const char* to_string(FaceCondition c) {
   switch (c) {
-    case FaceCondition::free: return "free";
-    case FaceCondition::fixed: return "fixed";
-    case FaceCondition::symmetric: return "symmetric";
-    case FaceCondition::wall: return "wall";
-    case FaceCondition::outflow: return "outflow";
-    case FaceCondition::absorbing: return "absorbing";
+    case FaceCondition::free:
+      return "free";
+    case FaceCondition::fixed:
+      return "fixed";
+    case FaceCondition::symmetric:
+      return "symmetric";
+    case FaceCondition::wall:
+      return "wall";
+    case FaceCondition::outflow:
+      return "outflow";
+    case FaceCondition::absorbing:
+      return "absorbing";
   }
   return "?";
 }
 
 const char* to_string(Face f) {
   switch (f) {
-    case Face::xmin: return "xmin";
-    case Face::xmax: return "xmax";
-    case Face::ymin: return "ymin";
-    case Face::ymax: return "ymax";
-    case Face::zmin: return "zmin";
-    case Face::zmax: return "zmax";
+    case Face::xmin:
+      return "xmin";
+    case Face::xmax:
+      return "xmax";
+    case Face::ymin:
+      return "ymin";
+    case Face::ymax:
+      return "ymax";
+    case Face::zmin:
+      return "zmin";
+    case Face::zmax:
+      return "zmax";
   }
   return "?";
 }
 
 const char* to_string(ContactMethod m) {
   switch (m) {
-    case ContactMethod::grid: return "grid";
-    case ContactMethod::penalty: return "penalty";
-    case ContactMethod::weld: return "weld";
-    case ContactMethod::surface: return "surface";
+    case ContactMethod::grid:
+      return "grid";
+    case ContactMethod::penalty:
+      return "penalty";
+    case ContactMethod::weld:
+      return "weld";
+    case ContactMethod::surface:
+      return "surface";
   }
   return "?";
 }
@@ -93,9 +117,12 @@ bool has_rigid_body(const Scene& scene) {
 
 const char* to_string(Discretisation d) {
   switch (d) {
-    case Discretisation::particles: return "particles";
-    case Discretisation::hexahedra: return "hexahedra";
-    case Discretisation::trusses: return "trusses";
+    case Discretisation::particles:
+      return "particles";
+    case Discretisation::hexahedra:
+      return "hexahedra";
+    case Discretisation::trusses:
+      return "trusses";
   }
   return "?";
 }
@@ -106,9 +133,12 @@ const char* to_string(HexFormulation f) {
 
 const char* to_string(HourglassForm f) {
   switch (f) {
-    case HourglassForm::viscous: return "viscous";
-    case HourglassForm::stiffness: return "stiffness";
-    case HourglassForm::assumed_strain: return "assumed_strain";
+    case HourglassForm::viscous:
+      return "viscous";
+    case HourglassForm::stiffness:
+      return "stiffness";
+    case HourglassForm::assumed_strain:
+      return "assumed_strain";
   }
   return "?";
 }
@@ -130,9 +160,9 @@ bool has_grid_coupling(const Scene& scene) {
     if (b.bonded_to >= 0 || b.conversion) return true;
   for (const ContactSpec& c : scene.contacts)
     if (c.method == ContactMethod::grid)
-    for (int b : c.bodies)
-      if (scene.bodies[static_cast<std::size_t>(b)].discretisation != Discretisation::particles)
-        return true;
+      for (int b : c.bodies)
+        if (scene.bodies[static_cast<std::size_t>(b)].discretisation != Discretisation::particles)
+          return true;
   return false;
 }
 
@@ -153,9 +183,9 @@ std::vector<std::string> history_field_names(const Scene& scene) {
       if (name.empty()) name = own;
       shared = shared && own == name;
     }
-    names[k] = "history_" + (shared && !name.empty() && name.find('/') == std::string::npos
-                                 ? name
-                                 : std::to_string(k));
+    names[k] =
+        "history_" +
+        (shared && !name.empty() && name.find('/') == std::string::npos ? name : std::to_string(k));
   }
   return names;
 }
@@ -165,7 +195,8 @@ Scene read_scene(const std::string& path) {
   if (!in) throw InputError(SourceLocation{path, 0}, "", "cannot open scene file '" + path + "'");
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad()) throw InputError(SourceLocation{path, 0}, "", "cannot read scene file '" + path + "'");
+  if (in.bad())
+    throw InputError(SourceLocation{path, 0}, "", "cannot read scene file '" + path + "'");
   return parse_scene(text.str(), path);
 }
 

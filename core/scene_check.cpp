@@ -30,8 +30,9 @@ class Checker {
   void range(const SourceLocation& where, const std::string& key, double v,
              const scene_detail::Range& allowed) const {
     if (!allowed.contains(v))
-      fail(where, key, "value " + scene_detail::format_number(v) +
-                           " is out of range; allowed: " + allowed.describe());
+      fail(where, key,
+           "value " + scene_detail::format_number(v) +
+               " is out of range; allowed: " + allowed.describe());
   }
   void positive(const SourceLocation& w, const std::string& key, double v) const {
     range(w, key, v, scene_detail::Range::positive());
@@ -44,14 +45,17 @@ class Checker {
   }
   int body(const SourceLocation& w, const std::string& key, int index, bool mesh_only) const {
     if (index < 0 || static_cast<std::size_t>(index) >= scene_.bodies.size())
-      fail(w, key, "body index " + std::to_string(index) + " is not defined; the scene has " +
-                       std::to_string(scene_.bodies.size()) + " bodies");
-    if (mesh_only && scene_.bodies[static_cast<std::size_t>(index)].discretisation ==
-                         Discretisation::particles)
-      fail(w, key, "body \"" + scene_.bodies[static_cast<std::size_t>(index)].name +
-                       "\" is made of particles; this applies to mesh bodies");
+      fail(w, key,
+           "body index " + std::to_string(index) + " is not defined; the scene has " +
+               std::to_string(scene_.bodies.size()) + " bodies");
+    if (mesh_only &&
+        scene_.bodies[static_cast<std::size_t>(index)].discretisation == Discretisation::particles)
+      fail(w, key,
+           "body \"" + scene_.bodies[static_cast<std::size_t>(index)].name +
+               "\" is made of particles; this applies to mesh bodies");
     return index;
   }
+
  private:
   const Scene& scene_;
 };
@@ -60,8 +64,8 @@ void check_run(const Checker& c, const RunSettings& run) {
   const SourceLocation w;
   c.positive(w, "run.end_time", run.end_time);
   c.range(w, "run.time_step_factor", run.time_step_factor, Range{0.0, 1.0, true, false});
-  c.range(w, "run.element_time_step_factor",
-          run.element_time_step_factor, Range{0.0, 1.0, true, false});
+  c.range(w, "run.element_time_step_factor", run.element_time_step_factor,
+          Range{0.0, 1.0, true, false});
   c.non_negative(w, "run.time_step", run.fixed_time_step);
   if (run.max_steps < 0) c.fail(w, "run.max_steps", "must be >= 0");
   c.non_negative(w, "run.output_every", run.output_every);
@@ -86,12 +90,13 @@ void check_grid(const Checker& c, const Scene& scene) {
   c.finite(w, "grid.max", g.max);
   for (int a = 0; a < 3; ++a)
     if (!(g.max[a] > g.min[a]))
-      c.fail(w, "grid.max", "max must exceed min in every component; component " +
-                                std::to_string(a));
+      c.fail(w, "grid.max",
+             "max must exceed min in every component; component " + std::to_string(a));
   c.range(w, "mpm.flip", scene.mpm.flip, Range::closed(0.0, 1.0));
   if (scene.mpm.transfer == Transfer::apic && scene.mpm.shape != ShapeFunction::gimp)
-    c.fail(w, "mpm.transfer", "\"apic\" needs shape_function = \"gimp\" (the affine transfer is "
-                              "unstable with linear weights); allowed with \"linear\": \"flip\"");
+    c.fail(w, "mpm.transfer",
+           "\"apic\" needs shape_function = \"gimp\" (the affine transfer is "
+           "unstable with linear weights); allowed with \"linear\": \"flip\"");
   bool converts = false;
   for (const BodySpec& b : scene.bodies) converts = converts || b.conversion.has_value();
   for (int f = 0; f < 6; ++f)
@@ -106,8 +111,9 @@ void check_grid(const Checker& c, const Scene& scene) {
     c.finite(w, "grid.far_field.centre", g.far_field->centre);
     c.non_negative(w, "grid.far_field.pressure", g.far_field->pressure);
     if (!g.has_face(FaceCondition::absorbing))
-      c.fail(w, "grid.far_field", "the far field acts through absorbing faces, and no face of "
-                                  "grid.boundary is \"absorbing\"");
+      c.fail(w, "grid.far_field",
+             "the far field acts through absorbing faces, and no face of "
+             "grid.boundary is \"absorbing\"");
     for (const BodySpec& b : scene.bodies)
       if (b.discretisation != Discretisation::particles)
         c.fail(w, "grid.far_field",
@@ -161,7 +167,8 @@ void check_shape(const Checker& c, const BodySpec& b, const std::string& key) {
     if (!(norm(cyl->axis) > 0.0))
       c.fail(b.where, shape + ".cylinder.axis", "the axis must be a non-zero vector");
   } else if (const auto* s = std::get_if<SphereShape>(&b.shape)) {
-    if (b.discretisation == D::trusses) c.fail(b.where, shape, "a sphere makes particles or hexahedra");
+    if (b.discretisation == D::trusses)
+      c.fail(b.where, shape, "a sphere makes particles or hexahedra");
     c.positive(b.where, shape + ".sphere.radius", s->radius);
   } else if (const auto* p = std::get_if<PointListShape>(&b.shape)) {
     if (!particles) c.fail(b.where, shape, "points make particles only");
@@ -177,8 +184,8 @@ void check_shape(const Checker& c, const BodySpec& b, const std::string& key) {
     if (m->path.empty()) {
       const MeshArrays& a = m->arrays;
       if (hexes ? a.hexahedra.empty() : a.trusses.empty())
-        c.fail(b.where, shape + ".mesh", std::string("the arrays hold no ") +
-                                             (hexes ? "hexahedra" : "trusses"));
+        c.fail(b.where, shape + ".mesh",
+               std::string("the arrays hold no ") + (hexes ? "hexahedra" : "trusses"));
       if (!a.truss_areas.empty() && a.truss_areas.size() != a.trusses.size())
         c.fail(b.where, shape + ".mesh.truss_areas",
                "one area per truss (" + std::to_string(a.trusses.size()) + "), or none");
@@ -207,9 +214,9 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
     if (b.discretisation != D::particles)
       c.fail(b.where, key + ".pressure", "an initial pressure applies to bodies of particles");
     if (b.material >= 0 && static_cast<std::size_t>(b.material) < scene.materials.size())
-      if (const std::optional<std::string> why = initial_pressure_refusal(
-              scene.materials[static_cast<std::size_t>(b.material)], *b.pressure,
-              b.internal_energy))
+      if (const std::optional<std::string> why =
+              initial_pressure_refusal(scene.materials[static_cast<std::size_t>(b.material)],
+                                       *b.pressure, b.internal_energy))
         c.fail(b.where, key + ".pressure", *why);
   }
   if (b.particles_per_cell < 1 || b.particles_per_cell > 8)
@@ -218,10 +225,10 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
   if (b.bulk_viscosity) {
     if (b.discretisation == D::trusses)
       c.fail(b.where, key + ".bulk_viscosity", "applies to bodies of hexahedra or particles");
-    c.range(b.where, key + ".bulk_viscosity.linear",
-            b.bulk_viscosity->linear, Range::closed(0.0, 1.0));
-    c.range(b.where, key + ".bulk_viscosity.quadratic",
-            b.bulk_viscosity->quadratic, Range::closed(0.0, 10.0));
+    c.range(b.where, key + ".bulk_viscosity.linear", b.bulk_viscosity->linear,
+            Range::closed(0.0, 1.0));
+    c.range(b.where, key + ".bulk_viscosity.quadratic", b.bulk_viscosity->quadratic,
+            Range::closed(0.0, 10.0));
   }
   // Trusses run the uniaxial update, which has no failed state: only a failure strain (their
   // erosion criterion material_failure) applies to them.
@@ -229,26 +236,32 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
       static_cast<std::size_t>(b.material) < scene.materials.size()) {
     const Material& m = scene.materials[static_cast<std::size_t>(b.material)];
     if (m.fails() && !std::holds_alternative<PlasticStrainFailure>(m.failure))
-      c.fail(b.where, key + ".material",
-             "material \"" + m.name + "\" has a failure model, which trusses do not carry; "
-             "allowed for trusses: failure_strain (or failure = { model = \"plastic-strain\" }) "
-             "with erosion = { material_failure = true }");
+      c.fail(
+          b.where, key + ".material",
+          "material \"" + m.name +
+              "\" has a failure model, which trusses do not carry; "
+              "allowed for trusses: failure_strain (or failure = { model = \"plastic-strain\" }) "
+              "with erosion = { material_failure = true }");
   }
   if (b.rigid && b.discretisation != D::hexahedra)
     c.fail(b.where, key + ".rigid", "a rigid body is made of hexahedra");
   if (b.rigid && (b.erosion || b.conversion || b.bonded_to >= 0))
-    c.fail(b.where, key + ".rigid", "a rigid body's elements carry no stress; it cannot erode, "
-                                    "convert or bond");
+    c.fail(b.where, key + ".rigid",
+           "a rigid body's elements carry no stress; it cannot erode, "
+           "convert or bond");
   if (b.discretisation == D::particles) {
     if (b.erosion || b.conversion || b.bonded_to >= 0)
-      c.fail(b.where, key + (b.erosion ? ".erosion" : b.conversion ? ".conversion" : ".bonded_to"),
+      c.fail(b.where,
+             key + (b.erosion      ? ".erosion"
+                    : b.conversion ? ".conversion"
+                                   : ".bonded_to"),
              "applies to mesh bodies, not to particles");
     return;
   }
   if (b.discretisation == D::hexahedra) {
     const double hi = b.hourglass.form == HourglassForm::assumed_strain ? 1.0 : 0.5;
-    c.range(b.where, key + ".hourglass.coefficient",
-            b.hourglass.coefficient, Range::closed(0.0, hi));
+    c.range(b.where, key + ".hourglass.coefficient", b.hourglass.coefficient,
+            Range::closed(0.0, hi));
   }
   const bool generated = !std::holds_alternative<MeshFileShape>(b.shape);
   const bool all_graded =
@@ -258,16 +271,17 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
     c.fail(b.where, key + ".mesh", "a generated mesh needs its density: a size or divisions");
   if (b.erosion) {
     c.non_negative(b.where, key + ".erosion.plastic_strain", b.erosion->plastic_strain);
-    c.range(b.where, key + ".erosion.volume_ratio",
-            b.erosion->volume_ratio, Range{0.0, 1.0, true, false});
+    c.range(b.where, key + ".erosion.volume_ratio", b.erosion->volume_ratio,
+            Range{0.0, 1.0, true, false});
     c.non_negative(b.where, key + ".erosion.time_step", b.erosion->time_step);
   }
   if (b.conversion) {
     if (b.discretisation != D::hexahedra)
       c.fail(b.where, key + ".conversion", "applies to bodies of hexahedra");
     if (!scene.has_grid)
-      c.fail(b.where, key + ".conversion", "converted elements become particles on the "
-                                           "background grid; the scene needs a grid");
+      c.fail(b.where, key + ".conversion",
+             "converted elements become particles on the "
+             "background grid; the scene needs a grid");
     if (b.bonded_to >= 0)
       c.fail(b.where, key + ".conversion", "a body bonded to particles cannot also convert");
     if (scene.mpm.scheme == UpdateScheme::USL || scene.mpm.scheme == UpdateScheme::USAVG)
@@ -354,8 +368,7 @@ void check_scene(const Scene& scene) {
       continue;
     }
     if (ct.method == ContactMethod::penalty) {
-      if (!meshes)
-        c.fail(ct.where, key + ".method", "penalty contact acts between meshes");
+      if (!meshes) c.fail(ct.where, key + ".method", "penalty contact acts between meshes");
       if (ba.discretisation == Discretisation::trusses &&
           bb.discretisation == Discretisation::trusses)
         c.fail(ct.where, key + ".bodies", "penalty contact needs a body of hexahedra on one side");
@@ -378,14 +391,17 @@ void check_scene(const Scene& scene) {
     if (ba.rigid || bb.rigid)
       c.fail(ct.where, key + ".bodies", "grid contact with particles does not take rigid bodies");
     if (meshes)
-      c.fail(ct.where, key + ".bodies", "both bodies are meshes; grid contact needs a particle "
-                                        "body on one side (meshes meet by method penalty)");
+      c.fail(ct.where, key + ".bodies",
+             "both bodies are meshes; grid contact needs a particle "
+             "body on one side (meshes meet by method penalty)");
     if (!scene.has_grid) c.fail(ct.where, key + ".bodies", "grid contact needs a grid");
     if (scene.mpm.scheme == UpdateScheme::USL)
       c.fail(ct.where, key + ".bodies", "grid contact needs [mpm] scheme MUSL or USF");
     if (scene.mpm.scheme == UpdateScheme::USAVG &&
-        (ba.discretisation != Discretisation::particles || bb.discretisation != Discretisation::particles))
-      c.fail(ct.where, key + ".bodies", "grid contact of a mesh with particles needs [mpm] scheme MUSL or USF");
+        (ba.discretisation != Discretisation::particles ||
+         bb.discretisation != Discretisation::particles))
+      c.fail(ct.where, key + ".bodies",
+             "grid contact of a mesh with particles needs [mpm] scheme MUSL or USF");
     c.non_negative(ct.where, key + ".distance_factor", ct.distance_factor);
   }
   for (const VelocityReference& v : scene.velocity_references) {

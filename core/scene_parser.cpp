@@ -39,16 +39,26 @@ std::string join(const std::vector<std::string>& items, bool quoted) {
 
 std::string describe_type(const toml::node& node) {
   switch (node.type()) {
-    case toml::node_type::table: return "a table";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a float";
-    case toml::node_type::boolean: return "a boolean";
-    case toml::node_type::date: return "a date";
-    case toml::node_type::time: return "a time";
-    case toml::node_type::date_time: return "a date-time";
-    default: return "nothing";
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a float";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::date:
+      return "a date";
+    case toml::node_type::time:
+      return "a time";
+    case toml::node_type::date_time:
+      return "a date-time";
+    default:
+      return "nothing";
   }
 }
 
@@ -60,7 +70,9 @@ std::string lower(std::string_view s) {
   return out;
 }
 
-int line_of(const toml::source_region& r) { return static_cast<int>(r.begin.line); }
+int line_of(const toml::source_region& r) {
+  return static_cast<int>(r.begin.line);
+}
 
 }  // namespace
 
@@ -95,13 +107,17 @@ void TableReader::check_unknown() const {
                    "unknown key; allowed keys here: " + join(known_, false));
 }
 
-bool TableReader::has(std::string_view key) const { return table_.get(key) != nullptr; }
+bool TableReader::has(std::string_view key) const {
+  return table_.get(key) != nullptr;
+}
 
 std::string TableReader::dotted(std::string_view key) const {
   return prefix_.empty() ? std::string(key) : prefix_ + "." + std::string(key);
 }
 
-SourceLocation TableReader::where() const { return {file_, line_of(table_.source())}; }
+SourceLocation TableReader::where() const {
+  return {file_, line_of(table_.source())};
+}
 
 SourceLocation TableReader::where(std::string_view key) const {
   if (const toml::node* n = table_.get(key); n && n->source().begin.line > 0)
@@ -285,8 +301,7 @@ Vec3 TableReader::as_vec3(std::string_view key, const toml::node& node) const {
     else
       fail(key, "expected an array of 3 numbers; element " + std::to_string(i) + " is " +
                     describe_type(e));
-    if (!std::isfinite(v[i]))
-      fail(key, "element " + std::to_string(i) + " is not a finite number");
+    if (!std::isfinite(v[i])) fail(key, "element " + std::to_string(i) + " is not a finite number");
   }
   return v;
 }
@@ -307,7 +322,8 @@ Vec3 TableReader::vec3(std::string_view key, const Vec3& fallback) {
   return optional_vec3(key).value_or(fallback);
 }
 
-std::size_t TableReader::choice(std::string_view key, std::initializer_list<std::string_view> allowed,
+std::size_t TableReader::choice(std::string_view key,
+                                std::initializer_list<std::string_view> allowed,
                                 const std::optional<std::size_t>& fallback, bool ignore_case) {
   return choice(key, std::span<const std::string_view>(allowed.begin(), allowed.size()), fallback,
                 ignore_case);
@@ -322,8 +338,9 @@ std::size_t TableReader::choice(std::string_view key, std::span<const std::strin
     return *fallback;
   }
   const auto* s = n->as_string();
-  if (!s) fail(key, "expected a string, got " + describe_type(*n) + "; allowed values: " +
-                        join(names, true));
+  if (!s)
+    fail(key,
+         "expected a string, got " + describe_type(*n) + "; allowed values: " + join(names, true));
   const std::string& value = s->get();
   for (std::size_t i = 0; i < names.size(); ++i)
     if (ignore_case ? lower(value) == lower(names[i]) : value == names[i]) return i;
@@ -351,10 +368,10 @@ const toml::table& TableReader::required_table(std::string_view key) {
 namespace {
 
 void read_run(TableReader& r, RunSettings& run) {
-  r.known({"title", "end_time", "time_step_factor", "element_time_step_factor", "time_step", "max_steps", "output_every",
-           "history_every", "energy_error_limit", "output_strain", "gravity", "terminate",
-           "units", "quiet", "history_interval", "output_times", "checkpoint_every",
-           "checkpoint_wall_every", "checkpoint_keep"});
+  r.known({"title", "end_time", "time_step_factor", "element_time_step_factor", "time_step",
+           "max_steps", "output_every", "history_every", "energy_error_limit", "output_strain",
+           "gravity", "terminate", "units", "quiet", "history_interval", "output_times",
+           "checkpoint_every", "checkpoint_wall_every", "checkpoint_keep"});
   r.check_unknown();
   run.title = r.string("title", "");
   run.end_time = r.required_number("end_time", Range::positive());
@@ -366,8 +383,9 @@ void read_run(TableReader& r, RunSettings& run) {
   run.history_every = r.integer("history_every", 10, 1, std::numeric_limits<long>::max());
   run.history_interval = r.number("history_interval", 0.0, Range::positive());
   if (r.has("history_interval") && r.has("history_every"))
-    r.fail("history_interval", "give history_every (steps) or history_interval (simulated "
-                               "time) between history rows, not both");
+    r.fail("history_interval",
+           "give history_every (steps) or history_interval (simulated "
+           "time) between history rows, not both");
   if (r.has("output_times")) {
     run.output_times = r.numbers("output_times", Range::positive());
     for (std::size_t k = 0; k < run.output_times.size(); ++k) {
@@ -411,9 +429,8 @@ void read_grid(TableReader& r, GridSettings& grid) {
     br.known({"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"});
     br.check_unknown();
     for (int f = 0; f < 6; ++f)
-      grid.faces[static_cast<std::size_t>(f)] =
-          static_cast<FaceCondition>(br.choice(
-              face_names[f], {"free", "fixed", "symmetric", "wall", "outflow", "absorbing"}, 0));
+      grid.faces[static_cast<std::size_t>(f)] = static_cast<FaceCondition>(br.choice(
+          face_names[f], {"free", "fixed", "symmetric", "wall", "outflow", "absorbing"}, 0));
   }
   if (const toml::table* t = r.optional_table("far_field")) {
     TableReader fr(*t, r.dotted("far_field"), r.file());
@@ -424,9 +441,10 @@ void read_grid(TableReader& r, GridSettings& grid) {
     far.pressure = fr.number("pressure", 0.0, Range::non_negative());
     far.absolute_stress = fr.choice("stress", {"gauge", "absolute"}, 0) == 1;
     if (!grid.has_face(FaceCondition::absorbing))
-      r.fail("far_field", "the far field acts through absorbing faces, and no face of "
-                          "boundary is \"absorbing\"; set boundary = { xmax = \"absorbing\", "
-                          "... } on the faces that open onto the fluid");
+      r.fail("far_field",
+             "the far field acts through absorbing faces, and no face of "
+             "boundary is \"absorbing\"; set boundary = { xmax = \"absorbing\", "
+             "... } on the faces that open onto the fluid");
     grid.far_field = far;
   }
 }
@@ -434,7 +452,8 @@ void read_grid(TableReader& r, GridSettings& grid) {
 void read_mpm(TableReader& r, MpmSettings& mpm) {
   r.known({"scheme", "shape_function", "transfer", "flip", "jaumann", "splitting"});
   r.check_unknown();
-  mpm.scheme = static_cast<UpdateScheme>(r.choice("scheme", {"USF", "USL", "MUSL", "USAVG"}, 2, true));
+  mpm.scheme =
+      static_cast<UpdateScheme>(r.choice("scheme", {"USF", "USL", "MUSL", "USAVG"}, 2, true));
   mpm.shape = static_cast<ShapeFunction>(r.choice("shape_function", {"linear", "gimp"}, 0));
   mpm.transfer = static_cast<Transfer>(r.choice("transfer", {"flip", "apic"}, 0));
   mpm.flip = r.number("flip", 1.0, Range::closed(0.0, 1.0));
@@ -444,11 +463,13 @@ void read_mpm(TableReader& r, MpmSettings& mpm) {
     // run blows up (measured: the Taylor bar at step 382). uGIMP's weights fade with their
     // gradients, which is what the affine transfer needs.
     if (mpm.shape != ShapeFunction::gimp)
-      r.fail("transfer", "\"apic\" needs shape_function = \"gimp\" (the affine transfer is "
-                         "unstable with linear weights); allowed with \"linear\": \"flip\"");
+      r.fail("transfer",
+             "\"apic\" needs shape_function = \"gimp\" (the affine transfer is "
+             "unstable with linear weights); allowed with \"linear\": \"flip\"");
     if (r.has("flip"))
-      r.fail("flip", "the PIC/FLIP blend applies to transfer = \"flip\" only; remove it or set "
-                     "transfer = \"flip\"");
+      r.fail("flip",
+             "the PIC/FLIP blend applies to transfer = \"flip\" only; remove it or set "
+             "transfer = \"flip\"");
   }
   if (const std::optional<std::string> why = absolute_stress_shape_refusal(mpm.grid, mpm.shape))
     r.fail("shape_function", *why);
@@ -469,8 +490,9 @@ void read_mpm(TableReader& r, MpmSettings& mpm) {
         s.axes[static_cast<std::size_t>(axis[0] - 'x')] = true;
       }
       if (!s.axes[0] && !s.axes[1] && !s.axes[2])
-        sr.fail("axes", "name at least one axis (\"x\", \"y\", \"z\"), or leave the key out "
-                        "to split along all three");
+        sr.fail("axes",
+                "name at least one axis (\"x\", \"y\", \"z\"), or leave the key out "
+                "to split along all three");
     }
     mpm.splitting = s;
   }
@@ -500,20 +522,22 @@ void pair_own_pressure_law(TableReader& r, Material& m, std::optional<double> sh
   const std::string strength(model_name(m.strength)), eos(model_name(m.eos));
   if (!needs.empty() && eos != needs)
     r.fail(r.has("eos") ? "eos" : "strength", "strength model \"" + strength +
-                                                "\" needs eos = { model = \"" + needs + "\"" +
-                                                needs_keys + " }");
+                                                  "\" needs eos = { model = \"" + needs + "\"" +
+                                                  needs_keys + " }");
   if (!law_of.empty() && strength != law_of)
     r.fail("eos", "eos model \"" + eos + "\" is the pressure law of strength model \"" + law_of +
                       "\" and goes with it only");
   if (law_of.empty()) {
     if (shear_modulus)
-      r.fail("G", "G is for a strength model with a pressure law of its own (eos hjc-compaction), "
-                  "whose bulk modulus it completes; give E and nu");
+      r.fail("G",
+             "G is for a strength model with a pressure law of its own (eos hjc-compaction), "
+             "whose bulk modulus it completes; give E and nu");
     return;
   }
   if (!shear_modulus)
-    r.fail("eos", "eos model \"" + eos + "\" sets the bulk modulus; give the material's shear "
-                  "modulus G instead of E and nu");
+    r.fail("eos", "eos model \"" + eos +
+                      "\" sets the bulk modulus; give the material's shear "
+                      "modulus G instead of E and nu");
   if (r.has("E") || r.has("nu"))
     r.fail(r.has("E") ? "E" : "nu", "give G only: eos " + eos + " sets the bulk modulus");
   if (!(3.0 * k >= 2.0 * *shear_modulus))
@@ -628,20 +652,23 @@ Material read_material(TableReader& r, const std::string& name) {
   m.failure_strain = r.number("failure_strain", 0.0, Range::non_negative());
   if (const toml::table* t = r.optional_table("failure")) {
     if (m.failure_strain > 0.0)
-      r.fail("failure_strain", "give failure_strain or failure, not both (failure_strain is "
-                               "failure = { model = \"plastic-strain\", strain = ... })");
+      r.fail("failure_strain",
+             "give failure_strain or failure, not both (failure_strain is "
+             "failure = { model = \"plastic-strain\", strain = ... })");
     TableReader fr(*t, r.dotted("failure"), r.file());
     m.failure = read_model<FailureModel>(fr, constants);
   } else if (m.failure_strain > 0.0) {
     m.failure = PlasticStrainFailure{m.failure_strain};
   }
   if (r.has("pressure_cutoff")) {
-    m.pressure_cutoff = r.number("pressure_cutoff", 0.0, {-std::numeric_limits<double>::infinity(), 0.0, true, false});
+    m.pressure_cutoff = r.number("pressure_cutoff", 0.0,
+                                 {-std::numeric_limits<double>::infinity(), 0.0, true, false});
     if (!m.has_eos() || has_own_pressure_law(m))
-      r.fail("pressure_cutoff", "a pressure cutoff (cavitation) acts on an eos's pressure: give "
-                                "eos = { model = \"mie-gruneisen\" } or another, not a strength "
-                                "model's own pressure law (hjc-compaction), which has its own "
-                                "tension limit");
+      r.fail("pressure_cutoff",
+             "a pressure cutoff (cavitation) acts on an eos's pressure: give "
+             "eos = { model = \"mie-gruneisen\" } or another, not a strength "
+             "model's own pressure law (hjc-compaction), which has its own "
+             "tension limit");
   }
   if (const toml::table* t = r.optional_table("burn")) {
     TableReader br(*t, r.dotted("burn"), r.file());
@@ -657,8 +684,9 @@ Material read_material(TableReader& r, const std::string& name) {
       b.volumetric = mode != 1;
     }
     if (!std::holds_alternative<Jwl>(m.eos))
-      r.fail("burn", "a burn (high explosive) needs eos = { model = \"jwl\", ... }: the burn "
-                     "fraction scales the detonation products' pressure");
+      r.fail("burn",
+             "a burn (high explosive) needs eos = { model = \"jwl\", ... }: the burn "
+             "fraction scales the detonation products' pressure");
     m.burn = b;
   }
   try {
@@ -679,9 +707,12 @@ std::string relative_to_scene(const std::string& file, const std::string& scene_
 // The shapes each discretisation accepts.
 std::vector<std::string> shapes_for(Discretisation d) {
   switch (d) {
-    case Discretisation::particles: return {"box", "cylinder", "cone", "sphere", "points"};
-    case Discretisation::hexahedra: return {"box", "cylinder", "sphere", "mesh"};
-    case Discretisation::trusses: return {"line", "rebar", "mesh"};
+    case Discretisation::particles:
+      return {"box", "cylinder", "cone", "sphere", "points"};
+    case Discretisation::hexahedra:
+      return {"box", "cylinder", "sphere", "mesh"};
+    case Discretisation::trusses:
+      return {"line", "rebar", "mesh"};
   }
   return {};
 }
@@ -691,7 +722,8 @@ Shape read_shape(TableReader& r, const std::string& scene_path, Discretisation d
   r.check_unknown();
   const std::vector<std::string> allowed = shapes_for(d);
   std::vector<std::string> given;
-  for (std::string_view k : {"box", "cylinder", "cone", "sphere", "points", "mesh", "line", "rebar"})
+  for (std::string_view k :
+       {"box", "cylinder", "cone", "sphere", "points", "mesh", "line", "rebar"})
     if (r.has(k)) given.emplace_back(k);
   if (given.size() != 1)
     throw InputError(r.where(), r.prefix(),
@@ -709,8 +741,8 @@ Shape read_shape(TableReader& r, const std::string& scene_path, Discretisation d
     BoxShape box{s.required_vec3("min"), s.required_vec3("max")};
     for (int a = 0; a < 3; ++a)
       if (!(box.max[a] > box.min[a]))
-        s.fail("max", "max must exceed min in every component (component " + std::to_string(a) +
-                          ")");
+        s.fail("max",
+               "max must exceed min in every component (component " + std::to_string(a) + ")");
     return box;
   }
   if (kind == "cylinder") {
@@ -728,18 +760,22 @@ Shape read_shape(TableReader& r, const std::string& scene_path, Discretisation d
       TableReader n(*t, s.dotted("nose"), s.file());
       n.known({"crh", "meplat"});
       n.check_unknown();
-      c.nose.crh = n.required_number("crh", Range::closed(0.5, std::numeric_limits<double>::infinity()));
+      c.nose.crh =
+          n.required_number("crh", Range::closed(0.5, std::numeric_limits<double>::infinity()));
       c.nose.meplat = n.number("meplat", 0.0, Range::non_negative());
       if (!(c.nose.meplat < 2.0 * c.radius))
         n.fail("meplat", "the flat tip's diameter must be less than the cylinder's, " +
                              format_number(2.0 * c.radius));
       if (d == Discretisation::hexahedra && !(c.nose.meplat > 0.0))
-        n.fail("meplat", "a nose meshed with hexahedra needs a flat tip (meplat > 0): the "
-                         "elements at a sharp tip would have no width");
+        n.fail("meplat",
+               "a nose meshed with hexahedra needs a flat tip (meplat > 0): the "
+               "elements at a sharp tip would have no width");
       const double nose = ogive_nose_length(c.nose, c.radius);
       if (!(nose < c.length))
-        n.fail("crh", "the nose (" + format_number(nose) + " long) must be shorter than the "
-                      "cylinder's length, " + format_number(c.length));
+        n.fail("crh", "the nose (" + format_number(nose) +
+                          " long) must be shorter than the "
+                          "cylinder's length, " +
+                          format_number(c.length));
     }
     return c;
   }
@@ -796,8 +832,9 @@ Shape read_shape(TableReader& r, const std::string& scene_path, Discretisation d
       if (!(m.max[a] > m.min[a])) s.fail("max", "max must exceed min in every component");
     m.normal_axis = static_cast<int>(s.choice("normal", {"x", "y", "z"}, std::nullopt));
     if (!s.has("position"))
-      s.fail("position", "required key is missing (a number, or an array of numbers: one mat per "
-                         "layer)");
+      s.fail("position",
+             "required key is missing (a number, or an array of numbers: one mat per "
+             "layer)");
     m.positions = s.numbers("position", Range::any());
     for (std::size_t i = 0; i < m.positions.size(); ++i)
       if (m.positions[i] < m.min[m.normal_axis] || m.positions[i] > m.max[m.normal_axis])
@@ -883,26 +920,30 @@ void read_mesh_density(TableReader& r, const BodySpec& b, MeshDensity& m) {
     // Elements across the diameter: core n/2 and two shells of n/4 (fem/mesh_generation.hpp).
     m.divisions[0] = static_cast<int>(r.integer("across", 0, 4, 10000));
     if (m.divisions[0] % 4 != 0)
-      r.fail("across", "must be a multiple of 4 (a core of across/2 elements between two shells "
-                       "of across/4 layers)");
+      r.fail("across",
+             "must be a multiple of 4 (a core of across/2 elements between two shells "
+             "of across/4 layers)");
     m.sectors = static_cast<int>(r.integer("sectors", 4, 1, 4));
     if (m.sectors == 3) r.fail("sectors", "allowed values: 1 (quarter), 2 (half), 4 (full)");
     if (m.size == 0.0 && m.divisions[0] == 0) r.fail("across", "give across or an element size");
   }
   if (line) {
     m.segments = static_cast<int>(r.integer("segments", 0, 1, 1000000));
-    if (m.size == 0.0 && m.segments == 0) r.fail("segments", "give segments or a truss length size");
+    if (m.size == 0.0 && m.segments == 0)
+      r.fail("segments", "give segments or a truss length size");
   }
   if (rebar && m.size == 0.0) r.fail("size", "give the truss length size of the bars");
 }
 
 BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
                    const std::vector<Material>& material_list, const std::string& scene_path) {
-  r.known({"name", "material", "discretisation", "shape", "particles_per_cell", "velocity",
-           "temperature", "internal_energy", "mesh", "element", "hourglass", "bulk_viscosity", "erosion", "area",
-           "bonded_to", "conversion", "rigid", "outside", "layout", "pressure"});
+  r.known({"name",       "material",       "discretisation",  "shape",  "particles_per_cell",
+           "velocity",   "temperature",    "internal_energy", "mesh",   "element",
+           "hourglass",  "bulk_viscosity", "erosion",         "area",   "bonded_to",
+           "conversion", "rigid",          "outside",         "layout", "pressure"});
   // Name the body in messages as soon as its name is readable, even for an unknown key.
-  if (const toml::node* n = r.table().get("name"); n && n->is_string() && !n->as_string()->get().empty())
+  if (const toml::node* n = r.table().get("name");
+      n && n->is_string() && !n->as_string()->get().empty())
     r.set_prefix("bodies." + n->as_string()->get());
   r.check_unknown();
   BodySpec b;
@@ -942,7 +983,7 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
   only_for("erosion", D::hexahedra, D::trusses);
   only_for("area", D::trusses, D::trusses);
   only_for("bonded_to", D::hexahedra, D::trusses);  // resolved once every body is read
-  only_for("outside", D::particles, D::particles);   // resolved once every body is read
+  only_for("outside", D::particles, D::particles);  // resolved once every body is read
   only_for("conversion", D::hexahedra, D::hexahedra);
   only_for("pressure", D::particles, D::particles);
   b.pressure = r.optional_number("pressure", Range::non_negative());
@@ -952,14 +993,16 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
       r.fail("pressure", *why);
   if (r.has("rigid") && b.discretisation != D::hexahedra)
     r.fail("rigid", std::string("a rigid body is made of hexahedra (its mass and inertia come from "
-                                "their volumes), not of ") + to_string(b.discretisation) +
+                                "their volumes), not of ") +
+                        to_string(b.discretisation) +
                         "; model a rigid indenter or anvil as hexahedra with rigid = true");
   b.particles_per_cell = static_cast<int>(r.integer("particles_per_cell", 2, 1, 8));
   only_for("layout", D::particles, D::particles);
   b.layout = static_cast<BodySpec::Layout>(r.choice("layout", {"lattice", "shells"}, 0));
   if (b.layout == BodySpec::Layout::shells && !std::holds_alternative<SphereShape>(b.shape))
-    r.fail("layout", "layout = \"shells\" places particles in shells that follow a sphere; "
-                     "the body's shape is not a sphere (allowed for other shapes: \"lattice\")");
+    r.fail("layout",
+           "layout = \"shells\" places particles in shells that follow a sphere; "
+           "the body's shape is not a sphere (allowed for other shapes: \"lattice\")");
   // Unset, the default of core::bulk_viscosity_of applies.
   if (const toml::table* t = r.optional_table("bulk_viscosity")) {
     TableReader vr(*t, r.dotted("bulk_viscosity"), r.file());
@@ -1027,9 +1070,10 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
     c.points = static_cast<int>(cr.integer("points", 1, 1, 2));
     if (c.plastic_strain == 0.0 && c.volumetric_strain == 0.0 && c.jacobian_ratio == 0.0 &&
         !c.negative_jacobian && c.time_step_fraction == 0.0 && c.damage == 0.0)
-      r.fail("conversion", "every criterion is off; give at least one of plastic_strain, "
-                           "volumetric_strain, jacobian_ratio, negative_jacobian, "
-                           "time_step_fraction, damage");
+      r.fail("conversion",
+             "every criterion is off; give at least one of plastic_strain, "
+             "volumetric_strain, jacobian_ratio, negative_jacobian, "
+             "time_step_fraction, damage");
     b.conversion = c;
   }
   if (const toml::node* n = r.table().get("rigid")) {
@@ -1047,16 +1091,16 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
           rigid.fixed.fill(true);
           continue;
         }
-        const auto* component = std::find_if(std::begin(dof), std::end(dof),
-                                             [&](const char* d) { return name == d; });
+        const auto* component =
+            std::find_if(std::begin(dof), std::end(dof), [&](const char* d) { return name == d; });
         if (component == std::end(dof))
           rr.fail("fixed", "unknown component \"" + name +
                                "\"; allowed: \"x\", \"y\", \"z\", \"rx\", \"ry\", \"rz\", \"all\"");
         rigid.fixed[static_cast<std::size_t>(component - std::begin(dof))] = true;
       }
     } else {
-      r.fail("rigid", "expected true or a table { fixed = [\"x\", ..., \"rz\"] }, got " +
-                          describe_type(*n));
+      r.fail("rigid",
+             "expected true or a table { fixed = [\"x\", ..., \"rz\"] }, got " + describe_type(*n));
     }
     if (set) {
       for (const char* key : {"erosion", "conversion", "bonded_to"})
@@ -1067,8 +1111,7 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
     }
   }
   b.area = r.number("area", 0.0, Range::positive());
-  if (b.discretisation == D::trusses && std::holds_alternative<LineShape>(b.shape) &&
-      b.area == 0.0)
+  if (b.discretisation == D::trusses && std::holds_alternative<LineShape>(b.shape) && b.area == 0.0)
     r.fail("area", "a truss line needs its cross-section area");
   return b;
 }
@@ -1142,15 +1185,17 @@ ConstraintSpec read_constraint(TableReader& r, const Scene& scene) {
   c.nodes = read_selector(nr);
   if (r.has("body")) c.body = body_index(r, "body", r.required_string("body"), scene);
   if (c.body >= 0 && scene.bodies[static_cast<std::size_t>(c.body)].rigid)
-    r.fail("body", "body \"" + scene.bodies[static_cast<std::size_t>(c.body)].name +
-                       "\" is rigid; hold it with rigid = { fixed = [\"x\", ..., \"rz\"] } instead");
+    r.fail("body",
+           "body \"" + scene.bodies[static_cast<std::size_t>(c.body)].name +
+               "\" is rigid; hold it with rigid = { fixed = [\"x\", ..., \"rz\"] } instead");
   if (c.body >= 0 && scene.bodies[static_cast<std::size_t>(c.body)].bonded_to >= 0)
     r.fail("body", "body \"" + scene.bodies[static_cast<std::size_t>(c.body)].name +
                        "\" is bonded to particles and moves with the grid; constrain the grid "
                        "([grid] boundary) instead");
   if (r.has("fixed") == r.has("velocity"))
-    r.fail("fixed", "give either fixed = [\"x\", \"y\", \"z\"] (a subset, or \"all\") or "
-                    "velocity = [vx, vy, vz]");
+    r.fail("fixed",
+           "give either fixed = [\"x\", \"y\", \"z\"] (a subset, or \"all\") or "
+           "velocity = [vx, vy, vz]");
   // The components a constraint acts on: fixed's list, or velocity's `components` (all three
   // by default), each "x", "y", "z" or "all".
   auto read_components = [&](std::string_view key) {
@@ -1201,12 +1246,14 @@ WallSpec read_wall(TableReader& r, const Scene& scene) {
   for (const std::string& name : r.strings("bodies")) {
     w.bodies.push_back(body_index(r, "bodies", name, scene, false));
     if (scene.bodies[static_cast<std::size_t>(w.bodies.back())].rigid)
-      r.fail("bodies", "body \"" + name + "\" is rigid; walls act on deformable mesh bodies (a "
-                       "rigid body meets others through [[contact]], and is held by its "
-                       "rigid.fixed components)");
+      r.fail("bodies", "body \"" + name +
+                           "\" is rigid; walls act on deformable mesh bodies (a "
+                           "rigid body meets others through [[contact]], and is held by its "
+                           "rigid.fixed components)");
     if (scene.bodies[static_cast<std::size_t>(w.bodies.back())].bonded_to >= 0)
-      r.fail("bodies", "body \"" + name + "\" is bonded to particles and moves with the grid; "
-                       "walls act on free mesh bodies (use a [grid] boundary wall face)");
+      r.fail("bodies", "body \"" + name +
+                           "\" is bonded to particles and moves with the grid; "
+                           "walls act on free mesh bodies (use a [grid] boundary wall face)");
   }
   return w;
 }
@@ -1218,8 +1265,9 @@ ContactSpec read_contact(TableReader& r, const Scene& scene) {
   c.where = r.where();
   const std::vector<std::string> names = r.strings("bodies");
   if (names.size() != 2 && names.size() != 1)
-    r.fail("bodies", "name two bodies, e.g. bodies = [\"projectile\", \"plate\"], or one body "
-                     "of hexahedra for its self-contact");
+    r.fail("bodies",
+           "name two bodies, e.g. bodies = [\"projectile\", \"plate\"], or one body "
+           "of hexahedra for its self-contact");
   for (std::size_t k = 0; k < 2; ++k) {
     const std::string& name = names[std::min(k, names.size() - 1)];
     c.bodies[k] = body_index(r, "bodies", name, scene, false);
@@ -1241,34 +1289,41 @@ ContactSpec read_contact(TableReader& r, const Scene& scene) {
   for (const ContactSpec& other : scene.contacts)
     if ((other.bodies[0] == c.bodies[0] && other.bodies[1] == c.bodies[1]) ||
         (other.bodies[0] == c.bodies[1] && other.bodies[1] == c.bodies[0]))
-      r.fail("bodies", "this pair already has a contact (line " +
-                           std::to_string(other.where.line) + ")");
+      r.fail("bodies",
+             "this pair already has a contact (line " + std::to_string(other.where.line) + ")");
   c.friction = r.number("friction", 0.0, Range::non_negative());
   c.name = r.string("name", self ? a.name + "-self" : a.name + "-" + b.name);
   if (c.name.empty() || c.name.find_first_of(",\"\n") != std::string::npos)
-    r.fail("name", "a contact name is a history column prefix: not empty, without commas, "
-                   "quotes or line breaks");
+    r.fail("name",
+           "a contact name is a history column prefix: not empty, without commas, "
+           "quotes or line breaks");
   if (c.method == ContactMethod::weld) {
     for (const char* key : {"friction", "distance_factor", "penalty"})
       if (r.has(key))
-        r.fail(key, "a weld adds nothing to the step: the bodies share one velocity field; "
-                    "remove " + std::string(key));
+        r.fail(key,
+               "a weld adds nothing to the step: the bodies share one velocity field; "
+               "remove " +
+                   std::string(key));
     if (self || a.discretisation != Discretisation::particles ||
         b.discretisation != Discretisation::particles)
-      r.fail("method", "a weld names two different bodies of particles (meshes weld to "
-                       "particles by bonded_to)");
+      r.fail("method",
+             "a weld names two different bodies of particles (meshes weld to "
+             "particles by bonded_to)");
     return c;
   }
   if (c.method == ContactMethod::penalty) {
     if (r.has("distance_factor"))
-      r.fail("distance_factor", "distance_factor sets where grid contact acts; penalty contact "
-                                "acts where the surfaces meet (remove it, or set method = \"grid\")");
+      r.fail("distance_factor",
+             "distance_factor sets where grid contact acts; penalty contact "
+             "acts where the surfaces meet (remove it, or set method = \"grid\")");
     if (!meshes)
-      r.fail("method", "penalty contact acts between meshes (hexahedra, or trusses on "
-                       "hexahedra); a body of particles meets others by method = \"grid\"");
+      r.fail("method",
+             "penalty contact acts between meshes (hexahedra, or trusses on "
+             "hexahedra); a body of particles meets others by method = \"grid\"");
     if (a.discretisation == Discretisation::trusses && b.discretisation == Discretisation::trusses)
-      r.fail("bodies", "two bodies of trusses have no surface to meet: penalty contact needs a "
-                       "body of hexahedra on one side (truss nodes meet hexahedron faces)");
+      r.fail("bodies",
+             "two bodies of trusses have no surface to meet: penalty contact needs a "
+             "body of hexahedra on one side (truss nodes meet hexahedron faces)");
     if (self && a.discretisation != Discretisation::hexahedra)
       r.fail("bodies", "self-contact needs a body of hexahedra (a surface that may fold)");
     if (self && a.rigid) r.fail("bodies", "a rigid body cannot fold onto itself");
@@ -1280,22 +1335,25 @@ ContactSpec read_contact(TableReader& r, const Scene& scene) {
   }
   if (c.method == ContactMethod::surface) {
     if (r.has("distance_factor"))
-      r.fail("distance_factor", "distance_factor sets where grid contact acts; surface contact "
-                                "acts where the particles' boundary meets the faces (remove it)");
+      r.fail("distance_factor",
+             "distance_factor sets where grid contact acts; surface contact "
+             "acts where the particles' boundary meets the faces (remove it)");
     const bool one_each = (a.discretisation == Discretisation::particles) !=
                           (b.discretisation == Discretisation::particles);
     const BodySpec& m = a.discretisation == Discretisation::particles ? b : a;
     if (self || !one_each || m.discretisation != Discretisation::hexahedra)
-      r.fail("method", "surface contact is between a body of particles and a body of hexahedra "
-                       "(deformable or rigid); meshes meet each other by method = \"penalty\", "
-                       "particles by method = \"grid\"");
+      r.fail("method",
+             "surface contact is between a body of particles and a body of hexahedra "
+             "(deformable or rigid); meshes meet each other by method = \"penalty\", "
+             "particles by method = \"grid\"");
     // The fraction of the predicted penetration one step takes out, as for penalty contact.
     c.penalty = r.number("penalty", 1.0, Range{0.0, 1.0, true, false});
     return c;
   }
   if (r.has("penalty"))
-    r.fail("penalty", "penalty scales the stiffness of penalty contact; grid contact has none "
-                      "(remove it, or set method = \"penalty\" between meshes)");
+    r.fail("penalty",
+           "penalty scales the stiffness of penalty contact; grid contact has none "
+           "(remove it, or set method = \"penalty\" between meshes)");
   if (self) r.fail("bodies", "a body cannot be in grid contact with itself");
   if (a.rigid || b.rigid)
     r.fail("bodies", "body \"" + (a.rigid ? a.name : b.name) +
@@ -1303,20 +1361,23 @@ ContactSpec read_contact(TableReader& r, const Scene& scene) {
                          "particles through method = \"surface\" (grid contact does not take "
                          "them)");
   if (meshes)
-    r.fail("method", "both bodies are meshes; grid contact needs a particle body on one side "
-                     "(meshes meet each other by method = \"penalty\", the default)");
-  if (scene.mpm.scheme == UpdateScheme::USAVG &&
-      (a.discretisation != Discretisation::particles || b.discretisation != Discretisation::particles))
-    r.fail("bodies", "grid contact of a mesh with particles needs [mpm] scheme = \"MUSL\" (the "
-                     "default) or \"USF\"; USAVG takes grid contact between bodies of particles");
+    r.fail("method",
+           "both bodies are meshes; grid contact needs a particle body on one side "
+           "(meshes meet each other by method = \"penalty\", the default)");
+  if (scene.mpm.scheme == UpdateScheme::USAVG && (a.discretisation != Discretisation::particles ||
+                                                  b.discretisation != Discretisation::particles))
+    r.fail("bodies",
+           "grid contact of a mesh with particles needs [mpm] scheme = \"MUSL\" (the "
+           "default) or \"USF\"; USAVG takes grid contact between bodies of particles");
   if (!scene.has_grid)
     r.fail("bodies", "grid contact needs a [grid] section covering the bodies (cell, min, max)");
   // USL takes the strain from the contact-corrected velocity that also moves the particles,
   // and in the head-on test of tests/mpm/test_grid_contact.cpp it lost 79 % of the energy
   // (MUSL and USF: 9-10 %).
   if (scene.mpm.scheme == UpdateScheme::USL)
-    r.fail("bodies", "grid contact needs [mpm] scheme = \"MUSL\" (the default) or \"USF\"; "
-                     "with USL the bodies lose most of their energy in contact");
+    r.fail("bodies",
+           "grid contact needs [mpm] scheme = \"MUSL\" (the default) or \"USF\"; "
+           "with USL the bodies lose most of their energy in contact");
   c.distance_factor = r.number("distance_factor", 0.5, Range::non_negative());
   return c;
 }
@@ -1328,9 +1389,9 @@ void read_table_array(TableReader& r, std::string_view key, const std::string& p
   const toml::node* node = r.table().get(key);
   const toml::array* a = node->as_array();
   if (!a || !a->is_array_of_tables())
-    throw InputError(r.where(key), std::string(key),
-                     "expected an array of tables ([[" + std::string(key) + "]]), got " +
-                         describe_type(*node));
+    throw InputError(
+        r.where(key), std::string(key),
+        "expected an array of tables ([[" + std::string(key) + "]]), got " + describe_type(*node));
   for (std::size_t i = 0; i < a->size(); ++i) {
     TableReader t(*a->get(i)->as_table(), std::string(key) + "[" + std::to_string(i) + "]", path);
     read(t);
@@ -1365,15 +1426,17 @@ void read_reference(TableReader& r, Scene& scene) {
     if (const toml::table* t = n->as_table()) {
       TableReader vr(*t, r.dotted("velocity"), r.file());
       scene.velocity_references.push_back(read_velocity_reference(vr, scene));
-    } else if (const toml::array* a = n->as_array(); a && !a->empty() && a->is_homogeneous<toml::table>()) {
+    } else if (const toml::array* a = n->as_array();
+               a && !a->empty() && a->is_homogeneous<toml::table>()) {
       for (std::size_t i = 0; i < a->size(); ++i) {
         TableReader vr(*a->get(i)->as_table(), r.dotted("velocity") + "[" + std::to_string(i) + "]",
                        r.file());
         scene.velocity_references.push_back(read_velocity_reference(vr, scene));
       }
     } else {
-      r.fail("velocity", "expected { body = ..., component = ..., value = ..., tolerance = ... } or an "
-                         "array of such tables");
+      r.fail("velocity",
+             "expected { body = ..., component = ..., value = ..., tolerance = ... } or an "
+             "array of such tables");
     }
   }
   if (const toml::table* t = r.optional_table("energy")) {
@@ -1405,16 +1468,18 @@ ProbeSpec read_probe(TableReader& r, const Scene& scene) {
   p.where = r.where();
   p.key = r.prefix();
   p.name = r.required_string("name");
-  if (p.name.empty() || p.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                                 "0123456789_-") != std::string::npos)
-    r.fail("name", "a probe name (its file probes/NAME.csv) must be non-empty and hold only "
-                   "letters, digits, '_' and '-'");
+  if (p.name.empty() ||
+      p.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                               "0123456789_-") != std::string::npos)
+    r.fail("name",
+           "a probe name (its file probes/NAME.csv) must be non-empty and hold only "
+           "letters, digits, '_' and '-'");
   for (const ProbeSpec& other : scene.probes)
     if (other.name == p.name)
       r.fail("name", "duplicate probe name \"" + p.name + "\" (first defined at line " +
                          std::to_string(other.where.line) + ")");
-  const std::vector<std::string_view> kinds = {"particle", "node", "element", "mean_velocity",
-                                               "extreme", "force"};
+  const std::vector<std::string_view> kinds = {"particle",      "node",    "element",
+                                               "mean_velocity", "extreme", "force"};
   int given = 0;
   for (std::size_t k = 0; k < kinds.size(); ++k)
     if (r.has(kinds[k])) {
@@ -1422,10 +1487,11 @@ ProbeSpec read_probe(TableReader& r, const Scene& scene) {
       ++given;
     }
   if (given != 1)
-    throw InputError(r.where(), r.prefix(),
-                     "give exactly one of particle = { body, index | near }, node = { ... }, "
-                     "element = { ... }, mean_velocity = \"BODY\", extreme = { field, of, box, body "
-                     "}, force = \"CONTACT\" (a [[contact]]'s name, \"wallK\" or a rigid body)");
+    throw InputError(
+        r.where(), r.prefix(),
+        "give exactly one of particle = { body, index | near }, node = { ... }, "
+        "element = { ... }, mean_velocity = \"BODY\", extreme = { field, of, box, body "
+        "}, force = \"CONTACT\" (a [[contact]]'s name, \"wallK\" or a rigid body)");
   p.interval = r.number("interval", 0.0, Range::positive());
   const auto is_particles = [&](int b) {
     return scene.bodies[static_cast<std::size_t>(b)].discretisation == Discretisation::particles;
@@ -1445,7 +1511,8 @@ ProbeSpec read_probe(TableReader& r, const Scene& scene) {
     t.known({"field", "of", "box", "body"});
     t.check_unknown();
     p.field = static_cast<ProbeField>(t.choice(
-        "field", {"pressure", "von_mises", "plastic_strain", "speed", "vx", "vy", "vz", "x", "y", "z"},
+        "field",
+        {"pressure", "von_mises", "plastic_strain", "speed", "vx", "vy", "vz", "x", "y", "z"},
         std::nullopt));
     p.maximum = t.choice("of", {"max", "min"}, 0) == 0;
     if (t.has("body")) p.body = body_index(t, "body", t.required_string("body"), scene, false);
@@ -1477,7 +1544,9 @@ ProbeSpec read_probe(TableReader& r, const Scene& scene) {
 
 }  // namespace
 
-std::vector<std::string_view> builtin_strength_models() { return model_names<StrengthModel>(); }
+std::vector<std::string_view> builtin_strength_models() {
+  return model_names<StrengthModel>();
+}
 
 Scene scene_from_toml(const toml::table& root, const std::string& path) {
   Scene scene;
@@ -1534,8 +1603,9 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
   if (bodies && bodies->empty())
     throw InputError(r.where("bodies"), "bodies", "at least one body is required");
   if (!bodies || !bodies->is_array_of_tables())
-    throw InputError(r.where("bodies"), "bodies",
-                     "expected an array of tables ([[bodies]]), got " + describe_type(*bodies_node));
+    throw InputError(
+        r.where("bodies"), "bodies",
+        "expected an array of tables ([[bodies]]), got " + describe_type(*bodies_node));
   for (std::size_t i = 0; i < bodies->size(); ++i) {
     const toml::table& t = *bodies->get(i)->as_table();
     TableReader br(t, "bodies[" + std::to_string(i) + "]", path);
@@ -1557,18 +1627,22 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
     const toml::table& t = *bodies->get(i)->as_table();
     TableReader br(t, "bodies." + scene.bodies[i].name, path);
     if (!scene.has_grid)
-      br.fail("conversion", "converted elements become particles on the background grid; add a "
-                            "[grid] section (cell, min, max) covering where they may convert");
+      br.fail("conversion",
+              "converted elements become particles on the background grid; add a "
+              "[grid] section (cell, min, max) covering where they may convert");
     if (scene.mpm.scheme == UpdateScheme::USL || scene.mpm.scheme == UpdateScheme::USAVG)
-      br.fail("conversion", "conversion bonds the remaining elements to the new particles, which "
-                            "needs [mpm] scheme = \"MUSL\" (the default) or \"USF\"");
+      br.fail("conversion",
+              "conversion bonds the remaining elements to the new particles, which "
+              "needs [mpm] scheme = \"MUSL\" (the default) or \"USF\"");
     if (t.contains("bonded_to"))
-      br.fail("conversion", "a body bonded to particles cannot also convert; remove one of "
-                            "bonded_to and conversion");
+      br.fail("conversion",
+              "a body bonded to particles cannot also convert; remove one of "
+              "bonded_to and conversion");
   }
   // The bodies that split ([mpm] splitting.bodies), once the bodies are read.
   if (const toml::table* m = r.optional_table("mpm"))
-    if (const toml::table* t = m->get_as<toml::table>("splitting"); t != nullptr && t->contains("bodies")) {
+    if (const toml::table* t = m->get_as<toml::table>("splitting");
+        t != nullptr && t->contains("bodies")) {
       TableReader sr(*t, "mpm.splitting", path);
       for (const std::string& name : sr.strings("bodies")) {
         const int b = body_index(sr, "bodies", name, scene, false);
@@ -1585,12 +1659,12 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
     for (const std::string& name : br.strings("outside")) {
       const int o = body_index(br, "outside", name, scene, false);
       const BodySpec& other = scene.bodies[static_cast<std::size_t>(o)];
-      if (static_cast<std::size_t>(o) == i)
-        br.fail("outside", "a body cannot lie outside itself");
+      if (static_cast<std::size_t>(o) == i) br.fail("outside", "a body cannot lie outside itself");
       if (std::holds_alternative<PointListShape>(other.shape) ||
           std::holds_alternative<MeshFileShape>(other.shape))
-        br.fail("outside", "body \"" + name + "\" has no inside to leave out (a point list or "
-                           "a mesh file); name bodies with a box, cylinder or sphere");
+        br.fail("outside", "body \"" + name +
+                               "\" has no inside to leave out (a point list or "
+                               "a mesh file); name bodies with a box, cylinder or sphere");
       scene.bodies[i].outside.push_back(o);
     }
   }
@@ -1602,16 +1676,17 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
     const std::string host = br.required_string("bonded_to");
     const int h = body_index(br, "bonded_to", host, scene, false);
     if (scene.bodies[static_cast<std::size_t>(h)].discretisation != Discretisation::particles)
-      br.fail("bonded_to", "body \"" + host + "\" is a mesh; a mesh body bonds to a body of "
-                           "particles (its nodes join that body's velocity field on the grid)");
+      br.fail("bonded_to", "body \"" + host +
+                               "\" is a mesh; a mesh body bonds to a body of "
+                               "particles (its nodes join that body's velocity field on the grid)");
     if (scene.mpm.scheme == UpdateScheme::USL || scene.mpm.scheme == UpdateScheme::USAVG)
-      br.fail("bonded_to", "bonded coupling needs [mpm] scheme = \"MUSL\" (the default) or "
-                           "\"USF\"");
+      br.fail("bonded_to",
+              "bonded coupling needs [mpm] scheme = \"MUSL\" (the default) or "
+              "\"USF\"");
     scene.bodies[i].bonded_to = h;
   }
-  read_table_array(r, "constraints", path, [&](TableReader& t) {
-    scene.constraints.push_back(read_constraint(t, scene));
-  });
+  read_table_array(r, "constraints", path,
+                   [&](TableReader& t) { scene.constraints.push_back(read_constraint(t, scene)); });
   read_table_array(r, "absorbing", path, [&](TableReader& t) {
     t.known({"nodes", "body"});
     t.check_unknown();
@@ -1633,9 +1708,8 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
     }
     scene.absorbing.push_back(a);
   });
-  read_table_array(r, "walls", path, [&](TableReader& t) {
-    scene.walls.push_back(read_wall(t, scene));
-  });
+  read_table_array(r, "walls", path,
+                   [&](TableReader& t) { scene.walls.push_back(read_wall(t, scene)); });
   read_table_array(r, "contact", path, [&](TableReader& t) {
     scene.contacts.push_back(read_contact(t, scene));
     std::vector<bool> named(scene.bodies.size(), false);
@@ -1647,8 +1721,9 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
           ++count;
         }
     if (count > 31)
-      t.fail("bodies", "at most 31 bodies can take part in grid contact (each has its own "
-                       "velocity field on the grid)");
+      t.fail("bodies",
+             "at most 31 bodies can take part in grid contact (each has its own "
+             "velocity field on the grid)");
   });
   {
     TableReader run(r.required_table("run"), "run", path);
@@ -1663,7 +1738,8 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
     }
   }
   if ((!scene.constraints.empty() || !scene.absorbing.empty()) && !has_mesh(scene))
-    throw InputError(SourceLocation{path, 0}, !scene.absorbing.empty() ? "absorbing" : "constraints",
+    throw InputError(SourceLocation{path, 0},
+                     !scene.absorbing.empty() ? "absorbing" : "constraints",
                      "constraints and absorbing boundaries act on mesh nodes, and the scene has "
                      "no mesh body; particles take their boundary conditions from [grid] "
                      "boundary (and [[walls]] that name them)");
@@ -1681,8 +1757,9 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
     d.where = t.where();
     const int given = (t.has("point") ? 1 : 0) + (t.has("plane") ? 1 : 0) + (t.has("line") ? 1 : 0);
     if (given != 1)
-      t.fail("point", "give one of point = [x, y, z], plane = { point = [..], normal = [..] } "
-                      "or line = { from = [..], to = [..] }");
+      t.fail("point",
+             "give one of point = [x, y, z], plane = { point = [..], normal = [..] } "
+             "or line = { from = [..], to = [..] }");
     if (t.has("point")) {
       d.point = t.required_vec3("point");
     } else if (const toml::table* p = t.optional_table("plane")) {
@@ -1713,17 +1790,23 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
       if (!scene.materials[static_cast<std::size_t>(b.material)].is_explosive()) continue;
       explosive = &b;
       if (b.discretisation == Discretisation::trusses)
-        throw InputError(b.where, "material", "body \"" + b.name + "\" is a body of trusses "
-                         "of a high explosive; explosives are particles or hexahedra");
+        throw InputError(b.where, "material",
+                         "body \"" + b.name +
+                             "\" is a body of trusses "
+                             "of a high explosive; explosives are particles or hexahedra");
       if (b.conversion)
-        throw InputError(b.where, "conversion", "body \"" + b.name + "\" is a high explosive; "
-                         "its hexahedra burn where they are and do not convert into particles");
+        throw InputError(b.where, "conversion",
+                         "body \"" + b.name +
+                             "\" is a high explosive; "
+                             "its hexahedra burn where they are and do not convert into particles");
     }
     if (explosive != nullptr && scene.detonations.empty())
-      throw InputError(explosive->where, "detonations",
-                       "body \"" + explosive->name + "\" is a high explosive (its material has a "
-                       "burn) and the scene has no [[detonations]] to light it: add one (point, "
-                       "plane or line, and a time)");
+      throw InputError(
+          explosive->where, "detonations",
+          "body \"" + explosive->name +
+              "\" is a high explosive (its material has a "
+              "burn) and the scene has no [[detonations]] to light it: add one (point, "
+              "plane or line, and a time)");
     if (explosive == nullptr && !scene.detonations.empty())
       throw InputError(scene.detonations.front().where, "detonations",
                        "no body is of a high explosive (a material with burn = { D, pcj }) for "
@@ -1733,9 +1816,8 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
     TableReader ref(*t, "reference", path);
     read_reference(ref, scene);
   }
-  read_table_array(r, "probes", path, [&](TableReader& t) {
-    scene.probes.push_back(read_probe(t, scene));
-  });
+  read_table_array(r, "probes", path,
+                   [&](TableReader& t) { scene.probes.push_back(read_probe(t, scene)); });
   return scene;
 }
 

@@ -3,6 +3,8 @@
 // all produce the same InputError: "FILE:LINE: key 'a.b.c': what is wrong and what is allowed".
 #pragma once
 
+#include <toml++/toml.h>
+
 #include <initializer_list>
 #include <limits>
 #include <optional>
@@ -11,12 +13,10 @@
 #include <string_view>
 #include <vector>
 
-#include <toml++/toml.h>
-
 #include "afemp/errors.hpp"
 #include "afemp/model_parameters.hpp"
-#include "core/scene.hpp"
 #include "afemp/tensor.hpp"
+#include "core/scene.hpp"
 
 namespace afemp::core::scene_detail {
 

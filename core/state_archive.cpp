@@ -19,28 +19,44 @@ namespace {
 
 hid_t native_type(Scalar s) {
   switch (s) {
-    case Scalar::f64: return H5T_NATIVE_DOUBLE;
-    case Scalar::i8: return H5T_NATIVE_SCHAR;
-    case Scalar::u8: return H5T_NATIVE_UINT8;
-    case Scalar::i32: return H5T_NATIVE_INT32;
-    case Scalar::u32: return H5T_NATIVE_UINT32;
-    case Scalar::i64: return H5T_NATIVE_INT64;
-    case Scalar::u64: return H5T_NATIVE_UINT64;
-    case Scalar::bytes: return H5T_NATIVE_UINT8;
+    case Scalar::f64:
+      return H5T_NATIVE_DOUBLE;
+    case Scalar::i8:
+      return H5T_NATIVE_SCHAR;
+    case Scalar::u8:
+      return H5T_NATIVE_UINT8;
+    case Scalar::i32:
+      return H5T_NATIVE_INT32;
+    case Scalar::u32:
+      return H5T_NATIVE_UINT32;
+    case Scalar::i64:
+      return H5T_NATIVE_INT64;
+    case Scalar::u64:
+      return H5T_NATIVE_UINT64;
+    case Scalar::bytes:
+      return H5T_NATIVE_UINT8;
   }
   return H5T_NATIVE_UINT8;
 }
 
 hid_t file_type(Scalar s) {
   switch (s) {
-    case Scalar::f64: return H5T_IEEE_F64LE;
-    case Scalar::i8: return H5T_STD_I8LE;
-    case Scalar::u8: return H5T_STD_U8LE;
-    case Scalar::i32: return H5T_STD_I32LE;
-    case Scalar::u32: return H5T_STD_U32LE;
-    case Scalar::i64: return H5T_STD_I64LE;
-    case Scalar::u64: return H5T_STD_U64LE;
-    case Scalar::bytes: return H5T_STD_U8LE;
+    case Scalar::f64:
+      return H5T_IEEE_F64LE;
+    case Scalar::i8:
+      return H5T_STD_I8LE;
+    case Scalar::u8:
+      return H5T_STD_U8LE;
+    case Scalar::i32:
+      return H5T_STD_I32LE;
+    case Scalar::u32:
+      return H5T_STD_U32LE;
+    case Scalar::i64:
+      return H5T_STD_I64LE;
+    case Scalar::u64:
+      return H5T_STD_U64LE;
+    case Scalar::bytes:
+      return H5T_STD_U8LE;
   }
   return H5T_STD_U8LE;
 }
@@ -87,8 +103,8 @@ void StateArchive::close() {
   file_ = -1;
   groups_.clear();
   if (flushed < 0 || closed < 0)
-    throw CheckpointError(path_ + ": cannot write checkpoint: " +
-                          (flushed < 0 ? flush_reason : hdf5::hdf5_reason()));
+    throw CheckpointError(
+        path_ + ": cannot write checkpoint: " + (flushed < 0 ? flush_reason : hdf5::hdf5_reason()));
 }
 
 std::string StateArchive::where(const char* name) const {
@@ -107,7 +123,8 @@ void StateArchive::push_group(const std::string& name) {
   hid_t g;
   if (loading()) {
     g = H5Gopen2(parent, name.c_str(), H5P_DEFAULT);
-    if (g < 0) fail(name.c_str(), "missing (written by another afemp version, or not a checkpoint)");
+    if (g < 0)
+      fail(name.c_str(), "missing (written by another afemp version, or not a checkpoint)");
   } else {
     const Handle gcpl(hdf5::untimed_plist(H5P_GROUP_CREATE, path_), H5Pclose);
     g = H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, gcpl.get(), H5P_DEFAULT);
@@ -156,9 +173,8 @@ std::size_t StateArchive::stored_count(const char* name, Scalar scalar,
       H5Sget_simple_extent_dims(space.get(), dims, nullptr) < 0)
     fail(name, "is not an n x k array");
   const Handle type(H5Dget_type(dset.get()), H5Tclose);
-  const bool same_kind =
-      H5Tget_size(type.get()) == state_detail::scalar_size(scalar) &&
-      (H5Tget_class(type.get()) == H5T_FLOAT) == (scalar == Scalar::f64);
+  const bool same_kind = H5Tget_size(type.get()) == state_detail::scalar_size(scalar) &&
+                         (H5Tget_class(type.get()) == H5T_FLOAT) == (scalar == Scalar::f64);
   if (!same_kind || dims[1] != components)
     fail(name, "is stored with " + std::to_string(dims[1]) + " components of " +
                    std::to_string(H5Tget_size(type.get())) + " bytes, this build expects " +

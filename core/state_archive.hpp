@@ -35,19 +35,71 @@ struct Layout {
   static constexpr Scalar scalar = Scalar::bytes;
   static constexpr std::size_t components = sizeof(T);
 };
-template <> struct Layout<double> { static constexpr Scalar scalar = Scalar::f64; static constexpr std::size_t components = 1; };
-template <> struct Layout<char> { static constexpr Scalar scalar = Scalar::i8; static constexpr std::size_t components = 1; };
-template <> struct Layout<bool> { static constexpr Scalar scalar = Scalar::u8; static constexpr std::size_t components = 1; };
-template <> struct Layout<std::uint8_t> { static constexpr Scalar scalar = Scalar::u8; static constexpr std::size_t components = 1; };
-template <> struct Layout<std::int32_t> { static constexpr Scalar scalar = Scalar::i32; static constexpr std::size_t components = 1; };
-template <> struct Layout<std::uint32_t> { static constexpr Scalar scalar = Scalar::u32; static constexpr std::size_t components = 1; };
-template <> struct Layout<long> { static constexpr Scalar scalar = Scalar::i64; static constexpr std::size_t components = 1; };
-template <> struct Layout<long long> { static constexpr Scalar scalar = Scalar::i64; static constexpr std::size_t components = 1; };
-template <> struct Layout<unsigned long> { static constexpr Scalar scalar = Scalar::u64; static constexpr std::size_t components = 1; };
-template <> struct Layout<unsigned long long> { static constexpr Scalar scalar = Scalar::u64; static constexpr std::size_t components = 1; };
-template <> struct Layout<Vec3> { static constexpr Scalar scalar = Scalar::f64; static constexpr std::size_t components = 3; };
-template <> struct Layout<SymTensor> { static constexpr Scalar scalar = Scalar::f64; static constexpr std::size_t components = 6; };
-template <> struct Layout<Mat3> { static constexpr Scalar scalar = Scalar::f64; static constexpr std::size_t components = 9; };
+template <>
+struct Layout<double> {
+  static constexpr Scalar scalar = Scalar::f64;
+  static constexpr std::size_t components = 1;
+};
+template <>
+struct Layout<char> {
+  static constexpr Scalar scalar = Scalar::i8;
+  static constexpr std::size_t components = 1;
+};
+template <>
+struct Layout<bool> {
+  static constexpr Scalar scalar = Scalar::u8;
+  static constexpr std::size_t components = 1;
+};
+template <>
+struct Layout<std::uint8_t> {
+  static constexpr Scalar scalar = Scalar::u8;
+  static constexpr std::size_t components = 1;
+};
+template <>
+struct Layout<std::int32_t> {
+  static constexpr Scalar scalar = Scalar::i32;
+  static constexpr std::size_t components = 1;
+};
+template <>
+struct Layout<std::uint32_t> {
+  static constexpr Scalar scalar = Scalar::u32;
+  static constexpr std::size_t components = 1;
+};
+template <>
+struct Layout<long> {
+  static constexpr Scalar scalar = Scalar::i64;
+  static constexpr std::size_t components = 1;
+};
+template <>
+struct Layout<long long> {
+  static constexpr Scalar scalar = Scalar::i64;
+  static constexpr std::size_t components = 1;
+};
+template <>
+struct Layout<unsigned long> {
+  static constexpr Scalar scalar = Scalar::u64;
+  static constexpr std::size_t components = 1;
+};
+template <>
+struct Layout<unsigned long long> {
+  static constexpr Scalar scalar = Scalar::u64;
+  static constexpr std::size_t components = 1;
+};
+template <>
+struct Layout<Vec3> {
+  static constexpr Scalar scalar = Scalar::f64;
+  static constexpr std::size_t components = 3;
+};
+template <>
+struct Layout<SymTensor> {
+  static constexpr Scalar scalar = Scalar::f64;
+  static constexpr std::size_t components = 6;
+};
+template <>
+struct Layout<Mat3> {
+  static constexpr Scalar scalar = Scalar::f64;
+  static constexpr std::size_t components = 9;
+};
 template <class T, std::size_t N>
 struct Layout<std::array<T, N>> {
   static constexpr bool nested = Layout<T>::scalar != Scalar::bytes;
@@ -57,9 +109,15 @@ struct Layout<std::array<T, N>> {
 
 constexpr std::size_t scalar_size(Scalar s) {
   switch (s) {
-    case Scalar::f64: case Scalar::i64: case Scalar::u64: return 8;
-    case Scalar::i32: case Scalar::u32: return 4;
-    default: return 1;
+    case Scalar::f64:
+    case Scalar::i64:
+    case Scalar::u64:
+      return 8;
+    case Scalar::i32:
+    case Scalar::u32:
+      return 4;
+    default:
+      return 1;
   }
 }
 
@@ -152,9 +210,9 @@ class StateArchive {
 
   std::string path_;
   Mode mode_;
-  std::int64_t file_ = -1;             // hid_t
-  std::vector<std::int64_t> groups_;   // open groups, innermost last
-  std::vector<std::string> names_;     // their names
+  std::int64_t file_ = -1;            // hid_t
+  std::vector<std::int64_t> groups_;  // open groups, innermost last
+  std::vector<std::string> names_;    // their names
 };
 
 }  // namespace afemp::core

@@ -199,7 +199,8 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
   next_history_ = scene_.run.history_interval;
   next_progress_ = options_.progress_seconds;
   if (scene_.run.checkpoint_every > 0.0) next_checkpoint_ = scene_.run.checkpoint_every;
-  if (scene_.run.checkpoint_wall_every > 0.0) next_checkpoint_wall_ = scene_.run.checkpoint_wall_every;
+  if (scene_.run.checkpoint_wall_every > 0.0)
+    next_checkpoint_wall_ = scene_.run.checkpoint_wall_every;
 }
 
 TimeLoop::~TimeLoop() = default;
@@ -407,8 +408,9 @@ void TimeLoop::restore(const std::string& path) {
   visit_header(a, h);
   const std::vector<std::string> changes = scene_changes(h, scene_);
   if (!changes.empty()) {
-    std::string text = path + ": restart refused: the scene changed since the checkpoint (only "
-                              "the end time, output, history and checkpoint settings may):";
+    std::string text = path +
+                       ": restart refused: the scene changed since the checkpoint (only "
+                       "the end time, output, history and checkpoint settings may):";
     for (const std::string& c : changes) text += "\n  " + c;
     throw CheckpointError(text);
   }
@@ -418,10 +420,11 @@ void TimeLoop::restore(const std::string& path) {
   // A checkpoint half written when the run was killed: never complete, never read.
   std::error_code ec;
   if (!options_.output_directory.empty())
-    for (std::filesystem::directory_iterator it(checkpoint_directory(options_.output_directory), ec),
+    for (std::filesystem::directory_iterator
+             it(checkpoint_directory(options_.output_directory), ec),
          end;
          !ec && it != end; it.increment(ec))
-    if (it->path().extension() == ".tmp") std::filesystem::remove(it->path(), ec);
+      if (it->path().extension() == ".tmp") std::filesystem::remove(it->path(), ec);
   start_ = std::chrono::steady_clock::now();
   next_progress_ = elapsed() + options_.progress_seconds;
   if (scene_.run.checkpoint_wall_every > 0.0)
@@ -486,8 +489,9 @@ void TimeLoop::visit(StateArchive& a) {
     OutputPaths paths;
     paths.directory = options_.output_directory;
     if (options_.write_fields)
-      frames_ = has_fields ? std::make_unique<FieldWriter>(paths.directory, paths.fields_stem, index)
-                           : std::make_unique<FieldWriter>(paths.directory, paths.fields_stem);
+      frames_ = has_fields
+                    ? std::make_unique<FieldWriter>(paths.directory, paths.fields_stem, index)
+                    : std::make_unique<FieldWriter>(paths.directory, paths.fields_stem);
     const bool outflow = scene_.mpm.grid.has_face(FaceCondition::outflow);
     if (history_bytes > 0)
       history_ = std::make_unique<HistoryWriter>(

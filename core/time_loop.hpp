@@ -46,9 +46,9 @@ class HistoryWriter;
 class ProbeRecorder;
 
 // The loop of one run, a step at a time (the library's Simulation steps it;
-// analysis::run drives it to the end): the constructor writes the first history row and frame, step() advances the
-// model and writes what falls due, finish() writes the final row and frame and the summary.
-// Throws core::SimulationError from the model after writing what led up to it.
+// analysis::run drives it to the end): the constructor writes the first history row and frame,
+// step() advances the model and writes what falls due, finish() writes the final row and frame and
+// the summary. Throws core::SimulationError from the model after writing what led up to it.
 class TimeLoop {
  public:
   TimeLoop(Model& model, const Scene& scene, const RunOptions& options);
@@ -96,11 +96,11 @@ class TimeLoop {
   int rows_beyond_ = 0;  // consecutive history rows with the energy balance beyond its limit
   double dt_ = 0.0;
   double next_output_ = 0.0, next_progress_ = 0.0, last_error_ = 0.0;
-  double next_history_ = 0.0;      // [run] history_interval: the next row's time
-  std::size_t next_listed_ = 0;    // [run] output_times: the next listed frame
+  double next_history_ = 0.0;       // [run] history_interval: the next row's time
+  std::size_t next_listed_ = 0;     // [run] output_times: the next listed frame
   bool last_step_recorded_ = true;  // the last step wrote a history row (the start did)
-  double wall_offset_ = 0.0;         // wall seconds of the run before a restart
-  double next_checkpoint_ = 1e300;   // [run] checkpoint_every: the next one's time
+  double wall_offset_ = 0.0;        // wall seconds of the run before a restart
+  double next_checkpoint_ = 1e300;  // [run] checkpoint_every: the next one's time
   double next_checkpoint_wall_ = 1e300;
   int checkpoints_written_ = 0;
   long restarted_at_ = 0;

@@ -42,7 +42,8 @@ void refuse_mesh_at_outflow_faces(const core::Scene& scene, const fem::FeNodes& 
           core::SourceLocation{scene.path, 0},
           std::string("grid.boundary.") + core::to_string(static_cast<core::Face>(f)),
           "mesh body \"" + body.name + "\" reaches the outflow face (node " + std::to_string(i) +
-              " at " + std::to_string(x) + "); \"outflow\" is for particles: keep meshes inside "
+              " at " + std::to_string(x) +
+              "); \"outflow\" is for particles: keep meshes inside "
               "an outflow face, or make the face \"free\", \"fixed\", \"symmetric\" or \"wall\"");
     }
   }
@@ -59,8 +60,8 @@ CoupledModel::CoupledModel(const core::Scene& scene)
       for (int b : c.bodies) in_contact[static_cast<std::size_t>(b)] = 1;
   surface_body_.assign(nb, 0);
   for (std::size_t b = 0; b < nb; ++b)
-    surface_body_[b] = in_contact[b] &&
-                       scene.bodies[b].discretisation == core::Discretisation::hexahedra;
+    surface_body_[b] =
+        in_contact[b] && scene.bodies[b].discretisation == core::Discretisation::hexahedra;
   const fem::FeNodes& n = fe().nodes();
   refuse_mesh_at_outflow_faces(scene, n);
   driven_.assign(n.size(), 0);
@@ -74,7 +75,8 @@ CoupledModel::CoupledModel(const core::Scene& scene)
     if (bonded && n.imposed[i])
       throw core::InputError(core::SourceLocation{scene.path, 0}, "constraints",
                              "a constraint holds node " + std::to_string(i) + " of body \"" +
-                                 body.name + "\", which is bonded to particles and moves with "
+                                 body.name +
+                                 "\", which is bonded to particles and moves with "
                                  "the grid; restrict the constraint to other bodies (body = ...)");
     add_point(i, bonded, surface_body_[b] != 0);
   }
@@ -282,8 +284,8 @@ void CoupledModel::force_values(std::vector<double>& out) const {
   if (surface_contacts_)
     for (const ParticleSurfaceContacts::Pair& p : surface_contacts_->pairs()) {
       const core::Vec3 f = p.normal_force + p.tangential_force;
-      out.insert(out.end(), {f.x, f.y, f.z, core::norm(p.normal_force),
-                             core::norm(p.tangential_force)});
+      out.insert(out.end(),
+                 {f.x, f.y, f.z, core::norm(p.normal_force), core::norm(p.tangential_force)});
     }
 }
 
@@ -305,8 +307,8 @@ std::vector<core::StageTiming> CoupledModel::stage_timings() const {
 
 std::vector<core::EventLog> CoupledModel::take_events() {
   std::vector<core::EventLog> out = fe_.take_events();
-  core::EventLog log{"conversion.csv",
-                     "time,body,element,reason,particles,mass,kinetic_before,kinetic_after", {}};
+  core::EventLog log{
+      "conversion.csv", "time,body,element,reason,particles,mass,kinetic_before,kinetic_after", {}};
   log.rows.swap(conversion_rows_);
   out.push_back(std::move(log));
   return out;
@@ -332,27 +334,34 @@ std::string CoupledModel::describe() const {
             inside += fe().inside_retirement_domain(e) ? 1 : 0;
           }
       const core::GridSettings& g = scene_.mpm.grid;
-      core::appendf(out, "  body %s: AFEMP (the FE conversion stage below); only inside the grid "
-                         "[%g, %g] x [%g, %g] x [%g, %g]: %zu of %zu elements lie inside now "
-                         "(outside, %s); nodes shared with converted elements bond to the "
-                         "particles%s\n",
-                    body.name.c_str(), g.min.x, g.max.x, g.min.y, g.max.y, g.min.z, g.max.z,
-                    inside, elements,
-                    body.erosion                        ? "the erosion criteria apply"
+      core::appendf(out,
+                    "  body %s: AFEMP (the FE conversion stage below); only inside the grid "
+                    "[%g, %g] x [%g, %g] x [%g, %g]: %zu of %zu elements lie inside now "
+                    "(outside, %s); nodes shared with converted elements bond to the "
+                    "particles%s\n",
+                    body.name.c_str(), g.min.x, g.max.x, g.min.y, g.max.y, g.min.z, g.max.z, inside,
+                    elements,
+                    body.erosion                         ? "the erosion criteria apply"
                     : body.conversion->negative_jacobian ? "an inverting element stops the run"
                                                          : "none converts",
                     count > 0 ? "; the others are in grid contact (CFEMP)" : "");
     } else if (body.bonded_to >= 0)
-      core::appendf(out, "  body %s: %zu nodes bonded to %s (HFEMP: they join its velocity field "
-                         "and move with the grid)\n", body.name.c_str(), count,
+      core::appendf(out,
+                    "  body %s: %zu nodes bonded to %s (HFEMP: they join its velocity field "
+                    "and move with the grid)\n",
+                    body.name.c_str(), count,
                     scene_.bodies[static_cast<std::size_t>(body.bonded_to)].name.c_str());
     else if (count > 0)
-      core::appendf(out, "  body %s: %zu nodes in grid contact (CFEMP: own velocity field; "
-                         "contact corrections return to the nodes, elsewhere the FE update "
-                         "alone)\n", body.name.c_str(), count);
+      core::appendf(out,
+                    "  body %s: %zu nodes in grid contact (CFEMP: own velocity field; "
+                    "contact corrections return to the nodes, elsewhere the FE update "
+                    "alone)\n",
+                    body.name.c_str(), count);
     else
-      core::appendf(out, "  body %s: FE only (in no contact and bonded to nothing: it does not "
-                         "meet the particles)\n", body.name.c_str());
+      core::appendf(out,
+                    "  body %s: FE only (in no contact and bonded to nothing: it does not "
+                    "meet the particles)\n",
+                    body.name.c_str());
   }
   out += "FE stages, around each grid step (time step: the smaller of the FE and grid steps):\n";
   out += fe().plan().describe();
@@ -370,7 +379,8 @@ core::BodyPoints CoupledModel::body_points(int body) const {
 std::size_t CoupledModel::bytes() const {
   return fe_.bytes() + mpm_.bytes() +
          points_.size() * (4 * sizeof(core::Vec3) + sizeof(double) + sizeof(std::int32_t) + 2) +
-         fe_node_.capacity() * sizeof(std::size_t) + start_velocity_.capacity() * sizeof(core::Vec3);
+         fe_node_.capacity() * sizeof(std::size_t) +
+         start_velocity_.capacity() * sizeof(core::Vec3);
 }
 
 }  // namespace afemp::coupling

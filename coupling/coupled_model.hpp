@@ -10,7 +10,8 @@
 //   - adaptive conversion (AFEMP, Lian et al. 2013, §2.6): hexahedra of a body with `conversion`
 //     that meet a criterion retire from the mesh (fem/element_retirement.cpp) and become
 //     particles of the same body (coupling/element_conversion.cpp); the nodes they shared
-//     with live elements then join the body's field as bonded nodes, so the remaining mesh and its particles move together (the same bonded coupling).
+//     with live elements then join the body's field as bonded nodes, so the remaining mesh and its
+//     particles move together (the same bonded coupling).
 // Mesh bodies in neither take no part in the grid step. One step with dt = the smaller of the
 // FE and grid stable steps:
 //   1. FE: v^{n+1/2} of the free and contact nodes from the element forces at x^n;
@@ -92,15 +93,15 @@ class CoupledModel final : public core::Model {
   fem::FeModel fe_;
   mutable mpm::MpmModel mpm_;  // describe() bins the particles
   NodePoints points_;
-  std::vector<std::size_t> fe_node_;   // FE node of each node point
-  std::vector<std::int64_t> point_of_node_;  // node point of each FE node, or -1
-  std::vector<std::uint8_t> driven_;         // FE nodes the grid moves (bonded)
+  std::vector<std::size_t> fe_node_;          // FE node of each node point
+  std::vector<std::int64_t> point_of_node_;   // node point of each FE node, or -1
+  std::vector<std::uint8_t> driven_;          // FE nodes the grid moves (bonded)
   std::vector<std::string> conversion_rows_;  // conversion.csv rows not yet taken
-  std::vector<core::Vec3> start_velocity_;  // contact nodes: v^{n-1/2}
+  std::vector<core::Vec3> start_velocity_;    // contact nodes: v^{n-1/2}
   // The surface of the hexahedral contact bodies, rebuilt when elements erode.
   std::vector<char> surface_body_;
   fem::SurfaceFaces surface_;
-  std::size_t surface_live_ = 0;  // live hexahedra when surface_ was built
+  std::size_t surface_live_ = 0;    // live hexahedra when surface_ was built
   std::vector<core::Vec3> normal_;  // per FE node
   double coupling_seconds_ = 0.0;
   double converted_energy_ = 0.0;  // Energies::converted: what conversion's interpolation lost

@@ -39,7 +39,8 @@ Conversion convert_element(const fem::FeSolver& fe, const core::Scene& scene,
     kinetic_before += 0.5 * (el.mass[e] / 8.0) * core::dot(v[a], v[a]);
   }
   for (int g = 0; g < ppe; ++g)
-    internal_before += el.point_mass[p0 + static_cast<std::size_t>(g)] * el.energy[p0 + static_cast<std::size_t>(g)];
+    internal_before += el.point_mass[p0 + static_cast<std::size_t>(g)] *
+                       el.energy[p0 + static_cast<std::size_t>(g)];
 
   // The state a particle inherits from integration point g (or the mass-weighted mean of
   // all points when one particle replaces a fully integrated element).
@@ -51,8 +52,9 @@ Conversion convert_element(const fem::FeSolver& fe, const core::Scene& scene,
       q.temperature = el.temperature[p];
       q.energy = el.energy[p];
       q.damage = el.damage[p];
-      q.history.assign(el.history.begin() + static_cast<std::ptrdiff_t>(p * el.history_count),
-                       el.history.begin() + static_cast<std::ptrdiff_t>((p + 1) * el.history_count));
+      q.history.assign(
+          el.history.begin() + static_cast<std::ptrdiff_t>(p * el.history_count),
+          el.history.begin() + static_cast<std::ptrdiff_t>((p + 1) * el.history_count));
       return el.density[p];
     }
     double m = 0.0, volume = 0.0;
@@ -87,7 +89,8 @@ Conversion convert_element(const fem::FeSolver& fe, const core::Scene& scene,
     ConvertedPoint q;
     for (std::size_t a = 0; a < 8; ++a) {
       double shape = 1.0 / 8.0;
-      for (int d = 0; d < 3; ++d) shape *= 1.0 + r * fem::kHexNatural[g][d] * fem::kHexNatural[a][d];
+      for (int d = 0; d < 3; ++d)
+        shape *= 1.0 + r * fem::kHexNatural[g][d] * fem::kHexNatural[a][d];
       q.position += shape * x[a];
       q.velocity += shape * v[a];
     }

@@ -37,8 +37,8 @@ class NodePoints final : public mpm::GridPoints {
   // Bonded: the elements' force on the node (gravity is added on the grid). Contact: the
   // force of the FE update, m (v^{n+1/2} - v^{n-1/2}) / dt, gravity and conditions included.
   std::vector<Vec3> force;
-  std::vector<double> mass;         // 0: the node takes no part (no live element)
-  std::vector<std::int32_t> body;   // scene body: its velocity field
+  std::vector<double> mass;        // 0: the node takes no part (no live element)
+  std::vector<std::int32_t> body;  // scene body: its velocity field
   std::vector<std::uint8_t> bonded;
   // Contact nodes of a body with a surface (hexahedra): the outward unit normal of the surface
   // at the node (0 inside the body), which sets the body's normal on the grid instead of its

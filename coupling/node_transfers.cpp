@@ -39,7 +39,8 @@ void for_each_node_point(const NodePoints& q, const GridStepAccess& a, F&& f) {
     const std::size_t field = a.field_offset(q.body[k]);
     std::array<std::size_t, LinearStencil::nodes> s;
     for (int n = 0; n < LinearStencil::nodes; ++n)
-      s[static_cast<std::size_t>(n)] = static_cast<std::size_t>(slot[static_cast<std::size_t>(n)]) + field;
+      s[static_cast<std::size_t>(n)] =
+          static_cast<std::size_t>(slot[static_cast<std::size_t>(n)]) + field;
     f(k, st, s);
   }
 }
@@ -151,8 +152,8 @@ void NodePoints::remap(const GridStepAccess& a) {
     const double m = q.mass[k];
     // The updated momentum: bonded nodes hold their updated velocity; a contact node's is the
     // FE update's v^{n+1/2} plus the contact change.
-    const Vec3 mv = q.bonded[k] ? m * q.velocity[k]
-                                : m * q.velocity[k] + a.dt * q.force[k] + m * q.motion[k];
+    const Vec3 mv =
+        q.bonded[k] ? m * q.velocity[k] : m * q.velocity[k] + a.dt * q.force[k] + m * q.motion[k];
     for (int n = 0; n < LinearStencil::nodes; ++n)
       g.velocity_remap[slots[static_cast<std::size_t>(n)]] += st.w(n) * mv;
   });
@@ -169,8 +170,8 @@ void NodePoints::contact_surfaces(const GridStepAccess& a, bool gradient) {
       const std::size_t s = slots[static_cast<std::size_t>(n)];
       if (gradient) {
         // m n / h: the size of a mass gradient, for fields that also hold particles.
-        g.mass_gradient[s] += q.surface[k] ? (st.w(n) * m * g.inverse_cell()) * q.normal[k]
-                                           : m * st.grad(n);
+        g.mass_gradient[s] +=
+            q.surface[k] ? (st.w(n) * m * g.inverse_cell()) * q.normal[k] : m * st.grad(n);
         continue;
       }
       const Vec3& towards = a.contact_normal[s];

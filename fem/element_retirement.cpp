@@ -17,7 +17,8 @@ bool FeSolver::inside_retirement_domain(std::size_t e) const {
   for (std::size_t a = 0; a < 8; ++a) {
     const Vec3& x = nodes_.position[static_cast<std::size_t>(hexes_.nodes[e][a])];
     for (int k = 0; k < 3; ++k)
-      if (!(x[k] >= retirement_.min[k] && x[k] <= retirement_.max[k])) return false;  // its points are inside
+      if (!(x[k] >= retirement_.min[k] && x[k] <= retirement_.max[k]))
+        return false;  // its points are inside
   }
   return true;
 }
@@ -60,7 +61,8 @@ void FeSolver::collect_retirements() {
       ev.body = batch->body;
       ev.reason = thread_conversion_reason_[t][k];
       retired_.push_back(ev);
-      for (std::size_t a = 0; a < 8; ++a) converted_node_[static_cast<std::size_t>(el.nodes[e][a])] = 1;
+      for (std::size_t a = 0; a < 8; ++a)
+        converted_node_[static_cast<std::size_t>(el.nodes[e][a])] = 1;
       el.alive[e] = 0;
       el.bulk_q[e] = 0.0;
       erosion_this_step_ = true;  // node masses are recomputed at the end of the step

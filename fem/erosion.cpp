@@ -3,10 +3,11 @@
 // removed; its internal energy and the kinetic energy of its share of the node masses leave with
 // it, booked as eroded energy and written in its erosion.csv record, so the records add up to
 // the eroded energy. The plastic work and bulk-viscous heat it had taken (part of that internal
-// energy) leave the plastic and viscous totals, which so stay the live material's. Node masses are then recomputed from the live elements (one source of
-// truth), and nodes left with no element drop out of the update, with a record of their own
-// that reports their mass and kinetic energy (already counted in their elements' records).
-// Retired elements (element_retirement.cpp) share the mass recomputation.
+// energy) leave the plastic and viscous totals, which so stay the live material's. Node masses are
+// then recomputed from the live elements (one source of truth), and nodes left with no element drop
+// out of the update, with a record of their own that reports their mass and kinetic energy (already
+// counted in their elements' records). Retired elements (element_retirement.cpp) share the mass
+// recomputation.
 #include <algorithm>
 #include <string_view>
 #include <type_traits>
@@ -28,7 +29,8 @@ void FeSolver::collect_erosions(Elements& el, const char* kind) {
       const std::size_t e = thread_erosions_[t][k];
       const ElementBatch* batch = &batch_of(el, e);
       const std::size_t p0 =
-          batch->point_begin + (e - batch->begin) * static_cast<std::size_t>(batch->points_per_element);
+          batch->point_begin +
+          (e - batch->begin) * static_cast<std::size_t>(batch->points_per_element);
       double energy = 0.0;
       for (int g = 0; g < batch->points_per_element; ++g) {
         const std::size_t p = p0 + static_cast<std::size_t>(g);

@@ -30,10 +30,10 @@ void FeModel::write_fields(core::FieldWriter& writer) {
 const std::vector<core::MeshBlock>& FeModel::mesh_blocks() {
   const FeNodes& n = solver_.nodes();
   displacement_.resize(n.size());
-  for (std::size_t i = 0; i < n.size(); ++i) displacement_[i] = n.position[i] - n.initial_position[i];
-  node_fields_ = {
-      core::vector_field("velocity", std::span<const core::Vec3>(n.velocity)),
-      core::vector_field("displacement", std::span<const core::Vec3>(displacement_))};
+  for (std::size_t i = 0; i < n.size(); ++i)
+    displacement_[i] = n.position[i] - n.initial_position[i];
+  node_fields_ = {core::vector_field("velocity", std::span<const core::Vec3>(n.velocity)),
+                  core::vector_field("displacement", std::span<const core::Vec3>(displacement_))};
   const std::vector<core::FieldView>& node_fields = node_fields_;
   std::vector<core::MeshBlock>& blocks = blocks_;
   blocks.clear();
@@ -50,7 +50,8 @@ const std::vector<core::MeshBlock>& FeModel::mesh_blocks() {
     hex_history_.assign(hc, std::vector<double>(ne, 0.0));
     for (const ElementBatch& b : h.batches)
       for (std::size_t e = b.begin; e < b.end; ++e) {
-        const std::size_t p0 = b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
+        const std::size_t p0 =
+            b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
         const double w = 1.0 / b.points_per_element;
         for (int g = 0; g < b.points_per_element; ++g) {
           const std::size_t p = p0 + static_cast<std::size_t>(g);
@@ -78,7 +79,8 @@ const std::vector<core::MeshBlock>& FeModel::mesh_blocks() {
                   core::scalar_field("body", std::span<const double>(hex_body_))};
     // User strength models' history variables, element means, one scalar field per variable.
     for (std::size_t v = 0; v < hc; ++v)
-      hex_fields.push_back(core::scalar_field(history_names_[v], std::span<const double>(hex_history_[v])));
+      hex_fields.push_back(
+          core::scalar_field(history_names_[v], std::span<const double>(hex_history_[v])));
     blocks.push_back({"hexahedra", core::CellKind::hexahedron, n.size(),
                       core::as_doubles(n.position.data()), ne, hex_connectivity_.data(),
                       node_fields, hex_fields});
@@ -86,8 +88,8 @@ const std::vector<core::MeshBlock>& FeModel::mesh_blocks() {
   const TrussElements& t = solver_.trusses();
   if (!t.empty()) {
     const std::size_t ne = t.size();
-    zeroed(ne, {&truss_stress_, &truss_force_, &truss_plastic_, &truss_temperature_,
-                &truss_alive_, &truss_body_});
+    zeroed(ne, {&truss_stress_, &truss_force_, &truss_plastic_, &truss_temperature_, &truss_alive_,
+                &truss_body_});
     truss_connectivity_.resize(2 * ne);
     for (const ElementBatch& b : t.batches)
       for (std::size_t e = b.begin; e < b.end; ++e) {
@@ -116,9 +118,11 @@ const std::vector<core::MeshBlock>& FeModel::mesh_blocks() {
         for (std::size_t v = 0; v < thc; ++v)
           truss_history_[v][e] = t.history[(b.point_begin + (e - b.begin)) * thc + v];
     for (std::size_t v = 0; v < thc; ++v)
-      truss_fields.push_back(core::scalar_field(history_names_[v], std::span<const double>(truss_history_[v])));
-    blocks.push_back({"trusses", core::CellKind::line, n.size(), core::as_doubles(n.position.data()),
-                      ne, truss_connectivity_.data(), node_fields, truss_fields});
+      truss_fields.push_back(
+          core::scalar_field(history_names_[v], std::span<const double>(truss_history_[v])));
+    blocks.push_back({"trusses", core::CellKind::line, n.size(),
+                      core::as_doubles(n.position.data()), ne, truss_connectivity_.data(),
+                      node_fields, truss_fields});
   }
   return blocks;
 }
@@ -190,8 +194,9 @@ void FeModel::force_values(std::vector<double>& out, std::span<const core::Vec3>
 
 std::string FeModel::describe() const {
   std::string out = describe_mesh();
-  out += "step plan (explicit FE, central differences; no particles, so no background grid is "
-         "allocated and no grid stage runs):\n";
+  out +=
+      "step plan (explicit FE, central differences; no particles, so no background grid is "
+      "allocated and no grid stage runs):\n";
   out += solver_.plan().describe();
   return out;
 }
@@ -217,23 +222,25 @@ std::string FeModel::describe_mesh() const {
     for (const ElementBatch& batch : el.batches)
       if (batch.body == static_cast<int>(b)) count += batch.end - batch.begin;
     core::appendf(out, "body %s: %zu %s of %s, %zu nodes, mass %.6g\n", body.name.c_str(), count,
-           hexes ? "hexahedra" : "trusses",
-           scene_.materials[static_cast<std::size_t>(body.material)].name.c_str(), nodes, mass);
+                  hexes ? "hexahedra" : "trusses",
+                  scene_.materials[static_cast<std::size_t>(body.material)].name.c_str(), nodes,
+                  mass);
   }
   std::size_t imposed = 0;
   for (std::uint8_t m : n.imposed) imposed += m ? 1 : 0;
-  core::appendf(out, "nodes: %zu (%zu with imposed velocity components); rigid walls: %zu\n", n.size(),
-         imposed, scene_.walls.size());
+  core::appendf(out, "nodes: %zu (%zu with imposed velocity components); rigid walls: %zu\n",
+                n.size(), imposed, scene_.walls.size());
   if (q.hexahedra > 0)
     core::appendf(out,
-           "mesh quality: min scaled Jacobian %.3f (hexahedron %d), max aspect ratio %.2f "
-           "(hexahedron %d), %zu inverted, volume %.6g\n",
-           q.min_scaled_jacobian, q.worst_jacobian_element, q.max_aspect_ratio,
-           q.worst_aspect_element, q.inverted, q.total_volume);
-  if (q.lines > 0) core::appendf(out, "trusses: shortest %.4g (truss %d)\n", q.min_line_length, q.shortest_line);
+                  "mesh quality: min scaled Jacobian %.3f (hexahedron %d), max aspect ratio %.2f "
+                  "(hexahedron %d), %zu inverted, volume %.6g\n",
+                  q.min_scaled_jacobian, q.worst_jacobian_element, q.max_aspect_ratio,
+                  q.worst_aspect_element, q.inverted, q.total_volume);
+  if (q.lines > 0)
+    core::appendf(out, "trusses: shortest %.4g (truss %d)\n", q.min_line_length, q.shortest_line);
   core::appendf(out, "smallest element time step: %.6g at %s\n",
-         solver_.stable_time_step() / scene_.run.element_time_step_factor,
-         solver_.smallest_step_element().c_str());
+                solver_.stable_time_step() / scene_.run.element_time_step_factor,
+                solver_.smallest_step_element().c_str());
   return out;
 }
 

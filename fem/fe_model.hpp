@@ -68,8 +68,8 @@ class FeModel final : public core::Model {
   std::vector<core::SymTensor> hex_stress_;
   std::vector<double> hex_pressure_, hex_von_mises_, hex_plastic_, hex_damage_, hex_temperature_,
       hex_density_, hex_alive_, hex_body_;
-  std::vector<double> truss_stress_, truss_force_, truss_plastic_, truss_temperature_,
-      truss_alive_, truss_body_;
+  std::vector<double> truss_stress_, truss_force_, truss_plastic_, truss_temperature_, truss_alive_,
+      truss_body_;
   // User strength models' history variables per element (hexahedra: means of the points).
   std::vector<std::vector<double>> hex_history_, truss_history_;
   std::vector<std::string> history_names_;  // core::history_field_names

@@ -11,10 +11,10 @@
 #include <stdexcept>
 
 #include "afemp/errors.hpp"
+#include "core/detonation_paths.hpp"
 #include "core/materials/uniaxial_update.hpp"
 #include "core/materials/user_strength_chunk.hpp"
 #include "core/parallel.hpp"
-#include "core/detonation_paths.hpp"
 #include "fem/fe_solver.hpp"
 #include "fem/hexahedron_full.hpp"
 #include "fem/hexahedron_one_point.hpp"
@@ -60,7 +60,8 @@ MeshData extract(const MeshData& in, bool hexahedra, const std::vector<std::stri
     if (k < 0) {
       k = static_cast<std::int32_t>(out.nodes.size());
       out.nodes.push_back(in.nodes[static_cast<std::size_t>(n)]);
-      if (!in.node_labels.empty()) out.node_labels.push_back(in.node_labels[static_cast<std::size_t>(n)]);
+      if (!in.node_labels.empty())
+        out.node_labels.push_back(in.node_labels[static_cast<std::size_t>(n)]);
     }
     return k;
   };
@@ -68,7 +69,8 @@ MeshData extract(const MeshData& in, bool hexahedra, const std::vector<std::stri
     for (std::size_t e = 0; e < in.hexahedra.size(); ++e) {
       if (!part_wanted[static_cast<std::size_t>(in.hexahedron_part[e])]) continue;
       Hexahedron h;
-      for (int a = 0; a < 8; ++a) h[static_cast<std::size_t>(a)] = use(in.hexahedra[e][static_cast<std::size_t>(a)]);
+      for (int a = 0; a < 8; ++a)
+        h[static_cast<std::size_t>(a)] = use(in.hexahedra[e][static_cast<std::size_t>(a)]);
       out.hexahedra.push_back(h);
       out.hexahedron_part.push_back(in.hexahedron_part[e]);
     }
@@ -84,7 +86,8 @@ MeshData extract(const MeshData& in, bool hexahedra, const std::vector<std::stri
   for (std::size_t s = 0; s < in.node_sets.size(); ++s) {
     NamedSet kept{in.node_sets[s].name, {}};
     for (std::int32_t n : in.node_sets[s].members)
-      if (new_index[static_cast<std::size_t>(n)] >= 0) kept.members.push_back(new_index[static_cast<std::size_t>(n)]);
+      if (new_index[static_cast<std::size_t>(n)] >= 0)
+        kept.members.push_back(new_index[static_cast<std::size_t>(n)]);
     if (kept.members.empty()) continue;
     set_index[s] = static_cast<std::int32_t>(out.node_sets.size());
     out.node_sets.push_back(std::move(kept));
@@ -106,7 +109,8 @@ MeshData mesh_from_arrays(const core::MeshArrays& a, const BodySpec& b) {
   m.hexahedron_part.assign(m.hexahedra.size(), 0);
   m.line_part.assign(m.lines.size(), 0);
   m.line_area = a.truss_areas.empty() ? std::vector<double>(m.lines.size(), 0.0) : a.truss_areas;
-  for (const core::MeshArrays::NodeSet& set : a.node_sets) m.node_sets.push_back({set.name, set.nodes});
+  for (const core::MeshArrays::NodeSet& set : a.node_sets)
+    m.node_sets.push_back({set.name, set.nodes});
   validate(m, "bodies." + b.name + ".shape.mesh (arrays)");
   return m;
 }
@@ -120,7 +124,8 @@ MeshData body_mesh(const BodySpec& b) {
       std::array<int, 3> n = d.divisions;
       if (d.graded[0].empty() && d.graded[1].empty() && d.graded[2].empty()) {
         if (n[0] == 0)
-          for (int a = 0; a < 3; ++a) n[static_cast<std::size_t>(a)] = divisions_for(box->max[a] - box->min[a], d.size);
+          for (int a = 0; a < 3; ++a)
+            n[static_cast<std::size_t>(a)] = divisions_for(box->max[a] - box->min[a], d.size);
         return box_mesh(*box, n);
       }
       // A graded box: its graded axes from their segments, the others one even segment at the
@@ -129,9 +134,12 @@ MeshData body_mesh(const BodySpec& b) {
       for (int a = 0; a < 3; ++a) {
         const auto u = static_cast<std::size_t>(a);
         const double extent = box->max[a] - box->min[a];
-        lines[u] = graded_lines(box->min[a], d.graded[u].empty()
-                                                 ? std::vector<std::array<double, 2>>{{box->max[a], double(divisions_for(extent, d.size))}}
-                                                 : d.graded[u]);
+        lines[u] = graded_lines(
+            box->min[a],
+            d.graded[u].empty()
+                ? std::vector<std::array<double, 2>>{{box->max[a],
+                                                      double(divisions_for(extent, d.size))}}
+                : d.graded[u]);
         if (!(std::abs(lines[u].back() - box->max[a]) <= 1e-9 * extent))
           throw std::invalid_argument("a graded axis must end at the box's max");
       }
@@ -153,11 +161,13 @@ MeshData body_mesh(const BodySpec& b) {
       return sphere_mesh(*s, n, d.sectors);
     }
     if (const auto* l = std::get_if<core::LineShape>(&b.shape)) {
-      const int n = d.segments > 0 ? d.segments : divisions_for(core::norm(l->to - l->from), d.size);
+      const int n =
+          d.segments > 0 ? d.segments : divisions_for(core::norm(l->to - l->from), d.size);
       return truss_line(l->from, l->to, n, b.area);
     }
     if (const auto* r = std::get_if<core::RebarShape>(&b.shape)) {
-      RebarMat m{r->min, r->max, r->normal_axis, r->positions, r->spacing, r->diameter, r->cover, d.size};
+      RebarMat m{r->min,     r->max,      r->normal_axis, r->positions,
+                 r->spacing, r->diameter, r->cover,       d.size};
       return rebar_mat(m);
     }
   } catch (const std::invalid_argument& e) {
@@ -194,14 +204,17 @@ bool inside(const core::NodeSelector& s, const core::Vec3& x) {
     }
     case core::NodeSelector::Kind::plane:
       return std::abs(core::dot(x - s.point, s.normal)) <= s.tolerance;
-    case core::NodeSelector::Kind::set: return false;
+    case core::NodeSelector::Kind::set:
+      return false;
   }
   return false;
 }
 
 }  // namespace
 
-FeSolver::FeSolver(const core::Scene& scene) : scene_(scene) { build(scene); }
+FeSolver::FeSolver(const core::Scene& scene) : scene_(scene) {
+  build(scene);
+}
 
 void FeSolver::build(const core::Scene& scene) {
   // 1. Meshes, body by body; hexahedra and trusses keep body order (contiguous batches).
@@ -298,7 +311,8 @@ void FeSolver::build(const core::Scene& scene) {
                              "hexahedron " + std::to_string(e) +
                                  " has a non-positive Jacobian at a Gauss point");
           for (int g = 0; g < 8; ++g)
-            add_point_state(el, mat, temperature, mat.density * f.weight[static_cast<std::size_t>(g)],
+            add_point_state(el, mat, temperature,
+                            mat.density * f.weight[static_cast<std::size_t>(g)],
                             body.internal_energy);
         } else {
           add_point_state(el, mat, temperature, mat.density * volume, body.internal_energy);
@@ -350,7 +364,8 @@ void FeSolver::build(const core::Scene& scene) {
       if (!m.is_explosive()) continue;
       for (std::size_t e = b.begin; e < b.end; ++e) {
         Vec3 centre;
-        for (std::int32_t n : hexes_.nodes[e]) centre += 0.125 * nodes_.position[static_cast<std::size_t>(n)];
+        for (std::int32_t n : hexes_.nodes[e])
+          centre += 0.125 * nodes_.position[static_cast<std::size_t>(n)];
         which.push_back(e);
         centres.push_back(centre);
         D.push_back(m.burn->detonation_velocity);
@@ -359,7 +374,8 @@ void FeSolver::build(const core::Scene& scene) {
       }
     }
     if (!which.empty()) {
-      const std::vector<double> t = core::explosive_lighting_times(centres, D, body, spacing, scene);
+      const std::vector<double> t =
+          core::explosive_lighting_times(centres, D, body, spacing, scene);
       hexes_.light_time.assign(hexes_.stress.size(), 0.0);
       hexes_.burn.assign(hexes_.stress.size(), 1.0);
       hexes_.burn_length.assign(hexes_.stress.size(), 0.0);
@@ -367,7 +383,8 @@ void FeSolver::build(const core::Scene& scene) {
       for (const ElementBatch& b : hexes_.batches) {
         if (!scene.materials[static_cast<std::size_t>(b.material)].is_explosive()) continue;
         for (std::size_t e = b.begin; e < b.end; ++e, ++k) {
-          const std::size_t first = b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
+          const std::size_t first =
+              b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
           for (int g = 0; g < b.points_per_element; ++g) {
             hexes_.light_time[first + static_cast<std::size_t>(g)] = t[k];
             hexes_.burn[first + static_cast<std::size_t>(g)] = 0.0;
@@ -495,21 +512,25 @@ void FeSolver::build(const core::Scene& scene) {
   element_force_.assign(8 * hexes_.size() + 2 * trusses_.size(), Vec3{});
   std::vector<std::int64_t> count(n_nodes + 1, 0);
   for (std::size_t e = 0; e < hexes_.size(); ++e)
-    for (int a = 0; a < 8; ++a) ++count[static_cast<std::size_t>(hexes_.nodes[e][static_cast<std::size_t>(a)]) + 1];
+    for (int a = 0; a < 8; ++a)
+      ++count[static_cast<std::size_t>(hexes_.nodes[e][static_cast<std::size_t>(a)]) + 1];
   for (std::size_t t = 0; t < trusses_.size(); ++t)
-    for (int a = 0; a < 2; ++a) ++count[static_cast<std::size_t>(trusses_.nodes[t][static_cast<std::size_t>(a)]) + 1];
+    for (int a = 0; a < 2; ++a)
+      ++count[static_cast<std::size_t>(trusses_.nodes[t][static_cast<std::size_t>(a)]) + 1];
   for (std::size_t n = 0; n < n_nodes; ++n) count[n + 1] += count[n];
   incidence_offsets_ = count;
   incidence_.assign(static_cast<std::size_t>(count[n_nodes]), 0);
   std::vector<std::int64_t> fill(count.begin(), count.end() - 1);
   for (std::size_t e = 0; e < hexes_.size(); ++e)
     for (int a = 0; a < 8; ++a)
-      incidence_[static_cast<std::size_t>(fill[static_cast<std::size_t>(hexes_.nodes[e][static_cast<std::size_t>(a)])]++)] =
+      incidence_[static_cast<std::size_t>(
+          fill[static_cast<std::size_t>(hexes_.nodes[e][static_cast<std::size_t>(a)])]++)] =
           static_cast<std::int64_t>(8 * e) + a;
   const auto truss_base = static_cast<std::int64_t>(8 * hexes_.size());
   for (std::size_t t = 0; t < trusses_.size(); ++t)
     for (int a = 0; a < 2; ++a)
-      incidence_[static_cast<std::size_t>(fill[static_cast<std::size_t>(trusses_.nodes[t][static_cast<std::size_t>(a)])]++)] =
+      incidence_[static_cast<std::size_t>(
+          fill[static_cast<std::size_t>(trusses_.nodes[t][static_cast<std::size_t>(a)])]++)] =
           truss_base + static_cast<std::int64_t>(2 * t) + a;
 
   recompute_node_masses();
@@ -523,9 +544,11 @@ void FeSolver::build(const core::Scene& scene) {
         continue;
       }
       HexVectors x;
-      for (std::size_t a = 0; a < 8; ++a) x[a] = nodes_.position[static_cast<std::size_t>(hexes_.nodes[e][a])];
+      for (std::size_t a = 0; a < 8; ++a)
+        x[a] = nodes_.position[static_cast<std::size_t>(hexes_.nodes[e][a])];
       core::PointState st{{}, 0.0, 0.0, 0.0, mat.density};
-      hexes_.critical_dt[e] = characteristic_length(x, hexes_.volume0[e]) / core::wave_speed(mat, st);
+      hexes_.critical_dt[e] =
+          characteristic_length(x, hexes_.volume0[e]) / core::wave_speed(mat, st);
     }
   }
   for (const ElementBatch& b : trusses_.batches) {
@@ -562,7 +585,8 @@ void FeSolver::build(const core::Scene& scene) {
                                              [](std::uint8_t m) { return m != 0; })),
       curved, absorbing_nodes_.size());
   stage_seconds_.assign(plan_.stages.size(), 0.0);
-  thread_sums_.assign(static_cast<std::size_t>(core::thread_count()) * core::cache_line_doubles, 0.0);
+  thread_sums_.assign(static_cast<std::size_t>(core::thread_count()) * core::cache_line_doubles,
+                      0.0);
   body_stabilisation_.assign(scene.bodies.size(), 0.0);
   thread_erosions_.resize(static_cast<std::size_t>(core::thread_count()));
   thread_conversions_.resize(static_cast<std::size_t>(core::thread_count()));

@@ -318,8 +318,7 @@ class FeSolver {
   std::vector<std::int64_t> incidence_;
 
   // Accounting.
-  double plastic_work_ = 0.0, viscous_work_ = 0.0, hourglass_work_ = 0.0,
-         stabilisation_work_ = 0.0;
+  double plastic_work_ = 0.0, viscous_work_ = 0.0, hourglass_work_ = 0.0, stabilisation_work_ = 0.0;
   std::vector<double> body_stabilisation_;  // stabilisation_work_ per body
   double eroded_energy_ = 0.0, external_work_ = 0.0;
   // Prescribed velocities that follow a curve (ConstraintSpec::curve): the node components
@@ -380,15 +379,14 @@ void FeSolver::for_each_batch(const ElementStore& elements, Update&& update) {
   for (const ElementBatch& b : elements.batches) {
     if (b.rigid) continue;  // no stress, no forces (rigid_body_update.cpp moves its nodes)
     const core::Material& m = scene_.materials[static_cast<std::size_t>(b.material)];
-    core::visit_models(
-        m, [&](const auto& strength, const auto& eos) {
-          using S = std::decay_t<decltype(strength)>;
-          using E = std::decay_t<decltype(eos)>;
-          if (m.has_thermal_term())
-            update.template operator()<S, E, true>(b, strength, eos);
-          else
-            update.template operator()<S, E, false>(b, strength, eos);
-        });
+    core::visit_models(m, [&](const auto& strength, const auto& eos) {
+      using S = std::decay_t<decltype(strength)>;
+      using E = std::decay_t<decltype(eos)>;
+      if (m.has_thermal_term())
+        update.template operator()<S, E, true>(b, strength, eos);
+      else
+        update.template operator()<S, E, false>(b, strength, eos);
+    });
   }
 }
 

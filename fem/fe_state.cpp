@@ -165,10 +165,9 @@ void FeSolver::state(StateArchive& a) {
   a.item("converted_node", converted_node_);
   a.item("stage_seconds", stage_seconds_);
   if (a.loading() && stage_seconds_.size() != plan_.stages.size())
-    throw core::CheckpointError(a.where("stage_seconds") + ": " +
-                                std::to_string(stage_seconds_.size()) +
-                                " stages, the scene's plan has " +
-                                std::to_string(plan_.stages.size()));
+    throw core::CheckpointError(
+        a.where("stage_seconds") + ": " + std::to_string(stage_seconds_.size()) +
+        " stages, the scene's plan has " + std::to_string(plan_.stages.size()));
 }
 
 }  // namespace afemp::fem

@@ -26,8 +26,10 @@ std::string hexahedron_formulation(const core::Scene& scene, const BodySpec& bod
   if (body.element == core::HexFormulation::full)
     out = "fully integrated (2x2x2) with B-bar volumetric integration";
   else if (body.hourglass.form == core::HourglassForm::assumed_strain)
-    core::appendf(out, "one-point, assumed-strain (Belytschko-Bindeman ASQBI) stabilisation "
-                       "from the elastic constants, scale %g", body.hourglass.coefficient);
+    core::appendf(out,
+                  "one-point, assumed-strain (Belytschko-Bindeman ASQBI) stabilisation "
+                  "from the elastic constants, scale %g",
+                  body.hourglass.coefficient);
   else
     core::appendf(out, "one-point, %s hourglass control Q_hg = %g",
                   core::to_string(body.hourglass.form), body.hourglass.coefficient);
@@ -47,8 +49,8 @@ std::string failure_model(const core::Material& m) {
       [&](const auto& f) {
         using F = std::decay_t<decltype(f)>;
         if constexpr (std::is_same_v<F, core::JohnsonCookFailure>) {
-          core::appendf(out, "Johnson-Cook damage, D1 .. D5 = %g, %g, %g, %g, %g", f.D1, f.D2,
-                        f.D3, f.D4, f.D5);
+          core::appendf(out, "Johnson-Cook damage, D1 .. D5 = %g, %g, %g, %g, %g", f.D1, f.D2, f.D3,
+                        f.D4, f.D5);
           if (f.damage_threshold > 0.0)
             core::appendf(out, ", from plastic strain %g", f.damage_threshold);
           if (f.critical_damage > 0.0)
@@ -139,27 +141,32 @@ FeStepPlan build_fe_step_plan(const core::Scene& scene, std::size_t imposed_node
       std::string fixed;
       static constexpr const char* dof[6] = {"x", "y", "z", "rx", "ry", "rz"};
       for (int a = 0; a < 6; ++a)
-        if (body.rigid->fixed[static_cast<std::size_t>(a)]) fixed += std::string(fixed.empty() ? "" : " ") + dof[a];
+        if (body.rigid->fixed[static_cast<std::size_t>(a)])
+          fixed += std::string(fixed.empty() ? "" : " ") + dof[a];
       add_body(rigid, body, fixed.empty() ? "free" : "fixed " + fixed);
     }
   if (!rigid.empty())
-    s.push_back({FeStageKind::rigid_bodies, "rigid bodies",
-                 "resultant force and moment -> momenta, rotation (Rodrigues), node velocities; " +
-                     rigid});
+    s.push_back(
+        {FeStageKind::rigid_bodies, "rigid bodies",
+         "resultant force and moment -> momenta, rotation (Rodrigues), node velocities; " + rigid});
   std::string contacts;
   for (const core::ContactSpec& c : scene.contacts) {
     if (c.method != core::ContactMethod::penalty) continue;
     const bool self = c.bodies[0] == c.bodies[1];
-    core::appendf(contacts, "%s%s: %s, penalty s = %g (k = %g / (w dt^2), w the inverse mass of the pair), friction %g", contacts.empty() ? "" : "; ",
-                  c.name.c_str(), self ? "self-contact, node-to-surface" : "node-to-surface both ways",
-                  c.penalty, c.penalty, c.friction);
+    core::appendf(
+        contacts,
+        "%s%s: %s, penalty s = %g (k = %g / (w dt^2), w the inverse mass of the pair), friction %g",
+        contacts.empty() ? "" : "; ", c.name.c_str(),
+        self ? "self-contact, node-to-surface" : "node-to-surface both ways", c.penalty, c.penalty,
+        c.friction);
   }
   if (!contacts.empty())
     s.push_back({FeStageKind::mesh_contact, "mesh contact",
                  "slave nodes behind master faces at the predicted x^{n+1} = x^n + dt v^{n+1/2} "
                  "(binned search) get the impulses that take the fraction s of the penetration "
                  "out (projected Gauss-Seidel, Coulomb friction); surfaces rebuilt when elements "
-                 "erode or convert; " + contacts});
+                 "erode or convert; " +
+                     contacts});
   if (!scene.walls.empty()) {
     std::string why;
     core::appendf(why, "%zu planar wall(s): nodes kept on their side", scene.walls.size());
@@ -180,20 +187,23 @@ FeStepPlan build_fe_step_plan(const core::Scene& scene, std::size_t imposed_node
   if (!hexahedra.empty())
     s.push_back({FeStageKind::hexahedra, "hexahedra",
                  "strain rate from v^{n+1/2} on the mid-step geometry, Jaumann stress update, "
-                 "forces on the end-of-step geometry, critical step; " + hexahedra});
+                 "forces on the end-of-step geometry, critical step; " +
+                     hexahedra});
   if (trusses)
     s.push_back({FeStageKind::trusses, "trusses",
                  "axial strain rate, uniaxial stress update, axial forces, critical step"});
   if (!erosion.empty())
     s.push_back({FeStageKind::erosion, "erosion",
                  "an element that meets a criterion leaves with its energy (erosion.csv), the "
-                 "node masses follow the live elements; " + erosion});
+                 "node masses follow the live elements; " +
+                     erosion});
   // Where no body erodes, the node masses after a conversion are this stage's.
   if (!conversion.empty())
     s.push_back({FeStageKind::conversion, "conversion",
                  "a hexahedron inside the grid that meets a criterion becomes particles with "
                  "its mass, momentum and state (AFEMP, Lian et al. 2013, §2.6), the node masses "
-                 "follow the live elements; " + conversion});
+                 "follow the live elements; " +
+                     conversion});
   return plan;
 }
 

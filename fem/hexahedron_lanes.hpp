@@ -17,8 +17,8 @@
 //   f_a,i -= sigma_ij b_a,j + sum_k g_ik gamma_k,a (f is external minus internal).
 #pragma once
 
-#include <array>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <utility>
 
@@ -85,7 +85,8 @@ void b_vectors(const NodeArray<W>& x, NodeArray<W>& c, NodeArray<W>& b, double (
     (b_component<W, A, 0>(c, b), ...);
     (b_component<W, A, 1>(c, b), ...);
     (b_component<W, A, 2>(c, b), ...);
-  }(std::make_integer_sequence<int, 8>{});
+  }
+  (std::make_integer_sequence<int, 8>{});
   for (int l = 0; l < W; ++l) volume[l] = 0.0;
   for (int a = 0; a < 8; ++a)
     for (int l = 0; l < W; ++l) volume[l] += b[0][a][l] * c[0][a][l];
@@ -136,12 +137,12 @@ inline void face_area(const NodeArray<W>& x, double (&largest)[W]) {
 
 // V / (largest face area) over the faces kHexFaces.
 template <int W>
-void characteristic_length(const NodeArray<W>& x, const double (&volume)[W],
-                           double (&length)[W]) {
+void characteristic_length(const NodeArray<W>& x, const double (&volume)[W], double (&length)[W]) {
   double largest[W] = {};
   [&]<int... F>(std::integer_sequence<int, F...>) {
     (face_area<W, F>(x, largest), ...);
-  }(std::make_integer_sequence<int, 6>{});
+  }
+  (std::make_integer_sequence<int, 6>{});
   for (int l = 0; l < W; ++l) length[l] = volume[l] / largest[l];
 }
 

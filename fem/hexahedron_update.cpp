@@ -83,15 +83,15 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
                          double q_old) AFEMP_INLINE {
     const StrainIncrement inc = increment(l, dt);
     PointStart ps{core::PointState{el.stress[p], el.plastic_strain[p], el.temperature[p],
-                                  el.energy[p], density},
-                 inc.d_eps};
+                                   el.energy[p], density},
+                  inc.d_eps};
     // A failure model reads and writes any model's damage.
     if constexpr (core::has_damage_state<Strength> || Fails) ps.st.damage = el.damage[p];
     core::load_model_history<Strength>(ps.st, el.history.data() + p * el.history_count);
     ps.st.stress += core::jaumann_increment(ps.st.stress, inc.w23, inc.w13, inc.w12);
     if (explosive)
       ps.st.burn = core::burn_fraction(*mat.burn, mat.density, el.burn[p], time_, el.light_time[p],
-                                      el.burn_length[p], mat.density / density);
+                                       el.burn_length[p], mat.density / density);
     // Bulk-viscous heating by the q that acted over this step.
     ps.q_heat = core::bulk_viscous_heat(q_old, inc.d_eps.trace(), density);
     return ps;
@@ -128,9 +128,8 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
       return 0.0;  // user models take load_point, run and finish_point below
     } else {
       PointStart ps = begin_point(p, l, density, q_old);
-      const core::PointUpdate u =
-          core::constitutive_update<Strength, Eos, Fails>(mat, strength, eos, Thermal, ps.st,
-                                                          ps.d_eps, dt);
+      const core::PointUpdate u = core::constitutive_update<Strength, Eos, Fails>(
+          mat, strength, eos, Thermal, ps.st, ps.d_eps, dt);
       return end_point(p, ps, u, sums);
     }
   };
@@ -153,8 +152,7 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
   // trace_rate, wave speed c).
   auto bulk_viscosity = [&](std::size_t e, double density, double length, double trace_rate,
                             double wave) {
-    const core::ViscousState v =
-        core::bulk_viscosity(viscosity, density, length, trace_rate, wave);
+    const core::ViscousState v = core::bulk_viscosity(viscosity, density, length, trace_rate, wave);
     el.bulk_q[e] = v.q;
     el.critical_dt[e] = length / v.signal;
     return v.q;
@@ -178,7 +176,8 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
     // Conversion first (AFEMP): an element inside the grid that meets a criterion, or inverts
     // with negative_jacobian on, becomes particles; outside the grid erosion still applies.
     if (conversion && (!failure || conversion->negative_jacobian) && inside_retirement_domain(e)) {
-      const char* reason = failure ? failure : conversion_reason(*conversion, b, e, volume, grid_step);
+      const char* reason =
+          failure ? failure : conversion_reason(*conversion, b, e, volume, grid_step);
       if (reason) {
         thread_conversions_[static_cast<std::size_t>(t)].push_back(e);
         thread_conversion_reason_[static_cast<std::size_t>(t)].push_back(reason);
@@ -192,8 +191,8 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
         eps_p = std::max(eps_p, el.plastic_strain[p0 + static_cast<std::size_t>(g)]);
         damage = std::max(damage, el.damage[p0 + static_cast<std::size_t>(g)]);
       }
-      failure = core::erosion_reason(*erosion, mat, eps_p, volume, el.volume0[e],
-                                     el.critical_dt[e], damage);
+      failure = core::erosion_reason(*erosion, mat, eps_p, volume, el.volume0[e], el.critical_dt[e],
+                                     damage);
     }
     if (failure) {
       if (!erosion) {
@@ -257,10 +256,11 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
           for (std::size_t g = 0; g < 8; ++g)
             wave = std::max(wave, finish_point(chunk, g, p0 + g, pending[g], starts[g], sums));
         }
-        const double q = bulk_viscosity(e, density, characteristic_length(x_new, volume),
-                                         trace_rate, wave);
+        const double q =
+            bulk_viscosity(e, density, characteristic_length(x_new, volume), trace_rate, wave);
         std::array<core::SymTensor, 8> sigma;
-        for (std::size_t g = 0; g < 8; ++g) sigma[g] = el.stress[p0 + g] - q * core::SymTensor::identity();
+        for (std::size_t g = 0; g < 8; ++g)
+          sigma[g] = el.stress[p0 + g] - q * core::SymTensor::identity();
         add_stress_forces_bbar(now, sigma, f);
       }
       finish(e, p0, volume, failure, f, t);
@@ -273,9 +273,8 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
   constexpr int W = kLanes;
   auto sweep_one_point = [&](std::size_t begin, std::size_t end, int t) {
     double* sums = &thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles];
-    alignas(64) double x[3][8][W], v[3][8][W], xm[3][8][W], c[3][8][W], bm[3][8][W],
-        bn[3][8][W], f[3][8][W], grad[3][3][W], gamma[4][8][W], q[4][3][W], g[4][3][W],
-        sigma[6][W];
+    alignas(64) double x[3][8][W], v[3][8][W], xm[3][8][W], c[3][8][W], bm[3][8][W], bn[3][8][W],
+        f[3][8][W], grad[3][3][W], gamma[4][8][W], q[4][3][W], g[4][3][W], sigma[6][W];
     alignas(64) double vol_mid[W], vol[W], length[W];
     [[maybe_unused]] core::UserChunkFor<Strength> chunk(mat, strength);
     [[maybe_unused]] std::array<PointStart, W> pending;
@@ -365,10 +364,9 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
           lanes::store<W>(x, l, xe);
           std::array<Vec3, 4> qe, ge;
           for (int k = 0; k < 4; ++k) qe[k] = {q[k][0][l], q[k][1][l], q[k][2][l]};
-          sums[kStabilisation] +=
-              dt * assumed_strain_hourglass_forces(assumed_strain_geometry(xe), vol[l], hg_shear,
-                                                   mat.poisson_ratio, dt, qe,
-                                                   el.hourglass_force[e], ge);
+          sums[kStabilisation] += dt * assumed_strain_hourglass_forces(
+                                           assumed_strain_geometry(xe), vol[l], hg_shear,
+                                           mat.poisson_ratio, dt, qe, el.hourglass_force[e], ge);
           for (int k = 0; k < 4; ++k)
             for (int i = 0; i < 3; ++i) g[k][i][l] = ge[k][i];
         } else if (hg_form == core::HourglassForm::stiffness) {
@@ -462,18 +460,18 @@ void FeSolver::update_hexahedra(double dt) {
       sum += thread_sums_[t * core::cache_line_doubles + kStabilisation];
     return sum;
   };
-  for_each_batch(hexes_, [&]<class S, class E, bool Thermal>(const ElementBatch& b, const S& s,
-                                                         const E& e) {
-    const double before = stabilisation();
-    if (scene_.materials[static_cast<std::size_t>(b.material)].fails())
-      hexahedron_batch<S, E, Thermal, true>(b, s, e, dt);
-    else
-      hexahedron_batch<S, E, Thermal, false>(b, s, e, dt);
-    body_stabilisation_[static_cast<std::size_t>(b.body)] += stabilisation() - before;
-    raise_thread_errors();
-    collect_erosions(hexes_, "hexahedron");
-    collect_retirements();
-  });
+  for_each_batch(
+      hexes_, [&]<class S, class E, bool Thermal>(const ElementBatch& b, const S& s, const E& e) {
+        const double before = stabilisation();
+        if (scene_.materials[static_cast<std::size_t>(b.material)].fails())
+          hexahedron_batch<S, E, Thermal, true>(b, s, e, dt);
+        else
+          hexahedron_batch<S, E, Thermal, false>(b, s, e, dt);
+        body_stabilisation_[static_cast<std::size_t>(b.body)] += stabilisation() - before;
+        raise_thread_errors();
+        collect_erosions(hexes_, "hexahedron");
+        collect_retirements();
+      });
   for (std::size_t t = 0; t < thread_errors_.size(); ++t) {
     const double* s = &thread_sums_[t * core::cache_line_doubles];
     plastic_work_ += s[kPlastic];

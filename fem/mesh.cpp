@@ -58,11 +58,13 @@ void validate(const MeshData& m, const std::string& source) {
       !std::all_of(m.line_part.begin(), m.line_part.end(), part_ok))
     throw core::InputError({source, 0}, "parts", "an element refers to a part that is not named");
   for (const NamedSet& s : m.node_sets) check_set(s, m.nodes.size(), "node", source);
-  for (const NamedSet& s : m.hexahedron_sets) check_set(s, m.hexahedra.size(), "hexahedron", source);
+  for (const NamedSet& s : m.hexahedron_sets)
+    check_set(s, m.hexahedra.size(), "hexahedron", source);
   for (const NamedSet& s : m.line_sets) check_set(s, m.lines.size(), "line", source);
   for (const ImportedConstraint& c : m.constraints)
     if (c.node_set < 0 || static_cast<std::size_t>(c.node_set) >= m.node_sets.size())
-      throw core::InputError({source, 0}, "constraints", "a constraint refers to a missing node set");
+      throw core::InputError({source, 0}, "constraints",
+                             "a constraint refers to a missing node set");
 }
 
 void append(MeshData& m, const MeshData& o) {

@@ -476,9 +476,8 @@ void FeSolver::resolve_contacts(double dt) {
             x_now += h.shape[static_cast<std::size_t>(a)] *
                      nodes_.position[static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)])];
           const double now = std::min(core::dot(n, nodes_.position[sl] - x_now), 0.0);
-          const double diagonal =
-              core::norm(nodes_.position[static_cast<std::size_t>(h.face[0])] -
-                         nodes_.position[static_cast<std::size_t>(h.face[2])]);
+          const double diagonal = core::norm(nodes_.position[static_cast<std::size_t>(h.face[0])] -
+                                             nodes_.position[static_cast<std::size_t>(h.face[2])]);
           const double recede = std::min(-0.1 * now, 1e-4 * diagonal);
           h.target = std::min((1.0 - s) * std::min(gap, 0.0), now + recede);
         }

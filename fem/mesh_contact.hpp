@@ -10,15 +10,15 @@
 // on the predicted penetration. s = 1 closes it within the step (kinematic contact); below 1
 // the remainder is taken over the next steps. Being a velocity correction that takes out at
 // most the penetration predicted for the step (and a tenth of one already there), not a spring
-// the step must resolve, it is stable for s in (0, 1] at any step. The pairs share nodes, so the impulses are
-// found by projected Gauss-Seidel sweeps in slave order (the total normal impulse of a pair
-// stays >= 0: surfaces separate freely), with Coulomb friction limiting the tangential
-// impulse to mu P. A slave keeps the face it met last while that face still holds it (a node
-// that entered a thin plate is pushed back out of the side it came in by). The faces are found
-// through bins whose cost grows with the surface (a face in every bin its box, grown by its
-// reach and a margin of a quarter face, touches; a slave in its own bin), remade only when a
-// face node has moved by the margin. The surfaces are rebuilt from the live elements
-// whenever elements erode or convert (eroding contact).
+// the step must resolve, it is stable for s in (0, 1] at any step. The pairs share nodes, so the
+// impulses are found by projected Gauss-Seidel sweeps in slave order (the total normal impulse of a
+// pair stays >= 0: surfaces separate freely), with Coulomb friction limiting the tangential impulse
+// to mu P. A slave keeps the face it met last while that face still holds it (a node that entered a
+// thin plate is pushed back out of the side it came in by). The faces are found through bins whose
+// cost grows with the surface (a face in every bin its box, grown by its reach and a margin of a
+// quarter face, touches; a slave in its own bin), remade only when a face node has moved by the
+// margin. The surfaces are rebuilt from the live elements whenever elements erode or convert
+// (eroding contact).
 #pragma once
 
 #include <array>

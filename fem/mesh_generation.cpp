@@ -4,10 +4,10 @@
 #include "fem/mesh_generation.hpp"
 
 #include <algorithm>
-#include <map>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -224,9 +224,9 @@ MeshData sphere_mesh(const core::SphereShape& s, int n, int sectors) {
   require(sectors == 1 || sectors == 2 || sectors == 4,
           "sphere mesh: sectors must be 1 (quarter), 2 (half) or 4 (whole)");
   const int nc = n / 2, nr = n / 4, h = nc / 2;  // core lattice, shell layers
-  require_32bit_indices(std::int64_t{nc + 1} * (nc + 1) * (nc + 1) +
-                            std::int64_t{6} * (nc + 1) * (nc + 1) * nr,
-                        "sphere mesh");
+  require_32bit_indices(
+      std::int64_t{nc + 1} * (nc + 1) * (nc + 1) + std::int64_t{6} * (nc + 1) * (nc + 1) * nr,
+      "sphere mesh");
   const double a = 0.5 * s.radius;  // the core's half-width (before the bow)
   // Nodes by key: a core lattice point (i, j, k) in [-h, h]^3 and a layer l (0: the core; 1..nr:
   // along the ray from a core-surface point to the sphere).
@@ -352,9 +352,9 @@ MeshData cylinder_mesh(const core::CylinderShape& c, int n_core, int n_ring, int
           "cylinder mesh: a quarter or half cylinder needs an even number of core divisions (the "
           "cut planes run along the core's midlines); got " +
               std::to_string(n_core));
-  require(c.nose.crh == 0.0 || (c.nose.crh >= 0.5 && c.nose.meplat > 0.0 &&
-                                 c.nose.meplat < 2.0 * c.radius &&
-                                 core::ogive_nose_length(c.nose, c.radius) < c.length),
+  require(c.nose.crh == 0.0 ||
+              (c.nose.crh >= 0.5 && c.nose.meplat > 0.0 && c.nose.meplat < 2.0 * c.radius &&
+               core::ogive_nose_length(c.nose, c.radius) < c.length),
           "cylinder mesh: an ogive nose needs crh >= 0.5, a meplat between 0 and the diameter "
           "(both exclusive) and a length shorter than the cylinder's");
   const CylinderFrame frame = cylinder_frame(c.axis);
@@ -373,7 +373,8 @@ MeshData cylinder_mesh(const core::CylinderShape& c, int n_core, int n_ring, int
       c.nose.crh > 0.0 ? c.length - core::ogive_nose_length(c.nose, c.radius) : c.length;
   for (int l = 0; l <= n_axial; ++l) {
     const double w = std::lerp(0.0, c.length, static_cast<double>(l) / n_axial);
-    const double scale = w > shank ? core::ogive_radius(c.nose, c.radius, w - shank) / c.radius : 1.0;
+    const double scale =
+        w > shank ? core::ogive_radius(c.nose, c.radius, w - shank) / c.radius : 1.0;
     for (std::int32_t v = 0; v < layer; ++v) {
       const std::int32_t node = l * layer + v;
       const auto& q = s.points[v];

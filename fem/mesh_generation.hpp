@@ -6,8 +6,8 @@
 #include <array>
 #include <vector>
 
-#include "core/scene.hpp"
 #include "afemp/tensor.hpp"
+#include "core/scene.hpp"
 #include "fem/mesh.hpp"
 
 namespace afemp::fem {
@@ -61,12 +61,12 @@ MeshData cylinder_mesh(const core::CylinderShape& c, int n_core, int n_ring, int
 
 // A sphere of hexahedra (a cubed sphere): a cube core of half-width R / 2 divided into
 // n/2 x n/2 x n/2 elements, its lattice point q (|q|_inf = m) moved to R/2 q ((1 - m/2) +
-// m^2 / (2 |q|)), bowed halfway to a sphere at its surface, and on each of its faces a shell of n/4 layers along the rays from
-// the core's surface to the sphere (layer t of the ray from core point c: (1 - t) c + t R c/|c|),
-// so every element layer follows the sphere and the surface nodes lie on it. n, the elements
-// across the diameter, is a multiple of 4. `sectors` keeps 1 (the quarter x >= 0, y >= 0 about
-// the centre), 2 (y >= 0) or 4 (the whole sphere). One part "mesh"; node sets "surface", and
-// for the cuts "cut_0" (y = 0) and "cut_1" (x = 0).
+// m^2 / (2 |q|)), bowed halfway to a sphere at its surface, and on each of its faces a shell of n/4
+// layers along the rays from the core's surface to the sphere (layer t of the ray from core point
+// c: (1 - t) c + t R c/|c|), so every element layer follows the sphere and the surface nodes lie on
+// it. n, the elements across the diameter, is a multiple of 4. `sectors` keeps 1 (the quarter x >=
+// 0, y >= 0 about the centre), 2 (y >= 0) or 4 (the whole sphere). One part "mesh"; node sets
+// "surface", and for the cuts "cut_0" (y = 0) and "cut_1" (x = 0).
 MeshData sphere_mesh(const core::SphereShape& s, int n, int sectors = 4);
 
 // A straight truss from a to b in `segments` equal 2-node lines of cross-section `area`, one
@@ -75,13 +75,13 @@ MeshData truss_line(core::Vec3 a, core::Vec3 b, int segments, double area);
 
 // Straight bars in the two in-plane directions of a plane normal to a coordinate axis.
 struct RebarMat {
-  core::Vec3 min, max;          // the box the mat spans (the concrete block)
-  int normal_axis = 2;          // 0, 1, 2: the mat lies in a plane normal to this axis
+  core::Vec3 min, max;            // the box the mat spans (the concrete block)
+  int normal_axis = 2;            // 0, 1, 2: the mat lies in a plane normal to this axis
   std::vector<double> positions;  // the planes' coordinates along normal_axis: one mat each
-  double spacing = 0.0;         // between neighbouring parallel bars (axis to axis)
-  double diameter = 0.0;        // of a bar; the truss area is pi d^2 / 4
-  double cover = 0.0;           // from the box faces to the outermost bars' axes, in the plane
-  double segment_length = 0.0;  // target truss length: a bar of length L gets ceil(L / this)
+  double spacing = 0.0;           // between neighbouring parallel bars (axis to axis)
+  double diameter = 0.0;          // of a bar; the truss area is pi d^2 / 4
+  double cover = 0.0;             // from the box faces to the outermost bars' axes, in the plane
+  double segment_length = 0.0;    // target truss length: a bar of length L gets ceil(L / this)
 };
 
 // Bars along each in-plane axis, that axis's part "bars along x" (y, z); the part of the lower

@@ -2,12 +2,12 @@
 // (fem/mesh_import.hpp): numbered lines, strict number parsing, node labels to indices.
 #include "fem/mesh_import.hpp"
 
-#include "fem/lsdyna_keywords.hpp"
-
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include "fem/lsdyna_keywords.hpp"
 
 namespace afemp::fem {
 

@@ -34,7 +34,8 @@ ElementState element_state(const FeSolver& fe, const Elements& el, const Element
     s.centroid += wn * fe.nodes().position[n];
     s.velocity += wn * fe.nodes().velocity[n];
   }
-  const std::size_t p0 = b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
+  const std::size_t p0 =
+      b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
   const double wp = 1.0 / b.points_per_element;
   for (int g = 0; g < b.points_per_element; ++g) {
     s.stress += wp * el.stress[p0 + static_cast<std::size_t>(g)];
@@ -61,8 +62,8 @@ void MeshProbes::resolve(std::span<const core::ProbeSpec> probes, const FeSolver
     if (s.kind != core::ProbeKind::node && s.kind != core::ProbeKind::element) continue;
     const std::string& name = scene.bodies[static_cast<std::size_t>(s.body)].name;
     const bool node = s.kind == core::ProbeKind::node;
-    const bool truss =
-        scene.bodies[static_cast<std::size_t>(s.body)].discretisation == core::Discretisation::trusses;
+    const bool truss = scene.bodies[static_cast<std::size_t>(s.body)].discretisation ==
+                       core::Discretisation::trusses;
     const std::string what = node ? "node" : (truss ? "truss" : "hexahedron");
     // The body's range: its nodes are contiguous (fe_model_builder.cpp), so are its elements.
     std::size_t begin = 0, count = 0;
@@ -78,7 +79,8 @@ void MeshProbes::resolve(std::span<const core::ProbeSpec> probes, const FeSolver
     }
     const std::string key = s.key + (node ? ".node" : ".element");
     if (count == 0)
-      throw core::InputError(s.where, key + ".body", "body '" + name + "' has no " + what + "s to probe");
+      throw core::InputError(s.where, key + ".body",
+                             "body '" + name + "' has no " + what + "s to probe");
     if (s.index >= 0) {
       if (static_cast<std::size_t>(s.index) >= count)
         throw core::InputError(s.where, key + ".index",
@@ -114,9 +116,14 @@ void MeshProbes::sample(const FeSolver& fe, std::span<double> out) const {
           const std::size_t e = target_[k];
           if (b.body != s.body || e < b.begin || e >= b.end || !el.alive[e]) continue;
           const ElementState st = element_state(fe, el, b, e);
-          const double row[] = {st.centroid.x, st.centroid.y, st.centroid.z,
-                                st.velocity.x, st.velocity.y, st.velocity.z,
-                                core::pressure(st.stress), core::von_mises(st.stress),
+          const double row[] = {st.centroid.x,
+                                st.centroid.y,
+                                st.centroid.z,
+                                st.velocity.x,
+                                st.velocity.y,
+                                st.velocity.z,
+                                core::pressure(st.stress),
+                                core::von_mises(st.stress),
                                 st.plastic_strain};
           std::copy(std::begin(row), std::end(row), v);
         }
@@ -131,11 +138,10 @@ void MeshProbes::sample(const FeSolver& fe, std::span<double> out) const {
             if (!el.alive[e]) continue;
             const ElementState st = element_state(fe, el, b, e);
             if (!core::in_probe_box(s, st.centroid)) continue;
-            core::merge_extreme(
-                s,
-                core::probe_field_value(s.field, st.stress, st.plastic_strain, st.velocity,
-                                        st.centroid),
-                st.centroid, v);
+            core::merge_extreme(s,
+                                core::probe_field_value(s.field, st.stress, st.plastic_strain,
+                                                        st.velocity, st.centroid),
+                                st.centroid, v);
           }
         }
       };

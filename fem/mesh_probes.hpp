@@ -20,7 +20,8 @@ class MeshProbes {
   // Finds the node or element of each node and element probe (by index within its body, or
   // nearest to a point at the start). Throws core::InputError naming the probe's line and key,
   // and the body's range, when the index is beyond the body's nodes or elements.
-  void resolve(std::span<const core::ProbeSpec> probes, const FeSolver& fe, const core::Scene& scene);
+  void resolve(std::span<const core::ProbeSpec> probes, const FeSolver& fe,
+               const core::Scene& scene);
   // Node and element probes and the elements' part of each extreme into out (probe_stride per
   // probe). An element that is gone (eroded, converted) leaves its NaN.
   void sample(const FeSolver& fe, std::span<double> out) const;

@@ -27,8 +27,8 @@ void FeSolver::update_nodes(double dt) {
     double work = 0.0;
     for (std::size_t i = begin; i < end; ++i) {
       const double m = nodes_.mass[i];
-      if (!(m > 0.0)) continue;  // no live element: out of the update
-      if (nodes_.grid_driven[i]) continue;  // moved by the background grid (coupling/)
+      if (!(m > 0.0)) continue;                       // no live element: out of the update
+      if (nodes_.grid_driven[i]) continue;            // moved by the background grid (coupling/)
       if (rigid && rigid_of_node_[i] >= 0) continue;  // moved by its body (rigid_body_update.cpp)
       const Vec3 f = node_force(i);
       Vec3& v = nodes_.velocity[i];
@@ -109,15 +109,15 @@ void FeSolver::finish_step(double dt) {
   // Elements left the mesh (eroded or converted): the node masses follow, in the erosion
   // stage, or in the conversion stage where no body erodes.
   if (erosion_this_step_)
-    run_stage(plan_.index(FeStageKind::erosion) >= 0 ? FeStageKind::erosion
-                                                      : FeStageKind::conversion,
-              [&] { finish_erosion(); });
+    run_stage(
+        plan_.index(FeStageKind::erosion) >= 0 ? FeStageKind::erosion : FeStageKind::conversion,
+        [&] { finish_erosion(); });
 }
 
 double FeSolver::element_step_limit() const {
   double dt = std::numeric_limits<double>::infinity();
-  for (const ElementStore* el : {static_cast<const ElementStore*>(&hexes_),
-                                 static_cast<const ElementStore*>(&trusses_)})
+  for (const ElementStore* el :
+       {static_cast<const ElementStore*>(&hexes_), static_cast<const ElementStore*>(&trusses_)})
     for (std::size_t e = 0; e < el->size(); ++e)
       if (el->alive[e]) dt = std::min(dt, el->critical_dt[e]);
   return scene_.run.element_time_step_factor * dt;
@@ -163,15 +163,17 @@ core::Energies FeSolver::energies() const {
     b.momentum += m * v;
     b.kinetic += kinetic;
   }
-  for (const ElementStore* el : {static_cast<const ElementStore*>(&hexes_),
-                                 static_cast<const ElementStore*>(&trusses_)})
+  for (const ElementStore* el :
+       {static_cast<const ElementStore*>(&hexes_), static_cast<const ElementStore*>(&trusses_)})
     for (const ElementBatch& b : el->batches)
       for (std::size_t e = b.begin; e < b.end; ++e) {
         if (!el->alive[e]) continue;
-        const std::size_t p0 = b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
+        const std::size_t p0 =
+            b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
         double internal = 0.0;
         for (int g = 0; g < b.points_per_element; ++g)
-          internal += el->point_mass[p0 + static_cast<std::size_t>(g)] * el->energy[p0 + static_cast<std::size_t>(g)];
+          internal += el->point_mass[p0 + static_cast<std::size_t>(g)] *
+                      el->energy[p0 + static_cast<std::size_t>(g)];
         out.internal += internal;
         out.bodies[static_cast<std::size_t>(b.body)].internal += internal;
       }
@@ -192,7 +194,8 @@ core::Energies FeSolver::energies() const {
 void FeSolver::set_grid_driven(const std::vector<std::uint8_t>& driven) {
   nodes_.grid_driven = driven;
   for (WallState& w : walls_)
-    std::erase_if(w.nodes, [&](std::int32_t k) { return driven[static_cast<std::size_t>(k)] != 0; });
+    std::erase_if(w.nodes,
+                  [&](std::int32_t k) { return driven[static_cast<std::size_t>(k)] != 0; });
 }
 
 std::vector<ErosionEvent> FeSolver::take_erosion_events() {
@@ -227,15 +230,14 @@ std::size_t capacity_bytes(const V& x) {
 std::size_t ElementStore::bytes() const {
   auto v = [](const auto& x) { return capacity_bytes(x); };
   return v(mass) + v(volume0) + v(volume) + v(critical_dt) + v(alive) + v(stress) + v(point_mass) +
-         v(plastic_strain) + v(temperature) + v(energy) + v(density) + v(damage) +
-         v(strain) + v(plastic_heat) + v(viscous_heat) + v(history);
+         v(plastic_strain) + v(temperature) + v(energy) + v(density) + v(damage) + v(strain) +
+         v(plastic_heat) + v(viscous_heat) + v(history);
 }
 
 std::size_t HexElements::bytes() const {
   return ElementStore::bytes() + capacity_bytes(nodes) + capacity_bytes(bulk_q) +
          capacity_bytes(hourglass_force) + capacity_bytes(hourglass_power) +
-         capacity_bytes(across) +
-         capacity_bytes(shared_offsets) + capacity_bytes(shared_faces);
+         capacity_bytes(across) + capacity_bytes(shared_offsets) + capacity_bytes(shared_faces);
 }
 
 std::size_t TrussElements::bytes() const {
@@ -254,7 +256,8 @@ void FeSolver::raise_thread_errors() const {
   }
 }
 
-void FeSolver::raise(const std::string& entity, const char* field, const std::string& detail) const {
+void FeSolver::raise(const std::string& entity, const char* field,
+                     const std::string& detail) const {
   throw core::SimulationError(steps_ + 1, time_, entity, field, detail);
 }
 

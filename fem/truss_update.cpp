@@ -35,8 +35,8 @@ void FeSolver::truss_batch(const ElementBatch& b, const Strength& strength, cons
     const std::size_t p = b.point_begin + (e - b.begin);
     const TrussKinematics mid =
         truss_kinematics(xv[0] - (0.5 * dt) * xv[2], xv[1] - (0.5 * dt) * xv[3], xv[2], xv[3]);
-    st = core::PointState{el.stress[p], el.plastic_strain[p], el.temperature[p], el.energy[p],
-                          el.density[p], el.damage[p]};
+    st = core::PointState{el.stress[p], el.plastic_strain[p], el.temperature[p],
+                          el.energy[p], el.density[p],        el.damage[p]};
     core::load_model_history<Strength>(st, el.history.data() + p * el.history_count);
     d_axial = mid.axial_strain_rate * dt;
   };
@@ -54,21 +54,23 @@ void FeSolver::truss_batch(const ElementBatch& b, const Strength& strength, cons
     el.damage[p] = st.damage;
     core::store_model_history<Strength>(st, el.history.data() + p * el.history_count);
     const TrussKinematics now = truss_kinematics(xv[0], xv[1], xv[2], xv[3]);
-    const double area = current_area(el.area0[e], el.length0[e], mat.density, now.length, st.density);
+    const double area =
+        current_area(el.area0[e], el.length0[e], mat.density, now.length, st.density);
     el.volume[e] = area * now.length;
     Vec3 fa, fb;
     add_truss_forces(now, st.stress.xx * area, fa, fb);
-    el.critical_dt[e] = truss_time_step(now.length, core::uniaxial_modulus(mat, eos, st), st.density);
+    el.critical_dt[e] =
+        truss_time_step(now.length, core::uniaxial_modulus(mat, eos, st), st.density);
     if (!std::isfinite(st.stress.xx + fa.x + fa.y + fa.z) &&
         thread_errors_[static_cast<std::size_t>(t)].empty()) {
       thread_errors_[static_cast<std::size_t>(t)] =
           "truss " + std::to_string(e - b.begin) + " of body " + body.name;
       thread_error_field_[static_cast<std::size_t>(t)] = "stress";
     }
-    const char* failure =
-        erosion ? core::erosion_reason(*erosion, mat, st.plastic_strain, el.volume[e],
-                                       el.volume0[e], el.critical_dt[e])
-                : nullptr;
+    const char* failure = erosion
+                              ? core::erosion_reason(*erosion, mat, st.plastic_strain, el.volume[e],
+                                                     el.volume0[e], el.critical_dt[e])
+                              : nullptr;
     if (failure) {
       thread_erosions_[static_cast<std::size_t>(t)].push_back(e);
       thread_failure_[static_cast<std::size_t>(t)].push_back(failure);
@@ -102,7 +104,8 @@ void FeSolver::truss_batch(const ElementBatch& b, const Strength& strength, cons
         }
         core::uniaxial_update_user(mat, chunk, eos, Thermal, points.data(), d_axial.data(),
                                    history.data(), n, dt, updates.data(), kept);
-        for (std::size_t j = 0; j < n; ++j) complete(element[j], xv[j], points[j], updates[j], t, sums);
+        for (std::size_t j = 0; j < n; ++j)
+          complete(element[j], xv[j], points[j], updates[j], t, sums);
       }
     } else {
       for (std::size_t e = begin; e < end; ++e) {
@@ -125,12 +128,12 @@ void FeSolver::truss_batch(const ElementBatch& b, const Strength& strength, cons
 void FeSolver::update_trusses(double dt) {
   std::fill(thread_sums_.begin(), thread_sums_.end(), 0.0);
   for (auto& e : thread_errors_) e.clear();
-  for_each_batch(trusses_, [&]<class S, class E, bool Thermal>(const ElementBatch& b, const S& s,
-                                                         const E& e) {
-    truss_batch<S, E, Thermal>(b, s, e, dt);
-    raise_thread_errors();
-    collect_erosions(trusses_, "truss");
-  });
+  for_each_batch(
+      trusses_, [&]<class S, class E, bool Thermal>(const ElementBatch& b, const S& s, const E& e) {
+        truss_batch<S, E, Thermal>(b, s, e, dt);
+        raise_thread_errors();
+        collect_erosions(trusses_, "truss");
+      });
   for (std::size_t t = 0; t < thread_errors_.size(); ++t)
     plastic_work_ += thread_sums_[t * core::cache_line_doubles];
 }

@@ -29,9 +29,18 @@ namespace {
 
 // Mirror of a symmetric tensor (xx, yy, zz, yz, xz, xy) about the plane normal to axis a.
 void mirror(core::SymTensor& s, int a) {
-  if (a == 0) { s.xz = -s.xz; s.xy = -s.xy; }
-  if (a == 1) { s.yz = -s.yz; s.xy = -s.xy; }
-  if (a == 2) { s.yz = -s.yz; s.xz = -s.xz; }
+  if (a == 0) {
+    s.xz = -s.xz;
+    s.xy = -s.xy;
+  }
+  if (a == 1) {
+    s.yz = -s.yz;
+    s.xy = -s.xy;
+  }
+  if (a == 2) {
+    s.yz = -s.yz;
+    s.xz = -s.xz;
+  }
 }
 
 enum class Crossing : unsigned char { none, mirror, hold };
@@ -48,8 +57,8 @@ void MpmSolver::return_particles_past_faces() {
     plane[f] = f % 2 == 0 ? g.min[static_cast<int>(a)]
                           : g.min[static_cast<int>(a)] + grid_.cells()[a] * grid_.cell();
     action[f] = g.faces[f] == core::FaceCondition::symmetric ? Crossing::mirror
-                : absorbing_[f].far                           ? Crossing::hold
-                                                              : Crossing::none;
+                : absorbing_[f].far                          ? Crossing::hold
+                                                             : Crossing::none;
     any = any || action[f] != Crossing::none;
   }
   if (!any) return;

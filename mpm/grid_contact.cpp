@@ -141,8 +141,8 @@ void MpmSolver::contact_surfaces_kernel() {
       g.mass_gradient[s[static_cast<std::size_t>(n)]] += p.mass[i] * st.grad(n);
   });
   if (points_) points_->contact_surfaces(access(), true);
-  // Each field's outward normal against the fields it meets at the node, where it meets one
-  // it is in contact with; zero elsewhere.
+    // Each field's outward normal against the fields it meets at the node, where it meets one
+    // it is in contact with; zero elsewhere.
 #pragma omp parallel if (core::worth_threads(stride))
   g.for_each_slot([&](std::size_t slot, const std::array<int, 3>& node) {
     int present[max_fields];

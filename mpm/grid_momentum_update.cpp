@@ -68,9 +68,9 @@ double MpmSolver::far_field(const std::array<int, 3>& node, int field, unsigned 
                             double dt, const Vec3& v, Vec3& v_new) {
   const core::BackgroundGrid& g = grid_;
   const double h = g.cell();
-  const Vec3 x = g.settings().min + h * Vec3{static_cast<double>(node[0]),
-                                             static_cast<double>(node[1]),
-                                             static_cast<double>(node[2])};
+  const Vec3 x =
+      g.settings().min + h * Vec3{static_cast<double>(node[0]), static_cast<double>(node[1]),
+                                  static_cast<double>(node[2])};
   double work = 0.0;
   for (int face = 0; face < 6; ++face) {
     if (!((faces >> face) & 1u)) continue;
@@ -79,7 +79,8 @@ double MpmSolver::far_field(const std::array<int, 3>& node, int field, unsigned 
     const std::array<int, 3> n = g.nodes();
     // The node's share of the face plane: half a cell along an axis where it sits on an edge.
     auto share = [&](int axis) {
-      const int i = node[static_cast<std::size_t>(axis)], last = n[static_cast<std::size_t>(axis)] - 1;
+      const int i = node[static_cast<std::size_t>(axis)],
+                last = n[static_cast<std::size_t>(axis)] - 1;
       return i < 0 || i > last ? 0.0 : i == 0 || i == last ? 0.5 * h : h;
     };
     const Vec3 d = x - af.centre;
@@ -113,9 +114,10 @@ void MpmSolver::grid_momentum_update(double dt) {
   for (int face = 0; face < 6; ++face) {
     if (!absorbing_[static_cast<std::size_t>(face)].far) continue;
     const int a = face / 2;
-    const std::size_t size = static_cast<std::size_t>(g.field_count()) *
-                             static_cast<std::size_t>(g.nodes()[static_cast<std::size_t>((a + 1) % 3)]) *
-                             static_cast<std::size_t>(g.nodes()[static_cast<std::size_t>((a + 2) % 3)]);
+    const std::size_t size =
+        static_cast<std::size_t>(g.field_count()) *
+        static_cast<std::size_t>(g.nodes()[static_cast<std::size_t>((a + 1) % 3)]) *
+        static_cast<std::size_t>(g.nodes()[static_cast<std::size_t>((a + 2) % 3)]);
     if (far_lag_[static_cast<std::size_t>(face)].size() != size)
       far_lag_[static_cast<std::size_t>(face)].assign(size, 0.0);
   }
@@ -133,50 +135,50 @@ void MpmSolver::grid_momentum_update(double dt) {
     double work = 0.0;
 
     g.for_each_slot([&](std::size_t slot, const std::array<int, 3>& node) {
-     const NodeConstraint c = constraints(node);
-     for (int f = 0; f < fields; ++f) {  // each velocity field on its own (contact after)
-      const std::size_t s = slot + static_cast<std::size_t>(f) * stride;
-      const double m = g.mass[s];
-      if (m <= 0.0) {
-        g.velocity[s] = {};
-        g.velocity_new[s] = {};
-        continue;
+      const NodeConstraint c = constraints(node);
+      for (int f = 0; f < fields; ++f) {  // each velocity field on its own (contact after)
+        const std::size_t s = slot + static_cast<std::size_t>(f) * stride;
+        const double m = g.mass[s];
+        if (m <= 0.0) {
+          g.velocity[s] = {};
+          g.velocity_new[s] = {};
+          continue;
+        }
+        Vec3 v, v_new;
+        const unsigned wall = integrate(g.momentum[s], g.force[s], 1.0 / m, dt, c, v, v_new);
+        // The components held this step are kept for the MUSL remap, which must hold them
+        // too (remap_to_grid).
+        if (c.any()) wall_contact_[s] = static_cast<std::uint8_t>(wall);
+        g.velocity[s] = v;
+        g.velocity_new[s] = v_new;
+        // An absorbing face damps the stored velocity; the gravity work and the shared-field
+        // shift below take the undamped one, as before the damping.
+        if (c.damped) work += absorb(m, c.damping, dt, v, g.velocity_new[s]);
+        if (c.far) work += far_field(node, f, c.far, m, dt, v, g.velocity_new[s]);
+        // A field of self-updating points only: their owner counted its gravity work.
+        const bool counted =
+            !field_self_updated_.empty() && field_self_updated_[static_cast<std::size_t>(f)];
+        if (!shared || !(shared_.mass[s] > 0.0)) {
+          if (body_force && !counted) work += 0.5 * dt * m * core::dot(gravity, v + v_new);
+          continue;
+        }
+        // Contact nodes share this field with particles or bonded nodes of their body: the
+        // particles' own part (the field less the nodes' mass, momentum and force) is
+        // integrated too, and the shift from the field's velocities to it stored for the
+        // particles' update (apply_shared_shifts). Its gravity work is the part's alone.
+        const double mo = m - shared_.mass[s];
+        Vec3 start, updated;
+        if (mo > SelfUpdatedShare::fraction * m) {
+          Vec3 vo, vo_new;
+          integrate(g.momentum[s] - shared_.start[s], g.force[s] - shared_.updated[s], 1.0 / mo, dt,
+                    c, vo, vo_new);
+          start = vo - v;
+          updated = vo_new - v_new;
+          if (body_force) work += 0.5 * dt * mo * core::dot(gravity, vo + vo_new);
+        }
+        shared_.start[s] = start;
+        shared_.updated[s] = updated;
       }
-      Vec3 v, v_new;
-      const unsigned wall = integrate(g.momentum[s], g.force[s], 1.0 / m, dt, c, v, v_new);
-      // The components held this step are kept for the MUSL remap, which must hold them
-      // too (remap_to_grid).
-      if (c.any()) wall_contact_[s] = static_cast<std::uint8_t>(wall);
-      g.velocity[s] = v;
-      g.velocity_new[s] = v_new;
-      // An absorbing face damps the stored velocity; the gravity work and the shared-field
-      // shift below take the undamped one, as before the damping.
-      if (c.damped) work += absorb(m, c.damping, dt, v, g.velocity_new[s]);
-      if (c.far) work += far_field(node, f, c.far, m, dt, v, g.velocity_new[s]);
-      // A field of self-updating points only: their owner counted its gravity work.
-      const bool counted =
-          !field_self_updated_.empty() && field_self_updated_[static_cast<std::size_t>(f)];
-      if (!shared || !(shared_.mass[s] > 0.0)) {
-        if (body_force && !counted) work += 0.5 * dt * m * core::dot(gravity, v + v_new);
-        continue;
-      }
-      // Contact nodes share this field with particles or bonded nodes of their body: the
-      // particles' own part (the field less the nodes' mass, momentum and force) is
-      // integrated too, and the shift from the field's velocities to it stored for the
-      // particles' update (apply_shared_shifts). Its gravity work is the part's alone.
-      const double mo = m - shared_.mass[s];
-      Vec3 start, updated;
-      if (mo > SelfUpdatedShare::fraction * m) {
-        Vec3 vo, vo_new;
-        integrate(g.momentum[s] - shared_.start[s], g.force[s] - shared_.updated[s], 1.0 / mo,
-                  dt, c, vo, vo_new);
-        start = vo - v;
-        updated = vo_new - v_new;
-        if (body_force) work += 0.5 * dt * mo * core::dot(gravity, vo + vo_new);
-      }
-      shared_.start[s] = start;
-      shared_.updated[s] = updated;
-     }
     });
     thread_sums_[static_cast<std::size_t>(core::thread_index()) * core::cache_line_doubles] = work;
   }

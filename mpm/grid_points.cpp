@@ -12,7 +12,8 @@ namespace afemp::mpm {
 void MpmSolver::set_grid_points(GridPoints* points) {
   // USL updates the stress before the points could take their update; USAVG's two half
   // updates are not built for them.
-  if (points && (plan_.scheme == core::UpdateScheme::USL || plan_.scheme == core::UpdateScheme::USAVG))
+  if (points &&
+      (plan_.scheme == core::UpdateScheme::USL || plan_.scheme == core::UpdateScheme::USAVG))
     throw std::invalid_argument(
         "points on the grid beside the particles need the MUSL or USF scheme (the scene "
         "parser says so too)");
@@ -32,10 +33,20 @@ void MpmSolver::set_grid_points(GridPoints* points) {
 }
 
 GridStepAccess MpmSolver::access() {
-  return GridStepAccess{grid_,          scene_,           plan_,           particles_,
-                        field_of_body_, multi_field_,     field_in_contact_,
-                        field_self_updated_,              contact_normal_, contact_change_,
-                        shared_,        step_dt_,         steps_,          time_};
+  return GridStepAccess{grid_,
+                        scene_,
+                        plan_,
+                        particles_,
+                        field_of_body_,
+                        multi_field_,
+                        field_in_contact_,
+                        field_self_updated_,
+                        contact_normal_,
+                        contact_change_,
+                        shared_,
+                        step_dt_,
+                        steps_,
+                        time_};
 }
 
 void MpmSolver::apply_shared_shifts() {

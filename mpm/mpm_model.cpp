@@ -75,10 +75,14 @@ namespace {
 
 const char* shape_name(const core::Shape& s) {
   switch (s.index()) {
-    case 0: return "box";
-    case 1: return "cylinder";
-    case 2: return "sphere";
-    default: return "points";
+    case 0:
+      return "box";
+    case 1:
+      return "cylinder";
+    case 2:
+      return "sphere";
+    default:
+      return "points";
   }
 }
 
@@ -106,13 +110,13 @@ std::string MpmModel::describe() const {
   const auto& p = solver_.particles();
   std::string out;
   core::appendf(out, "grid: cell %g, %d x %d x %d cells over [%g, %g] x [%g, %g] x [%g, %g]\n",
-         g.cell(), g.cells()[0], g.cells()[1], g.cells()[2], scene.mpm.grid.min.x,
-         scene.mpm.grid.max.x, scene.mpm.grid.min.y, scene.mpm.grid.max.y, scene.mpm.grid.min.z,
-         scene.mpm.grid.max.z);
+                g.cell(), g.cells()[0], g.cells()[1], g.cells()[2], scene.mpm.grid.min.x,
+                scene.mpm.grid.max.x, scene.mpm.grid.min.y, scene.mpm.grid.max.y,
+                scene.mpm.grid.min.z, scene.mpm.grid.max.z);
   out += "faces:";
   for (int f = 0; f < 6; ++f)
     core::appendf(out, " %s=%s", core::to_string(static_cast<core::Face>(f)),
-           core::to_string(scene.mpm.grid.faces[static_cast<std::size_t>(f)]));
+                  core::to_string(scene.mpm.grid.faces[static_cast<std::size_t>(f)]));
   out += "\n";
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
     if (scene.bodies[b].discretisation != core::Discretisation::particles) continue;
@@ -125,18 +129,19 @@ std::string MpmModel::describe() const {
       }
     const auto& body = scene.bodies[b];
     core::appendf(out, "body %s: %s of %s, %zu particles (%d per cell per direction), mass %.6g\n",
-           body.name.c_str(), shape_name(body.shape),
-           scene.materials[static_cast<std::size_t>(body.material)].name.c_str(), count,
-           body.particles_per_cell, mass);
+                  body.name.c_str(), shape_name(body.shape),
+                  scene.materials[static_cast<std::size_t>(body.material)].name.c_str(), count,
+                  body.particles_per_cell, mass);
     if (const core::BulkViscositySettings q = core::bulk_viscosity_of(scene_, body);
         q.linear > 0.0 || q.quadratic > 0.0)
-      core::appendf(out, "  bulk viscosity: linear %g, quadratic %g (length: the cell)\n",
-                    q.linear, q.quadratic);
+      core::appendf(out, "  bulk viscosity: linear %g, quadratic %g (length: the cell)\n", q.linear,
+                    q.quadratic);
     else
       out += "  bulk viscosity: off\n";
   }
-  core::appendf(out, "particles: %zu; active cells: %zu; active grid blocks: %zu (%zu node slots)\n",
-         p.size(), solver_.active_cells(), g.active_block_count(), g.slot_count());
+  core::appendf(out,
+                "particles: %zu; active cells: %zu; active grid blocks: %zu (%zu node slots)\n",
+                p.size(), solver_.active_cells(), g.active_block_count(), g.slot_count());
   out += solver_.plan().describe();
   return out;
 }

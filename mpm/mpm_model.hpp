@@ -34,7 +34,9 @@ class MpmModel final : public core::Model {
   void resolve_probes(std::span<const core::ProbeSpec> probes) override {
     probes_.resolve(probes, solver_.particles(), scene_);
   }
-  void sample_probes(std::span<double> out) const override { probes_.sample(solver_.particles(), out); }
+  void sample_probes(std::span<double> out) const override {
+    probes_.sample(solver_.particles(), out);
+  }
   core::BodyPoints body_points(int body) const override;
   void state(core::StateArchive& archive) override;
   // The particles' block of one output frame (valid until the next call).
@@ -42,7 +44,7 @@ class MpmModel final : public core::Model {
 
  private:
   const core::Scene& scene_;
-  mutable MpmSolver solver_;  // describe() bins the particles
+  mutable MpmSolver solver_;                                        // describe() bins the particles
   std::vector<double> pressure_, von_mises_, density_, body_, id_;  // derived, per frame
   std::vector<std::vector<double>> history_;  // user models' history variables, per variable
   std::vector<std::string> history_names_;    // core::history_field_names

@@ -9,9 +9,9 @@
 #include <sstream>
 
 #include "afemp/errors.hpp"
+#include "core/detonation_paths.hpp"
 #include "core/materials/user_strength_chunk.hpp"
 #include "core/parallel.hpp"
-#include "core/detonation_paths.hpp"
 #include "core/scene.hpp"
 
 namespace afemp::mpm {
@@ -242,7 +242,7 @@ void MpmSolver::step(double dt) {
       case StageKind::strain_stress_update:
       case StageKind::g2p_velocity_strain_stress:
         strain_stress_update(dt, plan_.scheme == core::UpdateScheme::USAVG ? StrainPart::end_half
-                                                                            : StrainPart::whole);
+                                                                           : StrainPart::whole);
         break;
       case StageKind::contact_surfaces:
         contact_surfaces();
@@ -270,8 +270,9 @@ void MpmSolver::step(double dt) {
 double MpmSolver::max_signal_speed() const {
   const Particles& p = particles_;
   double wave = 0.0, speed2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : wave, speed2) \
-    if (core::worth_threads(p.size()))
+#pragma omp parallel for schedule(static) \
+    reduction(max                         \
+              : wave, speed2) if (core::worth_threads(p.size()))
   for (std::size_t i = 0; i < p.size(); ++i) {
     const core::Material& m = *materials_[static_cast<std::size_t>(p.material[i])];
     core::PointState st{p.stress[i], p.plastic_strain[i], p.temperature[i], p.energy[i],
@@ -286,7 +287,7 @@ Energies MpmSolver::energies() const {
   const Particles& p = particles_;
   const std::size_t nb = scene_.bodies.size();
   const std::size_t width = 2 + 6 * nb;  // kinetic, internal, then per body: mass, momentum,
-                                        // kinetic, internal
+                                         // kinetic, internal
   const int nt = core::thread_count();
   const bool affine = plan_.transfer == core::Transfer::apic;
   std::vector<double> partial(width * static_cast<std::size_t>(nt), 0.0);

@@ -225,9 +225,9 @@ class MpmSolver {
   std::vector<PairLaw> law_;
   std::vector<char> field_in_contact_;  // the field meets some field it is in contact with
   bool multi_field_ = false;
-  std::vector<Vec3> contact_normal_;  // unit normal of each field at its contact nodes, or 0
+  std::vector<Vec3> contact_normal_;        // unit normal of each field at its contact nodes, or 0
   std::vector<std::uint8_t> contact_node_;  // per slot: where normals are needed (grid_contact.cpp)
-  double contact_energy_ = 0.0;       // kinetic energy the contact took out (Energies::contact)
+  double contact_energy_ = 0.0;  // kinetic energy the contact took out (Energies::contact)
   // Points that join the grid step (grid_points.hpp), and the velocity change grid contact
   // made to each field at each slot in the update pass (what self-updating points receive);
   // field_self_updated_: the field holds self-updating points only, whose gravity work their

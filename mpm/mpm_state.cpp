@@ -64,10 +64,9 @@ void MpmSolver::state(core::StateArchive& a) {
   a.item("reorder_seconds", reorder_seconds_);
   if (a.loading()) {
     if (stage_counts_.size() != plan_.stages.size())
-      throw core::CheckpointError(a.where("stage_counts") + ": " +
-                                  std::to_string(stage_counts_.size()) +
-                                  " stages, the scene's plan has " +
-                                  std::to_string(plan_.stages.size()));
+      throw core::CheckpointError(
+          a.where("stage_counts") + ": " + std::to_string(stage_counts_.size()) +
+          " stages, the scene's plan has " + std::to_string(plan_.stages.size()));
     rebuild_batches();
   }
 }

@@ -4,7 +4,8 @@
 // domain, x_min <= x_p <= x_max. A particle beyond a face declared "outflow" stops taking
 // part: it is taken out of the particle arrays, and its mass, momentum, kinetic and internal
 // energy are booked (Energies::outflow*), so mass + outflow mass and the energy balance
-// still close; its plastic work and viscous heat leave the plastic and viscous totals. A particle beyond any other face stops the run as before (binning names it).
+// still close; its plastic work and viscous heat leave the plastic and viscous totals. A particle
+// beyond any other face stops the run as before (binning names it).
 #include <cmath>
 #include <vector>
 

@@ -41,7 +41,9 @@ std::string fmt(double v) {
   return buf;
 }
 
-std::string fmt(const Vec3& v) { return "(" + fmt(v.x) + ", " + fmt(v.y) + ", " + fmt(v.z) + ")"; }
+std::string fmt(const Vec3& v) {
+  return "(" + fmt(v.x) + ", " + fmt(v.y) + ", " + fmt(v.z) + ")";
+}
 
 // Half-open in every direction so that two boxes sharing a face never both own a point.
 struct BoxTest {
@@ -117,7 +119,9 @@ FaceCondition face_condition(const GridSettings& g, int axis, bool max_side) {
   return g.faces[static_cast<std::size_t>(2 * axis + (max_side ? 1 : 0))];
 }
 
-Face face_of(int axis, bool max_side) { return static_cast<Face>(2 * axis + (max_side ? 1 : 0)); }
+Face face_of(int axis, bool max_side) {
+  return static_cast<Face>(2 * axis + (max_side ? 1 : 0));
+}
 
 double initial_temperature(const BodySpec& body, const Material& m) {
   return body.temperature ? *body.temperature : m.thermal.initial_temperature;
@@ -217,7 +221,8 @@ void generate_sphere_shells(const SphereShape& sphere, const GridSettings& grid,
                             Particles& out) {
   const double temperature = initial_temperature(body, material);
   const std::string key = "bodies." + body.name + ".shape";
-  for (const ShellParticle& q : sphere_shell_particles(sphere, grid.cell / body.particles_per_cell)) {
+  for (const ShellParticle& q :
+       sphere_shell_particles(sphere, grid.cell / body.particles_per_cell)) {
     if (!keep_in_grid(q.position, grid, body.where, key, "particle")) continue;
     out.push_back(q.position, body.velocity, material.density * q.volume, q.volume, temperature,
                   body_id, body.material);
@@ -236,12 +241,13 @@ void generate_point_arrays(const PointListShape& shape, const GridSettings& grid
     const Vec3& x = shape.points[i];
     const double volume = shape.volumes.empty() ? d * d * d : shape.volumes[i];
     if (!std::isfinite(x.x + x.y + x.z + volume) || !(volume > 0.0))
-      throw InputError(where, key, "point " + std::to_string(i) + ": non-finite number or volume <= 0");
+      throw InputError(where, key,
+                       "point " + std::to_string(i) + ": non-finite number or volume <= 0");
     for (int a = 0; a < 3; ++a)
       if (x[a] < grid.min[a] || x[a] > grid.max[a])
-        throw InputError(where, key, "point " + std::to_string(i) + " " + fmt(x) +
-                                         " lies outside the grid " + fmt(grid.min) + " - " +
-                                         fmt(grid.max));
+        throw InputError(where, key,
+                         "point " + std::to_string(i) + " " + fmt(x) + " lies outside the grid " +
+                             fmt(grid.min) + " - " + fmt(grid.max));
     out.push_back(x, body.velocity, material.density * volume, volume, temperature, body_id,
                   body.material);
   }
@@ -267,8 +273,9 @@ void generate_point_list(const PointListShape& shape, const GridSettings& grid,
     const core::SourceLocation where{shape.path, line_no};
     if (!parse_numbers(line, v) || (v.size() != 0 && v.size() != 3 && v.size() != 4))
       throw InputError(where, "",
-                       "points of body '" + body.name + "': malformed line; expected \"x y z\" or "
-                       "\"x y z volume\" (numbers separated by spaces)");
+                       "points of body '" + body.name +
+                           "': malformed line; expected \"x y z\" or "
+                           "\"x y z volume\" (numbers separated by spaces)");
     if (v.empty()) continue;  // blank or comment-only line
     const Vec3 x{v[0], v[1], v[2]};
     const double volume = v.size() == 4 ? v[3] : default_volume;
@@ -276,13 +283,13 @@ void generate_point_list(const PointListShape& shape, const GridSettings& grid,
       if (!std::isfinite(c))
         throw InputError(where, "", "points of body '" + body.name + "': non-finite number");
     if (!(volume > 0.0))
-      throw InputError(where, "", "points of body '" + body.name + "': volume " + fmt(volume) +
-                                      " must be > 0");
+      throw InputError(
+          where, "", "points of body '" + body.name + "': volume " + fmt(volume) + " must be > 0");
     for (int a = 0; a < 3; ++a)
       if (x[a] < grid.min[a] || x[a] > grid.max[a])
-        throw InputError(where, "", "points of body '" + body.name + "': point " + fmt(x) +
-                                        " lies outside the grid " + fmt(grid.min) + " - " +
-                                        fmt(grid.max));
+        throw InputError(where, "",
+                         "points of body '" + body.name + "': point " + fmt(x) +
+                             " lies outside the grid " + fmt(grid.min) + " - " + fmt(grid.max));
     out.push_back(x, body.velocity, material.density * volume, volume, temperature, body_id,
                   body.material);
   }
@@ -317,8 +324,7 @@ Particles generate_particles(const core::Scene& scene) {
                        "material index " + std::to_string(body.material) + " is not defined");
     if (body.discretisation != core::Discretisation::particles) continue;
     if (body.particles_per_cell < 1)
-      throw InputError(body.where, "bodies." + body.name + ".particles_per_cell",
-                       "must be >= 1");
+      throw InputError(body.where, "bodies." + body.name + ".particles_per_cell", "must be >= 1");
     const Material& material = scene.materials[static_cast<std::size_t>(body.material)];
     const int body_id = static_cast<int>(b);
     const std::size_t before = out.size();
@@ -337,8 +343,7 @@ Particles generate_particles(const core::Scene& scene) {
               generate_sphere_shells(s, grid, body, body_id, material, out);
             else
               generate_lattice(SphereTest{s}, grid, body, body_id, material, out);
-          }
-          else if constexpr (std::is_same_v<S, PointListShape>)
+          } else if constexpr (std::is_same_v<S, PointListShape>)
             generate_point_list(s, grid, body, body_id, material, out);
           else  // the parser gives particle bodies particle shapes only
             throw InputError(body.where, "bodies." + body.name + ".shape",
@@ -352,8 +357,8 @@ Particles generate_particles(const core::Scene& scene) {
         bool inside = false;
         for (int o : body.outside)
           if (p >= before)
-            inside = inside || inside_shape(scene.bodies[static_cast<std::size_t>(o)].shape,
-                                            out.position[p]);
+            inside = inside ||
+                     inside_shape(scene.bodies[static_cast<std::size_t>(o)].shape, out.position[p]);
         if (!inside) kept.push_back(static_cast<std::int32_t>(p));
       }
       out.select(kept);
@@ -365,9 +370,9 @@ Particles generate_particles(const core::Scene& scene) {
       const std::optional<double> mu =
           core::compression_at_pressure(material, *body.pressure, body.internal_energy);
       if (!mu)
-        throw InputError(body.where, "bodies." + body.name + ".pressure",
-                         *core::initial_pressure_refusal(material, *body.pressure,
-                                                         body.internal_energy));
+        throw InputError(
+            body.where, "bodies." + body.name + ".pressure",
+            *core::initial_pressure_refusal(material, *body.pressure, body.internal_energy));
       for (std::size_t p = before; p < out.size(); ++p) {
         out.mass[p] *= 1.0 + *mu;
         out.stress[p] = -*body.pressure * core::SymTensor::identity();

@@ -57,17 +57,23 @@ void ParticleProbes::sample(const Particles& p, std::span<double> out) const {
         continue;
       }
       const core::Vec3 &x = p.position[i], &u = p.velocity[i];
-      const double row[] = {x.x, x.y, x.z, u.x, u.y, u.z, core::pressure(p.stress[i]),
-                            core::von_mises(p.stress[i]), p.plastic_strain[i]};
+      const double row[] = {x.x,
+                            x.y,
+                            x.z,
+                            u.x,
+                            u.y,
+                            u.z,
+                            core::pressure(p.stress[i]),
+                            core::von_mises(p.stress[i]),
+                            p.plastic_strain[i]};
       std::copy(std::begin(row), std::end(row), v);
     } else if (s.kind == core::ProbeKind::extreme) {
       for (std::size_t i = 0; i < p.size(); ++i) {
         if ((s.body >= 0 && p.body[i] != s.body) || !core::in_probe_box(s, p.position[i])) continue;
-        core::merge_extreme(
-            s,
-            core::probe_field_value(s.field, p.stress[i], p.plastic_strain[i], p.velocity[i],
-                                    p.position[i]),
-            p.position[i], v);
+        core::merge_extreme(s,
+                            core::probe_field_value(s.field, p.stress[i], p.plastic_strain[i],
+                                                    p.velocity[i], p.position[i]),
+                            p.position[i], v);
       }
     }
   }

@@ -18,14 +18,15 @@ class ParticleProbes {
   // Finds the particle of each particle probe among `p` (the particles at the start). Throws
   // core::InputError naming the probe's line and key when its index is beyond the body's
   // particles.
-  void resolve(std::span<const core::ProbeSpec> probes, const Particles& p, const core::Scene& scene);
+  void resolve(std::span<const core::ProbeSpec> probes, const Particles& p,
+               const core::Scene& scene);
   // Particle probes and the particles' part of each extreme into out (probe_stride per probe).
   void sample(const Particles& p, std::span<double> out) const;
 
  private:
   std::vector<core::ProbeSpec> specs_;
-  std::vector<std::int32_t> id_;            // particle probes: the particle's id
-  mutable std::vector<std::size_t> slot_;   // where it sat at the last sample (reordering moves it)
+  std::vector<std::int32_t> id_;           // particle probes: the particle's id
+  mutable std::vector<std::size_t> slot_;  // where it sat at the last sample (reordering moves it)
 };
 
 }  // namespace afemp::mpm

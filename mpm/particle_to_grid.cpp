@@ -87,9 +87,9 @@ void MpmSolver::p2g_kernel() {
         }
         if constexpr (Force) {
           const Vec3& d = st.grad(n);
-          force[k] -= Vec3{sv.xx * d.x + sv.xy * d.y + sv.xz * d.z,
-                           sv.xy * d.x + sv.yy * d.y + sv.yz * d.z,
-                           sv.xz * d.x + sv.yz * d.y + sv.zz * d.z};
+          force[k] -=
+              Vec3{sv.xx * d.x + sv.xy * d.y + sv.xz * d.z, sv.xy * d.x + sv.yy * d.y + sv.yz * d.z,
+                   sv.xz * d.x + sv.yz * d.y + sv.zz * d.z};
           if constexpr (Gravity) force[k] += (m * wn) * gravity;
         }
       }

@@ -8,10 +8,19 @@ namespace afemp::mpm {
 namespace {
 template <class F>
 void for_each_array(Particles& p, F&& f) {
-  f(p.position); f(p.velocity); f(p.mass); f(p.volume); f(p.stress);
-  f(p.plastic_strain); f(p.temperature); f(p.energy); f(p.damage);
+  f(p.position);
+  f(p.velocity);
+  f(p.mass);
+  f(p.volume);
+  f(p.stress);
+  f(p.plastic_strain);
+  f(p.temperature);
+  f(p.energy);
+  f(p.damage);
   f(p.bulk_q);
-  f(p.body); f(p.material); f(p.id);
+  f(p.body);
+  f(p.material);
+  f(p.id);
   // Only when the scene asks for them:
   if (!p.strain.empty()) f(p.strain);
   if (!p.half_width.empty()) f(p.half_width);

@@ -32,15 +32,15 @@ struct Particles {
   std::vector<SymTensor> strain;       // accumulated strain (sum of D dt); empty unless asked for
   std::vector<double> plastic_strain;  // equivalent plastic strain
   std::vector<double> temperature;
-  std::vector<double> energy;          // specific internal energy (per unit mass)
-  std::vector<double> damage;          // scalar damage D in [0, 1]
-  std::vector<double> bulk_q;          // artificial bulk-viscous pressure acting this step
+  std::vector<double> energy;  // specific internal energy (per unit mass)
+  std::vector<double> damage;  // scalar damage D in [0, 1]
+  std::vector<double> bulk_q;  // artificial bulk-viscous pressure acting this step
   std::vector<std::int32_t> body;
   std::vector<std::int32_t> material;
-  std::vector<std::int32_t> id;        // stable id, unchanged by reordering
+  std::vector<std::int32_t> id;  // stable id, unchanged by reordering
   // Empty unless the scene asks for them:
-  std::vector<double> half_width;      // uGIMP: half the particle's initial edge, in cells
-  std::vector<core::Mat3> affine;      // APIC: the affine velocity C_p (a velocity gradient)
+  std::vector<double> half_width;  // uGIMP: half the particle's initial edge, in cells
+  std::vector<core::Mat3> affine;  // APIC: the affine velocity C_p (a velocity gradient)
   // Splitting: the particle's current length along x, y, z, and the length the particle it
   // came from started with (particle_splitting.cpp).
   std::vector<Vec3> length;

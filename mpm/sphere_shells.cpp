@@ -34,7 +34,8 @@ std::vector<Cell> cubed_sphere_cells(int n) {
         for (int j = 0; j < n; ++j) {
           Cell c;
           for (std::size_t gi = 0; gi < 4; ++gi) {
-            const double X = std::tan(-0.25 * std::numbers::pi + (i + 0.5 * (kGaussX[gi] + 1.0)) * dxi);
+            const double X =
+                std::tan(-0.25 * std::numbers::pi + (i + 0.5 * (kGaussX[gi] + 1.0)) * dxi);
             for (std::size_t gj = 0; gj < 4; ++gj) {
               const double Y =
                   std::tan(-0.25 * std::numbers::pi + (j + 0.5 * (kGaussX[gj] + 1.0)) * dxi);
@@ -68,7 +69,8 @@ std::vector<ShellParticle> sphere_shell_particles(const SphereShape& sphere, dou
     // The centroid of a cell is at (3/4) (ro^4 - ri^4) / (ro^3 - ri^3) along moment / Omega.
     const double radius = 0.75 * (ro * ro * ro * ro - ri * ri * ri * ri) / r3;
     for (const Cell& c : cubed_sphere_cells(n))
-      out.push_back({sphere.centre + (radius / c.solid_angle) * c.moment, c.solid_angle * r3 / 3.0});
+      out.push_back(
+          {sphere.centre + (radius / c.solid_angle) * c.moment, c.solid_angle * r3 / 3.0});
   }
   return out;
 }

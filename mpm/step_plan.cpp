@@ -74,7 +74,8 @@ StepPlan build_step_plan(const core::Scene& scene) {
   // Bonded mesh bodies (HFEMP) move in their host's field.
   for (std::size_t b = 0; b < scene.bodies.size(); ++b)
     if (scene.bodies[b].bonded_to >= 0)
-      plan.field_of_body[b] = plan.field_of_body[static_cast<std::size_t>(scene.bodies[b].bonded_to)];
+      plan.field_of_body[b] =
+          plan.field_of_body[static_cast<std::size_t>(scene.bodies[b].bonded_to)];
   const bool contact = core::has_grid_contact(scene);
   plan.velocity_fields = contact ? next : 1;
   for (const auto& c : scene.contacts) {
@@ -85,9 +86,10 @@ StepPlan build_step_plan(const core::Scene& scene) {
       << ", contact once the gap is below " << c.distance_factor << " cell";
     plan.contacts.push_back(o.str());
   }
-  const Stage surfaces = stage(StageKind::contact_surfaces, "contact surfaces",
-                               "grid contact: each contact body's normal from its mass "
-                               "gradient and its reach toward the other (Lian et al. 2013, eqs 37, 42)");
+  const Stage surfaces =
+      stage(StageKind::contact_surfaces, "contact surfaces",
+            "grid contact: each contact body's normal from its mass "
+            "gradient and its reach toward the other (Lian et al. 2013, eqs 37, 42)");
   const Stage grid_contact =
       stage(StageKind::grid_contact, "grid contact",
             "grid contact on the updated velocity: normal stop, Coulomb friction, separation "
@@ -101,13 +103,12 @@ StepPlan build_step_plan(const core::Scene& scene) {
       scene.mpm.grid.far_field
           ? std::string("explicit momentum update and boundary conditions; the far field's "
                         "ambient pressure is ") +
-                (scene.mpm.grid.far_field->absolute_stress
-                     ? "a static traction on the faces"
-                     : "taken off the internal force") +
+                (scene.mpm.grid.far_field->absolute_stress ? "a static traction on the faces"
+                                                           : "taken off the internal force") +
                 ", and absorbing faces answer as the unbounded fluid beyond (Geers 1978, DAA1)"
       : scene.mpm.grid.has_face(core::FaceCondition::absorbing)
           ? "explicit momentum update and boundary conditions; absorbing faces damp their "
-              "nodes (Lysmer & Kuhlemeyer 1969)"
+            "nodes (Lysmer & Kuhlemeyer 1969)"
           : "explicit momentum update and boundary conditions");
   // Rigid walls ([[walls]] naming particle bodies) act on the updated grid velocity, after
   // grid contact, at the particles' boundary.
@@ -120,9 +121,9 @@ StepPlan build_step_plan(const core::Scene& scene) {
           " met where the particles' boundary reaches them: the impulse that keeps each "
           "particle's predicted domain off them, through its nodes, Coulomb friction");
   auto& s = plan.stages;
-  const std::string velocity =
-      plan.transfer == core::Transfer::apic ? "particle velocity and affine velocity (APIC)"
-                                            : "particle velocity (PIC/FLIP blend)";
+  const std::string velocity = plan.transfer == core::Transfer::apic
+                                   ? "particle velocity and affine velocity (APIC)"
+                                   : "particle velocity (PIC/FLIP blend)";
   std::string outflow_faces;
   for (int f = 0; f < 6; ++f)
     if (scene.mpm.grid.faces[static_cast<std::size_t>(f)] == core::FaceCondition::outflow)
@@ -172,7 +173,8 @@ StepPlan build_step_plan(const core::Scene& scene) {
     if (contact)
       s.push_back(stage(StageKind::contact_remap, "contact remap",
                         "grid contact on the remapped velocity the strain rate is taken from"));
-    s.push_back(stage(StageKind::strain_stress_update, "strain stress update", scheme + ": " + strain_why));
+    s.push_back(
+        stage(StageKind::strain_stress_update, "strain stress update", scheme + ": " + strain_why));
   };
   switch (plan.scheme) {
     case UpdateScheme::USF:
@@ -191,8 +193,9 @@ StepPlan build_step_plan(const core::Scene& scene) {
                         "forces come from the mid-step stress"));
       s.push_back(stage(StageKind::p2g_force, "p2g force", force_why));
       after_forces();
-      remap("USAVG", "the other half of the strain increment from the remapped grid velocity; "
-                     "positions move");
+      remap("USAVG",
+            "the other half of the strain increment from the remapped grid velocity; "
+            "positions move");
       break;
     case UpdateScheme::USL:
     case UpdateScheme::MUSL:
@@ -221,9 +224,8 @@ std::vector<std::string> StepPlan::stage_names() const {
 
 std::string StepPlan::describe() const {
   std::ostringstream o;
-  o << "step plan (" << core::to_string(scheme) << ", " << velocity_fields
-    << " velocity field" << (velocity_fields == 1 ? ": bodies share it, no contact stage" : "s")
-    << "):\n";
+  o << "step plan (" << core::to_string(scheme) << ", " << velocity_fields << " velocity field"
+    << (velocity_fields == 1 ? ": bodies share it, no contact stage" : "s") << "):\n";
   int i = 1;
   for (const auto& st : stages) o << "  " << i++ << ". " << st.name << "  -- " << st.why << "\n";
   for (const auto& c : contacts) o << "grid contact " << c << "\n";
@@ -234,7 +236,8 @@ std::string StepPlan::describe() const {
       << (m.thermal ? "on (plastic work heats)" : "off") << "\n";
   }
   o << "shape functions: "
-    << (shape == core::ShapeFunction::gimp ? "uGIMP (27 nodes per particle)" : "linear hat (8 nodes)")
+    << (shape == core::ShapeFunction::gimp ? "uGIMP (27 nodes per particle)"
+                                           : "linear hat (8 nodes)")
     << "\n";
   if (transfer == core::Transfer::apic)
     o << "particle velocity: APIC (affine velocity carried by each particle)\n";

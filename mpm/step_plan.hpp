@@ -11,25 +11,25 @@
 namespace afemp::mpm {
 
 enum class StageKind {
-  outflow,                // particles beyond an outflow face leave (outflow.cpp; eq 13 there)
-  split_particles,        // long particles split (particle_splitting.cpp; eqs 14-17 there)
-  bin_particles,          // cells of the points; active grid blocks; colouring layers
-  p2g_mass_momentum,      // eqs 2-29, 2-30 (USF: before the stress update)
-  p2g_force,              // eqs 2-10, 2-11 (USF: after the stress update)
-  p2g_mass_momentum_force,  // eqs 2-29..2-31 in one sweep (USL, MUSL)
-  grid_velocity,          // v = p / m with boundary conditions (USF)
-  grid_momentum_update,   // eq 2-32 and boundary conditions
-  g2p_velocity_position,  // eqs 2-33..2-36, PIC/FLIP blend (USF)
-  g2p_velocity,           // eq 2-36 only (USL, MUSL); positions move in the strain pass
-  p2g_remap,              // MUSL: eq 2-37
-  strain_stress_start,    // USAVG: eqs 2-38..2-41 over half the step from the start velocity
-  strain_stress_update,   // eqs 2-38..2-41 from the velocity the scheme names
+  outflow,                     // particles beyond an outflow face leave (outflow.cpp; eq 13 there)
+  split_particles,             // long particles split (particle_splitting.cpp; eqs 14-17 there)
+  bin_particles,               // cells of the points; active grid blocks; colouring layers
+  p2g_mass_momentum,           // eqs 2-29, 2-30 (USF: before the stress update)
+  p2g_force,                   // eqs 2-10, 2-11 (USF: after the stress update)
+  p2g_mass_momentum_force,     // eqs 2-29..2-31 in one sweep (USL, MUSL)
+  grid_velocity,               // v = p / m with boundary conditions (USF)
+  grid_momentum_update,        // eq 2-32 and boundary conditions
+  g2p_velocity_position,       // eqs 2-33..2-36, PIC/FLIP blend (USF)
+  g2p_velocity,                // eq 2-36 only (USL, MUSL); positions move in the strain pass
+  p2g_remap,                   // MUSL: eq 2-37
+  strain_stress_start,         // USAVG: eqs 2-38..2-41 over half the step from the start velocity
+  strain_stress_update,        // eqs 2-38..2-41 from the velocity the scheme names
   g2p_velocity_strain_stress,  // USL: eqs 2-33..2-41 in one sweep (same weights, same field)
-  contact_surfaces,       // grid contact: normals (Lian et al. 2013, eq 37) and reach (eq 42)
-  contact_start,          // grid contact on the start velocity (USF: the strain reads it)
-  grid_contact,           // Lian et al. 2013, eqs 38-42 on the updated velocity, Coulomb friction
-  contact_remap,          // MUSL: the same on the remapped velocity
-  particle_walls,         // rigid walls met at the particles' boundary (particle_wall_contact.cpp)
+  contact_surfaces,            // grid contact: normals (Lian et al. 2013, eq 37) and reach (eq 42)
+  contact_start,               // grid contact on the start velocity (USF: the strain reads it)
+  grid_contact,    // Lian et al. 2013, eqs 38-42 on the updated velocity, Coulomb friction
+  contact_remap,   // MUSL: the same on the remapped velocity
+  particle_walls,  // rigid walls met at the particles' boundary (particle_wall_contact.cpp)
 };
 
 // Which nodal velocity a grid-contact stage corrects.
@@ -53,14 +53,14 @@ struct StepPlan {
   core::UpdateScheme scheme = core::UpdateScheme::MUSL;
   core::ShapeFunction shape = core::ShapeFunction::linear;
   core::Transfer transfer = core::Transfer::flip;
-  double flip = 1.0;  // PIC/FLIP blend of the particle velocity update (transfer flip)
-  bool strain = false;  // the strain tensor is integrated (run.output_strain)
+  double flip = 1.0;       // PIC/FLIP blend of the particle velocity update (transfer flip)
+  bool strain = false;     // the strain tensor is integrated (run.output_strain)
   bool splitting = false;  // particle lengths are tracked and long particles split
   std::vector<Stage> stages;
   std::vector<MaterialPlan> materials;  // only materials that some body uses
   bool gravity = false;                 // body force added in p2g_force
   bool jaumann = true;
-  int velocity_fields = 1;              // one shared field: bodies stick (no contact stage)
+  int velocity_fields = 1;  // one shared field: bodies stick (no contact stage)
   // Grid contact: the velocity field of each body (all 0 with one field), and one line per
   // contact pair for describe().
   std::vector<int> field_of_body;

@@ -14,7 +14,6 @@
 
 namespace afemp::mpm {
 
-
 // The nodal velocity the scheme's strain reads, and the part of the step it covers. USAVG
 // (Wallstedt & Guilkey 2008, "An evaluation of explicit time integration schemes for use with
 // the generalized interpolation material point method", J. Comput. Phys. 227): half the strain
@@ -42,38 +41,39 @@ void MpmSolver::strain_stress_update(double dt, StrainPart part) {
   const bool fused = plan_.shape == core::ShapeFunction::linear;
   if (!fused) {
     velocity_gradient_.resize(particles_.size());
-    with_stencil([&]<class Stencil, bool Affine>() { kinematics_kernel<Stencil, Affine>(dt, sweep); });
+    with_stencil(
+        [&]<class Stencil, bool Affine>() { kinematics_kernel<Stencil, Affine>(dt, sweep); });
   }
   for (const MaterialBatch& batch : batches_) {
     const core::Material& m = *materials_[static_cast<std::size_t>(batch.material)];
-    core::visit_models(
-        m, [&](const auto& strength, const auto& eos) {
-          using S = std::decay_t<decltype(strength)>;
-          using E = std::decay_t<decltype(eos)>;
-          // One instantiation per combination, so that a material without a failure model
-          // runs exactly the update it had (material.hpp, finish_increment).
-          auto run = [&]<bool Thermal, bool Fused>() {
-            if (m.fails())
-              strain_stress_batch<S, E, Thermal, Fused, true>(batch, strength, eos, dt, sweep, nt);
-            else
-              strain_stress_batch<S, E, Thermal, Fused, false>(batch, strength, eos, dt, sweep, nt);
-          };
-          if (fused) {
-            if (m.has_thermal_term())
-              run.template operator()<true, true>();
-            else
-              run.template operator()<false, true>();
-          } else {
-            if (m.has_thermal_term())
-              run.template operator()<true, false>();
-            else
-              run.template operator()<false, false>();
-          }
-        });
+    core::visit_models(m, [&](const auto& strength, const auto& eos) {
+      using S = std::decay_t<decltype(strength)>;
+      using E = std::decay_t<decltype(eos)>;
+      // One instantiation per combination, so that a material without a failure model
+      // runs exactly the update it had (material.hpp, finish_increment).
+      auto run = [&]<bool Thermal, bool Fused>() {
+        if (m.fails())
+          strain_stress_batch<S, E, Thermal, Fused, true>(batch, strength, eos, dt, sweep, nt);
+        else
+          strain_stress_batch<S, E, Thermal, Fused, false>(batch, strength, eos, dt, sweep, nt);
+      };
+      if (fused) {
+        if (m.has_thermal_term())
+          run.template operator()<true, true>();
+        else
+          run.template operator()<false, true>();
+      } else {
+        if (m.has_thermal_term())
+          run.template operator()<true, false>();
+        else
+          run.template operator()<false, false>();
+      }
+    });
   }
   double work = 0.0, wave = 0.0, speed2 = 0.0, heat = 0.0, swept = 0.0;
   for (int t = 0; t < nt; ++t) {
-    const double* sums = thread_sums_.data() + static_cast<std::size_t>(t) * core::cache_line_doubles;
+    const double* sums =
+        thread_sums_.data() + static_cast<std::size_t>(t) * core::cache_line_doubles;
     work += sums[0];
     heat += sums[3];
     swept += sums[4];
@@ -96,7 +96,7 @@ void MpmSolver::kinematics_kernel(double dt, const StrainSweep& sweep) {
   const Vec3* v_new = g.velocity_new.data();
   const double flip = scene_.mpm.flip;
   for_each_particle_stencil<Stencil>(g, p, [&](std::size_t i, const Stencil& st, const auto& slot) {
-    core::Mat3 l;  // L = sum v (x) grad S
+    core::Mat3 l;                            // L = sum v (x) grad S
     VelocityUpdate<Stencil, Affine> update;  // USL: the G2P of grid_to_particle.cpp
     const std::size_t field = field_offset(i);
     for (int k = 0; k < Stencil::nodes; ++k) {
@@ -112,8 +112,8 @@ void MpmSolver::kinematics_kernel(double dt, const StrainSweep& sweep) {
 
 template <class Strength, class Eos, bool Thermal, bool Fused, bool Fails>
 void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& strength_in,
-                                    const Eos& eos_in, double step_dt,
-                                    const StrainSweep& sweep, int nt) {
+                                    const Eos& eos_in, double step_dt, const StrainSweep& sweep,
+                                    int nt) {
   const core::BackgroundGrid& g = grid_;
   Particles& p = particles_;
   const double dt = sweep.strain_dt;  // of the strain increment; positions move over step_dt
@@ -210,8 +210,8 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
       st.density = p.mass[i] / volume;
       // A high explosive: its burn fraction at the step's end (core/programmed_burn.hpp).
       if (explosive)
-        st.burn = core::burn_fraction(*mat.burn, mat.density, p.burn[i], burn_time,
-                                      p.light_time[i], cell, mat.density / st.density);
+        st.burn = core::burn_fraction(*mat.burn, mat.density, p.burn[i], burn_time, p.light_time[i],
+                                      cell, mat.density / st.density);
     };
     // The state stored after the constitutive update u, the bulk viscosity, the move and the
     // step bound of particle i.

@@ -29,7 +29,8 @@ velocity = [0, 0, -300]
 // "rebound" metric (the bar's mean z velocity against Ma 2005's 300 m/s, tolerance 0.1);
 // the caller appends its [[runs]] (with `scene = "bar.toml"`).
 inline std::string elastic_bar_study(const std::string& title) {
-  return "\n[study]\ntitle = \"" + title + "\"\nthreads = 1\n\n"
+  return "\n[study]\ntitle = \"" + title +
+         "\"\nthreads = 1\n\n"
          "[[metrics]]\nkind = \"velocity\"\nname = \"rebound\"\nbody = \"bar\"\n"
          "component = \"z\"\nreference = 300\ntolerance = 0.1\n";
 }

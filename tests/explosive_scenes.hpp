@@ -63,9 +63,8 @@ strength = { model = "j2", yield = 1000 }
 // the [run], [grid] and [mpm] sections of the sandwich tests. USAVG: MUSL loses 6-12 % of the
 // energy in the products' fast expansion (docs/explosives.md).
 inline std::string sandwich_column(double end_time, double z_min, double z_max, bool splitting) {
-  return "[run]\nend_time = " + std::to_string(end_time) +
-         "\n[grid]\ncell = 0.25\nmin = [0, 0, " + std::to_string(z_min) + "]\nmax = [0.5, 0.5, " +
-         std::to_string(z_max) +
+  return "[run]\nend_time = " + std::to_string(end_time) + "\n[grid]\ncell = 0.25\nmin = [0, 0, " +
+         std::to_string(z_min) + "]\nmax = [0.5, 0.5, " + std::to_string(z_max) +
          "]\nboundary = { xmin = \"symmetric\", xmax = \"symmetric\", ymin = \"symmetric\", "
          "ymax = \"symmetric\", zmin = \"outflow\", zmax = \"outflow\" }\n[mpm]\nscheme = "
          "\"USAVG\"\n" +

@@ -24,7 +24,8 @@ material = "steel"
 shape = { box = { min = [0, 0, 0], max = [1, 1, 50] } }
 mesh = { divisions = [1, 1, 50] }
 velocity = [0, 0, -10]
-)" + body_extra + R"(
+)" + body_extra +
+         R"(
 [[constraints]]
 nodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }
 fixed = ["all"]

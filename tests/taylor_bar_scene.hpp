@@ -13,7 +13,8 @@ inline constexpr const char* taylor_johnson_cook =
 
 // The bar with the given `strength = ...` line, of particles or of hexahedra of `element`
 // ("one-point" or "full").
-inline std::string taylor_bar_scene(bool hexahedra, const std::string& strength = taylor_johnson_cook,
+inline std::string taylor_bar_scene(bool hexahedra,
+                                    const std::string& strength = taylor_johnson_cook,
                                     const std::string& element = "one-point") {
   const std::string bar = R"(
 [run]

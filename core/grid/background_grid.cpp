@@ -9,7 +9,11 @@
 namespace afemp::core {
 
 BackgroundGrid::BackgroundGrid(const GridSettings& settings, int halo)
-    : settings_(settings), halo_(halo), origin_(settings.min), h_(settings.cell), inv_h_(1.0 / settings.cell) {
+    : settings_(settings),
+      halo_(halo),
+      origin_(settings.min),
+      h_(settings.cell),
+      inv_h_(1.0 / settings.cell) {
   for (int a = 0; a < 3; ++a) {
     const double extent = settings.max[a] - settings.min[a];
     // A domain that is not a whole number of cells is extended by the remainder.

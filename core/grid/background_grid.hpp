@@ -10,9 +10,9 @@
 #include <span>
 #include <vector>
 
+#include "afemp/tensor.hpp"
 #include "core/grid/gimp.hpp"
 #include "core/scene.hpp"
-#include "afemp/tensor.hpp"
 
 namespace afemp::core {
 
@@ -108,8 +108,8 @@ class BackgroundGrid {
 
   // --- Activation, once per step -------------------------------------------------------
   // Makes active exactly the blocks that hold a node of one of the given cells, or of the
-  // halo around it (cells as linear indices, see linear_cell); nodal storage is resized, not shrunk, so a steady run
-  // allocates nothing. Block order is ascending block index: deterministic.
+  // halo around it (cells as linear indices, see linear_cell); nodal storage is resized, not
+  // shrunk, so a steady run allocates nothing. Block order is ascending block index: deterministic.
   void activate(std::span<const std::int64_t> cells);
   std::int64_t linear_cell(const std::array<int, 3>& c) const {
     return (static_cast<std::int64_t>(c[2]) * cells_[1] + c[1]) * cells_[0] + c[0];
@@ -185,18 +185,22 @@ class BackgroundGrid {
   // One velocity field by default; with grid contact, one per contact body plus the shared
   // one (mpm/grid_contact.cpp). Field f of slot s is entry f * slot_count() + s of each array.
   std::vector<double> mass;
-  std::vector<Vec3> momentum;  // after P2G; divided into velocity by the grid update
-  std::vector<Vec3> force;     // internal + external; turned into acceleration
-  std::vector<Vec3> velocity;  // v^k (old) after the grid update
-  std::vector<Vec3> velocity_new;  // v^{k+1}
+  std::vector<Vec3> momentum;        // after P2G; divided into velocity by the grid update
+  std::vector<Vec3> force;           // internal + external; turned into acceleration
+  std::vector<Vec3> velocity;        // v^k (old) after the grid update
+  std::vector<Vec3> velocity_new;    // v^{k+1}
   std::vector<Vec3> velocity_remap;  // MUSL: velocity remapped from updated particles
   // Grid contact only: each field's mass gradient sum m grad S (Lian et al. 2013, eq 37) and,
   // along its contact normal, how far its particles reach past the node (eq 42).
   std::vector<Vec3> mass_gradient;
   std::vector<double> reach;
-  int field_count() const { return fields_; }
+  int field_count() const {
+    return fields_;
+  }
   // Entries per nodal array: fields x slots.
-  std::size_t field_slot_count() const { return slot_count() * static_cast<std::size_t>(fields_); }
+  std::size_t field_slot_count() const {
+    return slot_count() * static_cast<std::size_t>(fields_);
+  }
 
   // Bytes held by nodal storage and directory.
   std::size_t bytes() const;
@@ -223,7 +227,9 @@ class BackgroundGrid {
 
  public:
   // The remap field is only stored when a scheme asks for it (MUSL).
-  void enable_remap_field(bool on) { keep_remap_ = on; }
+  void enable_remap_field(bool on) {
+    keep_remap_ = on;
+  }
   // Velocity fields per node, and whether the contact arrays are kept (before activate).
   void set_fields(int fields, bool contact) {
     fields_ = fields;

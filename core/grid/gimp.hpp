@@ -5,7 +5,8 @@
 //
 //   |r| <= a            S = 1 - (r^2 + a^2) / (2 a)       dS/dx_p = -r / (a h)
 //   a <= |r| <= 1 - a   S = 1 - |r|                       dS/dx_p = -sign(r) / h
-//   1 - a <= |r| < 1+a  S = (1 + a - |r|)^2 / (4 a)       dS/dx_p = -sign(r) (1 + a - |r|) / (2 a h)
+//   1 - a <= |r| < 1+a  S = (1 + a - |r|)^2 / (4 a)       dS/dx_p = -sign(r) (1 + a - |r|) / (2 a
+//   h)
 //
 // S and its gradient are continuous (the linear hat's gradient jumps at every cell face),
 // and near the edge of a node's support the weight fades as the square of the overlap

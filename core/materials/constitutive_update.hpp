@@ -104,16 +104,16 @@ inline PointUpdate finish_increment(const Material& material, const Eos& eos, bo
 
   point.stress = s_new - p_new * SymTensor::identity();
   if (thermal) {
-    point.temperature += material.thermal.taylor_quinney * plastic_work /
-                         material.thermal.specific_heat;
+    point.temperature +=
+        material.thermal.taylor_quinney * plastic_work / material.thermal.specific_heat;
   }
   if constexpr (Fails) {
     if (!failed) {
       // The triaxiality is the stress's: -p over the softened deviator's von Mises stress
       // (in uniaxial stress the pressure softens with the deviator, the EOS's with the strain).
       point.damage = failure_damage(material.failure, point.damage, point.plastic_strain,
-                                    r.plastic_strain_increment, in.dt, p_new,
-                                    in.softening * s_new, point.temperature);
+                                    r.plastic_strain_increment, in.dt, p_new, in.softening * s_new,
+                                    point.temperature);
       const double softening = damage_softening(material.failure, point.damage);
       if (softening != 1.0) point.stress = softening * s_new - p_new * SymTensor::identity();
     }
@@ -137,8 +137,8 @@ inline PointUpdate constitutive_update(const Material& material, const Strength&
       if (has_failed(point))  // no strength: finish_increment zeroes the deviator
         return finish_increment<Eos, true>(material, eos, thermal, point, in, s_new, {});
     }
-    const StrengthContext context{material.shear_modulus(), point.plastic_strain,
-                                  point.temperature, dt};
+    const StrengthContext context{material.shear_modulus(), point.plastic_strain, point.temperature,
+                                  dt};
     const DeviatoricResult r = strength.update(s_new, in.de_dev, context);
     return finish_increment<Eos, Fails>(material, eos, thermal, point, in, s_new, r);
   }

@@ -1,9 +1,10 @@
 // The failure models' scene-file keys, ranges and rules (afemp/failure_models.hpp; their damage
 // is failure.hpp's): Johnson & Cook (1985) with Borvik et al.'s (2001) threshold and coupling,
 // plastic and principal strain, and spall (Tuler & Butcher 1968 for the cumulative form).
+#include "afemp/failure_models.hpp"
+
 #include <limits>
 
-#include "afemp/failure_models.hpp"
 #include "core/materials/model_parameters.hpp"
 
 namespace afemp::core {

@@ -113,15 +113,17 @@ void HjcCompaction::parameters(ParameterVisitor& v) {
   v.required("K1", k1_, Range::at_least(crush_pressure_ / crush_strain_));
   v.required("K2", k2_, Range::any());
   v.required("K3", k3_, Range::non_negative());
-  if (v.reading()) *this = HjcCompaction(crush_pressure_, crush_strain_, lock_pressure_,
-                                         lock_strain_, k1_, k2_, k3_);
+  if (v.reading())
+    *this =
+        HjcCompaction(crush_pressure_, crush_strain_, lock_pressure_, lock_strain_, k1_, k2_, k3_);
   // The dense curve must rise for every mubar >= 0: its slope K1 + 2 K2 x + 3 K3 x^2 is
   // smallest at x = max(0, -K2 / (3 K3)) (K3 > 0) or grows without bound only if K2 >= 0.
   if (k3_ > 0.0) {
     const double x = std::max(0.0, -k2_ / (3.0 * k3_));
     v.require(k1_ + x * (2.0 * k2_ + 3.0 * k3_ * x) > 0.0, "K2",
-              out_of_range(k2_, "such that K1 + 2 K2 x + 3 K3 x^2 > 0 for x >= 0 (pressure "
-                                "rises with compaction)"));
+              out_of_range(k2_,
+                           "such that K1 + 2 K2 x + 3 K3 x^2 > 0 for x >= 0 (pressure "
+                           "rises with compaction)"));
   } else {
     v.require(k2_ >= 0.0, "K2", out_of_range(k2_, "value >= 0 when K3 = 0"));
   }

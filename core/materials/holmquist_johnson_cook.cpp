@@ -11,10 +11,11 @@
 // epsdot is the equivalent deviatoric strain rate sqrt(2/3 de:de) / dt, d mu_p the growth of
 // the permanent compaction. The update is explicit in D: pressure cutoff and strength use D at
 // the start of the increment, the damage increment the pressure at its end.
+#include "core/materials/holmquist_johnson_cook.hpp"
+
 #include <algorithm>
 #include <cmath>
 
-#include "core/materials/holmquist_johnson_cook.hpp"
 #include "core/materials/model_parameters.hpp"
 
 namespace afemp::core {
@@ -58,8 +59,8 @@ PointUpdate HolmquistJohnsonCook::update_point(const Material& material, const H
   const double p_new = std::max(eos.pressure(mu, mu_max), p_min);
   // Permanent compaction never shrinks: the max only guards parameter sets whose unloading
   // lines cross.
-  const double d_mu_p = std::max(
-      eos.plastic_compaction(mu_max) - eos.plastic_compaction(mu_max_old), 0.0);
+  const double d_mu_p =
+      std::max(eos.plastic_compaction(mu_max) - eos.plastic_compaction(mu_max_old), 0.0);
 
   // Deviator: elastic trial, radial return onto the yield surface at the new pressure.
   const double g = material.shear_modulus();

@@ -36,8 +36,7 @@ std::optional<double> compression_at_pressure(const Material& material, double p
       material.eos);
 }
 
-std::optional<std::string> initial_pressure_refusal(const Material& material, double p,
-                                                    double e) {
+std::optional<std::string> initial_pressure_refusal(const Material& material, double p, double e) {
   if (compression_at_pressure(material, p, e)) return std::nullopt;
   std::string why;
   if (material.is_explosive()) {

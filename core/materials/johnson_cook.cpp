@@ -16,9 +16,8 @@ namespace {
 // molten one carries no deviatoric stress.
 double thermal_factor(const JohnsonCook& jc, double temperature) {
   if (!jc.thermal()) return 1.0;
-  const double t_star = std::clamp((temperature - jc.room_temperature) /
-                                       (jc.melt_temperature - jc.room_temperature),
-                                   0.0, 1.0);
+  const double t_star = std::clamp(
+      (temperature - jc.room_temperature) / (jc.melt_temperature - jc.room_temperature), 0.0, 1.0);
   return 1.0 - std::pow(t_star, jc.m);
 }
 
@@ -95,8 +94,8 @@ DeviatoricResult JohnsonCook::update(SymTensor& s, const SymTensor& de_dev,
     if (!(newton > lo && newton < hi) || std::abs(2.0 * r) > std::abs(last_step * slope)) {
       // Bisect in log(dp) while the bracket spans decades: with n << 1 the root can lie many
       // orders of magnitude below the perfectly plastic estimate.
-      const double next = lo < 1e-3 * hi ? (lo > 0.0 ? std::sqrt(lo * hi) : 1e-3 * hi)
-                                         : 0.5 * (lo + hi);
+      const double next =
+          lo < 1e-3 * hi ? (lo > 0.0 ? std::sqrt(lo * hi) : 1e-3 * hi) : 0.5 * (lo + hi);
       last_step = std::abs(next - dp);
       dp = next;
     } else {

@@ -12,11 +12,12 @@
 // The update is explicit in D, as the Holmquist-Johnson-Cook one: the pressure and strength of
 // an increment use the damage and bulking pressure at its start; the damage it adds, and the
 // bulking pressure the released energy builds, act from the next increment on.
+#include "afemp/johnson_holmquist_ceramic.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "afemp/johnson_holmquist_ceramic.hpp"
 #include "core/materials/material.hpp"
 #include "core/materials/model_parameters.hpp"
 
@@ -91,8 +92,7 @@ PointUpdate JohnsonHolmquist2::update_point(const Material& material, const Jh2P
     const double u_old =
         std::pow(sigma_hel * normalised_strength(p_star, damage_old, strain_rate), 2) / (6.0 * g);
     const double u_new =
-        std::pow(sigma_hel * normalised_strength(p_star, point.damage, strain_rate), 2) /
-        (6.0 * g);
+        std::pow(sigma_hel * normalised_strength(p_star, point.damage, strain_rate), 2) / (6.0 * g);
     bulking = eos.bulking_pressure(mu, bulking, std::max(u_old - u_new, 0.0), beta);
   }
 
@@ -148,8 +148,9 @@ void Jh2Pressure::parameters(ParameterVisitor& v) {
   // smallest at x = max(0, -K2 / (3 K3)) (K3 > 0), and grows without bound only if K2 >= 0.
   const double x = K3 > 0.0 ? std::max(0.0, -K2 / (3.0 * K3)) : 0.0;
   v.require(K3 > 0.0 ? K1 + x * (2.0 * K2 + 3.0 * K3 * x) > 0.0 : K2 >= 0.0, "K2",
-            out_of_range(K2, "such that K1 + 2 K2 mu + 3 K3 mu^2 > 0 for mu >= 0 (pressure "
-                             "rises with compression)"));
+            out_of_range(K2,
+                         "such that K1 + 2 K2 mu + 3 K3 mu^2 > 0 for mu >= 0 (pressure "
+                         "rises with compression)"));
 }
 
 }  // namespace afemp::core

@@ -5,7 +5,9 @@
 
 namespace afemp::core {
 
-EosLinearForm LinearEos::form(double mu) const { return {bulk_modulus * mu, 0.0}; }
+EosLinearForm LinearEos::form(double mu) const {
+  return {bulk_modulus * mu, 0.0};
+}
 
 double LinearEos::tangent_bulk_modulus(double mu, double /*e*/) const {
   // rho dp/drho = (1 + mu) dp/dmu; clamped so a (nonphysical) mu < -1 gives no imaginary speed.

@@ -1,5 +1,7 @@
 // Material composition checks and the longitudinal wave speed sqrt((K_t + 4G/3) / rho) used
 // for the explicit time step (Ma 2005, §2.2; K_t = rho dp/drho of the EOS at the point's state).
+#include "core/materials/material.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -7,7 +9,6 @@
 #include <variant>
 #include <vector>
 
-#include "core/materials/material.hpp"
 #include "core/materials/model_parameters.hpp"
 
 namespace afemp::core {
@@ -28,7 +29,8 @@ void validate_strength(const Material&, const Model&) {}
 
 void validate_strength(const Material& m, const Fluid&) {
   if (!m.has_eos())
-    throw std::invalid_argument("material '" + m.name + "': strength model fluid needs an eos "
+    throw std::invalid_argument("material '" + m.name +
+                                "': strength model fluid needs an eos "
                                 "(a fluid has no shear and no bulk law of its own)");
 }
 
@@ -128,10 +130,10 @@ void Material::validate() const {
             const double k_e = e.elastic_modulus();
             if (!(std::abs(bulk_modulus() - k_e) <= 1e-9 * k_e))
               throw std::invalid_argument(
-                  "material '" + name + "': bulk modulus E / (3 (1 - 2 nu)) = " +
-                  format_value(bulk_modulus()) + ", must be the bulk modulus of eos " +
-                  std::string(E::name) + ", " + format_value(k_e) +
-                  " (set E and nu from G and it)");
+                  "material '" + name +
+                  "': bulk modulus E / (3 (1 - 2 nu)) = " + format_value(bulk_modulus()) +
+                  ", must be the bulk modulus of eos " + std::string(E::name) + ", " +
+                  format_value(k_e) + " (set E and nu from G and it)");
             if (fails())
               throw std::invalid_argument("material '" + name + "': " + std::string(S::name) +
                                           " has its own damage; it takes no failure model "
@@ -153,8 +155,8 @@ void Material::validate() const {
     require(v_cj > 0.0 && v_cj < 1.0, *this, "burn V_CJ = 1 - pcj / (density D^2)", v_cj,
             "in (0, 1) (check pcj, D and density and their units)");
   }
-  require(thermal.taylor_quinney >= 0.0 && thermal.taylor_quinney <= 1.0, *this,
-          "taylor_quinney", thermal.taylor_quinney, "in [0, 1]");
+  require(thermal.taylor_quinney >= 0.0 && thermal.taylor_quinney <= 1.0, *this, "taylor_quinney",
+          thermal.taylor_quinney, "in [0, 1]");
   require(thermal.specific_heat >= 0.0, *this, "specific_heat", thermal.specific_heat, ">= 0");
 }
 

@@ -22,9 +22,13 @@ namespace afemp::core {
 // updates the whole point, as the Holmquist-Johnson-Cook concrete does), and such a law (which
 // names its model, Eos::strength_model).
 template <class Strength>
-concept HasOwnPressureLaw = requires { typename Strength::PressureLaw; };
+concept HasOwnPressureLaw = requires {
+  typename Strength::PressureLaw;
+};
 template <class Eos>
-concept IsOwnPressureLaw = requires { Eos::strength_model; };
+concept IsOwnPressureLaw = requires {
+  Eos::strength_model;
+};
 
 // Whether the material's EOS is a strength model's own pressure law.
 inline bool has_own_pressure_law(const Material& material) {
@@ -77,10 +81,10 @@ struct PointState {
   SymTensor stress;             // in: sigma^k already rotated objectively; out: sigma^{k+1}
   double plastic_strain = 0.0;  // equivalent plastic strain
   double temperature = 0.0;
-  double energy = 0.0;          // specific internal energy (per unit mass)
-  double density = 0.0;         // current density rho^{k+1}
-  double damage = 0.0;          // scalar damage D in [0, 1]
-  double burn = 1.0;            // a high explosive's burn fraction F (core/programmed_burn.hpp)
+  double energy = 0.0;   // specific internal energy (per unit mass)
+  double density = 0.0;  // current density rho^{k+1}
+  double damage = 0.0;   // scalar damage D in [0, 1]
+  double burn = 1.0;     // a high explosive's burn fraction F (core/programmed_burn.hpp)
   // The strength model's own history variables (model_history_size of them are used).
   std::array<double, largest_model_history<StrengthModel>> history{};
 };
@@ -124,7 +128,9 @@ inline IncrementStart start_increment(const Material& material, const PointState
 
 // A point of a material with a failure model that has failed (damage 1): it carries no shear
 // and no tension from the next increment on.
-inline bool has_failed(const PointState& point) { return point.damage >= 1.0; }
+inline bool has_failed(const PointState& point) {
+  return point.damage >= 1.0;
+}
 
 // The volumetric half after the deviator s_new and the strength result r: plastic strain,
 // energy equation, EOS pressure, stress and adiabatic heating (any strength model but HJC).

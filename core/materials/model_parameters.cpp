@@ -29,7 +29,9 @@ std::string Range::describe() const {
          format_number(hi);
 }
 
-std::string format_value(double v) { return format_number(v); }
+std::string format_value(double v) {
+  return format_number(v);
+}
 
 std::string out_of_range(double value, const std::string& allowed) {
   return "value " + format_number(value) + " is out of range; allowed: " + allowed;

@@ -22,7 +22,9 @@ std::string format_value(double v);
 std::string out_of_range(double value, const std::string& allowed);
 
 template <class Model>
-concept HasParameters = requires(Model& m, ParameterVisitor& v) { m.parameters(v); };
+concept HasParameters = requires(Model& m, ParameterVisitor& v) {
+  m.parameters(v);
+};
 
 // Visits the model's parameters (none for a model without any).
 template <class Model>
@@ -31,8 +33,8 @@ void visit_parameters(Model& model, ParameterVisitor& v) {
 }
 
 // The keys a model's parameters() names, in its order (the scene parser's allowed keys).
-std::vector<std::string> parameter_keys(
-    const MaterialConstants& material, void (*visit)(ParameterVisitor&, const MaterialConstants&));
+std::vector<std::string> parameter_keys(const MaterialConstants& material,
+                                        void (*visit)(ParameterVisitor&, const MaterialConstants&));
 template <class Model>
 std::vector<std::string> parameter_keys(const MaterialConstants& material) {
   return parameter_keys(material, [](ParameterVisitor& v, const MaterialConstants&) {
@@ -47,8 +49,8 @@ void check_parameters(const std::string& material_name, const std::string& what,
                       const MaterialConstants& material,
                       void (*visit)(ParameterVisitor&, const void*), const void* model);
 template <class Model>
-void check_parameters(const Model& model, const std::string& material_name,
-                      const std::string& what, const MaterialConstants& material) {
+void check_parameters(const Model& model, const std::string& material_name, const std::string& what,
+                      const MaterialConstants& material) {
   check_parameters(
       material_name, what, material,
       [](ParameterVisitor& v, const void* m) {
@@ -63,7 +65,8 @@ template <class Variant, class F>
 void for_each_alternative(F&& f) {
   [&]<std::size_t... I>(std::index_sequence<I...>) {
     (f.template operator()<std::variant_alternative_t<I, Variant>>(I), ...);
-  }(std::make_index_sequence<std::variant_size_v<Variant>>{});
+  }
+  (std::make_index_sequence<std::variant_size_v<Variant>>{});
 }
 
 // The scene-file names of a variant's alternatives that have one (Model::name), in order.

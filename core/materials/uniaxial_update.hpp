@@ -81,8 +81,8 @@ class UniaxialSearch {
   // Records the trial at next(), `trial` its state after the constitutive update u. Returns
   // true when it is the best so far (then also copied into `point`).
   template <class Eos>
-  bool take(const Material& material, const Eos& eos, const PointState& trial,
-            const PointUpdate& u, PointState& point) {
+  bool take(const Material& material, const Eos& eos, const PointState& trial, const PointUpdate& u,
+            PointState& point) {
     ++best_.trials;
     double r = 0.5 * (trial.stress.yy + trial.stress.zz);
     const double tolerance =
@@ -175,8 +175,8 @@ UniaxialUpdate uniaxial_update(const Material& material, const Strength& strengt
 template <class Eos>
 void uniaxial_update_user(const Material& material, UserStrengthChunk& chunk, const Eos& eos,
                           bool thermal, PointState* points, const double* d_axial,
-                          double* const* history, std::size_t n, double dt,
-                          UniaxialUpdate* results, std::vector<double>& kept) {
+                          double* const* history, std::size_t n, double dt, UniaxialUpdate* results,
+                          std::vector<double>& kept) {
   const std::size_t hc = chunk.history_count();
   std::array<UniaxialSearch, kUserChunk> search;
   std::array<std::size_t, kUserChunk> point_of_slot;

@@ -109,8 +109,7 @@ struct NoUserChunk {
   explicit NoUserChunk(const Args&...) {}
 };
 template <class Strength>
-using UserChunkFor =
-    std::conditional_t<is_user_strength<Strength>, UserStrengthChunk, NoUserChunk>;
+using UserChunkFor = std::conditional_t<is_user_strength<Strength>, UserStrengthChunk, NoUserChunk>;
 
 // The initial history of a material's points, `count` values (0 where the model gives none).
 inline void initial_history(const Material& material, double* history, std::size_t count) {

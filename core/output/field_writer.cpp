@@ -95,20 +95,28 @@ std::string format_double(double v) {
 
 const char* attribute_type(int components) {
   switch (components) {
-    case 1: return "Scalar";
-    case 3: return "Vector";
-    case 6: return "Tensor6";
-    case 9: return "Tensor";
-    default: return "Matrix";
+    case 1:
+      return "Scalar";
+    case 3:
+      return "Vector";
+    case 6:
+      return "Tensor6";
+    case 9:
+      return "Tensor";
+    default:
+      return "Matrix";
   }
 }
 
 // XDMF topology of a block by its nodes per cell (1: a point block).
 const char* topology_type(int nodes_per_cell) {
   switch (nodes_per_cell) {
-    case 1: return "Polyvertex";
-    case 8: return "Hexahedron";
-    default: return "Polyline";
+    case 1:
+      return "Polyvertex";
+    case 8:
+      return "Hexahedron";
+    default:
+      return "Polyline";
   }
 }
 
@@ -225,8 +233,10 @@ std::string FieldWriter::index_text() const {
       std::snprintf(buf, sizeof buf, "B %d %zu %zu %zu ", b.nodes_per_cell, b.n_points, b.n_cells,
                     b.connectivity_frame);
       out += buf + b.name + "\n";
-      for (const FieldRecord& r : b.node_fields) out += "N " + std::to_string(r.components) + " " + r.name + "\n";
-      for (const FieldRecord& r : b.cell_fields) out += "C " + std::to_string(r.components) + " " + r.name + "\n";
+      for (const FieldRecord& r : b.node_fields)
+        out += "N " + std::to_string(r.components) + " " + r.name + "\n";
+      for (const FieldRecord& r : b.cell_fields)
+        out += "C " + std::to_string(r.components) + " " + r.name + "\n";
     }
   }
   for (const StoredConnectivity& c : connectivity_)
@@ -338,9 +348,8 @@ bool FieldWriter::drop_frames_after(std::vector<StoredConnectivity>& stored, std
     const Handle space(dset.valid() ? H5Dget_space(dset.get()) : -1, H5Sclose);
     const hssize_t count = space.valid() ? H5Sget_simple_extent_npoints(space.get()) : -1;
     c.cells.resize(count > 0 ? static_cast<std::size_t>(count) : 0);
-    if (count < 0 ||
-        (!c.cells.empty() && H5Dread(dset.get(), H5T_NATIVE_INT32, H5S_ALL, H5S_ALL,
-                                     H5P_DEFAULT, c.cells.data()) < 0)) {
+    if (count < 0 || (!c.cells.empty() && H5Dread(dset.get(), H5T_NATIVE_INT32, H5S_ALL, H5S_ALL,
+                                                  H5P_DEFAULT, c.cells.data()) < 0)) {
       failure = "cannot read " + dataset + " (" + hdf5_reason() + ")";
       return false;
     }
@@ -596,7 +605,9 @@ void FieldWriter::write_index() const {
   if (ec) throw std::runtime_error(xmf_path_ + ": cannot replace XDMF index: " + ec.message());
 }
 
-void skip_hdf5_exit_cleanup() { H5dont_atexit(); }
+void skip_hdf5_exit_cleanup() {
+  H5dont_atexit();
+}
 
 std::vector<double> read_dataset(const std::string& h5_path, const std::string& dataset,
                                  std::vector<std::size_t>* dims) {

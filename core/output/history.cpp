@@ -24,7 +24,9 @@ void append_number(std::string& line, double v) {
   line.append(buf, static_cast<std::size_t>(len));
 }
 
-std::string errno_text(int err) { return std::error_code(err, std::generic_category()).message(); }
+std::string errno_text(int err) {
+  return std::error_code(err, std::generic_category()).message();
+}
 
 }  // namespace
 
@@ -44,12 +46,13 @@ HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> body_nam
     std::error_code ec;
     std::filesystem::create_directories(parent, ec);
     if (ec)
-      throw std::runtime_error(parent.string() + ": cannot create output directory: " +
-                               ec.message());
+      throw std::runtime_error(parent.string() +
+                               ": cannot create output directory: " + ec.message());
   }
   errno = 0;
   file_.reset(std::fopen(path_.c_str(), "w"));
-  if (!file_) throw std::runtime_error(path_ + ": cannot create history file: " + errno_text(errno));
+  if (!file_)
+    throw std::runtime_error(path_ + ": cannot create history file: " + errno_text(errno));
   const std::string head = header();
   if (std::fwrite(head.data(), 1, head.size(), file_.get()) != head.size() ||
       std::fflush(file_.get()) != 0)
@@ -72,23 +75,27 @@ HistoryWriter::HistoryWriter(std::string path, std::vector<std::string> body_nam
     std::string first(head.size(), '\0');
     in.read(first.data(), static_cast<std::streamsize>(first.size()));
     if (first != head)
-      throw std::runtime_error(path_ + ": cannot continue the history: its columns are not the "
+      throw std::runtime_error(path_ +
+                               ": cannot continue the history: its columns are not the "
                                "ones this scene writes");
   }
   cut_to_checkpoint(path_, resume.bytes);
   errno = 0;
   file_.reset(std::fopen(path_.c_str(), "ab"));
-  if (!file_) throw std::runtime_error(path_ + ": cannot append to the history: " + errno_text(errno));
+  if (!file_)
+    throw std::runtime_error(path_ + ": cannot append to the history: " + errno_text(errno));
   bytes_ = resume.bytes;
   rows_ = resume.rows;
 }
 
 std::string HistoryWriter::header() const {
-  std::string header = "step,time,dt,kinetic,internal,elastic,plastic,viscous,hourglass,"
-                       "stabilisation,eroded,converted,contact,external_work,total,energy_error";
+  std::string header =
+      "step,time,dt,kinetic,internal,elastic,plastic,viscous,hourglass,"
+      "stabilisation,eroded,converted,contact,external_work,total,energy_error";
   if (outflow_) header += ",outflow,outflow_mass,outflow_px,outflow_py,outflow_pz";
   for (const std::string& name : body_names_)
-    for (const char* c : {".px", ".py", ".pz", ".vx", ".vy", ".vz", ".kinetic", ".internal"}) header += "," + name + c;
+    for (const char* c : {".px", ".py", ".pz", ".vx", ".vy", ".vz", ".kinetic", ".internal"})
+      header += "," + name + c;
   for (const std::string& name : extra_) header += "," + name;
   header += '\n';
   return header;
@@ -101,8 +108,8 @@ void HistoryWriter::write(const HistoryRow& row) {
                                 std::to_string(body_names_.size()) + " (" + path_ + ")");
   line_ = std::to_string(row.step);
   for (const double v : {row.time, row.dt, row.kinetic, row.internal, row.elastic, row.plastic,
-                         row.viscous, row.hourglass, row.stabilisation, row.eroded, row.converted, row.contact, row.external_work, row.total,
-                         row.energy_error})
+                         row.viscous, row.hourglass, row.stabilisation, row.eroded, row.converted,
+                         row.contact, row.external_work, row.total, row.energy_error})
     append_number(line_, v);
   if (outflow_) {
     append_number(line_, row.outflow);
@@ -116,9 +123,9 @@ void HistoryWriter::write(const HistoryRow& row) {
     append_number(line_, b.internal);
   }
   if (row.extra.size() != extra_.size())
-    throw std::invalid_argument("HistoryWriter::write: row has " + std::to_string(row.extra.size()) +
-                                " extra values, the file has " + std::to_string(extra_.size()) +
-                                " columns (" + path_ + ")");
+    throw std::invalid_argument("HistoryWriter::write: row has " +
+                                std::to_string(row.extra.size()) + " extra values, the file has " +
+                                std::to_string(extra_.size()) + " columns (" + path_ + ")");
   for (const double v : row.extra) append_number(line_, v);
   line_ += '\n';
   if (std::fwrite(line_.data(), 1, line_.size(), file_.get()) != line_.size() ||

@@ -8,7 +8,6 @@
 // and the sphere must come out slower than the plug-sharing bound of Recht & Ipson.
 // Units: mm, ms, g, N, MPa (velocity in m/s). docs/library.md walks through it.
 #include <afemp/afemp.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -61,7 +60,8 @@ afemp::MeshArrays plate_mesh(afemp::Vec3 min, int n, int m, double h) {
   auto node = [&](int i, int j, int k) { return (k * (n + 1) + j) * (n + 1) + i; };
   for (int k = 0; k <= m; ++k)
     for (int j = 0; j <= n; ++j)
-      for (int i = 0; i <= n; ++i) mesh.nodes.push_back({min.x + i * h, min.y + j * h, min.z + k * h});
+      for (int i = 0; i <= n; ++i)
+        mesh.nodes.push_back({min.x + i * h, min.y + j * h, min.z + k * h});
   for (int k = 0; k < m; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
@@ -170,8 +170,8 @@ int main() try {
     const afemp::ElementFields hexes = sim.hexahedra();
     for (std::size_t p = 0; p < hexes.plastic_strain.size(); ++p) {
       alpha_max = std::max(alpha_max, hexes.history[p * hexes.history_count]);
-      history_gap = std::max(history_gap, std::abs(hexes.history[p * hexes.history_count] -
-                                                   hexes.plastic_strain[p]));
+      history_gap = std::max(
+          history_gap, std::abs(hexes.history[p * hexes.history_count] - hexes.plastic_strain[p]));
     }
     const afemp::ParticleFields particles = sim.particles();
     for (std::size_t i = 0; i < particles.size(); ++i) {
@@ -182,12 +182,15 @@ int main() try {
       history_gap = std::max(history_gap, std::abs(alpha - particles.plastic_strain[i]));
     }
     const bool history_ok = alpha_max > 0.5 && history_gap < 1e-12;
-    std::printf("plate: %zu particles from converted elements, largest alpha %.3f, largest "
-                "|alpha - plastic strain| %.1e\n", converted, alpha_max, history_gap);
-    std::printf("momentum conserved to 1e-10: %s; residual velocity in (%.0f, %.0f) m/s: %s; "
-                "user history carried: %s\n",
-                momentum_ok ? "yes" : "NO", 0.5 * v0, upper, residual_ok ? "yes" : "NO",
-                history_ok ? "yes" : "NO");
+    std::printf(
+        "plate: %zu particles from converted elements, largest alpha %.3f, largest "
+        "|alpha - plastic strain| %.1e\n",
+        converted, alpha_max, history_gap);
+    std::printf(
+        "momentum conserved to 1e-10: %s; residual velocity in (%.0f, %.0f) m/s: %s; "
+        "user history carried: %s\n",
+        momentum_ok ? "yes" : "NO", 0.5 * v0, upper, residual_ok ? "yes" : "NO",
+        history_ok ? "yes" : "NO");
     return momentum_ok && residual_ok && history_ok ? 0 : 1;
   }
 } catch (const afemp::InputError& e) {

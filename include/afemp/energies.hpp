@@ -21,15 +21,15 @@ struct BodySums {
 /// The energy account of a model at one instant; the time loop checks its balance.
 struct Energies {
   double kinetic = 0.0;
-  double internal = 0.0;       ///< sum m e (elastic + plastic + EOS work + bulk-viscous heating)
-  double plastic = 0.0;        ///< accumulated plastic work (part of internal)
-  double viscous = 0.0;        ///< accumulated bulk-viscous work (part of internal)
-  double hourglass = 0.0;      ///< accumulated hourglass work (stored or dissipated)
+  double internal = 0.0;   ///< sum m e (elastic + plastic + EOS work + bulk-viscous heating)
+  double plastic = 0.0;    ///< accumulated plastic work (part of internal)
+  double viscous = 0.0;    ///< accumulated bulk-viscous work (part of internal)
+  double hourglass = 0.0;  ///< accumulated hourglass work (stored or dissipated)
   /// Strain energy of the assumed-strain hourglass stabilisation (the linear strain field of a
   /// one-point hexahedron under Hooke's law, fem/hourglass_assumed_strain.hpp): physical elastic
   /// energy, so part of internal, and reported on its own as well.
   double stabilisation = 0.0;
-  double eroded = 0.0;         ///< internal + kinetic energy taken away by eroded elements
+  double eroded = 0.0;  ///< internal + kinetic energy taken away by eroded elements
   /// Energy lost when hexahedra became particles (AFEMP, coupling/element_conversion.cpp): the
   /// kinetic energy of the nodes' mass shares less that of the particles, whose velocities are
   /// interpolated from the nodes (never negative), plus any internal energy the particles' equal
@@ -63,10 +63,10 @@ struct Energies {
 /// E = Energies::total(). The denominator is the energy the run has handled.
 double energy_balance_error(const Energies& now, const Energies& initial, double max_kinetic);
 
-}  ///< namespace afemp::core
+}  // namespace afemp::core
 
 // The public names, in namespace afemp.
 namespace afemp {
-using core::Energies;
 using core::BodySums;
-}  ///< namespace afemp
+using core::Energies;
+}  // namespace afemp

@@ -55,7 +55,8 @@ struct LinearPolynomialEos {
   static constexpr std::string_view name = "linear-polynomial";
   double rho0 = 0.0;
   double c[7] = {0, 0, 0, 0, 0, 0, 0};
-  /// Its scene-file keys, ranges and rules (afemp/model_parameters.hpp), in linear_polynomial_eos.cpp.
+  /// Its scene-file keys, ranges and rules (afemp/model_parameters.hpp), in
+  /// linear_polynomial_eos.cpp.
   void parameters(ParameterVisitor& v);
   EosLinearForm form(double mu) const;
   double tangent_bulk_modulus(double mu, double e) const;
@@ -128,14 +129,14 @@ class HjcCompaction {
   double plock_strain_ = 0.0;
 };
 
-}  ///< namespace afemp::core
+}  // namespace afemp::core
 
 // The public names, in namespace afemp.
 namespace afemp {
-using core::NoEos;
-using core::LinearEos;
-using core::MieGruneisen;
-using core::LinearPolynomialEos;
-using core::Jwl;
 using core::HjcCompaction;
-}  ///< namespace afemp
+using core::Jwl;
+using core::LinearEos;
+using core::LinearPolynomialEos;
+using core::MieGruneisen;
+using core::NoEos;
+}  // namespace afemp

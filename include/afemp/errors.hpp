@@ -44,12 +44,12 @@ class CheckpointError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-}  ///< namespace afemp::core
+}  // namespace afemp::core
 
 // The public names, in namespace afemp.
 namespace afemp {
-using core::SourceLocation;
+using core::CheckpointError;
 using core::InputError;
 using core::SimulationError;
-using core::CheckpointError;
-}  ///< namespace afemp
+using core::SourceLocation;
+}  // namespace afemp

@@ -29,12 +29,12 @@ struct Jh2Pressure;
 struct JohnsonHolmquist2 {
   static constexpr std::string_view name = "johnson-holmquist-2";  ///< in the scene file
   double A = 0.0, B = 0.0, C = 0.0, M = 1.0, N = 1.0;
-  double reference_strain_rate = 1.0;  ///< epsdot_0, in the scene's time unit
-  double tensile_strength = 0.0;       ///< T, the largest hydrostatic tension
-  double max_fractured_strength = 0.0; ///< SFMAX, normalised (0: no limit)
-  double hel = 0.0;                    ///< HEL, the Hugoniot elastic limit (normal stress)
-  double hel_pressure = 0.0;           ///< PHEL, the pressure at the HEL
-  double beta = 1.0;                   ///< the fraction of the released energy that bulks
+  double reference_strain_rate = 1.0;   ///< epsdot_0, in the scene's time unit
+  double tensile_strength = 0.0;        ///< T, the largest hydrostatic tension
+  double max_fractured_strength = 0.0;  ///< SFMAX, normalised (0: no limit)
+  double hel = 0.0;                     ///< HEL, the Hugoniot elastic limit (normal stress)
+  double hel_pressure = 0.0;            ///< PHEL, the pressure at the HEL
+  double beta = 1.0;                    ///< the fraction of the released energy that bulks
   double D1 = 0.0, D2 = 0.0;
 
   /// sigma_HEL = 3/2 (HEL - PHEL), the equivalent stress at the HEL.

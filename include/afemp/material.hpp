@@ -46,8 +46,8 @@ struct ProgrammedBurn {
 
 /// Adiabatic heating: the share of plastic work that becomes heat.
 struct ThermalProperties {
-  double specific_heat = 0.0;     ///< c_p per unit mass; 0 = no adiabatic heating
-  double taylor_quinney = 0.9;    ///< fraction of plastic work turned into heat
+  double specific_heat = 0.0;   ///< c_p per unit mass; 0 = no adiabatic heating
+  double taylor_quinney = 0.9;  ///< fraction of plastic work turned into heat
   double initial_temperature = 293.0;
 };
 
@@ -55,7 +55,7 @@ struct ThermalProperties {
 /// model, EOS, thermal properties and failure strain (docs/scene-format.md).
 struct Material {
   std::string name{};
-  double density = 0.0;        ///< reference density rho0
+  double density = 0.0;         ///< reference density rho0
   double youngs_modulus = 0.0;  ///< E
   double poisson_ratio = 0.0;   ///< nu
   StrengthModel strength = Elastic{};
@@ -99,13 +99,13 @@ struct Material {
   void validate() const;
 };
 
-}  ///< namespace afemp::core
+}  // namespace afemp::core
 
 // The public names, in namespace afemp.
 namespace afemp {
-using core::Material;
-using core::ThermalProperties;
-using core::StrengthModel;
 using core::EquationOfState;
+using core::Material;
 using core::ProgrammedBurn;
-}  ///< namespace afemp
+using core::StrengthModel;
+using core::ThermalProperties;
+}  // namespace afemp

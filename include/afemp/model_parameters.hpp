@@ -25,7 +25,9 @@ struct Range {
   static Range any() { return {}; }
   static Range closed(double lo, double hi) { return {lo, hi, false, false}; }
   /// (lo, inf) and [lo, inf).
-  static Range above(double lo) { return {lo, std::numeric_limits<double>::infinity(), true, false}; }
+  static Range above(double lo) {
+    return {lo, std::numeric_limits<double>::infinity(), true, false};
+  }
   static Range at_least(double lo) {
     return {lo, std::numeric_limits<double>::infinity(), false, false};
   }

@@ -24,9 +24,9 @@ double ogive_radius(const OgiveNose& nose, double radius, double t);
 /// pi times the integral of r(t)^2 over the nose.
 double ogive_nose_volume(const OgiveNose& nose, double radius);
 
-}  ///< namespace afemp::core
+}  // namespace afemp::core
 
 // The public names, in namespace afemp.
 namespace afemp {
 using core::OgiveNose;
-}  ///< namespace afemp
+}  // namespace afemp

@@ -50,10 +50,10 @@ struct ProbeSpec {
   ProbeField field = ProbeField::pressure;  ///< extreme
   std::string target{};                     ///< force: the contact's, wall's or body's name
   bool maximum = true;                      ///< extreme: max, or min
-  Vec3 box_min{}, box_max{};                    ///< extreme
-  double interval = 0.0;  ///< > 0: simulated time between samples; 0: every history row
-  SourceLocation where{};   ///< the [[probes]] table
-  std::string key{};        ///< "probes[k]", for messages
+  Vec3 box_min{}, box_max{};                ///< extreme
+  double interval = 0.0;   ///< > 0: simulated time between samples; 0: every history row
+  SourceLocation where{};  ///< the [[probes]] table
+  std::string key{};       ///< "probes[k]", for messages
 };
 
 /// Values per probe in the buffer Model::sample_probes fills (the longest column list).
@@ -68,9 +68,12 @@ struct ProbeSeries {
   ProbeKind kind = ProbeKind::particle;
   std::vector<std::string> columns{};  ///< probe_columns(kind)
   std::vector<double> time{};
-  std::vector<double> values{};  ///< row-major: columns.size() values per row; NaN: the entity is gone
+  std::vector<double>
+      values{};  ///< row-major: columns.size() values per row; NaN: the entity is gone
   std::size_t rows() const { return time.size(); }
-  double at(std::size_t row, std::size_t column) const { return values[row * columns.size() + column]; }
+  double at(std::size_t row, std::size_t column) const {
+    return values[row * columns.size() + column];
+  }
   /// The index of a column, or -1.
   int column(const std::string& name) const;
   /// One column over the rows.
@@ -98,12 +101,12 @@ inline bool in_probe_box(const ProbeSpec& p, const Vec3& x) {
 double probe_field_value(ProbeField f, const SymTensor& s, double plastic_strain, const Vec3& v,
                          const Vec3& position);
 
-}  ///< namespace afemp::core
+}  // namespace afemp::core
 
 // The public names, in namespace afemp.
 namespace afemp {
-using core::ProbeSpec;
-using core::ProbeKind;
 using core::ProbeField;
+using core::ProbeKind;
 using core::ProbeSeries;
-}  ///< namespace afemp
+using core::ProbeSpec;
+}  // namespace afemp

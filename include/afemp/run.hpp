@@ -49,7 +49,7 @@ struct RunSummary {
   double time = 0.0;
   double wall_seconds = 0.0;
   std::size_t particles = 0, elements = 0;
-  std::size_t final_particles = 0;  ///< elements converted into particles add to them
+  std::size_t final_particles = 0;      ///< elements converted into particles add to them
   double point_steps_per_second = 0.0;  ///< (particles + elements) * steps / wall seconds
   double min_dt = 0.0, max_dt = 0.0;    ///< of the stable step (the last step may be shorter)
   Energies initial{}, final{};
@@ -82,13 +82,13 @@ struct RunSummary {
   }
 };
 
-}  ///< namespace afemp::core
+}  // namespace afemp::core
 
 // The public names, in namespace afemp.
 namespace afemp {
-using core::StageTiming;
 using core::Progress;
-using core::TaylorMeasures;
 using core::ReferenceCheck;
 using core::RunSummary;
-}  ///< namespace afemp
+using core::StageTiming;
+using core::TaylorMeasures;
+}  // namespace afemp

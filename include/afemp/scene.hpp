@@ -19,7 +19,6 @@
 
 namespace afemp::core {
 
-
 /// MPM update scheme: stress update before or after the grid update, or both (modified USL).
 /// Lian et al. 2013, eqs 25-27; USAVG: half the strain increment from the start velocity before
 /// the forces, half from the remapped end velocity after (Wallstedt & Guilkey 2008).
@@ -52,14 +51,14 @@ const char* to_string(Face f);
 
 /// The [run] section: end time, time-step factors, output and history intervals, guards.
 struct RunSettings {
-  std::string title{};               ///< printed with the run
-  double end_time = 0.0;           ///< required
-  double time_step_factor = 0.3;   ///< Courant safety factor on the grid's stable step
+  std::string title{};                    ///< printed with the run
+  double end_time = 0.0;                  ///< required
+  double time_step_factor = 0.3;          ///< Courant safety factor on the grid's stable step
   double element_time_step_factor = 0.9;  ///< on the elements' critical step (LS-DYNA's TSSFAC)
-  double fixed_time_step = 0.0;    ///< > 0: use this step instead of the stable one
-  long max_steps = 0;              ///< > 0: stop after this many steps
-  double output_every = 0.0;       ///< simulated time between field outputs; 0: final state only
-  long history_every = 10;         ///< steps between history rows
+  double fixed_time_step = 0.0;           ///< > 0: use this step instead of the stable one
+  long max_steps = 0;                     ///< > 0: stop after this many steps
+  double output_every = 0.0;  ///< simulated time between field outputs; 0: final state only
+  long history_every = 10;    ///< steps between history rows
   /// > 0: simulated time between history rows instead (a row at the first step end at or past
   /// each multiple); 0: history_every steps.
   double history_interval = 0.0;
@@ -69,8 +68,8 @@ struct RunSettings {
   /// > 0: stop the run as unstable once |energy-balance error| exceeds this at a history row
   /// (energy created or destroyed beyond any physical account); 0: no such guard.
   double energy_error_limit = 1.0;
-  bool output_strain = false;      ///< integrate and write each particle's strain tensor
-  Vec3 gravity{};                    ///< body force per unit mass
+  bool output_strain = false;  ///< integrate and write each particle's strain tensor
+  Vec3 gravity{};              ///< body force per unit mass
   /// Stop before end_time once a body's centre of mass has moved `travel` from where it started
   /// (LS-DYNA's *TERMINATION_BODY): a perforation run ends when the projectile is through.
   struct Termination {
@@ -108,10 +107,9 @@ struct FarField {
 /// The [grid] section: the background grid of cubic cells and its face conditions.
 struct GridSettings {
   double cell = 0.0;  ///< cell edge length h (cubic cells)
-  Vec3 min{}, max{};      ///< the domain; grid nodes sit at min + i h
-  std::array<FaceCondition, 6> faces{FaceCondition::free, FaceCondition::free,
-                                     FaceCondition::free, FaceCondition::free,
-                                     FaceCondition::free, FaceCondition::free};
+  Vec3 min{}, max{};  ///< the domain; grid nodes sit at min + i h
+  std::array<FaceCondition, 6> faces{FaceCondition::free, FaceCondition::free, FaceCondition::free,
+                                     FaceCondition::free, FaceCondition::free, FaceCondition::free};
   /// Set: the absorbing faces open onto an unbounded fluid (FarField); unset: plane-wave
   /// (Lysmer-Kuhlemeyer) faces at zero pressure.
   std::optional<FarField> far_field{};
@@ -128,21 +126,21 @@ struct GridSettings {
 /// reaches 2 alpha l0 (l0 its initial length there) splits into two halves along that axis, on
 /// every axis that meets it in the same step (2, 4 or 8 particles: the seven 3-D patterns).
 struct SplittingSettings {
-  double alpha = 0.9;                ///< split factor, in (0.5, 1.5]
+  double alpha = 0.9;                    ///< split factor, in (0.5, 1.5]
   std::size_t max_particles = 10000000;  ///< a split that would exceed it stops the run
-  std::vector<int> bodies{};  ///< the particle bodies that split (indices); empty: all
+  std::vector<int> bodies{};             ///< the particle bodies that split (indices); empty: all
   std::array<bool, 3> axes{true, true, true};  ///< the axes (x, y, z) a particle may split along
 };
 
 /// The [mpm] section: scheme, shape function, transfer, splitting, and the grid.
 struct MpmSettings {
-  UpdateScheme scheme = UpdateScheme::MUSL;    ///< USF, USL or MUSL
+  UpdateScheme scheme = UpdateScheme::MUSL;     ///< USF, USL or MUSL
   ShapeFunction shape = ShapeFunction::linear;  ///< particle-grid weights
   Transfer transfer = Transfer::flip;           ///< FLIP/PIC blend or APIC
-  double flip = 1.0;     ///< velocity update blend (transfer flip): 1 pure FLIP, 0 pure PIC
-  bool jaumann = true;   ///< objective (Jaumann) stress rate
+  double flip = 1.0;    ///< velocity update blend (transfer flip): 1 pure FLIP, 0 pure PIC
+  bool jaumann = true;  ///< objective (Jaumann) stress rate
   std::optional<SplittingSettings> splitting{};  ///< adaptive particle splitting; none: off
-  GridSettings grid{};                            ///< the background grid
+  GridSettings grid{};                           ///< the background grid
 };
 
 /// An axis-aligned box, corners min and max.
@@ -151,11 +149,11 @@ struct BoxShape {
 };
 /// A cylinder from its base disc along its axis, optionally with an ogive nose at the far end.
 struct CylinderShape {
-  Vec3 base{};               ///< centre of the base disc
-  Vec3 axis{0, 0, 1};      ///< direction, normalised by the parser
+  Vec3 base{};         ///< centre of the base disc
+  Vec3 axis{0, 0, 1};  ///< direction, normalised by the parser
   double radius = 0.0;
-  double length = 0.0;     ///< overall, the nose included
-  OgiveNose nose{};        ///< at the far end (base + length axis); crh 0: a flat end
+  double length = 0.0;  ///< overall, the nose included
+  OgiveNose nose{};     ///< at the far end (base + length axis); crh 0: a flat end
   /// A cone or frustum (the scene's `cone`, particles only): the radius at the far end, the
   /// radius falling linearly from `radius` at the base; < 0: a cylinder.
   double top_radius = -1.0;
@@ -165,14 +163,14 @@ struct CylinderShape {
 };
 /// A sphere (particles, or hexahedra: fem/mesh_generation.hpp's blended cubed sphere).
 struct SphereShape {
-  Vec3 centre{};          ///< centre
+  Vec3 centre{};        ///< centre
   double radius = 0.0;  ///< radius
 };
 /// Particles at given points: read from a plain-text file (one "x y z [volume]" per line, '#'
 /// comments; the path resolved relative to the scene file), or, from a program, the arrays
 /// `points` and `volumes` (empty volumes: (cell / particles_per_cell)^3 each).
 struct PointListShape {
-  std::string path{};  ///< empty: the arrays
+  std::string path{};             ///< empty: the arrays
   std::vector<Vec3> points{};     ///< particle positions
   std::vector<double> volumes{};  ///< one volume per point, or empty
 };
@@ -193,11 +191,11 @@ struct MeshArrays {
 /// A mesh read from a file (Gmsh .msh 4.1, Abaqus .inp, LS-DYNA keyword), path resolved
 /// relative to the scene file, or given as arrays; `parts` selects parts by name (empty: all).
 struct MeshFileShape {
-  std::string path{};     ///< empty: the arrays
+  std::string path{};                ///< empty: the arrays
   MeshArrays arrays{};               ///< the mesh itself, when path is empty
   std::vector<std::string> parts{};  ///< parts to take from a file (empty: all)
-  double scale = 1.0;   ///< coordinates are multiplied by scale, then translated
-  Vec3 translate{};       ///< added after scaling
+  double scale = 1.0;                ///< coordinates are multiplied by scale, then translated
+  Vec3 translate{};                  ///< added after scaling
 };
 /// A straight truss bar.
 struct LineShape {
@@ -260,17 +258,18 @@ struct ErosionSettings {
   double time_step = 0.0;         ///< erode when the element's critical step falls below this
 };
 
-/// Adaptive conversion of a body's hexahedra into particles (AFEMP, Lian et al. 2013, §2.6): an element
-/// inside the grid domain that meets any criterion becomes points x points x points particles;
-/// 0 / false switches a criterion off.
+/// Adaptive conversion of a body's hexahedra into particles (AFEMP, Lian et al. 2013, §2.6): an
+/// element inside the grid domain that meets any criterion becomes points x points x points
+/// particles; 0 / false switches a criterion off.
 struct ConversionSettings {
-  double plastic_strain = 0.0;      ///< equivalent plastic strain of any integration point
-  double volumetric_strain = 0.0;   ///< |V / V0 - 1|
-  double jacobian_ratio = 0.0;      ///< smallest scaled corner Jacobian (1 for a box) below this
-  bool negative_jacobian = true;    ///< an element that inverts converts instead of stopping
-  double time_step_fraction = 0.0;  ///< critical step below this fraction of h / c (material at rest)
-  double damage = 0.0;              ///< scalar damage of any integration point
-  int points = 1;                   ///< particles per direction: 1 or 2
+  double plastic_strain = 0.0;     ///< equivalent plastic strain of any integration point
+  double volumetric_strain = 0.0;  ///< |V / V0 - 1|
+  double jacobian_ratio = 0.0;     ///< smallest scaled corner Jacobian (1 for a box) below this
+  bool negative_jacobian = true;   ///< an element that inverts converts instead of stopping
+  double time_step_fraction =
+      0.0;              ///< critical step below this fraction of h / c (material at rest)
+  double damage = 0.0;  ///< scalar damage of any integration point
+  int points = 1;       ///< particles per direction: 1 or 2
 };
 
 /// A rigid body of hexahedra (LS-DYNA *MAT_RIGID): its elements carry no stress; it moves
@@ -285,32 +284,32 @@ struct RigidSettings {
 /// One [[bodies]] entry: material (index into Scene::materials), discretisation, shape, and the
 /// settings of that discretisation; initial velocity, temperature and internal energy.
 struct BodySpec {
-  std::string name{};             ///< unique in the scene
-  int material = -1;            ///< index into Scene::materials
+  std::string name{};                                         ///< unique in the scene
+  int material = -1;                                          ///< index into Scene::materials
   Discretisation discretisation = Discretisation::particles;  ///< particles, hexahedra or trusses
-  Shape shape{};                  ///< where the body's material is
-  int particles_per_cell = 2;   ///< per direction (particles)
+  Shape shape{};                                              ///< where the body's material is
+  int particles_per_cell = 2;                                 ///< per direction (particles)
   /// Particles of a sphere: on the grid's lattice (a staircase surface), or in shells that
   /// follow the sphere (mpm/sphere_shells.hpp), one particle per cell of a cubed-sphere grid.
   enum class Layout { lattice, shells };
   Layout layout = Layout::lattice;
   /// Meshes (hexahedra, trusses).
-  MeshDensity mesh{};             ///< how finely a generated mesh divides the shape
+  MeshDensity mesh{};  ///< how finely a generated mesh divides the shape
   HexFormulation element = HexFormulation::one_point;  ///< one-point or fully integrated
-  HourglassSettings hourglass{};  ///< one-point hexahedra
+  HourglassSettings hourglass{};                       ///< one-point hexahedra
   /// Unset: on (LS-DYNA's defaults) for hexahedra and for particles whose material has an
   /// equation of state, off otherwise (core::bulk_viscosity_of).
   std::optional<BulkViscositySettings> bulk_viscosity{};
-  std::optional<ErosionSettings> erosion{};  ///< set: the elements may erode
+  std::optional<ErosionSettings> erosion{};        ///< set: the elements may erode
   std::optional<ConversionSettings> conversion{};  ///< hexahedra
-  std::optional<RigidSettings> rigid{};  ///< set: a rigid body (hexahedra)
-  double area = 0.0;            ///< truss cross-section where the mesh gives none
-  /// Bonded coupling (HFEMP, Lian et al. 2013, §2.6): the particle body whose velocity field this mesh
-  /// body's nodes join; they move with the grid solution (perfect bond). -1: not bonded.
+  std::optional<RigidSettings> rigid{};            ///< set: a rigid body (hexahedra)
+  double area = 0.0;  ///< truss cross-section where the mesh gives none
+  /// Bonded coupling (HFEMP, Lian et al. 2013, §2.6): the particle body whose velocity field this
+  /// mesh body's nodes join; they move with the grid solution (perfect bond). -1: not bonded.
   int bonded_to = -1;
   /// Particles: none is placed inside the shapes of these bodies (water around a charge).
   std::vector<int> outside{};
-  Vec3 velocity{};                ///< initial velocity
+  Vec3 velocity{};                      ///< initial velocity
   std::optional<double> temperature{};  ///< initial temperature; default the material's
   /// Initial specific internal energy e0 (per unit mass; J/kg = mm^2/ms^2): with an EOS that
   /// depends on e it is an initial pressure (a hot or pressurised body, a gas charge), like
@@ -319,21 +318,21 @@ struct BodySpec {
   /// Particles: an initial pressure (water at depth): the particles start at the density at
   /// which the material's EOS gives it (core/materials/initial_pressure.hpp), with stress -p I.
   std::optional<double> pressure{};
-  SourceLocation where{};         ///< the [[bodies]] table, for messages
+  SourceLocation where{};  ///< the [[bodies]] table, for messages
 };
 
 /// Reference values a run compares its result with at the end (Ma 2005, eq 2-42).
 struct TaylorReference {
   double length = 0.0, impact_diameter = 0.0, bulge_diameter = 0.0;  ///< L, D, W
-  double tolerance = 0.0;       ///< allowed mean error; 0: report only
+  double tolerance = 0.0;  ///< allowed mean error; 0: report only
 };
 
 /// A body's mean velocity at the end of the run (a projectile's residual velocity, a bar's
 /// rebound) against a reference value: error |v - value| / |value|.
 struct VelocityReference {
   int body = -1;
-  int component = -1;  ///< 0, 1, 2 for x, y, z; -1 for the magnitude
-  double value = 0.0;  ///< != 0
+  int component = -1;      ///< 0, 1, 2 for x, y, z; -1 for the magnitude
+  double value = 0.0;      ///< != 0
   double tolerance = 0.0;  ///< allowed error; 0: report only
   SourceLocation where{};
 };
@@ -342,8 +341,8 @@ struct VelocityReference {
 /// node set named by an imported mesh.
 struct NodeSelector {
   enum class Kind { box, plane, set } kind = Kind::box;
-  Vec3 min{}, max{};          ///< box
-  Vec3 point, normal;     ///< plane (normal unit)
+  Vec3 min{}, max{};        ///< box
+  Vec3 point, normal;       ///< plane (normal unit)
   double tolerance = 1e-6;  ///< plane: largest distance of a selected node
   std::string set{};        ///< set
 };
@@ -351,9 +350,9 @@ struct NodeSelector {
 /// Fixed or prescribed-velocity nodes (FE bodies).
 struct ConstraintSpec {
   NodeSelector nodes{};
-  int body = -1;                       ///< restrict to one body; -1: every mesh body
+  int body = -1;  ///< restrict to one body; -1: every mesh body
   std::array<bool, 3> components{false, false, false};  ///< which components are imposed
-  Vec3 velocity;                       ///< the imposed value (0 for fixed components)
+  Vec3 velocity;  ///< the imposed value (0 for fixed components)
   /// A velocity's history: (time, factor) points, times increasing; the imposed value at t is
   /// velocity times the factor interpolated linearly (the first factor before the first point,
   /// the last after the last). Empty: constant.
@@ -410,8 +409,8 @@ const char* to_string(ContactMethod m);
 struct ContactSpec {
   std::array<int, 2> bodies{-1, -1};  ///< indices into Scene::bodies (equal: self-contact)
   ContactMethod method = ContactMethod::grid;
-  double friction = 0.0;              ///< Coulomb coefficient
-  double distance_factor = 0.5;       ///< grid: lambda of eq 42, contact once the gap <= lambda h
+  double friction = 0.0;         ///< Coulomb coefficient
+  double distance_factor = 0.5;  ///< grid: lambda of eq 42, contact once the gap <= lambda h
   /// penalty: the stiffness k = penalty m / dt^2 of a node of mass m (the two sides' masses in
   /// series) at step dt; stable for penalty < 4 - (2 f)^2 with f the element step factor.
   double penalty = 0.1;
@@ -438,12 +437,12 @@ struct DetonationSpec {
 /// Everything a run needs. Bodies, constraints, walls, contacts and references refer to materials
 /// and bodies by index into the vectors here.
 struct Scene {
-  std::string path{};             ///< the scene file, as given
+  std::string path{};  ///< the scene file, as given
   /// The scene's TOML text as read (a checkpoint keeps it: a restart compares the scene with
   /// it); empty for scenes built in code.
   std::string source{};
   RunSettings run{};
-  bool has_grid = false;        ///< a [grid] section: needed by particle bodies
+  bool has_grid = false;  ///< a [grid] section: needed by particle bodies
   MpmSettings mpm{};
   std::vector<Material> materials{};
   /// Where each [materials.NAME] table is (messages; empty for scenes built in code).
@@ -457,49 +456,49 @@ struct Scene {
   std::vector<DetonationSpec> detonations{};  ///< [[detonations]]: what lights the explosives
   std::optional<TaylorReference> taylor_reference{};
   std::vector<VelocityReference> velocity_references{};
-  double energy_tolerance = 0.0;  ///< > 0: the largest |energy-balance error| allowed
+  double energy_tolerance = 0.0;    ///< > 0: the largest |energy-balance error| allowed
   std::vector<ProbeSpec> probes{};  ///< [[probes]], in file order
 };
 
-}  ///< namespace afemp::core
+}  // namespace afemp::core
 
 // The public names, in namespace afemp.
 namespace afemp {
-using core::UpdateScheme;
-using core::ShapeFunction;
-using core::Transfer;
-using core::FaceCondition;
-using core::Face;
-using core::RunSettings;
-using core::GridSettings;
-using core::MpmSettings;
+using core::BodySpec;
 using core::BoxShape;
+using core::BulkViscositySettings;
+using core::ConstraintSpec;
+using core::ContactMethod;
+using core::ContactSpec;
+using core::ConversionSettings;
 using core::CylinderShape;
-using core::SphereShape;
-using core::PointListShape;
-using core::MeshArrays;
-using core::MeshFileShape;
-using core::LineShape;
-using core::RebarShape;
-using core::Shape;
+using core::DetonationSpec;
 using core::Discretisation;
+using core::ErosionSettings;
+using core::Face;
+using core::FaceCondition;
+using core::GridSettings;
 using core::HexFormulation;
 using core::HourglassForm;
-using core::MeshDensity;
 using core::HourglassSettings;
-using core::BulkViscositySettings;
-using core::ErosionSettings;
-using core::ConversionSettings;
-using core::BodySpec;
-using core::TaylorReference;
-using core::VelocityReference;
+using core::LineShape;
+using core::MeshArrays;
+using core::MeshDensity;
+using core::MeshFileShape;
+using core::MpmSettings;
 using core::NodeSelector;
-using core::ConstraintSpec;
-using core::WallSpec;
-using core::ContactSpec;
-using core::DetonationSpec;
-using core::ContactMethod;
+using core::PointListShape;
+using core::RebarShape;
 using core::RigidSettings;
+using core::RunSettings;
 using core::Scene;
+using core::Shape;
+using core::ShapeFunction;
+using core::SphereShape;
+using core::TaylorReference;
 using core::to_string;
-}  ///< namespace afemp
+using core::Transfer;
+using core::UpdateScheme;
+using core::VelocityReference;
+using core::WallSpec;
+}  // namespace afemp

@@ -33,30 +33,30 @@ void check_scene(const Scene& scene);
 /// step: a step may reorder the particles (follow one by `id`) and conversion adds some.
 /// Writable fields may be changed between steps (a program's boundary condition or load).
 struct ParticleFields {
-  std::span<Vec3> position{};           ///< current position
-  std::span<Vec3> velocity{};           ///< velocity
-  std::span<const double> mass{};       ///< mass (constant)
-  std::span<double> volume{};           ///< current volume (density = mass / volume)
-  std::span<SymTensor> stress{};        ///< Cauchy stress
-  std::span<double> plastic_strain{};   ///< equivalent plastic strain
-  std::span<double> temperature{};      ///< temperature
-  std::span<double> energy{};           ///< specific internal energy (per unit mass)
-  std::span<double> damage{};           ///< scalar damage in [0, 1]
+  std::span<Vec3> position{};          ///< current position
+  std::span<Vec3> velocity{};          ///< velocity
+  std::span<const double> mass{};      ///< mass (constant)
+  std::span<double> volume{};          ///< current volume (density = mass / volume)
+  std::span<SymTensor> stress{};       ///< Cauchy stress
+  std::span<double> plastic_strain{};  ///< equivalent plastic strain
+  std::span<double> temperature{};     ///< temperature
+  std::span<double> energy{};          ///< specific internal energy (per unit mass)
+  std::span<double> damage{};          ///< scalar damage in [0, 1]
   /// Strength models' history variables (a user model's, or a built-in model's own such as
   /// HJC's largest compaction), history_count per particle, point-major:
   /// particle i's variable v is history[i * history_count + v].
   std::span<double> history{};
-  std::size_t history_count = 0;  ///< the most any of the scene's materials declares
-  std::span<const std::int32_t> body{}; ///< index of the body in Scene::bodies
-  std::span<const std::int32_t> id{};   ///< stable id, unchanged by reordering
+  std::size_t history_count = 0;         ///< the most any of the scene's materials declares
+  std::span<const std::int32_t> body{};  ///< index of the body in Scene::bodies
+  std::span<const std::int32_t> id{};    ///< stable id, unchanged by reordering
   std::size_t size() const { return position.size(); }
 };
 
 /// The nodes of the model's meshes (every hexahedron and truss body, in body order).
 struct NodeFields {
-  std::span<Vec3> position{};            ///< x^n
-  std::span<Vec3> velocity{};            ///< v^{n-1/2}: central differences keep half-step velocities
-  std::span<const double> mass{};        ///< lumped mass (0: the node has no live element)
+  std::span<Vec3> position{};      ///< x^n
+  std::span<Vec3> velocity{};      ///< v^{n-1/2}: central differences keep half-step velocities
+  std::span<const double> mass{};  ///< lumped mass (0: the node has no live element)
   std::span<const std::int32_t> body{};  ///< index of the body in Scene::bodies
   /// Loads the program applies, one per node, held until changed; they act over the next steps
   /// on the nodes the FE update moves (not on nodes bonded to particles), and their work is
@@ -70,16 +70,16 @@ struct NodeFields {
 struct ElementFields {
   /// Node indices, nodes_per_element per element (element e's from e * nodes_per_element).
   std::span<const std::int32_t> connectivity{};
-  int nodes_per_element = 0;                             ///< 8 (hexahedra) or 2 (trusses)
-  std::span<const std::uint8_t> alive{};                 ///< 0: eroded or converted into particles
-  std::span<const std::int32_t> body{};                  ///< index of the body in Scene::bodies
-  std::vector<std::size_t> first_point{};                ///< first integration point of each element
-  std::vector<int> points_per_element{};                 ///< 1 (one-point, truss) or 8 (B-bar)
-  std::span<SymTensor> stress{};       ///< per point (trusses: the axial stress as xx)
-  std::span<double> plastic_strain{};  ///< per point
-  std::span<double> temperature{};     ///< per point
-  std::span<double> energy{};          ///< per point, specific internal energy
-  std::span<double> damage{};          ///< per point
+  int nodes_per_element = 0;               ///< 8 (hexahedra) or 2 (trusses)
+  std::span<const std::uint8_t> alive{};   ///< 0: eroded or converted into particles
+  std::span<const std::int32_t> body{};    ///< index of the body in Scene::bodies
+  std::vector<std::size_t> first_point{};  ///< first integration point of each element
+  std::vector<int> points_per_element{};   ///< 1 (one-point, truss) or 8 (B-bar)
+  std::span<SymTensor> stress{};           ///< per point (trusses: the axial stress as xx)
+  std::span<double> plastic_strain{};      ///< per point
+  std::span<double> temperature{};         ///< per point
+  std::span<double> energy{};              ///< per point, specific internal energy
+  std::span<double> damage{};              ///< per point
   /// Strength models' history variables (as for particles), history_count per point, point-major.
   std::span<double> history{};
   std::size_t history_count = 0;  ///< the most any of the scene's materials declares

@@ -12,9 +12,9 @@
 
 namespace afemp::core {
 
-struct Material;     // afemp/material.hpp
-struct PointState;   // the internal point state of a constitutive update
-struct PointUpdate;  // and what it reports
+struct Material;      // afemp/material.hpp
+struct PointState;    // the internal point state of a constitutive update
+struct PointUpdate;   // and what it reports
 class HjcCompaction;  // afemp/equations_of_state.hpp
 
 /// What a deviatoric update reports back to the composition in material.hpp.
@@ -77,7 +77,7 @@ struct JohnsonCook {
   double A = 0.0, B = 0.0, n = 1.0, C = 0.0, m = 0.0;
   double reference_strain_rate = 1.0;  ///< epsdot_0, in the scene's time unit
   double room_temperature = 293.0;
-  double melt_temperature = 0.0;       ///< 0: no thermal softening
+  double melt_temperature = 0.0;  ///< 0: no thermal softening
   /// Its scene-file keys, ranges and rules (afemp/model_parameters.hpp), in johnson_cook.cpp.
   void parameters(ParameterVisitor& v);
   double flow_stress(double eps_p, double eps_rate, double temperature) const;
@@ -114,7 +114,8 @@ struct HolmquistJohnsonCook {
   /// equation of the other models (the pressure does not depend on e).
   PointUpdate update_point(const Material& material, const HjcCompaction& eos, PointState& point,
                            const SymTensor& d_eps, double dt) const;
-  /// Its scene-file keys, ranges and rules (afemp/model_parameters.hpp), in holmquist_johnson_cook.cpp.
+  /// Its scene-file keys, ranges and rules (afemp/model_parameters.hpp), in
+  /// holmquist_johnson_cook.cpp.
   void parameters(ParameterVisitor& v);
   /// sigma* at normalised pressure p_star, damage and equivalent strain rate.
   double normalised_strength(double p_star, double damage, double strain_rate) const;
@@ -131,13 +132,13 @@ struct HolmquistJohnsonCook {
   static const char* history_name(std::size_t k);
 };
 
-}  ///< namespace afemp::core
+}  // namespace afemp::core
 
 // The public names, in namespace afemp.
 namespace afemp {
 using core::Elastic;
 using core::Fluid;
+using core::HolmquistJohnsonCook;
 using core::J2Plasticity;
 using core::JohnsonCook;
-using core::HolmquistJohnsonCook;
-}  ///< namespace afemp
+}  // namespace afemp

@@ -15,21 +15,48 @@ struct Vec3 {
 
   constexpr double& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
   constexpr double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
-  constexpr Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }
-  constexpr Vec3& operator-=(const Vec3& o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
-  constexpr Vec3& operator*=(double s) { x *= s; y *= s; z *= s; return *this; }
+  constexpr Vec3& operator+=(const Vec3& o) {
+    x += o.x;
+    y += o.y;
+    z += o.z;
+    return *this;
+  }
+  constexpr Vec3& operator-=(const Vec3& o) {
+    x -= o.x;
+    y -= o.y;
+    z -= o.z;
+    return *this;
+  }
+  constexpr Vec3& operator*=(double s) {
+    x *= s;
+    y *= s;
+    z *= s;
+    return *this;
+  }
 };
 
-constexpr Vec3 operator+(Vec3 a, const Vec3& b) { return a += b; }
-constexpr Vec3 operator-(Vec3 a, const Vec3& b) { return a -= b; }
-constexpr Vec3 operator*(double s, Vec3 a) { return a *= s; }
-constexpr Vec3 operator*(Vec3 a, double s) { return a *= s; }
-constexpr double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr Vec3 operator+(Vec3 a, const Vec3& b) {
+  return a += b;
+}
+constexpr Vec3 operator-(Vec3 a, const Vec3& b) {
+  return a -= b;
+}
+constexpr Vec3 operator*(double s, Vec3 a) {
+  return a *= s;
+}
+constexpr Vec3 operator*(Vec3 a, double s) {
+  return a *= s;
+}
+constexpr double dot(const Vec3& a, const Vec3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 constexpr Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 /// The Euclidean length of a.
-inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+inline double norm(const Vec3& a) {
+  return std::sqrt(dot(a, a));
+}
 
 /// Full 3x3 matrix, row-major: m[i][j].
 struct Mat3 {
@@ -63,23 +90,46 @@ struct SymTensor {
     return {xx - m, yy - m, zz - m, yz, xz, xy};
   }
   constexpr SymTensor& operator+=(const SymTensor& o) {
-    xx += o.xx; yy += o.yy; zz += o.zz; yz += o.yz; xz += o.xz; xy += o.xy;
+    xx += o.xx;
+    yy += o.yy;
+    zz += o.zz;
+    yz += o.yz;
+    xz += o.xz;
+    xy += o.xy;
     return *this;
   }
   constexpr SymTensor& operator-=(const SymTensor& o) {
-    xx -= o.xx; yy -= o.yy; zz -= o.zz; yz -= o.yz; xz -= o.xz; xy -= o.xy;
+    xx -= o.xx;
+    yy -= o.yy;
+    zz -= o.zz;
+    yz -= o.yz;
+    xz -= o.xz;
+    xy -= o.xy;
     return *this;
   }
   constexpr SymTensor& operator*=(double s) {
-    xx *= s; yy *= s; zz *= s; yz *= s; xz *= s; xy *= s;
+    xx *= s;
+    yy *= s;
+    zz *= s;
+    yz *= s;
+    xz *= s;
+    xy *= s;
     return *this;
   }
 };
 
-constexpr SymTensor operator+(SymTensor a, const SymTensor& b) { return a += b; }
-constexpr SymTensor operator-(SymTensor a, const SymTensor& b) { return a -= b; }
-constexpr SymTensor operator*(double s, SymTensor a) { return a *= s; }
-constexpr SymTensor operator*(SymTensor a, double s) { return a *= s; }
+constexpr SymTensor operator+(SymTensor a, const SymTensor& b) {
+  return a += b;
+}
+constexpr SymTensor operator-(SymTensor a, const SymTensor& b) {
+  return a -= b;
+}
+constexpr SymTensor operator*(double s, SymTensor a) {
+  return a *= s;
+}
+constexpr SymTensor operator*(SymTensor a, double s) {
+  return a *= s;
+}
 
 /// a : b
 constexpr double double_dot(const SymTensor& a, const SymTensor& b) {
@@ -106,12 +156,18 @@ inline double largest_principal(const SymTensor& a) {
 }
 
 /// Pressure, positive in compression.
-constexpr double pressure(const SymTensor& a) { return -a.mean(); }
+constexpr double pressure(const SymTensor& a) {
+  return -a.mean();
+}
 
 /// Symmetric part of (L + L^T)/2 and skew part (L - L^T)/2 of a velocity gradient.
 constexpr SymTensor sym_part(const Mat3& l) {
-  return {l.m[0][0], l.m[1][1], l.m[2][2], 0.5 * (l.m[1][2] + l.m[2][1]),
-          0.5 * (l.m[0][2] + l.m[2][0]), 0.5 * (l.m[0][1] + l.m[1][0])};
+  return {l.m[0][0],
+          l.m[1][1],
+          l.m[2][2],
+          0.5 * (l.m[1][2] + l.m[2][1]),
+          0.5 * (l.m[0][2] + l.m[2][0]),
+          0.5 * (l.m[0][1] + l.m[1][0])};
 }
 
 /// Jaumann rotation increment  W.s - s.W  (Ma 2005, eqs 2-17, 2-41) for the spin increment
@@ -129,14 +185,14 @@ constexpr SymTensor jaumann_increment(const SymTensor& s, double w23, double w13
   return r;
 }
 
-}  ///< namespace afemp::core
+}  // namespace afemp::core
 
 // The public names, in namespace afemp.
 namespace afemp {
-using core::Vec3;
-using core::Mat3;
-using core::SymTensor;
 using core::double_dot;
-using core::von_mises;
+using core::Mat3;
 using core::pressure;
-}  ///< namespace afemp
+using core::SymTensor;
+using core::Vec3;
+using core::von_mises;
+}  // namespace afemp

@@ -24,9 +24,9 @@ namespace afemp::core {
 /// (not engineering) components. The model reads the inputs and writes the outputs of every
 /// point; it must not keep the pointers past the call.
 struct StrengthBatch {
-  std::size_t count = 0;          ///< points in this batch (at most a few hundred)
-  double dt = 0.0;                ///< time increment
-  double shear_modulus = 0.0;     ///< G of the material, from E and nu
+  std::size_t count = 0;               ///< points in this batch (at most a few hundred)
+  double dt = 0.0;                     ///< time increment
+  double shear_modulus = 0.0;          ///< G of the material, from E and nu
   const double* parameters = nullptr;  ///< the material's parameter values, in declared order
   /// Deviatoric strain increment dev(D) dt of each point, per component.
   const double* strain_increment[6] = {};
@@ -137,11 +137,11 @@ UserStrength user_strength(const std::string& name,
 
 // The public names, in namespace afemp.
 namespace afemp {
-using core::StrengthBatch;
-using core::UserStrengthDefinition;
-using core::UserStrength;
-using core::register_strength_model;
 using core::find_strength_model;
+using core::register_strength_model;
 using core::registered_strength_models;
+using core::StrengthBatch;
 using core::user_strength;
+using core::UserStrength;
+using core::UserStrengthDefinition;
 }  // namespace afemp

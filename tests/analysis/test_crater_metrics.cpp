@@ -14,7 +14,7 @@
 namespace afemp::analysis {
 namespace {
 
-constexpr double spacing = 0.25;  // lattice spacing
+constexpr double spacing = 0.25;           // lattice spacing
 constexpr double depth0 = 2.0, rim = 4.0;  // crater depth and rim radius
 // The sphere through the rim circle and the bottom point: radius (a^2 + d^2) / (2 d).
 const double sphere = (rim * rim + depth0 * depth0) / (2.0 * depth0);
@@ -29,7 +29,8 @@ std::vector<Vec3> cratered_plate(bool ejecta) {
       for (int k = 0; k <= static_cast<int>(6.0 / spacing); ++k) {
         const Vec3 x{i * spacing, j * spacing, -k * spacing};
         const double r = std::hypot(x.x, x.y);
-        const double cap = r < rim ? -(depth0 - (sphere - std::sqrt(sphere * sphere - r * r))) : 0.0;
+        const double cap =
+            r < rim ? -(depth0 - (sphere - std::sqrt(sphere * sphere - r * r))) : 0.0;
         if (x.z <= cap + 1e-12) points.push_back(x);
       }
   if (ejecta)  // a debris cloud flying up the axis, well clear of the floor
@@ -96,8 +97,8 @@ TEST(CraterMetrics, HoleDiameterIsTheLargestFreeCircleInTheMidPlaneSlab) {
         const Vec3 x{i * spacing, j * spacing, 4.0 + k * spacing};
         if (std::hypot(x.x, x.y) >= hole) points.push_back(x);
       }
-  points.push_back({0.0, 0.0, 0.5});   // the plug
-  points.push_back({0.5, 0.0, 7.5});   // the petal
+  points.push_back({0.0, 0.0, 0.5});  // the plug
+  points.push_back({0.5, 0.0, 7.5});  // the petal
   const double d = measure_hole(points, {0, 0, 5}, {0, 0, 1}, 1.0);
   // The lattice's nearest point to the axis outside r = 1.5: (1.5, 0), on the hole's edge.
   EXPECT_NEAR(d, 2.0 * hole, 1e-12);

@@ -14,10 +14,10 @@
 #include <string>
 
 #include "analysis/reference_checks.hpp"
-#include "core/parallel.hpp"
-#include "analysis/study_file.hpp"
-#include "coupling/make_model.hpp"
 #include "analysis/study.hpp"
+#include "analysis/study_file.hpp"
+#include "core/parallel.hpp"
+#include "coupling/make_model.hpp"
 #include "elastic_bar_scene.hpp"
 #include "scratch_dir.hpp"
 
@@ -72,7 +72,8 @@ TEST(Study, ElasticBarRowsMatchDirectRunsAndTheFilesHoldThem) {
     // As the velocity metric takes it (momentum times the inverse mass): the same bits.
     const double v = ((1.0 / bar.mass) * bar.momentum).z;
     std::printf("%s: rebound %.2f m/s (direct run %.2f), error %.4f, %ld steps, %.2f s\n",
-                row.run->label.c_str(), row.values[0], v, row.errors[0], row.steps, row.wall_seconds);
+                row.run->label.c_str(), row.values[0], v, row.errors[0], row.steps,
+                row.wall_seconds);
     EXPECT_TRUE(row.ok()) << describe_row(result, row);
     EXPECT_EQ(row.threads, 1);
     EXPECT_EQ(row.steps, s.steps);

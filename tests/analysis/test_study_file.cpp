@@ -7,8 +7,8 @@
 #include <string>
 
 #include "analysis/study_file.hpp"
-#include "scene_errors.hpp"
 #include "elastic_bar_scene.hpp"
+#include "scene_errors.hpp"
 #include "scratch_dir.hpp"
 
 namespace afemp::analysis {
@@ -73,7 +73,7 @@ TEST(StudyFile, RunsExpandPerResolutionAndOverridesReachTheScene) {
   const Scene fine = build_run_scene(plan, plan.runs[1]);
   EXPECT_EQ(fine.mpm.grid.cell, 0.5);
   EXPECT_EQ(fine.bodies[0].particles_per_cell, 1);
-  EXPECT_EQ(fine.mpm.grid.max.z, 16.0);  // the rest as in the scene file
+  EXPECT_EQ(fine.mpm.grid.max.z, 16.0);                   // the rest as in the scene file
   const Scene usf = build_run_scene(plan, plan.runs[2]);  // the scene has no [mpm]: started
   EXPECT_EQ(usf.mpm.scheme, UpdateScheme::USF);
   EXPECT_EQ(usf.mpm.grid.cell, 1.0);
@@ -96,7 +96,8 @@ TEST(StudyFile, MistakesNameTheFileLineKeyAndWhatIsAllowed) {
   e = study_error(replaced(study_text, "\"bodies.bar.particles_per_cell\" = [2, 1]",
                            "\"bodies.bar.particles_per_cell\" = 2"));
   EXPECT_NE(e.find("every set value must be an array of 2 values"), std::string::npos) << e;
-  e = study_error(replaced(study_text, "\"mpm.scheme\" = \"USF\"", "\"bodies.rod.velocity\" = [0, 0, 1]"));
+  e = study_error(
+      replaced(study_text, "\"mpm.scheme\" = \"USF\"", "\"bodies.rod.velocity\" = [0, 0, 1]"));
   EXPECT_NE(e.find("no 'bodies' named \"rod\"; it has \"bar\""), std::string::npos) << e;
   e = study_error(replaced(study_text, "\"mpm.scheme\" = \"USF\"", "\"grid.cell.x\" = 1"));
   EXPECT_NE(e.find("'grid.cell' in scene"), std::string::npos) << e;
@@ -107,7 +108,8 @@ TEST(StudyFile, MistakesNameTheFileLineKeyAndWhatIsAllowed) {
   EXPECT_NE(e.find("mpm.schema"), std::string::npos) << e;
   EXPECT_NE(e.find("scheme"), std::string::npos) << e;  // among the allowed keys
   // An override value the scene parser refuses names its range.
-  e = study_error(replaced(study_text, "\"grid.cell\" = [1.0, 0.5]", "\"grid.cell\" = [1.0, -0.5]"));
+  e = study_error(
+      replaced(study_text, "\"grid.cell\" = [1.0, 0.5]", "\"grid.cell\" = [1.0, -0.5]"));
   EXPECT_NE(e.find("MPM, resolution 0.5"), std::string::npos) << e;
   EXPECT_NE(e.find("grid.cell"), std::string::npos) << e;
   e = study_error(replaced(study_text, "body = \"bar\"", "body = \"rod\""));
@@ -121,7 +123,8 @@ TEST(StudyFile, MistakesNameTheFileLineKeyAndWhatIsAllowed) {
   EXPECT_NE(e.find("\"rebound\""), std::string::npos) << e;
   e = study_error("[study]\ntitle = \"nothing\"\n");
   EXPECT_NE(e.find("at least one [[runs]]"), std::string::npos) << e;
-  e = study_error(replaced(study_text, "scene = \"bar.toml\"\nresolution", "scene = \"rod.toml\"\nresolution"));
+  e = study_error(
+      replaced(study_text, "scene = \"bar.toml\"\nresolution", "scene = \"rod.toml\"\nresolution"));
   EXPECT_NE(e.find("cannot open scene file"), std::string::npos) << e;
   EXPECT_NE(e.find("rod.toml"), std::string::npos) << e;
 }

@@ -203,9 +203,11 @@ scene = "targets.toml"
             (std::vector<std::string>{"crater.depth", "crater.diameter", "hole"}));
   ASSERT_EQ(result.error_columns, (std::vector<std::string>{"crater.error", "hole.error"}));
   const StudyRow& row = result.rows.at(0);
-  std::printf("crater depth %.3f (cut %.2f), diameter %.3f (cut %.2f); hole %.3f (cut %.2f); "
-              "errors %.4f %.4f\n", row.values[0], depth, row.values[1], 2 * rim, row.values[2],
-              2 * hole, row.errors[0], row.errors[1]);
+  std::printf(
+      "crater depth %.3f (cut %.2f), diameter %.3f (cut %.2f); hole %.3f (cut %.2f); "
+      "errors %.4f %.4f\n",
+      row.values[0], depth, row.values[1], 2 * rim, row.values[2], 2 * hole, row.errors[0],
+      row.errors[1]);
   EXPECT_EQ(row.steps, 3);
   // Particles sit half a spacing inside the material: the surface level is measured on them
   // too, so the depth is the cut's within a spacing; the diameter within a ring each side.
@@ -220,33 +222,45 @@ scene = "targets.toml"
 }
 
 TEST(StudyMetrics, MistakesNameTheFileLineKeyAndWhatIsAllowed) {
-  std::string e = study_error(replaced(bar_study, "quantity = \"vz\"\nuntil", "quantity = \"speed\"\nuntil"));
-  EXPECT_NE(e.find("study.toml:7: key 'metrics.quantity': probe \"z10\" is a node probe; its columns "
-                   "are \"x\", \"y\", \"z\", \"vx\", \"vy\", \"vz\""),
-            std::string::npos) << e;
+  std::string e =
+      study_error(replaced(bar_study, "quantity = \"vz\"\nuntil", "quantity = \"speed\"\nuntil"));
+  EXPECT_NE(
+      e.find("study.toml:7: key 'metrics.quantity': probe \"z10\" is a node probe; its columns "
+             "are \"x\", \"y\", \"z\", \"vx\", \"vy\", \"vz\""),
+      std::string::npos)
+      << e;
   e = study_error(replaced(bar_study, "probe = \"tip\"", "probe = \"end\""));
   EXPECT_NE(e.find("key 'metrics.probe': metric \"axial\" reads probe \"end\", which run \"FE\""),
-            std::string::npos) << e;
-  e = study_error(replaced(bar_study, "probes = [\"z10\", \"z25\", \"z40\"]", "probes = [\"z10\"]"));
+            std::string::npos)
+      << e;
+  e = study_error(
+      replaced(bar_study, "probes = [\"z10\", \"z25\", \"z40\"]", "probes = [\"z10\"]"));
   EXPECT_NE(e.find("key 'metrics[0].probes': name two or more probes"), std::string::npos) << e;
-  e = study_error(replaced(bar_study, "probes = [\"z10\", \"z25\", \"z40\"]", "probes = [\"z10\", \"bar_v\"]"));
+  e = study_error(
+      replaced(bar_study, "probes = [\"z10\", \"z25\", \"z40\"]", "probes = [\"z10\", \"bar_v\"]"));
   EXPECT_NE(e.find("probe \"bar_v\" is a mean_velocity probe"), std::string::npos) << e;
   e = study_error(replaced(bar_study, "probe = \"tip\"", "probe = \"tip\"\nband = 1"));
   EXPECT_NE(e.find("key 'metrics[1].band': applies to kind \"hole\" only, not \"frequency\""),
-            std::string::npos) << e;
+            std::string::npos)
+      << e;
   e = study_error(replaced(bar_study, "until = 0.0109", "until = -1"));
   EXPECT_NE(e.find("key 'metrics[0].until'"), std::string::npos) << e;
-  const std::string crater = "[study]\n[[metrics]]\nkind = \"crater\"\nbody = \"bar\"\npoint = [0, 0, 50]\n"
-                             "normal = [0, 0, 1]\nring = 0.5\nthreshold = 0.1\ntolerance = 0.1\n"
-                             "[[runs]]\nmethod = \"FE\"\nscene = \"bar.toml\"\n";
+  const std::string crater =
+      "[study]\n[[metrics]]\nkind = \"crater\"\nbody = \"bar\"\npoint = [0, 0, 50]\n"
+      "normal = [0, 0, 1]\nring = 0.5\nthreshold = 0.1\ntolerance = 0.1\n"
+      "[[runs]]\nmethod = \"FE\"\nscene = \"bar.toml\"\n";
   e = study_error(crater);
   EXPECT_NE(e.find("study.toml:9: key 'metrics[0].tolerance': a tolerance needs a reference"),
-            std::string::npos) << e;
+            std::string::npos)
+      << e;
   e = study_error(replaced(crater, "ring = 0.5\n", ""));
   EXPECT_NE(e.find("key 'metrics[0].ring': required key is missing"), std::string::npos) << e;
   e = study_error(replaced(crater, "normal = [0, 0, 1]", "normal = [0, 0, 0]"));
-  EXPECT_NE(e.find("key 'metrics[0].normal': the normal must be a non-zero vector"), std::string::npos) << e;
-  e = study_error(replaced(replaced(crater, "tolerance = 0.1\n", ""), "body = \"bar\"", "body = \"slab\""));
+  EXPECT_NE(e.find("key 'metrics[0].normal': the normal must be a non-zero vector"),
+            std::string::npos)
+      << e;
+  e = study_error(
+      replaced(replaced(crater, "tolerance = 0.1\n", ""), "body = \"bar\"", "body = \"slab\""));
   EXPECT_NE(e.find("measures body \"slab\""), std::string::npos) << e;
 }
 

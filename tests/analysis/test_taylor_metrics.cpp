@@ -29,9 +29,9 @@ TEST(TaylorMetrics, ParticlesReachHalfTheirSpacingBeyondTheirCentres) {
   const std::vector<Vec3> x = {{0, 0, 0.5}, {0.5, 0, 0.5}, {0, 0, 9.5}, {0.7, 0, 2.0}};
   const std::vector<double> half(x.size(), 0.5);
   const TaylorMeasures m = measure_taylor(bar_scene(Discretisation::particles), 0, x, half);
-  EXPECT_DOUBLE_EQ(m.length, 10.0);           // 0 .. 10
-  EXPECT_DOUBLE_EQ(m.impact_diameter, 2.0);   // (0.5 + 0.5) at the wall
-  EXPECT_DOUBLE_EQ(m.bulge_diameter, 2.4);    // (0.7 + 0.5) at z = 2 = 0.2 L0
+  EXPECT_DOUBLE_EQ(m.length, 10.0);          // 0 .. 10
+  EXPECT_DOUBLE_EQ(m.impact_diameter, 2.0);  // (0.5 + 0.5) at the wall
+  EXPECT_DOUBLE_EQ(m.bulge_diameter, 2.4);   // (0.7 + 0.5) at z = 2 = 0.2 L0
 }
 
 TEST(TaylorMetrics, MeshNodesAreReadInABandOfHalfAnElement) {

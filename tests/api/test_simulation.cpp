@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <afemp/afemp.hpp>
-
 #include <cmath>
 #include <string>
 #include <vector>
@@ -19,7 +18,9 @@ namespace {
 
 using afemp::Vec3;
 
-std::string taylor_toml(bool hexahedra) { return afemp::test::taylor_bar_scene(hexahedra); }
+std::string taylor_toml(bool hexahedra) {
+  return afemp::test::taylor_bar_scene(hexahedra);
+}
 
 // The same bar, built in code.
 afemp::Scene taylor_in_code(bool hexahedra) {
@@ -35,7 +36,8 @@ afemp::Scene taylor_in_code(bool hexahedra) {
   afemp::BodySpec bar;
   bar.name = "bar";
   bar.material = 0;
-  bar.shape = afemp::CylinderShape{.base = {0, 0, 0}, .axis = {0, 0, 1}, .radius = 3.8, .length = 25.4};
+  bar.shape =
+      afemp::CylinderShape{.base = {0, 0, 0}, .axis = {0, 0, 1}, .radius = 3.8, .length = 25.4};
   bar.velocity = {0, 0, -190};
   if (hexahedra) {
     bar.discretisation = afemp::Discretisation::hexahedra;
@@ -57,7 +59,7 @@ afemp::Scene taylor_in_code(bool hexahedra) {
     s.mpm.grid.max = {10, 10, 26};
     s.mpm.grid.faces = {afemp::FaceCondition::symmetric, afemp::FaceCondition::free,
                         afemp::FaceCondition::symmetric, afemp::FaceCondition::free,
-                        afemp::FaceCondition::wall, afemp::FaceCondition::free};
+                        afemp::FaceCondition::wall,      afemp::FaceCondition::free};
   }
   s.bodies.push_back(bar);
   return s;
@@ -227,8 +229,8 @@ TEST(SimulationApi, BadInputThrowsNamingObjectFieldAndWhatIsAllowed) {
        "bodies.bar.particles_per_cell", "allowed: 1 to 8"},
       {"Poisson ratio", [](afemp::Scene& s) { s.materials[0].poisson_ratio = 0.6; },
        "materials.copper.nu", "allowed: 0 <= value < 0.5"},
-      {"material index", [](afemp::Scene& s) { s.bodies[0].material = 3; },
-       "bodies.bar.material", "not defined"},
+      {"material index", [](afemp::Scene& s) { s.bodies[0].material = 3; }, "bodies.bar.material",
+       "not defined"},
       {"no grid", [](afemp::Scene& s) { s.has_grid = false; }, "grid", "need a grid"},
       {"end time", [](afemp::Scene& s) { s.run.end_time = -1.0; }, "run.end_time",
        "allowed: value > 0"},
@@ -256,7 +258,8 @@ TEST(SimulationApi, BadInputThrowsNamingObjectFieldAndWhatIsAllowed) {
       ADD_FAILURE() << c.what << ": no error";
     } catch (const afemp::InputError& e) {
       EXPECT_EQ(e.key(), c.key) << c.what << ": " << e.what();
-      EXPECT_NE(std::string(e.what()).find(c.allowed), std::string::npos) << c.what << ": " << e.what();
+      EXPECT_NE(std::string(e.what()).find(c.allowed), std::string::npos)
+          << c.what << ": " << e.what();
       EXPECT_NE(std::string(e.what()).find("scene built in code"), std::string::npos) << e.what();
     }
     EXPECT_EQ(testing::internal::GetCapturedStdout(), "") << c.what;
@@ -320,7 +323,8 @@ TEST(SimulationApi, OutputDirectoryGetsTheHistoryAndTheFrames) {
   ASSERT_TRUE(history.good());
   std::size_t lines = 0;
   for (std::string line; std::getline(history, line);) ++lines;
-  const long rows = r.steps / scene.run.history_every + 1 + (r.steps % scene.run.history_every != 0);
+  const long rows =
+      r.steps / scene.run.history_every + 1 + (r.steps % scene.run.history_every != 0);
   EXPECT_EQ(lines, static_cast<std::size_t>(rows) + 1) << "rows and the header";
   EXPECT_TRUE(std::filesystem::exists(dir.path() / "fields.xmf"));
 }

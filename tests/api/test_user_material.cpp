@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include <afemp/afemp.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -66,7 +65,9 @@ const char* kUser =
     R"(strength = { model = "test-linear-j2", yield_stress = 157, hardening = 425 })";
 
 // The coarse Taylor bar of tests/taylor_bar_scene.hpp with either strength model.
-std::string particles(const char* strength) { return afemp::test::taylor_bar_scene(false, strength); }
+std::string particles(const char* strength) {
+  return afemp::test::taylor_bar_scene(false, strength);
+}
 std::string hexahedra(const char* strength, const char* element) {
   return afemp::test::taylor_bar_scene(true, strength, element);
 }
@@ -81,7 +82,8 @@ end_time = 0.02
 density = 7.85e-3
 E = 200e3
 nu = 0.3
-)" + strength + R"(
+)" + strength +
+         R"(
 [[bodies]]
 name = "bar"
 material = "steel"
@@ -114,7 +116,7 @@ Trace trace(const std::string& text) {
   const afemp::ParticleFields p = sim.particles();
   const afemp::ElementFields h = sim.hexahedra(), tr = sim.trusses();
   const auto& eps = !p.position.empty() ? p.plastic_strain
-                    : h.size() > 0  ? h.plastic_strain
+                    : h.size() > 0      ? h.plastic_strain
                                         : tr.plastic_strain;
   const auto& his = !p.position.empty() ? p.history : h.size() > 0 ? h.history : tr.history;
   t.plastic_strain.assign(eps.begin(), eps.end());
@@ -147,9 +149,10 @@ void expect_same(const Trace& user, const Trace& built_in, const char* what) {
     max_eps = std::max(max_eps, user.plastic_strain[i]);
   }
   EXPECT_GT(max_eps, 0.01);
-  std::printf("[%s] %zu steps, largest plastic strain %.4f, largest difference from built-in J2 "
-              "%.3g (energies relative to the initial kinetic energy; tolerance 1e-12)\n",
-              what, user.kinetic.size(), max_eps, worst);
+  std::printf(
+      "[%s] %zu steps, largest plastic strain %.4f, largest difference from built-in J2 "
+      "%.3g (energies relative to the initial kinetic energy; tolerance 1e-12)\n",
+      what, user.kinetic.size(), max_eps, worst);
 }
 
 }  // namespace
@@ -190,8 +193,10 @@ TEST(UserMaterial, SceneFileErrorsNameTheKeyAndWhatIsAllowed) {
       R"(strength = { model = "test-linear-j2", yield_stress = 157, hardening = 425, n = 1 })");
   EXPECT_NE(unknown.find("bad.toml:"), std::string::npos) << unknown;
   EXPECT_NE(unknown.find("n"), std::string::npos) << unknown;
-  EXPECT_NE(unknown.find("yield_stress"), std::string::npos) << "lists the allowed keys: " << unknown;
-  const std::string missing = message(R"(strength = { model = "test-linear-j2", yield_stress = 157 })");
+  EXPECT_NE(unknown.find("yield_stress"), std::string::npos)
+      << "lists the allowed keys: " << unknown;
+  const std::string missing =
+      message(R"(strength = { model = "test-linear-j2", yield_stress = 157 })");
   EXPECT_NE(missing.find("hardening"), std::string::npos) << missing;
   const std::string rejected =
       message(R"(strength = { model = "test-linear-j2", yield_stress = -1, hardening = 425 })");
@@ -215,8 +220,8 @@ TEST(UserMaterial, RegistrationAndCodeBuiltMaterialsAreChecked) {
   no_update.name = "test-no-update";
   EXPECT_THROW(afemp::register_strength_model(no_update), afemp::InputError);
   EXPECT_THROW(afemp::user_strength("test-linear-j2", {{"yield_stress", 1.0}}), afemp::InputError);
-  EXPECT_THROW(afemp::user_strength("test-linear-j2", {{"yield_stress", 1.0}, {"hardening", 2.0},
-                                                       {"n", 1.0}}),
+  EXPECT_THROW(afemp::user_strength("test-linear-j2",
+                                    {{"yield_stress", 1.0}, {"hardening", 2.0}, {"n", 1.0}}),
                afemp::InputError);
   const afemp::UserStrength u =
       afemp::user_strength("test-linear-j2", {{"hardening", 425.0}, {"yield_stress", 157.0}});
@@ -225,14 +230,15 @@ TEST(UserMaterial, RegistrationAndCodeBuiltMaterialsAreChecked) {
   EXPECT_EQ(u.parameters[1], 425.0);
   // A Material built in code with a rejected value: the same check, naming the material.
   afemp::Scene s = afemp::core::parse_scene(particles(kBuiltIn), "taylor.toml");
-  s.materials[0].strength = afemp::user_strength("test-linear-j2", {{"yield_stress", -5.0},
-                                                                    {"hardening", 425.0}});
+  s.materials[0].strength =
+      afemp::user_strength("test-linear-j2", {{"yield_stress", -5.0}, {"hardening", 425.0}});
   try {
     afemp::Simulation sim(s);
     ADD_FAILURE() << "a negative yield stress was accepted";
   } catch (const afemp::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("copper"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("yield_stress must be >= 0"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("yield_stress must be >= 0"), std::string::npos)
+        << e.what();
   }
 }
 

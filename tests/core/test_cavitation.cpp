@@ -14,8 +14,8 @@
 #include <string>
 
 #include "afemp/errors.hpp"
-#include "explosive_scenes.hpp"
 #include "core/scene.hpp"
+#include "explosive_scenes.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
 
@@ -30,7 +30,8 @@ cell = 0.5
 min = [0, 0, -10]
 max = [1, 1, 10]
 boundary = { xmin = "symmetric", xmax = "symmetric", ymin = "symmetric", ymax = "symmetric" }
-)" + test::water_material() + cutoff + R"(
+)" + test::water_material() +
+         cutoff + R"(
 [[bodies]]
 name = "lower"
 material = "water"
@@ -65,9 +66,10 @@ Pull pull(const std::string& cutoff) {
 TEST(Cavitation, WaterCarriesNoTensionBelowItsCutoff) {
   const Pull free = pull("");
   const Pull cut = pull("pressure_cutoff = 0.0");
-  std::printf("water pulled apart at 2 x 20 m/s: lowest pressure %.2f MPa without a cutoff "
-              "(rho0 c0 v = 32.9), %.3g MPa with cutoff 0; energy balance %+.3f %% and %+.3f %%\n",
-              free.lowest, cut.lowest, 100.0 * free.balance, 100.0 * cut.balance);
+  std::printf(
+      "water pulled apart at 2 x 20 m/s: lowest pressure %.2f MPa without a cutoff "
+      "(rho0 c0 v = 32.9), %.3g MPa with cutoff 0; energy balance %+.3f %% and %+.3f %%\n",
+      free.lowest, cut.lowest, 100.0 * free.balance, 100.0 * cut.balance);
   EXPECT_LT(free.lowest, -0.8 * 32.9);
   EXPECT_GE(cut.lowest, 0.0);
   EXPECT_LT(std::abs(cut.balance), 0.01);

@@ -77,7 +77,8 @@ TEST(DetonationPaths, PointsBehindAWaveShaperLightAroundItsRim) {
   const std::vector<double> t0 = lighting_times(x, D, kS, straight);
   int checked = 0;
   for (std::size_t i = 0; i < x.size(); ++i) {
-    if (std::abs(x[i].x - 0.125) > 1e-9 || std::abs(x[i].y - 0.125) > 1e-9 || x[i].z < 8.0) continue;
+    if (std::abs(x[i].x - 0.125) > 1e-9 || std::abs(x[i].y - 0.125) > 1e-9 || x[i].z < 8.0)
+      continue;
     const double reference = around_the_rim(x[i].z);
     std::printf("z = %6.3f: lit at %.5f us, around the rim %.5f us (%+.2f %%), straight %.5f us\n",
                 x[i].z, 1e3 * t[i], 1e3 * reference, 100.0 * (t[i] / reference - 1.0), 1e3 * t0[i]);
@@ -134,11 +135,13 @@ outside = ["shaper"]
 [[bodies]]
 name = "shaper"
 material = "steel"
-)" + disc_max_radius_box + R"(
+)" + disc_max_radius_box +
+         R"(
 [[detonations]]
 point = [0, 0, 0]
 shadow = true
-)" + test::tnt_material() + test::steel_plate_material();
+)" + test::tnt_material() +
+         test::steel_plate_material();
 }
 
 TEST(DetonationPaths, ParticlesBehindAWaveShaperLightAroundIt) {
@@ -149,7 +152,8 @@ TEST(DetonationPaths, ParticlesBehindAWaveShaperLightAroundIt) {
   const mpm::Particles& p = solver.particles();
   int checked = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (p.body[i] != 0 || std::hypot(p.position[i].x, p.position[i].y) > 0.2 || p.position[i].z < 8.0)
+    if (p.body[i] != 0 || std::hypot(p.position[i].x, p.position[i].y) > 0.2 ||
+        p.position[i].z < 8.0)
       continue;
     const double reference = around_the_rim(p.position[i].z);
     EXPECT_NEAR(p.light_time[i], reference, 0.02 * reference) << "z " << p.position[i].z;
@@ -199,7 +203,8 @@ mesh = { size = 0.5 }
 [[detonations]]
 point = [0, 0, 0]
 shadow = true
-)" + test::tnt_material(), "hex.toml");
+)" + test::tnt_material(),
+                                  "hex.toml");
   const fem::FeSolver solver(scene);
   const fem::HexElements& h = solver.hexahedra();
   const fem::FeNodes& n = solver.nodes();

@@ -11,7 +11,9 @@ namespace afemp::core {
 namespace {
 
 // Copper (Ma 2005 table values): rho0 = 8.93 g/cm^3, c0 = 3.94 km/s, s = 1.49, gamma0 = 1.96.
-MieGruneisen copper_eos() { return {8.93e-3, 3940.0, 1.49, 1.96}; }
+MieGruneisen copper_eos() {
+  return {8.93e-3, 3940.0, 1.49, 1.96};
+}
 
 template <class Eos>
 double eos_pressure(const Eos& eos, double mu, double e) {
@@ -61,8 +63,9 @@ TEST(MieGruneisen, TensionUsesLinearHugoniotWithoutQuadraticAndCubicTerms) {
   EXPECT_NEAR(p, -7113.767908000002, 1e-12 * 7113.767908000002);
   const double c2 = c1 * (2.0 * eos.s - 1.0);
   const double c3 = c1 * (eos.s - 1.0) * (3.0 * eos.s - 1.0);
-  const double cubic = (c1 * mu + c2 * mu * mu + c3 * mu * mu * mu) *
-                           (1.0 - 0.5 * eos.gamma0 * mu / (1.0 + mu)) + eos.gamma0 * eos.rho0 * e;
+  const double cubic =
+      (c1 * mu + c2 * mu * mu + c3 * mu * mu * mu) * (1.0 - 0.5 * eos.gamma0 * mu / (1.0 + mu)) +
+      eos.gamma0 * eos.rho0 * e;
   EXPECT_GT(std::abs(p - cubic), 100.0);  // the compression branch would be off by ~700 MPa
 }
 
@@ -97,8 +100,8 @@ TEST(MieGruneisen, ColdPressureRisesWithCompressionAtEveryDensity) {
 }
 
 TEST(MieGruneisen, LargeExpansionStaysFiniteAndMonotone) {
-  // Reference: no clamp on mu (see mie_gruneisen.cpp): a(mu) = C1 mu (1 - gamma0 mu / (2 (1 + mu))) is
-  // finite and increasing for -1 < mu < 0, so the tangent is positive. Exact sign checks.
+  // Reference: no clamp on mu (see mie_gruneisen.cpp): a(mu) = C1 mu (1 - gamma0 mu / (2 (1 + mu)))
+  // is finite and increasing for -1 < mu < 0, so the tangent is positive. Exact sign checks.
   const MieGruneisen eos = copper_eos();
   double previous = eos_pressure(eos, -0.9, 0.0);
   for (double mu = -0.8; mu < 0.0; mu += 0.1) {
@@ -148,8 +151,7 @@ TEST(LinearPolynomialEos, TensionDropsC2AndC6) {
   const LinearPolynomialEos eos = polynomial_eos();
   const double mu = -0.06, e = 3.0e5;
   const double* c = eos.c;
-  const double formula =
-      c[0] + c[1] * mu + c[3] * mu * mu * mu + (c[4] + c[5] * mu) * eos.rho0 * e;
+  const double formula = c[0] + c[1] * mu + c[3] * mu * mu * mu + (c[4] + c[5] * mu) * eos.rho0 * e;
   EXPECT_NEAR(eos_pressure(eos, mu, e), formula, 1e-12 * std::abs(formula));
 }
 

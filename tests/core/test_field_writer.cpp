@@ -8,17 +8,17 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <iterator>
 #include <span>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "scratch_dir.hpp"
-#include "core/output/field_writer.hpp"
 #include "afemp/tensor.hpp"
+#include "core/output/field_writer.hpp"
+#include "scratch_dir.hpp"
 
 namespace afemp::core {
 namespace {
@@ -184,13 +184,17 @@ TEST(FieldWriter, XdmfIndexIsValidAfterEveryFrame) {
   for (const char* frame : {"frame_000000", "frame_000001"}) {
     const std::string f = frame;
     EXPECT_NE(text.find("Dimensions=\"5 3\" NumberType=\"Float\" Precision=\"8\" "
-                        "Format=\"HDF\">bar.h5:/" + f + "/particles/position<"),
-              std::string::npos) << f;
+                        "Format=\"HDF\">bar.h5:/" +
+                        f + "/particles/position<"),
+              std::string::npos)
+        << f;
     EXPECT_NE(text.find(">bar.h5:/" + f + "/particles/node/pressure<"), std::string::npos) << f;
     EXPECT_NE(text.find(">bar.h5:/" + f + "/particles/node/velocity<"), std::string::npos) << f;
     EXPECT_NE(text.find("Dimensions=\"5 6\" NumberType=\"Float\" Precision=\"8\" "
-                        "Format=\"HDF\">bar.h5:/" + f + "/particles/node/stress<"),
-              std::string::npos) << f;
+                        "Format=\"HDF\">bar.h5:/" +
+                        f + "/particles/node/stress<"),
+              std::string::npos)
+        << f;
   }
   EXPECT_EQ(count(text, "Name=\"pressure\" AttributeType=\"Scalar\" Center=\"Node\""), 2u);
   EXPECT_EQ(count(text, "Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\""), 2u);

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "scratch_dir.hpp"
 #include "core/output/history.hpp"
 #include "core/output/run_directory.hpp"
+#include "scratch_dir.hpp"
 
 namespace afemp::core {
 namespace {
@@ -45,11 +45,22 @@ HistoryRow make_row(int r) {
 }
 
 std::vector<double> flatten(const HistoryRow& row) {
-  std::vector<double> v = {static_cast<double>(row.step), row.time, row.dt, row.kinetic,
-                           row.internal, row.elastic, row.plastic, row.viscous,
-                           row.hourglass, row.stabilisation, row.eroded, row.converted, row.contact,
+  std::vector<double> v = {static_cast<double>(row.step),
+                           row.time,
+                           row.dt,
+                           row.kinetic,
+                           row.internal,
+                           row.elastic,
+                           row.plastic,
+                           row.viscous,
+                           row.hourglass,
+                           row.stabilisation,
+                           row.eroded,
+                           row.converted,
+                           row.contact,
                            row.external_work,
-                           row.total, row.energy_error};
+                           row.total,
+                           row.energy_error};
   for (const BodyHistory& b : row.bodies) {
     for (int i = 0; i < 3; ++i) v.push_back(b.momentum[i]);
     for (int i = 0; i < 3; ++i) v.push_back(b.mean_velocity[i]);
@@ -71,10 +82,11 @@ TEST(History, HeaderListsPerBodyColumnsAndRowsReadBack) {
   HistoryWriter w(path, {"bar", "anvil"});
   const CsvTable empty = read_csv(path);  // header on disk before any row
   const std::vector<std::string> expected_header = {
-      "step",     "time",     "dt",        "kinetic", "internal", "elastic",
-      "plastic",  "viscous",  "hourglass", "stabilisation", "eroded", "converted", "contact", "external_work", "total",
-      "energy_error", "bar.px", "bar.py",  "bar.pz", "bar.vx", "bar.vy", "bar.vz", "bar.kinetic",
-      "bar.internal", "anvil.px", "anvil.py", "anvil.pz", "anvil.vx", "anvil.vy", "anvil.vz",
+      "step",          "time",          "dt",        "kinetic",       "internal",    "elastic",
+      "plastic",       "viscous",       "hourglass", "stabilisation", "eroded",      "converted",
+      "contact",       "external_work", "total",     "energy_error",  "bar.px",      "bar.py",
+      "bar.pz",        "bar.vx",        "bar.vy",    "bar.vz",        "bar.kinetic", "bar.internal",
+      "anvil.px",      "anvil.py",      "anvil.pz",  "anvil.vx",      "anvil.vy",    "anvil.vz",
       "anvil.kinetic", "anvil.internal"};
   EXPECT_EQ(empty.header, expected_header);
   EXPECT_TRUE(empty.rows.empty());

@@ -116,7 +116,8 @@ velocity = [0, 0, -20]
   const mpm::Particles& p = solver.particles();
   std::vector<PointCheck> pts;
   for (std::size_t i = 0; i < p.size(); ++i)
-    pts.push_back({p.stress[i], p.mass[i] / p.volume[i], damage[i], p.history[i * p.history_count + core::kMaxCompaction],
+    pts.push_back({p.stress[i], p.mass[i] / p.volume[i], damage[i],
+                   p.history[i * p.history_count + core::kMaxCompaction],
                    p.plastic_strain[i] - plastic[i]});
   check_points("MPM", scene.materials.at(0), pts);
 }
@@ -151,7 +152,8 @@ normal = [0, 0, 1]
   const fem::HexElements& h = solver.hexahedra();
   std::vector<PointCheck> pts;
   for (std::size_t i = 0; i < h.stress.size(); ++i)
-    pts.push_back({h.stress[i], h.density[i], damage[i], h.history[i * h.history_count + core::kMaxCompaction],
+    pts.push_back({h.stress[i], h.density[i], damage[i],
+                   h.history[i * h.history_count + core::kMaxCompaction],
                    h.plastic_strain[i] - plastic[i]});
   check_points("FE", scene.materials.at(0), pts);
 }

@@ -38,7 +38,9 @@ JohnsonHolmquist2 alumina() {
   return s;
 }
 
-Jh2Pressure cubic() { return {233e9, -593e9, 2800e9}; }
+Jh2Pressure cubic() {
+  return {233e9, -593e9, 2800e9};
+}
 
 Material ceramic() {
   Material m;
@@ -83,8 +85,8 @@ TEST(JohnsonHolmquist2, IntactAndFracturedStrengthAtThreePressures) {
   // The rate factor 1 + C ln(epsdot / epsdot_0), 1 below the reference rate.
   JohnsonHolmquist2 rate = s;
   rate.C = 0.007;
-  EXPECT_NEAR(rate.normalised_strength(1.0, 0.0, 100.0), intact[1] * (1.0 + 0.007 * std::log(100.0)),
-              1e-14);
+  EXPECT_NEAR(rate.normalised_strength(1.0, 0.0, 100.0),
+              intact[1] * (1.0 + 0.007 * std::log(100.0)), 1e-14);
   EXPECT_DOUBLE_EQ(rate.normalised_strength(1.0, 0.0, 0.5), intact[1]);
   // Fracture strain, eq 5: D1 (P* + T*)^D2.
   EXPECT_NEAR(s.fracture_strain(1.0), 0.005 * (1.0 + 0.2 / 1.46), 1e-17);
@@ -105,8 +107,8 @@ TEST(Jh2Pressure, PolynomialAndBulkingPressureAtThreeStates) {
   // No energy released, no bulking gained.
   EXPECT_NEAR(eos.bulking_pressure(0.02, 30e6, 0.0, 1.0), 30e6, 1e-6);
   // rho dp/drho = (1 + mu)(K1 + 2 K2 mu + 3 K3 mu^2), (1 + mu) K1 in tension.
-  EXPECT_NEAR(eos.tangent_bulk_modulus(0.05), 1.05 * (233e9 - 2 * 593e9 * 0.05 + 3 * 2800e9 * 0.0025),
-              1e-14 * 2.3e11);
+  EXPECT_NEAR(eos.tangent_bulk_modulus(0.05),
+              1.05 * (233e9 - 2 * 593e9 * 0.05 + 3 * 2800e9 * 0.0025), 1e-14 * 2.3e11);
   EXPECT_NEAR(eos.tangent_bulk_modulus(-0.01), 0.99 * 233e9, 1e-14 * 2.3e11);
 }
 
@@ -146,9 +148,10 @@ TEST(JohnsonHolmquist2, PointYieldsOnTheIntactSurfaceDamagesBulksAndEndsOnTheFra
   ASSERT_EQ(m.history_count(), 1u);
   EXPECT_EQ(m.history_name(0), "bulking_pressure");
   EXPECT_NEAR(p.history[0], bulking, 1e-10 * bulking);
-  std::printf("JH-2 at mu = 0.01: P = %.4f GPa, yields at q = %.4f GPa (closed form %.4f), "
-              "D = %.3e, bulking %.4f MPa\n",
-              p0 / 1e9, von_mises(p.stress) / 1e9, yield / 1e9, p.damage, p.history[0] / 1e6);
+  std::printf(
+      "JH-2 at mu = 0.01: P = %.4f GPa, yields at q = %.4f GPa (closed form %.4f), "
+      "D = %.3e, bulking %.4f MPa\n",
+      p0 / 1e9, von_mises(p.stress) / 1e9, yield / 1e9, p.damage, p.history[0] / 1e6);
 
   for (int i = 0; i < 20000 && p.damage < 1.0; ++i) step_to(m, p, mu, shear);
   ASSERT_EQ(p.damage, 1.0);
@@ -158,10 +161,10 @@ TEST(JohnsonHolmquist2, PointYieldsOnTheIntactSurfaceDamagesBulksAndEndsOnTheFra
   const double fractured = kSigmaHel * s.normalised_strength(p_full / kPhel, 1.0, 0.0);
   EXPECT_NEAR(von_mises(p.stress), fractured, 1e-10 * fractured);
   EXPECT_GT(p.history[0], bulking);  // bulking grows with the damage
-  std::printf("JH-2 fully damaged: bulking %.2f MPa, P = %.4f GPa, q = %.4f GPa (closed form "
-              "%.4f)\n",
-              p.history[0] / 1e6, pressure(p.stress) / 1e9, von_mises(p.stress) / 1e9,
-              fractured / 1e9);
+  std::printf(
+      "JH-2 fully damaged: bulking %.2f MPa, P = %.4f GPa, q = %.4f GPa (closed form "
+      "%.4f)\n",
+      p.history[0] / 1e6, pressure(p.stress) / 1e9, von_mises(p.stress) / 1e9, fractured / 1e9);
 }
 
 TEST(JohnsonHolmquist2, TensionIsLimitedToMinusTTimesOneMinusDamage) {
@@ -211,7 +214,8 @@ TEST(JohnsonHolmquist2, SceneKeysReadTheModelAndNameWhatIsWrong) {
   EXPECT_NE(e1.find("value < 2790000000"), std::string::npos) << e1;
   // Its pressure law goes with it, and no other model takes that law.
   std::string no_eos = kMaterial;
-  no_eos.replace(no_eos.find("eos = {"), no_eos.find('\n', no_eos.find("eos = {")) - no_eos.find("eos = {"),
+  no_eos.replace(no_eos.find("eos = {"),
+                 no_eos.find('\n', no_eos.find("eos = {")) - no_eos.find("eos = {"),
                  "eos = { model = \"linear\" }");
   const std::string e2 = test::error_of(no_eos + body);
   EXPECT_NE(e2.find("needs eos = { model = \"jh2-pressure\", K1, K2, K3 }"), std::string::npos)

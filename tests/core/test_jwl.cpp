@@ -28,13 +28,25 @@ struct Explosive {
 
 // mm, ms, g: pressures in MPa, D in mm/ms (= m/s), E0 in MPa (MJ/m^3).
 const Explosive kExplosives[] = {
-    {"TNT (LS-DYNA examples)", 1.63e-3, 6930, 2.1e4,
+    {"TNT (LS-DYNA examples)",
+     1.63e-3,
+     6930,
+     2.1e4,
      {1.63e-3, 3.712e5, 3.231e3, 4.15, 0.95, 0.30, 7.0e3}},
-    {"TNT (Dobratz & Crawford 1985)", 1.63e-3, 6930, 2.1e4,
+    {"TNT (Dobratz & Crawford 1985)",
+     1.63e-3,
+     6930,
+     2.1e4,
      {1.63e-3, 3.738e5, 3.747e3, 4.15, 0.90, 0.35, 6.0e3}},
-    {"Composition B (Dobratz & Crawford 1985)", 1.717e-3, 7980, 2.95e4,
+    {"Composition B (Dobratz & Crawford 1985)",
+     1.717e-3,
+     7980,
+     2.95e4,
      {1.717e-3, 5.242e5, 7.678e3, 4.2, 1.1, 0.34, 8.5e3}},
-    {"PBX 9501 (Dobratz & Crawford 1985)", 1.84e-3, 8800, 3.7e4,
+    {"PBX 9501 (Dobratz & Crawford 1985)",
+     1.84e-3,
+     8800,
+     3.7e4,
      {1.84e-3, 8.524e5, 1.802e4, 4.6, 1.3, 0.38, 1.02e4}},
 };
 
@@ -50,8 +62,9 @@ TEST(Jwl, PublishedSetsPassThroughTheirChapmanJouguetState) {
     // The CJ point is where the Rayleigh line touches the products' isentrope: there
     // dp/dV along the isentrope (dE = -p dV) is the Rayleigh line's slope -rho0 D^2.
     const double h = 1e-6;
-    const double dpdv = (x.eos.pressure(v_cj + h, e_cj) - x.eos.pressure(v_cj - h, e_cj)) / (2 * h) -
-                        x.eos.omega / v_cj * p;
+    const double dpdv =
+        (x.eos.pressure(v_cj + h, e_cj) - x.eos.pressure(v_cj - h, e_cj)) / (2 * h) -
+        x.eos.omega / v_cj * p;
     EXPECT_NEAR(dpdv, -x.rho0 * x.D * x.D, 1e-3 * x.rho0 * x.D * x.D) << x.name;
   }
 }
@@ -89,8 +102,8 @@ TEST(ProgrammedBurn, PointsLightAtTheirDistanceOverD) {
   // Unlit and uncompressed: nothing; 0.75 of the 1.5 lengths after lighting: half; compressed
   // half way to V_CJ: half; never more than 1, never less than before.
   EXPECT_EQ(burn_fraction(b, rho0, 0.0, 0.0, 1e-3, 1.0, 1.0), 0.0);
-  EXPECT_NEAR(burn_fraction(b, rho0, 0.0, 1e-3 + 0.75 / b.detonation_velocity, 1e-3, 1.0, 1.0),
-              0.5, 1e-12);
+  EXPECT_NEAR(burn_fraction(b, rho0, 0.0, 1e-3 + 0.75 / b.detonation_velocity, 1e-3, 1.0, 1.0), 0.5,
+              1e-12);
   EXPECT_NEAR(burn_fraction(b, rho0, 0.0, 0.0, 1e-3, 1.0, 0.5 * (1.0 + v_cj)), 0.5, 1e-12);
   EXPECT_EQ(burn_fraction(b, rho0, 0.0, 1.0, 1e-3, 1.0, 1.0), 1.0);
   EXPECT_EQ(burn_fraction(b, rho0, 0.7, 0.0, 1e-3, 1.0, 1.0), 0.7);
@@ -106,7 +119,8 @@ max = [4, 4, 4]
 [materials.tnt]
 density = 1.63e-3
 strength = { model = "fluid" }
-eos = )" + eos + "\n" + more + R"(
+eos = )" +
+         eos + "\n" + more + R"(
 [[bodies]]
 name = "charge"
 material = "tnt"
@@ -129,10 +143,11 @@ constexpr const char* kTnt =
 TEST(ProgrammedBurn, BadInputIsRefusedNamingTheKey) {
   const std::string burn = "burn = { D = 6930, pcj = 2.1e4 }";
   // A burn and no detonation to light it.
-  EXPECT_NE(input_error(charge(kTnt, burn)).find(
-                "key 'detonations': body \"charge\" is a high explosive (its material has a burn) "
+  EXPECT_NE(
+      input_error(charge(kTnt, burn))
+          .find("key 'detonations': body \"charge\" is a high explosive (its material has a burn) "
                 "and the scene has no [[detonations]]"),
-            std::string::npos)
+      std::string::npos)
       << input_error(charge(kTnt, burn));
   // A detonation and no explosive.
   EXPECT_NE(input_error(charge(kTnt, "") + "[[detonations]]\npoint = [0, 0, 0]\n")

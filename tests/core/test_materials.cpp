@@ -120,8 +120,9 @@ TEST(J2Plasticity, UniaxialStrainPathMatchesAnalyticalCurve) {
   for (int i = 1; i <= 157; ++i) {
     update_no_eos<J2Plasticity>(m, point, {d_eps, 0, 0, 0, 0, 0});
     const double eps = i * d_eps;
-    const double q = 2.0 * g * eps <= sigma_y0 ? 2.0 * g * eps
-                                                : (sigma_y0 + h * 2.0 / 3.0 * eps) / (1.0 + h / (3.0 * g));
+    const double q = 2.0 * g * eps <= sigma_y0
+                         ? 2.0 * g * eps
+                         : (sigma_y0 + h * 2.0 / 3.0 * eps) / (1.0 + h / (3.0 * g));
     const double eps_p = 2.0 * g * eps <= sigma_y0 ? 0.0 : 2.0 / 3.0 * eps - q / (3.0 * g);
     const double sxx = k * eps + 2.0 * q / 3.0, syy = k * eps - q / 3.0;
     ASSERT_NEAR(point.stress.xx, sxx, 1e-10 * sxx) << "increment " << i;
@@ -146,8 +147,8 @@ TEST(JohnsonCook, FlowStressMatchesHandValueWithRateAndTemperature) {
   jc.room_temperature = 293.0;
   jc.melt_temperature = 1793.0;
   const double t = 293.0 + 0.3 * 1500.0;
-  const double formula = (157.0 + 425.0 * 0.1) * (1.0 + 0.02 * std::log(1000.0)) *
-                         (1.0 - std::pow(0.3, 1.09));
+  const double formula =
+      (157.0 + 425.0 * 0.1) * (1.0 + 0.02 * std::log(1000.0)) * (1.0 - std::pow(0.3, 1.09));
   EXPECT_NEAR(jc.flow_stress(0.1, 1000.0, t), formula, 1e-12 * formula);
   EXPECT_NEAR(jc.flow_stress(0.1, 1000.0, t), 165.93868224642347, 1e-12 * 165.9);
 }

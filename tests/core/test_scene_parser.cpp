@@ -273,7 +273,11 @@ TEST(SceneParser, UnknownTopLevelKeyNamesFileLineKeyAndAllowedKeys) {
   const std::string expected_prefix =
       "scene.toml:" + std::to_string(line_of(text, "[rnu]")) + ": key 'rnu': unknown key";
   EXPECT_EQ(what.rfind(expected_prefix, 0), 0u) << what;
-  EXPECT_NE(what.find("run, grid, mpm, materials, bodies, constraints, absorbing, walls, contact, reference"), std::string::npos) << what;
+  EXPECT_NE(
+      what.find(
+          "run, grid, mpm, materials, bodies, constraints, absorbing, walls, contact, reference"),
+      std::string::npos)
+      << what;
 }
 
 TEST(SceneParser, UnknownKeyInsideStrengthTableNamesDottedKeyLineAndAllowedKeys) {
@@ -307,7 +311,8 @@ TEST(SceneParser, WrongTypeNamesTheExpectedType) {
   EXPECT_EQ(what, "scene.toml:2: key 'run.end_time': expected a number, got a string");
 
   text = minimal_head + minimal_tail + "particles_per_cell = 2.5\n";
-  EXPECT_NE(error_of(text).find("key 'bodies.block.particles_per_cell': expected an integer, got a float"),
+  EXPECT_NE(error_of(text).find(
+                "key 'bodies.block.particles_per_cell': expected an integer, got a float"),
             std::string::npos);
   text = minimal_head + minimal_tail + "velocity = [1, 2]\n";
   EXPECT_NE(error_of(text).find("key 'bodies.block.velocity': expected an array of 3 numbers, "
@@ -363,8 +368,9 @@ TEST(SceneParser, J2TangentModulusConvertsToPlasticModulus) {
   EXPECT_DOUBLE_EQ(j2.yield_stress, 250.0);
 
   tail = minimal_tail;
-  tail.insert(tail.find("nu = 0.3") + 9,
-              "strength = { model = \"j2\", yield = 250, hardening = 10, tangent_modulus = 2000 }\n");
+  tail.insert(
+      tail.find("nu = 0.3") + 9,
+      "strength = { model = \"j2\", yield = 250, hardening = 10, tangent_modulus = 2000 }\n");
   EXPECT_NE(error_of(minimal_head + tail).find("not both"), std::string::npos);
 }
 
@@ -379,7 +385,8 @@ TEST(SceneParser, JohnsonCookThermalSofteningNeedsAMeltTemperature) {
 
 TEST(SceneParser, StructuralMistakesAreReported) {
   // A body name used twice.
-  std::string text = minimal_head + minimal_tail + minimal_tail.substr(minimal_tail.find("[[bodies]]"));
+  std::string text =
+      minimal_head + minimal_tail + minimal_tail.substr(minimal_tail.find("[[bodies]]"));
   EXPECT_NE(error_of(text).find("duplicate body name \"block\""), std::string::npos);
   // No body at all.
   text = minimal_head + minimal_tail.substr(0, minimal_tail.find("[[bodies]]"));
@@ -387,8 +394,9 @@ TEST(SceneParser, StructuralMistakesAreReported) {
   // Two shapes for one body.
   std::string tail = minimal_tail;
   tail.replace(tail.find("} }"), 3, "}, sphere = { centre = [5, 5, 5], radius = 1 } }");
-  EXPECT_NE(error_of(minimal_head + tail).find("give exactly one of box, cylinder, cone, sphere, points"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(minimal_head + tail).find("give exactly one of box, cylinder, cone, sphere, points"),
+      std::string::npos);
   // Grid max not above min.
   std::string head = minimal_head;
   head.replace(head.find("max = [10, 10, 10]"), 18, "max = [10, 0, 10]");
@@ -409,7 +417,8 @@ TEST(SceneParser, MpmShapeFunctionAndTransfer) {
   const Scene d = parse_scene(minimal_head + minimal_tail, "scene.toml");
   EXPECT_EQ(d.mpm.shape, ShapeFunction::linear);
   EXPECT_EQ(d.mpm.transfer, Transfer::flip);
-  const std::string linear = error_of(minimal_head + "\n[mpm]\ntransfer = \"apic\"\n" + minimal_tail);
+  const std::string linear =
+      error_of(minimal_head + "\n[mpm]\ntransfer = \"apic\"\n" + minimal_tail);
   EXPECT_NE(linear.find("key 'mpm.transfer': \"apic\" needs shape_function = \"gimp\""),
             std::string::npos)
       << linear;
@@ -556,8 +565,9 @@ TEST(SceneParser, RebarTakesOnePlaneOrALayerPerPlane) {
     s.replace(s.find("area = 0.5\n"), 11, "");
     return s;
   };
-  const std::string box = "min = [0, 0, 0], max = [4, 2, 1], normal = \"z\", spacing = 0.5, "
-                          "diameter = 0.1, cover = 0.25";
+  const std::string box =
+      "min = [0, 0, 0], max = [4, 2, 1], normal = \"z\", spacing = 0.5, "
+      "diameter = 0.1, cover = 0.25";
   Scene s = parse_scene(with("{ " + box + ", position = 0.2 }"), "rebar.toml");
   const auto& one = std::get<RebarShape>(s.bodies[1].shape);
   EXPECT_EQ(one.positions, std::vector<double>{0.2});
@@ -581,7 +591,8 @@ TEST(SceneParser, CylinderNoseKeysNameTheKeyAndWhatIsAllowed) {
     const std::string from = "length = 25.4 }";
     s.replace(s.find(from), from.size(), "length = 25.4, nose = " + nose + " }");
     if (hexahedra) {
-      s.replace(s.find("particles_per_cell = 2\n"), 23, "discretisation = \"hexahedra\"\nmesh = { size = 1 }\n");
+      s.replace(s.find("particles_per_cell = 2\n"), 23,
+                "discretisation = \"hexahedra\"\nmesh = { size = 1 }\n");
       s = s.substr(0, s.find("[reference]"));  // Taylor measures need a flat-ended bar
     }
     return s;
@@ -614,7 +625,8 @@ TEST(SceneParser, MeshMistakesNameTheKeyAndWhatIsAllowed) {
   std::string e = error_of(replaced("shape = { line = { from = [0, 0, 0], to = [0, 0, 10] } }",
                                     "shape = { sphere = { centre = [0, 0, 0], radius = 1 } }"));
   EXPECT_NE(e.find("a body of trusses takes one of line, rebar, mesh, not sphere"),
-            std::string::npos) << e;
+            std::string::npos)
+      << e;
   e = error_of(replaced("element = \"full\"", "particles_per_cell = 2"));
   EXPECT_NE(e.find("bodies.plate.particles_per_cell"), std::string::npos) << e;
   EXPECT_NE(e.find("not to hexahedra"), std::string::npos) << e;
@@ -628,11 +640,13 @@ TEST(SceneParser, MeshMistakesNameTheKeyAndWhatIsAllowed) {
   EXPECT_NE(e.find("unknown key"), std::string::npos) << e;
   e = error_of(replaced("hourglass = { form = \"stiffness\"", "hourglass = { form = \"stiff\""));
   EXPECT_NE(e.find("allowed values: \"viscous\", \"stiffness\", \"assumed_strain\""),
-            std::string::npos) << e;
+            std::string::npos)
+      << e;
   // The assumed-strain form's coefficient is a scale on its stiffness: default 1, at most 1.
-  const Scene asqbi = parse_scene(replaced("hourglass = { form = \"stiffness\", coefficient = 0.05 }",
-                                           "hourglass = { form = \"assumed_strain\" }"),
-                                  "mesh.toml");
+  const Scene asqbi =
+      parse_scene(replaced("hourglass = { form = \"stiffness\", coefficient = 0.05 }",
+                           "hourglass = { form = \"assumed_strain\" }"),
+                  "mesh.toml");
   EXPECT_EQ(asqbi.bodies[0].hourglass.form, HourglassForm::assumed_strain);
   EXPECT_EQ(asqbi.bodies[0].hourglass.coefficient, 1.0);
   e = error_of(replaced("hourglass = { form = \"stiffness\", coefficient = 0.05 }",
@@ -726,16 +740,18 @@ mesh = { size = 1.0 }
   std::string e = error_of(bad);
   EXPECT_NE(e.find("bodies.given.bulk_viscosity.quadratic"), std::string::npos) << e;
   EXPECT_NE(e.find("10"), std::string::npos) << e;
-  e = error_of(std::string(mesh_scene).replace(std::string(mesh_scene).find("area = 0.5"), 10,
-                                               "area = 0.5\nbulk_viscosity = { linear = 0.1 }"));
+  e = error_of(std::string(mesh_scene)
+                   .replace(std::string(mesh_scene).find("area = 0.5"), 10,
+                            "area = 0.5\nbulk_viscosity = { linear = 0.1 }"));
   EXPECT_NE(e.find("bodies.bar.bulk_viscosity"), std::string::npos) << e;
   EXPECT_NE(e.find("not to trusses"), std::string::npos) << e;
 }
 
 // [[contact]] names two particle bodies; its mistakes name the line and the key.
 TEST(SceneParser, ContactReadsItsPairAndRejectsWhatItCannotDo) {
-  const std::string second = "[[bodies]]\nname = \"plate\"\nmaterial = \"steel\"\n"
-                             "shape = { box = { min = [5, 1, 1], max = [7, 3, 3] } }\n";
+  const std::string second =
+      "[[bodies]]\nname = \"plate\"\nmaterial = \"steel\"\n"
+      "shape = { box = { min = [5, 1, 1], max = [7, 3, 3] } }\n";
   const std::string good = minimal_head + minimal_tail + second +
                            "[[contact]]\nbodies = [\"block\", \"plate\"]\nfriction = 0.2\n";
   const Scene s = parse_scene(good, "scene.toml");
@@ -767,7 +783,8 @@ TEST(SceneParser, ContactReadsItsPairAndRejectsWhatItCannotDo) {
 // body) are checked: each error names the key and what is allowed.
 TEST(SceneParser, CouplingKeysNameTheKeyAndWhatIsAllowed) {
   std::string base = mesh_scene;
-  base.insert(base.find("[materials.steel]"), "[grid]\ncell = 1.0\nmin = [-5, -5, -5]\nmax = [5, 5, 15]\n\n");
+  base.insert(base.find("[materials.steel]"),
+              "[grid]\ncell = 1.0\nmin = [-5, -5, -5]\nmax = [5, 5, 15]\n\n");
   base.insert(base.find("[[constraints]]"),
               "[[bodies]]\nname = \"ball\"\nmaterial = \"steel\"\n"
               "shape = { sphere = { centre = [0, 0, 5], radius = 1 } }\n\n");
@@ -798,7 +815,8 @@ TEST(SceneParser, CouplingKeysNameTheKeyAndWhatIsAllowed) {
   EXPECT_NE(e.find("bodies.ball.bonded_to"), std::string::npos) << e;
   EXPECT_NE(e.find("applies to bodies of hexahedra or trusses"), std::string::npos) << e;
   // A bonded body moves with its host: no wall and no contact of its own.
-  e = error_of(with_bond("ball") + "\n[[walls]]\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\nbodies = [\"bar\"]\n");
+  e = error_of(with_bond("ball") +
+               "\n[[walls]]\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\nbodies = [\"bar\"]\n");
   EXPECT_NE(e.find("walls[1].bodies"), std::string::npos) << e;  // mesh_scene has a wall
   EXPECT_NE(e.find("bonded to particles"), std::string::npos) << e;
   e = error_of(with_bond("ball") + "\n[[contact]]\nbodies = [\"bar\", \"plate\"]\n");
@@ -808,10 +826,12 @@ TEST(SceneParser, CouplingKeysNameTheKeyAndWhatIsAllowed) {
   // default); a mesh body with particles is coupled.
   e = error_of(base + "\n[[contact]]\nbodies = [\"bar\", \"plate\"]\nmethod = \"grid\"\n");
   EXPECT_NE(e.find("both bodies are meshes"), std::string::npos) << e;
-  const Scene meshes = parse_scene(base + "\n[[contact]]\nbodies = [\"bar\", \"plate\"]\n", "m.toml");
+  const Scene meshes =
+      parse_scene(base + "\n[[contact]]\nbodies = [\"bar\", \"plate\"]\n", "m.toml");
   EXPECT_EQ(meshes.contacts.at(0).method, ContactMethod::penalty);
   EXPECT_FALSE(has_grid_coupling(meshes));
-  const Scene cfemp = parse_scene(base + "\n[[contact]]\nbodies = [\"plate\", \"ball\"]\n", "c.toml");
+  const Scene cfemp =
+      parse_scene(base + "\n[[contact]]\nbodies = [\"plate\", \"ball\"]\n", "c.toml");
   EXPECT_TRUE(has_grid_coupling(cfemp));
   // A particle body without a grid is an error naming [grid].
   const std::string no_grid = minimal_tail;
@@ -822,13 +842,14 @@ TEST(SceneParser, CouplingKeysNameTheKeyAndWhatIsAllowed) {
 // (or the sub-key) and what is allowed.
 TEST(SceneParser, ConversionKeysNameTheKeyAndWhatIsAllowed) {
   std::string base = mesh_scene;
-  base.insert(base.find("[materials.steel]"), "[grid]\ncell = 1.0\nmin = [-5, -5, -5]\nmax = [5, 5, 15]\n\n");
+  base.insert(base.find("[materials.steel]"),
+              "[grid]\ncell = 1.0\nmin = [-5, -5, -5]\nmax = [5, 5, 15]\n\n");
   auto with = [](std::string t, const std::string& conversion) {
     t.insert(t.find("velocity = [0, 0, -10]"), "conversion = " + conversion + "\n");
     return t;
   };
-  const Scene s = parse_scene(with(base, "{ plastic_strain = 0.5, jacobian_ratio = 0.2, points = 2 }"),
-                              "c.toml");
+  const Scene s = parse_scene(
+      with(base, "{ plastic_strain = 0.5, jacobian_ratio = 0.2, points = 2 }"), "c.toml");
   ASSERT_TRUE(s.bodies[0].conversion.has_value());
   const ConversionSettings& c = *s.bodies[0].conversion;
   EXPECT_EQ(c.plastic_strain, 0.5);

@@ -140,14 +140,19 @@ TEST(StateArchive, AMissingOrMismatchedItemIsRefusedNamingFileAndItem) {
     a.item("y", y);
     ADD_FAILURE() << "a missing item was read";
   } catch (const CheckpointError& e) {
-    EXPECT_EQ(std::string(e.what()), path + ": /mpm/y: missing (written by another afemp version, or another scene)");
+    EXPECT_EQ(std::string(e.what()),
+              path + ": /mpm/y: missing (written by another afemp version, or another scene)");
   }
   std::vector<Vec3> x;
   try {
     a.item("x", x);
     ADD_FAILURE() << "doubles were read as Vec3";
   } catch (const CheckpointError& e) {
-    EXPECT_NE(std::string(e.what()).find(path + ": /mpm/x: is stored with 1 components of 8 bytes, this build expects 3 of 8"), std::string::npos) << e.what();
+    EXPECT_NE(
+        std::string(e.what()).find(
+            path + ": /mpm/x: is stored with 1 components of 8 bytes, this build expects 3 of 8"),
+        std::string::npos)
+        << e.what();
   }
 }
 

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <vector>
 
-#include "core/materials/uniaxial_update.hpp"
 #include "core/material_fixtures.hpp"
+#include "core/materials/uniaxial_update.hpp"
 
 namespace afemp::core {
 namespace {

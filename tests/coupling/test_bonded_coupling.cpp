@@ -59,7 +59,9 @@ constexpr double strain_rate = 1.0;  // 1/ms: 1000/s
 const Vec3 drift{5.0, 2.0, 1.0};     // a uniform velocity on top, so the momentum is not 0
 
 // Stretch about the block's centre plus the drift, on the particles and the bar's nodes.
-Vec3 stretch(const Vec3& x) { return drift + Vec3{strain_rate * (x.x - 10.0), 0.0, 0.0}; }
+Vec3 stretch(const Vec3& x) {
+  return drift + Vec3{strain_rate * (x.x - 10.0), 0.0, 0.0};
+}
 
 // Gives the particles and the bar's nodes the stretch velocity field.
 void set_stretch(CoupledModel& model) {
@@ -111,9 +113,10 @@ TEST(BondedCoupling, GridHoldsTheMassAndMomentumOfParticlesAndBarAndMomentumIsCo
       momentum += g.momentum[s];
     }
     worst_mass = std::max(worst_mass, std::abs(mass - before.mass) / before.mass);
-    worst_momentum = std::max(worst_momentum, core::norm(momentum - before.momentum) / before.scale);
-    worst_drift = std::max(worst_drift, core::norm(point_sums(model).momentum - start.momentum) /
-                                            start.scale);
+    worst_momentum =
+        std::max(worst_momentum, core::norm(momentum - before.momentum) / before.scale);
+    worst_drift = std::max(worst_drift,
+                           core::norm(point_sums(model).momentum - start.momentum) / start.scale);
   }
   std::printf("grid mass %.2e, grid momentum %.2e, momentum drift %.2e (relative)\n", worst_mass,
               worst_momentum, worst_drift);
@@ -154,9 +157,10 @@ TEST(BondedCoupling, BarInAUniformlyStretchedBlockCarriesItsLawsForce) {
   const double length = core::norm(n.position[static_cast<std::size_t>(ends[1])] -
                                    n.position[static_cast<std::size_t>(ends[0])]);
   const double force = bar_stress * t.volume[t.size() / 2] / length;
-  std::printf("t %.4g ms: bar stress %.5g MPa (E_s ln(1 + rate t) = %.5g), force %.5g N; block "
-              "stress %.5g MPa (E_c ln(1 + rate t) = %.5g)\n",
-              model.time(), bar_stress, expected, force, block_stress, 30e3 * strain);
+  std::printf(
+      "t %.4g ms: bar stress %.5g MPa (E_s ln(1 + rate t) = %.5g), force %.5g N; block "
+      "stress %.5g MPa (E_c ln(1 + rate t) = %.5g)\n",
+      model.time(), bar_stress, expected, force, block_stress, 30e3 * strain);
   EXPECT_NEAR(bar_stress, expected, 1e-3 * expected);
   // The area shrinks with the length at constant volume (the truss keeps its mass and density
   // under uniaxial stress only to first order; allow 2e-3).

@@ -26,21 +26,29 @@ using core::Vec3;
 
 std::string fe_and_mpm_cubes(const std::string& scheme, const std::string& fe_velocity,
                              const std::string& mpm_velocity, const std::string& mpm_box,
-                             const std::string& contact, double cell = 1.0,
-                             int divisions = 8) {
+                             const std::string& contact, double cell = 1.0, int divisions = 8) {
   const std::string d = std::to_string(divisions);
   return "[run]\nend_time = 0.03\ntime_step_factor = 0.3\n"
-         "[grid]\ncell = " + std::to_string(cell) + "\nmin = [-8, -8, -8]\nmax = [20, 16, 12]\n"
-         "[mpm]\nscheme = \"" + scheme + "\"\n"
+         "[grid]\ncell = " +
+         std::to_string(cell) +
+         "\nmin = [-8, -8, -8]\nmax = [20, 16, 12]\n"
+         "[mpm]\nscheme = \"" +
+         scheme +
+         "\"\n"
          "[materials.al]\ndensity = 2.7e-3\nE = 70e3\nnu = 0.3\n"
          "[[bodies]]\nname = \"fe\"\nmaterial = \"al\"\ndiscretisation = \"hexahedra\"\n"
          "shape = { box = { min = [0, 0, 0], max = [4, 4, 4] } }\n"
-         "mesh = { divisions = [" + d + ", " + d + ", " + d + "] }\n"
+         "mesh = { divisions = [" +
+         d + ", " + d + ", " + d +
+         "] }\n"
          "hourglass = { form = \"assumed_strain\", coefficient = 1.0 }\n"
          "bulk_viscosity = { linear = 0, quadratic = 0 }\n"
-         "velocity = " + fe_velocity + "\n"
+         "velocity = " +
+         fe_velocity +
+         "\n"
          "[[bodies]]\nname = \"mpm\"\nmaterial = \"al\"\n"
-         "shape = { box = " + mpm_box + " }\nvelocity = " + mpm_velocity + "\n" + contact;
+         "shape = { box = " +
+         mpm_box + " }\nvelocity = " + mpm_velocity + "\n" + contact;
 }
 
 const std::string contact = "[[contact]]\nbodies = [\"fe\", \"mpm\"]\n";
@@ -75,7 +83,8 @@ CoupledRun run(const core::Scene& scene) {
   const double scale = core::norm(e0.bodies[0].momentum) + core::norm(e0.bodies[1].momentum);
   CoupledRun r;
   r.initial_energy = e0.kinetic + e0.internal;
-  for (int b = 0; b < 2; ++b) r.initial_body_kinetic[b] = e0.bodies[static_cast<std::size_t>(b)].kinetic;
+  for (int b = 0; b < 2; ++b)
+    r.initial_body_kinetic[b] = e0.bodies[static_cast<std::size_t>(b)].kinetic;
   while (model.time() < scene.run.end_time) {
     model.step(model.stable_time_step());
     const core::Energies e = model.energies();
@@ -103,11 +112,11 @@ TEST(ContactCoupling, FeAndMpmCubesHeadOnConserveMomentumCreateNoEnergyAndSepara
   for (const char* scheme : {"MUSL", "USF"}) {
     const CoupledRun r = run(core::parse_scene(
         fe_and_mpm_cubes(scheme, "[50, 0, 0]", "[-50, 0, 0]", beside, contact), "head_on.toml"));
-    std::printf("%s: momentum %.2e  energy gain %+.2e  first contact %.4f ms  rebound fe %.2f "
-                "mpm %.2f m/s  KE+IE %.1f of %.1f uJ  contact %.1f uJ\n",
-                scheme, r.max_momentum_error, r.max_energy_gain, r.first_contact,
-                -r.fe_velocity.x, r.mpm_velocity.x, r.final_energy, r.initial_energy,
-                r.contact_energy);
+    std::printf(
+        "%s: momentum %.2e  energy gain %+.2e  first contact %.4f ms  rebound fe %.2f "
+        "mpm %.2f m/s  KE+IE %.1f of %.1f uJ  contact %.1f uJ\n",
+        scheme, r.max_momentum_error, r.max_energy_gain, r.first_contact, -r.fe_velocity.x,
+        r.mpm_velocity.x, r.final_energy, r.initial_energy, r.contact_energy);
     EXPECT_LT(r.max_momentum_error, 1e-12) << scheme;
     EXPECT_LT(r.max_energy_gain, 1e-12) << scheme;
     // Per body: 1/2 M v0^2 of each 4 mm aluminium cube at 50 m/s (2.7e-3 g/mm^3, so
@@ -137,10 +146,11 @@ TEST(ContactCoupling, FeProjectileIntoMpmAndMpmProjectileOntoFe) {
                         Case{"MPM onto FE", "[0, 0, 0]", "[-100, 0, 0]"}}) {
     const CoupledRun r = run(core::parse_scene(
         fe_and_mpm_cubes("MUSL", c.fe_velocity, c.mpm_velocity, beside, contact), "one.toml"));
-    std::printf("%s: momentum %.2e  energy gain %+.2e  first contact %.4f ms  fe %.2f  mpm "
-                "%.2f m/s\n",
-                c.name, r.max_momentum_error, r.max_energy_gain, r.first_contact,
-                r.fe_velocity.x, r.mpm_velocity.x);
+    std::printf(
+        "%s: momentum %.2e  energy gain %+.2e  first contact %.4f ms  fe %.2f  mpm "
+        "%.2f m/s\n",
+        c.name, r.max_momentum_error, r.max_energy_gain, r.first_contact, r.fe_velocity.x,
+        r.mpm_velocity.x);
     EXPECT_LT(r.max_momentum_error, 1e-12) << c.name;
     EXPECT_LT(r.max_energy_gain, 1e-12) << c.name;
     EXPECT_GT(r.first_contact, 0.0075) << c.name;

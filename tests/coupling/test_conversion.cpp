@@ -1,8 +1,8 @@
 // Adaptive conversion of hexahedra into particles (AFEMP: fem/element_retirement.cpp,
-// coupling/element_conversion.cpp and coupling/coupled_model.hpp). References: conservation of mass and linear momentum (the
-// particles take the mass shares and the N-weighted momentum the nodes lose, so both hold to
-// round-off: 1e-12 relative), the kinetic energy the interpolation loses (the sum over the
-// conversion records, booked as `converted`), and the grid domain (no element converts
+// coupling/element_conversion.cpp and coupling/coupled_model.hpp). References: conservation of mass
+// and linear momentum (the particles take the mass shares and the N-weighted momentum the nodes
+// lose, so both hold to round-off: 1e-12 relative), the kinetic energy the interpolation loses (the
+// sum over the conversion records, booked as `converted`), and the grid domain (no element converts
 // outside it). Body: a 4 mm aluminium cube of 4 x 4 x 4 hexahedra, free in space, drifting
 // and spinning, with the half x > 2 squeezed along x so that only its elements compress past
 // the criterion |V / V0 - 1| >= 5e-3 in the first step. Units mm, ms, g, N, MPa.
@@ -28,7 +28,8 @@ end_time = 0.01
 [grid]
 cell = 1.0
 min = [-4, -4, -4]
-max = )") + grid_max + R"(
+max = )") +
+         grid_max + R"(
 
 [materials.aluminium]
 density = 2.7e-3
@@ -41,8 +42,10 @@ discretisation = "hexahedra"
 material = "aluminium"
 shape = { box = { min = [0, 0, 0], max = [4, 4, 4] } }
 mesh = { divisions = [4, 4, 4] }
-element = ")" + element + R"("
-conversion = { volumetric_strain = 5e-3, points = )" + std::to_string(points) + R"( }
+element = ")" +
+         element + R"("
+conversion = { volumetric_strain = 5e-3, points = )" +
+         std::to_string(points) + R"( }
 )";
 }
 
@@ -83,7 +86,9 @@ struct Case {
   const char* element;
 };
 
-void PrintTo(const Case& c, std::ostream* out) { *out << c.element << ", points " << c.points; }
+void PrintTo(const Case& c, std::ostream* out) {
+  *out << c.element << ", points " << c.points;
+}
 
 class Conversion : public ::testing::TestWithParam<Case> {};
 
@@ -93,7 +98,8 @@ class Conversion : public ::testing::TestWithParam<Case> {};
 // 200 steps of the mixed body (remaining elements bonded to the particles) keep the momentum.
 TEST_P(Conversion, ConservesMassAndMomentumAndBooksTheKineticEnergyItLoses) {
   const Case c = GetParam();
-  const core::Scene scene = core::parse_scene(cube_scene(c.points, c.element, "[8, 8, 8]"), "cube.toml");
+  const core::Scene scene =
+      core::parse_scene(cube_scene(c.points, c.element, "[8, 8, 8]"), "cube.toml");
   CoupledModel model(scene);
   for (std::size_t i = 0; i < model.fe().nodes().size(); ++i)
     model.fe().mutable_nodes().velocity[i] = start_velocity(model.fe().nodes().position[i]);
@@ -102,11 +108,12 @@ TEST_P(Conversion, ConservesMassAndMomentumAndBooksTheKineticEnergyItLoses) {
   const Sums after = sums(model);
   const auto& p = model.mpm().particles();
   const std::size_t converted = p.size() / static_cast<std::size_t>(c.points * c.points * c.points);
-  std::printf("%s, %d per direction: %zu elements converted into %zu particles; mass %.2e, "
-              "momentum %.2e (relative); converted energy %.6g uJ of kinetic %.6g\n",
-              c.element, c.points, converted, p.size(), std::abs(after.mass - start.mass) / start.mass,
-              core::norm(after.momentum - start.momentum) / start.scale,
-              model.energies().converted, start.kinetic);
+  std::printf(
+      "%s, %d per direction: %zu elements converted into %zu particles; mass %.2e, "
+      "momentum %.2e (relative); converted energy %.6g uJ of kinetic %.6g\n",
+      c.element, c.points, converted, p.size(), std::abs(after.mass - start.mass) / start.mass,
+      core::norm(after.momentum - start.momentum) / start.scale, model.energies().converted,
+      start.kinetic);
   EXPECT_EQ(converted, 32u);  // the half x > 2, and only it
   for (std::size_t i = 0; i < p.size(); ++i) {
     EXPECT_GT(p.position[i].x, 2.0);
@@ -142,19 +149,20 @@ TEST_P(Conversion, ConservesMassAndMomentumAndBooksTheKineticEnergyItLoses) {
     drift = std::max(drift, core::norm(sums(model).momentum - start.momentum) / start.scale);
     ASSERT_LT(std::abs(sums(model).mass - start.mass), 1e-12 * start.mass);
   }
-  std::printf("  after 200 more steps (t = %.4g ms, %zu particles, %zu elements): momentum "
-              "drift %.2e\n", model.time(), model.mpm().particles().size(),
-              model.fe().live_hexahedra(), drift);
+  std::printf(
+      "  after 200 more steps (t = %.4g ms, %zu particles, %zu elements): momentum "
+      "drift %.2e\n",
+      model.time(), model.mpm().particles().size(), model.fe().live_hexahedra(), drift);
   EXPECT_LT(drift, 1e-12);
 }
 
-INSTANTIATE_TEST_SUITE_P(PointsAndElements, Conversion,
-                         ::testing::Values(Case{1, "one-point"}, Case{2, "one-point"},
-                                           Case{1, "full"}, Case{2, "full"}),
-                         [](const auto& test) {
-                           return std::string(test.param.element == std::string("full") ? "Full" : "OnePoint") +
-                                  std::to_string(test.param.points);
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    PointsAndElements, Conversion,
+    ::testing::Values(Case{1, "one-point"}, Case{2, "one-point"}, Case{1, "full"}, Case{2, "full"}),
+    [](const auto& test) {
+      return std::string(test.param.element == std::string("full") ? "Full" : "OnePoint") +
+             std::to_string(test.param.points);
+    });
 
 // The same cube in grid contact (CFEMP) with a block of particles it never reaches: its
 // nodes are contact nodes, which the FE update moves, and after the squeeze they share the
@@ -189,10 +197,11 @@ bodies = ["cube", "block"]
       model.step(model.stable_time_step());
       drift = std::max(drift, core::norm(sums(model).momentum - start.momentum) / start.scale);
     }
-    std::printf("%s, cube in contact: %zu particles converted, %zu elements left; momentum "
-                "drift %.2e over 201 steps; contact energy %.3g\n",
-                scheme, model.mpm().particles().size() - block, model.fe().live_hexahedra(),
-                drift, model.energies().contact);
+    std::printf(
+        "%s, cube in contact: %zu particles converted, %zu elements left; momentum "
+        "drift %.2e over 201 steps; contact energy %.3g\n",
+        scheme, model.mpm().particles().size() - block, model.fe().live_hexahedra(), drift,
+        model.energies().contact);
     EXPECT_GE(model.mpm().particles().size() - block, 16u * 8u) << scheme;  // a mixed body
     EXPECT_EQ(model.energies().contact, 0.0) << scheme;  // the block is never reached
     EXPECT_LT(drift, 1e-12) << scheme;

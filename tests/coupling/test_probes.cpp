@@ -21,8 +21,8 @@
 #include <vector>
 
 #include "analysis/reference_checks.hpp"
-#include "core/scene.hpp"
 #include "analysis/signal_metrics.hpp"
+#include "core/scene.hpp"
 #include "core/time_loop.hpp"
 #include "coupling/make_model.hpp"
 #include "fem/fe_model.hpp"
@@ -135,8 +135,10 @@ TEST(Probes, RigidTranslationReadsX0PlusV0TAndMeanVelocityIsMomentumOverMass) {
     const core::ProbeSeries& m = series(s, names[b]);
     const core::BodySums& sums = s.final.bodies[static_cast<std::size_t>(b)];
     for (int a = 0; a < 3; ++a) {
-      EXPECT_NEAR(m.at(m.rows() - 1, static_cast<std::size_t>(a)), sums.momentum[a] / sums.mass, 1e-12);
-      for (std::size_t r = 0; r < m.rows(); ++r) EXPECT_NEAR(m.at(r, static_cast<std::size_t>(a)), v0[b][a], 1e-9);
+      EXPECT_NEAR(m.at(m.rows() - 1, static_cast<std::size_t>(a)), sums.momentum[a] / sums.mass,
+                  1e-12);
+      for (std::size_t r = 0; r < m.rows(); ++r)
+        EXPECT_NEAR(m.at(r, static_cast<std::size_t>(a)), v0[b][a], 1e-9);
     }
     EXPECT_EQ(m.time.back(), s.time);
   }
@@ -223,9 +225,10 @@ TEST(Probes, FixedFreeBarFrontSpeedFrequencyAndStressBehindTheFront) {
   const double ta = first_passage(a), tb = first_passage(b);
   const double speed = (b.at(0, 2) - a.at(0, 2)) / (tb - ta);
   const double f = analysis::zero_crossing_frequency(tip.time, tip.series(5));
-  std::printf("front speed %.1f (c = %.1f, %+.2f %%), first axial frequency %.3f /ms (c / 4L = "
-              "%.3f, %+.2f %%)\n", speed, c, 100 * (speed / c - 1), f, c / (4 * length),
-              100 * (f * 4 * length / c - 1));
+  std::printf(
+      "front speed %.1f (c = %.1f, %+.2f %%), first axial frequency %.3f /ms (c / 4L = "
+      "%.3f, %+.2f %%)\n",
+      speed, c, 100 * (speed / c - 1), f, c / (4 * length), 100 * (f * 4 * length / c - 1));
   EXPECT_NEAR(speed, c, 0.02 * c);
   EXPECT_NEAR(f, c / (4.0 * length), 0.02 * c / (4.0 * length));
   // Element at z = 5 between the front's passing (5 / c) and the unloading's return from the
@@ -239,8 +242,10 @@ TEST(Probes, FixedFreeBarFrontSpeedFrequencyAndStressBehindTheFront) {
   }
   pressure /= n, mises /= n, vz /= n;
   const double sigma = density * c * v0;  // 396.2 MPa
-  std::printf("behind the front: pressure %.2f (rho c v0 / 3 = %.2f), von Mises %.2f (rho c v0 = "
-              "%.2f), vz %.3f (0), %d rows\n", pressure, sigma / 3, mises, sigma, vz, n);
+  std::printf(
+      "behind the front: pressure %.2f (rho c v0 / 3 = %.2f), von Mises %.2f (rho c v0 = "
+      "%.2f), vz %.3f (0), %d rows\n",
+      pressure, sigma / 3, mises, sigma, vz, n);
   EXPECT_NEAR(pressure, sigma / 3.0, 0.01 * sigma / 3.0);
   EXPECT_NEAR(mises, sigma, 0.01 * sigma);
   EXPECT_NEAR(vz, 0.0, 0.01 * v0);
@@ -249,7 +254,8 @@ TEST(Probes, FixedFreeBarFrontSpeedFrequencyAndStressBehindTheFront) {
   const core::ProbeSeries& peak = series(s, "peak");
   double largest = 0.0;
   for (std::size_t r = 0; r < peak.rows(); ++r)
-    if (peak.time[r] > 20.0 / c && peak.time[r] < 80.0 / c) largest = std::max(largest, peak.at(r, 0));
+    if (peak.time[r] > 20.0 / c && peak.time[r] < 80.0 / c)
+      largest = std::max(largest, peak.at(r, 0));
   std::printf("largest von Mises in z < 10 mm, 20-80 mm of travel: %.2f (%+.2f %% of rho c v0)\n",
               largest, 100 * (largest / sigma - 1));
   EXPECT_NEAR(largest, sigma, 0.03 * sigma);
@@ -325,19 +331,23 @@ TEST(Probes, NamingWhatTheBodyLacksStopsTheRunWithLineKeyAndRange) {
     ADD_FAILURE() << "no InputError";
     return "";
   };
-  std::string text = fixed_free_bar() + "[[probes]]\nname = \"far\"\nnode = { body = \"bar\", index = 5000 }\n";
+  std::string text =
+      fixed_free_bar() + "[[probes]]\nname = \"far\"\nnode = { body = \"bar\", index = 5000 }\n";
   EXPECT_EQ(start_error(text),
             "scene.toml:" + std::to_string(test::line_of(text, "name = \"far\"") - 1) +
                 ": key 'probes[5].node.index': node 5000 of body 'bar' does not exist; its nodes "
                 "are 0..203");
-  text = fixed_free_bar() + "[[probes]]\nname = \"far\"\nelement = { body = \"bar\", index = 50 }\n";
-  EXPECT_NE(start_error(text).find("key 'probes[5].element.index': hexahedron 50 of body 'bar' does "
-                                   "not exist; its elements are 0..49"),
-            std::string::npos);
+  text =
+      fixed_free_bar() + "[[probes]]\nname = \"far\"\nelement = { body = \"bar\", index = 50 }\n";
+  EXPECT_NE(
+      start_error(text).find("key 'probes[5].element.index': hexahedron 50 of body 'bar' does "
+                             "not exist; its elements are 0..49"),
+      std::string::npos);
   text = free_blocks + "[[probes]]\nname = \"far\"\nparticle = { body = \"cube\", index = 64 }\n";
-  EXPECT_NE(start_error(text).find("key 'probes[8].particle.index': particle 64 of body 'cube' does "
-                                   "not exist; its particles are 0..63"),
-            std::string::npos);
+  EXPECT_NE(
+      start_error(text).find("key 'probes[8].particle.index': particle 64 of body 'cube' does "
+                             "not exist; its particles are 0..63"),
+      std::string::npos);
 }
 
 }  // namespace

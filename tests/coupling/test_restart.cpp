@@ -44,7 +44,8 @@ std::string mixed_scene(const std::string& run_extra = "", const char* yield = "
 end_time = 0.03
 output_every = 0.005
 history_every = 5
-)") + run_extra + R"(
+)") + run_extra +
+         R"(
 [grid]
 cell = 4.0
 min = [-40, -40, -24]
@@ -63,7 +64,8 @@ strength = { model = "j2", yield = 300 }
 density = 7.85e-3
 E = 200e3
 nu = 0.3
-strength = { model = "j2", yield = )" + yield + R"(, tangent_modulus = 2000 }
+strength = { model = "j2", yield = )" +
+         yield + R"(, tangent_modulus = 2000 }
 
 [[bodies]]
 name = "slab"
@@ -186,8 +188,7 @@ TEST(Restart, ARunStoppedAndRestartedEndsBitIdenticalToAnUninterruptedOne) {
     EXPECT_GT(times.back(), first.time) << file;
   }
 
-  const core::RunSummary second =
-      run_scene(scene, parts, 0, core::newest_checkpoint(parts));
+  const core::RunSummary second = run_scene(scene, parts, 0, core::newest_checkpoint(parts));
   EXPECT_FALSE(second.interrupted);
   EXPECT_EQ(second.restarted_at, 100);
   EXPECT_EQ(second.steps, whole.steps);
@@ -225,7 +226,8 @@ material = "tnt"
 shape = { box = { min = [0, 0, 0], max = [1, 1, 30] } }
 [[detonations]]
 plane = { point = [0, 0, 0], normal = [0, 0, 1] }
-)", "column.toml");
+)",
+                                              "column.toml");
   const auto final_particles = [&](const std::string& out, long stop_after,
                                    const std::string& restart) {
     const std::unique_ptr<core::Model> model = make_model(scene);
@@ -286,13 +288,14 @@ TEST(Restart, ASceneEditedBetweenTheRunsIsRefusedWithTheKeysThatDiffer) {
     EXPECT_NE(std::string(e.what()).find("restart refused"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("materials.steel.strength.yield"), std::string::npos);
   }
-  EXPECT_EQ(test::slurp(out + "/history.csv"), history_before) << "a refused restart writes nothing";
+  EXPECT_EQ(test::slurp(out + "/history.csv"), history_before)
+      << "a refused restart writes nothing";
 
   // Another end time (and other output settings) is allowed; the run goes on to it.
-  const core::Scene other_end = core::parse_scene(
-      std::string(mixed_scene()).replace(mixed_scene().find("end_time = 0.03"), 15,
-                                         "end_time = 0.02"),
-      dir.file("mixed.toml"));
+  const core::Scene other_end =
+      core::parse_scene(std::string(mixed_scene())
+                            .replace(mixed_scene().find("end_time = 0.03"), 15, "end_time = 0.02"),
+                        dir.file("mixed.toml"));
   EXPECT_TRUE(core::scene_changes(core::read_checkpoint_header(checkpoint), other_end).empty());
   const core::RunSummary s = run_scene(other_end, out, 0, checkpoint);
   EXPECT_NEAR(s.time, 0.02, 1e-12);
@@ -317,7 +320,8 @@ TEST(Restart, ACheckpointThatCannotBeWrittenLeavesThePreviousOne) {
     loop.checkpoint("test");
     ADD_FAILURE() << "the checkpoint was written";
   } catch (const core::CheckpointError& e) {
-    EXPECT_NE(std::string(e.what()).find("step_000000000020.h5.tmp"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("step_000000000020.h5.tmp"), std::string::npos)
+        << e.what();
     EXPECT_NE(std::string(e.what()).find("the previous checkpoints are kept"), std::string::npos);
   }
   EXPECT_EQ(core::list_checkpoints(out), std::vector<std::string>{first});
@@ -389,14 +393,15 @@ TEST_F(RestartCli, KilledWhileWritingAFrameEveryEarlierFrameLoadsAndTheRestartEn
 
 // A full disk, made by a file-size limit (ulimit -f, in the 512-byte blocks of POSIX sh; SIGXFSZ
 // ignored as a full disk sends none): fields.h5 cannot grow past 6.1 MB, which the fourth
-// frame (t = 0.015) needs, after the checkpoint at step 87. The run stops with exit code 5 naming the file and
-// the reason, keeps the checkpoint, and the restart with room again ends as the full run.
+// frame (t = 0.015) needs, after the checkpoint at step 87. The run stops with exit code 5 naming
+// the file and the reason, keeps the checkpoint, and the restart with room again ends as the full
+// run.
 TEST_F(RestartCli, AFullDiskStopsTheRunWithAClearMessageAndTheCheckpointStaysUsable) {
   const std::string out = dir_.file("full_disk");
-  const test::CommandResult stopped = test::run_captured(
-      "trap '' XFSZ; ulimit -f 12000; \"" + std::string(AFEMP_BINARY) + "\" run \"" + scene_ +
-          "\" -o \"" + out + "\" --threads 1",
-      dir_);
+  const test::CommandResult stopped =
+      test::run_captured("trap '' XFSZ; ulimit -f 12000; \"" + std::string(AFEMP_BINARY) +
+                             "\" run \"" + scene_ + "\" -o \"" + out + "\" --threads 1",
+                         dir_);
   EXPECT_EQ(stopped.exit_code, 5) << stopped.out << stopped.err;
   EXPECT_NE(stopped.err.find("afemp: run stopped: "), std::string::npos) << stopped.err;
   EXPECT_NE(stopped.err.find("fields.h5: cannot flush: File too large"), std::string::npos)
@@ -428,24 +433,22 @@ TEST_F(RestartCli, ADiskThatFillsUpDuringACheckpointKeepsThePreviousOne) {
   const test::CommandResult stopped = test::run_captured(
       "unshare --user --map-root-user --mount sh -c 'mount -t tmpfs -o size=11m tmpfs \"" + mount +
           "\" && \"" + std::string(AFEMP_BINARY) + "\" run \"" + scene_ + "\" -o \"" + mount +
-          "/run\" --threads 1; code=$?; cp -r \"" + mount + "/run\" \"" + copy +
-          "\"; exit $code'",
+          "/run\" --threads 1; code=$?; cp -r \"" + mount + "/run\" \"" + copy + "\"; exit $code'",
       dir_);
   EXPECT_EQ(stopped.exit_code, 5) << stopped.out << stopped.err;
   EXPECT_NE(stopped.err.find("checkpoints/step_000000000173.h5.tmp: "), std::string::npos)
       << stopped.err;
-  EXPECT_NE(stopped.err.find("No space left on device (the disk holding " + mount +
-                             "/run has "),
+  EXPECT_NE(stopped.err.find("No space left on device (the disk holding " + mount + "/run has "),
             std::string::npos)
       << stopped.err;
   EXPECT_NE(stopped.err.find("bytes free: it is full); the previous checkpoints are kept"),
             std::string::npos)
       << stopped.err;
-  EXPECT_EQ(core::list_checkpoints(copy), std::vector<std::string>{core::checkpoint_path(copy, 87)});
+  EXPECT_EQ(core::list_checkpoints(copy),
+            std::vector<std::string>{core::checkpoint_path(copy, 87)});
   const test::CommandResult again = afemp("run \"" + scene_ + "\" --restart \"" + copy + "\"");
   ASSERT_EQ(again.exit_code, 0) << again.out << again.err;
-  EXPECT_NE(again.out.find("continuing from " + core::checkpoint_path(copy, 87)),
-            std::string::npos)
+  EXPECT_NE(again.out.find("continuing from " + core::checkpoint_path(copy, 87)), std::string::npos)
       << again.out;
   expect_same_run(full_, copy);
 }

@@ -97,7 +97,11 @@ TEST(FeCli, CheckSaysHowMeshBodiesMeetTheGrid) {
   CommandResult r = run_afemp("check \"" + dir.write("mixed.toml", scene) + "\"", dir);
   EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("body mesh: FE only"), std::string::npos) << r.out;
-  r = run_afemp("check \"" + dir.write("contact.toml", scene + "[[contact]]\nbodies = [\"mesh\", \"particles\"]\n") + "\"", dir);
+  r = run_afemp(
+      "check \"" +
+          dir.write("contact.toml", scene + "[[contact]]\nbodies = [\"mesh\", \"particles\"]\n") +
+          "\"",
+      dir);
   EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("body mesh: 27 nodes in grid contact (CFEMP"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("2 velocity fields"), std::string::npos) << r.out;

@@ -53,7 +53,7 @@ State run(int threads) {
   const core::Scene scene = core::parse_scene(scene_text, "determinism.toml");
   FeSolver solver(scene);
   EXPECT_TRUE(core::worth_threads(solver.hexahedra().size()));  // threaded element sweep
-  EXPECT_TRUE(core::worth_threads(solver.nodes().size()));       // threaded node sweep
+  EXPECT_TRUE(core::worth_threads(solver.nodes().size()));      // threaded node sweep
   for (int k = 0; k < 100; ++k) solver.step(solver.stable_time_step());
 #ifdef _OPENMP
   omp_set_num_threads(before);
@@ -73,8 +73,8 @@ TEST(FeDeterminism, OneAndTwoThreadsGiveTheSameBits) {
   EXPECT_LT(one.live, one.stress.size());  // erosion took part
   EXPECT_TRUE(same_bits(one.position.data(), two.position.data(),
                         one.position.size() * sizeof(core::Vec3)));
-  EXPECT_TRUE(same_bits(one.stress.data(), two.stress.data(),
-                        one.stress.size() * sizeof(core::SymTensor)));
+  EXPECT_TRUE(
+      same_bits(one.stress.data(), two.stress.data(), one.stress.size() * sizeof(core::SymTensor)));
   EXPECT_TRUE(same_bits(two.position.data(), again.position.data(),
                         two.position.size() * sizeof(core::Vec3)));
   EXPECT_EQ(one.live, two.live);

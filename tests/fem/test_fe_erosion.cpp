@@ -263,11 +263,12 @@ fixed = ["x"]
   const auto& last = history.rows.back();
   const double elastic = last[history.column("elastic")];
   const core::Energies& f = s.final;
-  std::printf("half a plate: %zu of %zu hexahedra eroded; eroded %.6g (records %.6g), plastic "
-              "%.6g (live %.6g), viscous %.6g (live %.6g), elastic %.6g (strain energy %.6g), "
-              "lowest elastic %.3g, internal %.6g; energy balance %.3g %%\n",
-              eroded, h.size(), f.eroded, recorded, f.plastic, plastic, f.viscous, viscous,
-              elastic, strain_energy, lowest, f.internal, 100.0 * s.energy_error);
+  std::printf(
+      "half a plate: %zu of %zu hexahedra eroded; eroded %.6g (records %.6g), plastic "
+      "%.6g (live %.6g), viscous %.6g (live %.6g), elastic %.6g (strain energy %.6g), "
+      "lowest elastic %.3g, internal %.6g; energy balance %.3g %%\n",
+      eroded, h.size(), f.eroded, recorded, f.plastic, plastic, f.viscous, viscous, elastic,
+      strain_energy, lowest, f.internal, 100.0 * s.energy_error);
   EXPECT_GT(eroded, 0.4 * static_cast<double>(h.size()));
   EXPECT_LT(eroded, 0.6 * static_cast<double>(h.size()));
   EXPECT_NEAR(f.eroded, recorded, 1e-9 * f.eroded);

@@ -133,8 +133,8 @@ TEST(FeFailure, JohnsonCookDamageWithANegativeRateTermFailsSoonerWhenFaster) {
   core::SymTensor shear;
   shear.xy = 100.0;  // pure shear: no pressure, triaxiality 0
   const double slow = core::failure_damage(model, 0.0, 0.5, 0.01, 0.01 / 5e-7, 0.0, shear, 293.0);
-  const double fast =
-      core::failure_damage(model, 0.0, 0.5, 0.01, 0.01 / (5e-7 * std::exp(10.0)), 0.0, shear, 293.0);
+  const double fast = core::failure_damage(model, 0.0, 0.5, 0.01, 0.01 / (5e-7 * std::exp(10.0)),
+                                           0.0, shear, 293.0);
   EXPECT_NEAR(slow, 0.01 / 1.8025, 1e-12);
   EXPECT_NEAR(fast, 0.01 / (1.8025 * (1.0 - 0.123)), 1e-12);
 }

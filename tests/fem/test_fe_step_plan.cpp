@@ -124,9 +124,10 @@ TEST(FeStepPlan, WallTrussGravityAndErosionAddTheirStagesInStepOrder) {
   jc.replace(jc.find("[[bodies]]"), 0,
              "failure = { model = \"johnson-cook\", D1 = 0.05, D2 = 3.44, D3 = -2.12 }\n");
   const FeStepPlan failing = plan_of(jc);
-  EXPECT_NE(failing.stages[4].why.find(
-                "block: material failure (Johnson-Cook damage, D1 .. D5 = 0.05, 3.44, -2.12, 0, 0)"),
-            std::string::npos)
+  EXPECT_NE(
+      failing.stages[4].why.find(
+          "block: material failure (Johnson-Cook damage, D1 .. D5 = 0.05, 3.44, -2.12, 0, 0)"),
+      std::string::npos)
       << failing.stages[4].why;
 }
 
@@ -171,8 +172,9 @@ TEST(FeStepPlan, AfempCheckPrintsThePlanTheSolverRuns) {
     const mpm::test::CommandResult r = mpm::test::run_afemp("check \"" + path + "\"", dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const std::string described = FeSolver(core::read_scene(path)).plan().describe();
-    EXPECT_NE(r.out.find(described), std::string::npos)
-        << "printed:\n" << r.out << "\nplan:\n" << described;
+    EXPECT_NE(r.out.find(described), std::string::npos) << "printed:\n"
+                                                        << r.out << "\nplan:\n"
+                                                        << described;
   }
 }
 

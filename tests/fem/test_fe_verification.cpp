@@ -395,8 +395,8 @@ TEST(FeCantilever, OnePointAssumedStrainWithOneOrFourElementsThroughDepthMatches
           "tolerance 3 %");
     EXPECT_NEAR(r.frequency, r.reference, 0.03 * r.reference) << m.label;
     EXPECT_LT(r.vibration.max_hourglass, 0.1 * r.vibration.max_internal) << m.label;
-    EXPECT_GE(r.vibration.max_stabilisation,
-              m.min_stabilisation_share * r.vibration.max_internal) << m.label;
+    EXPECT_GE(r.vibration.max_stabilisation, m.min_stabilisation_share * r.vibration.max_internal)
+        << m.label;
     EXPECT_LT(r.vibration.max_balance_error, 0.02) << m.label;
   }
 }
@@ -414,8 +414,7 @@ TEST(FeCantilever, OnePointAssumedStrainWithOneOrFourElementsThroughDepthMatches
 TEST(FeCantilever, OnePointAssumedStrainWithPoissonRatioBendsWithYoungsModulus) {
   const double nu = 0.3;
   const BeamRun r = cantilever(one_point("assumed_strain", "[1, 1, 20]"), 1.1, nu, 0.6);
-  print("one-point, assumed-strain stabilisation, nu 0.3, 1x1x20, factor 0.6", r,
-        "tolerance 1 %");
+  print("one-point, assumed-strain stabilisation, nu 0.3, 1x1x20, factor 0.6", r, "tolerance 1 %");
   EXPECT_NEAR(r.frequency, r.reference, 0.01 * r.reference);
   EXPECT_LT(r.vibration.max_hourglass, 0.1 * r.vibration.max_internal);
   EXPECT_LT(r.vibration.max_balance_error, 0.02);

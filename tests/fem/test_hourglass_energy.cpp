@@ -16,7 +16,7 @@ namespace afemp::fem {
 namespace {
 
 struct Drift {
-  double balance = 0.0;  // (E - E0) / E0 at the end (no external work)
+  double balance = 0.0;    // (E - E0) / E0 at the end (no external work)
   double hourglass = 0.0;  // the hourglass energy booked, / E0
   double modes = 0.0;      // max_k sum_a gamma_ka^2 of the element at the start
 };
@@ -46,7 +46,8 @@ Drift run_element(const std::array<Vec3, 8>& x, int mode) {
   Drift r;
   {
     HexVectors xe;
-    for (int a = 0; a < 8; ++a) xe[static_cast<std::size_t>(a)] = solver.nodes().position[static_cast<std::size_t>(a)];
+    for (int a = 0; a < 8; ++a)
+      xe[static_cast<std::size_t>(a)] = solver.nodes().position[static_cast<std::size_t>(a)];
     const HourglassModes m = hourglass_modes(one_point_hex(xe), xe);
     for (const auto& g : m.gamma) {
       double sum = 0.0;
@@ -55,8 +56,7 @@ Drift run_element(const std::array<Vec3, 8>& x, int mode) {
     }
   }
   FeNodes& nodes = solver.mutable_nodes();
-  for (std::size_t a = 0; a < 8; ++a)
-    nodes.velocity[a] = Vec3{kHourglassBase[mode][a], 0.0, 0.0};
+  for (std::size_t a = 0; a < 8; ++a) nodes.velocity[a] = Vec3{kHourglassBase[mode][a], 0.0, 0.0};
   const core::Energies e0 = solver.energies();
   for (int n = 0; n < 400; ++n) solver.step(solver.stable_time_step());
   const core::Energies e = solver.energies();
@@ -68,7 +68,7 @@ Drift run_element(const std::array<Vec3, 8>& x, int mode) {
 // A plate element 1 x 1 mm and t thick whose top face's y = 0 edge is shifted by s along x and
 // whose top corner (1, 1) is raised by w: the keystones a shear band leaves, no parallelepiped.
 std::array<Vec3, 8> keystone(double t, double s, double w) {
-  return {Vec3{0, 0, 0}, Vec3{1, 0, 0}, Vec3{1, 1, 0}, Vec3{0, 1, 0},
+  return {Vec3{0, 0, 0}, Vec3{1, 0, 0},     Vec3{1, 1, 0},     Vec3{0, 1, 0},
           Vec3{s, 0, t}, Vec3{1 + s, 0, t}, Vec3{1, 1, t + w}, Vec3{0, 1, t}};
 }
 
@@ -88,15 +88,15 @@ TEST(HourglassEnergy, TheViscousFormBooksTheWorkItDoesOnElementsFarFromAParallel
                                    Vec3{1.0618, 0.8757, -0.3363}, Vec3{-0.4455, 0.5489, 0.0531},
                                    Vec3{0.2329, 0.4569, 0.6577},  Vec3{0.9825, -0.3822, 0.8244},
                                    Vec3{0.5411, 0.5459, 0.7470},  Vec3{-0.2275, 1.4725, 0.4490}};
-  const std::array<std::array<Vec3, 8>, 6> shapes{keystone(1.0, 0.0, 0.0), keystone(0.3, 0.6, 0.0),
-                                                  keystone(0.1, 0.8, 0.0), keystone(0.05, 0.5, 0.3),
-                                                  keystone(0.01, 0.0, 0.5), random};
+  const std::array<std::array<Vec3, 8>, 6> shapes{
+      keystone(1.0, 0.0, 0.0),  keystone(0.3, 0.6, 0.0),  keystone(0.1, 0.8, 0.0),
+      keystone(0.05, 0.5, 0.3), keystone(0.01, 0.0, 0.5), random};
   double largest = 0.0;
   for (std::size_t c = 0; c < shapes.size(); ++c)
     for (int mode = 0; mode < 4; ++mode) {
       const Drift d = run_element(shapes[c], mode);
-      std::printf("shape %zu, mode %d: sum gamma^2 %.3g, hourglass %.3f of E0, balance %+.3e\n",
-                  c, mode, d.modes, d.hourglass, d.balance);
+      std::printf("shape %zu, mode %d: sum gamma^2 %.3g, hourglass %.3f of E0, balance %+.3e\n", c,
+                  mode, d.modes, d.hourglass, d.balance);
       EXPECT_LT(std::abs(d.balance), 0.005) << "shape " << c << " mode " << mode;
       EXPECT_GT(d.hourglass, 0.5) << "shape " << c << " mode " << mode;
       largest = std::max(largest, d.modes);

@@ -167,8 +167,8 @@ TEST(MeshContact, ABlockSlidingOnARigidPlateStopsAtTheCoulombDistance) {
 class RigidCubeOnABlock : public ::testing::TestWithParam<double> {};
 
 TEST_P(RigidCubeOnABlock, AFreeRigidBodyHandsItsMomentumToADeformableBlock) {
-  std::string s = "[run]\nend_time = 0.01\nelement_time_step_factor = " +
-                  std::to_string(GetParam()) + "\n";
+  std::string s =
+      "[run]\nend_time = 0.01\nelement_time_step_factor = " + std::to_string(GetParam()) + "\n";
   s += kSteel;
   s += "[[bodies]]\nname = \"cube\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
        "shape = { box = { min = [0, 0, 0.05], max = [4, 4, 4.05] } }\nmesh = { divisions = [2, 2, "

@@ -264,7 +264,8 @@ TEST(CylinderMesh, OgiveNoseFollowsItsArcAndHoldsItsVolume) {
   };
   for (std::int32_t i : set("surface")) {
     const Vec3& x = m.nodes[static_cast<std::size_t>(i)];
-    const double profile = x.z > shank ? core::ogive_radius(c.nose, c.radius, x.z - shank) : c.radius;
+    const double profile =
+        x.z > shank ? core::ogive_radius(c.nose, c.radius, x.z - shank) : c.radius;
     EXPECT_NEAR(std::hypot(x.x, x.y), profile, 1e-12 * c.radius) << "node " << i;
   }
   double top_radius = 0.0;
@@ -278,9 +279,10 @@ TEST(CylinderMesh, OgiveNoseFollowsItsArcAndHoldsItsVolume) {
   const double exact =
       (std::numbers::pi * c.radius * c.radius * shank + core::ogive_nose_volume(c.nose, c.radius)) /
       4.0;
-  std::printf("ogive quarter: volume %.6g, exact %.6g, relative error %.2e; min scaled Jacobian "
-              "%.3f\n",
-              q.total_volume, exact, (q.total_volume - exact) / exact, q.min_scaled_jacobian);
+  std::printf(
+      "ogive quarter: volume %.6g, exact %.6g, relative error %.2e; min scaled Jacobian "
+      "%.3f\n",
+      q.total_volume, exact, (q.total_volume - exact) / exact, q.min_scaled_jacobian);
   EXPECT_NEAR(q.total_volume, exact, 0.01 * exact);
   EXPECT_EQ(q.inverted, 0u);
   // A sharp tip would collapse the last layer: the mesher refuses it with a reason.
@@ -362,8 +364,9 @@ TEST(CylinderMesh, RotatedAxisGivesTheSameVolumeRadiiAndShapes) {
 
 TEST(CylinderFrame, IsTheSmallestRotationTakingZOntoTheAxis) {
   // Reference: +z gives the identity exactly; +x is reached by a quarter turn about y
-  // (x -> -z, y -> y); -z by the half turn about (1, 1, 0) (x <-> y, -z); an axis tilted by 1e-3 from z
-  // moves the frame's x by about 1e-3 only. Every frame is orthonormal and right-handed (1e-14).
+  // (x -> -z, y -> y); -z by the half turn about (1, 1, 0) (x <-> y, -z); an axis tilted by 1e-3
+  // from z moves the frame's x by about 1e-3 only. Every frame is orthonormal and right-handed
+  // (1e-14).
   auto expect_vec = [](const Vec3& a, const Vec3& b, double tol) {
     EXPECT_NEAR(a.x, b.x, tol);
     EXPECT_NEAR(a.y, b.y, tol);

@@ -57,8 +57,7 @@ TEST(SurfaceFaces, BoundaryFacesFollowTheLiveElements) {
       EXPECT_TRUE(hexes.alive[e]);
       EXPECT_LT(e, 27u);
       for (std::int32_t k : linked.nodes[f])
-        EXPECT_NE(std::find(hexes.nodes[e].begin(), hexes.nodes[e].end(), k),
-                  hexes.nodes[e].end());
+        EXPECT_NE(std::find(hexes.nodes[e].begin(), hexes.nodes[e].end(), k), hexes.nodes[e].end());
     }
     EXPECT_EQ(sorted_faces(boundary_faces(hexes, both)),
               sorted_faces(boundary_faces(unlinked, both)));
@@ -69,7 +68,8 @@ TEST(SurfaceFaces, BoundaryFacesFollowTheLiveElements) {
   auto element_at = [&](const Vec3& c) {
     for (std::size_t e = 0; e < 27; ++e) {
       Vec3 m;
-      for (std::int32_t k : hexes.nodes[e]) m += 0.125 * nodes.position[static_cast<std::size_t>(k)];
+      for (std::int32_t k : hexes.nodes[e])
+        m += 0.125 * nodes.position[static_cast<std::size_t>(k)];
       if (core::norm(m - c) < 1e-9) return e;
     }
     ADD_FAILURE() << "no element at the point";

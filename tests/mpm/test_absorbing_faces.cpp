@@ -7,8 +7,8 @@
 #include <string>
 
 #include "afemp/errors.hpp"
-#include "explosive_scenes.hpp"
 #include "core/scene.hpp"
+#include "explosive_scenes.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
 
@@ -34,7 +34,8 @@ min = [0, 0, 0]
 max = [1, 1, 12]
 boundary = { xmin = "symmetric", xmax = "symmetric", ymin = "symmetric", ymax = "symmetric", zmin = ")" +
          ends + R"(", zmax = ")" + ends + R"(" }
-)" + material + R"(
+)" + material +
+         R"(
 [[bodies]]
 name = "column"
 material = "medium"
@@ -103,8 +104,8 @@ TEST(AbsorbingFaces, AWaveLeavesThroughAnAbsorbingFaceInsteadOfReflecting) {
 // The same for water, a fluid: its face damps with c0 of its EOS (1647 m/s), not with a modulus
 // from E and nu, which a fluid does not have (they gave c = 0: no damping, a full echo).
 TEST(AbsorbingFaces, AFluidsFaceTakesItsEquationOfStateWaveSpeed) {
-  const double slowness = std::sqrt(1.24e5 * (1.0 - 0.34) / ((1.0 + 0.34) * (1.0 - 2.0 * 0.34)) /
-                                    8.93e-3) / 1647.0;
+  const double slowness =
+      std::sqrt(1.24e5 * (1.0 - 0.34) / ((1.0 + 0.34) * (1.0 - 2.0 * 0.34)) / 8.93e-3) / 1647.0;
   const Echo free = echo("free", kWater, slowness);
   const Echo absorbed = echo("absorbing", kWater, slowness);
   EXPECT_GT(free.reflected, 0.8 * free.incident);

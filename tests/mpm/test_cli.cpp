@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <vector>
 #include <string>
+#include <vector>
 
 #include "core/output/history.hpp"
 #include "test_support.hpp"
@@ -22,19 +22,19 @@ namespace {
 TEST(Cli, CheckRejectsMisspeltKeyNamingFileLineKeyAndAllowedKeys) {
   test::ScratchDir dir;
   const std::string path = dir.write("typo.toml",
-                                     "[run]\n"                    // 1
-                                     "end_time = 1.0\n"           // 2
-                                     "[grid]\n"                   // 3
-                                     "cell = 1.0\n"               // 4
-                                     "min = [0, 0, 0]\n"          // 5
-                                     "max = [4, 4, 4]\n"          // 6
-                                     "[materials.steel]\n"        // 7
-                                     "densty = 7.85e-3\n"         // 8
-                                     "E = 200e3\n"                // 9
-                                     "nu = 0.3\n"                 // 10
-                                     "[[bodies]]\n"               // 11
-                                     "name = \"b\"\n"             // 12
-                                     "material = \"steel\"\n"     // 13
+                                     "[run]\n"                 // 1
+                                     "end_time = 1.0\n"        // 2
+                                     "[grid]\n"                // 3
+                                     "cell = 1.0\n"            // 4
+                                     "min = [0, 0, 0]\n"       // 5
+                                     "max = [4, 4, 4]\n"       // 6
+                                     "[materials.steel]\n"     // 7
+                                     "densty = 7.85e-3\n"      // 8
+                                     "E = 200e3\n"             // 9
+                                     "nu = 0.3\n"              // 10
+                                     "[[bodies]]\n"            // 11
+                                     "name = \"b\"\n"          // 12
+                                     "material = \"steel\"\n"  // 13
                                      "shape = { box = { min = [1, 1, 1], max = [3, 3, 3] } }\n");
   const test::CommandResult r = test::run_afemp("check \"" + path + "\"", dir);
   EXPECT_NE(r.exit_code, 0);
@@ -42,8 +42,8 @@ TEST(Cli, CheckRejectsMisspeltKeyNamingFileLineKeyAndAllowedKeys) {
   EXPECT_NE(r.err.find(path + ":8:"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("materials.steel.densty"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("allowed"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("density"), std::string::npos) << "the allowed list names the right key: "
-                                                       << r.err;
+  EXPECT_NE(r.err.find("density"), std::string::npos)
+      << "the allowed list names the right key: " << r.err;
 }
 
 // Reference: a 2 x 2 x 2-cell steel box at n = 2 particles per cell per direction holds
@@ -128,8 +128,9 @@ TEST(Cli, SigintStopsTheRunCleanlyWithItsFinalRowFrameAndSummary) {
   line += path;
   line += "\" -o \"";
   line += out;
-  line += "\" --threads 1 & pid=$!; sleep 1; kill -USR1 $pid; sleep 0.5; kill -INT $pid; "
-          "wait $pid";
+  line +=
+      "\" --threads 1 & pid=$!; sleep 1; kill -USR1 $pid; sleep 0.5; kill -INT $pid; "
+      "wait $pid";
   const test::CommandResult r = test::run_shell(line, dir);
   EXPECT_EQ(r.exit_code, 130) << r.out << r.err;
   EXPECT_NE(r.err.find("afemp: stopped by SIGINT after step"), std::string::npos) << r.err;
@@ -169,22 +170,24 @@ TEST(Cli, RunComparesTheSceneReferencesAndExitsFourWhenOneIsMissed) {
       "[materials.steel]\ndensity = 7.85e-3\nE = 200e3\nnu = 0.3\n"
       "[[bodies]]\nname = \"cube\"\nmaterial = \"steel\"\nvelocity = [3, -4, 12]\n"
       "shape = { box = { min = [0, 0, 0], max = [2, 2, 2] } }\n"
-      "[reference]\nenergy = { tolerance = 1e-6 }\nvelocity = [{ body = \"cube\", component = \"z\", "
+      "[reference]\nenergy = { tolerance = 1e-6 }\nvelocity = [{ body = \"cube\", component = "
+      "\"z\", "
       "value = 12, tolerance = 1e-9 }, { body = \"cube\", value = SPEED, tolerance = 0.01 }]\n";
   auto with_speed = [&](const char* speed) {
     std::string s = scene;
     s.replace(s.find("SPEED"), 5, speed);
     return s;
   };
-  const test::CommandResult ok =
-      test::run_afemp("run \"" + dir.write("ok.toml", with_speed("13")) + "\" -o \"" +
-                          dir.file("ok") + "\" --threads 1",
-                      dir);
+  const test::CommandResult ok = test::run_afemp("run \"" + dir.write("ok.toml", with_speed("13")) +
+                                                     "\" -o \"" + dir.file("ok") + "\" --threads 1",
+                                                 dir);
   EXPECT_EQ(ok.exit_code, 0) << ok.out << ok.err;
   EXPECT_NE(ok.out.find("velocity of cube (z): 12 (ref 12, error 0.0000)  (within tolerance)"),
-            std::string::npos) << ok.out;
+            std::string::npos)
+      << ok.out;
   EXPECT_NE(ok.out.find("velocity of cube (magnitude): 13 (ref 13, error 0.0000)"),
-            std::string::npos) << ok.out;
+            std::string::npos)
+      << ok.out;
   EXPECT_NE(ok.out.find("largest |energy-balance error|"), std::string::npos) << ok.out;
   const test::CommandResult missed =
       test::run_afemp("run \"" + dir.write("missed.toml", with_speed("13.5")) + "\" -o \"" +
@@ -196,7 +199,8 @@ TEST(Cli, RunComparesTheSceneReferencesAndExitsFourWhenOneIsMissed) {
   // A reference to a body the scene does not have names the key and the bodies.
   std::string bad = with_speed("13");
   bad.replace(bad.find("body = \"cube\", value"), 13, "body = \"cub\"");
-  const test::CommandResult r = test::run_afemp("check \"" + dir.write("bad.toml", bad) + "\"", dir);
+  const test::CommandResult r =
+      test::run_afemp("check \"" + dir.write("bad.toml", bad) + "\"", dir);
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("reference.velocity[1].body"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("unknown body \"cub\"; bodies: \"cube\""), std::string::npos) << r.err;
@@ -214,8 +218,10 @@ TEST(Cli, StudyWritesItsTableAndExitsFourWhenARunMissesItsTolerance) {
             "shape = { box = { min = [0, 0, 0], max = [2, 2, 2] } }\n");
   const std::string study =
       "[study]\nthreads = 1\n[[metrics]]\nkind = \"velocity\"\nbody = \"cube\"\nreference = 13\n"
-      "tolerance = 0.01\n[[runs]]\nmethod = \"MPM\"\nscene = \"cube.toml\"\nresolution = [1.0, 0.5]\n"
-      "set = { \"grid.cell\" = [1.0, 0.5], \"bodies.cube.velocity\" = [[3, -4, 12], [3, -4, 12.5]] }\n";
+      "tolerance = 0.01\n[[runs]]\nmethod = \"MPM\"\nscene = \"cube.toml\"\nresolution = [1.0, "
+      "0.5]\n"
+      "set = { \"grid.cell\" = [1.0, 0.5], \"bodies.cube.velocity\" = [[3, -4, 12], [3, -4, 12.5]] "
+      "}\n";
   const test::CommandResult r = test::run_afemp(
       "study \"" + dir.write("study.toml", study) + "\" -o \"" + dir.file("out") + "\"", dir);
   EXPECT_EQ(r.exit_code, 4) << r.out << r.err;

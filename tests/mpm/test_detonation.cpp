@@ -50,12 +50,12 @@ void expect_chapman_jouguet(const Front& early, const Front& late, const char* w
   // The lighting times alone put the front at D; the products' pressure and velocity behind
   // it are the hydrodynamics': u_CJ = p_CJ / (rho0 D) = 1859 m/s.
   const double u_cj = kPcj / (1.63e-3 * kD);
-  std::printf("%s: front at %.3f and %.3f mm (t = 3, 8 us): %.1f m/s (D %.0f, %+.2f %%); peak "
-              "pressure %.0f MPa (p_CJ %.0f, %+.1f %%), peak velocity %.0f m/s (u_CJ %.0f, "
-              "%+.1f %%)\n",
-              what, early.z, late.z, speed, kD, 100.0 * (speed / kD - 1.0), late.peak, kPcj,
-              100.0 * (late.peak / kPcj - 1.0), late.velocity, u_cj,
-              100.0 * (late.velocity / u_cj - 1.0));
+  std::printf(
+      "%s: front at %.3f and %.3f mm (t = 3, 8 us): %.1f m/s (D %.0f, %+.2f %%); peak "
+      "pressure %.0f MPa (p_CJ %.0f, %+.1f %%), peak velocity %.0f m/s (u_CJ %.0f, "
+      "%+.1f %%)\n",
+      what, early.z, late.z, speed, kD, 100.0 * (speed / kD - 1.0), late.peak, kPcj,
+      100.0 * (late.peak / kPcj - 1.0), late.velocity, u_cj, 100.0 * (late.velocity / u_cj - 1.0));
   EXPECT_NEAR(speed, kD, 0.02 * kD) << what;
   EXPECT_NEAR(late.peak, kPcj, 0.10 * kPcj) << what;
   EXPECT_NEAR(late.velocity, u_cj, 0.10 * u_cj) << what;
@@ -82,7 +82,8 @@ scheme = "USAVG"
 name = "charge"
 material = "tnt"
 shape = { box = { min = [0, 0, 0], max = [1, 1, 60] } }
-)") + kTnt, "column.toml");
+)") + kTnt,
+                                              "column.toml");
   MpmSolver solver(scene, generate_particles(scene));
   const double e0 = solver.energies().total();
   auto front_at = [&](double t) {
@@ -113,7 +114,8 @@ mesh = { size = 0.5 }
 [[constraints]]
 nodes = { box = { min = [-1, -1, -1], max = [2, 2, 61] } }
 fixed = ["x", "y"]
-)") + kTnt, "column.toml");
+)") + kTnt,
+                                              "column.toml");
   fem::FeSolver solver(scene);
   const double e0 = solver.energies().total();
   auto front_at = [&](double t) {
@@ -156,10 +158,12 @@ shape = { box = { min = [0, 0, 0], max = [0.5, 0.5, 10] } }
 name = "plate"
 material = "steel"
 shape = { box = { min = [0, 0, 10], max = [0.5, 0.5, 12.0764] } }
-)" + kTnt, "sandwich.toml");
+)" + kTnt,
+      "sandwich.toml");
   MpmSolver solver(scene, generate_particles(scene));
   const double e0 = solver.energies().total();
-  while (solver.time() < 0.03) solver.step(std::min(solver.stable_time_step(), 0.03 - solver.time()));
+  while (solver.time() < 0.03)
+    solver.step(std::min(solver.stable_time_step(), 0.03 - solver.time()));
   const core::Energies e = solver.energies();
   const core::BodySums& plate = e.bodies[1];
   const double v = plate.momentum.z / plate.mass;

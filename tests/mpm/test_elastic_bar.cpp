@@ -47,11 +47,11 @@ Rebound run(const std::string& scheme, double factor, const std::string& method 
   const BodySums& bar = s.final.bodies.at(0);
   const Rebound r{bar.momentum.z / bar.mass, s.max_energy_error, s.energy_error,
                   s.final.kinetic / s.initial.kinetic};
-  std::printf("V1 %-4s %s %s factor %.2f: rebound %.1f m/s (v0 300), kinetic energy back %.1f %%, "
-              "energy balance error %+.2f %% at the end, largest %.2f %%, %ld steps\n",
-              scheme.c_str(), core::to_string(scene.mpm.shape),
-              core::to_string(scene.mpm.transfer), factor, r.speed, 100.0 * r.kinetic_ratio, 100.0 * r.end_error,
-              100.0 * r.max_error, s.steps);
+  std::printf(
+      "V1 %-4s %s %s factor %.2f: rebound %.1f m/s (v0 300), kinetic energy back %.1f %%, "
+      "energy balance error %+.2f %% at the end, largest %.2f %%, %ld steps\n",
+      scheme.c_str(), core::to_string(scene.mpm.shape), core::to_string(scene.mpm.transfer), factor,
+      r.speed, 100.0 * r.kinetic_ratio, 100.0 * r.end_error, 100.0 * r.max_error, s.steps);
   return r;
 }
 

@@ -22,7 +22,8 @@ end_time = 1.0
 cell = 1.0
 min = [0, 0, 0]
 max = [4, 4, 4]
-)" + grid_keys + rest;
+)" + grid_keys +
+         rest;
 }
 
 // The particle that started first (id 0) wherever binning has put it.
@@ -68,7 +69,8 @@ shape = { box = { min = [0, 1, 1], max = [2, 3, 3] } }
 TEST(FaceCrossings, AParticlePastAFarFieldFaceIsPutBackOnItsPlane) {
   const core::Scene scene = core::parse_scene(cube(R"(boundary = { xmax = "absorbing" }
 far_field = { centre = [0, 0, 0], pressure = 10.0 }
-)", test::water_material() + R"(
+)",
+                                                   test::water_material() + R"(
 [[bodies]]
 name = "water"
 material = "water"

@@ -15,9 +15,9 @@
 #include "core/materials/initial_pressure.hpp"
 #include "core/plausibility.hpp"
 #include "core/scene.hpp"
+#include "explosive_scenes.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
-#include "explosive_scenes.hpp"
 #include "scene_errors.hpp"
 
 namespace afemp::mpm {
@@ -41,12 +41,15 @@ scheme = "USAVG"
 density = 1.0e-5
 strength = { model = "fluid" }
 eos = { model = "linear-polynomial", C4 = 0.4, C5 = 0.4 }
-)" + test::water_material() + R"(
+)" + test::water_material() +
+         R"(
 [[bodies]]
 name = "inner"
-material = ")" + inner_material + R"("
+material = ")" +
+         inner_material + R"("
 shape = { sphere = { centre = [0, 0, 0], radius = 5 } }
-)" + inner_keys + R"(
+)" + inner_keys +
+         R"(
 [[bodies]]
 name = "water"
 material = "water"
@@ -130,9 +133,10 @@ TEST(FarField, GasBubblePulsatesAtTheMinnaertFrequency) {
   const double period = down[1] - down[0];
   const core::Energies e = solver.energies();
   const double balance = (e.total() - e0.total() - e.external_work) / e0.total();
-  std::printf("period %.5f ms (downward crossings at %.5f, %.5f ms), Minnaert %.5f ms: %+.2f %%; "
-              "energy balance %+.2e\n",
-              period, down[0], down[1], minnaert, 100.0 * (period / minnaert - 1.0), balance);
+  std::printf(
+      "period %.5f ms (downward crossings at %.5f, %.5f ms), Minnaert %.5f ms: %+.2f %%; "
+      "energy balance %+.2e\n",
+      period, down[0], down[1], minnaert, 100.0 * (period / minnaert - 1.0), balance);
   EXPECT_NEAR(period / minnaert, 1.0, 0.03);
   EXPECT_LT(std::abs(balance), 0.01);
 }
@@ -217,8 +221,8 @@ eos = { model = "linear-polynomial", C4 = 0.4, C5 = 0.4 }
   while (solver.time() < 0.1 && crossing < 0.0) {
     solver.step(solver.stable_time_step());
     const Particles& p = solver.particles();
-    const std::size_t i = static_cast<std::size_t>(
-        std::find(p.id.begin(), p.id.end(), id) - p.id.begin());
+    const std::size_t i =
+        static_cast<std::size_t>(std::find(p.id.begin(), p.id.end(), id) - p.id.begin());
     ASSERT_LT(i, p.size());
     const double r = core::norm(p.position[i]);
     const double radius = std::cbrt(std::max(r * r * r - r0 * r0 * r0 + a * a * a, 0.0));
@@ -229,9 +233,11 @@ eos = { model = "linear-polynomial", C4 = 0.4, C5 = 0.4 }
   }
   ASSERT_GT(crossing, 0.0) << "the cavity did not close to half its radius in 0.1 ms";
   const double rayleigh = rayleigh_time(0.5, a, 1.0e-3, 10.0);
-  std::printf("cavity radius %.3f mm: half of it at %.5f ms, Rayleigh %.5f ms (%+.2f %%; "
-              "full collapse %.5f ms)\n", a, crossing, rayleigh,
-              100.0 * (crossing / rayleigh - 1.0), 0.91468 * a * std::sqrt(1.0e-3 / 10.0));
+  std::printf(
+      "cavity radius %.3f mm: half of it at %.5f ms, Rayleigh %.5f ms (%+.2f %%; "
+      "full collapse %.5f ms)\n",
+      a, crossing, rayleigh, 100.0 * (crossing / rayleigh - 1.0),
+      0.91468 * a * std::sqrt(1.0e-3 / 10.0));
   EXPECT_NEAR(crossing, rayleigh, 0.06 * rayleigh);
 }
 
@@ -240,7 +246,8 @@ TEST(FarField, InputErrorsNameTheKey) {
   // No absorbing face for the far field to act through.
   std::string text = ok;
   const std::string faces = R"(xmax = "absorbing", ymax = "absorbing", zmax = "absorbing")";
-  text.replace(text.find(faces), faces.size(), R"(xmax = "outflow", ymax = "outflow", zmax = "outflow")");
+  text.replace(text.find(faces), faces.size(),
+               R"(xmax = "outflow", ymax = "outflow", zmax = "outflow")");
   std::string what = test::error_of(text);
   EXPECT_NE(what.find("grid.far_field"), std::string::npos) << what;
   EXPECT_NE(what.find("absorbing"), std::string::npos) << what;
@@ -257,8 +264,11 @@ point = [10, 10, 10]
   what = test::error_of(text);
   EXPECT_NE(what.find("bodies.charge.pressure"), std::string::npos) << what;
   EXPECT_NE(what.find("explosive"), std::string::npos) << what;
-  EXPECT_NE(what.find(":" + std::to_string(test::line_of(text, "pressure = 10.0\n[[detonations]]")) + ":"),
-            std::string::npos) << what;
+  EXPECT_NE(
+      what.find(":" + std::to_string(test::line_of(text, "pressure = 10.0\n[[detonations]]")) +
+                ":"),
+      std::string::npos)
+      << what;
   // A body of hexahedra takes no initial pressure.
   text = ok + test::steel_plate_material() + R"(
 [[bodies]]
@@ -277,11 +287,11 @@ pressure = 10.0
   struct Case {
     std::string from, to, key, allowed;
   };
-  for (const Case& k : {Case{"\"absolute\"", "\"total\"", "grid.far_field.stress", "\"absolute\""},
-                        Case{"particles_per_cell = 2", "particles_per_cell = 1",
-                             "particles_per_cell", "2 to 8"},
-                        Case{"scheme = \"USAVG\"", "shape_function = \"gimp\"",
-                             "mpm.shape_function", "\"linear\""}}) {
+  for (const Case& k :
+       {Case{"\"absolute\"", "\"total\"", "grid.far_field.stress", "\"absolute\""},
+        Case{"particles_per_cell = 2", "particles_per_cell = 1", "particles_per_cell", "2 to 8"},
+        Case{"scheme = \"USAVG\"", "shape_function = \"gimp\"", "mpm.shape_function",
+             "\"linear\""}}) {
     text = absolute(ok);
     text.replace(text.find(k.from), k.from.size(), k.to);
     what = test::error_of(text);
@@ -315,8 +325,9 @@ std::vector<std::string> warning_keys(const std::string& text, const std::string
 // A gas near the ambient under the absolute stress (bulk modulus gamma p = 1.4 p, below 10 p)
 // gets a warning naming its pressure; the water (K = 2712 MPa at 10 MPa) gets none.
 TEST(FarField, AbsoluteStressWarnsOfAPrestressedGas) {
-  EXPECT_EQ(warning_keys(absolute(sphere_in_water("gas", "internal_energy = 2.5e6\n"
-                                                         "pressure = 10.5\nparticles_per_cell = 2")),
+  EXPECT_EQ(warning_keys(absolute(sphere_in_water("gas",
+                                                  "internal_energy = 2.5e6\n"
+                                                  "pressure = 10.5\nparticles_per_cell = 2")),
                          "bubble.toml"),
             std::vector<std::string>{"bodies.inner.pressure"});
 }

@@ -18,7 +18,9 @@ namespace {
 
 constexpr double h = 0.5;  // cell size
 
-double hat(double x_minus_node) { return std::max(0.0, 1.0 - std::abs(x_minus_node) / h); }
+double hat(double x_minus_node) {
+  return std::max(0.0, 1.0 - std::abs(x_minus_node) / h);
+}
 
 // Midpoint-rule average of the hat of the node at node_x over [x - l, x + l]: the integrand
 // is piecewise linear, so 200,000 points give about 1e-11.

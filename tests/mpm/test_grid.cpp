@@ -194,8 +194,8 @@ core::Scene box_scene(const Vec3& lo, const Vec3& hi) {
       "[grid]\ncell = 1.0\nmin = [0, 0, 0]\nmax = [16, 16, 16]\n"
       "[materials.steel]\ndensity = 7.85e-3\nE = 200e3\nnu = 0.3\n"
       "[[bodies]]\nname = \"b\"\nmaterial = \"steel\"\nparticles_per_cell = 2\n"
-      "shape = { box = { min = " + test::vec(lo.x, lo.y, lo.z) + ", max = " +
-          test::vec(hi.x, hi.y, hi.z) + " } }\n",
+      "shape = { box = { min = " +
+          test::vec(lo.x, lo.y, lo.z) + ", max = " + test::vec(hi.x, hi.y, hi.z) + " } }\n",
       "blocks.toml");
 }
 

@@ -70,12 +70,12 @@ TEST(Outflow, ParticlesLeavingThroughAnOutflowFaceKeepMassMomentumAndEnergyInThe
 
 // A soft copper block (yield 50 MPa, bulk viscosity on) at 500 m/s strikes one at rest; the
 // two, one velocity field, flatten each other plastically and fly on at 250 m/s out through
-// the zmax outflow face (what spreads sideways leaves through the side faces). Reference: what leaves takes its share of every total. While the
-// blocks are in the grid the elastic energy (internal - plastic - viscous) is the particles'
-// own and never negative; once every particle has left, no material holds plastic work or
-// viscous heat, so both totals return to 0 (to 1e-12 of their peak). (The balance itself
-// does not close here: the blocks meet in one velocity field, an inelastic impact whose
-// kinetic energy loss the grid takes without booking, 1.6 %.)
+// the zmax outflow face (what spreads sideways leaves through the side faces). Reference: what
+// leaves takes its share of every total. While the blocks are in the grid the elastic energy
+// (internal - plastic - viscous) is the particles' own and never negative; once every particle has
+// left, no material holds plastic work or viscous heat, so both totals return to 0 (to 1e-12 of
+// their peak). (The balance itself does not close here: the blocks meet in one velocity field, an
+// inelastic impact whose kinetic energy loss the grid takes without booking, 1.6 %.)
 TEST(Outflow, PlasticWorkAndViscousHeatLeaveWithTheParticles) {
   const core::Scene scene = core::parse_scene(R"(
 [run]
@@ -101,7 +101,8 @@ name = "target"
 material = "copper"
 shape = { box = { min = [0.5, 0.5, 2], max = [1.5, 1.5, 3] } }
 bulk_viscosity = { linear = 0.06, quadratic = 1.5 }
-)", "outflow_plastic.toml");
+)",
+                                              "outflow_plastic.toml");
   MpmSolver solver(scene, generate_particles(scene));
   const double energy0 = solver.energies().total();
   double peak_plastic = 0.0, peak_viscous = 0.0, lowest_elastic = 0.0;
@@ -113,10 +114,11 @@ bulk_viscosity = { linear = 0.06, quadratic = 1.5 }
     lowest_elastic = std::min(lowest_elastic, e.internal - e.plastic - e.viscous);
   }
   const core::Energies e = solver.energies();
-  std::printf("outflow: all %ld particles left by t = %.4g; plastic %.4g of peak %.4g, viscous "
-              "%.4g of peak %.4g; lowest elastic %.3g\n",
-              solver.outflow_count(), solver.time(), e.plastic, peak_plastic, e.viscous,
-              peak_viscous, lowest_elastic);
+  std::printf(
+      "outflow: all %ld particles left by t = %.4g; plastic %.4g of peak %.4g, viscous "
+      "%.4g of peak %.4g; lowest elastic %.3g\n",
+      solver.outflow_count(), solver.time(), e.plastic, peak_plastic, e.viscous, peak_viscous,
+      lowest_elastic);
   ASSERT_EQ(solver.particles().size(), 0u);
   EXPECT_GT(peak_plastic, 1e-3 * energy0);
   EXPECT_GT(peak_viscous, 0.0);

@@ -55,7 +55,9 @@ BodySpec make_body(const std::string& name, core::Shape shape, int n) {
   return b;
 }
 
-void set_face(Scene& s, Face f, FaceCondition c) { s.mpm.grid.faces[static_cast<int>(f)] = c; }
+void set_face(Scene& s, Face f, FaceCondition c) {
+  s.mpm.grid.faces[static_cast<int>(f)] = c;
+}
 
 double total_mass(const Particles& p) {
   double m = 0.0;
@@ -108,8 +110,7 @@ TEST(ParticleGeneration, AdjacentBoxesSharingAFaceDoNotShareAPoint) {
   s.bodies.push_back(make_body("right", BoxShape{{2.25, 0, 0}, {4, 4, 4}}, 2));
   const Particles p = generate_particles(s);
   EXPECT_EQ(p.size(), 8u * 8u * 8u);  // the whole 4^3 grid exactly once
-  for (std::size_t i = 0; i < p.size(); ++i)
-    EXPECT_EQ(p.body[i], p.position[i].x < 2.25 ? 0 : 1);
+  for (std::size_t i = 0; i < p.size(); ++i) EXPECT_EQ(p.body[i], p.position[i].x < 2.25 ? 0 : 1);
 }
 
 // Reference: counting. A body placed outside another (water around a charge) leaves out its
@@ -129,7 +130,8 @@ TEST(ParticleGeneration, ABodyOutsideAnotherLeavesOutThePointsInsideIt) {
   EXPECT_EQ(p.size(), 512u);
 
   Scene t = make_scene({0, 0, 0}, {4, 4, 4}, 1.0);
-  for (int f : {0, 2, 4}) t.mpm.grid.faces[static_cast<std::size_t>(f)] = core::FaceCondition::symmetric;
+  for (int f : {0, 2, 4})
+    t.mpm.grid.faces[static_cast<std::size_t>(f)] = core::FaceCondition::symmetric;
   t.bodies.push_back(make_body("charge", SphereShape{{0, 0, 0}, 1.2}, 2));
   t.bodies.push_back(make_body("water", BoxShape{{0, 0, 0}, {4, 4, 4}}, 2));
   t.bodies[1].outside = {0};
@@ -184,14 +186,15 @@ TEST(ParticleGeneration, OgiveNosedCylinderHoldsItsMassAndNoPointOutsideTheArc) 
   s.bodies.push_back(make_body("projectile", c, 2));
   const Particles p = generate_particles(s);
   const double nose = core::ogive_nose_length(c.nose, c.radius), shank = c.length - nose;
-  const double exact = rho *
-                       (std::numbers::pi * c.radius * c.radius * shank +
-                        core::ogive_nose_volume(c.nose, c.radius)) /
-                       4.0;
+  const double exact =
+      rho *
+      (std::numbers::pi * c.radius * c.radius * shank + core::ogive_nose_volume(c.nose, c.radius)) /
+      4.0;
   EXPECT_NEAR(total_mass(p), exact, 0.03 * exact);
   std::size_t in_nose = 0;
   for (const Vec3& x : p.position) {
-    const double profile = x.z > shank ? core::ogive_radius(c.nose, c.radius, x.z - shank) : c.radius;
+    const double profile =
+        x.z > shank ? core::ogive_radius(c.nose, c.radius, x.z - shank) : c.radius;
     EXPECT_LE(std::hypot(x.x, x.y), profile) << x.z;
     in_nose += x.z > shank ? 1 : 0;
   }
@@ -232,8 +235,8 @@ TEST(ParticleGeneration, ConicalLinerHoldsItsShellsMassAndAChargeOutsideItLeaves
     EXPECT_GT(r, inner - 1e-9) << x.z;  // outside the inner one
   }
   EXPECT_GT(charge, 0u);
-  const double exact = rho * std::numbers::pi *
-                       (20.0 * 20.0 * 34.641 - 17.690 * 17.690 * 30.641) / 3.0 / 4.0;
+  const double exact =
+      rho * std::numbers::pi * (20.0 * 20.0 * 34.641 - 17.690 * 17.690 * 30.641) / 3.0 / 4.0;
   EXPECT_NEAR(mass, exact, 0.03 * exact);
 }
 

@@ -178,8 +178,7 @@ TEST(ParticleSplitting, OnlyTheAxesNamedSplit) {
       FAIL() << "axes = " << axes << " was taken";
     } catch (const core::InputError& e) {
       EXPECT_EQ(e.key(), "mpm.splitting.axes") << e.what();
-      EXPECT_NE(std::string(e.what()).find("\"x\", \"y\", \"z\""), std::string::npos)
-          << e.what();
+      EXPECT_NE(std::string(e.what()).find("\"x\", \"y\", \"z\""), std::string::npos) << e.what();
     }
   }
 }

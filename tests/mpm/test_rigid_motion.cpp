@@ -13,7 +13,6 @@
 #include <vector>
 
 #include "afemp/errors.hpp"
-
 #include "core/scene.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
@@ -37,27 +36,31 @@ core::Scene box_scene(const std::string& scheme, Method method) {
   return core::parse_scene(
       "[run]\nend_time = 1.0\ntime_step_factor = 0.3\n"
       "[grid]\ncell = 1.0\nmin = [-12, -12, -12]\nmax = [16, 16, 16]\n"
-      "[mpm]\nscheme = \"" + scheme + "\"\njaumann = true\nshape_function = \"" +
-          method.shape + "\"\ntransfer = \"" + method.transfer + "\"\n"
-      "[materials.steel]\ndensity = 7.85e-3\nE = 200e3\nnu = 0.3\n"
-      "[[bodies]]\nname = \"box\"\nmaterial = \"steel\"\nparticles_per_cell = 2\n"
-      "shape = { box = { min = [0, 0, 0], max = [4, 4, 4] } }\n",
+      "[mpm]\nscheme = \"" +
+          scheme + "\"\njaumann = true\nshape_function = \"" + method.shape + "\"\ntransfer = \"" +
+          method.transfer +
+          "\"\n"
+          "[materials.steel]\ndensity = 7.85e-3\nE = 200e3\nnu = 0.3\n"
+          "[[bodies]]\nname = \"box\"\nmaterial = \"steel\"\nparticles_per_cell = 2\n"
+          "shape = { box = { min = [0, 0, 0], max = [4, 4, 4] } }\n",
       "rigid.toml");
 }
 
 struct RigidResult {
   double max_stress_over_e = 0.0;  // max over particles and steps of |sigma| (Frobenius) / E
   double interior_stress_over_e_step1 = 0.0;  // after step 1, particles of the 2^3 core cells
-  double max_kinetic_drift = 0.0;  // max over steps of |KE / KE0 - 1|
-  double max_energy_drift = 0.0;   // max over steps of |(KE + internal) / E0 - 1|
-  double energy_drift = 0.0;       // (KE + internal) / E0 - 1 at the end
+  double max_kinetic_drift = 0.0;             // max over steps of |KE / KE0 - 1|
+  double max_energy_drift = 0.0;              // max over steps of |(KE + internal) / E0 - 1|
+  double energy_drift = 0.0;                  // (KE + internal) / E0 - 1 at the end
   Vec3 momentum;
-  double momentum_scale = 0.0;     // sum m |v| at the start
+  double momentum_scale = 0.0;  // sum m |v| at the start
   long steps = 0;
-  std::string error;               // a SimulationError that stopped the run, if any
+  std::string error;  // a SimulationError that stopped the run, if any
 };
 
-double stress_norm(const core::SymTensor& s) { return std::sqrt(core::double_dot(s, s)); }
+double stress_norm(const core::SymTensor& s) {
+  return std::sqrt(core::double_dot(s, s));
+}
 
 // Runs 1000 steps from the velocity field v(x) and records stress and energies. With the
 // affine transfer every particle also starts with the affine velocity `gradient`.
@@ -122,7 +125,8 @@ RigidResult run_rigid(const std::string& scheme, Velocity velocity, Method metho
 // the small mass lasts (1e-12 -> 1e-4 MPa at steps 100-115, then 1e-3 -> 4e3 MPa at 167-173).
 void expect_translation_is_rigid(const char* scheme, Method method = linear_flip) {
   const Vec3 v{100.0, -50.0, 30.0};
-  const RigidResult r = run_rigid(scheme, [&](const Vec3&) { return v; }, method);
+  const RigidResult r = run_rigid(
+      scheme, [&](const Vec3&) { return v; }, method);
   std::printf("[ translation %s %s %s ] %ld steps, max |sigma| / E = %.3g, kinetic drift = %.3g\n",
               scheme, method.shape, method.transfer, r.steps, r.max_stress_over_e,
               r.max_kinetic_drift);
@@ -134,9 +138,15 @@ void expect_translation_is_rigid(const char* scheme, Method method = linear_flip
   for (int a = 0; a < 3; ++a) EXPECT_NEAR(r.momentum[a], mass * v[a], 1e-12 * r.momentum_scale);
 }
 
-TEST(Rigid, TranslationStaysStressFreeAndKeepsKineticEnergyUSF) { expect_translation_is_rigid("USF"); }
-TEST(Rigid, TranslationStaysStressFreeAndKeepsKineticEnergyMUSL) { expect_translation_is_rigid("MUSL"); }
-TEST(Rigid, TranslationStaysStressFreeAndKeepsKineticEnergyUSAVG) { expect_translation_is_rigid("USAVG"); }
+TEST(Rigid, TranslationStaysStressFreeAndKeepsKineticEnergyUSF) {
+  expect_translation_is_rigid("USF");
+}
+TEST(Rigid, TranslationStaysStressFreeAndKeepsKineticEnergyMUSL) {
+  expect_translation_is_rigid("MUSL");
+}
+TEST(Rigid, TranslationStaysStressFreeAndKeepsKineticEnergyUSAVG) {
+  expect_translation_is_rigid("USAVG");
+}
 
 // With uGIMP weights every scheme translates rigidly, USL included: a node the body barely
 // reaches gets a weight that fades as the square of the overlap and a gradient that fades
@@ -153,8 +163,8 @@ TEST(Rigid, TranslationWithGimpStaysStressFreeInEveryScheme) {
 // (|v| <= 5.7 m/s), Jaumann rate on, 1000 steps (0.1 rad).
 // What is guaranteed, and asserted:
 //  * after the first step the particles of the core cells [1, 3]^3 are stress-free to
-//    round-off (1e-12 E; measured 4e-20 E; USAVG: below): all their nodes have full support, the lumped
-//    nodal velocity is exactly the linear field omega x (x_I - c), L = W is skew and d = 0;
+//    round-off (1e-12 E; measured 4e-20 E; USAVG: below): all their nodes have full support, the
+//    lumped nodal velocity is exactly the linear field omega x (x_I - c), L = W is skew and d = 0;
 //  * linear momentum stays zero (1e-12 sum m |v|; free faces, internal forces only).
 // What W5 asks and the linear hat with FLIP does NOT meet (see (c) for the method that does):
 // max |sigma| < 1e-8 E. Measured max over
@@ -176,10 +186,11 @@ TEST(Rigid, RotationStaysStressFreeInTheCoreAndBoundedAtTheSurface) {
     SCOPED_TRACE(scheme);
     const RigidResult r =
         run_rigid(scheme, [&](const Vec3& x) { return core::cross(omega, x - centre); });
-    std::printf("[ rotation %s ] max |sigma| / E = %.3g (core after step 1: %.3g), kinetic "
-                "drift %.3g, total energy drift %.3g (max %.3g)\n",
-                scheme, r.max_stress_over_e, r.interior_stress_over_e_step1, r.max_kinetic_drift,
-                r.energy_drift, r.max_energy_drift);
+    std::printf(
+        "[ rotation %s ] max |sigma| / E = %.3g (core after step 1: %.3g), kinetic "
+        "drift %.3g, total energy drift %.3g (max %.3g)\n",
+        scheme, r.max_stress_over_e, r.interior_stress_over_e_step1, r.max_kinetic_drift,
+        r.energy_drift, r.max_energy_drift);
     ASSERT_TRUE(r.error.empty()) << r.error;
     // USAVG takes its forces from the mid-step stress: the surface particles' spurious stress
     // of the first half step (about 2e-5 E) already pushes the nodes the core shares with them,
@@ -219,9 +230,10 @@ TEST(Rigid, RotationWithGimpAndAffineTransferStaysStressFree) {
     SCOPED_TRACE(scheme);
     const RigidResult r = run_rigid(
         scheme, [&](const Vec3& x) { return core::cross(omega, x - centre); }, gimp_apic, spin);
-    std::printf("[ rotation gimp apic %s ] max |sigma| / E = %.3g (limit 1e-8), kinetic drift "
-                "%.3g (limit 1e-7)\n",
-                scheme, r.max_stress_over_e, r.max_kinetic_drift);
+    std::printf(
+        "[ rotation gimp apic %s ] max |sigma| / E = %.3g (limit 1e-8), kinetic drift "
+        "%.3g (limit 1e-7)\n",
+        scheme, r.max_stress_over_e, r.max_kinetic_drift);
     ASSERT_TRUE(r.error.empty()) << r.error;
     EXPECT_EQ(r.steps, 1000);
     EXPECT_LT(r.max_stress_over_e, 1e-8);

@@ -34,9 +34,11 @@ boundary = { xmin = "symmetric", xmax = "symmetric", ymin = "symmetric", ymax = 
 density = 8.93e-3
 E = 124e3
 nu = 0.35
-strength = )" + strength + R"(
+strength = )" +
+         strength + R"(
 eos = { model = "mie-gruneisen", c0 = 3940, s = 1.49, gamma0 = 1.96 }
-)" + extra_material + R"(
+)" + extra_material +
+         R"(
 [[bodies]]
 name = "column"
 material = "copper"
@@ -79,8 +81,8 @@ TEST(Shock, SpeedAndStressFollowTheMieGrueneisenHugoniot) {
     for (int k = 0; k < 2; ++k) {
       const double st = slab_stress(stations[k]);
       if (arrival[k] < 0.0 && st <= 0.5 * sigma)
-        arrival[k] = prev_time + (solver.time() - prev_time) * (0.5 * sigma - prev[k]) /
-                                     (st - prev[k]);
+        arrival[k] =
+            prev_time + (solver.time() - prev_time) * (0.5 * sigma - prev[k]) / (st - prev[k]);
       prev[k] = st;
     }
     prev_time = solver.time();
@@ -97,10 +99,11 @@ TEST(Shock, SpeedAndStressFollowTheMieGrueneisenHugoniot) {
   ASSERT_GT(arrival[0], 0.0);
   ASSERT_GT(arrival[1], 0.0);
   const double speed = (stations[1] - stations[0]) / (arrival[1] - arrival[0]);
-  std::printf("shock: stress behind the front %.0f MPa (Hugoniot %.0f, %+.1f %%), front speed "
-              "%.0f m/s from the wall (U_s - u_p = %.0f, %+.1f %%)\n",
-              plateau, sigma, 100.0 * (plateau / sigma - 1.0), speed, us - up,
-              100.0 * (speed / (us - up) - 1.0));
+  std::printf(
+      "shock: stress behind the front %.0f MPa (Hugoniot %.0f, %+.1f %%), front speed "
+      "%.0f m/s from the wall (U_s - u_p = %.0f, %+.1f %%)\n",
+      plateau, sigma, 100.0 * (plateau / sigma - 1.0), speed, us - up,
+      100.0 * (speed / (us - up) - 1.0));
   EXPECT_NEAR(plateau, sigma, 0.05 * std::abs(sigma));
   EXPECT_NEAR(speed, us - up, 0.05 * (us - up));
 }
@@ -121,8 +124,8 @@ TEST(Shock, SpeedAndStressFollowTheMieGrueneisenHugoniot) {
 // rest has stopped), and the energy: the kinetic energy the impact stops all becomes
 // internal energy.
 struct PlateImpact {
-  double sigma_h = 0.0;           // the Hugoniot axial stress -(p + 2Y/3)
-  double shocked_length = 0.0;    // shocked mass / (rho0 A) of the target, against U_s t
+  double sigma_h = 0.0;         // the Hugoniot axial stress -(p + 2Y/3)
+  double shocked_length = 0.0;  // shocked mass / (rho0 A) of the target, against U_s t
   double us_t = 0.0;
   double stress_mean = 0.0;       // mean sigma_zz / sigma_H over the shocked slabs
   double stress_deviation = 0.0;  // max |sigma_zz / sigma_H - 1| of a slab's mean
@@ -130,7 +133,7 @@ struct PlateImpact {
   double balance = 0.0;           // (KE + IE) / E0 - 1 at the end
   double viscous = 0.0;           // bulk-viscous heat / E0
   long steps = 0;
-  std::string stopped;            // the solver's message if the run broke down
+  std::string stopped;  // the solver's message if the run broke down
 };
 
 PlateImpact plate_impact(double up, double t_end, const std::string& viscosity) {
@@ -143,21 +146,25 @@ cell = 0.25
 min = [0, 0, -11]
 max = [1, 1, 11]
 boundary = { xmin = "symmetric", xmax = "symmetric", ymin = "symmetric", ymax = "symmetric" }
-)" + std::string(test::copper_shock_material) + R"(
+)" + std::string(test::copper_shock_material) +
+                           R"(
 [[bodies]]
 name = "flyer"
 shape = { box = { min = [0, 0, -10], max = [1, 1, 0] } }
-velocity = [0, 0, )" + std::to_string(up) + R"(]
+velocity = [0, 0, )" + std::to_string(up) +
+                           R"(]
 )" + body_keys + R"(
 [[bodies]]
 name = "target"
 shape = { box = { min = [0, 0, 0], max = [1, 1, 10] } }
-velocity = [0, 0, -)" + std::to_string(up) + R"(]
+velocity = [0, 0, -)" + std::to_string(up) +
+                           R"(]
 )" + body_keys;
   const core::Scene scene = core::parse_scene(text, "plate_impact.toml");
   MpmSolver solver(scene, generate_particles(scene));
   const double rho0 = 8.93e-3, c0 = 3940.0, s = 1.49, gamma0 = 1.96, yield = 240.0;
-  const double c1 = rho0 * c0 * c0, c2 = c1 * (2.0 * s - 1.0), c3 = c1 * (s - 1.0) * (3.0 * s - 1.0);
+  const double c1 = rho0 * c0 * c0, c2 = c1 * (2.0 * s - 1.0),
+               c3 = c1 * (s - 1.0) * (3.0 * s - 1.0);
   const double e_h = 0.5 * up * up;
   auto eos = [&](double mu) {
     return mu * (c1 + mu * (c2 + mu * c3)) * (1.0 - 0.5 * gamma0 * mu / (1.0 + mu)) +
@@ -182,9 +189,9 @@ velocity = [0, 0, -)" + std::to_string(up) + R"(]
     r.stopped = e.what();
   }
   // Slabs 1 mm thick (4 cells) from 1 mm off the impact plane (its wall-heating layer) to 0.7
-  // of the way to the fronts, on each side. Within a cell the particle layers share one strain rate but not their
-  // history (MPM's null space), so neighbouring layers carry alternating stresses; the grid,
-  // and the ringing, see the slab mean.
+  // of the way to the fronts, on each side. Within a cell the particle layers share one strain rate
+  // but not their history (MPM's null space), so neighbouring layers carry alternating stresses;
+  // the grid, and the ringing, see the slab mean.
   const double front = (us - up) * t_end;  // from the plane, in the lab
   const auto slabs = static_cast<std::size_t>(0.7 * front - 1.0);
   const Particles& q = solver.particles();
@@ -219,13 +226,13 @@ TEST(Shock, BulkViscosityStopsTheRingingOfKilometrePerSecondPlateImpacts) {
   const PlateImpact fast_on = plate_impact(5000.0, 0.8e-3, ""),
                     fast_off = plate_impact(5000.0, 0.8e-3, none);
   std::printf("Hugoniot axial stress %.0f MPa, U_s t = %.3f mm\n", on.sigma_h, on.us_t);
-  for (const auto& [name, r] :
-       {std::pair{"2000 on", &on}, std::pair{"2000 off", &off}, std::pair{"5000 on", &fast_on},
-        std::pair{"5000 off", &fast_off}})
-    std::printf("u_p %-8s  Hugoniot %.0f MPa  steps %ld  stress mean %.3f  deviation %.3f  speed %.3f u_p  "
-                "shocked %.3f mm (U_s t %.3f)  balance %+.2e  viscous heat %.4f E0  %s\n",
-                name, r->sigma_h, r->steps, r->stress_mean, r->stress_deviation, r->speed,
-                r->shocked_length, r->us_t, r->balance, r->viscous, r->stopped.c_str());
+  for (const auto& [name, r] : {std::pair{"2000 on", &on}, std::pair{"2000 off", &off},
+                                std::pair{"5000 on", &fast_on}, std::pair{"5000 off", &fast_off}})
+    std::printf(
+        "u_p %-8s  Hugoniot %.0f MPa  steps %ld  stress mean %.3f  deviation %.3f  speed %.3f u_p  "
+        "shocked %.3f mm (U_s t %.3f)  balance %+.2e  viscous heat %.4f E0  %s\n",
+        name, r->sigma_h, r->steps, r->stress_mean, r->stress_deviation, r->speed,
+        r->shocked_length, r->us_t, r->balance, r->viscous, r->stopped.c_str());
   // With the viscosity: to the end, on the Hugoniot, no slab ringing past 10 % (15 % at
   // 2 x 5000 m/s), particles behind the fronts near rest, the fronts where the jump conditions
   // put them, and the energy kept (what q takes is heat).
@@ -256,8 +263,7 @@ TEST(Heating, TemperatureRiseCarriesTheTaylorQuinneyFractionOfPlasticWork) {
   const std::string jc =
       "{ model = \"johnson-cook\", A = 90, B = 292, n = 0.31, C = 0.025, m = 1.09, "
       "melt_temperature = 1356 }";
-  const core::Scene scene =
-      core::parse_scene(column(jc, "specific_heat = 383\n"), "heat.toml");
+  const core::Scene scene = core::parse_scene(column(jc, "specific_heat = 383\n"), "heat.toml");
   MpmSolver solver(scene, generate_particles(scene));
   ASSERT_TRUE(solver.plan().materials.at(0).thermal);
   for (int k = 0; k < 200; ++k) solver.step(solver.stable_time_step());

@@ -133,8 +133,9 @@ TEST(StepPlan, AfempCheckPrintsThePlanTheSolverRuns) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const StepPlan plan = build_step_plan(core::read_scene(path));
     const std::string described = plan.describe();
-    EXPECT_NE(r.out.find(described), std::string::npos)
-        << "printed:\n" << r.out << "\nplan:\n" << described;
+    EXPECT_NE(r.out.find(described), std::string::npos) << "printed:\n"
+                                                        << r.out << "\nplan:\n"
+                                                        << described;
     // The stage names appear in plan order.
     std::size_t at = 0;
     for (const auto& name : plan.stage_names()) {

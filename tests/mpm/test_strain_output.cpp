@@ -18,8 +18,9 @@ namespace {
 core::Scene bar(bool strain) {
   std::string text = test::elastic_bar_scene;
   const std::string run = "[run]\nend_time = 0.02\n";
-  text.replace(text.find(run), run.size(),
-               "[run]\nend_time = 1.0\noutput_strain = " + std::string(strain ? "true" : "false") + "\n");
+  text.replace(
+      text.find(run), run.size(),
+      "[run]\nend_time = 1.0\noutput_strain = " + std::string(strain ? "true" : "false") + "\n");
   return core::parse_scene(text, "strain.toml");
 }
 

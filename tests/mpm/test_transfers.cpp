@@ -34,10 +34,11 @@ core::Scene random_body_scene(const std::string& scheme, double flip,
   return core::parse_scene(
       "[run]\nend_time = 1.0\n"
       "[grid]\ncell = 1.0\nmin = [0, 0, 0]\nmax = [12, 12, 12]\n"
-      "[mpm]\nscheme = \"" + scheme + "\"\n" + blend + method +
-      "[materials.steel]\ndensity = 7.85e-3\nE = 200e3\nnu = 0.3\n"
-      "[[bodies]]\nname = \"b\"\nmaterial = \"steel\"\nparticles_per_cell = 2\n"
-      "shape = { box = { min = [4, 4, 4.5], max = [8, 8, 7.5] } }\n",
+      "[mpm]\nscheme = \"" +
+          scheme + "\"\n" + blend + method +
+          "[materials.steel]\ndensity = 7.85e-3\nE = 200e3\nnu = 0.3\n"
+          "[[bodies]]\nname = \"b\"\nmaterial = \"steel\"\nparticles_per_cell = 2\n"
+          "shape = { box = { min = [4, 4, 4.5], max = [8, 8, 7.5] } }\n",
       "transfers.toml");
 }
 
@@ -149,10 +150,10 @@ TEST(Transfer, GimpAndAffineTransfersConserveMassAndMomentumInEveryScheme) {
   for (const char* scheme : schemes) {
     for (const bool affine : {false, true}) {
       SCOPED_TRACE(std::string(scheme) + (affine ? " gimp apic" : " gimp flip"));
-      const core::Scene scene = random_body_scene(
-          scheme, affine ? -1.0 : 1.0,
-          std::string("shape_function = \"gimp\"\ntransfer = \"") + (affine ? "apic" : "flip") +
-              "\"\n");
+      const core::Scene scene =
+          random_body_scene(scheme, affine ? -1.0 : 1.0,
+                            std::string("shape_function = \"gimp\"\ntransfer = \"") +
+                                (affine ? "apic" : "flip") + "\"\n");
       Particles initial = random_velocities(scene, 9);
       if (affine) {
         std::mt19937_64 rng(10);
@@ -195,7 +196,8 @@ TEST(Transfer, PicStepDoesNotIncreaseKineticEnergy) {
     const double after = solver.energies().kinetic;
     EXPECT_LE(after, before * (1.0 + 1e-14));
     EXPECT_LT(after, 0.95 * before);
-    std::printf("[ PIC %s ] kinetic energy after / before one step = %.6f\n", scheme, after / before);
+    std::printf("[ PIC %s ] kinetic energy after / before one step = %.6f\n", scheme,
+                after / before);
   }
 }
 
@@ -230,7 +232,9 @@ TEST(Transfer, PatchTestUniformStressGivesNoInteriorForceWhileCrossingCells) {
     const core::Scene scene = core::parse_scene(
         std::string("[run]\nend_time = 1.0\n") +
             "[grid]\ncell = 1.0\nmin = [0, 0, 0]\nmax = [32, 16, 16]\n"
-            "[mpm]\nscheme = \"" + scheme + "\"\n"
+            "[mpm]\nscheme = \"" +
+            scheme +
+            "\"\n"
             "[materials.heavy]\ndensity = 7.85e6\nE = 0.01\nnu = 0.3\n"
             "[[bodies]]\nname = \"b\"\nmaterial = \"heavy\"\nparticles_per_cell = 2\n"
             "velocity = [300, 0, 0]\n"
@@ -262,7 +266,8 @@ TEST(Transfer, PatchTestUniformStressGivesNoInteriorForceWhileCrossingCells) {
         total += f;
         if (xi.x > x_cut) beyond += f;
         bool inside = true;
-        for (int a = 0; a < 3; ++a) inside = inside && xi[a] >= lo[a] + 2 * h && xi[a] <= hi[a] - 2 * h;
+        for (int a = 0; a < 3; ++a)
+          inside = inside && xi[a] >= lo[a] + 2 * h && xi[a] <= hi[a] - 2 * h;
         if (inside) {
           ++interior;
           worst_interior = std::max(worst_interior, core::norm(f) / (sigma_norm * h * h));
@@ -285,9 +290,10 @@ TEST(Transfer, PatchTestUniformStressGivesNoInteriorForceWhileCrossingCells) {
     EXPECT_LT(worst_sum, 1e-10);
     EXPECT_LT(worst_interior, 1e-10);
     EXPECT_LT(worst_cut, 1e-10);
-    std::printf("[ patch %s ] max |sum f| / (|sigma| A) = %.3g, max interior |f| / (|sigma| h^2) = "
-                "%.3g, cut traction error = %.3g\n",
-                scheme, worst_sum, worst_interior, worst_cut);
+    std::printf(
+        "[ patch %s ] max |sum f| / (|sigma| A) = %.3g, max interior |f| / (|sigma| h^2) = "
+        "%.3g, cut traction error = %.3g\n",
+        scheme, worst_sum, worst_interior, worst_cut);
   }
 }
 

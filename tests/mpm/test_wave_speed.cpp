@@ -28,7 +28,8 @@ min = [0, 0, 0]
 max = [3, 3, 61]
 boundary = { xmin = "symmetric", ymin = "symmetric", zmin = "fixed" }
 [mpm]
-scheme = ")") + scheme + R"("
+scheme = ")") +
+         scheme + R"("
 [materials.steel]
 density = 7.85e-3
 E = 200e3
@@ -88,10 +89,11 @@ TEST_P(WaveInBar, FrontRunsAtBarSpeedAndReflectsAsTensionAtTheFreeEnd) {
   ASSERT_GT(arrival[0], 0.0);
   ASSERT_GT(arrival[1], 0.0);
   const double measured = (stations[1] - stations[0]) / (arrival[1] - arrival[0]);
-  std::printf("W1 %s: front speed %.1f m/s, theory %.1f (%+.2f %%); behind the reflected wave: "
-              "stress %.1f MPa (plateau %.1f), velocity %.2f m/s (v0 %.1f toward the wall)\n",
-              GetParam(), measured, c, 100.0 * (measured / c - 1.0), near_free_end.stress,
-              plateau, near_free_end.velocity, v0);
+  std::printf(
+      "W1 %s: front speed %.1f m/s, theory %.1f (%+.2f %%); behind the reflected wave: "
+      "stress %.1f MPa (plateau %.1f), velocity %.2f m/s (v0 %.1f toward the wall)\n",
+      GetParam(), measured, c, 100.0 * (measured / c - 1.0), near_free_end.stress, plateau,
+      near_free_end.velocity, v0);
   // Reference: c = sqrt(E / rho), pass mark 2 % (VALIDATION W1).
   EXPECT_NEAR(measured, c, 0.02 * c);
   // Reference: behind the reflected front the free-end reflection (tension, opposite sign to

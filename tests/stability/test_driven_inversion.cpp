@@ -33,7 +33,8 @@ strength = { model = "j2", yield = 500 }
 [grid]
 cell = 0.5
 min = [-3, -3, -3]
-max = [3, 3, )" + grid_top + R"(]
+max = [3, 3, )" +
+         grid_top + R"(]
 [[bodies]]
 name = "block"
 discretisation = "hexahedra"
@@ -41,7 +42,8 @@ material = "steel"
 shape = { box = { min = [-2, -2, -2], max = [2, 2, 2] } }
 mesh = { size = 0.5 }
 element = "full"
-)" + criterion + R"(
+)" + criterion +
+         R"(
 [[constraints]]
 nodes = { plane = { point = [0, 0, -2], normal = [0, 0, 1] } }
 fixed = ["all"]
@@ -109,10 +111,10 @@ TEST(Stability, DrivenInversionConvertsTheInvertedElements) {
   const core::RunSummary s = analysis::run(*model, scene, core::RunOptions{});
   const std::size_t converted = event_rows(*model, "conversion.csv", ",block,");
   const double m0 = s.initial.bodies[0].mass, m = s.final.bodies[0].mass;
-  std::printf("punch, conversion: %ld steps, %zu elements converted into %zu particles, energy "
-              "%+.2f %% (largest %.2f %%)\n",
-              s.steps, converted, s.final_particles, 100.0 * s.energy_error,
-              100.0 * s.max_energy_error);
+  std::printf(
+      "punch, conversion: %ld steps, %zu elements converted into %zu particles, energy "
+      "%+.2f %% (largest %.2f %%)\n",
+      s.steps, converted, s.final_particles, 100.0 * s.energy_error, 100.0 * s.max_energy_error);
   EXPECT_NEAR(s.time, 0.00225, 1e-12);
   EXPECT_GT(converted, 0u);
   EXPECT_EQ(s.final_particles, converted);  // one particle per element (points = 1)
@@ -121,8 +123,8 @@ TEST(Stability, DrivenInversionConvertsTheInvertedElements) {
 }
 
 // Conversion needs the grid: with the grid ending at z = 0, the elements under the punch, which
-// invert first, cannot convert. Reference: the run stops with a SimulationError that says so for the
-// hexahedron it names (field 'jacobian').
+// invert first, cannot convert. Reference: the run stops with a SimulationError that says so for
+// the hexahedron it names (field 'jacobian').
 TEST(Stability, DrivenInversionOutsideTheGridStopsAndSaysWhy) {
   const core::Scene scene = core::parse_scene(
       punch_scene("conversion = { negative_jacobian = true }", "0"), "punch.toml");

@@ -25,15 +25,19 @@ std::string slab_scene(double end_time, double half_room, const std::string& mat
   return "[run]\nend_time = " + std::to_string(end_time) + R"(
 [grid]
 cell = 0.25
-min = [0, 0, -)" + std::to_string(half_room) + R"(]
-max = [1, 1, )" + std::to_string(half_room) + R"(]
+min = [0, 0, -)" +
+         std::to_string(half_room) + R"(]
+max = [1, 1, )" +
+         std::to_string(half_room) + R"(]
 boundary = { xmin = "symmetric", xmax = "symmetric", ymin = "symmetric", ymax = "symmetric" }
-)" + material + R"(
+)" + material +
+         R"(
 [[bodies]]
 name = "slab"
 material = "m"
 shape = { box = { min = [0, 0, -2], max = [1, 1, 2] } }
-internal_energy = )" + std::to_string(internal_energy) + "\n";
+internal_energy = )" +
+         std::to_string(internal_energy) + "\n";
 }
 
 // An ideal gas (gamma = 1.4: linear-polynomial EOS with C4 = C5 = 0.4, p = 0.4 rho e), rho0 =
@@ -73,11 +77,12 @@ TEST(Stability, GasSlabReleasedIntoVacuumTakesTheImpulseOfItsMidPlanePressure) {
   double vmax = 0.0;
   const double pz = upper_half_momentum(*model, &vmax);
   const double total = s.final.bodies[0].momentum.z;
-  std::printf("gas release, 4 us: %ld steps, upper-half momentum %.4f (closed form %.4f), total "
-              "%.1e, fastest particle %.0f m/s (escape speed 2 c0 / (gamma - 1) = %.0f), "
-              "energy %+.2f %% (largest %.2f %%)\n",
-              s.steps, pz, p0 * t, total, vmax, 2.0 * c0 / 0.4, 100.0 * s.energy_error,
-              100.0 * s.max_energy_error);
+  std::printf(
+      "gas release, 4 us: %ld steps, upper-half momentum %.4f (closed form %.4f), total "
+      "%.1e, fastest particle %.0f m/s (escape speed 2 c0 / (gamma - 1) = %.0f), "
+      "energy %+.2f %% (largest %.2f %%)\n",
+      s.steps, pz, p0 * t, total, vmax, 2.0 * c0 / 0.4, 100.0 * s.energy_error,
+      100.0 * s.max_energy_error);
   EXPECT_NEAR(pz, p0 * t, 0.08 * p0 * t);
   EXPECT_LT(std::abs(total), 1e-12 * pz);
   EXPECT_LT(s.max_energy_error, 0.02);
@@ -102,10 +107,11 @@ TEST(Stability, GasSlabExpandsAndSeparates) {
   double zmin = 0.0, zmax = 0.0;
   for (const core::Vec3& x : p.position) zmin = std::min(zmin, x.z), zmax = std::max(zmax, x.z);
   const double e_total = s.initial.total();
-  std::printf("gas release, 30 us: %ld steps, cloud %.1f mm wide (slab 4 mm), kinetic %.3f of "
-              "the initial energy, energy %+.2f %% (largest %.2f %%)\n",
-              s.steps, zmax - zmin, s.final.kinetic / e_total, 100.0 * s.energy_error,
-              100.0 * s.max_energy_error);
+  std::printf(
+      "gas release, 30 us: %ld steps, cloud %.1f mm wide (slab 4 mm), kinetic %.3f of "
+      "the initial energy, energy %+.2f %% (largest %.2f %%)\n",
+      s.steps, zmax - zmin, s.final.kinetic / e_total, 100.0 * s.energy_error,
+      100.0 * s.max_energy_error);
   EXPECT_GT(zmax - zmin, 16.0);
   EXPECT_GT(s.final.kinetic, 0.4 * e_total);
   EXPECT_LT(s.max_energy_error, 0.05);
@@ -139,9 +145,10 @@ eos = { model = "mie-gruneisen", c0 = 3940, s = 1.49, gamma0 = 1.96 }
     if (std::abs(p.position[q].z) < 0.25)
       sum += -(p.stress[q].xx + p.stress[q].yy + p.stress[q].zz) / 3.0, szz += p.stress[q].zz, ++n;
   const double p_mid = sum / n, szz_mid = szz / n;
-  std::printf("hot copper release, 0.55 us: %ld steps, p0 %.0f MPa, mid-plane sigma_zz %+.0f MPa, "
-              "pressure %+.0f MPa, energy %+.2f %% (largest %.2f %%)\n",
-              s.steps, p_hot, szz_mid, p_mid, 100.0 * s.energy_error, 100.0 * s.max_energy_error);
+  std::printf(
+      "hot copper release, 0.55 us: %ld steps, p0 %.0f MPa, mid-plane sigma_zz %+.0f MPa, "
+      "pressure %+.0f MPa, energy %+.2f %% (largest %.2f %%)\n",
+      s.steps, p_hot, szz_mid, p_mid, 100.0 * s.energy_error, 100.0 * s.max_energy_error);
   EXPECT_NEAR(szz_mid, p_hot, 0.2 * p_hot);
   EXPECT_LT(s.max_energy_error, 0.02);
   EXPECT_LT(std::abs(s.final.bodies[0].momentum.z), 1e-10 * s.final.kinetic + 1e-14);

@@ -50,10 +50,11 @@ shape = { box = { min = [0, 0, -2], max = [4, 4, 0] } }
   const double pz = s.final.bodies[0].momentum.z + s.final.bodies[1].momentum.z;
   const core::BodySums& rod = s.final.bodies[0];
   const double rod_vz = rod.momentum.z / rod.mass;
-  std::printf("10 km/s Cu-Cu: %ld steps to %.4g ms, %zu particles, energy error %+.2f %% (largest "
-              "%.2f %%), viscous %.3g of E0, z-momentum drift %.2e, projectile vz %.0f m/s\n",
-              s.steps, s.time, s.particles, 100.0 * s.energy_error, 100.0 * s.max_energy_error,
-              s.final.viscous / s.initial.kinetic, std::abs(pz - pz0) / std::abs(pz0), rod_vz);
+  std::printf(
+      "10 km/s Cu-Cu: %ld steps to %.4g ms, %zu particles, energy error %+.2f %% (largest "
+      "%.2f %%), viscous %.3g of E0, z-momentum drift %.2e, projectile vz %.0f m/s\n",
+      s.steps, s.time, s.particles, 100.0 * s.energy_error, 100.0 * s.max_energy_error,
+      s.final.viscous / s.initial.kinetic, std::abs(pz - pz0) / std::abs(pz0), rod_vz);
   EXPECT_NEAR(s.time, 0.002, 1e-12);
   EXPECT_LT(std::abs(pz - pz0), 1e-10 * std::abs(pz0));
   EXPECT_LT(s.max_energy_error, 0.05);

@@ -26,7 +26,7 @@ namespace {
 using core::Vec3;
 
 constexpr double rho = 1.0e-3, E = 100.0, nu = 0.499, v0 = 20.0;  // rubber-like, 20 m/s
-constexpr double half = 4.0, h = 0.5;                               // 8 mm cube, 0.5 mm cells
+constexpr double half = 4.0, h = 0.5;                             // 8 mm cube, 0.5 mm cells
 
 // Longitudinal (uniaxial-strain) wave speed and the stress behind the front of a flat impact on
 // a rigid wall: sigma_zz = -rho c_L v0 (one-dimensional momentum jump).
@@ -64,7 +64,8 @@ material = "rubber"
 shape = { box = { min = [-4, -4, 0], max = [4, 4, 8] } }
 mesh = { size = 0.5 }
 velocity = [0, 0, -20]
-element = ")" + std::string(variant == "full" ? "full" : "one-point") + R"("
+element = ")" +
+         std::string(variant == "full" ? "full" : "one-point") + R"("
 [[constraints]]
 nodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }
 fixed = ["z"]
@@ -99,7 +100,8 @@ std::vector<Vec3> initial_points(const core::Model& model) {
   } else {
     const mpm::Particles& p = dynamic_cast<const mpm::MpmModel&>(model).solver().particles();
     out.resize(p.size());
-    for (std::size_t q = 0; q < p.size(); ++q) out[static_cast<std::size_t>(p.id[q])] = p.position[q];
+    for (std::size_t q = 0; q < p.size(); ++q)
+      out[static_cast<std::size_t>(p.id[q])] = p.position[q];
   }
   return out;
 }
@@ -125,7 +127,8 @@ std::vector<Piece> pieces(const core::Model& model, const std::vector<Vec3>& x0)
       }
   } else {
     const mpm::Particles& p = dynamic_cast<const mpm::MpmModel&>(model).solver().particles();
-    for (std::size_t q = 0; q < p.size(); ++q) add(x0[static_cast<std::size_t>(p.id[q])], p.stress[q]);
+    for (std::size_t q = 0; q < p.size(); ++q)
+      add(x0[static_cast<std::size_t>(p.id[q])], p.stress[q]);
   }
   return out;
 }
@@ -141,8 +144,9 @@ double checkerboard(const std::vector<Piece>& points) {
   for (const Piece& c : points) {
     double sum = 0.0;
     int count = 0;
-    for (const auto& [di, dj, dk] : {std::tuple{1, 0, 0}, std::tuple{-1, 0, 0}, std::tuple{0, 1, 0},
-                                     std::tuple{0, -1, 0}, std::tuple{0, 0, 1}, std::tuple{0, 0, -1}}) {
+    for (const auto& [di, dj, dk] :
+         {std::tuple{1, 0, 0}, std::tuple{-1, 0, 0}, std::tuple{0, 1, 0}, std::tuple{0, -1, 0},
+          std::tuple{0, 0, 1}, std::tuple{0, 0, -1}}) {
       const auto it = p.find({c.i + di, c.j + dj, c.k + dk});
       if (it != p.end()) sum += it->second, ++count;
     }
@@ -195,24 +199,28 @@ Outcome run_variant(const std::string& variant, const std::string& run_keys = ""
   o.max_energy_error = s.max_energy_error;
   o.checker = checkerboard(cells);
   for (const Piece& p : cells) o.pressure_max = std::max(o.pressure_max, std::abs(p.p));
-  std::printf("nu = 0.499, %s %s: %ld steps, energy %+.2f %% (largest %.2f %%), early sigma_zz "
-              "%.1f MPa (closed form %.1f), checkerboard %.4f, |p| max %.1f MPa\n",
-              variant.c_str(), run_keys.empty() ? "" : "(factor 0.7)", o.steps, 100.0 * o.energy_error,
-              100.0 * o.max_energy_error, o.szz_early, -rho * c * v0, o.checker, o.pressure_max);
+  std::printf(
+      "nu = 0.499, %s %s: %ld steps, energy %+.2f %% (largest %.2f %%), early sigma_zz "
+      "%.1f MPa (closed form %.1f), checkerboard %.4f, |p| max %.1f MPa\n",
+      variant.c_str(), run_keys.empty() ? "" : "(factor 0.7)", o.steps, 100.0 * o.energy_error,
+      100.0 * o.max_energy_error, o.szz_early, -rho * c * v0, o.checker, o.pressure_max);
   return o;
 }
 
 // The stress behind the front, -rho c_L v0 = -81.8 MPa.
-double closed_form_stress() { return -rho * longitudinal_speed() * v0; }
+double closed_form_stress() {
+  return -rho * longitudinal_speed() * v0;
+}
 
 // One-point hexahedra with the default viscous hourglass control and the default element step
 // factor 0.9 are past their stability limit at nu = 0.499: a mode grows (measured: energy
 // error beyond 100 % by step 50, +3234 % at its largest over 0.04 ms without the guard; the
-// same block is stable at nu = 0.49 and at the factor 0.8). Reference: the energy guard stops the run
-// with a SimulationError naming the step, the body and the field 'energy balance' before the
+// same block is stable at nu = 0.49 and at the factor 0.8). Reference: the energy guard stops the
+// run with a SimulationError naming the step, the body and the field 'energy balance' before the
 // end time, instead of running on with the energy created.
 TEST(Stability, NearlyIncompressibleOnePointHexahedraAtTheDefaultFactorAreStoppedByTheEnergyGuard) {
-  const core::Scene scene = core::parse_scene(scene_text("one-point", end_time), "incompressible.toml");
+  const core::Scene scene =
+      core::parse_scene(scene_text("one-point", end_time), "incompressible.toml");
   const auto model = make_model(scene);
   try {
     analysis::run(*model, scene, core::RunOptions{});

@@ -59,16 +59,15 @@ void run_tungsten_on_foam(const std::string& variant) {
   const core::Scene scene = core::parse_scene(tungsten_on_foam(variant), "contrast.toml");
   const auto model = make_model(scene);
   const core::RunSummary s = analysis::run(*model, scene, core::RunOptions{});
-  auto total = [](const core::Energies& e) {
-    return e.bodies[0].momentum + e.bodies[1].momentum;
-  };
+  auto total = [](const core::Energies& e) { return e.bodies[0].momentum + e.bodies[1].momentum; };
   const core::Vec3 p0 = total(s.initial), p = total(s.final);
   const double v_w = s.final.bodies[1].momentum.z / s.final.bodies[1].mass;
   const double v_f = s.final.bodies[0].momentum.z / s.final.bodies[0].mass;
-  std::printf("tungsten on foam, %s: %ld steps (dt %.3g .. %.3g), energy %+.2f %% (largest %.2f "
-              "%%), momentum drift %.1e, tungsten vz %.2f, foam vz %.2f m/s\n",
-              variant.c_str(), s.steps, s.min_dt, s.max_dt, 100.0 * s.energy_error,
-              100.0 * s.max_energy_error, core::norm(p - p0) / core::norm(p0), v_w, v_f);
+  std::printf(
+      "tungsten on foam, %s: %ld steps (dt %.3g .. %.3g), energy %+.2f %% (largest %.2f "
+      "%%), momentum drift %.1e, tungsten vz %.2f, foam vz %.2f m/s\n",
+      variant.c_str(), s.steps, s.min_dt, s.max_dt, 100.0 * s.energy_error,
+      100.0 * s.max_energy_error, core::norm(p - p0) / core::norm(p0), v_w, v_f);
   EXPECT_NEAR(s.time, 0.015, 1e-12);
   EXPECT_LT(core::norm(p - p0), 1e-10 * core::norm(p0));
   EXPECT_LT(s.max_energy_error, 0.03);
@@ -77,9 +76,15 @@ void run_tungsten_on_foam(const std::string& variant) {
   EXPECT_LT(v_f, 0.0);
 }
 
-TEST(Stability, TungstenOnFoamInOneField) { run_tungsten_on_foam("shared"); }
-TEST(Stability, TungstenOnFoamWithParticleContact) { run_tungsten_on_foam("contact"); }
-TEST(Stability, TungstenHexahedraOnFoamParticlesWithContact) { run_tungsten_on_foam("fe"); }
+TEST(Stability, TungstenOnFoamInOneField) {
+  run_tungsten_on_foam("shared");
+}
+TEST(Stability, TungstenOnFoamWithParticleContact) {
+  run_tungsten_on_foam("contact");
+}
+TEST(Stability, TungstenHexahedraOnFoamParticlesWithContact) {
+  run_tungsten_on_foam("fe");
+}
 
 // A steel bar 1 x 1 x 8.01 mm of nine one-point hexahedra, 1 mm long but for one 0.01 mm thick
 // (aspect ratio 100), read from an Abaqus file; nu = 0, so c = sqrt(E / rho) = 5047.6 m/s.
@@ -88,7 +93,8 @@ std::string tiny_element_mesh() {
   std::string s = "*NODE\n";
   int id = 1;
   for (const double z : zs)
-    for (const auto& [x, y] : {std::pair{0, 0}, std::pair{1, 0}, std::pair{1, 1}, std::pair{0, 1}}) {
+    for (const auto& [x, y] :
+         {std::pair{0, 0}, std::pair{1, 0}, std::pair{1, 1}, std::pair{0, 1}}) {
       s += std::to_string(id++) + ", " + std::to_string(x) + ", " + std::to_string(y) + ", " +
            std::to_string(z) + "\n";
     }
@@ -133,7 +139,9 @@ fixed = ["z"]
 // so for 2 L / c < t < 3 L / c its mean velocity is 10 (3 - c t / L) m/s: 4.793 m/s at 4 us,
 // after the waves crossed the tiny element three times.
 constexpr double c_bar = 5047.6, bar_length = 8.01;
-double mean_velocity_closed_form(double t) { return 10.0 * (3.0 - c_bar * t / bar_length); }
+double mean_velocity_closed_form(double t) {
+  return 10.0 * (3.0 - c_bar * t / bar_length);
+}
 
 // Without conversion the step follows the tiny element. References: the largest stable step is
 // f l / c (f = 0.9, l = 0.01 mm: volume over the largest face), to 1e-3; the energy balance
@@ -147,10 +155,11 @@ TEST(Stability, TinyElementSetsTheTimeStep) {
   const auto model = make_model(scene);
   const core::RunSummary s = analysis::run(*model, scene, core::RunOptions{});
   const double v = s.final.bodies[0].momentum.z / s.final.bodies[0].mass;
-  std::printf("tiny element: %ld steps, dt %.4g .. %.4g, energy %+.3f %% (largest %.3f %%), mean "
-              "velocity %.3f m/s (closed form %.3f)\n",
-              s.steps, s.min_dt, s.max_dt, 100.0 * s.energy_error, 100.0 * s.max_energy_error, v,
-              mean_velocity_closed_form(s.time));
+  std::printf(
+      "tiny element: %ld steps, dt %.4g .. %.4g, energy %+.3f %% (largest %.3f %%), mean "
+      "velocity %.3f m/s (closed form %.3f)\n",
+      s.steps, s.min_dt, s.max_dt, 100.0 * s.energy_error, 100.0 * s.max_energy_error, v,
+      mean_velocity_closed_form(s.time));
   EXPECT_NEAR(s.max_dt, 0.9 * 0.01 / c_bar, 1e-3 * 0.9 * 0.01 / c_bar);
   EXPECT_LT(s.max_energy_error, 0.01);
   EXPECT_NEAR(v, mean_velocity_closed_form(s.time), 0.05 * mean_velocity_closed_form(s.time));
@@ -174,10 +183,11 @@ TEST(Stability, TinyElementConvertsAndTheStepGrows) {
   const core::RunSummary s = analysis::run(*model, scene, core::RunOptions{});
   const double v = s.final.bodies[0].momentum.z / s.final.bodies[0].mass;
   const double grid_step = 0.3 * 0.5 / (c_bar + 10.0);
-  std::printf("tiny element converted: %ld steps (%ld without), dt %.4g .. %.4g, %zu particle(s), "
-              "energy %+.3f %% (largest %.3f %%), mean velocity %.3f m/s (%.3f without)\n",
-              s.steps, fe.steps, s.min_dt, s.max_dt, s.final_particles, 100.0 * s.energy_error,
-              100.0 * s.max_energy_error, v, v_fe);
+  std::printf(
+      "tiny element converted: %ld steps (%ld without), dt %.4g .. %.4g, %zu particle(s), "
+      "energy %+.3f %% (largest %.3f %%), mean velocity %.3f m/s (%.3f without)\n",
+      s.steps, fe.steps, s.min_dt, s.max_dt, s.final_particles, 100.0 * s.energy_error,
+      100.0 * s.max_energy_error, v, v_fe);
   EXPECT_EQ(s.final_particles, 1u);
   EXPECT_NEAR(s.final.bodies[0].mass, s.initial.bodies[0].mass, 1e-12 * s.initial.bodies[0].mass);
   EXPECT_NEAR(s.max_dt, grid_step, 1e-3 * grid_step);
@@ -231,11 +241,12 @@ bonded_to = "concrete"
   const core::BodySums& t = s.final.bodies[1];
   const double v = (c.momentum.z + t.momentum.z) / (c.mass + t.mass);
   const double truss_step = 0.9 * 0.5 / std::sqrt(200e3 / 7.85e-3);
-  std::printf("thin truss in soft concrete: %ld steps, dt %.4g .. %.4g (truss 0.9 L / c %.4g), "
-              "energy %+.2f %% (largest %.2f %%), mean velocity %.2f m/s (1D composite +10, "
-              "concrete %.2f, truss %.2f)\n",
-              s.steps, s.min_dt, s.max_dt, truss_step, 100.0 * s.energy_error,
-              100.0 * s.max_energy_error, v, c.momentum.z / c.mass, t.momentum.z / t.mass);
+  std::printf(
+      "thin truss in soft concrete: %ld steps, dt %.4g .. %.4g (truss 0.9 L / c %.4g), "
+      "energy %+.2f %% (largest %.2f %%), mean velocity %.2f m/s (1D composite +10, "
+      "concrete %.2f, truss %.2f)\n",
+      s.steps, s.min_dt, s.max_dt, truss_step, 100.0 * s.energy_error, 100.0 * s.max_energy_error,
+      v, c.momentum.z / c.mass, t.momentum.z / t.mass);
   // References: the step is the truss's to 1e-3; the energy balance within 3 % (measured
   // 1.0 %); the bar rebounds as the composite, mean velocity within 25 % of +10 m/s (measured
   // +8.2: the concrete away from the axis lags behind the truss by shear; a bar without the

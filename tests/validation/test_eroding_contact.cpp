@@ -101,8 +101,8 @@ TEST(ErodingContact, ABluntProjectilePlugsAWeldoxPlateAtTheRechtIpsonResidualVel
   const core::Energies e = solver.energies();
   // The quarter's masses stand in the same ratio as the whole's.
   const double m_p = e0.bodies[0].mass, thickness = 12.0, radius = 10.0;
-  const double m_plug = scene.materials[1].density * std::numbers::pi * radius * radius *
-                        thickness / 4.0;
+  const double m_plug =
+      scene.materials[1].density * std::numbers::pi * radius * radius * thickness / 4.0;
   const double v_i = 300.0, v_bl = 184.5;
   const double recht_ipson = m_p / (m_p + m_plug) * std::sqrt(v_i * v_i - v_bl * v_bl);
   const double v_r = -e.bodies[0].momentum.z / e.bodies[0].mass;

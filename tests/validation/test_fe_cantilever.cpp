@@ -152,12 +152,11 @@ INSTANTIATE_TEST_SUITE_P(Meshes, FeCantileverMeshStudy,
                                                     "one-point", "assumed_strain", 1, 4, 80, 0.0}),
                          [](const auto& test) {
                            const MeshCase& c = test.param;
-                           const std::string element = std::string(c.element) == "full" ? "FullBbar"
-                                                       : std::string(c.hourglass) == "viscous"
-                                                           ? "OnePointViscous"
-                                                       : std::string(c.hourglass) == "stiffness"
-                                                           ? "OnePointStiffness"
-                                                           : "OnePointAssumedStrain";
+                           const std::string element =
+                               std::string(c.element) == "full"          ? "FullBbar"
+                               : std::string(c.hourglass) == "viscous"   ? "OnePointViscous"
+                               : std::string(c.hourglass) == "stiffness" ? "OnePointStiffness"
+                                                                         : "OnePointAssumedStrain";
                            return element + std::to_string(c.width) + "x" +
                                   std::to_string(c.layers) + "x" + std::to_string(c.along);
                          });

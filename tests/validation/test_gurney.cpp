@@ -1,8 +1,8 @@
-// Gurney's symmetric sandwich and cylinder (validation label: 18 s and about 20 s). A 10 mm TNT slab between
-// two 2.076 mm steel plates (M/C = 2, M both plates' mass) is lit at its mid-plane; particles of
-// 0.25 mm cells with splitting (the products expand twentyfold), held laterally, outflow faces
-// beyond. Reference: V / sqrt(2E) = (M/C + 1/3)^(-1/2) with TNT's sqrt(2E) = 2.44 km/s
-// (P. W. Cooper, Explosives Engineering, 1996): 1597 m/s; each plate within 10 % at 60 us
+// Gurney's symmetric sandwich and cylinder (validation label: 18 s and about 20 s). A 10 mm TNT
+// slab between two 2.076 mm steel plates (M/C = 2, M both plates' mass) is lit at its mid-plane;
+// particles of 0.25 mm cells with splitting (the products expand twentyfold), held laterally,
+// outflow faces beyond. Reference: V / sqrt(2E) = (M/C + 1/3)^(-1/2) with TNT's sqrt(2E) = 2.44
+// km/s (P. W. Cooper, Explosives Engineering, 1996): 1597 m/s; each plate within 10 % at 60 us
 // (measured: 1550.5 m/s, -2.9 %).
 #include <gtest/gtest.h>
 
@@ -19,9 +19,9 @@ namespace afemp::mpm {
 namespace {
 
 TEST(Gurney, SymmetricSandwichDrivesBothPlatesAtTheGurneyVelocity) {
-  const core::Scene scene = core::parse_scene(
-      test::sandwich_column(0.06, -120, 120, true) + test::tnt_material() +
-          test::steel_plate_material() + R"(
+  const core::Scene scene =
+      core::parse_scene(test::sandwich_column(0.06, -120, 120, true) + test::tnt_material() +
+                            test::steel_plate_material() + R"(
 [[bodies]]
 name = "charge"
 material = "tnt"
@@ -35,10 +35,11 @@ name = "back"
 material = "steel"
 shape = { box = { min = [0, 0, -2.0764], max = [0.5, 0.5, 0] } }
 )" + test::plane_detonation(5.0),
-      "sandwich.toml");
+                        "sandwich.toml");
   MpmSolver solver(scene, generate_particles(scene));
   const double e0 = solver.energies().total();
-  while (solver.time() < 0.06) solver.step(std::min(solver.stable_time_step(), 0.06 - solver.time()));
+  while (solver.time() < 0.06)
+    solver.step(std::min(solver.stable_time_step(), 0.06 - solver.time()));
   const core::Energies e = solver.energies();
   const double front = e.bodies[1].momentum.z / e.bodies[1].mass;
   const double back = e.bodies[2].momentum.z / e.bodies[2].mass;
@@ -94,7 +95,8 @@ line = { from = [0, 0, -1], to = [0, 0, 2] }
     if (p.body[i] != 1) continue;
     const double r = std::hypot(p.position[i].x, p.position[i].y);
     mass += p.mass[i];
-    momentum += p.mass[i] * (p.velocity[i].x * p.position[i].x + p.velocity[i].y * p.position[i].y) / r;
+    momentum +=
+        p.mass[i] * (p.velocity[i].x * p.position[i].x + p.velocity[i].y * p.position[i].y) / r;
   }
   const double v = momentum / mass;
   const double mc = 8.93 * (15.3 * 15.3 - 12.7 * 12.7) / (1.63 * 12.7 * 12.7);

@@ -153,10 +153,14 @@ TEST(Hertz, ParticleSphereInShellsOnAThickBlockThroughSurfaceContact) {
       "[[bodies]]\nname = \"ball\"\nmaterial = \"steel\"\nlayout = \"shells\"\n"
       "shape = { sphere = { centre = [0, 0, %.17g], radius = %g } }\nvelocity = [0, 0, %g]\n"
       "[[bodies]]\nname = \"block\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-      "shape = { box = { min = [0, 0, -6], max = [6, 6, 0] } }\nmesh = { divisions = [30, 30, 30] }\n"
-      "[[constraints]]\nnodes = { plane = { point = [0, 0, -6], normal = [0, 0, 1] } }\nfixed = [\"z\"]\n"
-      "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [1, 0, 0] } }\nfixed = [\"x\"]\n"
-      "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 1, 0] } }\nfixed = [\"y\"]\n"
+      "shape = { box = { min = [0, 0, -6], max = [6, 6, 0] } }\nmesh = { divisions = [30, 30, 30] "
+      "}\n"
+      "[[constraints]]\nnodes = { plane = { point = [0, 0, -6], normal = [0, 0, 1] } }\nfixed = "
+      "[\"z\"]\n"
+      "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [1, 0, 0] } }\nfixed = "
+      "[\"x\"]\n"
+      "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 1, 0] } }\nfixed = "
+      "[\"y\"]\n"
       "[[contact]]\nbodies = [\"ball\", \"block\"]\nmethod = \"surface\"\n",
       kE, kNu, kRadius + 0.01, kRadius, -kSpeed);
   const core::Scene scene = core::parse_scene(text, "hertz_particles_block.toml");

@@ -28,7 +28,9 @@ namespace {
 
 using test::replaced;
 
-std::string example() { return test::example_text("rc_slab/scene.toml"); }
+std::string example() {
+  return test::example_text("rc_slab/scene.toml");
+}
 
 struct Row {
   double striking = 0.0, residual = 0.0;
@@ -52,17 +54,17 @@ Row run_row(double striking) {
   row.residual = -p.momentum.z / p.mass;
   const core::RunSummary& s = row.summary;
   std::printf("| %g | %.0f | %.3f | %s | %+.2f %% | %.2f %% | %.3g | %ld | %zu | %.0f | %d |\n",
-              striking, row.residual, row.residual / striking,
-              s.terminated.empty() ? "no" : "yes", 100.0 * s.energy_error,
-              100.0 * s.max_energy_error, s.time, s.steps, s.final_particles, s.wall_seconds,
-              core::thread_count());
+              striking, row.residual, row.residual / striking, s.terminated.empty() ? "no" : "yes",
+              100.0 * s.energy_error, 100.0 * s.max_energy_error, s.time, s.steps,
+              s.final_particles, s.wall_seconds, core::thread_count());
   std::fflush(stdout);
   return row;
 }
 
 TEST(RcSlab, RodPerforatesWithResidualVelocityRisingWithStrikingVelocity) {
-  std::printf("| Vs (m/s) | Vr (m/s) | Vr/Vs | through | energy error (end) | largest |energy "
-              "error| | t (ms) | steps | particles (end) | wall s | threads |\n");
+  std::printf(
+      "| Vs (m/s) | Vr (m/s) | Vr/Vs | through | energy error (end) | largest |energy "
+      "error| | t (ms) | steps | particles (end) | wall s | threads |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::vector<Row> rows;
   for (double vs : {434.0, 606.0, 746.0, 1058.0}) {

@@ -109,12 +109,13 @@ TEST(ShapedCharge, SplittingKeepsTheJetContinuous) {
   const Jet off =
       run_jet(test::replaced(text, "splitting = { bodies = [\"liner\"], axes = [\"z\"] }", ""));
   for (const auto& [name, jet] : {std::pair{"on", on}, std::pair{"off", off}})
-    std::printf("splitting %s: at 20 us the liner reaches z = %.1f mm on the axis, continuous "
-                "to %.1f mm (%d empty cells beyond); front advance 12-20 us %.0f m/s, mean vz "
-                "of its last 1.5 mm %.0f m/s; %zu particles at the end; energy balance %+.2f %%; "
-                "%.0f s\n",
-                name, jet.at20.tip, jet.at20.front, jet.at20.empty, jet.front_speed,
-                jet.front_vz, jet.particles, 100.0 * jet.energy_error, jet.seconds);
+    std::printf(
+        "splitting %s: at 20 us the liner reaches z = %.1f mm on the axis, continuous "
+        "to %.1f mm (%d empty cells beyond); front advance 12-20 us %.0f m/s, mean vz "
+        "of its last 1.5 mm %.0f m/s; %zu particles at the end; energy balance %+.2f %%; "
+        "%.0f s\n",
+        name, jet.at20.tip, jet.at20.front, jet.at20.empty, jet.front_speed, jet.front_vz,
+        jet.particles, 100.0 * jet.energy_error, jet.seconds);
   EXPECT_GT(on.at20.tip, 120.0);  // the jet has formed and run out 70 mm past the liner's base
   EXPECT_EQ(on.at20.empty, 0);
   EXPECT_GT(off.at20.empty, 0);

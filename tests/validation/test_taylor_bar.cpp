@@ -31,14 +31,17 @@ core::RunSummary taylor_row(const std::string& method_lines, const char* label) 
   const core::RunSummary s = analysis::run(sim, scene, {});
   EXPECT_TRUE(s.taylor.has_value());
   const core::TaylorMeasures& m = *s.taylor;
-  std::printf("| method | cell | particles | L | D | W | mean error | energy error | steps | wall s | threads |\n");
+  std::printf(
+      "| method | cell | particles | L | D | W | mean error | energy error | steps | wall s | "
+      "threads |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::printf("| experiment | | | 16.2 | 13.5 | 10.1 | - | | | | |\n");
   std::printf("| MPM3D (Ma 2005) | | | 16.4 | 13.6 | 9.9 | 0.011 | | 408 | | |\n");
-  std::printf("| afemp MPM %s (%s) | %g | %zu | %.2f | %.2f | %.2f | %.4f | %+.2f %% | %ld | %.1f | %d |\n",
-              label, core::to_string(scene.mpm.scheme), scene.mpm.grid.cell, s.particles,
-              m.length, m.impact_diameter, m.bulge_diameter, s.taylor_error,
-              100.0 * s.energy_error, s.steps, s.wall_seconds, core::thread_count());
+  std::printf(
+      "| afemp MPM %s (%s) | %g | %zu | %.2f | %.2f | %.2f | %.4f | %+.2f %% | %ld | %.1f | %d |\n",
+      label, core::to_string(scene.mpm.scheme), scene.mpm.grid.cell, s.particles, m.length,
+      m.impact_diameter, m.bulge_diameter, s.taylor_error, 100.0 * s.energy_error, s.steps,
+      s.wall_seconds, core::thread_count());
   return s;
 }
 

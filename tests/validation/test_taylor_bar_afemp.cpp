@@ -26,7 +26,9 @@ namespace {
 
 using test::replaced;
 
-std::string example(const char* file) { return test::example_text(std::string("taylor_bar/") + file); }
+std::string example(const char* file) {
+  return test::example_text(std::string("taylor_bar/") + file);
+}
 
 // afemp_fine: elements of h / 2 in cells of h, one particle per converted element (the
 // particle spacing of MPM's 2 per cell), converting below a quarter of h / c.
@@ -93,8 +95,9 @@ Row run_row(Method method, double h) {
 }
 
 TEST(TaylorBarAfemp, ConvertingBarMatchesExperimentWithinThreePercentAtEachResolution) {
-  std::printf("| method | h (mm) | live elements (end) | particles (end) | L | D | W | mean error | "
-              "energy error | steps | wall s | threads |\n");
+  std::printf(
+      "| method | h (mm) | live elements (end) | particles (end) | L | D | W | mean error | "
+      "energy error | steps | wall s | threads |\n");
   std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::printf("| experiment | | | | 16.2 | 13.5 | 10.1 | - | | | | |\n");
   for (double h : {1.0, 0.5, 0.25}) {

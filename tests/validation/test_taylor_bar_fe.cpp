@@ -75,8 +75,9 @@ TEST(TaylorBar, OnePointHexahedraMatchExperimentWithinThreePercentMeanError) {
   EXPECT_LT(s.max_energy_error, 0.02);
 }
 
-// The stiffness form at 0.05, its default coefficient (fem/hourglass.hpp): the same pass mark. At 0.1 it is reported, and a stiffer
-// hourglass must resist the lip of the mushroom more: D at 0.1 <= D at 0.05.
+// The stiffness form at 0.05, its default coefficient (fem/hourglass.hpp): the same pass mark. At
+// 0.1 it is reported, and a stiffer hourglass must resist the lip of the mushroom more: D at 0.1 <=
+// D at 0.05.
 TEST(TaylorBar, StiffnessHourglassMatchesExperimentWithinThreePercentMeanError) {
   print_header();
   const core::RunSummary s = run_row("one-point, stiffness hourglass 0.05",

@@ -24,8 +24,8 @@ namespace afemp::coupling {
 namespace {
 
 TEST(UnderwaterExplosion, PeakShockPressureFollowsColesLawFromFifteenChargeRadii) {
-  const core::Scene scene = core::parse_scene(test::example_text("underwater_explosion/scene.toml"),
-                                              "scene.toml");
+  const core::Scene scene =
+      core::parse_scene(test::example_text("underwater_explosion/scene.toml"), "scene.toml");
   const std::unique_ptr<core::Model> model = make_model(scene);
   const core::RunSummary s = analysis::run(*model, scene, {});
   const double w = 4.0 / 3.0 * M_PI * 64.0 * 1.63e-3 / 1000.0;  // kg
@@ -59,8 +59,8 @@ TEST(UnderwaterExplosion, PeakShockPressureFollowsColesLawFromFifteenChargeRadii
 // a parabola through the three samples around it. Also checked: the radius rises and falls by
 // more than half (a bubble, not a drift), and the energy balance within 3 %.
 TEST(UnderwaterExplosion, BubblePeriodFollowsRayleighWillis) {
-  const core::Scene scene = core::parse_scene(test::example_text("underwater_explosion/bubble.toml"),
-                                              "bubble.toml");
+  const core::Scene scene =
+      core::parse_scene(test::example_text("underwater_explosion/bubble.toml"), "bubble.toml");
   const std::unique_ptr<core::Model> model = make_model(scene);
   const core::RunSummary s = analysis::run(*model, scene, {});
   const ProbeSeries* probe = nullptr;
@@ -79,8 +79,8 @@ TEST(UnderwaterExplosion, BubblePeriodFollowsRayleighWillis) {
     t.push_back(probe->time[k]);
     radius.push_back(std::cbrt(std::pow(r_of(k), 3) - std::pow(r0, 3) + a * a * a));
   }
-  const std::size_t top = static_cast<std::size_t>(
-      std::max_element(radius.begin(), radius.end()) - radius.begin());
+  const std::size_t top =
+      static_cast<std::size_t>(std::max_element(radius.begin(), radius.end()) - radius.begin());
   const std::size_t low = static_cast<std::size_t>(
       std::min_element(radius.begin() + static_cast<std::ptrdiff_t>(top), radius.end()) -
       radius.begin());
@@ -89,13 +89,14 @@ TEST(UnderwaterExplosion, BubblePeriodFollowsRayleighWillis) {
   // The parabola's vertex through (t-, R-), (t0, R0), (t+, R+) on equal intervals.
   const double rm = radius[low - 1], rc = radius[low], rp = radius[low + 1];
   const double period = t[low] + 0.5 * (t[low + 1] - t[low]) * (rm - rp) / (rm - 2.0 * rc + rp);
-  const double w = 4.0 / 3.0 * M_PI * a * a * a * 1.63e-3 / 1000.0;     // kg
-  const double head = 20.0e6 / (1000.0 * 9.81);                          // m
+  const double w = 4.0 / 3.0 * M_PI * a * a * a * 1.63e-3 / 1000.0;              // kg
+  const double head = 20.0e6 / (1000.0 * 9.81);                                  // m
   const double cole = 1000.0 * 2.11 * std::cbrt(w) / std::pow(head, 5.0 / 6.0);  // ms
-  std::printf("largest radius %.2f mm at %.4f ms, smallest after it %.2f mm: first period "
-              "%.4f ms, Rayleigh-Willis %.4f ms (%+.1f %%); energy balance %+.2f %%; %.0f s\n",
-              radius[top], t[top], rc, period, cole, 100.0 * (period / cole - 1.0),
-              100.0 * s.energy_error, s.wall_seconds);
+  std::printf(
+      "largest radius %.2f mm at %.4f ms, smallest after it %.2f mm: first period "
+      "%.4f ms, Rayleigh-Willis %.4f ms (%+.1f %%); energy balance %+.2f %%; %.0f s\n",
+      radius[top], t[top], rc, period, cole, 100.0 * (period / cole - 1.0), 100.0 * s.energy_error,
+      s.wall_seconds);
   EXPECT_LT(rc, 0.5 * radius[top]);
   EXPECT_NEAR(period, cole, 0.20 * cole);
   EXPECT_LT(std::abs(s.energy_error), 0.03);
