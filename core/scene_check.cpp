@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 #include <string>
+#include <variant>
 
 #include "core/far_field_refusals.hpp"
 #include "core/materials/initial_pressure.hpp"
@@ -133,7 +134,9 @@ void check_material(const Checker& c, const Material& m) {
   const std::string key = "materials." + (m.name.empty() ? std::string("(unnamed)") : m.name);
   if (m.name.empty()) c.fail(w, key + ".name", "a material name must not be empty");
   c.positive(w, key + ".density", m.density);
-  c.positive(w, key + ".E", m.youngs_modulus);
+  // A fluid may leave out E and nu (0), as the parser allows: it has no shear.
+  if (!(std::holds_alternative<Fluid>(m.strength) && m.youngs_modulus == 0.0))
+    c.positive(w, key + ".E", m.youngs_modulus);
   c.range(w, key + ".nu", m.poisson_ratio, Range{0.0, 0.5, false, true});
   c.non_negative(w, key + ".specific_heat", m.thermal.specific_heat);
   c.range(w, key + ".taylor_quinney", m.thermal.taylor_quinney, Range::closed(0.0, 1.0));
@@ -272,7 +275,7 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
   if (b.erosion) {
     c.non_negative(b.where, key + ".erosion.plastic_strain", b.erosion->plastic_strain);
     c.range(b.where, key + ".erosion.volume_ratio", b.erosion->volume_ratio,
-            Range{0.0, 1.0, true, false});
+            Range{0.0, 1.0, false, true});
     c.non_negative(b.where, key + ".erosion.time_step", b.erosion->time_step);
   }
   if (b.conversion) {
