@@ -44,27 +44,8 @@ void check_references(const core::Model& model, const core::Scene& scene, RunSum
 
 RunSummary run(core::Model& model, const core::Scene& scene, const core::RunOptions& options) {
   core::TimeLoop loop(model, scene, options);
-  bool interrupted = false;
-  while (!loop.finished()) {
-    if (options.stop_requested && options.stop_requested()) {
-      interrupted = true;
-      break;
-    }
-    loop.step(scene.run.end_time);
-  }
-  // Stopped: a checkpoint of the state after the last whole step, before the final row and
-  // frame (a restart drops those and goes on as if never stopped).
-  std::string checkpoint, checkpoint_error;
-  if (interrupted) try {
-      checkpoint = loop.checkpoint("stopped");
-    } catch (const std::exception& e) {
-      checkpoint_error = e.what();
-    }
+  loop.run();
   RunSummary summary = loop.finish();
-  summary.interrupted = interrupted;
-  summary.checkpoint = checkpoint;
-  summary.checkpoint_error = checkpoint_error;
-  summary.restarted_at = loop.restarted_at();
   check_references(model, scene, summary);
   return summary;
 }

@@ -309,8 +309,26 @@ void TimeLoop::step(double until) {
   }
 }
 
+void TimeLoop::run(const std::function<void()>& after_step) {
+  while (!finished()) {
+    if (options_.stop_requested && options_.stop_requested()) {
+      stopped_ = true;
+      return;
+    }
+    step(scene_.run.end_time);
+    if (after_step) after_step();
+  }
+}
+
 RunSummary TimeLoop::finish() {
   const RunSettings& rs = scene_.run;
+  if (stopped_) try {
+      sum_.checkpoint = checkpoint("stopped");
+    } catch (const std::exception& e) {
+      sum_.checkpoint_error = e.what();
+    }
+  sum_.interrupted = stopped_;
+  sum_.restarted_at = restarted_at_;
   if (!last_step_recorded_) last_error_ = record(dt_);
   probes_->sample(model_, false, true);
   sum_.probes = probes_->take();

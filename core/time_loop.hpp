@@ -27,8 +27,9 @@ struct RunOptions {
   // Called about every progress_seconds of wall time (and at the end).
   std::function<void(const Progress&)> progress;
   double progress_seconds = 0.5;
-  // Asked before each step: true ends the run there, with the final history row, frame and
-  // summary written (`afemp run` asks whether SIGINT or SIGTERM came, core/interrupt.hpp).
+  // Asked before each step of run(): true ends the run there; finish() then writes a
+  // checkpoint, the final history row, frame and summary (`afemp run` asks whether SIGINT or
+  // SIGTERM came, core/interrupt.hpp).
   std::function<bool()> stop_requested;
   // Asked after each step: true writes a checkpoint there and the run goes on (`afemp run`
   // asks whether SIGUSR1 came; the answer must clear the request).
@@ -45,10 +46,10 @@ class StateArchive;
 class HistoryWriter;
 class ProbeRecorder;
 
-// The loop of one run, a step at a time (the library's Simulation steps it;
-// analysis::run drives it to the end): the constructor writes the first history row and frame,
-// step() advances the model and writes what falls due, finish() writes the final row and frame and
-// the summary. Throws core::SimulationError from the model after writing what led up to it.
+// The loop of one run (the library's Simulation and analysis::run drive it): the constructor
+// writes the first history row and frame, step() advances the model and writes what falls due,
+// run() steps to the end, finish() writes the final row and frame and the summary. Throws
+// core::SimulationError from the model after writing what led up to it.
 class TimeLoop {
  public:
   TimeLoop(Model& model, const Scene& scene, const RunOptions& options);
@@ -59,8 +60,14 @@ class TimeLoop {
   bool finished() const;
   // One step at the stable step, cut to land on `until` (at most the end time).
   void step(double until);
+  // Steps until finished(), calling after_step after each step, or until
+  // RunOptions::stop_requested answers true before a step (the run is then stopped).
+  void run(const std::function<void()>& after_step = {});
   // The final history row, probe sample and frame, and the summary (without the scene's
-  // reference checks: analysis/reference_checks.hpp adds them).
+  // reference checks: analysis/reference_checks.hpp adds them). A stopped run first writes a
+  // checkpoint of the state after its last whole step, before the final row and frame (a
+  // restart drops those and goes on as if never stopped); its summary says interrupted, with
+  // the checkpoint or why none could be written.
   RunSummary finish();
   // Writes a checkpoint of the state now into OUTPUT/checkpoints (keeping the newest
   // [run] checkpoint_keep) and returns its path; "" when the run has no output directory.
@@ -104,6 +111,7 @@ class TimeLoop {
   double next_checkpoint_wall_ = 1e300;
   int checkpoints_written_ = 0;
   long restarted_at_ = 0;
+  bool stopped_ = false;  // RunOptions::stop_requested ended run()
 };
 
 }  // namespace afemp::core
