@@ -1,13 +1,19 @@
-// afemp::Simulation (include/afemp/simulation.hpp): the scene checked, the model the scene
-// describes (coupling::make_model, as `afemp run` makes it), and the run loop of
-// core/time_loop.cpp advanced a step at a time, with views of the solvers' arrays between steps;
-// at the end, the scene's reference checks (analysis/reference_checks.cpp).
+// afemp::Simulation (include/afemp/simulation.hpp), the one orchestrator of a run: the scene
+// checked, the model the scene describes (coupling::make_model), the warnings and the size
+// estimate before the run, and the run loop of core/time_loop.cpp advanced a step at a time or
+// to the end (stopped on request), with views of the solvers' arrays between steps; at the
+// end, the scene's reference checks (analysis/reference_checks.cpp). `afemp run` and `afemp
+// check` go through it.
 #include "afemp/simulation.hpp"
 
+#include <stdexcept>
 #include <utility>
 
 #include "analysis/reference_checks.hpp"
-#include "core/checkpoint.hpp"
+#include "core/contact_warnings.hpp"
+#include "core/parallel.hpp"
+#include "core/plausibility.hpp"
+#include "core/resource_guard.hpp"
 #include "core/scene.hpp"
 #include "core/time_loop.hpp"
 #include "coupling/coupled_model.hpp"
@@ -25,8 +31,24 @@ void check_scene(const Scene& scene) {
   core::check_scene(scene);
 }
 
-std::string newest_checkpoint(const std::string& run_directory) {
-  return core::newest_checkpoint(run_directory);
+int thread_count() {
+  return core::thread_count();
+}
+
+void set_thread_count(int n) {
+  core::set_thread_count(n);
+}
+
+std::string readable_count(double count) {
+  return core::readable_count(count);
+}
+
+std::string readable_duration(double seconds) {
+  return core::readable_duration(seconds);
+}
+
+std::string pace_warning(double elapsed, double fraction) {
+  return core::pace_warning(elapsed, fraction);
 }
 
 struct Simulation::Impl {
@@ -39,21 +61,40 @@ struct Simulation::Impl {
       mpm = &c->mpm();
       fe = &c->fe();
     }
+    if (!options.defer_start) start();
+  }
+
+  // The time loop: the initial state written, or the checkpoint's taken.
+  void start() {
+    if (loop) throw std::logic_error("afemp::Simulation: start() was called already");
     core::RunOptions run;
     run.output_directory = options.output_directory;
     run.write_fields = options.write_fields;
     run.progress = options.progress;
     run.progress_seconds = options.progress_seconds;
+    run.stop_requested = options.stop_requested;
+    run.checkpoint_requested = options.checkpoint_requested;
     run.restart_from = options.restart_from;
     loop = std::make_unique<core::TimeLoop>(*model, scene, run);
+  }
+
+  // The loop of a started run.
+  core::TimeLoop& started() {
+    if (!loop)
+      throw std::logic_error("afemp::Simulation: start() first (SimulationOptions::defer_start)");
+    return *loop;
+  }
+
+  void call_back(Simulation& self) {
+    for (const StepCallback& f : callbacks) f(self);
   }
 
   // One step towards `until`, then the callbacks.
   void step(Simulation& self, double until) {
     if (finished_run)
       throw std::logic_error("afemp::Simulation: finish() was called; the run takes no more steps");
-    loop->step(until);
-    for (const StepCallback& f : callbacks) f(self);
+    started().step(until);
+    call_back(self);
   }
 
   // Views of one element container; `body` keeps the per-element body indices the view shows.
@@ -120,10 +161,37 @@ long Simulation::step_count() const {
   return impl_->model->step_count();
 }
 bool Simulation::finished() const {
-  return impl_->finished_run || impl_->loop->finished();
+  return impl_->finished_run || (impl_->loop && impl_->loop->finished());
 }
 Energies Simulation::energies() const {
   return impl_->model->energies();
+}
+
+std::vector<std::string> Simulation::warnings() const {
+  std::vector<std::string> out = core::contact_warnings(impl_->scene, *impl_->model);
+  for (const core::SceneWarning& w : core::plausibility_warnings(impl_->scene))
+    out.push_back(w.text());
+  return out;
+}
+
+RunEstimate Simulation::estimate() const {
+  const core::Model& model = *impl_->model;
+  const Scene& scene = impl_->scene;
+  RunEstimate e;
+  e.time_step = model.stable_time_step();
+  e.steps = scene.run.end_time / e.time_step;
+  e.planned_steps = core::planned_steps(scene, e.time_step);
+  e.points = model.particle_count() + model.element_count();
+  e.bytes = model.bytes();
+  e.threads = core::thread_count();
+  const double points = static_cast<double>(e.points);
+  e.wall_seconds = core::estimated_wall_seconds(points * e.planned_steps, e.threads);
+  e.warnings = core::size_warnings(scene, points, e.time_step, e.threads);
+  return e;
+}
+
+void Simulation::start() {
+  impl_->start();
 }
 
 void Simulation::step() {
@@ -135,14 +203,15 @@ void Simulation::run_to(double t) {
 }
 
 RunSummary Simulation::run() {
-  while (!finished()) impl_->step(*this, impl_->scene.run.end_time);
+  if (!impl_->finished_run) impl_->started().run([this] { impl_->call_back(*this); });
   return finish();
 }
 
 RunSummary Simulation::finish() {
   if (impl_->finished_run) throw std::logic_error("afemp::Simulation: finish() was called already");
+  core::TimeLoop& loop = impl_->started();
   impl_->finished_run = true;
-  RunSummary summary = impl_->loop->finish();
+  RunSummary summary = loop.finish();
   analysis::check_references(*impl_->model, impl_->scene, summary);
   return summary;
 }
@@ -152,7 +221,7 @@ void Simulation::on_step(StepCallback callback) {
 }
 
 std::string Simulation::checkpoint() {
-  return impl_->loop->checkpoint("program");
+  return impl_->started().checkpoint("program");
 }
 
 ParticleFields Simulation::particles() {

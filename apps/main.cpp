@@ -1,32 +1,22 @@
-// The `afemp` command: a thin layer over the library. `afemp check` reads a scene and prints
-// the plan (the starter); `afemp run` runs it with progress, output and a summary; `afemp
-// study` runs a study file's variations and writes their error against run time; `afemp
-// import` turns an LS-DYNA or MPM3D deck into a scene.
+// The `afemp` command: a thin layer over the library's public API (include/afemp/), as any
+// program would use it. `afemp check` reads a scene and prints the plan (the starter); `afemp
+// run` runs it with progress, output and a summary, both through afemp::Simulation; `afemp
+// study` runs a study file's variations and writes their error against run time (the study
+// layer, analysis/study*.hpp, is not part of the public library); `afemp import` turns an
+// LS-DYNA or MPM3D deck into a scene.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <exception>
-#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
-#include "afemp/deck_import.hpp"
-#include "afemp/errors.hpp"
-#include "analysis/reference_checks.hpp"
+#include "afemp/afemp.hpp"
 #include "analysis/study.hpp"
 #include "analysis/study_file.hpp"
 #include "apps/progress_line.hpp"
-#include "core/checkpoint.hpp"
-#include "core/contact_warnings.hpp"
-#include "core/interrupt.hpp"
-#include "core/output/field_writer.hpp"
-#include "core/output/run_directory.hpp"
-#include "core/parallel.hpp"
-#include "core/plausibility.hpp"
-#include "core/resource_guard.hpp"
-#include "core/time_loop.hpp"
-#include "coupling/make_model.hpp"
 
 namespace {
 
@@ -40,78 +30,51 @@ constexpr int exit_output_error = 5;  // output or a checkpoint could not be wri
 // A run stopped by SIGINT or SIGTERM after writing its final row, frame and summary exits
 // with 128 + the signal's number (130, 143), as a shell reports a process the signal ended.
 
-using coupling::make_model;
-
 // A deck given where a scene belongs: say how to import it, not that it is bad TOML.
 void refuse_deck(const std::string& path) {
-  const core::DeckFormat format = core::deck_format(path);
-  if (format == core::DeckFormat::none) return;
-  throw core::InputError({path, 0}, "scene",
-                         std::string("this is an ") + core::to_string(format) +
-                             " deck, not a scene; import it with `afemp import " + path +
-                             " -o SCENE.toml` and run the scene (docs/import.md)");
+  const DeckFormat format = deck_format(path);
+  if (format == DeckFormat::none) return;
+  throw InputError({path, 0}, "scene",
+                   std::string("this is an ") + to_string(format) +
+                       " deck, not a scene; import it with `afemp import " + path +
+                       " -o SCENE.toml` and run the scene (docs/import.md)");
 }
 
-// A step count past a billion is a unit slip far more often than a plan: say so (the scene's
-// max_steps, when set, bounds the run anyway).
-void warn_step_count(const core::Scene& scene, const core::Model& model, double dt) {
-  const double steps = scene.run.end_time / dt;
-  if (!(steps > 1e9) || scene.run.max_steps > 0) return;
-  const double points = static_cast<double>(model.particle_count() + model.element_count());
-  std::fprintf(stderr,
-               "afemp: warning: about %s steps to end_time = %g at dt = %.3g: %s point-steps, "
-               "days of computing at tens of millions a second; check end_time and the units "
-               "(mm, ms, g: 1 s is 1000), or bound the run with [run] max_steps\n",
-               core::readable_count(steps).c_str(), scene.run.end_time, dt,
-               core::readable_count(steps * points).c_str());
-}
-
-// A run estimated to take more than a day at the nominal pace (core/resource_guard.hpp); not
-// where the step count has been warned of already.
-void warn_wall_time(const core::Scene& scene, const core::Model& model, double dt) {
-  const double steps = core::planned_steps(scene, dt);
-  if (scene.run.max_steps <= 0 && steps > 1e9) return;
-  const double points = static_cast<double>(model.particle_count() + model.element_count());
-  const std::string w = core::wall_time_warning(points * steps, core::thread_count());
-  if (!w.empty()) std::fprintf(stderr, "afemp: warning: %s\n", w.c_str());
+void print_warnings(const std::vector<std::string>& warnings) {
+  for (const std::string& w : warnings) std::fprintf(stderr, "afemp: warning: %s\n", w.c_str());
 }
 
 int check(const std::string& path) {
   refuse_deck(path);
-  const core::Scene scene = core::read_scene(path);
-  const std::unique_ptr<core::Model> model = make_model(scene);
-  model->resolve_probes(scene.probes);  // a probe naming a node the mesh lacks fails here too
-  for (const std::string& w : core::contact_warnings(scene, *model))
-    std::fprintf(stderr, "afemp: warning: %s\n", w.c_str());
-  for (const core::SceneWarning& w : core::plausibility_warnings(scene))
-    std::fprintf(stderr, "afemp: warning: %s\n", w.text().c_str());
+  // The model built and started without an output directory: what `afemp run` refuses at the
+  // start (a probe naming a node the mesh lacks) fails here too, and nothing is written.
+  const Simulation sim(afemp::read_scene(path));
+  const Scene& scene = sim.scene();
+  print_warnings(sim.warnings());
   std::printf("scene %s%s%s\n", path.c_str(), scene.run.title.empty() ? "" : ": ",
               scene.run.title.c_str());
-  std::fputs(model->describe().c_str(), stdout);
-  const double dt = model->stable_time_step();
-  std::printf("time step: %.6g (%s), about %s steps to t = %g\n", dt,
+  std::fputs(sim.describe().c_str(), stdout);
+  const RunEstimate e = sim.estimate();
+  std::printf("time step: %.6g (%s), about %s steps to t = %g\n", e.time_step,
               scene.run.fixed_time_step > 0.0 ? "fixed" : "stable step x time_step_factor",
-              core::readable_count(scene.run.end_time / dt).c_str(), scene.run.end_time);
-  warn_step_count(scene, *model, dt);
-  warn_wall_time(scene, *model, dt);
-  const double points = static_cast<double>(model->particle_count() + model->element_count());
+              readable_count(e.steps).c_str(), scene.run.end_time);
+  print_warnings(e.warnings);
+  const double points = static_cast<double>(e.points);
   std::printf("memory estimate: %.1f MiB (%.0f bytes per particle or element)\n",
-              static_cast<double>(model->bytes()) / (1024.0 * 1024.0),
-              static_cast<double>(model->bytes()) / points);
-  const double point_steps = points * core::planned_steps(scene, dt);
+              static_cast<double>(e.bytes) / (1024.0 * 1024.0),
+              static_cast<double>(e.bytes) / points);
   std::printf(
       "wall time estimate: about %s on %d thread(s) (%s point-steps at a nominal 1.5 "
       "million per thread and second; plasticity, contact and coupling cost more, simple "
       "elastic particles less)\n",
-      core::readable_duration(core::estimated_wall_seconds(point_steps, core::thread_count()))
-          .c_str(),
-      core::thread_count(), core::readable_count(point_steps).c_str());
+      readable_duration(e.wall_seconds).c_str(), e.threads,
+      readable_count(points * e.planned_steps).c_str());
   return 0;
 }
 
 int run(const std::string& path, std::string out_dir, const std::string& restart_dir) {
   refuse_deck(path);
-  const core::Scene scene = core::read_scene(path);
+  Scene read = afemp::read_scene(path);
   std::string checkpoint;
   if (!restart_dir.empty()) {
     if (!out_dir.empty() && out_dir != restart_dir)
@@ -120,61 +83,52 @@ int run(const std::string& path, std::string out_dir, const std::string& restart
                                "out -o " +
                                out_dir);
     out_dir = restart_dir;
-    checkpoint = core::newest_checkpoint(restart_dir);
     // The scene check first, before the model is built: a refused restart touches nothing.
-    const std::vector<std::string> changes =
-        core::scene_changes(core::read_checkpoint_header(checkpoint), scene);
-    if (!changes.empty()) {
-      std::string text = "cannot restart from " + checkpoint +
-                         ": the scene changed since the checkpoint (only the end time, output, "
-                         "history and checkpoint settings may):";
-      for (const std::string& c : changes) text += "\n  " + c;
-      throw std::runtime_error(text);
-    }
+    checkpoint = restart_checkpoint(restart_dir, read);
   }
-  if (out_dir.empty()) out_dir = core::default_output_directory(path);
-  const std::unique_ptr<core::Model> model = make_model(scene);
-  for (const std::string& w : core::contact_warnings(scene, *model))
-    std::fprintf(stderr, "afemp: warning: %s\n", w.c_str());
-  for (const core::SceneWarning& w : core::plausibility_warnings(scene))
-    std::fprintf(stderr, "afemp: warning: %s\n", w.text().c_str());
+  if (out_dir.empty()) out_dir = default_output_directory(path);
   apps::ProgressReporter progress(stdout);
-  core::RunOptions options;
+  SimulationOptions options;
   options.output_directory = out_dir;
   options.restart_from = checkpoint;
-  options.progress = [&](const core::Progress& pr) { progress(pr); };
+  options.progress = [&](const Progress& pr) { progress(pr); };
   options.progress_seconds = progress.interval();
+  options.stop_requested = [] { return interrupt_signal() != 0; };
+  options.checkpoint_requested = [] { return take_checkpoint_request(); };
+  // Started below, once the warnings and the plan are printed: what start() throws is the
+  // run's (an output directory that cannot be written), reported as the run's.
+  options.defer_start = true;
+  Simulation sim(std::move(read), options);
+  const Scene& scene = sim.scene();
+  print_warnings(sim.warnings());
   if (checkpoint.empty()) {
-    warn_step_count(scene, *model, model->stable_time_step());
-    warn_wall_time(scene, *model, model->stable_time_step());
+    print_warnings(sim.estimate().warnings);
     std::printf("afemp run %s -> %s (%d thread(s))\n", path.c_str(), out_dir.c_str(),
-                core::thread_count());
+                thread_count());
   } else {
-    const core::CheckpointHeader h = core::read_checkpoint_header(checkpoint);
+    const CheckpointInfo h = read_checkpoint_info(checkpoint);
     std::printf("afemp run %s -> %s (%d thread(s)), continuing from %s (step %ld, t = %.6g)\n",
-                path.c_str(), out_dir.c_str(), core::thread_count(), checkpoint.c_str(), h.step,
-                h.time);
-    if (h.threads != core::thread_count())
+                path.c_str(), out_dir.c_str(), thread_count(), checkpoint.c_str(), h.step, h.time);
+    if (h.threads != thread_count())
       std::fprintf(stderr,
                    "afemp: warning: the checkpoint was written with %d thread(s), this run has "
                    "%d: the results go on correctly but not bit for bit as an uninterrupted run "
                    "(the sums of the grid transfer are added in another order); give --threads %d "
                    "for that\n",
-                   h.threads, core::thread_count(), h.threads);
+                   h.threads, thread_count(), h.threads);
   }
-  const core::InterruptHandler interrupts;
-  options.stop_requested = [] { return core::interrupt_signal() != 0; };
-  options.checkpoint_requested = [] { return core::take_checkpoint_request(); };
+  const InterruptHandler interrupts;
   try {
-    const core::RunSummary s = analysis::run(*model, scene, options);
+    sim.start();
+    const RunSummary s = sim.run();
     progress.finish();
     apps::print_summary(stdout, scene, s);
     if (s.interrupted) {
-      const int signal = core::interrupt_signal();
+      const int signal = interrupt_signal();
       std::fprintf(stderr,
                    "afemp: stopped by %s after step %ld (t = %.6g of %.6g): the final history "
                    "row, frame and summary are written in %s\n",
-                   core::signal_name(signal), s.steps, s.time, scene.run.end_time, out_dir.c_str());
+                   signal_name(signal), s.steps, s.time, scene.run.end_time, out_dir.c_str());
       if (!s.checkpoint.empty())
         std::fprintf(stderr, "afemp: checkpoint %s; continue with: afemp run %s --restart %s\n",
                      s.checkpoint.c_str(), path.c_str(), out_dir.c_str());
@@ -183,19 +137,19 @@ int run(const std::string& path, std::string out_dir, const std::string& restart
                      s.checkpoint_error.c_str());
       return 128 + signal;
     }
-    core::OutputPaths paths;
+    const OutputPaths paths;
     std::printf("output: %s/%s.xmf (%zu frames), %s/%s\n", out_dir.c_str(),
                 paths.fields_stem.c_str(), s.field_frames, out_dir.c_str(),
                 paths.history_file.c_str());
     if (!s.probes.empty())
       std::printf("probes: %s/probes/NAME.csv (%zu files)\n", out_dir.c_str(), s.probes.size());
     if (!s.checks_passed()) return exit_check_failed;
-  } catch (const core::SimulationError& e) {
+  } catch (const SimulationError& e) {
     progress.finish();
     std::fprintf(stderr, "afemp: simulation stopped: %s\n", e.what());
     std::fprintf(stderr, "afemp: output written so far is kept in %s\n", out_dir.c_str());
     return exit_simulation_error;
-  } catch (const core::InputError&) {
+  } catch (const InputError&) {
     throw;
   } catch (const std::runtime_error& e) {
     // Output that cannot be written (a full disk, a removed directory): what was written stays.
@@ -203,8 +157,8 @@ int run(const std::string& path, std::string out_dir, const std::string& restart
     const std::string what = e.what();
     std::fprintf(
         stderr, "afemp: run stopped: %s%s\n", what.c_str(),
-        what.find("it is full") == std::string::npos ? core::disk_full_note(out_dir).c_str() : "");
-    const std::vector<std::string> saved = core::list_checkpoints(out_dir);
+        what.find("it is full") == std::string::npos ? disk_full_note(out_dir).c_str() : "");
+    const std::vector<std::string> saved = list_checkpoints(out_dir);
     std::fprintf(stderr, "afemp: output written so far is kept in %s; %s\n", out_dir.c_str(),
                  saved.empty() ? "no checkpoint was written"
                                : ("the newest checkpoint is " + saved.back() + " (afemp run " +
@@ -218,7 +172,7 @@ int run(const std::string& path, std::string out_dir, const std::string& restart
 int study(const std::string& path, std::string out_dir, int threads) {
   analysis::StudyPlan plan = analysis::read_study(path);
   if (threads > 0) plan.threads = threads;
-  if (out_dir.empty()) out_dir = core::default_output_directory(path);
+  if (out_dir.empty()) out_dir = default_output_directory(path);
   std::printf("afemp study %s -> %s: %zu runs\n", path.c_str(), out_dir.c_str(), plan.runs.size());
   std::size_t done = 0;
   const analysis::StudyResult result = analysis::run_study(
@@ -242,15 +196,15 @@ int study(const std::string& path, std::string out_dir, int threads) {
 // what the deck holds that the scene does not carry as the deck meant it.
 int import_command(const std::string& deck_path, const std::string& scene_path,
                    const std::string& units) {
-  const core::DeckImport deck = core::import_deck(deck_path, scene_path, {units});
-  core::write_deck_import(deck, scene_path);
+  const DeckImport deck = import_deck(deck_path, scene_path, {units});
+  write_deck_import(deck, scene_path);
   std::printf("afemp import %s -> %s (%s deck", deck_path.c_str(), scene_path.c_str(),
-              core::to_string(core::deck_format(deck_path)));
-  for (const core::DeckFile& f : deck.files) std::printf(", %s", f.name.c_str());
+              to_string(deck_format(deck_path)));
+  for (const DeckFile& f : deck.files) std::printf(", %s", f.name.c_str());
   std::printf(")\nunits: %s\n", deck.units.c_str());
   std::size_t untranslated = 0;
-  for (const core::DeckNote& n : deck.notes) {
-    std::printf("  %s\n", core::describe(n).c_str());
+  for (const DeckNote& n : deck.notes) {
+    std::printf("  %s\n", describe(n).c_str());
     if (!n.approximated) ++untranslated;
   }
   std::printf(
@@ -303,14 +257,14 @@ int main(int argc, char** argv) {
   // A file-size limit (ulimit -f) then fails the write like a full disk, which the run reports
   // and survives, instead of killing the process.
   std::signal(SIGXFSZ, SIG_IGN);
-  core::skip_hdf5_exit_cleanup();
-  if (!*study_cmd) core::set_thread_count(threads);
+  skip_hdf5_exit_cleanup();
+  if (!*study_cmd) set_thread_count(threads);
   try {
     if (*run_cmd) return run(scene_path, out_dir, restart_dir);
     if (*study_cmd) return study(scene_path, out_dir, threads);
     if (*import_cmd) return import_command(scene_path, out_dir, units);
     return check(scene_path);
-  } catch (const core::InputError& e) {
+  } catch (const InputError& e) {
     std::fprintf(stderr, "afemp: %s\n", e.what());
     return exit_input_error;
   } catch (const std::exception& e) {

@@ -5,8 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "core/parallel.hpp"
-#include "core/resource_guard.hpp"
+#include "afemp/simulation.hpp"  // thread_count
 
 namespace afemp::apps {
 
@@ -25,7 +24,7 @@ std::string clock_text(double seconds) {
 
 ProgressReporter::ProgressReporter(std::FILE* out) : out_(out), live_(isatty(fileno(out)) != 0) {}
 
-void ProgressReporter::operator()(const core::Progress& p) {
+void ProgressReporter::operator()(const Progress& p) {
   const double fraction = p.end_time > 0.0 ? p.time / p.end_time : 1.0;
   const double eta = fraction > 0.0 ? p.elapsed_seconds * (1.0 - fraction) / fraction : -1.0;
   char line[256];
@@ -42,7 +41,7 @@ void ProgressReporter::operator()(const core::Progress& p) {
   std::fflush(out_);
   // Once, when the pace so far says the run will take days.
   if (!pace_warned_) {
-    const std::string w = core::pace_warning(p.elapsed_seconds, fraction);
+    const std::string w = pace_warning(p.elapsed_seconds, fraction);
     if (!w.empty()) {
       finish();
       std::fprintf(stderr, "afemp: warning: %s\n", w.c_str());
@@ -56,7 +55,7 @@ void ProgressReporter::finish() {
   pending_newline_ = false;
 }
 
-void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSummary& s) {
+void print_summary(std::FILE* out, const Scene& scene, const RunSummary& s) {
   std::fprintf(out, "summary\n");
   std::fprintf(out, "  steps            %ld to t = %.6g (dt %.4g .. %.4g)\n", s.steps, s.time,
                s.min_dt, s.max_dt);
@@ -65,7 +64,7 @@ void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSumm
     std::fprintf(out, "  stopped early    on request at t = %.6g of %.6g\n", s.time,
                  scene.run.end_time);
   std::fprintf(out, "  wall time        %.3f s with %d thread(s)\n", s.wall_seconds,
-               core::thread_count());
+               thread_count());
   if (s.final_particles != s.particles) {
     // What changed the count: particles that left, split or were made from elements.
     std::string why;
@@ -75,7 +74,7 @@ void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSumm
     add(s.final.outflow_mass > 0.0, "outflow");
     add(scene.mpm.splitting.has_value(), "splitting");
     bool converts = false;
-    for (const core::BodySpec& b : scene.bodies) converts = converts || b.conversion.has_value();
+    for (const BodySpec& b : scene.bodies) converts = converts || b.conversion.has_value();
     add(converts, "converted elements");
     std::fprintf(out,
                  "  points           %zu particles (%zu at the end: %s), %zu "
@@ -109,11 +108,11 @@ void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSumm
                100.0 * s.energy_error, 100.0 * s.max_energy_error);
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
     const auto& body = s.final.bodies[b];
-    const core::Vec3 v = body.mass > 0.0 ? (1.0 / body.mass) * body.momentum : core::Vec3{};
+    const Vec3 v = body.mass > 0.0 ? (1.0 / body.mass) * body.momentum : Vec3{};
     std::fprintf(out, "  body %-10s  mean velocity (%.6g, %.6g, %.6g)\n",
                  scene.bodies[b].name.c_str(), v.x, v.y, v.z);
   }
-  for (const core::ReferenceCheck& c : s.checks) {
+  for (const ReferenceCheck& c : s.checks) {
     if (c.name.rfind("taylor", 0) == 0) continue;  // the Taylor line below says more
     std::fprintf(out, "  reference        %s: %.6g", c.name.c_str(), c.value);
     if (c.reference != 0.0) std::fprintf(out, " (ref %.6g, error %.4f)", c.reference, c.error);

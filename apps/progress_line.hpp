@@ -4,15 +4,15 @@
 
 #include <cstdio>
 
-#include "core/scene.hpp"
-#include "core/time_loop.hpp"
+#include "afemp/run.hpp"
+#include "afemp/scene.hpp"
 
 namespace afemp::apps {
 
 class ProgressReporter {
  public:
   explicit ProgressReporter(std::FILE* out);
-  void operator()(const core::Progress& p);
+  void operator()(const Progress& p);
   // Ends the live line so that following output starts on a fresh line.
   void finish();
   bool live() const { return live_; }
@@ -26,6 +26,6 @@ class ProgressReporter {
   bool pace_warned_ = false;
 };
 
-void print_summary(std::FILE* out, const core::Scene& scene, const core::RunSummary& s);
+void print_summary(std::FILE* out, const Scene& scene, const RunSummary& s);
 
 }  // namespace afemp::apps

@@ -1,5 +1,5 @@
-// Stopping a run cleanly on SIGINT or SIGTERM, and checkpoints on SIGUSR1 (core/interrupt.hpp).
-#include "core/interrupt.hpp"
+// Stopping a run cleanly on SIGINT or SIGTERM, and checkpoints on SIGUSR1 (afemp/interrupt.hpp).
+#include "afemp/interrupt.hpp"
 
 #include <csignal>
 #include <cstdio>

@@ -145,6 +145,23 @@ std::string wall_time_warning(double point_steps, int threads) {
          "docs/restart.md)";
 }
 
+std::vector<std::string> size_warnings(const Scene& scene, double points, double dt, int threads) {
+  const double steps = scene.run.end_time / dt;
+  if (steps > 1e9 && scene.run.max_steps <= 0) {
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "about %s steps to end_time = %g at dt = %.3g: %s point-steps, days of "
+                  "computing at tens of millions a second; check end_time and the units (mm, ms, "
+                  "g: 1 s is 1000), or bound the run with [run] max_steps",
+                  readable_count(steps).c_str(), scene.run.end_time, dt,
+                  readable_count(steps * points).c_str());
+    return {buf};
+  }
+  const std::string w = wall_time_warning(points * planned_steps(scene, dt), threads);
+  if (w.empty()) return {};
+  return {w};
+}
+
 std::string pace_warning(double elapsed, double fraction) {
   if (!(elapsed >= 20.0) || !(fraction > 0.0)) return "";
   const double rest = elapsed * (1.0 - fraction) / fraction;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/scene.hpp"
 #include "core/source_text.hpp"  // readable_count
@@ -45,6 +46,11 @@ std::string readable_duration(double seconds);
 // What `afemp check` and `run` warn when a run is estimated to take more than a day:
 // `point_steps` (points x steps to the end) at the nominal pace on `threads`; "" below a day.
 std::string wall_time_warning(double point_steps, int threads);
+// What `afemp check` and `run` warn of a run's size before it starts, for `points` particles
+// and elements at step dt on `threads`: a step count to the end time past a billion (a unit
+// slip far more often than a plan; not where [run] max_steps bounds the run), or else a wall
+// time past a day (wall_time_warning).
+std::vector<std::string> size_warnings(const Scene& scene, double points, double dt, int threads);
 // The same from a run's own pace: after `elapsed` seconds it reached `fraction` of its end
 // time; "" while elapsed is under 20 s or the rest is under a day.
 std::string pace_warning(double elapsed, double fraction);

@@ -29,7 +29,7 @@ struct RunOptions {
   double progress_seconds = 0.5;
   // Asked before each step of run(): true ends the run there; finish() then writes a
   // checkpoint, the final history row, frame and summary (`afemp run` asks whether SIGINT or
-  // SIGTERM came, core/interrupt.hpp).
+  // SIGTERM came, afemp/interrupt.hpp).
   std::function<bool()> stop_requested;
   // Asked after each step: true writes a checkpoint there and the run goes on (`afemp run`
   // asks whether SIGUSR1 came; the answer must clear the request).

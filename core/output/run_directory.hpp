@@ -6,13 +6,9 @@
 #include <cstdint>
 #include <string>
 
-namespace afemp::core {
+#include "afemp/run_directory.hpp"  // OutputPaths
 
-struct OutputPaths {
-  std::string directory;                     // everything of one run goes here
-  std::string fields_stem = "fields";        // DIR/STEM.h5 + DIR/STEM.xmf (FieldWriter)
-  std::string history_file = "history.csv";  // DIR/history.csv (HistoryWriter)
-};
+namespace afemp::core {
 
 // "runs/<stem of scene_path>" (relative, resolved against the cwd when used); the stem is the
 // file name without its last extension: "examples/taylor_bar/mpm.toml" -> "runs/mpm".

@@ -71,6 +71,8 @@ using core::DeckFormat;
 using core::DeckImport;
 using core::DeckImportOptions;
 using core::DeckNote;
+using core::describe;
 using core::import_deck;
+using core::to_string;
 using core::write_deck_import;
 }  // namespace afemp

@@ -1,5 +1,6 @@
-// What a run reports: its summary (steps, wall time, energies, reference checks, probe
-// histories), the progress it reports while it runs, and the stage timings of a step.
+// What a run reports: its size estimated before it starts, the progress it reports while it
+// runs, its summary (steps, wall time, energies, reference checks, probe histories) and the
+// stage timings of a step; and the numbers and durations as `afemp` writes them.
 #pragma once
 
 #include <cstddef>
@@ -19,12 +20,28 @@ struct StageTiming {
   double seconds = 0.0;
 };
 
-/// Progress of a run, reported about every RunOptions::progress_seconds of wall time.
+/// Progress of a run, reported about every SimulationOptions::progress_seconds of wall time.
 struct Progress {
   long step = 0;
   double time = 0.0, dt = 0.0, end_time = 0.0;
   double elapsed_seconds = 0.0;
   double energy_error = 0.0;
+};
+
+/// The size of a run before it starts (`afemp check` prints it), at the nominal pace of 1.5
+/// million point-steps a second per thread: an estimate to flag runs of days, not a promise
+/// (plasticity, contact and coupling cost more, simple elastic particles less).
+struct RunEstimate {
+  double time_step = 0.0;      ///< the first step: the stable step x factor, or the fixed step
+  double steps = 0.0;          ///< steps to the end time at that step
+  double planned_steps = 0.0;  ///< the same, or [run] max_steps when that comes first
+  std::size_t points = 0;      ///< particles and elements
+  std::size_t bytes = 0;       ///< memory the model holds
+  int threads = 1;             ///< thread_count()
+  double wall_seconds = 0.0;   ///< points x planned_steps on `threads`
+  /// A step count past a billion (a unit slip far more often than a plan) or, else, a wall
+  /// time past a day: what `afemp check` and `afemp run` warn of.
+  std::vector<std::string> warnings{};
 };
 
 /// Taylor-bar measures: final length L, impact-face diameter D and diameter W at 0.2 L0 from
@@ -59,7 +76,7 @@ struct RunSummary {
   std::size_t field_frames = 0;
   /// Set when [run] terminate stopped the run before end_time: what ended it.
   std::string terminated{};
-  /// Set when RunOptions::stop_requested ended the run before its end (a signal, for
+  /// Set when SimulationOptions::stop_requested ended the run before its end (a signal, for
   /// `afemp run`): the step and time it stopped at.
   bool interrupted = false;
   /// An interrupted run: the checkpoint written before it stopped (empty: none written, see
@@ -88,7 +105,18 @@ struct RunSummary {
 namespace afemp {
 using core::Progress;
 using core::ReferenceCheck;
+using core::RunEstimate;
 using core::RunSummary;
 using core::StageTiming;
 using core::TaylorMeasures;
+
+/// A count as a person reads it: whole, with thousands separated ("1,250,000"); past a billion
+/// in exponent form ("3.2e+10").
+std::string readable_count(double count);
+/// A duration as a person reads it: "45 s", "3.2 min", "5.1 h", "12.4 days", "3.1e+04 years".
+std::string readable_duration(double seconds);
+/// What a run's progress warns once it has a pace of its own: after `elapsed` wall seconds it
+/// reached `fraction` of its end time; "" while elapsed is under 20 s or the rest is under a
+/// day.
+std::string pace_warning(double elapsed, double fraction);
 }  // namespace afemp

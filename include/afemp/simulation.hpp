@@ -15,6 +15,7 @@
 #include "afemp/energies.hpp"
 #include "afemp/errors.hpp"
 #include "afemp/run.hpp"
+#include "afemp/run_directory.hpp"
 #include "afemp/scene.hpp"
 #include "afemp/tensor.hpp"
 
@@ -100,11 +101,26 @@ struct SimulationOptions {
   /// checkpoint was written for (only end time, output, history and checkpoint settings may
   /// differ; CheckpointError names the keys otherwise); one built in code is not.
   std::string restart_from;
+  /// Asked before each step of run(): true ends the run there; the run then writes a
+  /// checkpoint of the state after its last whole step (RunSummary::checkpoint, or
+  /// checkpoint_error), the final history row, frame and summary (RunSummary::interrupted).
+  /// `afemp run` asks whether SIGINT or SIGTERM came (afemp/interrupt.hpp).
+  std::function<bool()> stop_requested;
+  /// Asked after each step: true writes a checkpoint there and the run goes on; the answer
+  /// must clear the request (`afemp run`: SIGUSR1, afemp/interrupt.hpp).
+  std::function<bool()> checkpoint_requested;
+  /// The constructor builds the model and stops there; start() writes the initial state (or
+  /// continues from restart_from). A program prints warnings() and estimate() first, as
+  /// `afemp run` does, and what start() throws is then the run's, not the scene's.
+  bool defer_start = false;
 };
 
-/// The newest checkpoint in a run directory (RUN_DIR/checkpoints/step_N.h5); throws when there
-/// is none, saying what writes one.
-std::string newest_checkpoint(const std::string& run_directory);
+/// The threads a run uses: OpenMP's (OMP_NUM_THREADS, or every core), or set_thread_count's; 1
+/// without OpenMP. A restart at the count of the run that wrote the checkpoint ends bit for bit
+/// as the uninterrupted run.
+int thread_count();
+/// Sets the threads of the runs that follow (n > 0).
+void set_thread_count(int n);
 
 /// A model made from a scene: MPM, FE, or both coupled on the background grid, as the scene
 /// asks; the same model `afemp run` makes from the same scene, stepped by the same loop
@@ -116,7 +132,8 @@ class Simulation {
   /// A callback after each step (a program's load, boundary condition or output).
   using StepCallback = std::function<void(Simulation&)>;
 
-  /// Checks the scene (check_scene), builds the model and writes the initial state.
+  /// Checks the scene (check_scene), builds the model and writes the initial state (with
+  /// SimulationOptions::defer_start, start() writes it).
   explicit Simulation(Scene scene, SimulationOptions options = {});
   ~Simulation();
   Simulation(const Simulation&) = delete;
@@ -134,16 +151,32 @@ class Simulation {
   bool finished() const;
   /// Energies now, with per-body mass, momentum, kinetic and internal energy.
   Energies energies() const;
+  /// What may run against the scene's intent, one line each: bodies that meet with no contact,
+  /// bond or conversion between them (particles on one grid weld, meshes pass through), then
+  /// values implausible for the scene's units and mistakes that run silently ([run] quiet
+  /// silences keys). `afemp check` and `afemp run` print them before the run.
+  std::vector<std::string> warnings() const;
+  /// The run's size before it starts: its step, steps, points, memory and wall time at the
+  /// nominal pace on thread_count() threads, with the warnings of a run too long to be meant.
+  RunEstimate estimate() const;
+
+  /// With SimulationOptions::defer_start: writes the initial state (the first history row and
+  /// frame), or takes the state of SimulationOptions::restart_from and continues its files;
+  /// once, before any step, checkpoint() or finish(). Until then the views show the model as
+  /// built.
+  void start();
 
   /// One step at the stable step (cut so as not to pass the end time), then the callbacks;
   /// nothing once finished().
   void step();
   /// Steps until `time` (the last step cut to land on it) or until finished().
   void run_to(double time);
-  /// Steps to the end and returns finish().
+  /// Steps to the end, or until SimulationOptions::stop_requested answers true, and returns
+  /// finish().
   RunSummary run();
-  /// The final history row and frame, and the summary with the scene's reference checks.
-  /// Call once; the Simulation takes no step after it.
+  /// The final history row and frame, and the summary with the scene's reference checks (a
+  /// run that stop_requested ended writes its checkpoint first). Call once; the Simulation
+  /// takes no step after it.
   RunSummary finish();
 
   /// Adds a callback run after every step, in the order added.

@@ -8,6 +8,9 @@
 #include <afemp/afemp.hpp>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -18,6 +21,11 @@
 namespace {
 
 using afemp::Vec3;
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
 
 std::string taylor_toml(bool hexahedra) {
   return afemp::test::taylor_bar_scene(hexahedra);
@@ -214,6 +222,61 @@ TEST(SimulationApi, ARunContinuedFromItsCheckpointEndsAsTheUninterruptedOne) {
     ASSERT_EQ(a.position[i].z, b.position[i].z) << i;
     ASSERT_EQ(a.stress[i].zz, b.stress[i].zz) << i;
   }
+}
+
+// Reference: determinism (docs/restart.md), as `afemp run` meets it on SIGINT and --restart. A
+// run that stop_requested ends after 40 steps writes a checkpoint of step 40 and its final row;
+// restart_checkpoint finds that checkpoint for the same scene and refuses a changed one (naming
+// the key) before anything is built; a deferred Simulation takes no step before start(), and
+// the continued run ends with the uninterrupted run's steps and history rows, bit for bit.
+TEST(SimulationApi, ARunStoppedOnRequestContinuesFromItsDirectoryAsIfNeverStopped) {
+  afemp::test::ScratchDir dir;
+  const afemp::Scene scene = afemp::core::parse_scene(taylor_toml(false), "taylor_mpm.toml");
+  afemp::SimulationOptions whole_options;
+  whole_options.output_directory = dir.file("whole");
+  afemp::Simulation whole(scene, whole_options);
+  const afemp::RunSummary w = whole.run();
+
+  const std::string run_dir = dir.file("stopped");
+  afemp::SimulationOptions options;
+  options.output_directory = run_dir;
+  int asked = 0;
+  options.stop_requested = [&] { return ++asked > 40; };
+  {
+    afemp::Simulation first(scene, options);
+    const afemp::RunSummary s = first.run();
+    EXPECT_TRUE(s.interrupted);
+    EXPECT_EQ(s.steps, 40);
+    EXPECT_EQ(s.checkpoint, afemp::newest_checkpoint(run_dir)) << s.checkpoint_error;
+    const afemp::CheckpointInfo info = afemp::read_checkpoint_info(s.checkpoint);
+    EXPECT_EQ(info.step, 40);
+    EXPECT_EQ(info.reason, "stopped");
+  }
+
+  const afemp::Scene changed = afemp::core::parse_scene(
+      afemp::test::taylor_bar_scene(false, R"(strength = { model = "johnson-cook", A = 160, )"
+                                           R"(B = 425, n = 1.0, C = 0.0 })"),
+      "taylor_mpm.toml");
+  try {
+    afemp::restart_checkpoint(run_dir, changed);
+    ADD_FAILURE() << "a changed scene continued";
+  } catch (const afemp::CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find("materials.copper.strength.A"), std::string::npos)
+        << e.what();
+  }
+
+  options.stop_requested = nullptr;
+  options.restart_from = afemp::restart_checkpoint(run_dir, scene);
+  options.defer_start = true;
+  afemp::Simulation second(scene, options);
+  EXPECT_THROW(second.step(), std::logic_error);
+  second.start();
+  EXPECT_EQ(second.step_count(), 40);
+  const afemp::RunSummary r = second.run();
+  EXPECT_FALSE(r.interrupted);
+  EXPECT_EQ(r.restarted_at, 40);
+  EXPECT_EQ(r.steps, w.steps);
+  EXPECT_EQ(slurp(run_dir + "/history.csv"), slurp(dir.file("whole") + "/history.csv"));
 }
 
 // Bad input through the API: InputError naming the object and field by the scene file's key and
