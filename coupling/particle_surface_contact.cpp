@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/contact_impulse.hpp"
 #include "fem/face_projection.hpp"
 #include "fem/fe_solver.hpp"
 #include "mpm/face_constraints.hpp"
@@ -231,6 +232,7 @@ void ParticleSurfaceContacts::resolve_pair(Pair& pair, const mpm::GridStepAccess
       v_face += na * nodes.velocity[q];
     }
   };
+  // Projected Gauss-Seidel sweeps in particle order (core/contact_impulse.hpp).
   const double s_pen = pair.spec.penalty, mu = pair.spec.friction;
   for (int sweep = 0; sweep < kSweeps; ++sweep)
     for (Hit& h : hits_) {
@@ -260,21 +262,13 @@ void ParticleSurfaceContacts::resolve_pair(Pair& pair, const mpm::GridStepAccess
         const double now = core::dot(nrm, xp - x_now) - h.radius;
         h.target = std::min((1.0 - s_pen) * std::min(gap, 0.0), 0.9 * std::min(now, 0.0));
       }
-      const double total = std::max(0.0, h.normal_impulse - (gap - h.target) / (dt * w));
-      const double dj = total - h.normal_impulse;
-      h.normal_impulse = total;
+      const double dj = core::add_normal_impulse(h.normal_impulse, h.target - gap, dt, w);
       Vec3 impulse = dj * nrm;
-      if (mu > 0.0) {
-        // The relative velocity (the normal impulse would change only its normal part, which
-        // does not matter here), and the stick impulse within mu J.
-        const Vec3 rel = vp - v_face;
-        const Vec3 slip = rel - core::dot(rel, nrm) * nrm;
-        Vec3 t = h.tangential_impulse - (1.0 / w) * slip;
-        const double l = core::norm(t), limit = mu * h.normal_impulse;
-        if (l > limit) t = (limit / l) * t;
-        impulse += t - h.tangential_impulse;
-        h.tangential_impulse = t;
-      }
+      // The slip of the relative velocity before the normal impulse (which would change only
+      // its normal part) and the stick impulse within mu J.
+      if (mu > 0.0)
+        impulse += core::add_friction_impulse(h.tangential_impulse, h.normal_impulse, mu,
+                                              vp - v_face, nrm, w);
       push_particle(h, impulse);
       for (int a = 0; a < 4; ++a)
         fe_.push_contact_impulse(static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)]),
@@ -289,9 +283,7 @@ void ParticleSurfaceContacts::resolve_pair(Pair& pair, const mpm::GridStepAccess
     if (mu > 0.0) {
       Vec3 x_face, v_face;
       face_state(h, x_face, v_face);
-      const Vec3 rel = v_particle(h) - v_face;
-      pair.friction_work -=
-          core::dot(h.tangential_impulse, rel - core::dot(rel, h.normal) * h.normal);
+      pair.friction_work -= core::slip_work(h.tangential_impulse, v_particle(h) - v_face, h.normal);
     }
   }
 }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/contact_impulse.hpp"
 #include "core/parallel.hpp"
 #include "fem/face_projection.hpp"
 #include "fem/fe_solver.hpp"
@@ -435,8 +436,9 @@ void FeSolver::resolve_contacts(double dt) {
     nodes_.velocity[i] += (1.0 / nodes_.mass[i]) * j;
     contact_impulse_[i] += j;
   };
-  // Projected Gauss-Seidel: each pair in turn takes the impulse that brings its predicted gap
-  // to the target (none with s = 1), its total normal impulse kept >= 0, then friction.
+  // Projected Gauss-Seidel (core/contact_impulse.hpp): each pair in turn takes the impulse that
+  // brings its predicted gap to the target (none with s = 1), its total normal impulse kept
+  // >= 0, then friction.
   constexpr int kSweeps = 8;
   for (int sweep = 0; sweep < kSweeps; ++sweep)
     for (MeshContact& c : contacts_) {
@@ -481,19 +483,12 @@ void FeSolver::resolve_contacts(double dt) {
           const double recede = std::min(-0.1 * now, 1e-4 * diagonal);
           h.target = std::min((1.0 - s) * std::min(gap, 0.0), now + recede);
         }
-        const double total = std::max(0.0, h.normal_impulse - share * (gap - h.target) / (dt * w));
-        const double dp = total - h.normal_impulse;
-        h.normal_impulse = total;
+        const double dp =
+            core::add_normal_impulse(h.normal_impulse, share * (h.target - gap), dt, w);
         Vec3 impulse = dp * n;
-        if (mu > 0.0) {
-          const Vec3 rel = nodes_.velocity[sl] + (dp * w) * n - v_face;
-          const Vec3 vt = rel - core::dot(rel, n) * n;
-          Vec3 t = h.tangential_impulse - (1.0 / w) * vt;
-          const double l = core::norm(t), limit = mu * h.normal_impulse;
-          if (l > limit) t = (limit / l) * t;
-          impulse += t - h.tangential_impulse;
-          h.tangential_impulse = t;
-        }
+        if (mu > 0.0)  // the slip with the normal change the slave takes
+          impulse += core::add_friction_impulse(h.tangential_impulse, h.normal_impulse, mu,
+                                                nodes_.velocity[sl] + (dp * w) * n - v_face, n, w);
         push(sl, ws, n, impulse);
         for (int a = 0; a < 4; ++a)
           push(static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)]),
@@ -534,9 +529,9 @@ void FeSolver::resolve_contacts(double dt) {
         for (int a = 0; a < 4; ++a)
           v_face += h.shape[static_cast<std::size_t>(a)] *
                     nodes_.velocity[static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)])];
-        const Vec3 rel = nodes_.velocity[static_cast<std::size_t>(h.slave)] - v_face;
         c.friction_work -=
-            core::dot(h.tangential_impulse, rel - core::dot(rel, h.normal) * h.normal);
+            core::slip_work(h.tangential_impulse,
+                            nodes_.velocity[static_cast<std::size_t>(h.slave)] - v_face, h.normal);
       }
     }
   }

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "core/contact_impulse.hpp"
 #include "core/parallel.hpp"
 #include "fem/fe_solver.hpp"
 
@@ -45,7 +46,7 @@ void FeSolver::apply_walls(double dt) {
         v += (dvn / reach) * free_normal;
         if (s.friction > 0.0) {
           const Vec3 rel = v - s.velocity;
-          Vec3 tangential = rel - core::dot(rel, s.normal) * s.normal;
+          Vec3 tangential = core::tangential_part(rel, s.normal);
           for (int a = 0; a < 3; ++a)
             if (imposed & (1u << a)) tangential[a] = 0.0;
           const double vt = core::norm(tangential);

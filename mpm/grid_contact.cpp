@@ -25,6 +25,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/contact_impulse.hpp"
 #include "core/parallel.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/stencil.hpp"
@@ -266,8 +267,7 @@ void MpmSolver::grid_contact(ContactPass pass) {
           const Vec3 stick = -(ma * mb / (ma + mb)) * rel;
           const double pn = core::dot(stick, n);  // < 0: pushes a back
           Vec3 t = stick - pn * n;
-          const double tn = core::norm(t), limit = law.friction * std::abs(pn);
-          if (tn > limit) t *= limit / tn;
+          core::coulomb_cap(t, law.friction * std::abs(pn));
           const Vec3 impulse = pn * n + t;
           v[a] += (1.0 / ma) * impulse;
           v[b] -= (1.0 / mb) * impulse;

@@ -10,9 +10,10 @@
 // *RIGIDWALL_PLANAR applied to the particle's boundary instead of a node). The particle's
 // velocity moves by J sum N^2 / m_I, so J = dv_n / (sum N^2 / m_I) closes its own gap; the
 // particles that share nodes are resolved by projected Gauss-Seidel sweeps on accumulated
-// impulses (J >= 0, so contact may release), in particle order (deterministic). Coulomb
-// friction limits the tangential impulse to mu J. A penetration present at the step's start
-// (an overlap in the scene) recedes by a tenth per step instead of being removed at once.
+// impulses (core/contact_impulse.hpp; J >= 0, so contact may release), in particle order
+// (deterministic). Coulomb friction limits the tangential impulse to mu J. A penetration
+// present at the step's start (an overlap in the scene) recedes by a tenth per step instead of
+// being removed at once.
 // Face conditions keep priority: a component a grid face holds stays held. Energy: a moving
 // wall's work J . v_wall is external work (a fixed wall does none, and the kinetic energy its
 // catch takes out shows in the balance, as for the FE walls: what the impulses do on the grid
@@ -21,6 +22,7 @@
 // booked as sliding and friction energy.
 #include <cmath>
 
+#include "core/contact_impulse.hpp"
 #include "mpm/face_constraints.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/stencil.hpp"
@@ -123,28 +125,21 @@ void MpmSolver::particle_wall_kernel(std::size_t w, double dt) {
   for (int sweep = 0; sweep < kSweeps; ++sweep) {
     for (std::size_t c = 0; c < nc; ++c) {
       if (!(wall_inverse_mass_[c] > 0.0)) continue;
-      Vec3 v = v_of(c);
+      const Vec3 v = v_of(c);
       // The predicted gap (the wall moves dt v_wall), and the one allowed at the step's end.
       const double gap = wall_gap_[c] + dt * core::dot(v - spec.velocity, n);
       const double allowed = kRecede * std::min(wall_gap_[c], 0.0);
       // The normal velocity change that puts the boundary at the allowed gap; accumulated
       // impulses stay >= 0 (a wall pushes, never pulls).
-      const double total =
-          std::max(0.0, wall_normal_impulse_[c] + (allowed - gap) / (dt * wall_inverse_mass_[c]));
-      const double dj = total - wall_normal_impulse_[c];
-      wall_normal_impulse_[c] = total;
+      const double dj = core::add_normal_impulse(wall_normal_impulse_[c], allowed - gap, dt,
+                                                 wall_inverse_mass_[c]);
       if (dj != 0.0) apply(c, dj * n);
       if (!(spec.friction > 0.0)) continue;
-      v = v_of(c);
-      const Vec3 rel = v - spec.velocity;
-      const Vec3 slip = rel - core::dot(rel, n) * n;
-      // Stick: the impulse that stops the slip, within the Coulomb cone mu J.
-      Vec3 jt = wall_tangent_impulse_[c] - (1.0 / wall_inverse_mass_[c]) * slip;
-      const double limit = spec.friction * wall_normal_impulse_[c];
-      const double size = core::norm(jt);
-      if (size > limit) jt = (limit / size) * jt;
-      const Vec3 djt = jt - wall_tangent_impulse_[c];
-      wall_tangent_impulse_[c] = jt;
+      // Stick: the impulse that stops the slip the nodes have after the normal one, within the
+      // Coulomb cone mu J.
+      const Vec3 djt = core::add_friction_impulse(wall_tangent_impulse_[c], wall_normal_impulse_[c],
+                                                  spec.friction, v_of(c) - spec.velocity, n,
+                                                  wall_inverse_mass_[c]);
       if (core::dot(djt, djt) > 0.0) apply(c, djt);
     }
   }
@@ -154,8 +149,7 @@ void MpmSolver::particle_wall_kernel(std::size_t w, double dt) {
   if (spec.friction > 0.0)
     for (std::size_t c = 0; c < nc; ++c) {
       if (!(wall_inverse_mass_[c] > 0.0)) continue;
-      const Vec3 rel = v_of(c) - spec.velocity;
-      dissipated -= core::dot(wall_tangent_impulse_[c], rel - core::dot(rel, n) * n);
+      dissipated -= core::slip_work(wall_tangent_impulse_[c], v_of(c) - spec.velocity, n);
     }
   wall_sliding_ += dissipated;
   wall_friction_ += dissipated;
