@@ -4,6 +4,7 @@
 // and the studies see a model only through it.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <span>
 #include <string>
@@ -25,6 +26,13 @@ struct EventLog {
   std::string file;    // e.g. "erosion.csv"
   std::string header;  // the CSV header line, without newline
   std::vector<std::string> rows;
+};
+
+// An energy a model's contacts book their work into, as a column of the history: its name and
+// the record of Energies it reads (the time loop writes it from the row's energies).
+struct EnergyColumn {
+  const char* name;
+  double Energies::*value;
 };
 
 // The points that carry a body's material (Model::body_points), and how far the material of
@@ -73,9 +81,11 @@ class Model {
   // The points that carry body `body`'s material now: its particles and the nodes of its live
   // elements (Taylor, crater and hole metrics: analysis/reference_checks.cpp, analysis/study.cpp).
   virtual BodyPoints body_points(int body) const = 0;
-  // Interface forces the history writes each row after the body columns (penalty contacts,
-  // walls, rigid bodies): the column names, fixed for the run, and their current values in
-  // that order.
+  // The energies the model's contacts declare (declare_energy_columns), which the history
+  // writes after the body columns, each once and fixed for the run; none by default.
+  virtual std::vector<EnergyColumn> energy_columns() const { return {}; }
+  // Interface forces the history writes each row after those (penalty contacts, walls, rigid
+  // bodies): the column names, fixed for the run, and their current values in that order.
   virtual std::vector<std::string> force_columns() const { return {}; }
   virtual void force_values(std::vector<double>& out) const { out.clear(); }
   // A checkpoint (core/checkpoint.hpp): saves the whole state that carries from one step to the
@@ -83,6 +93,21 @@ class Model {
   // have been taken (take_events) before saving.
   virtual void state(StateArchive& archive) = 0;
 };
+
+// The energies of a contact that books its impulses' work as the sliding energy: Energies::sliding
+// (LS-DYNA's sliding interface energy) and friction's part of it, Energies::friction.
+inline constexpr EnergyColumn kSlidingEnergies[] = {{"sliding", &Energies::sliding},
+                                                    {"friction", &Energies::friction}};
+
+// Appends the energy columns a contact declares to the model's, each once however many of its
+// contacts declare it.
+inline void declare_energy_columns(std::vector<EnergyColumn>& columns,
+                                   std::span<const EnergyColumn> declared) {
+  for (const EnergyColumn& d : declared)
+    if (std::none_of(columns.begin(), columns.end(),
+                     [&](const EnergyColumn& c) { return c.value == d.value; }))
+      columns.push_back(d);
+}
 
 // The five columns of an interface force (a contact or a wall): NAME.fx, .fy, .fz, .normal,
 // .tangential, appended to `columns`; and their values for the force f, split along the unit

@@ -89,12 +89,6 @@ bool has_grid_contact(const Scene& scene) {
   return false;
 }
 
-bool has_mesh_contact(const Scene& scene) {
-  for (const ContactSpec& c : scene.contacts)
-    if (c.method == ContactMethod::penalty) return true;
-  return false;
-}
-
 bool has_surface_contact(const Scene& scene) {
   for (const ContactSpec& c : scene.contacts)
     if (c.method == ContactMethod::surface) return true;

@@ -18,9 +18,8 @@ bool has_mesh(const Scene& scene);
 // grid contact, or converting its elements into particles (coupling/).
 bool has_grid_coupling(const Scene& scene);
 
-// Whether the scene has a grid contact / a penalty contact between meshes / a rigid body.
+// Whether the scene has a grid contact / a rigid body.
 bool has_grid_contact(const Scene& scene);
-bool has_mesh_contact(const Scene& scene);
 bool has_rigid_body(const Scene& scene);
 // Whether a [[walls]] entry names a body of particles (mpm/particle_wall_contact.cpp).
 bool has_particle_walls(const Scene& scene);

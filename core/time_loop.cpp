@@ -87,9 +87,11 @@ std::vector<std::string> history_bodies(const Scene& scene) {
   return names;
 }
 
-std::vector<std::string> history_extra(const Scene& scene, const Model& model) {
+// The columns after the body columns: the energies the model's contacts declare, then the
+// interface forces.
+std::vector<std::string> history_extra(const Model& model) {
   std::vector<std::string> extra;
-  if (has_mesh_contact(scene) || has_particle_walls(scene)) extra = {"sliding", "friction"};
+  for (const EnergyColumn& c : model.energy_columns()) extra.emplace_back(c.name);
   for (std::string& c : model.force_columns()) extra.push_back(std::move(c));
   return extra;
 }
@@ -169,7 +171,8 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
       start_(std::chrono::steady_clock::now()),
       // First: a probe naming a node or element the mesh lacks stops the run before any output.
       probes_(std::make_unique<ProbeRecorder>(model, scene.probes, options.output_directory,
-                                              !options.restart_from.empty())) {
+                                              !options.restart_from.empty())),
+      energy_columns_(model.energy_columns()) {
   if (!options_.restart_from.empty()) {
     restore(options_.restart_from);
     return;
@@ -181,7 +184,7 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
       frames_ = std::make_unique<FieldWriter>(paths.directory, paths.fields_stem);
     history_ = std::make_unique<HistoryWriter>(history_path(paths), history_bodies(scene_),
                                                scene_.mpm.grid.has_face(FaceCondition::outflow),
-                                               history_extra(scene_, model_));
+                                               history_extra(model_));
     events_ = std::make_unique<EventFiles>(paths.directory);
   }
   sum_.particles = model_.particle_count();
@@ -231,7 +234,7 @@ double TimeLoop::record(double dt) {
   sum_.max_energy_error = std::max(sum_.max_energy_error, std::abs(err));
   if (history_) {
     HistoryRow row = history_row(model_, e, dt, err);
-    if (has_mesh_contact(scene_) || has_particle_walls(scene_)) row.extra = {e.sliding, e.friction};
+    for (const EnergyColumn& c : energy_columns_) row.extra.push_back(e.*c.value);
     model_.force_values(forces_);
     row.extra.insert(row.extra.end(), forces_.begin(), forces_.end());
     history_->write(row);
@@ -513,11 +516,11 @@ void TimeLoop::visit(StateArchive& a) {
     const bool outflow = scene_.mpm.grid.has_face(FaceCondition::outflow);
     if (history_bytes > 0)
       history_ = std::make_unique<HistoryWriter>(
-          history_path(paths), history_bodies(scene_), outflow, history_extra(scene_, model_),
+          history_path(paths), history_bodies(scene_), outflow, history_extra(model_),
           HistoryWriter::Resume{history_bytes, history_rows});
     else
       history_ = std::make_unique<HistoryWriter>(history_path(paths), history_bodies(scene_),
-                                                 outflow, history_extra(scene_, model_));
+                                                 outflow, history_extra(model_));
     events_ = std::make_unique<EventFiles>(paths.directory);
   }
   EventFiles none("");

@@ -96,7 +96,8 @@ class TimeLoop {
   std::unique_ptr<EventFiles> events_;
   RunSummary sum_;
   double max_kinetic_ = 0.0;
-  std::vector<double> forces_;  // the model's force values of a history row
+  std::vector<EnergyColumn> energy_columns_;  // the model's, fixed for the run
+  std::vector<double> forces_;                // the model's force values of a history row
   Vec3 travelled_, last_velocity_;
   double last_time_ = 0.0;
   bool through_ = false;

@@ -267,6 +267,12 @@ core::Energies CoupledModel::energies() const {
   return out;
 }
 
+std::vector<core::EnergyColumn> CoupledModel::energy_columns() const {
+  std::vector<core::EnergyColumn> out = fe_.energy_columns();
+  core::declare_energy_columns(out, mpm_.energy_columns());
+  return out;
+}
+
 // The FE side's columns, then each surface contact's (its force on the particle body).
 std::vector<std::string> CoupledModel::force_columns() const {
   std::vector<std::string> out = fe_.force_columns();

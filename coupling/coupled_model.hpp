@@ -57,6 +57,10 @@ class CoupledModel final : public core::Model {
   double time() const override { return mpm().time(); }
   // FE and MPM energies added; per-body sums from whichever holds the body.
   core::Energies energies() const override;
+  // The FE side's energy columns and the MPM side's, each once. The surface contacts declare
+  // none: friction's work there joins the sliding energy, but the history of a scene with only
+  // them has never had its columns.
+  std::vector<core::EnergyColumn> energy_columns() const override;
   std::vector<std::string> force_columns() const override;
   void force_values(std::vector<double>& out) const override;
   std::size_t particle_count() const override { return mpm_.particle_count(); }

@@ -159,6 +159,12 @@ std::vector<core::EventLog> FeModel::take_events() {
   return {log};
 }
 
+std::vector<core::EnergyColumn> FeModel::energy_columns() const {
+  std::vector<core::EnergyColumn> out;
+  if (!solver_.mesh_contacts().empty()) core::declare_energy_columns(out, core::kSlidingEnergies);
+  return out;
+}
+
 std::vector<std::string> FeModel::force_columns() const {
   std::vector<std::string> out;
   auto add = [&](const std::string& name, std::initializer_list<const char*> parts) {

@@ -40,7 +40,8 @@ class FeModel final : public core::Model {
     probes_.resolve(probes, solver_, scene_);
   }
   void sample_probes(std::span<double> out) const override { probes_.sample(solver_, out); }
-  // The nodes of the body's live elements, each with half size 0 (on the surface).
+  // Penalty contacts book the work of their impulses as the sliding energy (mesh_contact.cpp).
+  std::vector<core::EnergyColumn> energy_columns() const override;
   // Per penalty contact NAME: NAME.fx, .fy, .fz (the force on its first body), NAME.normal and
   // NAME.tangential (the lengths of the resultant normal and tangential forces; a self-contact,
   // whose resultant on its body is zero: the sums of its pairs' force magnitudes); per [[walls]]
@@ -52,6 +53,7 @@ class FeModel final : public core::Model {
   // The same, each wall's force with what it gave other points added (one per wall, or empty):
   // a coupled scene's walls also act on particles.
   void force_values(std::vector<double>& out, std::span<const core::Vec3> wall_extra) const;
+  // The nodes of the body's live elements, each with half size 0 (on the surface).
   core::BodyPoints body_points(int body) const override {
     core::BodyPoints out{live_node_positions(solver_, body), {}};
     out.half_size.assign(out.position.size(), 0.0);

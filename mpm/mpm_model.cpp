@@ -88,6 +88,12 @@ const char* shape_name(const core::Shape& s) {
 
 }  // namespace
 
+std::vector<core::EnergyColumn> MpmModel::energy_columns() const {
+  std::vector<core::EnergyColumn> out;
+  if (core::has_particle_walls(scene_)) core::declare_energy_columns(out, core::kSlidingEnergies);
+  return out;
+}
+
 // Walls are the only force reporters of a scene of particles alone (penalty contacts and rigid
 // bodies need meshes): wallK, as FeModel::force_columns names them.
 std::vector<std::string> MpmModel::force_columns() const {

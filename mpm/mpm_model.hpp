@@ -22,6 +22,9 @@ class MpmModel final : public core::Model {
   long step_count() const override { return solver_.step_count(); }
   double time() const override { return solver_.time(); }
   core::Energies energies() const override { return solver_.energies(); }
+  // Walls that name particle bodies book friction's work as the sliding energy
+  // (particle_wall_contact.cpp).
+  std::vector<core::EnergyColumn> energy_columns() const override;
   std::vector<std::string> force_columns() const override;
   void force_values(std::vector<double>& out) const override;
   std::size_t particle_count() const override { return solver_.particles().size(); }
