@@ -3,7 +3,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "core/appendf.hpp"
 #include "core/state_archive.hpp"
@@ -22,36 +24,43 @@ void MpmModel::write_fields(core::FieldWriter& writer) {
                      block.fields);
 }
 
+// The fields the schema names for output (particles.hpp), then those derived from them.
 core::PointBlock MpmModel::particle_block() {
   const Particles& p = solver_.particles();
   const std::size_t n = p.size();
+  std::vector<core::FieldView>& fields = fields_;
+  fields.clear();
+  std::size_t integer = 0;
+  p.for_each_field([&](const ParticleField& field, const auto& a) {
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    if (!field.output || (field.optional && a.empty())) return;
+    if constexpr (std::is_same_v<T, double>) {
+      fields.push_back(core::scalar_field(field.output, a.data()));
+    } else if constexpr (std::is_same_v<T, Vec3>) {
+      fields.push_back(core::vector_field(field.output, a.data()));
+    } else if constexpr (std::is_same_v<T, SymTensor>) {
+      fields.push_back(core::tensor_field(field.output, a.data()));
+    } else if constexpr (std::is_integral_v<T>) {
+      if (integers_.size() <= integer) integers_.resize(integer + 1);
+      std::vector<double>& copy = integers_[integer++];
+      copy.assign(a.begin(), a.end());
+      fields.push_back(core::scalar_field(field.output, copy.data()));
+    } else {  // the field output has no full (unsymmetric) tensors: no Mat3 field names one
+      static_assert(std::is_same_v<T, core::Mat3>);
+      throw std::logic_error(std::string("particle field ") + field.name + " cannot be written");
+    }
+  });
   pressure_.resize(n);
   von_mises_.resize(n);
   density_.resize(n);
-  body_.resize(n);
-  id_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     pressure_[i] = core::pressure(p.stress[i]);
     von_mises_[i] = core::von_mises(p.stress[i]);
     density_[i] = p.mass[i] / p.volume[i];
-    body_[i] = p.body[i];
-    id_[i] = p.id[i];
   }
-  std::vector<core::FieldView>& fields = fields_;
-  fields = {
-      core::vector_field("velocity", p.velocity.data()),
-      core::tensor_field("stress", p.stress.data()),
-      core::scalar_field("pressure", pressure_.data()),
-      core::scalar_field("von_mises", von_mises_.data()),
-      core::scalar_field("plastic_strain", p.plastic_strain.data()),
-      core::scalar_field("damage", p.damage.data()),
-      core::scalar_field("temperature", p.temperature.data()),
-      core::scalar_field("density", density_.data()),
-      core::scalar_field("internal_energy", p.energy.data()),
-      core::scalar_field("body", body_.data()),
-      core::scalar_field("id", id_.data()),
-  };
-  if (!p.strain.empty()) fields.push_back(core::tensor_field("strain", p.strain.data()));
+  fields.push_back(core::scalar_field("pressure", pressure_.data()));
+  fields.push_back(core::scalar_field("von_mises", von_mises_.data()));
+  fields.push_back(core::scalar_field("density", density_.data()));
   // User strength models' history variables, one scalar field per variable.
   const std::size_t hc = p.history_count;
   history_.resize(hc);

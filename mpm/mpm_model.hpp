@@ -47,10 +47,11 @@ class MpmModel final : public core::Model {
 
  private:
   const core::Scene& scene_;
-  mutable MpmSolver solver_;                                        // describe() bins the particles
-  std::vector<double> pressure_, von_mises_, density_, body_, id_;  // derived, per frame
-  std::vector<std::vector<double>> history_;  // user models' history variables, per variable
-  std::vector<std::string> history_names_;    // core::history_field_names
+  mutable MpmSolver solver_;                            // describe() bins the particles
+  std::vector<double> pressure_, von_mises_, density_;  // derived, per frame
+  std::vector<std::vector<double>> integers_;  // integer fields (body, id) as doubles, per frame
+  std::vector<std::vector<double>> history_;   // user models' history variables, per variable
+  std::vector<std::string> history_names_;     // core::history_field_names
   std::vector<core::FieldView> fields_;
   ParticleProbes probes_;
 };

@@ -126,10 +126,12 @@ void MpmSolver::add_particles(const Particles& more) {
                 more.temperature[k], more.body[k], more.material[k]);
     const std::size_t i = n0 + k;
     p.id[i] = next_id++;
-    p.stress[i] = more.stress[k];
-    p.plastic_strain[i] = more.plastic_strain[k];
-    p.energy[i] = more.energy[k];
-    p.damage[i] = more.damage[k];
+    // What the source points hold (AddRule::carry); the fields they lack keep their rest value.
+    for_each_particle_field([&](const ParticleField& field, auto member) {
+      auto& to = p.*member;
+      const auto& from = more.*member;
+      if (field.add == AddRule::carry && !to.empty() && !from.empty()) to[i] = from[k];
+    });
     double* history = p.history.data() + i * p.history_count;
     if (more.history_count == p.history_count)
       std::copy_n(more.history.data() + k * p.history_count, p.history_count, history);

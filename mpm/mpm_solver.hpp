@@ -74,9 +74,9 @@ class MpmSolver {
   // nullptr: none. The plan runs that stage when the scene has a surface contact.
   void set_surface_contacts(SurfaceContacts* contacts) { surface_contacts_ = contacts; }
   // Appends particles made during the run (hexahedra converted into particles, coupling/):
-  // their ids continue after the largest so far, the arrays the scene asks for (strain, uGIMP
-  // half width, APIC affine velocity) are filled as at the start, and the material batches are
-  // rebuilt. `more` gives position, velocity, mass, volume, state, body and material.
+  // their ids continue after the largest so far, the arrays the scene asks for are filled as
+  // each field's AddRule says (particles.hpp: what `more` holds is carried, the solver sets the
+  // uGIMP half width and the lengths), and the material batches are rebuilt.
   void add_particles(const Particles& more);
   // The grid's stable step for points moving at `speed` (the scene's factor applied).
   double stable_time_step_for_speed(double speed) const {

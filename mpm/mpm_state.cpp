@@ -10,28 +10,7 @@ namespace afemp::mpm {
 
 void visit_particles(core::StateArchive& a, Particles& p) {
   const core::StateArchive::Group group(a, "particles");
-  a.item("position", p.position);
-  a.item("velocity", p.velocity);
-  a.item("mass", p.mass);
-  a.item("volume", p.volume);
-  a.item("stress", p.stress);
-  a.item("strain", p.strain);
-  a.item("plastic_strain", p.plastic_strain);
-  a.item("temperature", p.temperature);
-  a.item("energy", p.energy);
-  a.item("damage", p.damage);
-  a.item("bulk_q", p.bulk_q);
-  a.item("body", p.body);
-  a.item("material", p.material);
-  a.item("id", p.id);
-  a.item("half_width", p.half_width);
-  a.item("affine", p.affine);
-  a.item("length", p.length);
-  a.item("length0", p.length0);
-  a.item("plastic_heat", p.plastic_heat);
-  a.item("viscous_heat", p.viscous_heat);
-  a.item("light_time", p.light_time);
-  a.item("burn", p.burn);
+  p.for_each_field([&a](const ParticleField& field, auto& array) { a.item(field.name, array); });
   a.item("history", p.history);
   a.item("history_count", p.history_count);
 }

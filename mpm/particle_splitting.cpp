@@ -5,7 +5,8 @@
 // along every axis that meets the criterion in the same step: 2, 4 or 8 particles (the seven
 // 3-D patterns). Extensive quantities (mass, volume, length along the split axes) are shared
 // equally (eqs 15, 17: 0.5, 0.25, 0.125); intensive ones (velocity, stress, strain, plastic
-// strain, temperature, specific energy, damage, history) are copied, so mass and momentum are
+// strain, temperature, specific energy, damage, history: each field's SplitRule in
+// mpm/particles.hpp says which it is) are copied, so mass and momentum are
 // split exactly and the kinetic and internal energies with them. l0 stays the original
 // particle's: a half (length alpha l0 just after the split) splits again only when it has
 // doubled in turn, so spacing stays below 2 alpha l0 along every axis. The halves sit at the
@@ -17,6 +18,7 @@
 #include <bit>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "afemp/errors.hpp"
@@ -79,33 +81,25 @@ void MpmSolver::split_particles() {
       }
       const std::size_t c = k == 0 ? i : next++;
       if (c != i) {
-        p.velocity[c] = p.velocity[i];
-        p.stress[c] = p.stress[i];
-        p.plastic_strain[c] = p.plastic_strain[i];
-        p.temperature[c] = p.temperature[i];
-        p.energy[c] = p.energy[i];
-        p.damage[c] = p.damage[i];
-        p.bulk_q[c] = p.bulk_q[i];
-        p.body[c] = p.body[i];
-        p.material[c] = p.material[i];
+        p.for_each_field([&](const ParticleField& field, auto& a) {
+          using T = typename std::decay_t<decltype(a)>::value_type;
+          if (field.optional && a.empty()) return;
+          if (field.split == SplitRule::copy) a[c] = a[i];
+          if constexpr (std::is_same_v<T, double>)
+            if (field.split == SplitRule::share) a[c] = share * a[i];
+        });
         p.id[c] = next_id++;
-        if (!p.strain.empty()) p.strain[c] = p.strain[i];
-        if (!p.affine.empty()) p.affine[c] = p.affine[i];
-        if (!p.plastic_heat.empty()) p.plastic_heat[c] = p.plastic_heat[i];
-        if (!p.viscous_heat.empty()) p.viscous_heat[c] = p.viscous_heat[i];
-        if (!p.light_time.empty()) p.light_time[c] = p.light_time[i];
-        if (!p.burn.empty()) p.burn[c] = p.burn[i];
         std::copy_n(p.history.data() + i * hc, hc, p.history.data() + c * hc);
-        p.mass[c] = share * p.mass[i];
-        p.volume[c] = share * p.volume[i];
-        p.length0[c] = p.length0[i];
       }
       p.position[c] = centre + offset;
       p.length[c] = half;
     }
     // The parent last: its mass and volume were the pieces' source.
-    p.mass[i] *= share;
-    p.volume[i] *= share;
+    p.for_each_field([&](const ParticleField& field, auto& a) {
+      using T = typename std::decay_t<decltype(a)>::value_type;
+      if constexpr (std::is_same_v<T, double>)
+        if (field.split == SplitRule::share) a[i] = share * a[i];
+    });
     if (!p.half_width.empty()) {
       const double w = gimp_half_width(p.volume[i]);
       p.half_width[i] = w;

@@ -1,40 +1,18 @@
 #include "mpm/particles.hpp"
 
 #include <algorithm>
+#include <type_traits>
 #include <utility>
 
 namespace afemp::mpm {
 
 namespace {
-template <class F>
-void for_each_array(Particles& p, F&& f) {
-  f(p.position);
-  f(p.velocity);
-  f(p.mass);
-  f(p.volume);
-  f(p.stress);
-  f(p.plastic_strain);
-  f(p.temperature);
-  f(p.energy);
-  f(p.damage);
-  f(p.bulk_q);
-  f(p.body);
-  f(p.material);
-  f(p.id);
-  // Only when the scene asks for them:
-  if (!p.strain.empty()) f(p.strain);
-  if (!p.half_width.empty()) f(p.half_width);
-  if (!p.affine.empty()) f(p.affine);
-  if (!p.length.empty()) f(p.length);
-  if (!p.length0.empty()) f(p.length0);
-  if (!p.plastic_heat.empty()) f(p.plastic_heat);
-  if (!p.viscous_heat.empty()) f(p.viscous_heat);
-  if (!p.light_time.empty()) f(p.light_time);
-  if (!p.burn.empty()) f(p.burn);
-}
-template <class F>
-void for_each_array(const Particles& p, F&& f) {
-  for_each_array(const_cast<Particles&>(p), [&](auto& a) { f(std::as_const(a)); });
+// The arrays present: every one that is not optional, and the optional ones the scene asked for.
+template <class P, class F>
+void for_each_array(P& p, F&& f) {
+  p.for_each_field([&](const ParticleField& field, auto& a) {
+    if (!field.optional || !a.empty()) f(a);
+  });
 }
 }  // namespace
 
@@ -50,29 +28,24 @@ void Particles::reserve(std::size_t n) {
 
 void Particles::push_back(const Vec3& x, const Vec3& v, double m, double vol, double temp,
                           std::int32_t body_id, std::int32_t material_id) {
-  id.push_back(static_cast<std::int32_t>(position.size()));
-  position.push_back(x);
-  velocity.push_back(v);
-  mass.push_back(m);
-  volume.push_back(vol);
-  stress.push_back({});
-  if (!strain.empty()) strain.push_back({});
-  if (!half_width.empty()) half_width.push_back(0.0);  // the solver sets it from the volume
-  if (!affine.empty()) affine.push_back({});
-  if (!length.empty()) length.push_back({});  // the solver sets them from the volume
-  if (!length0.empty()) length0.push_back({});
-  if (!plastic_heat.empty()) plastic_heat.push_back(0.0);
-  if (!viscous_heat.empty()) viscous_heat.push_back(0.0);
-  if (!light_time.empty()) light_time.push_back(0.0);  // no explosive point is added later
-  if (!burn.empty()) burn.push_back(1.0);
-  plastic_strain.push_back(0.0);
-  temperature.push_back(temp);
-  energy.push_back(0.0);
-  damage.push_back(0.0);
-  bulk_q.push_back(0.0);
+  const std::size_t i = position.size();
+  for_each_field([](const ParticleField& field, auto& a) {
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    if (field.optional && a.empty()) return;
+    if constexpr (std::is_same_v<T, double>)
+      a.push_back(field.rest);
+    else
+      a.push_back(T{});
+  });
   history.resize(history.size() + history_count, 0.0);
-  body.push_back(body_id);
-  material.push_back(material_id);
+  position[i] = x;
+  velocity[i] = v;
+  mass[i] = m;
+  volume[i] = vol;
+  temperature[i] = temp;
+  body[i] = body_id;
+  material[i] = material_id;
+  id[i] = static_cast<std::int32_t>(i);
 }
 
 void Particles::permute(const std::vector<std::int32_t>& perm) {

@@ -23,6 +23,29 @@ inline double particle_half_width(double volume) {
   return 0.5 * std::cbrt(volume);
 }
 
+// The schema of the per-point state: for each array of Particles, its name and what it does
+// when points are split (particle_splitting.cpp) or added from elsewhere (elements converted
+// into particles, MpmSolver::add_particles), besides what every array does alike (reordering,
+// filtering, growing, the checkpoint under its name, mpm_state.cpp). A new per-point field is
+// one array and one line of Particles::for_each_field; the places above follow from it.
+enum class SplitRule : std::uint8_t {
+  copy,   // intensive: each piece takes the parent's value (velocity, stress, temperature, ...)
+  share,  // extensive (a scalar): each piece takes its share (mass, volume)
+  own,    // the splitter sets it (position, id, lengths, half width)
+};
+enum class AddRule : std::uint8_t {
+  carry,  // an added point takes its source's value, or the rest value where the source has none
+  own,    // the solver sets it from the others (id, half width, lengths)
+};
+struct ParticleField {
+  const char* name;    // the checkpoint's item
+  const char* output;  // its name in the field output (fields.h5), or nullptr if not written
+  bool optional;       // empty unless the scene asks for it
+  SplitRule split;
+  AddRule add;
+  double rest;  // a new point's value of a scalar field (vectors and tensors start at zero)
+};
+
 struct Particles {
   std::vector<Vec3> position;
   std::vector<Vec3> velocity;
@@ -62,6 +85,13 @@ struct Particles {
   std::size_t history_count = 0;
 
   std::size_t size() const { return position.size(); }
+  // Calls f(field, array) for each per-point array in the schema's order (particle_fields.hpp),
+  // the optional ones included (empty when the scene did not ask for them); the history store
+  // is not among them (its width is history_count).
+  template <class F>
+  void for_each_field(F&& f);
+  template <class F>
+  void for_each_field(F&& f) const;
   void resize(std::size_t n);
   void reserve(std::size_t n);
   // Appends one point at rest-state (zero stress, strain, plastic strain, energy, damage,
@@ -75,5 +105,49 @@ struct Particles {
   // Bytes held by the arrays (capacity), for memory estimates.
   std::size_t bytes() const;
 };
+
+// The schema: each per-point array of Particles (a pointer to the member) with its rules, in
+// the order the checkpoint stores them.
+template <class F>
+void for_each_particle_field(F&& f) {
+  using R = ParticleField;
+  using S = SplitRule;
+  using A = AddRule;
+  f(R{"position", nullptr, false, S::own, A::carry, 0.0}, &Particles::position);
+  f(R{"velocity", "velocity", false, S::copy, A::carry, 0.0}, &Particles::velocity);
+  f(R{"mass", nullptr, false, S::share, A::carry, 0.0}, &Particles::mass);
+  f(R{"volume", nullptr, false, S::share, A::carry, 0.0}, &Particles::volume);
+  f(R{"stress", "stress", false, S::copy, A::carry, 0.0}, &Particles::stress);
+  f(R{"strain", "strain", true, S::copy, A::carry, 0.0}, &Particles::strain);
+  f(R{"plastic_strain", "plastic_strain", false, S::copy, A::carry, 0.0},
+    &Particles::plastic_strain);
+  f(R{"temperature", "temperature", false, S::copy, A::carry, 0.0}, &Particles::temperature);
+  f(R{"energy", "internal_energy", false, S::copy, A::carry, 0.0}, &Particles::energy);
+  f(R{"damage", "damage", false, S::copy, A::carry, 0.0}, &Particles::damage);
+  f(R{"bulk_q", nullptr, false, S::copy, A::carry, 0.0}, &Particles::bulk_q);
+  f(R{"body", "body", false, S::copy, A::carry, 0.0}, &Particles::body);
+  f(R{"material", nullptr, false, S::copy, A::carry, 0.0}, &Particles::material);
+  f(R{"id", "id", false, S::own, A::own, 0.0}, &Particles::id);
+  f(R{"half_width", nullptr, true, S::own, A::own, 0.0}, &Particles::half_width);
+  f(R{"affine", nullptr, true, S::copy, A::carry, 0.0}, &Particles::affine);
+  f(R{"length", nullptr, true, S::own, A::own, 0.0}, &Particles::length);
+  f(R{"length0", nullptr, true, S::copy, A::own, 0.0}, &Particles::length0);
+  f(R{"plastic_heat", nullptr, true, S::copy, A::carry, 0.0}, &Particles::plastic_heat);
+  f(R{"viscous_heat", nullptr, true, S::copy, A::carry, 0.0}, &Particles::viscous_heat);
+  f(R{"light_time", nullptr, true, S::copy, A::carry, 0.0}, &Particles::light_time);
+  f(R{"burn", nullptr, true, S::copy, A::carry, 1.0}, &Particles::burn);
+}
+
+template <class F>
+void Particles::for_each_field(F&& f) {
+  for_each_particle_field(
+      [&](const ParticleField& field, auto member) { f(field, this->*member); });
+}
+
+template <class F>
+void Particles::for_each_field(F&& f) const {
+  for_each_particle_field(
+      [&](const ParticleField& field, auto member) { f(field, this->*member); });
+}
 
 }  // namespace afemp::mpm
