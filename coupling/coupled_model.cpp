@@ -125,6 +125,9 @@ void CoupledModel::convert_elements() {
   }
   mpm::Particles more;
   more.history_count = fe().hexahedra().history_count;
+  // Principal-strain failure: the particles carry on from their elements' accumulated strain.
+  const bool strain = !fe().hexahedra().strain.empty();
+  if (strain) more.keep(&mpm::Particles::strain, core::SymTensor{});
   for (const Conversion& c : made)
     for (const ConvertedPoint& q : c.points) {
       more.push_back(q.position, q.velocity, q.mass, q.volume, q.temperature, q.body, q.material);
@@ -133,6 +136,7 @@ void CoupledModel::convert_elements() {
       more.plastic_strain[j] = q.plastic_strain;
       more.energy[j] = q.energy;
       more.damage[j] = q.damage;
+      if (strain) more.strain[j] = q.strain;
       std::copy(q.history.begin(), q.history.end(),
                 more.history.begin() + static_cast<std::ptrdiff_t>(j * more.history_count));
     }

@@ -3,7 +3,7 @@
 // `conversion` criteria met inside the grid: fem/element_retirement.cpp) becomes n x n x n
 // particles (n = 1: the centroid; n = 2: the 2 x 2 x 2 Gauss points xi = +-1/sqrt(3)), each
 // with mass m_e / n^3, the integration-point state (stress, plastic strain, temperature,
-// specific internal energy, damage, history), volume m / rho and the velocity
+// specific internal energy, damage, accumulated strain, history), volume m / rho and the velocity
 // sum_a N_a(xi) v_a interpolated from the element's nodes.
 // Exactness: the lumped mass gives each node m_e / 8 of the element, and for both point sets
 // sum_p (m_e / n^3) N_a(xi_p) = m_e / 8 (the centroid has N_a = 1/8; the Gauss rule integrates
@@ -52,6 +52,7 @@ Conversion convert_element(const fem::FeSolver& fe, const core::Scene& scene,
       q.temperature = el.temperature[p];
       q.energy = el.energy[p];
       q.damage = el.damage[p];
+      if (!el.strain.empty()) q.strain = el.strain[p];
       q.history.assign(
           el.history.begin() + static_cast<std::ptrdiff_t>(p * el.history_count),
           el.history.begin() + static_cast<std::ptrdiff_t>((p + 1) * el.history_count));
@@ -70,6 +71,7 @@ Conversion convert_element(const fem::FeSolver& fe, const core::Scene& scene,
       q.temperature += w * el.temperature[p];
       q.energy += w * el.energy[p];
       q.damage += w * el.damage[p];
+      if (!el.strain.empty()) q.strain += w * el.strain[p];
       volume += w / el.density[p];
     }
     q.stress = (1.0 / m) * q.stress;
@@ -77,6 +79,7 @@ Conversion convert_element(const fem::FeSolver& fe, const core::Scene& scene,
     q.temperature /= m;
     q.energy /= m;
     q.damage /= m;
+    q.strain = (1.0 / m) * q.strain;
     for (double& value : q.history) value /= m;
     return m / volume;
   };

@@ -18,6 +18,9 @@ struct ConvertedPoint {
   core::SymTensor stress;
   double plastic_strain = 0.0, temperature = 0.0, energy = 0.0;  // energy: per unit mass
   double damage = 0.0;
+  // The accumulated strain, where the element integrates it (principal-strain failure reads
+  // it: the particle carries on from its element's, not from zero); zero otherwise.
+  core::SymTensor strain;
   std::vector<double> history;  // the strength model's history variables
   int body = 0, material = 0;
 };

@@ -33,7 +33,7 @@ core::PointBlock MpmModel::particle_block() {
   std::size_t integer = 0;
   p.for_each_field([&](const ParticleField& field, const auto& a) {
     using T = typename std::decay_t<decltype(a)>::value_type;
-    if (!field.output || (field.optional && a.empty())) return;
+    if (!field.output || !p.has(field)) return;
     if constexpr (std::is_same_v<T, double>) {
       fields.push_back(core::scalar_field(field.output, a.data()));
     } else if constexpr (std::is_same_v<T, Vec3>) {

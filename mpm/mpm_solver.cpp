@@ -45,26 +45,24 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
   grid_.set_fields(fields, core::has_grid_contact(scene));
   // The strain tensor is integrated only for scenes that write it: it is the largest array
   // the strain sweep streams, and nothing in the physics reads it.
-  if (plan_.strain && particles_.strain.size() != particles_.size())
-    particles_.strain.assign(particles_.size(), SymTensor{});
+  if (plan_.strain) particles_.keep(&Particles::strain, SymTensor{});
   // uGIMP: each particle's domain is the cube of its initial volume, at most one cell
   // (a domain wider than a cell would reach a fourth node per axis).
   if (plan_.shape == core::ShapeFunction::gimp) {
-    particles_.half_width.resize(particles_.size());
+    particles_.keep(&Particles::half_width, 0.0);
     for (std::size_t i = 0; i < particles_.size(); ++i)
       particles_.half_width[i] = gimp_half_width(particles_.volume[i]);
     velocity_gradient_.resize(particles_.size());  // the kinematics pass's output
   }
   // Splitting: each particle's lengths start as the edge of the cube of its volume.
   if (plan_.splitting) {
-    particles_.length.resize(particles_.size());
-    particles_.length0.resize(particles_.size());
+    particles_.keep(&Particles::length, Vec3{});
+    particles_.keep(&Particles::length0, Vec3{});
     for (std::size_t i = 0; i < particles_.size(); ++i) start_lengths(i);
   }
   // APIC: particles start with C_p = 0 (each body starts at a uniform velocity) unless the
   // caller gave them an affine velocity of their own.
-  if (plan_.transfer == core::Transfer::apic && particles_.affine.size() != particles_.size())
-    particles_.affine.assign(particles_.size(), core::Mat3{});
+  if (plan_.transfer == core::Transfer::apic) particles_.keep(&Particles::affine, core::Mat3{});
   // User strength models' history variables: the scene's count per point, initial values
   // by material (the generators leave them out).
   const std::size_t hc = core::history_count(scene);
@@ -94,8 +92,8 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
                              static_cast<int>(b)) != scene.mpm.splitting->bodies.end();
   setup_explosives();
   if (scene.mpm.grid.has_face(core::FaceCondition::outflow)) {
-    particles_.plastic_heat.assign(particles_.size(), 0.0);
-    particles_.viscous_heat.assign(particles_.size(), 0.0);
+    particles_.keep(&Particles::plastic_heat, 0.0);
+    particles_.keep(&Particles::viscous_heat, 0.0);
   }
   setup_absorbing_faces();
   if (const std::optional<core::FarField>& far = scene.mpm.grid.far_field)
@@ -130,7 +128,7 @@ void MpmSolver::add_particles(const Particles& more) {
     for_each_particle_field([&](const ParticleField& field, auto member) {
       auto& to = p.*member;
       const auto& from = more.*member;
-      if (field.add == AddRule::carry && !to.empty() && !from.empty()) to[i] = from[k];
+      if (field.add == AddRule::carry && p.has(field) && more.has(field)) to[i] = from[k];
     });
     double* history = p.history.data() + i * p.history_count;
     if (more.history_count == p.history_count)
@@ -162,8 +160,8 @@ void MpmSolver::setup_explosives() {
     explosive = explosive || m.is_explosive();
   }
   if (!explosive) return;
-  p.light_time.assign(p.size(), 0.0);
-  p.burn.assign(p.size(), 1.0);
+  p.keep(&Particles::light_time, 0.0);
+  p.keep(&Particles::burn, 1.0);
   std::vector<std::size_t> which;
   std::vector<Vec3> x;
   std::vector<double> D;

@@ -11,6 +11,7 @@ namespace afemp::mpm {
 void visit_particles(core::StateArchive& a, Particles& p) {
   const core::StateArchive::Group group(a, "particles");
   p.for_each_field([&a](const ParticleField& field, auto& array) { a.item(field.name, array); });
+  a.item("optional_fields", p.optional_fields);
   a.item("history", p.history);
   a.item("history_count", p.history_count);
 }

@@ -83,7 +83,7 @@ void MpmSolver::split_particles() {
       if (c != i) {
         p.for_each_field([&](const ParticleField& field, auto& a) {
           using T = typename std::decay_t<decltype(a)>::value_type;
-          if (field.optional && a.empty()) return;
+          if (!p.has(field)) return;
           if (field.split == SplitRule::copy) a[c] = a[i];
           if constexpr (std::is_same_v<T, double>)
             if (field.split == SplitRule::share) a[c] = share * a[i];

@@ -7,11 +7,12 @@
 namespace afemp::mpm {
 
 namespace {
-// The arrays present: every one that is not optional, and the optional ones the scene asked for.
+// The arrays the points keep: every one that is not optional, and the optional ones this run
+// keeps.
 template <class P, class F>
 void for_each_array(P& p, F&& f) {
   p.for_each_field([&](const ParticleField& field, auto& a) {
-    if (!field.optional || !a.empty()) f(a);
+    if (p.has(field)) f(a);
   });
 }
 }  // namespace
@@ -29,9 +30,9 @@ void Particles::reserve(std::size_t n) {
 void Particles::push_back(const Vec3& x, const Vec3& v, double m, double vol, double temp,
                           std::int32_t body_id, std::int32_t material_id) {
   const std::size_t i = position.size();
-  for_each_field([](const ParticleField& field, auto& a) {
+  for_each_field([this](const ParticleField& field, auto& a) {
     using T = typename std::decay_t<decltype(a)>::value_type;
-    if (field.optional && a.empty()) return;
+    if (!has(field)) return;
     if constexpr (std::is_same_v<T, double>)
       a.push_back(field.rest);
     else

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "afemp/tensor.hpp"
@@ -40,7 +41,7 @@ enum class AddRule : std::uint8_t {
 struct ParticleField {
   const char* name;    // the checkpoint's item
   const char* output;  // its name in the field output (fields.h5), or nullptr if not written
-  bool optional;       // empty unless the scene asks for it
+  int slot;            // an optional field's bit in Particles::optional_fields; -1: always kept
   SplitRule split;
   AddRule add;
   double rest;  // a new point's value of a scalar field (vectors and tensors start at zero)
@@ -61,7 +62,7 @@ struct Particles {
   std::vector<std::int32_t> body;
   std::vector<std::int32_t> material;
   std::vector<std::int32_t> id;  // stable id, unchanged by reordering
-  // Empty unless the scene asks for them:
+  // Optional (kept only when the run asks for them: optional_fields below):
   std::vector<double> half_width;  // uGIMP: half the particle's initial edge, in cells
   std::vector<core::Mat3> affine;  // APIC: the affine velocity C_p (a velocity gradient)
   // Splitting: the particle's current length along x, y, z, and the length the particle it
@@ -85,9 +86,21 @@ struct Particles {
   std::size_t history_count = 0;
 
   std::size_t size() const { return position.size(); }
-  // Calls f(field, array) for each per-point array in the schema's order (particle_fields.hpp),
-  // the optional ones included (empty when the scene did not ask for them); the history store
-  // is not among them (its width is history_count).
+  // The optional fields this run keeps (bit ParticleField::slot). Once kept, an optional array
+  // holds a value for every point, those made later included, even while there are none (a
+  // scene whose particles all come from converted elements starts with none).
+  std::uint32_t optional_fields = 0;
+  // Whether the points keep `field`.
+  bool has(const ParticleField& field) const {
+    return field.slot < 0 || ((optional_fields >> field.slot) & 1u) != 0;
+  }
+  // Keeps the optional array `member` from now on; fills it with `value` unless it already
+  // holds one per point (given by the caller).
+  template <class T>
+  void keep(std::vector<T> Particles::*member, const T& value);
+  // Calls f(field, array) for each per-point array in the schema's order
+  // (for_each_particle_field), those this run does not keep included (empty); the history
+  // store is not among them (its width is history_count).
   template <class F>
   void for_each_field(F&& f);
   template <class F>
@@ -113,29 +126,39 @@ void for_each_particle_field(F&& f) {
   using R = ParticleField;
   using S = SplitRule;
   using A = AddRule;
-  f(R{"position", nullptr, false, S::own, A::carry, 0.0}, &Particles::position);
-  f(R{"velocity", "velocity", false, S::copy, A::carry, 0.0}, &Particles::velocity);
-  f(R{"mass", nullptr, false, S::share, A::carry, 0.0}, &Particles::mass);
-  f(R{"volume", nullptr, false, S::share, A::carry, 0.0}, &Particles::volume);
-  f(R{"stress", "stress", false, S::copy, A::carry, 0.0}, &Particles::stress);
-  f(R{"strain", "strain", true, S::copy, A::carry, 0.0}, &Particles::strain);
-  f(R{"plastic_strain", "plastic_strain", false, S::copy, A::carry, 0.0},
-    &Particles::plastic_strain);
-  f(R{"temperature", "temperature", false, S::copy, A::carry, 0.0}, &Particles::temperature);
-  f(R{"energy", "internal_energy", false, S::copy, A::carry, 0.0}, &Particles::energy);
-  f(R{"damage", "damage", false, S::copy, A::carry, 0.0}, &Particles::damage);
-  f(R{"bulk_q", nullptr, false, S::copy, A::carry, 0.0}, &Particles::bulk_q);
-  f(R{"body", "body", false, S::copy, A::carry, 0.0}, &Particles::body);
-  f(R{"material", nullptr, false, S::copy, A::carry, 0.0}, &Particles::material);
-  f(R{"id", "id", false, S::own, A::own, 0.0}, &Particles::id);
-  f(R{"half_width", nullptr, true, S::own, A::own, 0.0}, &Particles::half_width);
-  f(R{"affine", nullptr, true, S::copy, A::carry, 0.0}, &Particles::affine);
-  f(R{"length", nullptr, true, S::own, A::own, 0.0}, &Particles::length);
-  f(R{"length0", nullptr, true, S::copy, A::own, 0.0}, &Particles::length0);
-  f(R{"plastic_heat", nullptr, true, S::copy, A::carry, 0.0}, &Particles::plastic_heat);
-  f(R{"viscous_heat", nullptr, true, S::copy, A::carry, 0.0}, &Particles::viscous_heat);
-  f(R{"light_time", nullptr, true, S::copy, A::carry, 0.0}, &Particles::light_time);
-  f(R{"burn", nullptr, true, S::copy, A::carry, 1.0}, &Particles::burn);
+  f(R{"position", nullptr, -1, S::own, A::carry, 0.0}, &Particles::position);
+  f(R{"velocity", "velocity", -1, S::copy, A::carry, 0.0}, &Particles::velocity);
+  f(R{"mass", nullptr, -1, S::share, A::carry, 0.0}, &Particles::mass);
+  f(R{"volume", nullptr, -1, S::share, A::carry, 0.0}, &Particles::volume);
+  f(R{"stress", "stress", -1, S::copy, A::carry, 0.0}, &Particles::stress);
+  f(R{"strain", "strain", 0, S::copy, A::carry, 0.0}, &Particles::strain);
+  f(R{"plastic_strain", "plastic_strain", -1, S::copy, A::carry, 0.0}, &Particles::plastic_strain);
+  f(R{"temperature", "temperature", -1, S::copy, A::carry, 0.0}, &Particles::temperature);
+  f(R{"energy", "internal_energy", -1, S::copy, A::carry, 0.0}, &Particles::energy);
+  f(R{"damage", "damage", -1, S::copy, A::carry, 0.0}, &Particles::damage);
+  f(R{"bulk_q", nullptr, -1, S::copy, A::carry, 0.0}, &Particles::bulk_q);
+  f(R{"body", "body", -1, S::copy, A::carry, 0.0}, &Particles::body);
+  f(R{"material", nullptr, -1, S::copy, A::carry, 0.0}, &Particles::material);
+  f(R{"id", "id", -1, S::own, A::own, 0.0}, &Particles::id);
+  f(R{"half_width", nullptr, 1, S::own, A::own, 0.0}, &Particles::half_width);
+  f(R{"affine", nullptr, 2, S::copy, A::carry, 0.0}, &Particles::affine);
+  f(R{"length", nullptr, 3, S::own, A::own, 0.0}, &Particles::length);
+  f(R{"length0", nullptr, 4, S::copy, A::own, 0.0}, &Particles::length0);
+  f(R{"plastic_heat", nullptr, 5, S::copy, A::carry, 0.0}, &Particles::plastic_heat);
+  f(R{"viscous_heat", nullptr, 6, S::copy, A::carry, 0.0}, &Particles::viscous_heat);
+  f(R{"light_time", nullptr, 7, S::copy, A::carry, 0.0}, &Particles::light_time);
+  f(R{"burn", nullptr, 8, S::copy, A::carry, 1.0}, &Particles::burn);
+}
+
+template <class T>
+void Particles::keep(std::vector<T> Particles::*member, const T& value) {
+  for_each_particle_field([&](const ParticleField& field, auto m) {
+    if constexpr (std::is_same_v<decltype(m), std::vector<T> Particles::*>) {
+      if (m != member || field.slot < 0) return;
+      optional_fields |= 1u << field.slot;
+      if ((this->*member).size() != size()) (this->*member).assign(size(), value);
+    }
+  });
 }
 
 template <class F>

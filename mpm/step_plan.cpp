@@ -39,9 +39,10 @@ StepPlan build_step_plan(const core::Scene& scene) {
   plan.transfer = scene.mpm.transfer;
   plan.flip = scene.mpm.flip;
   plan.strain = scene.run.output_strain;
-  // Principal-strain failure reads the strain tensor of its particles.
+  // Principal-strain failure reads the strain tensor of its particles, and of the particles
+  // hexahedra convert into (coupling/element_conversion.cpp).
   for (const core::BodySpec& b : scene.bodies)
-    if (b.discretisation == core::Discretisation::particles &&
+    if ((b.discretisation == core::Discretisation::particles || b.conversion) &&
         scene.materials[static_cast<std::size_t>(b.material)].needs_strain())
       plan.strain = true;
   plan.splitting = scene.mpm.splitting.has_value();

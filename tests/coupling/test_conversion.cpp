@@ -8,6 +8,7 @@
 // the criterion |V / V0 - 1| >= 5e-3 in the first step. Units mm, ms, g, N, MPa.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <ostream>
@@ -223,6 +224,51 @@ TEST(ConversionDomain, OnlyElementsInsideTheGridConvert) {
   EXPECT_EQ(p.size(), 16u);
   for (std::size_t i = 0; i < p.size(); ++i) EXPECT_LT(p.position[i].y, 2.0);
   EXPECT_EQ(model.fe().live_hexahedra(), 48u);
+}
+
+// A scene whose particles all come from converted elements, with every optional particle field
+// on: uGIMP (half widths), APIC (affine velocities) and principal-strain failure (the strain
+// tensor, which the material's elements integrate). The particles start with none, and each
+// converted one must still hold them all: the run once crashed reading arrays the start had
+// left empty. Reference: a converted particle carries on from its element's strain, here the
+// squeeze's closed form eps_xx = -50 /ms * dt (within 1 %: the mid-step geometry adds 25 dt
+// relative), with no strain across it (|eps_yy|, |eps_zz| < 1e-3 |eps_xx|); then 50 more steps
+// of the mixed body keep the mass (1e-12) and leave every particle's strain compressive. The
+// half widths are uGIMP's, half the edge of the cube of each particle's volume in cells.
+TEST(ConversionFields, ParticlesMadeFromElementsHoldEveryFieldTheRunKeeps) {
+  std::string text = cube_scene(1, "one-point", "[8, 8, 8]");
+  text.replace(text.find("[materials.aluminium]"), 21,
+               "[mpm]\nshape_function = \"gimp\"\ntransfer = \"apic\"\n\n[materials.aluminium]");
+  text.replace(text.find("nu = 0.3"), 8,
+               "nu = 0.3\nfailure = { model = \"principal-strain\", strain = 10.0 }");
+  const core::Scene scene = core::parse_scene(text, "cube.toml");
+  CoupledModel model(scene);
+  ASSERT_EQ(model.mpm().particles().size(), 0u);
+  for (std::size_t i = 0; i < model.fe().nodes().size(); ++i)
+    model.fe().mutable_nodes().velocity[i] =
+        Vec3{-50.0 * std::max(model.fe().nodes().position[i].x - 2.0, 0.0), 0.0, 0.0};
+  const double mass = sums(model).mass;
+  const double dt = model.stable_time_step();
+  model.step(dt);
+  const auto& p = model.mpm().particles();
+  ASSERT_EQ(p.size(), 32u);
+  ASSERT_EQ(p.strain.size(), p.size());
+  ASSERT_EQ(p.half_width.size(), p.size());
+  ASSERT_EQ(p.affine.size(), p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    EXPECT_NEAR(p.strain[i].xx, -50.0 * dt, 0.01 * 50.0 * dt) << "particle " << i;
+    EXPECT_LT(std::abs(p.strain[i].yy), 1e-3 * std::abs(p.strain[i].xx));
+    EXPECT_LT(std::abs(p.strain[i].zz), 1e-3 * std::abs(p.strain[i].xx));
+    // uGIMP's half width: half the edge of the cube of the volume, in cells of 1 mm, <= 1/2.
+    EXPECT_DOUBLE_EQ(p.half_width[i], std::min(0.5, 0.5 * std::cbrt(p.volume[i])));
+  }
+  std::printf("converted particle 0: strain xx %.6e against -50 dt = %.6e\n", p.strain[0].xx,
+              -50.0 * dt);
+  for (int s = 0; s < 50; ++s) model.step(model.stable_time_step());
+  EXPECT_LT(std::abs(sums(model).mass - mass), 1e-12 * mass);
+  const auto& later = model.mpm().particles();
+  ASSERT_EQ(later.strain.size(), later.size());
+  for (std::size_t i = 0; i < later.size(); ++i) EXPECT_LT(later.strain[i].xx, 0.0);
 }
 
 }  // namespace
