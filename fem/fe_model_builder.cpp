@@ -212,23 +212,158 @@ bool inside(const core::NodeSelector& s, const core::Vec3& x) {
 
 }  // namespace
 
+// Each body's mesh (empty for particles) and the range of its nodes in the solver's arrays.
+struct FeSolver::BodyMeshes {
+  std::vector<MeshData> meshes;
+  std::vector<std::size_t> node_begin, node_end;
+
+  // The nodes a selector holds, of one body (body >= 0) or of every body accepted by `take`,
+  // each passed to f: the nodes of a named set, or those inside a box or on a plane.
+  template <class Take, class F>
+  void for_selected(const core::Scene& scene, const std::vector<Vec3>& position,
+                    const core::NodeSelector& sel, int body, Take&& take, F&& f) const {
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+      if ((body >= 0 && body != static_cast<int>(b)) || !take(scene.bodies[b])) continue;
+      if (sel.kind == core::NodeSelector::Kind::set) {
+        for (const NamedSet& s : meshes[b].node_sets)
+          if (s.name == sel.set)
+            for (std::int32_t n : s.members) f(node_begin[b] + static_cast<std::size_t>(n));
+      } else {
+        for (std::size_t n = node_begin[b]; n < node_end[b]; ++n)
+          if (inside(sel, position[n])) f(n);
+      }
+    }
+  }
+};
+
+namespace {
+
+// One element's mass and volumes, its critical step to come and alive.
+void add_element(ElementStore& el, double mass, double volume) {
+  el.mass.push_back(mass);
+  el.volume0.push_back(volume);
+  el.volume.push_back(volume);
+  el.critical_dt.push_back(0.0);
+  el.alive.push_back(1);
+}
+
+// One integration point's initial state: the material's history, no stress, its mass, the
+// body's temperature and internal energy, the reference density.
+void add_point_state(ElementStore& el, const core::Material& m, double temperature,
+                     double point_mass, double energy) {
+  if (energy == 0.0) energy = m.initial_energy();  // detonation products: E0 / rho0
+  el.history.resize(el.history.size() + el.history_count);
+  core::initial_history(m, el.history.data() + el.history.size() - el.history_count,
+                        el.history_count);
+  el.stress.push_back({});
+  el.point_mass.push_back(point_mass);
+  el.plastic_strain.push_back(0.0);
+  el.temperature.push_back(temperature);
+  el.energy.push_back(energy);
+  el.density.push_back(m.density);
+  el.damage.push_back(0.0);
+}
+
+// The hexahedra of one body's mesh (its nodes from `offset`), checked for positive volumes and
+// Jacobians, with one point (one-point) or eight (full integration) each.
+void add_hexahedra(HexElements& hexes, const std::vector<Vec3>& position, const BodySpec& body,
+                   const core::Material& mat, double temperature, const MeshData& m,
+                   std::int32_t offset) {
+  const bool full = body.element == core::HexFormulation::full;
+  for (std::size_t e = 0; e < m.hexahedra.size(); ++e) {
+    std::array<std::int32_t, 8> nodes;
+    HexVectors x;
+    for (std::size_t a = 0; a < 8; ++a) {
+      nodes[a] = m.hexahedra[e][a] + offset;
+      x[a] = position[static_cast<std::size_t>(nodes[a])];
+    }
+    const double volume = one_point_hex(x).volume;
+    if (!(volume > 0.0))
+      throw InputError(body.where, "bodies." + body.name,
+                       "hexahedron " + std::to_string(e) + " has a non-positive volume (" +
+                           std::to_string(volume) + "): check its node order");
+    hexes.nodes.push_back(nodes);
+    hexes.bulk_q.push_back(0.0);
+    hexes.hourglass_force.push_back({});
+    hexes.hourglass_power.push_back(0.0);
+    add_element(hexes, mat.density * volume, volume);
+    if (full) {
+      const FullHex f = full_hex(x);
+      if (!(min_jacobian(f) > 0.0))
+        throw InputError(
+            body.where, "bodies." + body.name,
+            "hexahedron " + std::to_string(e) + " has a non-positive Jacobian at a Gauss point");
+      for (int g = 0; g < 8; ++g)
+        add_point_state(hexes, mat, temperature,
+                        mat.density * f.weight[static_cast<std::size_t>(g)], body.internal_energy);
+    } else {
+      add_point_state(hexes, mat, temperature, mat.density * volume, body.internal_energy);
+    }
+  }
+}
+
+// The trusses of one body's mesh (its nodes from `offset`), checked for positive lengths.
+void add_trusses(TrussElements& trusses, const std::vector<Vec3>& position, const BodySpec& body,
+                 const core::Material& mat, double temperature, const MeshData& m,
+                 std::int32_t offset) {
+  for (std::size_t e = 0; e < m.lines.size(); ++e) {
+    const std::array<std::int32_t, 2> nodes{m.lines[e][0] + offset, m.lines[e][1] + offset};
+    const double length = core::norm(position[static_cast<std::size_t>(nodes[1])] -
+                                     position[static_cast<std::size_t>(nodes[0])]);
+    if (!(length > 0.0))
+      throw InputError(body.where, "bodies." + body.name,
+                       "truss " + std::to_string(e) + " has zero length");
+    const double area = m.line_area[e];
+    trusses.nodes.push_back(nodes);
+    trusses.length0.push_back(length);
+    trusses.area0.push_back(area);
+    add_element(trusses, mat.density * area * length, area * length);
+    add_point_state(trusses, mat, temperature, mat.density * area * length, body.internal_energy);
+  }
+}
+
+}  // namespace
+
 FeSolver::FeSolver(const core::Scene& scene) : scene_(scene) {
   build(scene);
 }
 
+// The set-up in order: what a later piece reads (node masses, the batches, the constraints)
+// is there before it.
 void FeSolver::build(const core::Scene& scene) {
-  // 1. Meshes, body by body; hexahedra and trusses keep body order (contiguous batches).
-  std::vector<std::size_t> node_begin, node_end;
-  std::vector<MeshData> meshes(scene.bodies.size());
+  const BodyMeshes meshes = build_nodes(scene);
+  build_elements(scene, meshes);
+  setup_point_fields(scene);
+  setup_explosives(scene);
+  setup_constraints(scene, meshes);
+  // The face links the surface searches sweep (erosion and conversion redo them often).
+  link_faces(hexes_);
+  setup_absorbing_boundaries(scene, meshes);
+  setup_walls(scene);
+  build_incidence();
+  recompute_node_masses();
+  initial_critical_steps(scene);
+  // Rigid bodies and penalty contacts (after the node masses).
+  setup_rigid_bodies();
+  wall_force_.assign(scene.walls.size(), Vec3{});
+  setup_mesh_contacts(scene);
+  setup_step_arrays(scene);
+}
+
+// 1. Meshes, body by body; hexahedra and trusses keep body order (contiguous batches). The
+// nodes start at their body's velocity, free and massless.
+FeSolver::BodyMeshes FeSolver::build_nodes(const core::Scene& scene) {
+  BodyMeshes m;
+  m.meshes.resize(scene.bodies.size());
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
     const BodySpec& body = scene.bodies[b];
-    node_begin.push_back(mesh_.nodes.size());
+    m.node_begin.push_back(mesh_.nodes.size());
     if (body.discretisation != Discretisation::particles) {
-      meshes[b] = body_mesh(body);
-      validate(meshes[b], body.name);
-      append(mesh_, meshes[b]);
+      m.meshes[b] = body_mesh(body);
+      validate(m.meshes[b], body.name);
+      append(mesh_, m.meshes[b]);
     }
-    node_end.push_back(mesh_.nodes.size());
+    m.node_end.push_back(mesh_.nodes.size());
   }
   const std::size_t n_nodes = mesh_.nodes.size();
   nodes_.position = mesh_.nodes;
@@ -240,106 +375,46 @@ void FeSolver::build(const core::Scene& scene) {
   nodes_.imposed_velocity.assign(n_nodes, Vec3{});
   nodes_.grid_driven.assign(n_nodes, 0);
   for (std::size_t b = 0; b < scene.bodies.size(); ++b)
-    for (std::size_t n = node_begin[b]; n < node_end[b]; ++n) {
+    for (std::size_t n = m.node_begin[b]; n < m.node_end[b]; ++n) {
       nodes_.body[n] = static_cast<std::int32_t>(b);
       nodes_.velocity[n] = scene.bodies[b].velocity;
     }
+  return m;
+}
 
-  // 2. Elements and their initial state.
+// 2. Elements and their initial state, one batch per mesh body.
+void FeSolver::build_elements(const core::Scene& scene, const BodyMeshes& meshes) {
   hexes_.history_count = trusses_.history_count = core::history_count(scene);
-  auto add_element = [](ElementStore& el, double mass, double volume) {
-    el.mass.push_back(mass);
-    el.volume0.push_back(volume);
-    el.volume.push_back(volume);
-    el.critical_dt.push_back(0.0);
-    el.alive.push_back(1);
-  };
-  auto add_point_state = [](ElementStore& el, const core::Material& m, double temperature,
-                            double point_mass, double energy) {
-    if (energy == 0.0) energy = m.initial_energy();  // detonation products: E0 / rho0
-    el.history.resize(el.history.size() + el.history_count);
-    core::initial_history(m, el.history.data() + el.history.size() - el.history_count,
-                          el.history_count);
-    el.stress.push_back({});
-    el.point_mass.push_back(point_mass);
-    el.plastic_strain.push_back(0.0);
-    el.temperature.push_back(temperature);
-    el.energy.push_back(energy);
-    el.density.push_back(m.density);
-    el.damage.push_back(0.0);
-  };
-  std::size_t hex_cursor = 0, line_cursor = 0;
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
     const BodySpec& body = scene.bodies[b];
     if (body.discretisation == Discretisation::particles) continue;
     const core::Material& mat = scene.materials[static_cast<std::size_t>(body.material)];
     const double temperature = body.temperature.value_or(mat.thermal.initial_temperature);
-    const auto offset = static_cast<std::int32_t>(node_begin[b]);
-    const MeshData& m = meshes[b];
-    ElementStore& el = body.discretisation == Discretisation::hexahedra
-                           ? static_cast<ElementStore&>(hexes_)
-                           : static_cast<ElementStore&>(trusses_);
+    const auto offset = static_cast<std::int32_t>(meshes.node_begin[b]);
+    const bool hexahedra = body.discretisation == Discretisation::hexahedra;
+    ElementStore& el =
+        hexahedra ? static_cast<ElementStore&>(hexes_) : static_cast<ElementStore&>(trusses_);
     ElementBatch batch;
     batch.body = static_cast<int>(b);
     batch.material = body.material;
     batch.begin = el.size();
     batch.point_begin = el.stress.size();
-    if (body.discretisation == Discretisation::hexahedra) {
-      const bool full = body.element == core::HexFormulation::full;
-      batch.points_per_element = full ? 8 : 1;
-      for (std::size_t e = 0; e < m.hexahedra.size(); ++e, ++hex_cursor) {
-        std::array<std::int32_t, 8> nodes;
-        HexVectors x;
-        for (std::size_t a = 0; a < 8; ++a) {
-          nodes[a] = m.hexahedra[e][a] + offset;
-          x[a] = nodes_.position[static_cast<std::size_t>(nodes[a])];
-        }
-        const double volume = one_point_hex(x).volume;
-        if (!(volume > 0.0))
-          throw InputError(body.where, "bodies." + body.name,
-                           "hexahedron " + std::to_string(e) + " has a non-positive volume (" +
-                               std::to_string(volume) + "): check its node order");
-        hexes_.nodes.push_back(nodes);
-        hexes_.bulk_q.push_back(0.0);
-        hexes_.hourglass_force.push_back({});
-        hexes_.hourglass_power.push_back(0.0);
-        add_element(el, mat.density * volume, volume);
-        if (full) {
-          const FullHex f = full_hex(x);
-          if (!(min_jacobian(f) > 0.0))
-            throw InputError(body.where, "bodies." + body.name,
-                             "hexahedron " + std::to_string(e) +
-                                 " has a non-positive Jacobian at a Gauss point");
-          for (int g = 0; g < 8; ++g)
-            add_point_state(el, mat, temperature,
-                            mat.density * f.weight[static_cast<std::size_t>(g)],
-                            body.internal_energy);
-        } else {
-          add_point_state(el, mat, temperature, mat.density * volume, body.internal_energy);
-        }
-      }
+    if (hexahedra) {
+      batch.points_per_element = body.element == core::HexFormulation::full ? 8 : 1;
+      add_hexahedra(hexes_, nodes_.position, body, mat, temperature, meshes.meshes[b], offset);
     } else {
-      for (std::size_t e = 0; e < m.lines.size(); ++e, ++line_cursor) {
-        const std::array<std::int32_t, 2> nodes{m.lines[e][0] + offset, m.lines[e][1] + offset};
-        const double length = core::norm(nodes_.position[static_cast<std::size_t>(nodes[1])] -
-                                         nodes_.position[static_cast<std::size_t>(nodes[0])]);
-        if (!(length > 0.0))
-          throw InputError(body.where, "bodies." + body.name,
-                           "truss " + std::to_string(e) + " has zero length");
-        const double area = m.line_area[e];
-        trusses_.nodes.push_back(nodes);
-        trusses_.length0.push_back(length);
-        trusses_.area0.push_back(area);
-        add_element(el, mat.density * area * length, area * length);
-        add_point_state(el, mat, temperature, mat.density * area * length, body.internal_energy);
-      }
+      add_trusses(trusses_, nodes_.position, body, mat, temperature, meshes.meshes[b], offset);
     }
     batch.end = el.size();
     batch.rigid = body.rigid.has_value();
     el.batches.push_back(batch);
   }
+}
 
-  // What each point dissipated, where elements may erode (ElementStore::plastic_heat).
+// The point fields only some scenes need: what each point dissipated, where elements may erode
+// (ElementStore::plastic_heat), and the strain tensor principal-strain failure reads (only when
+// a body of hexahedra has such a material; particles keep their own).
+void FeSolver::setup_point_fields(const core::Scene& scene) {
   for (const BodySpec& body : scene.bodies) {
     if (!body.erosion) continue;
     ElementStore& el = body.discretisation == Discretisation::trusses
@@ -348,105 +423,89 @@ void FeSolver::build(const core::Scene& scene) {
     el.plastic_heat.assign(el.stress.size(), 0.0);
     el.viscous_heat.assign(el.stress.size(), 0.0);
   }
-
-  // High explosives (core/detonation_paths.hpp): each point of an explosive hexahedron lights
-  // at its element centre's distance (straight, or around inert bodies for a shadowed
-  // detonation) from the nearest detonation over D, burns over 1.5 times the element's initial
-  // edge cbrt(V0), and starts unburnt; other points hold 0 and 1, unread.
-  {
-    std::vector<std::size_t> which;
-    std::vector<Vec3> centres;
-    std::vector<double> D;
-    std::vector<std::int32_t> body;
-    double spacing = 0.0;  // the largest element edge: the voxels of a shadowed detonation
-    for (const ElementBatch& b : hexes_.batches) {
-      const core::Material& m = scene.materials[static_cast<std::size_t>(b.material)];
-      if (!m.is_explosive()) continue;
-      for (std::size_t e = b.begin; e < b.end; ++e) {
-        Vec3 centre;
-        for (std::int32_t n : hexes_.nodes[e])
-          centre += 0.125 * nodes_.position[static_cast<std::size_t>(n)];
-        which.push_back(e);
-        centres.push_back(centre);
-        D.push_back(m.burn->detonation_velocity);
-        body.push_back(b.body);
-        spacing = std::max(spacing, std::cbrt(hexes_.volume0[e]));
-      }
-    }
-    if (!which.empty()) {
-      const std::vector<double> t =
-          core::explosive_lighting_times(centres, D, body, spacing, scene);
-      hexes_.light_time.assign(hexes_.stress.size(), 0.0);
-      hexes_.burn.assign(hexes_.stress.size(), 1.0);
-      hexes_.burn_length.assign(hexes_.stress.size(), 0.0);
-      std::size_t k = 0;
-      for (const ElementBatch& b : hexes_.batches) {
-        if (!scene.materials[static_cast<std::size_t>(b.material)].is_explosive()) continue;
-        for (std::size_t e = b.begin; e < b.end; ++e, ++k) {
-          const std::size_t first =
-              b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
-          for (int g = 0; g < b.points_per_element; ++g) {
-            hexes_.light_time[first + static_cast<std::size_t>(g)] = t[k];
-            hexes_.burn[first + static_cast<std::size_t>(g)] = 0.0;
-            hexes_.burn_length[first + static_cast<std::size_t>(g)] = std::cbrt(hexes_.volume0[e]);
-          }
-        }
-      }
-    }
-  }
-
-  // Principal-strain failure reads the strain tensor of the hexahedra's points (only when a
-  // body of hexahedra has such a material; particles keep their own).
   for (const BodySpec& body : scene.bodies)
     if (body.discretisation == Discretisation::hexahedra &&
         scene.materials[static_cast<std::size_t>(body.material)].needs_strain())
       hexes_.strain.assign(hexes_.stress.size(), core::SymTensor{});
+}
 
-  // The nodes a selector holds, of one body (body >= 0) or of every body accepted by `take`,
-  // each passed to f: the nodes of a named set, or those inside a box or on a plane.
-  auto for_selected = [&](const core::NodeSelector& sel, int body, auto&& take, auto&& f) {
-    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
-      if ((body >= 0 && body != static_cast<int>(b)) || !take(scene.bodies[b])) continue;
-      if (sel.kind == core::NodeSelector::Kind::set) {
-        for (const NamedSet& s : meshes[b].node_sets)
-          if (s.name == sel.set)
-            for (std::int32_t n : s.members) f(node_begin[b] + static_cast<std::size_t>(n));
-      } else {
-        for (std::size_t n = node_begin[b]; n < node_end[b]; ++n)
-          if (inside(sel, nodes_.position[n])) f(n);
+// High explosives (core/detonation_paths.hpp): each point of an explosive hexahedron lights at
+// its element centre's distance (straight, or around inert bodies for a shadowed detonation)
+// from the nearest detonation over D, burns over 1.5 times the element's initial edge
+// cbrt(V0), and starts unburnt; other points hold 0 and 1, unread.
+void FeSolver::setup_explosives(const core::Scene& scene) {
+  std::vector<std::size_t> which;
+  std::vector<Vec3> centres;
+  std::vector<double> D;
+  std::vector<std::int32_t> body;
+  double spacing = 0.0;  // the largest element edge: the voxels of a shadowed detonation
+  for (const ElementBatch& b : hexes_.batches) {
+    const core::Material& m = scene.materials[static_cast<std::size_t>(b.material)];
+    if (!m.is_explosive()) continue;
+    for (std::size_t e = b.begin; e < b.end; ++e) {
+      Vec3 centre;
+      for (std::int32_t n : hexes_.nodes[e])
+        centre += 0.125 * nodes_.position[static_cast<std::size_t>(n)];
+      which.push_back(e);
+      centres.push_back(centre);
+      D.push_back(m.burn->detonation_velocity);
+      body.push_back(b.body);
+      spacing = std::max(spacing, std::cbrt(hexes_.volume0[e]));
+    }
+  }
+  if (which.empty()) return;
+  const std::vector<double> t = core::explosive_lighting_times(centres, D, body, spacing, scene);
+  hexes_.light_time.assign(hexes_.stress.size(), 0.0);
+  hexes_.burn.assign(hexes_.stress.size(), 1.0);
+  hexes_.burn_length.assign(hexes_.stress.size(), 0.0);
+  std::size_t k = 0;
+  for (const ElementBatch& b : hexes_.batches) {
+    if (!scene.materials[static_cast<std::size_t>(b.material)].is_explosive()) continue;
+    for (std::size_t e = b.begin; e < b.end; ++e, ++k) {
+      const std::size_t first =
+          b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
+      for (int g = 0; g < b.points_per_element; ++g) {
+        hexes_.light_time[first + static_cast<std::size_t>(g)] = t[k];
+        hexes_.burn[first + static_cast<std::size_t>(g)] = 0.0;
+        hexes_.burn_length[first + static_cast<std::size_t>(g)] = std::cbrt(hexes_.volume0[e]);
       }
     }
-  };
-  auto any_body = [](const BodySpec&) { return true; };
+  }
+}
 
+// 3. Constraints: from the scene's selectors and from imported files; then the velocity curves
+// and the imposed components' initial values.
+void FeSolver::setup_constraints(const core::Scene& scene, const BodyMeshes& meshes) {
+  const std::size_t n_nodes = nodes_.size();
   // A rigid body is held by its own components, never node by node.
   auto refuse_rigid = [&](const core::SourceLocation& where, std::size_t n) {
     const auto b = static_cast<std::size_t>(nodes_.body[n]);
     if (!scene.bodies[b].rigid) return;
     throw InputError(where, "constraints",
-                     "a constraint holds node " + std::to_string(n - node_begin[b]) +
+                     "a constraint holds node " + std::to_string(n - meshes.node_begin[b]) +
                          " of rigid body \"" + scene.bodies[b].name +
                          "\"; restrict the constraint to deformable bodies (body = ...) and hold "
                          "the rigid body with rigid = { fixed = [...] }");
   };
-  // 3. Constraints: from the scene's selectors and from imported files. owner: the constraint
-  // that imposes each node component last (for the velocity curves).
+  // owner: the constraint that imposes each node component last (for the velocity curves).
   std::vector<std::int32_t> owner;
   for (std::size_t ci = 0; ci < scene.constraints.size(); ++ci) {
     const core::ConstraintSpec& c = scene.constraints[ci];
     std::size_t selected = 0;
-    for_selected(c.nodes, c.body, any_body, [&](std::size_t n) {
-      refuse_rigid(c.where, n);
-      for (int a = 0; a < 3; ++a)
-        if (c.components[static_cast<std::size_t>(a)]) {
-          nodes_.imposed[n] |= static_cast<std::uint8_t>(1u << a);
-          nodes_.imposed_velocity[n][a] = c.velocity[a];
-          if (!c.curve.empty() && owner.empty()) owner.assign(3 * n_nodes, -1);
-          if (!owner.empty())
-            owner[3 * n + static_cast<std::size_t>(a)] = static_cast<std::int32_t>(ci);
-        }
-      ++selected;
-    });
+    meshes.for_selected(
+        scene, nodes_.position, c.nodes, c.body, [](const BodySpec&) { return true; },
+        [&](std::size_t n) {
+          refuse_rigid(c.where, n);
+          for (int a = 0; a < 3; ++a)
+            if (c.components[static_cast<std::size_t>(a)]) {
+              nodes_.imposed[n] |= static_cast<std::uint8_t>(1u << a);
+              nodes_.imposed_velocity[n][a] = c.velocity[a];
+              if (!c.curve.empty() && owner.empty()) owner.assign(3 * n_nodes, -1);
+              if (!owner.empty())
+                owner[3 * n + static_cast<std::size_t>(a)] = static_cast<std::int32_t>(ci);
+            }
+          ++selected;
+        });
     if (selected == 0)
       throw InputError(c.where, "constraints",
                        c.nodes.kind == core::NodeSelector::Kind::set
@@ -454,52 +513,60 @@ void FeSolver::build(const core::Scene& scene) {
                            : std::string("the selector holds no mesh node"));
   }
   for (std::size_t b = 0; b < scene.bodies.size(); ++b)
-    for (const ImportedConstraint& c : meshes[b].constraints)
-      for (std::int32_t n : meshes[b].node_sets[static_cast<std::size_t>(c.node_set)].members)
+    for (const ImportedConstraint& c : meshes.meshes[b].constraints)
+      for (std::int32_t n :
+           meshes.meshes[b].node_sets[static_cast<std::size_t>(c.node_set)].members)
         for (int a = 0; a < 3; ++a)
           if (c.fixed[static_cast<std::size_t>(a)]) {
-            const std::size_t k = node_begin[b] + static_cast<std::size_t>(n);
+            const std::size_t k = meshes.node_begin[b] + static_cast<std::size_t>(n);
             refuse_rigid(scene.bodies[b].where, k);
             nodes_.imposed[k] |= static_cast<std::uint8_t>(1u << a);
             nodes_.imposed_velocity[k][a] = 0.0;
           }
-  if (!owner.empty()) {
-    for (std::size_t ci = 0; ci < scene.constraints.size(); ++ci) {
-      const core::ConstraintSpec& c = scene.constraints[ci];
-      if (c.curve.empty()) continue;
-      VelocityCurve vc{c.curve, c.velocity, {}};
-      for (std::size_t k = 0; k < owner.size(); ++k)
-        if (owner[k] == static_cast<std::int32_t>(ci))
-          vc.components.emplace_back(static_cast<std::uint32_t>(k / 3),
-                                     static_cast<std::uint8_t>(k % 3));
-      if (!vc.components.empty()) velocity_curves_.push_back(std::move(vc));
-    }
-    apply_velocity_curves(0.0);
-  }
+  if (!owner.empty()) setup_velocity_curves(scene, owner);
   // Imposed components start at their imposed value.
   for (std::size_t n = 0; n < n_nodes; ++n)
     for (int a = 0; a < 3; ++a)
       if (nodes_.imposed[n] & (1u << a)) nodes_.velocity[n][a] = nodes_.imposed_velocity[n][a];
+}
 
-  // The face links the surface searches sweep (erosion and conversion redo them often).
-  link_faces(hexes_);
-  // Absorbing boundaries: the nodes each selects (absorbing_boundary.cpp takes the faces).
+// The node components each constraint with a curve owns (owner: the constraint that imposes
+// each component last), at their velocities of t = 0.
+void FeSolver::setup_velocity_curves(const core::Scene& scene,
+                                     const std::vector<std::int32_t>& owner) {
+  for (std::size_t ci = 0; ci < scene.constraints.size(); ++ci) {
+    const core::ConstraintSpec& c = scene.constraints[ci];
+    if (c.curve.empty()) continue;
+    VelocityCurve vc{c.curve, c.velocity, {}};
+    for (std::size_t k = 0; k < owner.size(); ++k)
+      if (owner[k] == static_cast<std::int32_t>(ci))
+        vc.components.emplace_back(static_cast<std::uint32_t>(k / 3),
+                                   static_cast<std::uint8_t>(k % 3));
+    if (!vc.components.empty()) velocity_curves_.push_back(std::move(vc));
+  }
+  apply_velocity_curves(0.0);
+}
+
+// Absorbing boundaries: the nodes each selects (absorbing_boundary.cpp takes the faces).
+void FeSolver::setup_absorbing_boundaries(const core::Scene& scene, const BodyMeshes& meshes) {
   const SurfaceFaces surface =
       scene.absorbing.empty() ? SurfaceFaces{}
                               : boundary_faces(hexes_, std::vector<char>(scene.bodies.size(), 1));
   for (const core::AbsorbingSpec& a : scene.absorbing) {
-    std::vector<char> selected(n_nodes, 0);
-    for_selected(
-        a.nodes, a.body,
+    std::vector<char> selected(nodes_.size(), 0);
+    meshes.for_selected(
+        scene, nodes_.position, a.nodes, a.body,
         [](const BodySpec& b) { return b.discretisation == Discretisation::hexahedra && !b.rigid; },
         [&](std::size_t n) { selected[n] = 1; });
     setup_absorbing(a, selected, surface);
   }
+}
 
-  // 4. Walls: every node of the bodies they name.
+// 4. Walls: every node of the bodies they name.
+void FeSolver::setup_walls(const core::Scene& scene) {
   for (const core::WallSpec& w : scene.walls) {
     WallState state{w, {}};
-    for (std::size_t n = 0; n < n_nodes; ++n) {
+    for (std::size_t n = 0; n < nodes_.size(); ++n) {
       const int b = nodes_.body[n];
       if (b >= 0 && scene.bodies[static_cast<std::size_t>(b)].rigid) continue;  // deformable only
       if (w.bodies.empty() || std::find(w.bodies.begin(), w.bodies.end(), b) != w.bodies.end())
@@ -507,8 +574,11 @@ void FeSolver::build(const core::Scene& scene) {
     }
     walls_.push_back(std::move(state));
   }
+}
 
-  // 5. Force slots and the node -> slot incidence (CSR).
+// 5. Force slots and the node -> slot incidence (CSR).
+void FeSolver::build_incidence() {
+  const std::size_t n_nodes = nodes_.size();
   element_force_.assign(8 * hexes_.size() + 2 * trusses_.size(), Vec3{});
   std::vector<std::int64_t> count(n_nodes + 1, 0);
   for (std::size_t e = 0; e < hexes_.size(); ++e)
@@ -532,10 +602,11 @@ void FeSolver::build(const core::Scene& scene) {
       incidence_[static_cast<std::size_t>(
           fill[static_cast<std::size_t>(trusses_.nodes[t][static_cast<std::size_t>(a)])]++)] =
           truss_base + static_cast<std::int64_t>(2 * t) + a;
+}
 
-  recompute_node_masses();
-
-  // 6. Critical steps of the initial state.
+// 6. Critical steps of the initial state: characteristic length over the wave speed
+// (hexahedra), length over the bar speed (trusses); rigid bodies' elements set none.
+void FeSolver::initial_critical_steps(const core::Scene& scene) {
   for (const ElementBatch& b : hexes_.batches) {
     const core::Material& mat = scene.materials[static_cast<std::size_t>(b.material)];
     for (std::size_t e = b.begin; e < b.end; ++e) {
@@ -558,25 +629,29 @@ void FeSolver::build(const core::Scene& scene) {
     for (std::size_t e = b.begin; e < b.end; ++e)
       trusses_.critical_dt[e] = truss_time_step(trusses_.length0[e], modulus, mat.density);
   }
+}
 
-  // 7. Rigid bodies and penalty contacts (after the node masses).
-  setup_rigid_bodies();
-  wall_force_.assign(scene.walls.size(), Vec3{});
+// 7. Penalty contacts between meshes, and the per-node arrays their step uses for the nodes of
+// their bodies.
+void FeSolver::setup_mesh_contacts(const core::Scene& scene) {
   for (const core::ContactSpec& c : scene.contacts)
     if (c.method == core::ContactMethod::penalty)
       contacts_.push_back(make_mesh_contact(c, scene, hexes_, trusses_, nodes_));
-  if (!contacts_.empty()) {
-    predicted_.assign(n_nodes, Vec3{});
-    velocity_start_.assign(n_nodes, Vec3{});
-    contact_impulse_.assign(n_nodes, Vec3{});
-    std::vector<char> in(scene.bodies.size(), 0);
-    for (const MeshContact& c : contacts_)
-      for (int b : c.spec.bodies) in[static_cast<std::size_t>(b)] = 1;
-    for (std::size_t n = 0; n < n_nodes; ++n)
-      if (nodes_.body[n] >= 0 && in[static_cast<std::size_t>(nodes_.body[n])])
-        contact_nodes_.push_back(static_cast<std::int32_t>(n));
-  }
+  if (contacts_.empty()) return;
+  const std::size_t n_nodes = nodes_.size();
+  predicted_.assign(n_nodes, Vec3{});
+  velocity_start_.assign(n_nodes, Vec3{});
+  contact_impulse_.assign(n_nodes, Vec3{});
+  std::vector<char> in(scene.bodies.size(), 0);
+  for (const MeshContact& c : contacts_)
+    for (int b : c.spec.bodies) in[static_cast<std::size_t>(b)] = 1;
+  for (std::size_t n = 0; n < n_nodes; ++n)
+    if (nodes_.body[n] >= 0 && in[static_cast<std::size_t>(nodes_.body[n])])
+      contact_nodes_.push_back(static_cast<std::int32_t>(n));
+}
 
+// The step's plan, and the per-thread and per-body arrays the step fills.
+void FeSolver::setup_step_arrays(const core::Scene& scene) {
   std::size_t curved = 0;
   for (const VelocityCurve& vc : velocity_curves_) curved += vc.components.size();
   plan_ = build_fe_step_plan(

@@ -252,6 +252,20 @@ class FeSolver {
 
  private:
   void build(const core::Scene& scene);
+  // The pieces of build, in its order (fe_model_builder.cpp).
+  struct BodyMeshes;
+  BodyMeshes build_nodes(const core::Scene& scene);
+  void build_elements(const core::Scene& scene, const BodyMeshes& meshes);
+  void setup_point_fields(const core::Scene& scene);
+  void setup_explosives(const core::Scene& scene);
+  void setup_constraints(const core::Scene& scene, const BodyMeshes& meshes);
+  void setup_velocity_curves(const core::Scene& scene, const std::vector<std::int32_t>& owner);
+  void setup_absorbing_boundaries(const core::Scene& scene, const BodyMeshes& meshes);
+  void setup_walls(const core::Scene& scene);
+  void build_incidence();
+  void initial_critical_steps(const core::Scene& scene);
+  void setup_mesh_contacts(const core::Scene& scene);
+  void setup_step_arrays(const core::Scene& scene);
   void update_nodes(double dt);
   void apply_walls(double dt);
   // Contact corrections of v^{n+1/2} at the predicted positions (mesh_contact.cpp).
