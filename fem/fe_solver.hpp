@@ -266,6 +266,12 @@ class FeSolver {
   void initial_critical_steps(const core::Scene& scene);
   void setup_mesh_contacts(const core::Scene& scene);
   void setup_step_arrays(const core::Scene& scene);
+  // The pieces of resolve_contacts, in its order (mesh_contact.cpp).
+  void search_mesh_contacts(double dt);
+  void sweep_mesh_contacts(double dt);
+  void settle_rigid_mesh_contacts(double dt);
+  void report_mesh_contact_forces(double dt_force);
+  void book_sliding_energy(double dt, double dt_force);
   void update_nodes(double dt);
   void apply_walls(double dt);
   // Contact corrections of v^{n+1/2} at the predicted positions (mesh_contact.cpp).

@@ -397,8 +397,45 @@ void find_contacts(MeshContact& c, const FeNodes& nodes, const HexElements& hexe
 
 namespace afemp::fem {
 
+namespace {
+
+// The gap a pair's sweeps aim at, set at the first sweep from its predicted gap and the
+// penalty s: (1 - s) of the predicted penetration is left to the next steps. A penetration
+// already there at x^n (a surface exposed by erosion or conversion over a node that was inside
+// the lost elements, what the sweeps or the penalty s < 1 left) recedes by a tenth a step, but
+// by no more than 1e-4 of the face's diagonal: pushing a deep one out within a fixed number of
+// steps would give the pair a speed of depth / dt, which grows as distorted elements shrink the
+// step (a blunt projectile plugging a 12 mm steel plate gained 1e9 N mm that way and inverted
+// an element). A deep one is thus kept and shrinks as the node moves out, as LS-DYNA's
+// IGNORE = 1 tracks initial penetrations. Inlined, as the sweep it was written in.
+AFEMP_INLINE inline double initial_target(const ContactHit& h, const std::vector<Vec3>& position,
+                                          std::size_t slave, const Vec3& n, double gap, double s) {
+  Vec3 x_now;
+  for (int a = 0; a < 4; ++a)
+    x_now += h.shape[static_cast<std::size_t>(a)] *
+             position[static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)])];
+  const double now = std::min(core::dot(n, position[slave] - x_now), 0.0);
+  const double diagonal = core::norm(position[static_cast<std::size_t>(h.face[0])] -
+                                     position[static_cast<std::size_t>(h.face[2])]);
+  const double recede = std::min(-0.1 * now, 1e-4 * diagonal);
+  return std::min((1.0 - s) * std::min(gap, 0.0), now + recede);
+}
+
+}  // namespace
+
+// The contact step between meshes: search at the predicted positions, the sweeps, the rigid
+// bodies' share, the forces and the energy.
 void FeSolver::resolve_contacts(double dt) {
-  // Predicted end-of-step positions of the contact bodies' nodes.
+  search_mesh_contacts(dt);
+  sweep_mesh_contacts(dt);
+  settle_rigid_mesh_contacts(dt);
+  const double dt_force = force_step(dt);
+  report_mesh_contact_forces(dt_force);
+  book_sliding_energy(dt, dt_force);
+}
+
+// Predicted end-of-step positions of the contact bodies' nodes, and the pairs there.
+void FeSolver::search_mesh_contacts(double dt) {
   for (std::int32_t k : contact_nodes_) {
     const auto i = static_cast<std::size_t>(k);
     predicted_[i] = nodes_.position[i] + dt * nodes_.velocity[i];
@@ -408,6 +445,12 @@ void FeSolver::resolve_contacts(double dt) {
   for (MeshContact& c : contacts_) find_contacts(c, nodes_, hexes_, predicted_);
   contact_search_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - search).count();
+}
+
+// Projected Gauss-Seidel (core/contact_impulse.hpp): each pair in turn takes the impulse that
+// brings its predicted gap to the target (none with s = 1), its total normal impulse kept
+// >= 0, then friction.
+void FeSolver::sweep_mesh_contacts(double dt) {
   // Inverse mass of node i along unit direction n: its free components' share of 1/m (imposed
   // components take no impulse), or the rigid body's at that point.
   auto inverse_mass = [&](std::size_t i, const Vec3& n) {
@@ -436,9 +479,6 @@ void FeSolver::resolve_contacts(double dt) {
     nodes_.velocity[i] += (1.0 / nodes_.mass[i]) * j;
     contact_impulse_[i] += j;
   };
-  // Projected Gauss-Seidel (core/contact_impulse.hpp): each pair in turn takes the impulse that
-  // brings its predicted gap to the target (none with s = 1), its total normal impulse kept
-  // >= 0, then friction.
   constexpr int kSweeps = 8;
   for (int sweep = 0; sweep < kSweeps; ++sweep)
     for (MeshContact& c : contacts_) {
@@ -464,25 +504,7 @@ void FeSolver::resolve_contacts(double dt) {
         }
         if (!(w > 0.0)) continue;  // two rigid bodies held fast: nothing can move
         const double gap = core::dot(n, nodes_.position[sl] + dt * nodes_.velocity[sl] - x_face);
-        if (sweep == 0) {
-          // A penetration already there at x^n (a surface exposed by erosion or conversion
-          // over a node that was inside the lost elements, what the sweeps or the penalty
-          // s < 1 left) recedes by a tenth a step, but by no more than 1e-4 of the face's
-          // diagonal: pushing a deep one out within a fixed number of steps would give the
-          // pair a speed of depth / dt, which grows as distorted elements shrink the step (a
-          // blunt projectile plugging a 12 mm steel plate gained 1e9 N mm that way and
-          // inverted an element). A deep one is thus kept and shrinks as the node moves out,
-          // as LS-DYNA's IGNORE = 1 tracks initial penetrations.
-          Vec3 x_now;
-          for (int a = 0; a < 4; ++a)
-            x_now += h.shape[static_cast<std::size_t>(a)] *
-                     nodes_.position[static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)])];
-          const double now = std::min(core::dot(n, nodes_.position[sl] - x_now), 0.0);
-          const double diagonal = core::norm(nodes_.position[static_cast<std::size_t>(h.face[0])] -
-                                             nodes_.position[static_cast<std::size_t>(h.face[2])]);
-          const double recede = std::min(-0.1 * now, 1e-4 * diagonal);
-          h.target = std::min((1.0 - s) * std::min(gap, 0.0), now + recede);
-        }
+        if (sweep == 0) h.target = initial_target(h, nodes_.position, sl, n, gap, s);
         const double dp =
             core::add_normal_impulse(h.normal_impulse, share * (h.target - gap), dt, w);
         Vec3 impulse = dp * n;
@@ -495,7 +517,10 @@ void FeSolver::resolve_contacts(double dt) {
                wa[static_cast<std::size_t>(a)], n, -h.shape[static_cast<std::size_t>(a)] * impulse);
       }
     }
-  // Rigid bodies take the impulses their nodes got, and their nodes follow the bodies again.
+}
+
+// Rigid bodies take the impulses their nodes got, and their nodes follow the bodies again.
+void FeSolver::settle_rigid_mesh_contacts(double dt) {
   for (RigidBody& r : rigid_bodies_) {
     Vec3 impulse, angular;
     for (std::int32_t k : r.nodes) {
@@ -511,9 +536,11 @@ void FeSolver::resolve_contacts(double dt) {
       nodes_.velocity[static_cast<std::size_t>(k)] =
           point_velocity(r, nodes_.position[static_cast<std::size_t>(k)] - r.centre);
   }
-  // Resultants (impulse over the force step), and friction's work (the tangential impulse on
-  // the relative slip left).
-  const double dt_force = force_step(dt);
+}
+
+// Resultants (impulse over the force step), and friction's work (the tangential impulse on
+// the relative slip left).
+void FeSolver::report_mesh_contact_forces(double dt_force) {
   for (MeshContact& c : contacts_) {
     c.normal_force = Vec3{};
     c.tangential_force = Vec3{};
@@ -535,11 +562,14 @@ void FeSolver::resolve_contacts(double dt) {
       }
     }
   }
-  // The sliding energy is minus the contact impulses' work, booked like the element forces'
-  // in the central difference: J / dt^n acting over the motion dt^{n-1/2} v^{n-1/2} +
-  // dt^{n+1/2} v^{n+1/2}, halved. The holds' work is external work.
-  // Gravity's work in the nodal update was taken on the velocities before the corrections:
-  // it follows the change J / m (rigid bodies: above).
+}
+
+// The sliding energy is minus the contact impulses' work, booked like the element forces' in
+// the central difference: J / dt^n acting over the motion dt^{n-1/2} v^{n-1/2} +
+// dt^{n+1/2} v^{n+1/2}, halved. The holds' work is external work.
+// Gravity's work in the nodal update was taken on the velocities before the corrections: it
+// follows the change J / m (rigid bodies: settle_rigid_mesh_contacts).
+void FeSolver::book_sliding_energy(double dt, double dt_force) {
   const Vec3 g = scene_.run.gravity;
   double work = 0.0, gravity = 0.0;
   for (std::int32_t k : contact_nodes_) {
