@@ -246,6 +246,122 @@ void build_passes(MeshContact& c, const core::Scene& scene, const HexElements& h
   c.passes = std::move(passes);
 }
 
+// New bins once a face node has moved by the margin since the last ones (the check split over
+// the threads).
+void refresh_bins(ContactPass& pass, const std::vector<Vec3>& x, std::size_t threads) {
+  bool stale = !pass.binned;
+  if (!stale) {
+    std::vector<char> moved(threads, 0);
+    const double limit = pass.margin * pass.margin;
+    core::parallel_chunks(pass.face_nodes.size(), [&](std::size_t begin, std::size_t end, int t) {
+      for (std::size_t k = begin; k < end; ++k) {
+        const Vec3 d = x[static_cast<std::size_t>(pass.face_nodes[k])] - pass.binned_position[k];
+        if (core::dot(d, d) > limit) {
+          moved[static_cast<std::size_t>(t)] = 1;
+          break;
+        }
+      }
+    });
+    stale = std::find(moved.begin(), moved.end(), 1) != moved.end();
+  }
+  if (stale) bin_faces(pass, x);
+}
+
+// The slaves' own normals: the sums of their faces' area vectors.
+void slave_normals(ContactPass& pass, const std::vector<Vec3>& x) {
+  core::parallel_chunks(pass.slaves.size(), [&](std::size_t begin, std::size_t end, int) {
+    for (std::size_t k = begin; k < end; ++k) {
+      Vec3 n;
+      for (std::int32_t q = pass.slave_face_offsets[k]; q < pass.slave_face_offsets[k + 1]; ++q) {
+        const std::array<Vec3, 4> p =
+            corners(pass.slave_faces[static_cast<std::size_t>(
+                        pass.slave_face_list[static_cast<std::size_t>(q)])],
+                    x);
+        n += 0.5 * core::cross(p[2] - p[0], p[3] - p[1]);
+      }
+      pass.slave_normal[static_cast<std::size_t>(pass.slaves[k])] = n;
+    }
+  });
+}
+
+// Whether face f is near the slave at xs: the node projects inside it (within the edge
+// tolerance; pr) and lies less than the face's reach behind it, the face is not the slave's
+// own nor (self-contact) of an element the slave belongs to, and the surfaces face each other
+// (facing: the slave has faces). The face holds the node when it lies behind. Inlined, as
+// the search it was written in.
+AFEMP_INLINE inline bool face_near(const ContactPass& pass, const HexElements& hexes,
+                                   const std::vector<Vec3>& x, bool self, bool facing,
+                                   std::int32_t slave, const Vec3& xs, std::int32_t f,
+                                   Projection& pr) {
+  const auto& q = pass.faces[static_cast<std::size_t>(f)];
+  const auto& box = pass.face_box[static_cast<std::size_t>(f)];
+  if (xs.x < box[0].x || xs.x > box[1].x || xs.y < box[0].y || xs.y > box[1].y || xs.z < box[0].z ||
+      xs.z > box[1].z)
+    return false;
+  if (q[0] == slave || q[1] == slave || q[2] == slave || q[3] == slave) return false;
+  if (self)  // not the faces of an element the node belongs to
+    for (std::int32_t n :
+         hexes.nodes[static_cast<std::size_t>(pass.face_element[static_cast<std::size_t>(f)])])
+      if (n == slave) return false;
+  if (!project(corners(q, x), xs, pr)) return false;
+  if (facing && !(core::dot(pr.normal, pass.slave_normal[static_cast<std::size_t>(slave)]) < 0.0))
+    return false;
+  constexpr double lim = 1.0 + kEdgeTolerance;
+  return -pr.gap < pass.reach[static_cast<std::size_t>(f)] && std::abs(pr.xi) <= lim &&
+         std::abs(pr.eta) <= lim;
+}
+
+// The face that holds the slave (-1: none) and its projection there (bp): the face it met
+// last while that one still holds it; else the nearest face in its bin (a node just past the
+// edge of a side face is nearer the front face it has not crossed). Inlined, as face_near.
+AFEMP_INLINE inline std::int32_t holding_face(const ContactPass& pass, const HexElements& hexes,
+                                              const std::vector<Vec3>& x, bool self, bool facing,
+                                              std::int32_t slave, Projection& bp) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  const auto s = static_cast<std::size_t>(slave);
+  const Vec3& xs = x[s];
+  std::int64_t ijk[3];
+  bool outside = false;
+  for (int d = 0; d < 3; ++d) {
+    const double u = std::floor((xs[d] - pass.bin_min[d]) / pass.bin_size);
+    outside =
+        outside || u < 0.0 || u >= static_cast<double>(pass.bin_count[static_cast<std::size_t>(d)]);
+    ijk[d] = static_cast<std::int64_t>(u);
+  }
+  std::int32_t best = -1;
+  Projection pr;
+  const std::int32_t last = pass.last_face[s];
+  if (last >= 0 && face_near(pass, hexes, x, self, facing, slave, xs, last, pr) && pr.gap < 0.0) {
+    best = last;
+    bp = pr;
+  } else if (!outside) {
+    const std::int64_t cell = (ijk[2] * pass.bin_count[1] + ijk[1]) * pass.bin_count[0] + ijk[0];
+    // Nearest by the distance to the face itself (the projection clamped to it); on a tie (a
+    // node on the edge two faces share), the face it projects into.
+    double distance = inf, overshoot = inf;
+    for (std::int64_t q = pass.bin_offsets[static_cast<std::size_t>(cell)];
+         q < pass.bin_offsets[static_cast<std::size_t>(cell + 1)]; ++q) {
+      const std::int32_t f = pass.bin_faces[static_cast<std::size_t>(q)];
+      if (!face_near(pass, hexes, x, self, facing, slave, xs, f, pr)) continue;
+      const double out = std::max({std::abs(pr.xi) - 1.0, std::abs(pr.eta) - 1.0, 0.0});
+      double d = std::abs(pr.gap);
+      if (out > 0.0)
+        d = core::norm(xs - face_point(corners(pass.faces[static_cast<std::size_t>(f)], x),
+                                       std::clamp(pr.xi, -1.0, 1.0), std::clamp(pr.eta, -1.0, 1.0))
+                                .x);
+      const double tie = 1e-9 * pass.reach[static_cast<std::size_t>(f)];
+      if (d < distance - tie || (d <= distance + tie && out < overshoot)) {
+        distance = d;
+        overshoot = out;
+        best = f;
+        bp = pr;
+      }
+    }
+    if (best >= 0 && !(bp.gap < 0.0)) best = -1;
+  }
+  return best;
+}
+
 }  // namespace
 
 MeshContact make_mesh_contact(const core::ContactSpec& spec, const core::Scene& scene,
@@ -263,118 +379,25 @@ void rebuild_surfaces(MeshContact& c, const core::Scene& scene, const HexElement
   build_passes(c, scene, hexes, trusses, nodes);
 }
 
+// Pass by pass: the bins, the slaves' normals, then each slave's holding face in parallel.
 void find_contacts(MeshContact& c, const FeNodes& nodes, const HexElements& hexes,
                    const std::vector<Vec3>& x) {
   c.hits.clear();
   const bool self = c.spec.bodies[0] == c.spec.bodies[1];
-  constexpr double inf = std::numeric_limits<double>::infinity();
   for (ContactPass& pass : c.passes) {
     if (pass.faces.empty()) continue;
-    // New bins once a face node has moved by the margin since the last ones.
-    bool stale = !pass.binned;
-    if (!stale) {
-      std::vector<char> moved(c.thread_hits.size(), 0);
-      const double limit = pass.margin * pass.margin;
-      core::parallel_chunks(pass.face_nodes.size(), [&](std::size_t begin, std::size_t end, int t) {
-        for (std::size_t k = begin; k < end; ++k) {
-          const Vec3 d = x[static_cast<std::size_t>(pass.face_nodes[k])] - pass.binned_position[k];
-          if (core::dot(d, d) > limit) {
-            moved[static_cast<std::size_t>(t)] = 1;
-            break;
-          }
-        }
-      });
-      stale = std::find(moved.begin(), moved.end(), 1) != moved.end();
-    }
-    if (stale) bin_faces(pass, x);
-    // The slaves' own normals: the sums of their faces' area vectors.
+    refresh_bins(pass, x, c.thread_hits.size());
     const bool facing = !pass.slave_faces.empty();
-    if (facing)
-      core::parallel_chunks(pass.slaves.size(), [&](std::size_t begin, std::size_t end, int) {
-        for (std::size_t k = begin; k < end; ++k) {
-          Vec3 n;
-          for (std::int32_t q = pass.slave_face_offsets[k]; q < pass.slave_face_offsets[k + 1];
-               ++q) {
-            const std::array<Vec3, 4> p =
-                corners(pass.slave_faces[static_cast<std::size_t>(
-                            pass.slave_face_list[static_cast<std::size_t>(q)])],
-                        x);
-            n += 0.5 * core::cross(p[2] - p[0], p[3] - p[1]);
-          }
-          pass.slave_normal[static_cast<std::size_t>(pass.slaves[k])] = n;
-        }
-      });
+    if (facing) slave_normals(pass, x);
     for (auto& h : c.thread_hits) h.clear();
-    const std::int64_t nx = pass.bin_count[0],
-                       ny = pass.bin_count[1];  // (clang 14 cannot capture bindings)
     core::parallel_chunks(pass.slaves.size(), [&](std::size_t begin, std::size_t end, int t) {
       std::vector<ContactHit>& hits = c.thread_hits[static_cast<std::size_t>(t)];
       for (std::size_t k = begin; k < end; ++k) {
         const std::int32_t slave = pass.slaves[k];
         const auto s = static_cast<std::size_t>(slave);
         if (!(nodes.mass[s] > 0.0)) continue;
-        const Vec3& xs = x[s];
-        std::int64_t ijk[3];
-        bool outside = false;
-        for (int d = 0; d < 3; ++d) {
-          const double u = std::floor((xs[d] - pass.bin_min[d]) / pass.bin_size);
-          outside = outside || u < 0.0 ||
-                    u >= static_cast<double>(pass.bin_count[static_cast<std::size_t>(d)]);
-          ijk[d] = static_cast<std::int64_t>(u);
-        }
-        // A face is near the node when the node projects inside it (within the edge tolerance)
-        // and lies less than the face's reach behind it; it holds the node when it lies behind.
-        auto near = [&](std::int32_t f, Projection& pr) AFEMP_INLINE {
-          const auto& q = pass.faces[static_cast<std::size_t>(f)];
-          const auto& box = pass.face_box[static_cast<std::size_t>(f)];
-          if (xs.x < box[0].x || xs.x > box[1].x || xs.y < box[0].y || xs.y > box[1].y ||
-              xs.z < box[0].z || xs.z > box[1].z)
-            return false;
-          if (q[0] == slave || q[1] == slave || q[2] == slave || q[3] == slave) return false;
-          if (self)  // not the faces of an element the node belongs to
-            for (std::int32_t n : hexes.nodes[static_cast<std::size_t>(
-                     pass.face_element[static_cast<std::size_t>(f)])])
-              if (n == slave) return false;
-          if (!project(corners(q, x), xs, pr)) return false;
-          if (facing && !(core::dot(pr.normal, pass.slave_normal[s]) < 0.0)) return false;
-          constexpr double lim = 1.0 + kEdgeTolerance;
-          return -pr.gap < pass.reach[static_cast<std::size_t>(f)] && std::abs(pr.xi) <= lim &&
-                 std::abs(pr.eta) <= lim;
-        };
-        // The face it met last while that one still holds it; else the nearest face (a node
-        // just past the edge of a side face is nearer the front face it has not crossed).
-        std::int32_t best = -1;
-        Projection bp, pr;
-        const std::int32_t last = pass.last_face[s];
-        if (last >= 0 && near(last, pr) && pr.gap < 0.0) {
-          best = last;
-          bp = pr;
-        } else if (!outside) {
-          const std::int64_t cell = (ijk[2] * ny + ijk[1]) * nx + ijk[0];
-          // Nearest by the distance to the face itself (the projection clamped to it); on a
-          // tie (a node on the edge two faces share), the face it projects into.
-          double distance = inf, overshoot = inf;
-          for (std::int64_t q = pass.bin_offsets[static_cast<std::size_t>(cell)];
-               q < pass.bin_offsets[static_cast<std::size_t>(cell + 1)]; ++q) {
-            const std::int32_t f = pass.bin_faces[static_cast<std::size_t>(q)];
-            if (!near(f, pr)) continue;
-            const double out = std::max({std::abs(pr.xi) - 1.0, std::abs(pr.eta) - 1.0, 0.0});
-            double d = std::abs(pr.gap);
-            if (out > 0.0)
-              d = core::norm(xs - face_point(corners(pass.faces[static_cast<std::size_t>(f)], x),
-                                             std::clamp(pr.xi, -1.0, 1.0),
-                                             std::clamp(pr.eta, -1.0, 1.0))
-                                      .x);
-            const double tie = 1e-9 * pass.reach[static_cast<std::size_t>(f)];
-            if (d < distance - tie || (d <= distance + tie && out < overshoot)) {
-              distance = d;
-              overshoot = out;
-              best = f;
-              bp = pr;
-            }
-          }
-          if (best >= 0 && !(bp.gap < 0.0)) best = -1;
-        }
+        Projection bp;
+        const std::int32_t best = holding_face(pass, hexes, x, self, facing, slave, bp);
         pass.last_face[s] = best;
         if (best < 0) continue;
         // The projection may lie just past an edge: share the impulse by the clamped point.
