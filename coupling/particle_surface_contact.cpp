@@ -57,31 +57,54 @@ void ParticleSurfaceContacts::resolve(const mpm::GridStepAccess& access) {
   }
 }
 
+// Bin b of x along axis d (clamped to the bins), and the key of bin (i, j, k).
+AFEMP_INLINE inline std::int64_t ParticleSurfaceContacts::FaceBins::bin(const Vec3& x,
+                                                                        int d) const {
+  return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((x[d] - lo[d]) / size)), 0,
+                                  count[static_cast<std::size_t>(d)] - 1);
+}
+
+AFEMP_INLINE inline std::int64_t ParticleSurfaceContacts::FaceBins::key(std::int64_t i,
+                                                                        std::int64_t j,
+                                                                        std::int64_t k) const {
+  return (k * count[1] + j) * count[0] + i;
+}
+
+// The pieces it calls are forced inline (AFEMP_INLINE): compiled apart, the sums of the
+// reported forces took other multiply-adds (the last bits of the history's force columns).
 template <class Stencil>
 void ParticleSurfaceContacts::resolve_pair(Pair& pair, const mpm::GridStepAccess& access) {
-  constexpr int K = Stencil::nodes;
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  core::BackgroundGrid& g = access.grid;
-  const mpm::Particles& p = access.particles;
-  const fem::FeNodes& nodes = fe_.nodes();
-  const double dt = access.dt;
   pair.normal_force = pair.tangential_force = Vec3{};
   // The mesh's boundary faces, made again when elements erode or convert.
   if (fe_.live_hexahedra() != pair.live) {
     pair.faces = fem::boundary_faces(fe_.hexahedra(), pair.selected);
     pair.live = fe_.live_hexahedra();
   }
+  if (pair.faces.nodes.empty()) return;
+  const FaceBins bins = bin_faces(pair, access.grid.cell());
+  find_hits<Stencil>(pair, access, bins);
+  if (hits_.empty()) return;
+  sweep_hits<Stencil>(pair, access);
+  report_forces<Stencil>(pair, access.grid, access.dt);
+}
+
+// Outward normals and the boxes of the faces at the predicted positions; each face holds a
+// particle up to half its own size behind it (its reach). Bins of the size of the largest grown
+// face; a face in each bin its box touches (bin_entries_, sorted).
+ParticleSurfaceContacts::FaceBins ParticleSurfaceContacts::bin_faces(Pair& pair, double cell) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
   const std::size_t nf = pair.faces.nodes.size();
-  if (nf == 0) return;
-  // Outward normals and the boxes of the faces at the predicted positions; each face holds a
-  // particle up to half its own size behind it (its reach).
   pair.outward.resize(nf);
   std::vector<std::array<Vec3, 2>>& box = face_box_;
   std::vector<double>& reach = face_reach_;
   box.resize(nf);
   reach.resize(nf);
   double largest = 0.0;
-  Vec3 lo{inf, inf, inf}, hi{-inf, -inf, -inf};
+  FaceBins bins;
+  Vec3& lo = bins.lo;
+  Vec3& hi = bins.hi;
+  lo = Vec3{inf, inf, inf};
+  hi = Vec3{-inf, -inf, -inf};
   for (std::size_t f = 0; f < nf; ++f) {
     pair.outward[f] = fem::face_area_vector(pair.faces, f, fe_.hexahedra(), predicted_);
     const std::array<Vec3, 4> q = corners(pair.faces.nodes[f], predicted_);
@@ -92,7 +115,7 @@ void ParticleSurfaceContacts::resolve_pair(Pair& pair, const mpm::GridStepAccess
         b[d] = std::max(b[d], x[d]);
       }
     reach[f] = 0.5 * std::max(core::norm(q[2] - q[0]), core::norm(q[3] - q[1]));
-    const double grow = reach[f] + g.cell();  // a particle's half width is at most about a cell
+    const double grow = reach[f] + cell;  // a particle's half width is at most about a cell
     for (int d = 0; d < 3; ++d) {
       a[d] -= grow;
       b[d] += grow;
@@ -102,32 +125,72 @@ void ParticleSurfaceContacts::resolve_pair(Pair& pair, const mpm::GridStepAccess
     }
     box[f] = {a, b};
   }
-  // Bins of the size of the largest grown face; a face in each bin its box touches.
-  const double size = largest;
-  std::array<std::int64_t, 3> count{};
+  bins.size = largest;
   for (int d = 0; d < 3; ++d)
-    count[static_cast<std::size_t>(d)] =
-        std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil((hi[d] - lo[d]) / size)));
-  auto bin_of = [&](const Vec3& x, int d) {
-    return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((x[d] - lo[d]) / size)), 0,
-                                    count[static_cast<std::size_t>(d)] - 1);
-  };
-  auto key = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
-    return (k * count[1] + j) * count[0] + i;
-  };
+    bins.count[static_cast<std::size_t>(d)] = std::max<std::int64_t>(
+        1, static_cast<std::int64_t>(std::ceil((hi[d] - lo[d]) / bins.size)));
   std::vector<std::pair<std::int64_t, std::int32_t>>& entries = bin_entries_;
   entries.clear();
   for (std::size_t f = 0; f < nf; ++f)
-    for (std::int64_t k = bin_of(box[f][0], 2); k <= bin_of(box[f][1], 2); ++k)
-      for (std::int64_t j = bin_of(box[f][0], 1); j <= bin_of(box[f][1], 1); ++j)
-        for (std::int64_t i = bin_of(box[f][0], 0); i <= bin_of(box[f][1], 0); ++i)
-          entries.emplace_back(key(i, j, k), static_cast<std::int32_t>(f));
+    for (std::int64_t k = bins.bin(box[f][0], 2); k <= bins.bin(box[f][1], 2); ++k)
+      for (std::int64_t j = bins.bin(box[f][0], 1); j <= bins.bin(box[f][1], 1); ++j)
+        for (std::int64_t i = bins.bin(box[f][0], 0); i <= bins.bin(box[f][1], 0); ++i)
+          entries.emplace_back(bins.key(i, j, k), static_cast<std::int32_t>(f));
   std::sort(entries.begin(), entries.end());
+  return bins;
+}
+
+// The nearest face of x's bin that holds a particle of half width r at x (by the distance to
+// the face itself): it projects inside the face and its boundary lies behind it, less than the
+// face's reach. Fills best's face, shape functions and normal; false when none holds it.
+// Inlined, as the hit search it was written in.
+AFEMP_INLINE inline bool ParticleSurfaceContacts::nearest_face(const Pair& pair,
+                                                               const FaceBins& bins, const Vec3& x,
+                                                               double r, Hit& best) const {
+  const std::int64_t b = bins.key(bins.bin(x, 0), bins.bin(x, 1), bins.bin(x, 2));
   const auto by_bin = [](const std::pair<std::int64_t, std::int32_t>& e, std::int64_t bin) {
     return e.first < bin;
   };
+  const auto first = std::lower_bound(bin_entries_.begin(), bin_entries_.end(), b, by_bin);
+  double distance = std::numeric_limits<double>::infinity();
+  bool found = false;
+  for (auto it = first; it != bin_entries_.end() && it->first == b; ++it) {
+    const auto f = static_cast<std::size_t>(it->second);
+    const auto& bx = face_box_[f];
+    if (x.x < bx[0].x || x.x > bx[1].x || x.y < bx[0].y || x.y > bx[1].y || x.z < bx[0].z ||
+        x.z > bx[1].z)
+      continue;
+    fem::Projection pr;
+    if (!fem::project(corners(pair.faces.nodes[f], predicted_), x, pr)) continue;
+    constexpr double lim = 1.0 + kEdgeTolerance;
+    if (std::abs(pr.xi) > lim || std::abs(pr.eta) > lim) continue;
+    const double sign = core::dot(pr.normal, pair.outward[f]) < 0.0 ? -1.0 : 1.0;
+    const double gap = sign * pr.gap - r;
+    if (!(gap < 0.0) || -gap > face_reach_[f] + r) continue;
+    if (std::abs(gap) < distance) {
+      distance = std::abs(gap);
+      best.face = pair.faces.nodes[f];
+      best.shape = fem::face_point(corners(best.face, predicted_), std::clamp(pr.xi, -1.0, 1.0),
+                                   std::clamp(pr.eta, -1.0, 1.0))
+                       .n;
+      best.normal = sign * pr.normal;
+      found = true;
+    }
+  }
+  return found;
+}
 
-  // Hits: each particle of the body whose predicted boundary lies behind a face.
+// Hits: each particle of the body whose predicted boundary lies behind a face, at its
+// predicted position (this step's grid velocity at it), with its live stencil nodes and
+// weights (slots_, weights_).
+template <class Stencil>
+AFEMP_INLINE inline void ParticleSurfaceContacts::find_hits(const Pair& pair,
+                                                            const mpm::GridStepAccess& access,
+                                                            const FaceBins& bins) {
+  constexpr int K = Stencil::nodes;
+  core::BackgroundGrid& g = access.grid;
+  const mpm::Particles& p = access.particles;
+  const double dt = access.dt;
   hits_.clear();
   slots_.clear();
   weights_.clear();
@@ -137,7 +200,7 @@ void ParticleSurfaceContacts::resolve_pair(Pair& pair, const mpm::GridStepAccess
     const double travel = dt * core::norm(p.velocity[i]) + g.cell();
     bool outside = false;
     for (int d = 0; d < 3; ++d)
-      outside = outside || x0[d] < lo[d] - travel || x0[d] > hi[d] + travel;
+      outside = outside || x0[d] < bins.lo[d] - travel || x0[d] > bins.hi[d] + travel;
     if (outside) continue;
     const Stencil st(g, p, i, x0);
     typename Stencil::Slots slot;
@@ -149,36 +212,8 @@ void ParticleSurfaceContacts::resolve_pair(Pair& pair, const mpm::GridStepAccess
            g.velocity_new[static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]) + field];
     const Vec3 x = x0 + dt * v;
     const double r = mpm::particle_half_width(p.volume[i]);
-    const std::int64_t b = key(bin_of(x, 0), bin_of(x, 1), bin_of(x, 2));
-    const auto first = std::lower_bound(entries.begin(), entries.end(), b, by_bin);
-    // The nearest face that holds it (by the distance to the face itself).
-    double distance = inf;
     Hit best;
-    bool found = false;
-    for (auto it = first; it != entries.end() && it->first == b; ++it) {
-      const auto f = static_cast<std::size_t>(it->second);
-      const auto& bx = box[f];
-      if (x.x < bx[0].x || x.x > bx[1].x || x.y < bx[0].y || x.y > bx[1].y || x.z < bx[0].z ||
-          x.z > bx[1].z)
-        continue;
-      fem::Projection pr;
-      if (!fem::project(corners(pair.faces.nodes[f], predicted_), x, pr)) continue;
-      constexpr double lim = 1.0 + kEdgeTolerance;
-      if (std::abs(pr.xi) > lim || std::abs(pr.eta) > lim) continue;
-      const double sign = core::dot(pr.normal, pair.outward[f]) < 0.0 ? -1.0 : 1.0;
-      const double gap = sign * pr.gap - r;
-      if (!(gap < 0.0) || -gap > reach[f] + r) continue;
-      if (std::abs(gap) < distance) {
-        distance = std::abs(gap);
-        best.face = pair.faces.nodes[f];
-        best.shape = fem::face_point(corners(best.face, predicted_), std::clamp(pr.xi, -1.0, 1.0),
-                                     std::clamp(pr.eta, -1.0, 1.0))
-                         .n;
-        best.normal = sign * pr.normal;
-        found = true;
-      }
-    }
-    if (!found) continue;
+    if (!nearest_face(pair, bins, x, r, best)) continue;
     best.particle = static_cast<std::uint32_t>(i);
     best.radius = r;
     best.stencil = slots_.size();
@@ -190,28 +225,60 @@ void ParticleSurfaceContacts::resolve_pair(Pair& pair, const mpm::GridStepAccess
     }
     hits_.push_back(best);
   }
-  if (hits_.empty()) return;
+}
 
+// A hit particle's velocity from its live stencil nodes, sum N_I v_I.
+template <int K>
+AFEMP_INLINE inline Vec3 ParticleSurfaceContacts::particle_velocity(
+    const Hit& h, const core::BackgroundGrid& g) const {
+  Vec3 v;
+  for (int k = 0; k < K; ++k) {
+    const std::int64_t s = slots_[h.stencil + static_cast<std::size_t>(k)];
+    if (s >= 0)
+      v += weights_[h.stencil + static_cast<std::size_t>(k)] *
+           g.velocity_new[static_cast<std::size_t>(s)];
+  }
+  return v;
+}
+
+// A hit particle's inverse mass sum N_I^2 / m_I over its live stencil nodes.
+template <int K>
+AFEMP_INLINE inline double ParticleSurfaceContacts::particle_inverse_mass(
+    const Hit& h, const core::BackgroundGrid& g) const {
+  double w = 0.0;
+  for (int k = 0; k < K; ++k) {
+    const std::int64_t s = slots_[h.stencil + static_cast<std::size_t>(k)];
+    const double wk = weights_[h.stencil + static_cast<std::size_t>(k)];
+    if (s >= 0) w += wk * wk / g.mass[static_cast<std::size_t>(s)];
+  }
+  return w;
+}
+
+// The face point of a hit at the predicted positions, and its velocity.
+AFEMP_INLINE inline void ParticleSurfaceContacts::face_state(const Hit& h, double dt, Vec3& x_face,
+                                                             Vec3& v_face) const {
+  const fem::FeNodes& nodes = fe_.nodes();
+  x_face = v_face = Vec3{};
+  for (int a = 0; a < 4; ++a) {
+    const auto q = static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)]);
+    const double na = h.shape[static_cast<std::size_t>(a)];
+    x_face += na * (nodes.position[q] + dt * nodes.velocity[q]);
+    v_face += na * nodes.velocity[q];
+  }
+}
+
+// Projected Gauss-Seidel sweeps in particle order (core/contact_impulse.hpp): J n spread over
+// the particle's grid nodes by their weights (the grid's face constraints kept), -N_a J n on
+// the face's nodes.
+template <class Stencil>
+AFEMP_INLINE inline void ParticleSurfaceContacts::sweep_hits(const Pair& pair,
+                                                             const mpm::GridStepAccess& access) {
+  constexpr int K = Stencil::nodes;
+  core::BackgroundGrid& g = access.grid;
+  const mpm::Particles& p = access.particles;
+  const fem::FeNodes& nodes = fe_.nodes();
+  const double dt = access.dt;
   const mpm::FaceConstraints constraints(g);
-  auto v_particle = [&](const Hit& h) {
-    Vec3 v;
-    for (int k = 0; k < K; ++k) {
-      const std::int64_t s = slots_[h.stencil + static_cast<std::size_t>(k)];
-      if (s >= 0)
-        v += weights_[h.stencil + static_cast<std::size_t>(k)] *
-             g.velocity_new[static_cast<std::size_t>(s)];
-    }
-    return v;
-  };
-  auto w_particle = [&](const Hit& h) {
-    double w = 0.0;
-    for (int k = 0; k < K; ++k) {
-      const std::int64_t s = slots_[h.stencil + static_cast<std::size_t>(k)];
-      const double wk = weights_[h.stencil + static_cast<std::size_t>(k)];
-      if (s >= 0) w += wk * wk / g.mass[static_cast<std::size_t>(s)];
-    }
-    return w;
-  };
   auto push_particle = [&](const Hit& h, const Vec3& impulse) {
     for (int k = 0; k < K; ++k) {
       const std::int64_t s = slots_[h.stencil + static_cast<std::size_t>(k)];
@@ -223,22 +290,12 @@ void ParticleSurfaceContacts::resolve_pair(Pair& pair, const mpm::GridStepAccess
       if (c.any()) mpm::constrain(v, c.mask_for(v));
     }
   };
-  auto face_state = [&](const Hit& h, Vec3& x_face, Vec3& v_face) {
-    x_face = v_face = Vec3{};
-    for (int a = 0; a < 4; ++a) {
-      const auto q = static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)]);
-      const double na = h.shape[static_cast<std::size_t>(a)];
-      x_face += na * (nodes.position[q] + dt * nodes.velocity[q]);
-      v_face += na * nodes.velocity[q];
-    }
-  };
-  // Projected Gauss-Seidel sweeps in particle order (core/contact_impulse.hpp).
   const double s_pen = pair.spec.penalty, mu = pair.spec.friction;
   for (int sweep = 0; sweep < kSweeps; ++sweep)
     for (Hit& h : hits_) {
       const Vec3& nrm = h.normal;
       if (sweep == 0) {  // the inverse masses hold through the sweeps
-        h.w = w_particle(h);
+        h.w = particle_inverse_mass<K>(h, g);
         for (int a = 0; a < 4; ++a) {
           const auto q = static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)]);
           const double na = h.shape[static_cast<std::size_t>(a)];
@@ -251,8 +308,8 @@ void ParticleSurfaceContacts::resolve_pair(Pair& pair, const mpm::GridStepAccess
       if (!(w > 0.0)) continue;
       const Vec3 xp = p.position[h.particle];
       Vec3 x_face, v_face;
-      face_state(h, x_face, v_face);
-      const Vec3 vp = v_particle(h);  // nothing is pushed before the friction below reads it
+      face_state(h, dt, x_face, v_face);
+      const Vec3 vp = particle_velocity<K>(h, g);  // nothing is pushed before the friction reads it
       const double gap = core::dot(nrm, xp + dt * vp - x_face) - h.radius;
       if (sweep == 0) {
         Vec3 x_now;
@@ -275,15 +332,22 @@ void ParticleSurfaceContacts::resolve_pair(Pair& pair, const mpm::GridStepAccess
                                  wa[static_cast<std::size_t>(a)], nrm,
                                  -h.shape[static_cast<std::size_t>(a)] * impulse);
     }
-  // Resultants on the particle body (impulse over the step) and friction's work (the
-  // tangential impulse against the slip it left).
+}
+
+// Resultants on the particle body (impulse over the step) and friction's work (the
+// tangential impulse against the slip it left).
+template <class Stencil>
+AFEMP_INLINE inline void ParticleSurfaceContacts::report_forces(Pair& pair,
+                                                                const core::BackgroundGrid& g,
+                                                                double dt) const {
   for (const Hit& h : hits_) {
     pair.normal_force += (h.normal_impulse / dt) * h.normal;
     pair.tangential_force += (1.0 / dt) * h.tangential_impulse;
-    if (mu > 0.0) {
+    if (pair.spec.friction > 0.0) {
       Vec3 x_face, v_face;
-      face_state(h, x_face, v_face);
-      pair.friction_work -= core::slip_work(h.tangential_impulse, v_particle(h) - v_face, h.normal);
+      face_state(h, dt, x_face, v_face);
+      pair.friction_work -= core::slip_work(
+          h.tangential_impulse, particle_velocity<Stencil::nodes>(h, g) - v_face, h.normal);
     }
   }
 }

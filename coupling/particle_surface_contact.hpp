@@ -27,8 +27,9 @@
 #include "mpm/grid_points.hpp"
 
 namespace afemp::core {
+class BackgroundGrid;
 class StateArchive;
-}
+}  // namespace afemp::core
 
 namespace afemp::fem {
 class FeSolver;
@@ -76,8 +77,32 @@ class ParticleSurfaceContacts final : public mpm::SurfaceContacts {
     double w = 0.0;
     std::array<double, 4> w_face{};
   };
+  // The bins of the faces' grown boxes (bin_entries_ holds their faces): their bounds, edge
+  // and counts.
+  struct FaceBins {
+    Vec3 lo, hi;
+    double size = 0.0;
+    std::array<std::int64_t, 3> count{};
+    std::int64_t bin(const Vec3& x, int d) const;
+    std::int64_t key(std::int64_t i, std::int64_t j, std::int64_t k) const;
+  };
+  // One pair's step: the faces and their bins, the hits, the sweeps and the forces.
   template <class Stencil>
   void resolve_pair(Pair& pair, const mpm::GridStepAccess& access);
+  FaceBins bin_faces(Pair& pair, double cell);
+  bool nearest_face(const Pair& pair, const FaceBins& bins, const Vec3& x, double r,
+                    Hit& best) const;
+  template <class Stencil>
+  void find_hits(const Pair& pair, const mpm::GridStepAccess& access, const FaceBins& bins);
+  template <int K>
+  Vec3 particle_velocity(const Hit& h, const core::BackgroundGrid& g) const;
+  template <int K>
+  double particle_inverse_mass(const Hit& h, const core::BackgroundGrid& g) const;
+  void face_state(const Hit& h, double dt, Vec3& x_face, Vec3& v_face) const;
+  template <class Stencil>
+  void sweep_hits(const Pair& pair, const mpm::GridStepAccess& access);
+  template <class Stencil>
+  void report_forces(Pair& pair, const core::BackgroundGrid& g, double dt) const;
 
   fem::FeSolver& fe_;
   std::vector<Pair> pairs_;
