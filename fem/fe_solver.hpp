@@ -31,6 +31,8 @@ class StateArchive;
 namespace afemp::fem {
 
 struct SurfaceFaces;  // surface_faces.hpp
+template <class Strength, class Eos, bool Thermal, bool Fails>
+class HexahedronPasses;  // hexahedron_passes.hpp
 
 using core::Vec3;
 
@@ -251,6 +253,10 @@ class FeSolver {
   void state(core::StateArchive& archive);
 
  private:
+  // The hexahedron stage's passes (hexahedron_passes.hpp) read and write the solver's arrays.
+  template <class Strength, class Eos, bool Thermal, bool Fails>
+  friend class HexahedronPasses;
+
   void build(const core::Scene& scene);
   // The pieces of build, in its order (fe_model_builder.cpp).
   struct BodyMeshes;
