@@ -14,6 +14,20 @@
 
 namespace afemp::fem {
 
+namespace {
+// Nodes ahead whose element forces the gather asks for early: each node's eight sit in four
+// places of element_force_ (the elements before and behind it in the mesh's two slower
+// directions), and waiting for them one node at a time left the update at about 60 ns a node
+// (HEX-BLOCK); 8 and 16 ahead measured the same.
+constexpr std::size_t kForcePrefetch = 8;
+
+void prefetch(const void* address) {
+#if defined(__GNUC__)
+  __builtin_prefetch(address);
+#endif
+}
+}  // namespace
+
 void FeSolver::update_nodes(double dt) {
   const double dt_force = force_step(dt);
   const Vec3 g = scene_.run.gravity;
@@ -26,6 +40,13 @@ void FeSolver::update_nodes(double dt) {
   core::parallel_chunks(n, [&](std::size_t begin, std::size_t end, int t) {
     double work = 0.0;
     for (std::size_t i = begin; i < end; ++i) {
+      // The element forces of a node a few ahead, so that their loads overlap this node's
+      // (the sums keep their order: the same bits).
+      if (i + kForcePrefetch < end)
+        for (std::int64_t k = incidence_offsets_[i + kForcePrefetch];
+             k < incidence_offsets_[i + kForcePrefetch + 1]; ++k)
+          prefetch(
+              &element_force_[static_cast<std::size_t>(incidence_[static_cast<std::size_t>(k)])]);
       const double m = nodes_.mass[i];
       if (!(m > 0.0)) continue;                       // no live element: out of the update
       if (nodes_.grid_driven[i]) continue;            // moved by the background grid (coupling/)
