@@ -153,6 +153,9 @@ class MpmSolver {
   void strain_stress_update(double dt, StrainPart part);
   // What the grid points' owner may read and write during a stage (grid_points.hpp).
   GridStepAccess access();
+  // One thread's pass over a material batch (stress_update.cpp).
+  template <class Strength, class Eos, bool Thermal, bool Fused, bool Fails>
+  struct StressPass;
   template <class Strength, class Eos, bool Thermal, bool Fused, bool Fails>
   void strain_stress_batch(const MaterialBatch& batch, const Strength& strength, const Eos& eos,
                            double dt, const StrainSweep& sweep, int thread_slot_offset);

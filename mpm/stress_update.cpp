@@ -110,202 +110,267 @@ void MpmSolver::kinematics_kernel(double dt, const StrainSweep& sweep) {
   });
 }
 
+// One thread's share of a material batch, point by point in passes: the kinematics (the
+// velocity gradient L and, fused with the linear hat, USL's velocity update), the strain
+// increment and start state, the material's update (the caller's), and the commit of the new
+// state with the step bound. The thread constructs its own copy, so that stores to the particle
+// arrays cannot alias the material constants and they stay in registers through the loop.
+// Each pass takes its values as separate arguments rather than one struct, so that the
+// compiler keeps them in registers and the arithmetic stays that of one fused loop.
 template <class Strength, class Eos, bool Thermal, bool Fused, bool Fails>
-void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& strength_in,
-                                    const Eos& eos_in, double step_dt, const StrainSweep& sweep,
-                                    int nt) {
-  const core::BackgroundGrid& g = grid_;
-  Particles& p = particles_;
-  const double dt = sweep.strain_dt;  // of the strain increment; positions move over step_dt
-  const Vec3* v_old = g.velocity.data();
-  const Vec3* v_new = g.velocity_new.data();
+struct MpmSolver::StressPass {
   // What the model declares it reads (include/afemp/strength_models.hpp), and the temperature
   // whenever plastic work heats the point.
-  constexpr bool reads_plastic_strain = Strength::reads_plastic_strain;
-  constexpr bool reads_temperature = Thermal || Strength::reads_temperature;
-  constexpr bool reads_damage = Strength::reads_damage;
-  const bool jaumann = plan_.jaumann;
-  const bool track_strain = plan_.strain;
-  [[maybe_unused]] const bool principal_strain =
-      materials_[static_cast<std::size_t>(batch.material)]->needs_strain();
-  const bool track_length = plan_.splitting;
+  static constexpr bool reads_plastic_strain = Strength::reads_plastic_strain;
+  static constexpr bool reads_temperature = Thermal || Strength::reads_temperature;
+  static constexpr bool reads_damage = Strength::reads_damage;
+
+  const MpmSolver& solver;
+  Particles& p;
+  const core::BackgroundGrid& g;
+  const StrainSweep& sweep;
+  const core::Material mat;
+  const Strength strength;
+  const Eos eos;
+  const double dt;       // of the strain increment
+  const double step_dt;  // positions move over the whole step
+  const Vec3* v_old;
+  const Vec3* v_new;
+  const double flip;
+  const bool jaumann;
+  const bool track_strain;
+  const bool principal_strain;
+  const bool track_length;  // splitting: the particle's extent along each axis
   // Outflow: each particle's plastic work and viscous heat (Particles::plastic_heat).
-  const bool track_heat = !p.plastic_heat.empty();
+  const bool track_heat;
   // Programmed burn: the fraction at the end of the update (mid-step for the first half of
   // USAVG), burning over 1.5 cells.
-  const bool explosive = materials_[static_cast<std::size_t>(batch.material)]->is_explosive();
-  const double burn_time = sweep.time_after;
-  const double cell = grid_.cell();
-  const double flip = scene_.mpm.flip;
-  const bool viscous = viscous_;
-  const core::BulkViscositySettings* viscosity = bulk_viscosity_.data();
-  const double h = g.cell();
+  const bool explosive;
+  const double burn_time;
+  const double h;
+  const bool viscous;
+  const core::BulkViscositySettings* viscosity;
+  double work = 0.0, wave = 0.0, speed2 = 0.0, heat = 0.0, swept = 0.0;
+  std::int64_t bad = -1;
 
-#pragma omp parallel num_threads(nt) if (core::worth_threads(batch.end - batch.begin))
-  {
-    // Thread-local copies: stores to the particle arrays cannot alias them, so the
-    // material constants stay in registers through the loop.
-    const core::Material mat = *materials_[static_cast<std::size_t>(batch.material)];
-    const Strength strength = strength_in;
-    const Eos eos = eos_in;
-    const int t = core::thread_index();
-    const auto [b, e] = core::static_range(batch.end - batch.begin, t, core::team_size());
-    double work = 0.0, wave = 0.0, speed2 = 0.0, heat = 0.0, swept = 0.0;
-    std::int64_t bad = -1;
-    // The kinematics, objective rotation and volume of particle i, and its start state: the
-    // position x (moved by dt v_bar at the end), the particle velocity v_p, the strain
-    // increment d_eps and the state st. Separate locals rather than one struct, so that the
-    // compiler keeps them in registers and the arithmetic stays that of one fused loop.
-    auto prepare = [&](std::size_t i, Vec3& x, Vec3& v_bar, Vec3& v_p, core::SymTensor& d_eps,
-                       core::PointState& st) AFEMP_INLINE {
-      x = p.position[i];
-      core::Mat3 l;  // L_ij = sum_I v_Ii dN_I/dx_j
-      v_bar = Vec3{};
-      v_p = p.velocity[i];
-      st = core::PointState{};
-      if constexpr (Fused) {
-        const auto cell_index = g.cell_of(x);
-        const core::CellWeights w = g.weights(x, cell_index);
-        std::array<std::int32_t, 8> slot;
-        g.node_slots(cell_index, slot);
-        const std::size_t field = field_offset(i);
-        Vec3 dv;
-        for (int k = 0; k < 8; ++k) {
-          const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]) + field;
-          const Vec3 v = sweep.strain_velocity[s];
-          const Vec3& d = w.grad[static_cast<std::size_t>(k)];
-          for (int r = 0; r < 3; ++r) {
-            l.m[r][0] += v[r] * d.x;
-            l.m[r][1] += v[r] * d.y;
-            l.m[r][2] += v[r] * d.z;
-          }
-          const double wk = w.w[static_cast<std::size_t>(k)];
-          if (sweep.move) v_bar += wk * v_new[s];
-          if (sweep.flip_update) dv += wk * (v_new[s] - v_old[s]);
+  StressPass(MpmSolver& s, const core::Material& m, const Strength& strength_in, const Eos& eos_in,
+             double step_dt_in, const StrainSweep& sweep_in)
+      : solver(s),
+        p(s.particles_),
+        g(s.grid_),
+        sweep(sweep_in),
+        mat(m),
+        strength(strength_in),
+        eos(eos_in),
+        dt(sweep_in.strain_dt),
+        step_dt(step_dt_in),
+        v_old(s.grid_.velocity.data()),
+        v_new(s.grid_.velocity_new.data()),
+        flip(s.scene_.mpm.flip),
+        jaumann(s.plan_.jaumann),
+        track_strain(s.plan_.strain),
+        principal_strain(m.needs_strain()),
+        track_length(s.plan_.splitting),
+        track_heat(!s.particles_.plastic_heat.empty()),
+        explosive(m.is_explosive()),
+        burn_time(sweep_in.time_after),
+        h(s.grid_.cell()),
+        viscous(s.viscous_),
+        viscosity(s.bulk_viscosity_.data()) {}
+
+  // L_ij = sum_I v_Ii dN_I/dx_j of particle i, its mean grid velocity v_bar and its velocity
+  // v_p (updated here with USL's FLIP blend when fused, by kinematics_kernel otherwise).
+  AFEMP_INLINE void kinematics(std::size_t i, const Vec3& x, core::Mat3& l, Vec3& v_bar,
+                               Vec3& v_p) {
+    v_bar = Vec3{};
+    v_p = p.velocity[i];
+    if constexpr (Fused) {
+      const auto cell_index = g.cell_of(x);
+      const core::CellWeights w = g.weights(x, cell_index);
+      std::array<std::int32_t, 8> slot;
+      g.node_slots(cell_index, slot);
+      const std::size_t field = solver.field_offset(i);
+      Vec3 dv;
+      for (int k = 0; k < 8; ++k) {
+        const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]) + field;
+        const Vec3 v = sweep.strain_velocity[s];
+        const Vec3& d = w.grad[static_cast<std::size_t>(k)];
+        for (int r = 0; r < 3; ++r) {
+          l.m[r][0] += v[r] * d.x;
+          l.m[r][1] += v[r] * d.y;
+          l.m[r][2] += v[r] * d.z;
         }
-        if (sweep.flip_update) {
-          v_p = flip * (v_p + dv) + (1.0 - flip) * v_bar;
-          p.velocity[i] = v_p;
-        }
-      } else {
-        l = velocity_gradient_[i];  // kinematics_kernel moved x and updated v_p already
+        const double wk = w.w[static_cast<std::size_t>(k)];
+        if (sweep.move) v_bar += wk * v_new[s];
+        if (sweep.flip_update) dv += wk * (v_new[s] - v_old[s]);
       }
-      d_eps = dt * core::sym_part(l);
-      st.stress = p.stress[i];
-      if (jaumann) {
-        st.stress += core::jaumann_increment(st.stress, 0.5 * dt * (l.m[1][2] - l.m[2][1]),
-                                             0.5 * dt * (l.m[0][2] - l.m[2][0]),
-                                             0.5 * dt * (l.m[0][1] - l.m[1][0]));
-      }
-      const double volume = p.volume[i] * (1.0 + d_eps.trace());
-      swept += volume - p.volume[i];
-      p.volume[i] = volume;
-      // History an elastic batch never reads stays in memory: less to stream per point.
-      if constexpr (reads_plastic_strain) st.plastic_strain = p.plastic_strain[i];
-      if constexpr (reads_temperature) st.temperature = p.temperature[i];
-      // A failure model reads and writes any model's damage.
-      if constexpr (reads_damage || Fails) st.damage = p.damage[i];
-      core::load_model_history<Strength>(st, p.history.data() + i * p.history_count);
-      st.energy = p.energy[i];
-      st.density = p.mass[i] / volume;
-      // A high explosive: its burn fraction at the step's end (core/programmed_burn.hpp).
-      if (explosive)
-        st.burn = core::burn_fraction(*mat.burn, mat.density, p.burn[i], burn_time, p.light_time[i],
-                                      cell, mat.density / st.density);
-    };
-    // The state stored after the constitutive update u, the bulk viscosity, the move and the
-    // step bound of particle i.
-    auto complete = [&](std::size_t i, Vec3& x, const Vec3& v_bar, const Vec3& v_p,
-                        const core::SymTensor& d_eps, core::PointState& st,
-                        const core::PointUpdate& u) AFEMP_INLINE {
-      p.stress[i] = st.stress;
-      if (explosive) p.burn[i] = st.burn;
-      if constexpr (reads_plastic_strain) p.plastic_strain[i] = st.plastic_strain;
-      if constexpr (Thermal) p.temperature[i] = st.temperature;
-      if constexpr (reads_damage || Fails) p.damage[i] = st.damage;
-      core::store_model_history<Strength>(st, p.history.data() + i * p.history_count);
-      if (track_strain) p.strain[i] += d_eps;
-      if constexpr (Fails) {
-        if (principal_strain)
-          p.damage[i] = core::principal_strain_damage(mat.failure, p.damage[i], p.strain[i]);
-      }
-      if (track_length) {  // the particle's extent along each axis stretches with the grid's
-        Vec3& l = p.length[i];
-        l = Vec3{l.x * (1.0 + d_eps.xx), l.y * (1.0 + d_eps.yy), l.z * (1.0 + d_eps.zz)};
-      }
-      work += p.mass[i] * u.plastic_work;
-      if (track_heat) p.plastic_heat[i] += u.plastic_work;
-      // The step bound uses max c + max |v| >= max (c + |v|): squares here, two square
-      // roots per step instead of two per particle.
-      double c_wave = core::wave_speed(mat, eos, st);
-      if (viscous) {
-        const double q_heat = core::bulk_viscous_heat(p.bulk_q[i], d_eps.trace(), st.density);
-        st.energy += q_heat;
-        heat += p.mass[i] * q_heat;
-        if (track_heat) p.viscous_heat[i] += q_heat;
-        const core::ViscousState vs =
-            core::bulk_viscosity(viscosity[static_cast<std::size_t>(p.body[i])], st.density, h,
-                                 d_eps.trace() / dt, c_wave);
-        p.bulk_q[i] = vs.q;
-        c_wave = vs.signal;
-      }
-      p.energy[i] = st.energy;
-      if (Fused && sweep.move) {
-        x += step_dt * v_bar;
-        p.position[i] = x;
-      }
-      const double v2 = core::dot(v_p, v_p);
-      const core::SymTensor& o = st.stress;
-      // One sum catches a NaN or Inf in any of the values it adds.
-      if (!std::isfinite(c_wave + v2 + o.xx + o.yy + o.zz + o.yz + o.xz + o.xy + x.x + x.y + x.z) &&
-          bad < 0)
-        bad = static_cast<std::int64_t>(i);
-      wave = std::max(wave, c_wave);
-      speed2 = std::max(speed2, v2);
-    };
-    if constexpr (core::is_user_strength<Strength>) {
-      // A user model: kinematics of a chunk, one call of the user's function, then the rest.
-      core::UserStrengthChunk chunk(mat, strength);
-      const std::size_t hc = p.history_count;
-      constexpr std::size_t N = core::kUserChunk;
-      std::array<Vec3, N> x, v_bar, v_p;
-      std::array<core::SymTensor, N> d_eps;
-      std::array<core::PointState, N> st;
-      std::array<core::IncrementStart, N> start;
-      for (std::size_t i0 = batch.begin + b; i0 < batch.begin + e; i0 += N) {
-        const std::size_t n = std::min(N, batch.begin + e - i0);
-        for (std::size_t j = 0; j < n; ++j) {
-          prepare(i0 + j, x[j], v_bar[j], v_p[j], d_eps[j], st[j]);
-          start[j] = core::start_increment<Fails>(mat, st[j], d_eps[j], dt);
-          chunk.load(j, st[j], start[j], p.history.data() + (i0 + j) * hc);
-        }
-        chunk.run(n, dt);
-        for (std::size_t j = 0; j < n; ++j) {
-          chunk.store_history(j, p.history.data() + (i0 + j) * hc);
-          const core::PointUpdate u = core::finish_increment<Eos, Fails>(
-              mat, eos, Thermal, st[j], start[j], chunk.deviator(j), chunk.result(j));
-          complete(i0 + j, x[j], v_bar[j], v_p[j], d_eps[j], st[j], u);
-        }
+      if (sweep.flip_update) {
+        v_p = flip * (v_p + dv) + (1.0 - flip) * v_bar;
+        p.velocity[i] = v_p;
       }
     } else {
-      for (std::size_t i = batch.begin + b; i < batch.begin + e; ++i) {
-        Vec3 x, v_bar, v_p;
-        core::SymTensor d_eps;
-        core::PointState st;
-        prepare(i, x, v_bar, v_p, d_eps, st);
-        const core::PointUpdate u = core::constitutive_update<Strength, Eos, Fails>(
-            mat, strength, eos, Thermal, st, d_eps, dt);
-        complete(i, x, v_bar, v_p, d_eps, st, u);
+      l = solver.velocity_gradient_[i];  // kinematics_kernel moved x and updated v_p already
+    }
+  }
+
+  // The strain increment d_eps of particle i from L, its Jaumann-rotated stress, its new
+  // volume (stored) and the rest of its start state st.
+  AFEMP_INLINE void start(std::size_t i, const core::Mat3& l, core::SymTensor& d_eps,
+                          core::PointState& st) {
+    d_eps = dt * core::sym_part(l);
+    st.stress = p.stress[i];
+    if (jaumann) {
+      st.stress += core::jaumann_increment(st.stress, 0.5 * dt * (l.m[1][2] - l.m[2][1]),
+                                           0.5 * dt * (l.m[0][2] - l.m[2][0]),
+                                           0.5 * dt * (l.m[0][1] - l.m[1][0]));
+    }
+    const double volume = p.volume[i] * (1.0 + d_eps.trace());
+    swept += volume - p.volume[i];
+    p.volume[i] = volume;
+    // History an elastic batch never reads stays in memory: less to stream per point.
+    if constexpr (reads_plastic_strain) st.plastic_strain = p.plastic_strain[i];
+    if constexpr (reads_temperature) st.temperature = p.temperature[i];
+    // A failure model reads and writes any model's damage.
+    if constexpr (reads_damage || Fails) st.damage = p.damage[i];
+    core::load_model_history<Strength>(st, p.history.data() + i * p.history_count);
+    st.energy = p.energy[i];
+    st.density = p.mass[i] / volume;
+    // A high explosive: its burn fraction at the step's end (core/programmed_burn.hpp).
+    if (explosive)
+      st.burn = core::burn_fraction(*mat.burn, mat.density, p.burn[i], burn_time, p.light_time[i],
+                                    h, mat.density / st.density);
+  }
+
+  // Particle i's position x, kinematics and start state, each a separate local of the caller.
+  AFEMP_INLINE void prepare(std::size_t i, Vec3& x, Vec3& v_bar, Vec3& v_p, core::SymTensor& d_eps,
+                            core::PointState& st) {
+    x = p.position[i];
+    core::Mat3 l;
+    kinematics(i, x, l, v_bar, v_p);
+    st = core::PointState{};
+    start(i, l, d_eps, st);
+  }
+
+  // The state stored after the constitutive update u, the bulk viscosity, the move and the
+  // step bound of particle i.
+  AFEMP_INLINE void commit(std::size_t i, Vec3& x, const Vec3& v_bar, const Vec3& v_p,
+                           const core::SymTensor& d_eps, core::PointState& st,
+                           const core::PointUpdate& u) {
+    p.stress[i] = st.stress;
+    if (explosive) p.burn[i] = st.burn;
+    if constexpr (reads_plastic_strain) p.plastic_strain[i] = st.plastic_strain;
+    if constexpr (Thermal) p.temperature[i] = st.temperature;
+    if constexpr (reads_damage || Fails) p.damage[i] = st.damage;
+    core::store_model_history<Strength>(st, p.history.data() + i * p.history_count);
+    if (track_strain) p.strain[i] += d_eps;
+    if constexpr (Fails) {
+      if (principal_strain)
+        p.damage[i] = core::principal_strain_damage(mat.failure, p.damage[i], p.strain[i]);
+    }
+    if (track_length) {  // the particle's extent along each axis stretches with the grid's
+      Vec3& l = p.length[i];
+      l = Vec3{l.x * (1.0 + d_eps.xx), l.y * (1.0 + d_eps.yy), l.z * (1.0 + d_eps.zz)};
+    }
+    work += p.mass[i] * u.plastic_work;
+    if (track_heat) p.plastic_heat[i] += u.plastic_work;
+    bound(i, x, v_bar, v_p, d_eps, st);
+  }
+
+  // The bulk viscosity, the energy, the move and the step bound of particle i. The bound uses
+  // max c + max |v| >= max (c + |v|): squares here, two square roots per step instead of two
+  // per particle.
+  AFEMP_INLINE void bound(std::size_t i, Vec3& x, const Vec3& v_bar, const Vec3& v_p,
+                          const core::SymTensor& d_eps, core::PointState& st) {
+    double c_wave = core::wave_speed(mat, eos, st);
+    if (viscous) {
+      const double q_heat = core::bulk_viscous_heat(p.bulk_q[i], d_eps.trace(), st.density);
+      st.energy += q_heat;
+      heat += p.mass[i] * q_heat;
+      if (track_heat) p.viscous_heat[i] += q_heat;
+      const core::ViscousState vs =
+          core::bulk_viscosity(viscosity[static_cast<std::size_t>(p.body[i])], st.density, h,
+                               d_eps.trace() / dt, c_wave);
+      p.bulk_q[i] = vs.q;
+      c_wave = vs.signal;
+    }
+    p.energy[i] = st.energy;
+    if (Fused && sweep.move) {
+      x += step_dt * v_bar;
+      p.position[i] = x;
+    }
+    const double v2 = core::dot(v_p, v_p);
+    const core::SymTensor& o = st.stress;
+    // One sum catches a NaN or Inf in any of the values it adds.
+    if (!std::isfinite(c_wave + v2 + o.xx + o.yy + o.zz + o.yz + o.xz + o.xy + x.x + x.y + x.z) &&
+        bad < 0)
+      bad = static_cast<std::int64_t>(i);
+    wave = std::max(wave, c_wave);
+    speed2 = std::max(speed2, v2);
+  }
+
+  // Particles [b, e): one direct (inlined) constitutive call per point.
+  void run(std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      Vec3 x, v_bar, v_p;
+      core::SymTensor d_eps;
+      core::PointState st;
+      prepare(i, x, v_bar, v_p, d_eps, st);
+      const core::PointUpdate u = core::constitutive_update<Strength, Eos, Fails>(
+          mat, strength, eos, Thermal, st, d_eps, dt);
+      commit(i, x, v_bar, v_p, d_eps, st, u);
+    }
+  }
+
+  // A user model: the kinematics of a chunk, one call of the user's function, then the rest.
+  void run_user_chunks(std::size_t b, std::size_t e) {
+    core::UserStrengthChunk chunk(mat, strength);
+    const std::size_t hc = p.history_count;
+    constexpr std::size_t N = core::kUserChunk;
+    std::array<Vec3, N> x, v_bar, v_p;
+    std::array<core::SymTensor, N> d_eps;
+    std::array<core::PointState, N> st;
+    std::array<core::IncrementStart, N> begin;
+    for (std::size_t i0 = b; i0 < e; i0 += N) {
+      const std::size_t n = std::min(N, e - i0);
+      for (std::size_t j = 0; j < n; ++j) {
+        prepare(i0 + j, x[j], v_bar[j], v_p[j], d_eps[j], st[j]);
+        begin[j] = core::start_increment<Fails>(mat, st[j], d_eps[j], dt);
+        chunk.load(j, st[j], begin[j], p.history.data() + (i0 + j) * hc);
+      }
+      chunk.run(n, dt);
+      for (std::size_t j = 0; j < n; ++j) {
+        chunk.store_history(j, p.history.data() + (i0 + j) * hc);
+        const core::PointUpdate u = core::finish_increment<Eos, Fails>(
+            mat, eos, Thermal, st[j], begin[j], chunk.deviator(j), chunk.result(j));
+        commit(i0 + j, x[j], v_bar[j], v_p[j], d_eps[j], st[j], u);
       }
     }
+  }
+};
+
+template <class Strength, class Eos, bool Thermal, bool Fused, bool Fails>
+void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& strength,
+                                    const Eos& eos, double step_dt, const StrainSweep& sweep,
+                                    int nt) {
+  const core::Material& material = *materials_[static_cast<std::size_t>(batch.material)];
+#pragma omp parallel num_threads(nt) if (core::worth_threads(batch.end - batch.begin))
+  {
+    StressPass<Strength, Eos, Thermal, Fused, Fails> pass(*this, material, strength, eos, step_dt,
+                                                          sweep);
+    const int t = core::thread_index();
+    const auto [b, e] = core::static_range(batch.end - batch.begin, t, core::team_size());
+    if constexpr (core::is_user_strength<Strength>)
+      pass.run_user_chunks(batch.begin + b, batch.begin + e);
+    else
+      pass.run(batch.begin + b, batch.begin + e);
     double* out = thread_sums_.data() + static_cast<std::size_t>(t) * core::cache_line_doubles;
-    out[0] += work;
-    out[1] = std::max(out[1], wave);
-    out[2] = std::max(out[2], speed2);
-    out[3] += heat;
-    out[4] += swept;
+    out[0] += pass.work;
+    out[1] = std::max(out[1], pass.wave);
+    out[2] = std::max(out[2], pass.speed2);
+    out[3] += pass.heat;
+    out[4] += pass.swept;
     auto& tb = thread_bad_[static_cast<std::size_t>(t)];
-    if (bad >= 0 && (tb < 0 || bad < tb)) tb = bad;
+    if (pass.bad >= 0 && (tb < 0 || pass.bad < tb)) tb = pass.bad;
   }
 }
 
