@@ -56,21 +56,25 @@ bool holds_plane(const Scene& scene, int body, int axis, double coordinate, cons
   return false;
 }
 
-}  // namespace
+// Collects the warnings, leaving out those the scene's [run] quiet names.
+class Warner {
+ public:
+  explicit Warner(const Scene& scene) : scene_(scene) {}
+  void operator()(const SourceLocation& where, const std::string& key, const std::string& message) {
+    const std::vector<std::string>& quiet = scene_.run.quiet;
+    if (std::find(quiet.begin(), quiet.end(), key) != quiet.end()) return;
+    out_.push_back({where, key, message + " (silence with [run] quiet = [\"" + key + "\"])"});
+  }
+  std::vector<SceneWarning> take() { return std::move(out_); }
 
-std::string SceneWarning::text() const {
-  return where.file + ":" + std::to_string(where.line) + ": key '" + key + "': " + message;
-}
+ private:
+  const Scene& scene_;
+  std::vector<SceneWarning> out_;
+};
 
-std::vector<SceneWarning> plausibility_warnings(const Scene& scene) {
-  std::vector<SceneWarning> out;
-  auto warn = [&](const SourceLocation& where, const std::string& key, const std::string& message) {
-    if (std::find(scene.run.quiet.begin(), scene.run.quiet.end(), key) != scene.run.quiet.end())
-      return;
-    out.push_back({where, key, message + " (silence with [run] quiet = [\"" + key + "\"])"});
-  };
-
-  // Materials, from the declared units.
+// Materials, from the declared units: density, wave speed, yield stress and failure strain
+// outside what real materials have.
+void warn_material_units(const Scene& scene, Warner& warn) {
   const UnitRanges* u = scene.run.units == "mm-ms-g" ? &mm_ms_g
                         : scene.run.units == "SI"    ? &si
                                                      : nullptr;
@@ -120,13 +124,19 @@ std::vector<SceneWarning> plausibility_warnings(const Scene& scene) {
       warn(at, key + "." + which,
            "a failure strain of " + num(strain) + " is above 10 (a strain, not a percentage)");
   }
+}
+
+// Erosion plastic strains given as a percentage.
+void warn_erosion_strain(const Scene& scene, Warner& warn) {
   for (const BodySpec& body : scene.bodies)
     if (body.erosion && body.erosion->plastic_strain > 10.0)
       warn(body.where, "bodies." + body.name + ".erosion.plastic_strain",
            "an erosion plastic strain of " + num(body.erosion->plastic_strain) +
                " is above 10 (a strain, not a percentage)");
+}
 
-  // The grid: a whole number of cells along each axis (the grid is extended to the next one).
+// The grid: a whole number of cells along each axis (the grid is extended to the next one).
+void warn_grid_cells(const Scene& scene, Warner& warn) {
   if (scene.has_grid) {
     const GridSettings& g = scene.mpm.grid;
     for (int a = 0; a < 3; ++a) {
@@ -141,8 +151,10 @@ std::vector<SceneWarning> plausibility_warnings(const Scene& scene) {
       }
     }
   }
+}
 
-  // Quarter and half meshes (generated cylinders along z, spheres) need their cut planes held.
+// Quarter and half meshes (generated cylinders along z, spheres) need their cut planes held.
+void warn_unheld_cut_planes(const Scene& scene, Warner& warn) {
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
     const BodySpec& body = scene.bodies[b];
     if (body.discretisation != Discretisation::hexahedra || body.rigid) continue;
@@ -174,10 +186,12 @@ std::vector<SceneWarning> plausibility_warnings(const Scene& scene) {
                name + "\"]");
     }
   }
+}
 
-  // Under the gauge form an empty cell reads as the ambient pressure, so an explosion's
-  // products, expanding far below it, clump until they hold it and the bubble never slows
-  // (docs/explosives.md, "The bubble period").
+// Under the gauge form an empty cell reads as the ambient pressure, so an explosion's
+// products, expanding far below it, clump until they hold it and the bubble never slows
+// (docs/explosives.md, "The bubble period").
+void warn_gauge_far_field_explosive(const Scene& scene, Warner& warn) {
   if (scene.mpm.grid.far_field && !scene.mpm.grid.far_field->absolute_stress) {
     for (const BodySpec& body : scene.bodies) {
       if (body.material < 0 ||
@@ -191,10 +205,13 @@ std::vector<SceneWarning> plausibility_warnings(const Scene& scene) {
       break;
     }
   }
-  // The far field's absolute stress holds a prestressed body under its pressure in the internal
-  // force, which destabilises its zero-energy modes unless its bulk modulus dwarfs the pressure:
-  // water at 10-20 MPa (K / p = 135-270) stays still at 2 particles per cell direction, a gas
-  // at 10 MPa (K = 1.4 p) was thrown between 3 and 30 MPa (mpm/absorbing_faces.hpp).
+}
+
+// The far field's absolute stress holds a prestressed body under its pressure in the internal
+// force, which destabilises its zero-energy modes unless its bulk modulus dwarfs the pressure:
+// water at 10-20 MPa (K / p = 135-270) stays still at 2 particles per cell direction, a gas
+// at 10 MPa (K = 1.4 p) was thrown between 3 and 30 MPa (mpm/absorbing_faces.hpp).
+void warn_absolute_far_field_prestress(const Scene& scene, Warner& warn) {
   if (scene.mpm.grid.far_field && scene.mpm.grid.far_field->absolute_stress) {
     for (const BodySpec& body : scene.bodies) {
       if (!body.pressure || !(*body.pressure > 0.0) || body.material < 0) continue;
@@ -215,7 +232,23 @@ std::vector<SceneWarning> plausibility_warnings(const Scene& scene) {
                  "grow (a gas near the ambient); use stress = \"gauge\" for it");
     }
   }
-  return out;
+}
+
+}  // namespace
+
+std::string SceneWarning::text() const {
+  return where.file + ":" + std::to_string(where.line) + ": key '" + key + "': " + message;
+}
+
+std::vector<SceneWarning> plausibility_warnings(const Scene& scene) {
+  Warner warn(scene);
+  warn_material_units(scene, warn);
+  warn_erosion_strain(scene, warn);
+  warn_grid_cells(scene, warn);
+  warn_unheld_cut_planes(scene, warn);
+  warn_gauge_far_field_explosive(scene, warn);
+  warn_absolute_far_field_prestress(scene, warn);
+  return warn.take();
 }
 
 }  // namespace afemp::core
