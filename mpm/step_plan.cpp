@@ -29,11 +29,8 @@ Stage stage(StageKind kind, std::string name, std::string why) {
   return {kind, std::move(name), std::move(why)};
 }
 
-}  // namespace
-
-StepPlan build_step_plan(const core::Scene& scene) {
-  using core::UpdateScheme;
-  StepPlan plan;
+// The plan's switches and the materials its bodies use.
+void set_options(StepPlan& plan, const core::Scene& scene) {
   plan.scheme = scene.mpm.scheme;
   plan.shape = scene.mpm.shape;
   plan.transfer = scene.mpm.transfer;
@@ -57,8 +54,11 @@ StepPlan build_step_plan(const core::Scene& scene) {
     plan.materials.push_back(
         {mat.name, strength_name(mat.strength), eos_name(mat.eos), mat.has_thermal_term()});
   }
+}
 
-  // Velocity fields: one for each body in a contact, one shared by all the others.
+// Velocity fields: one for each body in a contact, one shared by all the others; and the grid
+// contacts' lines for describe().
+void assign_velocity_fields(StepPlan& plan, const core::Scene& scene) {
   plan.field_of_body.assign(scene.bodies.size(), 0);
   std::vector<bool> in_contact(scene.bodies.size(), false);
   for (const auto& c : scene.contacts)
@@ -87,19 +87,11 @@ StepPlan build_step_plan(const core::Scene& scene) {
       << ", contact once the gap is below " << c.distance_factor << " cell";
     plan.contacts.push_back(o.str());
   }
-  const Stage surfaces =
-      stage(StageKind::contact_surfaces, "contact surfaces",
-            "grid contact: each contact body's normal from its mass "
-            "gradient and its reach toward the other (Lian et al. 2013, eqs 37, 42)");
-  const Stage grid_contact =
-      stage(StageKind::grid_contact, "grid contact",
-            "grid contact on the updated velocity: normal stop, Coulomb friction, separation "
-            "(Lian et al. 2013, eqs 38-42)");
+}
 
-  const std::string force_why = plan.gravity ? "internal force -V sigma.grad N and gravity m N g"
-                                             : "internal force -V sigma.grad N (no body force)";
-  // The one stage every scheme runs the same way.
-  const Stage grid_update = stage(
+// The one stage every scheme runs the same way.
+Stage grid_update_stage(const core::Scene& scene) {
+  return stage(
       StageKind::grid_momentum_update, "grid momentum update",
       scene.mpm.grid.far_field
           ? std::string("explicit momentum update and boundary conditions; the far field's "
@@ -111,20 +103,23 @@ StepPlan build_step_plan(const core::Scene& scene) {
           ? "explicit momentum update and boundary conditions; absorbing faces damp their "
             "nodes (Lysmer & Kuhlemeyer 1969)"
           : "explicit momentum update and boundary conditions");
-  // Rigid walls ([[walls]] naming particle bodies) act on the updated grid velocity, after
-  // grid contact, at the particles' boundary.
-  const bool particle_walls = core::has_particle_walls(scene) || core::has_surface_contact(scene);
-  const Stage walls = stage(
+}
+
+// Rigid walls ([[walls]] naming particle bodies) act on the updated grid velocity, after grid
+// contact, at the particles' boundary.
+Stage walls_stage(const core::Scene& scene) {
+  return stage(
       StageKind::particle_walls, "surface contact",
       std::string(core::has_particle_walls(scene) ? "rigid walls ([[walls]])" : "") +
           (core::has_particle_walls(scene) && core::has_surface_contact(scene) ? " and " : "") +
           (core::has_surface_contact(scene) ? "mesh faces ([[contact]] method \"surface\")" : "") +
           " met where the particles' boundary reaches them: the impulse that keeps each "
           "particle's predicted domain off them, through its nodes, Coulomb friction");
+}
+
+// The stages before the transfers: splitting, outflow, binning.
+void append_particle_stages(StepPlan& plan, const core::Scene& scene) {
   auto& s = plan.stages;
-  const std::string velocity = plan.transfer == core::Transfer::apic
-                                   ? "particle velocity and affine velocity (APIC)"
-                                   : "particle velocity (PIC/FLIP blend)";
   std::string outflow_faces;
   for (int f = 0; f < 6; ++f)
     if (scene.mpm.grid.faces[static_cast<std::size_t>(f)] == core::FaceCondition::outflow)
@@ -149,6 +144,30 @@ StepPlan build_step_plan(const core::Scene& scene) {
                           ") leave the run; their mass, momentum and energy are booked"));
   s.push_back(stage(StageKind::bin_particles, "bin particles",
                     "cells of the points, active grid blocks, colour layers for the P2G sweep"));
+}
+
+// The scheme's transfers, forces, grid update and stress update, in its order.
+void append_scheme_stages(StepPlan& plan, const core::Scene& scene) {
+  using core::UpdateScheme;
+  const bool contact = core::has_grid_contact(scene);
+  const Stage surfaces =
+      stage(StageKind::contact_surfaces, "contact surfaces",
+            "grid contact: each contact body's normal from its mass "
+            "gradient and its reach toward the other (Lian et al. 2013, eqs 37, 42)");
+  const Stage grid_contact =
+      stage(StageKind::grid_contact, "grid contact",
+            "grid contact on the updated velocity: normal stop, Coulomb friction, separation "
+            "(Lian et al. 2013, eqs 38-42)");
+
+  const std::string force_why = plan.gravity ? "internal force -V sigma.grad N and gravity m N g"
+                                             : "internal force -V sigma.grad N (no body force)";
+  const Stage grid_update = grid_update_stage(scene);
+  const bool particle_walls = core::has_particle_walls(scene) || core::has_surface_contact(scene);
+  const Stage walls = walls_stage(scene);
+  auto& s = plan.stages;
+  const std::string velocity = plan.transfer == core::Transfer::apic
+                                   ? "particle velocity and affine velocity (APIC)"
+                                   : "particle velocity (PIC/FLIP blend)";
   // The parts the schemes share: the start of a step that updates the stress before the forces
   // (USF; USAVG's first half), what follows the forces, and MUSL's remap (MUSL; USAVG's second
   // half).
@@ -214,6 +233,16 @@ StepPlan build_step_plan(const core::Scene& scene) {
       remap("MUSL", "strain rate from the remapped grid velocity; positions move");
       break;
   }
+}
+
+}  // namespace
+
+StepPlan build_step_plan(const core::Scene& scene) {
+  StepPlan plan;
+  set_options(plan, scene);
+  assign_velocity_fields(plan, scene);
+  append_particle_stages(plan, scene);
+  append_scheme_stages(plan, scene);
   return plan;
 }
 
