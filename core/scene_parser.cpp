@@ -717,6 +717,141 @@ std::vector<std::string> shapes_for(Discretisation d) {
   return {};
 }
 
+// [bodies.shape.box]: min and max corners.
+BoxShape read_box(TableReader& s) {
+  s.known({"min", "max"});
+  s.check_unknown();
+  BoxShape box{s.required_vec3("min"), s.required_vec3("max")};
+  for (int a = 0; a < 3; ++a)
+    if (!(box.max[a] > box.min[a]))
+      s.fail("max", "max must exceed min in every component (component " + std::to_string(a) + ")");
+  return box;
+}
+
+// [bodies.shape.cylinder]: base, axis, radius, length and an optional ogive nose.
+CylinderShape read_cylinder(TableReader& s, Discretisation d) {
+  s.known({"base", "axis", "radius", "length", "nose"});
+  s.check_unknown();
+  CylinderShape c;
+  c.base = s.required_vec3("base");
+  const Vec3 axis = s.vec3("axis", Vec3{0, 0, 1});
+  const double len = norm(axis);
+  if (!(len > 0.0)) s.fail("axis", "the axis must be a non-zero vector");
+  c.axis = (1.0 / len) * axis;
+  c.radius = s.required_number("radius", Range::positive());
+  c.length = s.required_number("length", Range::positive());
+  if (const toml::table* t = s.optional_table("nose")) {
+    TableReader n(*t, s.dotted("nose"), s.file());
+    n.known({"crh", "meplat"});
+    n.check_unknown();
+    c.nose.crh =
+        n.required_number("crh", Range::closed(0.5, std::numeric_limits<double>::infinity()));
+    c.nose.meplat = n.number("meplat", 0.0, Range::non_negative());
+    if (!(c.nose.meplat < 2.0 * c.radius))
+      n.fail("meplat", "the flat tip's diameter must be less than the cylinder's, " +
+                           format_number(2.0 * c.radius));
+    if (d == Discretisation::hexahedra && !(c.nose.meplat > 0.0))
+      n.fail("meplat",
+             "a nose meshed with hexahedra needs a flat tip (meplat > 0): the "
+             "elements at a sharp tip would have no width");
+    const double nose = ogive_nose_length(c.nose, c.radius);
+    if (!(nose < c.length))
+      n.fail("crh", "the nose (" + format_number(nose) +
+                        " long) must be shorter than the "
+                        "cylinder's length, " +
+                        format_number(c.length));
+  }
+  return c;
+}
+
+// [bodies.shape.cone]: a cylinder with a top radius, solid or with a wall.
+CylinderShape read_cone(TableReader& s) {
+  s.known({"base", "axis", "radius", "top_radius", "length", "wall"});
+  s.check_unknown();
+  CylinderShape c;
+  c.base = s.required_vec3("base");
+  const Vec3 axis = s.vec3("axis", Vec3{0, 0, 1});
+  if (!(norm(axis) > 0.0)) s.fail("axis", "the axis must be a non-zero vector");
+  c.axis = (1.0 / norm(axis)) * axis;
+  c.radius = s.required_number("radius", Range::non_negative());
+  c.top_radius = s.required_number("top_radius", Range::non_negative());
+  c.length = s.required_number("length", Range::positive());
+  if (!(c.radius > 0.0 || c.top_radius > 0.0))
+    s.fail("top_radius", "a cone needs a radius > 0 at one end at least");
+  c.wall = s.number("wall", 0.0, Range::non_negative());
+  return c;
+}
+
+// [bodies.shape.sphere]: centre and radius.
+SphereShape read_sphere(TableReader& s) {
+  s.known({"centre", "radius"});
+  s.check_unknown();
+  SphereShape sp;
+  sp.centre = s.required_vec3("centre");
+  sp.radius = s.required_number("radius", Range::positive());
+  return sp;
+}
+
+// [bodies.shape.mesh]: a mesh file, relative to the scene, its parts, scale and shift.
+MeshFileShape read_mesh_file(TableReader& s, const std::string& scene_path) {
+  s.known({"file", "parts", "scale", "translate"});
+  s.check_unknown();
+  MeshFileShape m;
+  const std::string file = s.required_string("file");
+  if (file.empty()) s.fail("file", "the mesh file name is empty");
+  m.path = relative_to_scene(file, scene_path);
+  m.parts = s.strings("parts");
+  m.scale = s.number("scale", 1.0, Range::positive());
+  m.translate = s.vec3("translate", Vec3{});
+  return m;
+}
+
+// [bodies.shape.line]: a straight line from one point to another.
+LineShape read_line(TableReader& s) {
+  s.known({"from", "to"});
+  s.check_unknown();
+  LineShape l{s.required_vec3("from"), s.required_vec3("to")};
+  if (!(norm(l.to - l.from) > 0.0)) s.fail("to", "the line has zero length");
+  return l;
+}
+
+// [bodies.shape.rebar]: mats of bars in planes across a box, their spacing, diameter and
+// cover.
+RebarShape read_rebar(TableReader& s) {
+  s.known({"min", "max", "normal", "position", "spacing", "diameter", "cover"});
+  s.check_unknown();
+  RebarShape m;
+  m.min = s.required_vec3("min");
+  m.max = s.required_vec3("max");
+  for (int a = 0; a < 3; ++a)
+    if (!(m.max[a] > m.min[a])) s.fail("max", "max must exceed min in every component");
+  m.normal_axis = static_cast<int>(s.choice("normal", {"x", "y", "z"}, std::nullopt));
+  if (!s.has("position"))
+    s.fail("position",
+           "required key is missing (a number, or an array of numbers: one mat per "
+           "layer)");
+  m.positions = s.numbers("position", Range::any());
+  for (std::size_t i = 0; i < m.positions.size(); ++i)
+    if (m.positions[i] < m.min[m.normal_axis] || m.positions[i] > m.max[m.normal_axis])
+      s.fail("position", "every mat's plane must lie between min and max along its normal (" +
+                             format_number(m.positions[i]) + " does not)");
+  m.spacing = s.required_number("spacing", Range::positive());
+  m.diameter = s.required_number("diameter", Range::positive());
+  m.cover = s.required_number("cover", Range::non_negative());
+  return m;
+}
+
+// [bodies.shape.points]: a file of points, relative to the scene.
+PointListShape read_points(TableReader& s, const std::string& scene_path) {
+  s.known({"file"});
+  s.check_unknown();
+  const std::string file = s.required_string("file");
+  if (file.empty()) s.fail("file", "the points file name is empty");
+  PointListShape points;
+  points.path = relative_to_scene(file, scene_path);
+  return points;
+}
+
 Shape read_shape(TableReader& r, const std::string& scene_path, Discretisation d) {
   r.known({"box", "cylinder", "cone", "sphere", "points", "mesh", "line", "rebar"});
   r.check_unknown();
@@ -735,123 +870,14 @@ Shape read_shape(TableReader& r, const std::string& scene_path, Discretisation d
                      "a body of " + std::string(to_string(d)) + " takes one of " +
                          join(allowed, false) + ", not " + kind);
   TableReader s(r.required_table(kind), r.dotted(kind), r.file());
-  if (kind == "box") {
-    s.known({"min", "max"});
-    s.check_unknown();
-    BoxShape box{s.required_vec3("min"), s.required_vec3("max")};
-    for (int a = 0; a < 3; ++a)
-      if (!(box.max[a] > box.min[a]))
-        s.fail("max",
-               "max must exceed min in every component (component " + std::to_string(a) + ")");
-    return box;
-  }
-  if (kind == "cylinder") {
-    s.known({"base", "axis", "radius", "length", "nose"});
-    s.check_unknown();
-    CylinderShape c;
-    c.base = s.required_vec3("base");
-    const Vec3 axis = s.vec3("axis", Vec3{0, 0, 1});
-    const double len = norm(axis);
-    if (!(len > 0.0)) s.fail("axis", "the axis must be a non-zero vector");
-    c.axis = (1.0 / len) * axis;
-    c.radius = s.required_number("radius", Range::positive());
-    c.length = s.required_number("length", Range::positive());
-    if (const toml::table* t = s.optional_table("nose")) {
-      TableReader n(*t, s.dotted("nose"), s.file());
-      n.known({"crh", "meplat"});
-      n.check_unknown();
-      c.nose.crh =
-          n.required_number("crh", Range::closed(0.5, std::numeric_limits<double>::infinity()));
-      c.nose.meplat = n.number("meplat", 0.0, Range::non_negative());
-      if (!(c.nose.meplat < 2.0 * c.radius))
-        n.fail("meplat", "the flat tip's diameter must be less than the cylinder's, " +
-                             format_number(2.0 * c.radius));
-      if (d == Discretisation::hexahedra && !(c.nose.meplat > 0.0))
-        n.fail("meplat",
-               "a nose meshed with hexahedra needs a flat tip (meplat > 0): the "
-               "elements at a sharp tip would have no width");
-      const double nose = ogive_nose_length(c.nose, c.radius);
-      if (!(nose < c.length))
-        n.fail("crh", "the nose (" + format_number(nose) +
-                          " long) must be shorter than the "
-                          "cylinder's length, " +
-                          format_number(c.length));
-    }
-    return c;
-  }
-  if (kind == "cone") {
-    s.known({"base", "axis", "radius", "top_radius", "length", "wall"});
-    s.check_unknown();
-    CylinderShape c;
-    c.base = s.required_vec3("base");
-    const Vec3 axis = s.vec3("axis", Vec3{0, 0, 1});
-    if (!(norm(axis) > 0.0)) s.fail("axis", "the axis must be a non-zero vector");
-    c.axis = (1.0 / norm(axis)) * axis;
-    c.radius = s.required_number("radius", Range::non_negative());
-    c.top_radius = s.required_number("top_radius", Range::non_negative());
-    c.length = s.required_number("length", Range::positive());
-    if (!(c.radius > 0.0 || c.top_radius > 0.0))
-      s.fail("top_radius", "a cone needs a radius > 0 at one end at least");
-    c.wall = s.number("wall", 0.0, Range::non_negative());
-    return c;
-  }
-  if (kind == "sphere") {
-    s.known({"centre", "radius"});
-    s.check_unknown();
-    SphereShape sp;
-    sp.centre = s.required_vec3("centre");
-    sp.radius = s.required_number("radius", Range::positive());
-    return sp;
-  }
-  if (kind == "mesh") {
-    s.known({"file", "parts", "scale", "translate"});
-    s.check_unknown();
-    MeshFileShape m;
-    const std::string file = s.required_string("file");
-    if (file.empty()) s.fail("file", "the mesh file name is empty");
-    m.path = relative_to_scene(file, scene_path);
-    m.parts = s.strings("parts");
-    m.scale = s.number("scale", 1.0, Range::positive());
-    m.translate = s.vec3("translate", Vec3{});
-    return m;
-  }
-  if (kind == "line") {
-    s.known({"from", "to"});
-    s.check_unknown();
-    LineShape l{s.required_vec3("from"), s.required_vec3("to")};
-    if (!(norm(l.to - l.from) > 0.0)) s.fail("to", "the line has zero length");
-    return l;
-  }
-  if (kind == "rebar") {
-    s.known({"min", "max", "normal", "position", "spacing", "diameter", "cover"});
-    s.check_unknown();
-    RebarShape m;
-    m.min = s.required_vec3("min");
-    m.max = s.required_vec3("max");
-    for (int a = 0; a < 3; ++a)
-      if (!(m.max[a] > m.min[a])) s.fail("max", "max must exceed min in every component");
-    m.normal_axis = static_cast<int>(s.choice("normal", {"x", "y", "z"}, std::nullopt));
-    if (!s.has("position"))
-      s.fail("position",
-             "required key is missing (a number, or an array of numbers: one mat per "
-             "layer)");
-    m.positions = s.numbers("position", Range::any());
-    for (std::size_t i = 0; i < m.positions.size(); ++i)
-      if (m.positions[i] < m.min[m.normal_axis] || m.positions[i] > m.max[m.normal_axis])
-        s.fail("position", "every mat's plane must lie between min and max along its normal (" +
-                               format_number(m.positions[i]) + " does not)");
-    m.spacing = s.required_number("spacing", Range::positive());
-    m.diameter = s.required_number("diameter", Range::positive());
-    m.cover = s.required_number("cover", Range::non_negative());
-    return m;
-  }
-  s.known({"file"});
-  s.check_unknown();
-  const std::string file = s.required_string("file");
-  if (file.empty()) s.fail("file", "the points file name is empty");
-  PointListShape points;
-  points.path = relative_to_scene(file, scene_path);
-  return points;
+  if (kind == "box") return read_box(s);
+  if (kind == "cylinder") return read_cylinder(s, d);
+  if (kind == "cone") return read_cone(s);
+  if (kind == "sphere") return read_sphere(s);
+  if (kind == "mesh") return read_mesh_file(s, scene_path);
+  if (kind == "line") return read_line(s);
+  if (kind == "rebar") return read_rebar(s);
+  return read_points(s, scene_path);
 }
 
 // A graded box axis: [end, elements] segments from lo to hi, the ends increasing and the last
