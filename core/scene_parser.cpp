@@ -1284,6 +1284,98 @@ WallSpec read_wall(TableReader& r, const Scene& scene) {
   return w;
 }
 
+// The keys of a weld: none beyond the two bodies of particles it joins.
+void read_weld_contact(TableReader& r, const BodySpec& a, const BodySpec& b, bool self) {
+  for (const char* key : {"friction", "distance_factor", "penalty"})
+    if (r.has(key))
+      r.fail(key,
+             "a weld adds nothing to the step: the bodies share one velocity field; "
+             "remove " +
+                 std::string(key));
+  if (self || a.discretisation != Discretisation::particles ||
+      b.discretisation != Discretisation::particles)
+    r.fail("method",
+           "a weld names two different bodies of particles (meshes weld to "
+           "particles by bonded_to)");
+}
+
+// The keys of penalty contact between meshes, and the pairs it takes.
+void read_penalty_contact(TableReader& r, ContactSpec& c, const BodySpec& a, const BodySpec& b,
+                          bool self, bool meshes) {
+  if (r.has("distance_factor"))
+    r.fail("distance_factor",
+           "distance_factor sets where grid contact acts; penalty contact "
+           "acts where the surfaces meet (remove it, or set method = \"grid\")");
+  if (!meshes)
+    r.fail("method",
+           "penalty contact acts between meshes (hexahedra, or trusses on "
+           "hexahedra); a body of particles meets others by method = \"grid\"");
+  if (a.discretisation == Discretisation::trusses && b.discretisation == Discretisation::trusses)
+    r.fail("bodies",
+           "two bodies of trusses have no surface to meet: penalty contact needs a "
+           "body of hexahedra on one side (truss nodes meet hexahedron faces)");
+  if (self && a.discretisation != Discretisation::hexahedra)
+    r.fail("bodies", "self-contact needs a body of hexahedra (a surface that may fold)");
+  if (self && a.rigid) r.fail("bodies", "a rigid body cannot fold onto itself");
+  // The fraction of the predicted penetration one step takes out (fem/mesh_contact.hpp):
+  // 1 closes it within the step; a velocity correction, not a spring the step must resolve,
+  // so any value in (0, 1] is stable.
+  c.penalty = r.number("penalty", 1.0, Range{0.0, 1.0, true, false});
+}
+
+// The keys of surface contact between particles and hexahedra, and the pairs it takes.
+void read_surface_contact(TableReader& r, ContactSpec& c, const BodySpec& a, const BodySpec& b,
+                          bool self) {
+  if (r.has("distance_factor"))
+    r.fail("distance_factor",
+           "distance_factor sets where grid contact acts; surface contact "
+           "acts where the particles' boundary meets the faces (remove it)");
+  const bool one_each = (a.discretisation == Discretisation::particles) !=
+                        (b.discretisation == Discretisation::particles);
+  const BodySpec& m = a.discretisation == Discretisation::particles ? b : a;
+  if (self || !one_each || m.discretisation != Discretisation::hexahedra)
+    r.fail("method",
+           "surface contact is between a body of particles and a body of hexahedra "
+           "(deformable or rigid); meshes meet each other by method = \"penalty\", "
+           "particles by method = \"grid\"");
+  // The fraction of the predicted penetration one step takes out, as for penalty contact.
+  c.penalty = r.number("penalty", 1.0, Range{0.0, 1.0, true, false});
+}
+
+// The keys of grid contact, the pairs it takes and the scheme and grid it needs.
+void read_grid_contact(TableReader& r, ContactSpec& c, const Scene& scene, const BodySpec& a,
+                       const BodySpec& b, bool self, bool meshes) {
+  if (r.has("penalty"))
+    r.fail("penalty",
+           "penalty scales the stiffness of penalty contact; grid contact has none "
+           "(remove it, or set method = \"penalty\" between meshes)");
+  if (self) r.fail("bodies", "a body cannot be in grid contact with itself");
+  if (a.rigid || b.rigid)
+    r.fail("bodies", "body \"" + (a.rigid ? a.name : b.name) +
+                         "\" is rigid; rigid bodies meet meshes through penalty contact and "
+                         "particles through method = \"surface\" (grid contact does not take "
+                         "them)");
+  if (meshes)
+    r.fail("method",
+           "both bodies are meshes; grid contact needs a particle body on one side "
+           "(meshes meet each other by method = \"penalty\", the default)");
+  if (scene.mpm.scheme == UpdateScheme::USAVG && (a.discretisation != Discretisation::particles ||
+                                                  b.discretisation != Discretisation::particles))
+    r.fail("bodies",
+           "grid contact of a mesh with particles needs [mpm] scheme = \"MUSL\" (the "
+           "default) or \"USF\"; USAVG takes grid contact between bodies of particles");
+  if (!scene.has_grid)
+    r.fail("bodies", "grid contact needs a [grid] section covering the bodies (cell, min, max)");
+  // USL takes the strain from the contact-corrected velocity that also moves the particles,
+  // and in the head-on test of tests/mpm/test_grid_contact.cpp it lost 79 % of the energy
+  // (MUSL and USF: 9-10 %).
+  if (scene.mpm.scheme == UpdateScheme::USL)
+    r.fail("bodies",
+           "grid contact needs [mpm] scheme = \"MUSL\" (the default) or \"USF\"; "
+           "with USL the bodies lose most of their energy in contact");
+  c.distance_factor = r.number("distance_factor", 0.5, Range::non_negative());
+}
+
 ContactSpec read_contact(TableReader& r, const Scene& scene) {
   r.known({"bodies", "method", "friction", "distance_factor", "penalty", "name"});
   r.check_unknown();
@@ -1323,88 +1415,20 @@ ContactSpec read_contact(TableReader& r, const Scene& scene) {
     r.fail("name",
            "a contact name is a history column prefix: not empty, without commas, "
            "quotes or line breaks");
-  if (c.method == ContactMethod::weld) {
-    for (const char* key : {"friction", "distance_factor", "penalty"})
-      if (r.has(key))
-        r.fail(key,
-               "a weld adds nothing to the step: the bodies share one velocity field; "
-               "remove " +
-                   std::string(key));
-    if (self || a.discretisation != Discretisation::particles ||
-        b.discretisation != Discretisation::particles)
-      r.fail("method",
-             "a weld names two different bodies of particles (meshes weld to "
-             "particles by bonded_to)");
-    return c;
+  switch (c.method) {
+    case ContactMethod::weld:
+      read_weld_contact(r, a, b, self);
+      break;
+    case ContactMethod::penalty:
+      read_penalty_contact(r, c, a, b, self, meshes);
+      break;
+    case ContactMethod::surface:
+      read_surface_contact(r, c, a, b, self);
+      break;
+    case ContactMethod::grid:
+      read_grid_contact(r, c, scene, a, b, self, meshes);
+      break;
   }
-  if (c.method == ContactMethod::penalty) {
-    if (r.has("distance_factor"))
-      r.fail("distance_factor",
-             "distance_factor sets where grid contact acts; penalty contact "
-             "acts where the surfaces meet (remove it, or set method = \"grid\")");
-    if (!meshes)
-      r.fail("method",
-             "penalty contact acts between meshes (hexahedra, or trusses on "
-             "hexahedra); a body of particles meets others by method = \"grid\"");
-    if (a.discretisation == Discretisation::trusses && b.discretisation == Discretisation::trusses)
-      r.fail("bodies",
-             "two bodies of trusses have no surface to meet: penalty contact needs a "
-             "body of hexahedra on one side (truss nodes meet hexahedron faces)");
-    if (self && a.discretisation != Discretisation::hexahedra)
-      r.fail("bodies", "self-contact needs a body of hexahedra (a surface that may fold)");
-    if (self && a.rigid) r.fail("bodies", "a rigid body cannot fold onto itself");
-    // The fraction of the predicted penetration one step takes out (fem/mesh_contact.hpp):
-    // 1 closes it within the step; a velocity correction, not a spring the step must resolve,
-    // so any value in (0, 1] is stable.
-    c.penalty = r.number("penalty", 1.0, Range{0.0, 1.0, true, false});
-    return c;
-  }
-  if (c.method == ContactMethod::surface) {
-    if (r.has("distance_factor"))
-      r.fail("distance_factor",
-             "distance_factor sets where grid contact acts; surface contact "
-             "acts where the particles' boundary meets the faces (remove it)");
-    const bool one_each = (a.discretisation == Discretisation::particles) !=
-                          (b.discretisation == Discretisation::particles);
-    const BodySpec& m = a.discretisation == Discretisation::particles ? b : a;
-    if (self || !one_each || m.discretisation != Discretisation::hexahedra)
-      r.fail("method",
-             "surface contact is between a body of particles and a body of hexahedra "
-             "(deformable or rigid); meshes meet each other by method = \"penalty\", "
-             "particles by method = \"grid\"");
-    // The fraction of the predicted penetration one step takes out, as for penalty contact.
-    c.penalty = r.number("penalty", 1.0, Range{0.0, 1.0, true, false});
-    return c;
-  }
-  if (r.has("penalty"))
-    r.fail("penalty",
-           "penalty scales the stiffness of penalty contact; grid contact has none "
-           "(remove it, or set method = \"penalty\" between meshes)");
-  if (self) r.fail("bodies", "a body cannot be in grid contact with itself");
-  if (a.rigid || b.rigid)
-    r.fail("bodies", "body \"" + (a.rigid ? a.name : b.name) +
-                         "\" is rigid; rigid bodies meet meshes through penalty contact and "
-                         "particles through method = \"surface\" (grid contact does not take "
-                         "them)");
-  if (meshes)
-    r.fail("method",
-           "both bodies are meshes; grid contact needs a particle body on one side "
-           "(meshes meet each other by method = \"penalty\", the default)");
-  if (scene.mpm.scheme == UpdateScheme::USAVG && (a.discretisation != Discretisation::particles ||
-                                                  b.discretisation != Discretisation::particles))
-    r.fail("bodies",
-           "grid contact of a mesh with particles needs [mpm] scheme = \"MUSL\" (the "
-           "default) or \"USF\"; USAVG takes grid contact between bodies of particles");
-  if (!scene.has_grid)
-    r.fail("bodies", "grid contact needs a [grid] section covering the bodies (cell, min, max)");
-  // USL takes the strain from the contact-corrected velocity that also moves the particles,
-  // and in the head-on test of tests/mpm/test_grid_contact.cpp it lost 79 % of the energy
-  // (MUSL and USF: 9-10 %).
-  if (scene.mpm.scheme == UpdateScheme::USL)
-    r.fail("bodies",
-           "grid contact needs [mpm] scheme = \"MUSL\" (the default) or \"USF\"; "
-           "with USL the bodies lose most of their energy in contact");
-  c.distance_factor = r.number("distance_factor", 0.5, Range::non_negative());
   return c;
 }
 
