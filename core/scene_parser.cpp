@@ -961,6 +961,130 @@ void read_mesh_density(TableReader& r, const BodySpec& b, MeshDensity& m) {
   if (rebar && m.size == 0.0) r.fail("size", "give the truss length size of the bars");
 }
 
+// Keys that belong to the other discretisations are errors, not silently ignored: `key` of
+// body b applies to bodies of d1 or d2 only.
+void only_for(TableReader& r, const BodySpec& b, std::string_view key, Discretisation d1,
+              Discretisation d2) {
+  if (r.has(key) && b.discretisation != d1 && b.discretisation != d2)
+    r.fail(key, "applies to bodies of " + std::string(to_string(d1)) +
+                    (d1 != d2 ? " or " + std::string(to_string(d2)) : std::string()) + ", not to " +
+                    to_string(b.discretisation));
+}
+
+// The keys of one discretisation that a body of another gives (only_for), read first.
+void check_discretisation_keys(TableReader& r, const BodySpec& b) {
+  using D = Discretisation;
+  only_for(r, b, "particles_per_cell", D::particles, D::particles);
+  only_for(r, b, "mesh", D::hexahedra, D::trusses);
+  only_for(r, b, "element", D::hexahedra, D::hexahedra);
+  only_for(r, b, "hourglass", D::hexahedra, D::hexahedra);
+  only_for(r, b, "bulk_viscosity", D::hexahedra, D::particles);
+  only_for(r, b, "erosion", D::hexahedra, D::trusses);
+  only_for(r, b, "area", D::trusses, D::trusses);
+  only_for(r, b, "bonded_to", D::hexahedra, D::trusses);  // resolved once every body is read
+  only_for(r, b, "outside", D::particles, D::particles);  // resolved once every body is read
+  only_for(r, b, "conversion", D::hexahedra, D::hexahedra);
+  only_for(r, b, "pressure", D::particles, D::particles);
+}
+
+// A body's [hourglass] table: the form and its coefficient (defaults of fem/hourglass.hpp).
+HourglassSettings read_hourglass(const toml::table& table, TableReader& r) {
+  HourglassSettings hourglass;
+  TableReader hr(table, r.dotted("hourglass"), r.file());
+  hr.known({"form", "coefficient"});
+  hr.check_unknown();
+  hourglass.form =
+      static_cast<HourglassForm>(hr.choice("form", {"viscous", "stiffness", "assumed_strain"}, 0));
+  // Defaults of fem/hourglass.hpp: 0.1 viscous (LS-DYNA's QM), 0.05 stiffness (types 4/5);
+  // the assumed strain form has no free coefficient, only a scale on its stiffness (1).
+  switch (hourglass.form) {
+    case HourglassForm::viscous:
+      hourglass.coefficient = hr.number("coefficient", 0.1, Range::closed(0.0, 0.5));
+      break;
+    case HourglassForm::stiffness:
+      hourglass.coefficient = hr.number("coefficient", 0.05, Range::closed(0.0, 0.5));
+      break;
+    case HourglassForm::assumed_strain:
+      hourglass.coefficient = hr.number("coefficient", 1.0, Range::closed(0.0, 1.0));
+      break;
+  }
+  return hourglass;
+}
+
+// A body's erosion table: the criteria that delete its elements.
+ErosionSettings read_erosion(const toml::table& table, TableReader& r) {
+  TableReader er(table, r.dotted("erosion"), r.file());
+  er.known({"plastic_strain", "material_failure", "volume_ratio", "time_step"});
+  er.check_unknown();
+  ErosionSettings e;
+  e.plastic_strain = er.number("plastic_strain", 0.0, Range::non_negative());
+  e.material_failure = er.boolean("material_failure", false);
+  e.volume_ratio = er.number("volume_ratio", 0.0, {0.0, 1.0, false, true});
+  e.time_step = er.number("time_step", 0.0, Range::non_negative());
+  return e;
+}
+
+// A body's conversion table: the criteria that turn its elements into particles (AFEMP).
+ConversionSettings read_conversion(const toml::table& table, TableReader& r) {
+  TableReader cr(table, r.dotted("conversion"), r.file());
+  cr.known({"plastic_strain", "volumetric_strain", "jacobian_ratio", "negative_jacobian",
+            "time_step_fraction", "damage", "points"});
+  cr.check_unknown();
+  ConversionSettings c;
+  c.plastic_strain = cr.number("plastic_strain", 0.0, Range::non_negative());
+  c.volumetric_strain = cr.number("volumetric_strain", 0.0, {0.0, 1.0, false, true});
+  c.jacobian_ratio = cr.number("jacobian_ratio", 0.0, {0.0, 1.0, false, true});
+  c.negative_jacobian = cr.boolean("negative_jacobian", true);
+  c.time_step_fraction = cr.number("time_step_fraction", 0.0, {0.0, 1.0, false, true});
+  c.damage = cr.number("damage", 0.0, {0.0, 1.0, false, false});
+  c.points = static_cast<int>(cr.integer("points", 1, 1, 2));
+  if (c.plastic_strain == 0.0 && c.volumetric_strain == 0.0 && c.jacobian_ratio == 0.0 &&
+      !c.negative_jacobian && c.time_step_fraction == 0.0 && c.damage == 0.0)
+    r.fail("conversion",
+           "every criterion is off; give at least one of plastic_strain, "
+           "volumetric_strain, jacobian_ratio, negative_jacobian, "
+           "time_step_fraction, damage");
+  return c;
+}
+
+// rigid = true, or a table of the fixed components; refused with erosion, conversion or
+// bonded_to. Sets b.rigid unless rigid = false.
+void read_rigid(const toml::node& node, TableReader& r, BodySpec& b) {
+  const toml::node* n = &node;
+  RigidSettings rigid;
+  bool set = true;
+  if (const auto* flag = n->as_boolean()) {
+    set = flag->get();
+  } else if (const toml::table* t = n->as_table()) {
+    TableReader rr(*t, r.dotted("rigid"), r.file());
+    rr.known({"fixed"});
+    rr.check_unknown();
+    static constexpr const char* dof[6] = {"x", "y", "z", "rx", "ry", "rz"};
+    for (const std::string& name : rr.strings("fixed")) {
+      if (name == "all") {
+        rigid.fixed.fill(true);
+        continue;
+      }
+      const auto* component =
+          std::find_if(std::begin(dof), std::end(dof), [&](const char* d) { return name == d; });
+      if (component == std::end(dof))
+        rr.fail("fixed", "unknown component \"" + name +
+                             "\"; allowed: \"x\", \"y\", \"z\", \"rx\", \"ry\", \"rz\", \"all\"");
+      rigid.fixed[static_cast<std::size_t>(component - std::begin(dof))] = true;
+    }
+  } else {
+    r.fail("rigid",
+           "expected true or a table { fixed = [\"x\", ..., \"rz\"] }, got " + describe_type(*n));
+  }
+  if (set) {
+    for (const char* key : {"erosion", "conversion", "bonded_to"})
+      if (r.has(key))
+        r.fail(key,
+               "a rigid body's elements carry no stress; remove " + std::string(key) + " or rigid");
+    b.rigid = rigid;
+  }
+}
+
 BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
                    const std::vector<Material>& material_list, const std::string& scene_path) {
   r.known({"name",       "material",       "discretisation",  "shape",  "particles_per_cell",
@@ -993,25 +1117,8 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
   b.velocity = r.vec3("velocity", Vec3{});
   b.temperature = r.optional_number("temperature", Range::non_negative());
   b.internal_energy = r.number("internal_energy", 0.0, Range::non_negative());
-  // Keys that belong to the other discretisations are errors, not silently ignored.
-  auto only_for = [&](std::string_view key, Discretisation d1, Discretisation d2) {
-    if (r.has(key) && b.discretisation != d1 && b.discretisation != d2)
-      r.fail(key, "applies to bodies of " + std::string(to_string(d1)) +
-                      (d1 != d2 ? " or " + std::string(to_string(d2)) : std::string()) +
-                      ", not to " + to_string(b.discretisation));
-  };
+  check_discretisation_keys(r, b);
   using D = Discretisation;
-  only_for("particles_per_cell", D::particles, D::particles);
-  only_for("mesh", D::hexahedra, D::trusses);
-  only_for("element", D::hexahedra, D::hexahedra);
-  only_for("hourglass", D::hexahedra, D::hexahedra);
-  only_for("bulk_viscosity", D::hexahedra, D::particles);
-  only_for("erosion", D::hexahedra, D::trusses);
-  only_for("area", D::trusses, D::trusses);
-  only_for("bonded_to", D::hexahedra, D::trusses);  // resolved once every body is read
-  only_for("outside", D::particles, D::particles);  // resolved once every body is read
-  only_for("conversion", D::hexahedra, D::hexahedra);
-  only_for("pressure", D::particles, D::particles);
   b.pressure = r.optional_number("pressure", Range::non_negative());
   if (b.pressure)
     if (const std::optional<std::string> why = initial_pressure_refusal(
@@ -1023,7 +1130,7 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
                         to_string(b.discretisation) +
                         "; model a rigid indenter or anvil as hexahedra with rigid = true");
   b.particles_per_cell = static_cast<int>(r.integer("particles_per_cell", 2, 1, 8));
-  only_for("layout", D::particles, D::particles);
+  only_for(r, b, "layout", D::particles, D::particles);
   b.layout = static_cast<BodySpec::Layout>(r.choice("layout", {"lattice", "shells"}, 0));
   if (b.layout == BodySpec::Layout::shells && !std::holds_alternative<SphereShape>(b.shape))
     r.fail("layout",
@@ -1050,92 +1157,10 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
     r.fail("mesh", "an imported mesh takes its density from the file; remove this key");
   }
   b.element = static_cast<HexFormulation>(r.choice("element", {"one-point", "full"}, 0));
-  if (const toml::table* t = r.optional_table("hourglass")) {
-    TableReader hr(*t, r.dotted("hourglass"), r.file());
-    hr.known({"form", "coefficient"});
-    hr.check_unknown();
-    b.hourglass.form = static_cast<HourglassForm>(
-        hr.choice("form", {"viscous", "stiffness", "assumed_strain"}, 0));
-    // Defaults of fem/hourglass.hpp: 0.1 viscous (LS-DYNA's QM), 0.05 stiffness (types 4/5);
-    // the assumed strain form has no free coefficient, only a scale on its stiffness (1).
-    switch (b.hourglass.form) {
-      case HourglassForm::viscous:
-        b.hourglass.coefficient = hr.number("coefficient", 0.1, Range::closed(0.0, 0.5));
-        break;
-      case HourglassForm::stiffness:
-        b.hourglass.coefficient = hr.number("coefficient", 0.05, Range::closed(0.0, 0.5));
-        break;
-      case HourglassForm::assumed_strain:
-        b.hourglass.coefficient = hr.number("coefficient", 1.0, Range::closed(0.0, 1.0));
-        break;
-    }
-  }
-  if (const toml::table* t = r.optional_table("erosion")) {
-    TableReader er(*t, r.dotted("erosion"), r.file());
-    er.known({"plastic_strain", "material_failure", "volume_ratio", "time_step"});
-    er.check_unknown();
-    ErosionSettings e;
-    e.plastic_strain = er.number("plastic_strain", 0.0, Range::non_negative());
-    e.material_failure = er.boolean("material_failure", false);
-    e.volume_ratio = er.number("volume_ratio", 0.0, {0.0, 1.0, false, true});
-    e.time_step = er.number("time_step", 0.0, Range::non_negative());
-    b.erosion = e;
-  }
-  if (const toml::table* t = r.optional_table("conversion")) {
-    TableReader cr(*t, r.dotted("conversion"), r.file());
-    cr.known({"plastic_strain", "volumetric_strain", "jacobian_ratio", "negative_jacobian",
-              "time_step_fraction", "damage", "points"});
-    cr.check_unknown();
-    ConversionSettings c;
-    c.plastic_strain = cr.number("plastic_strain", 0.0, Range::non_negative());
-    c.volumetric_strain = cr.number("volumetric_strain", 0.0, {0.0, 1.0, false, true});
-    c.jacobian_ratio = cr.number("jacobian_ratio", 0.0, {0.0, 1.0, false, true});
-    c.negative_jacobian = cr.boolean("negative_jacobian", true);
-    c.time_step_fraction = cr.number("time_step_fraction", 0.0, {0.0, 1.0, false, true});
-    c.damage = cr.number("damage", 0.0, {0.0, 1.0, false, false});
-    c.points = static_cast<int>(cr.integer("points", 1, 1, 2));
-    if (c.plastic_strain == 0.0 && c.volumetric_strain == 0.0 && c.jacobian_ratio == 0.0 &&
-        !c.negative_jacobian && c.time_step_fraction == 0.0 && c.damage == 0.0)
-      r.fail("conversion",
-             "every criterion is off; give at least one of plastic_strain, "
-             "volumetric_strain, jacobian_ratio, negative_jacobian, "
-             "time_step_fraction, damage");
-    b.conversion = c;
-  }
-  if (const toml::node* n = r.table().get("rigid")) {
-    RigidSettings rigid;
-    bool set = true;
-    if (const auto* flag = n->as_boolean()) {
-      set = flag->get();
-    } else if (const toml::table* t = n->as_table()) {
-      TableReader rr(*t, r.dotted("rigid"), r.file());
-      rr.known({"fixed"});
-      rr.check_unknown();
-      static constexpr const char* dof[6] = {"x", "y", "z", "rx", "ry", "rz"};
-      for (const std::string& name : rr.strings("fixed")) {
-        if (name == "all") {
-          rigid.fixed.fill(true);
-          continue;
-        }
-        const auto* component =
-            std::find_if(std::begin(dof), std::end(dof), [&](const char* d) { return name == d; });
-        if (component == std::end(dof))
-          rr.fail("fixed", "unknown component \"" + name +
-                               "\"; allowed: \"x\", \"y\", \"z\", \"rx\", \"ry\", \"rz\", \"all\"");
-        rigid.fixed[static_cast<std::size_t>(component - std::begin(dof))] = true;
-      }
-    } else {
-      r.fail("rigid",
-             "expected true or a table { fixed = [\"x\", ..., \"rz\"] }, got " + describe_type(*n));
-    }
-    if (set) {
-      for (const char* key : {"erosion", "conversion", "bonded_to"})
-        if (r.has(key))
-          r.fail(key, "a rigid body's elements carry no stress; remove " + std::string(key) +
-                          " or rigid");
-      b.rigid = rigid;
-    }
-  }
+  if (const toml::table* t = r.optional_table("hourglass")) b.hourglass = read_hourglass(*t, r);
+  if (const toml::table* t = r.optional_table("erosion")) b.erosion = read_erosion(*t, r);
+  if (const toml::table* t = r.optional_table("conversion")) b.conversion = read_conversion(*t, r);
+  if (const toml::node* n = r.table().get("rigid")) read_rigid(*n, r, b);
   b.area = r.number("area", 0.0, Range::positive());
   if (b.discretisation == D::trusses && std::holds_alternative<LineShape>(b.shape) && b.area == 0.0)
     r.fail("area", "a truss line needs its cross-section area");
@@ -1592,6 +1617,273 @@ ProbeSpec read_probe(TableReader& r, const Scene& scene) {
   return p;
 }
 
+// The materials, numbered in file order (toml++ keeps keys sorted, so they are sorted by
+// position): each name's index.
+std::map<std::string, int> read_materials(TableReader& r, Scene& scene, const std::string& path) {
+  const toml::table& mats = r.required_table("materials");
+  std::vector<std::pair<const toml::key*, const toml::node*>> entries;
+  for (auto&& [k, v] : mats) entries.emplace_back(&k, &v);
+  std::stable_sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
+    const auto& sa = a.second->source().begin;
+    const auto& sb = b.second->source().begin;
+    return sa.line != sb.line ? sa.line < sb.line : sa.column < sb.column;
+  });
+  std::map<std::string, int> material_index;
+  for (const auto& [k, v] : entries) {
+    const std::string key = "materials." + std::string(k->str());
+    const toml::table* t = v->as_table();
+    if (!t)
+      throw InputError(SourceLocation{path, line_of(v->source())}, key,
+                       "expected a table [materials.NAME], got " + describe_type(*v));
+    TableReader mr(*t, key, path);
+    material_index[std::string(k->str())] = static_cast<int>(scene.materials.size());
+    scene.materials.push_back(read_material(mr, std::string(k->str())));
+    scene.material_where.push_back(mr.where());
+  }
+  if (scene.materials.empty())
+    throw InputError(r.where("materials"), "materials", "define at least one material");
+  return material_index;
+}
+
+// The [[bodies]], each checked against the grid's lattice and the names before it; returns
+// their array (the cross-references below read it again).
+const toml::array& read_bodies(TableReader& r, Scene& scene,
+                               const std::map<std::string, int>& material_index,
+                               const std::string& path) {
+  const toml::node* bodies_node = r.has("bodies") ? r.table().get("bodies") : nullptr;
+  if (!bodies_node)
+    throw InputError(SourceLocation{path, 0}, "bodies",
+                     "at least one body is required ([[bodies]] tables)");
+  const toml::array* bodies = bodies_node->as_array();
+  if (bodies && bodies->empty())
+    throw InputError(r.where("bodies"), "bodies", "at least one body is required");
+  if (!bodies || !bodies->is_array_of_tables())
+    throw InputError(
+        r.where("bodies"), "bodies",
+        "expected an array of tables ([[bodies]]), got " + describe_type(*bodies_node));
+  for (std::size_t i = 0; i < bodies->size(); ++i) {
+    const toml::table& t = *bodies->get(i)->as_table();
+    TableReader br(t, "bodies[" + std::to_string(i) + "]", path);
+    BodySpec b = read_body(br, material_index, scene.materials, path);
+    if (const std::optional<std::string> why = absolute_stress_lattice_refusal(scene.mpm.grid, b))
+      br.fail("particles_per_cell", *why);
+    for (const BodySpec& other : scene.bodies)
+      if (other.name == b.name)
+        br.fail("name", "duplicate body name \"" + b.name + "\" (first defined at line " +
+                            std::to_string(other.where.line) + ")");
+    scene.bodies.push_back(std::move(b));
+  }
+  return *bodies;
+}
+
+// Adaptive conversion: the particles need the grid, and the remaining elements bond to them.
+void check_conversions(const toml::array& bodies, const Scene& scene, const std::string& path) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    if (!scene.bodies[i].conversion) continue;
+    const toml::table& t = *bodies.get(i)->as_table();
+    TableReader br(t, "bodies." + scene.bodies[i].name, path);
+    if (!scene.has_grid)
+      br.fail("conversion",
+              "converted elements become particles on the background grid; add a "
+              "[grid] section (cell, min, max) covering where they may convert");
+    if (scene.mpm.scheme == UpdateScheme::USL || scene.mpm.scheme == UpdateScheme::USAVG)
+      br.fail("conversion",
+              "conversion bonds the remaining elements to the new particles, which "
+              "needs [mpm] scheme = \"MUSL\" (the default) or \"USF\"");
+    if (t.contains("bonded_to"))
+      br.fail("conversion",
+              "a body bonded to particles cannot also convert; remove one of "
+              "bonded_to and conversion");
+  }
+}
+
+// The bodies that split ([mpm] splitting.bodies), once the bodies are read.
+void read_splitting_bodies(TableReader& r, Scene& scene, const std::string& path) {
+  if (const toml::table* m = r.optional_table("mpm"))
+    if (const toml::table* t = m->get_as<toml::table>("splitting");
+        t != nullptr && t->contains("bodies")) {
+      TableReader sr(*t, "mpm.splitting", path);
+      for (const std::string& name : sr.strings("bodies")) {
+        const int b = body_index(sr, "bodies", name, scene, false);
+        if (scene.bodies[static_cast<std::size_t>(b)].discretisation != Discretisation::particles)
+          sr.fail("bodies", "body \"" + name + "\" is not of particles; only particles split");
+        scene.mpm.splitting->bodies.push_back(b);
+      }
+    }
+}
+
+// Particle bodies placed around others (water around a charge): the bodies named by outside.
+void read_outside(const toml::array& bodies, Scene& scene, const std::string& path) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const toml::table& t = *bodies.get(i)->as_table();
+    if (!t.contains("outside")) continue;
+    TableReader br(t, "bodies." + scene.bodies[i].name, path);
+    for (const std::string& name : br.strings("outside")) {
+      const int o = body_index(br, "outside", name, scene, false);
+      const BodySpec& other = scene.bodies[static_cast<std::size_t>(o)];
+      if (static_cast<std::size_t>(o) == i) br.fail("outside", "a body cannot lie outside itself");
+      if (std::holds_alternative<PointListShape>(other.shape) ||
+          std::holds_alternative<MeshFileShape>(other.shape))
+        br.fail("outside", "body \"" + name +
+                               "\" has no inside to leave out (a point list or "
+                               "a mesh file); name bodies with a box, cylinder or sphere");
+      scene.bodies[i].outside.push_back(o);
+    }
+  }
+}
+
+// Bonded coupling: the host named by each mesh body's bonded_to.
+void read_bonded_to(const toml::array& bodies, Scene& scene, const std::string& path) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const toml::table& t = *bodies.get(i)->as_table();
+    if (!t.contains("bonded_to")) continue;
+    TableReader br(t, "bodies." + scene.bodies[i].name, path);
+    const std::string host = br.required_string("bonded_to");
+    const int h = body_index(br, "bonded_to", host, scene, false);
+    if (scene.bodies[static_cast<std::size_t>(h)].discretisation != Discretisation::particles)
+      br.fail("bonded_to", "body \"" + host +
+                               "\" is a mesh; a mesh body bonds to a body of "
+                               "particles (its nodes join that body's velocity field on the grid)");
+    if (scene.mpm.scheme == UpdateScheme::USL || scene.mpm.scheme == UpdateScheme::USAVG)
+      br.fail("bonded_to",
+              "bonded coupling needs [mpm] scheme = \"MUSL\" (the default) or "
+              "\"USF\"");
+    scene.bodies[i].bonded_to = h;
+  }
+}
+
+// One [[absorbing]] boundary: its nodes, and the body of hexahedra whose faces they lie on.
+AbsorbingSpec read_absorbing(TableReader& t, const Scene& scene) {
+  t.known({"nodes", "body"});
+  t.check_unknown();
+  AbsorbingSpec a;
+  a.where = t.where();
+  TableReader nr(t.required_table("nodes"), t.dotted("nodes"), t.file());
+  a.nodes = read_selector(nr);
+  if (t.has("body")) {
+    a.body = body_index(t, "body", t.required_string("body"), scene);
+    if (scene.bodies[static_cast<std::size_t>(a.body)].discretisation != Discretisation::hexahedra)
+      t.fail("body", "an absorbing boundary lies on the faces of hexahedra; body \"" +
+                         scene.bodies[static_cast<std::size_t>(a.body)].name +
+                         "\" is not a body of hexahedra (particles take \"absorbing\" "
+                         "faces from [grid] boundary)");
+    if (scene.bodies[static_cast<std::size_t>(a.body)].rigid)
+      t.fail("body", "body \"" + scene.bodies[static_cast<std::size_t>(a.body)].name +
+                         "\" is rigid: no waves cross it to absorb");
+  }
+  return a;
+}
+
+// After each [[contact]]: at most 31 bodies in grid contact (one velocity field each).
+void check_grid_contact_bodies(TableReader& t, const Scene& scene) {
+  std::vector<bool> named(scene.bodies.size(), false);
+  int count = 0;
+  for (const ContactSpec& c : scene.contacts)
+    for (int b : c.bodies)
+      if (c.method == ContactMethod::grid && !named[static_cast<std::size_t>(b)]) {
+        named[static_cast<std::size_t>(b)] = true;
+        ++count;
+      }
+  if (count > 31)
+    t.fail("bodies",
+           "at most 31 bodies can take part in grid contact (each has its own "
+           "velocity field on the grid)");
+}
+
+// [run] terminate, which names a body.
+void read_terminate(TableReader& r, Scene& scene, const std::string& path) {
+  TableReader run(r.required_table("run"), "run", path);
+  if (const toml::table* t = run.optional_table("terminate")) {
+    TableReader tr(*t, "run.terminate", path);
+    tr.known({"body", "travel"});
+    tr.check_unknown();
+    RunSettings::Termination term;
+    term.body = body_index(tr, "body", tr.required_string("body"), scene, false);
+    term.travel = tr.required_number("travel", Range::positive());
+    scene.run.terminate = term;
+  }
+}
+
+// Constraints, absorbing boundaries and walls without bodies act on mesh nodes.
+void check_mesh_conditions(const Scene& scene, const std::string& path) {
+  if ((!scene.constraints.empty() || !scene.absorbing.empty()) && !has_mesh(scene))
+    throw InputError(SourceLocation{path, 0},
+                     !scene.absorbing.empty() ? "absorbing" : "constraints",
+                     "constraints and absorbing boundaries act on mesh nodes, and the scene has "
+                     "no mesh body; particles take their boundary conditions from [grid] "
+                     "boundary (and [[walls]] that name them)");
+  for (const WallSpec& w : scene.walls)
+    if (w.bodies.empty() && !has_mesh(scene))
+      throw InputError(w.where, "walls.bodies",
+                       "a wall without bodies acts on every mesh body, and the scene has none; "
+                       "name the particle bodies it meets (bodies = [\"...\"]): it then acts at "
+                       "their particles' boundary");
+}
+
+// One [[detonations]] entry: a point, a plane or a line, and its time.
+DetonationSpec read_detonation(TableReader& t, const std::string& path) {
+  t.known({"point", "plane", "line", "time", "shadow"});
+  t.check_unknown();
+  DetonationSpec d;
+  d.where = t.where();
+  const int given = (t.has("point") ? 1 : 0) + (t.has("plane") ? 1 : 0) + (t.has("line") ? 1 : 0);
+  if (given != 1)
+    t.fail("point",
+           "give one of point = [x, y, z], plane = { point = [..], normal = [..] } "
+           "or line = { from = [..], to = [..] }");
+  if (t.has("point")) {
+    d.point = t.required_vec3("point");
+  } else if (const toml::table* p = t.optional_table("plane")) {
+    TableReader pr(*p, t.dotted("plane"), path);
+    pr.known({"point", "normal"});
+    pr.check_unknown();
+    d.kind = DetonationSpec::Kind::plane;
+    d.point = pr.required_vec3("point");
+    const Vec3 n = pr.required_vec3("normal");
+    if (!(norm(n) > 0.0)) pr.fail("normal", "the normal must be a non-zero vector");
+    d.normal = (1.0 / norm(n)) * n;
+  } else if (const toml::table* l = t.optional_table("line")) {
+    TableReader lr(*l, t.dotted("line"), path);
+    lr.known({"from", "to"});
+    lr.check_unknown();
+    d.kind = DetonationSpec::Kind::line;
+    d.point = lr.required_vec3("from");
+    d.end = lr.required_vec3("to");
+  }
+  d.time = t.number("time", 0.0, Range::non_negative());
+  d.shadow = t.boolean("shadow", false);
+  return d;
+}
+
+// An explosive body needs something to light it; detonations need an explosive.
+void check_explosives(const Scene& scene) {
+  const BodySpec* explosive = nullptr;
+  for (const BodySpec& b : scene.bodies) {
+    if (!scene.materials[static_cast<std::size_t>(b.material)].is_explosive()) continue;
+    explosive = &b;
+    if (b.discretisation == Discretisation::trusses)
+      throw InputError(b.where, "material",
+                       "body \"" + b.name +
+                           "\" is a body of trusses "
+                           "of a high explosive; explosives are particles or hexahedra");
+    if (b.conversion)
+      throw InputError(b.where, "conversion",
+                       "body \"" + b.name +
+                           "\" is a high explosive; "
+                           "its hexahedra burn where they are and do not convert into particles");
+  }
+  if (explosive != nullptr && scene.detonations.empty())
+    throw InputError(explosive->where, "detonations",
+                     "body \"" + explosive->name +
+                         "\" is a high explosive (its material has a "
+                         "burn) and the scene has no [[detonations]] to light it: add one (point, "
+                         "plane or line, and a time)");
+  if (explosive == nullptr && !scene.detonations.empty())
+    throw InputError(scene.detonations.front().where, "detonations",
+                     "no body is of a high explosive (a material with burn = { D, pcj }) for "
+                     "the detonation to light");
+}
+
 }  // namespace
 
 std::vector<std::string_view> builtin_strength_models() {
@@ -1620,248 +1912,30 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
     TableReader mpm(*t, "mpm", path);
     read_mpm(mpm, scene.mpm);
   }
-
-  // Materials are numbered in file order; toml++ keeps keys sorted, so sort by position.
-  const toml::table& mats = r.required_table("materials");
-  std::vector<std::pair<const toml::key*, const toml::node*>> entries;
-  for (auto&& [k, v] : mats) entries.emplace_back(&k, &v);
-  std::stable_sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
-    const auto& sa = a.second->source().begin;
-    const auto& sb = b.second->source().begin;
-    return sa.line != sb.line ? sa.line < sb.line : sa.column < sb.column;
-  });
-  std::map<std::string, int> material_index;
-  for (const auto& [k, v] : entries) {
-    const std::string key = "materials." + std::string(k->str());
-    const toml::table* t = v->as_table();
-    if (!t)
-      throw InputError(SourceLocation{path, line_of(v->source())}, key,
-                       "expected a table [materials.NAME], got " + describe_type(*v));
-    TableReader mr(*t, key, path);
-    material_index[std::string(k->str())] = static_cast<int>(scene.materials.size());
-    scene.materials.push_back(read_material(mr, std::string(k->str())));
-    scene.material_where.push_back(mr.where());
-  }
-  if (scene.materials.empty())
-    throw InputError(r.where("materials"), "materials", "define at least one material");
-
-  const toml::node* bodies_node = r.has("bodies") ? r.table().get("bodies") : nullptr;
-  if (!bodies_node)
-    throw InputError(SourceLocation{path, 0}, "bodies",
-                     "at least one body is required ([[bodies]] tables)");
-  const toml::array* bodies = bodies_node->as_array();
-  if (bodies && bodies->empty())
-    throw InputError(r.where("bodies"), "bodies", "at least one body is required");
-  if (!bodies || !bodies->is_array_of_tables())
-    throw InputError(
-        r.where("bodies"), "bodies",
-        "expected an array of tables ([[bodies]]), got " + describe_type(*bodies_node));
-  for (std::size_t i = 0; i < bodies->size(); ++i) {
-    const toml::table& t = *bodies->get(i)->as_table();
-    TableReader br(t, "bodies[" + std::to_string(i) + "]", path);
-    BodySpec b = read_body(br, material_index, scene.materials, path);
-    if (const std::optional<std::string> why = absolute_stress_lattice_refusal(scene.mpm.grid, b))
-      br.fail("particles_per_cell", *why);
-    for (const BodySpec& other : scene.bodies)
-      if (other.name == b.name)
-        br.fail("name", "duplicate body name \"" + b.name + "\" (first defined at line " +
-                            std::to_string(other.where.line) + ")");
-    scene.bodies.push_back(std::move(b));
-  }
+  const std::map<std::string, int> material_index = read_materials(r, scene, path);
+  const toml::array& bodies = read_bodies(r, scene, material_index, path);
   if (has_particles(scene) && !scene.has_grid)
     throw InputError(SourceLocation{path, 0}, "grid",
                      "bodies of particles need a [grid] section (cell, min, max)");
-  // Adaptive conversion: the particles need the grid, and the remaining elements bond to them.
-  for (std::size_t i = 0; i < bodies->size(); ++i) {
-    if (!scene.bodies[i].conversion) continue;
-    const toml::table& t = *bodies->get(i)->as_table();
-    TableReader br(t, "bodies." + scene.bodies[i].name, path);
-    if (!scene.has_grid)
-      br.fail("conversion",
-              "converted elements become particles on the background grid; add a "
-              "[grid] section (cell, min, max) covering where they may convert");
-    if (scene.mpm.scheme == UpdateScheme::USL || scene.mpm.scheme == UpdateScheme::USAVG)
-      br.fail("conversion",
-              "conversion bonds the remaining elements to the new particles, which "
-              "needs [mpm] scheme = \"MUSL\" (the default) or \"USF\"");
-    if (t.contains("bonded_to"))
-      br.fail("conversion",
-              "a body bonded to particles cannot also convert; remove one of "
-              "bonded_to and conversion");
-  }
-  // The bodies that split ([mpm] splitting.bodies), once the bodies are read.
-  if (const toml::table* m = r.optional_table("mpm"))
-    if (const toml::table* t = m->get_as<toml::table>("splitting");
-        t != nullptr && t->contains("bodies")) {
-      TableReader sr(*t, "mpm.splitting", path);
-      for (const std::string& name : sr.strings("bodies")) {
-        const int b = body_index(sr, "bodies", name, scene, false);
-        if (scene.bodies[static_cast<std::size_t>(b)].discretisation != Discretisation::particles)
-          sr.fail("bodies", "body \"" + name + "\" is not of particles; only particles split");
-        scene.mpm.splitting->bodies.push_back(b);
-      }
-    }
-  // Particle bodies placed around others (water around a charge): the bodies named by outside.
-  for (std::size_t i = 0; i < bodies->size(); ++i) {
-    const toml::table& t = *bodies->get(i)->as_table();
-    if (!t.contains("outside")) continue;
-    TableReader br(t, "bodies." + scene.bodies[i].name, path);
-    for (const std::string& name : br.strings("outside")) {
-      const int o = body_index(br, "outside", name, scene, false);
-      const BodySpec& other = scene.bodies[static_cast<std::size_t>(o)];
-      if (static_cast<std::size_t>(o) == i) br.fail("outside", "a body cannot lie outside itself");
-      if (std::holds_alternative<PointListShape>(other.shape) ||
-          std::holds_alternative<MeshFileShape>(other.shape))
-        br.fail("outside", "body \"" + name +
-                               "\" has no inside to leave out (a point list or "
-                               "a mesh file); name bodies with a box, cylinder or sphere");
-      scene.bodies[i].outside.push_back(o);
-    }
-  }
-  // Bonded coupling: the host named by each mesh body's bonded_to.
-  for (std::size_t i = 0; i < bodies->size(); ++i) {
-    const toml::table& t = *bodies->get(i)->as_table();
-    if (!t.contains("bonded_to")) continue;
-    TableReader br(t, "bodies." + scene.bodies[i].name, path);
-    const std::string host = br.required_string("bonded_to");
-    const int h = body_index(br, "bonded_to", host, scene, false);
-    if (scene.bodies[static_cast<std::size_t>(h)].discretisation != Discretisation::particles)
-      br.fail("bonded_to", "body \"" + host +
-                               "\" is a mesh; a mesh body bonds to a body of "
-                               "particles (its nodes join that body's velocity field on the grid)");
-    if (scene.mpm.scheme == UpdateScheme::USL || scene.mpm.scheme == UpdateScheme::USAVG)
-      br.fail("bonded_to",
-              "bonded coupling needs [mpm] scheme = \"MUSL\" (the default) or "
-              "\"USF\"");
-    scene.bodies[i].bonded_to = h;
-  }
+  check_conversions(bodies, scene, path);
+  read_splitting_bodies(r, scene, path);
+  read_outside(bodies, scene, path);
+  read_bonded_to(bodies, scene, path);
   read_table_array(r, "constraints", path,
                    [&](TableReader& t) { scene.constraints.push_back(read_constraint(t, scene)); });
-  read_table_array(r, "absorbing", path, [&](TableReader& t) {
-    t.known({"nodes", "body"});
-    t.check_unknown();
-    AbsorbingSpec a;
-    a.where = t.where();
-    TableReader nr(t.required_table("nodes"), t.dotted("nodes"), t.file());
-    a.nodes = read_selector(nr);
-    if (t.has("body")) {
-      a.body = body_index(t, "body", t.required_string("body"), scene);
-      if (scene.bodies[static_cast<std::size_t>(a.body)].discretisation !=
-          Discretisation::hexahedra)
-        t.fail("body", "an absorbing boundary lies on the faces of hexahedra; body \"" +
-                           scene.bodies[static_cast<std::size_t>(a.body)].name +
-                           "\" is not a body of hexahedra (particles take \"absorbing\" "
-                           "faces from [grid] boundary)");
-      if (scene.bodies[static_cast<std::size_t>(a.body)].rigid)
-        t.fail("body", "body \"" + scene.bodies[static_cast<std::size_t>(a.body)].name +
-                           "\" is rigid: no waves cross it to absorb");
-    }
-    scene.absorbing.push_back(a);
-  });
+  read_table_array(r, "absorbing", path,
+                   [&](TableReader& t) { scene.absorbing.push_back(read_absorbing(t, scene)); });
   read_table_array(r, "walls", path,
                    [&](TableReader& t) { scene.walls.push_back(read_wall(t, scene)); });
   read_table_array(r, "contact", path, [&](TableReader& t) {
     scene.contacts.push_back(read_contact(t, scene));
-    std::vector<bool> named(scene.bodies.size(), false);
-    int count = 0;
-    for (const ContactSpec& c : scene.contacts)
-      for (int b : c.bodies)
-        if (c.method == ContactMethod::grid && !named[static_cast<std::size_t>(b)]) {
-          named[static_cast<std::size_t>(b)] = true;
-          ++count;
-        }
-    if (count > 31)
-      t.fail("bodies",
-             "at most 31 bodies can take part in grid contact (each has its own "
-             "velocity field on the grid)");
+    check_grid_contact_bodies(t, scene);
   });
-  {
-    TableReader run(r.required_table("run"), "run", path);
-    if (const toml::table* t = run.optional_table("terminate")) {
-      TableReader tr(*t, "run.terminate", path);
-      tr.known({"body", "travel"});
-      tr.check_unknown();
-      RunSettings::Termination term;
-      term.body = body_index(tr, "body", tr.required_string("body"), scene, false);
-      term.travel = tr.required_number("travel", Range::positive());
-      scene.run.terminate = term;
-    }
-  }
-  if ((!scene.constraints.empty() || !scene.absorbing.empty()) && !has_mesh(scene))
-    throw InputError(SourceLocation{path, 0},
-                     !scene.absorbing.empty() ? "absorbing" : "constraints",
-                     "constraints and absorbing boundaries act on mesh nodes, and the scene has "
-                     "no mesh body; particles take their boundary conditions from [grid] "
-                     "boundary (and [[walls]] that name them)");
-  for (const WallSpec& w : scene.walls)
-    if (w.bodies.empty() && !has_mesh(scene))
-      throw InputError(w.where, "walls.bodies",
-                       "a wall without bodies acts on every mesh body, and the scene has none; "
-                       "name the particle bodies it meets (bodies = [\"...\"]): it then acts at "
-                       "their particles' boundary");
-
-  read_table_array(r, "detonations", path, [&](TableReader& t) {
-    t.known({"point", "plane", "line", "time", "shadow"});
-    t.check_unknown();
-    DetonationSpec d;
-    d.where = t.where();
-    const int given = (t.has("point") ? 1 : 0) + (t.has("plane") ? 1 : 0) + (t.has("line") ? 1 : 0);
-    if (given != 1)
-      t.fail("point",
-             "give one of point = [x, y, z], plane = { point = [..], normal = [..] } "
-             "or line = { from = [..], to = [..] }");
-    if (t.has("point")) {
-      d.point = t.required_vec3("point");
-    } else if (const toml::table* p = t.optional_table("plane")) {
-      TableReader pr(*p, t.dotted("plane"), path);
-      pr.known({"point", "normal"});
-      pr.check_unknown();
-      d.kind = DetonationSpec::Kind::plane;
-      d.point = pr.required_vec3("point");
-      const Vec3 n = pr.required_vec3("normal");
-      if (!(norm(n) > 0.0)) pr.fail("normal", "the normal must be a non-zero vector");
-      d.normal = (1.0 / norm(n)) * n;
-    } else if (const toml::table* l = t.optional_table("line")) {
-      TableReader lr(*l, t.dotted("line"), path);
-      lr.known({"from", "to"});
-      lr.check_unknown();
-      d.kind = DetonationSpec::Kind::line;
-      d.point = lr.required_vec3("from");
-      d.end = lr.required_vec3("to");
-    }
-    d.time = t.number("time", 0.0, Range::non_negative());
-    d.shadow = t.boolean("shadow", false);
-    scene.detonations.push_back(d);
-  });
-  {
-    // An explosive body needs something to light it; detonations need an explosive.
-    const BodySpec* explosive = nullptr;
-    for (const BodySpec& b : scene.bodies) {
-      if (!scene.materials[static_cast<std::size_t>(b.material)].is_explosive()) continue;
-      explosive = &b;
-      if (b.discretisation == Discretisation::trusses)
-        throw InputError(b.where, "material",
-                         "body \"" + b.name +
-                             "\" is a body of trusses "
-                             "of a high explosive; explosives are particles or hexahedra");
-      if (b.conversion)
-        throw InputError(b.where, "conversion",
-                         "body \"" + b.name +
-                             "\" is a high explosive; "
-                             "its hexahedra burn where they are and do not convert into particles");
-    }
-    if (explosive != nullptr && scene.detonations.empty())
-      throw InputError(
-          explosive->where, "detonations",
-          "body \"" + explosive->name +
-              "\" is a high explosive (its material has a "
-              "burn) and the scene has no [[detonations]] to light it: add one (point, "
-              "plane or line, and a time)");
-    if (explosive == nullptr && !scene.detonations.empty())
-      throw InputError(scene.detonations.front().where, "detonations",
-                       "no body is of a high explosive (a material with burn = { D, pcj }) for "
-                       "the detonation to light");
-  }
+  read_terminate(r, scene, path);
+  check_mesh_conditions(scene, path);
+  read_table_array(r, "detonations", path,
+                   [&](TableReader& t) { scene.detonations.push_back(read_detonation(t, path)); });
+  check_explosives(scene);
   if (const toml::table* t = r.optional_table("reference")) {
     TableReader ref(*t, "reference", path);
     read_reference(ref, scene);
