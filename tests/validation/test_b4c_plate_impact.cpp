@@ -24,7 +24,7 @@
 //    wave, the published cap SFMAX sigma_HEL once D = 1, 2 %.
 // No measured B4C Hugoniot points were reachable here, so the shocked state is checked against
 // the jump conditions and the published strength cap, not against an experiment
-// (docs/validation.md, V9).
+// (docs/validation.md, V11).
 // Measured (600 hexahedra, 1041 steps, 2 threads, 8-12 s on the shared 2-core machine):
 // precursor peak 19.41 GPa (+2.1 %; the constants' own yield at 1e6 1/s 18.65 GPa), ahead of
 // the plastic wave 12.85 GPa at 381 m/s, behind it 27.48 GPa at 999.5 m/s against 27.40 GPa
