@@ -117,29 +117,16 @@ void CoupledModel::convert_elements() {
   if (retired.empty()) return;
   // Built now, from the nodes' final v^{n+1/2}: the grid set the bonded nodes' velocity after
   // the element update that retired the elements.
-  std::vector<Conversion> made;
-  made.reserve(retired.size());
-  for (const fem::RetiredElement& ev : retired) {
-    made.push_back(convert_element(fe(), scene_, ev));
-    converted_energy_ += made.back().lost_energy;
-  }
   mpm::Particles more;
   more.history_count = fe().hexahedra().history_count;
   // Principal-strain failure: the particles carry on from their elements' accumulated strain.
-  const bool strain = !fe().hexahedra().strain.empty();
-  if (strain) more.keep(&mpm::Particles::strain, core::SymTensor{});
-  for (const Conversion& c : made)
-    for (const ConvertedPoint& q : c.points) {
-      more.push_back(q.position, q.velocity, q.mass, q.volume, q.temperature, q.body, q.material);
-      const std::size_t j = more.size() - 1;
-      more.stress[j] = q.stress;
-      more.plastic_strain[j] = q.plastic_strain;
-      more.energy[j] = q.energy;
-      more.damage[j] = q.damage;
-      if (strain) more.strain[j] = q.strain;
-      std::copy(q.history.begin(), q.history.end(),
-                more.history.begin() + static_cast<std::ptrdiff_t>(j * more.history_count));
-    }
+  if (!fe().hexahedra().strain.empty()) more.keep(&mpm::Particles::strain, core::SymTensor{});
+  std::vector<Conversion> made;
+  made.reserve(retired.size());
+  for (const fem::RetiredElement& ev : retired) {
+    made.push_back(convert_element(fe(), scene_, ev, more));
+    converted_energy_ += made.back().lost_energy;
+  }
   mpm().add_particles(more);
   // The nodes the converted elements shared with live ones now bond to the particles; a node
   // left with no element (mass 0) drops out. Imposed components stay imposed (see step()).

@@ -13,14 +13,54 @@
 // interpolation loses (Jensen: never negative) is booked as `converted` energy.
 #include "coupling/element_conversion.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
 
 #include "fem/mesh.hpp"
 
 namespace afemp::coupling {
 
+namespace {
+
+// Calls f(from, to, width) for each point array of the hexahedra that a particle takes
+// (fem::PointField::convert, fem/element_store.hpp) with the particles' array of the same name
+// (the history: their history store), width values per point; an array either side does not
+// keep is left out.
+template <class F>
+void for_each_converted_field(const fem::HexElements& el, mpm::Particles& p, F&& f) {
+  fem::for_each_point_field(
+      el, [&](const fem::PointField& field, const auto& from, std::size_t width) {
+        using T = typename std::decay_t<decltype(from)>::value_type;
+        if (!field.convert || from.empty()) return;
+        if constexpr (std::is_same_v<T, double>) {
+          if (&from == &el.history) {
+            f(from, p.history, width);
+            return;
+          }
+        }
+        bool named = false;
+        p.for_each_field([&](const mpm::ParticleField& to_field, auto& to) {
+          using U = typename std::decay_t<decltype(to)>::value_type;
+          if constexpr (std::is_same_v<T, U>) {
+            if (std::strcmp(to_field.name, field.name) != 0) return;
+            named = true;
+            if (p.has(to_field)) f(from, to, width);
+          }
+        });
+        if (!named)
+          throw std::logic_error(std::string("element point field ") + field.name +
+                                 " has no particle field of its name and type");
+      });
+}
+
+}  // namespace
+
 Conversion convert_element(const fem::FeSolver& fe, const core::Scene& scene,
-                           const fem::RetiredElement& ev) {
+                           const fem::RetiredElement& ev, mpm::Particles& out) {
   const fem::HexElements& el = fe.hexahedra();
   const fem::FeNodes& nodes = fe.nodes();
   Conversion c;
@@ -42,45 +82,38 @@ Conversion convert_element(const fem::FeSolver& fe, const core::Scene& scene,
     internal_before += el.point_mass[p0 + static_cast<std::size_t>(g)] *
                        el.energy[p0 + static_cast<std::size_t>(g)];
 
-  // The state a particle inherits from integration point g (or the mass-weighted mean of
-  // all points when one particle replaces a fully integrated element).
-  auto state_of = [&](int g, ConvertedPoint& q) {
+  // Particle j inherits the state of integration point g (or the mass-weighted mean of all
+  // points when one particle replaces a fully integrated element); its density gives its
+  // volume.
+  auto state_of = [&](int g, std::size_t j) {
     if (g >= 0) {
       const std::size_t p = p0 + static_cast<std::size_t>(g);
-      q.stress = el.stress[p];
-      q.plastic_strain = el.plastic_strain[p];
-      q.temperature = el.temperature[p];
-      q.energy = el.energy[p];
-      q.damage = el.damage[p];
-      if (!el.strain.empty()) q.strain = el.strain[p];
-      q.history.assign(
-          el.history.begin() + static_cast<std::ptrdiff_t>(p * el.history_count),
-          el.history.begin() + static_cast<std::ptrdiff_t>((p + 1) * el.history_count));
+      for_each_converted_field(el, out, [&](const auto& from, auto& to, std::size_t width) {
+        std::copy_n(from.begin() + static_cast<std::ptrdiff_t>(p * width), width,
+                    to.begin() + static_cast<std::ptrdiff_t>(j * width));
+      });
       return el.density[p];
     }
     double m = 0.0, volume = 0.0;
-    q.history.assign(el.history_count, 0.0);
     for (int h = 0; h < ppe; ++h) {
       const std::size_t p = p0 + static_cast<std::size_t>(h);
-      const double w = el.point_mass[p];
-      for (std::size_t k = 0; k < el.history_count; ++k)
-        q.history[k] += w * el.history[p * el.history_count + k];
-      m += w;
-      q.stress += w * el.stress[p];
-      q.plastic_strain += w * el.plastic_strain[p];
-      q.temperature += w * el.temperature[p];
-      q.energy += w * el.energy[p];
-      q.damage += w * el.damage[p];
-      if (!el.strain.empty()) q.strain += w * el.strain[p];
-      volume += w / el.density[p];
+      m += el.point_mass[p];
+      volume += el.point_mass[p] / el.density[p];
     }
-    q.stress = (1.0 / m) * q.stress;
-    q.plastic_strain /= m;
-    q.temperature /= m;
-    q.energy /= m;
-    q.damage /= m;
-    q.strain = (1.0 / m) * q.strain;
-    for (double& value : q.history) value /= m;
+    for_each_converted_field(el, out, [&](const auto& from, auto& to, std::size_t width) {
+      using T = typename std::decay_t<decltype(from)>::value_type;
+      for (std::size_t k = 0; k < width; ++k) {
+        T sum{};
+        for (int h = 0; h < ppe; ++h) {
+          const std::size_t p = p0 + static_cast<std::size_t>(h);
+          sum += el.point_mass[p] * from[p * width + k];
+        }
+        if constexpr (std::is_same_v<T, double>)
+          to[j * width + k] = sum / m;
+        else
+          to[j * width + k] = (1.0 / m) * sum;
+      }
+    });
     return m / volume;
   };
 
@@ -89,23 +122,21 @@ Conversion convert_element(const fem::FeSolver& fe, const core::Scene& scene,
   double kinetic_after = 0.0, internal_after = 0.0;
   const double r = n == 1 ? 0.0 : 1.0 / std::sqrt(3.0);
   for (int g = 0; g < c.particles; ++g) {
-    ConvertedPoint q;
+    core::Vec3 position, velocity;
     for (std::size_t a = 0; a < 8; ++a) {
       double shape = 1.0 / 8.0;
       for (int d = 0; d < 3; ++d)
         shape *= 1.0 + r * fem::kHexNatural[g][d] * fem::kHexNatural[a][d];
-      q.position += shape * x[a];
-      q.velocity += shape * v[a];
+      position += shape * x[a];
+      velocity += shape * v[a];
     }
+    const std::size_t j = out.size();
+    out.push_back(position, velocity, mass, 0.0, 0.0, batch->body, batch->material);
     // Gauss point g is nearest node g, as in fem/hexahedron_full.hpp.
-    const double density = state_of(ppe == 1 ? 0 : (n == 2 ? g : -1), q);
-    q.mass = mass;
-    q.volume = mass / density;
-    q.body = batch->body;
-    q.material = batch->material;
-    kinetic_after += 0.5 * mass * core::dot(q.velocity, q.velocity);
-    internal_after += mass * q.energy;
-    c.points.push_back(q);
+    const double density = state_of(ppe == 1 ? 0 : (n == 2 ? g : -1), j);
+    out.volume[j] = mass / density;
+    kinetic_after += 0.5 * mass * core::dot(velocity, velocity);
+    internal_after += mass * out.energy[j];
   }
   c.lost_energy = kinetic_before + internal_before - kinetic_after - internal_after;
   c.kinetic_before = kinetic_before;

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <initializer_list>
 #include <string>
+#include <type_traits>
 
 #include "core/appendf.hpp"
 #include "core/state_archive.hpp"
@@ -42,9 +43,39 @@ const std::vector<core::MeshBlock>& FeModel::mesh_blocks() {
   const HexElements& h = solver_.hexahedra();
   if (!h.empty()) {
     const std::size_t ne = h.size();
-    hex_stress_.assign(ne, {});
-    zeroed(ne, {&hex_pressure_, &hex_von_mises_, &hex_plastic_, &hex_damage_, &hex_temperature_,
-                &hex_density_, &hex_alive_, &hex_body_});
+    // The element means of the point fields the schema names for output (element_store.hpp),
+    // then those derived from them and the element's own.
+    hex_fields.clear();
+    std::size_t scalars = 0, tensors = 0;
+    const std::vector<core::SymTensor>* stress = nullptr;  // the mean stress
+    for_each_point_field(h, [&](const PointField& field, const auto& a, std::size_t) {
+      using T = typename std::decay_t<decltype(a)>::value_type;
+      if (field.output == nullptr || a.empty()) return;
+      std::vector<T>* mean = nullptr;
+      if constexpr (std::is_same_v<T, double>) {
+        if (hex_scalars_.size() <= scalars) hex_scalars_.resize(scalars + 1);
+        mean = &hex_scalars_[scalars++];
+      } else {
+        static_assert(std::is_same_v<T, core::SymTensor>);
+        if (hex_tensors_.size() <= tensors) hex_tensors_.resize(tensors + 1);
+        mean = &hex_tensors_[tensors++];
+        if (&a == &h.stress) stress = mean;
+      }
+      mean->assign(ne, T{});
+      for (const ElementBatch& b : h.batches)
+        for (std::size_t e = b.begin; e < b.end; ++e) {
+          const std::size_t p0 =
+              b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
+          const double w = 1.0 / b.points_per_element;
+          for (int g = 0; g < b.points_per_element; ++g)
+            (*mean)[e] += w * a[p0 + static_cast<std::size_t>(g)];
+        }
+      if constexpr (std::is_same_v<T, double>)
+        hex_fields.push_back(core::scalar_field(field.output, std::span<const double>(*mean)));
+      else
+        hex_fields.push_back(core::tensor_field(field.output, std::span<const T>(*mean)));
+    });
+    zeroed(ne, {&hex_pressure_, &hex_von_mises_, &hex_density_, &hex_alive_, &hex_body_});
     hex_connectivity_.resize(8 * ne);
     const std::size_t hc = h.history_count;
     hex_history_.assign(hc, std::vector<double>(ne, 0.0));
@@ -55,28 +86,20 @@ const std::vector<core::MeshBlock>& FeModel::mesh_blocks() {
         const double w = 1.0 / b.points_per_element;
         for (int g = 0; g < b.points_per_element; ++g) {
           const std::size_t p = p0 + static_cast<std::size_t>(g);
-          hex_stress_[e] += w * h.stress[p];
-          hex_plastic_[e] += w * h.plastic_strain[p];
-          hex_damage_[e] += w * h.damage[p];
-          hex_temperature_[e] += w * h.temperature[p];
           for (std::size_t v = 0; v < hc; ++v) hex_history_[v][e] += w * h.history[p * hc + v];
         }
-        hex_pressure_[e] = core::pressure(hex_stress_[e]);
-        hex_von_mises_[e] = core::von_mises(hex_stress_[e]);
+        hex_pressure_[e] = core::pressure((*stress)[e]);
+        hex_von_mises_[e] = core::von_mises((*stress)[e]);
         hex_density_[e] = h.mass[e] / h.volume[e];
         hex_alive_[e] = h.alive[e];
         hex_body_[e] = b.body;
         for (std::size_t a = 0; a < 8; ++a) hex_connectivity_[8 * e + a] = h.nodes[e][a];
       }
-    hex_fields = {core::tensor_field("stress", std::span<const core::SymTensor>(hex_stress_)),
-                  core::scalar_field("pressure", std::span<const double>(hex_pressure_)),
-                  core::scalar_field("von_mises", std::span<const double>(hex_von_mises_)),
-                  core::scalar_field("plastic_strain", std::span<const double>(hex_plastic_)),
-                  core::scalar_field("damage", std::span<const double>(hex_damage_)),
-                  core::scalar_field("temperature", std::span<const double>(hex_temperature_)),
-                  core::scalar_field("density", std::span<const double>(hex_density_)),
-                  core::scalar_field("alive", std::span<const double>(hex_alive_)),
-                  core::scalar_field("body", std::span<const double>(hex_body_))};
+    hex_fields.push_back(core::scalar_field("pressure", std::span<const double>(hex_pressure_)));
+    hex_fields.push_back(core::scalar_field("von_mises", std::span<const double>(hex_von_mises_)));
+    hex_fields.push_back(core::scalar_field("density", std::span<const double>(hex_density_)));
+    hex_fields.push_back(core::scalar_field("alive", std::span<const double>(hex_alive_)));
+    hex_fields.push_back(core::scalar_field("body", std::span<const double>(hex_body_)));
     // User strength models' history variables, element means, one scalar field per variable.
     for (std::size_t v = 0; v < hc; ++v)
       hex_fields.push_back(

@@ -67,9 +67,10 @@ class FeModel final : public core::Model {
   long hourglass_warning_step_ = -1;
   // Derived fields, per frame.
   std::vector<core::Vec3> displacement_;
-  std::vector<core::SymTensor> hex_stress_;
-  std::vector<double> hex_pressure_, hex_von_mises_, hex_plastic_, hex_damage_, hex_temperature_,
-      hex_density_, hex_alive_, hex_body_;
+  // Hexahedra: the element means of the point fields written (element_store.hpp), by type.
+  std::vector<std::vector<double>> hex_scalars_;
+  std::vector<std::vector<core::SymTensor>> hex_tensors_;
+  std::vector<double> hex_pressure_, hex_von_mises_, hex_density_, hex_alive_, hex_body_;
   std::vector<double> truss_stress_, truss_force_, truss_plastic_, truss_temperature_, truss_alive_,
       truss_body_;
   // User strength models' history variables per element (hexahedra: means of the points).

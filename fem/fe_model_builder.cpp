@@ -9,6 +9,7 @@
 #include <numbers>
 #include <set>
 #include <stdexcept>
+#include <type_traits>
 
 #include "afemp/errors.hpp"
 #include "core/detonation_paths.hpp"
@@ -247,21 +248,22 @@ void add_element(ElementStore& el, double mass, double volume) {
   el.alive.push_back(1);
 }
 
-// One integration point's initial state: the material's history, no stress, its mass, the
-// body's temperature and internal energy, the reference density.
+// One integration point's initial state: every array the schema keeps for every point
+// (element_store.hpp) grows by its rest value; then the material's history, the point's mass,
+// the body's temperature and internal energy, the reference density.
 void add_point_state(ElementStore& el, const core::Material& m, double temperature,
                      double point_mass, double energy) {
   if (energy == 0.0) energy = m.initial_energy();  // detonation products: E0 / rho0
-  el.history.resize(el.history.size() + el.history_count);
-  core::initial_history(m, el.history.data() + el.history.size() - el.history_count,
-                        el.history_count);
-  el.stress.push_back({});
-  el.point_mass.push_back(point_mass);
-  el.plastic_strain.push_back(0.0);
-  el.temperature.push_back(temperature);
-  el.energy.push_back(energy);
-  el.density.push_back(m.density);
-  el.damage.push_back(0.0);
+  const std::size_t p = el.points();
+  for_each_point_field(el, [](const PointField& field, auto& a, std::size_t width) {
+    using T = typename std::decay_t<decltype(a)>::value_type;
+    if (field.need == PointNeed::always) a.resize(a.size() + width, rest_value<T>(field));
+  });
+  core::initial_history(m, el.history.data() + p * el.history_count, el.history_count);
+  el.point_mass[p] = point_mass;
+  el.temperature[p] = temperature;
+  el.energy[p] = energy;
+  el.density[p] = m.density;
 }
 
 // The hexahedra of one body's mesh (its nodes from `offset`), checked for positive volumes and
@@ -411,28 +413,36 @@ void FeSolver::build_elements(const core::Scene& scene, const BodyMeshes& meshes
   }
 }
 
-// The point fields only some scenes need: what each point dissipated, where elements may erode
-// (ElementStore::plastic_heat), and the strain tensor principal-strain failure reads (only when
-// a body of hexahedra has such a material; particles keep their own).
+// The point fields only some scenes need (PointNeed, element_store.hpp), kept at their rest
+// value for every point of a kind when one of its bodies needs them: what each point
+// dissipated, where elements may erode (ElementStore::plastic_heat); for hexahedra (the truss
+// update reads neither) the strain tensor principal-strain failure reads and a high
+// explosive's burn (setup_explosives). Particles keep their own.
 void FeSolver::setup_point_fields(const core::Scene& scene) {
-  for (const BodySpec& body : scene.bodies) {
-    if (!body.erosion) continue;
-    ElementStore& el = body.discretisation == Discretisation::trusses
-                           ? static_cast<ElementStore&>(trusses_)
-                           : static_cast<ElementStore&>(hexes_);
-    el.plastic_heat.assign(el.stress.size(), 0.0);
-    el.viscous_heat.assign(el.stress.size(), 0.0);
-  }
-  for (const BodySpec& body : scene.bodies)
-    if (body.discretisation == Discretisation::hexahedra &&
-        scene.materials[static_cast<std::size_t>(body.material)].needs_strain())
-      hexes_.strain.assign(hexes_.stress.size(), core::SymTensor{});
+  auto keep = [&scene](ElementStore& el, bool hexahedra) {
+    bool erosion = false, strain = false, explosive = false;
+    for (const ElementBatch& b : el.batches) {
+      const core::Material& m = scene.materials[static_cast<std::size_t>(b.material)];
+      erosion = erosion || scene.bodies[static_cast<std::size_t>(b.body)].erosion.has_value();
+      strain = strain || (hexahedra && m.needs_strain());
+      explosive = explosive || (hexahedra && m.is_explosive() && b.end > b.begin);
+    }
+    for_each_point_field(el, [&](const PointField& field, auto& a, std::size_t width) {
+      using T = typename std::decay_t<decltype(a)>::value_type;
+      const bool needed = (field.need == PointNeed::erosion && erosion) ||
+                          (field.need == PointNeed::strain && strain) ||
+                          (field.need == PointNeed::explosive && explosive);
+      if (needed) a.assign(el.points() * width, rest_value<T>(field));
+    });
+  };
+  keep(hexes_, true);
+  keep(trusses_, false);
 }
 
 // High explosives (core/detonation_paths.hpp): each point of an explosive hexahedron lights at
 // its element centre's distance (straight, or around inert bodies for a shadowed detonation)
 // from the nearest detonation over D, burns over 1.5 times the element's initial edge
-// cbrt(V0), and starts unburnt; other points hold 0 and 1, unread.
+// cbrt(V0), and starts unburnt; other points keep the rest values (0 and 1, unread).
 void FeSolver::setup_explosives(const core::Scene& scene) {
   std::vector<std::size_t> which;
   std::vector<Vec3> centres;
@@ -455,9 +465,6 @@ void FeSolver::setup_explosives(const core::Scene& scene) {
   }
   if (which.empty()) return;
   const std::vector<double> t = core::explosive_lighting_times(centres, D, body, spacing, scene);
-  hexes_.light_time.assign(hexes_.stress.size(), 0.0);
-  hexes_.burn.assign(hexes_.stress.size(), 1.0);
-  hexes_.burn_length.assign(hexes_.stress.size(), 0.0);
   std::size_t k = 0;
   for (const ElementBatch& b : hexes_.batches) {
     if (!scene.materials[static_cast<std::size_t>(b.material)].is_explosive()) continue;

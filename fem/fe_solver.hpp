@@ -18,6 +18,7 @@
 #include "afemp/energies.hpp"
 #include "core/materials/material.hpp"
 #include "core/scene.hpp"
+#include "fem/element_store.hpp"
 #include "fem/fe_step_plan.hpp"
 #include "fem/hexahedron.hpp"
 #include "fem/mesh.hpp"
@@ -52,50 +53,6 @@ struct FeNodes {
   std::size_t size() const { return position.size(); }
 };
 
-// A contiguous range of elements of one body: one material, one formulation.
-struct ElementBatch {
-  int body = 0;
-  int material = 0;
-  std::size_t begin = 0, end = 0;  // elements
-  std::size_t point_begin = 0;     // first integration point
-  int points_per_element = 1;      // 1 (one-point hexahedron, truss) or 8 (B-bar)
-  bool rigid = false;              // a rigid body's: no stress, no forces, no critical step
-};
-
-// What every element kind holds: per element arrays, the integration points' state, and the
-// batches. Each kind adds its connectivity and its own fields (HexElements, TrussElements).
-struct ElementStore {
-  std::vector<double> mass, volume0, volume;  // volume: current (trusses: A L)
-  std::vector<double> critical_dt;            // element critical step of the last update
-  std::vector<std::uint8_t> alive;
-  // Integration points (trusses: the axial stress in the bar frame, sigma_xx).
-  std::vector<core::SymTensor> stress;
-  std::vector<double> point_mass, plastic_strain, temperature, energy, density;
-  std::vector<double> damage;  // D in [0, 1]
-  // The strain tensor (sum of D dt) of every point, kept only when some material's failure
-  // reads it (principal-strain failure); empty otherwise.
-  std::vector<core::SymTensor> strain;
-  // The plastic work and the bulk-viscous heat each point has taken (per unit mass), kept only
-  // where elements may erode (empty otherwise): an eroded element takes its share out of the
-  // plastic and viscous totals, which then hold the live material's (the elastic column,
-  // internal - plastic - viscous, stays the live elements' strain energy).
-  std::vector<double> plastic_heat, viscous_heat;
-  // High explosives (core/detonation_paths.hpp), per point, kept only when some body is one
-  // (empty otherwise): the time the point lights, its burn fraction and the length it burns
-  // over.
-  std::vector<double> light_time, burn, burn_length;
-  // The strength models' history variables (a user model's, or a built-in model's own;
-  // core::Material::history_count): history_count per integration point, point-major;
-  // history_count is the scene's (core::history_count).
-  std::vector<double> history;
-  std::size_t history_count = 0;
-  std::vector<ElementBatch> batches;
-  std::size_t size() const { return alive.size(); }
-  bool empty() const { return alive.empty(); }
-  // Bytes held by these arrays (capacity).
-  std::size_t bytes() const;
-};
-
 // 8-node hexahedra: one-point (hourglass-controlled) or 2 x 2 x 2 B-bar.
 struct HexElements : ElementStore {
   static constexpr int corners = 8;
@@ -124,9 +81,6 @@ struct TrussElements : ElementStore {
   std::vector<double> length0, area0;  // initial length and cross-section
   std::size_t bytes() const;
 };
-
-// The batch holding element e (the batches cover every element).
-const ElementBatch& batch_of(const ElementStore& elements, std::size_t e);
 
 // A record of an eroded element.
 struct ErosionEvent {

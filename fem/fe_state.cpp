@@ -20,20 +20,8 @@ void visit_store(StateArchive& a, ElementStore& e) {
   a.item("volume", e.volume);
   a.item("critical_dt", e.critical_dt);
   a.item("alive", e.alive);
-  a.item("stress", e.stress);
-  a.item("point_mass", e.point_mass);
-  a.item("plastic_strain", e.plastic_strain);
-  a.item("temperature", e.temperature);
-  a.item("energy", e.energy);
-  a.item("density", e.density);
-  a.item("damage", e.damage);
-  a.item("strain", e.strain);
-  a.item("plastic_heat", e.plastic_heat);
-  a.item("viscous_heat", e.viscous_heat);
-  a.item("light_time", e.light_time);
-  a.item("burn", e.burn);
-  a.item("burn_length", e.burn_length);
-  a.item("history", e.history);
+  for_each_point_field(
+      e, [&a](const PointField& field, auto& array, std::size_t) { a.item(field.name, array); });
   a.item("history_count", e.history_count);
 }
 

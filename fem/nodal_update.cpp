@@ -249,10 +249,12 @@ std::size_t capacity_bytes(const V& x) {
 }  // namespace
 
 std::size_t ElementStore::bytes() const {
-  auto v = [](const auto& x) { return capacity_bytes(x); };
-  return v(mass) + v(volume0) + v(volume) + v(critical_dt) + v(alive) + v(stress) + v(point_mass) +
-         v(plastic_strain) + v(temperature) + v(energy) + v(density) + v(damage) + v(strain) +
-         v(plastic_heat) + v(viscous_heat) + v(history);
+  std::size_t total = capacity_bytes(mass) + capacity_bytes(volume0) + capacity_bytes(volume) +
+                      capacity_bytes(critical_dt) + capacity_bytes(alive);
+  for_each_point_field(*this, [&total](const PointField&, const auto& a, std::size_t) {
+    total += capacity_bytes(a);
+  });
+  return total;
 }
 
 std::size_t HexElements::bytes() const {
