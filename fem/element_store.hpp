@@ -52,6 +52,12 @@ T rest_value(const PointField& field) {
     return T{};
 }
 
+// Bytes an array holds (its capacity).
+template <class V>
+std::size_t capacity_bytes(const V& x) {
+  return x.capacity() * sizeof(x[0]);
+}
+
 // What every element kind holds: per element arrays, the integration points' state, and the
 // batches. Each kind adds its connectivity and its own fields (HexElements, TrussElements).
 struct ElementStore {

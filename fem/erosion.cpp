@@ -9,8 +9,7 @@
 // counted in their elements' records). Retired elements (element_retirement.cpp) share the mass
 // recomputation.
 #include <algorithm>
-#include <string_view>
-#include <type_traits>
+#include <span>
 
 #include "fem/fe_solver.hpp"
 
@@ -22,8 +21,10 @@ const ElementBatch& batch_of(const ElementStore& elements, std::size_t e) {
   return elements.batches.back();  // not reached: the batches cover every element
 }
 
-template <class Elements>
-void FeSolver::collect_erosions(Elements& el, const char* kind) {
+void FeSolver::collect_erosions(ElementSet& set) {
+  ElementStore& el = set.store();
+  const std::span<const std::int32_t> nodes = set.connectivity();
+  const auto corners = static_cast<std::size_t>(set.corners());
   for (std::size_t t = 0; t < thread_erosions_.size(); ++t) {
     for (std::size_t k = 0; k < thread_erosions_[t].size(); ++k) {
       const std::size_t e = thread_erosions_[t][k];
@@ -43,25 +44,21 @@ void FeSolver::collect_erosions(Elements& el, const char* kind) {
         }
       }
       // The element's mass leaves its nodes (a lumped share each) at their velocity v^{n+1/2}.
-      constexpr std::size_t corners = Elements::corners;
       for (std::size_t a = 0; a < corners; ++a) {
-        const Vec3& v = nodes_.velocity[static_cast<std::size_t>(el.nodes[e][a])];
+        const Vec3& v = nodes_.velocity[static_cast<std::size_t>(nodes[corners * e + a])];
         energy += 0.5 * (el.mass[e] / static_cast<double>(corners)) * core::dot(v, v);
       }
       el.alive[e] = 0;
-      if constexpr (std::is_same_v<Elements, HexElements>) el.bulk_q[e] = 0.0;
       eroded_energy_ += energy;
-      events_.push_back({time_, kind, static_cast<std::int64_t>(e - batch->begin), batch->body,
-                         thread_failure_[t][k], energy, el.mass[e]});
+      events_.push_back({time_, set.kind(), static_cast<std::int64_t>(e - batch->begin),
+                         batch->body, thread_failure_[t][k], energy, el.mass[e]});
       erosion_this_step_ = true;
     }
+    set.eroded(thread_erosions_[t]);
     thread_erosions_[t].clear();
     thread_failure_[t].clear();
   }
 }
-
-template void FeSolver::collect_erosions(HexElements&, const char*);
-template void FeSolver::collect_erosions(TrussElements&, const char*);
 
 void FeSolver::finish_erosion() {
   erosion_this_step_ = false;

@@ -4,7 +4,6 @@
 // through which element forces are gathered without atomics.
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <map>
 #include <numbers>
 #include <set>
@@ -13,7 +12,6 @@
 
 #include "afemp/errors.hpp"
 #include "core/detonation_paths.hpp"
-#include "core/materials/uniaxial_update.hpp"
 #include "core/materials/user_strength_chunk.hpp"
 #include "core/parallel.hpp"
 #include "fem/fe_solver.hpp"
@@ -22,7 +20,6 @@
 #include "fem/mesh_generation.hpp"
 #include "fem/mesh_import.hpp"
 #include "fem/surface_faces.hpp"
-#include "fem/truss.hpp"
 
 namespace afemp::fem {
 
@@ -344,7 +341,8 @@ void FeSolver::build(const core::Scene& scene) {
   setup_walls(scene);
   build_incidence();
   recompute_node_masses();
-  initial_critical_steps(scene);
+  // 6. Critical steps of the initial state.
+  for (ElementSet* set : sets_) set->initial_critical_steps(scene, nodes_.position);
   // Rigid bodies and penalty contacts (after the node masses).
   setup_rigid_bodies();
   wall_force_.assign(scene.walls.size(), Vec3{});
@@ -586,55 +584,24 @@ void FeSolver::setup_walls(const core::Scene& scene) {
 // 5. Force slots and the node -> slot incidence (CSR).
 void FeSolver::build_incidence() {
   const std::size_t n_nodes = nodes_.size();
-  element_force_.assign(8 * hexes_.size() + 2 * trusses_.size(), Vec3{});
+  std::size_t slots = 0;
+  for (ElementSet* set : sets_) {
+    set->first_slot = slots;
+    slots += set->connectivity().size();
+  }
+  element_force_.assign(slots, Vec3{});
   std::vector<std::int64_t> count(n_nodes + 1, 0);
-  for (std::size_t e = 0; e < hexes_.size(); ++e)
-    for (int a = 0; a < 8; ++a)
-      ++count[static_cast<std::size_t>(hexes_.nodes[e][static_cast<std::size_t>(a)]) + 1];
-  for (std::size_t t = 0; t < trusses_.size(); ++t)
-    for (int a = 0; a < 2; ++a)
-      ++count[static_cast<std::size_t>(trusses_.nodes[t][static_cast<std::size_t>(a)]) + 1];
+  for (const ElementSet* set : sets_)
+    for (std::int32_t node : set->connectivity()) ++count[static_cast<std::size_t>(node) + 1];
   for (std::size_t n = 0; n < n_nodes; ++n) count[n + 1] += count[n];
   incidence_offsets_ = count;
   incidence_.assign(static_cast<std::size_t>(count[n_nodes]), 0);
   std::vector<std::int64_t> fill(count.begin(), count.end() - 1);
-  for (std::size_t e = 0; e < hexes_.size(); ++e)
-    for (int a = 0; a < 8; ++a)
-      incidence_[static_cast<std::size_t>(
-          fill[static_cast<std::size_t>(hexes_.nodes[e][static_cast<std::size_t>(a)])]++)] =
-          static_cast<std::int64_t>(8 * e) + a;
-  const auto truss_base = static_cast<std::int64_t>(8 * hexes_.size());
-  for (std::size_t t = 0; t < trusses_.size(); ++t)
-    for (int a = 0; a < 2; ++a)
-      incidence_[static_cast<std::size_t>(
-          fill[static_cast<std::size_t>(trusses_.nodes[t][static_cast<std::size_t>(a)])]++)] =
-          truss_base + static_cast<std::int64_t>(2 * t) + a;
-}
-
-// 6. Critical steps of the initial state: characteristic length over the wave speed
-// (hexahedra), length over the bar speed (trusses); rigid bodies' elements set none.
-void FeSolver::initial_critical_steps(const core::Scene& scene) {
-  for (const ElementBatch& b : hexes_.batches) {
-    const core::Material& mat = scene.materials[static_cast<std::size_t>(b.material)];
-    for (std::size_t e = b.begin; e < b.end; ++e) {
-      if (b.rigid) {  // no stress waves: no step limit
-        hexes_.critical_dt[e] = std::numeric_limits<double>::infinity();
-        continue;
-      }
-      HexVectors x;
-      for (std::size_t a = 0; a < 8; ++a)
-        x[a] = nodes_.position[static_cast<std::size_t>(hexes_.nodes[e][a])];
-      core::PointState st{{}, 0.0, 0.0, 0.0, mat.density};
-      hexes_.critical_dt[e] =
-          characteristic_length(x, hexes_.volume0[e]) / core::wave_speed(mat, st);
-    }
-  }
-  for (const ElementBatch& b : trusses_.batches) {
-    const core::Material& mat = scene.materials[static_cast<std::size_t>(b.material)];
-    core::PointState st{{}, 0.0, 0.0, 0.0, mat.density};
-    const double modulus = core::uniaxial_modulus(mat, st);
-    for (std::size_t e = b.begin; e < b.end; ++e)
-      trusses_.critical_dt[e] = truss_time_step(trusses_.length0[e], modulus, mat.density);
+  for (const ElementSet* set : sets_) {
+    const std::span<const std::int32_t> corners = set->connectivity();
+    for (std::size_t k = 0; k < corners.size(); ++k)
+      incidence_[static_cast<std::size_t>(fill[static_cast<std::size_t>(corners[k])]++)] =
+          static_cast<std::int64_t>(set->first_slot + k);
   }
 }
 
@@ -681,14 +648,16 @@ void FeSolver::setup_step_arrays(const core::Scene& scene) {
 
 void FeSolver::recompute_node_masses() {
   std::fill(nodes_.mass.begin(), nodes_.mass.end(), 0.0);
-  for (std::size_t e = 0; e < hexes_.size(); ++e)
-    if (hexes_.alive[e])
-      for (std::size_t a = 0; a < 8; ++a)
-        nodes_.mass[static_cast<std::size_t>(hexes_.nodes[e][a])] += hexes_.mass[e] / 8.0;
-  for (std::size_t t = 0; t < trusses_.size(); ++t)
-    if (trusses_.alive[t])
-      for (std::size_t a = 0; a < 2; ++a)
-        nodes_.mass[static_cast<std::size_t>(trusses_.nodes[t][a])] += trusses_.mass[t] / 2.0;
+  for (const ElementSet* set : sets_) {
+    const ElementStore& el = set->store();
+    const std::span<const std::int32_t> nodes = set->connectivity();
+    const auto corners = static_cast<std::size_t>(set->corners());
+    for (std::size_t e = 0; e < el.size(); ++e)
+      if (el.alive[e])
+        for (std::size_t a = 0; a < corners; ++a)
+          nodes_.mass[static_cast<std::size_t>(nodes[corners * e + a])] +=
+              el.mass[e] / static_cast<double>(corners);
+  }
 }
 
 }  // namespace afemp::fem

@@ -1,10 +1,11 @@
 // The explicit FE solver: lumped-mass nodes moved by central differences (Belytschko, Liu &
 // Moran, Nonlinear Finite Elements, box 6.1), 8-node hexahedra (one-point with
-// Flanagan-Belytschko hourglass control, or 2x2x2 B-bar) and 2-node trusses, all updated by the
-// shared material composition of core/materials. The stages a scene needs are its step plan
-// (fe_step_plan.cpp); they live in files named after them: fe_model_builder.cpp (mesh, masses,
-// sets), nodal_update.cpp (forces to motion, constraints), rigid_wall.cpp,
-// hexahedron_update.cpp, truss_update.cpp, erosion.cpp, element_retirement.cpp.
+// Flanagan-Belytschko hourglass control, or 2x2x2 B-bar) and 2-node trusses, each kind an element
+// set behind one interface (element_set.hpp), all updated by the shared material composition of
+// core/materials. The stages a scene needs are its step plan (fe_step_plan.cpp); they live in
+// files named after them: fe_model_builder.cpp (mesh, masses, sets), nodal_update.cpp (forces
+// to motion, constraints), rigid_wall.cpp, hexahedron_update.cpp, truss_update.cpp, erosion.cpp,
+// element_retirement.cpp.
 #pragma once
 
 #include <array>
@@ -21,9 +22,11 @@
 #include "fem/element_store.hpp"
 #include "fem/fe_step_plan.hpp"
 #include "fem/hexahedron.hpp"
+#include "fem/hexahedron_set.hpp"
 #include "fem/mesh.hpp"
 #include "fem/mesh_contact.hpp"
 #include "fem/rigid_body.hpp"
+#include "fem/truss_set.hpp"
 
 namespace afemp::core {
 class StateArchive;
@@ -51,35 +54,6 @@ struct FeNodes {
   // one force per node, acting on the nodes the FE update moves (not grid-driven ones).
   std::vector<Vec3> external_force;
   std::size_t size() const { return position.size(); }
-};
-
-// 8-node hexahedra: one-point (hourglass-controlled) or 2 x 2 x 2 B-bar.
-struct HexElements : ElementStore {
-  static constexpr int corners = 8;
-  std::vector<std::array<std::int32_t, 8>> nodes;
-  std::vector<double> bulk_q;  // bulk-viscous pressure acting this step
-  // The stiffness form's generalised hourglass forces (global axes), the viscous form's
-  // a_h q of the last update (global axes), or the assumed strain form's generalised
-  // stresses (the element's corotational frame).
-  std::vector<std::array<Vec3, 4>> hourglass_force;
-  // The viscous form: the power of the forces above at the velocities they were found from
-  // (their work is booked once the next step has moved the nodes, hexahedron_update.cpp).
-  std::vector<double> hourglass_power;
-  // The mesh's face links (fem/surface_faces.cpp, link_faces; set once, as the node lists never
-  // change): per element and face, the element across it (-1: none), or -2 - g when three or
-  // more elements share the face (an invalid mesh), g a group of shared_faces (CSR, entries
-  // 6 e + face). The boundary faces then follow from the live flags in one sweep.
-  std::vector<std::array<std::int32_t, 6>> across;
-  std::vector<std::int32_t> shared_offsets, shared_faces;
-  std::size_t bytes() const;
-};
-
-// 2-node trusses (bars): one point, uniaxial stress.
-struct TrussElements : ElementStore {
-  static constexpr int corners = 2;
-  std::vector<std::array<std::int32_t, 2>> nodes;
-  std::vector<double> length0, area0;  // initial length and cross-section
-  std::size_t bytes() const;
 };
 
 // A record of an eroded element.
@@ -126,6 +100,9 @@ struct WallState {
 class FeSolver {
  public:
   explicit FeSolver(const core::Scene& scene);
+  // The list of element sets points into the solver.
+  FeSolver(const FeSolver&) = delete;
+  FeSolver& operator=(const FeSolver&) = delete;
 
   const FeNodes& nodes() const { return nodes_; }
   // For drivers and tests that prescribe node motion between steps (velocities at half steps).
@@ -210,6 +187,9 @@ class FeSolver {
   // The hexahedron stage's passes (hexahedron_passes.hpp) read and write the solver's arrays.
   template <class Strength, class Eos, bool Thermal, bool Fails>
   friend class HexahedronPasses;
+  // The element sets' updates run the solver's stages of their kind.
+  friend class HexahedronSet;
+  friend class TrussSet;
 
   void build(const core::Scene& scene);
   // The pieces of build, in its order (fe_model_builder.cpp).
@@ -223,7 +203,6 @@ class FeSolver {
   void setup_absorbing_boundaries(const core::Scene& scene, const BodyMeshes& meshes);
   void setup_walls(const core::Scene& scene);
   void build_incidence();
-  void initial_critical_steps(const core::Scene& scene);
   void setup_mesh_contacts(const core::Scene& scene);
   void setup_step_arrays(const core::Scene& scene);
   // The pieces of resolve_contacts, in its order (mesh_contact.cpp).
@@ -248,9 +227,8 @@ class FeSolver {
   void hexahedron_batch(const ElementBatch& b, const Strength& s, const Eos& e, double dt);
   template <class Strength, class Eos, bool Thermal>
   void truss_batch(const ElementBatch& b, const Strength& s, const Eos& e, double dt);
-  // Erodes the elements the last sweep flagged (thread order: deterministic).
-  template <class Elements>
-  void collect_erosions(Elements& elements, const char* kind);
+  // Erodes the elements of `set` the last sweep flagged (thread order: deterministic).
+  void collect_erosions(ElementSet& set);
   void finish_erosion();
   // Retirement (element_retirement.cpp): the first `conversion` criterion element e of batch b
   // meets (nullptr: none), and the records of the elements the last sweep flagged.
@@ -274,8 +252,11 @@ class FeSolver {
   const core::Scene& scene_;
   MeshData mesh_;
   FeNodes nodes_;
-  HexElements hexes_;
-  TrussElements trusses_;
+  // The element sets, each kind's container; the generic stages go through sets_ (hexahedra
+  // first: hexahedron_passes.hpp writes their forces from slot 0).
+  HexahedronSet hexes_;
+  TrussSet trusses_;
+  const std::array<ElementSet*, 2> sets_{&hexes_, &trusses_};
   std::vector<WallState> walls_;
   std::vector<Vec3> wall_force_;
   // Contacts between meshes; the nodes of their bodies and their predicted positions (per FE
@@ -291,8 +272,8 @@ class FeSolver {
   // Rigid bodies, and per node the rigid body it belongs to (-1: none; empty without any).
   std::vector<RigidBody> rigid_bodies_;
   std::vector<std::int32_t> rigid_of_node_;
-  // Element nodal forces, gathered per node through the incidence lists (no atomics):
-  // hexahedron e node a at 8 e + a, truss t end b at 8 n_hex + 2 t + b.
+  // Element nodal forces, gathered per node through the incidence lists (no atomics): corner a
+  // of element e of a set at its first_slot + corners e + a (hexahedra, then trusses).
   std::vector<Vec3> element_force_;
   std::vector<std::int64_t> incidence_offsets_;
   std::vector<std::int64_t> incidence_;

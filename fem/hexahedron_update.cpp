@@ -26,6 +26,10 @@ void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength,
   });
 }
 
+void HexahedronSet::update(FeSolver& fe, double dt) {
+  fe.update_hexahedra(dt);
+}
+
 void FeSolver::update_hexahedra(double dt) {
   using namespace hexahedron_stage;
   std::fill(thread_sums_.begin(), thread_sums_.end(), 0.0);
@@ -47,7 +51,7 @@ void FeSolver::update_hexahedra(double dt) {
           hexahedron_batch<S, E, Thermal, false>(b, s, e, dt);
         body_stabilisation_[static_cast<std::size_t>(b.body)] += stabilisation() - before;
         raise_thread_errors();
-        collect_erosions(hexes_, "hexahedron");
+        collect_erosions(hexes_);
         collect_retirements();
       });
   for (std::size_t t = 0; t < thread_errors_.size(); ++t) {

@@ -31,8 +31,8 @@ namespace afemp::fem {
 
 using core::Vec3;
 struct FeNodes;        // fe_solver.hpp
-struct HexElements;    // fe_solver.hpp
-struct TrussElements;  // fe_solver.hpp
+struct HexElements;    // hexahedron_set.hpp
+struct TrussElements;  // truss_set.hpp
 
 // One direction of a contact: slave nodes against master faces.
 struct ContactPass {

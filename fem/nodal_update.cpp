@@ -122,8 +122,7 @@ void FeSolver::finish_step(double dt) {
       if (nodes_.mass[i] > 0.0 && !nodes_.grid_driven[i] && !(rigid && rigid_of_node_[i] >= 0))
         nodes_.position[i] += dt * nodes_.velocity[i];
   });
-  run_stage(FeStageKind::hexahedra, [&] { update_hexahedra(dt); });
-  run_stage(FeStageKind::trusses, [&] { update_trusses(dt); });
+  for (ElementSet* set : sets_) run_stage(set->stage(), [&] { set->update(*this, dt); });
   time_ += dt;
   ++steps_;
   previous_dt_ = dt;
@@ -137,10 +136,11 @@ void FeSolver::finish_step(double dt) {
 
 double FeSolver::element_step_limit() const {
   double dt = std::numeric_limits<double>::infinity();
-  for (const ElementStore* el :
-       {static_cast<const ElementStore*>(&hexes_), static_cast<const ElementStore*>(&trusses_)})
-    for (std::size_t e = 0; e < el->size(); ++e)
-      if (el->alive[e]) dt = std::min(dt, el->critical_dt[e]);
+  for (const ElementSet* set : sets_) {
+    const ElementStore& el = set->store();
+    for (std::size_t e = 0; e < el.size(); ++e)
+      if (el.alive[e]) dt = std::min(dt, el.critical_dt[e]);
+  }
   return scene_.run.element_time_step_factor * dt;
 }
 
@@ -165,8 +165,7 @@ std::string FeSolver::smallest_step_element() const {
                   scene_.bodies[static_cast<std::size_t>(b.body)].name;
         }
   };
-  scan(hexes_, "hexahedron");
-  scan(trusses_, "truss");
+  for (const ElementSet* set : sets_) scan(set->store(), set->kind());
   return where;
 }
 
@@ -184,20 +183,21 @@ core::Energies FeSolver::energies() const {
     b.momentum += m * v;
     b.kinetic += kinetic;
   }
-  for (const ElementStore* el :
-       {static_cast<const ElementStore*>(&hexes_), static_cast<const ElementStore*>(&trusses_)})
-    for (const ElementBatch& b : el->batches)
+  for (const ElementSet* set : sets_) {
+    const ElementStore& el = set->store();
+    for (const ElementBatch& b : el.batches)
       for (std::size_t e = b.begin; e < b.end; ++e) {
-        if (!el->alive[e]) continue;
+        if (!el.alive[e]) continue;
         const std::size_t p0 =
             b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
         double internal = 0.0;
         for (int g = 0; g < b.points_per_element; ++g)
-          internal += el->point_mass[p0 + static_cast<std::size_t>(g)] *
-                      el->energy[p0 + static_cast<std::size_t>(g)];
+          internal += el.point_mass[p0 + static_cast<std::size_t>(g)] *
+                      el.energy[p0 + static_cast<std::size_t>(g)];
         out.internal += internal;
         out.bodies[static_cast<std::size_t>(b.body)].internal += internal;
       }
+  }
   out.plastic = plastic_work_;
   out.viscous = viscous_work_;
   out.hourglass = hourglass_work_;
@@ -226,27 +226,20 @@ std::vector<ErosionEvent> FeSolver::take_erosion_events() {
 }
 
 std::size_t FeSolver::live_hexahedra() const {
-  return static_cast<std::size_t>(std::count(hexes_.alive.begin(), hexes_.alive.end(), 1));
+  return hexes_.live();
 }
 std::size_t FeSolver::live_trusses() const {
-  return static_cast<std::size_t>(std::count(trusses_.alive.begin(), trusses_.alive.end(), 1));
+  return trusses_.live();
 }
 
 std::size_t FeSolver::bytes() const {
-  auto v = [](const auto& x) { return x.capacity() * sizeof(x[0]); };
+  auto v = [](const auto& x) { return capacity_bytes(x); };
   std::size_t b = v(nodes_.position) + v(nodes_.initial_position) + v(nodes_.velocity) +
                   v(nodes_.mass) + v(nodes_.body) + v(nodes_.imposed) + v(nodes_.imposed_velocity) +
                   v(nodes_.grid_driven);
-  return b + hexes_.bytes() + trusses_.bytes() + v(element_force_) + v(incidence_) +
-         v(incidence_offsets_);
+  for (const ElementSet* set : sets_) b += set->bytes();
+  return b + v(element_force_) + v(incidence_) + v(incidence_offsets_);
 }
-
-namespace {
-template <class V>
-std::size_t capacity_bytes(const V& x) {
-  return x.capacity() * sizeof(x[0]);
-}
-}  // namespace
 
 std::size_t ElementStore::bytes() const {
   std::size_t total = capacity_bytes(mass) + capacity_bytes(volume0) + capacity_bytes(volume) +
@@ -255,17 +248,6 @@ std::size_t ElementStore::bytes() const {
     total += capacity_bytes(a);
   });
   return total;
-}
-
-std::size_t HexElements::bytes() const {
-  return ElementStore::bytes() + capacity_bytes(nodes) + capacity_bytes(bulk_q) +
-         capacity_bytes(hourglass_force) + capacity_bytes(hourglass_power) +
-         capacity_bytes(across) + capacity_bytes(shared_offsets) + capacity_bytes(shared_faces);
-}
-
-std::size_t TrussElements::bytes() const {
-  return ElementStore::bytes() + capacity_bytes(nodes) + capacity_bytes(length0) +
-         capacity_bytes(area0);
 }
 
 void FeSolver::raise_thread_errors() const {

@@ -22,7 +22,7 @@ void FeSolver::truss_batch(const ElementBatch& b, const Strength& strength, cons
   const core::Material& mat = scene_.materials[static_cast<std::size_t>(b.material)];
   const core::ErosionSettings* erosion = body.erosion ? &*body.erosion : nullptr;
   TrussElements& el = trusses_;
-  const std::size_t force_base = 8 * hexes_.size();
+  const std::size_t force_base = trusses_.first_slot;
 
   // The mid-step kinematics of truss e: its nodes' positions x and velocities v, its point's
   // start state st and axial strain increment d_axial (separate locals, not one struct, so
@@ -125,6 +125,10 @@ void FeSolver::truss_batch(const ElementBatch& b, const Strength& strength, cons
   });
 }
 
+void TrussSet::update(FeSolver& fe, double dt) {
+  fe.update_trusses(dt);
+}
+
 void FeSolver::update_trusses(double dt) {
   std::fill(thread_sums_.begin(), thread_sums_.end(), 0.0);
   for (auto& e : thread_errors_) e.clear();
@@ -132,7 +136,7 @@ void FeSolver::update_trusses(double dt) {
       trusses_, [&]<class S, class E, bool Thermal>(const ElementBatch& b, const S& s, const E& e) {
         truss_batch<S, E, Thermal>(b, s, e, dt);
         raise_thread_errors();
-        collect_erosions(trusses_, "truss");
+        collect_erosions(trusses_);
       });
   for (std::size_t t = 0; t < thread_errors_.size(); ++t)
     plastic_work_ += thread_sums_[t * core::cache_line_doubles];
