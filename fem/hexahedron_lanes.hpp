@@ -102,6 +102,7 @@ void velocity_gradient(const NodeArray<W>& b, const double (&volume)[W], const N
     for (int j = 0; j < 3; ++j) {
       double s[W] = {};
       for (int a = 0; a < 8; ++a)
+#pragma omp simd
         for (int l = 0; l < W; ++l) s[l] += v[i][a][l] * b[j][a][l];
       for (int l = 0; l < W; ++l) grad[i][j][l] = s[l] * inv_v[l];
     }
@@ -183,6 +184,7 @@ void hourglass_velocities(const double (&gamma)[4][8][W], const NodeArray<W>& v,
     for (int i = 0; i < 3; ++i) {
       double s[W] = {};
       for (int a = 0; a < 8; ++a)
+#pragma omp simd
         for (int l = 0; l < W; ++l) s[l] += gamma[k][a][l] * v[i][a][l];
       for (int l = 0; l < W; ++l) q[k][i][l] = s[l];
     }
@@ -192,6 +194,7 @@ void hourglass_velocities(const double (&gamma)[4][8][W], const NodeArray<W>& v,
 template <int W>
 void stress_forces(const NodeArray<W>& b, const double (&sigma)[6][W], NodeArray<W>& f) {
   for (int a = 0; a < 8; ++a)
+#pragma omp simd
     for (int l = 0; l < W; ++l) {
       const double bx = b[0][a][l], by = b[1][a][l], bz = b[2][a][l];
       const double sxx = sigma[0][l], syy = sigma[1][l], szz = sigma[2][l], syz = sigma[3][l],
@@ -208,6 +211,7 @@ void subtract_hourglass_forces(const double (&gamma)[4][8][W], const double (&g)
                                NodeArray<W>& f) {
   for (int i = 0; i < 3; ++i)
     for (int a = 0; a < 8; ++a)
+#pragma omp simd
       for (int l = 0; l < W; ++l)
         f[i][a][l] -= gamma[0][a][l] * g[0][i][l] + gamma[1][a][l] * g[1][i][l] +
                       gamma[2][a][l] * g[2][i][l] + gamma[3][a][l] * g[3][i][l];
