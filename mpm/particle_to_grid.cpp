@@ -40,8 +40,9 @@ void MpmSolver::p2g_kernel() {
   // to the grid once per run: less grid traffic, same order every time. Each particle adds
   // to its body's velocity field (one field unless bodies are in grid contact).
   sweep_layers<Stencil::colours>(layer_offsets_, [&](std::size_t b, std::size_t e) {
-    double mass[N];
-    Vec3 momentum[N], force[N];
+    // Per node and component (structures of arrays), so that the loop over a particle's
+    // nodes runs as vector instructions and the sums stay in registers through a run.
+    alignas(64) double mass[N], mx[N], my[N], mz[N], fx[N], fy[N], fz[N];
     typename Stencil::Slots slot{};
     std::int64_t current = -1;
     std::size_t current_field = 0;
@@ -51,9 +52,9 @@ void MpmSolver::p2g_kernel() {
         const auto k = static_cast<std::size_t>(slot[n]) + current_field;
         if constexpr (MassMomentum) {
           g.mass[k] += mass[n];
-          g.momentum[k] += momentum[n];
+          g.momentum[k] += Vec3{mx[n], my[n], mz[n]};
         }
-        if constexpr (Force) g.force[k] += force[n];
+        if constexpr (Force) g.force[k] += Vec3{fx[n], fy[n], fz[n]};
       }
     };
     for (std::size_t q = b; q < e; ++q) {
@@ -66,9 +67,8 @@ void MpmSolver::p2g_kernel() {
         current_field = field;
         st.slots(g, slot);
         for (std::size_t n = 0; n < N; ++n) {
-          mass[n] = 0.0;
-          momentum[n] = {};
-          force[n] = {};
+          mass[n] = mx[n] = my[n] = mz[n] = 0.0;
+          fx[n] = fy[n] = fz[n] = 0.0;
         }
       }
       const double m = p.mass[i];
@@ -78,19 +78,28 @@ void MpmSolver::p2g_kernel() {
       // 0 otherwise.
       const core::SymTensor sv =
           p.volume[i] * (p.stress[i] - (p.bulk_q[i] - ambient) * core::SymTensor::identity());
+#pragma omp simd
       for (int n = 0; n < N; ++n) {
         const double wn = st.w(n);
         const auto k = static_cast<std::size_t>(n);
         if constexpr (MassMomentum) {
           mass[k] += m * wn;
-          momentum[k] += node_momentum<Stencil, Affine>(st, n, m, mv, p, i);
+          const Vec3 mo = node_momentum<Stencil, Affine>(st, n, m, mv, p, i);
+          mx[k] += mo.x;
+          my[k] += mo.y;
+          mz[k] += mo.z;
         }
         if constexpr (Force) {
           const Vec3& d = st.grad(n);
-          force[k] -=
-              Vec3{sv.xx * d.x + sv.xy * d.y + sv.xz * d.z, sv.xy * d.x + sv.yy * d.y + sv.yz * d.z,
-                   sv.xz * d.x + sv.yz * d.y + sv.zz * d.z};
-          if constexpr (Gravity) force[k] += (m * wn) * gravity;
+          fx[k] -= sv.xx * d.x + sv.xy * d.y + sv.xz * d.z;
+          fy[k] -= sv.xy * d.x + sv.yy * d.y + sv.yz * d.z;
+          fz[k] -= sv.xz * d.x + sv.yz * d.y + sv.zz * d.z;
+          if constexpr (Gravity) {
+            const double mw = m * wn;
+            fx[k] += mw * gravity.x;
+            fy[k] += mw * gravity.y;
+            fz[k] += mw * gravity.z;
+          }
         }
       }
     }
