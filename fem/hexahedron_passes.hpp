@@ -101,7 +101,7 @@ class HexahedronPasses {
   // One-point passes, in this order, on the pack of the elements from e0 (below end).
   void gather(Pack& k, std::size_t e0, std::size_t end) const;
   void kinematics(Pack& k) const;
-  void material(Pack& k, UserChunk& chunk) const;
+  [[gnu::flatten]] void material(Pack& k, UserChunk& chunk) const;
   void viscosity(Pack& k) const;
   void hourglass(Pack& k) const;
   void forces(Pack& k) const;
@@ -120,9 +120,11 @@ class HexahedronPasses {
   // A point's update in two halves around the strength model (a user model runs between
   // them on the points of a whole element or pack): the start, its Jaumann-rotated state and
   // strain increment, then the end, written to slot j of the trial arrays; returns the wave
-  // speed. Laid out as before the passes were split, the halves inlined in an update_point
-  // of its own: the compiler then fuses the same multiply-adds (the last bits of every run
-  // depend on it).
+  // speed. update_point is both halves and the model between them, inlined into the
+  // material pass, which is flattened so that the strength model's update is inlined too
+  // (called out of line, it stalled on reloading the stress its caller had just stored: a
+  // fifth of the point update's time, HEX-BLOCK under perf). The multiply-adds fuse as they did
+  // when update_point was a function of its own (the same bits, checked on the FE examples).
   struct PointStart {
     core::PointState st;
     core::SymTensor d_eps;
@@ -134,9 +136,9 @@ class HexahedronPasses {
   AFEMP_INLINE inline double end_point(TrialPoints<N>& out, std::size_t j, std::size_t p,
                                        PointStart& ps, const core::PointUpdate& u) const;
   template <std::size_t N>
-  [[gnu::noinline]] double update_point(TrialPoints<N>& out, std::size_t j, std::size_t p,
-                                        const core::Mat3& l, double density, double q_old) const;
-  void hourglass_viscous(Pack& k, int l) const;
+  AFEMP_INLINE inline double update_point(TrialPoints<N>& out, std::size_t j, std::size_t p,
+                                          const core::Mat3& l, double density, double q_old) const;
+  void hourglass_viscous(Pack& k) const;
   void hourglass_stiffness(Pack& k, int l) const;
   void hourglass_assumed_strain(Pack& k, int l) const;
   template <std::size_t N>
@@ -200,7 +202,7 @@ void HexahedronPasses<S, E, Thermal, Fails>::sweep_one_point(std::size_t begin, 
                                                              int t) const {
   double* sums = &fe_.thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles];
   UserChunk chunk(mat_, strength_);
-  Pack k;
+  Pack k{};  // zeros: lanes that never turn live still hold values
   for (std::size_t e0 = begin; e0 < end; e0 += W) {
     gather(k, e0, end);
     kinematics(k);
@@ -331,6 +333,17 @@ void HexahedronPasses<S, E, Thermal, Fails>::gather(Pack& k, std::size_t e0,
                                                     std::size_t end) const {
   k.e0 = e0;
   k.n = static_cast<int>(std::min<std::size_t>(W, end - e0));
+  // The next pack's nodes are fetched while this one is computed (the node arrays outgrow
+  // the caches; the element stage waited on their loads 11 % of its time).
+  if (e0 + 2 * W <= end) {
+    for (int l = 0; l < W; ++l)
+      for (int a = 0; a < 8; ++a) {
+        const auto node =
+            static_cast<std::size_t>(el_.nodes[e0 + W + static_cast<std::size_t>(l)][a]);
+        __builtin_prefetch(&fe_.nodes_.position[node]);
+        __builtin_prefetch(&fe_.nodes_.velocity[node]);
+      }
+  }
   // Lanes past the end repeat the last element; their results are dropped.
   for (int l = 0; l < W; ++l) {
     const std::size_t e = e0 + static_cast<std::size_t>(std::min(l, k.n - 1));
@@ -453,14 +466,13 @@ void HexahedronPasses<S, E, Thermal, Fails>::hourglass(Pack& k) const {
     for (int i = 0; i < 3; ++i)
       for (int l = 0; l < W; ++l) k.g[m][i][l] = 0.0;
   if (q_hg_ <= 0.0) return;
+  if (hg_form_ == core::HourglassForm::viscous) return hourglass_viscous(k);
   for (int l = 0; l < W; ++l) {
     if (!k.element[l].live) continue;
     if (hg_form_ == core::HourglassForm::assumed_strain)
       hourglass_assumed_strain(k, l);
-    else if (hg_form_ == core::HourglassForm::stiffness)
-      hourglass_stiffness(k, l);
     else
-      hourglass_viscous(k, l);
+      hourglass_stiffness(k, l);
   }
 }
 
@@ -505,11 +517,10 @@ void HexahedronPasses<S, E, Thermal, Fails>::hourglass_stiffness(Pack& k, int l)
   te.hourglass_term = work;
 }
 
+// The viscous form on every lane at once (its formulas run as loops over the lanes; dead
+// lanes compute on zeros and keep g = 0).
 template <class S, class E, bool Thermal, bool Fails>
-void HexahedronPasses<S, E, Thermal, Fails>::hourglass_viscous(Pack& k, int l) const {
-  const std::size_t e = k.e0 + static_cast<std::size_t>(l);
-  TrialElement& te = k.element[l];
-  double a_h = viscous_hourglass_factor(q_hg_, k.density[l], k.point.wave[l], k.vol[l]);
+void HexahedronPasses<S, E, Thermal, Fails>::hourglass_viscous(Pack& k) const {
   // A mode's velocity decays at a rate a_h sum_a gamma_ka^2 / m_a. In a parallelepiped
   // sum_a gamma_ka^2 = 8; in an element far from one it is larger (27 in a random
   // element with a smallest scaled corner Jacobian of 0.05), and, explicit, the force
@@ -518,13 +529,6 @@ void HexahedronPasses<S, E, Thermal, Fails>::hourglass_viscous(Pack& k, int l) c
   // by 0.6 % of the total in ten steps, and the balance drifted by 1.7 %). The factor is
   // scaled so that no mode decays faster than twice as fast as in the parallelepiped
   // of its volume: regular meshes are untouched.
-  double modes = 0.0;
-  for (int m = 0; m < 4; ++m) {
-    double sum = 0.0;
-    for (int a = 0; a < 8; ++a) sum += k.gamma[m][a][l] * k.gamma[m][a][l];
-    modes = std::max(modes, sum);
-  }
-  if (modes > 16.0) a_h *= 16.0 / modes;
   // The work is booked once it is done. The forces found here act in the next nodal
   // update, over the force step dt_f, and change the velocities from those they were
   // found from, v^{n+1/2}, to v^{n+3/2}: their work is dt_f (g . q^{n+1/2} +
@@ -536,18 +540,52 @@ void HexahedronPasses<S, E, Thermal, Fails>::hourglass_viscous(Pack& k, int l) c
   // alpha = a_h sum gamma^2 dt / m (about 1.4 on a regular mesh at the default step and
   // coefficient), and does the work a_h q^2 dt (1 - alpha / 2): a lone element started
   // in an hourglass mode booked 1.9 times its kinetic energy.
-  const std::array<Vec3, 4>& held = el_.hourglass_force[e];
-  double done = 0.0, power = 0.0;
+  alignas(64) double a_h[W], modes[W], held[4][3][W], done[W], power[W], live[W];
+  for (int l = 0; l < W; ++l) {
+    live[l] = k.element[l].live ? 1.0 : 0.0;
+    const std::size_t e = k.e0 + static_cast<std::size_t>(l);
+    for (int m = 0; m < 4; ++m)
+      for (int i = 0; i < 3; ++i)
+        held[m][i][l] =
+            k.element[l].live ? el_.hourglass_force[e][static_cast<std::size_t>(m)][i] : 0.0;
+  }
+  // Dead lanes hold no material state of this pack (a live lane's a_h is positive).
+#pragma omp simd
+  for (int l = 0; l < W; ++l) {
+    const double f = viscous_hourglass_factor(q_hg_, k.density[l], k.point.wave[l], k.vol[l]);
+    a_h[l] = live[l] != 0.0 ? f : 0.0;
+  }
+  for (int l = 0; l < W; ++l) modes[l] = 0.0;
+  for (int m = 0; m < 4; ++m) {
+    double sum[W] = {};
+    for (int a = 0; a < 8; ++a)
+#pragma omp simd
+      for (int l = 0; l < W; ++l) sum[l] += k.gamma[m][a][l] * k.gamma[m][a][l];
+    for (int l = 0; l < W; ++l) modes[l] = std::max(modes[l], sum[l]);
+  }
+#pragma omp simd
+  for (int l = 0; l < W; ++l) {
+    if (modes[l] > 16.0) a_h[l] *= 16.0 / modes[l];
+    done[l] = 0.0;
+    power[l] = 0.0;
+  }
   for (int m = 0; m < 4; ++m)
-    for (int i = 0; i < 3; ++i) {
-      const double gk = a_h * k.q[m][i][l];
-      done += held[static_cast<std::size_t>(m)][i] * k.q[m][i][l];
-      power += gk * k.q[m][i][l];
-      te.hourglass[static_cast<std::size_t>(m)][i] = gk;
-      k.g[m][i][l] = gk;
-    }
-  te.hourglass_term = done;
-  te.hourglass_power = power;
+    for (int i = 0; i < 3; ++i)
+#pragma omp simd
+      for (int l = 0; l < W; ++l) {
+        const double gk = a_h[l] * k.q[m][i][l];
+        done[l] += held[m][i][l] * k.q[m][i][l];
+        power[l] += gk * k.q[m][i][l];
+        k.g[m][i][l] = a_h[l] != 0.0 ? gk : 0.0;  // a dead lane's q may be NaN
+      }
+  for (int l = 0; l < W; ++l) {
+    TrialElement& te = k.element[l];
+    if (!te.live) continue;
+    for (int m = 0; m < 4; ++m)
+      for (int i = 0; i < 3; ++i) te.hourglass[static_cast<std::size_t>(m)][i] = k.g[m][i][l];
+    te.hourglass_term = done[l];
+    te.hourglass_power = power[l];
+  }
 }
 
 // f = -(sigma - q I) b_a - sum_k g_k gamma_k,a.
@@ -593,9 +631,22 @@ void HexahedronPasses<S, E, Thermal, Fails>::commit(const Pack& k, const UserChu
 
 template <class S, class E, bool Thermal, bool Fails>
 void HexahedronPasses<S, E, Thermal, Fails>::check(const Pack& k, int t) const {
+  const bool retires = conversion_ || erosion_;
   for (int l = 0; l < k.n; ++l) {
     const std::size_t e = k.e0 + static_cast<std::size_t>(l);
     if (!el_.alive[e]) continue;
+    if (!retires && !k.element[l].failure) {
+      // What check() below does for an element that can only be updated: the bad-value test
+      // and the forces stored, read straight from the pack.
+      const core::SymTensor& s = el_.stress[b_.point_begin + (e - b_.begin)];
+      if (!std::isfinite(k.f[0][0][l] + k.f[1][0][l] + k.f[2][0][l]) ||
+          !std::isfinite(s.xx + s.yy + s.zz + s.yz + s.xz + s.xy))
+        report(t, e, "", "stress");
+      for (int a = 0; a < 8; ++a)
+        fe_.element_force_[8 * e + static_cast<std::size_t>(a)] =
+            Vec3{k.f[0][a][l], k.f[1][a][l], k.f[2][a][l]};
+      continue;
+    }
     HexVectors fe;
     lanes::store<W>(k.f, l, fe);
     check(e, b_.point_begin + (e - b_.begin), k.vol[l], k.element[l].failure, fe, t);
