@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "afemp/tensor.hpp"
+#include "core/cube_root.hpp"
 #include "fem/hexahedron.hpp"
 #include "fem/hexahedron_lanes.hpp"
 #include "fem/hexahedron_one_point.hpp"
@@ -38,7 +39,7 @@ HourglassModes hourglass_modes(const OnePointHex& e, const HexVectors& x);
 // them to packs of elements with the kernels of fem/hexahedron_lanes.hpp).
 inline double viscous_hourglass_factor(double coefficient, double density, double wave_speed,
                                        double volume) {
-  const double v13 = std::cbrt(volume);
+  const double v13 = core::cube_root(volume);
   return 0.25 * coefficient * density * wave_speed * v13 * v13;
 }
 inline double stiffness_hourglass_factor(double coefficient, double modulus, double b_squared,
