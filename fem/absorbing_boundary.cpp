@@ -9,7 +9,9 @@
 // and likewise across, stable at any step (as the grid's absorbing faces do,
 // mpm/absorbing_faces.hpp); imposed components stay imposed. The dashpots' work leaves through
 // the boundary and is booked as external work. The faces, their areas and normals are those of
-// the initial mesh: meant for the far boundary of a target, which moves little.
+// the initial mesh: meant for the far boundary of a target, which moves little. They are
+// gathered from every element set with faces (element_set.hpp), each with its element's
+// material and centroid.
 #include <cmath>
 
 #include "afemp/errors.hpp"
@@ -28,10 +30,12 @@ void FeSolver::setup_absorbing(const core::AbsorbingSpec& spec, const std::vecto
     for (std::int32_t n : faces.nodes[f]) all = all && selected[static_cast<std::size_t>(n)];
     if (!all) continue;
     ++taken;
-    const Vec3 a = face_area_vector(faces, f, hexes_, nodes_.position);
+    const ElementSet& set = *sets_[static_cast<std::size_t>(faces.set[f])];
     const auto e = static_cast<std::size_t>(faces.element[f]);
+    const Vec3 a =
+        face_area_vector(faces.nodes[f], set.element_centroid(e, nodes_.position), nodes_.position);
     const core::Material& m =
-        scene_.materials[static_cast<std::size_t>(batch_of(hexes_, e).material)];
+        scene_.materials[static_cast<std::size_t>(batch_of(set.store(), e).material)];
     const double c_l = std::sqrt((m.bulk_modulus() + 4.0 / 3.0 * m.shear_modulus()) / m.density);
     const double c_s = std::sqrt(m.shear_modulus() / m.density);
     const double quarter = 0.25 * core::norm(a);

@@ -80,7 +80,7 @@ void FeSolver::finish_erosion() {
     }
   std::fill(converted_node_.begin(), converted_node_.end(), 0);
   // Eroding contact: the surfaces now include the faces the lost elements exposed.
-  for (MeshContact& c : contacts_) rebuild_surfaces(c, scene_, hexes_, trusses_, nodes_);
+  for (MeshContact& c : contacts_) rebuild_surfaces(c, scene_, sets_, nodes_);
 }
 
 }  // namespace afemp::fem

@@ -556,7 +556,7 @@ void FeSolver::setup_velocity_curves(const core::Scene& scene,
 void FeSolver::setup_absorbing_boundaries(const core::Scene& scene, const BodyMeshes& meshes) {
   const SurfaceFaces surface =
       scene.absorbing.empty() ? SurfaceFaces{}
-                              : boundary_faces(hexes_, std::vector<char>(scene.bodies.size(), 1));
+                              : boundary_faces(sets_, std::vector<char>(scene.bodies.size(), 1));
   for (const core::AbsorbingSpec& a : scene.absorbing) {
     std::vector<char> selected(nodes_.size(), 0);
     meshes.for_selected(
@@ -610,7 +610,7 @@ void FeSolver::build_incidence() {
 void FeSolver::setup_mesh_contacts(const core::Scene& scene) {
   for (const core::ContactSpec& c : scene.contacts)
     if (c.method == core::ContactMethod::penalty)
-      contacts_.push_back(make_mesh_contact(c, scene, hexes_, trusses_, nodes_));
+      contacts_.push_back(make_mesh_contact(c, scene, sets_, nodes_));
   if (contacts_.empty()) return;
   const std::size_t n_nodes = nodes_.size();
   predicted_.assign(n_nodes, Vec3{});

@@ -34,7 +34,6 @@ class StateArchive;
 
 namespace afemp::fem {
 
-struct SurfaceFaces;  // surface_faces.hpp
 template <class Strength, class Eos, bool Thermal, bool Fails>
 class HexahedronPasses;  // hexahedron_passes.hpp
 

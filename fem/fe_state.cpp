@@ -32,6 +32,7 @@ void visit_pass(StateArchive& a, ContactPass& p) {
   a.item("slave_face_offsets", p.slave_face_offsets);
   a.item("slave_face_list", p.slave_face_list);
   a.item("faces", p.faces);
+  a.item("face_set", p.face_set);
   a.item("face_element", p.face_element);
   a.item("reach", p.reach);
   a.item("slaves_first_body", p.slaves_first_body);

@@ -48,6 +48,10 @@ class HexahedronSet final : public HexElements, public ElementSet {
   // An eroded element's bulk-viscous pressure acts no more.
   void eroded(std::span<const std::size_t> elements) override;
   std::size_t bytes() const override;
+  // Its boundary faces (surface_faces.cpp, one sweep of the live flags over the face links).
+  bool has_faces() const override { return true; }
+  void boundary_faces(const std::vector<char>& selected, std::int32_t set,
+                      SurfaceFaces& faces) const override;
 };
 
 }  // namespace afemp::fem

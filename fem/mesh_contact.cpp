@@ -17,43 +17,47 @@ namespace afemp::fem {
 
 namespace {
 
-using core::Discretisation;
-
-// The master faces of body b, turned outward, with their reach (the thickness of their element
-// normal to them; half of it in self-contact, where the far side of the same body is near).
-void master_faces(ContactPass& pass, const SurfaceFaces& s, bool self, const HexElements& hexes,
-                  const FeNodes& nodes) {
+// The master faces of body b, turned outward (from their element's centroid), with their reach
+// (the thickness of their element normal to them, its volume over the face's area; half of it
+// in self-contact, where the far side of the same body is near).
+void master_faces(ContactPass& pass, const SurfaceFaces& s, bool self,
+                  std::span<ElementSet* const> sets, const FeNodes& nodes) {
   pass.faces = s.nodes;
+  pass.face_set = s.set;
   pass.face_element = s.element;
   pass.reach.resize(s.nodes.size());
   for (std::size_t f = 0; f < s.nodes.size(); ++f) {
-    const Vec3 area = face_area_vector(s, f, hexes, nodes.position);
+    const ElementSet& set = *sets[static_cast<std::size_t>(s.set[f])];
+    const auto e = static_cast<std::size_t>(s.element[f]);
+    const Vec3 area =
+        face_area_vector(s.nodes[f], set.element_centroid(e, nodes.position), nodes.position);
     auto& q = pass.faces[f];
     const std::array<Vec3, 4> p = corners(q, nodes.position);
     if (core::dot(core::cross(p[2] - p[0], p[3] - p[1]), area) < 0.0) std::swap(q[1], q[3]);
     const double a = core::norm(area);
-    const double thickness =
-        a > 0.0 ? hexes.volume[static_cast<std::size_t>(s.element[f])] / a : 0.0;
+    const double thickness = a > 0.0 ? set.store().volume[e] / a : 0.0;
     pass.reach[f] = (self ? 0.5 : 1.0) * thickness;
   }
 }
 
-// The slave nodes of body b: the nodes of its live boundary faces (hexahedra) or of its live
-// trusses, ascending.
+// The slave nodes of body b: the nodes of its live boundary faces (kinds with faces) and of its
+// live elements of kinds without faces (trusses), ascending.
 std::vector<std::int32_t> slave_nodes(int body, const SurfaceFaces& surface,
-                                      const core::Scene& scene, const TrussElements& trusses,
-                                      const FeNodes& nodes) {
+                                      std::span<ElementSet* const> sets, const FeNodes& nodes) {
   std::vector<char> on(nodes.size(), 0);
-  const core::BodySpec& spec = scene.bodies[static_cast<std::size_t>(body)];
-  if (spec.discretisation == Discretisation::hexahedra) {
-    for (const auto& f : surface.nodes)
-      for (std::int32_t k : f) on[static_cast<std::size_t>(k)] = 1;
-  } else {
-    for (const ElementBatch& b : trusses.batches)
+  for (const auto& f : surface.nodes)
+    for (std::int32_t k : f) on[static_cast<std::size_t>(k)] = 1;
+  for (const ElementSet* set : sets) {
+    if (set->has_faces()) continue;
+    const ElementStore& el = set->store();
+    const std::span<const std::int32_t> connectivity = set->connectivity();
+    const auto n = static_cast<std::size_t>(set->corners());
+    for (const ElementBatch& b : el.batches)
       if (b.body == body)
         for (std::size_t e = b.begin; e < b.end; ++e)
-          if (trusses.alive[e])
-            for (std::int32_t k : trusses.nodes[e]) on[static_cast<std::size_t>(k)] = 1;
+          if (el.alive[e])
+            for (std::int32_t k : connectivity.subspan(n * e, n))
+              on[static_cast<std::size_t>(k)] = 1;
   }
   std::vector<std::int32_t> out;
   for (std::size_t i = 0; i < on.size(); ++i)
@@ -145,21 +149,22 @@ void bin_faces(ContactPass& pass, const std::vector<Vec3>& position) {
   }
 }
 
-void build_passes(MeshContact& c, const core::Scene& scene, const HexElements& hexes,
-                  const TrussElements& trusses, const FeNodes& nodes) {
+void build_passes(MeshContact& c, const core::Scene& scene, std::span<ElementSet* const> sets,
+                  const FeNodes& nodes) {
   const int a = c.spec.bodies[0], b = c.spec.bodies[1];
-  const auto hex = [&](int body) {
-    return scene.bodies[static_cast<std::size_t>(body)].discretisation == Discretisation::hexahedra;
+  // Whether the body's elements are of a kind with faces (a master; its slaves have normals).
+  const auto faced = [&](int body) {
+    for (const ElementSet* set : sets)
+      if (set->has_faces())
+        for (const ElementBatch& batch : set->store().batches)
+          if (batch.body == body) return true;
+    return false;
   };
   // Each body's boundary faces, found once (a body of trusses has none).
   auto surface_of = [&](int body) {
-    SurfaceFaces s;
-    if (hex(body)) {
-      std::vector<char> selected(scene.bodies.size(), 0);
-      selected[static_cast<std::size_t>(body)] = 1;
-      s = boundary_faces(hexes, selected);
-    }
-    return s;
+    std::vector<char> selected(scene.bodies.size(), 0);
+    selected[static_cast<std::size_t>(body)] = 1;
+    return boundary_faces(sets, selected);
   };
   const SurfaceFaces surface_a = surface_of(a);
   const SurfaceFaces surface_b = a == b ? SurfaceFaces{} : surface_of(b);
@@ -168,11 +173,11 @@ void build_passes(MeshContact& c, const core::Scene& scene, const HexElements& h
   auto add = [&](int slave, int master, bool first) {
     ContactPass p;
     p.slaves_first_body = first;
-    p.slaves = slave_nodes(slave, surface(slave), scene, trusses, nodes);
-    master_faces(p, surface(master), a == b, hexes, nodes);
-    if (hex(slave)) {
+    p.slaves = slave_nodes(slave, surface(slave), sets, nodes);
+    master_faces(p, surface(master), a == b, sets, nodes);
+    if (faced(slave)) {
       ContactPass own;
-      master_faces(own, surface(slave), false, hexes, nodes);
+      master_faces(own, surface(slave), false, sets, nodes);
       p.slave_faces = std::move(own.faces);
     }
     passes.push_back(std::move(p));
@@ -180,8 +185,8 @@ void build_passes(MeshContact& c, const core::Scene& scene, const HexElements& h
   if (a == b) {
     add(a, a, true);
   } else {
-    if (hex(b)) add(a, b, true);
-    if (hex(a)) add(b, a, false);
+    if (faced(b)) add(a, b, true);
+    if (faced(a)) add(b, a, false);
   }
   for (ContactPass& p : passes) {
     std::vector<char> on(nodes.size(), 0);
@@ -284,12 +289,19 @@ void slave_normals(ContactPass& pass, const std::vector<Vec3>& x) {
   });
 }
 
+// A set's node lists as the search reads them (gathered once per search: no virtual call per
+// face).
+struct SetNodes {
+  std::span<const std::int32_t> nodes;
+  std::size_t corners = 0;
+};
+
 // Whether face f is near the slave at xs: the node projects inside it (within the edge
 // tolerance; pr) and lies less than the face's reach behind it, the face is not the slave's
 // own nor (self-contact) of an element the slave belongs to, and the surfaces face each other
 // (facing: the slave has faces). The face holds the node when it lies behind. Inlined, as
 // the search it was written in.
-AFEMP_INLINE inline bool face_near(const ContactPass& pass, const HexElements& hexes,
+AFEMP_INLINE inline bool face_near(const ContactPass& pass, std::span<const SetNodes> elements,
                                    const std::vector<Vec3>& x, bool self, bool facing,
                                    std::int32_t slave, const Vec3& xs, std::int32_t f,
                                    Projection& pr) {
@@ -299,10 +311,13 @@ AFEMP_INLINE inline bool face_near(const ContactPass& pass, const HexElements& h
       xs.z > box[1].z)
     return false;
   if (q[0] == slave || q[1] == slave || q[2] == slave || q[3] == slave) return false;
-  if (self)  // not the faces of an element the node belongs to
-    for (std::int32_t n :
-         hexes.nodes[static_cast<std::size_t>(pass.face_element[static_cast<std::size_t>(f)])])
+  if (self) {  // not the faces of an element the node belongs to
+    const SetNodes& el =
+        elements[static_cast<std::size_t>(pass.face_set[static_cast<std::size_t>(f)])];
+    const auto e = static_cast<std::size_t>(pass.face_element[static_cast<std::size_t>(f)]);
+    for (std::int32_t n : el.nodes.subspan(el.corners * e, el.corners))
       if (n == slave) return false;
+  }
   if (!project(corners(q, x), xs, pr)) return false;
   if (facing && !(core::dot(pr.normal, pass.slave_normal[static_cast<std::size_t>(slave)]) < 0.0))
     return false;
@@ -314,7 +329,8 @@ AFEMP_INLINE inline bool face_near(const ContactPass& pass, const HexElements& h
 // The face that holds the slave (-1: none) and its projection there (bp): the face it met
 // last while that one still holds it; else the nearest face in its bin (a node just past the
 // edge of a side face is nearer the front face it has not crossed). Inlined, as face_near.
-AFEMP_INLINE inline std::int32_t holding_face(const ContactPass& pass, const HexElements& hexes,
+AFEMP_INLINE inline std::int32_t holding_face(const ContactPass& pass,
+                                              std::span<const SetNodes> elements,
                                               const std::vector<Vec3>& x, bool self, bool facing,
                                               std::int32_t slave, Projection& bp) {
   constexpr double inf = std::numeric_limits<double>::infinity();
@@ -331,7 +347,8 @@ AFEMP_INLINE inline std::int32_t holding_face(const ContactPass& pass, const Hex
   std::int32_t best = -1;
   Projection pr;
   const std::int32_t last = pass.last_face[s];
-  if (last >= 0 && face_near(pass, hexes, x, self, facing, slave, xs, last, pr) && pr.gap < 0.0) {
+  if (last >= 0 && face_near(pass, elements, x, self, facing, slave, xs, last, pr) &&
+      pr.gap < 0.0) {
     best = last;
     bp = pr;
   } else if (!outside) {
@@ -342,7 +359,7 @@ AFEMP_INLINE inline std::int32_t holding_face(const ContactPass& pass, const Hex
     for (std::int64_t q = pass.bin_offsets[static_cast<std::size_t>(cell)];
          q < pass.bin_offsets[static_cast<std::size_t>(cell + 1)]; ++q) {
       const std::int32_t f = pass.bin_faces[static_cast<std::size_t>(q)];
-      if (!face_near(pass, hexes, x, self, facing, slave, xs, f, pr)) continue;
+      if (!face_near(pass, elements, x, self, facing, slave, xs, f, pr)) continue;
       const double out = std::max({std::abs(pr.xi) - 1.0, std::abs(pr.eta) - 1.0, 0.0});
       double d = std::abs(pr.gap);
       if (out > 0.0)
@@ -365,25 +382,29 @@ AFEMP_INLINE inline std::int32_t holding_face(const ContactPass& pass, const Hex
 }  // namespace
 
 MeshContact make_mesh_contact(const core::ContactSpec& spec, const core::Scene& scene,
-                              const HexElements& hexes, const TrussElements& trusses,
-                              const FeNodes& nodes) {
+                              std::span<ElementSet* const> sets, const FeNodes& nodes) {
   MeshContact c;
   c.spec = spec;
-  build_passes(c, scene, hexes, trusses, nodes);
+  build_passes(c, scene, sets, nodes);
   c.thread_hits.resize(static_cast<std::size_t>(core::thread_count()));
   return c;
 }
 
-void rebuild_surfaces(MeshContact& c, const core::Scene& scene, const HexElements& hexes,
-                      const TrussElements& trusses, const FeNodes& nodes) {
-  build_passes(c, scene, hexes, trusses, nodes);
+void rebuild_surfaces(MeshContact& c, const core::Scene& scene, std::span<ElementSet* const> sets,
+                      const FeNodes& nodes) {
+  build_passes(c, scene, sets, nodes);
 }
 
 // Pass by pass: the bins, the slaves' normals, then each slave's holding face in parallel.
-void find_contacts(MeshContact& c, const FeNodes& nodes, const HexElements& hexes,
+void find_contacts(MeshContact& c, const FeNodes& nodes, std::span<ElementSet* const> sets,
                    const std::vector<Vec3>& x) {
   c.hits.clear();
   const bool self = c.spec.bodies[0] == c.spec.bodies[1];
+  // Self-contact skips the faces of the slave's own elements: their node lists.
+  std::vector<SetNodes> elements;
+  if (self)
+    for (const ElementSet* set : sets)
+      elements.push_back({set->connectivity(), static_cast<std::size_t>(set->corners())});
   for (ContactPass& pass : c.passes) {
     if (pass.faces.empty()) continue;
     refresh_bins(pass, x, c.thread_hits.size());
@@ -397,7 +418,7 @@ void find_contacts(MeshContact& c, const FeNodes& nodes, const HexElements& hexe
         const auto s = static_cast<std::size_t>(slave);
         if (!(nodes.mass[s] > 0.0)) continue;
         Projection bp;
-        const std::int32_t best = holding_face(pass, hexes, x, self, facing, slave, bp);
+        const std::int32_t best = holding_face(pass, elements, x, self, facing, slave, bp);
         pass.last_face[s] = best;
         if (best < 0) continue;
         // The projection may lie just past an edge: share the impulse by the clamped point.
@@ -465,7 +486,7 @@ void FeSolver::search_mesh_contacts(double dt) {
     contact_impulse_[i] = Vec3{};
   }
   const auto search = std::chrono::steady_clock::now();
-  for (MeshContact& c : contacts_) find_contacts(c, nodes_, hexes_, predicted_);
+  for (MeshContact& c : contacts_) find_contacts(c, nodes_, sets_, predicted_);
   contact_search_seconds_ +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - search).count();
 }

@@ -18,11 +18,13 @@
 // cost grows with the surface (a face in every bin its box, grown by its reach and a margin of a
 // quarter face, touches; a slave in its own bin), remade only when a face node has moved by the
 // margin. The surfaces are rebuilt from the live elements whenever elements erode or convert
-// (eroding contact).
+// (eroding contact). The surfaces come from the element sets (element_set.hpp): the boundary
+// faces of the kinds with faces, the live elements' nodes of those without (slaves only).
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "afemp/scene.hpp"
@@ -30,23 +32,22 @@
 namespace afemp::fem {
 
 using core::Vec3;
-struct FeNodes;        // fe_solver.hpp
-struct HexElements;    // hexahedron_set.hpp
-struct TrussElements;  // truss_set.hpp
+struct FeNodes;    // fe_solver.hpp
+class ElementSet;  // element_set.hpp
 
 // One direction of a contact: slave nodes against master faces.
 struct ContactPass {
   std::vector<std::int32_t> slaves;
-  // The slaves' own boundary faces (bodies of hexahedra; outward): a face holds a slave only
-  // when the two surfaces face each other (the slave's normal, the area-weighted mean of its
+  // The slaves' own boundary faces (bodies of a kind with faces; outward): a face holds a slave
+  // only when the two surfaces face each other (the slave's normal, the area-weighted mean of its
   // faces', against the face's), so a node on an edge is not caught by the side face it
   // slides along.
   std::vector<std::array<std::int32_t, 4>> slave_faces;
   std::vector<Vec3> slave_normal;  // per FE node, this step's (unnormalised)
   // Per slave (in `slaves` order): its own faces (CSR into slave_faces), for the normals.
   std::vector<std::int32_t> slave_face_offsets, slave_face_list;
-  std::vector<std::array<std::int32_t, 4>> faces;  // master faces, node order outward
-  std::vector<std::int32_t> face_element;          // the hexahedron of each face
+  std::vector<std::array<std::int32_t, 4>> faces;    // master faces, node order outward
+  std::vector<std::int32_t> face_set, face_element;  // the element of each face, in its set
   std::vector<double> reach;      // the largest penetration the face holds a node at
   bool slaves_first_body = true;  // the slaves are nodes of the contact's first body
   // Per FE node (sized on the first build): the face it met last (-1: none).
@@ -95,14 +96,13 @@ struct MeshContact {
 
 // The contact of spec between the meshes, its surfaces from the live elements.
 MeshContact make_mesh_contact(const core::ContactSpec& spec, const core::Scene& scene,
-                              const HexElements& hexes, const TrussElements& trusses,
-                              const FeNodes& nodes);
+                              std::span<ElementSet* const> sets, const FeNodes& nodes);
 // Rebuilds the slave lists and master faces from the live elements (after erosion or
 // conversion); a slave's last face follows it to the rebuilt list where the face is still there.
-void rebuild_surfaces(MeshContact& c, const core::Scene& scene, const HexElements& hexes,
-                      const TrussElements& trusses, const FeNodes& nodes);
+void rebuild_surfaces(MeshContact& c, const core::Scene& scene, std::span<ElementSet* const> sets,
+                      const FeNodes& nodes);
 // Finds this step's hits at the predicted positions x (per FE node): c.hits.
-void find_contacts(MeshContact& c, const FeNodes& nodes, const HexElements& hexes,
+void find_contacts(MeshContact& c, const FeNodes& nodes, std::span<ElementSet* const> sets,
                    const std::vector<Vec3>& x);
 
 }  // namespace afemp::fem

@@ -2,7 +2,8 @@
 // boundary when exactly one live hexahedron has it: the faces are compared by their sorted
 // node ids once per mesh (link_faces), and each later search is one sweep of the live flags;
 // its area vector is half the cross product of its diagonals, turned to point away from its
-// hexahedron's centroid, and each of its nodes adds it.
+// element's centroid, and each of its nodes adds it. The faces of all sets are gathered set
+// after set (boundary_faces over the sets).
 #include "fem/surface_faces.hpp"
 
 #include <algorithm>
@@ -64,16 +65,15 @@ Links find_links(const HexElements& hexes) {
   return out;
 }
 
-SurfaceFaces sweep(const HexElements& hexes, const std::vector<char>& selected,
-                   const std::vector<std::array<std::int32_t, 6>>& across,
-                   const std::vector<std::int32_t>& shared_offsets,
-                   const std::vector<std::int32_t>& shared_faces) {
+void sweep(const HexElements& hexes, const std::vector<char>& selected,
+           const std::vector<std::array<std::int32_t, 6>>& across,
+           const std::vector<std::int32_t>& shared_offsets,
+           const std::vector<std::int32_t>& shared_faces, std::int32_t set, SurfaceFaces& out) {
   // The elements that count: live ones of the selected bodies.
   std::vector<char> counts(hexes.size(), 0);
   for (const fem::ElementBatch& b : hexes.batches)
     if (selected[static_cast<std::size_t>(b.body)])
       for (std::size_t e = b.begin; e < b.end; ++e) counts[e] = hexes.alive[e] ? 1 : 0;
-  SurfaceFaces out;
   for (std::size_t e = 0; e < hexes.size(); ++e) {
     if (!counts[e]) continue;
     for (int f = 0; f < 6; ++f) {
@@ -92,9 +92,9 @@ SurfaceFaces sweep(const HexElements& hexes, const std::vector<char>& selected,
                            hexes.nodes[e][static_cast<std::size_t>(hex_faces[f][2])],
                            hexes.nodes[e][static_cast<std::size_t>(hex_faces[f][3])]});
       out.element.push_back(static_cast<std::int32_t>(e));
+      out.set.push_back(set);
     }
   }
-  return out;
 }
 
 }  // namespace
@@ -106,22 +106,46 @@ void link_faces(HexElements& hexes) {
   hexes.shared_faces = std::move(l.shared_faces);
 }
 
-SurfaceFaces boundary_faces(const HexElements& hexes, const std::vector<char>& selected) {
-  if (hexes.across.size() == hexes.size() && !hexes.shared_offsets.empty())
-    return sweep(hexes, selected, hexes.across, hexes.shared_offsets, hexes.shared_faces);
+void boundary_faces(const HexElements& hexes, const std::vector<char>& selected, std::int32_t set,
+                    SurfaceFaces& faces) {
+  if (hexes.across.size() == hexes.size() && !hexes.shared_offsets.empty()) {
+    sweep(hexes, selected, hexes.across, hexes.shared_offsets, hexes.shared_faces, set, faces);
+    return;
+  }
   const Links l = find_links(hexes);  // elements assembled by hand, not linked
-  return sweep(hexes, selected, l.across, l.shared_offsets, l.shared_faces);
+  sweep(hexes, selected, l.across, l.shared_offsets, l.shared_faces, set, faces);
+}
+
+SurfaceFaces boundary_faces(const HexElements& hexes, const std::vector<char>& selected) {
+  SurfaceFaces faces;
+  boundary_faces(hexes, selected, 0, faces);
+  return faces;
+}
+
+SurfaceFaces boundary_faces(std::span<ElementSet* const> sets, const std::vector<char>& selected) {
+  SurfaceFaces faces;
+  for (std::size_t i = 0; i < sets.size(); ++i)
+    sets[i]->boundary_faces(selected, static_cast<std::int32_t>(i), faces);
+  return faces;
+}
+
+void HexahedronSet::boundary_faces(const std::vector<char>& selected, std::int32_t set,
+                                   SurfaceFaces& faces) const {
+  fem::boundary_faces(*this, selected, set, faces);
+}
+
+core::Vec3 face_area_vector(const std::array<std::int32_t, 4>& q, const core::Vec3& centroid,
+                            const std::vector<core::Vec3>& x) {
+  auto at = [&](int a) { return x[static_cast<std::size_t>(q[static_cast<std::size_t>(a)])]; };
+  core::Vec3 area = 0.5 * core::cross(at(2) - at(0), at(3) - at(1));
+  const core::Vec3 centre = 0.25 * (at(0) + at(1) + at(2) + at(3));
+  return core::dot(area, centre - centroid) < 0.0 ? -1.0 * area : area;
 }
 
 core::Vec3 face_area_vector(const SurfaceFaces& faces, std::size_t f, const HexElements& hexes,
                             const std::vector<core::Vec3>& x) {
-  const auto& n = faces.nodes[f];
-  auto at = [&](int a) { return x[static_cast<std::size_t>(n[static_cast<std::size_t>(a)])]; };
-  core::Vec3 area = 0.5 * core::cross(at(2) - at(0), at(3) - at(1));
-  core::Vec3 centroid, centre = 0.25 * (at(0) + at(1) + at(2) + at(3));
-  for (std::int32_t k : hexes.nodes[static_cast<std::size_t>(faces.element[f])])
-    centroid += 0.125 * x[static_cast<std::size_t>(k)];
-  return core::dot(area, centre - centroid) < 0.0 ? -1.0 * area : area;
+  return face_area_vector(
+      faces.nodes[f], mean_position(hexes.nodes[static_cast<std::size_t>(faces.element[f])], x), x);
 }
 
 void surface_normals(const SurfaceFaces& faces, const HexElements& hexes,

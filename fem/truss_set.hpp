@@ -18,7 +18,7 @@ struct TrussElements : ElementStore {
   std::vector<double> length0, area0;  // initial length and cross-section
 };
 
-// The trusses as an element set; they have no faces, so contact finds no surface on them.
+// The trusses as an element set; they have no faces: contact takes their live nodes as slaves.
 class TrussSet final : public TrussElements, public ElementSet {
  public:
   const char* kind() const override { return "truss"; }
@@ -33,6 +33,8 @@ class TrussSet final : public TrussElements, public ElementSet {
   void update(FeSolver& fe, double dt) override;  // truss_update.cpp
   void eroded(std::span<const std::size_t>) override {}
   std::size_t bytes() const override;
+  bool has_faces() const override { return false; }
+  void boundary_faces(const std::vector<char>&, std::int32_t, SurfaceFaces&) const override {}
 };
 
 }  // namespace afemp::fem
