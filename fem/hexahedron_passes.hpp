@@ -518,7 +518,7 @@ void HexahedronPasses<S, E, Thermal, Fails>::hourglass_stiffness(Pack& k, int l)
 }
 
 // The viscous form on every lane at once (its formulas run as loops over the lanes; dead
-// lanes compute on zeros and keep g = 0).
+// lanes keep g = 0).
 template <class S, class E, bool Thermal, bool Fails>
 void HexahedronPasses<S, E, Thermal, Fails>::hourglass_viscous(Pack& k) const {
   // A mode's velocity decays at a rate a_h sum_a gamma_ka^2 / m_a. In a parallelepiped
@@ -549,7 +549,7 @@ void HexahedronPasses<S, E, Thermal, Fails>::hourglass_viscous(Pack& k) const {
         held[m][i][l] =
             k.element[l].live ? el_.hourglass_force[e][static_cast<std::size_t>(m)][i] : 0.0;
   }
-  // Dead lanes hold no material state of this pack (a live lane's a_h is positive).
+  // Dead lanes hold no material state of this pack: their factor and forces are zero.
 #pragma omp simd
   for (int l = 0; l < W; ++l) {
     const double f = viscous_hourglass_factor(q_hg_, k.density[l], k.point.wave[l], k.vol[l]);
@@ -576,7 +576,7 @@ void HexahedronPasses<S, E, Thermal, Fails>::hourglass_viscous(Pack& k) const {
         const double gk = a_h[l] * k.q[m][i][l];
         done[l] += held[m][i][l] * k.q[m][i][l];
         power[l] += gk * k.q[m][i][l];
-        k.g[m][i][l] = a_h[l] != 0.0 ? gk : 0.0;  // a dead lane's q may be NaN
+        k.g[m][i][l] = live[l] != 0.0 ? gk : 0.0;  // a dead lane's q may be NaN
       }
   for (int l = 0; l < W; ++l) {
     TrialElement& te = k.element[l];
