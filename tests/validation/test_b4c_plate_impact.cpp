@@ -1,4 +1,4 @@
-// Plate impact of boron carbide with JH-2 (label `validation`, about 10 s):
+// Plate impact of boron carbide with JH-2 (label `validation`, under a second):
 // examples/b4c_plate_impact/scene.toml, a 15 mm column of one-point hexahedra (0.025 mm) in
 // uniaxial strain at 1000 m/s on a rigid wall, B4C on B4C at 2000 m/s by symmetry. Gauge
 // elements 5 and 7.5 mm from the wall record the axial stress -(p + 2/3 q) and the velocity.
@@ -25,10 +25,10 @@
 // No measured B4C Hugoniot points were reachable here, so the shocked state is checked against
 // the jump conditions and the published strength cap, not against an experiment
 // (docs/validation.md, V11).
-// Measured (600 hexahedra, 1041 steps, 2 threads, 8-12 s on the shared 2-core machine):
-// precursor peak 19.41 GPa (+2.1 %; the constants' own yield at 1e6 1/s 18.65 GPa), ahead of
-// the plastic wave 12.85 GPa at 381 m/s, behind it 27.48 GPa at 999.5 m/s against 27.40 GPa
-// from momentum with its speed 9378 m/s (+0.3 %), strength behind 3066 MPa against 3087 MPa.
+// Measured (600 hexahedra, 1041 steps, 2 threads, 0.29 s on the 2-core machine, 8-12 s while other
+// builds ran): precursor peak 19.41 GPa (+2.1 %; the constants' own yield at 1e6 1/s 18.65 GPa),
+// ahead of the plastic wave 12.85 GPa at 381 m/s, behind it 27.48 GPa at 999.5 m/s against 27.40
+// GPa from momentum with its speed 9378 m/s (+0.3 %), strength behind 3066 MPa against 3087 MPa.
 #include <gtest/gtest.h>
 
 #include <algorithm>
