@@ -1345,7 +1345,7 @@ void read_penalty_contact(TableReader& r, ContactSpec& c, const BodySpec& a, con
   // The fraction of the predicted penetration one step takes out (fem/mesh_contact.hpp):
   // 1 closes it within the step; a velocity correction, not a spring the step must resolve,
   // so any value in (0, 1] is stable.
-  c.penalty = r.number("penalty", 1.0, Range{0.0, 1.0, true, false});
+  c.penalty = r.number("penalty", c.penalty, Range{0.0, 1.0, true, false});
 }
 
 // The keys of surface contact between particles and hexahedra, and the pairs it takes.
@@ -1364,7 +1364,7 @@ void read_surface_contact(TableReader& r, ContactSpec& c, const BodySpec& a, con
            "(deformable or rigid); meshes meet each other by method = \"penalty\", "
            "particles by method = \"grid\"");
   // The fraction of the predicted penetration one step takes out, as for penalty contact.
-  c.penalty = r.number("penalty", 1.0, Range{0.0, 1.0, true, false});
+  c.penalty = r.number("penalty", c.penalty, Range{0.0, 1.0, true, false});
 }
 
 // The keys of grid contact, the pairs it takes and the scheme and grid it needs.
@@ -1398,7 +1398,7 @@ void read_grid_contact(TableReader& r, ContactSpec& c, const Scene& scene, const
     r.fail("bodies",
            "grid contact needs [mpm] scheme = \"MUSL\" (the default) or \"USF\"; "
            "with USL the bodies lose most of their energy in contact");
-  c.distance_factor = r.number("distance_factor", 0.5, Range::non_negative());
+  c.distance_factor = r.number("distance_factor", c.distance_factor, Range::non_negative());
 }
 
 ContactSpec read_contact(TableReader& r, const Scene& scene) {
@@ -1434,7 +1434,7 @@ ContactSpec read_contact(TableReader& r, const Scene& scene) {
         (other.bodies[0] == c.bodies[1] && other.bodies[1] == c.bodies[0]))
       r.fail("bodies",
              "this pair already has a contact (line " + std::to_string(other.where.line) + ")");
-  c.friction = r.number("friction", 0.0, Range::non_negative());
+  c.friction = r.number("friction", c.friction, Range::non_negative());
   c.name = r.string("name", self ? a.name + "-self" : a.name + "-" + b.name);
   if (c.name.empty() || c.name.find_first_of(",\"\n") != std::string::npos)
     r.fail("name",

@@ -411,9 +411,10 @@ struct ContactSpec {
   ContactMethod method = ContactMethod::grid;
   double friction = 0.0;         ///< Coulomb coefficient
   double distance_factor = 0.5;  ///< grid: lambda of eq 42, contact once the gap <= lambda h
-  /// penalty: the stiffness k = penalty m / dt^2 of a node of mass m (the two sides' masses in
-  /// series) at step dt; stable for penalty < 4 - (2 f)^2 with f the element step factor.
-  double penalty = 0.1;
+  /// penalty and surface: the fraction of the predicted penetration one step takes out,
+  /// 0 < s <= 1 (1 closes it within the step; a velocity correction, stable for any s). The
+  /// scene file's default is this one (core/scene_parser.cpp reads it from here).
+  double penalty = 1.0;
   std::string name{};  ///< history columns NAME.fx ...; default "BODY1-BODY2" ("BODY-self")
   SourceLocation where{};
 };

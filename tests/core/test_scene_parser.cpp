@@ -833,6 +833,15 @@ TEST(SceneParser, CouplingKeysNameTheKeyAndWhatIsAllowed) {
   const Scene cfemp =
       parse_scene(base + "\n[[contact]]\nbodies = [\"plate\", \"ball\"]\n", "c.toml");
   EXPECT_TRUE(has_grid_coupling(cfemp));
+  // A contact read without its keys is the library's default ContactSpec, so that one built in
+  // code is the same model (docs/scene-format.md: penalty 1, friction 0, distance_factor 0.5);
+  // the library's penalty default was once 0.1.
+  const ContactSpec defaults;
+  EXPECT_EQ(defaults.penalty, 1.0);
+  EXPECT_EQ(meshes.contacts.at(0).penalty, defaults.penalty);
+  EXPECT_EQ(meshes.contacts.at(0).friction, defaults.friction);
+  EXPECT_EQ(cfemp.contacts.at(0).distance_factor, defaults.distance_factor);
+  EXPECT_EQ(defaults.distance_factor, 0.5);
   // A particle body without a grid is an error naming [grid].
   const std::string no_grid = minimal_tail;
   EXPECT_NE(error_of("[run]\nend_time = 1.0\n" + no_grid).find("key 'grid'"), std::string::npos);
