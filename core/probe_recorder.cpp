@@ -131,9 +131,12 @@ void ProbeRecorder::sample(const Model& model, bool history_row, bool last) {
     const ProbeSpec& p = specs_[k];
     double* v = buffer_.data() + k * probe_stride;
     if (p.kind == ProbeKind::force) {
+      // A rigid body reports up to 12 columns, more than probe_stride: its own row.
       if (forces_.empty()) model.force_values(forces_);
+      force_row_.resize(force_columns_[k].size());
       for (std::size_t c = 0; c < force_columns_[k].size(); ++c)
-        v[c] = forces_[force_columns_[k][c]];
+        force_row_[c] = forces_[force_columns_[k][c]];
+      v = force_row_.data();
     }
     if (p.kind == ProbeKind::mean_velocity) {
       if (!energies_read) e = model.energies(), energies_read = true;

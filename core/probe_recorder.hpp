@@ -38,6 +38,8 @@ class ProbeRecorder {
   // Force probes: per probe the model's force columns it reads (empty for other kinds).
   std::vector<std::vector<std::size_t>> force_columns_;
   std::vector<double> forces_;
+  std::vector<double>
+      force_row_;  // a force probe's values (more than probe_stride for a rigid body)
   std::vector<std::ofstream> files_;
   std::string directory_;  // DIRECTORY/probes, or empty
   std::string path(const ProbeSeries& s) const;

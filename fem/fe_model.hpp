@@ -47,7 +47,8 @@ class FeModel final : public core::Model {
   // whose resultant on its body is zero: the sums of its pairs' force magnitudes); per [[walls]]
   // entry wallK (K from 1) the same of the force the wall exerts on the nodes; per rigid body
   // NAME: NAME.fx, .fy, .fz, .mx, .my, .mz (the resultant on it and its moment about the
-  // centre of mass, gravity included).
+  // centre of mass: contacts, loads and gravity) and, for a body with fixed components,
+  // NAME.rfx, .rfy, .rfz, .rmx, .rmy, .rmz (the reaction of its supports).
   std::vector<std::string> force_columns() const override;
   void force_values(std::vector<double>& out) const override { force_values(out, {}); }
   // The same, each wall's force with what it gave other points added (one per wall, or empty):

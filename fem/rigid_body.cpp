@@ -34,15 +34,30 @@ Vec3 from_eigen(const Eigen::Vector3d& v) {
 }
 
 // Fixed translation components keep their initial value; returns the reaction's work
-// (reaction impulse M (v_fixed - v_free) times the prescribed velocity).
-double hold_translation(RigidBody& r) {
+// (reaction impulse M (v_fixed - v_free) times the prescribed velocity) and the reaction impulse.
+double hold_translation(RigidBody& r, Vec3& reaction) {
   double work = 0.0;
   for (int a = 0; a < 3; ++a)
     if (r.fixed[static_cast<std::size_t>(a)]) {
       const double target = r.initial_velocity[a];
-      work += r.mass * (target - r.velocity[a]) * target;
+      const double impulse = r.mass * (target - r.velocity[a]);
+      reaction[a] += impulse;
+      work += impulse * target;
       r.velocity[a] = target;
     }
+  return work;
+}
+
+// Applies the fixed components after the momenta changed by the impulses J and H over the
+// step; the reactions join the step's.
+double hold(RigidBody& r) {
+  Vec3 reaction;
+  const double work = hold_translation(r, reaction);
+  const Vec3 angular = update_angular_velocity(r);
+  if (r.force_step > 0.0) {
+    r.reaction += (1.0 / r.force_step) * reaction;
+    r.reaction_moment += (1.0 / r.force_step) * angular;
+  }
   return work;
 }
 
@@ -73,12 +88,13 @@ RigidBody make_rigid_body(int body, const std::array<bool, 6>& fixed,
   }
   r.inertia0 = from_eigen(inertia);
   r.velocity = velocity;
-  hold_translation(r);
+  Vec3 start;
+  hold_translation(r, start);
   update_angular_velocity(r);
   return r;
 }
 
-void update_angular_velocity(RigidBody& r) {
+Vec3 update_angular_velocity(RigidBody& r) {
   const Eigen::Matrix3d R = to_eigen(r.rotation);
   const Eigen::Matrix3d I = R * to_eigen(r.inertia0) * R.transpose();
   Eigen::Vector3d L = to_eigen(r.angular_momentum);
@@ -112,7 +128,11 @@ void update_angular_velocity(RigidBody& r) {
   r.inverse_inertia = from_eigen(pinv);
   const Eigen::Vector3d w = pinv * L;
   r.angular_velocity = from_eigen(w);
-  if (any_fixed) r.angular_momentum = from_eigen(Eigen::Vector3d(I * w));
+  if (!any_fixed) return {};
+  const Vec3 held = from_eigen(Eigen::Vector3d(I * w));
+  const Vec3 reaction = held - r.angular_momentum;
+  r.angular_momentum = held;
+  return reaction;
 }
 
 double rigid_inverse_mass(const RigidBody& r, const Vec3& offset, const Vec3& n) {
@@ -126,17 +146,21 @@ double rigid_inverse_mass(const RigidBody& r, const Vec3& offset, const Vec3& n)
 double advance_momenta(RigidBody& r, const Vec3& force, const Vec3& moment, double dt_force) {
   r.force = force;
   r.moment = moment;
+  r.reaction = r.reaction_moment = Vec3{};
+  r.force_step = dt_force;
   r.velocity += (dt_force / r.mass) * force;
   r.angular_momentum += dt_force * moment;
-  update_angular_velocity(r);
-  return hold_translation(r);
+  return hold(r);
 }
 
 double add_impulse(RigidBody& r, const Vec3& impulse, const Vec3& angular_impulse) {
+  if (r.force_step > 0.0) {
+    r.force += (1.0 / r.force_step) * impulse;
+    r.moment += (1.0 / r.force_step) * angular_impulse;
+  }
   r.velocity += (1.0 / r.mass) * impulse;
   r.angular_momentum += angular_impulse;
-  update_angular_velocity(r);
-  return hold_translation(r);
+  return hold(r);
 }
 
 void advance_pose(RigidBody& r, double dt) {

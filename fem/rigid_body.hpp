@@ -30,9 +30,13 @@ struct RigidBody {
   Mat3 rotation{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
   Vec3 centre, velocity, angular_momentum, angular_velocity;
   Mat3 inverse_inertia;  // current axes, fixed rotation components removed
-  // The resultant of this step's forces on the body (contacts, grid, loads, gravity) and their
-  // moment about the centre.
+  // The resultant of this step's forces on the body (contacts, loads, gravity) and their
+  // moment about the centre; and the reaction of its fixed components (what holds them: the
+  // change of momentum they undid, over the step), zero for a free body. A fixed anvil's
+  // reaction is minus the contact force on it.
   Vec3 force, moment;
+  Vec3 reaction, reaction_moment;
+  double force_step = 0.0;  // dt^n of this step, which turns the impulses into forces
 };
 
 // The body's mass, centre and inertia from its nodes' masses and positions; its velocity.
@@ -42,16 +46,19 @@ RigidBody make_rigid_body(int body, const std::array<bool, 6>& fixed,
 
 // Advances the momenta by the force and moment acting over dt_force (dt^n of the central
 // difference), applies the fixed components, and returns the work the fixed components'
-// reactions did (prescribed translation times the reaction impulse).
+// reactions did (prescribed translation times the reaction impulse). Starts the step's force,
+// moment and reactions.
 double advance_momenta(RigidBody& r, const Vec3& force, const Vec3& moment, double dt_force);
 
 // Adds a momentum impulse J and angular impulse H (about the centre) within a step and applies
-// the fixed components again; returns the reactions' work as advance_momenta does.
+// the fixed components again; returns the reactions' work as advance_momenta does. The
+// impulses join the step's force and moment.
 double add_impulse(RigidBody& r, const Vec3& impulse, const Vec3& angular_impulse);
 
 // omega from L at the current rotation (fixed rotation components held at zero, the free ones
-// solved from the inertia with them).
-void update_angular_velocity(RigidBody& r);
+// solved from the inertia with them); returns the angular impulse the fixed components' reaction
+// gave (L = I omega afterwards).
+Vec3 update_angular_velocity(RigidBody& r);
 
 // The inverse of the body's effective mass at a point (offset from the centre) along unit
 // direction n: the free translations' share of 1/M plus (r x n) . I^-1 (r x n).

@@ -24,7 +24,8 @@ enum class ProbeKind {
   mean_velocity,  ///< vx, vy, vz: the body's momentum / mass
   extreme,        ///< value, x, y, z: the largest (or smallest) field value in a box, and where
   /// The interface force of a penalty contact or a wall (fx, fy, fz, normal, tangential) or a
-  /// rigid body (fx, fy, fz, mx, my, mz): the model's history columns NAME.*.
+  /// rigid body (fx, fy, fz, mx, my, mz, and rfx .. rmz of a body with fixed components): the
+  /// model's history columns NAME.*.
   force,
 };
 
