@@ -87,6 +87,10 @@ class Model {
   // Interface forces the history writes each row after those (penalty contacts, walls, rigid
   // bodies): the column names, fixed for the run, and their current values in that order.
   virtual std::vector<std::string> force_columns() const { return {}; }
+  // The mechanisms of this model that take or give energy which no column of total() books
+  // (an MPM contact's estimate, a kinematic catch at particles, the transfers' dissipation):
+  // what the summary names when the balance does not close. None by default.
+  virtual std::vector<std::string> unbooked_energies() const { return {}; }
   virtual void force_values(std::vector<double>& out) const { out.clear(); }
   // A checkpoint (core/checkpoint.hpp): saves the whole state that carries from one step to the
   // next through `archive`, or restores it into a model built from the same scene. Events must
@@ -98,6 +102,8 @@ class Model {
 // (LS-DYNA's sliding interface energy) and friction's part of it, Energies::friction.
 inline constexpr EnergyColumn kSlidingEnergies[] = {{"sliding", &Energies::sliding},
                                                     {"friction", &Energies::friction}};
+// The energy the rigid walls took from mesh nodes (Energies::wall).
+inline constexpr EnergyColumn kWallEnergy[] = {{"wall", &Energies::wall}};
 
 // Appends the energy columns a contact declares to the model's, each once however many of its
 // contacts declare it.

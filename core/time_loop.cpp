@@ -110,6 +110,7 @@ void visit_energies(StateArchive& a, const char* name, Energies& e) {
   a.item("contact", e.contact);
   a.item("sliding", e.sliding);
   a.item("friction", e.friction);
+  a.item("wall", e.wall);
   a.item("outflow", e.outflow);
   a.item("outflow_mass", e.outflow_mass);
   a.item("outflow_momentum", e.outflow_momentum);

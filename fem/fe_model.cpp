@@ -1,6 +1,7 @@
 // The FE solver behind the core::Model interface (fem/fe_model.hpp).
 #include "fem/fe_model.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <initializer_list>
 #include <string>
@@ -185,6 +186,7 @@ std::vector<core::EventLog> FeModel::take_events() {
 std::vector<core::EnergyColumn> FeModel::energy_columns() const {
   std::vector<core::EnergyColumn> out;
   if (!solver_.mesh_contacts().empty()) core::declare_energy_columns(out, core::kSlidingEnergies);
+  if (!scene_.walls.empty()) core::declare_energy_columns(out, core::kWallEnergy);
   return out;
 }
 
@@ -196,9 +198,12 @@ std::vector<std::string> FeModel::force_columns() const {
   for (const MeshContact& c : solver_.mesh_contacts()) core::append_force_columns(out, c.spec.name);
   for (std::size_t w = 0; w < scene_.walls.size(); ++w)
     core::append_force_columns(out, "wall" + std::to_string(w + 1));
-  for (const RigidBody& r : solver_.rigid_bodies())
-    add(scene_.bodies[static_cast<std::size_t>(r.body)].name,
-        {".fx", ".fy", ".fz", ".mx", ".my", ".mz"});
+  for (const RigidBody& r : solver_.rigid_bodies()) {
+    const std::string& name = scene_.bodies[static_cast<std::size_t>(r.body)].name;
+    add(name, {".fx", ".fy", ".fz", ".mx", ".my", ".mz"});
+    if (std::find(r.fixed.begin(), r.fixed.end(), true) != r.fixed.end())
+      add(name, {".rfx", ".rfy", ".rfz", ".rmx", ".rmy", ".rmz"});
+  }
   return out;
 }
 
@@ -218,6 +223,10 @@ void FeModel::force_values(std::vector<double>& out, std::span<const core::Vec3>
   for (const RigidBody& r : solver_.rigid_bodies()) {
     add(r.force);
     add(r.moment);
+    if (std::find(r.fixed.begin(), r.fixed.end(), true) != r.fixed.end()) {
+      add(r.reaction);
+      add(r.reaction_moment);
+    }
   }
 }
 

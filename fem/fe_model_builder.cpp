@@ -570,7 +570,7 @@ void FeSolver::setup_absorbing_boundaries(const core::Scene& scene, const BodyMe
 // 4. Walls: every node of the bodies they name.
 void FeSolver::setup_walls(const core::Scene& scene) {
   for (const core::WallSpec& w : scene.walls) {
-    WallState state{w, {}};
+    WallState state{w, {}, {}};
     for (std::size_t n = 0; n < nodes_.size(); ++n) {
       const int b = nodes_.body[n];
       if (b >= 0 && scene.bodies[static_cast<std::size_t>(b)].rigid) continue;  // deformable only

@@ -94,6 +94,7 @@ struct RetirementDomain {
 struct WallState {
   core::WallSpec spec;
   std::vector<std::int32_t> nodes;
+  std::vector<Vec3> start;  // the nodes' v^{n-1/2}, for the work of the wall's impulses
 };
 
 class FeSolver {
@@ -137,6 +138,11 @@ class FeSolver {
   // The step the nodal update applies the forces over: dt^n = (dt^{n-1/2} + dt^{n+1/2}) / 2
   // (half a step on the first), for a coupled step that hands other nodes the same impulse.
   double force_step(double dt) const { return steps_ == 0 ? 0.5 * dt : 0.5 * (previous_dt_ + dt); }
+  // The step whose motion came before this one's, as the work of an impulse J at step n is
+  // taken: J . (dt^{n-1/2} v^{n-1/2} + dt^{n+1/2} v^{n+1/2}) / (dt^{n-1/2} + dt^{n+1/2}); on the
+  // first step dt itself, so that the impulse works on the mean of v^0 and v^{1/2} (the kinetic
+  // energy starts at v^0, not at a half step).
+  double motion_before_step(double dt) const { return steps_ == 0 ? dt : previous_dt_; }
   // The sum of the element forces on node i at the current state (no gravity).
   Vec3 node_force(std::size_t i) const {
     Vec3 f;
@@ -265,6 +271,8 @@ class FeSolver {
   // and, per FE node, their velocities at the step's start and the impulse contact gave them.
   std::vector<Vec3> predicted_, velocity_start_, contact_impulse_;
   double sliding_energy_ = 0.0, contact_search_seconds_ = 0.0;
+  // What the rigid walls took from the motion (Energies::wall, rigid_wall.cpp).
+  double wall_energy_ = 0.0;
   // Impulses pushed from outside this step on rigid nodes (push_contact_impulse), per node.
   std::vector<Vec3> outside_impulse_;
   Vec3 outside_free_impulse_;  // their sum on free nodes (for gravity's work)

@@ -58,6 +58,9 @@ void visit_rigid(StateArchive& a, RigidBody& r) {
   a.item("inverse_inertia", r.inverse_inertia);
   a.item("force", r.force);
   a.item("moment", r.moment);
+  a.item("reaction", r.reaction);
+  a.item("reaction_moment", r.reaction_moment);
+  a.item("force_step", r.force_step);
 }
 
 // A list the scene fixes (contacts, rigid bodies): the stored count must be the scene's.
@@ -128,6 +131,7 @@ void FeSolver::state(StateArchive& a) {
   a.item("velocity_start", velocity_start_);
   a.item("contact_impulse", contact_impulse_);
   a.item("sliding_energy", sliding_energy_);
+  a.item("wall_energy", wall_energy_);
   a.item("contact_search_seconds", contact_search_seconds_);
   a.item("outside_impulse", outside_impulse_);
   a.item("outside_free_impulse", outside_free_impulse_);

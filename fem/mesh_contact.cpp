@@ -610,20 +610,22 @@ void FeSolver::report_mesh_contact_forces(double dt_force) {
 
 // The sliding energy is minus the contact impulses' work, booked like the element forces' in
 // the central difference: J / dt^n acting over the motion dt^{n-1/2} v^{n-1/2} +
-// dt^{n+1/2} v^{n+1/2}, halved. The holds' work is external work.
+// dt^{n+1/2} v^{n+1/2}, halved (on the first step the mean of v^0 and v^{1/2}:
+// motion_before_step). The holds' work is external work.
 // Gravity's work in the nodal update was taken on the velocities before the corrections: it
 // follows the change J / m (rigid bodies: settle_rigid_mesh_contacts).
 void FeSolver::book_sliding_energy(double dt, double dt_force) {
   const Vec3 g = scene_.run.gravity;
+  const double before_dt = motion_before_step(dt);
   double work = 0.0, gravity = 0.0;
   for (std::int32_t k : contact_nodes_) {
     const auto i = static_cast<std::size_t>(k);
     work +=
-        core::dot(contact_impulse_[i], previous_dt_ * velocity_start_[i] + dt * nodes_.velocity[i]);
+        core::dot(contact_impulse_[i], before_dt * velocity_start_[i] + dt * nodes_.velocity[i]);
     if (rigid_of_node_.empty() || rigid_of_node_[i] < 0)
       gravity += core::dot(g, contact_impulse_[i]);
   }
-  sliding_energy_ -= work / (2.0 * dt_force);
+  sliding_energy_ -= steps_ == 0 ? work / (before_dt + dt) : work / (2.0 * dt_force);
   external_work_ += gravity * dt;
 }
 
@@ -675,9 +677,6 @@ void FeSolver::settle_contact_impulses(double dt) {
     const Vec3 before = r.velocity;
     external_work_ += add_impulse(r, impulse, angular);
     external_work_ += r.mass * core::dot(scene_.run.gravity, r.velocity - before) * dt;
-    const double dt_force = force_step(dt);
-    r.force += (1.0 / dt_force) * impulse;
-    r.moment += (1.0 / dt_force) * angular;
     for (std::int32_t k : r.nodes)
       nodes_.velocity[static_cast<std::size_t>(k)] =
           point_velocity(r, nodes_.position[static_cast<std::size_t>(k)] - r.centre);

@@ -102,6 +102,11 @@ void FeSolver::begin_step(double dt) {
       velocity_start_[static_cast<std::size_t>(k)] = nodes_.velocity[static_cast<std::size_t>(k)];
     for (std::size_t k = 0; k < absorbing_nodes_.size(); ++k)
       absorbing_start_[k] = nodes_.velocity[absorbing_nodes_[k].node];
+    for (WallState& w : walls_) {
+      w.start.resize(w.nodes.size());
+      for (std::size_t k = 0; k < w.nodes.size(); ++k)
+        w.start[k] = nodes_.velocity[static_cast<std::size_t>(w.nodes[k])];
+    }
     update_nodes(dt);
     if (!absorbing_nodes_.empty()) absorb(dt);
   });
@@ -207,6 +212,7 @@ core::Energies FeSolver::energies() const {
     out.bodies[b].internal += body_stabilisation_[b];
   out.sliding = sliding_energy_;
   for (const MeshContact& c : contacts_) out.friction += c.friction_work;
+  out.wall = wall_energy_;
   out.eroded = eroded_energy_;
   out.external_work = external_work_;
   return out;

@@ -6,6 +6,13 @@
 // kinetic energy a fixed wall takes from arriving nodes is not hidden and shows in the
 // energy balance. Imposed velocity components (constraints) are never changed by a wall. The
 // wall's force on the nodes is the impulse it gave them over the step dt^n.
+// Energy: what a wall takes from the motion is booked as the wall energy (Energies::wall,
+// LS-DYNA's rigid-wall energy): minus the work of its impulses J on the nodes, taken as the
+// element forces' work is in the central difference (J / dt^n over the motion
+// dt^{n-1/2} v^{n-1/2} + dt^{n+1/2} v^{n+1/2}, halved: what the sliding energy of the mesh
+// contacts does; on the first step, from the initial velocity, J . (v^0 + v^{1/2}) / 2), plus
+// what a moving wall put in as external work. A node arriving at u loses
+// m u^2 / 2 to it; a node resting on the wall under a load, none.
 #include <cmath>
 #include <cstdint>
 
@@ -22,8 +29,10 @@ void FeSolver::apply_walls(double dt) {
     const Vec3 wall_point = s.point + (time_ + dt) * s.velocity;
     const std::size_t n = w.nodes.size();
     std::fill(thread_sums_.begin(), thread_sums_.end(), 0.0);
+    const double dt_force = force_step(dt);
+    const double before_dt = motion_before_step(dt);
     auto sweep = [&](std::size_t begin, std::size_t end, int t) {
-      double work = 0.0;
+      double work = 0.0, done = 0.0;
       Vec3 impulse;
       for (std::size_t k = begin; k < end; ++k) {
         const auto i = static_cast<std::size_t>(w.nodes[k]);
@@ -56,24 +65,33 @@ void FeSolver::apply_walls(double dt) {
           const double off = core::dot(nodes_.position[i] + dt * v - wall_point, s.normal);
           v -= (off / (dt * reach)) * free_normal;
         }
-        work += m * core::dot(v - before, s.velocity);
-        impulse += m * (v - before);
+        const Vec3 j = m * (v - before);
+        work += core::dot(j, s.velocity);
+        done += core::dot(j, before_dt * w.start[k] + dt * v);
+        impulse += j;
       }
       double* sums = &thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles];
       sums[0] = work;
       sums[1] = impulse.x;
       sums[2] = impulse.y;
       sums[3] = impulse.z;
+      sums[4] = done;
     };
     core::parallel_chunks(n, sweep);
     Vec3 impulse;
+    double work = 0.0, done = 0.0;
     for (std::size_t t = 0; t < thread_errors_.size(); ++t) {
       const double* sums = &thread_sums_[t * core::cache_line_doubles];
-      external_work_ += sums[0];
+      work += sums[0];
       impulse += Vec3{sums[1], sums[2], sums[3]};
+      done += sums[4];
     }
+    external_work_ += work;
+    wall_energy_ += work - done / (before_dt + dt);
+    // Gravity's work in the nodal update was taken on the velocities before the wall's change.
+    external_work_ += core::dot(scene_.run.gravity, impulse) * dt;
     // The wall's force on the nodes: the impulse it gave them over the force step.
-    wall_force_[wi] = (1.0 / force_step(dt)) * impulse;
+    wall_force_[wi] = (1.0 / dt_force) * impulse;
   }
 }
 

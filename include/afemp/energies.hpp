@@ -46,6 +46,9 @@ struct Energies {
   /// (LS-DYNA's sliding interface energy). Exact, part of total().
   double sliding = 0.0;
   double friction = 0.0;  ///< the part of sliding friction dissipated
+  /// What the kinematic rigid walls took from the motion of mesh nodes (fem/rigid_wall.cpp):
+  /// minus the work of their impulses, plus the external work of a moving wall. Part of total().
+  double wall = 0.0;
   /// What particles carried out of the grid through outflow faces (mpm/outflow.cpp): their
   /// kinetic + internal energy (part of total()), mass and momentum, summed at the step they
   /// left. The bodies' sums no longer hold them.
@@ -55,7 +58,7 @@ struct Energies {
   std::vector<BodySums> bodies{};
   /// Everything that must equal the initial total plus the external work.
   double total() const {
-    return kinetic + internal + hourglass + eroded + converted + outflow + sliding;
+    return kinetic + internal + hourglass + eroded + converted + outflow + sliding + wall;
   }
 };
 

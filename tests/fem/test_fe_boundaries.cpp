@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "afemp/energies.hpp"
@@ -78,19 +80,31 @@ History run_steps(const core::Scene& scene, double end_time) {
 const std::string kFixedWall = "[[walls]]\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\n";
 
 // Reference: a rigid wall is a unilateral constraint: it may take energy (the kinematic wall
-// stops each arriving node, 1/2 m v_n^2) but never give any, so the balance error stays <= 0
-// up to the O(dt) mismatch of half-step kinetic and full-step internal energy (1e-3); the
-// normal momentum reverses (an elastic cube rebounds), and once every node has left the wall
-// no force acts, so the momentum stays constant (to 1e-10 relative).
+// stops each arriving node, 1/2 m v_n^2) but never give any, so the wall energy it books
+// (Energies::wall) never falls below zero, and with it booked the balance closes: averaged over
+// the free flight after the rebound within 1 % (this coarse cube rings hard, and the half-step
+// kinetic energy against the full-step internal one swings the balance by +-3 % from step to
+// step; without the wall energy it sat at -17 %). The normal momentum reverses (an elastic cube
+// rebounds), and once every node has left the wall no force acts, so the momentum stays
+// constant (to 1e-10 relative).
 TEST(RigidWall, HeadOnImpactReversesMomentumWithoutCreatingEnergy) {
   const double v0 = 10.0;
   const core::Scene scene =
       core::parse_scene(cube_scene(0.01, "[0, 0, -10]", kFixedWall), "w.toml");
   // Arrival after 1 us; contact about two wave transits (2 x 1 mm / 5.9 mm/us); then free.
   const History r = run_steps(scene, 0.003);
-  double worst = -1.0;
-  for (const Sample& s : r.samples) worst = std::max(worst, s.energy_error);
-  EXPECT_LE(worst, 1e-3);
+  double lowest_wall = 0.0, free_error = 0.0;
+  int free_steps = 0;
+  for (const Sample& s : r.samples) {
+    lowest_wall = std::min(lowest_wall, s.energies.wall);
+    if (s.lowest > 0.0 && s.energies.wall > 0.0) free_error += s.energy_error, ++free_steps;
+  }
+  ASSERT_GT(free_steps, 10);
+  free_error /= free_steps;
+  std::printf("head-on on a wall: wall energy %.4g of %.4g, mean balance in flight %+.3f %%\n",
+              r.samples.back().energies.wall, r.initial.total(), 100.0 * free_error);
+  EXPECT_GE(lowest_wall, 0.0);
+  EXPECT_LT(std::abs(free_error), 0.01);
   const Sample& end = r.samples.back();
   EXPECT_GT(end.momentum.z, 0.0) << "the cube rebounds";
   EXPECT_LE(end.momentum.z / r.mass, v0);
@@ -100,6 +114,54 @@ TEST(RigidWall, HeadOnImpactReversesMomentumWithoutCreatingEnergy) {
   EXPECT_NEAR(end.momentum.z, earlier.momentum.z, 1e-10 * r.mass * v0);
   EXPECT_NEAR(end.momentum.x, 0.0, 1e-10 * r.mass * v0);
   EXPECT_NEAR(end.momentum.y, 0.0, 1e-10 * r.mass * v0);
+}
+
+// Reference: the energy balance E = E0 + W_ext with every mechanism booked. A steel block
+// (Johnson-Cook, 20 x 20 x 20 mm in 2 mm one-point hexahedra, viscous hourglass control) strikes
+// a fixed wall at 300 m/s and rebounds. The wall's kinematic catch takes 6.6 % of the energy;
+// before it was booked (the `wall` energy, fem/rigid_wall.cpp) the balance ended at -6.6 %.
+// Pass: the balance within 1 % from step 10 on; at every step the wall energy, plastic work,
+// bulk-viscous work, hourglass work and the elastic energy (internal - plastic - viscous) never
+// below -1e-9 of the initial energy (the elastic energy went to -0.46 % of it while the plastic
+// work took the end flow stress; plastic_work in core/materials/constitutive_update.hpp).
+TEST(RigidWall, TheWallsCatchIsBookedAndNoDissipationGoesNegative) {
+  const std::string scene_text =
+      "[run]\nend_time = 0.05\n"
+      "[materials.steel]\ndensity = 7.85e-3\nE = 200e3\nnu = 0.29\n"
+      "strength = { model = \"johnson-cook\", A = 792, B = 510, n = 0.26, C = 0.0 }\n"
+      "[[bodies]]\nname = \"block\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
+      "shape = { box = { min = [-10, -10, 0.01], max = [10, 10, 20] } }\nmesh = { size = 2.0 }\n"
+      "velocity = [0, 0, -300]\n" +
+      kFixedWall;
+  const core::Scene scene = core::parse_scene(scene_text, "block_on_wall.toml");
+  const History r = run_steps(scene, 0.05);
+  const double e0 = r.initial.total();
+  double worst = 0.0, lowest = 0.0;
+  const char* lowest_name = "none";
+  for (std::size_t k = 0; k < r.samples.size(); ++k) {
+    const Sample& s = r.samples[k];
+    const core::Energies& e = s.energies;
+    // The first steps of the impact: the bottom layer stops within one step, and the half-step
+    // kinetic energy lags the internal energy of that jump (+4.5 % at step 1, below 1 % from
+    // step 7 on).
+    if (k >= 10) worst = std::max(worst, std::abs(s.energy_error));
+    const std::pair<const char*, double> columns[] = {
+        {"wall", e.wall},
+        {"plastic", e.plastic},
+        {"bulk-viscous", e.viscous},
+        {"hourglass", e.hourglass},
+        {"elastic", e.internal - e.plastic - e.viscous}};
+    for (const auto& [name, value] : columns)
+      if (value / e0 < lowest) lowest = value / e0, lowest_name = name;
+  }
+  const core::Energies& end = r.samples.back().energies;
+  std::printf(
+      "block on a wall: balance within %.3f %%, wall energy %.4g (%.2f %% of E0), lowest "
+      "dissipation %.2e of E0 (%s)\n",
+      100.0 * worst, end.wall, 100.0 * end.wall / e0, lowest, lowest_name);
+  EXPECT_LT(worst, 0.01);
+  EXPECT_GT(end.wall, 0.05 * e0);  // the catch the balance missed before
+  EXPECT_GT(lowest, -1e-9) << lowest_name;
 }
 
 // Reference: constraints and walls combine: a node on a symmetry plane (x or y imposed) hit
@@ -224,13 +286,15 @@ TEST(RigidWall, MovingWallBooksItsWorkAsExternalWork) {
     largest_loss = std::max(largest_loss, std::abs(loss_b));
   }
   EXPECT_GT(b.samples.back().energies.external_work, impact) << "the wall did work";
-  // The loss itself is the fixed wall's (the kinematic wall stops each arriving node; on this
-  // coarse cube about 14 % of the impact energy once free, 24 % at the peak, where the half-step
-  // kinetic energy lags the internal energy of the fast vibration): it is a loss, never a gain.
-  EXPECT_GT(b.initial.total() + b.samples.back().energies.external_work -
-                b.samples.back().energies.total(),
-            0.0);
-  EXPECT_LT(largest_loss, 0.3 * impact);
+  // The loss is the fixed wall's (the kinematic wall stops each arriving node, about 17 % of
+  // the impact energy on this coarse cube), booked as the wall energy in both frames; what is
+  // left is the swing of the half-step kinetic energy against the internal energy of the fast
+  // vibration.
+  EXPECT_GT(b.samples.back().energies.wall, 0.1 * impact);
+  EXPECT_NEAR(b.samples.back().energies.wall, a.samples.back().energies.wall, 1e-9 * impact);
+  std::printf("moving wall: wall energy %.4g of the impact's %.4g, largest unbooked %.4g\n",
+              b.samples.back().energies.wall, impact, largest_loss);
+  EXPECT_LT(largest_loss, 0.15 * impact);
 }
 
 // Reference: a prescribed-velocity constraint sets the selected nodes' velocity to the value at
