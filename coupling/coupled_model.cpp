@@ -81,6 +81,9 @@ CoupledModel::CoupledModel(const core::Scene& scene)
     add_point(i, bonded, surface_body_[b] != 0);
   }
   fe().set_grid_driven(driven_);
+  for (std::size_t b = 0; b < nb; ++b)
+    if (scene.bodies[b].bonded_to >= 0) bonded_bodies_.push_back(static_cast<int>(b));
+  bond_force_.assign(nb, core::Vec3{});
   // Hexahedra retire (and become particles) only inside the grid.
   const core::GridSettings& g = scene.mpm.grid;
   fe().set_retirement_domain({g.min, g.max, g.cell, scene.has_grid});
@@ -197,6 +200,19 @@ void CoupledModel::step(double dt) {
   fe().begin_step(dt);
   const auto t0 = std::chrono::steady_clock::now();
   load_points(dt);
+  // The bond's impulse on a bonded body: its momentum change less its elements' forces (which
+  // the grid step took as the points' forces) and gravity's impulse.
+  const bool bonds = !bonded_bodies_.empty();
+  if (bonds) {
+    for (int b : bonded_bodies_) bond_force_[static_cast<std::size_t>(b)] = core::Vec3{};
+    for (std::size_t k = 0; k < fe_node_.size(); ++k) {
+      const int b = n.body[fe_node_[k]];
+      if (!points_.bonded[k] || scene_.bodies[static_cast<std::size_t>(b)].bonded_to < 0) continue;
+      bond_force_[static_cast<std::size_t>(b)] -=
+          points_.mass[k] * points_.velocity[k] +
+          dt * (points_.force[k] + points_.mass[k] * scene_.run.gravity);
+    }
+  }
   mpm().step(dt);
   fe().settle_contact_impulses(dt);  // rigid bodies take what surface contacts gave their nodes
   for (std::size_t k = 0; k < fe_node_.size(); ++k) {
@@ -224,6 +240,14 @@ void CoupledModel::step(double dt) {
     n.velocity[i] = points_.velocity[k];
     for (int a = 0; a < 3; ++a)
       if (n.imposed[i] & (1u << a)) n.velocity[i][a] = n.imposed_velocity[i][a];
+  }
+  if (bonds) {
+    for (std::size_t k = 0; k < fe_node_.size(); ++k) {
+      const int b = n.body[fe_node_[k]];
+      if (points_.bonded[k] && scene_.bodies[static_cast<std::size_t>(b)].bonded_to >= 0)
+        bond_force_[static_cast<std::size_t>(b)] += points_.mass[k] * points_.velocity[k];
+    }
+    for (int b : bonded_bodies_) bond_force_[static_cast<std::size_t>(b)] *= 1.0 / dt;
   }
   convert_elements();
 }
@@ -264,26 +288,67 @@ std::vector<core::EnergyColumn> CoupledModel::energy_columns() const {
   return out;
 }
 
-// The FE side's columns, then each surface contact's (its force on the particle body).
+std::vector<std::string> CoupledModel::unbooked_energies() const {
+  std::vector<std::string> out = mpm::unbooked_particle_energies(scene_);
+  if (surface_contacts_)
+    for (const ParticleSurfaceContacts::Pair& p : surface_contacts_->pairs())
+      out.push_back("surface contact " + p.spec.name +
+                    ": the normal catch of particles at mesh faces (friction is booked)");
+  return out;
+}
+
+// The FE side's columns, then each surface contact's, then each grid contact's (the force on
+// the contact's first body).
 std::vector<std::string> CoupledModel::force_columns() const {
   std::vector<std::string> out = fe_.force_columns();
   if (surface_contacts_)
     for (const ParticleSurfaceContacts::Pair& p : surface_contacts_->pairs())
       core::append_force_columns(out, p.spec.name);
+  mpm::append_grid_contact_columns(out, scene_);
+  for (int b : bonded_bodies_)
+    for (const char* part : {".fx", ".fy", ".fz", ".axial_max", ".axial_min"})
+      out.push_back(scene_.bodies[static_cast<std::size_t>(b)].name + part);
   return out;
 }
 
 // The FE side's forces, each wall's with what it gave the particles it names added (a wall may
-// name mesh and particle bodies alike), then the surface contacts' (on the particle body, split
-// along its normal and tangential parts).
+// name mesh and particle bodies alike), then the surface contacts' and the grid contacts' (on
+// the contact's first body, split along its normal and tangential parts).
 void CoupledModel::force_values(std::vector<double>& out) const {
   fe_.force_values(out, mpm().wall_forces());
   if (surface_contacts_)
     for (const ParticleSurfaceContacts::Pair& p : surface_contacts_->pairs()) {
-      const core::Vec3 f = p.normal_force + p.tangential_force;
+      // On the contact's first body, as every interface force: minus the particles' when the
+      // mesh body is named first.
+      const double sign = p.spec.bodies[0] == p.particles ? 1.0 : -1.0;
+      const core::Vec3 f = sign * (p.normal_force + p.tangential_force);
       out.insert(out.end(),
                  {f.x, f.y, f.z, core::norm(p.normal_force), core::norm(p.tangential_force)});
     }
+  mpm::append_grid_contact_values(out, mpm());
+  if (bonded_bodies_.empty()) return;
+  // The trusses' axial forces N = sigma A = sigma V / l, by body.
+  const std::size_t nb = scene_.bodies.size();
+  std::vector<double> most(nb, -std::numeric_limits<double>::infinity());
+  std::vector<double> least(nb, std::numeric_limits<double>::infinity());
+  const fem::TrussElements& t = fe().trusses();
+  const fem::FeNodes& n = fe().nodes();
+  for (const fem::ElementBatch& b : t.batches)
+    for (std::size_t e = b.begin; e < b.end; ++e) {
+      if (!t.alive[e]) continue;
+      const double length = core::norm(n.position[static_cast<std::size_t>(t.nodes[e][1])] -
+                                       n.position[static_cast<std::size_t>(t.nodes[e][0])]);
+      const double axial = t.stress[b.point_begin + (e - b.begin)].xx * t.volume[e] / length;
+      const auto body = static_cast<std::size_t>(b.body);
+      most[body] = std::max(most[body], axial);
+      least[body] = std::min(least[body], axial);
+    }
+  for (int b : bonded_bodies_) {
+    const auto k = static_cast<std::size_t>(b);
+    const core::Vec3& f = bond_force_[k];
+    const bool any = most[k] >= least[k];
+    out.insert(out.end(), {f.x, f.y, f.z, any ? most[k] : 0.0, any ? least[k] : 0.0});
+  }
 }
 
 void CoupledModel::write_fields(core::FieldWriter& writer) {

@@ -61,8 +61,13 @@ class CoupledModel final : public core::Model {
   // none: friction's work there joins the sliding energy, but the history of a scene with only
   // them has never had its columns.
   std::vector<core::EnergyColumn> energy_columns() const override;
+  // The FE side's, then per surface and grid contact NAME.fx, .fy, .fz, .normal, .tangential
+  // (the force on its first body), then per bonded body NAME.fx, .fy, .fz (the bond's force on
+  // it) and NAME.axial_max, .axial_min (its trusses' largest tension and compression, signed).
   std::vector<std::string> force_columns() const override;
   void force_values(std::vector<double>& out) const override;
+  // The particles' (mpm::unbooked_particle_energies) and the normal catch of surface contacts.
+  std::vector<std::string> unbooked_energies() const override;
   std::size_t particle_count() const override { return mpm_.particle_count(); }
   std::size_t element_count() const override { return fe_.element_count(); }
   void write_fields(core::FieldWriter& writer) override;
@@ -111,6 +116,10 @@ class CoupledModel final : public core::Model {
   double converted_energy_ = 0.0;  // Energies::converted: what conversion's interpolation lost
   // Particles at mesh faces ([[contact]] method "surface"), when the scene has any.
   std::unique_ptr<ParticleSurfaceContacts> surface_contacts_;
+  // Bodies with `bonded_to` (rebar): per scene body, the bond's force on it over the last step
+  // (its momentum change less its weight: its elements' forces on it sum to zero).
+  std::vector<int> bonded_bodies_;
+  std::vector<core::Vec3> bond_force_;
 };
 
 }  // namespace afemp::coupling

@@ -211,9 +211,16 @@ void MpmSolver::grid_contact(ContactPass pass) {
   // (grid_points.hpp).
   const bool record = update && points_;
   if (record) contact_change_.assign(g.field_slot_count(), Vec3{});
+  // The update pass's impulses are the contacts' forces over the step: summed per thread and
+  // contact, on the contact's first body.
+  const std::size_t contacts = grid_contact_force_.size();
+  if (update) contact_force_scratch_.assign(static_cast<std::size_t>(nt) * contacts, {});
 #pragma omp parallel num_threads(nt) if (core::worth_threads(stride))
   {
     double dissipated = 0.0;
+    InterfaceForce* forces = update ? contact_force_scratch_.data() +
+                                          static_cast<std::size_t>(core::thread_index()) * contacts
+                                    : nullptr;
     g.for_each_slot([&](std::size_t slot, const std::array<int, 3>& node) {
       int present[max_fields];
       int count = 0;
@@ -278,7 +285,14 @@ void MpmSolver::grid_contact(ContactPass pass) {
           // What the contact dissipates: the impulse's work on the interface at the mean of
           // the relative velocity at the start and after the correction. Its normal part is
           // >= 0, since the pair does not separate at the start and does not approach after.
-          if (update) dissipated -= 0.5 * core::dot(impulse, rel_start + v[a] - v[b]);
+          if (update) {
+            dissipated -= 0.5 * core::dot(impulse, rel_start + v[a] - v[b]);
+            const int k = contact_of_pair_[static_cast<std::size_t>(fa * fields + fb)];
+            const double sign = k > 0 ? 1.0 : -1.0;  // the impulse on a, or on b (minus it)
+            InterfaceForce& f = forces[static_cast<std::size_t>(k > 0 ? k - 1 : -1 - k)];
+            f.normal += (sign * pn) * n;
+            f.tangential += sign * t;
+          }
         }
     });
     thread_sums_[static_cast<std::size_t>(core::thread_index()) * core::cache_line_doubles] =
@@ -286,6 +300,17 @@ void MpmSolver::grid_contact(ContactPass pass) {
   }
   for (int t = 0; t < nt; ++t)
     contact_energy_ += thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles];
+  if (!update) return;
+  const double inv_dt = 1.0 / step_dt_;
+  for (std::size_t k = 0; k < contacts; ++k) {
+    InterfaceForce sum;
+    for (int t = 0; t < nt; ++t) {
+      const InterfaceForce& f = contact_force_scratch_[static_cast<std::size_t>(t) * contacts + k];
+      sum.normal += f.normal;
+      sum.tangential += f.tangential;
+    }
+    grid_contact_force_[k] = {inv_dt * sum.normal, inv_dt * sum.tangential};
+  }
 }
 
 }  // namespace afemp::mpm

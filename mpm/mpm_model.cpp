@@ -103,12 +103,13 @@ std::vector<core::EnergyColumn> MpmModel::energy_columns() const {
   return out;
 }
 
-// Walls are the only force reporters of a scene of particles alone (penalty contacts and rigid
-// bodies need meshes): wallK, as FeModel::force_columns names them.
+// A scene of particles alone reports its walls' forces (wallK, as FeModel::force_columns names
+// them) and its grid contacts' (penalty contacts and rigid bodies need meshes).
 std::vector<std::string> MpmModel::force_columns() const {
   std::vector<std::string> out;
   for (std::size_t w = 0; w < scene_.walls.size(); ++w)
     core::append_force_columns(out, "wall" + std::to_string(w + 1));
+  append_grid_contact_columns(out, scene_);
   return out;
 }
 
@@ -116,6 +117,48 @@ void MpmModel::force_values(std::vector<double>& out) const {
   out.clear();
   for (std::size_t w = 0; w < scene_.walls.size(); ++w)
     core::append_force_values(out, solver_.wall_forces()[w], scene_.walls[w].normal);
+  append_grid_contact_values(out, solver_);
+}
+
+std::vector<std::string> unbooked_particle_energies(const core::Scene& scene) {
+  std::vector<std::string> out;
+  const core::MpmSettings& m = scene.mpm;
+  std::string transfers;
+  if (m.transfer == core::Transfer::apic)
+    core::appendf(transfers, "APIC, %s", core::to_string(m.scheme));
+  else
+    core::appendf(transfers, "FLIP blend %g, %s", m.flip, core::to_string(m.scheme));
+  out.push_back("the particle-grid transfers (" + transfers +
+                "): what mapping to the grid and back smooths away");
+  for (const core::ContactSpec& c : scene.contacts)
+    if (c.method == core::ContactMethod::grid)
+      out.push_back("grid contact " + c.name +
+                    " (its dissipation is estimated in the contact column, not part of total)");
+  for (std::size_t f = 0; f < m.grid.faces.size(); ++f) {
+    const core::FaceCondition c = m.grid.faces[f];
+    if (c == core::FaceCondition::wall || c == core::FaceCondition::fixed) {
+      out.push_back(
+          "the grid faces that hold the material (wall, fixed): the normal velocity they "
+          "stop");
+      break;
+    }
+  }
+  if (core::has_particle_walls(scene))
+    out.push_back("the normal catch of [[walls]] at particles (friction is booked as sliding)");
+  return out;
+}
+
+void append_grid_contact_columns(std::vector<std::string>& columns, const core::Scene& scene) {
+  for (const core::ContactSpec& c : scene.contacts)
+    if (c.method == core::ContactMethod::grid) core::append_force_columns(columns, c.name);
+}
+
+void append_grid_contact_values(std::vector<double>& out, const MpmSolver& solver) {
+  for (const MpmSolver::InterfaceForce& f : solver.grid_contact_forces()) {
+    const Vec3 total = f.normal + f.tangential;
+    out.insert(out.end(),
+               {total.x, total.y, total.z, core::norm(f.normal), core::norm(f.tangential)});
+  }
 }
 
 std::string MpmModel::describe() const {

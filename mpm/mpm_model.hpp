@@ -11,6 +11,17 @@
 
 namespace afemp::mpm {
 
+// The history's columns of the scene's grid contacts, NAME.fx, .fy, .fz, .normal, .tangential
+// (the force on the contact's first body), and their values (MpmSolver::grid_contact_forces);
+// the coupled model reports them too.
+void append_grid_contact_columns(std::vector<std::string>& columns, const core::Scene& scene);
+void append_grid_contact_values(std::vector<double>& out, const MpmSolver& solver);
+
+// The particles' mechanisms whose energy no column of total() books (core::Model::
+// unbooked_energies): the transfers between particles and grid, grid contacts, grid faces that
+// hold the material, walls at particles.
+std::vector<std::string> unbooked_particle_energies(const core::Scene& scene);
+
 class MpmModel final : public core::Model {
  public:
   explicit MpmModel(const core::Scene& scene);
@@ -27,6 +38,9 @@ class MpmModel final : public core::Model {
   std::vector<core::EnergyColumn> energy_columns() const override;
   std::vector<std::string> force_columns() const override;
   void force_values(std::vector<double>& out) const override;
+  std::vector<std::string> unbooked_energies() const override {
+    return unbooked_particle_energies(scene_);
+  }
   std::size_t particle_count() const override { return solver_.particles().size(); }
   std::size_t element_count() const override { return 0; }
   void write_fields(core::FieldWriter& writer) override;

@@ -29,6 +29,7 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
   multi_field_ = fields > 1;
   field_of_body_ = plan_.field_of_body;
   law_.assign(static_cast<std::size_t>(fields * fields), PairLaw{});
+  contact_of_pair_.assign(static_cast<std::size_t>(fields * fields), 0);
   for (const core::ContactSpec& c : scene.contacts) {
     if (c.method != core::ContactMethod::grid) continue;
     const int a = field_of_body_[static_cast<std::size_t>(c.bodies[0])];
@@ -36,6 +37,10 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
     const PairLaw law{true, c.friction, c.distance_factor};
     law_[static_cast<std::size_t>(a * fields + b)] = law;
     law_[static_cast<std::size_t>(b * fields + a)] = law;
+    const int k = static_cast<int>(grid_contact_force_.size());
+    contact_of_pair_[static_cast<std::size_t>(a * fields + b)] = 1 + k;
+    contact_of_pair_[static_cast<std::size_t>(b * fields + a)] = -1 - k;
+    grid_contact_force_.emplace_back();
   }
   field_in_contact_.assign(static_cast<std::size_t>(fields), 0);
   for (int a = 0; a < fields; ++a)

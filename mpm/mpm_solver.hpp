@@ -67,6 +67,13 @@ class MpmSolver {
   // Each [[walls]] entry's force on the particles over the last step (0 for a wall that
   // names no particle body), as the history's wallK columns report it.
   const std::vector<Vec3>& wall_forces() const { return wall_force_; }
+  // Each grid [[contact]]'s force on its first body over the last step (the update pass's
+  // impulses over dt), split into its normal and tangential parts (summed over the contact
+  // nodes, each along its own normal), in the scene's order of grid contacts.
+  struct InterfaceForce {
+    Vec3 normal, tangential;
+  };
+  const std::vector<InterfaceForce>& grid_contact_forces() const { return grid_contact_force_; }
   // Points that join the grid step from now on (grid_points.hpp; coupling/ puts FE nodes on
   // the grid this way). nullptr: none. Throws std::invalid_argument with the USL scheme.
   void set_grid_points(GridPoints* points);
@@ -231,6 +238,11 @@ class MpmSolver {
   std::vector<Vec3> contact_normal_;        // unit normal of each field at its contact nodes, or 0
   std::vector<std::uint8_t> contact_node_;  // per slot: where normals are needed (grid_contact.cpp)
   double contact_energy_ = 0.0;  // kinetic energy the contact took out (Energies::contact)
+  // Per field pair (f * fields + g): the grid contact it belongs to, +1 + k when f carries
+  // contact k's first body, -1 - k when g does, 0 for none; its force and per-thread sums.
+  std::vector<int> contact_of_pair_;
+  std::vector<InterfaceForce> grid_contact_force_;
+  std::vector<InterfaceForce> contact_force_scratch_;
   // Points that join the grid step (grid_points.hpp), and the velocity change grid contact
   // made to each field at each slot in the update pass (what self-updating points receive);
   // field_self_updated_: the field holds self-updating points only, whose gravity work their

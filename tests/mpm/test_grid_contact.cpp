@@ -58,6 +58,8 @@ struct ContactRun {
   double first_contact_time = -1.0;    // first step with contact energy > 0
   Vec3 left_velocity, right_velocity;  // mean velocities at the end
   Vec3 left_momentum0, left_momentum;  // the left body's momentum at start and end
+  Vec3 impulse;                        // sum over steps of the contact's force on left times dt
+  double peak_force = 0.0;             // largest |fx| of the contact's force on left
   long steps = 0;
 };
 
@@ -72,7 +74,13 @@ ContactRun run(const core::Scene& scene) {
   r.left_momentum0 = e0.bodies[0].momentum;
   double last_contact = 0.0;
   while (solver.time() < scene.run.end_time) {
-    solver.step(solver.stable_time_step());
+    const double dt = solver.stable_time_step();
+    solver.step(dt);
+    if (!solver.grid_contact_forces().empty()) {
+      const MpmSolver::InterfaceForce& f = solver.grid_contact_forces()[0];
+      r.impulse += dt * (f.normal + f.tangential);
+      r.peak_force = std::max(r.peak_force, std::abs(f.normal.x + f.tangential.x));
+    }
     const Energies e = solver.energies();
     const Vec3 p = e.bodies[0].momentum + e.bodies[1].momentum;
     r.max_momentum_error = std::max(r.max_momentum_error, core::norm(p) / scale);
@@ -124,6 +132,27 @@ TEST(GridContact, HeadOnBlocksConserveMomentumCreateNoEnergyAndSeparate) {
     EXPECT_LT(r.left_velocity.x, -0.8 * wall_rebound) << scheme;
     EXPECT_GT(r.right_velocity.x, 0.8 * wall_rebound) << scheme;
     EXPECT_LT(r.right_velocity.x, 50.0) << scheme;
+  }
+}
+
+// Reference: the impulse-momentum theorem. The contact's force on its first body (the
+// history's NAME.fx .. columns), times the step and summed, is the momentum the left cube
+// received: nothing else acts on it. Pass: within 1e-9 of that momentum change, for every
+// scheme; the peak force of the order of the 1-D contact force rho c v A (c the bar speed
+// sqrt(E / rho), v the closing speed's half, A the 16 mm^2 face): between 0.3 and 1.5 times it.
+TEST(GridContact, TheContactForceIsTheMomentumItGives) {
+  for (const Method& m : methods) {
+    const std::string scheme = std::string(m.scheme) + " " + m.shape;
+    const ContactRun r = run(head_on(m, head_on_contact, 0.03));
+    const Vec3 gained = r.left_momentum - r.left_momentum0;
+    const double rho_c_v_a = 2.7e-3 * std::sqrt(70e3 / 2.7e-3) * 50.0 * 16.0;
+    std::printf(
+        "%-11s momentum gained %.6g, sum of force dt %.6g, peak force %.4g N (rho c v A %.4g)\n",
+        scheme.c_str(), gained.x, r.impulse.x, r.peak_force, rho_c_v_a);
+    EXPECT_LT(gained.x, 0.0) << scheme;
+    EXPECT_LT(core::norm(r.impulse - gained), 1e-9 * core::norm(gained)) << scheme;
+    EXPECT_GT(r.peak_force, 0.3 * rho_c_v_a) << scheme;
+    EXPECT_LT(r.peak_force, 1.5 * rho_c_v_a) << scheme;
   }
 }
 
