@@ -45,7 +45,7 @@ ProbeRecorder::ProbeRecorder(Model& model, const std::vector<ProbeSpec>& probes,
         std::string known;
         for (const std::string& g : groups) known += (known.empty() ? "\"" : ", \"") + g + "\"";
         throw InputError(p.where, p.key + ".force",
-                         "no penalty contact, wall or rigid body reports forces as \"" + p.target +
+                         "no contact, wall, rigid or bonded body reports forces as \"" + p.target +
                              "\"; those of this scene: " + (known.empty() ? "(none)" : known));
       }
     }

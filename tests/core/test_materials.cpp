@@ -394,8 +394,11 @@ TEST(MaterialHeating, TemperatureRiseIsTaylorQuinneyPlasticWorkOverSpecificHeat)
       const double work = deviatoric - elastic;
       EXPECT_NEAR(u.plastic_work, work, 1e-11 * work);
       const double sigma_y = copper_jc().flow_stress(eps_p0 + dp, dp / 1e-4, t0);
-      if (increment == 0) EXPECT_NEAR(work, 0.5 * sigma_y * dp / rho, 1e-11 * work);
-      if (increment == 1) EXPECT_NEAR(work, sigma_y * dp / rho, 0.02 * work);
+      if (increment == 0) {
+        EXPECT_NEAR(work, 0.5 * sigma_y * dp / rho, 1e-11 * work);
+      } else {
+        EXPECT_NEAR(work, sigma_y * dp / rho, 0.02 * work);
+      }
       const double rise = thermal ? 0.9 * work / 385.0 : 0.0;
       EXPECT_NEAR(point.temperature - t0, rise, 1e-11 * work / 385.0);
     }
