@@ -244,7 +244,10 @@ double TimeLoop::record(double dt) {
   // work it does has accumulated) can pass the limit for a row; a growing mode stays.
   const double limit = scene_.run.energy_error_limit;
   rows_beyond_ = limit > 0.0 && !(std::abs(err) <= limit) ? rows_beyond_ + 1 : 0;
-  if (rows_beyond_ >= 3) throw_energy_runaway(model_, scene_, e, sum_.initial, err);
+  if (rows_beyond_ >= 3) {
+    keep_failure();
+    throw_energy_runaway(model_, scene_, e, sum_.initial, err);
+  }
   return err;
 }
 
@@ -266,7 +269,7 @@ void TimeLoop::step(double until) {
   try {
     model_.step(dt_);
   } catch (const SimulationError&) {
-    if (events_) events_->write(model_.take_events());  // what led up to it stays on disk
+    keep_failure();
     throw;
   }
   const long k = model_.step_count();
@@ -309,6 +312,16 @@ void TimeLoop::step(double until) {
     options_.progress({k, model_.time(), dt_, end, elapsed(),
                        energy_balance_error(e, sum_.initial, std::max(max_kinetic_, e.kinetic))});
     next_progress_ = elapsed() + options_.progress_seconds;
+  }
+}
+
+void TimeLoop::keep_failure() {
+  if (events_) events_->write(model_.take_events());
+  if (!frames_) return;
+  try {
+    model_.write_fields(*frames_);
+  } catch (const std::exception&) {
+    // The run's error is what the user must see; the frames written before stay valid.
   }
 }
 

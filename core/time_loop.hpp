@@ -85,6 +85,10 @@ class TimeLoop {
   Vec3 mean_velocity(const Energies& e) const;
   // A history row (and the terminate and energy guards); returns the energy-balance error.
   double record(double dt);
+  // A run stopped as unstable (SimulationError from the model or the energy guard): the
+  // model's events so far, and a last frame of the state it stopped in, NaN and all, so that
+  // where it went bad can be seen; then the error goes on.
+  void keep_failure();
 
   Model& model_;
   const Scene& scene_;
