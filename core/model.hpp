@@ -48,6 +48,10 @@ class Model {
   virtual ~Model() = default;
   // The step the next call of step() may take (the scene's factor applied).
   virtual double stable_time_step() const = 0;
+  // What sets that step now and why, as the run summary names it when the step has fallen
+  // (core/run_warnings.hpp): the element with the smallest critical step, the particle with
+  // the largest wave speed + speed; "" when the model cannot say.
+  virtual std::string time_step_setter() const { return {}; }
   // Advances by dt. Throws core::SimulationError naming the step, entity and field.
   virtual void step(double dt) = 0;
   virtual long step_count() const = 0;
@@ -63,6 +67,9 @@ class Model {
   virtual std::vector<StageTiming> stage_timings() const = 0;
   // Event rows produced since the last call (none by default).
   virtual std::vector<EventLog> take_events() { return {}; }
+  // What the model warns of at the end of the run, one line each, for RunSummary::warnings
+  // (failed points: eroded elements, failed particles); none by default.
+  virtual std::vector<std::string> summary_warnings() const { return {}; }
   // What `afemp check` prints before the time step: the discretisation (grid, bodies, mesh
   // quality), and the stages one step runs with the reason for each.
   virtual std::string describe() const = 0;

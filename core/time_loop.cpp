@@ -17,6 +17,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <stdexcept>
 
 #include "core/checkpoint.hpp"
 #include "core/fault_injection.hpp"
@@ -195,6 +196,7 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
   last_time_ = model_.time();
   if (scene_.run.terminate) last_velocity_ = mean_velocity(sum_.initial);
   dt_ = model_.stable_time_step();
+  warnings_.start(dt_);
   record(dt_);
   probes_->sample(model_, true);
   if (frames_) model_.write_fields(*frames_);
@@ -232,6 +234,7 @@ double TimeLoop::record(double dt) {
   max_kinetic_ = std::max(max_kinetic_, e.kinetic);
   const double err = energy_balance_error(e, sum_.initial, max_kinetic_);
   sum_.max_energy_error = std::max(sum_.max_energy_error, std::abs(err));
+  warnings_.row(model_.time(), e, err);
   if (history_) {
     HistoryRow row = history_row(model_, e, dt, err);
     for (const EnergyColumn& c : energy_columns_) row.extra.push_back(e.*c.value);
@@ -263,7 +266,10 @@ void TimeLoop::step(double until) {
   until = std::min(until, end);
   const double stable = model_.stable_time_step();
   // The statistics describe the stable step; the last step may be cut to land on end.
-  sum_.min_dt = std::min(sum_.min_dt, stable);
+  if (stable < sum_.min_dt) {
+    sum_.min_dt = stable;
+    warnings_.new_low(stable, model_.time(), model_);
+  }
   sum_.max_dt = std::max(sum_.max_dt, stable);
   dt_ = std::min(stable, until - model_.time());
   try {
@@ -371,6 +377,16 @@ RunSummary TimeLoop::finish() {
   sum.stages = model_.stage_timings();
   sum.field_frames = frames_ ? frames_->frames() : 0;
   if (sum.min_dt > sum.max_dt) sum.min_dt = sum.max_dt = dt_;
+  sum.warnings = warnings_.summary(model_, sum.initial, sum.final, sum.energy_error);
+  if (!options_.output_directory.empty()) {
+    OutputPaths paths;
+    paths.directory = options_.output_directory;
+    const std::string path = warnings_path(paths);
+    std::ofstream out(path, std::ios::trunc);
+    for (const std::string& w : sum.warnings) out << w << '\n';
+    out.flush();
+    if (!out) throw std::runtime_error(path + ": cannot write");
+  }
   if (options_.progress)
     options_.progress({sum.steps, sum.time, dt_, rs.end_time, sum.wall_seconds, sum.energy_error});
   return sum;
@@ -510,6 +526,7 @@ void TimeLoop::visit(StateArchive& a) {
         ++next_listed_;
     }
   }
+  warnings_.state(a);
   const StateArchive::Group group(a, "output");
   std::string index = frames_ ? frames_->index_text() : std::string();
   std::uint8_t has_fields = frames_ ? 1 : 0;

@@ -17,6 +17,7 @@
 #include "afemp/run.hpp"
 #include "core/model.hpp"
 #include "core/output/field_writer.hpp"
+#include "core/run_warnings.hpp"
 #include "core/scene.hpp"
 
 namespace afemp::core {
@@ -99,6 +100,7 @@ class TimeLoop {
   std::unique_ptr<HistoryWriter> history_;
   std::unique_ptr<EventFiles> events_;
   RunSummary sum_;
+  RunWarnings warnings_;
   double max_kinetic_ = 0.0;
   std::vector<EnergyColumn> energy_columns_;  // the model's, fixed for the run
   std::vector<double> forces_;                // the model's force values of a history row
