@@ -37,6 +37,24 @@ double gap(const Box& a, const Box& b) {
   return g;
 }
 
+// Whether something between bodies a and b says how they meet: a [[contact]] naming both, a
+// bond, a conversion (its particles start inside the mesh), or overlap_allowed.
+bool covered(const Scene& scene, std::size_t a, std::size_t b) {
+  for (const ContactSpec& c : scene.contacts)
+    if ((static_cast<std::size_t>(c.bodies[0]) == a &&
+         static_cast<std::size_t>(c.bodies[1]) == b) ||
+        (static_cast<std::size_t>(c.bodies[0]) == b && static_cast<std::size_t>(c.bodies[1]) == a))
+      return true;
+  const BodySpec& x = scene.bodies[a];
+  const BodySpec& y = scene.bodies[b];
+  auto allows = [](const BodySpec& body, std::size_t other) {
+    return std::find(body.overlap_allowed.begin(), body.overlap_allowed.end(),
+                     static_cast<int>(other)) != body.overlap_allowed.end();
+  };
+  return x.bonded_to == static_cast<int>(b) || y.bonded_to == static_cast<int>(a) || x.conversion ||
+         y.conversion || allows(x, b) || allows(y, a);
+}
+
 }  // namespace
 
 std::vector<std::string> contact_warnings(const Scene& scene, const Model& model) {
@@ -44,23 +62,11 @@ std::vector<std::string> contact_warnings(const Scene& scene, const Model& model
   std::vector<Box> boxes;
   for (std::size_t b = 0; b < n; ++b)
     boxes.push_back(box_of(model.body_points(static_cast<int>(b))));
-  auto covered = [&](std::size_t a, std::size_t b) {
-    for (const ContactSpec& c : scene.contacts)
-      if ((static_cast<std::size_t>(c.bodies[0]) == a &&
-           static_cast<std::size_t>(c.bodies[1]) == b) ||
-          (static_cast<std::size_t>(c.bodies[0]) == b &&
-           static_cast<std::size_t>(c.bodies[1]) == a))
-        return true;
-    const BodySpec& x = scene.bodies[a];
-    const BodySpec& y = scene.bodies[b];
-    return x.bonded_to == static_cast<int>(b) || y.bonded_to == static_cast<int>(a) ||
-           x.conversion || y.conversion;
-  };
   const double cell = scene.has_grid ? scene.mpm.grid.cell : 0.0;
   std::vector<std::string> out;
   for (std::size_t a = 0; a < n; ++a)
     for (std::size_t b = a + 1; b < n; ++b) {
-      if (boxes[a].empty || boxes[b].empty || covered(a, b)) continue;
+      if (boxes[a].empty || boxes[b].empty || covered(scene, a, b)) continue;
       const BodySpec& x = scene.bodies[a];
       const BodySpec& y = scene.bodies[b];
       const bool px = x.discretisation == Discretisation::particles;

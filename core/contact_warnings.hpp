@@ -14,7 +14,8 @@ namespace afemp::core {
 
 // One line per pair of bodies whose boxes (their points with their half sizes, at the start)
 // overlap or come within one grid cell (meshes without a grid: touch) with nothing between
-// them: no [[contact]] naming both (a weld included), no bond, no conversion.
+// them: no [[contact]] naming both (a weld included), no bond, no conversion, no
+// overlap_allowed.
 std::vector<std::string> contact_warnings(const Scene& scene, const Model& model);
 
 }  // namespace afemp::core

@@ -7,6 +7,7 @@
 #include "core/contact_warnings.hpp"
 #include "core/scene.hpp"
 #include "coupling/make_model.hpp"
+#include "scene_errors.hpp"
 
 namespace afemp::core {
 namespace {
@@ -48,16 +49,19 @@ TEST(ContactWarnings, ParticleBodiesThatWouldWeldAreNamed) {
   EXPECT_TRUE(warnings_of(far).empty());
 }
 
+// A rod of hexahedra standing on a plate of hexahedra.
+const std::string kTouchingMeshes =
+    "[run]\nend_time = 1\n[materials.steel]\ndensity = 7.85e-3\nE = 2.1e5\nnu = 0.3\n"
+    "[[bodies]]\nname = \"rod\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
+    "shape = { box = { min = [0, 0, 0], max = [1, 1, 5] } }\nmesh = { divisions = [1, 1, 5] }\n"
+    "[[bodies]]\nname = \"plate\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
+    "shape = { box = { min = [-3, -3, -1], max = [3, 3, 0] } }\nmesh = { divisions = [6, 6, 1] "
+    "}\n";
+
 // Reference: meshes meet only through a contact; without one they pass through each other.
 // Pass: two touching bodies of hexahedra without a contact are named, with a contact not.
 TEST(ContactWarnings, MeshesThatWouldPassThroughEachOtherAreNamed) {
-  const std::string meshes =
-      "[run]\nend_time = 1\n[materials.steel]\ndensity = 7.85e-3\nE = 2.1e5\nnu = 0.3\n"
-      "[[bodies]]\nname = \"rod\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-      "shape = { box = { min = [0, 0, 0], max = [1, 1, 5] } }\nmesh = { divisions = [1, 1, 5] }\n"
-      "[[bodies]]\nname = \"plate\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-      "shape = { box = { min = [-3, -3, -1], max = [3, 3, 0] } }\nmesh = { divisions = [6, 6, 1] "
-      "}\n";
+  const std::string& meshes = kTouchingMeshes;
   const std::vector<std::string> w = warnings_of(meshes);
   ASSERT_EQ(w.size(), 1u);
   EXPECT_NE(w[0].find("two meshes pass through each other"), std::string::npos) << w[0];
@@ -69,6 +73,33 @@ TEST(ContactWarnings, MeshesThatWouldPassThroughEachOtherAreNamed) {
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("contact[0].method"), std::string::npos) << e.what();
+  }
+}
+
+// Reference: the scene format (docs/scene-format.md): overlap_allowed on either body says that
+// the two are meant to meet, and the pair is not named; it names other bodies of the scene.
+TEST(ContactWarnings, OverlapAllowedSilencesThePairAndNamesOtherBodies) {
+  auto with = [](const std::string& line) {
+    std::string text = kTouchingMeshes;
+    return text.insert(text.find("discretisation"), line + "\n");
+  };
+  EXPECT_TRUE(warnings_of(with("overlap_allowed = [\"plate\"]")).empty());
+  const std::string unknown = test::error_of(with("overlap_allowed = [\"plates\"]"));
+  EXPECT_NE(
+      unknown.find(
+          "key 'bodies.rod.overlap_allowed': unknown body \"plates\"; bodies: \"rod\", \"plate\""),
+      std::string::npos)
+      << unknown;
+  EXPECT_NE(test::error_of(with("overlap_allowed = [\"rod\"]")).find("bodies.rod.overlap_allowed"),
+            std::string::npos);
+  Scene scene = parse_scene(kTouchingMeshes, "touching.toml");
+  scene.bodies[0].overlap_allowed = {2};
+  try {
+    check_scene(scene);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bodies.rod.overlap_allowed"), std::string::npos)
+        << e.what();
   }
 }
 
