@@ -88,6 +88,12 @@ class Model {
   // The points that carry body `body`'s material now: its particles and the nodes of its live
   // elements (Taylor, crater and hole metrics: analysis/reference_checks.cpp, analysis/study.cpp).
   virtual BodyPoints body_points(int body) const = 0;
+  // How many of `points` lie inside the live hexahedra of body `body`, not on its outer surface
+  // (where bodies touch): the run's check for bodies that come to overlap with no contact
+  // between them (core/contact_warnings.hpp). 0 for a body without hexahedra.
+  virtual std::size_t points_inside(int /*body*/, std::span<const Vec3> /*points*/) const {
+    return 0;
+  }
   // The energies the model's contacts declare (declare_energy_columns), which the history
   // writes after the body columns, each once and fixed for the run; none by default.
   virtual std::vector<EnergyColumn> energy_columns() const { return {}; }

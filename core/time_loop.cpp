@@ -20,6 +20,7 @@
 #include <stdexcept>
 
 #include "core/checkpoint.hpp"
+#include "core/contact_warnings.hpp"
 #include "core/fault_injection.hpp"
 #include "core/output/history.hpp"
 #include "core/output/run_directory.hpp"
@@ -174,6 +175,8 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
       probes_(std::make_unique<ProbeRecorder>(model, scene.probes, options.output_directory,
                                               !options.restart_from.empty())),
       energy_columns_(model.energy_columns()) {
+  overlaps_ = std::make_unique<OverlapCheck>(scene);
+  if (overlaps_->empty()) overlaps_.reset();
   if (!options_.restart_from.empty()) {
     restore(options_.restart_from);
     return;
@@ -235,6 +238,7 @@ double TimeLoop::record(double dt) {
   const double err = energy_balance_error(e, sum_.initial, max_kinetic_);
   sum_.max_energy_error = std::max(sum_.max_energy_error, std::abs(err));
   warnings_.row(model_.time(), e, err);
+  if (overlaps_) overlaps_->check(model_);
   if (history_) {
     HistoryRow row = history_row(model_, e, dt, err);
     for (const EnergyColumn& c : energy_columns_) row.extra.push_back(e.*c.value);
@@ -378,6 +382,8 @@ RunSummary TimeLoop::finish() {
   sum.field_frames = frames_ ? frames_->frames() : 0;
   if (sum.min_dt > sum.max_dt) sum.min_dt = sum.max_dt = dt_;
   sum.warnings = warnings_.summary(model_, sum.initial, sum.final, sum.energy_error);
+  if (overlaps_)
+    for (std::string& w : overlaps_->summary()) sum.warnings.push_back(std::move(w));
   if (!options_.output_directory.empty()) {
     OutputPaths paths;
     paths.directory = options_.output_directory;
@@ -527,6 +533,7 @@ void TimeLoop::visit(StateArchive& a) {
     }
   }
   warnings_.state(a);
+  if (overlaps_) overlaps_->state(a);
   const StateArchive::Group group(a, "output");
   std::string index = frames_ ? frames_->index_text() : std::string();
   std::uint8_t has_fields = frames_ ? 1 : 0;

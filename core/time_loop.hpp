@@ -43,6 +43,7 @@ struct RunOptions {
 };
 
 class EventFiles;
+class OverlapCheck;
 class StateArchive;
 class HistoryWriter;
 class ProbeRecorder;
@@ -101,6 +102,7 @@ class TimeLoop {
   std::unique_ptr<EventFiles> events_;
   RunSummary sum_;
   RunWarnings warnings_;
+  std::unique_ptr<OverlapCheck> overlaps_;  // null: no pair of bodies to check
   double max_kinetic_ = 0.0;
   std::vector<EnergyColumn> energy_columns_;  // the model's, fixed for the run
   std::vector<double> forces_;                // the model's force values of a history row

@@ -86,6 +86,9 @@ class CoupledModel final : public core::Model {
   }
   // The body's particles (converted elements' included) and the nodes of its live elements.
   core::BodyPoints body_points(int body) const override;
+  std::size_t points_inside(int body, std::span<const core::Vec3> points) const override {
+    return fe_.points_inside(body, points);
+  }
   void state(core::StateArchive& archive) override;
 
  private:

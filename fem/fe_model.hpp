@@ -9,6 +9,7 @@
 #include "core/time_loop.hpp"
 #include "fem/fe_solver.hpp"
 #include "fem/mesh_probes.hpp"
+#include "fem/points_inside_mesh.hpp"
 
 namespace afemp::fem {
 
@@ -61,6 +62,9 @@ class FeModel final : public core::Model {
     core::BodyPoints out{live_node_positions(solver_, body), {}};
     out.half_size.assign(out.position.size(), 0.0);
     return out;
+  }
+  std::size_t points_inside(int body, std::span<const core::Vec3> points) const override {
+    return fem::points_inside(solver_.hexahedra(), solver_.nodes().position, body, points);
   }
   void state(core::StateArchive& archive) override;
 

@@ -95,8 +95,8 @@ struct RunSummary {
   /// What the results should be read with, one line each (`afemp run` prints them last and
   /// writes them to warnings.txt in the run directory; the exit code stays 0): hourglass energy
   /// past 10 % of the internal energy, an energy-balance error past 5 %, a stable step that fell
-  /// more than 10-fold and what set it, failed points, mass that left the model, and what the
-  /// model adds of its own.
+  /// more than 10-fold and what set it, failed points, mass that left the model, bodies that
+  /// came to overlap with no contact between them, and what the model adds of its own.
   std::vector<std::string> warnings{};
   bool checks_passed() const {
     for (const ReferenceCheck& c : checks)

@@ -310,8 +310,8 @@ struct BodySpec {
   /// Particles: none is placed inside the shapes of these bodies (water around a charge).
   std::vector<int> outside{};
   /// Bodies this one is meant to overlap with no contact between them (indices into
-  /// Scene::bodies): the warning before the run does not name the pair
-  /// (core/contact_warnings.hpp).
+  /// Scene::bodies): neither the warning before the run nor the run's check for bodies that
+  /// come to overlap names the pair (core/contact_warnings.hpp).
   std::vector<int> overlap_allowed{};
   Vec3 velocity{};                      ///< initial velocity
   std::optional<double> temperature{};  ///< initial temperature; default the material's
