@@ -138,9 +138,10 @@ int run(const std::string& path, std::string out_dir, const std::string& restart
       return 128 + signal;
     }
     const OutputPaths paths;
-    std::printf("output: %s/%s.xmf (%zu frames), %s/%s\n", out_dir.c_str(),
+    std::printf("output: %s/%s.xmf (%zu frames), %s/%s, %s/%s (%zu warnings)\n", out_dir.c_str(),
                 paths.fields_stem.c_str(), s.field_frames, out_dir.c_str(),
-                paths.history_file.c_str());
+                paths.history_file.c_str(), out_dir.c_str(), paths.warnings_file.c_str(),
+                s.warnings.size());
     if (!s.probes.empty())
       std::printf("probes: %s/probes/NAME.csv (%zu files)\n", out_dir.c_str(), s.probes.size());
     if (!s.checks_passed()) return exit_check_failed;

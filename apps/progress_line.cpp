@@ -131,6 +131,8 @@ void print_summary(std::FILE* out, const Scene& scene, const RunSummary& s) {
                                                                     : "  (OUTSIDE tolerance)")
                                    : "");
   }
+  // Last: what the numbers above are to be read with.
+  for (const std::string& w : s.warnings) std::fprintf(out, "  warning          %s\n", w.c_str());
 }
 
 }  // namespace afemp::apps

@@ -48,6 +48,10 @@ class Model {
   virtual ~Model() = default;
   // The step the next call of step() may take (the scene's factor applied).
   virtual double stable_time_step() const = 0;
+  // What sets that step now and why, as the run summary names it when the step has fallen
+  // (core/run_warnings.hpp): the element with the smallest critical step, the particle with
+  // the largest wave speed + speed; "" when the model cannot say.
+  virtual std::string time_step_setter() const { return {}; }
   // Advances by dt. Throws core::SimulationError naming the step, entity and field.
   virtual void step(double dt) = 0;
   virtual long step_count() const = 0;
@@ -63,6 +67,9 @@ class Model {
   virtual std::vector<StageTiming> stage_timings() const = 0;
   // Event rows produced since the last call (none by default).
   virtual std::vector<EventLog> take_events() { return {}; }
+  // What the model warns of at the end of the run, one line each, for RunSummary::warnings
+  // (failed points: eroded elements, failed particles); none by default.
+  virtual std::vector<std::string> summary_warnings() const { return {}; }
   // What `afemp check` prints before the time step: the discretisation (grid, bodies, mesh
   // quality), and the stages one step runs with the reason for each.
   virtual std::string describe() const = 0;
@@ -81,6 +88,12 @@ class Model {
   // The points that carry body `body`'s material now: its particles and the nodes of its live
   // elements (Taylor, crater and hole metrics: analysis/reference_checks.cpp, analysis/study.cpp).
   virtual BodyPoints body_points(int body) const = 0;
+  // How many of `points` lie inside the live hexahedra of body `body`, not on its outer surface
+  // (where bodies touch): the run's check for bodies that come to overlap with no contact
+  // between them (core/contact_warnings.hpp). 0 for a body without hexahedra.
+  virtual std::size_t points_inside(int /*body*/, std::span<const Vec3> /*points*/) const {
+    return 0;
+  }
   // The energies the model's contacts declare (declare_energy_columns), which the history
   // writes after the body columns, each once and fixed for the run; none by default.
   virtual std::vector<EnergyColumn> energy_columns() const { return {}; }

@@ -209,6 +209,12 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
            "material index " + std::to_string(b.material) + " is not defined; the scene has " +
                std::to_string(scene.materials.size()) + " materials");
   check_shape(c, b, key);
+  for (int o : b.overlap_allowed) {
+    c.body(b.where, key + ".overlap_allowed", o, false);
+    if (scene.bodies[static_cast<std::size_t>(o)].name == b.name)
+      c.fail(b.where, key + ".overlap_allowed",
+             "a body is not checked against itself; name other bodies");
+  }
   c.finite(b.where, key + ".velocity", b.velocity);
   if (b.temperature) c.non_negative(b.where, key + ".temperature", *b.temperature);
   c.non_negative(b.where, key + ".internal_energy", b.internal_energy);

@@ -1087,10 +1087,11 @@ void read_rigid(const toml::node& node, TableReader& r, BodySpec& b) {
 
 BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
                    const std::vector<Material>& material_list, const std::string& scene_path) {
-  r.known({"name",       "material",       "discretisation",  "shape",  "particles_per_cell",
-           "velocity",   "temperature",    "internal_energy", "mesh",   "element",
-           "hourglass",  "bulk_viscosity", "erosion",         "area",   "bonded_to",
-           "conversion", "rigid",          "outside",         "layout", "pressure"});
+  r.known({"name",           "material",       "discretisation",  "shape",  "particles_per_cell",
+           "velocity",       "temperature",    "internal_energy", "mesh",   "element",
+           "hourglass",      "bulk_viscosity", "erosion",         "area",   "bonded_to",
+           "conversion",     "rigid",          "outside",         "layout", "pressure",
+           "overlap_allowed"});
   // Name the body in messages as soon as its name is readable, even for an unknown key.
   if (const toml::node* n = r.table().get("name");
       n && n->is_string() && !n->as_string()->get().empty())
@@ -1732,6 +1733,21 @@ void read_outside(const toml::array& bodies, Scene& scene, const std::string& pa
   }
 }
 
+// The bodies each body is meant to overlap (overlap_allowed).
+void read_overlap_allowed(const toml::array& bodies, Scene& scene, const std::string& path) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const toml::table& t = *bodies.get(i)->as_table();
+    if (!t.contains("overlap_allowed")) continue;
+    TableReader br(t, "bodies." + scene.bodies[i].name, path);
+    for (const std::string& name : br.strings("overlap_allowed")) {
+      const int o = body_index(br, "overlap_allowed", name, scene, false);
+      if (static_cast<std::size_t>(o) == i)
+        br.fail("overlap_allowed", "a body is not checked against itself; name other bodies");
+      scene.bodies[i].overlap_allowed.push_back(o);
+    }
+  }
+}
+
 // Bonded coupling: the host named by each mesh body's bonded_to.
 void read_bonded_to(const toml::array& bodies, Scene& scene, const std::string& path) {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -1920,6 +1936,7 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
   check_conversions(bodies, scene, path);
   read_splitting_bodies(r, scene, path);
   read_outside(bodies, scene, path);
+  read_overlap_allowed(bodies, scene, path);
   read_bonded_to(bodies, scene, path);
   read_table_array(r, "constraints", path,
                    [&](TableReader& t) { scene.constraints.push_back(read_constraint(t, scene)); });

@@ -17,8 +17,10 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <stdexcept>
 
 #include "core/checkpoint.hpp"
+#include "core/contact_warnings.hpp"
 #include "core/fault_injection.hpp"
 #include "core/output/history.hpp"
 #include "core/output/run_directory.hpp"
@@ -174,6 +176,8 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
       probes_(std::make_unique<ProbeRecorder>(model, scene.probes, options.output_directory,
                                               !options.restart_from.empty())),
       energy_columns_(model.energy_columns()) {
+  overlaps_ = std::make_unique<OverlapCheck>(scene);
+  if (overlaps_->empty()) overlaps_.reset();
   if (!options_.restart_from.empty()) {
     restore(options_.restart_from);
     return;
@@ -196,6 +200,7 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
   last_time_ = model_.time();
   if (scene_.run.terminate) last_velocity_ = mean_velocity(sum_.initial);
   dt_ = model_.stable_time_step();
+  warnings_.start(dt_);
   record(dt_);
   probes_->sample(model_, true);
   if (frames_) model_.write_fields(*frames_);
@@ -233,6 +238,8 @@ double TimeLoop::record(double dt) {
   max_kinetic_ = std::max(max_kinetic_, e.kinetic);
   const double err = energy_balance_error(e, sum_.initial, max_kinetic_);
   sum_.max_energy_error = std::max(sum_.max_energy_error, std::abs(err));
+  warnings_.row(model_.time(), e, err);
+  if (overlaps_) overlaps_->check(model_);
   if (history_) {
     HistoryRow row = history_row(model_, e, dt, err);
     for (const EnergyColumn& c : energy_columns_) row.extra.push_back(e.*c.value);
@@ -245,7 +252,10 @@ double TimeLoop::record(double dt) {
   // work it does has accumulated) can pass the limit for a row; a growing mode stays.
   const double limit = scene_.run.energy_error_limit;
   rows_beyond_ = limit > 0.0 && !(std::abs(err) <= limit) ? rows_beyond_ + 1 : 0;
-  if (rows_beyond_ >= 3) throw_energy_runaway(model_, scene_, e, sum_.initial, err);
+  if (rows_beyond_ >= 3) {
+    keep_failure();
+    throw_energy_runaway(model_, scene_, e, sum_.initial, err);
+  }
   return err;
 }
 
@@ -261,13 +271,16 @@ void TimeLoop::step(double until) {
   until = std::min(until, end);
   const double stable = model_.stable_time_step();
   // The statistics describe the stable step; the last step may be cut to land on end.
-  sum_.min_dt = std::min(sum_.min_dt, stable);
+  if (stable < sum_.min_dt) {
+    sum_.min_dt = stable;
+    warnings_.new_low(stable, model_.time(), model_);
+  }
   sum_.max_dt = std::max(sum_.max_dt, stable);
   dt_ = std::min(stable, until - model_.time());
   try {
     model_.step(dt_);
   } catch (const SimulationError&) {
-    if (events_) events_->write(model_.take_events());  // what led up to it stays on disk
+    keep_failure();
     throw;
   }
   const long k = model_.step_count();
@@ -310,6 +323,16 @@ void TimeLoop::step(double until) {
     options_.progress({k, model_.time(), dt_, end, elapsed(),
                        energy_balance_error(e, sum_.initial, std::max(max_kinetic_, e.kinetic))});
     next_progress_ = elapsed() + options_.progress_seconds;
+  }
+}
+
+void TimeLoop::keep_failure() {
+  if (events_) events_->write(model_.take_events());
+  if (!frames_) return;
+  try {
+    model_.write_fields(*frames_);
+  } catch (const std::exception&) {
+    // The run's error is what the user must see; the frames written before stay valid.
   }
 }
 
@@ -359,6 +382,18 @@ RunSummary TimeLoop::finish() {
   sum.stages = model_.stage_timings();
   sum.field_frames = frames_ ? frames_->frames() : 0;
   if (sum.min_dt > sum.max_dt) sum.min_dt = sum.max_dt = dt_;
+  sum.warnings = warnings_.summary(model_, sum.initial, sum.final, sum.energy_error);
+  if (overlaps_)
+    for (std::string& w : overlaps_->summary()) sum.warnings.push_back(std::move(w));
+  if (!options_.output_directory.empty()) {
+    OutputPaths paths;
+    paths.directory = options_.output_directory;
+    const std::string path = warnings_path(paths);
+    std::ofstream out(path, std::ios::trunc);
+    for (const std::string& w : sum.warnings) out << w << '\n';
+    out.flush();
+    if (!out) throw std::runtime_error(path + ": cannot write");
+  }
   if (options_.progress)
     options_.progress({sum.steps, sum.time, dt_, rs.end_time, sum.wall_seconds, sum.energy_error});
   return sum;
@@ -498,6 +533,8 @@ void TimeLoop::visit(StateArchive& a) {
         ++next_listed_;
     }
   }
+  warnings_.state(a);
+  if (overlaps_) overlaps_->state(a);
   const StateArchive::Group group(a, "output");
   std::string index = frames_ ? frames_->index_text() : std::string();
   std::uint8_t has_fields = frames_ ? 1 : 0;

@@ -17,6 +17,7 @@
 #include "afemp/run.hpp"
 #include "core/model.hpp"
 #include "core/output/field_writer.hpp"
+#include "core/run_warnings.hpp"
 #include "core/scene.hpp"
 
 namespace afemp::core {
@@ -42,6 +43,7 @@ struct RunOptions {
 };
 
 class EventFiles;
+class OverlapCheck;
 class StateArchive;
 class HistoryWriter;
 class ProbeRecorder;
@@ -85,6 +87,10 @@ class TimeLoop {
   Vec3 mean_velocity(const Energies& e) const;
   // A history row (and the terminate and energy guards); returns the energy-balance error.
   double record(double dt);
+  // A run stopped as unstable (SimulationError from the model or the energy guard): the
+  // model's events so far, and a last frame of the state it stopped in, NaN and all, so that
+  // where it went bad can be seen; then the error goes on.
+  void keep_failure();
 
   Model& model_;
   const Scene& scene_;
@@ -95,6 +101,8 @@ class TimeLoop {
   std::unique_ptr<HistoryWriter> history_;
   std::unique_ptr<EventFiles> events_;
   RunSummary sum_;
+  RunWarnings warnings_;
+  std::unique_ptr<OverlapCheck> overlaps_;  // null: no pair of bodies to check
   double max_kinetic_ = 0.0;
   std::vector<EnergyColumn> energy_columns_;  // the model's, fixed for the run
   std::vector<double> forces_;                // the model's force values of a history row

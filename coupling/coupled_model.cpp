@@ -163,6 +163,27 @@ double CoupledModel::stable_time_step() const {
   return dt;
 }
 
+std::string CoupledModel::time_step_setter() const {
+  const double fe_step = fe().element_step_limit();
+  const double grid_step = mpm().stable_time_step();
+  std::size_t fastest = fe_node_.size();
+  double speed2 = 0.0;
+  for (std::size_t k = 0; k < fe_node_.size(); ++k) {
+    const core::Vec3& v = fe().nodes().velocity[fe_node_[k]];
+    if (core::dot(v, v) > speed2) speed2 = core::dot(v, v), fastest = k;
+  }
+  const double node_step = speed2 > 0.0 ? mpm().stable_time_step_for_speed(std::sqrt(speed2))
+                                        : std::numeric_limits<double>::infinity();
+  if (fe_step <= grid_step && fe_step <= node_step) return fe_.time_step_setter();
+  if (grid_step <= node_step) return mpm_.time_step_setter();
+  const std::size_t i = fe_node_[fastest];
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "node %zu of body '%s' crossing the grid at speed %.4g", i,
+                scene_.bodies[static_cast<std::size_t>(fe().nodes().body[i])].name.c_str(),
+                std::sqrt(speed2));
+  return buf;
+}
+
 void CoupledModel::load_points(double dt) {
   const fem::FeNodes& n = fe().nodes();
   if (std::any_of(surface_body_.begin(), surface_body_.end(), [](char c) { return c != 0; })) {
@@ -373,6 +394,12 @@ std::vector<core::EventLog> CoupledModel::take_events() {
       "conversion.csv", "time,body,element,reason,particles,mass,kinetic_before,kinetic_after", {}};
   log.rows.swap(conversion_rows_);
   out.push_back(std::move(log));
+  return out;
+}
+
+std::vector<std::string> CoupledModel::summary_warnings() const {
+  std::vector<std::string> out = fe_.summary_warnings();
+  for (std::string& w : mpm_.summary_warnings()) out.push_back(std::move(w));
   return out;
 }
 

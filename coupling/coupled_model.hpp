@@ -52,6 +52,8 @@ class CoupledModel final : public core::Model {
   const std::vector<std::size_t>& coupled_nodes() const { return fe_node_; }
 
   double stable_time_step() const override;
+  // Of the FE step, the grid's and the coupled nodes' crossing of the grid, the smallest's.
+  std::string time_step_setter() const override;
   void step(double dt) override;
   long step_count() const override { return mpm().step_count(); }
   double time() const override { return mpm().time(); }
@@ -73,6 +75,8 @@ class CoupledModel final : public core::Model {
   void write_fields(core::FieldWriter& writer) override;
   std::vector<core::StageTiming> stage_timings() const override;
   std::vector<core::EventLog> take_events() override;
+  // The FE side's, then the MPM side's.
+  std::vector<std::string> summary_warnings() const override;
   std::string describe() const override;
   std::size_t bytes() const override;
   // Particle probes from the MPM part, node and element probes from the FE part, extremes
@@ -87,6 +91,9 @@ class CoupledModel final : public core::Model {
   }
   // The body's particles (converted elements' included) and the nodes of its live elements.
   core::BodyPoints body_points(int body) const override;
+  std::size_t points_inside(int body, std::span<const core::Vec3> points) const override {
+    return fe_.points_inside(body, points);
+  }
   void state(core::StateArchive& archive) override;
 
  private:

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <initializer_list>
 #include <string>
+#include <string_view>
 #include <type_traits>
 
 #include "core/appendf.hpp"
@@ -23,7 +24,10 @@ void zeroed(std::size_t n, std::initializer_list<std::vector<double>*> arrays) {
 }  // namespace
 
 FeModel::FeModel(const core::Scene& scene)
-    : scene_(scene), solver_(scene), history_names_(core::history_field_names(scene)) {}
+    : scene_(scene),
+      solver_(scene),
+      eroded_(scene.bodies.size(), 0),
+      history_names_(core::history_field_names(scene)) {}
 
 void FeModel::write_fields(core::FieldWriter& writer) {
   writer.write_frame(solver_.time(), solver_.step_count(), {}, mesh_blocks());
@@ -173,6 +177,7 @@ std::vector<core::EventLog> FeModel::take_events() {
   }
   core::EventLog log{"erosion.csv", "time,kind,id,body,reason,energy,mass", {}};
   for (const ErosionEvent& ev : solver_.take_erosion_events()) {
+    if (std::string_view(ev.kind) != "node") ++eroded_[static_cast<std::size_t>(ev.body)];
     char buf[256];
     std::snprintf(buf, sizeof buf, "%.10e,%s,%lld,%s,%s,%.10e,%.10e", ev.time, ev.kind,
                   static_cast<long long>(ev.id),
@@ -181,6 +186,25 @@ std::vector<core::EventLog> FeModel::take_events() {
     log.rows.emplace_back(buf);
   }
   return {log};
+}
+
+std::vector<std::string> FeModel::summary_warnings() const {
+  std::vector<std::string> out;
+  for (std::size_t b = 0; b < eroded_.size(); ++b) {
+    if (eroded_[b] == 0) continue;
+    std::size_t elements = 0;
+    for (const std::vector<ElementBatch>* batches :
+         {&solver_.hexahedra().batches, &solver_.trusses().batches})
+      for (const ElementBatch& batch : *batches)
+        if (static_cast<std::size_t>(batch.body) == b) elements += batch.end - batch.begin;
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "%ld of %zu elements of body \"%s\" eroded (erosion.csv lists them): their "
+                  "mass and energy left the model",
+                  eroded_[b], elements, scene_.bodies[b].name.c_str());
+    out.emplace_back(buf);
+  }
+  return out;
 }
 
 std::vector<core::EnergyColumn> FeModel::energy_columns() const {
@@ -286,6 +310,7 @@ void FeModel::state(core::StateArchive& archive) {
   solver_.state(archive);
   const core::StateArchive::Group group(archive, "fe_model");
   archive.item("hourglass_warning_step", hourglass_warning_step_);
+  archive.item("eroded_elements", eroded_);
 }
 
 }  // namespace afemp::fem

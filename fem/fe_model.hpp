@@ -9,6 +9,7 @@
 #include "core/time_loop.hpp"
 #include "fem/fe_solver.hpp"
 #include "fem/mesh_probes.hpp"
+#include "fem/points_inside_mesh.hpp"
 
 namespace afemp::fem {
 
@@ -19,6 +20,7 @@ class FeModel final : public core::Model {
   const FeSolver& solver() const { return solver_; }
 
   double stable_time_step() const override { return solver_.stable_time_step(); }
+  std::string time_step_setter() const override { return solver_.time_step_setter(); }
   void step(double dt) override { solver_.step(dt); }
   long step_count() const override { return solver_.step_count(); }
   double time() const override { return solver_.time(); }
@@ -30,6 +32,8 @@ class FeModel final : public core::Model {
   void write_fields(core::FieldWriter& writer) override;
   std::vector<core::StageTiming> stage_timings() const override;
   std::vector<core::EventLog> take_events() override;
+  // Per body whose elements eroded: how many of its elements did.
+  std::vector<std::string> summary_warnings() const override;
   std::string describe() const override;
   // Its first part: the bodies, mesh quality and smallest step (the step plan follows).
   std::string describe_mesh() const;
@@ -60,12 +64,16 @@ class FeModel final : public core::Model {
     out.half_size.assign(out.position.size(), 0.0);
     return out;
   }
+  std::size_t points_inside(int body, std::span<const core::Vec3> points) const override {
+    return fem::points_inside(solver_.hexahedra(), solver_.nodes().position, body, points);
+  }
   void state(core::StateArchive& archive) override;
 
  private:
   const core::Scene& scene_;
   FeSolver solver_;
   long hourglass_warning_step_ = -1;
+  std::vector<long> eroded_;  // elements eroded so far, per body (counted in take_events)
   // Derived fields, per frame.
   std::vector<core::Vec3> displacement_;
   // Hexahedra: the element means of the point fields written (element_store.hpp), by type.

@@ -123,6 +123,9 @@ class FeSolver {
   double stable_time_step() const;
   // Where the smallest critical step is: "hexahedron 12 of body bar".
   std::string smallest_step_element() const;
+  // The same with why its step is small: its critical step and its volume against its initial
+  // one (a crushed or inverting element), for the run summary (core::Model::time_step_setter).
+  std::string time_step_setter() const;
   // One central-difference step. Throws core::SimulationError naming the step, the node or
   // element and the field when a value goes NaN/Inf or an element inverts without erosion.
   // It is begin_step then finish_step; a coupled step (coupling/) runs the grid in between.
@@ -189,6 +192,15 @@ class FeSolver {
   void state(core::StateArchive& archive);
 
  private:
+  // The live element with the smallest critical step: its set, batch and index (set nullptr:
+  // none).
+  struct SmallestStep {
+    const ElementSet* set = nullptr;
+    const ElementBatch* batch = nullptr;
+    std::size_t element = 0;
+  };
+  SmallestStep smallest_step() const;
+  std::string element_name(const SmallestStep& s) const;  // "hexahedron 12 of body bar"
   // The hexahedron stage's passes (hexahedron_passes.hpp) read and write the solver's arrays.
   template <class Strength, class Eos, bool Thermal, bool Fails>
   friend class HexahedronPasses;

@@ -5,6 +5,7 @@
 // Also the step itself, the stable step and the energies.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <sstream>
 
@@ -158,20 +159,39 @@ double FeSolver::stable_time_step() const {
   return dt;
 }
 
-std::string FeSolver::smallest_step_element() const {
+FeSolver::SmallestStep FeSolver::smallest_step() const {
   double dt = std::numeric_limits<double>::infinity();
-  std::string where = "none";
-  auto scan = [&](const ElementStore& el, const char* kind) {
+  SmallestStep out;
+  for (const ElementSet* set : sets_) {
+    const ElementStore& el = set->store();
     for (const ElementBatch& b : el.batches)
       for (std::size_t e = b.begin; e < b.end; ++e)
         if (el.alive[e] && el.critical_dt[e] < dt) {
           dt = el.critical_dt[e];
-          where = std::string(kind) + " " + std::to_string(e - b.begin) + " of body " +
-                  scene_.bodies[static_cast<std::size_t>(b.body)].name;
+          out = {set, &b, e};
         }
-  };
-  for (const ElementSet* set : sets_) scan(set->store(), set->kind());
-  return where;
+  }
+  return out;
+}
+
+std::string FeSolver::element_name(const SmallestStep& s) const {
+  return std::string(s.set->kind()) + " " + std::to_string(s.element - s.batch->begin) +
+         " of body " + scene_.bodies[static_cast<std::size_t>(s.batch->body)].name;
+}
+
+std::string FeSolver::smallest_step_element() const {
+  const SmallestStep s = smallest_step();
+  return s.set == nullptr ? "none" : element_name(s);
+}
+
+std::string FeSolver::time_step_setter() const {
+  const SmallestStep s = smallest_step();
+  if (s.set == nullptr) return "";
+  const ElementStore& el = s.set->store();
+  char why[160];
+  std::snprintf(why, sizeof why, " (critical step %.4g; volume %.3g of its initial)",
+                el.critical_dt[s.element], el.volume[s.element] / el.volume0[s.element]);
+  return element_name(s) + why;
 }
 
 core::Energies FeSolver::energies() const {

@@ -215,6 +215,27 @@ core::BodyPoints MpmModel::body_points(int body) const {
   return out;
 }
 
+std::vector<std::string> MpmModel::summary_warnings() const {
+  const Particles& p = solver_.particles();
+  std::vector<std::size_t> failed(scene_.bodies.size(), 0), all(scene_.bodies.size(), 0);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const auto b = static_cast<std::size_t>(p.body[i]);
+    ++all[b];
+    if (p.damage[i] >= 1.0) ++failed[b];
+  }
+  std::vector<std::string> out;
+  for (std::size_t b = 0; b < failed.size(); ++b) {
+    if (failed[b] == 0) continue;
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "%zu of %zu particles of body \"%s\" failed (damage 1: they carry no shear "
+                  "and no tension)",
+                  failed[b], all[b], scene_.bodies[b].name.c_str());
+    out.emplace_back(buf);
+  }
+  return out;
+}
+
 void MpmModel::state(core::StateArchive& archive) {
   solver_.state(archive);
 }

@@ -29,6 +29,7 @@ class MpmModel final : public core::Model {
   const MpmSolver& solver() const { return solver_; }
 
   double stable_time_step() const override { return solver_.stable_time_step(); }
+  std::string time_step_setter() const override { return solver_.time_step_setter(); }
   void step(double dt) override { solver_.step(dt); }
   long step_count() const override { return solver_.step_count(); }
   double time() const override { return solver_.time(); }
@@ -55,6 +56,8 @@ class MpmModel final : public core::Model {
     probes_.sample(solver_.particles(), out);
   }
   core::BodyPoints body_points(int body) const override;
+  // Per body with failed particles (damage 1): how many of its particles failed.
+  std::vector<std::string> summary_warnings() const override;
   void state(core::StateArchive& archive) override;
   // The particles' block of one output frame (valid until the next call).
   core::PointBlock particle_block();

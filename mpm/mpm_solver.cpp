@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <sstream>
 
@@ -286,6 +287,34 @@ double MpmSolver::max_signal_speed() const {
     speed2 = std::max(speed2, core::dot(p.velocity[i], p.velocity[i]));
   }
   return wave + std::sqrt(speed2);
+}
+
+std::string MpmSolver::time_step_setter() const {
+  const Particles& p = particles_;
+  std::size_t fastest = p.size();
+  double fastest_wave = 0.0, fastest_speed = -1.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const core::Material& m = *materials_[static_cast<std::size_t>(p.material[i])];
+    const core::PointState st{p.stress[i], p.plastic_strain[i], p.temperature[i], p.energy[i],
+                              p.mass[i] / p.volume[i]};
+    const double wave = core::wave_speed(m, st);
+    const double speed = core::norm(p.velocity[i]);
+    if (wave + speed > fastest_wave + fastest_speed) {
+      fastest = i;
+      fastest_wave = wave;
+      fastest_speed = speed;
+    }
+  }
+  if (fastest == p.size()) return "";
+  const Vec3& x = p.position[fastest];
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "particle %d of body '%s' at (%.4g, %.4g, %.4g) (wave speed %.4g + speed %.4g "
+                "over the cell %.4g)",
+                p.id[fastest],
+                scene_.bodies[static_cast<std::size_t>(p.body[fastest])].name.c_str(), x.x, x.y,
+                x.z, fastest_wave, fastest_speed, grid_.cell());
+  return buf;
 }
 
 Energies MpmSolver::energies() const {

@@ -49,6 +49,9 @@ class MpmSolver {
 
   // Stable step: factor * h / (max_p c_p + max_p |v_p|), or the scene's fixed step.
   double stable_time_step() const;
+  // The particle with the largest c_p + |v_p|, which bounds that step: its id, body and
+  // position, both speeds and the cell, for the run summary (core::Model::time_step_setter).
+  std::string time_step_setter() const;
   // Advances by dt running each stage of the plan once. Throws core::SimulationError naming
   // the step, particle and field when a value becomes NaN/Inf or a particle leaves the grid.
   void step(double dt);

@@ -37,6 +37,10 @@ std::string history_path(const OutputPaths& paths) {
   return (std::filesystem::path(paths.directory) / paths.history_file).string();
 }
 
+std::string warnings_path(const OutputPaths& paths) {
+  return (std::filesystem::path(paths.directory) / paths.warnings_file).string();
+}
+
 void cut_to_checkpoint(const std::string& path, std::uintmax_t bytes) {
   std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(path, ec);

@@ -19,10 +19,11 @@ std::string default_output_directory(const std::string& scene_path);
 // The default paths for a scene.
 OutputPaths default_output_paths(const std::string& scene_path);
 
-// DIR/STEM.h5, DIR/STEM.xmf and DIR/history.csv.
+// DIR/STEM.h5, DIR/STEM.xmf, DIR/history.csv and DIR/warnings.txt.
 std::string fields_h5_path(const OutputPaths& paths);
 std::string fields_xmf_path(const OutputPaths& paths);
 std::string history_path(const OutputPaths& paths);
+std::string warnings_path(const OutputPaths& paths);
 
 // A restart (core/checkpoint.hpp): cuts a run file back to its length `bytes` at the
 // checkpoint, dropping what was written after it, before the caller appends. Throws

@@ -92,6 +92,12 @@ struct RunSummary {
   /// Every probe's history ([[probes]]), in the scene's order, recorded with or without an
   /// output directory.
   std::vector<ProbeSeries> probes{};
+  /// What the results should be read with, one line each (`afemp run` prints them last and
+  /// writes them to warnings.txt in the run directory; the exit code stays 0): hourglass energy
+  /// past 10 % of the internal energy, an energy-balance error past 5 %, a stable step that fell
+  /// more than 10-fold and what set it, failed points, mass that left the model, bodies that
+  /// came to overlap with no contact between them, and what the model adds of its own.
+  std::vector<std::string> warnings{};
   bool checks_passed() const {
     for (const ReferenceCheck& c : checks)
       if (!c.passed()) return false;

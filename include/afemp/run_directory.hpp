@@ -15,6 +15,8 @@ struct OutputPaths {
   std::string directory{};                   ///< everything of one run goes here
   std::string fields_stem = "fields";        ///< DIR/STEM.h5 and DIR/STEM.xmf: the field frames
   std::string history_file = "history.csv";  ///< DIR/history.csv: energies and momenta per row
+  /// DIR/warnings.txt: RunSummary::warnings, one a line, written when the run finishes
+  std::string warnings_file = "warnings.txt";
 };
 
 }  // namespace afemp::core

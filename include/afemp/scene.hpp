@@ -309,6 +309,10 @@ struct BodySpec {
   int bonded_to = -1;
   /// Particles: none is placed inside the shapes of these bodies (water around a charge).
   std::vector<int> outside{};
+  /// Bodies this one is meant to overlap with no contact between them (indices into
+  /// Scene::bodies): neither the warning before the run nor the run's check for bodies that
+  /// come to overlap names the pair (core/contact_warnings.hpp).
+  std::vector<int> overlap_allowed{};
   Vec3 velocity{};                      ///< initial velocity
   std::optional<double> temperature{};  ///< initial temperature; default the material's
   /// Initial specific internal energy e0 (per unit mass; J/kg = mm^2/ms^2): with an EOS that

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -72,7 +73,9 @@ std::vector<std::vector<std::string>> read_rows(const std::string& path, std::st
 // compared). The node masses are recomputed from the
 // live elements: sum of live node masses = sum of live element masses (1e-12). Each record
 // (time,kind,id,body,reason,energy,mass) accounts for its share: the rows' energies add up to
-// the eroded energy and a hexahedron's mass is rho h^3 (CSV precision, 1e-9).
+// the eroded energy and a hexahedron's mass is rho h^3 (CSV precision, 1e-9). The summary
+// warns of the eroded elements (their count) and of the mass that left with them, eroded
+// rho h^3 (to the 6 digits it prints).
 TEST(Erosion, ErodedElementsAreRecordedAndTheEnergyBalanceCloses) {
   test::ScratchDir dir;
   const core::Scene scene = core::parse_scene(kPulledBar, "bar.toml");
@@ -135,6 +138,23 @@ TEST(Erosion, ErodedElementsAreRecordedAndTheEnergyBalanceCloses) {
     if (h.alive[e]) element_total += h.mass[e];
   EXPECT_NEAR(node_mass, element_total, 1e-12 * element_total);
   EXPECT_NEAR(element_total, (h.size() - eroded) * element_mass, 1e-9 * element_total);
+
+  const std::string count = std::to_string(eroded) + " of " + std::to_string(h.size()) +
+                            " elements of body \"bar\" eroded";
+  EXPECT_EQ(std::count_if(s.warnings.begin(), s.warnings.end(),
+                          [&](const std::string& w) { return w.rfind(count, 0) == 0; }),
+            1)
+      << count;
+  double lost = 0.0, initial = 0.0;
+  for (const std::string& w : s.warnings) {
+    if (w.find("with eroded elements") == std::string::npos) continue;
+    ASSERT_EQ(std::sscanf(w.c_str(), "%*f %% of the initial mass left the model (%lf of %lf)",
+                          &lost, &initial),
+              2)
+        << w;
+  }
+  EXPECT_NEAR(lost, static_cast<double>(eroded) * element_mass, 1e-5 * lost);
+  EXPECT_NEAR(initial, static_cast<double>(h.size()) * element_mass, 1e-5 * initial);
   std::printf(
       "erosion: %zu of %zu hexahedra eroded, %zu records, eroded energy %.4g of the "
       "work %.4g done on the bar, energy-balance error %.3f %% before the erosion, "

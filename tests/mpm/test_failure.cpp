@@ -9,6 +9,7 @@
 
 #include "core/material_fixtures.hpp"
 #include "core/scene.hpp"
+#include "mpm/mpm_model.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
 
@@ -27,9 +28,9 @@ struct Expansion {
 // An elastic copper column 1 x 1 x 10 mm in uniaxial strain (side faces symmetric) pulled
 // apart by its own velocity field v_z = 10 (z - 5) m/s per mm: hydrostatic tension grows by
 // K epsdot dt per step, uniformly, until the release waves from the free ends reach the
-// middle (about 1 us). Runs 1.2 us.
-Expansion expand(const std::string& failure) {
-  const std::string text = R"(
+// middle (about 1 us): the scene, and the velocity field given to its particles.
+std::string expansion_scene(const std::string& failure) {
+  return R"(
 [run]
 end_time = 1.0
 [grid]
@@ -41,17 +42,24 @@ boundary = { xmin = "symmetric", xmax = "symmetric", ymin = "symmetric", ymax = 
 density = 8.93e-3
 E = 1.24e5
 nu = 0.34
-)" + failure + R"(
+)" + failure +
+         R"(
 [[bodies]]
 name = "column"
 material = "copper"
 shape = { box = { min = [0, 0, 0], max = [1, 1, 10] } }
 )";
-  const core::Scene scene = core::parse_scene(text, "expansion.toml");
-  MpmSolver solver(scene, generate_particles(scene));
-  Particles& p = solver.mutable_particles();
+}
+void pull_apart(Particles& p) {
   for (std::size_t i = 0; i < p.size(); ++i)
     p.velocity[i] = {0.0, 0.0, 10.0 * (p.position[i].z - 5.0)};
+}
+
+// The column run 1.2 us.
+Expansion expand(const std::string& failure) {
+  const core::Scene scene = core::parse_scene(expansion_scene(failure), "expansion.toml");
+  MpmSolver solver(scene, generate_particles(scene));
+  pull_apart(solver.mutable_particles());
   Expansion r;
   while (solver.time() < 1.2e-3) {
     solver.step(std::min(solver.stable_time_step(), 1.2e-3 - solver.time()));
@@ -93,6 +101,29 @@ TEST(Failure, SpallStrengthBoundsTheTensionOfParticlesAndFailedOnesCarryNone) {
   EXPECT_GT(spalled.failed, spalled.particles / 5);  // measured: the middle 1280 of 5120
   EXPECT_LT(spalled.failed_shear, 1e-9);
   EXPECT_GE(spalled.failed_tension, 0.0);
+}
+
+// Reference: the spall model's definition, as above: the middle of the column fails. The
+// model's summary warning counts the particles at damage 1 among the column's.
+TEST(Failure, TheSummaryCountsTheFailedParticles) {
+  const core::Scene scene = core::parse_scene(
+      expansion_scene("failure = { model = \"spall\", pressure = 1000 }"), "expansion.toml");
+  MpmModel model(scene);
+  pull_apart(model.solver().mutable_particles());
+  EXPECT_TRUE(model.summary_warnings().empty());
+  while (model.time() < 1.2e-3)
+    model.step(std::min(model.stable_time_step(), 1.2e-3 - model.time()));
+  const Particles& p = model.solver().particles();
+  const auto failed =
+      std::count_if(p.damage.begin(), p.damage.end(), [](double d) { return d >= 1.0; });
+  EXPECT_GT(failed, 0);
+  const std::vector<std::string> w = model.summary_warnings();
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0].rfind(std::to_string(failed) + " of " + std::to_string(p.size()) +
+                           " particles of body \"column\" failed",
+                       0),
+            0u)
+      << w[0];
 }
 
 }  // namespace

@@ -9,7 +9,9 @@
 #include <vector>
 
 #include "afemp/errors.hpp"
+#include "analysis/reference_checks.hpp"
 #include "core/scene.hpp"
+#include "mpm/mpm_model.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
 
@@ -66,6 +68,30 @@ TEST(Outflow, ParticlesLeavingThroughAnOutflowFaceKeepMassMomentumAndEnergyInThe
     EXPECT_NEAR(e.bodies[0].momentum[a] + e.outflow_momentum[a], p0[a], 1e-12 * core::norm(p0));
   EXPECT_NEAR(e.total(), energy0, 1e-12 * energy0);
   EXPECT_GT(e.outflow, 0.3 * energy0);
+}
+
+// Reference: the books above. Run by the time loop to 7 us, half the block gone, the summary
+// warns that the outflow mass left the model, with the initial mass (to the 6 digits it
+// prints), and of nothing else.
+TEST(Outflow, TheSummaryWarnsOfTheMassThatLeftThroughTheFace) {
+  std::string text = free_block("outflow");
+  text.replace(text.find("end_time = 1.0"), 14, "end_time = 7e-3");
+  const core::Scene scene = core::parse_scene(text, "outflow.toml");
+  MpmModel model(scene);
+  const core::RunSummary s = analysis::run(model, scene, core::RunOptions{});
+  ASSERT_EQ(s.warnings.size(), 1u);
+  const std::string& w = s.warnings[0];
+  std::printf("[ warning ] %s\n", w.c_str());
+  EXPECT_NE(w.find("through the grid's outflow faces"), std::string::npos) << w;
+  EXPECT_EQ(w.find("eroded"), std::string::npos) << w;
+  double lost = 0.0, initial = 0.0;
+  ASSERT_EQ(std::sscanf(w.c_str(), "%*f %% of the initial mass left the model (%lf of %lf)", &lost,
+                        &initial),
+            2)
+      << w;
+  EXPECT_GT(s.final.outflow_mass, 0.3 * s.initial.bodies[0].mass);
+  EXPECT_NEAR(lost, s.final.outflow_mass, 1e-5 * lost);
+  EXPECT_NEAR(initial, s.initial.bodies[0].mass, 1e-5 * initial);
 }
 
 // A soft copper block (yield 50 MPa, bulk viscosity on) at 500 m/s strikes one at rest; the
