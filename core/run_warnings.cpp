@@ -12,6 +12,8 @@ namespace {
 
 constexpr double kHourglassShare = 0.1;  // of the internal energy
 constexpr double kEnergyError = 0.05;    // of the energy the run handled (energy_balance_error)
+// Past this error a model that books some mechanism in no column of total() names them.
+constexpr double kUnbooked = 0.01;
 constexpr double kStepFall = 10.0;       // the first stable step over the smallest
 constexpr double kLostMass = 1e-6;       // of the initial mass: past round-off
 
@@ -71,6 +73,23 @@ std::vector<std::string> RunWarnings::summary(const Model& model, const Energies
                   "step factor, or the energy columns and the contacts, say where",
                   100.0 * error_peak_, error_time_, 100.0 * final_error);
     out.emplace_back(buf);
+  }
+  if (std::max(std::abs(error_peak_), std::abs(final_error)) > kUnbooked) {
+    const std::vector<std::string> unbooked = model.unbooked_energies();
+    if (!unbooked.empty()) {
+      std::snprintf(buf, sizeof buf,
+                    "the energy balance ended at %+.2f %% (largest %+.2f %%), and this scene has "
+                    "mechanisms whose energy no column of total books: ",
+                    100.0 * final_error, 100.0 * error_peak_);
+      std::string w = buf;
+      for (std::size_t k = 0; k < unbooked.size(); ++k) w += (k ? "; " : "") + unbooked[k];
+      if (final.contact > 0.0 && initial.total() > 0.0) {
+        std::snprintf(buf, sizeof buf, " (the contact column's estimate: %.4g, %.2f %% of E0)",
+                      final.contact, 100.0 * final.contact / initial.total());
+        w += buf;
+      }
+      out.push_back(std::move(w));
+    }
   }
   if (low_ * kStepFall < first_step_) {
     std::snprintf(buf, sizeof buf,
