@@ -269,7 +269,7 @@ std::vector<std::string> CoupledModel::force_columns() const {
   std::vector<std::string> out = fe_.force_columns();
   if (surface_contacts_)
     for (const ParticleSurfaceContacts::Pair& p : surface_contacts_->pairs())
-      core::append_force_columns(out, p.spec.name);
+      core::append_force_columns(out, core::contact_name(scene_, p.spec));
   return out;
 }
 

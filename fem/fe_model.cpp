@@ -193,7 +193,8 @@ std::vector<std::string> FeModel::force_columns() const {
   auto add = [&](const std::string& name, std::initializer_list<const char*> parts) {
     for (const char* p : parts) out.push_back(name + p);
   };
-  for (const MeshContact& c : solver_.mesh_contacts()) core::append_force_columns(out, c.spec.name);
+  for (const MeshContact& c : solver_.mesh_contacts())
+    core::append_force_columns(out, core::contact_name(scene_, c.spec));
   for (std::size_t w = 0; w < scene_.walls.size(); ++w)
     core::append_force_columns(out, "wall" + std::to_string(w + 1));
   for (const RigidBody& r : solver_.rigid_bodies())

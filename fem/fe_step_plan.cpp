@@ -29,10 +29,10 @@ std::string hexahedron_formulation(const core::Scene& scene, const BodySpec& bod
     core::appendf(out,
                   "one-point, assumed-strain (Belytschko-Bindeman ASQBI) stabilisation "
                   "from the elastic constants, scale %g",
-                  body.hourglass.coefficient);
+                  body.hourglass.effective_coefficient());
   else
     core::appendf(out, "one-point, %s hourglass control Q_hg = %g",
-                  core::to_string(body.hourglass.form), body.hourglass.coefficient);
+                  core::to_string(body.hourglass.form), body.hourglass.effective_coefficient());
   const core::BulkViscositySettings q = core::bulk_viscosity_of(scene, body);
   if (q.linear > 0.0 || q.quadratic > 0.0)
     core::appendf(out, ", bulk viscosity linear %g, quadratic %g", q.linear, q.quadratic);
@@ -156,7 +156,7 @@ FeStepPlan build_fe_step_plan(const core::Scene& scene, std::size_t imposed_node
     core::appendf(
         contacts,
         "%s%s: %s, penalty s = %g (k = %g / (w dt^2), w the inverse mass of the pair), friction %g",
-        contacts.empty() ? "" : "; ", c.name.c_str(),
+        contacts.empty() ? "" : "; ", core::contact_name(scene, c).c_str(),
         self ? "self-contact, node-to-surface" : "node-to-surface both ways", c.penalty, c.penalty,
         c.friction);
   }

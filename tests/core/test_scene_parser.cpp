@@ -648,7 +648,7 @@ TEST(SceneParser, MeshMistakesNameTheKeyAndWhatIsAllowed) {
                            "hourglass = { form = \"assumed_strain\" }"),
                   "mesh.toml");
   EXPECT_EQ(asqbi.bodies[0].hourglass.form, HourglassForm::assumed_strain);
-  EXPECT_EQ(asqbi.bodies[0].hourglass.coefficient, 1.0);
+  EXPECT_EQ(asqbi.bodies[0].hourglass.effective_coefficient(), 1.0);
   e = error_of(replaced("hourglass = { form = \"stiffness\", coefficient = 0.05 }",
                         "hourglass = { form = \"assumed_strain\", coefficient = 1.5 }"));
   EXPECT_NE(e.find("bodies.plate.hourglass.coefficient"), std::string::npos) << e;
