@@ -327,18 +327,11 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
     c.range(b.where, key + ".bulk_viscosity.quadratic", b.bulk_viscosity->quadratic,
             range::bulk_quadratic);
   }
-  // Trusses run the uniaxial update, which has no failed state: only a failure strain (their
-  // erosion criterion material_failure) applies to them.
-  if (b.discretisation == D::trusses && b.material >= 0 &&
-      static_cast<std::size_t>(b.material) < scene.materials.size()) {
+  if (b.material >= 0 && static_cast<std::size_t>(b.material) < scene.materials.size()) {
     const Material& m = scene.materials[static_cast<std::size_t>(b.material)];
-    if (m.fails() && !std::holds_alternative<PlasticStrainFailure>(m.failure))
-      c.fail(
-          b.where, key + ".material",
-          "material \"" + m.name +
-              "\" has a failure model, which trusses do not carry; "
-              "allowed for trusses: failure_strain (or failure = { model = \"plastic-strain\" }) "
-              "with erosion = { material_failure = true }");
+    if (const std::optional<FailureKeyRefusal> refusal = failure_key_refusal(b, m))
+      c.fail(b.where, (refusal->of_material ? "materials." + m.name : key) + "." + refusal->key,
+             refusal->message);
   }
   if (b.rigid && b.discretisation != D::hexahedra)
     c.fail(b.where, key + ".rigid", "a rigid body is made of hexahedra");

@@ -1698,6 +1698,27 @@ const toml::array& read_bodies(TableReader& r, Scene& scene,
   return *bodies;
 }
 
+// Failure keys a body's discretisation would not use (failure_key_refusal), at the line of the
+// material's key or of the body's.
+void check_failure_keys(const toml::table& root, const toml::array& bodies, const Scene& scene,
+                        const std::string& path) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const BodySpec& b = scene.bodies[i];
+    const Material& m = scene.materials[static_cast<std::size_t>(b.material)];
+    const std::optional<FailureKeyRefusal> refusal = failure_key_refusal(b, m);
+    if (!refusal) continue;
+    if (refusal->of_material) {
+      const toml::table& t = *root["materials"][m.name].as_table();
+      TableReader(t, "materials." + m.name, path).fail(refusal->key, refusal->message);
+    }
+    const toml::table& t = *bodies.get(i)->as_table();
+    if (const toml::table* e = t["erosion"].as_table(); e && refusal->key != "erosion")
+      TableReader(*e, "bodies." + b.name + ".erosion", path)
+          .fail(refusal->key.substr(std::string_view("erosion.").size()), refusal->message);
+    TableReader(t, "bodies." + b.name, path).fail(refusal->key, refusal->message);
+  }
+}
+
 // Adaptive conversion: the particles need the grid, and the remaining elements bond to them.
 void check_conversions(const toml::array& bodies, const Scene& scene, const std::string& path) {
   for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -1938,6 +1959,7 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
   if (has_particles(scene) && !scene.has_grid)
     throw InputError(SourceLocation{path, 0}, "grid",
                      "bodies of particles need a [grid] section (cell, min, max)");
+  check_failure_keys(root, bodies, scene, path);
   check_conversions(bodies, scene, path);
   read_splitting_bodies(r, scene, path);
   read_outside(bodies, scene, path);

@@ -180,4 +180,41 @@ inline std::optional<std::string> pressure_cutoff_refusal(const Material& m) {
          "(hjc-compaction), which has its own tension limit";
 }
 
+// A failure key that body's discretisation would not use, refused rather than ignored: the
+// key (relative to the material's table when `of_material`, else to the body's) and why.
+struct FailureKeyRefusal {
+  bool of_material = false;
+  std::string key;
+  std::string message;
+};
+// Trusses run the uniaxial update, which has no failed state: their material fails only
+// through erosion at its failure_strain (core/erosion_criteria.hpp), so they take that and no
+// failure model. Erosion at the material's failure needs a material that fails.
+inline std::optional<FailureKeyRefusal> failure_key_refusal(const BodySpec& b, const Material& m) {
+  const bool failure_strain_only =
+      !m.fails() ||
+      (m.failure_strain > 0.0 && std::holds_alternative<PlasticStrainFailure>(m.failure) &&
+       std::get<PlasticStrainFailure>(m.failure).strain == m.failure_strain);
+  const bool erodes_at_failure = b.erosion && b.erosion->material_failure;
+  if (b.discretisation == Discretisation::trusses && !failure_strain_only)
+    return FailureKeyRefusal{
+        true, "failure",
+        "body \"" + b.name +
+            "\" is made of trusses, which take failure_strain only (their erosion criterion, "
+            "with erosion = { material_failure = true }); a failure model acts at the points "
+            "of particles and hexahedra"};
+  if (b.discretisation == Discretisation::trusses && m.failure_strain > 0.0 && !erodes_at_failure)
+    return FailureKeyRefusal{false, "erosion",
+                             "material \"" + m.name +
+                                 "\"'s failure_strain acts on trusses only through erosion = { "
+                                 "material_failure = true } (trusses have no failed state); add "
+                                 "it, or remove failure_strain"};
+  if (erodes_at_failure && !m.fails() && !(m.failure_strain > 0.0))
+    return FailureKeyRefusal{false, "erosion.material_failure",
+                             "material \"" + m.name +
+                                 "\" has no failure_strain or failure model: no element erodes "
+                                 "at its failure; give one, or remove material_failure"};
+  return std::nullopt;
+}
+
 }  // namespace afemp::core
