@@ -1,6 +1,7 @@
 // The FE solver behind the core::Model interface (fem/fe_model.hpp).
 #include "fem/fe_model.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <initializer_list>
 #include <string>
@@ -268,9 +269,14 @@ std::string FeModel::describe_mesh() const {
                   q.worst_aspect_element, q.inverted, q.total_volume);
   if (q.lines > 0)
     core::appendf(out, "trusses: shortest %.4g (truss %d)\n", q.min_line_length, q.shortest_line);
-  core::appendf(out, "smallest element time step: %.6g at %s\n",
-                solver_.stable_time_step() / scene_.run.element_time_step_factor,
-                solver_.smallest_step_element().c_str());
+  // Rigid elements set no step: a scene of rigid meshes only leaves it to the particles.
+  const double limit = solver_.element_step_limit();
+  if (std::isfinite(limit))
+    core::appendf(out, "smallest element time step: %.6g at %s\n",
+                  limit / scene_.run.element_time_step_factor,
+                  solver_.smallest_step_element().c_str());
+  else
+    out += "smallest element time step: none (every element is rigid)\n";
   return out;
 }
 

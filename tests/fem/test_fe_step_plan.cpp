@@ -133,6 +133,15 @@ TEST(FeStepPlan, WallTrussGravityAndErosionAddTheirStagesInStepOrder) {
           "block: material failure (Johnson-Cook damage, D1 .. D5 = 0.05, 3.44, -2.12, 0, 0)"),
       std::string::npos)
       << failing.stages[4].why;
+  // Each stage names its bodies' material models, the failure model included (issue 46).
+  EXPECT_NE(failing.stages[2].why.find(", material steel (strength j2, EOS none, failure "
+                                       "Johnson-Cook damage, D1 .. D5 = 0.05, 3.44, -2.12, 0, 0)"),
+            std::string::npos)
+      << failing.stages[2].why;
+  EXPECT_NE(
+      failing.stages[3].why.find("rod: material wire (strength elastic, EOS none, failure none)"),
+      std::string::npos)
+      << failing.stages[3].why;
 }
 
 // Reference: conversion comes last (the coupled step takes the particles after the FE step),
