@@ -3,11 +3,26 @@
 // powers of length, time and mass in it.
 #pragma once
 
+#include <span>
 #include <string>
 
 #include "afemp/errors.hpp"
 
 namespace afemp::core {
+
+// A unit system: its units of length, time and mass in mm, ms and g, and how it writes a
+// density and a stress.
+struct UnitSystem {
+  const char* name;   // as --units takes it
+  const char* label;  // as messages name it ("SI" for m-s-kg)
+  const char* units;  // "m, s, kg, N, Pa"
+  double length, time, mass;
+  const char* density_unit;
+  const char* stress_unit;
+};
+// The systems decks are written in (mm-ms-g first), which the plausibility warnings also try
+// a scene without [run] units against (core/plausibility.cpp).
+std::span<const UnitSystem> unit_systems();
 
 struct Dimension {
   int length = 0, time = 0, mass = 0;

@@ -78,7 +78,8 @@ struct RunSettings {
   };
   std::optional<Termination> terminate{};
   /// The unit system the scene's numbers are in, for plausibility warnings
-  /// (core/plausibility.hpp): "mm-ms-g" (mm, ms, g, N, MPa), "SI", or empty (none checked).
+  /// (core/plausibility.hpp): "mm-ms-g" (mm, ms, g, N, MPa), "SI", or empty (each material is
+  /// then tried against the unit systems a scene may be in).
   std::string units{};
   /// Keys whose plausibility warnings are silenced (dotted, as the warning names them).
   std::vector<std::string> quiet{};
