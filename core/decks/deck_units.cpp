@@ -36,6 +36,7 @@ UnitConversion::UnitConversion(const std::string& system, const SourceLocation& 
       time_ = s.time;
       mass_ = s.mass;
       description_ = std::string("mm, ms, g, N, MPa (the deck's ") + s.units + " converted)";
+      scene_units_ = "mm-ms-g";
       return;
     }
     if (!known.empty()) known += ", ";

@@ -50,10 +50,14 @@ class UnitConversion {
   double operator()(double value, Dimension d) const;
   // "mm, ms, g, N, MPa (converted from m, s, kg, N, Pa)" or "the deck's own (...)".
   const std::string& description() const { return description_; }
+  // The [run] units of the scene the numbers go into: "mm-ms-g" when converting, else empty
+  // (the deck's own units, which the scene cannot name).
+  const std::string& scene_units() const { return scene_units_; }
 
  private:
   double length_ = 1.0, time_ = 1.0, mass_ = 1.0;  // one deck unit in mm, ms, g
   std::string description_;
+  std::string scene_units_;
 };
 
 }  // namespace afemp::core

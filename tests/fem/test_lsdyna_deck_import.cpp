@@ -173,6 +173,9 @@ TEST(LsDynaDeckImport, SiDeckIsConvertedIntoMillimetresMilliseconds) {
   EXPECT_EQ(s.bodies[0].element, core::HexFormulation::full);  // ELFORM 2
   EXPECT_DOUBLE_EQ(std::get<core::MeshFileShape>(s.bodies[0].shape).scale, 1000.0);
   EXPECT_NEAR(s.walls[0].point.z, -1.0, 1e-12);
+  // The converted scene states its units, so that its plausibility is checked in them.
+  EXPECT_EQ(s.run.units, "mm-ms-g");
+  EXPECT_TRUE(import_text(dir, kDeck).scene.run.units.empty());  // kept as the deck's
 }
 
 // *INCLUDE: the mesh in a file beside the deck; the scene's body reads it through the deck.
