@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <variant>
 
+#include "core/decks/deck_units.hpp"
 #include "core/materials/initial_pressure.hpp"
 #include "core/materials/material.hpp"
 
@@ -126,6 +127,97 @@ void warn_material_units(const Scene& scene, Warner& warn) {
   }
 }
 
+// A material's numbers read in unit system s: density in g/mm^3, stress in MPa, speed in m/s
+// (= mm/ms).
+double density_in(const UnitSystem& s, double rho) {
+  return rho * s.mass / (s.length * s.length * s.length);
+}
+double stress_in(const UnitSystem& s, double stress) {
+  return stress * s.mass / (s.length * s.time * s.time);
+}
+// sqrt((K + 4G/3) / rho), the density read in system d and the moduli in system k.
+double wave_speed_in(const Material& m, const UnitSystem& d, const UnitSystem& k) {
+  return std::sqrt(stress_in(k, m.bulk_modulus() + 4.0 / 3.0 * m.shear_modulus()) /
+                   density_in(d, m.density));
+}
+// Whether the material is a real one read in system s: its density, and its elastic wave speed
+// where it gives E (a fluid's EOS sets its own).
+bool real_in(const Material& m, const UnitSystem& s) {
+  const double rho = density_in(s, m.density);
+  if (rho < mm_ms_g.density_low || rho > mm_ms_g.density_high) return false;
+  if (!(m.youngs_modulus > 0.0)) return true;
+  const double c = wave_speed_in(m, s, s);
+  return c >= wave_low && c <= wave_high;
+}
+
+// Without [run] units, the materials against the unit systems a scene may be in
+// (core/decks/deck_units.hpp; mm-ms-g and SI give the same speeds, m/s = mm/ms, so a density
+// and a modulus decide). A material real in no system whose density is real in one and whose
+// modulus makes a real wave speed with it in another mixes the two (steel at 7850 kg/m^3 with
+// E in MPa: 6 m/s); a material real only outside the system most materials are real in was
+// pasted from another scene. Numbers real in no system and no pair are a scene's own units,
+// which pass unwarned.
+void warn_unstated_units(const Scene& scene, Warner& warn) {
+  if (!scene.run.units.empty()) return;
+  const std::span<const UnitSystem> systems = unit_systems();
+  std::vector<std::size_t> count(systems.size(), 0);
+  for (const Material& mat : scene.materials)
+    for (std::size_t s = 0; s < systems.size(); ++s) count[s] += real_in(mat, systems[s]) ? 1 : 0;
+  const std::size_t usual = static_cast<std::size_t>(std::max_element(count.begin(), count.end()) -
+                                                     count.begin());  // the first on a tie
+  const UnitSystem& u = systems[usual];
+  for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+    const Material& mat = scene.materials[m];
+    if (real_in(mat, u)) continue;
+    const std::string key = "materials." + mat.name + ".density";
+    const SourceLocation at =
+        m < scene.material_where.size() ? scene.material_where[m] : SourceLocation{scene.path, 0};
+    const auto in_usual = [&](const UnitSystem& from) {
+      std::string out = "density is " + num(density_in(from, mat.density) / density_in(u, 1.0)) +
+                        " " + u.density_unit;
+      if (mat.youngs_modulus > 0.0)
+        out += " and E " + num(stress_in(from, mat.youngs_modulus) / stress_in(u, 1.0)) + " " +
+               u.stress_unit;
+      return out;
+    };
+    const auto other = std::find_if(systems.begin(), systems.end(),
+                                    [&](const UnitSystem& s) { return real_in(mat, s); });
+    if (other != systems.end()) {
+      warn(at, key,
+           "material " + mat.name + " looks like " + other->label + " (density " +
+               num(mat.density) + " " + other->density_unit +
+               (mat.youngs_modulus > 0.0
+                    ? ", E " + num(mat.youngs_modulus) + " " + other->stress_unit
+                    : std::string()) +
+               ") while the scene's other materials look like " + u.label + "; in " + u.label +
+               " its " + in_usual(*other) + " (or state [run] units)");
+      continue;
+    }
+    if (!(mat.youngs_modulus > 0.0)) continue;
+    // The density's system d and the modulus's k that make a real wave speed together, k the
+    // usual one where it can be.
+    for (std::size_t j = 0; j < systems.size(); ++j) {
+      const UnitSystem& k = systems[j == 0 ? usual : j == usual ? 0 : j];
+      const auto d = std::find_if(systems.begin(), systems.end(), [&](const UnitSystem& s) {
+        const double rho = density_in(s, mat.density), c = wave_speed_in(mat, s, k);
+        return rho >= mm_ms_g.density_low && rho <= mm_ms_g.density_high && c >= wave_low &&
+               c <= wave_high;
+      });
+      if (d == systems.end()) continue;
+      warn(at, key,
+           "density " + num(mat.density) + " looks like " + d->density_unit + " (" + d->label +
+               ") and E = " + num(mat.youngs_modulus) + " like " + k.stress_unit + " (" + k.label +
+               "): its elastic wave speed sqrt((K + 4G/3) / rho) is " +
+               num(wave_speed_in(mat, k, k)) + " m/s in " + k.label + "; in " + k.label +
+               " the density is " + num(density_in(*d, mat.density) / density_in(k, 1.0)) + " " +
+               k.density_unit + " (steel: " + num(7.85e-3 / density_in(k, 1.0)) + "), in " +
+               d->label + " E is " + num(stress_in(k, mat.youngs_modulus) / stress_in(*d, 1.0)) +
+               " " + d->stress_unit + " (or state [run] units)");
+      break;
+    }
+  }
+}
+
 // Erosion plastic strains given as a percentage.
 void warn_erosion_strain(const Scene& scene, Warner& warn) {
   for (const BodySpec& body : scene.bodies)
@@ -243,6 +335,7 @@ std::string SceneWarning::text() const {
 std::vector<SceneWarning> plausibility_warnings(const Scene& scene) {
   Warner warn(scene);
   warn_material_units(scene, warn);
+  warn_unstated_units(scene, warn);
   warn_erosion_strain(scene, warn);
   warn_grid_cells(scene, warn);
   warn_unheld_cut_planes(scene, warn);

@@ -83,6 +83,13 @@ const char* to_string(ContactMethod m) {
   return "?";
 }
 
+std::string contact_name(const Scene& scene, const ContactSpec& contact) {
+  if (!contact.name.empty()) return contact.name;
+  const std::string& a = scene.bodies[static_cast<std::size_t>(contact.bodies[0])].name;
+  if (contact.bodies[0] == contact.bodies[1]) return a + "-self";
+  return a + "-" + scene.bodies[static_cast<std::size_t>(contact.bodies[1])].name;
+}
+
 bool has_grid_contact(const Scene& scene) {
   for (const ContactSpec& c : scene.contacts)
     if (c.method == ContactMethod::grid) return true;

@@ -33,6 +33,10 @@ std::size_t history_count(const Scene& scene);
 // column names it NAME, else "history_K".
 std::vector<std::string> history_field_names(const Scene& scene);
 
+// The name of a contact's history columns (NAME.fx, ...): its own, or "BODY1-BODY2"
+// ("BODY-self" for a self-contact), the default of the scene file and of a program alike.
+std::string contact_name(const Scene& scene, const ContactSpec& contact);
+
 // The bulk viscosity of a body: its own, or the default (on for hexahedra and for particles
 // whose material has an equation of state).
 BulkViscositySettings bulk_viscosity_of(const Scene& scene, const BodySpec& body);

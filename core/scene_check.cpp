@@ -1,7 +1,10 @@
 // Checks of a scene built in code (afemp::Simulation): the same ranges and rules the scene-file
 // parser (scene_parser.cpp) applies as it reads, on the plain data, with messages that name the
 // object and the field by the scene file's dotted key and say what is allowed.
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <set>
 #include <string>
 #include <variant>
@@ -10,12 +13,11 @@
 #include "core/materials/initial_pressure.hpp"
 #include "core/scene.hpp"
 #include "core/scene_parser.hpp"
+#include "core/scene_ranges.hpp"
 
 namespace afemp::core {
 
 namespace {
-
-using scene_detail::Range;
 
 class Checker {
  public:
@@ -35,11 +37,15 @@ class Checker {
            "value " + scene_detail::format_number(v) +
                " is out of range; allowed: " + allowed.describe());
   }
-  void positive(const SourceLocation& w, const std::string& key, double v) const {
-    range(w, key, v, scene_detail::Range::positive());
-  }
-  void non_negative(const SourceLocation& w, const std::string& key, double v) const {
-    range(w, key, v, scene_detail::Range::non_negative());
+  // A whole number within its Count, with the parser's message.
+  void count(const SourceLocation& where, const std::string& key, long v,
+             const scene_ranges::Count& allowed) const {
+    if (!allowed.contains(v))
+      fail(where, key,
+           "value " + std::to_string(v) + " is out of range; allowed: " +
+               (allowed.hi == std::numeric_limits<long>::max()
+                    ? "value >= " + std::to_string(allowed.lo)
+                    : std::to_string(allowed.lo) + " <= value <= " + std::to_string(allowed.hi)));
   }
   void finite(const SourceLocation& w, const std::string& key, const Vec3& v) const {
     if (!std::isfinite(v.x + v.y + v.z)) fail(w, key, "every component must be a finite number");
@@ -62,22 +68,35 @@ class Checker {
 };
 
 void check_run(const Checker& c, const RunSettings& run) {
+  namespace range = scene_ranges::run;
   const SourceLocation w;
-  c.positive(w, "run.end_time", run.end_time);
-  c.range(w, "run.time_step_factor", run.time_step_factor, Range{0.0, 1.0, true, false});
+  c.range(w, "run.end_time", run.end_time, range::end_time);
+  c.range(w, "run.time_step_factor", run.time_step_factor, range::time_step_factor);
   c.range(w, "run.element_time_step_factor", run.element_time_step_factor,
-          Range{0.0, 1.0, true, false});
-  c.non_negative(w, "run.time_step", run.fixed_time_step);
-  if (run.max_steps < 0) c.fail(w, "run.max_steps", "must be >= 0");
-  c.non_negative(w, "run.output_every", run.output_every);
-  if (run.history_every < 1) c.fail(w, "run.history_every", "must be >= 1");
-  c.non_negative(w, "run.history_interval", run.history_interval);
+          range::element_time_step_factor);
+  // 0: not given (the stable step; history_every's rows).
+  if (run.fixed_time_step != 0.0)
+    c.range(w, "run.time_step", run.fixed_time_step, range::time_step);
+  c.count(w, "run.max_steps", run.max_steps, range::max_steps);
+  c.range(w, "run.output_every", run.output_every, range::output_every);
+  c.count(w, "run.history_every", run.history_every, range::history_every);
+  if (run.history_interval != 0.0)
+    c.range(w, "run.history_interval", run.history_interval, range::history_interval);
   for (std::size_t k = 0; k < run.output_times.size(); ++k)
-    if (!(run.output_times[k] > (k > 0 ? run.output_times[k - 1] : 0.0)) ||
+    if (!range::output_times.contains(run.output_times[k]) ||
+        !(run.output_times[k] > (k > 0 ? run.output_times[k - 1] : 0.0)) ||
         run.output_times[k] > run.end_time)
       c.fail(w, "run.output_times", "times must be positive, increasing and at most end_time");
-  c.non_negative(w, "run.energy_error_limit", run.energy_error_limit);
+  c.range(w, "run.energy_error_limit", run.energy_error_limit, range::energy_error_limit);
   c.finite(w, "run.gravity", run.gravity);
+  if (!run.units.empty() &&
+      std::find(scene_ranges::kUnitSystems.begin(), scene_ranges::kUnitSystems.end(), run.units) ==
+          scene_ranges::kUnitSystems.end())
+    c.fail(w, "run.units",
+           "unknown unit system \"" + run.units + "\"; allowed: \"mm-ms-g\", \"SI\"");
+  c.range(w, "run.checkpoint_every", run.checkpoint_every, range::checkpoint_every);
+  c.range(w, "run.checkpoint_wall_every", run.checkpoint_wall_every, range::checkpoint_wall_every);
+  c.count(w, "run.checkpoint_keep", run.checkpoint_keep, range::checkpoint_keep);
 }
 
 void check_grid(const Checker& c, const Scene& scene) {
@@ -86,14 +105,25 @@ void check_grid(const Checker& c, const Scene& scene) {
   if (has_particles(scene) && !scene.has_grid)
     c.fail(w, "grid", "bodies of particles need a grid (has_grid, cell, min, max)");
   if (!scene.has_grid) return;
-  c.positive(w, "grid.cell", g.cell);
+  c.range(w, "grid.cell", g.cell, scene_ranges::grid::cell);
   c.finite(w, "grid.min", g.min);
   c.finite(w, "grid.max", g.max);
   for (int a = 0; a < 3; ++a)
     if (!(g.max[a] > g.min[a]))
       c.fail(w, "grid.max",
              "max must exceed min in every component; component " + std::to_string(a));
-  c.range(w, "mpm.flip", scene.mpm.flip, Range::closed(0.0, 1.0));
+  c.range(w, "mpm.flip", scene.mpm.flip, scene_ranges::mpm::flip);
+  if (const std::optional<SplittingSettings>& split = scene.mpm.splitting) {
+    c.range(w, "mpm.splitting.alpha", split->alpha, scene_ranges::mpm::split_alpha);
+    c.count(w, "mpm.splitting.max_particles", static_cast<long>(split->max_particles),
+            scene_ranges::mpm::split_max_particles);
+    if (!split->axes[0] && !split->axes[1] && !split->axes[2])
+      c.fail(w, "mpm.splitting.axes", "name at least one axis (x, y, z)");
+    for (int b : split->bodies)
+      if (c.body(w, "mpm.splitting.bodies", b, false) >= 0 &&
+          scene.bodies[static_cast<std::size_t>(b)].discretisation != Discretisation::particles)
+        c.fail(w, "mpm.splitting.bodies", "only bodies of particles split");
+  }
   if (scene.mpm.transfer == Transfer::apic && scene.mpm.shape != ShapeFunction::gimp)
     c.fail(w, "mpm.transfer",
            "\"apic\" needs shape_function = \"gimp\" (the affine transfer is "
@@ -110,7 +140,8 @@ void check_grid(const Checker& c, const Scene& scene) {
                  "conversion); allowed here: \"free\", \"fixed\", \"symmetric\", \"wall\"");
   if (g.far_field) {
     c.finite(w, "grid.far_field.centre", g.far_field->centre);
-    c.non_negative(w, "grid.far_field.pressure", g.far_field->pressure);
+    c.range(w, "grid.far_field.pressure", g.far_field->pressure,
+            scene_ranges::grid::far_field_pressure);
     if (!g.has_face(FaceCondition::absorbing))
       c.fail(w, "grid.far_field",
              "the far field acts through absorbing faces, and no face of "
@@ -132,16 +163,30 @@ void check_grid(const Checker& c, const Scene& scene) {
 void check_material(const Checker& c, const Material& m) {
   const SourceLocation w;
   const std::string key = "materials." + (m.name.empty() ? std::string("(unnamed)") : m.name);
+  namespace range = scene_ranges::material;
   if (m.name.empty()) c.fail(w, key + ".name", "a material name must not be empty");
-  c.positive(w, key + ".density", m.density);
+  c.range(w, key + ".density", m.density, range::density);
   // A fluid may leave out E and nu (0), as the parser allows: it has no shear.
   if (!(std::holds_alternative<Fluid>(m.strength) && m.youngs_modulus == 0.0))
-    c.positive(w, key + ".E", m.youngs_modulus);
-  c.range(w, key + ".nu", m.poisson_ratio, Range{0.0, 0.5, false, true});
-  c.non_negative(w, key + ".specific_heat", m.thermal.specific_heat);
-  c.range(w, key + ".taylor_quinney", m.thermal.taylor_quinney, Range::closed(0.0, 1.0));
-  c.non_negative(w, key + ".temperature", m.thermal.initial_temperature);
-  c.non_negative(w, key + ".failure_strain", m.failure_strain);
+    c.range(w, key + ".E", m.youngs_modulus, range::youngs_modulus);
+  c.range(w, key + ".nu", m.poisson_ratio, range::poisson_ratio);
+  c.range(w, key + ".specific_heat", m.thermal.specific_heat, range::specific_heat);
+  c.range(w, key + ".taylor_quinney", m.thermal.taylor_quinney, range::taylor_quinney);
+  c.range(w, key + ".temperature", m.thermal.initial_temperature, range::temperature);
+  c.range(w, key + ".failure_strain", m.failure_strain, range::failure_strain);
+  // The scene file's failure_strain is short for the plastic-strain failure model, which the
+  // solvers' points fail by; a program gives the model with it.
+  if (m.failure_strain > 0.0 &&
+      !(std::holds_alternative<PlasticStrainFailure>(m.failure) &&
+        std::get<PlasticStrainFailure>(m.failure).strain == m.failure_strain))
+    c.fail(w, key + ".failure_strain",
+           "a failure_strain is the failure model PlasticStrainFailure{failure_strain} (the scene "
+           "file's short form of failure = { model = \"plastic-strain\" }); set failure to it, "
+           "or give the failure model alone");
+  if (m.pressure_cutoff != -std::numeric_limits<double>::infinity())
+    c.range(w, key + ".pressure_cutoff", m.pressure_cutoff, range::pressure_cutoff);
+  if (const std::optional<std::string> why = pressure_cutoff_refusal(m))
+    c.fail(w, key + ".pressure_cutoff", *why);
   try {
     m.validate();
   } catch (const std::invalid_argument& e) {
@@ -165,14 +210,33 @@ void check_shape(const Checker& c, const BodySpec& b, const std::string& key) {
       c.fail(b.where, shape, "a cylinder makes particles or hexahedra");
     if (cyl->top_radius >= 0.0 && !particles)
       c.fail(b.where, shape + ".cone", "a cone makes particles only");
-    c.positive(b.where, shape + ".cylinder.radius", cyl->radius);
-    c.positive(b.where, shape + ".cylinder.length", cyl->length);
+    namespace range = scene_ranges::shape;
+    const bool cone = cyl->top_radius >= 0.0;
+    const std::string at = shape + (cone ? ".cone" : ".cylinder");
+    if (cone) {
+      c.range(b.where, at + ".radius", cyl->radius, range::cone_radius);
+      c.range(b.where, at + ".top_radius", cyl->top_radius, range::cone_radius);
+      c.range(b.where, at + ".wall", cyl->wall, range::cone_wall);
+    } else {
+      c.range(b.where, at + ".radius", cyl->radius, range::radius);
+    }
+    c.range(b.where, at + ".length", cyl->length, range::length);
     if (!(norm(cyl->axis) > 0.0))
-      c.fail(b.where, shape + ".cylinder.axis", "the axis must be a non-zero vector");
+      c.fail(b.where, at + ".axis", "the axis must be a non-zero vector");
+    if (cyl->nose.crh != 0.0) {
+      c.range(b.where, at + ".nose.crh", cyl->nose.crh, range::nose_crh);
+      c.range(b.where, at + ".nose.meplat", cyl->nose.meplat, range::nose_meplat);
+      if (!(cyl->nose.meplat < 2.0 * cyl->radius))
+        c.fail(b.where, at + ".nose.meplat",
+               "the flat tip's diameter must be less than the cylinder's");
+      if (hexes && !(cyl->nose.meplat > 0.0))
+        c.fail(b.where, at + ".nose.meplat",
+               "a nose meshed with hexahedra needs a flat tip (meplat > 0)");
+    }
   } else if (const auto* s = std::get_if<SphereShape>(&b.shape)) {
     if (b.discretisation == D::trusses)
       c.fail(b.where, shape, "a sphere makes particles or hexahedra");
-    c.positive(b.where, shape + ".sphere.radius", s->radius);
+    c.range(b.where, shape + ".sphere.radius", s->radius, scene_ranges::shape::radius);
   } else if (const auto* p = std::get_if<PointListShape>(&b.shape)) {
     if (!particles) c.fail(b.where, shape, "points make particles only");
     if (p->path.empty() && p->points.empty())
@@ -193,11 +257,39 @@ void check_shape(const Checker& c, const BodySpec& b, const std::string& key) {
         c.fail(b.where, shape + ".mesh.truss_areas",
                "one area per truss (" + std::to_string(a.trusses.size()) + "), or none");
     }
-    c.positive(b.where, shape + ".mesh.scale", m->scale);
+    c.range(b.where, shape + ".mesh.scale", m->scale, scene_ranges::shape::mesh_scale);
   } else if (std::holds_alternative<LineShape>(b.shape) ||
              std::holds_alternative<RebarShape>(b.shape)) {
     if (b.discretisation != D::trusses) c.fail(b.where, shape, "lines and rebar make trusses only");
+    if (const auto* r = std::get_if<RebarShape>(&b.shape)) {
+      namespace range = scene_ranges::shape;
+      c.range(b.where, shape + ".rebar.spacing", r->spacing, range::rebar_spacing);
+      c.range(b.where, shape + ".rebar.diameter", r->diameter, range::rebar_diameter);
+      c.range(b.where, shape + ".rebar.cover", r->cover, range::rebar_cover);
+    }
   }
+}
+
+// A generated mesh's density (the parser's read_mesh_density): 0 is "not given".
+void check_mesh_density(const Checker& c, const BodySpec& b, const std::string& key) {
+  namespace range = scene_ranges::mesh;
+  const MeshDensity& m = b.mesh;
+  if (m.size != 0.0) c.range(b.where, key + ".size", m.size, range::size);
+  const auto given = [&](const char* name, int v, const scene_ranges::Count& allowed) {
+    if (v != 0) c.count(b.where, key + "." + name, v, allowed);
+  };
+  const bool sphere = std::holds_alternative<SphereShape>(b.shape);
+  given(sphere ? "across" : "divisions", m.divisions[0], sphere ? range::across : range::divisions);
+  given("divisions", m.divisions[1], range::divisions);
+  given("divisions", m.divisions[2], range::divisions);
+  given("core", m.core, range::core);
+  given("ring", m.ring, range::ring);
+  given("axial", m.axial, range::axial);
+  given("segments", m.segments, range::segments);
+  c.count(b.where, key + ".sectors", m.sectors, range::sectors);
+  if (m.sectors == 3) c.fail(b.where, key + ".sectors", "allowed: 1 (quarter), 2 (half), 4 (full)");
+  if (sphere && m.divisions[0] % 4 != 0)
+    c.fail(b.where, key + ".across", "must be a multiple of 4");
 }
 
 void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
@@ -208,6 +300,7 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
     c.fail(b.where, key + ".material",
            "material index " + std::to_string(b.material) + " is not defined; the scene has " +
                std::to_string(scene.materials.size()) + " materials");
+  namespace range = scene_ranges::body;
   check_shape(c, b, key);
   for (int o : b.overlap_allowed) {
     c.body(b.where, key + ".overlap_allowed", o, false);
@@ -216,10 +309,10 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
              "a body is not checked against itself; name other bodies");
   }
   c.finite(b.where, key + ".velocity", b.velocity);
-  if (b.temperature) c.non_negative(b.where, key + ".temperature", *b.temperature);
-  c.non_negative(b.where, key + ".internal_energy", b.internal_energy);
+  if (b.temperature) c.range(b.where, key + ".temperature", *b.temperature, range::temperature);
+  c.range(b.where, key + ".internal_energy", b.internal_energy, range::internal_energy);
   if (b.pressure) {
-    c.non_negative(b.where, key + ".pressure", *b.pressure);
+    c.range(b.where, key + ".pressure", *b.pressure, range::pressure);
     if (b.discretisation != D::particles)
       c.fail(b.where, key + ".pressure", "an initial pressure applies to bodies of particles");
     if (b.material >= 0 && static_cast<std::size_t>(b.material) < scene.materials.size())
@@ -228,29 +321,23 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
                                        *b.pressure, b.internal_energy))
         c.fail(b.where, key + ".pressure", *why);
   }
-  if (b.particles_per_cell < 1 || b.particles_per_cell > 8)
-    c.fail(b.where, key + ".particles_per_cell",
-           "out of range: " + std::to_string(b.particles_per_cell) + "; allowed: 1 to 8");
+  c.count(b.where, key + ".particles_per_cell", b.particles_per_cell, range::particles_per_cell);
+  if (b.layout == BodySpec::Layout::shells && !std::holds_alternative<SphereShape>(b.shape))
+    c.fail(b.where, key + ".layout",
+           "layout shells places particles in shells that follow a sphere; the body's shape is "
+           "not a sphere");
   if (b.bulk_viscosity) {
     if (b.discretisation == D::trusses)
       c.fail(b.where, key + ".bulk_viscosity", "applies to bodies of hexahedra or particles");
-    c.range(b.where, key + ".bulk_viscosity.linear", b.bulk_viscosity->linear,
-            Range::closed(0.0, 1.0));
+    c.range(b.where, key + ".bulk_viscosity.linear", b.bulk_viscosity->linear, range::bulk_linear);
     c.range(b.where, key + ".bulk_viscosity.quadratic", b.bulk_viscosity->quadratic,
-            Range::closed(0.0, 10.0));
+            range::bulk_quadratic);
   }
-  // Trusses run the uniaxial update, which has no failed state: only a failure strain (their
-  // erosion criterion material_failure) applies to them.
-  if (b.discretisation == D::trusses && b.material >= 0 &&
-      static_cast<std::size_t>(b.material) < scene.materials.size()) {
+  if (b.material >= 0 && static_cast<std::size_t>(b.material) < scene.materials.size()) {
     const Material& m = scene.materials[static_cast<std::size_t>(b.material)];
-    if (m.fails() && !std::holds_alternative<PlasticStrainFailure>(m.failure))
-      c.fail(
-          b.where, key + ".material",
-          "material \"" + m.name +
-              "\" has a failure model, which trusses do not carry; "
-              "allowed for trusses: failure_strain (or failure = { model = \"plastic-strain\" }) "
-              "with erosion = { material_failure = true }");
+    if (const std::optional<FailureKeyRefusal> refusal = failure_key_refusal(b, m))
+      c.fail(b.where, (refusal->of_material ? "materials." + m.name : key) + "." + refusal->key,
+             refusal->message);
   }
   if (b.rigid && b.discretisation != D::hexahedra)
     c.fail(b.where, key + ".rigid", "a rigid body is made of hexahedra");
@@ -267,11 +354,10 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
              "applies to mesh bodies, not to particles");
     return;
   }
-  if (b.discretisation == D::hexahedra) {
-    const double hi = b.hourglass.form == HourglassForm::assumed_strain ? 1.0 : 0.5;
-    c.range(b.where, key + ".hourglass.coefficient", b.hourglass.coefficient,
-            Range::closed(0.0, hi));
-  }
+  if (b.discretisation == D::hexahedra && b.hourglass.coefficient)
+    c.range(b.where, key + ".hourglass.coefficient", *b.hourglass.coefficient,
+            range::hourglass_range(b.hourglass.form));
+  check_mesh_density(c, b, key + ".mesh");
   const bool generated = !std::holds_alternative<MeshFileShape>(b.shape);
   const bool all_graded =
       !b.mesh.graded[0].empty() && !b.mesh.graded[1].empty() && !b.mesh.graded[2].empty();
@@ -279,10 +365,11 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
       (b.mesh.core == 0 || b.mesh.ring == 0 || b.mesh.axial == 0) && b.mesh.segments == 0)
     c.fail(b.where, key + ".mesh", "a generated mesh needs its density: a size or divisions");
   if (b.erosion) {
-    c.non_negative(b.where, key + ".erosion.plastic_strain", b.erosion->plastic_strain);
-    c.range(b.where, key + ".erosion.volume_ratio", b.erosion->volume_ratio,
-            Range{0.0, 1.0, false, true});
-    c.non_negative(b.where, key + ".erosion.time_step", b.erosion->time_step);
+    namespace erosion = scene_ranges::erosion;
+    c.range(b.where, key + ".erosion.plastic_strain", b.erosion->plastic_strain,
+            erosion::plastic_strain);
+    c.range(b.where, key + ".erosion.volume_ratio", b.erosion->volume_ratio, erosion::volume_ratio);
+    c.range(b.where, key + ".erosion.time_step", b.erosion->time_step, erosion::time_step);
   }
   if (b.conversion) {
     if (b.discretisation != D::hexahedra)
@@ -295,10 +382,20 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
       c.fail(b.where, key + ".conversion", "a body bonded to particles cannot also convert");
     if (scene.mpm.scheme == UpdateScheme::USL || scene.mpm.scheme == UpdateScheme::USAVG)
       c.fail(b.where, key + ".conversion", "conversion needs [mpm] scheme MUSL or USF");
+    namespace conversion = scene_ranges::conversion;
     const ConversionSettings& v = *b.conversion;
-    if (v.points < 1 || v.points > 2)
-      c.fail(b.where, key + ".conversion.points", "allowed: 1 or 2");
+    const std::string at = key + ".conversion";
+    c.range(b.where, at + ".plastic_strain", v.plastic_strain, conversion::plastic_strain);
+    c.range(b.where, at + ".volumetric_strain", v.volumetric_strain, conversion::volumetric_strain);
+    c.range(b.where, at + ".jacobian_ratio", v.jacobian_ratio, conversion::jacobian_ratio);
+    c.range(b.where, at + ".time_step_fraction", v.time_step_fraction,
+            conversion::time_step_fraction);
+    c.range(b.where, at + ".damage", v.damage, conversion::damage);
+    c.count(b.where, at + ".points", v.points, conversion::points);
+    if (const std::optional<std::string> why = no_conversion_criterion(v))
+      c.fail(b.where, at, *why);
   }
+  if (b.area != 0.0) c.range(b.where, key + ".area", b.area, range::area);
   if (b.discretisation == D::trusses && std::holds_alternative<LineShape>(b.shape) &&
       !(b.area > 0.0))
     c.fail(b.where, key + ".area", "a truss line needs its cross-section area (> 0)");
@@ -347,13 +444,16 @@ void check_scene(const Scene& scene) {
       c.fail(s.where, key + ".fixed", "name at least one component");
     if (s.nodes.kind == NodeSelector::Kind::plane && !(norm(s.nodes.normal) > 0.0))
       c.fail(s.where, key + ".plane.normal", "the normal must be a non-zero vector");
+    if (s.nodes.kind == NodeSelector::Kind::plane)
+      c.range(s.where, key + ".plane.tolerance", s.nodes.tolerance,
+              scene_ranges::selector_tolerance);
   }
   for (std::size_t k = 0; k < scene.walls.size(); ++k) {
     const WallSpec& wl = scene.walls[k];
     const std::string key = "walls[" + std::to_string(k) + "]";
     if (!(norm(wl.normal) > 0.0))
       c.fail(wl.where, key + ".normal", "the normal must be a non-zero vector");
-    c.non_negative(wl.where, key + ".friction", wl.friction);
+    c.range(wl.where, key + ".friction", wl.friction, scene_ranges::wall_friction);
     for (int b : wl.bodies) {
       c.body(wl.where, key + ".bodies", b, true);
       if (scene.bodies[static_cast<std::size_t>(b)].rigid)
@@ -369,7 +469,10 @@ void check_scene(const Scene& scene) {
     const BodySpec& bb = scene.bodies[static_cast<std::size_t>(b)];
     const bool meshes = ba.discretisation != Discretisation::particles &&
                         bb.discretisation != Discretisation::particles;
-    c.non_negative(ct.where, key + ".friction", ct.friction);
+    c.range(ct.where, key + ".friction", ct.friction, scene_ranges::contact::friction);
+    if (!ct.name.empty())
+      if (const std::optional<std::string> why = contact_name_refusal(ct.name))
+        c.fail(ct.where, key + ".name", *why);
     if (ct.method == ContactMethod::weld) {
       if (a == b || ba.discretisation != Discretisation::particles ||
           bb.discretisation != Discretisation::particles)
@@ -383,7 +486,7 @@ void check_scene(const Scene& scene) {
         c.fail(ct.where, key + ".bodies", "penalty contact needs a body of hexahedra on one side");
       if (a == b && (ba.discretisation != Discretisation::hexahedra || ba.rigid))
         c.fail(ct.where, key + ".bodies", "self-contact needs a deformable body of hexahedra");
-      c.range(ct.where, key + ".penalty", ct.penalty, Range{0.0, 1.0, true, false});
+      c.range(ct.where, key + ".penalty", ct.penalty, scene_ranges::contact::penalty);
       continue;
     }
     if (ct.method == ContactMethod::surface) {
@@ -393,7 +496,7 @@ void check_scene(const Scene& scene) {
       if (a == b || !one_each || m.discretisation != Discretisation::hexahedra)
         c.fail(ct.where, key + ".method",
                "surface contact is between a body of particles and a body of hexahedra");
-      c.range(ct.where, key + ".penalty", ct.penalty, Range{0.0, 1.0, true, false});
+      c.range(ct.where, key + ".penalty", ct.penalty, scene_ranges::contact::penalty);
       continue;
     }
     if (a == b) c.fail(ct.where, key + ".bodies", "a body cannot be in grid contact with itself");
@@ -411,15 +514,33 @@ void check_scene(const Scene& scene) {
          bb.discretisation != Discretisation::particles))
       c.fail(ct.where, key + ".bodies",
              "grid contact of a mesh with particles needs [mpm] scheme MUSL or USF");
-    c.non_negative(ct.where, key + ".distance_factor", ct.distance_factor);
+    c.range(ct.where, key + ".distance_factor", ct.distance_factor,
+            scene_ranges::contact::distance_factor);
   }
+  for (std::size_t k = 0; k < scene.detonations.size(); ++k)
+    c.range(scene.detonations[k].where, "detonations[" + std::to_string(k) + "].time",
+            scene.detonations[k].time, scene_ranges::detonation_time);
+  scene_detail::check_explosives(scene);
   for (const VelocityReference& v : scene.velocity_references) {
     c.body(v.where, "reference.velocity.body", v.body, false);
     if (v.value == 0.0) c.fail(v.where, "reference.velocity.value", "must not be 0");
+    c.range(v.where, "reference.velocity.tolerance", v.tolerance,
+            scene_ranges::reference::tolerance);
   }
+  if (const std::optional<TaylorReference>& t = scene.taylor_reference) {
+    namespace range = scene_ranges::reference;
+    c.range({}, "reference.taylor.L", t->length, range::taylor_length);
+    c.range({}, "reference.taylor.D", t->impact_diameter, range::taylor_length);
+    c.range({}, "reference.taylor.W", t->bulge_diameter, range::taylor_length);
+    c.range({}, "reference.taylor.tolerance", t->tolerance, range::tolerance);
+  }
+  if (scene.energy_tolerance != 0.0)
+    c.range({}, "reference.energy.tolerance", scene.energy_tolerance,
+            scene_ranges::reference::energy_tolerance);
   if (scene.run.terminate) {
     c.body({}, "run.terminate.body", scene.run.terminate->body, false);
-    c.positive({}, "run.terminate.travel", scene.run.terminate->travel);
+    c.range({}, "run.terminate.travel", scene.run.terminate->travel,
+            scene_ranges::run::terminate_travel);
   }
 }
 

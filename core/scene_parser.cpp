@@ -16,6 +16,7 @@
 #include "core/far_field_refusals.hpp"
 #include "core/materials/initial_pressure.hpp"
 #include "core/materials/model_parameters.hpp"
+#include "core/scene_ranges.hpp"
 
 namespace afemp::core::scene_detail {
 
@@ -373,21 +374,26 @@ void read_run(TableReader& r, RunSettings& run) {
            "gravity", "terminate", "units", "quiet", "history_interval", "output_times",
            "checkpoint_every", "checkpoint_wall_every", "checkpoint_keep"});
   r.check_unknown();
-  run.title = r.string("title", "");
-  run.end_time = r.required_number("end_time", Range::positive());
-  run.time_step_factor = r.number("time_step_factor", 0.3, {0.0, 1.0, true, false});
-  run.element_time_step_factor = r.number("element_time_step_factor", 0.9, {0.0, 1.0, true, false});
-  run.fixed_time_step = r.optional_number("time_step", Range::positive()).value_or(0.0);
-  run.max_steps = r.integer("max_steps", 0, 0, std::numeric_limits<long>::max());
-  run.output_every = r.number("output_every", 0.0, Range::non_negative());
-  run.history_every = r.integer("history_every", 10, 1, std::numeric_limits<long>::max());
-  run.history_interval = r.number("history_interval", 0.0, Range::positive());
+  namespace range = scene_ranges::run;
+  run.title = r.string("title", run.title);
+  run.end_time = r.required_number("end_time", range::end_time);
+  run.time_step_factor =
+      r.number("time_step_factor", run.time_step_factor, range::time_step_factor);
+  run.element_time_step_factor = r.number("element_time_step_factor", run.element_time_step_factor,
+                                          range::element_time_step_factor);
+  run.fixed_time_step = r.number("time_step", run.fixed_time_step, range::time_step);
+  run.max_steps = r.integer("max_steps", run.max_steps, range::max_steps.lo, range::max_steps.hi);
+  run.output_every = r.number("output_every", run.output_every, range::output_every);
+  run.history_every = r.integer("history_every", run.history_every, range::history_every.lo,
+                                range::history_every.hi);
+  run.history_interval =
+      r.number("history_interval", run.history_interval, range::history_interval);
   if (r.has("history_interval") && r.has("history_every"))
     r.fail("history_interval",
            "give history_every (steps) or history_interval (simulated "
            "time) between history rows, not both");
   if (r.has("output_times")) {
-    run.output_times = r.numbers("output_times", Range::positive());
+    run.output_times = r.numbers("output_times", range::output_times);
     for (std::size_t k = 0; k < run.output_times.size(); ++k) {
       if (k > 0 && !(run.output_times[k] > run.output_times[k - 1]))
         r.fail("output_times", "the times must increase; " + format_number(run.output_times[k]) +
@@ -398,23 +404,27 @@ void read_run(TableReader& r, RunSettings& run) {
                                    " (the final state is always written)");
     }
   }
-  run.energy_error_limit = r.number("energy_error_limit", 1.0, Range::non_negative());
-  run.output_strain = r.boolean("output_strain", false);
-  run.gravity = r.vec3("gravity", Vec3{});
-  if (r.has("units")) {
-    static const std::vector<std::string> systems{"mm-ms-g", "SI"};
-    run.units = systems[static_cast<std::size_t>(r.choice("units", {"mm-ms-g", "SI"}, 0))];
-  }
+  run.energy_error_limit =
+      r.number("energy_error_limit", run.energy_error_limit, range::energy_error_limit);
+  run.output_strain = r.boolean("output_strain", run.output_strain);
+  run.gravity = r.vec3("gravity", run.gravity);
+  if (r.has("units"))
+    run.units = std::string(scene_ranges::kUnitSystems[r.choice(
+        "units", std::span<const std::string_view>(scene_ranges::kUnitSystems), std::nullopt)]);
   if (r.has("quiet")) run.quiet = r.strings("quiet");
-  run.checkpoint_every = r.number("checkpoint_every", 0.0, Range::non_negative());
-  run.checkpoint_wall_every = r.number("checkpoint_wall_every", 1800.0, Range::non_negative());
-  run.checkpoint_keep = static_cast<int>(r.integer("checkpoint_keep", 2, 1, 1000));
+  run.checkpoint_every =
+      r.number("checkpoint_every", run.checkpoint_every, range::checkpoint_every);
+  run.checkpoint_wall_every =
+      r.number("checkpoint_wall_every", run.checkpoint_wall_every, range::checkpoint_wall_every);
+  run.checkpoint_keep =
+      static_cast<int>(r.integer("checkpoint_keep", run.checkpoint_keep, range::checkpoint_keep.lo,
+                                 range::checkpoint_keep.hi));
 }
 
 void read_grid(TableReader& r, GridSettings& grid) {
   r.known({"cell", "min", "max", "boundary", "far_field"});
   r.check_unknown();
-  grid.cell = r.required_number("cell", Range::positive());
+  grid.cell = r.required_number("cell", scene_ranges::grid::cell);
   grid.min = r.required_vec3("min");
   grid.max = r.required_vec3("max");
   for (int a = 0; a < 3; ++a)
@@ -429,8 +439,9 @@ void read_grid(TableReader& r, GridSettings& grid) {
     br.known({"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"});
     br.check_unknown();
     for (int f = 0; f < 6; ++f)
-      grid.faces[static_cast<std::size_t>(f)] = static_cast<FaceCondition>(br.choice(
-          face_names[f], {"free", "fixed", "symmetric", "wall", "outflow", "absorbing"}, 0));
+      grid.faces[static_cast<std::size_t>(f)] = static_cast<FaceCondition>(
+          br.choice(face_names[f], {"free", "fixed", "symmetric", "wall", "outflow", "absorbing"},
+                    static_cast<std::size_t>(grid.faces[static_cast<std::size_t>(f)])));
   }
   if (const toml::table* t = r.optional_table("far_field")) {
     TableReader fr(*t, r.dotted("far_field"), r.file());
@@ -438,8 +449,9 @@ void read_grid(TableReader& r, GridSettings& grid) {
     fr.check_unknown();
     FarField far;
     far.centre = fr.required_vec3("centre");
-    far.pressure = fr.number("pressure", 0.0, Range::non_negative());
-    far.absolute_stress = fr.choice("stress", {"gauge", "absolute"}, 0) == 1;
+    far.pressure = fr.number("pressure", far.pressure, scene_ranges::grid::far_field_pressure);
+    far.absolute_stress =
+        fr.choice("stress", {"gauge", "absolute"}, far.absolute_stress ? 1 : 0) == 1;
     if (!grid.has_face(FaceCondition::absorbing))
       r.fail("far_field",
              "the far field acts through absorbing faces, and no face of "
@@ -452,11 +464,13 @@ void read_grid(TableReader& r, GridSettings& grid) {
 void read_mpm(TableReader& r, MpmSettings& mpm) {
   r.known({"scheme", "shape_function", "transfer", "flip", "jaumann", "splitting"});
   r.check_unknown();
-  mpm.scheme =
-      static_cast<UpdateScheme>(r.choice("scheme", {"USF", "USL", "MUSL", "USAVG"}, 2, true));
-  mpm.shape = static_cast<ShapeFunction>(r.choice("shape_function", {"linear", "gimp"}, 0));
-  mpm.transfer = static_cast<Transfer>(r.choice("transfer", {"flip", "apic"}, 0));
-  mpm.flip = r.number("flip", 1.0, Range::closed(0.0, 1.0));
+  mpm.scheme = static_cast<UpdateScheme>(r.choice("scheme", {"USF", "USL", "MUSL", "USAVG"},
+                                                  static_cast<std::size_t>(mpm.scheme), true));
+  mpm.shape = static_cast<ShapeFunction>(
+      r.choice("shape_function", {"linear", "gimp"}, static_cast<std::size_t>(mpm.shape)));
+  mpm.transfer = static_cast<Transfer>(
+      r.choice("transfer", {"flip", "apic"}, static_cast<std::size_t>(mpm.transfer)));
+  mpm.flip = r.number("flip", mpm.flip, scene_ranges::mpm::flip);
   if (mpm.transfer == Transfer::apic) {
     // With the linear hat a node at the far side of a particle's cell gets a tiny mass but
     // a full-size gradient; the affine transfer carries its velocity back undamped and the
@@ -473,15 +487,16 @@ void read_mpm(TableReader& r, MpmSettings& mpm) {
   }
   if (const std::optional<std::string> why = absolute_stress_shape_refusal(mpm.grid, mpm.shape))
     r.fail("shape_function", *why);
-  mpm.jaumann = r.boolean("jaumann", true);
+  mpm.jaumann = r.boolean("jaumann", mpm.jaumann);
   if (const toml::table* t = r.optional_table("splitting")) {
     TableReader sr(*t, r.dotted("splitting"), r.file());
     sr.known({"alpha", "max_particles", "bodies", "axes"});  // bodies: resolved once read
     sr.check_unknown();
     SplittingSettings s;
-    s.alpha = sr.number("alpha", 0.9, Range{0.5, 1.5, true, false});
-    s.max_particles =
-        static_cast<std::size_t>(sr.integer("max_particles", 10000000, 1, 2000000000));
+    s.alpha = sr.number("alpha", s.alpha, scene_ranges::mpm::split_alpha);
+    s.max_particles = static_cast<std::size_t>(sr.integer(
+        "max_particles", static_cast<long>(s.max_particles),
+        scene_ranges::mpm::split_max_particles.lo, scene_ranges::mpm::split_max_particles.hi));
     if (sr.has("axes")) {
       s.axes = {false, false, false};
       for (const std::string& axis : sr.strings("axes")) {
@@ -625,16 +640,17 @@ Material read_material(TableReader& r, const std::string& name) {
   r.check_unknown();
   Material m;
   m.name = name;
-  m.density = r.required_number("density", Range::positive());
+  namespace range = scene_ranges::material;
+  m.density = r.required_number("density", range::density);
   // A material with the HJC compaction law gives G; PC / muc is its bulk modulus.
-  const std::optional<double> shear_modulus = r.optional_number("G", Range::positive());
+  const std::optional<double> shear_modulus = r.optional_number("G", range::shear_modulus);
   // A fluid (strength model "fluid") may leave out E and nu: it has no shear.
   bool fluid = false;
   if (const toml::table* t = r.optional_table("strength"))
     if (const auto* model = t->get_as<std::string>("model")) fluid = model->get() == "fluid";
   if (!shear_modulus && !(fluid && !r.has("E") && !r.has("nu"))) {
-    m.youngs_modulus = r.required_number("E", Range::positive());
-    m.poisson_ratio = r.required_number("nu", {0.0, 0.5, false, true});
+    m.youngs_modulus = r.required_number("E", range::youngs_modulus);
+    m.poisson_ratio = r.required_number("nu", range::poisson_ratio);
   }
   const MaterialConstants constants{m.density, m.youngs_modulus, m.bulk_modulus()};
   if (const toml::table* t = r.optional_table("strength")) {
@@ -646,10 +662,13 @@ Material read_material(TableReader& r, const std::string& name) {
     m.eos = read_model<EquationOfState>(er, constants);
   }
   pair_own_pressure_law(r, m, shear_modulus);
-  m.thermal.specific_heat = r.number("specific_heat", 0.0, Range::non_negative());
-  m.thermal.taylor_quinney = r.number("taylor_quinney", 0.9, Range::closed(0.0, 1.0));
-  m.thermal.initial_temperature = r.number("temperature", 293.0, Range::non_negative());
-  m.failure_strain = r.number("failure_strain", 0.0, Range::non_negative());
+  m.thermal.specific_heat =
+      r.number("specific_heat", m.thermal.specific_heat, range::specific_heat);
+  m.thermal.taylor_quinney =
+      r.number("taylor_quinney", m.thermal.taylor_quinney, range::taylor_quinney);
+  m.thermal.initial_temperature =
+      r.number("temperature", m.thermal.initial_temperature, range::temperature);
+  m.failure_strain = r.number("failure_strain", m.failure_strain, range::failure_strain);
   if (const toml::table* t = r.optional_table("failure")) {
     if (m.failure_strain > 0.0)
       r.fail("failure_strain",
@@ -661,25 +680,20 @@ Material read_material(TableReader& r, const std::string& name) {
     m.failure = PlasticStrainFailure{m.failure_strain};
   }
   if (r.has("pressure_cutoff")) {
-    m.pressure_cutoff = r.number("pressure_cutoff", 0.0,
-                                 {-std::numeric_limits<double>::infinity(), 0.0, true, false});
-    if (!m.has_eos() || has_own_pressure_law(m))
-      r.fail("pressure_cutoff",
-             "a pressure cutoff (cavitation) acts on an eos's pressure: give "
-             "eos = { model = \"mie-gruneisen\" } or another, not a strength "
-             "model's own pressure law (hjc-compaction), which has its own "
-             "tension limit");
+    m.pressure_cutoff = r.required_number("pressure_cutoff", range::pressure_cutoff);
+    if (const std::optional<std::string> why = pressure_cutoff_refusal(m))
+      r.fail("pressure_cutoff", *why);
   }
   if (const toml::table* t = r.optional_table("burn")) {
     TableReader br(*t, r.dotted("burn"), r.file());
     br.known({"D", "pcj", "mode"});
     br.check_unknown();
     ProgrammedBurn b;
-    b.detonation_velocity = br.required_number("D", Range::positive());
-    b.cj_pressure = br.required_number("pcj", Range::positive());
-    if (br.has("mode")) {
-      const std::size_t mode =
-          br.choice("mode", {"lighting-time+volumetric", "lighting-time", "volumetric"}, 0);
+    b.detonation_velocity = br.required_number("D", range::detonation_velocity);
+    b.cj_pressure = br.required_number("pcj", range::cj_pressure);
+    if (br.has("mode")) {  // without it, both terms (ProgrammedBurn's default)
+      const std::size_t mode = br.choice(
+          "mode", {"lighting-time+volumetric", "lighting-time", "volumetric"}, std::nullopt);
       b.lighting_time = mode != 2;
       b.volumetric = mode != 1;
     }
@@ -734,19 +748,18 @@ CylinderShape read_cylinder(TableReader& s, Discretisation d) {
   s.check_unknown();
   CylinderShape c;
   c.base = s.required_vec3("base");
-  const Vec3 axis = s.vec3("axis", Vec3{0, 0, 1});
+  const Vec3 axis = s.vec3("axis", c.axis);
   const double len = norm(axis);
   if (!(len > 0.0)) s.fail("axis", "the axis must be a non-zero vector");
   c.axis = (1.0 / len) * axis;
-  c.radius = s.required_number("radius", Range::positive());
-  c.length = s.required_number("length", Range::positive());
+  c.radius = s.required_number("radius", scene_ranges::shape::radius);
+  c.length = s.required_number("length", scene_ranges::shape::length);
   if (const toml::table* t = s.optional_table("nose")) {
     TableReader n(*t, s.dotted("nose"), s.file());
     n.known({"crh", "meplat"});
     n.check_unknown();
-    c.nose.crh =
-        n.required_number("crh", Range::closed(0.5, std::numeric_limits<double>::infinity()));
-    c.nose.meplat = n.number("meplat", 0.0, Range::non_negative());
+    c.nose.crh = n.required_number("crh", scene_ranges::shape::nose_crh);
+    c.nose.meplat = n.number("meplat", c.nose.meplat, scene_ranges::shape::nose_meplat);
     if (!(c.nose.meplat < 2.0 * c.radius))
       n.fail("meplat", "the flat tip's diameter must be less than the cylinder's, " +
                            format_number(2.0 * c.radius));
@@ -770,15 +783,15 @@ CylinderShape read_cone(TableReader& s) {
   s.check_unknown();
   CylinderShape c;
   c.base = s.required_vec3("base");
-  const Vec3 axis = s.vec3("axis", Vec3{0, 0, 1});
+  const Vec3 axis = s.vec3("axis", c.axis);
   if (!(norm(axis) > 0.0)) s.fail("axis", "the axis must be a non-zero vector");
   c.axis = (1.0 / norm(axis)) * axis;
-  c.radius = s.required_number("radius", Range::non_negative());
-  c.top_radius = s.required_number("top_radius", Range::non_negative());
-  c.length = s.required_number("length", Range::positive());
+  c.radius = s.required_number("radius", scene_ranges::shape::cone_radius);
+  c.top_radius = s.required_number("top_radius", scene_ranges::shape::cone_radius);
+  c.length = s.required_number("length", scene_ranges::shape::length);
   if (!(c.radius > 0.0 || c.top_radius > 0.0))
     s.fail("top_radius", "a cone needs a radius > 0 at one end at least");
-  c.wall = s.number("wall", 0.0, Range::non_negative());
+  c.wall = s.number("wall", c.wall, scene_ranges::shape::cone_wall);
   return c;
 }
 
@@ -788,7 +801,7 @@ SphereShape read_sphere(TableReader& s) {
   s.check_unknown();
   SphereShape sp;
   sp.centre = s.required_vec3("centre");
-  sp.radius = s.required_number("radius", Range::positive());
+  sp.radius = s.required_number("radius", scene_ranges::shape::radius);
   return sp;
 }
 
@@ -801,8 +814,8 @@ MeshFileShape read_mesh_file(TableReader& s, const std::string& scene_path) {
   if (file.empty()) s.fail("file", "the mesh file name is empty");
   m.path = relative_to_scene(file, scene_path);
   m.parts = s.strings("parts");
-  m.scale = s.number("scale", 1.0, Range::positive());
-  m.translate = s.vec3("translate", Vec3{});
+  m.scale = s.number("scale", m.scale, scene_ranges::shape::mesh_scale);
+  m.translate = s.vec3("translate", m.translate);
   return m;
 }
 
@@ -835,9 +848,9 @@ RebarShape read_rebar(TableReader& s) {
     if (m.positions[i] < m.min[m.normal_axis] || m.positions[i] > m.max[m.normal_axis])
       s.fail("position", "every mat's plane must lie between min and max along its normal (" +
                              format_number(m.positions[i]) + " does not)");
-  m.spacing = s.required_number("spacing", Range::positive());
-  m.diameter = s.required_number("diameter", Range::positive());
-  m.cover = s.required_number("cover", Range::non_negative());
+  m.spacing = s.required_number("spacing", scene_ranges::shape::rebar_spacing);
+  m.diameter = s.required_number("diameter", scene_ranges::shape::rebar_diameter);
+  m.cover = s.required_number("cover", scene_ranges::shape::rebar_cover);
   return m;
 }
 
@@ -894,8 +907,11 @@ std::vector<std::array<double, 2>> read_graded_axis(TableReader& r, const char* 
       r.fail(key, which + ": its end must lie beyond " + format_number(start) +
                       "; allowed: [end, elements] pairs with ends increasing from the box's "
                       "min to its max");
-    if (!(n >= 1.0 && n <= 100000.0 && n == std::floor(n)))
-      r.fail(key, which + ": the element count must be a whole number in [1, 100000]");
+    const scene_ranges::Count elements = scene_ranges::mesh::graded_elements;
+    if (!(n >= static_cast<double>(elements.lo) && n <= static_cast<double>(elements.hi) &&
+          n == std::floor(n)))
+      r.fail(key, which + ": the element count must be a whole number in [" +
+                      std::to_string(elements.lo) + ", " + std::to_string(elements.hi) + "]");
     start = end;
   }
   if (!segments.empty() && std::abs(start - hi) > 1e-9 * (hi - lo))
@@ -916,9 +932,12 @@ void read_mesh_density(TableReader& r, const BodySpec& b, MeshDensity& m) {
   if (line) r.known({"size", "segments"});
   if (rebar) r.known({"size"});
   r.check_unknown();
-  m.size = r.number("size", 0.0, Range::positive());
+  namespace range = scene_ranges::mesh;
+  m.size = r.number("size", m.size, range::size);
   if (box) {
-    m.divisions = r.integers3("divisions", 1, 100000);
+    if (r.has("divisions"))
+      m.divisions = r.integers3("divisions", static_cast<int>(range::divisions.lo),
+                                static_cast<int>(range::divisions.hi));
     const BoxShape& shape = std::get<BoxShape>(b.shape);
     bool all_graded = true;
     for (std::size_t d = 0; d < 3; ++d) {
@@ -934,27 +953,31 @@ void read_mesh_density(TableReader& r, const BodySpec& b, MeshDensity& m) {
              "segments");
   }
   if (cylinder) {
-    m.core = static_cast<int>(r.integer("core", 0, 1, 10000));
-    m.ring = static_cast<int>(r.integer("ring", 0, 1, 10000));
-    m.axial = static_cast<int>(r.integer("axial", 0, 1, 100000));
-    m.sectors = static_cast<int>(r.integer("sectors", 4, 1, 4));
+    m.core = static_cast<int>(r.integer("core", m.core, range::core.lo, range::core.hi));
+    m.ring = static_cast<int>(r.integer("ring", m.ring, range::ring.lo, range::ring.hi));
+    m.axial = static_cast<int>(r.integer("axial", m.axial, range::axial.lo, range::axial.hi));
+    m.sectors =
+        static_cast<int>(r.integer("sectors", m.sectors, range::sectors.lo, range::sectors.hi));
     if (m.sectors == 3) r.fail("sectors", "allowed values: 1 (quarter), 2 (half), 4 (full)");
     if (m.size == 0.0 && (m.core == 0 || m.ring == 0 || m.axial == 0))
       r.fail("core", "give core, ring and axial divisions, or an element size");
   }
   if (sphere) {
     // Elements across the diameter: core n/2 and two shells of n/4 (fem/mesh_generation.hpp).
-    m.divisions[0] = static_cast<int>(r.integer("across", 0, 4, 10000));
+    m.divisions[0] =
+        static_cast<int>(r.integer("across", m.divisions[0], range::across.lo, range::across.hi));
     if (m.divisions[0] % 4 != 0)
       r.fail("across",
              "must be a multiple of 4 (a core of across/2 elements between two shells "
              "of across/4 layers)");
-    m.sectors = static_cast<int>(r.integer("sectors", 4, 1, 4));
+    m.sectors =
+        static_cast<int>(r.integer("sectors", m.sectors, range::sectors.lo, range::sectors.hi));
     if (m.sectors == 3) r.fail("sectors", "allowed values: 1 (quarter), 2 (half), 4 (full)");
     if (m.size == 0.0 && m.divisions[0] == 0) r.fail("across", "give across or an element size");
   }
   if (line) {
-    m.segments = static_cast<int>(r.integer("segments", 0, 1, 1000000));
+    m.segments =
+        static_cast<int>(r.integer("segments", m.segments, range::segments.lo, range::segments.hi));
     if (m.size == 0.0 && m.segments == 0)
       r.fail("segments", "give segments or a truss length size");
   }
@@ -987,27 +1010,18 @@ void check_discretisation_keys(TableReader& r, const BodySpec& b) {
   only_for(r, b, "pressure", D::particles, D::particles);
 }
 
-// A body's [hourglass] table: the form and its coefficient (defaults of fem/hourglass.hpp).
+// A body's [hourglass] table: the form and its coefficient; left out, the coefficient is the
+// form's default (HourglassSettings::default_coefficient).
 HourglassSettings read_hourglass(const toml::table& table, TableReader& r) {
   HourglassSettings hourglass;
   TableReader hr(table, r.dotted("hourglass"), r.file());
   hr.known({"form", "coefficient"});
   hr.check_unknown();
   hourglass.form =
-      static_cast<HourglassForm>(hr.choice("form", {"viscous", "stiffness", "assumed_strain"}, 0));
-  // Defaults of fem/hourglass.hpp: 0.1 viscous (LS-DYNA's QM), 0.05 stiffness (types 4/5);
-  // the assumed strain form has no free coefficient, only a scale on its stiffness (1).
-  switch (hourglass.form) {
-    case HourglassForm::viscous:
-      hourglass.coefficient = hr.number("coefficient", 0.1, Range::closed(0.0, 0.5));
-      break;
-    case HourglassForm::stiffness:
-      hourglass.coefficient = hr.number("coefficient", 0.05, Range::closed(0.0, 0.5));
-      break;
-    case HourglassForm::assumed_strain:
-      hourglass.coefficient = hr.number("coefficient", 1.0, Range::closed(0.0, 1.0));
-      break;
-  }
+      static_cast<HourglassForm>(hr.choice("form", {"viscous", "stiffness", "assumed_strain"},
+                                           static_cast<std::size_t>(hourglass.form)));
+  hourglass.coefficient =
+      hr.optional_number("coefficient", scene_ranges::body::hourglass_range(hourglass.form));
   return hourglass;
 }
 
@@ -1016,11 +1030,12 @@ ErosionSettings read_erosion(const toml::table& table, TableReader& r) {
   TableReader er(table, r.dotted("erosion"), r.file());
   er.known({"plastic_strain", "material_failure", "volume_ratio", "time_step"});
   er.check_unknown();
+  namespace range = scene_ranges::erosion;
   ErosionSettings e;
-  e.plastic_strain = er.number("plastic_strain", 0.0, Range::non_negative());
-  e.material_failure = er.boolean("material_failure", false);
-  e.volume_ratio = er.number("volume_ratio", 0.0, {0.0, 1.0, false, true});
-  e.time_step = er.number("time_step", 0.0, Range::non_negative());
+  e.plastic_strain = er.number("plastic_strain", e.plastic_strain, range::plastic_strain);
+  e.material_failure = er.boolean("material_failure", e.material_failure);
+  e.volume_ratio = er.number("volume_ratio", e.volume_ratio, range::volume_ratio);
+  e.time_step = er.number("time_step", e.time_step, range::time_step);
   return e;
 }
 
@@ -1030,20 +1045,18 @@ ConversionSettings read_conversion(const toml::table& table, TableReader& r) {
   cr.known({"plastic_strain", "volumetric_strain", "jacobian_ratio", "negative_jacobian",
             "time_step_fraction", "damage", "points"});
   cr.check_unknown();
+  namespace range = scene_ranges::conversion;
   ConversionSettings c;
-  c.plastic_strain = cr.number("plastic_strain", 0.0, Range::non_negative());
-  c.volumetric_strain = cr.number("volumetric_strain", 0.0, {0.0, 1.0, false, true});
-  c.jacobian_ratio = cr.number("jacobian_ratio", 0.0, {0.0, 1.0, false, true});
-  c.negative_jacobian = cr.boolean("negative_jacobian", true);
-  c.time_step_fraction = cr.number("time_step_fraction", 0.0, {0.0, 1.0, false, true});
-  c.damage = cr.number("damage", 0.0, {0.0, 1.0, false, false});
-  c.points = static_cast<int>(cr.integer("points", 1, 1, 2));
-  if (c.plastic_strain == 0.0 && c.volumetric_strain == 0.0 && c.jacobian_ratio == 0.0 &&
-      !c.negative_jacobian && c.time_step_fraction == 0.0 && c.damage == 0.0)
-    r.fail("conversion",
-           "every criterion is off; give at least one of plastic_strain, "
-           "volumetric_strain, jacobian_ratio, negative_jacobian, "
-           "time_step_fraction, damage");
+  c.plastic_strain = cr.number("plastic_strain", c.plastic_strain, range::plastic_strain);
+  c.volumetric_strain =
+      cr.number("volumetric_strain", c.volumetric_strain, range::volumetric_strain);
+  c.jacobian_ratio = cr.number("jacobian_ratio", c.jacobian_ratio, range::jacobian_ratio);
+  c.negative_jacobian = cr.boolean("negative_jacobian", c.negative_jacobian);
+  c.time_step_fraction =
+      cr.number("time_step_fraction", c.time_step_fraction, range::time_step_fraction);
+  c.damage = cr.number("damage", c.damage, range::damage);
+  c.points = static_cast<int>(cr.integer("points", c.points, range::points.lo, range::points.hi));
+  if (const std::optional<std::string> why = no_conversion_criterion(c)) r.fail("conversion", *why);
   return c;
 }
 
@@ -1111,16 +1124,18 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
                            (defined.empty() ? std::string("(none)") : join(defined, true)));
   }
   b.material = it->second;
-  b.discretisation = static_cast<Discretisation>(
-      r.choice("discretisation", {"particles", "hexahedra", "trusses"}, 0));
+  b.discretisation =
+      static_cast<Discretisation>(r.choice("discretisation", {"particles", "hexahedra", "trusses"},
+                                           static_cast<std::size_t>(b.discretisation)));
   TableReader sr(r.required_table("shape"), r.dotted("shape"), r.file());
   b.shape = read_shape(sr, scene_path, b.discretisation);
-  b.velocity = r.vec3("velocity", Vec3{});
-  b.temperature = r.optional_number("temperature", Range::non_negative());
-  b.internal_energy = r.number("internal_energy", 0.0, Range::non_negative());
+  namespace range = scene_ranges::body;
+  b.velocity = r.vec3("velocity", b.velocity);
+  b.temperature = r.optional_number("temperature", range::temperature);
+  b.internal_energy = r.number("internal_energy", b.internal_energy, range::internal_energy);
   check_discretisation_keys(r, b);
   using D = Discretisation;
-  b.pressure = r.optional_number("pressure", Range::non_negative());
+  b.pressure = r.optional_number("pressure", range::pressure);
   if (b.pressure)
     if (const std::optional<std::string> why = initial_pressure_refusal(
             material_list[static_cast<std::size_t>(b.material)], *b.pressure, b.internal_energy))
@@ -1130,9 +1145,12 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
                                 "their volumes), not of ") +
                         to_string(b.discretisation) +
                         "; model a rigid indenter or anvil as hexahedra with rigid = true");
-  b.particles_per_cell = static_cast<int>(r.integer("particles_per_cell", 2, 1, 8));
+  b.particles_per_cell =
+      static_cast<int>(r.integer("particles_per_cell", b.particles_per_cell,
+                                 range::particles_per_cell.lo, range::particles_per_cell.hi));
   only_for(r, b, "layout", D::particles, D::particles);
-  b.layout = static_cast<BodySpec::Layout>(r.choice("layout", {"lattice", "shells"}, 0));
+  b.layout = static_cast<BodySpec::Layout>(
+      r.choice("layout", {"lattice", "shells"}, static_cast<std::size_t>(b.layout)));
   if (b.layout == BodySpec::Layout::shells && !std::holds_alternative<SphereShape>(b.shape))
     r.fail("layout",
            "layout = \"shells\" places particles in shells that follow a sphere; "
@@ -1143,8 +1161,8 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
     vr.known({"linear", "quadratic"});
     vr.check_unknown();
     BulkViscositySettings q;
-    q.linear = vr.number("linear", 0.06, Range::closed(0.0, 1.0));
-    q.quadratic = vr.number("quadratic", 1.5, Range::closed(0.0, 10.0));
+    q.linear = vr.number("linear", q.linear, range::bulk_linear);
+    q.quadratic = vr.number("quadratic", q.quadratic, range::bulk_quadratic);
     b.bulk_viscosity = q;
   }
   if (b.discretisation == D::particles) return b;
@@ -1157,12 +1175,13 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
   } else if (r.has("mesh")) {
     r.fail("mesh", "an imported mesh takes its density from the file; remove this key");
   }
-  b.element = static_cast<HexFormulation>(r.choice("element", {"one-point", "full"}, 0));
+  b.element = static_cast<HexFormulation>(
+      r.choice("element", {"one-point", "full"}, static_cast<std::size_t>(b.element)));
   if (const toml::table* t = r.optional_table("hourglass")) b.hourglass = read_hourglass(*t, r);
   if (const toml::table* t = r.optional_table("erosion")) b.erosion = read_erosion(*t, r);
   if (const toml::table* t = r.optional_table("conversion")) b.conversion = read_conversion(*t, r);
   if (const toml::node* n = r.table().get("rigid")) read_rigid(*n, r, b);
-  b.area = r.number("area", 0.0, Range::positive());
+  b.area = r.number("area", b.area, range::area);
   if (b.discretisation == D::trusses && std::holds_alternative<LineShape>(b.shape) && b.area == 0.0)
     r.fail("area", "a truss line needs its cross-section area");
   return b;
@@ -1213,7 +1232,7 @@ NodeSelector read_selector(TableReader& r) {
   const Vec3 n = p.required_vec3("normal");
   if (!(norm(n) > 0.0)) p.fail("normal", "the normal must be a non-zero vector");
   s.normal = (1.0 / norm(n)) * n;
-  s.tolerance = p.number("tolerance", 1e-6, Range::non_negative());
+  s.tolerance = p.number("tolerance", s.tolerance, scene_ranges::selector_tolerance);
   return s;
 }
 
@@ -1293,8 +1312,8 @@ WallSpec read_wall(TableReader& r, const Scene& scene) {
   const Vec3 n = r.required_vec3("normal");
   if (!(norm(n) > 0.0)) r.fail("normal", "the normal must be a non-zero vector");
   w.normal = (1.0 / norm(n)) * n;
-  w.velocity = r.vec3("velocity", Vec3{});
-  w.friction = r.number("friction", 0.0, Range::non_negative());
+  w.velocity = r.vec3("velocity", w.velocity);
+  w.friction = r.number("friction", w.friction, scene_ranges::wall_friction);
   for (const std::string& name : r.strings("bodies")) {
     w.bodies.push_back(body_index(r, "bodies", name, scene, false));
     if (scene.bodies[static_cast<std::size_t>(w.bodies.back())].rigid)
@@ -1346,7 +1365,7 @@ void read_penalty_contact(TableReader& r, ContactSpec& c, const BodySpec& a, con
   // The fraction of the predicted penetration one step takes out (fem/mesh_contact.hpp):
   // 1 closes it within the step; a velocity correction, not a spring the step must resolve,
   // so any value in (0, 1] is stable.
-  c.penalty = r.number("penalty", c.penalty, Range{0.0, 1.0, true, false});
+  c.penalty = r.number("penalty", c.penalty, scene_ranges::contact::penalty);
 }
 
 // The keys of surface contact between particles and hexahedra, and the pairs it takes.
@@ -1365,7 +1384,7 @@ void read_surface_contact(TableReader& r, ContactSpec& c, const BodySpec& a, con
            "(deformable or rigid); meshes meet each other by method = \"penalty\", "
            "particles by method = \"grid\"");
   // The fraction of the predicted penetration one step takes out, as for penalty contact.
-  c.penalty = r.number("penalty", c.penalty, Range{0.0, 1.0, true, false});
+  c.penalty = r.number("penalty", c.penalty, scene_ranges::contact::penalty);
 }
 
 // The keys of grid contact, the pairs it takes and the scheme and grid it needs.
@@ -1399,7 +1418,8 @@ void read_grid_contact(TableReader& r, ContactSpec& c, const Scene& scene, const
     r.fail("bodies",
            "grid contact needs [mpm] scheme = \"MUSL\" (the default) or \"USF\"; "
            "with USL the bodies lose most of their energy in contact");
-  c.distance_factor = r.number("distance_factor", c.distance_factor, Range::non_negative());
+  c.distance_factor =
+      r.number("distance_factor", c.distance_factor, scene_ranges::contact::distance_factor);
 }
 
 ContactSpec read_contact(TableReader& r, const Scene& scene) {
@@ -1435,12 +1455,11 @@ ContactSpec read_contact(TableReader& r, const Scene& scene) {
         (other.bodies[0] == c.bodies[1] && other.bodies[1] == c.bodies[0]))
       r.fail("bodies",
              "this pair already has a contact (line " + std::to_string(other.where.line) + ")");
-  c.friction = r.number("friction", c.friction, Range::non_negative());
-  c.name = r.string("name", self ? a.name + "-self" : a.name + "-" + b.name);
-  if (c.name.empty() || c.name.find_first_of(",\"\n") != std::string::npos)
-    r.fail("name",
-           "a contact name is a history column prefix: not empty, without commas, "
-           "quotes or line breaks");
+  c.friction = r.number("friction", c.friction, scene_ranges::contact::friction);
+  if (r.has("name")) {  // left out: contact_name's default, BODY1-BODY2
+    c.name = r.required_string("name");
+    if (const std::optional<std::string> why = contact_name_refusal(c.name)) r.fail("name", *why);
+  }
   switch (c.method) {
     case ContactMethod::weld:
       read_weld_contact(r, a, b, self);
@@ -1486,11 +1505,13 @@ VelocityReference read_velocity_reference(TableReader& r, const Scene& scene) {
     if (scene.bodies[b].name == body) v.body = static_cast<int>(b);
   }
   if (v.body < 0) r.fail("body", "unknown body \"" + body + "\"; bodies: " + join(names, true));
-  v.component = static_cast<int>(r.choice("component", {"x", "y", "z", "magnitude"}, 3));
-  if (v.component == 3) v.component = -1;
+  if (r.has("component")) {  // left out: the magnitude (VelocityReference's -1)
+    v.component = static_cast<int>(r.choice("component", {"x", "y", "z", "magnitude"}, 3));
+    if (v.component == 3) v.component = -1;
+  }
   v.value = r.required_number("value", Range::any());
   if (v.value == 0.0) r.fail("value", "the error is relative to the value, which must not be 0");
-  v.tolerance = r.number("tolerance", 0.0, Range::non_negative());
+  v.tolerance = r.number("tolerance", v.tolerance, scene_ranges::reference::tolerance);
   return v;
 }
 
@@ -1519,17 +1540,18 @@ void read_reference(TableReader& r, Scene& scene) {
     TableReader er(*t, r.dotted("energy"), r.file());
     er.known({"tolerance"});
     er.check_unknown();
-    scene.energy_tolerance = er.required_number("tolerance", Range::positive());
+    scene.energy_tolerance =
+        er.required_number("tolerance", scene_ranges::reference::energy_tolerance);
   }
   if (const toml::table* t = r.optional_table("taylor")) {
     TableReader tr(*t, r.dotted("taylor"), r.file());
     tr.known({"L", "D", "W", "tolerance"});
     tr.check_unknown();
     TaylorReference ref;
-    ref.length = tr.required_number("L", Range::positive());
-    ref.impact_diameter = tr.required_number("D", Range::positive());
-    ref.bulge_diameter = tr.required_number("W", Range::positive());
-    ref.tolerance = tr.number("tolerance", 0.0, Range::non_negative());
+    ref.length = tr.required_number("L", scene_ranges::reference::taylor_length);
+    ref.impact_diameter = tr.required_number("D", scene_ranges::reference::taylor_length);
+    ref.bulge_diameter = tr.required_number("W", scene_ranges::reference::taylor_length);
+    ref.tolerance = tr.number("tolerance", ref.tolerance, scene_ranges::reference::tolerance);
     scene.taylor_reference = ref;
   }
 }
@@ -1568,7 +1590,7 @@ ProbeSpec read_probe(TableReader& r, const Scene& scene) {
         "give exactly one of particle = { body, index | near }, node = { ... }, "
         "element = { ... }, mean_velocity = \"BODY\", extreme = { field, of, box, body "
         "}, force = \"CONTACT\" (a [[contact]]'s name, \"wallK\" or a rigid body)");
-  p.interval = r.number("interval", 0.0, Range::positive());
+  p.interval = r.number("interval", p.interval, scene_ranges::probe_interval);
   const auto is_particles = [&](int b) {
     return scene.bodies[static_cast<std::size_t>(b)].discretisation == Discretisation::particles;
   };
@@ -1590,7 +1612,7 @@ ProbeSpec read_probe(TableReader& r, const Scene& scene) {
         "field",
         {"pressure", "von_mises", "plastic_strain", "speed", "vx", "vy", "vz", "x", "y", "z"},
         std::nullopt));
-    p.maximum = t.choice("of", {"max", "min"}, 0) == 0;
+    p.maximum = t.choice("of", {"max", "min"}, p.maximum ? 0 : 1) == 0;
     if (t.has("body")) p.body = body_index(t, "body", t.required_string("body"), scene, false);
     TableReader b(t.required_table("box"), t.dotted("box"), r.file());
     b.known({"min", "max"});
@@ -1675,6 +1697,27 @@ const toml::array& read_bodies(TableReader& r, Scene& scene,
     scene.bodies.push_back(std::move(b));
   }
   return *bodies;
+}
+
+// Failure keys a body's discretisation would not use (failure_key_refusal), at the line of the
+// material's key or of the body's.
+void check_failure_keys(const toml::table& root, const toml::array& bodies, const Scene& scene,
+                        const std::string& path) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    const BodySpec& b = scene.bodies[i];
+    const Material& m = scene.materials[static_cast<std::size_t>(b.material)];
+    const std::optional<FailureKeyRefusal> refusal = failure_key_refusal(b, m);
+    if (!refusal) continue;
+    if (refusal->of_material) {
+      const toml::table& t = *root["materials"][m.name].as_table();
+      TableReader(t, "materials." + m.name, path).fail(refusal->key, refusal->message);
+    }
+    const toml::table& t = *bodies.get(i)->as_table();
+    if (const toml::table* e = t["erosion"].as_table(); e && refusal->key != "erosion")
+      TableReader(*e, "bodies." + b.name + ".erosion", path)
+          .fail(refusal->key.substr(std::string_view("erosion.").size()), refusal->message);
+    TableReader(t, "bodies." + b.name, path).fail(refusal->key, refusal->message);
+  }
 }
 
 // Adaptive conversion: the particles need the grid, and the remaining elements bond to them.
@@ -1815,7 +1858,7 @@ void read_terminate(TableReader& r, Scene& scene, const std::string& path) {
     tr.check_unknown();
     RunSettings::Termination term;
     term.body = body_index(tr, "body", tr.required_string("body"), scene, false);
-    term.travel = tr.required_number("travel", Range::positive());
+    term.travel = tr.required_number("travel", scene_ranges::run::terminate_travel);
     scene.run.terminate = term;
   }
 }
@@ -1866,12 +1909,13 @@ DetonationSpec read_detonation(TableReader& t, const std::string& path) {
     d.point = lr.required_vec3("from");
     d.end = lr.required_vec3("to");
   }
-  d.time = t.number("time", 0.0, Range::non_negative());
-  d.shadow = t.boolean("shadow", false);
+  d.time = t.number("time", d.time, scene_ranges::detonation_time);
+  d.shadow = t.boolean("shadow", d.shadow);
   return d;
 }
 
-// An explosive body needs something to light it; detonations need an explosive.
+}  // namespace
+
 void check_explosives(const Scene& scene) {
   const BodySpec* explosive = nullptr;
   for (const BodySpec& b : scene.bodies) {
@@ -1899,8 +1943,6 @@ void check_explosives(const Scene& scene) {
                      "no body is of a high explosive (a material with burn = { D, pcj }) for "
                      "the detonation to light");
 }
-
-}  // namespace
 
 std::vector<std::string_view> builtin_strength_models() {
   return model_names<StrengthModel>();
@@ -1933,6 +1975,7 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
   if (has_particles(scene) && !scene.has_grid)
     throw InputError(SourceLocation{path, 0}, "grid",
                      "bodies of particles need a [grid] section (cell, min, max)");
+  check_failure_keys(root, bodies, scene, path);
   check_conversions(bodies, scene, path);
   read_splitting_bodies(r, scene, path);
   read_outside(bodies, scene, path);

@@ -99,6 +99,11 @@ std::string join(const std::vector<std::string>& items, bool quoted);
 std::vector<std::string_view> builtin_strength_models();
 std::string format_number(double v);
 
+// An explosive body needs something to light it and detonations an explosive; explosives are
+// particles or hexahedra that do not convert. For the parser and the check of a scene built in
+// code alike.
+void check_explosives(const Scene& scene);
+
 // Builds and checks a Scene from a parsed document.
 Scene scene_from_toml(const toml::table& root, const std::string& path);
 

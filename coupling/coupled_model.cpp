@@ -313,7 +313,7 @@ std::vector<std::string> CoupledModel::unbooked_energies() const {
   std::vector<std::string> out = mpm::unbooked_particle_energies(scene_);
   if (surface_contacts_)
     for (const ParticleSurfaceContacts::Pair& p : surface_contacts_->pairs())
-      out.push_back("surface contact " + p.spec.name +
+      out.push_back("surface contact " + core::contact_name(scene_, p.spec) +
                     ": the normal catch of particles at mesh faces (friction is booked)");
   return out;
 }
@@ -324,7 +324,7 @@ std::vector<std::string> CoupledModel::force_columns() const {
   std::vector<std::string> out = fe_.force_columns();
   if (surface_contacts_)
     for (const ParticleSurfaceContacts::Pair& p : surface_contacts_->pairs())
-      core::append_force_columns(out, p.spec.name);
+      core::append_force_columns(out, core::contact_name(scene_, p.spec));
   mpm::append_grid_contact_columns(out, scene_);
   for (int b : bonded_bodies_)
     for (const char* part : {".fx", ".fy", ".fz", ".axial_max", ".axial_min"})
@@ -404,6 +404,17 @@ std::vector<std::string> CoupledModel::summary_warnings() const {
 }
 
 std::string CoupledModel::describe() const {
+  // The particle bodies a mesh body meets through surface contact ("a, b"), or "".
+  const auto met_at_faces = [&](int body) {
+    std::string names;
+    for (const core::ContactSpec& c : scene_.contacts)
+      if (c.method == core::ContactMethod::surface && (c.bodies[0] == body || c.bodies[1] == body))
+        names +=
+            (names.empty() ? "" : ", ") +
+            scene_.bodies[static_cast<std::size_t>(c.bodies[0] == body ? c.bodies[1] : c.bodies[0])]
+                .name;
+    return names;
+  };
   std::string out = mpm_.describe();
   out += fe_.describe_mesh();
   out += "coupling on the grid (FE nodes inside the grid domain only):\n";
@@ -446,10 +457,15 @@ std::string CoupledModel::describe() const {
                     "contact corrections return to the nodes, elsewhere the FE update "
                     "alone)\n",
                     body.name.c_str(), count);
+    else if (const std::string met = met_at_faces(static_cast<int>(b)); !met.empty())
+      core::appendf(out,
+                    "  body %s: meets %s at its faces (surface contact: the particles' "
+                    "boundary against its faces, in the surface contact stage above)\n",
+                    body.name.c_str(), met.c_str());
     else
       core::appendf(out,
-                    "  body %s: FE only (in no contact and bonded to nothing: it does not "
-                    "meet the particles)\n",
+                    "  body %s: FE only (in no grid or surface contact and bonded to nothing: "
+                    "it does not meet the particles)\n",
                     body.name.c_str());
   }
   out += "FE stages, around each grid step (time step: the smaller of the FE and grid steps):\n";

@@ -2,6 +2,7 @@
 #include "fem/fe_model.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <initializer_list>
 #include <string>
@@ -219,7 +220,8 @@ std::vector<std::string> FeModel::force_columns() const {
   auto add = [&](const std::string& name, std::initializer_list<const char*> parts) {
     for (const char* p : parts) out.push_back(name + p);
   };
-  for (const MeshContact& c : solver_.mesh_contacts()) core::append_force_columns(out, c.spec.name);
+  for (const MeshContact& c : solver_.mesh_contacts())
+    core::append_force_columns(out, core::contact_name(scene_, c.spec));
   for (std::size_t w = 0; w < scene_.walls.size(); ++w)
     core::append_force_columns(out, "wall" + std::to_string(w + 1));
   for (const RigidBody& r : solver_.rigid_bodies()) {
@@ -300,9 +302,14 @@ std::string FeModel::describe_mesh() const {
                   q.worst_aspect_element, q.inverted, q.total_volume);
   if (q.lines > 0)
     core::appendf(out, "trusses: shortest %.4g (truss %d)\n", q.min_line_length, q.shortest_line);
-  core::appendf(out, "smallest element time step: %.6g at %s\n",
-                solver_.stable_time_step() / scene_.run.element_time_step_factor,
-                solver_.smallest_step_element().c_str());
+  // Rigid elements set no step: a scene of rigid meshes only leaves it to the particles.
+  const double limit = solver_.element_step_limit();
+  if (std::isfinite(limit))
+    core::appendf(out, "smallest element time step: %.6g at %s\n",
+                  limit / scene_.run.element_time_step_factor,
+                  solver_.smallest_step_element().c_str());
+  else
+    out += "smallest element time step: none (every element is rigid)\n";
   return out;
 }
 

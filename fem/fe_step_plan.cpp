@@ -2,10 +2,8 @@
 // FeSolver::begin_step and finish_step run them, with its reason.
 #include "fem/fe_step_plan.hpp"
 
-#include <type_traits>
-#include <variant>
-
 #include "core/appendf.hpp"
+#include "core/materials/model_descriptions.hpp"
 
 namespace afemp::fem {
 
@@ -19,6 +17,14 @@ void add_body(std::string& why, const BodySpec& body, const std::string& what) {
   why += (why.empty() ? "" : "; ") + body.name + ": " + what;
 }
 
+// What body's points are made of: its material's strength model, EOS and failure
+// (core/materials/model_descriptions.hpp, as the MPM plan names them).
+std::string material_models(const core::Scene& scene, const BodySpec& body) {
+  const core::Material& m = scene.materials[static_cast<std::size_t>(body.material)];
+  return m.name + " (strength " + core::strength_description(m.strength) + ", EOS " +
+         core::eos_description(m.eos) + ", failure " + core::failure_description(m) + ")";
+}
+
 // How body's hexahedra integrate and stabilise (fem/hexahedron_one_point.cpp, hourglass.cpp,
 // hourglass_assumed_strain.cpp, hexahedron_full.cpp) and their bulk viscosity.
 std::string hexahedron_formulation(const core::Scene& scene, const BodySpec& body) {
@@ -29,54 +35,16 @@ std::string hexahedron_formulation(const core::Scene& scene, const BodySpec& bod
     core::appendf(out,
                   "one-point, assumed-strain (Belytschko-Bindeman ASQBI) stabilisation "
                   "from the elastic constants, scale %g",
-                  body.hourglass.coefficient);
+                  body.hourglass.effective_coefficient());
   else
     core::appendf(out, "one-point, %s hourglass control Q_hg = %g",
-                  core::to_string(body.hourglass.form), body.hourglass.coefficient);
+                  core::to_string(body.hourglass.form), body.hourglass.effective_coefficient());
   const core::BulkViscositySettings q = core::bulk_viscosity_of(scene, body);
   if (q.linear > 0.0 || q.quadratic > 0.0)
     core::appendf(out, ", bulk viscosity linear %g, quadratic %g", q.linear, q.quadratic);
   else
     out += ", no bulk viscosity";
-  return out;
-}
-
-// When a point of the material fails (core/materials/failure.hpp): the material's failure
-// model, or its failure_strain where it has none.
-std::string failure_model(const core::Material& m) {
-  std::string out;
-  std::visit(
-      [&](const auto& f) {
-        using F = std::decay_t<decltype(f)>;
-        if constexpr (std::is_same_v<F, core::JohnsonCookFailure>) {
-          core::appendf(out, "Johnson-Cook damage, D1 .. D5 = %g, %g, %g, %g, %g", f.D1, f.D2, f.D3,
-                        f.D4, f.D5);
-          if (f.damage_threshold > 0.0)
-            core::appendf(out, ", from plastic strain %g", f.damage_threshold);
-          if (f.critical_damage > 0.0)
-            core::appendf(out, ", softening the deviator to %g at failure",
-                          1.0 - f.critical_damage);
-        } else if constexpr (std::is_same_v<F, core::PlasticStrainFailure>) {
-          core::appendf(out, "plastic strain %g", f.strain);
-        } else if constexpr (std::is_same_v<F, core::SpallFailure>) {
-          core::appendf(out, "spall, %s %g%s",
-                        f.criterion == core::SpallFailure::Criterion::pressure
-                            ? "tension -p"
-                            : "largest principal stress",
-                        f.strength, f.impulse > 0.0 ? ", cumulative (Tuler-Butcher)" : "");
-        } else if constexpr (std::is_same_v<F, core::PrincipalStrainFailure>) {
-          core::appendf(out, "principal strain %g", f.strain);
-        } else if constexpr (std::is_same_v<F, core::NoFailure>) {
-          if (m.failure_strain > 0.0)
-            core::appendf(out, "plastic strain %g", m.failure_strain);
-          else
-            out = "none: the material has no failure model";
-        } else {
-          static_assert(sizeof(F) == 0, "a failure model the step plan does not describe");
-        }
-      },
-      m.failure);
-  return out;
+  return out + ", material " + material_models(scene, body);
 }
 
 // The criteria of body's erosion (fem/hexahedron_update.cpp, truss_update.cpp).
@@ -86,7 +54,8 @@ std::string erosion_criteria(const core::Scene& scene, const BodySpec& body) {
   if (e.plastic_strain > 0.0) core::appendf(out, "plastic strain %g, ", e.plastic_strain);
   if (e.material_failure)
     out += "material failure (" +
-           failure_model(scene.materials[static_cast<std::size_t>(body.material)]) + "), ";
+           core::failure_description(scene.materials[static_cast<std::size_t>(body.material)]) +
+           "), ";
   if (e.volume_ratio > 0.0) core::appendf(out, "volume ratio %g, ", e.volume_ratio);
   if (e.time_step > 0.0) core::appendf(out, "time step %g, ", e.time_step);
   return out + "inverted elements";
@@ -156,7 +125,7 @@ FeStepPlan build_fe_step_plan(const core::Scene& scene, std::size_t imposed_node
     core::appendf(
         contacts,
         "%s%s: %s, penalty s = %g (k = %g / (w dt^2), w the inverse mass of the pair), friction %g",
-        contacts.empty() ? "" : "; ", c.name.c_str(),
+        contacts.empty() ? "" : "; ", core::contact_name(scene, c).c_str(),
         self ? "self-contact, node-to-surface" : "node-to-surface both ways", c.penalty, c.penalty,
         c.friction);
   }
@@ -173,12 +142,12 @@ FeStepPlan build_fe_step_plan(const core::Scene& scene, std::size_t imposed_node
     s.push_back({FeStageKind::rigid_walls, "rigid walls", why});
   }
 
-  std::string hexahedra, erosion, conversion;
-  bool trusses = false;
+  std::string hexahedra, trusses, erosion, conversion;
   for (const BodySpec& body : scene.bodies) {
     if (body.discretisation == Discretisation::hexahedra && !body.rigid)
       add_body(hexahedra, body, hexahedron_formulation(scene, body));
-    trusses = trusses || body.discretisation == Discretisation::trusses;
+    if (body.discretisation == Discretisation::trusses)
+      add_body(trusses, body, "material " + material_models(scene, body));
     if (body.discretisation != Discretisation::particles && body.erosion)
       add_body(erosion, body, erosion_criteria(scene, body));
     if (body.discretisation == Discretisation::hexahedra && body.conversion)
@@ -189,9 +158,10 @@ FeStepPlan build_fe_step_plan(const core::Scene& scene, std::size_t imposed_node
                  "strain rate from v^{n+1/2} on the mid-step geometry, Jaumann stress update, "
                  "forces on the end-of-step geometry, critical step; " +
                      hexahedra});
-  if (trusses)
-    s.push_back({FeStageKind::trusses, "trusses",
-                 "axial strain rate, uniaxial stress update, axial forces, critical step"});
+  if (!trusses.empty())
+    s.push_back(
+        {FeStageKind::trusses, "trusses",
+         "axial strain rate, uniaxial stress update, axial forces, critical step; " + trusses});
   if (!erosion.empty())
     s.push_back({FeStageKind::erosion, "erosion",
                  "an element that meets a criterion leaves with its energy (erosion.csv), the "

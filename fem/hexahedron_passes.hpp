@@ -186,8 +186,8 @@ HexahedronPasses<S, E, Thermal, Fails>::HexahedronPasses(FeSolver& fe, const Ele
       dt_force_(fe.force_step(dt)),
       viscosity_(core::bulk_viscosity_of(fe.scene_, body_)),
       hg_form_(body_.hourglass.form),
-      q_hg_(body_.hourglass.coefficient),
-      hg_shear_(body_.hourglass.coefficient * mat_.shear_modulus()),
+      q_hg_(body_.hourglass.effective_coefficient()),
+      hg_shear_(body_.hourglass.effective_coefficient() * mat_.shear_modulus()),
       erosion_(body_.erosion ? &*body_.erosion : nullptr),
       conversion_(body_.conversion ? &*body_.conversion : nullptr),
       grid_step_(conversion_

@@ -542,6 +542,8 @@ class LsDynaImport {
   std::string scene(const MeshData& mesh) {
     std::string s = "[run]\n";
     if (!title_.empty()) s += "title = " + core::toml_string(title_) + "\n";
+    if (!units_.scene_units().empty())
+      s += "units = " + core::toml_string(units_.scene_units()) + "\n";
     if (end_time_ <= 0.0)
       throw core::InputError(
           {deck_path_, 0}, "*CONTROL_TERMINATION",

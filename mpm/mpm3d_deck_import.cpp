@@ -685,6 +685,8 @@ class Mpm3dImport {
   std::string scene(std::vector<core::DeckFile>& files) {
     std::string s = "[run]\n";
     if (!title_.empty()) s += "title = " + core::toml_string(title_) + "\n";
+    if (!units_.scene_units().empty())
+      s += "units = " + core::toml_string(units_.scene_units()) + "\n";
     double end_time = end_time_;
     if (time_step_ > 0.0 && steps_ > 0 && end_time <= 0.0)
       end_time = time_step_ * static_cast<double>(steps_);

@@ -132,7 +132,7 @@ std::vector<std::string> unbooked_particle_energies(const core::Scene& scene) {
                 "): what mapping to the grid and back smooths away");
   for (const core::ContactSpec& c : scene.contacts)
     if (c.method == core::ContactMethod::grid)
-      out.push_back("grid contact " + c.name +
+      out.push_back("grid contact " + core::contact_name(scene, c) +
                     " (its dissipation is estimated in the contact column, not part of total)");
   for (std::size_t f = 0; f < m.grid.faces.size(); ++f) {
     const core::FaceCondition c = m.grid.faces[f];
@@ -150,7 +150,8 @@ std::vector<std::string> unbooked_particle_energies(const core::Scene& scene) {
 
 void append_grid_contact_columns(std::vector<std::string>& columns, const core::Scene& scene) {
   for (const core::ContactSpec& c : scene.contacts)
-    if (c.method == core::ContactMethod::grid) core::append_force_columns(columns, c.name);
+    if (c.method == core::ContactMethod::grid)
+      core::append_force_columns(columns, core::contact_name(scene, c));
 }
 
 void append_grid_contact_values(std::vector<double>& out, const MpmSolver& solver) {

@@ -4,26 +4,12 @@
 #include <set>
 #include <sstream>
 
-#include "core/materials/model_parameters.hpp"
-#include "core/materials/user_strength_chunk.hpp"
+#include "core/materials/model_descriptions.hpp"
 #include "core/scene.hpp"
 
 namespace afemp::mpm {
 
 namespace {
-
-std::string strength_name(const core::StrengthModel& s) {
-  if (const auto* u = std::get_if<core::UserStrength>(&s))
-    return "user model " + (u->definition ? u->definition->name : std::string("?")) + " (" +
-           std::to_string(u->history_count()) + " history variables, batches of " +
-           std::to_string(core::kUserChunk) + ")";
-  return std::string(core::model_name(s));
-}
-
-std::string eos_name(const core::EquationOfState& e) {
-  const std::string_view name = core::model_name(e);
-  return name.empty() ? "none" : std::string(name);
-}
 
 Stage stage(StageKind kind, std::string name, std::string why) {
   return {kind, std::move(name), std::move(why)};
@@ -47,12 +33,16 @@ void set_options(StepPlan& plan, const core::Scene& scene) {
   const core::Vec3& g = scene.run.gravity;
   plan.gravity = g.x != 0.0 || g.y != 0.0 || g.z != 0.0;
 
+  // The materials of particles: the particle bodies' and those of hexahedra that convert.
   std::set<int> used;
-  for (const auto& b : scene.bodies) used.insert(b.material);
+  for (const auto& b : scene.bodies)
+    if (b.discretisation == core::Discretisation::particles || b.conversion)
+      used.insert(b.material);
   for (int m : used) {
     const core::Material& mat = scene.materials[static_cast<std::size_t>(m)];
-    plan.materials.push_back(
-        {mat.name, strength_name(mat.strength), eos_name(mat.eos), mat.has_thermal_term()});
+    plan.materials.push_back({mat.name, core::strength_description(mat.strength),
+                              core::eos_description(mat.eos), mat.has_thermal_term(),
+                              core::failure_description(mat)});
   }
 }
 
@@ -263,7 +253,7 @@ std::string StepPlan::describe() const {
   for (const auto& m : materials) {
     o << "  " << m.material << ": strength " << m.strength << ", EOS " << m.eos
       << (m.eos == "none" ? " (pressure from the bulk modulus)" : "") << ", thermal "
-      << (m.thermal ? "on (plastic work heats)" : "off") << "\n";
+      << (m.thermal ? "on (plastic work heats)" : "off") << ", failure " << m.failure << "\n";
   }
   o << "shape functions: "
     << (shape == core::ShapeFunction::gimp ? "uGIMP (27 nodes per particle)"

@@ -47,6 +47,7 @@ struct MaterialPlan {
   std::string strength;  // the scene file's model name ("j2"), or the user model's
   std::string eos;       // "none" (hypoelastic pressure) | "linear" | "mie-gruneisen" | ...
   bool thermal = false;  // temperature integrated from plastic work
+  std::string failure;   // when a point fails (core::failure_description)
 };
 
 struct StepPlan {
@@ -57,7 +58,7 @@ struct StepPlan {
   bool strain = false;     // the strain tensor is integrated (run.output_strain)
   bool splitting = false;  // particle lengths are tracked and long particles split
   std::vector<Stage> stages;
-  std::vector<MaterialPlan> materials;  // only materials that some body uses
+  std::vector<MaterialPlan> materials;  // the materials of particles (bodies and conversions)
   bool gravity = false;                 // body force added in p2g_force
   bool jaumann = true;
   int velocity_fields = 1;  // one shared field: bodies stick (no contact stage)

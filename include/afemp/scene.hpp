@@ -78,7 +78,8 @@ struct RunSettings {
   };
   std::optional<Termination> terminate{};
   /// The unit system the scene's numbers are in, for plausibility warnings
-  /// (core/plausibility.hpp): "mm-ms-g" (mm, ms, g, N, MPa), "SI", or empty (none checked).
+  /// (core/plausibility.hpp): "mm-ms-g" (mm, ms, g, N, MPa), "SI", or empty (each material is
+  /// then tried against the unit systems a scene may be in).
   std::string units{};
   /// Keys whose plausibility warnings are silenced (dotted, as the warning names them).
   std::vector<std::string> quiet{};
@@ -240,7 +241,16 @@ struct MeshDensity {
 /// Hourglass control of one-point hexahedra: form and coefficient.
 struct HourglassSettings {
   HourglassForm form = HourglassForm::viscous;  ///< viscous, stiffness or assumed strain
-  double coefficient = 0.1;  ///< Q_hg (LS-DYNA's default QM); assumed strain: scale on K, 1
+  /// Q_hg, or the assumed strain form's scale on its stiffness; unset: the form's default, as
+  /// in the scene file.
+  std::optional<double> coefficient{};
+  /// 0.1 viscous (LS-DYNA's QM), 0.05 stiffness (types 4 and 5), 1 assumed strain (the form
+  /// has no free coefficient, only this scale).
+  static constexpr double default_coefficient(HourglassForm f) {
+    return f == HourglassForm::viscous ? 0.1 : f == HourglassForm::stiffness ? 0.05 : 1.0;
+  }
+  /// The coefficient in effect: the one given, else the form's default.
+  double effective_coefficient() const { return coefficient.value_or(default_coefficient(form)); }
 };
 
 /// Linear and quadratic artificial bulk viscosity (LS-DYNA's Q2 = 0.06, Q1 = 1.5).
@@ -419,7 +429,9 @@ struct ContactSpec {
   /// 0 < s <= 1 (1 closes it within the step; a velocity correction, stable for any s). The
   /// scene file's default is this one (core/scene_parser.cpp reads it from here).
   double penalty = 1.0;
-  std::string name{};  ///< history columns NAME.fx ...; default "BODY1-BODY2" ("BODY-self")
+  /// The prefix of its history columns NAME.fx ...; empty: "BODY1-BODY2" ("BODY-self"), as in
+  /// the scene file.
+  std::string name{};
   SourceLocation where{};
 };
 

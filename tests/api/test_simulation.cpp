@@ -290,7 +290,7 @@ TEST(SimulationApi, BadInputThrowsNamingObjectFieldAndWhatIsAllowed) {
   };
   const Case cases[] = {
       {"particles per cell", [](afemp::Scene& s) { s.bodies[0].particles_per_cell = 0; },
-       "bodies.bar.particles_per_cell", "allowed: 1 to 8"},
+       "bodies.bar.particles_per_cell", "allowed: 1 <= value <= 8"},
       {"Poisson ratio", [](afemp::Scene& s) { s.materials[0].poisson_ratio = 0.6; },
        "materials.copper.nu", "allowed: 0 <= value < 0.5"},
       {"material index", [](afemp::Scene& s) { s.bodies[0].material = 3; }, "bodies.bar.material",

@@ -67,7 +67,8 @@ TEST(Plausibility, TheSilentMistakesEachWarnAtTheirKey) {
 }
 
 // Reference: a grid of 10.0 / 0.3 = 33.3 cells is extended to 34 (max 10.2): one warning per
-// axis, at the line of max; silenced with quiet; material warnings need declared units.
+// axis, at the line of max; silenced with quiet. Without declared units the material is
+// checked against each unit system: steel's SI density with its E in MPa, one warning.
 TEST(Plausibility, AGridOfPartCellsWarnsAndQuietSilencesIt) {
   std::string text = particles(kCopper, "", "[10, 10, 10.2]");
   text.replace(text.find("cell = 0.5"), 10, "cell = 0.3");
@@ -83,7 +84,9 @@ TEST(Plausibility, AGridOfPartCellsWarnsAndQuietSilencesIt) {
   EXPECT_TRUE(warnings_of(quiet).empty());
   std::string no_units = particles("[materials.m]\ndensity = 7830\nE = 2.1e5\nnu = 0.3\n");
   no_units.erase(no_units.find("units = \"mm-ms-g\"\n"), 18);
-  EXPECT_TRUE(warnings_of(no_units).empty());
+  const std::vector<std::string> mixed = warnings_of(no_units);
+  ASSERT_EQ(mixed.size(), 1u);
+  EXPECT_NE(mixed[0].find("key 'materials.m.density'"), std::string::npos) << mixed[0];
 }
 
 // Reference: a quarter cylinder of hexahedra (sectors = 1) needs its two cut planes held along
@@ -103,6 +106,47 @@ TEST(Plausibility, AQuarterMeshWithoutItsSymmetryConstraintsWarns) {
       "fixed = [\"x\"]\n[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 1, "
       "0] } }\nfixed = [\"y\"]\n";
   EXPECT_TRUE(warnings_of(held).empty());
+}
+
+// A scene without [run] units: `material` for the ball, and for a second ball if `other`.
+std::string without_units(const std::string& material, const std::string& other = "") {
+  std::string text = particles(material) + other;
+  text.erase(text.find("units = \"mm-ms-g\"\n"), 18);
+  if (!other.empty())
+    text +=
+        "[[bodies]]\nname = \"ball2\"\nmaterial = \"n\"\n"
+        "shape = { sphere = { centre = [2, 2, 2], radius = 1 } }\n";
+  return text;
+}
+
+// Reference: without [run] units each material is checked against the unit systems a scene may
+// be in (mm-ms-g, SI and the others of `afemp import --units`): steel's SI density 7850 with
+// its modulus in MPa fits none (its wave speed would be 6 m/s) and warns with the likely
+// systems and the density in the modulus's system (7.85e-3 g/mm^3 in mm-ms-g); an SI
+// concrete among mm-ms-g materials warns with its values in mm-ms-g; consistent SI and
+// mm-ms-g scenes raise nothing.
+TEST(Plausibility, WithoutUnitsEachMaterialIsCheckedAgainstTheUnitSystems) {
+  const std::vector<std::string> mixed =
+      warnings_of(without_units("[materials.m]\ndensity = 7850\nE = 2.1e5\nnu = 0.3\n"));
+  ASSERT_EQ(mixed.size(), 1u);
+  EXPECT_NE(mixed[0].find("key 'materials.m.density': density 7850 looks like kg/m^3 (SI) and "
+                          "E = 2.1e+05 like MPa (mm-ms-g)"),
+            std::string::npos)
+      << mixed[0];
+  EXPECT_NE(mixed[0].find("in mm-ms-g the density is 0.00785 g/mm^3"), std::string::npos)
+      << mixed[0];
+  const std::vector<std::string> pasted =
+      warnings_of(without_units(kCopper, "[materials.n]\ndensity = 2440\nE = 3.5e10\nnu = 0.2\n"));
+  ASSERT_EQ(pasted.size(), 1u);
+  EXPECT_NE(pasted[0].find("key 'materials.n.density': material n looks like SI"),
+            std::string::npos)
+      << pasted[0];
+  EXPECT_NE(pasted[0].find("in mm-ms-g its density is 0.00244 g/mm^3 and E 3.5e+04 MPa"),
+            std::string::npos)
+      << pasted[0];
+  EXPECT_TRUE(
+      warnings_of(without_units("[materials.m]\ndensity = 7850\nE = 2.1e11\nnu = 0.3\n")).empty());
+  EXPECT_TRUE(warnings_of(without_units(kCopper)).empty());
 }
 
 }  // namespace

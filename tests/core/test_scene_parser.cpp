@@ -503,6 +503,7 @@ material = "steel"
 shape = { line = { from = [0, 0, 0], to = [0, 0, 10] } }
 mesh = { segments = 5 }
 area = 0.5
+erosion = { material_failure = true }
 
 [[constraints]]
 nodes = { plane = { point = [0, 0, 0], normal = [1, 0, 0], tolerance = 1e-9 } }
@@ -648,7 +649,7 @@ TEST(SceneParser, MeshMistakesNameTheKeyAndWhatIsAllowed) {
                            "hourglass = { form = \"assumed_strain\" }"),
                   "mesh.toml");
   EXPECT_EQ(asqbi.bodies[0].hourglass.form, HourglassForm::assumed_strain);
-  EXPECT_EQ(asqbi.bodies[0].hourglass.coefficient, 1.0);
+  EXPECT_EQ(asqbi.bodies[0].hourglass.effective_coefficient(), 1.0);
   e = error_of(replaced("hourglass = { form = \"stiffness\", coefficient = 0.05 }",
                         "hourglass = { form = \"assumed_strain\", coefficient = 1.5 }"));
   EXPECT_NE(e.find("bodies.plate.hourglass.coefficient"), std::string::npos) << e;
@@ -886,6 +887,66 @@ TEST(SceneParser, ConversionKeysNameTheKeyAndWhatIsAllowed) {
   e = error_of(trusses);
   EXPECT_NE(e.find("bodies.bar.conversion"), std::string::npos) << e;
   EXPECT_NE(e.find("applies to bodies of hexahedra, not to trusses"), std::string::npos) << e;
+}
+
+// Reference: a failure key a discretisation does not use is an error naming the file, the
+// line, the key and what that discretisation takes (issue 46). Trusses have no failed state:
+// they take failure_strain, as the criterion of erosion = { material_failure = true }, and
+// nothing else; an erosion at the material's failure needs a material that fails.
+TEST(SceneParser, FailureKeysADiscretisationDoesNotUseAreErrors) {
+  const std::string run = "[run]\nend_time = 1.0\n";
+  const std::string steel = "[materials.steel]\ndensity = 7.85e-3\nE = 2.0e5\nnu = 0.3\n";
+  const std::string jc_damage =
+      "failure = { model = \"johnson-cook\", D1 = 0.05, D2 = 3.44, D3 = -2.12, D4 = 0.002, "
+      "D5 = 0.61 }\n";
+  const auto bar = [](const std::string& extra) {
+    return "[[bodies]]\nname = \"bar\"\ndiscretisation = \"trusses\"\nmaterial = \"steel\"\n"
+           "shape = { line = { from = [0, 0, 0], to = [10, 0, 0] } }\nmesh = { size = 1 }\n"
+           "area = 1\n" +
+           extra;
+  };
+  // Johnson-Cook damage on a truss material: refused at the material's failure key.
+  const std::string jc = run + steel + jc_damage + bar("erosion = { material_failure = true }\n");
+  std::string e = test::error_of(jc);
+  EXPECT_EQ(e.rfind("scene.toml:" + std::to_string(test::line_of(jc, "failure = ")) +
+                        ": key 'materials.steel.failure'",
+                    0),
+            0u)
+      << e;
+  EXPECT_NE(e.find("body \"bar\" is made of trusses, which take failure_strain only"),
+            std::string::npos)
+      << e;
+  // So is the plastic-strain model written out (trusses would never erode at it).
+  const std::string plastic = run + steel +
+                              "failure = { model = \"plastic-strain\", strain = 0.2 }\n" +
+                              bar("erosion = { material_failure = true }\n");
+  e = test::error_of(plastic);
+  EXPECT_NE(e.find("key 'materials.steel.failure'"), std::string::npos) << e;
+  // A failure_strain that trusses would not erode at: without material_failure it does nothing.
+  const std::string unused = run + steel + "failure_strain = 0.2\n" + bar("");
+  e = test::error_of(unused);
+  EXPECT_EQ(e.rfind("scene.toml:" + std::to_string(test::line_of(unused, "[[bodies]]")) +
+                        ": key 'bodies.bar.erosion'",
+                    0),
+            0u)
+      << e;
+  EXPECT_NE(e.find("failure_strain acts on trusses only through erosion = { material_failure "
+                   "= true }"),
+            std::string::npos)
+      << e;
+  // Erosion at the material's failure, of a material that never fails.
+  const std::string never = run + steel + bar("erosion = { material_failure = true }\n");
+  e = test::error_of(never);
+  EXPECT_EQ(
+      e.rfind("scene.toml:" + std::to_string(test::line_of(never, "erosion = { material_failure")) +
+                  ": key 'bodies.bar.erosion.material_failure'",
+              0),
+      0u)
+      << e;
+  // The truss's own criterion is accepted.
+  EXPECT_NO_THROW(parse_scene(
+      run + steel + "failure_strain = 0.2\n" + bar("erosion = { material_failure = true }\n"),
+      "scene.toml"));
 }
 
 }  // namespace

@@ -172,5 +172,15 @@ TEST(ParticleSurfaceContact, SurfaceContactBetweenParticleBodiesIsAnError) {
   EXPECT_NE(e.find("a body of particles and a body of hexahedra"), std::string::npos) << e;
 }
 
+// Reference: `afemp check` says how the target meets the column: through surface contact at
+// its faces, not as a body "in no contact" that "does not meet the particles" (issue 46).
+TEST(ParticleSurfaceContact, AfempCheckSaysTheMeshMeetsTheParticlesAtItsFaces) {
+  const core::Scene s = core::parse_scene(scene(rigid_block(-1.0, "true")), "surface.toml");
+  const std::string text = CoupledModel(s).describe();
+  EXPECT_EQ(text.find("does not meet"), std::string::npos) << text;
+  EXPECT_NE(text.find("body target: meets column at its faces (surface contact"), std::string::npos)
+      << text;
+}
+
 }  // namespace
 }  // namespace afemp::coupling

@@ -229,7 +229,7 @@ TEST(FeFailure, FailureInputsTheModelsCannotCarryAreErrors) {
       "area = 1.0\nshape = { line = { from = [0, 0, 0], to = [10, 0, 0] } }\nmesh = { size = 2.5 "
       "}\n";
   const std::string e1 = error_of(truss);
-  EXPECT_NE(e1.find("bodies.rod.material"), std::string::npos) << e1;
+  EXPECT_NE(e1.find("materials.steel.failure"), std::string::npos) << e1;
   EXPECT_NE(e1.find("failure_strain"), std::string::npos) << e1;
   const std::string both =
       "[run]\nend_time = 1.0\n" + material +

@@ -116,19 +116,32 @@ TEST(FeStepPlan, WallTrussGravityAndErosionAddTheirStagesInStepOrder) {
   EXPECT_NE(plan.stages[4].why.find("block: plastic strain 0.5"), std::string::npos)
       << plan.stages[4].why;
   EXPECT_EQ(plan.stages[4].why.find("rod"), std::string::npos) << "the rod does not erode";
-  // Eroding at material failure, the plan names the material's failure model.
+  // Eroding at material failure, the plan names the material's failure model (trusses take
+  // none: the rod is made of a wire without one).
   std::string jc = block_wall_truss;
   jc.replace(jc.find("erosion = { plastic_strain = 0.5 }"),
              std::string("erosion = { plastic_strain = 0.5 }").size(),
              "erosion = { material_failure = true }");
   jc.replace(jc.find("[[bodies]]"), 0,
-             "failure = { model = \"johnson-cook\", D1 = 0.05, D2 = 3.44, D3 = -2.12 }\n");
+             "failure = { model = \"johnson-cook\", D1 = 0.05, D2 = 3.44, D3 = -2.12 }\n"
+             "[materials.wire]\ndensity = 7.85e-3\nE = 200e3\nnu = 0.3\n");
+  const std::string rod = "discretisation = \"trusses\"\nmaterial = \"steel\"";
+  jc.replace(jc.find(rod), rod.size(), "discretisation = \"trusses\"\nmaterial = \"wire\"");
   const FeStepPlan failing = plan_of(jc);
   EXPECT_NE(
       failing.stages[4].why.find(
           "block: material failure (Johnson-Cook damage, D1 .. D5 = 0.05, 3.44, -2.12, 0, 0)"),
       std::string::npos)
       << failing.stages[4].why;
+  // Each stage names its bodies' material models, the failure model included (issue 46).
+  EXPECT_NE(failing.stages[2].why.find(", material steel (strength j2, EOS none, failure "
+                                       "Johnson-Cook damage, D1 .. D5 = 0.05, 3.44, -2.12, 0, 0)"),
+            std::string::npos)
+      << failing.stages[2].why;
+  EXPECT_NE(
+      failing.stages[3].why.find("rod: material wire (strength elastic, EOS none, failure none)"),
+      std::string::npos)
+      << failing.stages[3].why;
 }
 
 // Reference: conversion comes last (the coupled step takes the particles after the FE step),

@@ -124,7 +124,7 @@ TEST(LsDynaDeckImport, KeywordsBecomeTheSceneFields) {
   EXPECT_EQ(b.discretisation, core::Discretisation::hexahedra);
   EXPECT_EQ(b.element, core::HexFormulation::one_point);
   EXPECT_EQ(b.hourglass.form, core::HourglassForm::assumed_strain);
-  EXPECT_DOUBLE_EQ(b.hourglass.coefficient, 1.0);
+  EXPECT_DOUBLE_EQ(b.hourglass.effective_coefficient(), 1.0);
   EXPECT_DOUBLE_EQ(b.velocity.z, -300.);
   EXPECT_DOUBLE_EQ(b.internal_energy, 0.0893 / 8.93e-3);  // E0 per volume over RO
   EXPECT_EQ(std::get<core::MeshFileShape>(b.shape).parts, std::vector<std::string>{"cube"});
@@ -173,6 +173,9 @@ TEST(LsDynaDeckImport, SiDeckIsConvertedIntoMillimetresMilliseconds) {
   EXPECT_EQ(s.bodies[0].element, core::HexFormulation::full);  // ELFORM 2
   EXPECT_DOUBLE_EQ(std::get<core::MeshFileShape>(s.bodies[0].shape).scale, 1000.0);
   EXPECT_NEAR(s.walls[0].point.z, -1.0, 1e-12);
+  // The converted scene states its units, so that its plausibility is checked in them.
+  EXPECT_EQ(s.run.units, "mm-ms-g");
+  EXPECT_TRUE(import_text(dir, kDeck).scene.run.units.empty());  // kept as the deck's
 }
 
 // *INCLUDE: the mesh in a file beside the deck; the scene's body reads it through the deck.
@@ -263,7 +266,7 @@ TEST(LsDynaDeckImport, JohnsonCookWithoutEAndPrTakesThemFromGAndTheEos) {
   EXPECT_NEAR(m.poisson_ratio, (3 * K - 2 * G) / (2 * (3 * K + G)), 1e-12);
   EXPECT_NEAR(m.shear_modulus(), G, 1e-6);
   EXPECT_EQ(im.scene.bodies[0].hourglass.form, core::HourglassForm::stiffness);
-  EXPECT_DOUBLE_EQ(im.scene.bodies[0].hourglass.coefficient, 0.1);
+  EXPECT_DOUBLE_EQ(im.scene.bodies[0].hourglass.effective_coefficient(), 0.1);
 }
 
 // Fixed-column cards (10 characters a field), as most decks write them.

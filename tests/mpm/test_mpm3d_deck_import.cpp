@@ -197,6 +197,8 @@ TEST(Mpm3dDeckImport, SiDeckIsConvertedIntoMillimetresMilliseconds) {
   EXPECT_NEAR(p[0][0], 1.5, 1e-12);
   EXPECT_NEAR(p[0][3], 1.0, 1e-9);
   EXPECT_NE(im.deck.scene.find("m, s, kg, N, Pa"), std::string::npos);
+  // The converted scene states its units, so that its plausibility is checked in them.
+  EXPECT_EQ(s.run.units, "mm-ms-g");
 }
 
 // MPM3D (2005, appendix A): a particle table "id material component x y z" of volume

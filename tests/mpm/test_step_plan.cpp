@@ -147,5 +147,25 @@ TEST(StepPlan, AfempCheckPrintsThePlanTheSolverRuns) {
   }
 }
 
+// Reference: `afemp check` names the failure model of each material its particles update
+// (issue 46: a Johnson-Cook damage model of particles went unlisted), and the materials of
+// mesh bodies, which no particle stage updates, are not listed there.
+TEST(StepPlan, AfempCheckListsEachParticleMaterialsFailureModel) {
+  std::string text = scene_b;
+  text.insert(text.find("eos = "),
+              "failure = { model = \"johnson-cook\", D1 = 0.54, D2 = 4.89, D3 = -3.03, "
+              "D4 = 0.014, D5 = 1.12, reference_strain_rate = 1e-3 }\n");
+  text +=
+      "[[bodies]]\nname = \"plate\"\ndiscretisation = \"hexahedra\"\nmaterial = \"spare\"\n"
+      "shape = { box = { min = [2, 2, 6], max = [5, 5, 7] } }\nmesh = { size = 1 }\n";
+  const std::string plan = build_step_plan(core::parse_scene(text, "b.toml")).describe();
+  EXPECT_NE(plan.find("copper: strength johnson-cook, EOS mie-gruneisen, thermal on (plastic "
+                      "work heats), failure Johnson-Cook damage, D1 .. D5 = 0.54, 4.89, -3.03, "
+                      "0.014, 1.12"),
+            std::string::npos)
+      << plan;
+  EXPECT_EQ(plan.find("spare"), std::string::npos) << plan;
+}
+
 }  // namespace
 }  // namespace afemp::mpm
