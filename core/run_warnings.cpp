@@ -14,8 +14,8 @@ constexpr double kHourglassShare = 0.1;  // of the internal energy
 constexpr double kEnergyError = 0.05;    // of the energy the run handled (energy_balance_error)
 // Past this error a model that books some mechanism in no column of total() names them.
 constexpr double kUnbooked = 0.01;
-constexpr double kStepFall = 10.0;       // the first stable step over the smallest
-constexpr double kLostMass = 1e-6;       // of the initial mass: past round-off
+constexpr double kStepFall = 10.0;  // the first stable step over the smallest
+constexpr double kLostMass = 1e-6;  // of the initial mass: past round-off
 
 double total_mass(const Energies& e) {
   double m = 0.0;
