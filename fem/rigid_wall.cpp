@@ -3,8 +3,8 @@
 // puts it on the wall at the end of the step; Coulomb friction limits the tangential impulse
 // to mu times the normal one (stick below it, slide with the reduced velocity above it). A
 // moving wall does work m dv . v_wall on the nodes, which goes to the external work; the
-// kinetic energy a fixed wall takes from arriving nodes is not hidden and shows in the
-// energy balance. Imposed velocity components (constraints) are never changed by a wall. The
+// kinetic energy a wall takes from arriving nodes is the wall energy (below). Imposed velocity
+// components (constraints) are never changed by a wall. The
 // wall's force on the nodes is the impulse it gave them over the step dt^n.
 // Energy: what a wall takes from the motion is booked as the wall energy (Energies::wall,
 // LS-DYNA's rigid-wall energy): minus the work of its impulses J on the nodes, taken as the
