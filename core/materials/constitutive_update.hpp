@@ -57,12 +57,12 @@ inline PointUpdate finish_increment(const Material& material, const Eos& eos, bo
   // flow stress alone, q_new dp, overstated the plastic work (and the Taylor-Quinney heat) by
   // half the hardening over each increment (a 2 mm steel block on a wall ended with an elastic
   // energy of -0.46 % of the initial energy).
-  double plastic_work =
-      r.flow_stress > 0.0
-          ? 0.5 * r.plastic_strain_increment *
-                (r.flow_stress + 1.5 * double_dot(in.s_old, s_new) / r.flow_stress) *
-                in.inv_rho_work
-          : 0.0;
+  double plastic_work = 0.0;
+  if (r.plastic_strain_increment > 0.0 && r.flow_stress > 0.0) {
+    plastic_work = 0.5 * r.plastic_strain_increment *
+                   (r.flow_stress + 1.5 * double_dot(in.s_old, s_new) / r.flow_stress) *
+                   in.inv_rho_work;
+  }
 
   // Trapezoidal deviatoric work: elastic (recoverable) and plastic parts together.
   double deviatoric_work = 0.5 * double_dot(in.s_old + s_new, in.de_dev) * in.inv_rho_work;
