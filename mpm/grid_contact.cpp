@@ -212,7 +212,10 @@ void MpmSolver::grid_contact(ContactPass pass) {
   const bool record = update && points_;
   if (record) contact_change_.assign(g.field_slot_count(), Vec3{});
   // The update pass's impulses are the contacts' forces over the step: summed per thread and
-  // contact, on the contact's first body.
+  // contact, on the contact's first body. They are all the momentum contact gives, whatever the
+  // transfer: the start pass (USF, USAVG) corrects only the velocity the strain rate is taken
+  // from (the grid update takes v and v_new from the momentum again), and the remap pass
+  // (MUSL) only the remapped one.
   const std::size_t contacts = grid_contact_force_.size();
   if (update) contact_force_scratch_.assign(static_cast<std::size_t>(nt) * contacts, {});
 #pragma omp parallel num_threads(nt) if (core::worth_threads(stride))
