@@ -348,7 +348,7 @@ void CoupledModel::force_values(std::vector<double>& out) const {
     }
   mpm::append_grid_contact_values(out, mpm());
   if (bonded_bodies_.empty()) return;
-  // The trusses' axial forces N = sigma A = sigma V / l, by body.
+  // The trusses' axial forces, by body.
   const std::size_t nb = scene_.bodies.size();
   std::vector<double> most(nb, -std::numeric_limits<double>::infinity());
   std::vector<double> least(nb, std::numeric_limits<double>::infinity());
@@ -357,9 +357,7 @@ void CoupledModel::force_values(std::vector<double>& out) const {
   for (const fem::ElementBatch& b : t.batches)
     for (std::size_t e = b.begin; e < b.end; ++e) {
       if (!t.alive[e]) continue;
-      const double length = core::norm(n.position[static_cast<std::size_t>(t.nodes[e][1])] -
-                                       n.position[static_cast<std::size_t>(t.nodes[e][0])]);
-      const double axial = t.stress[b.point_begin + (e - b.begin)].xx * t.volume[e] / length;
+      const double axial = t.axial_force(b, e, n.position);
       const auto body = static_cast<std::size_t>(b.body);
       most[body] = std::max(most[body], axial);
       least[body] = std::min(least[body], axial);

@@ -123,10 +123,8 @@ const std::vector<core::MeshBlock>& FeModel::mesh_blocks() {
     for (const ElementBatch& b : t.batches)
       for (std::size_t e = b.begin; e < b.end; ++e) {
         const std::size_t p = b.point_begin + (e - b.begin);
-        const core::Vec3 d = n.position[static_cast<std::size_t>(t.nodes[e][1])] -
-                             n.position[static_cast<std::size_t>(t.nodes[e][0])];
         truss_stress_[e] = t.stress[p].xx;
-        truss_force_[e] = t.stress[p].xx * t.volume[e] / core::norm(d);
+        truss_force_[e] = t.axial_force(b, e, n.position);
         truss_plastic_[e] = t.plastic_strain[p];
         truss_temperature_[e] = t.temperature[p];
         truss_alive_[e] = t.alive[e];

@@ -16,6 +16,14 @@ struct TrussElements : ElementStore {
   static constexpr int corners = 2;
   std::vector<std::array<std::int32_t, 2>> nodes;
   std::vector<double> length0, area0;  // initial length and cross-section
+
+  // The axial force of bar e in batch b at the node positions x (tension positive):
+  // N = sigma A with the area from the volume the update keeps, A = V / l.
+  double axial_force(const ElementBatch& b, std::size_t e, const std::vector<core::Vec3>& x) const {
+    const double length = core::norm(x[static_cast<std::size_t>(nodes[e][1])] -
+                                     x[static_cast<std::size_t>(nodes[e][0])]);
+    return stress[b.point_begin + (e - b.begin)].xx * volume[e] / length;
+  }
 };
 
 // The trusses as an element set; they have no faces: contact takes their live nodes as slaves.
