@@ -124,6 +124,12 @@ void CoupledModel::convert_elements() {
   more.history_count = fe().hexahedra().history_count;
   // Principal-strain failure: the particles carry on from their elements' accumulated strain.
   if (!fe().hexahedra().strain.empty()) more.keep(&mpm::Particles::strain, core::SymTensor{});
+  // And from what they dissipated, which leaves the plastic and viscous totals with a particle
+  // that leaves the grid (the particles keep it where the grid has outflow faces).
+  if (!fe().hexahedra().plastic_heat.empty()) {
+    more.keep(&mpm::Particles::plastic_heat, 0.0);
+    more.keep(&mpm::Particles::viscous_heat, 0.0);
+  }
   std::vector<Conversion> made;
   made.reserve(retired.size());
   for (const fem::RetiredElement& ev : retired) {

@@ -27,7 +27,9 @@ struct ElementBatch {
 // FeSolver::setup_point_fields decides for each element kind which needs its scene has.
 enum class PointNeed : std::uint8_t {
   always,
-  erosion,    // elements may erode: their plastic and viscous heat leave the totals with them
+  // Elements may erode, or convert to particles that may leave the grid: their plastic and
+  // viscous heat leave the totals with them (converted particles carry it).
+  leaving,
   strain,     // some material's failure reads the strain tensor (principal-strain failure)
   explosive,  // some body is a high explosive (programmed burn)
 };
@@ -108,8 +110,8 @@ void for_each_point_field(Store& el, F&& f) {
   f(PointField{"density", nullptr, N::always, false, 0.0}, el.density, 1);
   f(PointField{"damage", "damage", N::always, true, 0.0}, el.damage, 1);
   f(PointField{"strain", nullptr, N::strain, true, 0.0}, el.strain, 1);
-  f(PointField{"plastic_heat", nullptr, N::erosion, false, 0.0}, el.plastic_heat, 1);
-  f(PointField{"viscous_heat", nullptr, N::erosion, false, 0.0}, el.viscous_heat, 1);
+  f(PointField{"plastic_heat", nullptr, N::leaving, true, 0.0}, el.plastic_heat, 1);
+  f(PointField{"viscous_heat", nullptr, N::leaving, true, 0.0}, el.viscous_heat, 1);
   f(PointField{"light_time", nullptr, N::explosive, false, 0.0}, el.light_time, 1);
   f(PointField{"burn", nullptr, N::explosive, false, 1.0}, el.burn, 1);
   f(PointField{"burn_length", nullptr, N::explosive, false, 0.0}, el.burn_length, 1);

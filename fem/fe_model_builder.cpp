@@ -413,21 +413,25 @@ void FeSolver::build_elements(const core::Scene& scene, const BodyMeshes& meshes
 
 // The point fields only some scenes need (PointNeed, element_store.hpp), kept at their rest
 // value for every point of a kind when one of its bodies needs them: what each point
-// dissipated, where elements may erode (ElementStore::plastic_heat); for hexahedra (the truss
-// update reads neither) the strain tensor principal-strain failure reads and a high
+// dissipated, where elements may erode or convert (ElementStore::plastic_heat: the converted
+// particles carry it, and take it out of the totals if they leave through an outflow face;
+// without it a converted particle that left took its plastic work out of the internal energy
+// and not out of the plastic column, and the elastic energy went negative); for hexahedra (the
+// truss update reads neither) the strain tensor principal-strain failure reads and a high
 // explosive's burn (setup_explosives). Particles keep their own.
 void FeSolver::setup_point_fields(const core::Scene& scene) {
   auto keep = [&scene](ElementStore& el, bool hexahedra) {
-    bool erosion = false, strain = false, explosive = false;
+    bool leaving = false, strain = false, explosive = false;
     for (const ElementBatch& b : el.batches) {
       const core::Material& m = scene.materials[static_cast<std::size_t>(b.material)];
-      erosion = erosion || scene.bodies[static_cast<std::size_t>(b.body)].erosion.has_value();
+      const core::BodySpec& body = scene.bodies[static_cast<std::size_t>(b.body)];
+      leaving = leaving || body.erosion.has_value() || body.conversion.has_value();
       strain = strain || (hexahedra && m.needs_strain());
       explosive = explosive || (hexahedra && m.is_explosive() && b.end > b.begin);
     }
     for_each_point_field(el, [&](const PointField& field, auto& a, std::size_t width) {
       using T = typename std::decay_t<decltype(a)>::value_type;
-      const bool needed = (field.need == PointNeed::erosion && erosion) ||
+      const bool needed = (field.need == PointNeed::leaving && leaving) ||
                           (field.need == PointNeed::strain && strain) ||
                           (field.need == PointNeed::explosive && explosive);
       if (needed) a.assign(el.points() * width, rest_value<T>(field));

@@ -9,9 +9,10 @@
 //    within 1 % on every row;
 //  * a dissipation cannot be negative: plastic work, bulk-viscous and hourglass work, erosion,
 //    conversion, wall, contact and outflow columns at or above -1e-9 E0 on every row (the
-//    columns once went to -1535 and -535 in such scenes); the elastic energy, internal less
-//    the dissipated parts, at or above -1e-3 E0 (the AFEMP target's ends at -30.7 of 169,246,
-//    a residue not yet explained);
+//    columns once went to -1535 and -535 in such scenes); nor can the elastic energy, internal
+//    less the plastic and viscous parts, a positive quadratic form of the stress (it once went
+//    to -15,110 on the wall, and in the AFEMP target to -120.3 and then -30.7, where converted
+//    particles left the grid without their elements' plastic work);
 //  * where a mechanism has no column of total (grid contact, whose dissipation the contact
 //    column estimates, and the particle-grid transfers), a balance past 1 % is named in the
 //    summary's warnings with the contact's name and its estimate, and the estimate accounts
@@ -99,7 +100,7 @@ TEST_P(EnergyBalanceScene, ClosesOrNamesWhatItDoesNotBookAndNoDissipationIsNegat
     EXPECT_GE(least, -1e-9 * e0) << x.scene << ": column " << column;
   }
   const double least_elastic = *std::min_element(h["elastic"].begin(), h["elastic"].end());
-  EXPECT_GE(least_elastic, -1e-3 * e0) << x.scene;
+  EXPECT_GE(least_elastic, -1e-9 * e0) << x.scene;
   EXPECT_LT(largest_gain, 0.01) << x.scene << ": the run made energy";
 
   if (x.contact == nullptr) {
