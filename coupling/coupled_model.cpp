@@ -81,8 +81,12 @@ CoupledModel::CoupledModel(const core::Scene& scene)
     add_point(i, bonded, surface_body_[b] != 0);
   }
   fe().set_grid_driven(driven_);
+  bonds_body_.assign(nb, 0);
   for (std::size_t b = 0; b < nb; ++b)
-    if (scene.bodies[b].bonded_to >= 0) bonded_bodies_.push_back(static_cast<int>(b));
+    if (scene.bodies[b].bonded_to >= 0) {
+      bonded_bodies_.push_back(static_cast<int>(b));
+      bonds_body_[b] = 1;
+    }
   bond_force_.assign(nb, core::Vec3{});
   // Hexahedra retire (and become particles) only inside the grid.
   const core::GridSettings& g = scene.mpm.grid;
@@ -233,11 +237,10 @@ void CoupledModel::step(double dt) {
   if (bonds) {
     for (int b : bonded_bodies_) bond_force_[static_cast<std::size_t>(b)] = core::Vec3{};
     for (std::size_t k = 0; k < fe_node_.size(); ++k) {
-      const int b = n.body[fe_node_[k]];
-      if (!points_.bonded[k] || scene_.bodies[static_cast<std::size_t>(b)].bonded_to < 0) continue;
-      bond_force_[static_cast<std::size_t>(b)] -=
-          points_.mass[k] * points_.velocity[k] +
-          dt * (points_.force[k] + points_.mass[k] * scene_.run.gravity);
+      const auto b = static_cast<std::size_t>(n.body[fe_node_[k]]);
+      if (!points_.bonded[k] || !bonds_body_[b]) continue;
+      bond_force_[b] -= points_.mass[k] * points_.velocity[k] +
+                        dt * (points_.force[k] + points_.mass[k] * scene_.run.gravity);
     }
   }
   mpm().step(dt);
@@ -267,15 +270,11 @@ void CoupledModel::step(double dt) {
     n.velocity[i] = points_.velocity[k];
     for (int a = 0; a < 3; ++a)
       if (n.imposed[i] & (1u << a)) n.velocity[i][a] = n.imposed_velocity[i][a];
+    const auto b = static_cast<std::size_t>(n.body[i]);
+    if (bonds && bonds_body_[b]) bond_force_[b] += points_.mass[k] * points_.velocity[k];
   }
-  if (bonds) {
-    for (std::size_t k = 0; k < fe_node_.size(); ++k) {
-      const int b = n.body[fe_node_[k]];
-      if (points_.bonded[k] && scene_.bodies[static_cast<std::size_t>(b)].bonded_to >= 0)
-        bond_force_[static_cast<std::size_t>(b)] += points_.mass[k] * points_.velocity[k];
-    }
+  if (bonds)
     for (int b : bonded_bodies_) bond_force_[static_cast<std::size_t>(b)] *= 1.0 / dt;
-  }
   convert_elements();
 }
 

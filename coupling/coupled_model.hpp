@@ -126,6 +126,7 @@ class CoupledModel final : public core::Model {
   // Bodies with `bonded_to` (rebar): per scene body, the bond's force on it over the last step
   // (its momentum change less its weight: its elements' forces on it sum to zero).
   std::vector<int> bonded_bodies_;
+  std::vector<std::uint8_t> bonds_body_;  // per body: 1 when it is bonded to particles
   std::vector<core::Vec3> bond_force_;
 };
 
