@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -104,7 +105,39 @@ struct Material {
   double specific_heat = 0, temperature = -1, failure_strain = 0;
   std::string eos;
   double e0 = 0;  // EOS initial internal energy per unit volume (deck units)
+  // hiex: its detonation velocity and the JWL constants of its seos (scene units: A, B, E0
+  // pressures, then R1, R2, omega), which give the Chapman-Jouguet pressure the burn needs.
+  double detonation_speed = 0;
+  std::optional<std::array<double, 6>> jwl;
+  // null: its bulk modulus (scene units), the wave speed MPM3D-F90 runs its EOS with.
+  double bulk_modulus = 0;
 };
+
+// The Chapman-Jouguet state of JWL products detonated from rest at the reference density
+// (Fickett & Davis, Detonation, 1979, section 2A): on the products' Hugoniot,
+// E = E0 + p (1 - V) / 2 with p = f(V) + omega E / V (E per unit reference volume, V = rho0 /
+// rho), the CJ point is where the Rayleigh line's slope rho0 D^2 = p / (1 - V) is least. The
+// pressure there, for the burn's Wilkins term; the search runs over 0.3 <= V <= 0.99 (the CJ
+// volume of every explosive afemp's docs list is 0.7-0.8).
+double cj_pressure(const std::array<double, 6>& jwl) {
+  const auto [a, b, e0, r1, r2, omega] = jwl;
+  const auto hugoniot = [&](double v) {
+    const double f = a * (1.0 - omega / (r1 * v)) * std::exp(-r1 * v) +
+                     b * (1.0 - omega / (r2 * v)) * std::exp(-r2 * v);
+    const double e = (e0 + 0.5 * f * (1.0 - v)) / (1.0 - 0.5 * omega * (1.0 - v) / v);
+    return f + omega * e / v;
+  };
+  const auto slope = [&](double v) { return hugoniot(v) / (1.0 - v); };
+  double lo = 0.3, hi = 0.99;
+  for (int i = 0; i < 200; ++i) {  // golden-section search of the least slope
+    const double m1 = hi - 0.618033988749895 * (hi - lo), m2 = lo + 0.618033988749895 * (hi - lo);
+    if (slope(m1) < slope(m2))
+      hi = m2;
+    else
+      lo = m1;
+  }
+  return hugoniot(0.5 * (lo + hi));
+}
 
 struct Point {
   core::Vec3 x;
@@ -249,8 +282,11 @@ class Mpm3dImport {
            "time histories are [[probes]])",
            false);
     } else if (k == "deto") {
-      for (int a = 0; a < 3; ++a) length();
-      note(key_, "detonation point: afemp has no high-explosive burn", false);
+      core::Vec3 x;
+      x.x = length();
+      x.y = length();
+      x.z = length();
+      detonations_.push_back({x, words_.at()});
     } else if (k == "drda" || k == "bimp" || k == "sgmp" || k == "smoo" || k == "tlmp" ||
                k == "uvfp") {
       note(key_, "an MPM3D-F90 method switch afemp does not have (docs/import.md)", false);
@@ -327,13 +363,34 @@ class Mpm3dImport {
       want({13},
            "density, E, nu, A, B, n, C, m, room and melt temperature, specific heat, epso, "
            "epf");
+    else if (m.type == "hiex")
+      want({2}, "density, detonation velocity D");
+    else if (m.type == "null")
+      want({3}, "density, bulk modulus, viscosity");
     else
       throw core::InputError(
           m.at, key_,
           "material type '" + m.type +
-              "' has no afemp counterpart (hiex: high-explosive burn, null: fluid, dpm: "
-              "Drucker-Prager, neoh: neo-Hookean); translated: elas, pla1, pla2, john, sjc, "
-              "sjcf, jcf");
+              "' has no afemp counterpart (dpm: Drucker-Prager, neoh: neo-Hookean); "
+              "translated: elas, pla1, pla2, john, sjc, sjcf, jcf, hiex, null");
+    if (m.type == "hiex" || m.type == "null") {
+      // No strength (DataIn.f90's SetMaterial; Constitution.f90's M3DM6 and M3DM7): the EOS
+      // of its seos gives the pressure.
+      m.density = units_(v[0], dim::density);
+      m.strength = "{ model = \"fluid\" }";
+      if (m.type == "hiex") {
+        m.detonation_speed = units_(v[1], dim::velocity);
+      } else {
+        m.bulk_modulus = units_(v[1], dim::stress);
+        if (v[2] != 0.0)
+          notes_.push_back({m.at, key_,
+                            "material " + std::to_string(m.id) + " (null): its viscosity " +
+                                core::toml_number(v[2]) +
+                                " is left out (afemp's fluid carries no shear stress)",
+                            true});
+      }
+      return;
+    }
     m.density = units_(v[0], dim::density);
     m.E = units_(v[1], dim::stress);
     m.nu = v[2];
@@ -385,22 +442,44 @@ class Mpm3dImport {
       v.push_back(core::to_real(w, at, key_, "an EOS value"));
     Material& m = it->second;
     const auto speed = [&](double c) { return core::toml_number(units_(c, dim::velocity)); };
-    if ((type == 2 && v.size() == 4) || (type == 1 && v.size() == 3)) {
+    const bool special = m.type == "hiex" || m.type == "null";
+    if (!special && ((type == 2 && v.size() == 4) || (type == 1 && v.size() == 3))) {
       m.eos = "{ model = \"mie-gruneisen\", c0 = " + speed(v[0]) +
               ", s = " + core::toml_number(v[1]) + ", gamma0 = " + core::toml_number(v[2]) + " }";
       if (v.size() == 4) m.e0 = v[3];
-    } else if (type == 1 && v.size() == 8) {
+    } else if (!special && type == 1 && v.size() == 8) {
       m.eos = "{ model = \"linear-polynomial\"";
       for (int i = 0; i < 7; ++i)
         m.eos += ", C" + std::to_string(i) + " = " + core::toml_number(units_(v[i], dim::stress));
       m.eos += " }";
       m.e0 = v[7];
-    } else if (type == 3 || type == 4) {
+    } else if (type == 3 && v.size() == 6 && m.type == "hiex") {
+      // A, B, R1, R2, omega, E0 (DataIn.f90's SetEos); E0 is per unit volume, as afemp's.
+      const auto stress = [&](double x) { return units_(x, dim::stress); };
+      m.jwl = {stress(v[0]), stress(v[1]), stress(v[5]), v[2], v[3], v[4]};
+      m.eos = "{ model = \"jwl\", A = " + core::toml_number((*m.jwl)[0]) +
+              ", B = " + core::toml_number((*m.jwl)[1]) + ", R1 = " + core::toml_number(v[2]) +
+              ", R2 = " + core::toml_number(v[3]) + ", omega = " + core::toml_number(v[4]) +
+              ", E0 = " + core::toml_number((*m.jwl)[2]) + " }";
+    } else if (type == 4 && v.size() == 1 && m.type == "null") {
+      // p = c^2 (rho - rho0), afemp's linear EOS with K = rho0 c^2; MPM3D-F90 replaces the c
+      // given by the null material's own sqrt(K / rho0) (DataIn.f90's Initial), so K it is.
+      m.eos = "{ model = \"linear\", bulk_modulus = " + core::toml_number(m.bulk_modulus) + " }";
+      notes_.push_back({at, key_,
+                        "material " + std::to_string(set) +
+                            " (null): the weakly compressible EOS runs with the material's wave "
+                            "speed sqrt(K / density), as MPM3D-F90 runs it, not the c given",
+                        true});
+    } else if (special || type == 3 || type == 4) {
       throw core::InputError(
           at, key_,
-          std::string(type == 3 ? "the JWL EOS (type 3)" : "the weakly compressible EOS (type 4)") +
-              " has no afemp counterpart; translated: 1 (linear polynomial: "
-              "C0..C6, E0), 2 (Grueneisen: c0, lambda, gamma0, E0)");
+          "material " + std::to_string(set) + " (" + m.type + ") with EOS type " +
+              std::to_string(type) + " and " + std::to_string(v.size()) +
+              " values; translated: hiex with 3 (JWL: A, B, R1, R2, omega, E0), null with 4 "
+              "(weakly compressible: c; MPM3D-F90 overwrites the first constant of the other "
+              "types with the null material's wave speed, so they do not run as written), "
+              "other materials with 1 (linear polynomial: C0..C6, E0) or 2 (Grueneisen: c0, "
+              "lambda, gamma0, E0)");
     } else {
       throw core::InputError(at, key_,
                              "EOS type " + std::to_string(type) + " with " +
@@ -770,9 +849,44 @@ class Mpm3dImport {
         continue;
       }
       s += "\n[materials.material" + std::to_string(id) + "]  # " + m.type + "\n";
-      s += "density = " + core::toml_number(m.density) + "\nE = " + core::toml_number(m.E) +
-           "\nnu = " + core::toml_number(m.nu) + "\nstrength = " + m.strength + "\n";
+      s += "density = " + core::toml_number(m.density) + "\n";
+      if (m.E > 0.0)
+        s += "E = " + core::toml_number(m.E) + "\nnu = " + core::toml_number(m.nu) + "\n";
+      s += "strength = " + m.strength + "\n";
+      if (m.type == "hiex" && !m.jwl)
+        throw core::InputError(m.at, "material",
+                               "material " + std::to_string(id) +
+                                   " (hiex) has no EOS: give it its products' JWL with "
+                                   "'seos " +
+                                   std::to_string(id) + " 3 A B R1 R2 omega E0'");
+      if (m.type == "null" && m.eos.empty())
+        throw core::InputError(m.at, "material",
+                               "material " + std::to_string(id) +
+                                   " (null) has no EOS (MPM3D-F90 stops there too): give it "
+                                   "'seos " +
+                                   std::to_string(id) + " 4 c'");
       if (!m.eos.empty()) s += "eos = " + m.eos + "\n";
+      if (m.jwl) {
+        // MPM3D-F90 burns a particle whole once the front from the nearest detonation point
+        // reaches it (Constitution.f90's M3DM6): afemp's lighting-time burn, which spreads it
+        // over 1.5 cells. The CJ pressure is the JWL's own (it serves the volumetric burn only).
+        const double pcj = cj_pressure(*m.jwl);
+        const double rho_d2 = m.density * m.detonation_speed * m.detonation_speed;
+        if (!(pcj > 0.0 && pcj < rho_d2))
+          throw core::InputError(
+              m.at, "material",
+              "material " + std::to_string(id) + " (hiex): its JWL's Chapman-Jouguet pressure " +
+                  core::toml_number(pcj) + " is not between 0 and density D^2 = " +
+                  core::toml_number(rho_d2) + ": the JWL constants and D do not belong together");
+        s += "burn = { D = " + core::toml_number(m.detonation_speed) +
+             ", pcj = " + core::toml_number(pcj) +
+             ", mode = \"lighting-time\" }  # pcj: the JWL's Chapman-Jouguet point\n";
+        notes_.push_back({m.at, "material",
+                          "material " + std::to_string(id) +
+                              " (hiex): MPM3D-F90 burns a particle whole when the front reaches "
+                              "it; afemp's lighting-time burn spreads that over 1.5 cells",
+                          true});
+      }
       if (m.specific_heat > 0.0)
         s += "specific_heat = " + core::toml_number(m.specific_heat) + "\n";
       if (m.temperature >= 0.0) s += "temperature = " + core::toml_number(m.temperature) + "\n";
@@ -801,12 +915,23 @@ class Mpm3dImport {
            "\"\nshape = { points = { file = " + core::toml_string(file) + " } }\n";
       if (b.velocity)
         s += "velocity = " + core::toml_vec3(b.velocity->x, b.velocity->y, b.velocity->z) + "\n";
-      if (m.e0 != 0.0)
+      if (m.e0 != 0.0 && !m.jwl)
         s += "internal_energy = " + core::toml_number(units_(m.e0, dim::stress) / m.density) +
              "  # E0 / density\n";
       if (bulk_)
         s += "bulk_viscosity = { quadratic = " + core::toml_number((*bulk_)[0]) +
              ", linear = " + core::toml_number((*bulk_)[1]) + " }\n";
+      // Without `contact` MPM3D maps every body to the grid's one velocity field, so bodies
+      // that meet weld: meant, as the overlap check is told.
+      if (!contact_ && bodies_.size() > 1) {
+        std::string others;
+        for (std::size_t j = 0; j < bodies_.size(); ++j)
+          if (j != i)
+            others +=
+                std::string(others.empty() ? "" : ", ") + "\"body" + std::to_string(j + 1) + "\"";
+        s += "overlap_allowed = [" + others +
+             "]  # one velocity field without contact, as in MPM3D\n";
+      }
     }
 
     if (contact_) {
@@ -817,6 +942,25 @@ class Mpm3dImport {
         for (std::size_t j = i + 1; j < bodies_.size(); ++j)
           s += "\n[[contact]]\nbodies = [\"body" + std::to_string(i + 1) + "\", \"body" +
                std::to_string(j + 1) + "\"]\nfriction = " + core::toml_number(friction_) + "\n";
+    }
+
+    // DataIn.f90's Initial lights each particle at its least distance to a detonation point
+    // over D; with none, an explosive never burns.
+    bool explosive = false;
+    for (long id : used) explosive = explosive || materials_.at(id).jwl.has_value();
+    if (explosive && detonations_.empty())
+      throw core::InputError({deck_path_, 0}, "deto",
+                             "the deck has a hiex material and no detonation point: MPM3D-F90 "
+                             "would never light it; give one with 'deto x y z'");
+    for (const Detonation& d : detonations_) {
+      if (!explosive) {
+        notes_.push_back({d.at, "deto",
+                          "no particle is of a hiex material: the detonation "
+                          "point has nothing to light and is left out",
+                          false});
+        continue;
+      }
+      s += "\n[[detonations]]\npoint = " + core::toml_vec3(d.x.x, d.x.y, d.x.z) + "\n";
     }
     return s;
   }
@@ -843,6 +987,11 @@ class Mpm3dImport {
   std::optional<std::array<double, 2>> bulk_;
   std::map<long, Material> materials_;
   std::vector<Body> bodies_;
+  struct Detonation {
+    core::Vec3 x;
+    core::SourceLocation at;
+  };
+  std::vector<Detonation> detonations_;
 };
 
 }  // namespace
