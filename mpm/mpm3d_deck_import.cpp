@@ -815,15 +815,16 @@ class Mpm3dImport {
 
     static constexpr std::array<const char*, 6> face_names{"xmin", "xmax", "ymin",
                                                            "ymax", "zmin", "zmax"};
-    static constexpr std::array<const char*, 3> conditions{"free", "fixed", "symmetric"};
+    // A free face lets a particle leave the grid, and MPM3D-F90 skips it from then on
+    // (update_step.f90: "out of the computational region"): afemp's outflow face.
+    static constexpr std::array<const char*, 3> conditions{"outflow", "fixed", "symmetric"};
     s += "\n[grid]\ncell = " + core::toml_number(cell_) +
          "\nmin = " + core::toml_vec3(span_min_[0], span_min_[1], span_min_[2]) +
          "\nmax = " + core::toml_vec3(span_max_[0], span_max_[1], span_max_[2]) + "\n";
     std::string faces;
     for (int f = 0; f < 6; ++f)
-      if (faces_[f] != 0)
-        faces += std::string(faces.empty() ? "" : ", ") + face_names[f] + " = \"" +
-                 conditions[faces_[f]] + "\"";
+      faces += std::string(faces.empty() ? "" : ", ") + face_names[f] + " = \"" +
+               conditions[faces_[f]] + "\"";
     if (!faces.empty()) s += "boundary = { " + faces + " }\n";
 
     if (contact_ && bodies_.size() > 1 && scheme_ == "USL") {

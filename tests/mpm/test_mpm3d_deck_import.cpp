@@ -107,7 +107,7 @@ TEST(Mpm3dDeckImport, KeywordsBecomeTheSceneFields) {
   EXPECT_DOUBLE_EQ(s.mpm.grid.max.z, 6.0);
   EXPECT_EQ(s.mpm.grid.faces[4], core::FaceCondition::fixed);      // zmin: 1
   EXPECT_EQ(s.mpm.grid.faces[5], core::FaceCondition::symmetric);  // zmax: 2
-  EXPECT_EQ(s.mpm.grid.faces[0], core::FaceCondition::free);
+  EXPECT_EQ(s.mpm.grid.faces[0], core::FaceCondition::outflow);    // 0: particles may leave
   EXPECT_EQ(s.mpm.scheme, core::UpdateScheme::MUSL);
   EXPECT_FALSE(s.mpm.jaumann);
 
