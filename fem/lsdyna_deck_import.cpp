@@ -1,6 +1,8 @@
 // LS-DYNA keyword decks into afemp scenes (fem/lsdyna_deck_import.hpp). The mesh keywords are
 // read by fem/lsdyna_reader.cpp when the scene runs; here every other keyword is translated,
-// approximated with a note, or listed as not translated. Card layouts follow the LS-DYNA
+// approximated with a note, listed as not translated, or refused: a keyword outside the subset
+// that changes the run (anything but output and data only other keywords use) stops the import
+// unless DeckImportOptions::allow_untranslated. Card layouts follow the LS-DYNA
 // Keyword User's Manual (R13): Vol. I for *PART, *SECTION_SOLID, *SECTION_BEAM, *HOURGLASS,
 // *INITIAL_VELOCITY_GENERATION, *RIGIDWALL_PLANAR, *CONTROL_TERMINATION, *CONTROL_TIMESTEP,
 // *DATABASE_BINARY_D3PLOT; Vol. II for *MAT_ELASTIC (001), *MAT_PLASTIC_KINEMATIC (003),
@@ -33,6 +35,33 @@ const std::set<std::string> kMeshKeywords = {"NODE",
                                              "SET_NODE_LIST_TITLE",
                                              "BOUNDARY_SPC_SET",
                                              "BOUNDARY_SPC_NODE"};
+
+// Keywords outside the subset that leave the run as it is: output, and data that only other
+// keywords use (a material, section or EOS no part names; curves, sets, boxes), whose users
+// are translated or listed themselves. Every other keyword outside the subset changes the run.
+bool leaves_the_run(const std::string& name) {
+  static const std::vector<std::string> prefixes = {"DATABASE_",
+                                                    "CONTROL_OUTPUT",
+                                                    "CONTROL_ENERGY",
+                                                    "CONTROL_CPU",
+                                                    "CONTROL_PARALLEL",
+                                                    "CONTROL_MPP",
+                                                    "CONTROL_REPORT",
+                                                    "TITLE",
+                                                    "COMMENT",
+                                                    "DEFINE_CURVE",
+                                                    "DEFINE_TABLE",
+                                                    "DEFINE_COORDINATE",
+                                                    "DEFINE_BOX",
+                                                    "DEFINE_VECTOR",
+                                                    "SET_",
+                                                    "EOS_",
+                                                    "SECTION_",
+                                                    "MAT_"};
+  if (name.starts_with("MAT_ADD_")) return false;
+  return std::any_of(prefixes.begin(), prefixes.end(),
+                     [&](const std::string& p) { return name.starts_with(p); });
+}
 
 struct Material {
   std::string kind;  // "elastic", "plastic-kinematic", "johnson-cook", "hjc"
@@ -67,7 +96,8 @@ class LsDynaImport {
       : deck_(LsDynaDeck::parse(text, deck_path)),
         deck_path_(deck_path),
         scene_path_(scene_path),
-        units_(options.units, {deck_path, 0}) {}
+        units_(options.units, {deck_path, 0}),
+        options_(options) {}
 
   core::DeckImport run() {
     for (const LsDynaKeyword& k : deck_.keywords()) {
@@ -75,7 +105,9 @@ class LsDynaImport {
       keyword(k);
     }
     const MeshData mesh = lsdyna_mesh(deck_);
-    const std::string body = scene(mesh);
+    std::string body = scene(mesh);
+    core::refuse_untranslated(notes_, options_);
+    body.insert(body.find('\n') + 1, core::untranslated_run_key(notes_));
     core::DeckImport out;
     out.notes = notes_;
     out.units = units_.description();
@@ -88,6 +120,10 @@ class LsDynaImport {
  private:
   void note(const core::SourceLocation& at, const std::string& what, bool approximated) {
     notes_.push_back({at, key_, what, approximated});
+  }
+  // Not translated, and the run differs for it: refused unless allow_untranslated.
+  void changes_run(const core::SourceLocation& at, const std::string& what) {
+    notes_.push_back({at, key_, what, false, true});
   }
 
   // The cards holding data: a _TITLE keyword's first card is its title.
@@ -175,8 +211,10 @@ class LsDynaImport {
       const auto c = data_cards(k);
       output_every_ = real(k, c, 0, 0, "DT", dim::time);
       note(k.at(), "written as afemp's fields.xmf + fields.h5 every DT (not a d3plot file)", true);
-    } else {
+    } else if (leaves_the_run(n)) {
       note(k.at(), "outside the subset afemp imports (docs/import.md)", false);
+    } else {
+      changes_run(k.at(), "outside the subset afemp imports (docs/import.md)");
     }
   }
 
@@ -440,13 +478,11 @@ class LsDynaImport {
                          real(k, c, i, 4, "VY", dim::velocity),
                          real(k, c, i, 5, "VZ", dim::velocity)};
       if (real(k, c, i, 2, "OMEGA", dim::rate) != 0.0)
-        note(c[i].at(),
-             "OMEGA (an initial rotation): afemp gives a body one translational velocity", false);
+        changes_run(c[i].at(),
+                    "OMEGA (an initial rotation): afemp gives a body one translational velocity");
       if (styp != 2) {
-        note(c[i].at(),
-             "STYP " + std::to_string(styp) +
-                 " (a part set or node set): only STYP 2 (a part) is translated",
-             false);
+        changes_run(c[i].at(), "STYP " + std::to_string(styp) +
+                                   " (a part set or node set): only STYP 2 (a part) is translated");
         continue;
       }
       velocity_[id] = {v, c[i].at()};  // id 0: every part
@@ -471,7 +507,7 @@ class LsDynaImport {
       note(k.at(), "NSID, NSIDEX and BOXID: the wall acts on every node of every mesh body", true);
     if (real(k, c, 0, 3, "OFFSET") != 0.0 || real(k, c, 0, 4, "BIRTH") != 0.0 ||
         real(k, c, 0, 5, "DEATH") != 0.0 || real(k, c, 1, 7, "WVEL") != 0.0)
-      note(k.at(), "OFFSET, BIRTH, DEATH and WVEL", false);
+      changes_run(k.at(), "OFFSET, BIRTH, DEATH and WVEL");
     if (w.friction >= 1.0)
       note(k.at(), "FRIC >= 1 (no sliding) is written as Coulomb friction " + num(w.friction),
            true);
@@ -655,6 +691,7 @@ class LsDynaImport {
   LsDynaDeck deck_;
   std::string deck_path_, scene_path_;
   core::UnitConversion units_;
+  core::DeckImportOptions options_;
   std::string key_;
   std::vector<core::DeckNote> notes_;
 

@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "afemp/deck_import.hpp"
+#include "core/plausibility.hpp"
 #include "core/scene.hpp"
 #include "fem/lsdyna_deck_import.hpp"
 #include "mpm/test_support.hpp"
@@ -56,7 +57,7 @@ const std::string kDeck =
     "*HOURGLASS\n1,6,1.0\n"                                            // 22-23
     "*INITIAL_VELOCITY_GENERATION\n1,2,0.,0.,0.,-300.\n0,0,0,0,0,0\n"  // 24-26
     "*RIGIDWALL_PLANAR\n0\n0.,0.,-0.5,0.,0.,1.,0.1\n"                  // 27-29
-    "*CONTACT_AUTOMATIC_SINGLE_SURFACE\n0,0\n"                         // 30-31
+    "*DATABASE_MATSUM\n1.0e-4\n"                                       // 30-31
     "*DATABASE_GLSTAT\n1.0e-4\n" +                                     // 32-33
     cube_mesh() +
     "*END\n";
@@ -135,20 +136,53 @@ TEST(LsDynaDeckImport, KeywordsBecomeTheSceneFields) {
   EXPECT_DOUBLE_EQ(s.walls[0].friction, 0.1);
 }
 
-// Reference: nothing of the deck is dropped without a line: the two keywords outside the
-// subset are listed with their lines, in the notes and as comments at the top of the scene.
+// Reference: nothing of the deck is dropped without a line: the two output keywords outside
+// the subset are listed with their lines, in the notes and as comments at the top of the scene.
 TEST(LsDynaDeckImport, KeywordsOutsideTheSubsetAreListedWithTheirLines) {
   test::ScratchDir dir;
   const Imported im = import_text(dir, kDeck);
   std::vector<std::string> listed;
   for (const core::DeckNote& n : im.deck.notes)
     if (!n.approximated) listed.push_back(n.keyword + ":" + std::to_string(n.at.line));
-  EXPECT_EQ(listed, (std::vector<std::string>{"*CONTACT_AUTOMATIC_SINGLE_SURFACE:30",
-                                              "*DATABASE_GLSTAT:32"}));
-  EXPECT_NE(im.deck.scene.find("#   " + dir.file("deck.k") +
-                               ":30: *CONTACT_AUTOMATIC_SINGLE_SURFACE: not translated"),
-            std::string::npos)
+  EXPECT_EQ(listed, (std::vector<std::string>{"*DATABASE_MATSUM:30", "*DATABASE_GLSTAT:32"}));
+  EXPECT_NE(
+      im.deck.scene.find("#   " + dir.file("deck.k") + ":30: *DATABASE_MATSUM: not translated"),
+      std::string::npos)
       << im.deck.scene;
+  EXPECT_TRUE(im.scene.run.untranslated.empty());
+}
+
+// Reference: issue 47, a deck must run as it means or be refused. A load (*LOAD_BODY_Z, line
+// 34) outside the subset changes the run: the import stops at its file, line and keyword; with
+// allow_untranslated the scene is written, and [run] untranslated carries the keyword so that
+// the scene's plausibility warnings (what `afemp check` prints) repeat it.
+TEST(LsDynaDeckImport, UntranslatedKeywordThatChangesTheRunIsRefusedUnlessAllowed) {
+  std::string deck = kDeck;
+  deck.insert(deck.find("*NODE"), "*LOAD_BODY_Z\n1,1.0\n");  // lines 34-35
+  const std::string e = error_of(deck);
+  EXPECT_NE(e.find("bad.k:34:"), std::string::npos) << e;
+  EXPECT_NE(e.find("*LOAD_BODY_Z"), std::string::npos) << e;
+  EXPECT_NE(e.find("--allow-untranslated"), std::string::npos) << e;
+
+  test::ScratchDir dir;
+  const std::string deck_path = dir.write("deck.k", deck);
+  const std::string scene_path = dir.file("scene.toml");
+  core::DeckImportOptions options;
+  options.allow_untranslated = true;
+  const core::DeckImport d = core::import_deck(deck_path, scene_path, options);
+  core::write_deck_import(d, scene_path);
+  EXPECT_NE(d.scene.find("# WARNING: imported with --allow-untranslated"), std::string::npos)
+      << d.scene;
+  const core::Scene s = core::read_scene(scene_path);
+  ASSERT_EQ(s.run.untranslated.size(), 1u);
+  EXPECT_NE(s.run.untranslated[0].find(":34: *LOAD_BODY_Z: not translated, the run differs"),
+            std::string::npos)
+      << s.run.untranslated[0];
+  std::vector<std::string> warned;
+  for (const core::SceneWarning& w : core::plausibility_warnings(s))
+    if (w.key == "run.untranslated") warned.push_back(w.message);
+  ASSERT_EQ(warned.size(), 1u);
+  EXPECT_NE(warned[0].find("*LOAD_BODY_Z"), std::string::npos) << warned[0];
 }
 
 // Reference: 1 kg/m^3 = 1e-6 g/mm^3, 1 Pa = 1e-6 MPa, 1 m = 1000 mm, 1 s = 1000 ms; the mesh
