@@ -7,8 +7,9 @@
 // *INITIAL_VELOCITY_NODE, *INITIAL_VELOCITY_GENERATION, *CONTACT (the AUTOMATIC and ERODING
 // forms), *SET_PART_LIST, *SET_NODE_LIST, *RIGIDWALL_PLANAR, *CONTROL_TERMINATION,
 // *CONTROL_TIMESTEP, *DATABASE_BINARY_D3PLOT; Vol. II for *MAT_ELASTIC (001),
-// *MAT_PLASTIC_KINEMATIC (003), *MAT_JOHNSON_COOK (015), *MAT_JOHNSON_HOLMQUIST_CONCRETE (111),
-// *MAT_ADD_EROSION, *EOS_LINEAR_POLYNOMIAL (001) and *EOS_GRUNEISEN (004).
+// *MAT_PLASTIC_KINEMATIC (003), *MAT_JOHNSON_COOK (015), *MAT_RIGID (020),
+// *MAT_JOHNSON_HOLMQUIST_CONCRETE (111), *MAT_ADD_EROSION, *EOS_LINEAR_POLYNOMIAL (001) and
+// *EOS_GRUNEISEN (004).
 #include "fem/lsdyna_deck_import.hpp"
 
 #include <algorithm>
@@ -65,12 +66,13 @@ bool leaves_the_run(const std::string& name) {
 }
 
 struct Material {
-  std::string kind;  // "elastic", "plastic-kinematic", "johnson-cook", "hjc"
+  std::string kind;  // "elastic", "plastic-kinematic", "johnson-cook", "hjc", "rigid"
   core::SourceLocation at;
   std::string keyword;
   double density = 0;
   std::string body;             // the material table's lines, EOS excepted
   double G = 0, E = 0, nu = 0;  // G: for E and nu when a Johnson-Cook card leaves them blank
+  std::string rigid;            // *MAT_RIGID: the bodies' `rigid = ...`
 };
 
 // What erodes the elements of a material's bodies: *MAT_ADD_EROSION's criteria, and a failure
@@ -225,6 +227,8 @@ class LsDynaImport {
       section_solid(k);
     } else if (is(n, {"SECTION_BEAM"})) {
       section_beam(k);
+    } else if (is(n, {"MAT_RIGID", "MAT_020"})) {
+      mat_rigid(k);
     } else if (is(n, {"MAT_ELASTIC", "MAT_001"})) {
       mat_elastic(k);
     } else if (is(n, {"MAT_PLASTIC_KINEMATIC", "MAT_003"})) {
@@ -332,6 +336,39 @@ class LsDynaImport {
     m.body = "strength = { model = \"elastic\" }\n";
     if (real(k, c, 0, 4, "DA") != 0.0 || real(k, c, 0, 5, "DB") != 0.0)
       note(k.at(), "DA and DB (axial and bending damping of beams)", false);
+  }
+
+  // MID RO E PR N COUPLE M ALIAS / CMO CON1 CON2 / LCO or A1 A2 A3 V1 V2 V3 (Vol. II, *MAT_RIGID):
+  // afemp's rigid body, its global constraints (CMO 1) as the fixed components.
+  void mat_rigid(const LsDynaKeyword& k) {
+    const auto c = data_cards(k);
+    Material& m = new_material(k, c, "rigid");
+    m.E = real(k, c, 0, 2, "E", dim::stress);
+    m.nu = real(k, c, 0, 3, "PR");
+    m.body = "strength = { model = \"elastic\" }\n";
+    if (real(k, c, 0, 4, "N") != 0.0 || real(k, c, 0, 5, "COUPLE") != 0.0 ||
+        real(k, c, 0, 6, "M") != 0.0)
+      note(k.at(), "N, COUPLE, M (coupling with MADYMO or CAL3D)", false);
+    const std::int64_t cmo = integer(k, c, 1, 0, "CMO");
+    const std::int64_t con1 = integer(k, c, 1, 1, "CON1"), con2 = integer(k, c, 1, 2, "CON2");
+    const bool global = cmo == 1 && con1 >= 0 && con1 <= 7 && con2 >= 0 && con2 <= 7;
+    if (cmo != 0 && !global)
+      throw core::InputError(
+          card_at(k, c, 1).at(), key_,
+          "CMO " + std::to_string(cmo) + " with CON1 " + std::to_string(con1) + ", CON2 " +
+              std::to_string(con2) +
+              ": allowed CMO 0 (free) and 1 (global constraints, CON1 and "
+              "CON2 from 0 to 7); local constraints (CMO -1) are not translated");
+    // CON1 / CON2: 0 free, 1 x, 2 y, 3 z, 4 x and y, 5 y and z, 6 z and x, 7 all three.
+    static const char* const axes[8] = {"", "x", "y", "z", "xy", "yz", "zx", "xyz"};
+    std::string fixed;
+    if (cmo == 1) {
+      for (const char* a = axes[con1]; *a != '\0'; ++a)
+        fixed += (fixed.empty() ? "\"" : ", \"") + std::string(1, *a) + "\"";
+      for (const char* a = axes[con2]; *a != '\0'; ++a)
+        fixed += (fixed.empty() ? "\"r" : ", \"r") + std::string(1, *a) + "\"";
+    }
+    m.rigid = fixed.empty() ? "true" : "{ fixed = [" + fixed + "] }";
   }
 
   // MID RO E PR SIGY ETAN BETA / SRC SRP FS VP
@@ -875,7 +912,8 @@ class LsDynaImport {
           p.card.at(), "*PART",
           "part " + std::to_string(p.id) + " names material " + std::to_string(p.material) +
               ", which is not defined; translated materials: *MAT_ELASTIC, "
-              "*MAT_PLASTIC_KINEMATIC, *MAT_JOHNSON_COOK, *MAT_JOHNSON_HOLMQUIST_CONCRETE");
+              "*MAT_PLASTIC_KINEMATIC, *MAT_JOHNSON_COOK, *MAT_JOHNSON_HOLMQUIST_CONCRETE, "
+              "*MAT_RIGID");
     const Material& mat = m->second;
     const Eos* eos = nullptr;
     if (p.eos != 0) {
@@ -958,6 +996,13 @@ class LsDynaImport {
     return out;
   }
 
+  bool rigid_part(std::int64_t label) const {
+    const auto p = parts_.find(label);
+    if (p == parts_.end()) return false;
+    const auto m = materials_.find(p->second.material);
+    return m != materials_.end() && !m->second.rigid.empty();
+  }
+
   // The [[contact]] tables: each pair of bodies once (the first contact naming it sets its
   // friction), a body with itself as afemp's self-contact.
   std::string contact_tables(const MeshData& mesh) {
@@ -979,7 +1024,7 @@ class LsDynaImport {
                                        "' are both trusses: afemp's contact needs a surface of "
                                        "hexahedra");
           }
-          if (i == j && !hexahedra[i]) continue;
+          if (i == j && (!hexahedra[i] || rigid_part(mesh.part_labels[i]))) continue;
           const auto [it, added] = written.emplace(pair, &ct);
           if (!added) {
             if (it->second != &ct && it->second->friction != ct.friction)
@@ -1065,7 +1110,17 @@ class LsDynaImport {
            "\"\nshape = { mesh = { file = " + core::toml_string(mesh_file) + ", parts = [" +
            core::toml_string(mesh.part_names[i]) + "]" +
            (scale != 1.0 ? ", scale = " + num(scale) : "") + " } }\n";
-      if (hexahedra) {
+      const auto mat = materials_.find(part.material);
+      const bool rigid = mat != materials_.end() && !mat->second.rigid.empty();
+      if (rigid) {
+        if (!hexahedra)
+          throw core::InputError(part.card.at(), "*PART",
+                                 "part " + std::to_string(label) +
+                                     " of beams names *MAT_RIGID: afemp's rigid bodies are "
+                                     "made of hexahedra");
+        s += "rigid = " + mat->second.rigid + "\n";
+      }
+      if (hexahedra && !rigid) {
         const auto sec = solid_elform_.find(part.section);
         if (sec == solid_elform_.end())
           throw core::InputError(
@@ -1074,7 +1129,7 @@ class LsDynaImport {
                   std::to_string(part.section) + ", which no *SECTION_SOLID defines");
         if (sec->second == 2) s += "element = \"full\"\n";
       }
-      if (part.hourglass != 0) {
+      if (part.hourglass != 0 && !rigid) {
         const auto h = hourglass_.find(part.hourglass);
         if (h == hourglass_.end())
           throw core::InputError(part.card.at(), "*PART",

@@ -461,5 +461,34 @@ TEST(LsDynaDeckImport, ErosionCriteriaBecomeTheBodiesErosion) {
   EXPECT_NE(err.find("MXPRES"), std::string::npos) << err;
 }
 
+// Reference: LS-DYNA Keyword User's Manual R13 Vol. II, *MAT_RIGID (MID RO E PR ... / CMO
+// CON1 CON2; CMO 1: global constraints, CON1 and CON2 0 free, 1 x, ..., 4 x and y, ..., 7
+// all): the part is afemp's rigid body with those components fixed; a single-surface contact
+// gives it no self-contact (a rigid body does not fold).
+TEST(LsDynaDeckImport, RigidMaterialIsARigidBodyWithItsConstraints) {
+  test::ScratchDir dir;
+  const std::string deck =
+      "*KEYWORD\n*CONTROL_TERMINATION\n0.01\n*PART\nstriker\n1,1,1\n*PART\nanvil\n2,1,2\n"
+      "*SECTION_SOLID\n1,1\n*MAT_ELASTIC\n1,7.85e-3,2.0e5,0.3\n*MAT_RIGID\n"
+      "2,7.85e-3,2.0e5,0.3\n1,4,7\n*CONTACT_AUTOMATIC_SINGLE_SURFACE\n0\n" +
+      cube_mesh(1) + cube_mesh(2, 100, 3) + "*END\n";
+  const Imported im = import_text(dir, deck);
+  ASSERT_EQ(im.scene.bodies.size(), 2u);
+  EXPECT_FALSE(im.scene.bodies[0].rigid.has_value());
+  ASSERT_TRUE(im.scene.bodies[1].rigid.has_value()) << im.deck.scene;
+  EXPECT_EQ(im.scene.bodies[1].rigid->fixed,
+            (std::array<bool, 6>{true, true, false, true, true, true}));
+  ASSERT_EQ(im.scene.contacts.size(), 2u);
+  EXPECT_EQ(im.scene.contacts[0].bodies, (std::array<int, 2>{0, 0}));
+  EXPECT_EQ(im.scene.contacts[1].bodies, (std::array<int, 2>{0, 1}));
+
+  // Local constraints (CMO -1) are refused with the card's line.
+  std::string local = deck;
+  local.replace(local.find("1,4,7\n"), 6, "-1,4,7\n");
+  const std::string e = error_of(local);
+  EXPECT_NE(e.find("bad.k:16:"), std::string::npos) << e;
+  EXPECT_NE(e.find("CMO -1"), std::string::npos) << e;
+}
+
 }  // namespace
 }  // namespace afemp::fem
