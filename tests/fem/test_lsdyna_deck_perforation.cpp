@@ -48,7 +48,10 @@ std::string mesh_cards(const MeshData& m, int part, int first) {
   s += "*ELEMENT_SOLID\n";
   for (std::size_t e = 0; e < m.hexahedra.size(); ++e) {
     s += std::to_string(first + 1 + static_cast<int>(e)) + "," + std::to_string(part);
-    for (const std::int32_t n : m.hexahedra[e]) s += "," + std::to_string(first + 1 + n);
+    for (const std::int32_t n : m.hexahedra[e]) {
+      s += ',';  // appended apart: "," + std::string trips GCC 12's -Wrestrict
+      s += std::to_string(first + 1 + n);
+    }
     s += "\n";
   }
   return s;
