@@ -6,8 +6,8 @@
 // Manual (R13): Vol. I for *PART, *SECTION_SOLID, *SECTION_BEAM, *HOURGLASS, *INITIAL_VELOCITY,
 // *INITIAL_VELOCITY_NODE, *INITIAL_VELOCITY_GENERATION, *CONTACT (the AUTOMATIC and ERODING
 // forms), *SET_PART_LIST, *SET_NODE_LIST, *RIGIDWALL_PLANAR, *CONTROL_TERMINATION,
-// *CONTROL_TIMESTEP, *DATABASE_BINARY_D3PLOT; Vol. II for *MAT_ELASTIC (001),
-// *MAT_PLASTIC_KINEMATIC (003), *MAT_JOHNSON_COOK (015), *MAT_RIGID (020),
+// *CONTROL_TIMESTEP, *DATABASE_BINARY_D3PLOT, *DEFINE_CURVE, *BOUNDARY_PRESCRIBED_MOTION; Vol. II
+// for *MAT_ELASTIC (001), *MAT_PLASTIC_KINEMATIC (003), *MAT_JOHNSON_COOK (015), *MAT_RIGID (020),
 // *MAT_JOHNSON_HOLMQUIST_CONCRETE (111), *MAT_ADD_EROSION, *EOS_LINEAR_POLYNOMIAL (001) and
 // *EOS_GRUNEISEN (004).
 #include "fem/lsdyna_deck_import.hpp"
@@ -126,6 +126,22 @@ struct NodeVelocity {
   std::string keyword;
   std::int64_t nsid;
   std::vector<std::int64_t> nodes;
+};
+
+// *DEFINE_CURVE: its points (abscissa scaled and offset, converted as a time; ordinates scaled
+// and offset, a factor) and whether a translated keyword uses it.
+struct Curve {
+  core::SourceLocation at;
+  std::vector<std::pair<double, double>> points;
+  bool used = false;
+};
+
+// *BOUNDARY_PRESCRIBED_MOTION_SET: a velocity SF x curve(t) on one component of a node set.
+struct PrescribedMotion {
+  core::SourceLocation at;
+  std::int64_t nsid = 0, curve = 0;
+  int component = 0;  // 0, 1, 2: x, y, z
+  double velocity = 0;
 };
 
 struct Wall {
@@ -251,6 +267,10 @@ class LsDynaImport {
       initial_velocity_set(k);
     } else if (n == "INITIAL_VELOCITY_NODE") {
       initial_velocity_node(k);
+    } else if (is(n, {"DEFINE_CURVE"})) {
+      define_curve(k);
+    } else if (n == "BOUNDARY_PRESCRIBED_MOTION_SET") {
+      prescribed_motion(k);
     } else if (n == "RIGIDWALL_PLANAR") {
       rigid_wall(k);
     } else if (n == "CONTROL_TERMINATION") {
@@ -858,6 +878,106 @@ class LsDynaImport {
     }
   }
 
+  // LCID SIDR SFA SFO OFFA OFFO DATTYP / A1 O1 (two 20-column fields) ... (Vol. I, *DEFINE_CURVE)
+  void define_curve(const LsDynaKeyword& k) {
+    const auto c = data_cards(k);
+    const std::int64_t id = integer(k, c, 0, 0, "LCID");
+    const double sfa = real(k, c, 0, 2, "SFA"), sfo = real(k, c, 0, 3, "SFO");
+    const double offa = real(k, c, 0, 4, "OFFA"), offo = real(k, c, 0, 5, "OFFO");
+    if (integer(k, c, 0, 6, "DATTYP") != 0)
+      throw core::InputError(card_at(k, c, 0).at(), key_,
+                             "DATTYP != 0: only a curve of time against a value is translated");
+    Curve curve{k.at(), {}, false};
+    constexpr std::array<std::size_t, 2> columns{20, 20};
+    for (std::size_t i = 1; i < c.size(); ++i) {
+      if (c[i].blank()) continue;
+      const auto f = card_fields(c[i], columns);
+      const double a = card_real(f, 0, c[i], key_, "A"), o = card_real(f, 1, c[i], key_, "O");
+      curve.points.emplace_back(units_((sfa != 0.0 ? sfa : 1.0) * a + offa, dim::time),
+                                (sfo != 0.0 ? sfo : 1.0) * o + offo);
+      const auto n = curve.points.size();
+      if (curve.points.back().first < 0.0 ||
+          (n > 1 && !(curve.points[n - 1].first > curve.points[n - 2].first)))
+        throw core::InputError(c[i].at(), key_,
+                               "the times must start at 0 or later and increase (afemp's "
+                               "constraint curves)");
+    }
+    if (curve.points.empty()) throw core::InputError(k.at(), key_, "the curve has no points");
+    if (!curves_.emplace(id, std::move(curve)).second)
+      throw core::InputError(k.at(), key_, "curve " + std::to_string(id) + " is already defined");
+  }
+
+  // NSID DOF VAD LCID SF VID DEATH BIRTH, a card each (Vol. I, *BOUNDARY_PRESCRIBED_MOTION): a
+  // velocity (VAD 0) along x, y or z (DOF 1-3) becomes a [[constraints]] velocity with the
+  // curve as its history.
+  void prescribed_motion(const LsDynaKeyword& k) {
+    const auto c = data_cards(k);
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      if (c[i].blank()) continue;
+      const std::int64_t dof = integer(k, c, i, 1, "DOF"), vad = integer(k, c, i, 2, "VAD");
+      if (dof < 1 || dof > 3)
+        throw core::InputError(c[i].at(), key_,
+                               "DOF " + std::to_string(dof) +
+                                   ": allowed 1, 2, 3 (x, y, z); afemp's constraints hold "
+                                   "translations along the axes");
+      if (vad != 0)
+        throw core::InputError(
+            c[i].at(), key_,
+            "VAD " + std::to_string(vad) + ": allowed 0 (a velocity); afemp prescribes velocities");
+      const double death = real(k, c, i, 6, "DEATH", dim::time);
+      if (real(k, c, i, 7, "BIRTH", dim::time) != 0.0 || (death != 0.0 && death < 1e20))
+        throw core::InputError(c[i].at(), key_,
+                               "BIRTH and DEATH are not translated: give the velocity's "
+                               "history in the curve instead");
+      const double sf = real(k, c, i, 4, "SF");
+      PrescribedMotion m;
+      m.at = c[i].at();
+      m.nsid = integer(k, c, i, 0, "NSID");
+      m.curve = integer(k, c, i, 3, "LCID");
+      m.component = static_cast<int>(dof - 1);
+      m.velocity = units_(sf != 0.0 ? sf : 1.0, dim::velocity);
+      motions_.push_back(m);
+    }
+    note(k.at(),
+         "afemp holds the curve's first value before its first time and its last after its last",
+         true);
+  }
+
+  // The [[constraints]] of the prescribed motions, and the notes of curves nothing used.
+  std::string motion_tables() {
+    std::string s;
+    for (const PrescribedMotion& m : motions_) {
+      const auto set = std::find_if(node_sets_.begin(), node_sets_.end(),
+                                    [&](const LsDynaIdList& l) { return l.id == m.nsid; });
+      if (set == node_sets_.end())
+        throw core::InputError(
+            m.at, "*BOUNDARY_PRESCRIBED_MOTION_SET",
+            "NSID " + std::to_string(m.nsid) + " names no node set (*SET_NODE_LIST)");
+      const auto curve = curves_.find(m.curve);
+      if (curve == curves_.end())
+        throw core::InputError(
+            m.at, "*BOUNDARY_PRESCRIBED_MOTION_SET",
+            "LCID " + std::to_string(m.curve) + " names no curve (*DEFINE_CURVE)");
+      curve->second.used = true;
+      core::Vec3 v{0, 0, 0};
+      (m.component == 0 ? v.x : m.component == 1 ? v.y : v.z) = m.velocity;
+      std::string points;
+      for (const auto& [t, f] : curve->second.points)
+        points += (points.empty() ? "[" : ", [") + num(t) + ", " + num(f) + "]";
+      s += "\n[[constraints]]  # *BOUNDARY_PRESCRIBED_MOTION_SET at line " +
+           std::to_string(m.at.line) + "\nnodes = { set = " +
+           core::toml_string(set->title.empty() ? "set " + std::to_string(set->id) : set->title) +
+           " }\nvelocity = " + core::toml_vec3(v.x, v.y, v.z) + "\ncomponents = [\"" +
+           std::string(1, "xyz"[m.component]) + "\"]\ncurve = [" + points + "]\n";
+    }
+    for (const auto& [id, curve] : curves_)
+      if (!curve.used)
+        notes_.push_back({curve.at, "*DEFINE_CURVE",
+                          "curve " + std::to_string(id) + " is used by no translated keyword",
+                          false});
+    return s;
+  }
+
   // NSID NSIDEX BOXID OFFSET BIRTH DEATH RWKSF / XT YT ZT XH YH ZH FRIC WVEL
   void rigid_wall(const LsDynaKeyword& k) {
     const auto c = data_cards(k);
@@ -1177,6 +1297,7 @@ class LsDynaImport {
       notes_.push_back(std::move(n));
     }
     s += contact_tables(mesh);
+    s += motion_tables();
     for (const Wall& w : walls_) {
       s += "\n[[walls]]\npoint = " + core::toml_vec3(w.point.x, w.point.y, w.point.z) +
            "\nnormal = " + core::toml_vec3(w.normal.x, w.normal.y, w.normal.z) + "\n";
@@ -1206,6 +1327,8 @@ class LsDynaImport {
   std::vector<LsDynaIdList> node_sets_;
   std::vector<LsDynaIdList> part_sets_;
   std::vector<Contact> contacts_;
+  std::map<std::int64_t, Curve> curves_;
+  std::vector<PrescribedMotion> motions_;
   std::vector<NodeVelocity> node_velocities_;
   // A part's velocity from its nodes' (*INITIAL_VELOCITY, *INITIAL_VELOCITY_NODE).
   std::map<std::int64_t, std::pair<core::Vec3, core::SourceLocation>> node_velocity_part_;

@@ -490,5 +490,35 @@ TEST(LsDynaDeckImport, RigidMaterialIsARigidBodyWithItsConstraints) {
   EXPECT_NE(e.find("CMO -1"), std::string::npos) << e;
 }
 
+// Reference: LS-DYNA Keyword User's Manual R13 Vol. I, *BOUNDARY_PRESCRIBED_MOTION_SET (NSID
+// DOF VAD LCID SF ...: DOF 3 z, VAD 0 a velocity SF x curve(t)) and *DEFINE_CURVE (LCID SIDR SFA
+// SFO OFFA OFFO / A O pairs: t = SFA A + OFFA, value = SFO O + OFFO): the node set's z velocity
+// is prescribed as -50 x the curve, (0, 1) to (0.005, 0) with SFO 2 and OFFA 0.001.
+TEST(LsDynaDeckImport, PrescribedMotionIsAConstraintVelocityWithTheCurve) {
+  test::ScratchDir dir;
+  const std::string deck = two_cubes(node_list(3, 119, 9) +
+                                     "*DEFINE_CURVE\n4,0,1.0,2.0,0.001\n0.0,0.5\n0.005,0.0\n"
+                                     "*BOUNDARY_PRESCRIBED_MOTION_SET\n3,3,0,4,-50.0\n");
+  const Imported im = import_text(dir, deck);
+  ASSERT_EQ(im.scene.constraints.size(), 1u) << im.deck.scene;
+  const core::ConstraintSpec& c = im.scene.constraints[0];
+  EXPECT_EQ(c.nodes.kind, core::NodeSelector::Kind::set);
+  EXPECT_EQ(c.nodes.set, "set 3");
+  EXPECT_EQ(c.components, (std::array<bool, 3>{false, false, true}));
+  EXPECT_DOUBLE_EQ(c.velocity.z, -50.0);
+  ASSERT_EQ(c.curve.size(), 2u);
+  EXPECT_DOUBLE_EQ(c.curve[0][0], 0.001);
+  EXPECT_DOUBLE_EQ(c.curve[0][1], 1.0);
+  EXPECT_DOUBLE_EQ(c.curve[1][0], 0.006);
+  EXPECT_DOUBLE_EQ(c.curve[1][1], 0.0);
+
+  // A displacement (VAD 2) is refused with its card's line (the set: lines 14-17).
+  std::string e = error_of(two_cubes(node_list(3, 119, 9) +
+                                     "*DEFINE_CURVE\n4\n0.0,1.0\n0.005,0.0\n"
+                                     "*BOUNDARY_PRESCRIBED_MOTION_SET\n3,3,2,4,-50.0\n"));
+  EXPECT_NE(e.find("bad.k:23:"), std::string::npos) << e;
+  EXPECT_NE(e.find("VAD 2"), std::string::npos) << e;
+}
+
 }  // namespace
 }  // namespace afemp::fem
