@@ -193,21 +193,25 @@ int study(const std::string& path, std::string out_dir, int threads) {
   return all_ok ? 0 : exit_check_failed;
 }
 
-// `afemp import DECK -o SCENE [--units U]`: writes the scene and its side files, and lists
-// what the deck holds that the scene does not carry as the deck meant it.
+// `afemp import DECK -o SCENE [--units U] [--allow-untranslated]`: writes the scene and its
+// side files, and lists what the deck holds that the scene does not carry as the deck meant it.
 int import_command(const std::string& deck_path, const std::string& scene_path,
-                   const std::string& units) {
-  const DeckImport deck = import_deck(deck_path, scene_path, {units});
+                   const DeckImportOptions& options) {
+  const DeckImport deck = import_deck(deck_path, scene_path, options);
   write_deck_import(deck, scene_path);
   std::printf("afemp import %s -> %s (%s deck", deck_path.c_str(), scene_path.c_str(),
               to_string(deck_format(deck_path)));
   for (const DeckFile& f : deck.files) std::printf(", %s", f.name.c_str());
   std::printf(")\nunits: %s\n", deck.units.c_str());
-  std::size_t untranslated = 0;
+  std::size_t untranslated = 0, changing = 0;
   for (const DeckNote& n : deck.notes) {
     std::printf("  %s\n", describe(n).c_str());
     if (!n.approximated) ++untranslated;
+    if (n.changes_run) ++changing;
   }
+  if (changing > 0)
+    std::printf("%zu of them change the run (--allow-untranslated): the scene warns of them\n",
+                changing);
   std::printf(
       "%zu not translated, %zu approximated (listed at the top of the scene too); check "
       "it with `afemp check %s`\n",
@@ -245,14 +249,18 @@ int main(int argc, char** argv) {
   study_cmd->add_option("--threads", threads, "OpenMP threads for every run (default: the study's)")
       ->check(CLI::PositiveNumber);
 
-  std::string units;
+  DeckImportOptions import_options;
   auto* import_cmd = app.add_subcommand(
       "import", "turn an LS-DYNA keyword deck or an MPM3D deck into a scene (docs/import.md)");
   import_cmd->add_option("DECK", scene_path, "deck (.k, .key, .dyn; .mpm)")->required();
   import_cmd->add_option("-o,--output", out_dir, "the scene to write (TOML)")->required();
-  import_cmd->add_option("--units", units,
+  import_cmd->add_option("--units", import_options.units,
                          "the deck's unit system, converted into mm, ms, g, N, MPa: mm-ms-g, "
                          "m-s-kg, mm-s-t, mm-ms-kg, cm-us-g (default: numbers kept as they are)");
+  import_cmd->add_flag("--allow-untranslated", import_options.allow_untranslated,
+                       "write the scene even when the deck holds a keyword that changes the run "
+                       "and is not translated (contact, initial conditions, loads, ...); the "
+                       "scene then warns of it");
 
   CLI11_PARSE(app, argc, argv);
   // A file-size limit (ulimit -f) then fails the write like a full disk, which the run reports
@@ -263,7 +271,7 @@ int main(int argc, char** argv) {
   try {
     if (*run_cmd) return run(scene_path, out_dir, restart_dir);
     if (*study_cmd) return study(scene_path, out_dir, threads);
-    if (*import_cmd) return import_command(scene_path, out_dir, units);
+    if (*import_cmd) return import_command(scene_path, out_dir, import_options);
     return check(scene_path);
   } catch (const InputError& e) {
     std::fprintf(stderr, "afemp: %s\n", e.what());

@@ -166,6 +166,7 @@ bool may_change(const std::string& key) {
                                                 "run.history_interval",
                                                 "run.title",
                                                 "run.quiet",
+                                                "run.untranslated",
                                                 "run.units",
                                                 "run.energy_error_limit",
                                                 "run.checkpoint_every",

@@ -53,7 +53,7 @@ std::string newest_checkpoint(const std::string& run_directory);
 // key ("materials.steel.yield: 350 in the checkpoint, 300 now (scene.toml line 12)"), and per
 // file the scene reads whose contents changed. Keys that only steer the run and its output may
 // change (run.end_time, run.max_steps, run.output_every, run.output_times, run.history_every,
-// run.history_interval, run.checkpoint_*, run.title, run.quiet, run.units,
+// run.history_interval, run.checkpoint_*, run.title, run.quiet, run.untranslated, run.units,
 // run.energy_error_limit); an empty result means the restart may go on.
 std::vector<std::string> scene_changes(const CheckpointHeader& saved, const Scene& now);
 

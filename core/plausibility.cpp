@@ -332,8 +332,18 @@ std::string SceneWarning::text() const {
   return where.file + ":" + std::to_string(where.line) + ": key '" + key + "': " + message;
 }
 
+// An imported scene whose deck held what changes the run and was not translated (written by
+// `afemp import --allow-untranslated`): each such keyword, so that the scene does not pass
+// for the deck.
+void warn_untranslated(const Scene& scene, Warner& warn) {
+  for (const std::string& line : scene.run.untranslated)
+    warn(scene.run.untranslated_where, "run.untranslated",
+         "this scene does not run as the deck it was imported from: " + line);
+}
+
 std::vector<SceneWarning> plausibility_warnings(const Scene& scene) {
   Warner warn(scene);
+  warn_untranslated(scene, warn);
   warn_material_units(scene, warn);
   warn_unstated_units(scene, warn);
   warn_erosion_strain(scene, warn);

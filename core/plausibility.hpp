@@ -4,7 +4,8 @@
 // cells). The material checks use the scene's declared unit system ([run] units = "mm-ms-g"
 // or "SI"); without one, each material is tried against the unit systems a scene may be in
 // and a mix of two, or a material of another system than the others', is warned. The others
-// always run. `[run] quiet = ["KEY", ...]` silences the warnings of those
+// always run, as does the list of what an imported scene's deck held untranslated ([run]
+// untranslated, docs/import.md). `[run] quiet = ["KEY", ...]` silences the warnings of those
 // keys (as the warning names them). `afemp check` and `afemp run` print them.
 #pragma once
 

@@ -369,10 +369,26 @@ const toml::table& TableReader::required_table(std::string_view key) {
 namespace {
 
 void read_run(TableReader& r, RunSettings& run) {
-  r.known({"title", "end_time", "time_step_factor", "element_time_step_factor", "time_step",
-           "max_steps", "output_every", "history_every", "energy_error_limit", "output_strain",
-           "gravity", "terminate", "units", "quiet", "history_interval", "output_times",
-           "checkpoint_every", "checkpoint_wall_every", "checkpoint_keep"});
+  r.known({"title",
+           "end_time",
+           "time_step_factor",
+           "element_time_step_factor",
+           "time_step",
+           "max_steps",
+           "output_every",
+           "history_every",
+           "energy_error_limit",
+           "output_strain",
+           "gravity",
+           "terminate",
+           "units",
+           "quiet",
+           "history_interval",
+           "output_times",
+           "checkpoint_every",
+           "checkpoint_wall_every",
+           "checkpoint_keep",
+           "untranslated"});
   r.check_unknown();
   namespace range = scene_ranges::run;
   run.title = r.string("title", run.title);
@@ -412,6 +428,10 @@ void read_run(TableReader& r, RunSettings& run) {
     run.units = std::string(scene_ranges::kUnitSystems[r.choice(
         "units", std::span<const std::string_view>(scene_ranges::kUnitSystems), std::nullopt)]);
   if (r.has("quiet")) run.quiet = r.strings("quiet");
+  if (r.has("untranslated")) {
+    run.untranslated = r.strings("untranslated");
+    run.untranslated_where = r.where("untranslated");
+  }
   run.checkpoint_every =
       r.number("checkpoint_every", run.checkpoint_every, range::checkpoint_every);
   run.checkpoint_wall_every =

@@ -92,6 +92,27 @@ double card_real(const std::vector<std::string_view>& f, std::size_t i, const Ls
   return i < f.size() && !f[i].empty() ? core::to_real(f[i], c.at(), key, what) : 0.0;
 }
 
+LsDynaIdList lsdyna_id_list(const LsDynaKeyword& k) {
+  const std::string key = "*" + k.name;
+  const bool titled = k.name.ends_with("_TITLE");
+  std::size_t i = 0;
+  if (k.cards.size() < (titled ? 2u : 1u))
+    throw core::InputError(k.at(), key, "the card 'sid ...' is missing");
+  LsDynaIdList list;
+  if (titled) list.title = std::string(core::trim(k.cards[i++].text));
+  list.card = &k.cards[i++];
+  list.id =
+      card_integer(card_fields(*list.card, kStandardColumns), 0, *list.card, key, "the set id");
+  for (; i < k.cards.size(); ++i) {
+    const LsDynaCard& c = k.cards[i];
+    const auto f = card_fields(c, kStandardColumns);
+    for (std::size_t a = 0; a < f.size(); ++a)
+      if (const std::int64_t id = card_integer(f, a, c, key, "an id"); id != 0)
+        list.ids.emplace_back(id, &c);
+  }
+  return list;
+}
+
 std::vector<LsDynaPart> lsdyna_parts(const LsDynaKeyword& k) {
   const std::string key = "*" + k.name;
   std::vector<LsDynaPart> parts;

@@ -9,6 +9,7 @@
 #include <deque>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/source_text.hpp"
@@ -79,6 +80,16 @@ std::int64_t card_integer(const std::vector<std::string_view>& f, std::size_t i,
                           const LsDynaCard& c, const std::string& key, const std::string& what);
 double card_real(const std::vector<std::string_view>& f, std::size_t i, const LsDynaCard& c,
                  const std::string& key, const std::string& what);
+
+// *SET_NODE_LIST, *SET_PART_LIST (*SET_PART): "SID ..." (with _TITLE a title card first), then
+// the members' ids, 8 to a card (blank and 0 fields skipped).
+struct LsDynaIdList {
+  std::string title;
+  std::int64_t id = 0;
+  const LsDynaCard* card = nullptr;                             // the "SID ..." card
+  std::vector<std::pair<std::int64_t, const LsDynaCard*>> ids;  // (member id, its card)
+};
+LsDynaIdList lsdyna_id_list(const LsDynaKeyword& k);
 
 // *PART: pairs of cards, the heading, then "PID SECID MID EOSID HGID GRAV ADPOPT TMID".
 struct LsDynaPart {

@@ -203,25 +203,13 @@ class LsDynaReader {
     }
   }
 
-  // "sid ..." (with _TITLE a title card first), then node ids, 8 to a card.
   void read_node_list(const Keyword& k) {
-    const bool titled = k.name.ends_with("_TITLE");
-    std::size_t i = 0;
-    if (k.cards.size() < (titled ? 2u : 1u))
-      throw core::InputError(k.at(), key_, "the card 'sid ...' is missing");
-    const std::string title = titled ? std::string(trim(k.cards[i++].text)) : "";
-    const Card& c = k.cards[i++];
-    const std::int64_t sid = integer(card_fields(c, kStandardColumns), 0, c, "the set id");
-    NodeList list{title.empty() ? "set " + std::to_string(sid) : title, {}};
-    for (; i < k.cards.size(); ++i) {
-      const Card& n = k.cards[i];
-      const auto f = card_fields(n, kStandardColumns);
-      for (std::size_t a = 0; a < f.size(); ++a)
-        if (const std::int64_t nid = integer(f, a, n, "a node id"); nid != 0)
-          list.nodes.emplace_back(nid, &n);
-    }
-    if (!node_lists_.emplace(sid, std::move(list)).second)
-      throw core::InputError(at(c), key_,
+    LsDynaIdList list = lsdyna_id_list(k);
+    const std::int64_t sid = list.id;
+    NodeList nodes{list.title.empty() ? "set " + std::to_string(sid) : list.title,
+                   std::move(list.ids)};
+    if (!node_lists_.emplace(sid, std::move(nodes)).second)
+      throw core::InputError(at(*list.card), key_,
                              "node set " + std::to_string(sid) + " is already defined");
   }
 

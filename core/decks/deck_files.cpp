@@ -1,5 +1,6 @@
 // What the deck importers share (include/afemp/deck_import.hpp, core/decks/scene_text.hpp):
 // recognising a deck, the scene's header comments and number syntax, writing the files.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -43,7 +44,10 @@ const char* to_string(DeckFormat format) {
 
 std::string describe(const DeckNote& note) {
   return note.at.file + ":" + std::to_string(note.at.line) + ": " + note.keyword + ": " +
-         (note.approximated ? "approximated: " : "not translated: ") + note.what;
+         (note.approximated  ? "approximated: "
+          : note.changes_run ? "not translated, the run differs: "
+                             : "not translated: ") +
+         note.what;
 }
 
 std::string toml_number(double v) {
@@ -80,9 +84,41 @@ std::string imported_scene_header(const std::string& deck_path, DeckFormat forma
   std::string s = "# Imported by `afemp import` from " + deck_path + " (" + to_string(format) +
                   " deck; docs/import.md).\n# Units: " + units + ".\n";
   if (notes.empty()) return s + "# Everything the deck holds is translated.\n";
+  if (std::any_of(notes.begin(), notes.end(), [](const DeckNote& n) { return n.changes_run; }))
+    s += "# WARNING: imported with --allow-untranslated: this scene does not run as the deck "
+         "means\n# (the lines 'the run differs' below; [run] untranslated repeats them for "
+         "`afemp check`).\n";
   s += "# What the deck holds that this scene does not carry as the deck meant it:\n";
   for (const DeckNote& n : notes) s += "#   " + describe(n) + "\n";
   return s;
+}
+
+void refuse_untranslated(const std::vector<DeckNote>& notes, const DeckImportOptions& options) {
+  if (options.allow_untranslated) return;
+  const DeckNote* first = nullptr;
+  std::string others;
+  for (const DeckNote& n : notes) {
+    if (!n.changes_run) continue;
+    if (first == nullptr)
+      first = &n;
+    else
+      others +=
+          (others.empty() ? "" : ", ") + n.keyword + " (line " + std::to_string(n.at.line) + ")";
+  }
+  if (first == nullptr) return;
+  throw InputError(first->at, first->keyword,
+                   "not translated, and the run would differ for it: " + first->what +
+                       (others.empty() ? "" : "; so do " + others) +
+                       ". Translate it into the scene by hand after importing with "
+                       "--allow-untranslated (the scene then warns of it), or remove it "
+                       "(docs/import.md)");
+}
+
+std::string untranslated_run_key(const std::vector<DeckNote>& notes) {
+  std::string s;
+  for (const DeckNote& n : notes)
+    if (n.changes_run) s += "  " + toml_string(describe(n)) + ",\n";
+  return s.empty() ? s : "untranslated = [\n" + s + "]\n";
 }
 
 void write_deck_import(const DeckImport& deck, const std::string& scene_path) {

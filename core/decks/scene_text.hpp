@@ -19,4 +19,10 @@ std::string toml_vec3(double x, double y, double z);
 std::string imported_scene_header(const std::string& deck_path, DeckFormat format,
                                   const std::string& units, const std::vector<DeckNote>& notes);
 
+// What changes the run and is not translated (DeckNote::changes_run): without
+// options.allow_untranslated an InputError at the first, naming the others; with it,
+// `untranslated_run_key` is the `[run]` line listing them ("" when there are none).
+void refuse_untranslated(const std::vector<DeckNote>& notes, const DeckImportOptions& options);
+std::string untranslated_run_key(const std::vector<DeckNote>& notes);
+
 }  // namespace afemp::core

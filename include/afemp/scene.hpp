@@ -83,6 +83,11 @@ struct RunSettings {
   std::string units{};
   /// Keys whose plausibility warnings are silenced (dotted, as the warning names them).
   std::vector<std::string> quiet{};
+  /// What the deck an imported scene came from holds that changes the run and was not
+  /// translated (`afemp import --allow-untranslated`, docs/import.md), one "FILE:LINE: KEYWORD:
+  /// ..." line each: `afemp check` and `afemp run` repeat them as warnings.
+  std::vector<std::string> untranslated{};
+  SourceLocation untranslated_where{};  ///< the key's line (messages)
   /// Checkpoints (docs/restart.md): every checkpoint_every of simulated time (0: none) and every
   /// checkpoint_wall_every seconds of wall time (0: none), keeping the newest checkpoint_keep.
   double checkpoint_every = 0.0;

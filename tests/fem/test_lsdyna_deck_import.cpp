@@ -4,11 +4,13 @@
 // line, and errors that name the file, the line and the keyword.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <string>
 #include <variant>
 
 #include "afemp/deck_import.hpp"
+#include "core/plausibility.hpp"
 #include "core/scene.hpp"
 #include "fem/lsdyna_deck_import.hpp"
 #include "mpm/test_support.hpp"
@@ -17,17 +19,20 @@
 namespace afemp::fem {
 namespace {
 
-// A cube of 2 x 2 x 2 one-mm hexahedra, nodes 1..27 at (i, j, k) mm.
-std::string cube_mesh(int part = 1) {
+// A cube of 2 x 2 x 2 one-mm hexahedra, nodes 1..27 at (i, j, k) mm; `first` shifts the node
+// and element numbers, `z` the cube along z.
+std::string cube_mesh(int part = 1, int first = 0, int z = 0) {
   std::string s = "*NODE\n";
-  for (int k = 0, n = 1; k < 3; ++k)
+  for (int k = 0, n = 1 + first; k < 3; ++k)
     for (int j = 0; j < 3; ++j)
       for (int i = 0; i < 3; ++i, ++n)
         s += std::to_string(n) + "," + std::to_string(i) + "," + std::to_string(j) + "," +
-             std::to_string(k) + "\n";
+             std::to_string(k + z) + "\n";
   s += "*ELEMENT_SOLID\n";
-  const auto node = [](int i, int j, int k) { return std::to_string(1 + i + 3 * j + 9 * k); };
-  for (int k = 0, e = 1; k < 2; ++k)
+  const auto node = [&](int i, int j, int k) {
+    return std::to_string(1 + first + i + 3 * j + 9 * k);
+  };
+  for (int k = 0, e = 1 + first; k < 2; ++k)
     for (int j = 0; j < 2; ++j)
       for (int i = 0; i < 2; ++i, ++e)
         s += std::to_string(e) + "," + std::to_string(part) + "," + node(i, j, k) + "," +
@@ -56,7 +61,7 @@ const std::string kDeck =
     "*HOURGLASS\n1,6,1.0\n"                                            // 22-23
     "*INITIAL_VELOCITY_GENERATION\n1,2,0.,0.,0.,-300.\n0,0,0,0,0,0\n"  // 24-26
     "*RIGIDWALL_PLANAR\n0\n0.,0.,-0.5,0.,0.,1.,0.1\n"                  // 27-29
-    "*CONTACT_AUTOMATIC_SINGLE_SURFACE\n0,0\n"                         // 30-31
+    "*DATABASE_MATSUM\n1.0e-4\n"                                       // 30-31
     "*DATABASE_GLSTAT\n1.0e-4\n" +                                     // 32-33
     cube_mesh() +
     "*END\n";
@@ -135,20 +140,53 @@ TEST(LsDynaDeckImport, KeywordsBecomeTheSceneFields) {
   EXPECT_DOUBLE_EQ(s.walls[0].friction, 0.1);
 }
 
-// Reference: nothing of the deck is dropped without a line: the two keywords outside the
-// subset are listed with their lines, in the notes and as comments at the top of the scene.
+// Reference: nothing of the deck is dropped without a line: the two output keywords outside
+// the subset are listed with their lines, in the notes and as comments at the top of the scene.
 TEST(LsDynaDeckImport, KeywordsOutsideTheSubsetAreListedWithTheirLines) {
   test::ScratchDir dir;
   const Imported im = import_text(dir, kDeck);
   std::vector<std::string> listed;
   for (const core::DeckNote& n : im.deck.notes)
     if (!n.approximated) listed.push_back(n.keyword + ":" + std::to_string(n.at.line));
-  EXPECT_EQ(listed, (std::vector<std::string>{"*CONTACT_AUTOMATIC_SINGLE_SURFACE:30",
-                                              "*DATABASE_GLSTAT:32"}));
-  EXPECT_NE(im.deck.scene.find("#   " + dir.file("deck.k") +
-                               ":30: *CONTACT_AUTOMATIC_SINGLE_SURFACE: not translated"),
-            std::string::npos)
+  EXPECT_EQ(listed, (std::vector<std::string>{"*DATABASE_MATSUM:30", "*DATABASE_GLSTAT:32"}));
+  EXPECT_NE(
+      im.deck.scene.find("#   " + dir.file("deck.k") + ":30: *DATABASE_MATSUM: not translated"),
+      std::string::npos)
       << im.deck.scene;
+  EXPECT_TRUE(im.scene.run.untranslated.empty());
+}
+
+// Reference: issue 47, a deck must run as it means or be refused. A load (*LOAD_BODY_Z, line
+// 34) outside the subset changes the run: the import stops at its file, line and keyword; with
+// allow_untranslated the scene is written, and [run] untranslated carries the keyword so that
+// the scene's plausibility warnings (what `afemp check` prints) repeat it.
+TEST(LsDynaDeckImport, UntranslatedKeywordThatChangesTheRunIsRefusedUnlessAllowed) {
+  std::string deck = kDeck;
+  deck.insert(deck.find("*NODE"), "*LOAD_BODY_Z\n1,1.0\n");  // lines 34-35
+  const std::string e = error_of(deck);
+  EXPECT_NE(e.find("bad.k:34:"), std::string::npos) << e;
+  EXPECT_NE(e.find("*LOAD_BODY_Z"), std::string::npos) << e;
+  EXPECT_NE(e.find("--allow-untranslated"), std::string::npos) << e;
+
+  test::ScratchDir dir;
+  const std::string deck_path = dir.write("deck.k", deck);
+  const std::string scene_path = dir.file("scene.toml");
+  core::DeckImportOptions options;
+  options.allow_untranslated = true;
+  const core::DeckImport d = core::import_deck(deck_path, scene_path, options);
+  core::write_deck_import(d, scene_path);
+  EXPECT_NE(d.scene.find("# WARNING: imported with --allow-untranslated"), std::string::npos)
+      << d.scene;
+  const core::Scene s = core::read_scene(scene_path);
+  ASSERT_EQ(s.run.untranslated.size(), 1u);
+  EXPECT_NE(s.run.untranslated[0].find(":34: *LOAD_BODY_Z: not translated, the run differs"),
+            std::string::npos)
+      << s.run.untranslated[0];
+  std::vector<std::string> warned;
+  for (const core::SceneWarning& w : core::plausibility_warnings(s))
+    if (w.key == "run.untranslated") warned.push_back(w.message);
+  ASSERT_EQ(warned.size(), 1u);
+  EXPECT_NE(warned[0].find("*LOAD_BODY_Z"), std::string::npos) << warned[0];
 }
 
 // Reference: 1 kg/m^3 = 1e-6 g/mm^3, 1 Pa = 1e-6 MPa, 1 m = 1000 mm, 1 s = 1000 ms; the mesh
@@ -300,6 +338,186 @@ TEST(LsDynaDeckImport, CommandSaysToImportADeck) {
               std::string::npos)
         << r.err;
   }
+}
+
+// Two elastic cubes, part 1 (nodes 1..27) and part 2 (nodes 101..127, 3 mm above), and what
+// is added between the parts and the mesh.
+std::string two_cubes(const std::string& extra) {
+  return "*KEYWORD\n*CONTROL_TERMINATION\n0.01\n*PART\nstriker\n1,1,1\n*PART\ntarget\n2,1,1\n"
+         "*SECTION_SOLID\n1,1\n*MAT_ELASTIC\n1,7.85e-3,2.0e5,0.3\n" +
+         extra + cube_mesh(1) + cube_mesh(2, 100, 3) + "*END\n";
+}
+
+std::string node_list(int sid, int first, int count) {
+  std::string s = "*SET_NODE_LIST\n" + std::to_string(sid) + "\n";
+  for (int n = 0; n < count; ++n)
+    s += std::to_string(first + n) + (n % 8 == 7 || n + 1 == count ? "\n" : ",");
+  return s;
+}
+
+// Reference: LS-DYNA Keyword User's Manual R13 Vol. I, *INITIAL_VELOCITY (NSID NSIDEX BOXID
+// IRIGID ICID / VX VY VZ VXR VYR VZR) and *INITIAL_VELOCITY_NODE (NID VX VY VZ VXR VYR VZR
+// ICID): the nodes given start at that velocity. A node set holding exactly part 1's 27 nodes
+// is body striker's velocity; every node of part 2 listed with one velocity is target's.
+TEST(LsDynaDeckImport, NodeVelocitiesOfWholePartsAreTheBodiesVelocities) {
+  test::ScratchDir dir;
+  std::string nodes = "*INITIAL_VELOCITY_NODE\n";
+  for (int n = 101; n <= 127; ++n) nodes += std::to_string(n) + ",10.0,0,0\n";
+  const Imported im =
+      import_text(dir, two_cubes(node_list(7, 1, 27) + "*INITIAL_VELOCITY\n7\n0,0,-200\n" + nodes));
+  ASSERT_EQ(im.scene.bodies.size(), 2u);
+  EXPECT_EQ(im.scene.bodies[0].name, "striker");
+  EXPECT_DOUBLE_EQ(im.scene.bodies[0].velocity.z, -200.0);
+  EXPECT_DOUBLE_EQ(im.scene.bodies[0].velocity.x, 0.0);
+  EXPECT_DOUBLE_EQ(im.scene.bodies[1].velocity.x, 10.0);
+  EXPECT_DOUBLE_EQ(im.scene.bodies[1].velocity.z, 0.0);
+
+  // NSID 0: every node.
+  const Imported all = import_text(dir, two_cubes("*INITIAL_VELOCITY\n0\n5,0,0\n"));
+  EXPECT_DOUBLE_EQ(all.scene.bodies[0].velocity.x, 5.0);
+  EXPECT_DOUBLE_EQ(all.scene.bodies[1].velocity.x, 5.0);
+}
+
+// Reference: afemp gives a body one translational velocity (docs/scene-format.md, `velocity`),
+// so a velocity on part of a part's nodes, a rotational one, or two on one part are refused
+// with the keyword, its line and why (issue 47: run as the deck means, or refuse).
+TEST(LsDynaDeckImport, NodeVelocitiesAfempCannotStateAreRefused) {
+  // Lines: 1-13 the parts, 14-19 the set (26 nodes on 4 cards), 20 *INITIAL_VELOCITY, 22 VX..
+  std::string e = error_of(two_cubes(node_list(7, 1, 26) + "*INITIAL_VELOCITY\n7\n0,0,-200\n"));
+  EXPECT_NE(e.find("bad.k:22:"), std::string::npos) << e;
+  EXPECT_NE(e.find("*INITIAL_VELOCITY"), std::string::npos) << e;
+  EXPECT_NE(e.find("26 of the 27 nodes of part 1"), std::string::npos) << e;
+
+  e = error_of(two_cubes("*INITIAL_VELOCITY\n0\n0,0,-200,1.0\n"));
+  EXPECT_NE(e.find("bad.k:16:"), std::string::npos) << e;
+  EXPECT_NE(e.find("VXR, VYR, VZR"), std::string::npos) << e;
+
+  e = error_of(two_cubes("*INITIAL_VELOCITY\n0\n0,0,-200\n*INITIAL_VELOCITY_NODE\n5,1,0,0\n"));
+  EXPECT_NE(e.find("two velocities"), std::string::npos) << e;
+  EXPECT_NE(e.find("part 1"), std::string::npos) << e;
+}
+
+// Reference: LS-DYNA Keyword User's Manual R13 Vol. I, *CONTACT (SSID MSID SSTYP MSTYP ... /
+// FS FD DC ...; SSTYP 3 a part, 2 a part set; mu = FD + (FS - FD) exp(-DC v), FS at DC = 0):
+// each contact becomes afemp's penalty contact between the bodies of its parts; a single
+// surface, every pair of its parts and each part with itself.
+TEST(LsDynaDeckImport, ContactsBecomePenaltyContactsBetweenTheParts) {
+  test::ScratchDir dir;
+  Imported im = import_text(
+      dir, two_cubes("*CONTACT_ERODING_SURFACE_TO_SURFACE_ID\n5,impact\n1,2,3,3\n0.2,0.1\n\n"
+                     "0,1,0\n"));
+  ASSERT_EQ(im.scene.contacts.size(), 1u);
+  EXPECT_EQ(im.scene.contacts[0].method, core::ContactMethod::penalty);
+  EXPECT_EQ(im.scene.contacts[0].bodies, (std::array<int, 2>{0, 1}));
+  EXPECT_DOUBLE_EQ(im.scene.contacts[0].friction, 0.2);  // DC 0: FS
+
+  // A part set (*SET_PART_LIST, defined after the contact) against a part; DC > 0: FD.
+  im = import_text(dir, two_cubes("*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE\n9,1,2,3\n0.3,0.1,0.5\n"
+                                  "*SET_PART_LIST\n9\n2\n"));
+  ASSERT_EQ(im.scene.contacts.size(), 1u);
+  EXPECT_DOUBLE_EQ(im.scene.contacts[0].friction, 0.1);
+
+  // Single surface over every part: the pair and each cube with itself.
+  im = import_text(dir, two_cubes("*CONTACT_AUTOMATIC_SINGLE_SURFACE\n0\n"));
+  ASSERT_EQ(im.scene.contacts.size(), 3u);
+  EXPECT_EQ(im.scene.contacts[0].bodies, (std::array<int, 2>{0, 0}));
+  EXPECT_EQ(im.scene.contacts[1].bodies, (std::array<int, 2>{0, 1}));
+  EXPECT_EQ(im.scene.contacts[2].bodies, (std::array<int, 2>{1, 1}));
+
+  // A segment set (SSTYP 0) afemp cannot state: refused with the field and what is allowed.
+  const std::string e = error_of(two_cubes("*CONTACT_AUTOMATIC_NODES_TO_SURFACE\n1,2,0,3\n"));
+  EXPECT_NE(e.find("bad.k:15:"), std::string::npos) << e;
+  EXPECT_NE(e.find("SSTYP 0"), std::string::npos) << e;
+  EXPECT_NE(e.find("allowed: 3 (a part)"), std::string::npos) << e;
+}
+
+// Reference: LS-DYNA Keyword User's Manual R13 Vol. II, *MAT_ADD_EROSION (MID EXCL MXPRES MNEPS
+// EFFEPS VOLEPS NUMFIP NCS; a criterion equal to EXCL is off) and *MAT_PLASTIC_KINEMATIC (FS:
+// the element is deleted at that effective plastic strain): the bodies of the material erode
+// at EFFEPS as plastic strain, at V / V0 = 1 + VOLEPS, and where the material fails.
+TEST(LsDynaDeckImport, ErosionCriteriaBecomeTheBodiesErosion) {
+  test::ScratchDir dir;
+  const std::string parts =
+      "*KEYWORD\n*CONTROL_TERMINATION\n0.01\n*PART\nblock\n1,1,1\n*SECTION_SOLID\n1,1\n";
+  Imported im =
+      import_text(dir, parts +
+                           "*MAT_ADD_EROSION\n1,9.0,9.0,,0.8,-0.6\n*MAT_PLASTIC_KINEMATIC\n"
+                           "1,7.85e-3,2.0e5,0.3,500.0,1000.0,1.0\n0,0,1.2\n" +
+                           cube_mesh() + "*END\n");
+  ASSERT_EQ(im.scene.bodies.size(), 1u);
+  ASSERT_TRUE(im.scene.bodies[0].erosion.has_value());
+  const core::ErosionSettings& e = *im.scene.bodies[0].erosion;
+  EXPECT_DOUBLE_EQ(e.plastic_strain, 0.8);
+  EXPECT_DOUBLE_EQ(e.volume_ratio, 0.4);
+  EXPECT_TRUE(e.material_failure);
+  EXPECT_DOUBLE_EQ(im.scene.materials[0].failure_strain, 1.2);
+
+  // MXPRES (a compressive pressure limit) has no afemp criterion: refused, naming it.
+  const std::string err = error_of(parts +
+                                   "*MAT_ADD_EROSION\n1,0,5000.0\n*MAT_ELASTIC\n"
+                                   "1,7.85e-3,2.0e5,0.3\n" +
+                                   cube_mesh());
+  EXPECT_NE(err.find("bad.k:10:"), std::string::npos) << err;
+  EXPECT_NE(err.find("MXPRES"), std::string::npos) << err;
+}
+
+// Reference: LS-DYNA Keyword User's Manual R13 Vol. II, *MAT_RIGID (MID RO E PR ... / CMO
+// CON1 CON2; CMO 1: global constraints, CON1 and CON2 0 free, 1 x, ..., 4 x and y, ..., 7
+// all): the part is afemp's rigid body with those components fixed; a single-surface contact
+// gives it no self-contact (a rigid body does not fold).
+TEST(LsDynaDeckImport, RigidMaterialIsARigidBodyWithItsConstraints) {
+  test::ScratchDir dir;
+  const std::string deck =
+      "*KEYWORD\n*CONTROL_TERMINATION\n0.01\n*PART\nstriker\n1,1,1\n*PART\nanvil\n2,1,2\n"
+      "*SECTION_SOLID\n1,1\n*MAT_ELASTIC\n1,7.85e-3,2.0e5,0.3\n*MAT_RIGID\n"
+      "2,7.85e-3,2.0e5,0.3\n1,4,7\n*CONTACT_AUTOMATIC_SINGLE_SURFACE\n0\n" +
+      cube_mesh(1) + cube_mesh(2, 100, 3) + "*END\n";
+  const Imported im = import_text(dir, deck);
+  ASSERT_EQ(im.scene.bodies.size(), 2u);
+  EXPECT_FALSE(im.scene.bodies[0].rigid.has_value());
+  ASSERT_TRUE(im.scene.bodies[1].rigid.has_value()) << im.deck.scene;
+  EXPECT_EQ(im.scene.bodies[1].rigid->fixed,
+            (std::array<bool, 6>{true, true, false, true, true, true}));
+  ASSERT_EQ(im.scene.contacts.size(), 2u);
+  EXPECT_EQ(im.scene.contacts[0].bodies, (std::array<int, 2>{0, 0}));
+  EXPECT_EQ(im.scene.contacts[1].bodies, (std::array<int, 2>{0, 1}));
+
+  // Local constraints (CMO -1) are refused with the card's line.
+  std::string local = deck;
+  local.replace(local.find("1,4,7\n"), 6, "-1,4,7\n");
+  const std::string e = error_of(local);
+  EXPECT_NE(e.find("bad.k:16:"), std::string::npos) << e;
+  EXPECT_NE(e.find("CMO -1"), std::string::npos) << e;
+}
+
+// Reference: LS-DYNA Keyword User's Manual R13 Vol. I, *BOUNDARY_PRESCRIBED_MOTION_SET (NSID
+// DOF VAD LCID SF ...: DOF 3 z, VAD 0 a velocity SF x curve(t)) and *DEFINE_CURVE (LCID SIDR SFA
+// SFO OFFA OFFO / A O pairs: t = SFA A + OFFA, value = SFO O + OFFO): the node set's z velocity
+// is prescribed as -50 x the curve, (0, 1) to (0.005, 0) with SFO 2 and OFFA 0.001.
+TEST(LsDynaDeckImport, PrescribedMotionIsAConstraintVelocityWithTheCurve) {
+  test::ScratchDir dir;
+  const std::string deck = two_cubes(node_list(3, 119, 9) +
+                                     "*DEFINE_CURVE\n4,0,1.0,2.0,0.001\n0.0,0.5\n0.005,0.0\n"
+                                     "*BOUNDARY_PRESCRIBED_MOTION_SET\n3,3,0,4,-50.0\n");
+  const Imported im = import_text(dir, deck);
+  ASSERT_EQ(im.scene.constraints.size(), 1u) << im.deck.scene;
+  const core::ConstraintSpec& c = im.scene.constraints[0];
+  EXPECT_EQ(c.nodes.kind, core::NodeSelector::Kind::set);
+  EXPECT_EQ(c.nodes.set, "set 3");
+  EXPECT_EQ(c.components, (std::array<bool, 3>{false, false, true}));
+  EXPECT_DOUBLE_EQ(c.velocity.z, -50.0);
+  ASSERT_EQ(c.curve.size(), 2u);
+  EXPECT_DOUBLE_EQ(c.curve[0][0], 0.001);
+  EXPECT_DOUBLE_EQ(c.curve[0][1], 1.0);
+  EXPECT_DOUBLE_EQ(c.curve[1][0], 0.006);
+  EXPECT_DOUBLE_EQ(c.curve[1][1], 0.0);
+
+  // A displacement (VAD 2) is refused with its card's line (the set: lines 14-17).
+  std::string e = error_of(two_cubes(node_list(3, 119, 9) +
+                                     "*DEFINE_CURVE\n4\n0.0,1.0\n0.005,0.0\n"
+                                     "*BOUNDARY_PRESCRIBED_MOTION_SET\n3,3,2,4,-50.0\n"));
+  EXPECT_NE(e.find("bad.k:23:"), std::string::npos) << e;
+  EXPECT_NE(e.find("VAD 2"), std::string::npos) << e;
 }
 
 }  // namespace
