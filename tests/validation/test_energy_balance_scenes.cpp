@@ -126,7 +126,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Expected{"block_wall", nullptr}, Expected{"rod_particle_plate", "rod-plate"},
                       Expected{"jc_particle_plate", "sphere-plate"},
                       Expected{"afemp_target", "sphere-plate"}, Expected{"hjc_rebar", "rod-block"}),
-    [](const ::testing::TestParamInfo<Expected>& info) { return std::string(info.param.scene); });
+    [](const ::testing::TestParamInfo<Expected>& param) { return std::string(param.param.scene); });
 
 }  // namespace
 }  // namespace afemp::coupling
