@@ -6,7 +6,9 @@
 // Manual (R13): Vol. I for *PART, *SECTION_SOLID, *SECTION_BEAM, *HOURGLASS, *INITIAL_VELOCITY,
 // *INITIAL_VELOCITY_NODE, *INITIAL_VELOCITY_GENERATION, *CONTACT (the AUTOMATIC and ERODING
 // forms), *SET_PART_LIST, *SET_NODE_LIST, *RIGIDWALL_PLANAR, *CONTROL_TERMINATION,
-// *CONTROL_TIMESTEP, *DATABASE_BINARY_D3PLOT, *DEFINE_CURVE, *BOUNDARY_PRESCRIBED_MOTION; Vol. II
+// *CONTROL_TIMESTEP, *CONTROL_HOURGLASS, *CONTROL_BULK_VISCOSITY, *CONTROL_SOLID,
+// *CONTROL_CONTACT, *PART_CONTACT, *DATABASE_BINARY_D3PLOT, *DEFINE_CURVE,
+// *BOUNDARY_PRESCRIBED_MOTION; Vol. II
 // for *MAT_ELASTIC (001), *MAT_PLASTIC_KINEMATIC (003), *MAT_JOHNSON_COOK (015), *MAT_RIGID (020),
 // *MAT_JOHNSON_HOLMQUIST_CONCRETE (111), *MAT_ADD_EROSION, *EOS_LINEAR_POLYNOMIAL (001) and
 // *EOS_GRUNEISEN (004).
@@ -103,6 +105,15 @@ struct Contact {
   std::vector<std::int64_t> slave, master;
   bool single = false;
   double friction = 0;
+  bool part_friction = false;  // FS = -1: the parts' *PART_CONTACT coefficients, times fsf
+  double fsf = 1;
+};
+
+// Coulomb friction as LS-DYNA's mu = FD + (FS - FD) exp(-DC |v_rel|) written with one
+// coefficient: FS itself when DC is 0, else FD (the fast-sliding value).
+struct Friction {
+  double fs = 0, fd = 0, dc = 0;
+  double coefficient() const { return dc > 0.0 ? fd : fs; }
 };
 
 // The contact keywords translated, without their _ID or _TITLE option.
@@ -233,10 +244,12 @@ class LsDynaImport {
     if (n == "KEYWORD" || kMeshKeywords.count(n) != 0) return;
     if (n == "TITLE") {
       if (!k.cards.empty()) title_ = std::string(core::trim(k.cards.front().text));
-    } else if (n == "PART") {
+    } else if (n == "PART" || n == "PART_CONTACT") {
       for (LsDynaPart& p : lsdyna_parts(k)) {
         if (p.extra)
           note(p.card.at(), "GRAV, ADPOPT and TMID of part " + std::to_string(p.id), false);
+        if (p.contact_extra)
+          note(p.card.at(), "VC, OPTT, SFT and SSF of part " + std::to_string(p.id), false);
         parts_[p.id] = std::move(p);
       }
     } else if (is(n, {"SECTION_SOLID"})) {
@@ -261,6 +274,14 @@ class LsDynaImport {
       eos_linear_polynomial(k);
     } else if (n == "HOURGLASS" || n == "HOURGLASS_TITLE") {
       hourglass(k);
+    } else if (n == "CONTROL_HOURGLASS") {
+      control_hourglass(k);
+    } else if (n == "CONTROL_BULK_VISCOSITY") {
+      control_bulk_viscosity(k);
+    } else if (n == "CONTROL_SOLID") {
+      control_solid(k);
+    } else if (n == "CONTROL_CONTACT") {
+      control_contact(k);
     } else if (n == "INITIAL_VELOCITY_GENERATION") {
       initial_velocity(k);
     } else if (n == "INITIAL_VELOCITY") {
@@ -612,9 +633,120 @@ class LsDynaImport {
   void hourglass(const LsDynaKeyword& k) {
     const auto c = data_cards(k);
     const std::int64_t id = integer(k, c, 0, 0, "HGID");
-    const std::int64_t ihq = integer(k, c, 0, 1, "IHQ");
-    const double qm = real(k, c, 0, 2, "QM");
     Hourglass h;
+    h.hourglass = hourglass_form(k, c, integer(k, c, 0, 1, "IHQ"), real(k, c, 0, 2, "QM"), "QM");
+    const double q1 = real(k, c, 0, 4, "Q1"), q2 = real(k, c, 0, 5, "Q2");
+    if (q1 != 0.0 || q2 != 0.0) h.bulk_viscosity = bulk_viscosity(q1, q2);
+    hourglass_[id] = h;
+  }
+
+  // *CONTROL_HOURGLASS (IHQ QH): the form of the parts that name no *HOURGLASS.
+  void control_hourglass(const LsDynaKeyword& k) {
+    const auto c = data_cards(k);
+    const std::int64_t ihq = integer(k, c, 0, 0, "IHQ");
+    default_hourglass_ = hourglass_form(k, c, ihq != 0 ? ihq : 1, real(k, c, 0, 1, "QH"), "QH");
+  }
+
+  // *CONTROL_BULK_VISCOSITY (Q1 Q2 TYPE BTYPE): the bulk viscosity of the parts whose
+  // *HOURGLASS gives none. TYPE -1 and -2 add it to shells, which afemp does not have; BTYPE
+  // is the beams' (afemp's trusses carry none).
+  void control_bulk_viscosity(const LsDynaKeyword& k) {
+    const auto c = data_cards(k);
+    default_bulk_viscosity_ = bulk_viscosity(real(k, c, 0, 0, "Q1"), real(k, c, 0, 1, "Q2"));
+    if (integer(k, c, 0, 3, "BTYPE") != 0)
+      note(k.at(), "BTYPE (bulk viscosity in beams: afemp's trusses carry none)", false);
+  }
+
+  // *CONTROL_SOLID: what it sets concerns tetrahedra, pentahedra, cohesive elements, implicit
+  // element matrices and output, none of which afemp's hexahedra and trusses have, except
+  // ESORT (degenerate hexahedra get a wedge or tetrahedron formulation in LS-DYNA) and PSFAIL
+  // (solids erode at a principal stress).
+  void control_solid(const LsDynaKeyword& k) {
+    const auto c = data_cards(k);
+    if (integer(k, c, 0, 4, "PSFAIL") != 0)
+      changes_run(k.at(), "PSFAIL (solids of a part set erode at a principal stress)");
+    if (integer(k, c, 0, 0, "ESORT") != 0)
+      note(k.at(),
+           "ESORT: degenerate hexahedra (wedges, tetrahedra with repeated nodes) stay one-point "
+           "hexahedra in afemp",
+           true);
+    bool other = false;
+    for (std::size_t i : {1, 2, 3, 5, 6, 7})
+      other = other || real(k, c, 0, i, "FMATRX, NIPTETS, SWLOCL, T10JTOL, ICOH or TET13K") != 0.0;
+    if (other || c.size() > 1)
+      note(k.at(),
+           "FMATRX, NIPTETS, SWLOCL, T10JTOL, ICOH, TET13K and the PM cards (tetrahedra, "
+           "cohesive and implicit elements, output)",
+           false);
+  }
+
+  // *CONTROL_CONTACT: SLSFAC scales LS-DYNA's penalty stiffness, which afemp's penalty
+  // contact has not (it takes out each step's predicted penetration); SFRIC, DFRIC and EDC
+  // are the friction of the parts a contact with FS = -1 takes where *PART_CONTACT gives none.
+  void control_contact(const LsDynaKeyword& k) {
+    const auto c = data_cards(k);
+    if (real(k, c, 0, 0, "SLSFAC") != 0.0)
+      note(k.at(),
+           "SLSFAC (penalty stiffness scale): afemp's penalty contact takes out each step's "
+           "predicted penetration",
+           true);
+    bool other = false;
+    for (std::size_t i = 1; i < 8; ++i)
+      other = other ||
+              real(k, c, 0, i, "RWPNAL, ISLCHK, SHLTHK, PENOPT, THKCHG, ORIEN or ENMASS") != 0.0;
+    if (other)
+      note(k.at(),
+           "RWPNAL, ISLCHK, SHLTHK, PENOPT, THKCHG, ORIEN and ENMASS (afemp's contact checks "
+           "and orients surfaces itself; an eroded element's nodes leave the contact)",
+           true);
+    control_friction_ = {real(k, c, 2, 0, "SFRIC"), real(k, c, 2, 1, "DFRIC"),
+                         real(k, c, 2, 2, "EDC", core::Dimension{-1, 1, 0})};
+    if (real(k, c, 2, 3, "VFC") != 0.0) note(k.at(), "VFC (viscous friction)", false);
+    if ((c.size() > 1 && !c[1].blank()) || c.size() > 3)
+      note(k.at(), "the cards after the first and third (contact search and output options)",
+           false);
+  }
+
+  std::string one_coefficient(const Friction& f) const {
+    return "FS, FD, DC: afemp's Coulomb friction is one coefficient; written as FD = " + num(f.fd) +
+           " (LS-DYNA's at fast sliding) times FSF";
+  }
+
+  // A part's friction for a contact with FS = -1: its *PART_CONTACT card, where that gives FS,
+  // else *CONTROL_CONTACT's SFRIC, DFRIC and EDC (LS-DYNA's defaults for *PART_CONTACT).
+  Friction part_friction(std::int64_t label) const {
+    const auto p = parts_.find(label);
+    if (p != parts_.end() && p->second.has_contact && p->second.fs != 0.0)
+      return {p->second.fs, p->second.fd, p->second.dc};
+    return control_friction_;
+  }
+
+  // The friction of a contact between parts a and b (b the master's, or the other of a
+  // single surface's pair).
+  double pair_friction(const Contact& ct, std::int64_t a, std::int64_t b) {
+    if (!ct.part_friction) return ct.friction;
+    const Friction fa = part_friction(a), fb = part_friction(b);
+    if (fa.coefficient() != fb.coefficient())
+      notes_.push_back({ct.at, ct.keyword,
+                        "FS -1 with parts " + std::to_string(a) + " and " + std::to_string(b) +
+                            " of different friction: afemp takes one coefficient per pair, " +
+                            (ct.single ? "the later part's" : "the master's") + " (part " +
+                            std::to_string(b) + "; LS-DYNA takes the segment's part's)",
+                        true});
+    if (fb.dc > 0.0 && fb.fd != fb.fs)
+      notes_.push_back({ct.at, ct.keyword, one_coefficient(fb), true});
+    return ct.fsf * fb.coefficient();
+  }
+
+  std::string bulk_viscosity(double q1, double q2) const {
+    // Blank fields are LS-DYNA's defaults, which are afemp's too.
+    return "{ quadratic = " + num(q1 != 0.0 ? q1 : 1.5) +
+           ", linear = " + num(q2 != 0.0 ? q2 : 0.06) + " }";
+  }
+
+  // The hourglass table of LS-DYNA's type ihq with coefficient qm (`field` names it).
+  std::string hourglass_form(const LsDynaKeyword& k, const std::vector<LsDynaCard>& c,
+                             std::int64_t ihq, double qm, const std::string& field) {
     std::string form;
     if (ihq >= 0 && ihq <= 3) {
       form = "viscous";
@@ -634,21 +766,15 @@ class LsDynaImport {
                                  " has no afemp form; allowed: 0-3 (viscous), "
                                  "4-5 (stiffness), 6 (assumed strain)");
     }
-    // QM blank is LS-DYNA's 0.1 for every form (afemp's stiffness default is 0.05).
+    // A blank coefficient is LS-DYNA's 0.1 for every form (afemp's stiffness default is 0.05).
     const double wanted = qm > 0.0 ? qm : 0.1;
     const double largest = form == "assumed_strain" ? 1.0 : 0.5;
     if (wanted > largest)
       note(k.at(),
-           "QM " + num(wanted) + " is above afemp's largest " + num(largest) + " for the " + form +
-               " form; written as " + num(largest),
+           field + " " + num(wanted) + " is above afemp's largest " + num(largest) + " for the " +
+               form + " form; written as " + num(largest),
            true);
-    h.hourglass =
-        "{ form = \"" + form + "\", coefficient = " + num(std::min(wanted, largest)) + " }";
-    const double q1 = real(k, c, 0, 4, "Q1"), q2 = real(k, c, 0, 5, "Q2");
-    if (q1 != 0.0 || q2 != 0.0)
-      h.bulk_viscosity = "{ quadratic = " + num(q1 != 0.0 ? q1 : 1.5) +
-                         ", linear = " + num(q2 != 0.0 ? q2 : 0.06) + " }";
-    hourglass_[id] = h;
+    return "{ form = \"" + form + "\", coefficient = " + num(std::min(wanted, largest)) + " }";
   }
 
   // ID STYP OMEGA VX VY VZ IVATN ICID / XC YC ZC NX NY NZ PHASE IRIGID
@@ -711,17 +837,21 @@ class LsDynaImport {
       throw core::InputError(c1.at(), key_,
                              "SBOXID and MBOXID (only the segments in a box) are not translated: "
                              "afemp's contact is between whole bodies");
-    const double fs = real(k, c, 1, 0, "FS"), fd = real(k, c, 1, 1, "FD");
-    const double dc = real(k, c, 1, 2, "DC", core::Dimension{-1, 1, 0});  // per velocity
-    double fsf = real(k, c, 2, 6, "FSF");
-    if (fsf == 0.0) fsf = 1.0;
-    // LS-DYNA's mu = FD + (FS - FD) exp(-DC |v_rel|): FS itself when DC is 0.
-    ct.friction = fsf * (dc > 0.0 ? fd : fs);
-    if (dc > 0.0 && fd != fs)
-      note(k.at(),
-           "FS, FD, DC: afemp's Coulomb friction is one coefficient; written as FD = " + num(fd) +
-               " (LS-DYNA's at fast sliding) times FSF",
-           true);
+    const Friction f{real(k, c, 1, 0, "FS"), real(k, c, 1, 1, "FD"),
+                     real(k, c, 1, 2, "DC", core::Dimension{-1, 1, 0})};  // DC per velocity
+    ct.fsf = real(k, c, 2, 6, "FSF");
+    if (ct.fsf == 0.0) ct.fsf = 1.0;
+    if (f.fs == -1.0) {
+      ct.part_friction = true;
+    } else if (f.fs < 0.0) {
+      throw core::InputError(card_at(k, c, 1).at(), key_,
+                             "FS " + num(f.fs) +
+                                 " (friction from a table) is not translated; allowed: FS >= 0, "
+                                 "or -1 (the parts' *PART_CONTACT coefficients)");
+    } else {
+      ct.friction = ct.fsf * f.coefficient();
+      if (f.dc > 0.0 && f.fd != f.fs) note(k.at(), one_coefficient(f), true);
+    }
     if (real(k, c, 1, 3, "VC") != 0.0 || real(k, c, 1, 4, "VDC") != 0.0 ||
         integer(k, c, 1, 5, "PENCHK") != 0)
       note(k.at(), "VC (a cap on the friction force), VDC (contact damping) and PENCHK", false);
@@ -1128,7 +1258,7 @@ class LsDynaImport {
   std::string contact_tables(const MeshData& mesh) {
     std::vector<bool> hexahedra(mesh.part_names.size(), false);
     for (const std::int32_t p : mesh.hexahedron_part) hexahedra[static_cast<std::size_t>(p)] = true;
-    std::map<std::pair<std::size_t, std::size_t>, const Contact*> written;
+    std::map<std::pair<std::size_t, std::size_t>, std::pair<const Contact*, double>> written;
     std::string s;
     for (const Contact& ct : contacts_) {
       const std::vector<std::size_t> a = contact_bodies(ct, ct.slave, mesh);
@@ -1145,13 +1275,14 @@ class LsDynaImport {
                                        "hexahedra");
           }
           if (i == j && (!hexahedra[i] || rigid_part(mesh.part_labels[i]))) continue;
-          const auto [it, added] = written.emplace(pair, &ct);
+          const double friction = pair_friction(ct, mesh.part_labels[i], mesh.part_labels[j]);
+          const auto [it, added] = written.emplace(pair, std::pair{&ct, friction});
           if (!added) {
-            if (it->second != &ct && it->second->friction != ct.friction)
+            if (it->second.first != &ct && it->second.second != friction)
               notes_.push_back({ct.at, ct.keyword,
                                 "'" + mesh.part_names[i] + "' and '" + mesh.part_names[j] +
                                     "' are already in contact (line " +
-                                    std::to_string(it->second->at.line) +
+                                    std::to_string(it->second.first->at.line) +
                                     "): afemp takes one contact per pair, with that friction",
                                 true});
             continue;
@@ -1160,7 +1291,7 @@ class LsDynaImport {
                "\nbodies = [" + core::toml_string(mesh.part_names[pair.first]) +
                (i == j ? "" : ", " + core::toml_string(mesh.part_names[pair.second])) +
                "]\nmethod = \"penalty\"\n";
-          if (ct.friction > 0.0) s += "friction = " + num(ct.friction) + "\n";
+          if (friction > 0.0) s += "friction = " + num(friction) + "\n";
         }
     }
     return s;
@@ -1249,17 +1380,24 @@ class LsDynaImport {
                   std::to_string(part.section) + ", which no *SECTION_SOLID defines");
         if (sec->second == 2) s += "element = \"full\"\n";
       }
-      if (part.hourglass != 0 && !rigid) {
-        const auto h = hourglass_.find(part.hourglass);
-        if (h == hourglass_.end())
-          throw core::InputError(part.card.at(), "*PART",
-                                 "part " + std::to_string(label) + " names hourglass " +
-                                     std::to_string(part.hourglass) +
-                                     ", which no *HOURGLASS defines");
-        if (hexahedra && solid_elform_[part.section] == 1)
-          s += "hourglass = " + h->second.hourglass + "\n";
-        if (!h->second.bulk_viscosity.empty())
-          s += "bulk_viscosity = " + h->second.bulk_viscosity + "\n";
+      if (!rigid) {
+        // A part naming no *HOURGLASS, or one without Q1 and Q2, takes *CONTROL_HOURGLASS's
+        // form and *CONTROL_BULK_VISCOSITY's coefficients.
+        Hourglass h{default_hourglass_, hexahedra ? default_bulk_viscosity_ : ""};
+        if (part.hourglass != 0) {
+          const auto named = hourglass_.find(part.hourglass);
+          if (named == hourglass_.end())
+            throw core::InputError(part.card.at(), "*PART",
+                                   "part " + std::to_string(label) + " names hourglass " +
+                                       std::to_string(part.hourglass) +
+                                       ", which no *HOURGLASS defines");
+          h.hourglass = named->second.hourglass;
+          if (!named->second.bulk_viscosity.empty())
+            h.bulk_viscosity = named->second.bulk_viscosity;
+        }
+        if (hexahedra && solid_elform_[part.section] == 1 && !h.hourglass.empty())
+          s += "hourglass = " + h.hourglass + "\n";
+        if (!h.bulk_viscosity.empty()) s += "bulk_viscosity = " + h.bulk_viscosity + "\n";
       }
       const auto v = velocity_.count(label) != 0 ? velocity_.find(label) : velocity_.find(0);
       const auto nv = node_velocity_part_.find(label);
@@ -1323,6 +1461,8 @@ class LsDynaImport {
   std::map<std::int64_t, Erosion> add_erosion_;       // by MID: *MAT_ADD_EROSION
   std::map<std::int64_t, Eos> eos_;
   std::map<std::int64_t, Hourglass> hourglass_;
+  std::string default_hourglass_, default_bulk_viscosity_;  // *CONTROL_HOURGLASS, _BULK_VISCOSITY
+  Friction control_friction_;                               // *CONTROL_CONTACT
   std::map<std::int64_t, std::pair<core::Vec3, core::SourceLocation>> velocity_;
   std::vector<LsDynaIdList> node_sets_;
   std::vector<LsDynaIdList> part_sets_;

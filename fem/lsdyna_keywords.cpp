@@ -115,8 +115,10 @@ LsDynaIdList lsdyna_id_list(const LsDynaKeyword& k) {
 
 std::vector<LsDynaPart> lsdyna_parts(const LsDynaKeyword& k) {
   const std::string key = "*" + k.name;
+  const bool contact = k.name == "PART_CONTACT";
+  const std::size_t per_part = contact ? 3 : 2;
   std::vector<LsDynaPart> parts;
-  for (std::size_t i = 0; i < k.cards.size(); i += 2) {
+  for (std::size_t i = 0; i < k.cards.size(); i += per_part) {
     if (i + 1 == k.cards.size())
       throw core::InputError(k.cards[i].at(), key,
                              "the card 'pid secid mid ...' after the heading is missing");
@@ -132,6 +134,20 @@ std::vector<LsDynaPart> lsdyna_parts(const LsDynaKeyword& k) {
                  c};
     for (std::size_t a = 5; a < 8; ++a)
       p.extra = p.extra || card_real(f, a, c, key, "GRAV, ADPOPT or TMID") != 0.0;
+    if (contact) {
+      if (i + 2 == k.cards.size())
+        throw core::InputError(c.at(), key,
+                               "the card 'FS FD DC VC OPTT SFT SSF' after the part's is missing");
+      const LsDynaCard& cc = k.cards[i + 2];
+      const auto g = card_fields(cc, kStandardColumns);
+      p.has_contact = true;
+      p.fs = card_real(g, 0, cc, key, "FS");
+      p.fd = card_real(g, 1, cc, key, "FD");
+      p.dc = card_real(g, 2, cc, key, "DC");
+      for (std::size_t a = 3; a < 7; ++a)
+        p.contact_extra =
+            p.contact_extra || card_real(g, a, cc, key, "VC, OPTT, SFT or SSF") != 0.0;
+    }
     parts.push_back(std::move(p));
   }
   return parts;

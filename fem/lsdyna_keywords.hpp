@@ -97,7 +97,12 @@ struct LsDynaPart {
   std::int64_t id = 0, section = 0, material = 0, eos = 0, hourglass = 0;
   bool extra = false;  // GRAV, ADPOPT or TMID set
   LsDynaCard card;     // the "PID ..." card
+  // *PART_CONTACT's card "FS FD DC VC OPTT SFT SSF": the part's friction, which a contact with
+  // FS = -1 takes; contact_extra when VC, OPTT, SFT or SSF is set.
+  bool has_contact = false, contact_extra = false;
+  double fs = 0, fd = 0, dc = 0;
 };
+// *PART and *PART_CONTACT (a third card per part: its contact data).
 std::vector<LsDynaPart> lsdyna_parts(const LsDynaKeyword& part);
 
 }  // namespace afemp::fem

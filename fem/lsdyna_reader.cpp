@@ -27,6 +27,7 @@ const std::vector<std::string> kSupported = {"NODE",
                                              "ELEMENT_SOLID",
                                              "ELEMENT_BEAM",
                                              "PART",
+                                             "PART_CONTACT",
                                              "SECTION_BEAM",
                                              "SECTION_BEAM_TITLE",
                                              "SET_NODE_LIST",
@@ -64,7 +65,7 @@ class LsDynaReader {
         read_solids(k);
       else if (k.name == "ELEMENT_BEAM")
         read_beams(k);
-      else if (k.name == "PART")
+      else if (k.name == "PART" || k.name == "PART_CONTACT")
         read_parts(k);
       else if (k.name.starts_with("SECTION_BEAM") && supported(k))
         read_beam_sections(k);

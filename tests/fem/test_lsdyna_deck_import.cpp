@@ -520,5 +520,79 @@ TEST(LsDynaDeckImport, PrescribedMotionIsAConstraintVelocityWithTheCurve) {
   EXPECT_NE(e.find("VAD 2"), std::string::npos) << e;
 }
 
+// Reference: LS-DYNA Keyword User's Manual R13 Vol. I, *CONTROL_HOURGLASS (IHQ QH: the form of
+// the parts without *HOURGLASS), *CONTROL_BULK_VISCOSITY (Q1 Q2 TYPE BTYPE: the bulk viscosity
+// of the parts whose *HOURGLASS gives none), *CONTROL_SOLID (tetrahedra, cohesive and implicit
+// settings; PSFAIL erodes solids at a principal stress) and *CONTROL_CONTACT (SLSFAC scales the
+// penalty stiffness; SFRIC, DFRIC, EDC the friction of parts without *PART_CONTACT's). Most
+// decks carry them: they translate instead of stopping the import.
+TEST(LsDynaDeckImport, ControlKeywordsSetTheDefaultsOfTheParts) {
+  test::ScratchDir dir;
+  // Striker names no *HOURGLASS: *CONTROL_HOURGLASS's type 6 and *CONTROL_BULK_VISCOSITY's
+  // coefficients. Target's *HOURGLASS 2 (type 5, no Q1 and Q2) keeps its form and takes the
+  // control's bulk viscosity.
+  std::string deck = two_cubes(
+      "*CONTROL_HOURGLASS\n6,0.8\n*CONTROL_BULK_VISCOSITY\n1.2,0.05,1\n"
+      "*CONTROL_SOLID\n1,0,0,0,0\n*CONTROL_CONTACT\n0.1\n\n0.3,0.2\n*HOURGLASS\n2,5,0.04\n");
+  deck.replace(deck.find("target\n2,1,1"), 12, "target\n2,1,1,0,2");
+  Imported im = import_text(dir, deck);
+  ASSERT_EQ(im.scene.bodies.size(), 2u);
+  const core::BodySpec &striker = im.scene.bodies[0], &target = im.scene.bodies[1];
+  EXPECT_EQ(striker.hourglass.form, core::HourglassForm::assumed_strain);
+  EXPECT_DOUBLE_EQ(striker.hourglass.effective_coefficient(), 0.8);
+  EXPECT_EQ(target.hourglass.form, core::HourglassForm::stiffness);
+  EXPECT_DOUBLE_EQ(target.hourglass.effective_coefficient(), 0.04);
+  for (const core::BodySpec* b : {&striker, &target}) {
+    const core::BulkViscositySettings q = core::bulk_viscosity_of(im.scene, *b);
+    EXPECT_DOUBLE_EQ(q.quadratic, 1.2);
+    EXPECT_DOUBLE_EQ(q.linear, 0.05);
+  }
+  EXPECT_TRUE(im.scene.run.untranslated.empty());
+  bool esort = false, slsfac = false;
+  for (const core::DeckNote& n : im.deck.notes) {
+    esort = esort || (n.keyword == "*CONTROL_SOLID" && n.approximated);
+    slsfac = slsfac || (n.keyword == "*CONTROL_CONTACT" && n.approximated);
+  }
+  EXPECT_TRUE(esort);
+  EXPECT_TRUE(slsfac);
+
+  // PSFAIL erodes solids: refused unless allowed, with the file, line and keyword.
+  const std::string e = error_of(two_cubes("*CONTROL_SOLID\n0,0,0,0,3\n"));
+  EXPECT_NE(e.find("bad.k:14:"), std::string::npos) << e;
+  EXPECT_NE(e.find("*CONTROL_SOLID"), std::string::npos) << e;
+  EXPECT_NE(e.find("PSFAIL"), std::string::npos) << e;
+}
+
+// Reference: LS-DYNA Keyword User's Manual R13 Vol. I, *PART_CONTACT (a third card per part:
+// FS FD DC VC OPTT SFT SSF) and *CONTACT_... FS = -1 (the parts' coefficients, *CONTROL_CONTACT's
+// SFRIC where a part gives none, times FSF); FS -2 (a table) is refused with what is allowed.
+TEST(LsDynaDeckImport, PartContactGivesTheFrictionOfContactsWithFsMinusOne) {
+  test::ScratchDir dir;
+  const std::string plain_parts = "*PART\nstriker\n1,1,1\n*PART\ntarget\n2,1,1\n";
+  const auto deck = [&](const std::string& parts, const std::string& extra) {
+    std::string d = two_cubes(extra);
+    return d.replace(d.find(plain_parts), plain_parts.size(), parts);
+  };
+  const std::string parts =
+      "*PART_CONTACT\nstriker\n1,1,1\n0.25\n*PART_CONTACT\ntarget\n2,1,1\n0.25,0.1\n";
+  const std::string contact = "*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE\n1,2,3,3\n-1.0\n";
+  Imported im = import_text(dir, deck(parts, contact));
+  ASSERT_EQ(im.scene.bodies.size(), 2u);
+  EXPECT_EQ(im.scene.bodies[1].name, "target");
+  ASSERT_EQ(im.scene.contacts.size(), 1u);
+  EXPECT_DOUBLE_EQ(im.scene.contacts[0].friction, 0.25);  // both parts' FS (DC 0)
+
+  // Parts without FS take *CONTROL_CONTACT's SFRIC (0.4); FSF (0.5) scales it.
+  im = import_text(dir, deck("*PART_CONTACT\nstriker\n1,1,1\n\n*PART_CONTACT\ntarget\n2,1,1\n\n",
+                             "*CONTROL_CONTACT\n\n\n0.4\n" + contact + "0,0,0,0,0,0,0.5\n"));
+  ASSERT_EQ(im.scene.contacts.size(), 1u);
+  EXPECT_DOUBLE_EQ(im.scene.contacts[0].friction, 0.2);
+
+  const std::string e =
+      error_of(deck(parts, "*CONTACT_AUTOMATIC_SURFACE_TO_SURFACE\n1,2,3,3\n-2.0\n"));
+  EXPECT_NE(e.find("FS -2"), std::string::npos) << e;
+  EXPECT_NE(e.find("allowed: FS >= 0, or -1"), std::string::npos) << e;
+}
+
 }  // namespace
 }  // namespace afemp::fem
