@@ -161,13 +161,16 @@ class Mpm3dImport {
         words_(src_),
         deck_path_(deck_path),
         scene_stem_(std::filesystem::path(scene_path).stem().string()),
-        units_(options.units, {deck_path, 0}) {}
+        units_(options.units, {deck_path, 0}),
+        options_(options) {}
 
   core::DeckImport run() {
     read();
     check_counts();
     core::DeckImport out;
-    const std::string body = scene(out.files);  // may add notes
+    std::string body = scene(out.files);  // may add notes
+    core::refuse_untranslated(notes_, options_);
+    body.insert(body.find('\n') + 1, core::untranslated_run_key(notes_));
     out.notes = notes_;
     out.units = units_.description();
     out.scene = core::imported_scene_header(deck_path_, core::DeckFormat::mpm3d,
@@ -179,6 +182,11 @@ class Mpm3dImport {
  private:
   void note(const std::string& key, const std::string& what, bool approximated) {
     notes_.push_back({words_.at(), key, what, approximated});
+  }
+  // Not translated, and the run differs for it (an initial condition, a load, damping): the
+  // import stops unless DeckImportOptions::allow_untranslated.
+  void changes_run(const std::string& key, const std::string& what) {
+    notes_.push_back({words_.at(), key, what, false, true});
   }
 
   void read() {
@@ -287,12 +295,20 @@ class Mpm3dImport {
       x.y = length();
       x.z = length();
       detonations_.push_back({x, words_.at()});
-    } else if (k == "drda" || k == "bimp" || k == "sgmp" || k == "smoo" || k == "tlmp" ||
-               k == "uvfp") {
-      note(key_, "an MPM3D-F90 method switch afemp does not have (docs/import.md)", false);
+    } else if (k == "bimp" || k == "sgmp" || k == "smoo" || k == "tlmp" || k == "uvfp") {
+      // A different discretisation of the same physics: run with afemp's own, noted.
+      note(key_,
+           "an MPM3D-F90 scheme afemp does not have (B-spline, staggered-grid, smoothed-stress, "
+           "total Lagrangian or mixed MPM): the deck runs with the scene's shape function and "
+           "scheme (docs/import.md)",
+           true);
+    } else if (k == "drda") {
+      changes_run(key_, "dynamic relaxation (damping to a static solution) is not part of afemp");
     } else if (k == "qulo" || k == "damp") {
-      words_.real(key_, "its value");
-      note(key_, "quasi-static loading and damping are not part of afemp", false);
+      if (words_.real(key_, "its value") != 0.0)
+        changes_run(key_, "quasi-static loading and damping are not part of afemp");
+      else
+        note(key_, "zero, as afemp runs", false);
     } else {
       throw core::InputError(
           words_.at(), key_,
@@ -683,13 +699,11 @@ class Mpm3dImport {
       } else if (k == "node") {
         const long p = words_.integer(key_, "the particle number");
         velocity();
-        note(key_,
-             "the initial velocity of particle " + std::to_string(p) +
-                 " alone (afemp gives a body one initial velocity)",
-             false);
+        changes_run(key_, "the initial velocity of particle " + std::to_string(p) +
+                              " alone (afemp gives a body one initial velocity)");
       } else if (k == "ksin" || k == "nuli" || k == "vsin") {
         words_.rest_of_line();
-        note(key_, "a velocity profile built into MPM3D-F90 for one test case", false);
+        changes_run(key_, "a velocity profile built into MPM3D-F90 for one test case");
       } else {
         throw core::InputError(words_.at(), key_,
                                "'" + k + "' in velo; allowed: body, comp, node, endv");
@@ -711,10 +725,9 @@ class Mpm3dImport {
       } else if (k == "body" || k == "part") {
         words_.integer(key_, "the number");
         for (int a = 0; a < 3; ++a) words_.real(key_, "a force component");
-        note(key_,
-             "a constant force on a " + std::string(k == "body" ? "body" : "particle") +
-                 " (afemp's scenes take gravity, not point forces)",
-             false);
+        changes_run(key_, "a constant force on a " +
+                              std::string(k == "body" ? "body" : "particle") +
+                              " (afemp's scenes take gravity, not point forces)");
       } else {
         throw core::InputError(words_.at(), key_,
                                "'" + k + "' in load; allowed: grav, body, part, endl");
@@ -970,6 +983,7 @@ class Mpm3dImport {
   Words words_;
   std::string deck_path_, scene_stem_;
   core::UnitConversion units_;
+  core::DeckImportOptions options_;
   std::string key_;
   std::vector<core::DeckNote> notes_;
 

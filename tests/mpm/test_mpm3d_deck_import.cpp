@@ -180,6 +180,48 @@ TEST(Mpm3dDeckImport, WhatIsNotTranslatedIsListedWithItsLineAndInTheScene) {
   EXPECT_TRUE(contact_noted);
 }
 
+// Reference: issue 47, a deck runs as it means or is refused. A particle's own velocity (velo
+// node), a force on a body (load body) and damping change the run: the import stops at the
+// file, line and keyword unless allowed, and then the scene's [run] untranslated carries them.
+// A scheme switch (bimp: B-spline MPM) changes the discretisation, not the physics: noted as
+// approximated, the deck imports.
+TEST(Mpm3dDeckImport, UntranslatedInitialConditionsAndLoadsAreRefusedUnlessAllowed) {
+  std::string deck = kDeck;
+  deck.replace(deck.find("body 2 0 0 -1000\n"), 17, "body 2 0 0 -1000\nnode 3 0 0 -10\n");
+  // line 27: node 3 ...; the load block moves down a line
+  std::string e = error_of(deck);
+  EXPECT_NE(e.find("bad.mpm:27:"), std::string::npos) << e;
+  EXPECT_NE(e.find("velo"), std::string::npos) << e;
+  EXPECT_NE(e.find("--allow-untranslated"), std::string::npos) << e;
+  std::string loaded = kDeck;
+  loaded.replace(loaded.find("endl\n"), 5, "body 1 0 0 5\nendl\n");  // line 31
+  e = error_of(loaded);
+  EXPECT_NE(e.find("bad.mpm:31:"), std::string::npos) << e;
+  e = error_of(std::string(kDeck).replace(kDeck.find("endi"), 4, "damp 0.05\nendi"));
+  EXPECT_NE(e.find("bad.mpm:34:"), std::string::npos) << e;
+
+  test::ScratchDir dir;
+  const std::string deck_path = dir.write("deck.mpm", deck);
+  const std::string scene_path = (dir.path() / "scene.toml").string();
+  core::DeckImportOptions options;
+  options.allow_untranslated = true;
+  const core::DeckImport d = core::import_deck(deck_path, scene_path, options);
+  core::write_deck_import(d, scene_path);
+  const core::Scene s = core::read_scene(scene_path);
+  ASSERT_EQ(s.run.untranslated.size(), 1u);
+  EXPECT_NE(s.run.untranslated[0].find(":27: velo: not translated, the run differs"),
+            std::string::npos)
+      << s.run.untranslated[0];
+
+  const Imported im =
+      import_text(dir, std::string(kDeck).replace(kDeck.find("endi"), 4, "bimp\nendi"));
+  bool noted = false;
+  for (const core::DeckNote& n : im.deck.notes)
+    noted = noted || (n.keyword == "bimp" && n.approximated && n.at.line == 34);
+  EXPECT_TRUE(noted);
+  EXPECT_TRUE(im.scene.run.untranslated.empty());
+}
+
 // Reference: 1 kg/m^3 = 1e-6 g/mm^3, 1 Pa = 1e-6 MPa, 1 m = 1000 mm, 1 s = 1000 ms, so the
 // SI deck's numbers become the mm-ms-g deck's.
 TEST(Mpm3dDeckImport, SiDeckIsConvertedIntoMillimetresMilliseconds) {
@@ -215,7 +257,7 @@ TEST(Mpm3dDeckImport, ThesisFormatDeckIsRead) {
       "dt 1.0d-4\ntstep 400\nostep 4\njaum on\ncont on\nfixed 2 0 2 0 2 0\n"
       "material\n 1 john 8.9d-3 100.0d3 0.3d0 90 392 0.5 0.0\nseos 1 1 3.3d3 1.49 1.96\n"
       "particle\n 1 1 1 0.25 0.25 0.25\n 2 1 2 0.75 0.25 2.25\n"
-      "velo\n comp 1 0 0 200\n node 2 0 0 0\nendv\nendi\n";
+      "velo\n comp 1 0 0 200\nendv\nendi\n";
   const Imported im = import_text(dir, deck);
   const core::Scene& s = im.scene;
   EXPECT_DOUBLE_EQ(s.run.fixed_time_step, 1e-4);
@@ -228,11 +270,9 @@ TEST(Mpm3dDeckImport, ThesisFormatDeckIsRead) {
   EXPECT_DOUBLE_EQ(points_of(dir.file("scene.body1.txt"))[0][3], 0.125);
   EXPECT_DOUBLE_EQ(std::get<core::MieGruneisen>(s.materials[0].eos).c0, 3300);
   EXPECT_EQ(s.contacts.size(), 1u);
-  ASSERT_EQ(im.deck.notes.size(), 2u);
-  EXPECT_EQ(im.deck.notes[0].keyword, "velo");  // node 2's own velocity
-  EXPECT_FALSE(im.deck.notes[0].approximated);
-  EXPECT_EQ(im.deck.notes[1].keyword, "contact");
-  EXPECT_TRUE(im.deck.notes[1].approximated);
+  ASSERT_EQ(im.deck.notes.size(), 1u);
+  EXPECT_EQ(im.deck.notes[0].keyword, "contact");
+  EXPECT_TRUE(im.deck.notes[0].approximated);
 }
 
 TEST(Mpm3dDeckImport, ErrorsNameFileLineKeywordAndWhatIsAllowed) {
