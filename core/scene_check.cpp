@@ -321,6 +321,20 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
                                        *b.pressure, b.internal_energy))
         c.fail(b.where, key + ".pressure", *why);
   }
+  if (b.initial_stress) {
+    if (!std::isfinite(b.initial_stress->surface))
+      c.fail(b.where, key + ".initial_stress.surface", "must be a finite number");
+    c.range(b.where, key + ".initial_stress.K0", b.initial_stress->k0,
+            range::earth_pressure_at_rest);
+    if (b.discretisation == D::trusses)
+      c.fail(b.where, key + ".initial_stress",
+             "a geostatic initial stress applies to bodies of particles or hexahedra");
+    if (b.material >= 0 && static_cast<std::size_t>(b.material) < scene.materials.size())
+      if (const std::optional<std::string> why =
+              geostatic_stress_refusal(scene.materials[static_cast<std::size_t>(b.material)],
+                                       scene.run.gravity, b.pressure.has_value()))
+        c.fail(b.where, key + ".initial_stress", *why);
+  }
   c.count(b.where, key + ".particles_per_cell", b.particles_per_cell, range::particles_per_cell);
   if (b.layout == BodySpec::Layout::shells && !std::holds_alternative<SphereShape>(b.shape))
     c.fail(b.where, key + ".layout",

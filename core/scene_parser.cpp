@@ -535,7 +535,7 @@ void read_mpm(TableReader& r, MpmSettings& mpm) {
 
 // A strength model with a pressure law of its own (Holmquist-Johnson-Cook concrete) goes with
 // that law, and no other model takes it; the material's elastic constants then come from G and
-// the law's bulk modulus.
+// the law's bulk modulus. Drucker-Prager's own law is the linear elastic one: it takes no eos.
 void pair_own_pressure_law(TableReader& r, Material& m, std::optional<double> shear_modulus) {
   std::string needs, needs_keys, law_of;
   double k = 0.0;
@@ -544,9 +544,16 @@ void pair_own_pressure_law(TableReader& r, Material& m, std::optional<double> sh
         using S = std::decay_t<decltype(s)>;
         using E = std::decay_t<decltype(e)>;
         if constexpr (HasOwnPressureLaw<S>) {
-          needs = S::PressureLaw::name;
-          for (const std::string& key : parameter_keys<typename S::PressureLaw>({}))
-            needs_keys += ", " + key;
+          if constexpr (std::is_same_v<typename S::PressureLaw, NoEos>) {
+            if (!std::is_same_v<E, NoEos>)
+              r.fail("eos", "strength model \"" + std::string(S::name) +
+                                "\" takes no eos: its pressure is linear elastic, K = E / (3 "
+                                "(1 - 2 nu)); remove eos");
+          } else {
+            needs = S::PressureLaw::name;
+            for (const std::string& key : parameter_keys<typename S::PressureLaw>({}))
+              needs_keys += ", " + key;
+          }
         }
         if constexpr (IsOwnPressureLaw<E>) {
           law_of = E::strength_model;
@@ -591,6 +598,10 @@ class SceneParameters final : public ParameterVisitor {
   }
   void optional(std::string_view key, double& value, double fallback, const Range& range) override {
     value = r_.number(key, fallback, range);
+  }
+  void choice(std::string_view key, std::size_t& value, std::span<const std::string_view> allowed,
+              std::optional<std::size_t> fallback) override {
+    value = r_.choice(key, allowed, fallback);
   }
   void require(bool ok, std::string_view key, const std::string& message) override {
     if (!ok) r_.fail(key, message);
@@ -1028,6 +1039,20 @@ void check_discretisation_keys(TableReader& r, const BodySpec& b) {
   only_for(r, b, "outside", D::particles, D::particles);  // resolved once every body is read
   only_for(r, b, "conversion", D::hexahedra, D::hexahedra);
   only_for(r, b, "pressure", D::particles, D::particles);
+  only_for(r, b, "initial_stress", D::particles, D::hexahedra);
+}
+
+// A body's initial_stress table: the geostatic state of soil at rest (whether the body can
+// take it is checked once it is read, against [run] gravity).
+GeostaticStress read_initial_stress(const toml::table& table, TableReader& r) {
+  TableReader gr(table, r.dotted("initial_stress"), r.file());
+  gr.known({"model", "K0", "surface"});
+  gr.check_unknown();
+  gr.choice("model", {"geostatic"}, std::nullopt);
+  GeostaticStress g;
+  g.surface = gr.required_number("surface", scene_ranges::body::geostatic_surface);
+  g.k0 = gr.required_number("K0", scene_ranges::body::earth_pressure_at_rest);
+  return g;
 }
 
 // A body's [hourglass] table: the form and its coefficient; left out, the coefficient is the
@@ -1120,10 +1145,13 @@ void read_rigid(const toml::node& node, TableReader& r, BodySpec& b) {
 
 BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
                    const std::vector<Material>& material_list, const std::string& scene_path) {
-  r.known({"name",           "material",       "discretisation",  "shape",  "particles_per_cell",
-           "velocity",       "temperature",    "internal_energy", "mesh",   "element",
-           "hourglass",      "bulk_viscosity", "erosion",         "area",   "bonded_to",
-           "conversion",     "rigid",          "outside",         "layout", "pressure",
+  r.known({"name",           "material",       "discretisation",
+           "shape",          "initial_stress", "particles_per_cell",
+           "velocity",       "temperature",    "internal_energy",
+           "mesh",           "element",        "hourglass",
+           "bulk_viscosity", "erosion",        "area",
+           "bonded_to",      "conversion",     "rigid",
+           "outside",        "layout",         "pressure",
            "overlap_allowed"});
   // Name the body in messages as soon as its name is readable, even for an unknown key.
   if (const toml::node* n = r.table().get("name");
@@ -1160,6 +1188,8 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
     if (const std::optional<std::string> why = initial_pressure_refusal(
             material_list[static_cast<std::size_t>(b.material)], *b.pressure, b.internal_energy))
       r.fail("pressure", *why);
+  if (const toml::table* t = r.optional_table("initial_stress"))
+    b.initial_stress = read_initial_stress(*t, r);
   if (r.has("rigid") && b.discretisation != D::hexahedra)
     r.fail("rigid", std::string("a rigid body is made of hexahedra (its mass and inertia come from "
                                 "their volumes), not of ") +
@@ -1708,6 +1738,11 @@ const toml::array& read_bodies(TableReader& r, Scene& scene,
     const toml::table& t = *bodies->get(i)->as_table();
     TableReader br(t, "bodies[" + std::to_string(i) + "]", path);
     BodySpec b = read_body(br, material_index, scene.materials, path);
+    if (b.initial_stress)
+      if (const std::optional<std::string> why =
+              geostatic_stress_refusal(scene.materials[static_cast<std::size_t>(b.material)],
+                                       scene.run.gravity, b.pressure.has_value()))
+        br.fail("initial_stress", *why);
     if (const std::optional<std::string> why = absolute_stress_lattice_refusal(scene.mpm.grid, b))
       br.fail("particles_per_cell", *why);
     for (const BodySpec& other : scene.bodies)

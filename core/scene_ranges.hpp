@@ -83,6 +83,8 @@ namespace body {
 inline constexpr Range temperature = kNonNegative;
 inline constexpr Range internal_energy = kNonNegative;
 inline constexpr Range pressure = kNonNegative;
+inline constexpr Range geostatic_surface{};
+inline constexpr Range earth_pressure_at_rest = kPositive;  // K0
 inline constexpr Count particles_per_cell{1, 8};
 inline constexpr Range bulk_linear = kFraction;
 inline constexpr Range bulk_quadratic = Range{0.0, 10.0, false, false};

@@ -12,6 +12,7 @@
 
 #include "afemp/errors.hpp"
 #include "core/detonation_paths.hpp"
+#include "core/materials/initial_pressure.hpp"
 #include "core/materials/user_strength_chunk.hpp"
 #include "core/parallel.hpp"
 #include "fem/fe_solver.hpp"
@@ -267,7 +268,7 @@ void add_point_state(ElementStore& el, const core::Material& m, double temperatu
 // Jacobians, with one point (one-point) or eight (full integration) each.
 void add_hexahedra(HexElements& hexes, const std::vector<Vec3>& position, const BodySpec& body,
                    const core::Material& mat, double temperature, const MeshData& m,
-                   std::int32_t offset) {
+                   std::int32_t offset, const Vec3& gravity) {
   const bool full = body.element == core::HexFormulation::full;
   for (std::size_t e = 0; e < m.hexahedra.size(); ++e) {
     std::array<std::int32_t, 8> nodes;
@@ -298,6 +299,24 @@ void add_hexahedra(HexElements& hexes, const std::vector<Vec3>& position, const 
     } else {
       add_point_state(hexes, mat, temperature, mat.density * volume, body.internal_energy);
     }
+    if (body.initial_stress) {
+      // Soil at rest: the weight above each integration point (Gauss point g sits at
+      // kHexNatural[g] / sqrt(3); the one point at the centroid), and the elastic energy it holds.
+      const std::size_t points = full ? 8 : 1;
+      for (std::size_t g = 0; g < points; ++g) {
+        Vec3 at{};
+        for (std::size_t a = 0; a < 8; ++a) {
+          double n = 0.125;
+          for (int i = 0; i < 3; ++i)
+            n *= full ? 1.0 + kHexNatural[a][i] * kHexNatural[g][i] / std::sqrt(3.0) : 1.0;
+          at += n * x[a];
+        }
+        const std::size_t p = hexes.points() - points + g;
+        hexes.stress[p] = core::geostatic_stress(body.initial_stress->surface,
+                                                 body.initial_stress->k0, gravity, mat.density, at);
+        hexes.energy[p] += core::elastic_energy(mat, hexes.stress[p]);
+      }
+    }
   }
 }
 
@@ -321,6 +340,33 @@ void add_trusses(TrussElements& trusses, const std::vector<Vec3>& position, cons
   }
 }
 
+// The nodal forces of the stresses hexahedra start with (a geostatic initial stress): the
+// element update computes them at the end of each step, so without these the first step would
+// see none, and the body would fall freely for half a step. Walls, hourglass and bulk
+// viscosity add nothing at rest.
+void add_initial_stress_forces(const core::Scene& scene, const HexElements& hexes,
+                               const std::vector<Vec3>& position, std::vector<Vec3>& force) {
+  for (const ElementBatch& batch : hexes.batches) {
+    const BodySpec& body = scene.bodies[static_cast<std::size_t>(batch.body)];
+    if (!body.initial_stress || batch.rigid) continue;
+    for (std::size_t e = batch.begin; e < batch.end; ++e) {
+      HexVectors x, f{};
+      for (std::size_t a = 0; a < 8; ++a)
+        x[a] = position[static_cast<std::size_t>(hexes.nodes[e][a])];
+      const std::size_t p = batch.point_begin +
+                            (e - batch.begin) * static_cast<std::size_t>(batch.points_per_element);
+      if (batch.points_per_element == 1) {
+        add_stress_forces(one_point_hex(x), hexes.stress[p], f);
+      } else {
+        std::array<core::SymTensor, 8> sigma;
+        for (std::size_t g = 0; g < 8; ++g) sigma[g] = hexes.stress[p + g];
+        add_stress_forces_bbar(full_hex(x), sigma, f);
+      }
+      for (std::size_t a = 0; a < 8; ++a) force[8 * e + a] = f[a];
+    }
+  }
+}
+
 }  // namespace
 
 FeSolver::FeSolver(const core::Scene& scene) : scene_(scene) {
@@ -340,6 +386,7 @@ void FeSolver::build(const core::Scene& scene) {
   setup_absorbing_boundaries(scene, meshes);
   setup_walls(scene);
   build_incidence();
+  add_initial_stress_forces(scene, hexes_, nodes_.position, element_force_);
   recompute_node_masses();
   // 6. Critical steps of the initial state.
   for (ElementSet* set : sets_) set->initial_critical_steps(scene, nodes_.position);
@@ -401,7 +448,8 @@ void FeSolver::build_elements(const core::Scene& scene, const BodyMeshes& meshes
     batch.point_begin = el.stress.size();
     if (hexahedra) {
       batch.points_per_element = body.element == core::HexFormulation::full ? 8 : 1;
-      add_hexahedra(hexes_, nodes_.position, body, mat, temperature, meshes.meshes[b], offset);
+      add_hexahedra(hexes_, nodes_.position, body, mat, temperature, meshes.meshes[b], offset,
+                    scene.run.gravity);
     } else {
       add_trusses(trusses_, nodes_.position, body, mat, temperature, meshes.meshes[b], offset);
     }

@@ -367,12 +367,14 @@ class Mpm3dImport {
       want({2}, "density, detonation velocity D");
     else if (m.type == "null")
       want({3}, "density, bulk modulus, viscosity");
+    else if (m.type == "dpm")
+      want({7}, "density, E, nu, q_fai, k_fai, q_psi, ten_f");
     else
       throw core::InputError(
           m.at, key_,
-          "material type '" + m.type +
-              "' has no afemp counterpart (dpm: Drucker-Prager, neoh: neo-Hookean); "
-              "translated: elas, pla1, pla2, john, sjc, sjcf, jcf, hiex, null");
+          "material type '" + m.type + "' has no afemp counterpart" +
+              (m.type == "neoh" ? " (neoh: neo-Hookean, awaited with issue 43)" : "") +
+              "; translated: elas, pla1, pla2, john, sjc, sjcf, jcf, hiex, null, dpm");
     if (m.type == "hiex" || m.type == "null") {
       // No strength (DataIn.f90's SetMaterial; Constitution.f90's M3DM6 and M3DM7): the EOS
       // of its seos gives the pressure.
@@ -396,6 +398,18 @@ class Mpm3dImport {
     m.nu = v[2];
     if (m.type == "elas") {
       m.strength = "{ model = \"elastic\" }";
+    } else if (m.type == "dpm") {
+      // Constitution.f90's M3DM9 (no EOS): the cone's constants as they are; its tension
+      // cutoff min(ten_f, k_fai / q_fai), 0 without friction. Left out at or beyond the apex,
+      // which is then afemp's default (the apex computed again after the unit conversion).
+      const double q = v[3], k = v[4], tension = v[6];
+      m.strength = "{ model = \"drucker-prager\", q_phi = " + core::toml_number(q) +
+                   ", k_phi = " + stress(k) + ", q_psi = " + core::toml_number(v[5]);
+      if (q == 0.0)
+        m.strength += ", tension_cutoff = 0";
+      else if (tension < k / q)
+        m.strength += ", tension_cutoff = " + stress(tension);
+      m.strength += " }";
     } else if (m.type == "pla1" || m.type == "pla2") {
       m.strength = "{ model = \"j2\", yield = " + stress(v[3]);
       if (m.type == "pla2") m.strength += ", tangent_modulus = " + stress(v[4]);
@@ -441,6 +455,12 @@ class Mpm3dImport {
     for (std::string_view w : words_.rest_of_line())
       v.push_back(core::to_real(w, at, key_, "an EOS value"));
     Material& m = it->second;
+    if (m.type == "dpm")
+      throw core::InputError(at, key_,
+                             "material " + std::to_string(set) +
+                                 " (dpm): MPM3D's Drucker-Prager runs without an EOS (its "
+                                 "pressure is linear elastic, Constitution.f90's M3DM9); remove "
+                                 "this seos");
     const auto speed = [&](double c) { return core::toml_number(units_(c, dim::velocity)); };
     const bool special = m.type == "hiex" || m.type == "null";
     if (!special && ((type == 2 && v.size() == 4) || (type == 1 && v.size() == 3))) {

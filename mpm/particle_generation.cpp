@@ -378,6 +378,16 @@ Particles generate_particles(const core::Scene& scene) {
         out.stress[p] = -*body.pressure * core::SymTensor::identity();
       }
     }
+    // Soil at rest: the weight above each particle (the parser checked gravity and material),
+    // and the elastic energy it holds.
+    if (body.initial_stress) {
+      for (std::size_t p = before; p < out.size(); ++p) {
+        out.stress[p] =
+            core::geostatic_stress(body.initial_stress->surface, body.initial_stress->k0,
+                                   scene.run.gravity, material.density, out.position[p]);
+        out.energy[p] += core::elastic_energy(material, out.stress[p]);
+      }
+    }
     if (out.size() == before)
       throw InputError(body.where, "bodies." + body.name + ".shape",
                        "the body has no particle: the shape lies outside the grid or is smaller "

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -121,23 +122,31 @@ void Material::validate() const {
         using S = std::decay_t<decltype(s)>;
         using E = std::decay_t<decltype(e)>;
         if constexpr (HasOwnPressureLaw<S>) {
-          if constexpr (!composable<S, E>) {
+          if constexpr (!composable<S, E> && std::is_same_v<typename S::PressureLaw, NoEos>) {
+            throw std::invalid_argument("material '" + name + "': strength model " +
+                                        std::string(S::name) +
+                                        " takes no eos: its pressure is linear elastic, K = E "
+                                        "/ (3 (1 - 2 nu))");
+          } else if constexpr (!composable<S, E>) {
             throw std::invalid_argument("material '" + name + "': strength model " +
                                         std::string(S::name) + " needs eos " +
                                         std::string(S::PressureLaw::name));
           } else {
             // The deviator uses G from E and nu, the law its bulk modulus: they must agree.
-            const double k_e = e.elastic_modulus();
-            if (!(std::abs(bulk_modulus() - k_e) <= 1e-9 * k_e))
-              throw std::invalid_argument(
-                  "material '" + name +
-                  "': bulk modulus E / (3 (1 - 2 nu)) = " + format_value(bulk_modulus()) +
-                  ", must be the bulk modulus of eos " + std::string(E::name) + ", " +
-                  format_value(k_e) + " (set E and nu from G and it)");
+            if constexpr (IsOwnPressureLaw<E>) {
+              const double k_e = e.elastic_modulus();
+              if (!(std::abs(bulk_modulus() - k_e) <= 1e-9 * k_e))
+                throw std::invalid_argument(
+                    "material '" + name +
+                    "': bulk modulus E / (3 (1 - 2 nu)) = " + format_value(bulk_modulus()) +
+                    ", must be the bulk modulus of eos " + std::string(E::name) + ", " +
+                    format_value(k_e) + " (set E and nu from G and it)");
+            }
             if (fails())
-              throw std::invalid_argument("material '" + name + "': " + std::string(S::name) +
-                                          " has its own damage; it takes no failure model "
-                                          "(remove failure / failure_strain)");
+              throw std::invalid_argument(
+                  "material '" + name + "': " + std::string(S::name) +
+                  (S::reads_damage ? " has its own damage; it" : " updates the whole point and") +
+                  " takes no failure model (remove failure / failure_strain)");
           }
         } else if constexpr (IsOwnPressureLaw<E>) {
           throw std::invalid_argument("material '" + name + "': strength model other than " +

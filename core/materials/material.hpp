@@ -20,7 +20,8 @@ namespace afemp::core {
 
 // A strength model with a pressure law of its own (Strength::PressureLaw, its update_point
 // updates the whole point, as the Holmquist-Johnson-Cook concrete does), and such a law (which
-// names its model, Eos::strength_model).
+// names its model, Eos::strength_model). Drucker-Prager's is NoEos, the linear elastic law,
+// which the other models take too: its yield and its plastic flow couple pressure and deviator.
 template <class Strength>
 concept HasOwnPressureLaw = requires {
   typename Strength::PressureLaw;

@@ -45,6 +45,10 @@ class KeyList final : public ParameterVisitor {
   explicit KeyList(const MaterialConstants& material) : material_(material) {}
   void required(std::string_view key, double&, const Range&) override { add(key); }
   void optional(std::string_view key, double&, double, const Range&) override { add(key); }
+  void choice(std::string_view key, std::size_t&, std::span<const std::string_view>,
+              std::optional<std::size_t>) override {
+    add(key);
+  }
   void require(bool, std::string_view, const std::string&) override {}
   bool has(std::string_view) const override { return false; }
   bool reading() const override { return true; }
@@ -67,6 +71,12 @@ class Check final : public ParameterVisitor {
   }
   void optional(std::string_view key, double& value, double, const Range& range) override {
     required(key, value, range);
+  }
+  void choice(std::string_view key, std::size_t& value, std::span<const std::string_view> allowed,
+              std::optional<std::size_t>) override {
+    if (value >= allowed.size())
+      fail(key, "choice " + std::to_string(value) + " is out of range; allowed: 0 to " +
+                    std::to_string(allowed.size() - 1));
   }
   void require(bool ok, std::string_view key, const std::string& message) override {
     if (!ok) fail(key, message);

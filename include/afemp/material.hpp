@@ -10,6 +10,7 @@
 #include <string>
 #include <variant>
 
+#include "afemp/drucker_prager.hpp"
 #include "afemp/equations_of_state.hpp"
 #include "afemp/failure_models.hpp"
 #include "afemp/johnson_holmquist_ceramic.hpp"
@@ -21,7 +22,7 @@ namespace afemp::core {
 /// The deviatoric half of a material: one of the built-in strength models, or a user model
 /// registered through afemp/user_material.hpp.
 using StrengthModel = std::variant<Elastic, J2Plasticity, JohnsonCook, HolmquistJohnsonCook,
-                                   UserStrength, Fluid, JohnsonHolmquist2>;
+                                   UserStrength, Fluid, JohnsonHolmquist2, DruckerPrager>;
 /// The volumetric half of a material: no EOS (hypoelastic bulk law) or one of the built-in EOS.
 using EquationOfState = std::variant<NoEos, LinearEos, MieGruneisen, LinearPolynomialEos,
                                      HjcCompaction, Jwl, Jh2Pressure>;

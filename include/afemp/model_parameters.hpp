@@ -5,7 +5,10 @@
 // visits it to check a material built in code, so a range is written once and holds for both.
 #pragma once
 
+#include <cstddef>
 #include <limits>
+#include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -58,6 +61,11 @@ class ParameterVisitor {
   /// A parameter with a default, within range when given.
   virtual void optional(std::string_view key, double& value, double fallback,
                         const Range& range) = 0;
+  /// A parameter that names one of `allowed` (a string in the scene file), held as its index;
+  /// `fallback` when the table leaves it out (none: required).
+  virtual void choice(std::string_view key, std::size_t& value,
+                      std::span<const std::string_view> allowed,
+                      std::optional<std::size_t> fallback) = 0;
   /// A rule joining parameters: unless ok, an error at `key` saying `message` (what is wrong
   /// and what is allowed).
   virtual void require(bool ok, std::string_view key, const std::string& message) = 0;

@@ -296,6 +296,14 @@ struct RigidSettings {
   std::array<bool, 6> fixed{false, false, false, false, false, false};  ///< x y z rx ry rz
 };
 
+/// A body at rest under gravity (soil): at depth d below its free surface, along the gravity g,
+/// the vertical stress is sigma_v = -rho |g| d and the horizontal ones K0 sigma_v
+/// (core/materials/initial_pressure.hpp, geostatic_stress).
+struct GeostaticStress {
+  double surface = 0.0;  ///< the free surface's height along -g (its z when g points along -z)
+  double k0 = 0.0;       ///< the coefficient of earth pressure at rest, sigma_h / sigma_v
+};
+
 /// One [[bodies]] entry: material (index into Scene::materials), discretisation, shape, and the
 /// settings of that discretisation; initial velocity, temperature and internal energy.
 struct BodySpec {
@@ -337,6 +345,8 @@ struct BodySpec {
   /// Particles: an initial pressure (water at depth): the particles start at the density at
   /// which the material's EOS gives it (core/materials/initial_pressure.hpp), with stress -p I.
   std::optional<double> pressure{};
+  /// Particles and hexahedra: a geostatic initial stress (needs gravity).
+  std::optional<GeostaticStress> initial_stress{};
   SourceLocation where{};  ///< the [[bodies]] table, for messages
 };
 
@@ -499,6 +509,7 @@ using core::Discretisation;
 using core::ErosionSettings;
 using core::Face;
 using core::FaceCondition;
+using core::GeostaticStress;
 using core::GridSettings;
 using core::HexFormulation;
 using core::HourglassForm;

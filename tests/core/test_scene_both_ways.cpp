@@ -150,6 +150,16 @@ class StatedKeys final : public ParameterVisitor {
       read_.emplace_back(key);
     }
   }
+  void choice(std::string_view key, std::size_t& value, std::span<const std::string_view> allowed,
+              std::optional<std::size_t>) override {
+    if (const toml::node* n = table_.get(key)) {
+      const std::string name = str(*n, key_ + "." + std::string(key));
+      const auto it = std::find(allowed.begin(), allowed.end(), name);
+      if (it == allowed.end()) ADD_FAILURE() << key_ << "." << key << ": no choice " << name;
+      value = static_cast<std::size_t>(it - allowed.begin());
+      read_.emplace_back(key);
+    }
+  }
   void require(bool, std::string_view, const std::string&) override {}
   bool has(std::string_view key) const override { return table_.contains(key); }
   bool reading() const override { return true; }
@@ -645,7 +655,19 @@ class Builder {
         b.internal_energy = num(v, at);
       else if (key == "pressure")
         b.pressure = num(v, at);
-      else
+      else if (key == "initial_stress") {
+        GeostaticStress g;
+        for (auto&& [gk, gv] : table(v, at)) {
+          const std::string f(gk.str());
+          if (f == "K0")
+            g.k0 = num(gv, at + ".K0");
+          else if (f == "surface")
+            g.surface = num(gv, at + ".surface");
+          else if (f != "model")
+            unknown(at + "." + f);
+        }
+        b.initial_stress = g;
+      } else
         unknown(at);
     }
     return b;
@@ -936,6 +958,10 @@ class Recorded final : public ParameterVisitor {
   void optional(std::string_view key, double& value, double, const Range&) override {
     values.emplace_back(key, value);
   }
+  void choice(std::string_view key, std::size_t& value, std::span<const std::string_view>,
+              std::optional<std::size_t>) override {
+    values.emplace_back(key, static_cast<double>(value));
+  }
   void require(bool, std::string_view, const std::string&) override {}
   bool has(std::string_view) const override { return true; }
   bool reading() const override { return false; }
@@ -1089,6 +1115,11 @@ void same_body(const BodySpec& a, const BodySpec& b, const std::string& at) {
   SAME(temperature);
   SAME(internal_energy);
   SAME(pressure);
+  ASSERT_EQ(a.initial_stress.has_value(), b.initial_stress.has_value()) << at;
+  if (a.initial_stress) {
+    SAME(initial_stress->surface);
+    SAME(initial_stress->k0);
+  }
 }
 
 void same_selector(const NodeSelector& a, const NodeSelector& b, const std::string& at) {

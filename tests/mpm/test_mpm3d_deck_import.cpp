@@ -244,6 +244,7 @@ TEST(Mpm3dDeckImport, ErrorsNameFileLineKeywordAndWhatIsAllowed) {
   e = error_of("nbmp 1\nnmat 1\nmaterial\n 1 neoh 1.6e-3 6.9 0.3\n");
   EXPECT_NE(e.find("bad.mpm:4:"), std::string::npos) << e;
   EXPECT_NE(e.find("'neoh'"), std::string::npos) << e;
+  EXPECT_NE(e.find("issue 43"), std::string::npos) << e;
   EXPECT_NE(e.find("translated: elas, pla1"), std::string::npos) << e;
 
   // A JWL belongs to an explosive, and an explosive needs one and a detonation point.
@@ -390,6 +391,57 @@ TEST(Mpm3dDeckImport, NullMaterialIsAFluidWithTheBulkModulusMpm3dRunsWith) {
       error_of("nbmp 1\nnmat 1\nmaterial\n 1 null 1.0d-3 2.2d3 0\nseos 1 2 1480 1.9 0.1 0\n");
   EXPECT_NE(e.find("bad.mpm:5:"), std::string::npos) << e;
   EXPECT_NE(e.find("null with 4"), std::string::npos) << e;
+}
+
+TEST(Mpm3dDeckImport, DruckerPragerMaterialCarriesMpm3dsConstantsAndRuns) {
+  // A 2 x 2 x 2 block of dpm soil (DataIn.f90's case 10: density, E, nu, q_fai, k_fai, q_psi,
+  // ten_f) under gravity. Reference: the constants carried over exactly (the tension cutoff
+  // min(ten_f, k_fai / q_fai), 0 without friction, as Constitution.f90's M3DM9 takes it), and
+  // 20 steps after which every particle lies on or inside the cone and the cutoff (1e-12 MPa).
+  test::ScratchDir dir;
+  auto deck = [](const std::string& constants) {
+    return "mpm3d *** soil block\nnbco 1\nnbbo 1\nnbmp 8\nnmat 1\nspx 0 2\nspy 0 2\n"
+           "spz 0 2\ndcell 1\nendtime 0.01\nmaterial\n 1 dpm 2.1d-3 70 0.3 " +
+           constants +
+           "\nparticle block 1 1 2.1d-3 0.5 0 0 0 2 2 2\nload\ngrav 1 0 0 -9.8d-3\nendl\nendi\n";
+  };
+  const Imported im = import_text(dir, deck("0.3545 9.74d-3 0.05 5.0d-3"));
+  ASSERT_EQ(im.scene.materials.size(), 1u);
+  const core::Material& soil = im.scene.materials[0];
+  EXPECT_EQ(soil.density, 2.1e-3);
+  EXPECT_EQ(soil.youngs_modulus, 70.0);
+  EXPECT_EQ(soil.poisson_ratio, 0.3);
+  EXPECT_FALSE(soil.has_eos());
+  ASSERT_TRUE(std::holds_alternative<core::DruckerPrager>(soil.strength));
+  const auto& dp = std::get<core::DruckerPrager>(soil.strength);
+  EXPECT_EQ(dp.q_phi, 0.3545);
+  EXPECT_EQ(dp.k_phi, 9.74e-3);
+  EXPECT_EQ(dp.q_psi, 0.05);
+  EXPECT_EQ(dp.tension_cutoff, 5.0e-3);
+
+  MpmSolver solver(im.scene, generate_particles(im.scene));
+  for (int n = 0; n < 20; ++n) solver.step(solver.stable_time_step());
+  for (const core::SymTensor& sigma : solver.particles().stress) {
+    const core::SymTensor s = sigma.deviator();
+    const double tau = std::sqrt(0.5 * core::double_dot(s, s));
+    EXPECT_LE(tau + dp.q_phi * sigma.mean() - dp.k_phi, 1e-12);
+    EXPECT_LE(sigma.mean(), dp.tension_cutoff + 1e-12);
+  }
+  EXPECT_GT(solver.time(), 0.0);
+
+  // A cutoff beyond the apex is the apex; without friction the cutoff is 0.
+  const Imported apex = import_text(dir, deck("0.3545 9.74d-3 0.05 1.0"));
+  const auto& a = std::get<core::DruckerPrager>(apex.scene.materials[0].strength);
+  EXPECT_DOUBLE_EQ(a.tension_cutoff, 9.74e-3 / 0.3545);
+  const Imported tresca = import_text(dir, deck("0 9.74d-3 0 1.0"));
+  EXPECT_EQ(std::get<core::DruckerPrager>(tresca.scene.materials[0].strength).tension_cutoff, 0.0);
+
+  // M3DM9 runs without an EOS: a seos for it is refused at its line.
+  const std::string e = error_of(
+      "nbmp 1\nnmat 1\nmaterial\n 1 dpm 2.1d-3 70 0.3 0.3545 9.74d-3 0.05 5.0d-3\n"
+      "seos 1 2 1480 1.9 0.1 0\n");
+  EXPECT_NE(e.find("bad.mpm:5:"), std::string::npos) << e;
+  EXPECT_NE(e.find("without an EOS"), std::string::npos) << e;
 }
 
 }  // namespace
