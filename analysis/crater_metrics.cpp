@@ -6,6 +6,8 @@
 #include <limits>
 #include <vector>
 
+#include "analysis/material_column.hpp"
+
 namespace afemp::analysis {
 
 namespace {
@@ -41,12 +43,8 @@ CraterMeasures measure_crater(std::span<const Vec3> points, const Vec3& point, c
   }
   std::vector<double> drop(heights.size(), inf);
   for (std::size_t k = 0; k < heights.size(); ++k) {
-    std::vector<double>& h = heights[k];
-    if (h.empty()) continue;
-    std::sort(h.begin(), h.end());
-    double top = h[0];
-    for (std::size_t i = 1; i < h.size() && h[i] - h[i - 1] <= ring; ++i) top = h[i];
-    drop[k] = initial_level - top;
+    if (heights[k].empty()) continue;
+    drop[k] = initial_level - material_column_top(heights[k], ring);
   }
   CraterMeasures m;
   m.depth = drop.empty() || std::isinf(drop[0]) ? std::nan("") : drop[0];

@@ -469,7 +469,7 @@ void check_scene(const Scene& scene) {
       c.fail(wl.where, key + ".normal", "the normal must be a non-zero vector");
     c.range(wl.where, key + ".friction", wl.friction, scene_ranges::wall_friction);
     for (int b : wl.bodies) {
-      c.body(wl.where, key + ".bodies", b, true);
+      c.body(wl.where, key + ".bodies", b, false);
       if (scene.bodies[static_cast<std::size_t>(b)].rigid)
         c.fail(wl.where, key + ".bodies", "walls act on deformable mesh bodies, not rigid ones");
     }

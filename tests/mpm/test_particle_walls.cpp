@@ -184,6 +184,12 @@ TEST(ParticleWalls, AMovingWallDoesTheWorkItsImpulseCarries) {
   EXPECT_NEAR(e.external_work, gain, 0.02 * gain);
 }
 
+// Reference: the scene check (afemp check, afemp run and a scene built in code) takes a wall
+// naming a body of particles as the parser does; it refused one as "made of particles".
+TEST(ParticleWalls, AWallNamingParticlesPassesTheSceneCheck) {
+  EXPECT_NO_THROW(core::check_scene(core::parse_scene(column_scene(true), "column.toml")));
+}
+
 TEST(ParticleWalls, AWallWithoutBodiesInAParticleSceneIsAnError) {
   std::string s =
       "[run]\nend_time = 0.01\n[grid]\ncell = 0.25\nmin = [0, 0, -1]\n"
