@@ -10,11 +10,11 @@
 //   velocities, Taylor's deflection, the steady collapse of Pugh, Eichelberger & Rostoker
 //   1952): 7.70 km/s. Within 15 % at both cell sizes, and converged: the two within 3 %. The
 //   tip velocity here is the mass-weighted mean axial velocity of the jet's leading 0.05 % of
-//   the liner's mass (5 mg of the quarter's 10 g: its particles within 3 mm of the axis, taken
-//   from the front back) at 20 us: a mass, so the same material at either cell size and with
+//   the liner's mass (about 5 mg of the quarter's 10 g: its particles within 3 mm of the axis,
+//   taken from the front back) at 20 us: a mass, so the same material at either cell size and with
 //   or without splitting, and a stray particle barely moves it. The leading 0.5 % (the
-//   "head", printed) reaches 34 mm back into this thin jet and averages over its velocity
-//   gradient.
+//   "head", printed) has its centroid 34 mm behind the foremost particle in this thin jet
+//   and averages over its velocity gradient.
 // - Splitting keeps the stretched jet continuous (the claim of the 2020 MPM paper on explosion
 //   and impact, docs/references.md, item 3): with the liner splitting along the jet's axis
 //   every cell of the column of cells on the axis from the liner's base (z = 50) to the tip
@@ -210,7 +210,7 @@ TEST(ShapedCharge, TipVelocityConvergesWithin15PercentOfThePerEstimate) {
   const analysis::LinerElement per = per_estimate();
   const Jet& fine = jet_run("0.6", true);
   const Jet& coarse = jet_run("0.75", true);
-  const double change = (fine.tip20.vz - coarse.tip20.vz) / fine.tip20.vz;
+  const double change = (fine.tip20.vz - coarse.tip20.vz) / coarse.tip20.vz;
   std::printf(
       "V9 tip velocity (leading %.2f %% of the liner's mass, 20 us): %.0f m/s at 0.75 mm (%.0f "
       "s), %.0f m/s at 0.6 mm (%.0f s): change %+.1f %% (mark 3 %%). PER estimate %.0f m/s "
