@@ -1,0 +1,92 @@
+// CHOLMOD behind fem/sparse_cholesky.hpp: the matrix and right-hand side are handed over as
+// views of the caller's arrays (CHOLMOD headers that point into them, never freed by CHOLMOD).
+#include "fem/sparse_cholesky.hpp"
+
+#include <cholmod.h>
+
+#include <algorithm>
+#include <string>
+
+namespace afemp::fem {
+
+NotPositiveDefinite::NotPositiveDefinite(int column)
+    : std::runtime_error("matrix not positive definite at column " + std::to_string(column)),
+      column_(column) {}
+
+struct SparseCholesky::Impl {
+  cholmod_common common;
+  cholmod_factor* factor = nullptr;
+  int size = 0;
+
+  Impl() {
+    cholmod_start(&common);
+    common.supernodal = CHOLMOD_SUPERNODAL;
+    common.print = 0;  // failures come back as exceptions, not as CHOLMOD's messages
+  }
+  ~Impl() {
+    cholmod_free_factor(&factor, &common);
+    cholmod_finish(&common);
+  }
+
+  // A CHOLMOD view of a (stype 1: the upper triangle holds the matrix).
+  static cholmod_sparse view(const SymmetricCsc& a) {
+    cholmod_sparse s{};
+    s.nrow = s.ncol = static_cast<std::size_t>(a.size);
+    s.nzmax = a.row.size();
+    s.p = const_cast<int*>(a.column_start.data());
+    s.i = const_cast<int*>(a.row.data());
+    s.x = const_cast<double*>(a.value.data());
+    s.stype = 1;
+    s.itype = CHOLMOD_INT;
+    s.xtype = CHOLMOD_REAL;
+    s.dtype = CHOLMOD_DOUBLE;
+    s.sorted = 1;
+    s.packed = 1;
+    return s;
+  }
+
+  void check(const char* what) const {
+    if (common.status < CHOLMOD_OK)
+      throw std::runtime_error(std::string("CHOLMOD ") + what + " failed (status " +
+                               std::to_string(common.status) + ")");
+  }
+};
+
+SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {}
+SparseCholesky::~SparseCholesky() = default;
+
+void SparseCholesky::analyse(const SymmetricCsc& a) {
+  cholmod_free_factor(&impl_->factor, &impl_->common);
+  cholmod_sparse s = Impl::view(a);
+  impl_->factor = cholmod_analyze(&s, &impl_->common);
+  impl_->check("analyse");
+  impl_->size = a.size;
+}
+
+void SparseCholesky::factorise(const SymmetricCsc& a) {
+  cholmod_sparse s = Impl::view(a);
+  cholmod_factorize(&s, impl_->factor, &impl_->common);
+  impl_->check("factorise");
+  // CHOLMOD's minor is the column of the factor's (permuted) order; report the matrix's.
+  if (impl_->common.status == CHOLMOD_NOT_POSDEF) {
+    const auto minor = static_cast<std::size_t>(impl_->factor->minor);
+    const int* perm = static_cast<const int*>(impl_->factor->Perm);
+    throw NotPositiveDefinite(perm ? perm[minor] : static_cast<int>(minor));
+  }
+}
+
+void SparseCholesky::solve(std::span<const double> b, std::span<double> x) const {
+  cholmod_dense rhs{};
+  rhs.nrow = rhs.d = rhs.nzmax = static_cast<std::size_t>(impl_->size);
+  rhs.ncol = 1;
+  rhs.x = const_cast<double*>(b.data());
+  rhs.xtype = CHOLMOD_REAL;
+  rhs.dtype = CHOLMOD_DOUBLE;
+  cholmod_dense* sol = cholmod_solve(CHOLMOD_A, impl_->factor, &rhs, &impl_->common);
+  impl_->check("solve");
+  const double* v = static_cast<const double*>(sol->x);
+  std::copy(v, v + impl_->size, x.begin());
+  cholmod_free_dense(&sol, &impl_->common);
+}
+
+}  // namespace afemp::fem

@@ -1,0 +1,53 @@
+// Sparse Cholesky factorisation of a symmetric positive definite matrix by CHOLMOD (SuiteSparse,
+// supernodal; Chen, Davis, Hager & Rajamanickam, ACM TOMS 35 (2008) 22): the fill-reducing
+// ordering and symbolic factorisation once per pattern, the numeric factorisation per matrix.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <vector>
+
+namespace afemp::fem {
+
+// A symmetric matrix in compressed sparse column form, its upper triangle only: column j holds
+// the rows i <= j, sorted, at row[column_start[j] .. column_start[j + 1]).
+struct SymmetricCsc {
+  int size = 0;
+  std::vector<int> column_start;  // size + 1 entries
+  std::vector<int> row;
+  std::vector<double> value;
+};
+
+// The factorisation met a pivot that is not positive: column `column` (0-based) of the matrix
+// as given, the first where the leading minor stops being positive definite.
+class NotPositiveDefinite : public std::runtime_error {
+ public:
+  explicit NotPositiveDefinite(int column);
+  int column() const { return column_; }
+
+ private:
+  int column_;
+};
+
+class SparseCholesky {
+ public:
+  SparseCholesky();
+  ~SparseCholesky();
+  SparseCholesky(const SparseCholesky&) = delete;
+  SparseCholesky& operator=(const SparseCholesky&) = delete;
+
+  // The ordering and symbolic factorisation of a's pattern; factorise() reuses it for every
+  // matrix of that pattern (the values may differ).
+  void analyse(const SymmetricCsc& a);
+  // L L^T = a (a of the analysed pattern). Throws NotPositiveDefinite.
+  void factorise(const SymmetricCsc& a);
+  // x = a^-1 b with the last factorisation (x and b of a's size; they may not overlap).
+  void solve(std::span<const double> b, std::span<double> x) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace afemp::fem

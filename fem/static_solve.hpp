@@ -1,0 +1,91 @@
+// Static (implicit) solve of a mesh of fully integrated B-bar hexahedra at small strain:
+// Newton-Raphson with the consistent tangent (core/materials/small_strain_tangent.hpp), a line
+// search and load stepping, the tangent factorised by CHOLMOD (fem/sparse_cholesky.hpp; the
+// tangents here are symmetric, so no unsymmetric solver is needed yet). Each iteration's
+// residual norm and energy norm |du . r| are recorded (and printed to an optional stream); a
+// load step converges when both fall below their tolerances (Bathe 1996, sec. 8.4.4).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <iosfwd>
+#include <span>
+#include <vector>
+
+#include "afemp/material.hpp"
+#include "afemp/tensor.hpp"
+#include "fem/mesh.hpp"
+
+namespace afemp::fem {
+
+// Component `component` (0, 1, 2) of node `node` held at `value` (at full load).
+struct PrescribedDisplacement {
+  std::int32_t node = 0;
+  int component = 0;
+  double value = 0.0;
+};
+
+// A pressure (at full load; positive pushes into the body) on a quadrilateral face whose nodes
+// go counter-clockwise seen from outside, as kHexFaces lists them. Dead load: it acts on the
+// undeformed face.
+struct PressureFace {
+  std::array<std::int32_t, 4> nodes{};
+  double pressure = 0.0;
+};
+
+// Everything at full load (load factor 1); load step s of n applies the factor s / n.
+struct StaticProblem {
+  const MeshData* mesh = nullptr;         // hexahedra only (no lines yet)
+  std::vector<core::Material> materials;  // one per part, mesh->part_names order
+  std::vector<PrescribedDisplacement> prescribed;
+  std::vector<core::Vec3> nodal_forces;  // one per node, or empty
+  std::vector<PressureFace> pressures;
+};
+
+struct NewtonSettings {
+  int load_steps = 1;
+  int max_iterations = 25;  // per load step
+  // A step has converged when ||r|| <= residual_tolerance * max(||f_ext||, ||reactions||) and
+  // the last iteration's |du . r| <= energy_tolerance * that of the step's first iteration.
+  double residual_tolerance = 1e-10;
+  double energy_tolerance = 1e-20;
+  // Line search (Crisfield 1991, sec. 9.3): step length s accepted when
+  // |du . r(u + s du)| <= line_search_ratio |du . r(u)|, else regula falsi, at most
+  // line_search_steps times.
+  double line_search_ratio = 0.5;
+  int line_search_steps = 6;
+  std::ostream* log = nullptr;  // one line per iteration when set
+};
+
+// One Newton iteration: the residual norm before its solve, |du . r| of its correction (0 on
+// the last row of a step, which only checks convergence) and the line search's step length.
+struct NewtonIteration {
+  int load_step = 0;  // from 1
+  int iteration = 0;  // from 0
+  double residual = 0.0;
+  double reference = 0.0;  // max(||f_ext||, ||reactions||), the residual's scale
+  double energy = 0.0;
+  double step_length = 0.0;
+};
+
+struct StaticResult {
+  std::vector<core::Vec3> displacement;  // per node
+  // Per hexahedron, per Gauss point (fem/hexahedron_full.hpp's order).
+  std::vector<std::array<core::SymTensor, 8>> stress;
+  std::vector<std::array<double, 8>> plastic_strain;
+  std::vector<NewtonIteration> iterations;
+};
+
+// Throws std::invalid_argument for a problem it cannot solve (a material without a tangent,
+// named; trusses; bad indices), and std::runtime_error for a body whose rigid-body modes the
+// prescribed dofs leave free (naming the body's parts and the modes), a tangent that is not
+// positive definite (naming the node and component) and a load step that does not converge
+// (naming the step, the iteration and the residual).
+StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& settings = {});
+
+// The faces of the mesh's hexahedra whose four nodes all lie in `nodes`, as kHexFaces orders
+// them (counter-clockwise from outside), for PressureFace.
+std::vector<std::array<std::int32_t, 4>> faces_on_nodes(const MeshData& mesh,
+                                                        std::span<const std::int32_t> nodes);
+
+}  // namespace afemp::fem

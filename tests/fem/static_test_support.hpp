@@ -1,0 +1,81 @@
+// Meshes and materials shared by the static-solve tests (header only; not a test file itself):
+// steel, the quarter ring of the thick cylinder and the Lame solution it is checked against.
+#pragma once
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "afemp/material.hpp"
+#include "fem/mesh.hpp"
+#include "fem/mesh_generation.hpp"
+#include "fem/static_solve.hpp"
+
+namespace afemp::fem::test {
+
+inline core::Material steel() {
+  core::Material m;
+  m.name = "steel";
+  m.density = 7.85e-3;
+  m.youngs_modulus = 200e3;  // MPa
+  m.poisson_ratio = 0.3;
+  return m;
+}
+
+// The quarter ring a <= r <= b, 0 <= theta <= 90 degrees, 0 <= z <= thickness: a box in
+// (r, theta, z) of n_r x n_theta x 1 elements mapped to (r cos theta, r sin theta, z), so that
+// its nodes lie on the circles. Node sets as box_mesh's: "xmin" the bore, "xmax" the outside,
+// "ymin" the cut y = 0, "ymax" the cut x = 0.
+inline MeshData quarter_ring(double a, double b, double thickness, int n_r, int n_theta) {
+  MeshData mesh = box_mesh(core::BoxShape{{a, 0.0, 0.0}, {b, 0.5 * std::numbers::pi, thickness}},
+                           {n_r, n_theta, 1});
+  for (core::Vec3& p : mesh.nodes) p = {p.x * std::cos(p.y), p.x * std::sin(p.y), p.z};
+  mesh.part_names[0] = "ring";
+  return mesh;
+}
+
+inline const std::vector<std::int32_t>& node_set(const MeshData& mesh, const char* name) {
+  for (const NamedSet& s : mesh.node_sets)
+    if (s.name == name) return s.members;
+  throw std::invalid_argument(name);
+}
+
+// Plane strain (every u_z = 0) and symmetry (u_y = 0 on y = 0, u_x = 0 on x = 0) of the ring,
+// with pressure p on its bore.
+inline StaticProblem pressurised_ring(const MeshData& ring, const core::Material& material,
+                                      double p) {
+  StaticProblem problem;
+  problem.mesh = &ring;
+  problem.materials = {material};
+  for (std::size_t n = 0; n < ring.nodes.size(); ++n)
+    problem.prescribed.push_back({static_cast<std::int32_t>(n), 2, 0.0});
+  for (std::int32_t n : node_set(ring, "ymin")) problem.prescribed.push_back({n, 1, 0.0});
+  for (std::int32_t n : node_set(ring, "ymax")) problem.prescribed.push_back({n, 0, 0.0});
+  for (const auto& face : faces_on_nodes(ring, node_set(ring, "xmin")))
+    problem.pressures.push_back({face, p});
+  return problem;
+}
+
+// The position of Gauss point g (at kHexNatural[g] / sqrt 3) of hexahedron e.
+inline core::Vec3 gauss_point(const MeshData& mesh, std::size_t e, int g) {
+  const double r = 1.0 / std::sqrt(3.0);
+  core::Vec3 x;
+  for (int a = 0; a < 8; ++a) {
+    double n = 0.125;
+    for (int i = 0; i < 3; ++i) n *= 1.0 + kHexNatural[a][i] * kHexNatural[g][i] * r;
+    x += n * mesh.nodes[mesh.hexahedra[e][a]];
+  }
+  return x;
+}
+
+// Radial and hoop stress at (x, y) from the Cartesian components.
+struct Polar {
+  double radial, hoop;
+};
+inline Polar polar(const core::SymTensor& s, const core::Vec3& x) {
+  const double r = std::hypot(x.x, x.y), c = x.x / r, sn = x.y / r;
+  return {s.xx * c * c + s.yy * sn * sn + 2.0 * s.xy * c * sn,
+          s.xx * sn * sn + s.yy * c * c - 2.0 * s.xy * c * sn};
+}
+
+}  // namespace afemp::fem::test
