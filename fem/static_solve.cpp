@@ -11,6 +11,7 @@
 #include <ostream>
 #include <stdexcept>
 #include <string>
+#include <variant>
 
 #include "core/materials/small_strain_tangent.hpp"
 #include "fem/hexahedron_full.hpp"
@@ -107,22 +108,27 @@ void check_rigid_body_modes(const MeshData& mesh, const std::vector<char>& fixed
     while (parent[n] != n) n = parent[n] = parent[parent[n]];
     return n;
   };
-  for (const Hexahedron& h : mesh.hexahedra)
-    for (std::int32_t a : h) parent[root(a)] = root(h[0]);
+  // Bodies: the nodes that hexahedra and lines (trusses) connect.
+  auto join = [&](const auto& element) {
+    for (std::int32_t a : element) parent[root(a)] = root(element[0]);
+  };
+  for (const Hexahedron& h : mesh.hexahedra) join(h);
+  for (const Line& l : mesh.lines) join(l);
   std::vector<std::vector<std::int32_t>> bodies(mesh.nodes.size());  // nodes, by root
+  std::vector<std::vector<std::int32_t>> parts(mesh.nodes.size());   // parts, by root
   std::vector<char> seen(mesh.nodes.size(), 0);
-  for (const Hexahedron& h : mesh.hexahedra)
-    for (std::int32_t a : h)
+  auto collect = [&](const auto& element, std::int32_t part) {
+    for (std::int32_t a : element)
       if (!seen[a]) {
         seen[a] = 1;
         bodies[root(a)].push_back(a);
       }
-  std::vector<std::vector<std::int32_t>> parts(mesh.nodes.size());  // parts, by root
-  for (std::size_t e = 0; e < mesh.hexahedra.size(); ++e) {
-    std::vector<std::int32_t>& p = parts[root(mesh.hexahedra[e][0])];
-    if (std::find(p.begin(), p.end(), mesh.hexahedron_part[e]) == p.end())
-      p.push_back(mesh.hexahedron_part[e]);
-  }
+    std::vector<std::int32_t>& p = parts[root(element[0])];
+    if (std::find(p.begin(), p.end(), part) == p.end()) p.push_back(part);
+  };
+  for (std::size_t e = 0; e < mesh.hexahedra.size(); ++e)
+    collect(mesh.hexahedra[e], mesh.hexahedron_part[e]);
+  for (std::size_t e = 0; e < mesh.lines.size(); ++e) collect(mesh.lines[e], mesh.line_part[e]);
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const std::vector<std::int32_t>& nodes = bodies[b];
     if (nodes.empty()) continue;
@@ -207,7 +213,10 @@ std::vector<std::array<std::int32_t, 4>> faces_on_nodes(const MeshData& mesh,
 namespace {
 
 // What the static and the dynamic solve share: the equations of the free dofs, the element
-// geometry, the consistent mass and the Gauss points' converged and current states.
+// geometry, the consistent mass and the Gauss points' converged and current states. Trusses
+// (mesh lines) are elastic bars at small strain: strain e . (u_b - u_a) / L0 along their initial
+// axis e, axial force E A strain, stiffness (E A / L0) [e e^T, -e e^T; -e e^T, e e^T] and
+// consistent mass (rho A L0 / 6) [2 1; 1 2] per component.
 struct Body {
   const StaticProblem& problem;
   const MeshData& mesh;
@@ -220,6 +229,11 @@ struct Body {
   std::vector<std::array<core::SmallStrainPoint, 8>> converged;
   std::vector<std::array<core::SymTensor, 8>> strain;  // at the displacement last evaluated
   std::vector<std::array<core::SmallStrainResult, 8>> current;
+  std::vector<core::Vec3> line_axis;   // unit, initial
+  std::vector<double> line_length;     // initial
+  std::vector<double> line_stiffness;  // E A / L0
+  std::vector<double> line_mass;       // rho A L0
+  std::vector<double> line_strain;     // at the displacement last evaluated
 
   // Validates the problem (`who` starts the messages); a static solve also needs the body held
   // against its rigid-body modes.
@@ -234,16 +248,14 @@ struct Body {
   std::array<std::array<double, 8>, 8> mass(std::size_t e) const;
   void commit();
   void write_states(std::vector<std::array<core::SymTensor, 8>>& stress,
-                    std::vector<std::array<double, 8>>& plastic_strain) const;
+                    std::vector<std::array<double, 8>>& plastic_strain,
+                    std::vector<double>& line_stress) const;
 };
 
 Body::Body(const StaticProblem& p, const char* who, bool check_support)
     : problem(p),
       mesh(p.mesh ? *p.mesh : throw std::invalid_argument(std::string(who) + ": no mesh")) {
   validate(mesh, who);
-  if (!mesh.lines.empty())
-    throw std::invalid_argument(std::string(who) +
-                                ": trusses (mesh lines) have no tangent stiffness yet");
   if (problem.materials.size() != mesh.part_names.size())
     throw std::invalid_argument(std::string(who) + ": " + std::to_string(problem.materials.size()) +
                                 " materials for " + std::to_string(mesh.part_names.size()) +
@@ -252,8 +264,16 @@ Body::Body(const StaticProblem& p, const char* who, bool check_support)
   elements = mesh.hexahedra.size();
   std::vector<char> part_used(mesh.part_names.size(), 0);
   for (std::int32_t part : mesh.hexahedron_part) part_used[part] = 1;
+  for (std::int32_t part : mesh.line_part) part_used[part] = 1;
   for (std::size_t part = 0; part < part_used.size(); ++part)
     if (part_used[part]) core::check_small_strain_tangent(problem.materials[part]);
+  for (std::int32_t part : mesh.line_part)
+    if (!std::holds_alternative<core::Elastic>(problem.materials[part].strength))
+      throw std::invalid_argument(std::string(who) + ": the trusses of part '" +
+                                  mesh.part_names[part] + "' (material '" +
+                                  problem.materials[part].name +
+                                  "') need an elastic material: trusses have no plastic tangent "
+                                  "here");
   if (!problem.nodal_forces.empty() && problem.nodal_forces.size() != nodes)
     throw std::invalid_argument(std::string(who) + ": nodal_forces needs one force per node");
 
@@ -261,6 +281,8 @@ Body::Body(const StaticProblem& p, const char* who, bool check_support)
   in_element.assign(nodes, 0);
   for (const Hexahedron& h : mesh.hexahedra)
     for (std::int32_t a : h) in_element[a] = 1;
+  for (const Line& l : mesh.lines)
+    for (std::int32_t a : l) in_element[a] = 1;
   for (const PrescribedDisplacement& d : problem.prescribed) {
     if (d.node < 0 || static_cast<std::size_t>(d.node) >= nodes || d.component < 0 ||
         d.component > 2)
@@ -294,6 +316,19 @@ Body::Body(const StaticProblem& p, const char* who, bool check_support)
   converged.resize(elements);
   strain.resize(elements);
   current.resize(elements);
+  for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
+    const core::Vec3 d = mesh.nodes[mesh.lines[l][1]] - mesh.nodes[mesh.lines[l][0]];
+    const double length = core::norm(d), area = mesh.line_area[l];
+    if (!(length > 0.0) || !(area > 0.0))
+      throw std::invalid_argument(std::string(who) + ": line " + std::to_string(l) +
+                                  " (a truss) needs a positive length and cross-section area");
+    const core::Material& m = problem.materials[mesh.line_part[l]];
+    line_axis.push_back((1.0 / length) * d);
+    line_length.push_back(length);
+    line_stiffness.push_back(m.youngs_modulus * area / length);
+    line_mass.push_back(m.density * area * length);
+  }
+  line_strain.assign(mesh.lines.size(), 0.0);
 }
 
 void Body::internal_forces(const std::vector<core::Vec3>& at, std::vector<core::Vec3>& force) {
@@ -311,6 +346,13 @@ void Body::internal_forces(const std::vector<core::Vec3>& at, std::vector<core::
     }
     add_stress_forces_bbar(geometry[e], sigma, fe);  // -f_int
     for (int a = 0; a < 8; ++a) force[h[a]] += fe[a];
+  }
+  for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
+    const Line& n = mesh.lines[l];
+    line_strain[l] = core::dot(line_axis[l], at[n[1]] - at[n[0]]) / line_length[l];
+    const core::Vec3 f = (line_stiffness[l] * line_length[l] * line_strain[l]) * line_axis[l];
+    force[n[0]] += f;
+    force[n[1]] -= f;
   }
 }
 
@@ -346,6 +388,19 @@ void Body::assemble(SparseAssembly& assembly, double stiffness_factor, double ma
     }
     assembly.add(mesh.hexahedra[e], ke);
   }
+  for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
+    LineMatrix kl{};
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b)
+        for (int i = 0; i < 3; ++i) {
+          for (int j = 0; j < 3; ++j)
+            kl[6 * (3 * a + i) + 3 * b + j] = (a == b ? 1.0 : -1.0) * stiffness_factor *
+                                              line_stiffness[l] * line_axis[l][i] * line_axis[l][j];
+          kl[6 * (3 * a + i) + 3 * b + i] +=
+              mass_factor * line_mass[l] * (a == b ? 2.0 : 1.0) / 6.0;
+        }
+    assembly.add(mesh.lines[l], kl);
+  }
 }
 
 void Body::commit() {
@@ -356,7 +411,8 @@ void Body::commit() {
 }
 
 void Body::write_states(std::vector<std::array<core::SymTensor, 8>>& stress,
-                        std::vector<std::array<double, 8>>& plastic_strain) const {
+                        std::vector<std::array<double, 8>>& plastic_strain,
+                        std::vector<double>& line_stress) const {
   stress.resize(elements);
   plastic_strain.resize(elements);
   for (std::size_t e = 0; e < elements; ++e)
@@ -364,6 +420,9 @@ void Body::write_states(std::vector<std::array<core::SymTensor, 8>>& stress,
       stress[e][g] = current[e][g].stress;
       plastic_strain[e][g] = current[e][g].plastic_strain;
     }
+  line_stress.resize(mesh.lines.size());
+  for (std::size_t l = 0; l < mesh.lines.size(); ++l)
+    line_stress[l] = problem.materials[mesh.line_part[l]].youngs_modulus * line_strain[l];
 }
 
 // Newton-Raphson with line search to r(u) = 0 for one step: residual(at) sets r on the free
@@ -473,7 +532,8 @@ StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& se
     return std::sqrt(std::max(external, reactions));
   };
 
-  SparseAssembly assembly(problem.mesh->hexahedra, body.equation, body.equations);
+  SparseAssembly assembly(problem.mesh->hexahedra, problem.mesh->lines, body.equation,
+                          body.equations);
   SparseCholesky cholesky;
   cholesky.analyse(assembly.matrix());
   StaticResult out;
@@ -487,7 +547,7 @@ StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& se
     body.commit();
   }
   out.displacement = u;
-  body.write_states(out.stress, out.plastic_strain);
+  body.write_states(out.stress, out.plastic_strain, out.line_stress);
   return out;
 }
 
@@ -525,6 +585,12 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
       for (int i = 0; i < 8; ++i)
         for (int j = 0; j < 8; ++j) mx[h[i]] += m[i][j] * x[h[j]];
     }
+    for (std::size_t l = 0; l < problem.mesh->lines.size(); ++l) {
+      const Line& n = problem.mesh->lines[l];
+      const double m = body.line_mass[l] / 6.0;
+      mx[n[0]] += m * (2.0 * x[n[0]] + x[n[1]]);
+      mx[n[1]] += m * (x[n[0]] + 2.0 * x[n[1]]);
+    }
   };
   auto energies = [&](double time) {
     mass_times(v, ma);
@@ -542,10 +608,14 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
                                           core::double_dot(dev, dev) / (4.0 * m.shear_modulus()));
       }
     }
+    for (std::size_t l = 0; l < problem.mesh->lines.size(); ++l)
+      state.strain_energy += 0.5 * body.line_stiffness[l] * body.line_length[l] *
+                             body.line_length[l] * body.line_strain[l] * body.line_strain[l];
     return state;
   };
 
-  SparseAssembly assembly(problem.mesh->hexahedra, body.equation, body.equations);
+  SparseAssembly assembly(problem.mesh->hexahedra, problem.mesh->lines, body.equation,
+                          body.equations);
   SparseCholesky cholesky;
   cholesky.analyse(assembly.matrix());
 
@@ -607,7 +677,7 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
   }
   out.displacement = u;
   out.velocity = v;
-  body.write_states(out.stress, out.plastic_strain);
+  body.write_states(out.stress, out.plastic_strain, out.line_stress);
   return out;
 }
 

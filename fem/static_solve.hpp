@@ -1,4 +1,5 @@
-// Static (implicit) solve of a mesh of fully integrated B-bar hexahedra at small strain:
+// Static (implicit) solve of a mesh of fully integrated B-bar hexahedra and elastic 2-node
+// trusses at small strain:
 // Newton-Raphson with the consistent tangent (core/materials/small_strain_tangent.hpp), a line
 // search and load stepping, the tangent factorised by CHOLMOD (fem/sparse_cholesky.hpp; the
 // tangents here are symmetric, so no unsymmetric solver is needed yet). Each iteration's
@@ -39,7 +40,7 @@ struct PressureFace {
 
 // Everything at full load (load factor 1); load step s of n applies the factor s / n.
 struct StaticProblem {
-  const MeshData* mesh = nullptr;         // hexahedra only (no lines yet)
+  const MeshData* mesh = nullptr;         // hexahedra and lines (trusses)
   std::vector<core::Material> materials;  // one per part, mesh->part_names order
   std::vector<PrescribedDisplacement> prescribed;
   std::vector<core::Vec3> nodal_forces;  // one per node, or empty
@@ -77,14 +78,16 @@ struct StaticResult {
   // Per hexahedron, per Gauss point (fem/hexahedron_full.hpp's order).
   std::vector<std::array<core::SymTensor, 8>> stress;
   std::vector<std::array<double, 8>> plastic_strain;
+  std::vector<double> line_stress;  // per line (truss), axial
   std::vector<NewtonIteration> iterations;
 };
 
 // Throws std::invalid_argument for a problem it cannot solve (a material without a tangent,
-// named; trusses; bad indices), and std::runtime_error for a body whose rigid-body modes the
-// prescribed dofs leave free (naming the body's parts and the modes), a tangent that is not
-// positive definite (naming the node and component) and a load step that does not converge
-// (naming the step, the iteration and the residual).
+// named; a truss of a material that is not elastic, or without an area; bad indices), and
+// std::runtime_error for a body whose rigid-body modes the prescribed dofs leave free (naming the
+// body's parts and the modes), a tangent that is not positive definite (naming the node and
+// component) and a load step that does not converge (naming the step, the iteration and the
+// residual).
 StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& settings = {});
 
 // Implicit dynamics: M a + (1 + alpha) f_int(u_{n+1}) - alpha f_int(u_n) = f_ext (the HHT
@@ -122,6 +125,7 @@ struct NewmarkResult {
   std::vector<core::Vec3> velocity;
   std::vector<std::array<core::SymTensor, 8>> stress;  // at the end, as StaticResult's
   std::vector<std::array<double, 8>> plastic_strain;
+  std::vector<double> line_stress;
   std::vector<NewmarkState> states;         // at t = 0 and after every step
   std::vector<NewtonIteration> iterations;  // load_step is the time step
 };
