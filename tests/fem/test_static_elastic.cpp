@@ -287,7 +287,7 @@ TEST(StaticSolve, UnheldBodyIsNamedWithItsFreeModes) {
 TEST(StaticSolve, StrengthModelWithoutTangentIsNamed) {
   MeshData mesh = box_mesh(core::BoxShape{{0, 0, 0}, {1, 1, 1}}, {1, 1, 1});
   core::Material m = steel();
-  m.strength = core::JohnsonCook{};
+  m.strength = core::DruckerPrager{};
   StaticProblem problem;
   problem.mesh = &mesh;
   problem.materials = {m};
@@ -297,7 +297,7 @@ TEST(StaticSolve, StrengthModelWithoutTangentIsNamed) {
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("'steel'"), std::string::npos) << what;
-    EXPECT_NE(what.find("'johnson-cook'"), std::string::npos) << what;
+    EXPECT_NE(what.find("'drucker-prager'"), std::string::npos) << what;
   }
 }
 

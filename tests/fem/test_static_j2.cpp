@@ -2,7 +2,9 @@
 // the radial return against finite differences of the update itself, uniaxial stress in a
 // block against the bilinear closed form, and Newton's quadratic convergence on a plastic load
 // step of the thick cylinder (Simo & Taylor 1985: the consistent tangent keeps it quadratic),
-// and the perfectly plastic thick cylinder against Hill's elastic-plastic closed form.
+// and the perfectly plastic thick cylinder against Hill's elastic-plastic closed form. The
+// Johnson-Cook tangent (rate and temperature frozen) likewise: against finite differences and
+// in uniaxial stress against its own curve.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -24,6 +26,23 @@ core::Material j2_steel(double hardening) {
   return m;
 }
 
+// Johnson-Cook with thermal softening at 600 K (T* = 0.204, 1 - T*^m = 0.806), the rate term
+// present (C > 0) but frozen at its quasi-static factor 1 by the static update.
+core::Material jc_steel() {
+  core::Material m = test::steel();
+  m.name = "jc-steel";
+  core::JohnsonCook jc;
+  jc.A = 300.0;
+  jc.B = 500.0;
+  jc.n = 0.3;
+  jc.C = 0.014;
+  jc.m = 1.03;
+  jc.melt_temperature = 1800.0;
+  m.strength = jc;
+  m.thermal.initial_temperature = 600.0;
+  return m;
+}
+
 core::SymTensor from_voigt(const std::array<double, 6>& e) {  // engineering shear strains
   return {e[0], e[1], e[2], 0.5 * e[3], 0.5 * e[4], 0.5 * e[5]};
 }
@@ -31,8 +50,7 @@ core::SymTensor from_voigt(const std::array<double, 6>& e) {  // engineering she
 // d sigma / d eps by central differences (step 1e-8 of a strain of about 3e-3) against the
 // consistent tangent, from a virgin point and from one already on a hardened yield surface:
 // equal to 1e-5 of the largest entry (the differences' truncation and round-off).
-TEST(StaticJ2, ConsistentTangentMatchesFiniteDifferences) {
-  const core::Material m = j2_steel(2000.0);
+void expect_tangent_matches_differences(const core::Material& m) {
   std::mt19937 rng(3);
   for (int trial = 0; trial < 4; ++trial) {
     // Loading along a random direction, from a virgin point or from one that an earlier
@@ -64,8 +82,64 @@ TEST(StaticJ2, ConsistentTangentMatchesFiniteDifferences) {
         error = std::max(error, std::abs(fd[i] / (2.0 * step) - at.tangent[i][j]));
       }
     }
+    std::printf("tangent of '%s', trial %d: largest difference %.2e of the largest entry\n",
+                m.name.c_str(), trial, error / scale);
     EXPECT_LT(error, 1e-5 * scale) << "trial " << trial;
   }
+}
+
+TEST(StaticJ2, ConsistentTangentMatchesFiniteDifferences) {
+  expect_tangent_matches_differences(j2_steel(2000.0));
+}
+
+// The same for Johnson-Cook, whose H = d sigma_y / d eps_p = B n eps_p^(n-1) (1 - T*^m) varies
+// along the increment: the tangent takes it at the increment's end, as its return does.
+TEST(StaticJohnsonCook, ConsistentTangentMatchesFiniteDifferences) {
+  expect_tangent_matches_differences(jc_steel());
+}
+
+// The block of UniaxialStressFollowsTheBilinearCurve in Johnson-Cook steel, stretched to 5 times
+// its yield strain in 5 load steps: uniaxial stress, so sigma = (A + B eps_p^n)(1 - T*^m) with
+// eps = sigma / E + eps_p (the equivalent plastic strain is the axial one), solved for sigma
+// by bisection; every Gauss point's sigma_xx and plastic strain within 1e-9 of it (radial
+// return is exact on this proportional path). Each step converges in at most 8 Newton solves.
+TEST(StaticJohnsonCook, UniaxialStressFollowsItsCurve) {
+  const core::Material m = jc_steel();
+  const core::JohnsonCook& jc = std::get<core::JohnsonCook>(m.strength);
+  const double thermal = 1.0 - std::pow((600.0 - 293.0) / (1800.0 - 293.0), jc.m);
+  const double e = m.youngs_modulus, strain = 5.0 * jc.A * thermal / e;
+  double lo = 0.0, hi = strain;  // eps_p: E (strain - eps_p) - sigma_y(eps_p) falls with it
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (e * (strain - mid) > (jc.A + jc.B * std::pow(mid, jc.n)) * thermal ? lo : hi) = mid;
+  }
+  const double plastic = 0.5 * (lo + hi), expected = e * (strain - plastic);
+  MeshData mesh = box_mesh(core::BoxShape{{0, 0, 0}, {1, 1, 1}}, {2, 2, 2});
+  StaticProblem problem;
+  problem.mesh = &mesh;
+  problem.materials = {m};
+  for (std::int32_t n : test::node_set(mesh, "xmin")) problem.prescribed.push_back({n, 0, 0.0});
+  for (std::int32_t n : test::node_set(mesh, "ymin")) problem.prescribed.push_back({n, 1, 0.0});
+  for (std::int32_t n : test::node_set(mesh, "zmin")) problem.prescribed.push_back({n, 2, 0.0});
+  for (std::int32_t n : test::node_set(mesh, "xmax")) problem.prescribed.push_back({n, 0, strain});
+  NewtonSettings settings;
+  settings.load_steps = 5;
+  const StaticResult r = solve_static(problem, settings);
+  double axial = 0.0, eps_p = 0.0;
+  for (std::size_t el = 0; el < r.stress.size(); ++el)
+    for (int g = 0; g < 8; ++g) {
+      axial = std::max(axial, std::abs(r.stress[el][g].xx / expected - 1.0));
+      eps_p = std::max(eps_p, std::abs(r.plastic_strain[el][g] / plastic - 1.0));
+    }
+  int solves = 0;
+  for (const NewtonIteration& it : r.iterations) solves = std::max(solves, it.iteration);
+  std::printf(
+      "uniaxial Johnson-Cook: sigma_xx %.6g (error %.2e), eps_p %.6g (error %.2e), at most %d "
+      "Newton solves a step\n",
+      expected, axial, plastic, eps_p, solves);
+  EXPECT_LT(axial, 1e-9);
+  EXPECT_LT(eps_p, 1e-9);
+  EXPECT_LE(solves, 8);
 }
 
 // A unit block stretched along x to 5 times the yield strain in 5 load steps, held by
