@@ -7,13 +7,15 @@
 
 namespace afemp::fem {
 
-SparseAssembly::SparseAssembly(std::span<const Hexahedron> hexahedra, std::vector<int> equation,
-                               int equations)
+SparseAssembly::SparseAssembly(std::span<const Hexahedron> hexahedra, std::span<const Line> lines,
+                               std::vector<int> equation, int equations)
     : equation_(std::move(equation)) {
   const std::size_t nodes = equation_.size() / 3;
   std::vector<std::vector<int>> neighbours(nodes);  // nodes sharing an element, itself included
   for (const Hexahedron& h : hexahedra)
     for (std::int32_t a : h) neighbours[a].insert(neighbours[a].end(), h.begin(), h.end());
+  for (const Line& l : lines)
+    for (std::int32_t a : l) neighbours[a].insert(neighbours[a].end(), l.begin(), l.end());
   std::vector<std::vector<int>> rows(equations);
   for (std::size_t n = 0; n < nodes; ++n) {
     std::vector<int>& near = neighbours[n];
@@ -44,18 +46,26 @@ void SparseAssembly::clear() {
 }
 
 void SparseAssembly::add(const Hexahedron& nodes, const HexMatrix& k) {
+  add(nodes.data(), 24, k.data());
+}
+
+void SparseAssembly::add(const Line& nodes, const LineMatrix& k) {
+  add(nodes.data(), 6, k.data());
+}
+
+void SparseAssembly::add(const std::int32_t* nodes, int n, const double* k) {
   int eq[24];
-  for (int a = 0; a < 8; ++a)
+  for (int a = 0; a < n / 3; ++a)
     for (int i = 0; i < 3; ++i) eq[3 * a + i] = equation_[3 * nodes[a] + i];
-  for (int q = 0; q < 24; ++q) {
+  for (int q = 0; q < n; ++q) {
     const int column = eq[q];
     if (column < 0) continue;
     const auto first = matrix_.row.begin() + matrix_.column_start[column],
                last = matrix_.row.begin() + matrix_.column_start[column + 1];
-    for (int p = 0; p < 24; ++p) {
+    for (int p = 0; p < n; ++p) {
       const int row = eq[p];
       if (row < 0 || row > column) continue;
-      matrix_.value[std::lower_bound(first, last, row) - matrix_.row.begin()] += k[24 * p + q];
+      matrix_.value[std::lower_bound(first, last, row) - matrix_.row.begin()] += k[n * p + q];
     }
   }
 }

@@ -1,8 +1,9 @@
-// Assembly of element stiffness matrices into the sparse symmetric matrix of a mesh's free
-// degrees of freedom (3 per node). The pattern comes once from the node-element incidence (two
-// dofs couple when their nodes share an element); Dirichlet dofs are eliminated: their rows and
-// columns are dropped (the prescribed values enter the residual through the internal forces of
-// the current displacement, so no right-hand side needs lifting).
+// Assembly of element stiffness matrices (hexahedra and 2-node lines) into the sparse symmetric
+// matrix of a mesh's free degrees of freedom (3 per node). The pattern comes once from the
+// node-element incidence (two dofs couple when their nodes share an element); Dirichlet dofs
+// are eliminated: their rows and columns are dropped (the prescribed values enter the residual
+// through the internal forces of the current displacement, so no right-hand side needs
+// lifting).
 #pragma once
 
 #include <array>
@@ -16,21 +17,28 @@ namespace afemp::fem {
 
 // A 24 x 24 element matrix, row-major, dof 3 a + i for component i of node a.
 using HexMatrix = std::array<double, 24 * 24>;
+// A 6 x 6 matrix of a 2-node line (truss), row-major, dof 3 a + i likewise.
+using LineMatrix = std::array<double, 6 * 6>;
 
 class SparseAssembly {
  public:
   // equation[3 n + i]: the equation (0 .. equations - 1) of component i of node n, or -1 for a
   // fixed dof (or a node of no element).
-  SparseAssembly(std::span<const Hexahedron> hexahedra, std::vector<int> equation, int equations);
+  SparseAssembly(std::span<const Hexahedron> hexahedra, std::span<const Line> lines,
+                 std::vector<int> equation, int equations);
 
   const std::vector<int>& equation() const { return equation_; }
   // All values to zero (the pattern stays).
   void clear();
   // Adds the upper triangle of the symmetric element matrix k of element `nodes`.
   void add(const Hexahedron& nodes, const HexMatrix& k);
+  void add(const Line& nodes, const LineMatrix& k);
   const SymmetricCsc& matrix() const { return matrix_; }
 
  private:
+  // k: n dofs (3 per node of `nodes`), row-major.
+  void add(const std::int32_t* nodes, int n, const double* k);
+
   std::vector<int> equation_;
   SymmetricCsc matrix_;
 };

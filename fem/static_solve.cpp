@@ -11,6 +11,7 @@
 #include <ostream>
 #include <stdexcept>
 #include <string>
+#include <variant>
 
 #include "core/materials/small_strain_tangent.hpp"
 #include "fem/hexahedron_full.hpp"
@@ -107,22 +108,27 @@ void check_rigid_body_modes(const MeshData& mesh, const std::vector<char>& fixed
     while (parent[n] != n) n = parent[n] = parent[parent[n]];
     return n;
   };
-  for (const Hexahedron& h : mesh.hexahedra)
-    for (std::int32_t a : h) parent[root(a)] = root(h[0]);
+  // Bodies: the nodes that hexahedra and lines (trusses) connect.
+  auto join = [&](const auto& element) {
+    for (std::int32_t a : element) parent[root(a)] = root(element[0]);
+  };
+  for (const Hexahedron& h : mesh.hexahedra) join(h);
+  for (const Line& l : mesh.lines) join(l);
   std::vector<std::vector<std::int32_t>> bodies(mesh.nodes.size());  // nodes, by root
+  std::vector<std::vector<std::int32_t>> parts(mesh.nodes.size());   // parts, by root
   std::vector<char> seen(mesh.nodes.size(), 0);
-  for (const Hexahedron& h : mesh.hexahedra)
-    for (std::int32_t a : h)
+  auto collect = [&](const auto& element, std::int32_t part) {
+    for (std::int32_t a : element)
       if (!seen[a]) {
         seen[a] = 1;
         bodies[root(a)].push_back(a);
       }
-  std::vector<std::vector<std::int32_t>> parts(mesh.nodes.size());  // parts, by root
-  for (std::size_t e = 0; e < mesh.hexahedra.size(); ++e) {
-    std::vector<std::int32_t>& p = parts[root(mesh.hexahedra[e][0])];
-    if (std::find(p.begin(), p.end(), mesh.hexahedron_part[e]) == p.end())
-      p.push_back(mesh.hexahedron_part[e]);
-  }
+    std::vector<std::int32_t>& p = parts[root(element[0])];
+    if (std::find(p.begin(), p.end(), part) == p.end()) p.push_back(part);
+  };
+  for (std::size_t e = 0; e < mesh.hexahedra.size(); ++e)
+    collect(mesh.hexahedra[e], mesh.hexahedron_part[e]);
+  for (std::size_t e = 0; e < mesh.lines.size(); ++e) collect(mesh.lines[e], mesh.line_part[e]);
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const std::vector<std::int32_t>& nodes = bodies[b];
     if (nodes.empty()) continue;
@@ -204,195 +210,474 @@ std::vector<std::array<std::int32_t, 4>> faces_on_nodes(const MeshData& mesh,
   return faces;
 }
 
-StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& settings) {
-  if (!problem.mesh) throw std::invalid_argument("static solve: no mesh");
-  const MeshData& mesh = *problem.mesh;
-  validate(mesh, "static solve");
-  if (!mesh.lines.empty())
-    throw std::invalid_argument("static solve: trusses (mesh lines) have no tangent stiffness yet");
+namespace {
+
+// What the static and the dynamic solve share: the equations of the free dofs, the element
+// geometry, the consistent mass and the Gauss points' converged and current states. Trusses
+// (mesh lines) are elastic bars at small strain: strain e . (u_b - u_a) / L0 along their initial
+// axis e, axial force E A strain, stiffness (E A / L0) [e e^T, -e e^T; -e e^T, e e^T] and
+// consistent mass (rho A L0 / 6) [2 1; 1 2] per component.
+struct Body {
+  const StaticProblem& problem;
+  const MeshData& mesh;
+  std::size_t nodes = 0, elements = 0;
+  std::vector<char> in_element;
+  std::vector<int> equation, dof_of;  // dof_of[equation] = 3 node + component
+  int equations = 0;
+  std::vector<core::Vec3> f_ext;  // at full load
+  std::vector<FullHex> geometry;
+  std::vector<std::array<core::SmallStrainPoint, 8>> converged;
+  std::vector<std::array<core::SymTensor, 8>> strain;  // at the displacement last evaluated
+  std::vector<std::array<core::SmallStrainResult, 8>> current;
+  std::vector<core::Vec3> line_axis;   // unit, initial
+  std::vector<double> line_length;     // initial
+  std::vector<double> line_stiffness;  // E A / L0
+  std::vector<double> line_mass;       // rho A L0
+  std::vector<double> line_strain;     // at the displacement last evaluated
+
+  // Validates the problem (`who` starts the messages); a static solve also needs the body held
+  // against its rigid-body modes.
+  Body(const StaticProblem& p, const char* who, bool check_support);
+
+  // force = -f_int(at) per node (external minus internal, without the loads), the current
+  // states updated from the converged ones.
+  void internal_forces(const std::vector<core::Vec3>& at, std::vector<core::Vec3>& force);
+  // Assembles stiffness_factor K_t + mass_factor M (K_t of the current states).
+  void assemble(SparseAssembly& assembly, double stiffness_factor, double mass_factor) const;
+  // The consistent mass of element e, m_ab = rho sum_g w_g N_a(x_g) N_b(x_g) (each component).
+  std::array<std::array<double, 8>, 8> mass(std::size_t e) const;
+  void commit();
+  void write_states(std::vector<std::array<core::SymTensor, 8>>& stress,
+                    std::vector<std::array<double, 8>>& plastic_strain,
+                    std::vector<double>& line_stress) const;
+};
+
+Body::Body(const StaticProblem& p, const char* who, bool check_support)
+    : problem(p),
+      mesh(p.mesh ? *p.mesh : throw std::invalid_argument(std::string(who) + ": no mesh")) {
+  validate(mesh, who);
   if (problem.materials.size() != mesh.part_names.size())
-    throw std::invalid_argument("static solve: " + std::to_string(problem.materials.size()) +
+    throw std::invalid_argument(std::string(who) + ": " + std::to_string(problem.materials.size()) +
                                 " materials for " + std::to_string(mesh.part_names.size()) +
                                 " parts (one per part)");
-  const std::size_t nodes = mesh.nodes.size(), elements = mesh.hexahedra.size();
+  nodes = mesh.nodes.size();
+  elements = mesh.hexahedra.size();
   std::vector<char> part_used(mesh.part_names.size(), 0);
-  for (std::int32_t p : mesh.hexahedron_part) part_used[p] = 1;
-  for (std::size_t p = 0; p < part_used.size(); ++p)
-    if (part_used[p]) core::check_small_strain_tangent(problem.materials[p]);
+  for (std::int32_t part : mesh.hexahedron_part) part_used[part] = 1;
+  for (std::int32_t part : mesh.line_part) part_used[part] = 1;
+  for (std::size_t part = 0; part < part_used.size(); ++part)
+    if (part_used[part]) core::check_small_strain_tangent(problem.materials[part]);
+  for (std::int32_t part : mesh.line_part)
+    if (!std::holds_alternative<core::Elastic>(problem.materials[part].strength))
+      throw std::invalid_argument(std::string(who) + ": the trusses of part '" +
+                                  mesh.part_names[part] + "' (material '" +
+                                  problem.materials[part].name +
+                                  "') need an elastic material: trusses have no plastic tangent "
+                                  "here");
   if (!problem.nodal_forces.empty() && problem.nodal_forces.size() != nodes)
-    throw std::invalid_argument("static solve: nodal_forces needs one force per node");
+    throw std::invalid_argument(std::string(who) + ": nodal_forces needs one force per node");
 
-  std::vector<char> fixed(3 * nodes, 0), in_element(nodes, 0);
+  std::vector<char> fixed(3 * nodes, 0);
+  in_element.assign(nodes, 0);
   for (const Hexahedron& h : mesh.hexahedra)
     for (std::int32_t a : h) in_element[a] = 1;
-  for (const PrescribedDisplacement& p : problem.prescribed) {
-    if (p.node < 0 || static_cast<std::size_t>(p.node) >= nodes || p.component < 0 ||
-        p.component > 2)
-      throw std::invalid_argument("static solve: prescribed displacement of node " +
-                                  std::to_string(p.node) + ", component " +
-                                  std::to_string(p.component) + " out of range");
-    fixed[3 * p.node + p.component] = 1;
+  for (const Line& l : mesh.lines)
+    for (std::int32_t a : l) in_element[a] = 1;
+  for (const PrescribedDisplacement& d : problem.prescribed) {
+    if (d.node < 0 || static_cast<std::size_t>(d.node) >= nodes || d.component < 0 ||
+        d.component > 2)
+      throw std::invalid_argument(std::string(who) + ": prescribed displacement of node " +
+                                  std::to_string(d.node) + ", component " +
+                                  std::to_string(d.component) + " out of range");
+    fixed[3 * d.node + d.component] = 1;
   }
-  check_rigid_body_modes(mesh, fixed);
-  std::vector<int> equation(3 * nodes, -1), dof_of;  // dof_of[equation] = 3 node + component
+  if (check_support) check_rigid_body_modes(mesh, fixed);
+  equation.assign(3 * nodes, -1);
   for (std::size_t d = 0; d < 3 * nodes; ++d)
     if (in_element[d / 3] && !fixed[d]) {
       equation[d] = static_cast<int>(dof_of.size());
       dof_of.push_back(static_cast<int>(d));
     }
-  const int equations = static_cast<int>(dof_of.size());
+  equations = static_cast<int>(dof_of.size());
 
-  std::vector<core::Vec3> f_ext(nodes);
+  f_ext.assign(nodes, core::Vec3{});
   if (!problem.nodal_forces.empty()) f_ext = problem.nodal_forces;
   for (const PressureFace& face : problem.pressures) add_pressure_forces(face, mesh.nodes, f_ext);
 
-  std::vector<FullHex> geometry(elements);
+  geometry.resize(elements);
   for (std::size_t e = 0; e < elements; ++e) {
     HexVectors x;
     for (int a = 0; a < 8; ++a) x[a] = mesh.nodes[mesh.hexahedra[e][a]];
     geometry[e] = full_hex(x);
     if (min_jacobian(geometry[e]) <= 0.0)
-      throw std::invalid_argument("static solve: hexahedron " + std::to_string(e) +
+      throw std::invalid_argument(std::string(who) + ": hexahedron " + std::to_string(e) +
                                   " has a non-positive Jacobian (tangled or inverted)");
   }
+  converged.resize(elements);
+  strain.resize(elements);
+  current.resize(elements);
+  for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
+    const core::Vec3 d = mesh.nodes[mesh.lines[l][1]] - mesh.nodes[mesh.lines[l][0]];
+    const double length = core::norm(d), area = mesh.line_area[l];
+    if (!(length > 0.0) || !(area > 0.0))
+      throw std::invalid_argument(std::string(who) + ": line " + std::to_string(l) +
+                                  " (a truss) needs a positive length and cross-section area");
+    const core::Material& m = problem.materials[mesh.line_part[l]];
+    line_axis.push_back((1.0 / length) * d);
+    line_length.push_back(length);
+    line_stiffness.push_back(m.youngs_modulus * area / length);
+    line_mass.push_back(m.density * area * length);
+  }
+  line_strain.assign(mesh.lines.size(), 0.0);
+}
 
-  // Per element and Gauss point: the converged state, and the strain and update at the
-  // displacement last evaluated.
-  std::vector<std::array<core::SmallStrainPoint, 8>> converged(elements);
-  std::vector<std::array<core::SymTensor, 8>> strain(elements);
-  std::vector<std::array<core::SmallStrainResult, 8>> current(elements);
-  std::vector<core::Vec3> u(nodes), force(nodes);
-  std::vector<double> r(equations);
+void Body::internal_forces(const std::vector<core::Vec3>& at, std::vector<core::Vec3>& force) {
+  std::fill(force.begin(), force.end(), core::Vec3{});
+  for (std::size_t e = 0; e < elements; ++e) {
+    const Hexahedron& h = mesh.hexahedra[e];
+    HexVectors ue, fe{};
+    for (int a = 0; a < 8; ++a) ue[a] = at[h[a]];
+    std::array<core::SymTensor, 8> sigma;
+    const core::Material& material = problem.materials[mesh.hexahedron_part[e]];
+    for (int g = 0; g < 8; ++g) {
+      strain[e][g] = strain_bbar(geometry[e], g, ue);
+      current[e][g] = core::small_strain_update(material, converged[e][g], strain[e][g]);
+      sigma[g] = current[e][g].stress;
+    }
+    add_stress_forces_bbar(geometry[e], sigma, fe);  // -f_int
+    for (int a = 0; a < 8; ++a) force[h[a]] += fe[a];
+  }
+  for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
+    const Line& n = mesh.lines[l];
+    line_strain[l] = core::dot(line_axis[l], at[n[1]] - at[n[0]]) / line_length[l];
+    const core::Vec3 f = (line_stiffness[l] * line_length[l] * line_strain[l]) * line_axis[l];
+    force[n[0]] += f;
+    force[n[1]] -= f;
+  }
+}
+
+std::array<std::array<double, 8>, 8> Body::mass(std::size_t e) const {
+  const double r = 1.0 / std::sqrt(3.0);
+  const double rho = problem.materials[mesh.hexahedron_part[e]].density;
+  std::array<std::array<double, 8>, 8> m{};
+  for (int g = 0; g < 8; ++g) {
+    double n[8];
+    for (int a = 0; a < 8; ++a) {
+      n[a] = 0.125;
+      for (int i = 0; i < 3; ++i) n[a] *= 1.0 + kHexNatural[a][i] * kHexNatural[g][i] * r;
+    }
+    for (int a = 0; a < 8; ++a)
+      for (int b = 0; b < 8; ++b) m[a][b] += rho * geometry[e].weight[g] * n[a] * n[b];
+  }
+  return m;
+}
+
+void Body::assemble(SparseAssembly& assembly, double stiffness_factor, double mass_factor) const {
+  assembly.clear();
+  for (std::size_t e = 0; e < elements; ++e) {
+    std::array<core::VoigtMatrix, 8> d;
+    for (int g = 0; g < 8; ++g) d[g] = current[e][g].tangent;
+    HexMatrix ke;
+    hexahedron_stiffness_bbar(geometry[e], d, ke);
+    for (double& k : ke) k *= stiffness_factor;
+    if (mass_factor != 0.0) {
+      const auto m = mass(e);
+      for (int a = 0; a < 8; ++a)
+        for (int b = 0; b < 8; ++b)
+          for (int i = 0; i < 3; ++i) ke[24 * (3 * a + i) + 3 * b + i] += mass_factor * m[a][b];
+    }
+    assembly.add(mesh.hexahedra[e], ke);
+  }
+  for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
+    LineMatrix kl{};
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b)
+        for (int i = 0; i < 3; ++i) {
+          for (int j = 0; j < 3; ++j)
+            kl[6 * (3 * a + i) + 3 * b + j] = (a == b ? 1.0 : -1.0) * stiffness_factor *
+                                              line_stiffness[l] * line_axis[l][i] * line_axis[l][j];
+          kl[6 * (3 * a + i) + 3 * b + i] +=
+              mass_factor * line_mass[l] * (a == b ? 2.0 : 1.0) / 6.0;
+        }
+    assembly.add(mesh.lines[l], kl);
+  }
+}
+
+void Body::commit() {
+  for (std::size_t e = 0; e < elements; ++e)
+    for (int g = 0; g < 8; ++g)
+      converged[e][g] = {strain[e][g], current[e][g].stress.deviator(),
+                         current[e][g].plastic_strain};
+}
+
+void Body::write_states(std::vector<std::array<core::SymTensor, 8>>& stress,
+                        std::vector<std::array<double, 8>>& plastic_strain,
+                        std::vector<double>& line_stress) const {
+  stress.resize(elements);
+  plastic_strain.resize(elements);
+  for (std::size_t e = 0; e < elements; ++e)
+    for (int g = 0; g < 8; ++g) {
+      stress[e][g] = current[e][g].stress;
+      plastic_strain[e][g] = current[e][g].plastic_strain;
+    }
+  line_stress.resize(mesh.lines.size());
+  for (std::size_t l = 0; l < mesh.lines.size(); ++l)
+    line_stress[l] = problem.materials[mesh.line_part[l]].youngs_modulus * line_strain[l];
+}
+
+// Newton-Raphson with line search to r(u) = 0 for one step: residual(at) sets r on the free
+// dofs at displacement `at` and returns the force scale of the convergence test; the tangent is
+// assembled by assemble(). Appends its rows to `iterations`; `step_name` ("load step", "time
+// step") and steps name the step in messages.
+template <class Residual, class Assemble>
+void newton(const Body& body, const NewtonSettings& settings, const char* log_name,
+            const char* step_name, int step, int steps, SparseAssembly& assembly,
+            SparseCholesky& cholesky, std::vector<core::Vec3>& u, std::vector<double>& r,
+            Residual&& residual, Assemble&& assemble, std::vector<NewtonIteration>& iterations) {
+  const int equations = body.equations;
+  std::vector<double> du(equations), b(equations);
+  std::vector<core::Vec3> trial(u.size());
+  auto record = [&](const NewtonIteration& it) {
+    iterations.push_back(it);
+    if (settings.log)
+      *settings.log << log_name << " step " << it.load_step << "/" << steps << " iteration "
+                    << it.iteration << ": residual " << it.residual << " (relative "
+                    << (it.reference > 0.0 ? it.residual / it.reference : 0.0) << "), energy "
+                    << it.energy << ", step length " << it.step_length << '\n';
+  };
+  double reference = residual(u), first_energy = 0.0, last_energy = 0.0;
+  for (int k = 0;; ++k) {
+    const double rnorm = norm(r), scale = reference;
+    if (rnorm <= settings.residual_tolerance * reference &&
+        (k == 0 || last_energy <= settings.energy_tolerance * first_energy)) {
+      record({step, k, rnorm, scale, 0.0, 0.0});
+      return;
+    }
+    if (k == settings.max_iterations)
+      throw std::runtime_error(std::string(log_name) + " solve: " + step_name + " " +
+                               std::to_string(step) + " of " + std::to_string(steps) +
+                               " did not converge in " + std::to_string(k) +
+                               " iterations: residual " +
+                               format("%.3g (%.3g of the force scale; tolerance %.3g)", rnorm,
+                                      rnorm / scale, settings.residual_tolerance) +
+                               format(", last energy %.3g (%.3g of the first)", last_energy,
+                                      last_energy / first_energy, 0.0));
+
+    assemble();
+    try {
+      cholesky.factorise(assembly.matrix());
+    } catch (const NotPositiveDefinite& npd) {
+      const int dof = body.dof_of[npd.column()];
+      throw std::runtime_error(std::string(log_name) + " solve: " + step_name + " " +
+                               std::to_string(step) + ", iteration " + std::to_string(k) +
+                               ": the tangent stiffness is not positive definite at " +
+                               node_name(body.mesh, dof / 3) + ", component " + kAxis[dof % 3] +
+                               " (a mechanism, or a material that softens)");
+    }
+    b = r;
+    cholesky.solve(b, du);
+    const double g0 = dot(du, r), energy = std::abs(g0);
+    if (k == 0) first_energy = energy;
+    last_energy = energy;
+
+    // Line search on G(s) = du . r(u + s du), G(0) = g0 > 0: s = 1 unless it overshoots
+    // (G(1) < -ratio g0), then regula falsi in the bracket [0, 1].
+    auto try_length = [&](double s) {
+      trial = u;
+      for (int q = 0; q < equations; ++q)
+        trial[body.dof_of[q] / 3][body.dof_of[q] % 3] += s * du[q];
+      reference = residual(trial);
+      return dot(du, r);
+    };
+    double s = 1.0, g = try_length(1.0);
+    double lo = 0.0, g_lo = g0, hi = 1.0, g_hi = g;
+    for (int ls = 0; ls < settings.line_search_steps && g < -settings.line_search_ratio * g0;
+         ++ls) {
+      s = lo + (hi - lo) * g_lo / (g_lo - g_hi);
+      g = try_length(s);
+      if (g > 0.0) {
+        lo = s;
+        g_lo = g;
+      } else {
+        hi = s;
+        g_hi = g;
+      }
+    }
+    u.swap(trial);
+    record({step, k, rnorm, scale, energy, s});
+  }
+}
+
+}  // namespace
+
+StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& settings) {
+  Body body(problem, "static solve", true);
+  std::vector<core::Vec3> u(body.nodes), force(body.nodes);
+  std::vector<double> r(body.equations);
   double load = 0.0;
 
   // r = load f_ext - f_int(u) on the free dofs; returns max(||load f_ext||, ||reactions||).
   auto residual = [&](const std::vector<core::Vec3>& at) {
-    std::fill(force.begin(), force.end(), core::Vec3{});
-    for (std::size_t e = 0; e < elements; ++e) {
-      const Hexahedron& h = mesh.hexahedra[e];
-      HexVectors ue, fe{};
-      for (int a = 0; a < 8; ++a) ue[a] = at[h[a]];
-      std::array<core::SymTensor, 8> sigma;
-      const core::Material& material = problem.materials[mesh.hexahedron_part[e]];
-      for (int g = 0; g < 8; ++g) {
-        strain[e][g] = strain_bbar(geometry[e], g, ue);
-        current[e][g] = core::small_strain_update(material, converged[e][g], strain[e][g]);
-        sigma[g] = current[e][g].stress;
-      }
-      add_stress_forces_bbar(geometry[e], sigma, fe);  // -f_int
-      for (int a = 0; a < 8; ++a) force[h[a]] += fe[a];
-    }
+    body.internal_forces(at, force);
     double external = 0.0, reactions = 0.0;
-    for (std::size_t d = 0; d < 3 * nodes; ++d) {
-      const double f = load * f_ext[d / 3][d % 3];
+    for (std::size_t d = 0; d < 3 * body.nodes; ++d) {
+      const double f = load * body.f_ext[d / 3][d % 3];
       external += f * f;
       const double rd = f + force[d / 3][d % 3];
-      if (equation[d] >= 0)
-        r[equation[d]] = rd;
-      else if (in_element[d / 3])
+      if (body.equation[d] >= 0)
+        r[body.equation[d]] = rd;
+      else if (body.in_element[d / 3])
         reactions += rd * rd;
     }
     return std::sqrt(std::max(external, reactions));
   };
 
-  SparseAssembly assembly(mesh.hexahedra, equation, equations);
+  SparseAssembly assembly(problem.mesh->hexahedra, problem.mesh->lines, body.equation,
+                          body.equations);
   SparseCholesky cholesky;
   cholesky.analyse(assembly.matrix());
-  std::vector<double> du(equations), b(equations);
-  std::vector<core::Vec3> trial(nodes);
   StaticResult out;
-  auto record = [&](const NewtonIteration& it) {
-    out.iterations.push_back(it);
-    if (settings.log)
-      *settings.log << "static step " << it.load_step << "/" << settings.load_steps << " iteration "
-                    << it.iteration << ": residual " << it.residual << " (relative "
-                    << (it.reference > 0.0 ? it.residual / it.reference : 0.0) << "), energy "
-                    << it.energy << ", step length " << it.step_length << '\n';
-  };
-
   for (int step = 1; step <= settings.load_steps; ++step) {
     load = static_cast<double>(step) / settings.load_steps;
     for (const PrescribedDisplacement& p : problem.prescribed)
       u[p.node][p.component] = load * p.value;
-    double reference = residual(u), first_energy = 0.0, last_energy = 0.0;
-    for (int k = 0;; ++k) {
-      const double rnorm = norm(r), scale = reference;
-      if (rnorm <= settings.residual_tolerance * reference &&
-          (k == 0 || last_energy <= settings.energy_tolerance * first_energy)) {
-        record({step, k, rnorm, scale, 0.0, 0.0});
-        break;
-      }
-      if (k == settings.max_iterations)
-        throw std::runtime_error("static solve: load step " + std::to_string(step) + " of " +
-                                 std::to_string(settings.load_steps) + " did not converge in " +
-                                 std::to_string(k) + " iterations: residual " +
-                                 format("%.3g (%.3g of the force scale; tolerance %.3g)", rnorm,
-                                        rnorm / scale, settings.residual_tolerance) +
-                                 format(", last energy %.3g (%.3g of the first)", last_energy,
-                                        last_energy / first_energy, 0.0));
-
-      assembly.clear();
-      for (std::size_t e = 0; e < elements; ++e) {
-        std::array<core::VoigtMatrix, 8> d;
-        for (int g = 0; g < 8; ++g) d[g] = current[e][g].tangent;
-        HexMatrix ke;
-        hexahedron_stiffness_bbar(geometry[e], d, ke);
-        assembly.add(mesh.hexahedra[e], ke);
-      }
-      try {
-        cholesky.factorise(assembly.matrix());
-      } catch (const NotPositiveDefinite& npd) {
-        const int dof = dof_of[npd.column()];
-        throw std::runtime_error(
-            "static solve: load step " + std::to_string(step) + ", iteration " + std::to_string(k) +
-            ": the tangent stiffness is not positive definite at " + node_name(mesh, dof / 3) +
-            ", component " + kAxis[dof % 3] + " (a mechanism, or a material that softens)");
-      }
-      b = r;
-      cholesky.solve(b, du);
-      const double g0 = dot(du, r), energy = std::abs(g0);
-      if (k == 0) first_energy = energy;
-      last_energy = energy;
-
-      // Line search on G(s) = du . r(u + s du), G(0) = g0 > 0: s = 1 unless it overshoots
-      // (G(1) < -ratio g0), then regula falsi in the bracket [0, 1].
-      auto try_length = [&](double s) {
-        trial = u;
-        for (int q = 0; q < equations; ++q) trial[dof_of[q] / 3][dof_of[q] % 3] += s * du[q];
-        reference = residual(trial);
-        return dot(du, r);
-      };
-      double s = 1.0, g = try_length(1.0);
-      double lo = 0.0, g_lo = g0, hi = 1.0, g_hi = g;
-      for (int ls = 0; ls < settings.line_search_steps && g < -settings.line_search_ratio * g0;
-           ++ls) {
-        s = lo + (hi - lo) * g_lo / (g_lo - g_hi);
-        g = try_length(s);
-        if (g > 0.0) {
-          lo = s;
-          g_lo = g;
-        } else {
-          hi = s;
-          g_hi = g;
-        }
-      }
-      u.swap(trial);
-      record({step, k, rnorm, scale, energy, s});
-    }
-    for (std::size_t e = 0; e < elements; ++e)
-      for (int g = 0; g < 8; ++g)
-        converged[e][g] = {strain[e][g], current[e][g].stress.deviator(),
-                           current[e][g].plastic_strain};
+    newton(
+        body, settings, "static", "load step", step, settings.load_steps, assembly, cholesky, u, r,
+        residual, [&] { body.assemble(assembly, 1.0, 0.0); }, out.iterations);
+    body.commit();
   }
-
   out.displacement = u;
-  out.stress.resize(elements);
-  out.plastic_strain.resize(elements);
-  for (std::size_t e = 0; e < elements; ++e)
-    for (int g = 0; g < 8; ++g) {
-      out.stress[e][g] = current[e][g].stress;
-      out.plastic_strain[e][g] = current[e][g].plastic_strain;
+  body.write_states(out.stress, out.plastic_strain, out.line_stress);
+  return out;
+}
+
+NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings& settings) {
+  if (!(settings.time_step > 0.0) || settings.steps < 0)
+    throw std::invalid_argument("newmark solve: needs a positive time step and steps >= 0");
+  if (!(settings.alpha >= -1.0 / 3.0 && settings.alpha <= 0.0))
+    throw std::invalid_argument(
+        format("newmark solve: HHT alpha %g outside [-1/3, 0]", settings.alpha, 0, 0));
+  Body body(problem, "newmark solve", false);
+  const std::size_t nodes = body.nodes;
+  if ((!settings.initial_displacement.empty() && settings.initial_displacement.size() != nodes) ||
+      (!settings.initial_velocity.empty() && settings.initial_velocity.size() != nodes))
+    throw std::invalid_argument(
+        "newmark solve: initial displacement and velocity need one "
+        "vector per node (or none)");
+  const double dt = settings.time_step, alpha = settings.alpha;
+  const double beta = 0.25 * (1.0 - alpha) * (1.0 - alpha), gamma = 0.5 - alpha;
+
+  std::vector<core::Vec3> u(nodes), v(nodes), a(nodes), u_star(nodes), force(nodes), force_n(nodes),
+      ma(nodes), accel(nodes);
+  if (!settings.initial_displacement.empty()) u = settings.initial_displacement;
+  if (!settings.initial_velocity.empty()) v = settings.initial_velocity;
+  for (const PrescribedDisplacement& p : problem.prescribed) {  // held at their values
+    u[p.node][p.component] = p.value;
+    v[p.node][p.component] = 0.0;
+  }
+  std::vector<double> r(body.equations);
+
+  auto mass_times = [&](const std::vector<core::Vec3>& x, std::vector<core::Vec3>& mx) {
+    std::fill(mx.begin(), mx.end(), core::Vec3{});
+    for (std::size_t e = 0; e < body.elements; ++e) {
+      const Hexahedron& h = problem.mesh->hexahedra[e];
+      const auto m = body.mass(e);
+      for (int i = 0; i < 8; ++i)
+        for (int j = 0; j < 8; ++j) mx[h[i]] += m[i][j] * x[h[j]];
     }
+    for (std::size_t l = 0; l < problem.mesh->lines.size(); ++l) {
+      const Line& n = problem.mesh->lines[l];
+      const double m = body.line_mass[l] / 6.0;
+      mx[n[0]] += m * (2.0 * x[n[0]] + x[n[1]]);
+      mx[n[1]] += m * (x[n[0]] + 2.0 * x[n[1]]);
+    }
+  };
+  auto energies = [&](double time) {
+    mass_times(v, ma);
+    NewmarkState state{time, 0.0, 0.0};
+    for (std::size_t n = 0; n < nodes; ++n) state.kinetic_energy += 0.5 * core::dot(v[n], ma[n]);
+    // Stored elastic energy p^2 / (2K) + s:s / (4G) per unit volume.
+    for (std::size_t e = 0; e < body.elements; ++e) {
+      const core::Material& m = problem.materials[problem.mesh->hexahedron_part[e]];
+      for (int g = 0; g < 8; ++g) {
+        const core::SymTensor& s = body.current[e][g].stress;
+        const double p = s.trace() / 3.0;
+        const core::SymTensor dev = s.deviator();
+        state.strain_energy +=
+            body.geometry[e].weight[g] * (p * p / (2.0 * m.bulk_modulus()) +
+                                          core::double_dot(dev, dev) / (4.0 * m.shear_modulus()));
+      }
+    }
+    for (std::size_t l = 0; l < problem.mesh->lines.size(); ++l)
+      state.strain_energy += 0.5 * body.line_stiffness[l] * body.line_length[l] *
+                             body.line_length[l] * body.line_strain[l] * body.line_strain[l];
+    return state;
+  };
+
+  SparseAssembly assembly(problem.mesh->hexahedra, problem.mesh->lines, body.equation,
+                          body.equations);
+  SparseCholesky cholesky;
+  cholesky.analyse(assembly.matrix());
+
+  // a_0 = M^-1 (f_ext - f_int(u_0)) on the free dofs.
+  body.internal_forces(u, force);
+  force_n = force;
+  body.assemble(assembly, 0.0, 1.0);
+  cholesky.factorise(assembly.matrix());
+  {
+    std::vector<double> b(body.equations), x(body.equations);
+    for (int q = 0; q < body.equations; ++q) {
+      const int d = body.dof_of[q];
+      b[q] = body.f_ext[d / 3][d % 3] + force[d / 3][d % 3];
+    }
+    cholesky.solve(b, x);
+    for (int q = 0; q < body.equations; ++q) a[body.dof_of[q] / 3][body.dof_of[q] % 3] = x[q];
+  }
+  body.commit();
+
+  NewmarkResult out;
+  out.states.push_back(energies(0.0));
+  if (settings.observe) settings.observe(0.0, u);
+  // r = f_ext + (1 + alpha) (-f_int(u)) - alpha (-f_int(u_n)) - M a(u),
+  // a(u) = (u - u_star) / (beta dt^2), u_star = u_n + dt v_n + dt^2 (1/2 - beta) a_n.
+  auto residual = [&](const std::vector<core::Vec3>& at) {
+    body.internal_forces(at, force);
+    for (std::size_t n = 0; n < nodes; ++n)
+      accel[n] = (1.0 / (beta * dt * dt)) * (at[n] - u_star[n]);
+    mass_times(accel, ma);
+    double external = 0.0, internal = 0.0, inertia = 0.0;
+    for (std::size_t d = 0; d < 3 * nodes; ++d) {
+      if (!body.in_element[d / 3]) continue;
+      const double f = body.f_ext[d / 3][d % 3], fi = force[d / 3][d % 3], mi = ma[d / 3][d % 3];
+      external += f * f;
+      internal += fi * fi;
+      inertia += mi * mi;
+      if (body.equation[d] >= 0)
+        r[body.equation[d]] = f + (1.0 + alpha) * fi - alpha * force_n[d / 3][d % 3] - mi;
+    }
+    return std::sqrt(std::max({external, internal, inertia}));
+  };
+  for (int step = 1; step <= settings.steps; ++step) {
+    for (std::size_t n = 0; n < nodes; ++n)
+      u_star[n] = u[n] + dt * v[n] + ((0.5 - beta) * dt * dt) * a[n];
+    for (std::size_t n = 0; n < nodes; ++n) u[n] = u_star[n] + (beta * dt * dt) * a[n];
+    newton(
+        body, settings.newton, "newmark", "time step", step, settings.steps, assembly, cholesky, u,
+        r, residual, [&] { body.assemble(assembly, 1.0 + alpha, 1.0 / (beta * dt * dt)); },
+        out.iterations);
+    for (std::size_t n = 0; n < nodes; ++n) {
+      const core::Vec3 a_next = (1.0 / (beta * dt * dt)) * (u[n] - u_star[n]);
+      v[n] += dt * ((1.0 - gamma) * a[n] + gamma * a_next);
+      a[n] = a_next;
+    }
+    force_n = force;
+    body.commit();
+    out.states.push_back(energies(step * dt));
+    if (settings.observe) settings.observe(step * dt, u);
+  }
+  out.displacement = u;
+  out.velocity = v;
+  body.write_states(out.stress, out.plastic_strain, out.line_stress);
   return out;
 }
 

@@ -1,13 +1,18 @@
-// Static (implicit) solve of a mesh of fully integrated B-bar hexahedra at small strain:
+// Static (implicit) solve of a mesh of fully integrated B-bar hexahedra and elastic 2-node
+// trusses at small strain:
 // Newton-Raphson with the consistent tangent (core/materials/small_strain_tangent.hpp), a line
 // search and load stepping, the tangent factorised by CHOLMOD (fem/sparse_cholesky.hpp; the
 // tangents here are symmetric, so no unsymmetric solver is needed yet). Each iteration's
 // residual norm and energy norm |du . r| are recorded (and printed to an optional stream); a
 // load step converges when both fall below their tolerances (Bathe 1996, sec. 8.4.4).
+// solve_newmark integrates the same body in time implicitly (Newmark 1959; HHT-alpha, Hilber,
+// Hughes & Taylor, EESD 5 (1977) 283-292) with the consistent mass, each time step one Newton
+// solve on the same residual and tangent machinery.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <span>
 #include <vector>
@@ -35,7 +40,7 @@ struct PressureFace {
 
 // Everything at full load (load factor 1); load step s of n applies the factor s / n.
 struct StaticProblem {
-  const MeshData* mesh = nullptr;         // hexahedra only (no lines yet)
+  const MeshData* mesh = nullptr;         // hexahedra and lines (trusses)
   std::vector<core::Material> materials;  // one per part, mesh->part_names order
   std::vector<PrescribedDisplacement> prescribed;
   std::vector<core::Vec3> nodal_forces;  // one per node, or empty
@@ -73,15 +78,61 @@ struct StaticResult {
   // Per hexahedron, per Gauss point (fem/hexahedron_full.hpp's order).
   std::vector<std::array<core::SymTensor, 8>> stress;
   std::vector<std::array<double, 8>> plastic_strain;
+  std::vector<double> line_stress;  // per line (truss), axial
   std::vector<NewtonIteration> iterations;
 };
 
 // Throws std::invalid_argument for a problem it cannot solve (a material without a tangent,
-// named; trusses; bad indices), and std::runtime_error for a body whose rigid-body modes the
-// prescribed dofs leave free (naming the body's parts and the modes), a tangent that is not
-// positive definite (naming the node and component) and a load step that does not converge
-// (naming the step, the iteration and the residual).
+// named; a truss of a material that is not elastic, or without an area; bad indices), and
+// std::runtime_error for a body whose rigid-body modes the prescribed dofs leave free (naming the
+// body's parts and the modes), a tangent that is not positive definite (naming the node and
+// component) and a load step that does not converge (naming the step, the iteration and the
+// residual).
 StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& settings = {});
+
+// Implicit dynamics: M a + (1 + alpha) f_int(u_{n+1}) - alpha f_int(u_n) = f_ext (the HHT
+// form; alpha = 0 is Newmark's), u and v advanced by Newmark's formulas with
+// beta = (1 - alpha)^2 / 4, gamma = 1/2 - alpha; alpha = 0 gives the trapezoidal rule (beta 1/4,
+// gamma 1/2), which conserves the energy of a linear system exactly and is second order;
+// alpha in [-1/3, 0) damps the high frequencies, second order still (Hughes 2000, sec. 9.3).
+// Each time step is solved by Newton (with the line search) on the effective tangent
+// (1 + alpha) K_t + M / (beta dt^2); M is the consistent mass rho integral N_a N_b dV of the
+// 2x2x2 Gauss points (not the explicit solver's lumped mass).
+struct NewmarkSettings {
+  double time_step = 0.0;
+  int steps = 0;
+  double alpha = 0.0;  // HHT, in [-1/3, 0]
+  // The Newton settings of every time step (load_steps is not used: a time step is one solve).
+  NewtonSettings newton;
+  // Per node, or empty for zero; prescribed dofs are held at their values from t = 0 whatever
+  // these say. The initial displacement's stress is reached in one increment from the virgin
+  // state, and a_0 = M^-1 (f_ext - f_int(u_0)).
+  std::vector<core::Vec3> initial_displacement;
+  std::vector<core::Vec3> initial_velocity;
+  // Called at t = 0 and after every step with the time and the displacement, when set.
+  std::function<void(double, const std::vector<core::Vec3>&)> observe;
+};
+
+struct NewmarkState {
+  double time = 0.0;
+  double kinetic_energy = 0.0;  // v . M v / 2
+  double strain_energy = 0.0;   // stored elastic energy, p^2 / 2K + s:s / 4G integrated
+};
+
+// The problem's loads act fully and constantly from t = 0 (no load steps).
+struct NewmarkResult {
+  std::vector<core::Vec3> displacement;  // per node, at the end
+  std::vector<core::Vec3> velocity;
+  std::vector<std::array<core::SymTensor, 8>> stress;  // at the end, as StaticResult's
+  std::vector<std::array<double, 8>> plastic_strain;
+  std::vector<double> line_stress;
+  std::vector<NewmarkState> states;         // at t = 0 and after every step
+  std::vector<NewtonIteration> iterations;  // load_step is the time step
+};
+
+// Throws as solve_static (except for an unheld body, which the mass holds), and
+// std::invalid_argument for a time step that is not positive or alpha outside [-1/3, 0].
+NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings& settings);
 
 // The faces of the mesh's hexahedra whose four nodes all lie in `nodes`, as kHexFaces orders
 // them (counter-clockwise from outside), for PressureFace.

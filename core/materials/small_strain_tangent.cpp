@@ -1,9 +1,15 @@
 // Consistent tangents of the small-strain updates (core/materials/small_strain_tangent.hpp):
-// elastic, K 1(x)1 + 2G I_dev, and for J2 radial return with linear isotropic hardening
-// (Simo & Hughes 1998, eq. 3.3.11, with their K' = H and ||xi|| = sqrt(2/3) q):
+// elastic, K 1(x)1 + 2G I_dev, and for the radial returns of J2 (linear isotropic hardening)
+// and Johnson-Cook (Simo & Hughes 1998, eq. 3.3.11, with their K' = H and
+// ||xi|| = sqrt(2/3) q):
 //   C = K 1(x)1 + 2G theta I_dev - 2G theta_bar n(x)n,
 //   theta = 1 - 3G dp / q_trial,  theta_bar = 1 / (1 + H / (3G)) - (1 - theta),
-// n the unit normal s_trial / |s_trial|.
+// n the unit normal s_trial / |s_trial|, H = d sigma_y / d eps_p at the end of the increment
+// (the isotropic-hardening case of Simo & Hughes box 3.2, whose return solves the consistency
+// condition at eps_p + dp as JohnsonCook::update does). Johnson-Cook's rate and temperature are
+// frozen: the update sees no time step (the rate factor is 1, the quasi-static curve) and the
+// material's initial temperature, so sigma_y = (A + B eps_p^n)(1 - T*^m) with T* fixed and
+// H = B n eps_p^(n-1) (1 - T*^m).
 #include "core/materials/small_strain_tangent.hpp"
 
 #include <cmath>
@@ -46,11 +52,12 @@ void check_small_strain_tangent(const Material& material) {
                                 "' has no tangent for the static solve (only the bulk law "
                                 "K tr(eps) without an EOS has one)");
   if (!std::holds_alternative<Elastic>(material.strength) &&
-      !std::holds_alternative<J2Plasticity>(material.strength))
+      !std::holds_alternative<J2Plasticity>(material.strength) &&
+      !std::holds_alternative<JohnsonCook>(material.strength))
     throw std::invalid_argument("material '" + material.name + "': strength model '" +
                                 strength_name(material.strength) +
-                                "' has no consistent tangent for the static solve (elastic and "
-                                "j2 have one)");
+                                "' has no consistent tangent for the static solve (elastic, j2 "
+                                "and johnson-cook have one)");
 }
 
 SmallStrainResult small_strain_update(const Material& material, const SmallStrainPoint& from,
@@ -62,13 +69,25 @@ SmallStrainResult small_strain_update(const Material& material, const SmallStrai
   SmallStrainResult out;
   out.plastic_strain = from.plastic_strain;
   out.tangent = isotropic(k, g);
-  if (const auto* j2 = std::get_if<J2Plasticity>(&material.strength)) {
+  if (std::holds_alternative<J2Plasticity>(material.strength) ||
+      std::holds_alternative<JohnsonCook>(material.strength)) {
     const double q_trial = von_mises(from.deviator + (2.0 * g) * de_dev);
-    const DeviatoricResult r = j2->update(s, de_dev, context);
+    const auto* j2 = std::get_if<J2Plasticity>(&material.strength);
+    const auto* jc = std::get_if<JohnsonCook>(&material.strength);
+    const DeviatoricResult r = j2 ? j2->update(s, de_dev, context) : jc->update(s, de_dev, context);
     if (r.plastic_strain_increment > 0.0) {
       out.plastic_strain += r.plastic_strain_increment;
+      double hardening = 0.0;  // d sigma_y / d eps_p at the end of the increment
+      if (j2) {
+        hardening = j2->hardening;
+      } else if (jc->B > 0.0) {
+        const double eps = out.plastic_strain, power = std::pow(eps, jc->n);
+        // (1 - T*^m) as the flow stress's ratio to its hardening factor A + B eps^n (> 0).
+        hardening = jc->B * jc->n * power / eps *
+                    (jc->flow_stress(eps, 0.0, context.temperature) / (jc->A + jc->B * power));
+      }
       const double theta = 1.0 - 3.0 * g * r.plastic_strain_increment / q_trial;
-      const double theta_bar = 1.0 / (1.0 + j2->hardening / (3.0 * g)) - (1.0 - theta);
+      const double theta_bar = 1.0 / (1.0 + hardening / (3.0 * g)) - (1.0 - theta);
       out.tangent = isotropic(k, theta * g);
       // n = s / |s| (s is s_trial scaled), |s| = sqrt(2/3) q.
       const std::array<double, 6> n = voigt((1.0 / (std::sqrt(2.0 / 3.0) * von_mises(s))) * s);

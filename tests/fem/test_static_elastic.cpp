@@ -1,7 +1,8 @@
 // The static solve of elastic hexahedra (fem/static_solve.hpp) against exact solutions: the
 // B-bar stiffness as the derivative of the nodal forces, the patch test on a distorted mesh,
 // a cantilever's tip deflection (Timoshenko beam), the thick cylinder under internal pressure
-// (Lame), and the refusals: an unheld body, a material without a tangent.
+// (Lame), trusses in parallel with hexahedra, and the refusals: an unheld body, a material
+// without a tangent, a truss that is not elastic.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -286,7 +287,7 @@ TEST(StaticSolve, UnheldBodyIsNamedWithItsFreeModes) {
 TEST(StaticSolve, StrengthModelWithoutTangentIsNamed) {
   MeshData mesh = box_mesh(core::BoxShape{{0, 0, 0}, {1, 1, 1}}, {1, 1, 1});
   core::Material m = steel();
-  m.strength = core::JohnsonCook{};
+  m.strength = core::DruckerPrager{};
   StaticProblem problem;
   problem.mesh = &mesh;
   problem.materials = {m};
@@ -296,7 +297,82 @@ TEST(StaticSolve, StrengthModelWithoutTangentIsNamed) {
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find("'steel'"), std::string::npos) << what;
-    EXPECT_NE(what.find("'johnson-cook'"), std::string::npos) << what;
+    EXPECT_NE(what.find("'drucker-prager'"), std::string::npos) << what;
+  }
+}
+
+// A bar 4 x 1 x 1 of hexahedra (steel, nu = 0.3) with a truss of aluminium (E = 70e3, area
+// 0.05) along each of its four long edges, each truss of four segments between the edge's
+// nodes; held by symmetry planes at x = 0, y = 0, z = 0 and pulled by F = 1000 spread evenly
+// over the four nodes of the end x = 4. Hand solution (uniaxial stress, the trusses in
+// parallel): the extension F L / (E A + 4 E_t A_t), the bar's stress E and the trusses' E_t
+// times the strain, all to 1e-10.
+TEST(StaticSolve, TrussesInParallelWithHexahedraAddTheirStiffness) {
+  const double length = 4.0, force = 1000.0, truss_e = 70e3, truss_area = 0.05;
+  MeshData mesh = box_mesh(core::BoxShape{{0, 0, 0}, {length, 1, 1}}, {4, 1, 1});
+  mesh.part_names = {"bar", "rebar"};
+  core::Material aluminium = steel();
+  aluminium.name = "aluminium";
+  aluminium.youngs_modulus = truss_e;
+  for (double y : {0.0, 1.0})
+    for (double z : {0.0, 1.0}) {
+      std::vector<std::int32_t> edge;  // the nodes on the edge, by x
+      for (std::size_t n = 0; n < mesh.nodes.size(); ++n)
+        if (mesh.nodes[n].y == y && mesh.nodes[n].z == z) edge.push_back(static_cast<int>(n));
+      std::sort(edge.begin(), edge.end(),
+                [&](int a, int b) { return mesh.nodes[a].x < mesh.nodes[b].x; });
+      ASSERT_EQ(edge.size(), 5u);
+      for (std::size_t i = 0; i + 1 < edge.size(); ++i) {
+        mesh.lines.push_back({edge[i], edge[i + 1]});
+        mesh.line_part.push_back(1);
+        mesh.line_area.push_back(truss_area);
+      }
+    }
+  StaticProblem problem;
+  problem.mesh = &mesh;
+  problem.materials = {steel(), aluminium};
+  for (std::int32_t n : test::node_set(mesh, "xmin")) problem.prescribed.push_back({n, 0, 0.0});
+  for (std::int32_t n : test::node_set(mesh, "ymin")) problem.prescribed.push_back({n, 1, 0.0});
+  for (std::int32_t n : test::node_set(mesh, "zmin")) problem.prescribed.push_back({n, 2, 0.0});
+  problem.nodal_forces.assign(mesh.nodes.size(), core::Vec3{});
+  for (std::int32_t n : test::node_set(mesh, "xmax")) problem.nodal_forces[n].x = force / 4.0;
+  const StaticResult r = solve_static(problem);
+
+  const double strain = force / (steel().youngs_modulus * 1.0 + 4.0 * truss_e * truss_area);
+  double extension = 0.0, bar = 0.0, truss = 0.0;
+  for (std::int32_t n : test::node_set(mesh, "xmax"))
+    extension = std::max(extension, std::abs(r.displacement[n].x / (strain * length) - 1.0));
+  for (const auto& element : r.stress)
+    for (const core::SymTensor& s : element)
+      bar = std::max(bar, std::abs(s.xx / (steel().youngs_modulus * strain) - 1.0));
+  for (double s : r.line_stress) truss = std::max(truss, std::abs(s / (truss_e * strain) - 1.0));
+  std::printf("trusses in parallel: extension error %.2e, bar stress %.2e, truss stress %.2e\n",
+              extension, bar, truss);
+  ASSERT_EQ(r.line_stress.size(), 16u);
+  EXPECT_LT(extension, 1e-10);
+  EXPECT_LT(bar, 1e-10);
+  EXPECT_LT(truss, 1e-10);
+}
+
+// A truss of a plastic material has no tangent here: refused, naming its part and material.
+TEST(StaticSolve, PlasticTrussIsRefused) {
+  MeshData mesh = box_mesh(core::BoxShape{{0, 0, 0}, {1, 1, 1}}, {1, 1, 1});
+  mesh.part_names = {"block", "rebar"};
+  mesh.lines.push_back({0, 1});
+  mesh.line_part.push_back(1);
+  mesh.line_area.push_back(0.1);
+  core::Material m = steel();
+  m.strength = core::J2Plasticity{250.0, 0.0};
+  StaticProblem problem;
+  problem.mesh = &mesh;
+  problem.materials = {steel(), m};
+  try {
+    solve_static(problem);
+    FAIL() << "no error";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'rebar'"), std::string::npos) << what;
+    EXPECT_NE(what.find("'steel'"), std::string::npos) << what;
   }
 }
 
