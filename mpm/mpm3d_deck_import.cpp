@@ -389,7 +389,7 @@ class Mpm3dImport {
       throw core::InputError(
           m.at, key_,
           "material type '" + m.type + "' has no afemp counterpart" +
-              (m.type == "neoh" ? " (neoh: neo-Hookean, awaited with issue 43)" : "") +
+              (m.type == "neoh" ? " (neoh: afemp has no neo-Hookean hyperelastic model yet)" : "") +
               "; translated: elas, pla1, pla2, john, sjc, sjcf, jcf, hiex, null, dpm");
     if (m.type == "hiex" || m.type == "null") {
       // No strength (DataIn.f90's SetMaterial; Constitution.f90's M3DM6 and M3DM7): the EOS
