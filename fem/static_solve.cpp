@@ -1,5 +1,6 @@
-// Newton-Raphson static solve of B-bar hexahedra (fem/static_solve.hpp): residual and
-// consistent tangent per Gauss point from core::small_strain_update, the tangent assembled on
+// Newton-Raphson static solve of B-bar and one-point hexahedra (fem/static_solve.hpp): residual
+// and consistent tangent per Gauss point from core::small_strain_update, the one-point elements'
+// hourglass stiffness fixed at the initial geometry (small strain), the tangent assembled on
 // the pattern of fem/sparse_assembly.hpp and factorised by CHOLMOD, whose ordering and symbolic
 // factorisation are computed once for the whole solve.
 #include "fem/static_solve.hpp"
@@ -15,6 +16,7 @@
 
 #include "core/materials/small_strain_tangent.hpp"
 #include "fem/hexahedron_full.hpp"
+#include "fem/hexahedron_one_point.hpp"
 #include "fem/hexahedron_stiffness.hpp"
 #include "fem/sparse_assembly.hpp"
 #include "fem/sparse_cholesky.hpp"
@@ -226,6 +228,11 @@ struct Body {
   int equations = 0;
   std::vector<core::Vec3> f_ext;  // at full load
   std::vector<FullHex> geometry;
+  // Per element, its index into one_point_geometry and hourglass, or -1 when fully integrated.
+  // A one-point element keeps its one point's state in slot 0 of converged, strain and current.
+  std::vector<int> one_point;
+  std::vector<OnePointHex> one_point_geometry;
+  std::vector<HourglassStiffness> hourglass;
   std::vector<std::array<core::SmallStrainPoint, 8>> converged;
   std::vector<std::array<core::SymTensor, 8>> strain;  // at the displacement last evaluated
   std::vector<std::array<core::SmallStrainResult, 8>> current;
@@ -247,6 +254,7 @@ struct Body {
   // The consistent mass of element e, m_ab = rho sum_g w_g N_a(x_g) N_b(x_g) (each component).
   std::array<std::array<double, 8>, 8> mass(std::size_t e) const;
   void commit();
+  int points(std::size_t e) const { return one_point[e] < 0 ? 8 : 1; }
   void write_states(std::vector<std::array<core::SymTensor, 8>>& stress,
                     std::vector<std::array<double, 8>>& plastic_strain,
                     std::vector<double>& line_stress) const;
@@ -267,6 +275,36 @@ Body::Body(const StaticProblem& p, const char* who, bool check_support)
   for (std::int32_t part : mesh.line_part) part_used[part] = 1;
   for (std::size_t part = 0; part < part_used.size(); ++part)
     if (part_used[part]) core::check_small_strain_tangent(problem.materials[part]);
+  if (!problem.hexahedra.empty() && problem.hexahedra.size() != mesh.part_names.size())
+    throw std::invalid_argument(std::string(who) + ": " + std::to_string(problem.hexahedra.size()) +
+                                " hexahedron formulations for " +
+                                std::to_string(mesh.part_names.size()) +
+                                " parts (one per part, or none for full integration)");
+  auto is_one_point = [&](std::int32_t part) {
+    return !problem.hexahedra.empty() &&
+           problem.hexahedra[part].element == core::HexFormulation::one_point;
+  };
+  std::vector<char> one_point_used(mesh.part_names.size(), 0);
+  for (std::int32_t part : mesh.hexahedron_part) one_point_used[part] = is_one_point(part);
+  for (std::size_t part = 0; part < one_point_used.size(); ++part) {
+    if (!one_point_used[part]) continue;
+    const core::HourglassSettings& hg = problem.hexahedra[part].hourglass;
+    const std::string head = std::string(who) + ": part '" + mesh.part_names[part] +
+                             "' has one-point hexahedra with the " + core::to_string(hg.form) +
+                             " hourglass form";
+    if (hg.form == core::HourglassForm::viscous)
+      throw std::invalid_argument(
+          head +
+          ", which resists only rates (the implicit solves take no hourglass damping) and so "
+          "leaves their hourglass modes without stiffness: a singular tangent. Use the stiffness "
+          "or assumed_strain hourglass form, or full integration (B-bar)");
+    if (!(hg.effective_coefficient() > 0.0))
+      throw std::invalid_argument(head +
+                                  format(" and coefficient %g", hg.effective_coefficient(), 0, 0) +
+                                  ", which leaves their hourglass modes without stiffness: a "
+                                  "singular tangent. Give it a positive coefficient, or use full "
+                                  "integration (B-bar)");
+  }
   for (std::int32_t part : mesh.line_part)
     if (!std::holds_alternative<core::Elastic>(problem.materials[part].strength))
       throw std::invalid_argument(std::string(who) + ": the trusses of part '" +
@@ -312,6 +350,12 @@ Body::Body(const StaticProblem& p, const char* who, bool check_support)
     if (min_jacobian(geometry[e]) <= 0.0)
       throw std::invalid_argument(std::string(who) + ": hexahedron " + std::to_string(e) +
                                   " has a non-positive Jacobian (tangled or inverted)");
+    const std::int32_t part = mesh.hexahedron_part[e];
+    one_point.push_back(is_one_point(part) ? static_cast<int>(hourglass.size()) : -1);
+    if (one_point.back() < 0) continue;
+    one_point_geometry.push_back(one_point_hex(x));
+    hourglass.push_back(hourglass_stiffness(x, one_point_geometry.back(), problem.materials[part],
+                                            problem.hexahedra[part].hourglass));
   }
   converged.resize(elements);
   strain.resize(elements);
@@ -337,8 +381,17 @@ void Body::internal_forces(const std::vector<core::Vec3>& at, std::vector<core::
     const Hexahedron& h = mesh.hexahedra[e];
     HexVectors ue, fe{};
     for (int a = 0; a < 8; ++a) ue[a] = at[h[a]];
-    std::array<core::SymTensor, 8> sigma;
     const core::Material& material = problem.materials[mesh.hexahedron_part[e]];
+    if (one_point[e] >= 0) {
+      const OnePointHex& geo = one_point_geometry[one_point[e]];
+      strain[e][0] = strain_one_point(geo, ue);
+      current[e][0] = core::small_strain_update(material, converged[e][0], strain[e][0]);
+      add_stress_forces(geo, current[e][0].stress, fe);  // -f_int
+      add_hourglass_forces(hourglass[one_point[e]], ue, fe);
+      for (int a = 0; a < 8; ++a) force[h[a]] += fe[a];
+      continue;
+    }
+    std::array<core::SymTensor, 8> sigma;
     for (int g = 0; g < 8; ++g) {
       strain[e][g] = strain_bbar(geometry[e], g, ue);
       current[e][g] = core::small_strain_update(material, converged[e][g], strain[e][g]);
@@ -375,10 +428,15 @@ std::array<std::array<double, 8>, 8> Body::mass(std::size_t e) const {
 void Body::assemble(SparseAssembly& assembly, double stiffness_factor, double mass_factor) const {
   assembly.clear();
   for (std::size_t e = 0; e < elements; ++e) {
-    std::array<core::VoigtMatrix, 8> d;
-    for (int g = 0; g < 8; ++g) d[g] = current[e][g].tangent;
     HexMatrix ke;
-    hexahedron_stiffness_bbar(geometry[e], d, ke);
+    if (one_point[e] >= 0) {
+      hexahedron_stiffness_one_point(one_point_geometry[one_point[e]], current[e][0].tangent, ke);
+      add_hourglass_stiffness_matrix(hourglass[one_point[e]], ke);
+    } else {
+      std::array<core::VoigtMatrix, 8> d;
+      for (int g = 0; g < 8; ++g) d[g] = current[e][g].tangent;
+      hexahedron_stiffness_bbar(geometry[e], d, ke);
+    }
     for (double& k : ke) k *= stiffness_factor;
     if (mass_factor != 0.0) {
       const auto m = mass(e);
@@ -405,7 +463,7 @@ void Body::assemble(SparseAssembly& assembly, double stiffness_factor, double ma
 
 void Body::commit() {
   for (std::size_t e = 0; e < elements; ++e)
-    for (int g = 0; g < 8; ++g)
+    for (int g = 0; g < points(e); ++g)
       converged[e][g] = {strain[e][g], current[e][g].stress.deviator(),
                          current[e][g].plastic_strain};
 }
@@ -417,8 +475,9 @@ void Body::write_states(std::vector<std::array<core::SymTensor, 8>>& stress,
   plastic_strain.resize(elements);
   for (std::size_t e = 0; e < elements; ++e)
     for (int g = 0; g < 8; ++g) {
-      stress[e][g] = current[e][g].stress;
-      plastic_strain[e][g] = current[e][g].plastic_strain;
+      const int p = points(e) == 1 ? 0 : g;
+      stress[e][g] = current[e][p].stress;
+      plastic_strain[e][g] = current[e][p].plastic_strain;
     }
   line_stress.resize(mesh.lines.size());
   for (std::size_t l = 0; l < mesh.lines.size(); ++l)
@@ -596,16 +655,25 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
     mass_times(v, ma);
     NewmarkState state{time, 0.0, 0.0};
     for (std::size_t n = 0; n < nodes; ++n) state.kinetic_energy += 0.5 * core::dot(v[n], ma[n]);
-    // Stored elastic energy p^2 / (2K) + s:s / (4G) per unit volume.
+    // Stored elastic energy p^2 / (2K) + s:s / (4G) per unit volume, and a one-point element's
+    // hourglass energy.
     for (std::size_t e = 0; e < body.elements; ++e) {
       const core::Material& m = problem.materials[problem.mesh->hexahedron_part[e]];
-      for (int g = 0; g < 8; ++g) {
+      const int one_point = body.one_point[e];
+      for (int g = 0; g < body.points(e); ++g) {
         const core::SymTensor& s = body.current[e][g].stress;
         const double p = s.trace() / 3.0;
         const core::SymTensor dev = s.deviator();
-        state.strain_energy +=
-            body.geometry[e].weight[g] * (p * p / (2.0 * m.bulk_modulus()) +
-                                          core::double_dot(dev, dev) / (4.0 * m.shear_modulus()));
+        const double volume =
+            one_point >= 0 ? body.one_point_geometry[one_point].volume : body.geometry[e].weight[g];
+        state.strain_energy += volume * (p * p / (2.0 * m.bulk_modulus()) +
+                                         core::double_dot(dev, dev) / (4.0 * m.shear_modulus()));
+      }
+      if (one_point >= 0) {
+        HexVectors ue;
+        for (int corner = 0; corner < 8; ++corner)
+          ue[corner] = u[problem.mesh->hexahedra[e][corner]];
+        state.strain_energy += hourglass_energy(body.hourglass[one_point], ue);
       }
     }
     for (std::size_t l = 0; l < problem.mesh->lines.size(); ++l)

@@ -1,5 +1,6 @@
-// Static (implicit) solve of a mesh of fully integrated B-bar hexahedra and elastic 2-node
-// trusses at small strain:
+// Static (implicit) solve of a mesh of hexahedra (fully integrated with B-bar, or one-point with
+// the stiffness of its hourglass form: fem/hexahedron_stiffness.hpp) and elastic 2-node trusses
+// at small strain:
 // Newton-Raphson with the consistent tangent (core/materials/small_strain_tangent.hpp), a line
 // search and load stepping, the tangent factorised by CHOLMOD (fem/sparse_cholesky.hpp; the
 // tangents here are symmetric, so no unsymmetric solver is needed yet). Each iteration's
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "afemp/material.hpp"
+#include "afemp/scene.hpp"
 #include "afemp/tensor.hpp"
 #include "fem/mesh.hpp"
 
@@ -38,10 +40,21 @@ struct PressureFace {
   double pressure = 0.0;
 };
 
+// How a part's hexahedra integrate, as the explicit solver's bodies say it
+// (core::BodySpec::element, core::BodySpec::hourglass). One-point elements need a hourglass form
+// with stiffness (stiffness or assumed_strain, with a positive coefficient): the viscous form
+// resists only rates, and the implicit solves take no hourglass damping, so it is refused.
+struct HexahedronFormulation {
+  core::HexFormulation element = core::HexFormulation::full;
+  core::HourglassSettings hourglass{};  // one-point elements
+};
+
 // Everything at full load (load factor 1); load step s of n applies the factor s / n.
 struct StaticProblem {
   const MeshData* mesh = nullptr;         // hexahedra and lines (trusses)
   std::vector<core::Material> materials;  // one per part, mesh->part_names order
+  // One per part as materials, or empty: every hexahedron fully integrated (B-bar).
+  std::vector<HexahedronFormulation> hexahedra;
   std::vector<PrescribedDisplacement> prescribed;
   std::vector<core::Vec3> nodal_forces;  // one per node, or empty
   std::vector<PressureFace> pressures;
@@ -75,7 +88,8 @@ struct NewtonIteration {
 
 struct StaticResult {
   std::vector<core::Vec3> displacement;  // per node
-  // Per hexahedron, per Gauss point (fem/hexahedron_full.hpp's order).
+  // Per hexahedron, per Gauss point (fem/hexahedron_full.hpp's order); a one-point element's
+  // single point in all eight.
   std::vector<std::array<core::SymTensor, 8>> stress;
   std::vector<std::array<double, 8>> plastic_strain;
   std::vector<double> line_stress;  // per line (truss), axial
@@ -83,7 +97,8 @@ struct StaticResult {
 };
 
 // Throws std::invalid_argument for a problem it cannot solve (a material without a tangent,
-// named; a truss of a material that is not elastic, or without an area; bad indices), and
+// named; a truss of a material that is not elastic, or without an area; one-point hexahedra
+// without hourglass stiffness, naming the part and the form; bad indices), and
 // std::runtime_error for a body whose rigid-body modes the prescribed dofs leave free (naming the
 // body's parts and the modes), a tangent that is not positive definite (naming the node and
 // component) and a load step that does not converge (naming the step, the iteration and the
@@ -97,7 +112,7 @@ StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& se
 // alpha in [-1/3, 0) damps the high frequencies, second order still (Hughes 2000, sec. 9.3).
 // Each time step is solved by Newton (with the line search) on the effective tangent
 // (1 + alpha) K_t + M / (beta dt^2); M is the consistent mass rho integral N_a N_b dV of the
-// 2x2x2 Gauss points (not the explicit solver's lumped mass).
+// 2x2x2 Gauss points (one-point elements too; not the explicit solver's lumped mass).
 struct NewmarkSettings {
   double time_step = 0.0;
   int steps = 0;
@@ -116,7 +131,8 @@ struct NewmarkSettings {
 struct NewmarkState {
   double time = 0.0;
   double kinetic_energy = 0.0;  // v . M v / 2
-  double strain_energy = 0.0;   // stored elastic energy, p^2 / 2K + s:s / 4G integrated
+  double strain_energy = 0.0;   // stored elastic energy, p^2 / 2K + s:s / 4G integrated, and
+                                // one-point elements' hourglass energy
 };
 
 // The problem's loads act fully and constantly from t = 0 (no load steps).
