@@ -9,7 +9,9 @@
 //   (analysis/shaped_charge_per.hpp, docs/explosives.md "The PER estimate": Gurney collapse
 //   velocities, Taylor's deflection, the steady collapse of Pugh, Eichelberger & Rostoker
 //   1952): 7.70 km/s. Within 15 % at every cell size, and converged: each finer run within 3 %
-//   of the coarser (0.75 -> 0.6 -> 0.5 mm). The tip velocity is that of the head of the
+//   of the coarser (0.75 -> 0.6 -> 0.5 mm). V9 is not met for all that: at 0.4 mm (not run
+//   here: about an hour) the head falls 4.2 % further, to -17.2 % of the estimate
+//   (examples/shaped_charge/README.md). The tip velocity is that of the head of the
 //   coherent jet at 20 us: scanning the jet (the liner's particles within 3 mm of the axis) in
 //   1 mm slices from its front back, the first two neighbouring slices that each hold at least
 //   0.02 % of the liner's mass per mm; their mass-weighted mean axial velocity. Ahead of the
