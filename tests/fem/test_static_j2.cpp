@@ -88,6 +88,14 @@ void expect_tangent_matches_differences(const core::Material& m) {
   }
 }
 
+// A block on symmetry planes x, y, z = 0, its face x = 1 moved to `strain` (uniaxial stress).
+void hold_uniaxial(const MeshData& mesh, double strain, StaticProblem& problem) {
+  for (std::int32_t n : test::node_set(mesh, "xmin")) problem.prescribed.push_back({n, 0, 0.0});
+  for (std::int32_t n : test::node_set(mesh, "ymin")) problem.prescribed.push_back({n, 1, 0.0});
+  for (std::int32_t n : test::node_set(mesh, "zmin")) problem.prescribed.push_back({n, 2, 0.0});
+  for (std::int32_t n : test::node_set(mesh, "xmax")) problem.prescribed.push_back({n, 0, strain});
+}
+
 TEST(StaticJ2, ConsistentTangentMatchesFiniteDifferences) {
   expect_tangent_matches_differences(j2_steel(2000.0));
 }
@@ -118,10 +126,7 @@ TEST(StaticJohnsonCook, UniaxialStressFollowsItsCurve) {
   StaticProblem problem;
   problem.mesh = &mesh;
   problem.materials = {m};
-  for (std::int32_t n : test::node_set(mesh, "xmin")) problem.prescribed.push_back({n, 0, 0.0});
-  for (std::int32_t n : test::node_set(mesh, "ymin")) problem.prescribed.push_back({n, 1, 0.0});
-  for (std::int32_t n : test::node_set(mesh, "zmin")) problem.prescribed.push_back({n, 2, 0.0});
-  for (std::int32_t n : test::node_set(mesh, "xmax")) problem.prescribed.push_back({n, 0, strain});
+  hold_uniaxial(mesh, strain, problem);
   NewtonSettings settings;
   settings.load_steps = 5;
   const StaticResult r = solve_static(problem, settings);
@@ -153,10 +158,7 @@ TEST(StaticJ2, UniaxialStressFollowsTheBilinearCurve) {
   StaticProblem problem;
   problem.mesh = &mesh;
   problem.materials = {m};
-  for (std::int32_t n : test::node_set(mesh, "xmin")) problem.prescribed.push_back({n, 0, 0.0});
-  for (std::int32_t n : test::node_set(mesh, "ymin")) problem.prescribed.push_back({n, 1, 0.0});
-  for (std::int32_t n : test::node_set(mesh, "zmin")) problem.prescribed.push_back({n, 2, 0.0});
-  for (std::int32_t n : test::node_set(mesh, "xmax")) problem.prescribed.push_back({n, 0, strain});
+  hold_uniaxial(mesh, strain, problem);
   NewtonSettings settings;
   settings.load_steps = 5;
   const StaticResult r = solve_static(problem, settings);
