@@ -12,6 +12,7 @@
 #include "analysis/reference_checks.hpp"
 #include "core/contact_warnings.hpp"
 #include "core/parallel.hpp"
+#include "core/phases.hpp"
 #include "core/plausibility.hpp"
 #include "core/resource_guard.hpp"
 #include "core/scene.hpp"
@@ -75,6 +76,7 @@ struct Simulation::Impl {
     run.stop_requested = options.stop_requested;
     run.checkpoint_requested = options.checkpoint_requested;
     run.restart_from = options.restart_from;
+    run.phase_log = options.phase_log;
     loop = std::make_unique<core::TimeLoop>(*model, scene, run);
   }
 
@@ -149,7 +151,7 @@ const Scene& Simulation::scene() const {
   return impl_->scene;
 }
 std::string Simulation::describe() const {
-  return impl_->model->describe();
+  return core::describe_phases(impl_->scene) + impl_->model->describe();
 }
 double Simulation::stable_time_step() const {
   return impl_->model->stable_time_step();
@@ -179,7 +181,7 @@ RunEstimate Simulation::estimate() const {
   const Scene& scene = impl_->scene;
   RunEstimate e;
   e.time_step = model.stable_time_step();
-  e.steps = scene.run.end_time / e.time_step;
+  e.steps = (scene.run.end_time - core::explicit_start(scene)) / e.time_step;
   e.planned_steps = core::planned_steps(scene, e.time_step);
   e.points = model.particle_count() + model.element_count();
   e.bytes = model.bytes();

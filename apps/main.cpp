@@ -9,6 +9,7 @@
 #include <csignal>
 #include <cstdio>
 #include <exception>
+#include <iostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -95,6 +96,7 @@ int run(const std::string& path, std::string out_dir, const std::string& restart
   options.progress_seconds = progress.interval();
   options.stop_requested = [] { return interrupt_signal() != 0; };
   options.checkpoint_requested = [] { return take_checkpoint_request(); };
+  options.phase_log = &std::cout;
   // Started below, once the warnings and the plan are printed: what start() throws is the
   // run's (an output directory that cannot be written), reported as the run's.
   options.defer_start = true;

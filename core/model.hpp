@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <iosfwd>
 #include <span>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "afemp/energies.hpp"
 #include "afemp/probes.hpp"
 #include "afemp/run.hpp"
+#include "afemp/scene.hpp"
 #include "afemp/tensor.hpp"
 #include "core/output/field_writer.hpp"
 
@@ -41,6 +43,14 @@ struct EnergyColumn {
 struct BodyPoints {
   std::vector<Vec3> position;
   std::vector<double> half_size;
+};
+
+// What a static phase did (Model::run_static_phase), for the run's log.
+struct StaticPhaseOutcome {
+  std::size_t nodes = 0, elements = 0;
+  int load_steps = 0, iterations = 0;  // Newton iterations over all load steps
+  double residual = 0.0;               // the last iteration's, over its force scale
+  double work = 0.0;                   // the loads' work, stored in the state
 };
 
 class Model {
@@ -109,6 +119,12 @@ class Model {
   // next through `archive`, or restores it into a model built from the same scene. Events must
   // have been taken (take_events) before saving.
   virtual void state(StateArchive& archive) = 0;
+  // The scene's static phase (core/phases.hpp), before any step: solves the equilibrium of the
+  // mesh bodies it names, takes the solution as the model's state and sets the clock to the
+  // phase's end. Each Newton iteration is printed to `log` when set. Throws InputError for
+  // what the solve cannot take and SimulationError when no equilibrium is found. A model
+  // without meshes has nothing a static phase solves (check_scene refuses such a scene).
+  virtual StaticPhaseOutcome run_static_phase(const PhaseSpec& phase, std::ostream* log);
 };
 
 // The energies of a contact that books its impulses' work as the sliding energy: Energies::sliding

@@ -11,6 +11,7 @@
 
 #include "core/far_field_refusals.hpp"
 #include "core/materials/initial_pressure.hpp"
+#include "core/phases.hpp"
 #include "core/scene.hpp"
 #include "core/scene_parser.hpp"
 #include "core/scene_ranges.hpp"
@@ -556,6 +557,8 @@ void check_scene(const Scene& scene) {
     c.range({}, "run.terminate.travel", scene.run.terminate->travel,
             scene_ranges::run::terminate_travel);
   }
+  check_phases(scene, [&](const SourceLocation& where, const std::string& key,
+                          const std::string& message) { c.fail(where, key, message); });
 }
 
 }  // namespace afemp::core

@@ -16,6 +16,7 @@
 #include "core/far_field_refusals.hpp"
 #include "core/materials/initial_pressure.hpp"
 #include "core/materials/model_parameters.hpp"
+#include "core/phases.hpp"
 #include "core/scene_ranges.hpp"
 
 namespace afemp::core::scene_detail {
@@ -1918,6 +1919,40 @@ void read_terminate(TableReader& r, Scene& scene, const std::string& path) {
   }
 }
 
+// [[phases]] (core/phases.hpp): each entry's keys, then the sequence and the bodies, checked
+// as check_scene checks a scene built in code. The last phase's end_time defaults to [run]'s.
+void read_phases(TableReader& r, Scene& scene, const std::string& path) {
+  std::size_t count = 0;
+  if (r.has("phases"))
+    if (const toml::array* a = r.table().get("phases")->as_array()) count = a->size();
+  read_table_array(r, "phases", path, [&](TableReader& t) {
+    PhaseSpec p;
+    p.where = t.where();
+    p.kind = t.choice("kind", {"static", "explicit"}, std::nullopt) == 0
+                 ? PhaseKind::static_load
+                 : PhaseKind::explicit_dynamics;
+    const bool last = scene.phases.size() + 1 == count;
+    p.end_time = last ? t.number("end_time", scene.run.end_time, scene_ranges::run::end_time)
+                      : t.required_number("end_time", scene_ranges::run::end_time);
+    if (p.kind == PhaseKind::static_load) {
+      namespace ranges = scene_ranges::phase;
+      p.load_steps = static_cast<int>(
+          t.integer("load_steps", p.load_steps, ranges::load_steps.lo, ranges::load_steps.hi));
+      p.max_iterations =
+          static_cast<int>(t.integer("max_iterations", p.max_iterations, ranges::max_iterations.lo,
+                                     ranges::max_iterations.hi));
+      p.tolerance = t.number("tolerance", p.tolerance, ranges::tolerance);
+      p.gravity = t.optional_vec3("gravity");
+      for (const std::string& name : t.strings("bodies"))
+        p.bodies.push_back(body_index(t, "bodies", name, scene, false));
+    }
+    t.check_unknown();
+    scene.phases.push_back(std::move(p));
+  });
+  check_phases(scene, [](const SourceLocation& where, const std::string& key,
+                         const std::string& message) { throw InputError(where, key, message); });
+}
+
 // Constraints, absorbing boundaries and walls without bodies act on mesh nodes.
 void check_mesh_conditions(const Scene& scene, const std::string& path) {
   if ((!scene.constraints.empty() || !scene.absorbing.empty()) && !has_mesh(scene))
@@ -2008,7 +2043,7 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
   scene.path = path;
   TableReader r(root, "", path);
   r.known({"run", "grid", "mpm", "materials", "bodies", "constraints", "absorbing", "walls",
-           "contact", "reference", "probes", "detonations"});
+           "contact", "reference", "probes", "detonations", "phases"});
   r.check_unknown();
 
   {
@@ -2057,6 +2092,7 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
   }
   read_table_array(r, "probes", path,
                    [&](TableReader& t) { scene.probes.push_back(read_probe(t, scene)); });
+  read_phases(r, scene, path);
   return scene;
 }
 

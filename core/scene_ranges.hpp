@@ -54,6 +54,12 @@ inline constexpr Count checkpoint_keep{1, 1000};
 inline constexpr Range terminate_travel = kPositive;
 }  // namespace run
 
+namespace phase {  // [[phases]] (core/phases.cpp)
+inline constexpr Count load_steps{1, 100000};
+inline constexpr Count max_iterations{1, 1000};
+inline constexpr Range tolerance{0.0, 1e-2, true, false};  // (0, 0.01]
+}  // namespace phase
+
 namespace grid {
 inline constexpr Range cell = kPositive;
 inline constexpr Range far_field_pressure = kNonNegative;

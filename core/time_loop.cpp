@@ -24,6 +24,7 @@
 #include "core/fault_injection.hpp"
 #include "core/output/history.hpp"
 #include "core/output/run_directory.hpp"
+#include "core/phases.hpp"
 #include "core/probe_recorder.hpp"
 #include "core/state_archive.hpp"
 
@@ -210,6 +211,34 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
   if (scene_.run.checkpoint_every > 0.0) next_checkpoint_ = scene_.run.checkpoint_every;
   if (scene_.run.checkpoint_wall_every > 0.0)
     next_checkpoint_wall_ = scene_.run.checkpoint_wall_every;
+  static_pending_ = static_phase(scene_) != nullptr;
+}
+
+void TimeLoop::run_static_phase(const PhaseSpec& phase) {
+  try {
+    model_.run_static_phase(phase, options_.phase_log);
+  } catch (const SimulationError&) {
+    keep_failure();
+    throw;
+  }
+  const RunSettings& rs = scene_.run;
+  const double t = model_.time();
+  last_time_ = t;
+  dt_ = model_.stable_time_step();
+  record(0.0);
+  probes_->sample(model_, true);
+  if (frames_) model_.write_fields(*frames_);
+  // The explicit phase's frames, rows and checkpoints fall due from here on, not at the times
+  // the static phase passed over.
+  if (rs.output_every > 0.0)
+    while (next_output_ <= t * (1.0 + 1e-9)) next_output_ += rs.output_every;
+  while (next_listed_ < rs.output_times.size() && rs.output_times[next_listed_] <= t * (1.0 + 1e-9))
+    ++next_listed_;
+  if (rs.history_interval > 0.0)
+    while (next_history_ <= t * (1.0 + 1e-9)) next_history_ += rs.history_interval;
+  if (rs.checkpoint_every > 0.0)
+    while (next_checkpoint_ <= t * (1.0 + 1e-9)) next_checkpoint_ += rs.checkpoint_every;
+  if (!options_.output_directory.empty()) checkpoint("the end of the static phase");
 }
 
 TimeLoop::~TimeLoop() = default;
@@ -266,6 +295,11 @@ bool TimeLoop::finished() const {
 }
 
 void TimeLoop::step(double until) {
+  if (static_pending_) {
+    static_pending_ = false;
+    run_static_phase(*static_phase(scene_));
+    return;
+  }
   const RunSettings& rs = scene_.run;
   const double end = rs.end_time;
   until = std::min(until, end);

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstddef>
 #include <functional>
+#include <iosfwd>
 #include <memory>
 #include <optional>
 #include <span>
@@ -40,6 +41,9 @@ struct RunOptions {
   // lengths then (rows, probe samples and frames written after it are dropped and written
   // again). Throws CheckpointError naming the scene keys that changed, if any.
   std::string restart_from;
+  // The static phase's Newton iterations are printed here, one line each, when set (they are
+  // written to OUTPUT/static_phase.csv in any case).
+  std::ostream* phase_log = nullptr;
 };
 
 class EventFiles;
@@ -60,7 +64,9 @@ class TimeLoop {
   TimeLoop& operator=(const TimeLoop&) = delete;
   // Whether the run has reached scene.run.end_time, max_steps or [run] terminate.
   bool finished() const;
-  // One step at the stable step, cut to land on `until` (at most the end time).
+  // One step at the stable step, cut to land on `until` (at most the end time). A scene's
+  // static phase is the first step, whole whatever `until` says: the model then stands at
+  // the phase's end.
   void step(double until);
   // Steps until finished(), calling after_step after each step, or until
   // RunOptions::stop_requested answers true before a step (the run is then stopped).
@@ -82,6 +88,9 @@ class TimeLoop {
 
  private:
   void restore(const std::string& path);
+  // The scene's static phase (core/phases.hpp), the first step: the model solves it, and its
+  // state at the phase's end gets a history row, a frame and a checkpoint.
+  void run_static_phase(const PhaseSpec& phase);
   void visit(StateArchive& archive);
   double elapsed() const;
   Vec3 mean_velocity(const Energies& e) const;
@@ -120,7 +129,8 @@ class TimeLoop {
   double next_checkpoint_wall_ = 1e300;
   int checkpoints_written_ = 0;
   long restarted_at_ = 0;
-  bool stopped_ = false;  // RunOptions::stop_requested ended run()
+  bool stopped_ = false;         // RunOptions::stop_requested ended run()
+  bool static_pending_ = false;  // the scene's static phase is the next step
 };
 
 }  // namespace afemp::core

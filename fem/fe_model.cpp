@@ -184,7 +184,13 @@ std::vector<core::EventLog> FeModel::take_events() {
                   ev.energy, ev.mass);
     log.rows.emplace_back(buf);
   }
-  return {log};
+  std::vector<core::EventLog> out{log};
+  if (!static_rows_.empty()) {
+    out.push_back(
+        {"static_phase.csv", "load_step,iteration,residual,force_scale,energy,step_length", {}});
+    out.back().rows.swap(static_rows_);
+  }
+  return out;
 }
 
 std::vector<std::string> FeModel::summary_warnings() const {

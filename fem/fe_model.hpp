@@ -68,11 +68,16 @@ class FeModel final : public core::Model {
     return fem::points_inside(solver_.hexahedra(), solver_.nodes().position, body, points);
   }
   void state(core::StateArchive& archive) override;
+  // fem/static_phase.cpp.
+  core::StaticPhaseOutcome run_static_phase(const core::PhaseSpec& phase,
+                                            std::ostream* log) override;
 
  private:
   const core::Scene& scene_;
   FeSolver solver_;
   long hourglass_warning_step_ = -1;
+  // The static phase's Newton iterations, for static_phase.csv (taken with the events).
+  std::vector<std::string> static_rows_;
   std::vector<long> eroded_;  // elements eroded so far, per body (counted in take_events)
   // Derived fields, per frame.
   std::vector<core::Vec3> displacement_;

@@ -36,6 +36,8 @@ namespace afemp::fem {
 
 template <class Strength, class Eos, bool Thermal, bool Fails>
 class HexahedronPasses;  // hexahedron_passes.hpp
+struct StaticPhaseMap;   // static_phase.hpp
+struct StaticResult;     // static_solve.hpp
 
 using core::Vec3;
 
@@ -187,6 +189,14 @@ class FeSolver {
   void push_contact_impulse(std::size_t i, double w, const Vec3& n, const Vec3& impulse);
   void settle_contact_impulses(double dt);
 
+  // The travel each imposed velocity component gives its node over [t0, t1]: the integral of
+  // the constraint's velocity times its curve (nodal_update.cpp); 0 for free components.
+  std::vector<Vec3> imposed_travel(double t0, double t1) const;
+  // A static phase's solution as the state at `time` (fem/static_phase.cpp): the nodes of the
+  // problem map moved by their displacement, its points' stresses, plastic strains and work,
+  // the hourglass forces and element forces of that state, and the work as external work,
+  // which it returns.
+  double take_static_state(const StaticPhaseMap& map, const StaticResult& result, double time);
   // Saves or restores the solver's state (a checkpoint, core/state_archive.hpp; fe_state.cpp).
   // Restoring needs a solver built from the same scene; events must have been taken.
   void state(core::StateArchive& archive);

@@ -134,14 +134,21 @@ HourglassStiffness hourglass_stiffness(const HexVectors& x, const OnePointHex& e
   return s;
 }
 
-void add_hourglass_forces(const HourglassStiffness& s, const HexVectors& u, HexVectors& f) {
+std::array<core::Vec3, 4> hourglass_generalised_forces(const HourglassStiffness& s,
+                                                       const HexVectors& u) {
   const std::array<double, 12> q = hourglass_displacements(s, u);
+  std::array<core::Vec3, 4> g{};
   for (int k = 0; k < 4; ++k)
-    for (int i = 0; i < 3; ++i) {
-      double g = 0.0;
-      for (int p = 0; p < 12; ++p) g += s.h[12 * (3 * k + i) + p] * q[p];
-      for (int a = 0; a < 8; ++a) f[a][i] -= s.gamma[k][a] * g;
-    }
+    for (int i = 0; i < 3; ++i)
+      for (int p = 0; p < 12; ++p) g[k][i] += s.h[12 * (3 * k + i) + p] * q[p];
+  return g;
+}
+
+void add_hourglass_forces(const HourglassStiffness& s, const HexVectors& u, HexVectors& f) {
+  const std::array<core::Vec3, 4> g = hourglass_generalised_forces(s, u);
+  for (int k = 0; k < 4; ++k)
+    for (int i = 0; i < 3; ++i)
+      for (int a = 0; a < 8; ++a) f[a][i] -= s.gamma[k][a] * g[k][i];
 }
 
 void add_hourglass_stiffness_matrix(const HourglassStiffness& s, HexMatrix& k) {

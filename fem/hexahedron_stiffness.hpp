@@ -59,6 +59,11 @@ HourglassStiffness hourglass_stiffness(const HexVectors& x, const OnePointHex& e
                                        const core::Material& material,
                                        const core::HourglassSettings& settings);
 
+// The generalised forces g_k,i of the displacements u (global axes): the explicit stiffness
+// form's state Q_k (fem/hourglass.hpp), and the assumed strain form's in global axes.
+std::array<core::Vec3, 4> hourglass_generalised_forces(const HourglassStiffness& s,
+                                                       const HexVectors& u);
+
 // f -= the hourglass forces of the displacements u (as add_stress_forces, external minus
 // internal).
 void add_hourglass_forces(const HourglassStiffness& s, const HexVectors& u, HexVectors& f);

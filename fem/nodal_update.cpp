@@ -94,6 +94,27 @@ void FeSolver::apply_velocity_curves(double t) {
   }
 }
 
+std::vector<Vec3> FeSolver::imposed_travel(double t0, double t1) const {
+  std::vector<Vec3> travel(nodes_.size());
+  for (std::size_t n = 0; n < nodes_.size(); ++n)
+    for (int a = 0; a < 3; ++a)
+      if (nodes_.imposed[n] & (1u << a)) travel[n][a] = nodes_.imposed_velocity[n][a] * (t1 - t0);
+  for (const VelocityCurve& vc : velocity_curves_) {
+    // The factor is linear between the curve's points and constant beyond its ends: the
+    // trapezoidal rule over [t0, t1] cut at the points is exact.
+    std::vector<double> at{t0};
+    for (const auto& point : vc.curve)
+      if (point[0] > t0 && point[0] < t1) at.push_back(point[0]);
+    at.push_back(t1);
+    double integral = 0.0;
+    for (std::size_t k = 1; k < at.size(); ++k)
+      integral += 0.5 * (at[k] - at[k - 1]) *
+                  (core::curve_factor(vc.curve, at[k - 1]) + core::curve_factor(vc.curve, at[k]));
+    for (const auto& [n, a] : vc.components) travel[n][a] = vc.velocity[a] * integral;
+  }
+  return travel;
+}
+
 void FeSolver::begin_step(double dt) {
   // A curved prescribed velocity takes its value at the step's mid-time, the time of the
   // v^{n+1/2} that moves the nodes.

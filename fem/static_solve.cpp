@@ -236,11 +236,16 @@ struct Body {
   std::vector<std::array<core::SmallStrainPoint, 8>> converged;
   std::vector<std::array<core::SymTensor, 8>> strain;  // at the displacement last evaluated
   std::vector<std::array<core::SmallStrainResult, 8>> current;
+  // Per point, the stress of the last converged state and the work per unit volume int sigma :
+  // d eps taken to it, by the trapezoidal rule over the converged states.
+  std::vector<std::array<core::SymTensor, 8>> committed_stress;
+  std::vector<std::array<double, 8>> work;
   std::vector<core::Vec3> line_axis;   // unit, initial
   std::vector<double> line_length;     // initial
   std::vector<double> line_stiffness;  // E A / L0
   std::vector<double> line_mass;       // rho A L0
   std::vector<double> line_strain;     // at the displacement last evaluated
+  std::vector<double> line_committed_strain, line_committed_stress, line_work;  // as above
 
   // Validates the problem (`who` starts the messages); a static solve also needs the body held
   // against its rigid-body modes.
@@ -258,6 +263,9 @@ struct Body {
   void write_states(std::vector<std::array<core::SymTensor, 8>>& stress,
                     std::vector<std::array<double, 8>>& plastic_strain,
                     std::vector<double>& line_stress) const;
+  // The work per unit volume of each point and line, and each one-point element's stored
+  // hourglass energy at displacement u.
+  void write_work(const std::vector<core::Vec3>& u, StaticWork& out) const;
 };
 
 Body::Body(const StaticProblem& p, const char* who, bool check_support)
@@ -360,6 +368,8 @@ Body::Body(const StaticProblem& p, const char* who, bool check_support)
   converged.resize(elements);
   strain.resize(elements);
   current.resize(elements);
+  committed_stress.resize(elements);
+  work.assign(elements, {});
   for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
     const core::Vec3 d = mesh.nodes[mesh.lines[l][1]] - mesh.nodes[mesh.lines[l][0]];
     const double length = core::norm(d), area = mesh.line_area[l];
@@ -373,6 +383,9 @@ Body::Body(const StaticProblem& p, const char* who, bool check_support)
     line_mass.push_back(m.density * area * length);
   }
   line_strain.assign(mesh.lines.size(), 0.0);
+  line_committed_strain.assign(mesh.lines.size(), 0.0);
+  line_committed_stress.assign(mesh.lines.size(), 0.0);
+  line_work.assign(mesh.lines.size(), 0.0);
 }
 
 void Body::internal_forces(const std::vector<core::Vec3>& at, std::vector<core::Vec3>& force) {
@@ -463,9 +476,33 @@ void Body::assemble(SparseAssembly& assembly, double stiffness_factor, double ma
 
 void Body::commit() {
   for (std::size_t e = 0; e < elements; ++e)
-    for (int g = 0; g < points(e); ++g)
+    for (int g = 0; g < points(e); ++g) {
+      work[e][g] += 0.5 * core::double_dot(committed_stress[e][g] + current[e][g].stress,
+                                           strain[e][g] - converged[e][g].strain);
+      committed_stress[e][g] = current[e][g].stress;
       converged[e][g] = {strain[e][g], current[e][g].stress.deviator(),
                          current[e][g].plastic_strain};
+    }
+  for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
+    const double stress = problem.materials[mesh.line_part[l]].youngs_modulus * line_strain[l];
+    line_work[l] +=
+        0.5 * (line_committed_stress[l] + stress) * (line_strain[l] - line_committed_strain[l]);
+    line_committed_stress[l] = stress;
+    line_committed_strain[l] = line_strain[l];
+  }
+}
+
+void Body::write_work(const std::vector<core::Vec3>& u, StaticWork& out) const {
+  out.points.resize(elements);
+  out.hourglass.assign(elements, 0.0);
+  for (std::size_t e = 0; e < elements; ++e) {
+    for (int g = 0; g < 8; ++g) out.points[e][g] = work[e][points(e) == 1 ? 0 : g];
+    if (one_point[e] < 0) continue;
+    HexVectors ue;
+    for (int a = 0; a < 8; ++a) ue[a] = u[mesh.hexahedra[e][a]];
+    out.hourglass[e] = hourglass_energy(hourglass[one_point[e]], ue);
+  }
+  out.lines = line_work;
 }
 
 void Body::write_states(std::vector<std::array<core::SymTensor, 8>>& stress,
@@ -607,6 +644,7 @@ StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& se
   }
   out.displacement = u;
   body.write_states(out.stress, out.plastic_strain, out.line_stress);
+  body.write_work(u, out.work);
   return out;
 }
 

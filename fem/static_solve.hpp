@@ -86,6 +86,19 @@ struct NewtonIteration {
   double step_length = 0.0;
 };
 
+// The work the loads did on the body, as its points and hourglass forms took it: per point the
+// stress work per unit (initial) volume int sigma : d eps, by the trapezoidal rule over the
+// converged load steps (exact for an elastic body; the plastic work of a point follows to the
+// same order), per truss the same of its axial stress and strain, and per one-point hexahedron
+// the energy stored in its hourglass stiffness (0 for the fully integrated). Summed with the
+// volumes, it is the strain energy plus the plastic work the state holds, and at equilibrium the
+// work of the loads and reactions.
+struct StaticWork {
+  std::vector<std::array<double, 8>> points;  // per hexahedron, per Gauss point (as stress)
+  std::vector<double> lines;
+  std::vector<double> hourglass;
+};
+
 struct StaticResult {
   std::vector<core::Vec3> displacement;  // per node
   // Per hexahedron, per Gauss point (fem/hexahedron_full.hpp's order); a one-point element's
@@ -93,6 +106,7 @@ struct StaticResult {
   std::vector<std::array<core::SymTensor, 8>> stress;
   std::vector<std::array<double, 8>> plastic_strain;
   std::vector<double> line_stress;  // per line (truss), axial
+  StaticWork work;
   std::vector<NewtonIteration> iterations;
 };
 

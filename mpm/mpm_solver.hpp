@@ -46,6 +46,9 @@ class MpmSolver {
   const core::BackgroundGrid& grid() const { return grid_; }
   long step_count() const { return steps_; }
   double time() const { return time_; }
+  // Before the first step: the clock starts at `time` (a static phase ran the meshes to it,
+  // holding the particles).
+  void set_clock(double time) { time_ = time; }
 
   // Stable step: factor * h / (max_p c_p + max_p |v_p|), or the scene's fixed step.
   double stable_time_step() const;

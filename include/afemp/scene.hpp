@@ -466,6 +466,32 @@ struct DetonationSpec {
   SourceLocation where{};
 };
 
+/// What a [[phases]] entry computes (docs/scene-format.md, "Phases").
+/// static: the equilibrium of the loads at the phase's end (an implicit Newton solve of the
+/// meshes, fem/static_phase.hpp), reached in load steps; explicit: the explicit dynamics of the
+/// whole scene, as a scene without phases runs.
+enum class PhaseKind { static_load, explicit_dynamics };
+const char* to_string(PhaseKind k);
+
+/// One [[phases]] entry. The phases run in order on one clock: each from the end of the one
+/// before (the first from 0) to its end_time; the last ends at [run] end_time. Today a scene
+/// has at most one static phase, first, then the explicit phase (core/phases.cpp says why).
+struct PhaseSpec {
+  PhaseKind kind = PhaseKind::explicit_dynamics;
+  double end_time = 0.0;
+  /// static: the loads reach their full value in load_steps equal steps, each solved by Newton
+  /// to |r| <= tolerance x the force scale in at most max_iterations iterations.
+  int load_steps = 10;
+  int max_iterations = 25;
+  double tolerance = 1e-8;
+  /// static: the phase's gravity; unset: [run] gravity.
+  std::optional<Vec3> gravity{};
+  /// static: the mesh bodies it solves (indices into Scene::bodies); empty: every deformable
+  /// mesh body not bonded to particles. The others are held where they are.
+  std::vector<int> bodies{};
+  SourceLocation where{};
+};
+
 /// Everything a run needs. Bodies, constraints, walls, contacts and references refer to materials
 /// and bodies by index into the vectors here.
 struct Scene {
@@ -490,6 +516,8 @@ struct Scene {
   std::vector<VelocityReference> velocity_references{};
   double energy_tolerance = 0.0;    ///< > 0: the largest |energy-balance error| allowed
   std::vector<ProbeSpec> probes{};  ///< [[probes]], in file order
+  /// [[phases]], in order; empty: one explicit phase to [run] end_time.
+  std::vector<PhaseSpec> phases{};
 };
 
 }  // namespace afemp::core
@@ -520,6 +548,8 @@ using core::MeshDensity;
 using core::MeshFileShape;
 using core::MpmSettings;
 using core::NodeSelector;
+using core::PhaseKind;
+using core::PhaseSpec;
 using core::PointListShape;
 using core::RebarShape;
 using core::RigidSettings;

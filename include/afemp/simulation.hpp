@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <iosfwd>
 #include <memory>
 #include <span>
 #include <string>
@@ -113,6 +114,9 @@ struct SimulationOptions {
   /// continues from restart_from). A program prints warnings() and estimate() first, as
   /// `afemp run` does, and what start() throws is then the run's, not the scene's.
   bool defer_start = false;
+  /// A scene's static phase prints each Newton iteration here when set (`afemp run`: standard
+  /// output); OUTPUT/static_phase.csv has them in any case.
+  std::ostream* phase_log = nullptr;
 };
 
 /// The threads a run uses: OpenMP's (OMP_NUM_THREADS, or every core), or set_thread_count's; 1

@@ -1,0 +1,194 @@
+// The phases of a scene (core/phases.hpp). afemp runs a static phase before the explicit one,
+// or the explicit phase alone: the static solve (fem/static_solve.hpp) starts from the virgin
+// state of the meshes, so a static phase after an explicit one (from stresses, plastic strains
+// and a deformed mesh) or two static phases in a row are refused rather than run from the wrong
+// state.
+#include "core/phases.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "afemp/errors.hpp"
+#include "core/materials/small_strain_tangent.hpp"
+#include "core/model.hpp"
+#include "core/scene.hpp"
+#include "core/scene_ranges.hpp"
+
+namespace afemp::core {
+
+namespace {
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::string vector_text(const Vec3& v) {
+  return "(" + number(v.x) + ", " + number(v.y) + ", " + number(v.z) + ")";
+}
+
+bool solvable_default(const BodySpec& b) {
+  return b.discretisation != Discretisation::particles && !b.rigid && b.bonded_to < 0;
+}
+
+}  // namespace
+
+const char* to_string(PhaseKind k) {
+  return k == PhaseKind::static_load ? "static" : "explicit";
+}
+
+const PhaseSpec* static_phase(const Scene& scene) {
+  return scene.phases.size() == 2 && scene.phases[0].kind == PhaseKind::static_load
+             ? &scene.phases[0]
+             : nullptr;
+}
+
+double explicit_start(const Scene& scene) {
+  const PhaseSpec* p = static_phase(scene);
+  return p ? p->end_time : 0.0;
+}
+
+std::vector<int> static_phase_bodies(const Scene& scene, const PhaseSpec& phase) {
+  if (!phase.bodies.empty()) return phase.bodies;
+  std::vector<int> out;
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+    if (solvable_default(scene.bodies[b])) out.push_back(static_cast<int>(b));
+  return out;
+}
+
+void check_phases(const Scene& scene, const PhaseFailure& fail) {
+  const std::size_t n = scene.phases.size();
+  double previous = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const PhaseSpec& p = scene.phases[k];
+    const std::string key = "phases[" + std::to_string(k) + "]";
+    if (!(p.end_time > previous) || !std::isfinite(p.end_time))
+      fail(p.where, key + ".end_time",
+           "value " + number(p.end_time) + " must be after the previous phase's end (" +
+               number(previous) + ")");
+    previous = p.end_time;
+    if (k + 1 == n && std::abs(p.end_time - scene.run.end_time) > 1e-12 * scene.run.end_time)
+      fail(p.where, key + ".end_time",
+           "the last phase ends at [run] end_time (" + number(scene.run.end_time) + "), not " +
+               number(p.end_time));
+  }
+  if (n == 0) return;
+  const bool explicit_only = n == 1 && scene.phases[0].kind == PhaseKind::explicit_dynamics;
+  if (!explicit_only && !static_phase(scene))
+    fail(scene.phases[0].where, "phases",
+         "afemp runs a static phase followed by the explicit phase, or the explicit phase alone "
+         "(the static solve starts from the undeformed, unstressed meshes, so it cannot follow "
+         "an explicit phase or another static one)");
+  const PhaseSpec* s = static_phase(scene);
+  if (!s) return;
+  const std::string key = "phases[0]";
+  namespace r = scene_ranges::phase;
+  if (!r::load_steps.contains(s->load_steps))
+    fail(s->where, key + ".load_steps",
+         "allowed: " + std::to_string(r::load_steps.lo) +
+             " <= value <= " + std::to_string(r::load_steps.hi));
+  if (!r::max_iterations.contains(s->max_iterations))
+    fail(s->where, key + ".max_iterations",
+         "allowed: " + std::to_string(r::max_iterations.lo) +
+             " <= value <= " + std::to_string(r::max_iterations.hi));
+  if (!r::tolerance.contains(s->tolerance))
+    fail(s->where, key + ".tolerance", "allowed: " + r::tolerance.describe());
+  if (s->gravity && !std::isfinite(s->gravity->x + s->gravity->y + s->gravity->z))
+    fail(s->where, key + ".gravity", "every component must be a finite number");
+  const std::vector<int> bodies = static_phase_bodies(scene, *s);
+  if (bodies.empty())
+    fail(s->where, key + ".bodies",
+         "no body to solve: a static phase solves deformable mesh bodies (hexahedra, trusses) "
+         "that are not bonded to particles, and the scene has none");
+  for (int b : bodies) {
+    if (b < 0 || static_cast<std::size_t>(b) >= scene.bodies.size())
+      fail(s->where, key + ".bodies", "body index " + std::to_string(b) + " is not defined");
+    const BodySpec& body = scene.bodies[static_cast<std::size_t>(b)];
+    const std::string name = "body \"" + body.name + "\"";
+    if (body.discretisation == Discretisation::particles)
+      fail(s->where, key + ".bodies",
+           name +
+               " is made of particles; a static phase solves meshes (particles are held "
+               "where they are: use it for the meshes alone)");
+    if (body.rigid)
+      fail(s->where, key + ".bodies", name + " is rigid; a static phase holds rigid bodies");
+    if (body.bonded_to >= 0)
+      fail(s->where, key + ".bodies",
+           name +
+               " is bonded to particles, which a static phase holds: its nodes cannot move "
+               "without them");
+    if (body.discretisation == Discretisation::hexahedra &&
+        body.element == HexFormulation::one_point && body.hourglass.form == HourglassForm::viscous)
+      fail(s->where, key + ".bodies",
+           name +
+               " has one-point hexahedra with the viscous hourglass form, which resists "
+               "rates only and has no stiffness; give it hourglass form \"stiffness\" or "
+               "\"assumed_strain\", or element = \"full\"");
+    try {
+      check_small_strain_tangent(scene.materials[static_cast<std::size_t>(body.material)]);
+    } catch (const std::invalid_argument& e) {
+      fail(s->where, key + ".bodies",
+           name + ": " + e.what() +
+               "; list the bodies the phase solves without it (it is then held)");
+    }
+  }
+  for (std::size_t w = 0; w < scene.walls.size(); ++w)
+    for (int b : bodies) {
+      const std::vector<int>& on = scene.walls[w].bodies;
+      if (on.empty() || std::find(on.begin(), on.end(), b) != on.end())
+        fail(scene.walls[w].where, "walls[" + std::to_string(w) + "]",
+             "the wall acts on body \"" + scene.bodies[static_cast<std::size_t>(b)].name +
+                 "\", which the static phase solves; the static solve takes no rigid walls: "
+                 "hold the body by [[constraints]] in that phase");
+    }
+}
+
+std::string describe_phases(const Scene& scene) {
+  if (scene.phases.empty()) return {};
+  std::string out = "Phases (on one clock):\n";
+  double from = 0.0;
+  for (std::size_t k = 0; k < scene.phases.size(); ++k) {
+    const PhaseSpec& p = scene.phases[k];
+    out += "  " + std::to_string(k + 1) + ". " + to_string(p.kind) + ", t " + number(from) +
+           " -> " + number(p.end_time) + ": ";
+    from = p.end_time;
+    if (p.kind == PhaseKind::explicit_dynamics) {
+      out +=
+          "explicit dynamics of every body, with the stages below; it starts from the "
+          "state the phase before leaves (positions, stresses, plastic strains), the "
+          "bodies' initial velocities and the constraints' velocities\n";
+      continue;
+    }
+    const std::vector<int> bodies = static_phase_bodies(scene, p);
+    std::string solved, held;
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+      const bool in = std::find(bodies.begin(), bodies.end(), static_cast<int>(b)) != bodies.end();
+      (in ? solved : held) += (in ? solved : held).empty() ? "" : ", ";
+      (in ? solved : held) += scene.bodies[b].name;
+    }
+    out += "the equilibrium of " + solved + " (Newton with the consistent tangent, " +
+           std::to_string(p.load_steps) + " load steps, |r| <= " + number(p.tolerance) +
+           " x the force scale in at most " + std::to_string(p.max_iterations) +
+           " iterations each, CHOLMOD); loads: gravity " +
+           vector_text(p.gravity ? *p.gravity : scene.run.gravity) +
+           ", the constraints' fixed components held and their velocities integrated over the "
+           "phase as displacements";
+    if (!held.empty()) out += "; held where they are: " + held;
+    out +=
+        "; not in this phase: contacts, erosion, conversion, failure (damage), bulk "
+        "viscosity, and rate and temperature effects (Johnson-Cook on its quasi-static "
+        "curve at the initial temperature)\n";
+  }
+  return out;
+}
+
+StaticPhaseOutcome Model::run_static_phase(const PhaseSpec& phase, std::ostream* /*log*/) {
+  throw InputError(phase.where, "phases[0]",
+                   "a static phase solves mesh bodies, and this model has none (particles are "
+                   "held in a static phase)");
+}
+
+}  // namespace afemp::core

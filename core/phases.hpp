@@ -1,0 +1,36 @@
+// The [[phases]] of a scene (afemp/scene.hpp, PhaseSpec): which sequences afemp runs, the mesh
+// bodies a static phase solves, and the plan `afemp check` prints for each phase.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "afemp/scene.hpp"
+
+namespace afemp::core {
+
+// The static phase that comes before the explicit one, or nullptr (a scene without phases, or
+// whose only phase is explicit).
+const PhaseSpec* static_phase(const Scene& scene);
+
+// When the explicit phase starts: the static phase's end, or 0.
+double explicit_start(const Scene& scene);
+
+// The bodies a static phase solves: its own list, or every deformable mesh body not bonded to
+// particles.
+std::vector<int> static_phase_bodies(const Scene& scene, const PhaseSpec& phase);
+
+// Checks the phases against the sequences afemp runs and the bodies they name; calls fail
+// (which must throw) with the entry's location, its dotted key ("phases[0].bodies") and what is
+// allowed. The parser and check_scene share it.
+using PhaseFailure =
+    std::function<void(const SourceLocation&, const std::string&, const std::string&)>;
+void check_phases(const Scene& scene, const PhaseFailure& fail);
+
+// One paragraph per phase for `afemp check`: its kind, its clock, what it solves and holds,
+// its loads, and what it leaves out (a static phase: contacts, erosion, particles). Empty for
+// a scene without phases.
+std::string describe_phases(const Scene& scene);
+
+}  // namespace afemp::core

@@ -1,0 +1,235 @@
+// A static phase on the FE solver (fem/static_phase.hpp): the problem taken out of the solver,
+// fem::solve_static, and the state handed back as the explicit solver's (FeSolver's member
+// take_static_state is defined here, beside what it takes).
+#include "fem/static_phase.hpp"
+
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+#include "afemp/errors.hpp"
+#include "core/materials/initial_pressure.hpp"
+#include "core/phases.hpp"
+#include "fem/fe_model.hpp"
+#include "fem/hexahedron_full.hpp"
+#include "fem/hexahedron_one_point.hpp"
+#include "fem/hexahedron_stiffness.hpp"
+#include "fem/hourglass.hpp"
+#include "fem/hourglass_assumed_strain.hpp"
+#include "fem/truss.hpp"
+
+namespace afemp::fem {
+
+StaticPhaseReport run_static_phase(FeSolver& solver, const core::Scene& scene,
+                                   const core::PhaseSpec& phase, std::ostream* log) {
+  const std::vector<int> bodies = core::static_phase_bodies(scene, phase);
+  std::vector<std::int32_t> part_of(scene.bodies.size(), -1);
+  MeshData mesh;
+  StaticProblem problem;
+  for (int b : bodies) {
+    const core::BodySpec& body = scene.bodies[static_cast<std::size_t>(b)];
+    part_of[static_cast<std::size_t>(b)] = static_cast<std::int32_t>(mesh.part_names.size());
+    mesh.part_names.push_back(body.name);
+    problem.materials.push_back(scene.materials[static_cast<std::size_t>(body.material)]);
+    problem.hexahedra.push_back({body.element, body.hourglass});
+  }
+  const FeNodes& nodes = solver.nodes();
+  const std::vector<std::int64_t>& labels = solver.mesh().node_labels;
+  StaticPhaseMap map;
+  std::vector<std::int32_t> local(nodes.size(), -1);
+  auto node = [&](std::int32_t n) {
+    const auto i = static_cast<std::size_t>(n);
+    if (local[i] < 0) {
+      local[i] = static_cast<std::int32_t>(map.nodes.size());
+      map.nodes.push_back(n);
+      mesh.nodes.push_back(nodes.position[i]);
+      if (labels.size() == nodes.size()) mesh.node_labels.push_back(labels[i]);
+    }
+    return local[i];
+  };
+  const HexElements& hexes = solver.hexahedra();
+  for (const ElementBatch& batch : hexes.batches) {
+    const std::int32_t part = part_of[static_cast<std::size_t>(batch.body)];
+    if (part < 0) continue;
+    for (std::size_t e = batch.begin; e < batch.end; ++e) {
+      if (!hexes.alive[e]) continue;
+      Hexahedron h;
+      for (std::size_t a = 0; a < 8; ++a) h[a] = node(hexes.nodes[e][a]);
+      mesh.hexahedra.push_back(h);
+      mesh.hexahedron_part.push_back(part);
+      map.hexahedra.push_back(static_cast<std::int32_t>(e));
+    }
+  }
+  const TrussElements& trusses = solver.trusses();
+  for (const ElementBatch& batch : trusses.batches) {
+    const std::int32_t part = part_of[static_cast<std::size_t>(batch.body)];
+    if (part < 0) continue;
+    for (std::size_t e = batch.begin; e < batch.end; ++e) {
+      if (!trusses.alive[e]) continue;
+      mesh.lines.push_back({node(trusses.nodes[e][0]), node(trusses.nodes[e][1])});
+      mesh.line_part.push_back(part);
+      mesh.line_area.push_back(trusses.area0[e]);
+      map.trusses.push_back(static_cast<std::int32_t>(e));
+    }
+  }
+  // Loads: gravity on the explicit solver's lumped masses (so that the state handed back is
+  // at rest under the same loads), a program's held nodal loads, and the constraints.
+  const core::Vec3 gravity = phase.gravity ? *phase.gravity : scene.run.gravity;
+  const std::vector<core::Vec3> travel = solver.imposed_travel(0.0, phase.end_time);
+  problem.nodal_forces.resize(map.nodes.size());
+  for (std::size_t k = 0; k < map.nodes.size(); ++k) {
+    const auto n = static_cast<std::size_t>(map.nodes[k]);
+    problem.nodal_forces[k] = nodes.mass[n] * gravity;
+    if (!nodes.external_force.empty()) problem.nodal_forces[k] += nodes.external_force[n];
+    for (int a = 0; a < 3; ++a)
+      if (nodes.imposed[n] & (1u << a))
+        problem.prescribed.push_back({static_cast<std::int32_t>(k), a, travel[n][a]});
+  }
+  problem.mesh = &mesh;
+  NewtonSettings settings;
+  settings.load_steps = phase.load_steps;
+  settings.max_iterations = phase.max_iterations;
+  settings.residual_tolerance = phase.tolerance;
+  // |du . r| falls as the square of the residual: the same tolerance on the residual's scale.
+  settings.energy_tolerance = phase.tolerance * phase.tolerance;
+  settings.log = log;
+  StaticResult result;
+  try {
+    result = solve_static(problem, settings);
+  } catch (const std::invalid_argument& e) {
+    throw core::InputError(phase.where, "phases[0]", std::string("the static phase: ") + e.what());
+  } catch (const std::runtime_error& e) {
+    throw core::SimulationError(0, 0.0, "the static phase", "equilibrium", e.what());
+  }
+  StaticPhaseReport report;
+  report.work = solver.take_static_state(map, result, phase.end_time);
+  report.iterations = std::move(result.iterations);
+  report.nodes = map.nodes.size();
+  report.hexahedra = map.hexahedra.size();
+  report.trusses = map.trusses.size();
+  return report;
+}
+
+double FeSolver::take_static_state(const StaticPhaseMap& map, const StaticResult& r, double time) {
+  for (std::size_t k = 0; k < map.nodes.size(); ++k) {
+    const auto n = static_cast<std::size_t>(map.nodes[k]);
+    nodes_.position[n] = nodes_.initial_position[n] + r.displacement[k];
+  }
+  double work = 0.0;
+  // A point's work goes to its internal energy; what its elastic energy does not hold is its
+  // plastic work.
+  auto take_point = [&](ElementStore& el, std::size_t p, const core::Material& mat,
+                        const core::SymTensor& stress, double plastic_strain, double w) {
+    const double per_mass = w / mat.density;
+    el.stress[p] = stress;
+    el.plastic_strain[p] = plastic_strain;
+    el.energy[p] += per_mass;
+    work += el.point_mass[p] * per_mass;
+    if (plastic_strain > 0.0) {
+      const double plastic = per_mass - core::elastic_energy(mat, stress);
+      plastic_work_ += el.point_mass[p] * plastic;
+      if (!el.plastic_heat.empty()) el.plastic_heat[p] += plastic;
+    }
+  };
+  for (std::size_t k = 0; k < map.hexahedra.size(); ++k) {
+    const auto e = static_cast<std::size_t>(map.hexahedra[k]);
+    const ElementBatch& b = batch_of(hexes_, e);
+    const core::Material& mat = scene_.materials[static_cast<std::size_t>(b.material)];
+    const core::BodySpec& body = scene_.bodies[static_cast<std::size_t>(b.body)];
+    const auto points = static_cast<std::size_t>(b.points_per_element);
+    const std::size_t p0 = b.point_begin + (e - b.begin) * points;
+    HexVectors x0, x, u, f{};
+    for (std::size_t a = 0; a < 8; ++a) {
+      const auto n = static_cast<std::size_t>(hexes_.nodes[e][a]);
+      x0[a] = nodes_.initial_position[n];
+      x[a] = nodes_.position[n];
+      u[a] = x[a] - x0[a];
+    }
+    const OnePointHex now = one_point_hex(x);
+    hexes_.volume[e] = now.volume;
+    for (std::size_t g = 0; g < points; ++g) {
+      take_point(hexes_, p0 + g, mat, r.stress[k][g], r.plastic_strain[k][g], r.work.points[k][g]);
+      hexes_.density[p0 + g] = mat.density * hexes_.volume0[e] / now.volume;
+    }
+    if (points == 8) {
+      std::array<core::SymTensor, 8> sigma;
+      for (std::size_t g = 0; g < 8; ++g) sigma[g] = r.stress[k][g];
+      add_stress_forces_bbar(full_hex(x), sigma, f);
+    } else {
+      add_stress_forces(now, r.stress[k][0], f);
+      // The hourglass form's state: the generalised forces of the displacement (at the
+      // initial geometry, as the static solve took them), in the axes the explicit form keeps.
+      const HourglassStiffness hs = hourglass_stiffness(x0, one_point_hex(x0), mat, body.hourglass);
+      const std::array<Vec3, 4> g = hourglass_generalised_forces(hs, u);
+      const double energy = r.work.hourglass[k];
+      work += energy;
+      std::array<Vec3, 4> forces = g;  // global axes (the stiffness form)
+      if (body.hourglass.form == core::HourglassForm::assumed_strain) {
+        const AssumedStrainGeometry frame0 = assumed_strain_geometry(x0);
+        const AssumedStrainGeometry frame = assumed_strain_geometry(x);
+        for (std::size_t m = 0; m < 4; ++m) {
+          for (std::size_t i = 0; i < 3; ++i)
+            hexes_.hourglass_force[e][m][i] = core::dot(frame0.axis[i], g[m]);
+          const Vec3& s = hexes_.hourglass_force[e][m];
+          forces[m] = s.x * frame.axis[0] + s.y * frame.axis[1] + s.z * frame.axis[2];
+        }
+        stabilisation_work_ += energy;
+        body_stabilisation_[static_cast<std::size_t>(b.body)] += energy;
+      } else {
+        hexes_.hourglass_force[e] = g;
+        hourglass_work_ += energy;
+      }
+      const HourglassModes modes = hourglass_modes(now, x);
+      for (std::size_t m = 0; m < 4; ++m)
+        for (std::size_t a = 0; a < 8; ++a) f[a] -= modes.gamma[m][a] * forces[m];
+    }
+    for (std::size_t a = 0; a < 8; ++a) element_force_[hexes_.first_slot + 8 * e + a] = f[a];
+  }
+  for (std::size_t k = 0; k < map.trusses.size(); ++k) {
+    const auto e = static_cast<std::size_t>(map.trusses[k]);
+    const ElementBatch& b = batch_of(trusses_, e);
+    const core::Material& mat = scene_.materials[static_cast<std::size_t>(b.material)];
+    const std::size_t p = b.point_begin + (e - b.begin);
+    core::SymTensor stress;
+    stress.xx = r.line_stress[k];
+    take_point(trusses_, p, mat, stress, 0.0, r.work.lines[k]);
+    const auto na = static_cast<std::size_t>(trusses_.nodes[e][0]);
+    const auto nb = static_cast<std::size_t>(trusses_.nodes[e][1]);
+    const TrussKinematics now = truss_kinematics(nodes_.position[na], nodes_.position[nb],
+                                                 nodes_.velocity[na], nodes_.velocity[nb]);
+    const double area = current_area(trusses_.area0[e], trusses_.length0[e], mat.density,
+                                     now.length, trusses_.density[p]);
+    trusses_.volume[e] = area * now.length;
+    Vec3 fa, fb;
+    add_truss_forces(now, stress.xx * area, fa, fb);
+    element_force_[trusses_.first_slot + 2 * e] = fa;
+    element_force_[trusses_.first_slot + 2 * e + 1] = fb;
+  }
+  external_work_ += work;
+  time_ = time;
+  for (ElementSet* set : sets_) set->initial_critical_steps(scene_, nodes_.position);
+  return work;
+}
+
+core::StaticPhaseOutcome FeModel::run_static_phase(const core::PhaseSpec& phase,
+                                                   std::ostream* log) {
+  const StaticPhaseReport r = fem::run_static_phase(solver_, scene_, phase, log);
+  for (const NewtonIteration& it : r.iterations) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%d,%d,%.6e,%.6e,%.6e,%.6g", it.load_step, it.iteration,
+                  it.residual, it.reference, it.energy, it.step_length);
+    static_rows_.emplace_back(buf);
+  }
+  core::StaticPhaseOutcome out;
+  out.nodes = r.nodes;
+  out.elements = r.hexahedra + r.trusses;
+  out.load_steps = phase.load_steps;
+  // Each load step's last row only checks its convergence.
+  out.iterations = static_cast<int>(r.iterations.size()) - phase.load_steps;
+  if (!r.iterations.empty() && r.iterations.back().reference > 0.0)
+    out.residual = r.iterations.back().residual / r.iterations.back().reference;
+  out.work = r.work;
+  return out;
+}
+
+}  // namespace afemp::fem

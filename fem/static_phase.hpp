@@ -1,0 +1,40 @@
+// A scene's static phase (core/phases.hpp) on the FE solver: the mesh bodies it solves taken
+// out of the solver as a fem::StaticProblem (their nodes, hexahedra and trusses, the gravity of
+// their lumped masses, the constraints' fixed components and the displacements their imposed
+// velocities give over the phase), solved by fem::solve_static, and the result handed to the
+// explicit solver as its state at the phase's end: positions x = X + u, the points' stresses,
+// plastic strains and internal energies, the hourglass forms' forces, the element forces, and
+// the loads' work as external work, so that the energy balance spans the phases.
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+#include <vector>
+
+#include "afemp/scene.hpp"
+#include "fem/fe_solver.hpp"
+#include "fem/static_solve.hpp"
+
+namespace afemp::fem {
+
+// Where the static problem's entries sit in the solver: per problem node, hexahedron and line,
+// the solver's node, hexahedron and truss.
+struct StaticPhaseMap {
+  std::vector<std::int32_t> nodes, hexahedra, trusses;
+};
+
+struct StaticPhaseReport {
+  std::vector<NewtonIteration> iterations;
+  double work = 0.0;  // the loads' work: the strain energy plus the plastic work stored
+  std::size_t nodes = 0, hexahedra = 0, trusses = 0;
+};
+
+// Solves the phase and hands its state to the solver, whose clock then reads phase.end_time.
+// Each Newton iteration is printed to `log` when set. Throws core::InputError (at the phase's
+// entry) for what the solve cannot take, and core::SimulationError when the equilibrium cannot
+// be found (a body its constraints leave free, named with its free modes; Newton that does not
+// converge, with the load step, the iteration and the residual).
+StaticPhaseReport run_static_phase(FeSolver& solver, const core::Scene& scene,
+                                   const core::PhaseSpec& phase, std::ostream* log);
+
+}  // namespace afemp::fem

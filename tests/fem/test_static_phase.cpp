@@ -1,0 +1,244 @@
+// The static phase of a scene (core/phases.hpp, fem/static_phase.cpp): a steel column preloaded
+// by its own weight in a static phase and then run explicitly. References: the column's
+// closed form under gravity (uniaxial stress: u_z(H) = rho g H^2 / (2 E), strain energy
+// (rho g)^2 A H^3 / (6 E)); the balance of the state handed on (the explicit phase starts at
+// rest, where the same column released from its unloaded shape oscillates); a prescribed
+// displacement reached exactly; and the scene file's errors.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "afemp/errors.hpp"
+#include "afemp/simulation.hpp"
+#include "core/scene.hpp"
+#include "scene_errors.hpp"
+#include "scratch_dir.hpp"
+
+namespace afemp {
+namespace {
+
+constexpr double kRho = 7.85e-3, kE = 2.0e5, kG = 100.0, kH = 100.0, kA = 100.0;
+
+// The column [0, 10]^2 x [0, 100] mm of 2 x 2 x 20 hexahedra (`element` and `hourglass` lines),
+// its base held, under g = 100 mm/ms^2 along -z; `phases` the [[phases]] text.
+std::string column(const std::string& element, const std::string& phases, double end_time = 1.1) {
+  return "[run]\nend_time = " + std::to_string(end_time) +
+         "\ngravity = [0, 0, -100]\nhistory_every = 1\n"
+         "[materials.steel]\ndensity = 7.85e-3\nE = 2.0e5\nnu = 0.3\n"
+         "[[bodies]]\nname = \"column\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n" +
+         element +
+         "\nshape = { box = { min = [0, 0, 0], max = [10, 10, 100] } }\n"
+         "mesh = { divisions = [2, 2, 20] }\n"
+         "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }\n"
+         "fixed = [\"x\", \"y\", \"z\"]\n" +
+         phases;
+}
+
+const std::string kStaticThenExplicit =
+    "[[phases]]\nkind = \"static\"\nend_time = 1.0\n[[phases]]\nkind = \"explicit\"\n";
+
+// Mean z displacement of the nodes at the top (z = H).
+double top_displacement(Simulation& sim) {
+  const NodeFields n = sim.nodes();
+  double sum = 0.0;
+  int count = 0;
+  // The top nodes are the highest ones: the column's nodes start on a 5 x 5 x 21 lattice.
+  double highest = -1e300;
+  for (std::size_t i = 0; i < n.size(); ++i) highest = std::max(highest, n.position[i].z);
+  for (std::size_t i = 0; i < n.size(); ++i)
+    if (n.position[i].z > highest - 1.0) sum += n.position[i].z - kH, ++count;
+  return sum / count;
+}
+
+double max_speed(Simulation& sim) {
+  const NodeFields n = sim.nodes();
+  double v = 0.0;
+  for (std::size_t i = 0; i < n.size(); ++i) v = std::max(v, norm(n.velocity[i]));
+  return v;
+}
+
+struct Form {
+  const char* name;
+  const char* element;
+};
+
+class StaticPhaseForms : public ::testing::TestWithParam<Form> {};
+
+// The static phase reaches the closed form, and the explicit phase starts from it at rest: the
+// column then stays within 1 % of the unloaded column's speed, where released unloaded it swings
+// about its static shape at omega u_top (omega = pi c / 2H, c = sqrt(E / rho)).
+TEST_P(StaticPhaseForms, ColumnPreloadedByItsWeightStaysAtRestInTheExplicitPhase) {
+  const Form form = GetParam();
+  const double u_exact = -kRho * kG * kH * kH / (2.0 * kE);
+  const double energy_exact = std::pow(kRho * kG, 2) * kA * std::pow(kH, 3) / (6.0 * kE);
+  const double swing = M_PI * std::sqrt(kE / kRho) / (2.0 * kH) * std::abs(u_exact);
+
+  Simulation sim(core::parse_scene(column(form.element, kStaticThenExplicit), "column.toml"));
+  EXPECT_NE(sim.describe().find("1. static, t 0 -> 1"), std::string::npos) << sim.describe();
+  sim.run_to(1.0);  // the static phase: one step, whole
+  EXPECT_DOUBLE_EQ(sim.time(), 1.0);
+  EXPECT_EQ(sim.step_count(), 0);
+  const double u_static = top_displacement(sim);
+  const Energies e = sim.energies();
+  // The base's full fixity adds a local Poisson constraint the closed form does not have.
+  EXPECT_NEAR(u_static / u_exact, 1.0, 0.01) << form.name << ": u_top " << u_static;
+  EXPECT_NEAR(e.internal / energy_exact, 1.0, 0.02) << form.name;
+  // The work of the loads is the stored energy (equilibrium, to the Newton tolerance); the
+  // stiffness form's hourglass energy is booked on its own.
+  EXPECT_NEAR((e.internal + e.hourglass) / e.external_work, 1.0, 1e-6) << form.name;
+  EXPECT_EQ(e.kinetic, 0.0);
+
+  double fastest = 0.0;
+  sim.on_step([&](Simulation& s) { fastest = std::max(fastest, max_speed(s)); });
+  const RunSummary summary = sim.run();
+  EXPECT_LT(fastest, 0.01 * swing) << form.name << ": fastest node " << fastest << " mm/ms";
+  EXPECT_NEAR(top_displacement(sim) / u_static, 1.0, 1e-3) << form.name;
+  EXPECT_LT(summary.max_energy_error, 1e-3) << form.name;
+  std::printf(
+      "%s: u_top %.6g (closed form %.6g), internal %.6g (%.6g), work %.6g, hourglass "
+      "%.3g; explicit phase: fastest node %.3g mm/ms (%.2g of omega u_top), u_top "
+      "moved %.2g, balance %.2g\n",
+      form.name, u_static, u_exact, e.internal, energy_exact, e.external_work, e.hourglass, fastest,
+      fastest / swing, top_displacement(sim) / u_static - 1.0, summary.max_energy_error);
+
+  // The same column released from its unloaded shape: it swings (the check above would fail).
+  Simulation released(core::parse_scene(column(form.element, "", 0.1), "column.toml"));
+  double released_fastest = 0.0;
+  released.on_step(
+      [&](Simulation& s) { released_fastest = std::max(released_fastest, max_speed(s)); });
+  released.run();
+  EXPECT_GT(released_fastest, 0.5 * swing) << form.name;
+  std::printf("%s released unloaded: fastest node %.3g mm/ms (%.2g of omega u_top)\n", form.name,
+              released_fastest, released_fastest / swing);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Elements, StaticPhaseForms,
+    ::testing::Values(Form{"full", "element = \"full\""},
+                      Form{"stiffness",
+                           "element = \"one-point\"\nhourglass = { form = \"stiffness\" }"},
+                      Form{"assumed_strain",
+                           "element = \"one-point\"\nhourglass = { form = \"assumed_strain\" }"}),
+    [](const ::testing::TestParamInfo<Form>& p) { return std::string(p.param.name); });
+
+// A constraint's velocity over the static phase is a displacement: a bar held on symmetry
+// planes (uniaxial stress) whose top moves at 0.01 mm/ms times a curve rising from 0 to 1 over
+// the phase's first half travels 0.0075 mm by t = 1, the stress E u / L; the explicit phase
+// then holds it (the curve stays at 0 after t = 1).
+TEST(StaticPhase, ConstraintVelocityIsADisplacementOverThePhase) {
+  const std::string text =
+      "[run]\nend_time = 1.05\n"
+      "[materials.steel]\ndensity = 7.85e-3\nE = 2.0e5\nnu = 0.3\n"
+      "[[bodies]]\nname = \"bar\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
+      "element = \"full\"\nshape = { box = { min = [0, 0, 0], max = [4, 4, 20] } }\n"
+      "mesh = { divisions = [2, 2, 5] }\n"
+      "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }\n"
+      "fixed = [\"z\"]\n"
+      "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [1, 0, 0] } }\n"
+      "fixed = [\"x\"]\n"
+      "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 1, 0] } }\n"
+      "fixed = [\"y\"]\n"
+      "[[constraints]]\nnodes = { plane = { point = [0, 0, 20], normal = [0, 0, 1] } }\n"
+      "velocity = [0, 0, 0.01]\ncomponents = [\"z\"]\n"
+      "curve = [[0, 0], [0.5, 1], [1.0, 1], [1.0001, 0]]\n"
+      "[[phases]]\nkind = \"static\"\nend_time = 1.0\nload_steps = 2\n"
+      "[[phases]]\nkind = \"explicit\"\n";
+  Simulation sim(core::parse_scene(text, "bar.toml"));
+  sim.run_to(1.0);
+  // The curve's integral over [0, 1.0]: 0.25 + 0.5.
+  const double travel = 0.01 * 0.75, stress = kE * travel / 20.0;
+  const NodeFields n = sim.nodes();
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    if (n.position[i].z > 19.0) {
+      ASSERT_NEAR(n.position[i].z, 20.0 + travel, 1e-12);
+    }
+  }
+  ElementFields h = sim.hexahedra();
+  for (std::size_t p = 0; p < h.stress.size(); ++p) {
+    ASSERT_NEAR(h.stress[p].zz / stress, 1.0, 1e-8) << p;
+    ASSERT_NEAR(h.stress[p].xx / stress, 0.0, 1e-8) << p;
+  }
+  sim.run();
+  h = sim.hexahedra();
+  for (std::size_t p = 0; p < h.stress.size(); ++p) ASSERT_NEAR(h.stress[p].zz / stress, 1.0, 1e-3);
+}
+
+// The static phase's state is in the checkpoint written at its end: a run restarted there ends
+// as the run that went through, bit for bit (same thread count).
+TEST(StaticPhase, RestartFromTheSwitchEndsAsTheWholeRun) {
+  const test::ScratchDir scratch;
+  const std::filesystem::path whole = scratch.path() / "whole",
+                              restarted = scratch.path() / "restarted";
+  const core::Scene scene =
+      core::parse_scene(column("element = \"full\"", kStaticThenExplicit, 1.02), "column.toml");
+  SimulationOptions a;
+  a.output_directory = whole.string();
+  Simulation first(scene, a);
+  first.run();
+  const std::string checkpoint = newest_checkpoint(whole.string());
+  ASSERT_FALSE(checkpoint.empty());
+  std::filesystem::copy(
+      whole, restarted,
+      std::filesystem::copy_options::recursive | std::filesystem::copy_options::overwrite_existing);
+  SimulationOptions b;
+  b.output_directory = restarted.string();
+  b.restart_from = newest_checkpoint(restarted.string());
+  Simulation second(scene, b);
+  second.run();
+  auto read = [](const std::filesystem::path& p) {
+    std::ifstream f(p);
+    return std::string(std::istreambuf_iterator<char>(f), {});
+  };
+  EXPECT_EQ(read(whole / "history.csv"), read(restarted / "history.csv"));
+  const std::string newton = read(whole / "static_phase.csv");
+  EXPECT_NE(newton.find("load_step,iteration,residual"), std::string::npos);
+}
+
+TEST(StaticPhase, SceneErrorsNameTheKeyAndWhatIsAllowed) {
+  using test::error_of;
+  const std::string full = "element = \"full\"";
+  EXPECT_NE(error_of(column(full, "[[phases]]\nkind = \"quasi\"\n"))
+                .find("allowed values: \"static\", \"explicit\""),
+            std::string::npos);
+  EXPECT_NE(
+      error_of(
+          column(
+              full,
+              "[[phases]]\nkind = \"explicit\"\nend_time = 0.5\n[[phases]]\nkind = \"static\"\n"))
+          .find("afemp runs a static phase followed by the explicit phase"),
+      std::string::npos);
+  EXPECT_NE(error_of(column(full,
+                            "[[phases]]\nkind = \"static\"\nend_time = 1.0\n[[phases]]\nkind = "
+                            "\"explicit\"\nend_time = 2\n"))
+                .find("the last phase ends at [run] end_time"),
+            std::string::npos);
+  EXPECT_NE(error_of(column(full,
+                            "[[phases]]\nkind = \"static\"\nend_time = 1.0\nload_steps = "
+                            "0\n[[phases]]\nkind = \"explicit\"\n"))
+                .find("phases[0].load_steps"),
+            std::string::npos);
+  EXPECT_NE(error_of(column("element = \"one-point\"\nhourglass = { form = \"viscous\" }",
+                            kStaticThenExplicit))
+                .find("viscous hourglass form, which resists rates only"),
+            std::string::npos);
+  EXPECT_NE(
+      error_of(column(full, "[[phases]]\nkind = \"explicit\"\nend_time = 1\nload_steps = 3\n"))
+          .find("load_steps"),
+      std::string::npos);
+  // A material with an equation of state has no tangent: the body is named.
+  std::string eos = column(full, kStaticThenExplicit);
+  eos.replace(
+      eos.find("nu = 0.3\n"), 9,
+      "nu = 0.3\neos = { model = \"mie-gruneisen\", c0 = 4570, s = 1.49, gamma0 = 1.93 }\n");
+  const std::string why = error_of(eos);
+  EXPECT_NE(why.find("body \"column\""), std::string::npos) << why;
+  EXPECT_NE(why.find("has no tangent for the static solve"), std::string::npos) << why;
+}
+
+}  // namespace
+}  // namespace afemp
