@@ -64,6 +64,13 @@ class Model {
   virtual std::string time_step_setter() const { return {}; }
   // Advances by dt. Throws core::SimulationError naming the step, entity and field.
   virtual void step(double dt) = 0;
+  // Multiplies every velocity the model integrates by `factor`, the damping of dynamic
+  // relaxation (core/dynamic_relaxation.hpp): mesh nodes' v^{n+1/2}, rigid bodies' momenta and
+  // angular momenta, particles' velocities and APIC affine velocities. Imposed components
+  // (constraints' velocities, rigid bodies' fixed ones) keep their imposed values; 0 puts the
+  // rest at rest. Positions and stresses do not change, and no energy column books the
+  // kinetic energy it takes.
+  virtual void scale_velocities(double factor) = 0;
   virtual long step_count() const = 0;
   virtual double time() const = 0;
   // Energies and per-body sums (one per scene body) of the current state.

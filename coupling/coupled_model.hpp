@@ -55,6 +55,11 @@ class CoupledModel final : public core::Model {
   // Of the FE step, the grid's and the coupled nodes' crossing of the grid, the smallest's.
   std::string time_step_setter() const override;
   void step(double dt) override;
+  // The mesh's (bonded nodes too, which the grid moves) and the particles'.
+  void scale_velocities(double factor) override {
+    fe_.scale_velocities(factor);
+    mpm_.scale_velocities(factor);
+  }
   long step_count() const override { return mpm().step_count(); }
   double time() const override { return mpm().time(); }
   // FE and MPM energies added; per-body sums from whichever holds the body.

@@ -22,6 +22,7 @@ class FeModel final : public core::Model {
   double stable_time_step() const override { return solver_.stable_time_step(); }
   std::string time_step_setter() const override { return solver_.time_step_setter(); }
   void step(double dt) override { solver_.step(dt); }
+  void scale_velocities(double factor) override { solver_.scale_velocities(factor); }
   long step_count() const override { return solver_.step_count(); }
   double time() const override { return solver_.time(); }
   core::Energies energies() const override { return solver_.energies(); }

@@ -138,6 +138,9 @@ class FeSolver {
   // x^{n+1} of every node not grid driven (the caller has moved the others), then the
   // elements' stress and forces at x^{n+1} with v^{n+1/2}, erosion, and the clock.
   void finish_step(double dt);
+  // Multiplies the nodes' v^{n+1/2} and the rigid bodies' momenta by factor, imposed
+  // components kept (core::Model::scale_velocities); rigid nodes follow their bodies.
+  void scale_velocities(double factor);
   // Marks the nodes the grid moves (driven[i] != 0); they also leave the rigid walls.
   void set_grid_driven(const std::vector<std::uint8_t>& driven);
   // The step the nodal update applies the forces over: dt^n = (dt^{n-1/2} + dt^{n+1/2}) / 2

@@ -2,7 +2,8 @@
 // f = sum of element forces (gathered through the incidence lists) + m g + program loads,
 // v^{n+1/2} = v^{n-1/2} + dt^n f / m with dt^n = (dt^{n-1/2} + dt^{n+1/2}) / 2 (half a step
 // on the first), imposed components set, rigid walls, x^{n+1} = x^n + dt v^{n+1/2}.
-// Also the step itself, the stable step and the energies.
+// Also the step itself, the stable step, the energies and dynamic relaxation's damping of the
+// velocities.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -85,6 +86,27 @@ void FeSolver::update_nodes(double dt) {
 void FeSolver::step(double dt) {
   begin_step(dt);
   finish_step(dt);
+}
+
+void FeSolver::scale_velocities(double factor) {
+  const bool rigid = !rigid_of_node_.empty();
+  core::parallel_chunks(nodes_.size(), [&](std::size_t begin, std::size_t end, int) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (rigid && rigid_of_node_[i] >= 0) continue;  // follows its body below
+      Vec3& v = nodes_.velocity[i];
+      v *= factor;
+      if (const std::uint8_t imposed = nodes_.imposed[i])
+        for (int a = 0; a < 3; ++a)
+          if (imposed & (1u << a)) v[a] = nodes_.imposed_velocity[i][a];
+    }
+  });
+  for (RigidBody& r : rigid_bodies_) {
+    scale_motion(r, factor);
+    for (std::int32_t k : r.nodes) {
+      const auto i = static_cast<std::size_t>(k);
+      nodes_.velocity[i] = point_velocity(r, nodes_.position[i] - r.centre);
+    }
+  }
 }
 
 void FeSolver::apply_velocity_curves(double t) {

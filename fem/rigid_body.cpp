@@ -173,4 +173,12 @@ void advance_pose(RigidBody& r, double dt) {
   }
 }
 
+void scale_motion(RigidBody& r, double factor) {
+  for (int a = 0; a < 3; ++a)
+    r.velocity[a] =
+        r.fixed[static_cast<std::size_t>(a)] ? r.initial_velocity[a] : factor * r.velocity[a];
+  r.angular_momentum *= factor;
+  r.angular_velocity *= factor;
+}
+
 }  // namespace afemp::fem

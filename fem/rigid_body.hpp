@@ -72,6 +72,12 @@ inline Vec3 point_velocity(const RigidBody& r, const Vec3& offset) {
 // Moves the centre and the rotation over dt (velocities at the half step).
 void advance_pose(RigidBody& r, double dt);
 
+// Multiplies the body's motion by `factor` (dynamic relaxation, core::Model::scale_velocities):
+// its free translation components, and its angular momentum with the angular velocity (both
+// linear in it at the current rotation, so L = I omega still holds, fixed rotations staying at
+// zero); fixed translation components keep their initial value.
+void scale_motion(RigidBody& r, double factor);
+
 // The current offset of node k of the body (R offset0).
 inline Vec3 node_offset(const RigidBody& r, std::size_t k) {
   return r.rotation * r.offset0[k];

@@ -273,6 +273,18 @@ void MpmSolver::step(double dt) {
   ++steps_;
 }
 
+void MpmSolver::scale_velocities(double factor) {
+  Particles& p = particles_;
+  const bool affine = plan_.transfer == core::Transfer::apic;
+#pragma omp parallel for schedule(static) if (core::worth_threads(p.size()))
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p.velocity[i] *= factor;
+    if (affine)
+      for (auto& row : p.affine[i].m)
+        for (double& c : row) c *= factor;
+  }
+}
+
 double MpmSolver::max_signal_speed() const {
   const Particles& p = particles_;
   double wave = 0.0, speed2 = 0.0;

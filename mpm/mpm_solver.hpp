@@ -58,6 +58,9 @@ class MpmSolver {
   // Advances by dt running each stage of the plan once. Throws core::SimulationError naming
   // the step, particle and field when a value becomes NaN/Inf or a particle leaves the grid.
   void step(double dt);
+  // Multiplies the particles' velocities, and with APIC their affine velocities, by factor
+  // (core::Model::scale_velocities); the grid is built again from them each step.
+  void scale_velocities(double factor);
   // Energies and per-body sums of the current state (ordered reduction: same bits for a
   // given thread count).
   Energies energies() const;
