@@ -166,7 +166,7 @@ bool Simulation::finished() const {
   return impl_->finished_run || (impl_->loop && impl_->loop->finished());
 }
 Energies Simulation::energies() const {
-  return impl_->model->energies();
+  return impl_->loop ? impl_->loop->energies() : impl_->model->energies();
 }
 
 std::vector<std::string> Simulation::warnings() const {

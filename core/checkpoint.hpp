@@ -18,7 +18,7 @@ namespace afemp::core {
 class StateArchive;
 
 // The layout version written into every checkpoint; a checkpoint of another one is refused.
-inline constexpr std::int32_t checkpoint_format = 1;
+inline constexpr std::int32_t checkpoint_format = 2;
 
 struct CheckpointHeader {
   std::int32_t format = checkpoint_format;

@@ -28,7 +28,8 @@ void check_settings(const RelaxationSettings& s) {
 }  // namespace
 
 RelaxationResult relax(Model& model, const RelaxationSettings& s,
-                       const std::function<void(const RelaxationCheck&)>& observer) {
+                       const std::function<void(const RelaxationCheck&)>& observer,
+                       const std::function<void()>& after_step) {
   check_settings(s);
   RelaxationCheck check;
   while (true) {
@@ -36,10 +37,13 @@ RelaxationResult relax(Model& model, const RelaxationSettings& s,
     const bool last = dt >= s.end - check.time;
     if (last) dt = s.end - check.time;
     model.step(dt);
+    const double moving = model.energies().kinetic;
     model.scale_velocities(s.factor);
+    if (after_step) after_step();
     ++check.steps;
     check.time = last ? s.end : check.time + dt;
     check.kinetic = model.energies().kinetic;
+    check.damped += moving - check.kinetic;
     check.recent = std::max(check.recent, check.kinetic);
     check.peak = std::max(check.peak, check.kinetic);
     if (check.steps % s.check_every != 0 && !last) continue;
@@ -47,7 +51,8 @@ RelaxationResult relax(Model& model, const RelaxationSettings& s,
     if (observer) observer(check);
     if (check.ratio < s.tolerance) {
       model.scale_velocities(0.0);
-      return {check.steps, check.time, check.peak, check.ratio, true};
+      check.damped += check.kinetic - model.energies().kinetic;
+      return {check.steps, check.time, check.peak, check.ratio, check.damped, true};
     }
     if (last) {
       std::ostringstream why;

@@ -25,9 +25,11 @@
 // What is left of the displacement is about sqrt(DRTOL) of the static one for a load applied
 // at once (its peak kinetic energy is the static state's strain energy): 3.2 % at the default,
 // 0.32 % at 1e-5 (tests/core/test_dynamic_relaxation.cpp). The kinetic energy is read after
-// every step (the peak is over every step); that costs one pass over the nodes or particles and
-// elements, small beside the step. The work the damping takes out of the motion is booked in
-// no energy column, and the model's clock runs on (LS-DYNA starts the transient at time 0).
+// every step, before and after the scaling (the peak is over every step, and the difference is
+// what the damping took, RelaxationResult::damped); that costs two passes over the nodes or
+// particles and elements, small beside the step. The model's clock runs on; a scene's
+// relaxation phase (core/time_loop.cpp) then sets it to the phase's end and books the damped
+// energy in the balance.
 #pragma once
 
 #include <functional>
@@ -67,6 +69,7 @@ struct RelaxationCheck {
   double recent = 0.0;
   double peak = 0.0;
   double ratio = 0.0;
+  double damped = 0.0;  // the kinetic energy the damping has taken out so far
 };
 
 struct RelaxationResult {
@@ -74,17 +77,22 @@ struct RelaxationResult {
   double time = 0.0;  // simulated time it took
   double peak_kinetic = 0.0;
   double ratio = 0.0;  // at the check that converged
+  // The kinetic energy the damping took out of the motion (the scalings' and the final rest's,
+  // each the kinetic energy before it less that after), for the caller's energy balance.
+  double damped = 0.0;
   bool converged = false;
 };
 
 // Relaxes `model` from its current state: steps it at time_step_factor x its stable step,
 // multiplying its velocities by `factor` after each, and checks every check_every steps (and
-// at `end`); calls `observer` (when set) at each check. At convergence puts the model at rest
+// at `end`); calls `observer` (when set) at each check and `after_step` (when set) after each
+// step's scaling (a caller that holds some bodies at rest). At convergence puts the model at rest
 // (Model::scale_velocities(0)) and returns converged. Throws std::invalid_argument for settings
 // out of range (naming the setting), core::SimulationError when `end` comes unconverged (naming
 // the step, the time and the ratio reached against the tolerance), and what the model's step
 // throws; a caller stops a relaxation (a signal) by throwing from the observer.
 RelaxationResult relax(Model& model, const RelaxationSettings& settings,
-                       const std::function<void(const RelaxationCheck&)>& observer = {});
+                       const std::function<void(const RelaxationCheck&)>& observer = {},
+                       const std::function<void()>& after_step = {});
 
 }  // namespace afemp::core

@@ -71,6 +71,19 @@ class Model {
   // rest at rest. Positions and stresses do not change, and no energy column books the
   // kinetic energy it takes.
   virtual void scale_velocities(double factor) = 0;
+  // Every point of body `body` moves at v (a mesh node its free components, a rigid body its
+  // free translation with no spin; nodes bonded to particles follow them): a relaxation phase
+  // holds the bodies with an initial velocity at rest, then sets them moving.
+  virtual void set_body_velocity(int body, const Vec3& v) = 0;
+  // Holds the deformable mesh nodes of body `body` at rest (every component imposed at zero) or
+  // releases them to what was imposed before; nothing for particles and rigid bodies, whose
+  // velocities a relaxation sets to zero after each step instead (zeroing a deformable mesh's
+  // velocities after each step would halve the stable step's square: its stiffest mode then
+  // grows at 0.9 of the critical step).
+  virtual void hold_body(int /*body*/, bool /*hold*/) {}
+  // Before the explicit phase (a relaxation phase ran the model to rest): the clock reads
+  // `time` from here on.
+  virtual void set_clock(double time) = 0;
   virtual long step_count() const = 0;
   virtual double time() const = 0;
   // Energies and per-body sums (one per scene body) of the current state.

@@ -1,8 +1,9 @@
-// The phases of a scene (core/phases.hpp). afemp runs a static phase before the explicit one,
-// or the explicit phase alone: the static solve (fem/static_solve.hpp) starts from the virgin
-// state of the meshes, so a static phase after an explicit one (from stresses, plastic strains
-// and a deformed mesh) or two static phases in a row are refused rather than run from the wrong
-// state.
+// The phases of a scene (core/phases.hpp). afemp runs a static or relaxation phase before the
+// explicit one, or the explicit phase alone: the static solve (fem/static_solve.hpp) starts
+// from the virgin state of the meshes, so a static phase after an explicit one (from stresses,
+// plastic strains and a deformed mesh) or two static phases in a row are refused rather than
+// run from the wrong state; a relaxation after an explicit phase would damp away the motion that
+// phase computed.
 #include "core/phases.hpp"
 
 #include <algorithm>
@@ -37,18 +38,39 @@ bool solvable_default(const BodySpec& b) {
 }  // namespace
 
 const char* to_string(PhaseKind k) {
-  return k == PhaseKind::static_load ? "static" : "explicit";
+  switch (k) {
+    case PhaseKind::static_load:
+      return "static";
+    case PhaseKind::relaxation:
+      return "relaxation";
+    case PhaseKind::explicit_dynamics:
+      return "explicit";
+  }
+  return "?";
 }
 
-const PhaseSpec* static_phase(const Scene& scene) {
-  return scene.phases.size() == 2 && scene.phases[0].kind == PhaseKind::static_load
+const PhaseSpec* preload_phase(const Scene& scene) {
+  return scene.phases.size() == 2 && scene.phases[0].kind != PhaseKind::explicit_dynamics &&
+                 scene.phases[1].kind == PhaseKind::explicit_dynamics
              ? &scene.phases[0]
              : nullptr;
 }
 
 double explicit_start(const Scene& scene) {
-  const PhaseSpec* p = static_phase(scene);
+  const PhaseSpec* p = preload_phase(scene);
   return p ? p->end_time : 0.0;
+}
+
+double phase_tolerance(const PhaseSpec& phase) {
+  if (phase.tolerance > 0.0) return phase.tolerance;
+  return phase.kind == PhaseKind::relaxation ? 1e-3 : 1e-8;
+}
+
+std::vector<int> moving_bodies(const Scene& scene) {
+  std::vector<int> out;
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+    if (norm(scene.bodies[b].velocity) > 0.0) out.push_back(static_cast<int>(b));
+  return out;
 }
 
 std::vector<int> static_phase_bodies(const Scene& scene, const PhaseSpec& phase) {
@@ -77,15 +99,29 @@ void check_phases(const Scene& scene, const PhaseFailure& fail) {
   }
   if (n == 0) return;
   const bool explicit_only = n == 1 && scene.phases[0].kind == PhaseKind::explicit_dynamics;
-  if (!explicit_only && !static_phase(scene))
+  if (!explicit_only && !preload_phase(scene))
     fail(scene.phases[0].where, "phases",
-         "afemp runs a static phase followed by the explicit phase, or the explicit phase alone "
-         "(the static solve starts from the undeformed, unstressed meshes, so it cannot follow "
-         "an explicit phase or another static one)");
-  const PhaseSpec* s = static_phase(scene);
+         "afemp runs a static or relaxation phase followed by the explicit phase, or the "
+         "explicit phase alone (the static solve starts from the undeformed, unstressed meshes, "
+         "so it cannot follow an explicit phase or another static one, and a relaxation would "
+         "damp away the motion an explicit phase computed)");
+  const PhaseSpec* s = preload_phase(scene);
   if (!s) return;
   const std::string key = "phases[0]";
   namespace r = scene_ranges::phase;
+  if (s->kind == PhaseKind::relaxation) {
+    if (s->tolerance != 0.0 && !r::relaxation_tolerance.contains(s->tolerance))
+      fail(s->where, key + ".tolerance", "allowed: " + r::relaxation_tolerance.describe());
+    if (!r::damping_factor.contains(s->damping_factor))
+      fail(s->where, key + ".damping_factor", "allowed: " + r::damping_factor.describe());
+    if (!r::check_every.contains(s->check_every))
+      fail(s->where, key + ".check_every",
+           "allowed: " + std::to_string(r::check_every.lo) +
+               " <= value <= " + std::to_string(r::check_every.hi));
+    if (!r::relaxation_step_factor.contains(s->relaxation_step_factor))
+      fail(s->where, key + ".time_step_factor", "allowed: " + r::relaxation_step_factor.describe());
+    return;
+  }
   if (!r::load_steps.contains(s->load_steps))
     fail(s->where, key + ".load_steps",
          "allowed: " + std::to_string(r::load_steps.lo) +
@@ -94,7 +130,7 @@ void check_phases(const Scene& scene, const PhaseFailure& fail) {
     fail(s->where, key + ".max_iterations",
          "allowed: " + std::to_string(r::max_iterations.lo) +
              " <= value <= " + std::to_string(r::max_iterations.hi));
-  if (!r::tolerance.contains(s->tolerance))
+  if (s->tolerance != 0.0 && !r::tolerance.contains(s->tolerance))
     fail(s->where, key + ".tolerance", "allowed: " + r::tolerance.describe());
   if (s->gravity && !std::isfinite(s->gravity->x + s->gravity->y + s->gravity->z))
     fail(s->where, key + ".gravity", "every component must be a finite number");
@@ -162,6 +198,24 @@ std::string describe_phases(const Scene& scene) {
           "bodies' initial velocities and the constraints' velocities\n";
       continue;
     }
+    if (p.kind == PhaseKind::relaxation) {
+      std::string held;
+      for (int b : moving_bodies(scene))
+        held += (held.empty() ? "" : ", ") + scene.bodies[static_cast<std::size_t>(b)].name;
+      out +=
+          "dynamic relaxation (LS-DYNA's *CONTROL_DYNAMIC_RELAXATION): the explicit model, "
+          "with the stages below, under [run] gravity " +
+          vector_text(scene.run.gravity) + " and the constraints, every velocity multiplied by " +
+          number(p.damping_factor) + " after every step, at " + number(p.relaxation_step_factor) +
+          " x the stable step; converged when the largest kinetic energy since the last "
+          "check (every " +
+          std::to_string(p.check_every) + " steps) is below " + number(phase_tolerance(p)) +
+          " of its peak, then put at rest; not converged by the phase's end: the run stops";
+      if (!held.empty())
+        out += "; held at rest, their initial velocity given at the phase's end: " + held;
+      out += "\n";
+      continue;
+    }
     const std::vector<int> bodies = static_phase_bodies(scene, p);
     std::string solved, held;
     for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
@@ -170,7 +224,7 @@ std::string describe_phases(const Scene& scene) {
       (in ? solved : held) += scene.bodies[b].name;
     }
     out += "the equilibrium of " + solved + " (Newton with the consistent tangent, " +
-           std::to_string(p.load_steps) + " load steps, |r| <= " + number(p.tolerance) +
+           std::to_string(p.load_steps) + " load steps, |r| <= " + number(phase_tolerance(p)) +
            " x the force scale in at most " + std::to_string(p.max_iterations) +
            " iterations each, CHOLMOD); loads: gravity " +
            vector_text(p.gravity ? *p.gravity : scene.run.gravity) +

@@ -10,12 +10,19 @@
 
 namespace afemp::core {
 
-// The static phase that comes before the explicit one, or nullptr (a scene without phases, or
-// whose only phase is explicit).
-const PhaseSpec* static_phase(const Scene& scene);
+// The static or relaxation phase that comes before the explicit one, or nullptr (a scene
+// without phases, or whose only phase is explicit).
+const PhaseSpec* preload_phase(const Scene& scene);
 
-// When the explicit phase starts: the static phase's end, or 0.
+// When the explicit phase starts: the preload phase's end, or 0.
 double explicit_start(const Scene& scene);
+
+// The phase's tolerance: its own, or its kind's default (static 1e-8, relaxation 1e-3).
+double phase_tolerance(const PhaseSpec& phase);
+
+// The bodies a relaxation phase holds at rest and sets moving at its end: those with an
+// initial velocity.
+std::vector<int> moving_bodies(const Scene& scene);
 
 // The bodies a static phase solves: its own list, or every deformable mesh body not bonded to
 // particles.

@@ -1928,9 +1928,9 @@ void read_phases(TableReader& r, Scene& scene, const std::string& path) {
   read_table_array(r, "phases", path, [&](TableReader& t) {
     PhaseSpec p;
     p.where = t.where();
-    p.kind = t.choice("kind", {"static", "explicit"}, std::nullopt) == 0
-                 ? PhaseKind::static_load
-                 : PhaseKind::explicit_dynamics;
+    static constexpr PhaseKind kinds[] = {PhaseKind::static_load, PhaseKind::relaxation,
+                                          PhaseKind::explicit_dynamics};
+    p.kind = kinds[t.choice("kind", {"static", "relaxation", "explicit"}, std::nullopt)];
     const bool last = scene.phases.size() + 1 == count;
     p.end_time = last ? t.number("end_time", scene.run.end_time, scene_ranges::run::end_time)
                       : t.required_number("end_time", scene_ranges::run::end_time);
@@ -1941,10 +1941,18 @@ void read_phases(TableReader& r, Scene& scene, const std::string& path) {
       p.max_iterations =
           static_cast<int>(t.integer("max_iterations", p.max_iterations, ranges::max_iterations.lo,
                                      ranges::max_iterations.hi));
-      p.tolerance = t.number("tolerance", p.tolerance, ranges::tolerance);
+      p.tolerance = t.number("tolerance", phase_tolerance(p), ranges::tolerance);
       p.gravity = t.optional_vec3("gravity");
       for (const std::string& name : t.strings("bodies"))
         p.bodies.push_back(body_index(t, "bodies", name, scene, false));
+    } else if (p.kind == PhaseKind::relaxation) {
+      namespace ranges = scene_ranges::phase;
+      p.tolerance = t.number("tolerance", phase_tolerance(p), ranges::relaxation_tolerance);
+      p.damping_factor = t.number("damping_factor", p.damping_factor, ranges::damping_factor);
+      p.check_every =
+          t.integer("check_every", p.check_every, ranges::check_every.lo, ranges::check_every.hi);
+      p.relaxation_step_factor =
+          t.number("time_step_factor", p.relaxation_step_factor, ranges::relaxation_step_factor);
     }
     t.check_unknown();
     scene.phases.push_back(std::move(p));

@@ -21,6 +21,7 @@
 
 #include "core/checkpoint.hpp"
 #include "core/contact_warnings.hpp"
+#include "core/dynamic_relaxation.hpp"
 #include "core/fault_injection.hpp"
 #include "core/output/history.hpp"
 #include "core/output/run_directory.hpp"
@@ -90,11 +91,12 @@ std::vector<std::string> history_bodies(const Scene& scene) {
   return names;
 }
 
-// The columns after the body columns: the energies the model's contacts declare, then the
-// interface forces.
-std::vector<std::string> history_extra(const Model& model) {
+// The columns after the body columns: the energies the model's contacts declare (and a
+// relaxation phase's damping, the loop's), then the interface forces.
+std::vector<std::string> history_extra(const std::vector<EnergyColumn>& energies,
+                                       const Model& model) {
   std::vector<std::string> extra;
-  for (const EnergyColumn& c : model.energy_columns()) extra.emplace_back(c.name);
+  for (const EnergyColumn& c : energies) extra.emplace_back(c.name);
   for (std::string& c : model.force_columns()) extra.push_back(std::move(c));
   return extra;
 }
@@ -117,6 +119,7 @@ void visit_energies(StateArchive& a, const char* name, Energies& e) {
   a.item("outflow", e.outflow);
   a.item("outflow_mass", e.outflow_mass);
   a.item("outflow_momentum", e.outflow_momentum);
+  a.item("damped", e.damped);
   a.item("bodies", e.bodies);
 }
 
@@ -179,6 +182,9 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
       energy_columns_(model.energy_columns()) {
   overlaps_ = std::make_unique<OverlapCheck>(scene);
   if (overlaps_->empty()) overlaps_.reset();
+  const PhaseSpec* preload = preload_phase(scene_);
+  if (preload && preload->kind == PhaseKind::relaxation)
+    energy_columns_.push_back({"damped", &Energies::damped});
   if (!options_.restart_from.empty()) {
     restore(options_.restart_from);
     return;
@@ -190,12 +196,12 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
       frames_ = std::make_unique<FieldWriter>(paths.directory, paths.fields_stem);
     history_ = std::make_unique<HistoryWriter>(history_path(paths), history_bodies(scene_),
                                                scene_.mpm.grid.has_face(FaceCondition::outflow),
-                                               history_extra(model_));
+                                               history_extra(energy_columns_, model_));
     events_ = std::make_unique<EventFiles>(paths.directory);
   }
   sum_.particles = model_.particle_count();
   sum_.elements = model_.element_count();
-  sum_.initial = model_.energies();
+  sum_.initial = energies();
   max_kinetic_ = sum_.initial.kinetic;
   sum_.min_dt = 1e300;
   last_time_ = model_.time();
@@ -211,12 +217,21 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
   if (scene_.run.checkpoint_every > 0.0) next_checkpoint_ = scene_.run.checkpoint_every;
   if (scene_.run.checkpoint_wall_every > 0.0)
     next_checkpoint_wall_ = scene_.run.checkpoint_wall_every;
-  static_pending_ = static_phase(scene_) != nullptr;
+  preload_pending_ = preload != nullptr;
 }
 
-void TimeLoop::run_static_phase(const PhaseSpec& phase) {
+Energies TimeLoop::energies() const {
+  Energies e = model_.energies();
+  e.damped = damped_;
+  return e;
+}
+
+void TimeLoop::run_preload_phase(const PhaseSpec& phase) {
   try {
-    model_.run_static_phase(phase, options_.phase_log);
+    if (phase.kind == PhaseKind::static_load)
+      model_.run_static_phase(phase, options_.phase_log);
+    else
+      run_relaxation(phase);
   } catch (const SimulationError&) {
     keep_failure();
     throw;
@@ -238,7 +253,54 @@ void TimeLoop::run_static_phase(const PhaseSpec& phase) {
     while (next_history_ <= t * (1.0 + 1e-9)) next_history_ += rs.history_interval;
   if (rs.checkpoint_every > 0.0)
     while (next_checkpoint_ <= t * (1.0 + 1e-9)) next_checkpoint_ += rs.checkpoint_every;
-  if (!options_.output_directory.empty()) checkpoint("the end of the static phase");
+  if (!options_.output_directory.empty())
+    checkpoint(std::string("the end of the ") + to_string(phase.kind) + " phase");
+}
+
+void TimeLoop::run_relaxation(const PhaseSpec& phase) {
+  // The bodies with an initial velocity are held at rest through the relaxation and set moving
+  // at its end; the kinetic energy taken from them and given back is booked as damped.
+  const std::vector<int> moving = moving_bodies(scene_);
+  auto hold = [&] {
+    for (int b : moving) model_.set_body_velocity(b, Vec3{});
+  };
+  double before = model_.energies().kinetic;
+  for (int b : moving) model_.hold_body(b, true);
+  hold();
+  damped_ += before - model_.energies().kinetic;
+  const double damped_start = damped_;
+  RelaxationSettings s;
+  s.tolerance = phase_tolerance(phase);
+  s.factor = phase.damping_factor;
+  s.check_every = phase.check_every;
+  s.time_step_factor = phase.relaxation_step_factor;
+  s.end = phase.end_time - model_.time();
+  const RelaxationResult r = relax(
+      model_, s,
+      [&](const RelaxationCheck& c) {
+        damped_ = damped_start + c.damped;
+        dt_ = model_.stable_time_step();
+        record(dt_);
+        if (options_.progress) {
+          const Energies e = energies();
+          options_.progress({model_.step_count(), model_.time(), dt_, scene_.run.end_time,
+                             elapsed(), energy_balance_error(e, sum_.initial, max_kinetic_)});
+        }
+        if (options_.phase_log)
+          *options_.phase_log << "relaxation: step " << c.steps << ", t " << c.time
+                              << ": kinetic energy " << c.recent << ", " << c.ratio
+                              << " of its peak " << c.peak << " (tolerance " << s.tolerance
+                              << ")\n";
+      },
+      hold);
+  damped_ = damped_start + r.damped;
+  model_.set_clock(phase.end_time);
+  before = model_.energies().kinetic;
+  for (int b : moving) {
+    model_.hold_body(b, false);
+    model_.set_body_velocity(b, scene_.bodies[static_cast<std::size_t>(b)].velocity);
+  }
+  damped_ -= model_.energies().kinetic - before;
 }
 
 TimeLoop::~TimeLoop() = default;
@@ -256,7 +318,7 @@ Vec3 TimeLoop::mean_velocity(const Energies& e) const {
 }
 
 double TimeLoop::record(double dt) {
-  const Energies e = model_.energies();
+  const Energies e = energies();
   if (scene_.run.terminate) {
     const Vec3 v = mean_velocity(e);
     travelled_ += (0.5 * (model_.time() - last_time_)) * (v + last_velocity_);
@@ -295,9 +357,9 @@ bool TimeLoop::finished() const {
 }
 
 void TimeLoop::step(double until) {
-  if (static_pending_) {
-    static_pending_ = false;
-    run_static_phase(*static_phase(scene_));
+  if (preload_pending_) {
+    preload_pending_ = false;
+    run_preload_phase(*preload_phase(scene_));
     return;
   }
   const RunSettings& rs = scene_.run;
@@ -353,7 +415,7 @@ void TimeLoop::step(double until) {
   if (options_.checkpoint_requested && options_.checkpoint_requested()) reason = "SIGUSR1";
   if (!reason.empty() && !finished()) checkpoint(reason);
   if (options_.progress && elapsed() >= next_progress_) {
-    const Energies e = model_.energies();
+    const Energies e = energies();
     options_.progress({k, model_.time(), dt_, end, elapsed(),
                        energy_balance_error(e, sum_.initial, std::max(max_kinetic_, e.kinetic))});
     next_progress_ = elapsed() + options_.progress_seconds;
@@ -411,7 +473,7 @@ RunSummary TimeLoop::finish() {
       sum.wall_seconds > 0.0
           ? static_cast<double>(sum.particles + sum.elements) * sum.steps / sum.wall_seconds
           : 0.0;
-  sum.final = model_.energies();
+  sum.final = energies();
   sum.energy_error = last_error_;
   sum.stages = model_.stage_timings();
   sum.field_frames = frames_ ? frames_->frames() : 0;
@@ -534,6 +596,7 @@ void TimeLoop::visit(StateArchive& a) {
     a.item("max_dt", sum_.max_dt);
     a.item("max_energy_error", sum_.max_energy_error);
     a.item("max_kinetic", max_kinetic_);
+    a.item("damped", damped_);
     a.item("travelled", travelled_);
     a.item("last_velocity", last_velocity_);
     a.item("last_time", last_time_);
@@ -587,12 +650,13 @@ void TimeLoop::visit(StateArchive& a) {
                     : std::make_unique<FieldWriter>(paths.directory, paths.fields_stem);
     const bool outflow = scene_.mpm.grid.has_face(FaceCondition::outflow);
     if (history_bytes > 0)
-      history_ = std::make_unique<HistoryWriter>(
-          history_path(paths), history_bodies(scene_), outflow, history_extra(model_),
-          HistoryWriter::Resume{history_bytes, history_rows});
+      history_ =
+          std::make_unique<HistoryWriter>(history_path(paths), history_bodies(scene_), outflow,
+                                          history_extra(energy_columns_, model_),
+                                          HistoryWriter::Resume{history_bytes, history_rows});
     else
       history_ = std::make_unique<HistoryWriter>(history_path(paths), history_bodies(scene_),
-                                                 outflow, history_extra(model_));
+                                                 outflow, history_extra(energy_columns_, model_));
     events_ = std::make_unique<EventFiles>(paths.directory);
   }
   EventFiles none("");

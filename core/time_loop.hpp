@@ -65,8 +65,8 @@ class TimeLoop {
   // Whether the run has reached scene.run.end_time, max_steps or [run] terminate.
   bool finished() const;
   // One step at the stable step, cut to land on `until` (at most the end time). A scene's
-  // static phase is the first step, whole whatever `until` says: the model then stands at
-  // the phase's end.
+  // static or relaxation phase is the first step, whole whatever `until` says: the model then
+  // stands at the phase's end.
   void step(double until);
   // Steps until finished(), calling after_step after each step, or until
   // RunOptions::stop_requested answers true before a step (the run is then stopped).
@@ -82,15 +82,22 @@ class TimeLoop {
   // `reason` is kept in its header. Throws CheckpointError (the previous checkpoints intact)
   // when it cannot be written, e.g. on a full disk.
   std::string checkpoint(const std::string& reason);
+  // The model's energies with what a relaxation phase's damping took (Energies::damped).
+  Energies energies() const;
   // The checkpoints written by this loop, and the step the run continued from (0: none).
   int checkpoints_written() const { return checkpoints_written_; }
   long restarted_at() const { return restarted_at_; }
 
  private:
   void restore(const std::string& path);
-  // The scene's static phase (core/phases.hpp), the first step: the model solves it, and its
-  // state at the phase's end gets a history row, a frame and a checkpoint.
-  void run_static_phase(const PhaseSpec& phase);
+  // The scene's static or relaxation phase (core/phases.hpp), the first step: the model solves
+  // or relaxes it, and its state at the phase's end gets a history row, a frame and a
+  // checkpoint.
+  void run_preload_phase(const PhaseSpec& phase);
+  // Dynamic relaxation (core/dynamic_relaxation.hpp) with a history row at each check; the
+  // bodies with an initial velocity held at rest and set moving at the end; the clock then
+  // reads the phase's end.
+  void run_relaxation(const PhaseSpec& phase);
   void visit(StateArchive& archive);
   double elapsed() const;
   Vec3 mean_velocity(const Energies& e) const;
@@ -130,7 +137,8 @@ class TimeLoop {
   int checkpoints_written_ = 0;
   long restarted_at_ = 0;
   bool stopped_ = false;         // RunOptions::stop_requested ended run()
-  bool static_pending_ = false;  // the scene's static phase is the next step
+  bool preload_pending_ = false;  // the scene's static or relaxation phase is the next step
+  double damped_ = 0.0;           // Energies::damped
 };
 
 }  // namespace afemp::core

@@ -56,6 +56,15 @@ class CoupledModel final : public core::Model {
   std::string time_step_setter() const override;
   void step(double dt) override;
   // The mesh's (bonded nodes too, which the grid moves) and the particles'.
+  void set_body_velocity(int body, const core::Vec3& v) override {
+    fe_.set_body_velocity(body, v);
+    mpm_.set_body_velocity(body, v);
+  }
+  void hold_body(int body, bool hold) override { fe_.hold_body(body, hold); }
+  void set_clock(double time) override {
+    fe_.set_clock(time);
+    mpm_.set_clock(time);
+  }
   void scale_velocities(double factor) override {
     fe_.scale_velocities(factor);
     mpm_.scale_velocities(factor);

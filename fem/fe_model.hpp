@@ -69,6 +69,11 @@ class FeModel final : public core::Model {
     return fem::points_inside(solver_.hexahedra(), solver_.nodes().position, body, points);
   }
   void state(core::StateArchive& archive) override;
+  void set_body_velocity(int body, const core::Vec3& v) override {
+    solver_.set_body_velocity(body, v);
+  }
+  void set_clock(double time) override { solver_.set_clock(time); }
+  void hold_body(int body, bool hold) override { solver_.hold_body(body, hold); }
   // fem/static_phase.cpp.
   core::StaticPhaseOutcome run_static_phase(const core::PhaseSpec& phase,
                                             std::ostream* log) override;

@@ -195,6 +195,10 @@ class FeSolver {
   // The travel each imposed velocity component gives its node over [t0, t1]: the integral of
   // the constraint's velocity times its curve (nodal_update.cpp); 0 for free components.
   std::vector<Vec3> imposed_travel(double t0, double t1) const;
+  // core::Model::set_body_velocity and set_clock (nodal_update.cpp).
+  void set_body_velocity(int body, const Vec3& v);
+  void hold_body(int body, bool hold);
+  void set_clock(double time) { time_ = time; }
   // A static phase's solution as the state at `time` (fem/static_phase.cpp): the nodes of the
   // problem map moved by their displacement, its points' stresses, plastic strains and work,
   // the hourglass forces and element forces of that state, and the work as external work,
@@ -323,6 +327,13 @@ class FeSolver {
     std::vector<std::pair<std::uint32_t, std::uint8_t>> components;  // (node, axis)
   };
   std::vector<VelocityCurve> velocity_curves_;
+  // Nodes hold_body holds: each with the imposed bits and velocity it had.
+  struct HeldNode {
+    std::uint32_t node = 0;
+    std::uint8_t imposed = 0;
+    Vec3 velocity;
+  };
+  std::vector<HeldNode> held_;
   void apply_velocity_curves(double t);
   // Absorbing boundaries (absorbing_boundary.cpp): per node, the outward unit normal and the
   // dashpots A rho c_L (along it) and A rho c_S (across it) of its boundary faces.

@@ -109,6 +109,52 @@ void FeSolver::scale_velocities(double factor) {
   }
 }
 
+void FeSolver::set_body_velocity(int body, const Vec3& v) {
+  const bool rigid = !rigid_of_node_.empty();
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    if (nodes_.body[i] != body || (rigid && rigid_of_node_[i] >= 0) ||
+        (!nodes_.grid_driven.empty() && nodes_.grid_driven[i]))
+      continue;
+    for (int a = 0; a < 3; ++a)
+      if (!(nodes_.imposed[i] & (1u << a))) nodes_.velocity[i][a] = v[a];
+  }
+  for (RigidBody& r : rigid_bodies_) {
+    if (r.body != body) continue;
+    for (int a = 0; a < 3; ++a)
+      if (!r.fixed[static_cast<std::size_t>(a)]) r.velocity[a] = v[a];
+    r.angular_momentum = r.angular_velocity = Vec3{};
+    for (std::int32_t k : r.nodes) {
+      const auto i = static_cast<std::size_t>(k);
+      nodes_.velocity[i] = point_velocity(r, nodes_.position[i] - r.centre);
+    }
+  }
+}
+
+void FeSolver::hold_body(int body, bool hold) {
+  if (!hold) {
+    std::vector<HeldNode> kept;
+    for (const HeldNode& h : held_) {
+      if (nodes_.body[h.node] != body) {
+        kept.push_back(h);
+        continue;
+      }
+      nodes_.imposed[h.node] = h.imposed;
+      nodes_.imposed_velocity[h.node] = h.velocity;
+    }
+    held_.swap(kept);
+    return;
+  }
+  const bool rigid = !rigid_of_node_.empty();
+  for (std::size_t i = 0; i < nodes_.size(); ++i) {
+    if (nodes_.body[i] != body || (rigid && rigid_of_node_[i] >= 0) ||
+        (!nodes_.grid_driven.empty() && nodes_.grid_driven[i]))
+      continue;
+    held_.push_back({static_cast<std::uint32_t>(i), nodes_.imposed[i], nodes_.imposed_velocity[i]});
+    nodes_.imposed[i] = 7;
+    nodes_.imposed_velocity[i] = nodes_.velocity[i] = Vec3{};
+  }
+}
+
 void FeSolver::apply_velocity_curves(double t) {
   for (const VelocityCurve& vc : velocity_curves_) {
     const double f = core::curve_factor(vc.curve, t);

@@ -89,9 +89,9 @@ StaticPhaseReport run_static_phase(FeSolver& solver, const core::Scene& scene,
   NewtonSettings settings;
   settings.load_steps = phase.load_steps;
   settings.max_iterations = phase.max_iterations;
-  settings.residual_tolerance = phase.tolerance;
+  settings.residual_tolerance = core::phase_tolerance(phase);
   // |du . r| falls as the square of the residual: the same tolerance on the residual's scale.
-  settings.energy_tolerance = phase.tolerance * phase.tolerance;
+  settings.energy_tolerance = settings.residual_tolerance * settings.residual_tolerance;
   settings.log = log;
   StaticResult result;
   try {

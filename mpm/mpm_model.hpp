@@ -32,6 +32,10 @@ class MpmModel final : public core::Model {
   std::string time_step_setter() const override { return solver_.time_step_setter(); }
   void step(double dt) override { solver_.step(dt); }
   void scale_velocities(double factor) override { solver_.scale_velocities(factor); }
+  void set_body_velocity(int body, const core::Vec3& v) override {
+    solver_.set_body_velocity(body, v);
+  }
+  void set_clock(double time) override { solver_.set_clock(time); }
   long step_count() const override { return solver_.step_count(); }
   double time() const override { return solver_.time(); }
   core::Energies energies() const override { return solver_.energies(); }

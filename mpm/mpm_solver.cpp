@@ -285,6 +285,16 @@ void MpmSolver::scale_velocities(double factor) {
   }
 }
 
+void MpmSolver::set_body_velocity(int body, const Vec3& v) {
+  Particles& p = particles_;
+  const bool affine = plan_.transfer == core::Transfer::apic;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.body[i] != body) continue;
+    p.velocity[i] = v;
+    if (affine) p.affine[i] = {};
+  }
+}
+
 double MpmSolver::max_signal_speed() const {
   const Particles& p = particles_;
   double wave = 0.0, speed2 = 0.0;

@@ -49,6 +49,8 @@ class MpmSolver {
   // Before the first step: the clock starts at `time` (a static phase ran the meshes to it,
   // holding the particles).
   void set_clock(double time) { time_ = time; }
+  // Every particle of body `body` moves at v, with no affine (APIC) part.
+  void set_body_velocity(int body, const Vec3& v);
 
   // Stable step: factor * h / (max_p c_p + max_p |v_p|), or the scene's fixed step.
   double stable_time_step() const;

@@ -54,11 +54,14 @@ struct Energies {
   /// left. The bodies' sums no longer hold them.
   double outflow = 0.0;
   double outflow_mass = 0.0;
+  /// The kinetic energy a relaxation phase's damping took out of the motion (less what it gave
+  /// back setting the held bodies moving; core/time_loop.cpp, run_relaxation). Part of total().
+  double damped = 0.0;
   Vec3 outflow_momentum{};
   std::vector<BodySums> bodies{};
   /// Everything that must equal the initial total plus the external work.
   double total() const {
-    return kinetic + internal + hourglass + eroded + converted + outflow + sliding + wall;
+    return kinetic + internal + hourglass + eroded + converted + outflow + sliding + wall + damped;
   }
 };
 

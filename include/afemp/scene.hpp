@@ -468,14 +468,18 @@ struct DetonationSpec {
 
 /// What a [[phases]] entry computes (docs/scene-format.md, "Phases").
 /// static: the equilibrium of the loads at the phase's end (an implicit Newton solve of the
-/// meshes, fem/static_phase.hpp), reached in load steps; explicit: the explicit dynamics of the
-/// whole scene, as a scene without phases runs.
-enum class PhaseKind { static_load, explicit_dynamics };
+/// meshes, fem/static_phase.hpp), reached in load steps; relaxation: the same state reached by
+/// dynamic relaxation (LS-DYNA's *CONTROL_DYNAMIC_RELAXATION, core/dynamic_relaxation.hpp), the
+/// explicit model damped to rest under the scene's loads, for what the static solve cannot take
+/// (particles, coupling, contact, any material); explicit: the explicit dynamics of the whole
+/// scene, as a scene without phases runs.
+enum class PhaseKind { static_load, relaxation, explicit_dynamics };
 const char* to_string(PhaseKind k);
 
 /// One [[phases]] entry. The phases run in order on one clock: each from the end of the one
 /// before (the first from 0) to its end_time; the last ends at [run] end_time. Today a scene
-/// has at most one static phase, first, then the explicit phase (core/phases.cpp says why).
+/// has at most one static or relaxation phase, first, then the explicit phase
+/// (core/phases.cpp says why).
 struct PhaseSpec {
   PhaseKind kind = PhaseKind::explicit_dynamics;
   double end_time = 0.0;
@@ -483,7 +487,14 @@ struct PhaseSpec {
   /// to |r| <= tolerance x the force scale in at most max_iterations iterations.
   int load_steps = 10;
   int max_iterations = 25;
-  double tolerance = 1e-8;
+  /// static: the residual's (default 1e-8); relaxation: DRTOL, the kinetic energy's fraction of
+  /// its peak at convergence (default 1e-3). 0: the kind's default (phase_tolerance).
+  double tolerance = 0.0;
+  /// relaxation: DRFCTR, the factor on every velocity after every step; NRCYCK, the steps
+  /// between convergence checks; TSSFDR, the factor on the explicit model's stable step.
+  double damping_factor = 0.995;
+  long check_every = 250;
+  double relaxation_step_factor = 1.0;
   /// static: the phase's gravity; unset: [run] gravity.
   std::optional<Vec3> gravity{};
   /// static: the mesh bodies it solves (indices into Scene::bodies); empty: every deformable
