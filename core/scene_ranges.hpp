@@ -57,7 +57,7 @@ inline constexpr Range terminate_travel = kPositive;
 namespace phase {  // [[phases]] (core/phases.cpp)
 inline constexpr Count load_steps{1, 100000};
 inline constexpr Count max_iterations{1, 1000};
-inline constexpr Range tolerance{0.0, 1e-2, true, false};  // (0, 0.01]
+inline constexpr Range tolerance{0.0, 1e-2, true, false};            // (0, 0.01]
 inline constexpr Range relaxation_tolerance{0.0, 0.1, true, false};  // DRTOL, (0, 0.1]
 inline constexpr Range damping_factor{0.0, 1.0, true, true};         // DRFCTR, (0, 1)
 inline constexpr Count check_every{1, 1000000};                      // NRCYCK

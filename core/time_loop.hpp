@@ -136,7 +136,7 @@ class TimeLoop {
   double next_checkpoint_wall_ = 1e300;
   int checkpoints_written_ = 0;
   long restarted_at_ = 0;
-  bool stopped_ = false;         // RunOptions::stop_requested ended run()
+  bool stopped_ = false;          // RunOptions::stop_requested ended run()
   bool preload_pending_ = false;  // the scene's static or relaxation phase is the next step
   double damped_ = 0.0;           // Energies::damped
 };
