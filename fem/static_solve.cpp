@@ -141,11 +141,12 @@ void check_rigid_body_modes(const MeshData& mesh, const std::vector<char>& fixed
     for (std::int32_t n : nodes)
       gyration += core::dot(mesh.nodes[n] - centroid, mesh.nodes[n] - centroid);
     gyration = std::sqrt(gyration / static_cast<double>(nodes.size()));
-    double gram[6][6] = {};
+    // gram over the fixed dofs; motion over all of the body's dofs, whose null space is what
+    // moves no node (the turn about the line of a straight chain of trusses): no mode.
+    double gram[6][6] = {}, motion[6][6] = {};
     for (std::int32_t n : nodes) {
       const core::Vec3 d = (1.0 / gyration) * (mesh.nodes[n] - centroid);
       for (int i = 0; i < 3; ++i) {
-        if (!fixed[3 * n + i]) continue;
         double phi[6] = {};
         phi[i] = 1.0;
         for (int k = 0; k < 3; ++k) {
@@ -154,11 +155,22 @@ void check_rigid_body_modes(const MeshData& mesh, const std::vector<char>& fixed
           phi[3 + k] = core::cross(axis, d)[i];
         }
         for (int p = 0; p < 6; ++p)
-          for (int q = 0; q < 6; ++q) gram[p][q] += phi[p] * phi[q];
+          for (int q = 0; q < 6; ++q) {
+            motion[p][q] += phi[p] * phi[q];
+            if (fixed[3 * n + i]) gram[p][q] += phi[p] * phi[q];
+          }
       }
     }
-    double trace = 0.0, v[6][6];
-    for (int p = 0; p < 6; ++p) trace += gram[p][p];
+    double trace = 0.0, motion_trace = 0.0, v[6][6];
+    for (int p = 0; p < 6; ++p) {
+      trace += gram[p][p];
+      motion_trace += motion[p][p];
+    }
+    symmetric_eigen(motion, v);
+    for (int m = 0; m < 6; ++m)
+      if (motion[m][m] <= 1e-9 * motion_trace)
+        for (int p = 0; p < 6; ++p)
+          for (int q = 0; q < 6; ++q) gram[p][q] += std::max(trace, 1.0) * v[p][m] * v[q][m];
     symmetric_eigen(gram, v);
     std::string modes;
     for (int m = 0; m < 6; ++m) {
@@ -216,8 +228,9 @@ namespace {
 
 // What the static and the dynamic solve share: the equations of the free dofs, the element
 // geometry, the consistent mass and the Gauss points' converged and current states. Trusses
-// (mesh lines) are elastic bars at small strain: strain e . (u_b - u_a) / L0 along their initial
-// axis e, axial force E A strain, stiffness (E A / L0) [e e^T, -e e^T; -e e^T, e e^T] and
+// (mesh lines) are bars at small strain: strain e . (u_b - u_a) / L0 along their initial axis
+// e, axial force A sigma (core::small_strain_bar_update: elastic, or the 1-D return map),
+// stiffness (E_t A / L0) [e e^T, -e e^T; -e e^T, e e^T] with the update's tangent E_t, and
 // consistent mass (rho A L0 / 6) [2 1; 1 2] per component.
 struct Body {
   const StaticProblem& problem;
@@ -236,11 +249,12 @@ struct Body {
   std::vector<std::array<core::SmallStrainPoint, 8>> converged;
   std::vector<std::array<core::SymTensor, 8>> strain;  // at the displacement last evaluated
   std::vector<std::array<core::SmallStrainResult, 8>> current;
-  std::vector<core::Vec3> line_axis;   // unit, initial
-  std::vector<double> line_length;     // initial
-  std::vector<double> line_stiffness;  // E A / L0
-  std::vector<double> line_mass;       // rho A L0
-  std::vector<double> line_strain;     // at the displacement last evaluated
+  std::vector<core::Vec3> line_axis;  // unit, initial
+  std::vector<double> line_length;    // initial
+  std::vector<double> line_mass;      // rho A L0
+  std::vector<core::SmallStrainBarPoint> line_converged;
+  std::vector<double> line_strain;  // at the displacement last evaluated
+  std::vector<core::SmallStrainBarResult> line_current;
 
   // Validates the problem (`who` starts the messages); a static solve also needs the body held
   // against its rigid-body modes.
@@ -257,7 +271,8 @@ struct Body {
   int points(std::size_t e) const { return one_point[e] < 0 ? 8 : 1; }
   void write_states(std::vector<std::array<core::SymTensor, 8>>& stress,
                     std::vector<std::array<double, 8>>& plastic_strain,
-                    std::vector<double>& line_stress) const;
+                    std::vector<double>& line_stress,
+                    std::vector<double>& line_plastic_strain) const;
 };
 
 Body::Body(const StaticProblem& p, const char* who, bool check_support)
@@ -305,13 +320,6 @@ Body::Body(const StaticProblem& p, const char* who, bool check_support)
                                   "singular tangent. Give it a positive coefficient, or use full "
                                   "integration (B-bar)");
   }
-  for (std::int32_t part : mesh.line_part)
-    if (!std::holds_alternative<core::Elastic>(problem.materials[part].strength))
-      throw std::invalid_argument(std::string(who) + ": the trusses of part '" +
-                                  mesh.part_names[part] + "' (material '" +
-                                  problem.materials[part].name +
-                                  "') need an elastic material: trusses have no plastic tangent "
-                                  "here");
   if (!problem.nodal_forces.empty() && problem.nodal_forces.size() != nodes)
     throw std::invalid_argument(std::string(who) + ": nodal_forces needs one force per node");
 
@@ -369,10 +377,11 @@ Body::Body(const StaticProblem& p, const char* who, bool check_support)
     const core::Material& m = problem.materials[mesh.line_part[l]];
     line_axis.push_back((1.0 / length) * d);
     line_length.push_back(length);
-    line_stiffness.push_back(m.youngs_modulus * area / length);
     line_mass.push_back(m.density * area * length);
   }
+  line_converged.resize(mesh.lines.size());
   line_strain.assign(mesh.lines.size(), 0.0);
+  line_current.resize(mesh.lines.size());
 }
 
 void Body::internal_forces(const std::vector<core::Vec3>& at, std::vector<core::Vec3>& force) {
@@ -403,7 +412,9 @@ void Body::internal_forces(const std::vector<core::Vec3>& at, std::vector<core::
   for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
     const Line& n = mesh.lines[l];
     line_strain[l] = core::dot(line_axis[l], at[n[1]] - at[n[0]]) / line_length[l];
-    const core::Vec3 f = (line_stiffness[l] * line_length[l] * line_strain[l]) * line_axis[l];
+    line_current[l] = core::small_strain_bar_update(problem.materials[mesh.line_part[l]],
+                                                    line_converged[l], line_strain[l]);
+    const core::Vec3 f = (mesh.line_area[l] * line_current[l].stress) * line_axis[l];
     force[n[0]] += f;
     force[n[1]] -= f;
   }
@@ -447,13 +458,14 @@ void Body::assemble(SparseAssembly& assembly, double stiffness_factor, double ma
     assembly.add(mesh.hexahedra[e], ke);
   }
   for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
+    const double stiffness = line_current[l].tangent * mesh.line_area[l] / line_length[l];
     LineMatrix kl{};
     for (int a = 0; a < 2; ++a)
       for (int b = 0; b < 2; ++b)
         for (int i = 0; i < 3; ++i) {
           for (int j = 0; j < 3; ++j)
-            kl[6 * (3 * a + i) + 3 * b + j] = (a == b ? 1.0 : -1.0) * stiffness_factor *
-                                              line_stiffness[l] * line_axis[l][i] * line_axis[l][j];
+            kl[6 * (3 * a + i) + 3 * b + j] = (a == b ? 1.0 : -1.0) * stiffness_factor * stiffness *
+                                              line_axis[l][i] * line_axis[l][j];
           kl[6 * (3 * a + i) + 3 * b + i] +=
               mass_factor * line_mass[l] * (a == b ? 2.0 : 1.0) / 6.0;
         }
@@ -466,11 +478,14 @@ void Body::commit() {
     for (int g = 0; g < points(e); ++g)
       converged[e][g] = {strain[e][g], current[e][g].stress.deviator(),
                          current[e][g].plastic_strain};
+  for (std::size_t l = 0; l < mesh.lines.size(); ++l)
+    line_converged[l] = {line_strain[l], line_current[l].stress, line_current[l].plastic_strain};
 }
 
 void Body::write_states(std::vector<std::array<core::SymTensor, 8>>& stress,
                         std::vector<std::array<double, 8>>& plastic_strain,
-                        std::vector<double>& line_stress) const {
+                        std::vector<double>& line_stress,
+                        std::vector<double>& line_plastic_strain) const {
   stress.resize(elements);
   plastic_strain.resize(elements);
   for (std::size_t e = 0; e < elements; ++e)
@@ -480,8 +495,11 @@ void Body::write_states(std::vector<std::array<core::SymTensor, 8>>& stress,
       plastic_strain[e][g] = current[e][p].plastic_strain;
     }
   line_stress.resize(mesh.lines.size());
-  for (std::size_t l = 0; l < mesh.lines.size(); ++l)
-    line_stress[l] = problem.materials[mesh.line_part[l]].youngs_modulus * line_strain[l];
+  line_plastic_strain.resize(mesh.lines.size());
+  for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
+    line_stress[l] = line_current[l].stress;
+    line_plastic_strain[l] = line_current[l].plastic_strain;
+  }
 }
 
 // Newton-Raphson with line search to r(u) = 0 for one step: residual(at) sets r on the free
@@ -505,10 +523,11 @@ void newton(const Body& body, const NewtonSettings& settings, const char* log_na
                     << it.energy << ", step length " << it.step_length << '\n';
   };
   double reference = residual(u), first_energy = 0.0, last_energy = 0.0;
+  bool moved = true;  // whether the last correction changed u: below round-off it cannot
   for (int k = 0;; ++k) {
     const double rnorm = norm(r), scale = reference;
     if (rnorm <= settings.residual_tolerance * reference &&
-        (k == 0 || last_energy <= settings.energy_tolerance * first_energy)) {
+        (k == 0 || last_energy <= settings.energy_tolerance * first_energy || !moved)) {
       record({step, k, rnorm, scale, 0.0, 0.0});
       return;
     }
@@ -562,6 +581,10 @@ void newton(const Body& body, const NewtonSettings& settings, const char* log_na
         g_hi = g;
       }
     }
+    moved = !std::equal(u.begin(), u.end(), trial.begin(),
+                        [](const core::Vec3& p, const core::Vec3& q) {
+                          return p.x == q.x && p.y == q.y && p.z == q.z;
+                        });
     u.swap(trial);
     record({step, k, rnorm, scale, energy, s});
   }
@@ -606,7 +629,7 @@ StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& se
     body.commit();
   }
   out.displacement = u;
-  body.write_states(out.stress, out.plastic_strain, out.line_stress);
+  body.write_states(out.stress, out.plastic_strain, out.line_stress, out.line_plastic_strain);
   return out;
 }
 
@@ -676,9 +699,11 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
         state.strain_energy += hourglass_energy(body.hourglass[one_point], ue);
       }
     }
-    for (std::size_t l = 0; l < problem.mesh->lines.size(); ++l)
-      state.strain_energy += 0.5 * body.line_stiffness[l] * body.line_length[l] *
-                             body.line_length[l] * body.line_strain[l] * body.line_strain[l];
+    for (std::size_t l = 0; l < problem.mesh->lines.size(); ++l) {
+      const double sigma = body.line_current[l].stress;
+      state.strain_energy += problem.mesh->line_area[l] * body.line_length[l] * sigma * sigma /
+                             (2.0 * problem.materials[problem.mesh->line_part[l]].youngs_modulus);
+    }
     return state;
   };
 
@@ -745,7 +770,7 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
   }
   out.displacement = u;
   out.velocity = v;
-  body.write_states(out.stress, out.plastic_strain, out.line_stress);
+  body.write_states(out.stress, out.plastic_strain, out.line_stress, out.line_plastic_strain);
   return out;
 }
 

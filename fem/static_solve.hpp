@@ -1,6 +1,6 @@
 // Static (implicit) solve of a mesh of hexahedra (fully integrated with B-bar, or one-point with
-// the stiffness of its hourglass form: fem/hexahedron_stiffness.hpp) and elastic 2-node trusses
-// at small strain:
+// the stiffness of its hourglass form: fem/hexahedron_stiffness.hpp) and 2-node trusses (elastic
+// or plastic: the 1-D return map, core::small_strain_bar_update) at small strain:
 // Newton-Raphson with the consistent tangent (core/materials/small_strain_tangent.hpp), a line
 // search and load stepping, the tangent factorised by CHOLMOD (fem/sparse_cholesky.hpp; the
 // tangents here are symmetric, so no unsymmetric solver is needed yet). Each iteration's
@@ -93,11 +93,12 @@ struct StaticResult {
   std::vector<std::array<core::SymTensor, 8>> stress;
   std::vector<std::array<double, 8>> plastic_strain;
   std::vector<double> line_stress;  // per line (truss), axial
+  std::vector<double> line_plastic_strain;
   std::vector<NewtonIteration> iterations;
 };
 
 // Throws std::invalid_argument for a problem it cannot solve (a material without a tangent,
-// named; a truss of a material that is not elastic, or without an area; one-point hexahedra
+// named; a truss without an area; one-point hexahedra
 // without hourglass stiffness, naming the part and the form; bad indices), and
 // std::runtime_error for a body whose rigid-body modes the prescribed dofs leave free (naming the
 // body's parts and the modes), a tangent that is not positive definite (naming the node and
@@ -131,8 +132,8 @@ struct NewmarkSettings {
 struct NewmarkState {
   double time = 0.0;
   double kinetic_energy = 0.0;  // v . M v / 2
-  double strain_energy = 0.0;   // stored elastic energy, p^2 / 2K + s:s / 4G integrated, and
-                                // one-point elements' hourglass energy
+  double strain_energy = 0.0;   // stored elastic energy, p^2 / 2K + s:s / 4G integrated,
+                                // one-point elements' hourglass energy and trusses' sigma^2 / 2E
 };
 
 // The problem's loads act fully and constantly from t = 0 (no load steps).
@@ -142,6 +143,7 @@ struct NewmarkResult {
   std::vector<std::array<core::SymTensor, 8>> stress;  // at the end, as StaticResult's
   std::vector<std::array<double, 8>> plastic_strain;
   std::vector<double> line_stress;
+  std::vector<double> line_plastic_strain;
   std::vector<NewmarkState> states;         // at t = 0 and after every step
   std::vector<NewtonIteration> iterations;  // load_step is the time step
 };
