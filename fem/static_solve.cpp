@@ -33,7 +33,7 @@ std::string node_name(const MeshData& mesh, std::size_t n) {
 }
 
 std::string format(const char* fmt, double a, double b, double c) {
-  char buf[96];
+  char buf[160];
   std::snprintf(buf, sizeof buf, fmt, a, b, c);
   return buf;
 }
@@ -273,6 +273,8 @@ struct Body {
                     std::vector<std::array<double, 8>>& plastic_strain,
                     std::vector<double>& line_stress,
                     std::vector<double>& line_plastic_strain) const;
+  // The element whose plastic strain the current states raised most above the converged ones.
+  YieldingElement most_yielding() const;
 };
 
 Body::Body(const StaticProblem& p, const char* who, bool check_support)
@@ -502,15 +504,41 @@ void Body::write_states(std::vector<std::array<core::SymTensor, 8>>& stress,
   }
 }
 
+YieldingElement Body::most_yielding() const {
+  YieldingElement out;
+  auto consider = [&](YieldingElement::Kind kind, std::size_t index, std::int32_t part,
+                      double increment) {
+    if (increment <= out.plastic_strain_increment) return;
+    out = {kind, static_cast<std::int32_t>(index), mesh.part_names[part], increment};
+  };
+  for (std::size_t e = 0; e < elements; ++e)
+    for (int g = 0; g < points(e); ++g)
+      consider(YieldingElement::Kind::hexahedron, e, mesh.hexahedron_part[e],
+               current[e][g].plastic_strain - converged[e][g].plastic_strain);
+  for (std::size_t l = 0; l < mesh.lines.size(); ++l)
+    consider(YieldingElement::Kind::truss, l, mesh.line_part[l],
+             line_current[l].plastic_strain - line_converged[l].plastic_strain);
+  return out;
+}
+
+// Why a step's Newton solve failed: what happened ("did not converge in 25 iterations", "the
+// tangent stiffness is not positive definite at ...") and the residual then. Caught by the
+// solves, which add the step and the element that yields most.
+struct NewtonFailure {
+  int iteration = 0;
+  double residual = 0.0, reference = 0.0;
+  std::string what;
+};
+
 // Newton-Raphson with line search to r(u) = 0 for one step: residual(at) sets r on the free
 // dofs at displacement `at` and returns the force scale of the convergence test; the tangent is
-// assembled by assemble(). Appends its rows to `iterations`; `step_name` ("load step", "time
-// step") and steps name the step in messages.
+// assembled by assemble(). Appends its rows to `iterations`; `log_name` ("static", "newmark")
+// and steps name the step in the log. Throws NewtonFailure.
 template <class Residual, class Assemble>
-void newton(const Body& body, const NewtonSettings& settings, const char* log_name,
-            const char* step_name, int step, int steps, SparseAssembly& assembly,
-            SparseCholesky& cholesky, std::vector<core::Vec3>& u, std::vector<double>& r,
-            Residual&& residual, Assemble&& assemble, std::vector<NewtonIteration>& iterations) {
+void newton(const Body& body, const NewtonSettings& settings, const char* log_name, int step,
+            int steps, SparseAssembly& assembly, SparseCholesky& cholesky,
+            std::vector<core::Vec3>& u, std::vector<double>& r, Residual&& residual,
+            Assemble&& assemble, std::vector<NewtonIteration>& iterations) {
   const int equations = body.equations;
   std::vector<double> du(equations), b(equations);
   std::vector<core::Vec3> trial(u.size());
@@ -532,25 +560,22 @@ void newton(const Body& body, const NewtonSettings& settings, const char* log_na
       return;
     }
     if (k == settings.max_iterations)
-      throw std::runtime_error(std::string(log_name) + " solve: " + step_name + " " +
-                               std::to_string(step) + " of " + std::to_string(steps) +
-                               " did not converge in " + std::to_string(k) +
-                               " iterations: residual " +
-                               format("%.3g (%.3g of the force scale; tolerance %.3g)", rnorm,
-                                      rnorm / scale, settings.residual_tolerance) +
-                               format(", last energy %.3g (%.3g of the first)", last_energy,
-                                      last_energy / first_energy, 0.0));
+      throw NewtonFailure{k, rnorm, scale,
+                          "did not converge in " + std::to_string(k) + " iterations" +
+                              format(" (last energy %.3g, %.3g of the first)", last_energy,
+                                     last_energy / first_energy, 0.0)};
 
     assemble();
     try {
       cholesky.factorise(assembly.matrix());
     } catch (const NotPositiveDefinite& npd) {
       const int dof = body.dof_of[npd.column()];
-      throw std::runtime_error(std::string(log_name) + " solve: " + step_name + " " +
-                               std::to_string(step) + ", iteration " + std::to_string(k) +
-                               ": the tangent stiffness is not positive definite at " +
-                               node_name(body.mesh, dof / 3) + ", component " + kAxis[dof % 3] +
-                               " (a mechanism, or a material that softens)");
+      throw NewtonFailure{k, rnorm, scale,
+                          "the tangent stiffness is not positive definite at " +
+                              node_name(body.mesh, static_cast<std::size_t>(dof) / 3) +
+                              ", component " + kAxis[dof % 3] +
+                              " (a mechanism, a material that softens, or a load past the limit "
+                              "load)"};
     }
     b = r;
     cholesky.solve(b, du);
@@ -590,7 +615,31 @@ void newton(const Body& body, const NewtonSettings& settings, const char* log_na
   }
 }
 
+// "hexahedron 12 of part 'bar' (plastic strain increment 0.0123 in this step)".
+std::string describe(const YieldingElement& y) {
+  if (y.kind == YieldingElement::Kind::none) return "no element yields in this step";
+  return std::string("the element that yields most: ") +
+         (y.kind == YieldingElement::Kind::hexahedron ? "hexahedron " : "truss (line) ") +
+         std::to_string(y.index) + " of part '" + y.part + "'" +
+         format(" (plastic strain increment %.3g in this step)", y.plastic_strain_increment, 0, 0);
+}
+
+// "static solve: load step 3 of 5, iteration 25: did not converge ...; residual ... (... of the
+// force scale; tolerance ...); the element that yields most: ...".
+std::string step_failure(const char* who, const char* step_name, int step, int steps,
+                         const NewtonFailure& f, double tolerance, const YieldingElement& y) {
+  return std::string(who) + ": " + step_name + " " + std::to_string(step) + " of " +
+         std::to_string(steps) + ", iteration " + std::to_string(f.iteration) + ": " + f.what +
+         format("; residual %.3g (%.3g of the force scale; tolerance %.3g); ", f.residual,
+                f.reference > 0.0 ? f.residual / f.reference : 0.0, tolerance) +
+         describe(y);
+}
+
 }  // namespace
+
+StaticFailure::StaticFailure(const std::string& what, StaticFailureDetails details)
+    : std::runtime_error(what),
+      details_(std::make_shared<const StaticFailureDetails>(std::move(details))) {}
 
 StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& settings) {
   Body body(problem, "static solve", true);
@@ -618,19 +667,39 @@ StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& se
                           body.equations);
   SparseCholesky cholesky;
   cholesky.analyse(assembly.matrix());
-  StaticResult out;
+  // The state after the last converged step (the virgin one before the first).
+  StaticResult last;
+  last.displacement = u;
+  body.write_states(last.stress, last.plastic_strain, last.line_stress, last.line_plastic_strain);
+  std::vector<NewtonIteration> iterations;
   for (int step = 1; step <= settings.load_steps; ++step) {
     load = static_cast<double>(step) / settings.load_steps;
     for (const PrescribedDisplacement& p : problem.prescribed)
       u[p.node][p.component] = load * p.value;
-    newton(
-        body, settings, "static", "load step", step, settings.load_steps, assembly, cholesky, u, r,
-        residual, [&] { body.assemble(assembly, 1.0, 0.0); }, out.iterations);
+    try {
+      newton(
+          body, settings, "static", step, settings.load_steps, assembly, cholesky, u, r, residual,
+          [&] { body.assemble(assembly, 1.0, 0.0); }, iterations);
+    } catch (const NewtonFailure& f) {
+      StaticFailureDetails details{
+          step,        settings.load_steps,         f.iteration,          f.residual,
+          f.reference, settings.residual_tolerance, body.most_yielding(), last};
+      details.last_converged.iterations = iterations;
+      const std::string what =
+          step_failure("static solve", "load step", step, settings.load_steps, f,
+                       settings.residual_tolerance, details.most_yielding) +
+          format(". Load factor %.4g; the last converged step's (load factor %.4g)", load,
+                 last.load_factor, 0.0) +
+          " state is in StaticFailure::details().last_converged";
+      throw StaticFailure(what, std::move(details));
+    }
     body.commit();
+    last.load_factor = load;
+    last.displacement = u;
+    body.write_states(last.stress, last.plastic_strain, last.line_stress, last.line_plastic_strain);
   }
-  out.displacement = u;
-  body.write_states(out.stress, out.plastic_strain, out.line_stress, out.line_plastic_strain);
-  return out;
+  last.iterations = std::move(iterations);
+  return last;
 }
 
 NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings& settings) {
@@ -754,10 +823,16 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
     for (std::size_t n = 0; n < nodes; ++n)
       u_star[n] = u[n] + dt * v[n] + ((0.5 - beta) * dt * dt) * a[n];
     for (std::size_t n = 0; n < nodes; ++n) u[n] = u_star[n] + (beta * dt * dt) * a[n];
-    newton(
-        body, settings.newton, "newmark", "time step", step, settings.steps, assembly, cholesky, u,
-        r, residual, [&] { body.assemble(assembly, 1.0 + alpha, 1.0 / (beta * dt * dt)); },
-        out.iterations);
+    try {
+      newton(
+          body, settings.newton, "newmark", step, settings.steps, assembly, cholesky, u, r,
+          residual, [&] { body.assemble(assembly, 1.0 + alpha, 1.0 / (beta * dt * dt)); },
+          out.iterations);
+    } catch (const NewtonFailure& f) {
+      throw std::runtime_error(step_failure("newmark solve", "time step", step, settings.steps, f,
+                                            settings.newton.residual_tolerance,
+                                            body.most_yielding()));
+    }
     for (std::size_t n = 0; n < nodes; ++n) {
       const core::Vec3 a_next = (1.0 / (beta * dt * dt)) * (u[n] - u_star[n]);
       v[n] += dt * ((1.0 - gamma) * a[n] + gamma * a_next);

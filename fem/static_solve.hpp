@@ -5,7 +5,9 @@
 // search and load stepping, the tangent factorised by CHOLMOD (fem/sparse_cholesky.hpp; the
 // tangents here are symmetric, so no unsymmetric solver is needed yet). Each iteration's
 // residual norm and energy norm |du . r| are recorded (and printed to an optional stream); a
-// load step converges when both fall below their tolerances (Bathe 1996, sec. 8.4.4).
+// load step converges when both fall below their tolerances (Bathe 1996, sec. 8.4.4). A step
+// that fails throws StaticFailure, which names the element that yields most and keeps the state
+// of the last converged step.
 // solve_newmark integrates the same body in time implicitly (Newmark 1959; HHT-alpha, Hilber,
 // Hughes & Taylor, EESD 5 (1977) 283-292) with the consistent mass, each time step one Newton
 // solve on the same residual and tangent machinery.
@@ -15,7 +17,10 @@
 #include <cstdint>
 #include <functional>
 #include <iosfwd>
+#include <memory>
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "afemp/material.hpp"
@@ -87,6 +92,7 @@ struct NewtonIteration {
 };
 
 struct StaticResult {
+  double load_factor = 0.0;              // of this state: 1 once the solve is done
   std::vector<core::Vec3> displacement;  // per node
   // Per hexahedron, per Gauss point (fem/hexahedron_full.hpp's order); a one-point element's
   // single point in all eight.
@@ -97,13 +103,46 @@ struct StaticResult {
   std::vector<NewtonIteration> iterations;
 };
 
+// The element whose plastic strain grew most in a step (the largest increment over its Gauss
+// points; a truss has one).
+struct YieldingElement {
+  enum class Kind { none, hexahedron, truss };  // none: no element yielded in the step
+  Kind kind = Kind::none;
+  std::int32_t index = -1;  // into MeshData::hexahedra or MeshData::lines
+  std::string part;
+  double plastic_strain_increment = 0.0;
+};
+
+// A load step that failed: Newton did not converge in its iterations, or the tangent was not
+// positive definite (a mechanism, or a load past the limit load).
+struct StaticFailureDetails {
+  int load_step = 0, load_steps = 0;  // the step that failed (from 1), of load_steps
+  int iteration = 0;                  // in it
+  double residual = 0.0;              // ||r|| at that iteration
+  double reference = 0.0;  // its force scale; converged once residual <= tolerance * reference
+  double tolerance = 0.0;
+  YieldingElement most_yielding;  // at the failing iterate, over the step
+  // The state after the last converged load step (load factor 0 and no displacement when the
+  // first one failed); its iterations are all the solve's, the failing step's included.
+  StaticResult last_converged;
+};
+
+class StaticFailure : public std::runtime_error {
+ public:
+  StaticFailure(const std::string& what, StaticFailureDetails details);
+  const StaticFailureDetails& details() const { return *details_; }
+
+ private:
+  std::shared_ptr<const StaticFailureDetails> details_;  // shared: copying stays noexcept
+};
+
 // Throws std::invalid_argument for a problem it cannot solve (a material without a tangent,
 // named; a truss without an area; one-point hexahedra
-// without hourglass stiffness, naming the part and the form; bad indices), and
-// std::runtime_error for a body whose rigid-body modes the prescribed dofs leave free (naming the
-// body's parts and the modes), a tangent that is not positive definite (naming the node and
-// component) and a load step that does not converge (naming the step, the iteration and the
-// residual).
+// without hourglass stiffness, naming the part and the form; bad indices), std::runtime_error
+// for a body whose rigid-body modes the prescribed dofs leave free (naming the body's parts and
+// the modes), and StaticFailure for a load step that fails: a tangent that is not positive
+// definite (naming the node and component) or no convergence; its message names the step, the
+// iteration, the residual against its tolerance and the element that yields most.
 StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& settings = {});
 
 // Implicit dynamics: M a + (1 + alpha) f_int(u_{n+1}) - alpha f_int(u_n) = f_ext (the HHT
@@ -148,8 +187,9 @@ struct NewmarkResult {
   std::vector<NewtonIteration> iterations;  // load_step is the time step
 };
 
-// Throws as solve_static (except for an unheld body, which the mass holds), and
-// std::invalid_argument for a time step that is not positive or alpha outside [-1/3, 0].
+// Throws as solve_static (except for an unheld body, which the mass holds; a failing step is a
+// std::runtime_error naming the same), and std::invalid_argument for a time step that is not
+// positive or alpha outside [-1/3, 0].
 NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings& settings);
 
 // The faces of the mesh's hexahedra whose four nodes all lie in `nodes`, as kHexFaces orders
