@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+#include <optional>
 #include <ostream>
 #include <stdexcept>
 #include <string>
@@ -99,11 +100,14 @@ void symmetric_eigen(double (&a)[6][6], double (&v)[6][6]) {
   }
 }
 
-// Throws when a connected body has rigid-body modes that its fixed dofs do not hold: the null
-// space of sum over fixed dofs of phi phi^T, phi the six modes' values there (translations
-// along x, y, z; rotations about the axes through the body's centroid, scaled by its radius of
-// gyration so that the six are comparable).
-void check_rigid_body_modes(const MeshData& mesh, const std::vector<char>& fixed) {
+// Throws when a connected body has rigid-body modes that its fixed dofs and the walls it rests
+// on do not hold: the null space of sum over held directions d of phi phi^T, phi the six
+// modes' components d . mode there (translations along x, y, z; rotations about the axes
+// through the body's centroid, scaled by its radius of gyration so that the six are
+// comparable); a fixed dof holds its axis, a wall (supports: node, normal) its normal.
+void check_rigid_body_modes(const MeshData& mesh, const std::vector<char>& fixed,
+                            const std::vector<std::pair<std::int32_t, core::Vec3>>& supports,
+                            bool walls) {
   std::vector<std::int32_t> parent(mesh.nodes.size());
   std::iota(parent.begin(), parent.end(), 0);
   auto root = [&](std::int32_t n) {
@@ -131,6 +135,14 @@ void check_rigid_body_modes(const MeshData& mesh, const std::vector<char>& fixed
   for (std::size_t e = 0; e < mesh.hexahedra.size(); ++e)
     collect(mesh.hexahedra[e], mesh.hexahedron_part[e]);
   for (std::size_t e = 0; e < mesh.lines.size(); ++e) collect(mesh.lines[e], mesh.line_part[e]);
+  std::vector<std::vector<core::Vec3>> held(mesh.nodes.size());  // per node, what holds it
+  for (std::size_t d = 0; d < fixed.size(); ++d)
+    if (fixed[d]) {
+      core::Vec3 axis;
+      axis[d % 3] = 1.0;
+      held[d / 3].push_back(axis);
+    }
+  for (const auto& [node, normal] : supports) held[node].push_back(normal);
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const std::vector<std::int32_t>& nodes = bodies[b];
     if (nodes.empty()) continue;
@@ -141,24 +153,27 @@ void check_rigid_body_modes(const MeshData& mesh, const std::vector<char>& fixed
     for (std::int32_t n : nodes)
       gyration += core::dot(mesh.nodes[n] - centroid, mesh.nodes[n] - centroid);
     gyration = std::sqrt(gyration / static_cast<double>(nodes.size()));
-    // gram over the fixed dofs; motion over all of the body's dofs, whose null space is what
-    // moves no node (the turn about the line of a straight chain of trusses): no mode.
+    // gram over the held directions; motion over all of the body's dofs, whose null space is
+    // what moves no node (the turn about the line of a straight chain of trusses): no mode.
     double gram[6][6] = {}, motion[6][6] = {};
     for (std::int32_t n : nodes) {
       const core::Vec3 d = (1.0 / gyration) * (mesh.nodes[n] - centroid);
-      for (int i = 0; i < 3; ++i) {
-        double phi[6] = {};
-        phi[i] = 1.0;
+      auto add = [&](const core::Vec3& direction, double(&g)[6][6]) {
+        double phi[6];
         for (int k = 0; k < 3; ++k) {
           core::Vec3 axis;
           axis[k] = 1.0;
-          phi[3 + k] = core::cross(axis, d)[i];
+          phi[k] = direction[k];
+          phi[3 + k] = core::dot(direction, core::cross(axis, d));
         }
         for (int p = 0; p < 6; ++p)
-          for (int q = 0; q < 6; ++q) {
-            motion[p][q] += phi[p] * phi[q];
-            if (fixed[3 * n + i]) gram[p][q] += phi[p] * phi[q];
-          }
+          for (int q = 0; q < 6; ++q) g[p][q] += phi[p] * phi[q];
+      };
+      for (const core::Vec3& direction : held[n]) add(direction, gram);
+      for (int i = 0; i < 3; ++i) {
+        core::Vec3 axis;
+        axis[i] = 1.0;
+        add(axis, motion);
       }
     }
     double trace = 0.0, motion_trace = 0.0, v[6][6];
@@ -193,7 +208,8 @@ void check_rigid_body_modes(const MeshData& mesh, const std::vector<char>& fixed
         " nodes) is not held: the prescribed displacements leave free its rigid-body modes " +
         modes +
         format(" (rotations about axes through its centroid (%g, %g, %g)): the system is singular",
-               centroid.x, centroid.y, centroid.z));
+               centroid.x, centroid.y, centroid.z) +
+        (walls ? " (a wall holds a body only where its nodes touch the wall at the start)" : ""));
   }
 }
 
@@ -231,7 +247,10 @@ namespace {
 // (mesh lines) are bars at small strain: strain e . (u_b - u_a) / L0 along their initial axis
 // e, axial force A sigma (core::small_strain_bar_update: elastic, or the 1-D return map),
 // stiffness (E_t A / L0) [e e^T, -e e^T; -e e^T, e e^T] with the update's tangent E_t, and
-// consistent mass (rho A L0 / 6) [2 1; 1 2] per component.
+// consistent mass (rho A L0 / 6) [2 1; 1 2] per component. The equations of a node that a wall
+// holds are its components in its frame (fem/wall_constraints.hpp), the held ones kept as
+// equations whose corrections are zero, so that the sparsity pattern and CHOLMOD's analysis
+// stay those of the whole solve whatever the walls' active set.
 struct Body {
   const StaticProblem& problem;
   const MeshData& mesh;
@@ -255,11 +274,19 @@ struct Body {
   std::vector<core::SmallStrainBarPoint> line_converged;
   std::vector<double> line_strain;  // at the displacement last evaluated
   std::vector<core::SmallStrainBarResult> line_current;
+  std::optional<WallConstraints> walls;
 
   // Validates the problem (`who` starts the messages); a static solve also needs the body held
-  // against its rigid-body modes.
+  // against its rigid-body modes, by its prescribed dofs and the walls its nodes touch at the
+  // start.
   Body(const StaticProblem& p, const char* who, bool check_support);
 
+  // r on the equations from a per-node vector (a residual), in the nodes' frames, zero on the
+  // components the walls hold; returns the sum of squares of what the prescribed and the held
+  // components carry (the reactions).
+  double gather(const std::vector<core::Vec3>& nodal, std::vector<double>& r) const;
+  // u += s du, du on the equations.
+  void add_correction(const std::vector<double>& du, double s, std::vector<core::Vec3>& u) const;
   // force = -f_int(at) per node (external minus internal, without the loads), the current
   // states updated from the converged ones.
   void internal_forces(const std::vector<core::Vec3>& at, std::vector<core::Vec3>& force);
@@ -339,7 +366,15 @@ Body::Body(const StaticProblem& p, const char* who, bool check_support)
                                   std::to_string(d.component) + " out of range");
     fixed[3 * d.node + d.component] = 1;
   }
-  if (check_support) check_rigid_body_modes(mesh, fixed);
+  // A node of no element has no equations: no wall moves it.
+  std::vector<char> unmoved = fixed;
+  for (std::size_t d = 0; d < 3 * nodes; ++d)
+    if (!in_element[d / 3]) unmoved[d] = 1;
+  walls.emplace(mesh, problem.walls, std::move(unmoved), who);
+  if (check_support) {
+    walls->start(std::vector<core::Vec3>(nodes));
+    check_rigid_body_modes(mesh, fixed, walls->supports(), !walls->empty());
+  }
   equation.assign(3 * nodes, -1);
   for (std::size_t d = 0; d < 3 * nodes; ++d)
     if (in_element[d / 3] && !fixed[d]) {
@@ -384,6 +419,45 @@ Body::Body(const StaticProblem& p, const char* who, bool check_support)
   line_converged.resize(mesh.lines.size());
   line_strain.assign(mesh.lines.size(), 0.0);
   line_current.resize(mesh.lines.size());
+
+  // Gravity's consistent nodal forces, integral of rho N_a g dV = sum_b M_ab g.
+  if (core::dot(problem.gravity, problem.gravity) > 0.0) {
+    for (std::size_t e = 0; e < elements; ++e) {
+      const auto m = mass(e);
+      for (int a = 0; a < 8; ++a)
+        for (int b = 0; b < 8; ++b) f_ext[mesh.hexahedra[e][a]] += m[a][b] * problem.gravity;
+    }
+    for (std::size_t l = 0; l < mesh.lines.size(); ++l)
+      for (std::int32_t a : mesh.lines[l]) f_ext[a] += (0.5 * line_mass[l]) * problem.gravity;
+  }
+}
+
+double Body::gather(const std::vector<core::Vec3>& nodal, std::vector<double>& r) const {
+  double reactions = 0.0;
+  for (std::size_t n = 0; n < nodes; ++n) {
+    if (!in_element[n]) continue;
+    const NodeFrame* f = walls->frame(n);
+    for (int i = 0; i < 3; ++i) {
+      const double v = f ? core::dot(f->basis[i], nodal[n]) : nodal[n][i];
+      const int q = equation[3 * n + i];
+      const bool held = f && f->holds(i);
+      if (q >= 0) r[q] = held ? 0.0 : v;
+      if (q < 0 || held) reactions += v * v;
+    }
+  }
+  return reactions;
+}
+
+void Body::add_correction(const std::vector<double>& du, double s,
+                          std::vector<core::Vec3>& u) const {
+  for (int q = 0; q < equations; ++q) {
+    const std::size_t n = static_cast<std::size_t>(dof_of[q]) / 3;
+    const int i = dof_of[q] % 3;
+    if (const NodeFrame* f = walls->frame(n)) {
+      if (!f->holds(i)) u[n] += (s * du[q]) * f->basis[i];
+    } else
+      u[n][i] += s * du[q];
+  }
 }
 
 void Body::internal_forces(const std::vector<core::Vec3>& at, std::vector<core::Vec3>& force) {
@@ -457,6 +531,7 @@ void Body::assemble(SparseAssembly& assembly, double stiffness_factor, double ma
         for (int b = 0; b < 8; ++b)
           for (int i = 0; i < 3; ++i) ke[24 * (3 * a + i) + 3 * b + i] += mass_factor * m[a][b];
     }
+    walls->transform(mesh.hexahedra[e].data(), 8, ke.data());
     assembly.add(mesh.hexahedra[e], ke);
   }
   for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
@@ -471,6 +546,7 @@ void Body::assemble(SparseAssembly& assembly, double stiffness_factor, double ma
           kl[6 * (3 * a + i) + 3 * b + i] +=
               mass_factor * line_mass[l] * (a == b ? 2.0 : 1.0) / 6.0;
         }
+    walls->transform(mesh.lines[l].data(), 2, kl.data());
     assembly.add(mesh.lines[l], kl);
   }
 }
@@ -525,30 +601,35 @@ YieldingElement Body::most_yielding() const {
 // tangent stiffness is not positive definite at ...") and the residual then. Caught by the
 // solves, which add the step and the element that yields most.
 struct NewtonFailure {
-  int iteration = 0;
+  int round = 0, iteration = 0;
   double residual = 0.0, reference = 0.0;
   std::string what;
 };
 
-// Newton-Raphson with line search to r(u) = 0 for one step: residual(at) sets r on the free
-// dofs at displacement `at` and returns the force scale of the convergence test; the tangent is
-// assembled by assemble(). Appends its rows to `iterations`; `log_name` ("static", "newmark")
-// and steps name the step in the log. Throws NewtonFailure.
+// Newton-Raphson with line search to r(u) = 0 for one step: residual(at) sets r on the
+// equations at displacement `at` and returns the force scale of the convergence test; the
+// tangent is assembled by assemble(). Appends its rows to `iterations`; `log_name` ("static",
+// "newmark") and steps name the step in the log. Returns the force scale at convergence.
+// Throws NewtonFailure.
 template <class Residual, class Assemble>
-void newton(const Body& body, const NewtonSettings& settings, const char* log_name, int step,
-            int steps, SparseAssembly& assembly, SparseCholesky& cholesky,
-            std::vector<core::Vec3>& u, std::vector<double>& r, Residual&& residual,
-            Assemble&& assemble, std::vector<NewtonIteration>& iterations) {
+double newton(const Body& body, const NewtonSettings& settings, const char* log_name, int step,
+              int steps, int round, SparseAssembly& assembly, SparseCholesky& cholesky,
+              std::vector<core::Vec3>& u, std::vector<double>& r, Residual&& residual,
+              Assemble&& assemble, std::vector<NewtonIteration>& iterations) {
   const int equations = body.equations;
+  const int contacts = body.walls->contacts();
   std::vector<double> du(equations), b(equations);
   std::vector<core::Vec3> trial(u.size());
   auto record = [&](const NewtonIteration& it) {
     iterations.push_back(it);
-    if (settings.log)
-      *settings.log << log_name << " step " << it.load_step << "/" << steps << " iteration "
-                    << it.iteration << ": residual " << it.residual << " (relative "
-                    << (it.reference > 0.0 ? it.residual / it.reference : 0.0) << "), energy "
-                    << it.energy << ", step length " << it.step_length << '\n';
+    if (!settings.log) return;
+    *settings.log << log_name << " step " << it.load_step << "/" << steps << " iteration "
+                  << it.iteration << ": residual " << it.residual << " (relative "
+                  << (it.reference > 0.0 ? it.residual / it.reference : 0.0) << "), energy "
+                  << it.energy << ", step length " << it.step_length;
+    if (!body.walls->empty())
+      *settings.log << " (solve " << it.round << ", " << it.contacts << " nodes on walls)";
+    *settings.log << '\n';
   };
   double reference = residual(u), first_energy = 0.0, last_energy = 0.0;
   bool moved = true;  // whether the last correction changed u: below round-off it cannot
@@ -556,11 +637,11 @@ void newton(const Body& body, const NewtonSettings& settings, const char* log_na
     const double rnorm = norm(r), scale = reference;
     if (rnorm <= settings.residual_tolerance * reference &&
         (k == 0 || last_energy <= settings.energy_tolerance * first_energy || !moved)) {
-      record({step, k, rnorm, scale, 0.0, 0.0});
-      return;
+      record({step, round, k, rnorm, scale, 0.0, 0.0, contacts});
+      return scale;
     }
     if (k == settings.max_iterations)
-      throw NewtonFailure{k, rnorm, scale,
+      throw NewtonFailure{round, k, rnorm, scale,
                           "did not converge in " + std::to_string(k) + " iterations" +
                               format(" (last energy %.3g, %.3g of the first)", last_energy,
                                      last_energy / first_energy, 0.0)};
@@ -570,12 +651,14 @@ void newton(const Body& body, const NewtonSettings& settings, const char* log_na
       cholesky.factorise(assembly.matrix());
     } catch (const NotPositiveDefinite& npd) {
       const int dof = body.dof_of[npd.column()];
-      throw NewtonFailure{k, rnorm, scale,
-                          "the tangent stiffness is not positive definite at " +
-                              node_name(body.mesh, static_cast<std::size_t>(dof) / 3) +
-                              ", component " + kAxis[dof % 3] +
-                              " (a mechanism, a material that softens, or a load past the limit "
-                              "load)"};
+      const std::size_t node = static_cast<std::size_t>(dof) / 3;
+      throw NewtonFailure{
+          round, k, rnorm, scale,
+          "the tangent stiffness is not positive definite at " + node_name(body.mesh, node) +
+              ", component " +
+              (body.walls->frame(node) ? std::to_string(dof % 3) + " of its frame on a wall"
+                                       : std::string(kAxis[dof % 3])) +
+              " (a mechanism, a material that softens, or a load past the limit load)"};
     }
     b = r;
     cholesky.solve(b, du);
@@ -587,8 +670,7 @@ void newton(const Body& body, const NewtonSettings& settings, const char* log_na
     // (G(1) < -ratio g0), then regula falsi in the bracket [0, 1].
     auto try_length = [&](double s) {
       trial = u;
-      for (int q = 0; q < equations; ++q)
-        trial[body.dof_of[q] / 3][body.dof_of[q] % 3] += s * du[q];
+      body.add_correction(du, s, trial);
       reference = residual(trial);
       return dot(du, r);
     };
@@ -611,7 +693,32 @@ void newton(const Body& body, const NewtonSettings& settings, const char* log_na
                           return p.x == q.x && p.y == q.y && p.z == q.z;
                         });
     u.swap(trial);
-    record({step, k, rnorm, scale, energy, s});
+    record({step, round, k, rnorm, scale, energy, s, contacts});
+  }
+}
+
+// One step to equilibrium with the walls' active set settled: Newton solves, each from the
+// nodes of the set moved onto their planes, until the converged state changes the set no more
+// (`nodal` is the residual per node that residual() leaves, the walls' reactions read from
+// it; start() runs before each solve, the set then known). Returns the force scale at
+// convergence. Throws NewtonFailure.
+template <class Residual, class Assemble, class Start>
+double settle(Body& body, const NewtonSettings& settings, const char* log_name, int step, int steps,
+              SparseAssembly& assembly, SparseCholesky& cholesky, std::vector<core::Vec3>& u,
+              std::vector<double>& r, const std::vector<core::Vec3>& nodal, Residual&& residual,
+              Assemble&& assemble, Start&& start, std::vector<NewtonIteration>& iterations) {
+  for (int round = 0;; ++round) {
+    body.walls->project(u);
+    start();
+    const double scale = newton(body, settings, log_name, step, steps, round, assembly, cholesky, u,
+                                r, residual, assemble, iterations);
+    std::string change;
+    if (!body.walls->update(u, nodal, settings.residual_tolerance * scale, change)) return scale;
+    if (round + 1 == settings.max_contact_rounds)
+      throw NewtonFailure{round, iterations.back().iteration, iterations.back().residual, scale,
+                          "the walls' active set did not settle in " +
+                              std::to_string(settings.max_contact_rounds) +
+                              " Newton solves (the last: " + change + ")"};
   }
 }
 
@@ -629,7 +736,11 @@ std::string describe(const YieldingElement& y) {
 std::string step_failure(const char* who, const char* step_name, int step, int steps,
                          const NewtonFailure& f, double tolerance, const YieldingElement& y) {
   return std::string(who) + ": " + step_name + " " + std::to_string(step) + " of " +
-         std::to_string(steps) + ", iteration " + std::to_string(f.iteration) + ": " + f.what +
+         std::to_string(steps) + ", iteration " + std::to_string(f.iteration) +
+         (f.round > 0 ? " of Newton solve " + std::to_string(f.round + 1) +
+                            " (the walls' set changed before it)"
+                      : std::string()) +
+         ": " + f.what +
          format("; residual %.3g (%.3g of the force scale; tolerance %.3g); ", f.residual,
                 f.reference > 0.0 ? f.residual / f.reference : 0.0, tolerance) +
          describe(y);
@@ -643,24 +754,20 @@ StaticFailure::StaticFailure(const std::string& what, StaticFailureDetails detai
 
 StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& settings) {
   Body body(problem, "static solve", true);
-  std::vector<core::Vec3> u(body.nodes), force(body.nodes);
+  std::vector<core::Vec3> u(body.nodes), force(body.nodes), nodal(body.nodes);
   std::vector<double> r(body.equations);
   double load = 0.0;
 
-  // r = load f_ext - f_int(u) on the free dofs; returns max(||load f_ext||, ||reactions||).
+  // r = load f_ext - f_int(u) on the equations; returns max(||load f_ext||, ||reactions||).
   auto residual = [&](const std::vector<core::Vec3>& at) {
     body.internal_forces(at, force);
-    double external = 0.0, reactions = 0.0;
-    for (std::size_t d = 0; d < 3 * body.nodes; ++d) {
-      const double f = load * body.f_ext[d / 3][d % 3];
-      external += f * f;
-      const double rd = f + force[d / 3][d % 3];
-      if (body.equation[d] >= 0)
-        r[body.equation[d]] = rd;
-      else if (body.in_element[d / 3])
-        reactions += rd * rd;
+    double external = 0.0;
+    for (std::size_t n = 0; n < body.nodes; ++n) {
+      const core::Vec3 f = load * body.f_ext[n];
+      external += core::dot(f, f);
+      nodal[n] = f + force[n];
     }
-    return std::sqrt(std::max(external, reactions));
+    return std::sqrt(std::max(external, body.gather(nodal, r)));
   };
 
   SparseAssembly assembly(problem.mesh->hexahedra, problem.mesh->lines, body.equation,
@@ -671,19 +778,26 @@ StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& se
   StaticResult last;
   last.displacement = u;
   body.write_states(last.stress, last.plastic_strain, last.line_stress, last.line_plastic_strain);
+  last.wall_force.assign(body.walls->size(), core::Vec3{});
   std::vector<NewtonIteration> iterations;
   for (int step = 1; step <= settings.load_steps; ++step) {
     load = static_cast<double>(step) / settings.load_steps;
     for (const PrescribedDisplacement& p : problem.prescribed)
       u[p.node][p.component] = load * p.value;
     try {
-      newton(
-          body, settings, "static", step, settings.load_steps, assembly, cholesky, u, r, residual,
-          [&] { body.assemble(assembly, 1.0, 0.0); }, iterations);
+      settle(
+          body, settings, "static", step, settings.load_steps, assembly, cholesky, u, r, nodal,
+          residual, [&] { body.assemble(assembly, 1.0, 0.0); }, [] {}, iterations);
     } catch (const NewtonFailure& f) {
-      StaticFailureDetails details{
-          step,        settings.load_steps,         f.iteration,          f.residual,
-          f.reference, settings.residual_tolerance, body.most_yielding(), last};
+      StaticFailureDetails details{step,
+                                   settings.load_steps,
+                                   f.round,
+                                   f.iteration,
+                                   f.residual,
+                                   f.reference,
+                                   settings.residual_tolerance,
+                                   body.most_yielding(),
+                                   last};
       details.last_converged.iterations = iterations;
       const std::string what =
           step_failure("static solve", "load step", step, settings.load_steps, f,
@@ -697,6 +811,7 @@ StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& se
     last.load_factor = load;
     last.displacement = u;
     body.write_states(last.stress, last.plastic_strain, last.line_stress, last.line_plastic_strain);
+    last.wall_force = body.walls->forces(nodal);
   }
   last.iterations = std::move(iterations);
   return last;
@@ -719,13 +834,15 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
   const double beta = 0.25 * (1.0 - alpha) * (1.0 - alpha), gamma = 0.5 - alpha;
 
   std::vector<core::Vec3> u(nodes), v(nodes), a(nodes), u_star(nodes), force(nodes), force_n(nodes),
-      ma(nodes), accel(nodes);
+      ma(nodes), accel(nodes), nodal(nodes), predicted(nodes);
   if (!settings.initial_displacement.empty()) u = settings.initial_displacement;
   if (!settings.initial_velocity.empty()) v = settings.initial_velocity;
   for (const PrescribedDisplacement& p : problem.prescribed) {  // held at their values
     u[p.node][p.component] = p.value;
     v[p.node][p.component] = 0.0;
   }
+  body.walls->start(u);
+  body.walls->project(u);
   std::vector<double> r(body.equations);
 
   auto mass_times = [&](const std::vector<core::Vec3>& x, std::vector<core::Vec3>& mx) {
@@ -745,7 +862,7 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
   };
   auto energies = [&](double time) {
     mass_times(v, ma);
-    NewmarkState state{time, 0.0, 0.0};
+    NewmarkState state{time, 0.0, 0.0, {}};
     for (std::size_t n = 0; n < nodes; ++n) state.kinetic_energy += 0.5 * core::dot(v[n], ma[n]);
     // Stored elastic energy p^2 / (2K) + s:s / (4G) per unit volume, and a one-point element's
     // hourglass energy.
@@ -781,53 +898,74 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
   SparseCholesky cholesky;
   cholesky.analyse(assembly.matrix());
 
-  // a_0 = M^-1 (f_ext - f_int(u_0)) on the free dofs.
+  // a_0 = M^-1 (f_ext - f_int(u_0)) on the free dofs (zero along the walls' held normals).
   body.internal_forces(u, force);
   force_n = force;
   body.assemble(assembly, 0.0, 1.0);
   cholesky.factorise(assembly.matrix());
   {
     std::vector<double> b(body.equations), x(body.equations);
-    for (int q = 0; q < body.equations; ++q) {
-      const int d = body.dof_of[q];
-      b[q] = body.f_ext[d / 3][d % 3] + force[d / 3][d % 3];
-    }
+    for (std::size_t n = 0; n < nodes; ++n) nodal[n] = body.f_ext[n] + force[n];
+    body.gather(nodal, b);
     cholesky.solve(b, x);
-    for (int q = 0; q < body.equations; ++q) a[body.dof_of[q] / 3][body.dof_of[q] % 3] = x[q];
+    body.add_correction(x, 1.0, a);
+    mass_times(a, ma);
+    for (std::size_t n = 0; n < nodes; ++n) nodal[n] -= ma[n];
   }
   body.commit();
 
   NewmarkResult out;
   out.states.push_back(energies(0.0));
+  out.states.back().wall_force = body.walls->forces(nodal);
   if (settings.observe) settings.observe(0.0, u);
   // r = f_ext + (1 + alpha) (-f_int(u)) - alpha (-f_int(u_n)) - M a(u),
-  // a(u) = (u - u_star) / (beta dt^2), u_star = u_n + dt v_n + dt^2 (1/2 - beta) a_n.
+  // a(u) = (u - u_star) / (beta dt^2), u_star = u_n + dt v_n + dt^2 (1/2 - beta) a_n (but along
+  // the normals of the nodes on walls: stop_on_walls).
   auto residual = [&](const std::vector<core::Vec3>& at) {
     body.internal_forces(at, force);
     for (std::size_t n = 0; n < nodes; ++n)
       accel[n] = (1.0 / (beta * dt * dt)) * (at[n] - u_star[n]);
     mass_times(accel, ma);
     double external = 0.0, internal = 0.0, inertia = 0.0;
-    for (std::size_t d = 0; d < 3 * nodes; ++d) {
-      if (!body.in_element[d / 3]) continue;
-      const double f = body.f_ext[d / 3][d % 3], fi = force[d / 3][d % 3], mi = ma[d / 3][d % 3];
-      external += f * f;
-      internal += fi * fi;
-      inertia += mi * mi;
-      if (body.equation[d] >= 0)
-        r[body.equation[d]] = f + (1.0 + alpha) * fi - alpha * force_n[d / 3][d % 3] - mi;
+    for (std::size_t n = 0; n < nodes; ++n) {
+      if (!body.in_element[n]) continue;
+      const core::Vec3 &f = body.f_ext[n], &fi = force[n], &mi = ma[n];
+      external += core::dot(f, f);
+      internal += core::dot(fi, fi);
+      inertia += core::dot(mi, mi);
+      nodal[n] = f + (1.0 + alpha) * fi - alpha * force_n[n] - mi;
     }
+    body.gather(nodal, r);
     return std::sqrt(std::max({external, internal, inertia}));
+  };
+  // u_star of the step's set (before each of its Newton solves): a node on a wall stops on it
+  // within the step, along its held normals h the acceleration that brings its velocity to zero
+  // at the step's end, a.h = -(v_n + (1 - gamma) dt a_n).h / (gamma dt) (zero for a node at
+  // rest on the wall), set through u_star so that a(u) = (u - u_star) / (beta dt^2) gives it at
+  // the held displacement. A node that arrives thus couples to its neighbours through the
+  // consistent mass as a stopping node, not with the rule's rebound from its unheld predictor
+  // (which reverses its velocity, then chatters, and gains energy).
+  auto stop_on_walls = [&] {
+    u_star = predicted;
+    for (std::size_t n = 0; n < nodes; ++n) {
+      const NodeFrame* f = body.walls->frame(n);
+      for (int j = 0; f && j < f->held; ++j) {
+        const core::Vec3& h = f->basis[f->slot[j]];
+        const double stop =
+            -(core::dot(h, v[n]) + (1.0 - gamma) * dt * core::dot(h, a[n])) / (gamma * dt);
+        u_star[n] += (core::dot(h, u[n] - u_star[n]) - beta * dt * dt * stop) * h;
+      }
+    }
   };
   for (int step = 1; step <= settings.steps; ++step) {
     for (std::size_t n = 0; n < nodes; ++n)
-      u_star[n] = u[n] + dt * v[n] + ((0.5 - beta) * dt * dt) * a[n];
-    for (std::size_t n = 0; n < nodes; ++n) u[n] = u_star[n] + (beta * dt * dt) * a[n];
+      predicted[n] = u[n] + dt * v[n] + ((0.5 - beta) * dt * dt) * a[n];
+    for (std::size_t n = 0; n < nodes; ++n) u[n] = predicted[n] + (beta * dt * dt) * a[n];
     try {
-      newton(
-          body, settings.newton, "newmark", step, settings.steps, assembly, cholesky, u, r,
+      settle(
+          body, settings.newton, "newmark", step, settings.steps, assembly, cholesky, u, r, nodal,
           residual, [&] { body.assemble(assembly, 1.0 + alpha, 1.0 / (beta * dt * dt)); },
-          out.iterations);
+          stop_on_walls, out.iterations);
     } catch (const NewtonFailure& f) {
       throw std::runtime_error(step_failure("newmark solve", "time step", step, settings.steps, f,
                                             settings.newton.residual_tolerance,
@@ -838,9 +976,11 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
       v[n] += dt * ((1.0 - gamma) * a[n] + gamma * a_next);
       a[n] = a_next;
     }
+    body.walls->stop(v, a);
     force_n = force;
     body.commit();
     out.states.push_back(energies(step * dt));
+    out.states.back().wall_force = body.walls->forces(nodal);
     if (settings.observe) settings.observe(step * dt, u);
   }
   out.displacement = u;

@@ -5,9 +5,10 @@
 // search and load stepping, the tangent factorised by CHOLMOD (fem/sparse_cholesky.hpp; the
 // tangents here are symmetric, so no unsymmetric solver is needed yet). Each iteration's
 // residual norm and energy norm |du . r| are recorded (and printed to an optional stream); a
-// load step converges when both fall below their tolerances (Bathe 1996, sec. 8.4.4). A step
-// that fails throws StaticFailure, which names the element that yields most and keeps the state
-// of the last converged step.
+// load step converges when both fall below their tolerances (Bathe 1996, sec. 8.4.4). Rigid
+// planar walls hold nodes exactly, by an active set (fem/wall_constraints.hpp). A step that
+// fails throws StaticFailure, which names the element that yields most and keeps the state of
+// the last converged step.
 // solve_newmark integrates the same body in time implicitly (Newmark 1959; HHT-alpha, Hilber,
 // Hughes & Taylor, EESD 5 (1977) 283-292) with the consistent mass, each time step one Newton
 // solve on the same residual and tangent machinery.
@@ -27,6 +28,7 @@
 #include "afemp/scene.hpp"
 #include "afemp/tensor.hpp"
 #include "fem/mesh.hpp"
+#include "fem/wall_constraints.hpp"
 
 namespace afemp::fem {
 
@@ -63,6 +65,13 @@ struct StaticProblem {
   std::vector<PrescribedDisplacement> prescribed;
   std::vector<core::Vec3> nodal_forces;  // one per node, or empty
   std::vector<PressureFace> pressures;
+  // The acceleration of gravity: the body force rho g, as consistent nodal forces
+  // (integral of rho N_a g dV = sum_b M_ab g, M the consistent mass).
+  core::Vec3 gravity{};
+  // Fixed, frictionless rigid planes that the listed nodes may not cross; a node that touches a
+  // wall at the start (of the solve, or of the Newmark run) rests on it, the others reach it as
+  // they move. A prescribed component wins over a wall (the wall moves the others).
+  std::vector<PlanarWall> walls;
 };
 
 struct NewtonSettings {
@@ -77,6 +86,9 @@ struct NewtonSettings {
   // line_search_steps times.
   double line_search_ratio = 0.5;
   int line_search_steps = 6;
+  // With walls: the most Newton solves of one step, each after the last changed the active set
+  // (a node crossed a wall's plane, or a wall pulled on a node it held).
+  int max_contact_rounds = 20;
   std::ostream* log = nullptr;  // one line per iteration when set
 };
 
@@ -84,11 +96,14 @@ struct NewtonSettings {
 // the last row of a step, which only checks convergence) and the line search's step length.
 struct NewtonIteration {
   int load_step = 0;  // from 1
-  int iteration = 0;  // from 0
+  int round = 0;      // the Newton solve of the step, from 0 (a new one after the walls' set
+                      // changed)
+  int iteration = 0;  // from 0, in its solve
   double residual = 0.0;
   double reference = 0.0;  // max(||f_ext||, ||reactions||), the residual's scale
   double energy = 0.0;
   double step_length = 0.0;
+  int contacts = 0;  // (wall, node) pairs in contact during the solve
 };
 
 struct StaticResult {
@@ -100,6 +115,7 @@ struct StaticResult {
   std::vector<std::array<double, 8>> plastic_strain;
   std::vector<double> line_stress;  // per line (truss), axial
   std::vector<double> line_plastic_strain;
+  std::vector<core::Vec3> wall_force;  // per wall, its resultant force on the nodes
   std::vector<NewtonIteration> iterations;
 };
 
@@ -113,11 +129,12 @@ struct YieldingElement {
   double plastic_strain_increment = 0.0;
 };
 
-// A load step that failed: Newton did not converge in its iterations, or the tangent was not
-// positive definite (a mechanism, or a load past the limit load).
+// A load step that failed: Newton did not converge in its iterations, the tangent was not
+// positive definite (a mechanism, or a load past the limit load), or the walls' active set did
+// not settle.
 struct StaticFailureDetails {
   int load_step = 0, load_steps = 0;  // the step that failed (from 1), of load_steps
-  int iteration = 0;                  // in it
+  int round = 0, iteration = 0;       // in it (NewtonIteration's)
   double residual = 0.0;              // ||r|| at that iteration
   double reference = 0.0;  // its force scale; converged once residual <= tolerance * reference
   double tolerance = 0.0;
@@ -138,11 +155,12 @@ class StaticFailure : public std::runtime_error {
 
 // Throws std::invalid_argument for a problem it cannot solve (a material without a tangent,
 // named; a truss without an area; one-point hexahedra
-// without hourglass stiffness, naming the part and the form; bad indices), std::runtime_error
-// for a body whose rigid-body modes the prescribed dofs leave free (naming the body's parts and
-// the modes), and StaticFailure for a load step that fails: a tangent that is not positive
-// definite (naming the node and component) or no convergence; its message names the step, the
-// iteration, the residual against its tolerance and the element that yields most.
+// without hourglass stiffness, naming the part and the form; bad indices; a wall that moves or
+// has friction, naming it), std::runtime_error for a body whose rigid-body modes the prescribed
+// dofs and the walls leave free (naming the body's parts and the modes), and StaticFailure for
+// a load step that fails: a tangent that is not positive definite (naming the node and
+// component), no convergence, or an active set that does not settle; its message names the
+// step, the iteration, the residual against its tolerance and the element that yields most.
 StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& settings = {});
 
 // Implicit dynamics: M a + (1 + alpha) f_int(u_{n+1}) - alpha f_int(u_n) = f_ext (the HHT
@@ -173,6 +191,7 @@ struct NewmarkState {
   double kinetic_energy = 0.0;  // v . M v / 2
   double strain_energy = 0.0;   // stored elastic energy, p^2 / 2K + s:s / 4G integrated,
                                 // one-point elements' hourglass energy and trusses' sigma^2 / 2E
+  std::vector<core::Vec3> wall_force;  // per wall, as StaticResult's (with the inertia)
 };
 
 // The problem's loads act fully and constantly from t = 0 (no load steps).
@@ -187,6 +206,12 @@ struct NewmarkResult {
   std::vector<NewtonIteration> iterations;  // load_step is the time step
 };
 
+// Walls act as in the static solve, their active set settled within every time step. A node
+// that reaches a wall stops on it within the step (at the step's end its velocity and
+// acceleration along the normal are zero, as a prescribed dof's): a kinematic wall, which takes
+// the node's normal momentum as the explicit wall does; the trapezoidal rule's energy balance
+// holds but for those arrivals. Nodes on or behind a wall at t = 0 start on it (moved onto its
+// plane).
 // Throws as solve_static (except for an unheld body, which the mass holds; a failing step is a
 // std::runtime_error naming the same), and std::invalid_argument for a time step that is not
 // positive or alpha outside [-1/3, 0].
