@@ -171,15 +171,21 @@ void check_phases(const Scene& scene, const PhaseFailure& fail) {
                "; list the bodies the phase solves without it (it is then held)");
     }
   }
-  for (std::size_t w = 0; w < scene.walls.size(); ++w)
+  for (std::size_t w = 0; w < scene.walls.size(); ++w) {
+    const WallSpec& wall = scene.walls[w];
+    if (wall.friction == 0.0 && norm(wall.velocity) == 0.0) continue;
     for (int b : bodies) {
-      const std::vector<int>& on = scene.walls[w].bodies;
+      const std::vector<int>& on = wall.bodies;
       if (on.empty() || std::find(on.begin(), on.end(), b) != on.end())
-        fail(scene.walls[w].where, "walls[" + std::to_string(w) + "]",
+        fail(wall.where, "walls[" + std::to_string(w) + "]",
              "the wall acts on body \"" + scene.bodies[static_cast<std::size_t>(b)].name +
-                 "\", which the static phase solves; the static solve takes no rigid walls: "
-                 "hold the body by [[constraints]] in that phase");
+                 "\", which the static phase solves, and " +
+                 (wall.friction != 0.0 ? "has friction" : "moves") +
+                 "; the static solve takes frictionless walls at rest (an exact contact "
+                 "constraint): give the wall friction 0 and no velocity, or hold the body by "
+                 "[[constraints]] in that phase");
     }
+  }
 }
 
 std::string describe_phases(const Scene& scene) {
@@ -230,6 +236,7 @@ std::string describe_phases(const Scene& scene) {
            vector_text(p.gravity ? *p.gravity : scene.run.gravity) +
            ", the constraints' fixed components held and their velocities integrated over the "
            "phase as displacements";
+    if (!scene.walls.empty()) out += "; the walls as frictionless contact (an exact active set)";
     if (!held.empty()) out += "; held where they are: " + held;
     out +=
         "; not in this phase: contacts, erosion, conversion, failure (damage), bulk "

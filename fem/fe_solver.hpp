@@ -176,6 +176,8 @@ class FeSolver {
   // The resultant force the walls exerted on the nodes over the last step (impulse / dt),
   // one per [[walls]] entry.
   const std::vector<Vec3>& wall_forces() const { return wall_force_; }
+  // The walls and the nodes each may touch.
+  const std::vector<WallState>& walls() const { return walls_; }
   std::size_t live_hexahedra() const;
   std::size_t live_trusses() const;
   // The live elements' stable step (element_time_step_factor x their least critical step);

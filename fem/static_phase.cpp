@@ -85,6 +85,15 @@ StaticPhaseReport run_static_phase(FeSolver& solver, const core::Scene& scene,
       if (nodes.imposed[n] & (1u << a))
         problem.prescribed.push_back({static_cast<std::int32_t>(k), a, travel[n][a]});
   }
+  // The walls, on the nodes of the problem they may touch (frictionless and at rest: the scene
+  // check refuses the others on a solved body).
+  for (const WallState& w : solver.walls()) {
+    PlanarWall wall{w.spec, {}};
+    for (std::int32_t n : w.nodes)
+      if (local[static_cast<std::size_t>(n)] >= 0)
+        wall.nodes.push_back(local[static_cast<std::size_t>(n)]);
+    if (!wall.nodes.empty()) problem.walls.push_back(std::move(wall));
+  }
   problem.mesh = &mesh;
   NewtonSettings settings;
   settings.load_steps = phase.load_steps;
@@ -98,6 +107,17 @@ StaticPhaseReport run_static_phase(FeSolver& solver, const core::Scene& scene,
     result = solve_static(problem, settings);
   } catch (const std::invalid_argument& e) {
     throw core::InputError(phase.where, "phases[0]", std::string("the static phase: ") + e.what());
+  } catch (const StaticFailure& e) {
+    // The last converged load step's state is the model's, so that the frame the run keeps
+    // shows where the equilibrium was lost.
+    const StaticResult& last = e.details().last_converged;
+    const double time = last.load_factor * phase.end_time;
+    solver.take_static_state(map, last, time);
+    throw core::SimulationError(0, time,
+                                "the static phase, load step " +
+                                    std::to_string(e.details().load_step) + " of " +
+                                    std::to_string(e.details().load_steps),
+                                "equilibrium", e.what());
   } catch (const std::runtime_error& e) {
     throw core::SimulationError(0, 0.0, "the static phase", "equilibrium", e.what());
   }
@@ -192,7 +212,7 @@ double FeSolver::take_static_state(const StaticPhaseMap& map, const StaticResult
     const std::size_t p = b.point_begin + (e - b.begin);
     core::SymTensor stress;
     stress.xx = r.line_stress[k];
-    take_point(trusses_, p, mat, stress, 0.0, r.work.lines[k]);
+    take_point(trusses_, p, mat, stress, r.line_plastic_strain[k], r.work.lines[k]);
     const auto na = static_cast<std::size_t>(trusses_.nodes[e][0]);
     const auto nb = static_cast<std::size_t>(trusses_.nodes[e][1]);
     const TrussKinematics now = truss_kinematics(nodes_.position[na], nodes_.position[nb],

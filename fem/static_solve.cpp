@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+#include <optional>
 #include <ostream>
 #include <stdexcept>
 #include <string>
@@ -33,7 +34,7 @@ std::string node_name(const MeshData& mesh, std::size_t n) {
 }
 
 std::string format(const char* fmt, double a, double b, double c) {
-  char buf[96];
+  char buf[160];
   std::snprintf(buf, sizeof buf, fmt, a, b, c);
   return buf;
 }
@@ -99,11 +100,14 @@ void symmetric_eigen(double (&a)[6][6], double (&v)[6][6]) {
   }
 }
 
-// Throws when a connected body has rigid-body modes that its fixed dofs do not hold: the null
-// space of sum over fixed dofs of phi phi^T, phi the six modes' values there (translations
-// along x, y, z; rotations about the axes through the body's centroid, scaled by its radius of
-// gyration so that the six are comparable).
-void check_rigid_body_modes(const MeshData& mesh, const std::vector<char>& fixed) {
+// Throws when a connected body has rigid-body modes that its fixed dofs and the walls it rests
+// on do not hold: the null space of sum over held directions d of phi phi^T, phi the six
+// modes' components d . mode there (translations along x, y, z; rotations about the axes
+// through the body's centroid, scaled by its radius of gyration so that the six are
+// comparable); a fixed dof holds its axis, a wall (supports: node, normal) its normal.
+void check_rigid_body_modes(const MeshData& mesh, const std::vector<char>& fixed,
+                            const std::vector<std::pair<std::int32_t, core::Vec3>>& supports,
+                            bool walls) {
   std::vector<std::int32_t> parent(mesh.nodes.size());
   std::iota(parent.begin(), parent.end(), 0);
   auto root = [&](std::int32_t n) {
@@ -131,6 +135,14 @@ void check_rigid_body_modes(const MeshData& mesh, const std::vector<char>& fixed
   for (std::size_t e = 0; e < mesh.hexahedra.size(); ++e)
     collect(mesh.hexahedra[e], mesh.hexahedron_part[e]);
   for (std::size_t e = 0; e < mesh.lines.size(); ++e) collect(mesh.lines[e], mesh.line_part[e]);
+  std::vector<std::vector<core::Vec3>> held(mesh.nodes.size());  // per node, what holds it
+  for (std::size_t d = 0; d < fixed.size(); ++d)
+    if (fixed[d]) {
+      core::Vec3 axis;
+      axis[d % 3] = 1.0;
+      held[d / 3].push_back(axis);
+    }
+  for (const auto& [node, normal] : supports) held[node].push_back(normal);
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const std::vector<std::int32_t>& nodes = bodies[b];
     if (nodes.empty()) continue;
@@ -141,24 +153,39 @@ void check_rigid_body_modes(const MeshData& mesh, const std::vector<char>& fixed
     for (std::int32_t n : nodes)
       gyration += core::dot(mesh.nodes[n] - centroid, mesh.nodes[n] - centroid);
     gyration = std::sqrt(gyration / static_cast<double>(nodes.size()));
-    double gram[6][6] = {};
+    // gram over the held directions; motion over all of the body's dofs, whose null space is
+    // what moves no node (the turn about the line of a straight chain of trusses): no mode.
+    double gram[6][6] = {}, motion[6][6] = {};
     for (std::int32_t n : nodes) {
       const core::Vec3 d = (1.0 / gyration) * (mesh.nodes[n] - centroid);
-      for (int i = 0; i < 3; ++i) {
-        if (!fixed[3 * n + i]) continue;
-        double phi[6] = {};
-        phi[i] = 1.0;
+      auto add = [&](const core::Vec3& direction, double(&g)[6][6]) {
+        double phi[6];
         for (int k = 0; k < 3; ++k) {
           core::Vec3 axis;
           axis[k] = 1.0;
-          phi[3 + k] = core::cross(axis, d)[i];
+          phi[k] = direction[k];
+          phi[3 + k] = core::dot(direction, core::cross(axis, d));
         }
         for (int p = 0; p < 6; ++p)
-          for (int q = 0; q < 6; ++q) gram[p][q] += phi[p] * phi[q];
+          for (int q = 0; q < 6; ++q) g[p][q] += phi[p] * phi[q];
+      };
+      for (const core::Vec3& direction : held[n]) add(direction, gram);
+      for (int i = 0; i < 3; ++i) {
+        core::Vec3 axis;
+        axis[i] = 1.0;
+        add(axis, motion);
       }
     }
-    double trace = 0.0, v[6][6];
-    for (int p = 0; p < 6; ++p) trace += gram[p][p];
+    double trace = 0.0, motion_trace = 0.0, v[6][6];
+    for (int p = 0; p < 6; ++p) {
+      trace += gram[p][p];
+      motion_trace += motion[p][p];
+    }
+    symmetric_eigen(motion, v);
+    for (int m = 0; m < 6; ++m)
+      if (motion[m][m] <= 1e-9 * motion_trace)
+        for (int p = 0; p < 6; ++p)
+          for (int q = 0; q < 6; ++q) gram[p][q] += std::max(trace, 1.0) * v[p][m] * v[q][m];
     symmetric_eigen(gram, v);
     std::string modes;
     for (int m = 0; m < 6; ++m) {
@@ -181,7 +208,8 @@ void check_rigid_body_modes(const MeshData& mesh, const std::vector<char>& fixed
         " nodes) is not held: the prescribed displacements leave free its rigid-body modes " +
         modes +
         format(" (rotations about axes through its centroid (%g, %g, %g)): the system is singular",
-               centroid.x, centroid.y, centroid.z));
+               centroid.x, centroid.y, centroid.z) +
+        (walls ? " (a wall holds a body only where its nodes touch the wall at the start)" : ""));
   }
 }
 
@@ -216,9 +244,13 @@ namespace {
 
 // What the static and the dynamic solve share: the equations of the free dofs, the element
 // geometry, the consistent mass and the Gauss points' converged and current states. Trusses
-// (mesh lines) are elastic bars at small strain: strain e . (u_b - u_a) / L0 along their initial
-// axis e, axial force E A strain, stiffness (E A / L0) [e e^T, -e e^T; -e e^T, e e^T] and
-// consistent mass (rho A L0 / 6) [2 1; 1 2] per component.
+// (mesh lines) are bars at small strain: strain e . (u_b - u_a) / L0 along their initial axis
+// e, axial force A sigma (core::small_strain_bar_update: elastic, or the 1-D return map),
+// stiffness (E_t A / L0) [e e^T, -e e^T; -e e^T, e e^T] with the update's tangent E_t, and
+// consistent mass (rho A L0 / 6) [2 1; 1 2] per component. The equations of a node that a wall
+// holds are its components in its frame (fem/wall_constraints.hpp), the held ones kept as
+// equations whose corrections are zero, so that the sparsity pattern and CHOLMOD's analysis
+// stay those of the whole solve whatever the walls' active set.
 struct Body {
   const StaticProblem& problem;
   const MeshData& mesh;
@@ -237,20 +269,29 @@ struct Body {
   std::vector<std::array<core::SymTensor, 8>> strain;  // at the displacement last evaluated
   std::vector<std::array<core::SmallStrainResult, 8>> current;
   // Per point, the stress of the last converged state and the work per unit volume int sigma :
-  // d eps taken to it, by the trapezoidal rule over the converged states.
+  // d eps taken to it, by the trapezoidal rule over the converged states (trusses: line_work).
   std::vector<std::array<core::SymTensor, 8>> committed_stress;
   std::vector<std::array<double, 8>> work;
-  std::vector<core::Vec3> line_axis;   // unit, initial
-  std::vector<double> line_length;     // initial
-  std::vector<double> line_stiffness;  // E A / L0
-  std::vector<double> line_mass;       // rho A L0
-  std::vector<double> line_strain;     // at the displacement last evaluated
-  std::vector<double> line_committed_strain, line_committed_stress, line_work;  // as above
+  std::vector<core::Vec3> line_axis;  // unit, initial
+  std::vector<double> line_length;    // initial
+  std::vector<double> line_mass;      // rho A L0
+  std::vector<core::SmallStrainBarPoint> line_converged;
+  std::vector<double> line_strain;  // at the displacement last evaluated
+  std::vector<core::SmallStrainBarResult> line_current;
+  std::vector<double> line_work;
+  std::optional<WallConstraints> walls;
 
   // Validates the problem (`who` starts the messages); a static solve also needs the body held
-  // against its rigid-body modes.
+  // against its rigid-body modes, by its prescribed dofs and the walls its nodes touch at the
+  // start.
   Body(const StaticProblem& p, const char* who, bool check_support);
 
+  // r on the equations from a per-node vector (a residual), in the nodes' frames, zero on the
+  // components the walls hold; returns the sum of squares of what the prescribed and the held
+  // components carry (the reactions).
+  double gather(const std::vector<core::Vec3>& nodal, std::vector<double>& r) const;
+  // u += s du, du on the equations.
+  void add_correction(const std::vector<double>& du, double s, std::vector<core::Vec3>& u) const;
   // force = -f_int(at) per node (external minus internal, without the loads), the current
   // states updated from the converged ones.
   void internal_forces(const std::vector<core::Vec3>& at, std::vector<core::Vec3>& force);
@@ -262,7 +303,10 @@ struct Body {
   int points(std::size_t e) const { return one_point[e] < 0 ? 8 : 1; }
   void write_states(std::vector<std::array<core::SymTensor, 8>>& stress,
                     std::vector<std::array<double, 8>>& plastic_strain,
-                    std::vector<double>& line_stress) const;
+                    std::vector<double>& line_stress,
+                    std::vector<double>& line_plastic_strain) const;
+  // The element whose plastic strain the current states raised most above the converged ones.
+  YieldingElement most_yielding() const;
   // The work per unit volume of each point and line, and each one-point element's stored
   // hourglass energy at displacement u.
   void write_work(const std::vector<core::Vec3>& u, StaticWork& out) const;
@@ -313,13 +357,6 @@ Body::Body(const StaticProblem& p, const char* who, bool check_support)
                                   "singular tangent. Give it a positive coefficient, or use full "
                                   "integration (B-bar)");
   }
-  for (std::int32_t part : mesh.line_part)
-    if (!std::holds_alternative<core::Elastic>(problem.materials[part].strength))
-      throw std::invalid_argument(std::string(who) + ": the trusses of part '" +
-                                  mesh.part_names[part] + "' (material '" +
-                                  problem.materials[part].name +
-                                  "') need an elastic material: trusses have no plastic tangent "
-                                  "here");
   if (!problem.nodal_forces.empty() && problem.nodal_forces.size() != nodes)
     throw std::invalid_argument(std::string(who) + ": nodal_forces needs one force per node");
 
@@ -337,7 +374,15 @@ Body::Body(const StaticProblem& p, const char* who, bool check_support)
                                   std::to_string(d.component) + " out of range");
     fixed[3 * d.node + d.component] = 1;
   }
-  if (check_support) check_rigid_body_modes(mesh, fixed);
+  // A node of no element has no equations: no wall moves it.
+  std::vector<char> unmoved = fixed;
+  for (std::size_t d = 0; d < 3 * nodes; ++d)
+    if (!in_element[d / 3]) unmoved[d] = 1;
+  walls.emplace(mesh, problem.walls, std::move(unmoved), who);
+  if (check_support) {
+    walls->start(std::vector<core::Vec3>(nodes));
+    check_rigid_body_modes(mesh, fixed, walls->supports(), !walls->empty());
+  }
   equation.assign(3 * nodes, -1);
   for (std::size_t d = 0; d < 3 * nodes; ++d)
     if (in_element[d / 3] && !fixed[d]) {
@@ -379,13 +424,51 @@ Body::Body(const StaticProblem& p, const char* who, bool check_support)
     const core::Material& m = problem.materials[mesh.line_part[l]];
     line_axis.push_back((1.0 / length) * d);
     line_length.push_back(length);
-    line_stiffness.push_back(m.youngs_modulus * area / length);
     line_mass.push_back(m.density * area * length);
   }
+  line_converged.resize(mesh.lines.size());
   line_strain.assign(mesh.lines.size(), 0.0);
-  line_committed_strain.assign(mesh.lines.size(), 0.0);
-  line_committed_stress.assign(mesh.lines.size(), 0.0);
   line_work.assign(mesh.lines.size(), 0.0);
+  line_current.resize(mesh.lines.size());
+
+  // Gravity's consistent nodal forces, integral of rho N_a g dV = sum_b M_ab g.
+  if (core::dot(problem.gravity, problem.gravity) > 0.0) {
+    for (std::size_t e = 0; e < elements; ++e) {
+      const auto m = mass(e);
+      for (int a = 0; a < 8; ++a)
+        for (int b = 0; b < 8; ++b) f_ext[mesh.hexahedra[e][a]] += m[a][b] * problem.gravity;
+    }
+    for (std::size_t l = 0; l < mesh.lines.size(); ++l)
+      for (std::int32_t a : mesh.lines[l]) f_ext[a] += (0.5 * line_mass[l]) * problem.gravity;
+  }
+}
+
+double Body::gather(const std::vector<core::Vec3>& nodal, std::vector<double>& r) const {
+  double reactions = 0.0;
+  for (std::size_t n = 0; n < nodes; ++n) {
+    if (!in_element[n]) continue;
+    const NodeFrame* f = walls->frame(n);
+    for (int i = 0; i < 3; ++i) {
+      const double v = f ? core::dot(f->basis[i], nodal[n]) : nodal[n][i];
+      const int q = equation[3 * n + i];
+      const bool held = f && f->holds(i);
+      if (q >= 0) r[q] = held ? 0.0 : v;
+      if (q < 0 || held) reactions += v * v;
+    }
+  }
+  return reactions;
+}
+
+void Body::add_correction(const std::vector<double>& du, double s,
+                          std::vector<core::Vec3>& u) const {
+  for (int q = 0; q < equations; ++q) {
+    const std::size_t n = static_cast<std::size_t>(dof_of[q]) / 3;
+    const int i = dof_of[q] % 3;
+    if (const NodeFrame* f = walls->frame(n)) {
+      if (!f->holds(i)) u[n] += (s * du[q]) * f->basis[i];
+    } else
+      u[n][i] += s * du[q];
+  }
 }
 
 void Body::internal_forces(const std::vector<core::Vec3>& at, std::vector<core::Vec3>& force) {
@@ -416,7 +499,9 @@ void Body::internal_forces(const std::vector<core::Vec3>& at, std::vector<core::
   for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
     const Line& n = mesh.lines[l];
     line_strain[l] = core::dot(line_axis[l], at[n[1]] - at[n[0]]) / line_length[l];
-    const core::Vec3 f = (line_stiffness[l] * line_length[l] * line_strain[l]) * line_axis[l];
+    line_current[l] = core::small_strain_bar_update(problem.materials[mesh.line_part[l]],
+                                                    line_converged[l], line_strain[l]);
+    const core::Vec3 f = (mesh.line_area[l] * line_current[l].stress) * line_axis[l];
     force[n[0]] += f;
     force[n[1]] -= f;
   }
@@ -457,19 +542,22 @@ void Body::assemble(SparseAssembly& assembly, double stiffness_factor, double ma
         for (int b = 0; b < 8; ++b)
           for (int i = 0; i < 3; ++i) ke[24 * (3 * a + i) + 3 * b + i] += mass_factor * m[a][b];
     }
+    walls->transform(mesh.hexahedra[e].data(), 8, ke.data());
     assembly.add(mesh.hexahedra[e], ke);
   }
   for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
+    const double stiffness = line_current[l].tangent * mesh.line_area[l] / line_length[l];
     LineMatrix kl{};
     for (int a = 0; a < 2; ++a)
       for (int b = 0; b < 2; ++b)
         for (int i = 0; i < 3; ++i) {
           for (int j = 0; j < 3; ++j)
-            kl[6 * (3 * a + i) + 3 * b + j] = (a == b ? 1.0 : -1.0) * stiffness_factor *
-                                              line_stiffness[l] * line_axis[l][i] * line_axis[l][j];
+            kl[6 * (3 * a + i) + 3 * b + j] = (a == b ? 1.0 : -1.0) * stiffness_factor * stiffness *
+                                              line_axis[l][i] * line_axis[l][j];
           kl[6 * (3 * a + i) + 3 * b + i] +=
               mass_factor * line_mass[l] * (a == b ? 2.0 : 1.0) / 6.0;
         }
+    walls->transform(mesh.lines[l].data(), 2, kl.data());
     assembly.add(mesh.lines[l], kl);
   }
 }
@@ -484,11 +572,9 @@ void Body::commit() {
                          current[e][g].plastic_strain};
     }
   for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
-    const double stress = problem.materials[mesh.line_part[l]].youngs_modulus * line_strain[l];
-    line_work[l] +=
-        0.5 * (line_committed_stress[l] + stress) * (line_strain[l] - line_committed_strain[l]);
-    line_committed_stress[l] = stress;
-    line_committed_strain[l] = line_strain[l];
+    line_work[l] += 0.5 * (line_converged[l].stress + line_current[l].stress) *
+                    (line_strain[l] - line_converged[l].strain);
+    line_converged[l] = {line_strain[l], line_current[l].stress, line_current[l].plastic_strain};
   }
 }
 
@@ -507,7 +593,8 @@ void Body::write_work(const std::vector<core::Vec3>& u, StaticWork& out) const {
 
 void Body::write_states(std::vector<std::array<core::SymTensor, 8>>& stress,
                         std::vector<std::array<double, 8>>& plastic_strain,
-                        std::vector<double>& line_stress) const {
+                        std::vector<double>& line_stress,
+                        std::vector<double>& line_plastic_strain) const {
   stress.resize(elements);
   plastic_strain.resize(elements);
   for (std::size_t e = 0; e < elements; ++e)
@@ -517,58 +604,92 @@ void Body::write_states(std::vector<std::array<core::SymTensor, 8>>& stress,
       plastic_strain[e][g] = current[e][p].plastic_strain;
     }
   line_stress.resize(mesh.lines.size());
-  for (std::size_t l = 0; l < mesh.lines.size(); ++l)
-    line_stress[l] = problem.materials[mesh.line_part[l]].youngs_modulus * line_strain[l];
+  line_plastic_strain.resize(mesh.lines.size());
+  for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
+    line_stress[l] = line_current[l].stress;
+    line_plastic_strain[l] = line_current[l].plastic_strain;
+  }
 }
 
-// Newton-Raphson with line search to r(u) = 0 for one step: residual(at) sets r on the free
-// dofs at displacement `at` and returns the force scale of the convergence test; the tangent is
-// assembled by assemble(). Appends its rows to `iterations`; `step_name` ("load step", "time
-// step") and steps name the step in messages.
+YieldingElement Body::most_yielding() const {
+  YieldingElement out;
+  auto consider = [&](YieldingElement::Kind kind, std::size_t index, std::int32_t part,
+                      double increment) {
+    if (increment <= out.plastic_strain_increment) return;
+    out = {kind, static_cast<std::int32_t>(index), mesh.part_names[part], increment};
+  };
+  for (std::size_t e = 0; e < elements; ++e)
+    for (int g = 0; g < points(e); ++g)
+      consider(YieldingElement::Kind::hexahedron, e, mesh.hexahedron_part[e],
+               current[e][g].plastic_strain - converged[e][g].plastic_strain);
+  for (std::size_t l = 0; l < mesh.lines.size(); ++l)
+    consider(YieldingElement::Kind::truss, l, mesh.line_part[l],
+             line_current[l].plastic_strain - line_converged[l].plastic_strain);
+  return out;
+}
+
+// Why a step's Newton solve failed: what happened ("did not converge in 25 iterations", "the
+// tangent stiffness is not positive definite at ...") and the residual then. Caught by the
+// solves, which add the step and the element that yields most.
+struct NewtonFailure {
+  int round = 0, iteration = 0;
+  double residual = 0.0, reference = 0.0;
+  std::string what;
+};
+
+// Newton-Raphson with line search to r(u) = 0 for one step: residual(at) sets r on the
+// equations at displacement `at` and returns the force scale of the convergence test; the
+// tangent is assembled by assemble(). Appends its rows to `iterations`; `log_name` ("static",
+// "newmark") and steps name the step in the log. Returns the force scale at convergence.
+// Throws NewtonFailure.
 template <class Residual, class Assemble>
-void newton(const Body& body, const NewtonSettings& settings, const char* log_name,
-            const char* step_name, int step, int steps, SparseAssembly& assembly,
-            SparseCholesky& cholesky, std::vector<core::Vec3>& u, std::vector<double>& r,
-            Residual&& residual, Assemble&& assemble, std::vector<NewtonIteration>& iterations) {
+double newton(const Body& body, const NewtonSettings& settings, const char* log_name, int step,
+              int steps, int round, SparseAssembly& assembly, SparseCholesky& cholesky,
+              std::vector<core::Vec3>& u, std::vector<double>& r, Residual&& residual,
+              Assemble&& assemble, std::vector<NewtonIteration>& iterations) {
   const int equations = body.equations;
+  const int contacts = body.walls->contacts();
   std::vector<double> du(equations), b(equations);
   std::vector<core::Vec3> trial(u.size());
   auto record = [&](const NewtonIteration& it) {
     iterations.push_back(it);
-    if (settings.log)
-      *settings.log << log_name << " step " << it.load_step << "/" << steps << " iteration "
-                    << it.iteration << ": residual " << it.residual << " (relative "
-                    << (it.reference > 0.0 ? it.residual / it.reference : 0.0) << "), energy "
-                    << it.energy << ", step length " << it.step_length << '\n';
+    if (!settings.log) return;
+    *settings.log << log_name << " step " << it.load_step << "/" << steps << " iteration "
+                  << it.iteration << ": residual " << it.residual << " (relative "
+                  << (it.reference > 0.0 ? it.residual / it.reference : 0.0) << "), energy "
+                  << it.energy << ", step length " << it.step_length;
+    if (!body.walls->empty())
+      *settings.log << " (solve " << it.round << ", " << it.contacts << " nodes on walls)";
+    *settings.log << '\n';
   };
   double reference = residual(u), first_energy = 0.0, last_energy = 0.0;
+  bool moved = true;  // whether the last correction changed u: below round-off it cannot
   for (int k = 0;; ++k) {
     const double rnorm = norm(r), scale = reference;
     if (rnorm <= settings.residual_tolerance * reference &&
-        (k == 0 || last_energy <= settings.energy_tolerance * first_energy)) {
-      record({step, k, rnorm, scale, 0.0, 0.0});
-      return;
+        (k == 0 || last_energy <= settings.energy_tolerance * first_energy || !moved)) {
+      record({step, round, k, rnorm, scale, 0.0, 0.0, contacts});
+      return scale;
     }
     if (k == settings.max_iterations)
-      throw std::runtime_error(std::string(log_name) + " solve: " + step_name + " " +
-                               std::to_string(step) + " of " + std::to_string(steps) +
-                               " did not converge in " + std::to_string(k) +
-                               " iterations: residual " +
-                               format("%.3g (%.3g of the force scale; tolerance %.3g)", rnorm,
-                                      rnorm / scale, settings.residual_tolerance) +
-                               format(", last energy %.3g (%.3g of the first)", last_energy,
-                                      last_energy / first_energy, 0.0));
+      throw NewtonFailure{round, k, rnorm, scale,
+                          "did not converge in " + std::to_string(k) + " iterations" +
+                              format(" (last energy %.3g, %.3g of the first)", last_energy,
+                                     last_energy / first_energy, 0.0)};
 
     assemble();
     try {
       cholesky.factorise(assembly.matrix());
     } catch (const NotPositiveDefinite& npd) {
       const int dof = body.dof_of[npd.column()];
-      throw std::runtime_error(std::string(log_name) + " solve: " + step_name + " " +
-                               std::to_string(step) + ", iteration " + std::to_string(k) +
-                               ": the tangent stiffness is not positive definite at " +
-                               node_name(body.mesh, dof / 3) + ", component " + kAxis[dof % 3] +
-                               " (a mechanism, or a material that softens)");
+      const std::size_t node = static_cast<std::size_t>(dof) / 3;
+      throw NewtonFailure{
+          round, k, rnorm, scale,
+          "the tangent stiffness is not positive definite at " + node_name(body.mesh, node) +
+              ", component " +
+              (body.walls->frame(node) ? std::to_string(dof % 3) + " of its frame on a wall"
+                                       : std::string(kAxis[dof % 3])) +
+              " (a mechanism, a material that softens, or a load past the limit load)"};
     }
     b = r;
     cholesky.solve(b, du);
@@ -580,8 +701,7 @@ void newton(const Body& body, const NewtonSettings& settings, const char* log_na
     // (G(1) < -ratio g0), then regula falsi in the bracket [0, 1].
     auto try_length = [&](double s) {
       trial = u;
-      for (int q = 0; q < equations; ++q)
-        trial[body.dof_of[q] / 3][body.dof_of[q] % 3] += s * du[q];
+      body.add_correction(du, s, trial);
       reference = residual(trial);
       return dot(du, r);
     };
@@ -599,53 +719,134 @@ void newton(const Body& body, const NewtonSettings& settings, const char* log_na
         g_hi = g;
       }
     }
+    moved = !std::equal(u.begin(), u.end(), trial.begin(),
+                        [](const core::Vec3& p, const core::Vec3& q) {
+                          return p.x == q.x && p.y == q.y && p.z == q.z;
+                        });
     u.swap(trial);
-    record({step, k, rnorm, scale, energy, s});
+    record({step, round, k, rnorm, scale, energy, s, contacts});
   }
+}
+
+// One step to equilibrium with the walls' active set settled: Newton solves, each from the
+// nodes of the set moved onto their planes, until the converged state changes the set no more
+// (`nodal` is the residual per node that residual() leaves, the walls' reactions read from
+// it; start() runs before each solve, the set then known). Returns the force scale at
+// convergence. Throws NewtonFailure.
+template <class Residual, class Assemble, class Start>
+double settle(Body& body, const NewtonSettings& settings, const char* log_name, int step, int steps,
+              SparseAssembly& assembly, SparseCholesky& cholesky, std::vector<core::Vec3>& u,
+              std::vector<double>& r, const std::vector<core::Vec3>& nodal, Residual&& residual,
+              Assemble&& assemble, Start&& start, std::vector<NewtonIteration>& iterations) {
+  for (int round = 0;; ++round) {
+    body.walls->project(u);
+    start();
+    const double scale = newton(body, settings, log_name, step, steps, round, assembly, cholesky, u,
+                                r, residual, assemble, iterations);
+    std::string change;
+    if (!body.walls->update(u, nodal, settings.residual_tolerance * scale, change)) return scale;
+    if (round + 1 == settings.max_contact_rounds)
+      throw NewtonFailure{round, iterations.back().iteration, iterations.back().residual, scale,
+                          "the walls' active set did not settle in " +
+                              std::to_string(settings.max_contact_rounds) +
+                              " Newton solves (the last: " + change + ")"};
+  }
+}
+
+// "hexahedron 12 of part 'bar' (plastic strain increment 0.0123 in this step)".
+std::string describe(const YieldingElement& y) {
+  if (y.kind == YieldingElement::Kind::none) return "no element yields in this step";
+  return std::string("the element that yields most: ") +
+         (y.kind == YieldingElement::Kind::hexahedron ? "hexahedron " : "truss (line) ") +
+         std::to_string(y.index) + " of part '" + y.part + "'" +
+         format(" (plastic strain increment %.3g in this step)", y.plastic_strain_increment, 0, 0);
+}
+
+// "static solve: load step 3 of 5, iteration 25: did not converge ...; residual ... (... of the
+// force scale; tolerance ...); the element that yields most: ...".
+std::string step_failure(const char* who, const char* step_name, int step, int steps,
+                         const NewtonFailure& f, double tolerance, const YieldingElement& y) {
+  return std::string(who) + ": " + step_name + " " + std::to_string(step) + " of " +
+         std::to_string(steps) + ", iteration " + std::to_string(f.iteration) +
+         (f.round > 0 ? " of Newton solve " + std::to_string(f.round + 1) +
+                            " (the walls' set changed before it)"
+                      : std::string()) +
+         ": " + f.what +
+         format("; residual %.3g (%.3g of the force scale; tolerance %.3g); ", f.residual,
+                f.reference > 0.0 ? f.residual / f.reference : 0.0, tolerance) +
+         describe(y);
 }
 
 }  // namespace
 
+StaticFailure::StaticFailure(const std::string& what, StaticFailureDetails details)
+    : std::runtime_error(what),
+      details_(std::make_shared<const StaticFailureDetails>(std::move(details))) {}
+
 StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& settings) {
   Body body(problem, "static solve", true);
-  std::vector<core::Vec3> u(body.nodes), force(body.nodes);
+  std::vector<core::Vec3> u(body.nodes), force(body.nodes), nodal(body.nodes);
   std::vector<double> r(body.equations);
   double load = 0.0;
 
-  // r = load f_ext - f_int(u) on the free dofs; returns max(||load f_ext||, ||reactions||).
+  // r = load f_ext - f_int(u) on the equations; returns max(||load f_ext||, ||reactions||).
   auto residual = [&](const std::vector<core::Vec3>& at) {
     body.internal_forces(at, force);
-    double external = 0.0, reactions = 0.0;
-    for (std::size_t d = 0; d < 3 * body.nodes; ++d) {
-      const double f = load * body.f_ext[d / 3][d % 3];
-      external += f * f;
-      const double rd = f + force[d / 3][d % 3];
-      if (body.equation[d] >= 0)
-        r[body.equation[d]] = rd;
-      else if (body.in_element[d / 3])
-        reactions += rd * rd;
+    double external = 0.0;
+    for (std::size_t n = 0; n < body.nodes; ++n) {
+      const core::Vec3 f = load * body.f_ext[n];
+      external += core::dot(f, f);
+      nodal[n] = f + force[n];
     }
-    return std::sqrt(std::max(external, reactions));
+    return std::sqrt(std::max(external, body.gather(nodal, r)));
   };
 
   SparseAssembly assembly(problem.mesh->hexahedra, problem.mesh->lines, body.equation,
                           body.equations);
   SparseCholesky cholesky;
   cholesky.analyse(assembly.matrix());
-  StaticResult out;
+  // The state after the last converged step (the virgin one before the first).
+  StaticResult last;
+  last.displacement = u;
+  body.write_states(last.stress, last.plastic_strain, last.line_stress, last.line_plastic_strain);
+  last.wall_force.assign(body.walls->size(), core::Vec3{});
+  std::vector<NewtonIteration> iterations;
   for (int step = 1; step <= settings.load_steps; ++step) {
     load = static_cast<double>(step) / settings.load_steps;
     for (const PrescribedDisplacement& p : problem.prescribed)
       u[p.node][p.component] = load * p.value;
-    newton(
-        body, settings, "static", "load step", step, settings.load_steps, assembly, cholesky, u, r,
-        residual, [&] { body.assemble(assembly, 1.0, 0.0); }, out.iterations);
+    try {
+      settle(
+          body, settings, "static", step, settings.load_steps, assembly, cholesky, u, r, nodal,
+          residual, [&] { body.assemble(assembly, 1.0, 0.0); }, [] {}, iterations);
+    } catch (const NewtonFailure& f) {
+      StaticFailureDetails details{step,
+                                   settings.load_steps,
+                                   f.round,
+                                   f.iteration,
+                                   f.residual,
+                                   f.reference,
+                                   settings.residual_tolerance,
+                                   body.most_yielding(),
+                                   last};
+      details.last_converged.iterations = iterations;
+      const std::string what =
+          step_failure("static solve", "load step", step, settings.load_steps, f,
+                       settings.residual_tolerance, details.most_yielding) +
+          format(". Load factor %.4g; the last converged step's (load factor %.4g)", load,
+                 last.load_factor, 0.0) +
+          " state is in StaticFailure::details().last_converged";
+      throw StaticFailure(what, std::move(details));
+    }
     body.commit();
+    last.load_factor = load;
+    last.displacement = u;
+    body.write_states(last.stress, last.plastic_strain, last.line_stress, last.line_plastic_strain);
+    body.write_work(u, last.work);
+    last.wall_force = body.walls->forces(nodal);
   }
-  out.displacement = u;
-  body.write_states(out.stress, out.plastic_strain, out.line_stress);
-  body.write_work(u, out.work);
-  return out;
+  last.iterations = std::move(iterations);
+  return last;
 }
 
 NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings& settings) {
@@ -665,13 +866,15 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
   const double beta = 0.25 * (1.0 - alpha) * (1.0 - alpha), gamma = 0.5 - alpha;
 
   std::vector<core::Vec3> u(nodes), v(nodes), a(nodes), u_star(nodes), force(nodes), force_n(nodes),
-      ma(nodes), accel(nodes);
+      ma(nodes), accel(nodes), nodal(nodes), predicted(nodes);
   if (!settings.initial_displacement.empty()) u = settings.initial_displacement;
   if (!settings.initial_velocity.empty()) v = settings.initial_velocity;
   for (const PrescribedDisplacement& p : problem.prescribed) {  // held at their values
     u[p.node][p.component] = p.value;
     v[p.node][p.component] = 0.0;
   }
+  body.walls->start(u);
+  body.walls->project(u);
   std::vector<double> r(body.equations);
 
   auto mass_times = [&](const std::vector<core::Vec3>& x, std::vector<core::Vec3>& mx) {
@@ -691,7 +894,7 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
   };
   auto energies = [&](double time) {
     mass_times(v, ma);
-    NewmarkState state{time, 0.0, 0.0};
+    NewmarkState state{time, 0.0, 0.0, {}};
     for (std::size_t n = 0; n < nodes; ++n) state.kinetic_energy += 0.5 * core::dot(v[n], ma[n]);
     // Stored elastic energy p^2 / (2K) + s:s / (4G) per unit volume, and a one-point element's
     // hourglass energy.
@@ -714,9 +917,11 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
         state.strain_energy += hourglass_energy(body.hourglass[one_point], ue);
       }
     }
-    for (std::size_t l = 0; l < problem.mesh->lines.size(); ++l)
-      state.strain_energy += 0.5 * body.line_stiffness[l] * body.line_length[l] *
-                             body.line_length[l] * body.line_strain[l] * body.line_strain[l];
+    for (std::size_t l = 0; l < problem.mesh->lines.size(); ++l) {
+      const double sigma = body.line_current[l].stress;
+      state.strain_energy += problem.mesh->line_area[l] * body.line_length[l] * sigma * sigma /
+                             (2.0 * problem.materials[problem.mesh->line_part[l]].youngs_modulus);
+    }
     return state;
   };
 
@@ -725,65 +930,94 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
   SparseCholesky cholesky;
   cholesky.analyse(assembly.matrix());
 
-  // a_0 = M^-1 (f_ext - f_int(u_0)) on the free dofs.
+  // a_0 = M^-1 (f_ext - f_int(u_0)) on the free dofs (zero along the walls' held normals).
   body.internal_forces(u, force);
   force_n = force;
   body.assemble(assembly, 0.0, 1.0);
   cholesky.factorise(assembly.matrix());
   {
     std::vector<double> b(body.equations), x(body.equations);
-    for (int q = 0; q < body.equations; ++q) {
-      const int d = body.dof_of[q];
-      b[q] = body.f_ext[d / 3][d % 3] + force[d / 3][d % 3];
-    }
+    for (std::size_t n = 0; n < nodes; ++n) nodal[n] = body.f_ext[n] + force[n];
+    body.gather(nodal, b);
     cholesky.solve(b, x);
-    for (int q = 0; q < body.equations; ++q) a[body.dof_of[q] / 3][body.dof_of[q] % 3] = x[q];
+    body.add_correction(x, 1.0, a);
+    mass_times(a, ma);
+    for (std::size_t n = 0; n < nodes; ++n) nodal[n] -= ma[n];
   }
   body.commit();
 
   NewmarkResult out;
   out.states.push_back(energies(0.0));
+  out.states.back().wall_force = body.walls->forces(nodal);
   if (settings.observe) settings.observe(0.0, u);
   // r = f_ext + (1 + alpha) (-f_int(u)) - alpha (-f_int(u_n)) - M a(u),
-  // a(u) = (u - u_star) / (beta dt^2), u_star = u_n + dt v_n + dt^2 (1/2 - beta) a_n.
+  // a(u) = (u - u_star) / (beta dt^2), u_star = u_n + dt v_n + dt^2 (1/2 - beta) a_n (but along
+  // the normals of the nodes on walls: stop_on_walls).
   auto residual = [&](const std::vector<core::Vec3>& at) {
     body.internal_forces(at, force);
     for (std::size_t n = 0; n < nodes; ++n)
       accel[n] = (1.0 / (beta * dt * dt)) * (at[n] - u_star[n]);
     mass_times(accel, ma);
     double external = 0.0, internal = 0.0, inertia = 0.0;
-    for (std::size_t d = 0; d < 3 * nodes; ++d) {
-      if (!body.in_element[d / 3]) continue;
-      const double f = body.f_ext[d / 3][d % 3], fi = force[d / 3][d % 3], mi = ma[d / 3][d % 3];
-      external += f * f;
-      internal += fi * fi;
-      inertia += mi * mi;
-      if (body.equation[d] >= 0)
-        r[body.equation[d]] = f + (1.0 + alpha) * fi - alpha * force_n[d / 3][d % 3] - mi;
+    for (std::size_t n = 0; n < nodes; ++n) {
+      if (!body.in_element[n]) continue;
+      const core::Vec3 &f = body.f_ext[n], &fi = force[n], &mi = ma[n];
+      external += core::dot(f, f);
+      internal += core::dot(fi, fi);
+      inertia += core::dot(mi, mi);
+      nodal[n] = f + (1.0 + alpha) * fi - alpha * force_n[n] - mi;
     }
+    body.gather(nodal, r);
     return std::sqrt(std::max({external, internal, inertia}));
+  };
+  // u_star of the step's set (before each of its Newton solves): a node on a wall stops on it
+  // within the step, along its held normals h the acceleration that brings its velocity to zero
+  // at the step's end, a.h = -(v_n + (1 - gamma) dt a_n).h / (gamma dt) (zero for a node at
+  // rest on the wall), set through u_star so that a(u) = (u - u_star) / (beta dt^2) gives it at
+  // the held displacement. A node that arrives thus couples to its neighbours through the
+  // consistent mass as a stopping node, not with the rule's rebound from its unheld predictor
+  // (which reverses its velocity, then chatters, and gains energy).
+  auto stop_on_walls = [&] {
+    u_star = predicted;
+    for (std::size_t n = 0; n < nodes; ++n) {
+      const NodeFrame* f = body.walls->frame(n);
+      for (int j = 0; f && j < f->held; ++j) {
+        const core::Vec3& h = f->basis[f->slot[j]];
+        const double stop =
+            -(core::dot(h, v[n]) + (1.0 - gamma) * dt * core::dot(h, a[n])) / (gamma * dt);
+        u_star[n] += (core::dot(h, u[n] - u_star[n]) - beta * dt * dt * stop) * h;
+      }
+    }
   };
   for (int step = 1; step <= settings.steps; ++step) {
     for (std::size_t n = 0; n < nodes; ++n)
-      u_star[n] = u[n] + dt * v[n] + ((0.5 - beta) * dt * dt) * a[n];
-    for (std::size_t n = 0; n < nodes; ++n) u[n] = u_star[n] + (beta * dt * dt) * a[n];
-    newton(
-        body, settings.newton, "newmark", "time step", step, settings.steps, assembly, cholesky, u,
-        r, residual, [&] { body.assemble(assembly, 1.0 + alpha, 1.0 / (beta * dt * dt)); },
-        out.iterations);
+      predicted[n] = u[n] + dt * v[n] + ((0.5 - beta) * dt * dt) * a[n];
+    for (std::size_t n = 0; n < nodes; ++n) u[n] = predicted[n] + (beta * dt * dt) * a[n];
+    try {
+      settle(
+          body, settings.newton, "newmark", step, settings.steps, assembly, cholesky, u, r, nodal,
+          residual, [&] { body.assemble(assembly, 1.0 + alpha, 1.0 / (beta * dt * dt)); },
+          stop_on_walls, out.iterations);
+    } catch (const NewtonFailure& f) {
+      throw std::runtime_error(step_failure("newmark solve", "time step", step, settings.steps, f,
+                                            settings.newton.residual_tolerance,
+                                            body.most_yielding()));
+    }
     for (std::size_t n = 0; n < nodes; ++n) {
       const core::Vec3 a_next = (1.0 / (beta * dt * dt)) * (u[n] - u_star[n]);
       v[n] += dt * ((1.0 - gamma) * a[n] + gamma * a_next);
       a[n] = a_next;
     }
+    body.walls->stop(v, a);
     force_n = force;
     body.commit();
     out.states.push_back(energies(step * dt));
+    out.states.back().wall_force = body.walls->forces(nodal);
     if (settings.observe) settings.observe(step * dt, u);
   }
   out.displacement = u;
   out.velocity = v;
-  body.write_states(out.stress, out.plastic_strain, out.line_stress);
+  body.write_states(out.stress, out.plastic_strain, out.line_stress, out.line_plastic_strain);
   return out;
 }
 

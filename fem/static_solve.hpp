@@ -1,11 +1,14 @@
 // Static (implicit) solve of a mesh of hexahedra (fully integrated with B-bar, or one-point with
-// the stiffness of its hourglass form: fem/hexahedron_stiffness.hpp) and elastic 2-node trusses
-// at small strain:
+// the stiffness of its hourglass form: fem/hexahedron_stiffness.hpp) and 2-node trusses (elastic
+// or plastic: the 1-D return map, core::small_strain_bar_update) at small strain:
 // Newton-Raphson with the consistent tangent (core/materials/small_strain_tangent.hpp), a line
 // search and load stepping, the tangent factorised by CHOLMOD (fem/sparse_cholesky.hpp; the
 // tangents here are symmetric, so no unsymmetric solver is needed yet). Each iteration's
 // residual norm and energy norm |du . r| are recorded (and printed to an optional stream); a
-// load step converges when both fall below their tolerances (Bathe 1996, sec. 8.4.4).
+// load step converges when both fall below their tolerances (Bathe 1996, sec. 8.4.4). Rigid
+// planar walls hold nodes exactly, by an active set (fem/wall_constraints.hpp). A step that
+// fails throws StaticFailure, which names the element that yields most and keeps the state of
+// the last converged step.
 // solve_newmark integrates the same body in time implicitly (Newmark 1959; HHT-alpha, Hilber,
 // Hughes & Taylor, EESD 5 (1977) 283-292) with the consistent mass, each time step one Newton
 // solve on the same residual and tangent machinery.
@@ -15,13 +18,17 @@
 #include <cstdint>
 #include <functional>
 #include <iosfwd>
+#include <memory>
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "afemp/material.hpp"
 #include "afemp/scene.hpp"
 #include "afemp/tensor.hpp"
 #include "fem/mesh.hpp"
+#include "fem/wall_constraints.hpp"
 
 namespace afemp::fem {
 
@@ -58,6 +65,13 @@ struct StaticProblem {
   std::vector<PrescribedDisplacement> prescribed;
   std::vector<core::Vec3> nodal_forces;  // one per node, or empty
   std::vector<PressureFace> pressures;
+  // The acceleration of gravity: the body force rho g, as consistent nodal forces
+  // (integral of rho N_a g dV = sum_b M_ab g, M the consistent mass).
+  core::Vec3 gravity{};
+  // Fixed, frictionless rigid planes that the listed nodes may not cross; a node that touches a
+  // wall at the start (of the solve, or of the Newmark run) rests on it, the others reach it as
+  // they move. A prescribed component wins over a wall (the wall moves the others).
+  std::vector<PlanarWall> walls;
 };
 
 struct NewtonSettings {
@@ -72,6 +86,9 @@ struct NewtonSettings {
   // line_search_steps times.
   double line_search_ratio = 0.5;
   int line_search_steps = 6;
+  // With walls: the most Newton solves of one step, each after the last changed the active set
+  // (a node crossed a wall's plane, or a wall pulled on a node it held).
+  int max_contact_rounds = 20;
   std::ostream* log = nullptr;  // one line per iteration when set
 };
 
@@ -79,11 +96,14 @@ struct NewtonSettings {
 // the last row of a step, which only checks convergence) and the line search's step length.
 struct NewtonIteration {
   int load_step = 0;  // from 1
-  int iteration = 0;  // from 0
+  int round = 0;      // the Newton solve of the step, from 0 (a new one after the walls' set
+                      // changed)
+  int iteration = 0;  // from 0, in its solve
   double residual = 0.0;
   double reference = 0.0;  // max(||f_ext||, ||reactions||), the residual's scale
   double energy = 0.0;
   double step_length = 0.0;
+  int contacts = 0;  // (wall, node) pairs in contact during the solve
 };
 
 // The work the loads did on the body, as its points and hourglass forms took it: per point the
@@ -100,23 +120,61 @@ struct StaticWork {
 };
 
 struct StaticResult {
+  double load_factor = 0.0;              // of this state: 1 once the solve is done
   std::vector<core::Vec3> displacement;  // per node
   // Per hexahedron, per Gauss point (fem/hexahedron_full.hpp's order); a one-point element's
   // single point in all eight.
   std::vector<std::array<core::SymTensor, 8>> stress;
   std::vector<std::array<double, 8>> plastic_strain;
   std::vector<double> line_stress;  // per line (truss), axial
+  std::vector<double> line_plastic_strain;
+  std::vector<core::Vec3> wall_force;  // per wall, its resultant force on the nodes
   StaticWork work;
   std::vector<NewtonIteration> iterations;
 };
 
+// The element whose plastic strain grew most in a step (the largest increment over its Gauss
+// points; a truss has one).
+struct YieldingElement {
+  enum class Kind { none, hexahedron, truss };  // none: no element yielded in the step
+  Kind kind = Kind::none;
+  std::int32_t index = -1;  // into MeshData::hexahedra or MeshData::lines
+  std::string part;
+  double plastic_strain_increment = 0.0;
+};
+
+// A load step that failed: Newton did not converge in its iterations, the tangent was not
+// positive definite (a mechanism, or a load past the limit load), or the walls' active set did
+// not settle.
+struct StaticFailureDetails {
+  int load_step = 0, load_steps = 0;  // the step that failed (from 1), of load_steps
+  int round = 0, iteration = 0;       // in it (NewtonIteration's)
+  double residual = 0.0;              // ||r|| at that iteration
+  double reference = 0.0;  // its force scale; converged once residual <= tolerance * reference
+  double tolerance = 0.0;
+  YieldingElement most_yielding;  // at the failing iterate, over the step
+  // The state after the last converged load step (load factor 0 and no displacement when the
+  // first one failed); its iterations are all the solve's, the failing step's included.
+  StaticResult last_converged;
+};
+
+class StaticFailure : public std::runtime_error {
+ public:
+  StaticFailure(const std::string& what, StaticFailureDetails details);
+  const StaticFailureDetails& details() const { return *details_; }
+
+ private:
+  std::shared_ptr<const StaticFailureDetails> details_;  // shared: copying stays noexcept
+};
+
 // Throws std::invalid_argument for a problem it cannot solve (a material without a tangent,
-// named; a truss of a material that is not elastic, or without an area; one-point hexahedra
-// without hourglass stiffness, naming the part and the form; bad indices), and
-// std::runtime_error for a body whose rigid-body modes the prescribed dofs leave free (naming the
-// body's parts and the modes), a tangent that is not positive definite (naming the node and
-// component) and a load step that does not converge (naming the step, the iteration and the
-// residual).
+// named; a truss without an area; one-point hexahedra
+// without hourglass stiffness, naming the part and the form; bad indices; a wall that moves or
+// has friction, naming it), std::runtime_error for a body whose rigid-body modes the prescribed
+// dofs and the walls leave free (naming the body's parts and the modes), and StaticFailure for
+// a load step that fails: a tangent that is not positive definite (naming the node and
+// component), no convergence, or an active set that does not settle; its message names the
+// step, the iteration, the residual against its tolerance and the element that yields most.
 StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& settings = {});
 
 // Implicit dynamics: M a + (1 + alpha) f_int(u_{n+1}) - alpha f_int(u_n) = f_ext (the HHT
@@ -145,8 +203,9 @@ struct NewmarkSettings {
 struct NewmarkState {
   double time = 0.0;
   double kinetic_energy = 0.0;  // v . M v / 2
-  double strain_energy = 0.0;   // stored elastic energy, p^2 / 2K + s:s / 4G integrated, and
-                                // one-point elements' hourglass energy
+  double strain_energy = 0.0;   // stored elastic energy, p^2 / 2K + s:s / 4G integrated,
+                                // one-point elements' hourglass energy and trusses' sigma^2 / 2E
+  std::vector<core::Vec3> wall_force;  // per wall, as StaticResult's (with the inertia)
 };
 
 // The problem's loads act fully and constantly from t = 0 (no load steps).
@@ -156,12 +215,20 @@ struct NewmarkResult {
   std::vector<std::array<core::SymTensor, 8>> stress;  // at the end, as StaticResult's
   std::vector<std::array<double, 8>> plastic_strain;
   std::vector<double> line_stress;
+  std::vector<double> line_plastic_strain;
   std::vector<NewmarkState> states;         // at t = 0 and after every step
   std::vector<NewtonIteration> iterations;  // load_step is the time step
 };
 
-// Throws as solve_static (except for an unheld body, which the mass holds), and
-// std::invalid_argument for a time step that is not positive or alpha outside [-1/3, 0].
+// Walls act as in the static solve, their active set settled within every time step. A node
+// that reaches a wall stops on it within the step (at the step's end its velocity and
+// acceleration along the normal are zero, as a prescribed dof's): a kinematic wall, which takes
+// the node's normal momentum as the explicit wall does; the trapezoidal rule's energy balance
+// holds but for those arrivals. Nodes on or behind a wall at t = 0 start on it (moved onto its
+// plane).
+// Throws as solve_static (except for an unheld body, which the mass holds; a failing step is a
+// std::runtime_error naming the same), and std::invalid_argument for a time step that is not
+// positive or alpha outside [-1/3, 0].
 NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings& settings);
 
 // The faces of the mesh's hexahedra whose four nodes all lie in `nodes`, as kHexFaces orders

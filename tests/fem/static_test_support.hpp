@@ -1,5 +1,6 @@
 // Meshes and materials shared by the static-solve tests (header only; not a test file itself):
-// steel, the quarter ring of the thick cylinder and the Lame solution it is checked against.
+// steel (elastic, J2, Johnson-Cook), the quarter ring of the thick cylinder and the Lame
+// solution it is checked against.
 #pragma once
 
 #include <cmath>
@@ -19,6 +20,29 @@ inline core::Material steel() {
   m.density = 7.85e-3;
   m.youngs_modulus = 200e3;  // MPa
   m.poisson_ratio = 0.3;
+  return m;
+}
+
+inline core::Material j2_steel(double hardening) {
+  core::Material m = steel();
+  m.strength = core::J2Plasticity{250.0, hardening};  // yield 250 MPa, plastic modulus H
+  return m;
+}
+
+// Johnson-Cook with thermal softening at 600 K (T* = 0.204, 1 - T*^m = 0.806), the rate term
+// present (C > 0) but frozen at its quasi-static factor 1 by the static update.
+inline core::Material jc_steel() {
+  core::Material m = steel();
+  m.name = "jc-steel";
+  core::JohnsonCook jc;
+  jc.A = 300.0;
+  jc.B = 500.0;
+  jc.n = 0.3;
+  jc.C = 0.014;
+  jc.m = 1.03;
+  jc.melt_temperature = 1800.0;
+  m.strength = jc;
+  m.thermal.initial_temperature = 600.0;
   return m;
 }
 

@@ -2,7 +2,7 @@
 // B-bar stiffness as the derivative of the nodal forces, the patch test on a distorted mesh,
 // a cantilever's tip deflection (Timoshenko beam), the thick cylinder under internal pressure
 // (Lame), trusses in parallel with hexahedra, and the refusals: an unheld body, a material
-// without a tangent, a truss that is not elastic.
+// without a tangent.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -352,28 +352,6 @@ TEST(StaticSolve, TrussesInParallelWithHexahedraAddTheirStiffness) {
   EXPECT_LT(extension, 1e-10);
   EXPECT_LT(bar, 1e-10);
   EXPECT_LT(truss, 1e-10);
-}
-
-// A truss of a plastic material has no tangent here: refused, naming its part and material.
-TEST(StaticSolve, PlasticTrussIsRefused) {
-  MeshData mesh = box_mesh(core::BoxShape{{0, 0, 0}, {1, 1, 1}}, {1, 1, 1});
-  mesh.part_names = {"block", "rebar"};
-  mesh.lines.push_back({0, 1});
-  mesh.line_part.push_back(1);
-  mesh.line_area.push_back(0.1);
-  core::Material m = steel();
-  m.strength = core::J2Plasticity{250.0, 0.0};
-  StaticProblem problem;
-  problem.mesh = &mesh;
-  problem.materials = {steel(), m};
-  try {
-    solve_static(problem);
-    FAIL() << "no error";
-  } catch (const std::invalid_argument& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("'rebar'"), std::string::npos) << what;
-    EXPECT_NE(what.find("'steel'"), std::string::npos) << what;
-  }
 }
 
 }  // namespace

@@ -20,29 +20,6 @@
 namespace afemp::fem {
 namespace {
 
-core::Material j2_steel(double hardening) {
-  core::Material m = test::steel();
-  m.strength = core::J2Plasticity{250.0, hardening};  // yield 250 MPa, plastic modulus H
-  return m;
-}
-
-// Johnson-Cook with thermal softening at 600 K (T* = 0.204, 1 - T*^m = 0.806), the rate term
-// present (C > 0) but frozen at its quasi-static factor 1 by the static update.
-core::Material jc_steel() {
-  core::Material m = test::steel();
-  m.name = "jc-steel";
-  core::JohnsonCook jc;
-  jc.A = 300.0;
-  jc.B = 500.0;
-  jc.n = 0.3;
-  jc.C = 0.014;
-  jc.m = 1.03;
-  jc.melt_temperature = 1800.0;
-  m.strength = jc;
-  m.thermal.initial_temperature = 600.0;
-  return m;
-}
-
 core::SymTensor from_voigt(const std::array<double, 6>& e) {  // engineering shear strains
   return {e[0], e[1], e[2], 0.5 * e[3], 0.5 * e[4], 0.5 * e[5]};
 }
@@ -97,13 +74,13 @@ void hold_uniaxial(const MeshData& mesh, double strain, StaticProblem& problem) 
 }
 
 TEST(StaticJ2, ConsistentTangentMatchesFiniteDifferences) {
-  expect_tangent_matches_differences(j2_steel(2000.0));
+  expect_tangent_matches_differences(test::j2_steel(2000.0));
 }
 
 // The same for Johnson-Cook, whose H = d sigma_y / d eps_p = B n eps_p^(n-1) (1 - T*^m) varies
 // along the increment: the tangent takes it at the increment's end, as its return does.
 TEST(StaticJohnsonCook, ConsistentTangentMatchesFiniteDifferences) {
-  expect_tangent_matches_differences(jc_steel());
+  expect_tangent_matches_differences(test::jc_steel());
 }
 
 // The block of UniaxialStressFollowsTheBilinearCurve in Johnson-Cook steel, stretched to 5 times
@@ -112,7 +89,7 @@ TEST(StaticJohnsonCook, ConsistentTangentMatchesFiniteDifferences) {
 // by bisection; every Gauss point's sigma_xx and plastic strain within 1e-9 of it (radial
 // return is exact on this proportional path). Each step converges in at most 8 Newton solves.
 TEST(StaticJohnsonCook, UniaxialStressFollowsItsCurve) {
-  const core::Material m = jc_steel();
+  const core::Material m = test::jc_steel();
   const core::JohnsonCook& jc = std::get<core::JohnsonCook>(m.strength);
   const double thermal = 1.0 - std::pow((600.0 - 293.0) / (1800.0 - 293.0), jc.m);
   const double e = m.youngs_modulus, strain = 5.0 * jc.A * thermal / e;
@@ -152,7 +129,7 @@ TEST(StaticJohnsonCook, UniaxialStressFollowsItsCurve) {
 // Et = E H / (E + H), to 1e-9 at every Gauss point, and the lateral stresses zero.
 TEST(StaticJ2, UniaxialStressFollowsTheBilinearCurve) {
   const double hardening = 2000.0;
-  const core::Material m = j2_steel(hardening);
+  const core::Material m = test::j2_steel(hardening);
   MeshData mesh = box_mesh(core::BoxShape{{0, 0, 0}, {1, 1, 1}}, {2, 2, 2});
   const double e = m.youngs_modulus, yield_strain = 250.0 / e, strain = 5.0 * yield_strain;
   StaticProblem problem;
@@ -185,7 +162,7 @@ TEST(StaticJ2, NewtonConvergesQuadraticallyOnAPlasticStep) {
   settings.load_steps = 2;
   settings.log = &log;
   const StaticResult r =
-      solve_static(test::pressurised_ring(ring, j2_steel(1000.0), 150.0), settings);
+      solve_static(test::pressurised_ring(ring, test::j2_steel(1000.0), 150.0), settings);
   std::printf("%s", log.str().c_str());
   double plastic = 0.0;
   for (const auto& element : r.plastic_strain)
