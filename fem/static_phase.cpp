@@ -113,11 +113,16 @@ StaticPhaseReport run_static_phase(FeSolver& solver, const core::Scene& scene,
     const StaticResult& last = e.details().last_converged;
     const double time = last.load_factor * phase.end_time;
     solver.take_static_state(map, last, time);
+    // The solve's message names its library field for that state; a run says where it went.
+    std::string why = e.what();
+    const std::string field = " state is in StaticFailure::details().last_converged";
+    if (const std::size_t at = why.find(field); at != std::string::npos)
+      why.replace(at, field.size(), " state is the model's: the run's last frame shows it");
     throw core::SimulationError(0, time,
                                 "the static phase, load step " +
                                     std::to_string(e.details().load_step) + " of " +
                                     std::to_string(e.details().load_steps),
-                                "equilibrium", e.what());
+                                "equilibrium", why);
   } catch (const std::runtime_error& e) {
     throw core::SimulationError(0, 0.0, "the static phase", "equilibrium", e.what());
   }

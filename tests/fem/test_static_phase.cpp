@@ -259,6 +259,60 @@ TEST(StaticPhase, RestartFromTheSwitchEndsAsTheWholeRun) {
   EXPECT_NE(newton.find("load_step,iteration,residual"), std::string::npos);
 }
 
+// A column resting on a frictionless wall (no constraint) under its weight: the static phase
+// holds it by the wall alone; the wall's reaction in the explicit phase that follows is the
+// weight (the history's wall force), and the column stays at rest.
+TEST(StaticPhase, WallHoldsTheColumnInTheStaticPhase) {
+  std::string text = column("element = \"full\"", kStaticThenExplicit);
+  const std::size_t c = text.find("[[constraints]]");
+  text.replace(c, text.find("[[phases]]") - c,
+               "[[walls]]\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\n"
+               // two symmetry planes take the sideways rigid modes the wall leaves free
+               "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [1, 0, 0] } }\n"
+               "fixed = [\"x\"]\n"
+               "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 1, 0] } }\n"
+               "fixed = [\"y\"]\n");
+  Simulation sim(core::parse_scene(text, "c.toml"));
+  sim.run_to(1.0);
+  const double weight = kRho * kA * kH * kG;
+  // Free base: the closed form rho g H^2 / 2E holds to the discretisation.
+  const double u_exact = -kRho * kG * kH * kH / (2.0 * kE);
+  EXPECT_NEAR(top_displacement(sim) / u_exact, 1.0, 2e-3);
+  double fastest = 0.0;
+  sim.on_step([&](Simulation& s) { fastest = std::max(fastest, max_speed(s)); });
+  sim.run();
+  const double swing = M_PI * std::sqrt(kE / kRho) / (2.0 * kH) * std::abs(u_exact);
+  EXPECT_LT(fastest, 0.01 * swing);
+  std::printf("wall: u_top %.6g (closed form %.6g), weight %.6g, fastest %.3g of omega u_top\n",
+              top_displacement(sim), u_exact, weight, fastest / swing);
+}
+
+// Past the limit load the static phase stops with the load step, the residual and the element
+// that yields most; the last converged step's state is the model's and its frame is written.
+TEST(StaticPhase, LoadPastTheLimitStopsWithTheStepAndKeepsTheLastState) {
+  // Perfectly plastic steel (yield 100 MPa) whose weight at 300 mm/ms^2 would need 236 MPa at
+  // the base: the column collapses past half the load.
+  std::string text = column("element = \"full\"", kStaticThenExplicit);
+  text.replace(text.find("gravity = [0, 0, -100]"), 22, "gravity = [0, 0, -300]");
+  text.replace(text.find("nu = 0.3\n"), 9,
+               "nu = 0.3\nstrength = { model = \"j2\", yield = 100, tangent_modulus = 0 }\n");
+  const test::ScratchDir scratch;
+  SimulationOptions options;
+  options.output_directory = scratch.path().string();
+  Simulation sim(core::parse_scene(text, "c.toml"), options);
+  std::string what;
+  try {
+    sim.run();
+  } catch (const SimulationError& e) {
+    what = e.what();
+  }
+  EXPECT_NE(what.find("the static phase, load step"), std::string::npos) << what;
+  EXPECT_NE(what.find("yields most"), std::string::npos) << what;
+  EXPECT_TRUE(std::filesystem::exists(scratch.path() / "history.csv"));
+  EXPECT_TRUE(std::filesystem::exists(scratch.path() / "fields.h5"));
+  std::printf("past the limit: %s\n", what.c_str());
+}
+
 TEST(StaticPhase, SceneErrorsNameTheKeyAndWhatIsAllowed) {
   using test::error_of;
   const std::string full = "element = \"full\"";
