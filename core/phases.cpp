@@ -163,6 +163,12 @@ void check_phases(const Scene& scene, const PhaseFailure& fail) {
                " has one-point hexahedra with the viscous hourglass form, which resists "
                "rates only and has no stiffness; give it hourglass form \"stiffness\" or "
                "\"assumed_strain\", or element = \"full\"");
+    if (body.prestress != 0.0)
+      fail(s->where, key + ".bodies",
+           name +
+               " is prestressed; the static solve starts from unstressed meshes: bring the "
+               "prestress into equilibrium with kind = \"relaxation\", or leave the body out "
+               "of bodies");
     try {
       check_small_strain_tangent(scene.materials[static_cast<std::size_t>(body.material)]);
     } catch (const std::invalid_argument& e) {

@@ -322,6 +322,11 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
                                        *b.pressure, b.internal_energy))
         c.fail(b.where, key + ".pressure", *why);
   }
+  if (b.prestress != 0.0) {
+    c.range(b.where, key + ".prestress", b.prestress, range::prestress);
+    if (b.discretisation != D::trusses)
+      c.fail(b.where, key + ".prestress", "a prestress applies to bodies of trusses");
+  }
   if (b.initial_stress) {
     if (!std::isfinite(b.initial_stress->surface))
       c.fail(b.where, key + ".initial_stress.surface", "must be a finite number");

@@ -1036,6 +1036,7 @@ void check_discretisation_keys(TableReader& r, const BodySpec& b) {
   only_for(r, b, "bulk_viscosity", D::hexahedra, D::particles);
   only_for(r, b, "erosion", D::hexahedra, D::trusses);
   only_for(r, b, "area", D::trusses, D::trusses);
+  only_for(r, b, "prestress", D::trusses, D::trusses);
   only_for(r, b, "bonded_to", D::hexahedra, D::trusses);  // resolved once every body is read
   only_for(r, b, "outside", D::particles, D::particles);  // resolved once every body is read
   only_for(r, b, "conversion", D::hexahedra, D::hexahedra);
@@ -1146,14 +1147,29 @@ void read_rigid(const toml::node& node, TableReader& r, BodySpec& b) {
 
 BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
                    const std::vector<Material>& material_list, const std::string& scene_path) {
-  r.known({"name",           "material",       "discretisation",
-           "shape",          "initial_stress", "particles_per_cell",
-           "velocity",       "temperature",    "internal_energy",
-           "mesh",           "element",        "hourglass",
-           "bulk_viscosity", "erosion",        "area",
-           "bonded_to",      "conversion",     "rigid",
-           "outside",        "layout",         "pressure",
-           "overlap_allowed"});
+  r.known({"name",
+           "material",
+           "discretisation",
+           "shape",
+           "initial_stress",
+           "particles_per_cell",
+           "velocity",
+           "temperature",
+           "internal_energy",
+           "mesh",
+           "element",
+           "hourglass",
+           "bulk_viscosity",
+           "erosion",
+           "area",
+           "bonded_to",
+           "conversion",
+           "rigid",
+           "outside",
+           "layout",
+           "pressure",
+           "overlap_allowed",
+           "prestress"});
   // Name the body in messages as soon as its name is readable, even for an unknown key.
   if (const toml::node* n = r.table().get("name");
       n && n->is_string() && !n->as_string()->get().empty())
@@ -1233,6 +1249,7 @@ BodySpec read_body(TableReader& r, const std::map<std::string, int>& materials,
   if (const toml::table* t = r.optional_table("conversion")) b.conversion = read_conversion(*t, r);
   if (const toml::node* n = r.table().get("rigid")) read_rigid(*n, r, b);
   b.area = r.number("area", b.area, range::area);
+  b.prestress = r.number("prestress", b.prestress, range::prestress);
   if (b.discretisation == D::trusses && std::holds_alternative<LineShape>(b.shape) && b.area == 0.0)
     r.fail("area", "a truss line needs its cross-section area");
   return b;

@@ -99,6 +99,7 @@ inline constexpr Count particles_per_cell{1, 8};
 inline constexpr Range bulk_linear = kFraction;
 inline constexpr Range bulk_quadratic = Range{0.0, 10.0, false, false};
 inline constexpr Range area = kPositive;
+inline constexpr Range prestress{-kInfinity, kInfinity, true, true};  // finite
 // Q_hg of the viscous and stiffness forms; the assumed-strain form's scale on its stiffness.
 inline constexpr Range hourglass_coefficient = Range{0.0, 0.5, false, false};
 inline constexpr Range hourglass_scale = kFraction;

@@ -21,6 +21,7 @@
 #include "fem/mesh_generation.hpp"
 #include "fem/mesh_import.hpp"
 #include "fem/surface_faces.hpp"
+#include "fem/truss.hpp"
 
 namespace afemp::fem {
 
@@ -337,6 +338,12 @@ void add_trusses(TrussElements& trusses, const std::vector<Vec3>& position, cons
     trusses.area0.push_back(area);
     add_element(trusses, mat.density * area * length, area * length);
     add_point_state(trusses, mat, temperature, mat.density * area * length, body.internal_energy);
+    if (body.prestress != 0.0) {
+      // A prestressed tendon: its axial stress and the elastic energy it holds.
+      const std::size_t p = trusses.points() - 1;
+      trusses.stress[p].xx = body.prestress;
+      trusses.energy[p] += core::elastic_energy(mat, trusses.stress[p]);
+    }
   }
 }
 
@@ -367,6 +374,24 @@ void add_initial_stress_forces(const core::Scene& scene, const HexElements& hexe
   }
 }
 
+// The same for prestressed trusses: N = sigma A along each bar, at its slots from first_slot.
+void add_prestress_forces(const core::Scene& scene, const TrussSet& trusses,
+                          const std::vector<Vec3>& position, std::vector<Vec3>& force) {
+  for (const ElementBatch& batch : trusses.batches) {
+    const BodySpec& body = scene.bodies[static_cast<std::size_t>(batch.body)];
+    if (body.prestress == 0.0) continue;
+    for (std::size_t e = batch.begin; e < batch.end; ++e) {
+      const Vec3& xa = position[static_cast<std::size_t>(trusses.nodes[e][0])];
+      const Vec3& xb = position[static_cast<std::size_t>(trusses.nodes[e][1])];
+      Vec3 fa, fb;
+      add_truss_forces(truss_kinematics(xa, xb, Vec3{}, Vec3{}), body.prestress * trusses.area0[e],
+                       fa, fb);
+      force[trusses.first_slot + 2 * e] = fa;
+      force[trusses.first_slot + 2 * e + 1] = fb;
+    }
+  }
+}
+
 }  // namespace
 
 FeSolver::FeSolver(const core::Scene& scene) : scene_(scene) {
@@ -387,6 +412,7 @@ void FeSolver::build(const core::Scene& scene) {
   setup_walls(scene);
   build_incidence();
   add_initial_stress_forces(scene, hexes_, nodes_.position, element_force_);
+  add_prestress_forces(scene, trusses_, nodes_.position, element_force_);
   recompute_node_masses();
   // 6. Critical steps of the initial state.
   for (ElementSet* set : sets_) set->initial_critical_steps(scene, nodes_.position);

@@ -327,6 +327,10 @@ struct BodySpec {
   std::optional<ConversionSettings> conversion{};  ///< hexahedra
   std::optional<RigidSettings> rigid{};            ///< set: a rigid body (hexahedra)
   double area = 0.0;  ///< truss cross-section where the mesh gives none
+  /// Trusses: the initial axial stress (tension positive) of a prestressed tendon or rebar,
+  /// with its elastic energy; it acts from the start (a relaxation phase brings what the body is
+  /// bonded to into equilibrium with it).
+  double prestress = 0.0;
   /// Bonded coupling (HFEMP, Lian et al. 2013, §2.6): the particle body whose velocity field this
   /// mesh body's nodes join; they move with the grid solution (perfect bond). -1: not bonded.
   int bonded_to = -1;

@@ -313,6 +313,64 @@ TEST(StaticPhase, LoadPastTheLimitStopsWithTheStepAndKeepsTheLastState) {
   std::printf("past the limit: %s\n", what.c_str());
 }
 
+// A prestressed tendon (bodies.prestress) held at both ends stays at rest with its stress,
+// holding the elastic energy sigma^2 A L / 2E.
+TEST(Prestress, TendonHeldAtBothEndsKeepsItsStress) {
+  const std::string text =
+      "[run]\nend_time = 0.05\n[materials.steel]\ndensity = 7.85e-3\nE = 2.0e5\nnu = 0.3\n"
+      "[[bodies]]\nname = \"tendon\"\ndiscretisation = \"trusses\"\nmaterial = \"steel\"\n"
+      "shape = { line = { from = [0, 0, 0], to = [0, 0, 100] } }\narea = 20\n"
+      "mesh = { segments = 10 }\nprestress = 800\n"
+      "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }\n"
+      "fixed = [\"all\"]\n"
+      "[[constraints]]\nnodes = { plane = { point = [0, 0, 100], normal = [0, 0, 1] } }\n"
+      "fixed = [\"all\"]\n";
+  Simulation sim(core::parse_scene(text, "t.toml"));
+  EXPECT_NEAR(sim.energies().internal / (800.0 * 800.0 * 20.0 * 100.0 / (2.0 * 2.0e5)), 1.0, 1e-12);
+  sim.run();
+  for (const SymTensor& st : sim.trusses().stress) EXPECT_NEAR(st.xx, 800.0, 1e-9);
+  EXPECT_EQ(sim.energies().kinetic, 0.0);
+}
+
+// A tendon prestressed to sigma_p and bonded along the axis of a free concrete prism of
+// particles, relaxed (a relaxation phase): the tendon shortens with the concrete until
+// sigma_t A_t + sigma_c A_c = 0 with equal strains, sigma_t = sigma_p / (1 + E_t A_t / E_c A_c)
+// (post-tensioning's elastic shortening loss, the prism in uniaxial stress), here 0.75 sigma_p.
+TEST(Prestress, RelaxationBringsABondedTendonIntoEquilibriumWithTheConcrete) {
+  const std::string text =
+      "[run]\nend_time = 3.01\nhistory_every = 100\n"
+      "[grid]\ncell = 5\nmin = [-10, -10, -10]\nmax = [30, 30, 110]\n"
+      "[materials.concrete]\ndensity = 2.4e-3\nE = 3.0e4\nnu = 0.0\n"
+      "[materials.steel]\ndensity = 7.85e-3\nE = 2.0e5\nnu = 0.3\n"
+      "[[bodies]]\nname = \"prism\"\nmaterial = \"concrete\"\n"
+      "shape = { box = { min = [0, 0, 0], max = [20, 20, 100] } }\nparticles_per_cell = 2\n"
+      "[[bodies]]\nname = \"tendon\"\ndiscretisation = \"trusses\"\nmaterial = \"steel\"\n"
+      "shape = { line = { from = [10, 10, 2.5], to = [10, 10, 97.5] } }\narea = 20\n"
+      "mesh = { segments = 38 }\nprestress = 600\nbonded_to = \"prism\"\n"
+      "[[phases]]\nkind = \"relaxation\"\nend_time = 3\ntolerance = 1e-5\n"
+      "[[phases]]\nkind = \"explicit\"\n";
+  Simulation sim(core::parse_scene(text, "p.toml"));
+  sim.run_to(3.0);
+  const double ratio = 2.0e5 * 20.0 / (3.0e4 * 400.0);
+  const double expected = 600.0 / (1.0 + ratio);
+  // The tendon's middle half (its ends pass their force to the concrete over a cell or two).
+  const ElementFields t = sim.trusses();
+  const NodeFields n = sim.nodes();
+  double sum = 0.0;
+  int count = 0;
+  for (std::size_t e = 0; e < t.size(); ++e) {
+    const double z = 0.5 * (n.position[static_cast<std::size_t>(t.connectivity[2 * e])].z +
+                            n.position[static_cast<std::size_t>(t.connectivity[2 * e + 1])].z);
+    if (z > 25.0 && z < 75.0) sum += t.stress[t.first_point[e]].xx, ++count;
+  }
+  const double mean = sum / count;
+  EXPECT_NEAR(mean / expected, 1.0, 0.05) << "tendon " << mean << " MPa, closed form " << expected;
+  std::printf(
+      "bonded tendon relaxed: %.4g MPa at mid-length (closed form %.4g, %+.2f %%), "
+      "%ld steps, damped %.4g\n",
+      mean, expected, 100.0 * (mean / expected - 1.0), sim.step_count(), sim.energies().damped);
+}
+
 TEST(StaticPhase, SceneErrorsNameTheKeyAndWhatIsAllowed) {
   using test::error_of;
   const std::string full = "element = \"full\"";
