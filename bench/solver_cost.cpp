@@ -1,9 +1,9 @@
 // Solver cost (bench/README.md): time and memory of the sparse factorisation behind afemp's
 // implicit solves, CHOLMOD's supernodal L L^T (fem/sparse_cholesky.hpp) against Eigen's
 // up-looking SimplicialLDLT with its AMD ordering, on the same stiffness matrices: elastic steel
-// cubes of fully integrated B-bar hexahedra (fem/hexahedron_stiffness.hpp) fixed on the face
+// blocks of fully integrated B-bar hexahedra (fem/hexahedron_stiffness.hpp) fixed on the face
 // z = 0, assembled by fem/sparse_assembly.hpp. Every solve is checked (||K u - f|| / ||f|| at most
-// 1e-8, or the program exits non-zero); a factorisation that would pass the memory cap, or the
+// 1e-8, or the program exits non-zero); a factorisation that would exceed the memory cap, or the
 // time cap at the flop rate measured at the previous size, is reported "not run" with the
 // estimate instead of being attempted.
 #include <malloc.h>
@@ -23,6 +23,7 @@
 #include <optional>
 #include <span>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,10 +41,13 @@ using namespace afemp;
 using EigenMatrix = Eigen::SparseMatrix<double>;  // column-major, int indices, as CHOLMOD's view
 
 constexpr double kResidualLimit = 1e-8;
+constexpr const char* kNotAsked = "not asked for (--solvers)";
 constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
 
 struct Options {
   std::vector<double> dofs{1e4, 1e5, 1e6};
+  bool cholmod = true, eigen = true;
+  double aspect = 1.0;      // block length over width: 1 for cubes
   double time_cap = 600.0;  // s, per factorisation
   double memory_cap = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * sysconf(_SC_PAGESIZE);
 };
@@ -102,26 +106,31 @@ std::string format(const char* fmt, double a, double b = 0.0, double c = 0.0) {
   return buf;
 }
 
-// An n x n x n cube of 1 mm hexahedra, nodes (i, j, k) numbered i fastest, the face z = 0 fixed:
-// 3 n (n + 1)^2 free dofs, numbered node by node.
+// An n x n x l block of 1 mm hexahedra (l = round(aspect n) along z), nodes (i, j, k) numbered
+// i fastest, the face z = 0 fixed: 3 (n + 1)^2 l free dofs, numbered node by node.
 struct Block {
-  int n = 0;
+  int n = 0, l = 0;
   std::vector<fem::Hexahedron> hexahedra;
   std::vector<core::Vec3> nodes;
   std::vector<int> equation;
   int equations = 0;
-  std::vector<double> load;  // per equation: (0.1, 0, -1) N on every node of the face z = n
+  std::vector<double> load;  // per equation: (0.1, 0, -1) N on every node of the face z = l
 };
 
-Block make_block(int n) {
+int length_for(int n, double aspect) {
+  return std::max(1, static_cast<int>(std::lround(aspect * n)));
+}
+
+Block make_block(int n, double aspect) {
   Block b;
   b.n = n;
+  b.l = length_for(n, aspect);
   const int m = n + 1;
   auto node = [m](int i, int j, int k) { return i + m * (j + m * k); };
-  for (int k = 0; k < m; ++k)
+  for (int k = 0; k <= b.l; ++k)
     for (int j = 0; j < m; ++j)
       for (int i = 0; i < m; ++i) b.nodes.push_back({double(i), double(j), double(k)});
-  for (int k = 0; k < n; ++k)
+  for (int k = 0; k < b.l; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
         b.hexahedra.push_back({node(i, j, k), node(i + 1, j, k), node(i + 1, j + 1, k),
@@ -132,17 +141,17 @@ Block make_block(int n) {
     if (b.nodes[a].z == 0.0) continue;
     for (int c = 0; c < 3; ++c) {
       b.equation[3 * a + c] = b.equations++;
-      b.load.push_back(b.nodes[a].z == n ? (c == 0 ? 0.1 : c == 2 ? -1.0 : 0.0) : 0.0);
+      b.load.push_back(b.nodes[a].z == b.l ? (c == 0 ? 0.1 : c == 2 ? -1.0 : 0.0) : 0.0);
     }
   }
   return b;
 }
 
-// The cube whose free dofs come nearest `dofs`.
-int edge_for(double dofs) {
+// The cross-section n whose block has the free dofs nearest `dofs`.
+int section_for(double dofs, double aspect) {
+  auto free_dofs = [aspect](int n) { return 3.0 * (n + 1.0) * (n + 1.0) * length_for(n, aspect); };
   int best = 1;
-  auto free_dofs = [](int n) { return 3.0 * n * (n + 1.0) * (n + 1.0); };
-  for (int n = 1; n < 1000; ++n)
+  for (int n = 1; free_dofs(n) < 4.0 * dofs; ++n)
     if (std::abs(free_dofs(n) - dofs) < std::abs(free_dofs(best) - dofs)) best = n;
   return best;
 }
@@ -234,7 +243,19 @@ Run run_cholmod(const Options& o, const fem::SymmetricCsc& k, const std::vector<
   std::vector<double> u(f.size());
   r.rss_growth = peak_rss_growth([&] {
     fem::SparseCholesky cholesky;
-    r.analyse = timed([&] { cholesky.analyse(k); }).wall;
+    try {
+      r.analyse = timed([&] { cholesky.analyse(k); }).wall;
+    } catch (const std::runtime_error& e) {
+      // CHOLMOD_TOO_LARGE (-3) from the int interface past 2^31 - 1 values in L; the counts
+      // are those of the last ordering it tried, 8 bytes a value the least L would need.
+      r.factor_nonzeros = cholesky.statistics().factor_nonzeros;
+      r.flops = cholesky.statistics().flops;
+      r.own_bytes = 8.0 * r.factor_nonzeros;
+      r.not_run =
+          std::string("not run: ") + e.what() +
+          " (-3 is CHOLMOD_TOO_LARGE: its int interface holds at most 2^31 - 1 values in L)";
+      return;
+    }
     const fem::CholeskyStatistics s = cholesky.statistics();
     r.ordering = s.ordering;
     r.factor_nonzeros = s.factor_nonzeros;
@@ -244,7 +265,10 @@ Run run_cholmod(const Options& o, const fem::SymmetricCsc& k, const std::vector<
     const double estimate =
         8.0 * static_cast<double>(s.factor_values) + 12.0 * static_cast<double>(k.row.size());
     r.not_run = refusal(o, estimate, s.flops, rate);
-    if (!r.not_run.empty()) return;
+    if (!r.not_run.empty()) {
+      r.own_bytes = static_cast<double>(s.bytes_in_use) + estimate;
+      return;
+    }
     const Timed t = timed([&] { cholesky.factorise(k); });
     r.load = load_average();
     r.factorise = t.wall;
@@ -257,7 +281,7 @@ Run run_cholmod(const Options& o, const fem::SymmetricCsc& k, const std::vector<
 }
 
 // Eigen holds, while it factorises, L's values and row indices (12 bytes an off-diagonal entry),
-// its permuted copy of K (12 bytes an entry) and eleven arrays of n ints or doubles (column
+// its permuted copy of K (12 bytes an entry) and ten arrays of n ints or doubles (column
 // pointers of L and of the copy, D, both permutations, the elimination tree, the column counts
 // and its work vectors): 48 bytes a dof.
 double eigen_bytes(double factor_nonzeros, double n, double k_nonzeros) {
@@ -307,9 +331,10 @@ std::string mib(double bytes) {
 }
 
 void print_run(const char* name, const Run& r) {
+  if (r.not_run == kNotAsked) return;
   std::printf("  %-8s %-6s", name, r.ordering.c_str());
   if (!r.not_run.empty()) {
-    std::printf(" nnz(L) %.3g, %.3g flops, %s MiB: %s\n", r.factor_nonzeros, r.flops,
+    std::printf(" nnz(L) %.3g, %.3g flops, estimated %s MiB: %s\n", r.factor_nonzeros, r.flops,
                 mib(r.own_bytes).c_str(), r.not_run.c_str());
     return;
   }
@@ -330,8 +355,11 @@ std::vector<double> parse_list(const std::string& s) {
 
 int usage(const char* program) {
   std::fprintf(stderr,
-               "usage: %s [--dofs 1e4,1e5,1e6] [--time-cap SECONDS] [--memory-cap GIB]\n"
-               "  --dofs       target free dofs, one cube each, run in increasing order\n"
+               "usage: %s [--dofs 1e4,1e5,1e6] [--aspect A] [--solvers cholmod,eigen] [--time-cap "
+               "SECONDS]\n          [--memory-cap GIB]\n"
+               "  --dofs       target free dofs, one block each, run in increasing order\n"
+               "  --aspect     n x n x A n elements, z = 0 fixed (default 1: cubes)\n"
+               "  --solvers    which to run (default both)\n"
                "  --time-cap   longest estimated factorisation attempted (default 600 s)\n"
                "  --memory-cap largest resident set attempted (default: physical memory)\n",
                program);
@@ -348,6 +376,12 @@ int main(int argc, char** argv) {
     const char* value = argv[++a];
     if (arg == "--dofs")
       o.dofs = parse_list(value);
+    else if (arg == "--solvers") {
+      const std::string list = std::string(",") + value + ",";
+      o.cholmod = list.find(",cholmod,") != std::string::npos;
+      o.eigen = list.find(",eigen,") != std::string::npos;
+    } else if (arg == "--aspect")
+      o.aspect = std::atof(value);
     else if (arg == "--time-cap")
       o.time_cap = std::atof(value);
     else if (arg == "--memory-cap")
@@ -356,7 +390,8 @@ int main(int argc, char** argv) {
       return usage(argv[0]);
   }
   std::sort(o.dofs.begin(), o.dofs.end());
-  if (o.dofs.empty() || o.dofs.front() < 1.0 || !(o.time_cap > 0.0) || !(o.memory_cap > 0.0))
+  if (o.dofs.empty() || o.dofs.front() < 1.0 || !(o.aspect > 0.0) || !(o.cholmod || o.eigen) ||
+      !(o.time_cap > 0.0) || !(o.memory_cap > 0.0))
     return usage(argv[0]);
 
   core::Material steel;
@@ -372,7 +407,7 @@ int main(int argc, char** argv) {
   bool failed = false;
   double cholmod_rate = 0.0, eigen_rate = 0.0;
   struct Row {
-    int n, dofs;
+    int dofs;
     double k_nonzeros, assembly;
     std::string load;
     Run cholmod, eigen;
@@ -380,9 +415,8 @@ int main(int argc, char** argv) {
   std::vector<Row> rows;
   for (double target : o.dofs) {
     Row row{};
-    row.n = edge_for(target);
     row.load = load_average();
-    const Block block = make_block(row.n);
+    const Block block = make_block(section_for(target, o.aspect), o.aspect);
     row.dofs = block.equations;
     std::optional<fem::SparseAssembly> assembly;
     row.assembly = timed([&] {
@@ -399,16 +433,18 @@ int main(int argc, char** argv) {
     const fem::SymmetricCsc& k = assembly->matrix();
     row.k_nonzeros = static_cast<double>(k.row.size());
     std::printf(
-        "%d^3 hexahedra, %d free dofs, nnz(K) %.4g (upper triangle), assembled in %.2f s "
+        "%d x %d x %d hexahedra, %d free dofs, nnz(K) %.4g (upper triangle), assembled in %.2f s "
         "(load %s)\n",
-        row.n, row.dofs, row.k_nonzeros, row.assembly, row.load.c_str());
+        block.n, block.n, block.l, row.dofs, row.k_nonzeros, row.assembly, row.load.c_str());
     std::fflush(stdout);
 
-    row.cholmod = run_cholmod(o, k, block.load, cholmod_rate);
+    Run skipped;
+    skipped.not_run = kNotAsked;
+    row.cholmod = o.cholmod ? run_cholmod(o, k, block.load, cholmod_rate) : skipped;
     print_run("CHOLMOD", row.cholmod);
     std::fflush(stdout);
     bool agree = true;
-    row.eigen = run_eigen(o, k, block.load, eigen_rate, agree);
+    row.eigen = o.eigen ? run_eigen(o, k, block.load, eigen_rate, agree) : skipped;
     print_run("Eigen", row.eigen);
     for (const Run* r : {&row.cholmod, &row.eigen})
       if (r->not_run.empty() && !(r->residual <= kResidualLimit)) {
@@ -430,10 +466,11 @@ int main(int argc, char** argv) {
     const std::pair<const char*, const Run*> runs[] = {{"CHOLMOD", &row.cholmod},
                                                        {"Eigen", &row.eigen}};
     for (const auto& [name, r] : runs) {
+      if (r->not_run == kNotAsked) continue;
       std::printf("| %d | %.3g | %s | %s | ", row.dofs, row.k_nonzeros, name, r->ordering.c_str());
       if (!r->not_run.empty()) {
-        std::printf("%s (nnz(L) %.3g, %.3g flops, %s MiB) | | | | | | | | |\n", r->not_run.c_str(),
-                    r->factor_nonzeros, r->flops, mib(r->own_bytes).c_str());
+        std::printf("%s (nnz(L) %.3g, %.3g flops, estimated %s MiB) | | | | | | | | |\n",
+                    r->not_run.c_str(), r->factor_nonzeros, r->flops, mib(r->own_bytes).c_str());
         continue;
       }
       std::printf("%.3f | %.3f | %.3g | %.3f | %.4g | %s | %s | %.1e | %s |\n", r->analyse,
