@@ -89,4 +89,20 @@ void SparseCholesky::solve(std::span<const double> b, std::span<double> x) const
   cholmod_free_dense(&sol, &impl_->common);
 }
 
+CholeskyStatistics SparseCholesky::statistics() const {
+  static constexpr const char* kOrdering[] = {"natural", "given",  "AMD",        "METIS",
+                                              "NESDIS",  "COLAMD", "postordered"};
+  const cholmod_common& c = impl_->common;
+  const cholmod_factor* f = impl_->factor;
+  CholeskyStatistics s;
+  if (f && f->ordering >= 0 && f->ordering <= CHOLMOD_POSTORDERED)
+    s.ordering = kOrdering[f->ordering];
+  s.factor_nonzeros = c.lnz;
+  s.flops = c.fl;
+  s.factor_values = f ? f->xsize : 0;
+  s.peak_bytes = c.memory_usage;
+  s.bytes_in_use = c.memory_inuse;
+  return s;
+}
+
 }  // namespace afemp::fem

@@ -3,6 +3,7 @@
 // ordering and symbolic factorisation once per pattern, the numeric factorisation per matrix.
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <span>
 #include <stdexcept>
@@ -30,6 +31,16 @@ class NotPositiveDefinite : public std::runtime_error {
   int column_;
 };
 
+// What CHOLMOD reports of the last analysis and factorisation (for bench/solver_cost.cpp).
+struct CholeskyStatistics {
+  const char* ordering = "";      // the fill-reducing ordering it chose ("AMD", "METIS", ...)
+  double factor_nonzeros = 0.0;   // nnz(L), diagonal included, of that ordering
+  double flops = 0.0;             // sum over L's columns of their count squared
+  std::size_t factor_values = 0;  // values the supernodal L stores (nnz(L) and padding zeros)
+  std::size_t peak_bytes = 0;     // the most CHOLMOD has held at once since construction
+  std::size_t bytes_in_use = 0;   // what it holds now
+};
+
 class SparseCholesky {
  public:
   SparseCholesky();
@@ -44,6 +55,9 @@ class SparseCholesky {
   void factorise(const SymmetricCsc& a);
   // x = a^-1 b with the last factorisation (x and b of a's size; they may not overlap).
   void solve(std::span<const double> b, std::span<double> x) const;
+  // After analyse(); peak_bytes counts CHOLMOD's own allocations only (not the caller's matrix,
+  // which it views, nor METIS' internal workspace).
+  CholeskyStatistics statistics() const;
 
  private:
   struct Impl;
