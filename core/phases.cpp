@@ -61,6 +61,11 @@ double explicit_start(const Scene& scene) {
   return p ? p->end_time : 0.0;
 }
 
+double phase_end(const Scene& scene, std::size_t k) {
+  const double end = scene.phases[k].end_time;
+  return end == 0.0 && k + 1 == scene.phases.size() ? scene.run.end_time : end;
+}
+
 double phase_tolerance(const PhaseSpec& phase) {
   if (phase.tolerance > 0.0) return phase.tolerance;
   return phase.kind == PhaseKind::relaxation ? 1e-3 : 1e-8;
@@ -87,15 +92,16 @@ void check_phases(const Scene& scene, const PhaseFailure& fail) {
   for (std::size_t k = 0; k < n; ++k) {
     const PhaseSpec& p = scene.phases[k];
     const std::string key = "phases[" + std::to_string(k) + "]";
-    if (!(p.end_time > previous) || !std::isfinite(p.end_time))
+    const double end = phase_end(scene, k);
+    if (!(end > previous) || !std::isfinite(end))
       fail(p.where, key + ".end_time",
-           "value " + number(p.end_time) + " must be after the previous phase's end (" +
-               number(previous) + ")");
-    previous = p.end_time;
-    if (k + 1 == n && std::abs(p.end_time - scene.run.end_time) > 1e-12 * scene.run.end_time)
+           "value " + number(end) + " must be after the previous phase's end (" + number(previous) +
+               ")");
+    previous = end;
+    if (k + 1 == n && std::abs(end - scene.run.end_time) > 1e-12 * scene.run.end_time)
       fail(p.where, key + ".end_time",
            "the last phase ends at [run] end_time (" + number(scene.run.end_time) + "), not " +
-               number(p.end_time));
+               number(end));
   }
   if (n == 0) return;
   const bool explicit_only = n == 1 && scene.phases[0].kind == PhaseKind::explicit_dynamics;
@@ -201,8 +207,8 @@ std::string describe_phases(const Scene& scene) {
   for (std::size_t k = 0; k < scene.phases.size(); ++k) {
     const PhaseSpec& p = scene.phases[k];
     out += "  " + std::to_string(k + 1) + ". " + to_string(p.kind) + ", t " + number(from) +
-           " -> " + number(p.end_time) + ": ";
-    from = p.end_time;
+           " -> " + number(phase_end(scene, k)) + ": ";
+    from = phase_end(scene, k);
     if (p.kind == PhaseKind::explicit_dynamics) {
       out +=
           "explicit dynamics of every body, with the stages below; it starts from the "

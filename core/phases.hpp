@@ -2,6 +2,7 @@
 // bodies a static phase solves, and the plan `afemp check` prints for each phase.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <string>
 #include <vector>
@@ -16,6 +17,9 @@ const PhaseSpec* preload_phase(const Scene& scene);
 
 // When the explicit phase starts: the preload phase's end, or 0.
 double explicit_start(const Scene& scene);
+
+// When phase k ends: its end_time, or for the last phase left at 0, [run] end_time.
+double phase_end(const Scene& scene, std::size_t k);
 
 // The phase's tolerance: its own, or its kind's default (static 1e-8, relaxation 1e-3).
 double phase_tolerance(const PhaseSpec& phase);

@@ -1937,7 +1937,8 @@ void read_terminate(TableReader& r, Scene& scene, const std::string& path) {
 }
 
 // [[phases]] (core/phases.hpp): each entry's keys, then the sequence and the bodies, checked
-// as check_scene checks a scene built in code. The last phase's end_time defaults to [run]'s.
+// as check_scene checks a scene built in code. The last phase's end_time may be left out (0:
+// [run]'s, core::phase_end).
 void read_phases(TableReader& r, Scene& scene, const std::string& path) {
   std::size_t count = 0;
   if (r.has("phases"))
@@ -1949,7 +1950,7 @@ void read_phases(TableReader& r, Scene& scene, const std::string& path) {
                                           PhaseKind::explicit_dynamics};
     p.kind = kinds[t.choice("kind", {"static", "relaxation", "explicit"}, std::nullopt)];
     const bool last = scene.phases.size() + 1 == count;
-    p.end_time = last ? t.number("end_time", scene.run.end_time, scene_ranges::run::end_time)
+    p.end_time = last ? t.number("end_time", p.end_time, scene_ranges::run::end_time)
                       : t.required_number("end_time", scene_ranges::run::end_time);
     if (p.kind == PhaseKind::static_load) {
       namespace ranges = scene_ranges::phase;
@@ -1958,13 +1959,13 @@ void read_phases(TableReader& r, Scene& scene, const std::string& path) {
       p.max_iterations =
           static_cast<int>(t.integer("max_iterations", p.max_iterations, ranges::max_iterations.lo,
                                      ranges::max_iterations.hi));
-      p.tolerance = t.number("tolerance", phase_tolerance(p), ranges::tolerance);
+      p.tolerance = t.number("tolerance", p.tolerance, ranges::tolerance);
       p.gravity = t.optional_vec3("gravity");
       for (const std::string& name : t.strings("bodies"))
         p.bodies.push_back(body_index(t, "bodies", name, scene, false));
     } else if (p.kind == PhaseKind::relaxation) {
       namespace ranges = scene_ranges::phase;
-      p.tolerance = t.number("tolerance", phase_tolerance(p), ranges::relaxation_tolerance);
+      p.tolerance = t.number("tolerance", p.tolerance, ranges::relaxation_tolerance);
       p.damping_factor = t.number("damping_factor", p.damping_factor, ranges::damping_factor);
       p.check_every =
           t.integer("check_every", p.check_every, ranges::check_every.lo, ranges::check_every.hi);

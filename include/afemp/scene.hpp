@@ -486,7 +486,7 @@ const char* to_string(PhaseKind k);
 /// (core/phases.cpp says why).
 struct PhaseSpec {
   PhaseKind kind = PhaseKind::explicit_dynamics;
-  double end_time = 0.0;
+  double end_time = 0.0;  ///< the last phase may leave it at 0: [run] end_time
   /// static: the loads reach their full value in load_steps equal steps, each solved by Newton
   /// to |r| <= tolerance x the force scale in at most max_iterations iterations.
   int load_steps = 10;

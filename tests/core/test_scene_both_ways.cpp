@@ -286,7 +286,7 @@ class Builder {
           key == "materials" || key == "bodies")
         continue;  // in the order their references need, below
       if (key != "constraints" && key != "walls" && key != "contact" && key != "detonations" &&
-          key != "probes" && key != "absorbing")
+          key != "probes" && key != "absorbing" && key != "phases")
         unknown(key);
     }
     if (const toml::node* g = root_.get("grid")) grid(table(*g, "grid"), s);
@@ -308,6 +308,7 @@ class Builder {
     each("detonations", [&](const toml::table& t) { s.detonations.push_back(detonation(t)); });
     if (const toml::node* r = root_.get("reference")) reference(table(*r, "reference"), s);
     each("probes", [&](const toml::table& t) { s.probes.push_back(probe(t, s)); });
+    each("phases", [&](const toml::table& t) { s.phases.push_back(phase(t, s)); });
     return s;
   }
 
@@ -647,6 +648,8 @@ class Builder {
         }
       } else if (key == "area")
         b.area = num(v, at);
+      else if (key == "prestress")
+        b.prestress = num(v, at);
       else if (key == "velocity")
         b.velocity = vec(v, at);
       else if (key == "temperature")
@@ -753,6 +756,36 @@ class Builder {
         unknown(at);
     }
     return a;
+  }
+
+  PhaseSpec phase(const toml::table& t, const Scene& s) {
+    PhaseSpec p;
+    for (auto&& [k, v] : t) {
+      const std::string key(k.str()), at = "phases." + key;
+      if (key == "kind")
+        p.kind = named<PhaseKind>(str(v, at), 3, at);
+      else if (key == "end_time")
+        p.end_time = num(v, at);
+      else if (key == "load_steps")
+        p.load_steps = static_cast<int>(integer(v, at));
+      else if (key == "max_iterations")
+        p.max_iterations = static_cast<int>(integer(v, at));
+      else if (key == "tolerance")
+        p.tolerance = num(v, at);
+      else if (key == "gravity")
+        p.gravity = vec(v, at);
+      else if (key == "bodies")
+        for (const std::string& name : strings(v, at)) p.bodies.push_back(body_named(s, name));
+      else if (key == "damping_factor")
+        p.damping_factor = num(v, at);
+      else if (key == "check_every")
+        p.check_every = integer(v, at);
+      else if (key == "time_step_factor")
+        p.relaxation_step_factor = num(v, at);
+      else
+        unknown(at);
+    }
+    return p;
   }
 
   WallSpec wall(const toml::table& t, const Scene& s) {
@@ -1109,6 +1142,7 @@ void same_body(const BodySpec& a, const BodySpec& b, const std::string& at) {
     SAME(rigid->fixed);
   }
   SAME(area);
+  SAME(prestress);
   SAME(bonded_to);
   SAME(outside);
   same_vec(a.velocity, b.velocity, at + ".velocity");
@@ -1257,6 +1291,21 @@ void same_scene(const Scene& a, const Scene& b) {
       SAME(velocity_references[k].tolerance);
     }
   }
+  ASSERT_EQ(a.phases.size(), b.phases.size());
+  for (std::size_t k = 0; k < a.phases.size(); ++k) {
+    const std::string at = "phases[" + std::to_string(k) + "]";
+    SAME(phases[k].kind);
+    SAME(phases[k].end_time);
+    SAME(phases[k].load_steps);
+    SAME(phases[k].max_iterations);
+    SAME(phases[k].tolerance);
+    ASSERT_EQ(a.phases[k].gravity.has_value(), b.phases[k].gravity.has_value()) << at;
+    if (a.phases[k].gravity) same_vec(*a.phases[k].gravity, *b.phases[k].gravity, at + ".gravity");
+    SAME(phases[k].bodies);
+    SAME(phases[k].damping_factor);
+    SAME(phases[k].check_every);
+    SAME(phases[k].relaxation_step_factor);
+  }
   ASSERT_EQ(a.probes.size(), b.probes.size());
   for (std::size_t k = 0; k < a.probes.size(); ++k) {
     const ProbeSpec &pa = a.probes[k], &pb = b.probes[k];
@@ -1311,6 +1360,45 @@ TEST(SceneBothWays, EveryExampleBuiltInCodeIsTheModelItsFileReads) {
 // the same model both ways: an FE scene (hourglass forms without their coefficient, erosion,
 // bulk viscosity and contact without keys, a truss line, a plane without its tolerance) and a
 // particle scene (splitting and a far field without their keys, a cone).
+// Reference: [[phases]] (a static phase with and without its keys, a relaxation phase, the
+// last phase's end left to [run]) and a prestressed tendon are the same model both ways.
+TEST(SceneBothWays, PhasesAndPrestressAreTheSameModelBothWays) {
+  const std::string base =
+      "[run]\nend_time = 2\ngravity = [0, 0, -9.81e-3]\n"
+      "[materials.steel]\ndensity = 7.85e-3\nE = 2.0e5\nnu = 0.3\n"
+      "[[bodies]]\nname = \"beam\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
+      "element = \"full\"\nshape = { box = { min = [0, 0, 0], max = [1, 1, 4] } }\n"
+      "mesh = { size = 1 }\n"
+      "[[bodies]]\nname = \"tendon\"\ndiscretisation = \"trusses\"\nmaterial = \"steel\"\n"
+      "shape = { line = { from = [0, 0, 5], to = [0, 0, 9] } }\nmesh = { segments = 4 }\n"
+      "area = 0.1\nprestress = 500\n"
+      "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }\n"
+      "fixed = [\"all\"]\n"
+      "[[constraints]]\nnodes = { plane = { point = [0, 0, 5], normal = [0, 0, 1] } }\n"
+      "fixed = [\"all\"]\n"
+      "[[constraints]]\nnodes = { plane = { point = [0, 0, 9], normal = [0, 0, 1] } }\n"
+      "fixed = [\"all\"]\n";
+  expect_same_both_ways(base +
+                            "[[phases]]\nkind = \"static\"\nend_time = 1\nbodies = [\"beam\"]\n"
+                            "[[phases]]\nkind = \"explicit\"\n",
+                        "static_defaults.toml");
+  expect_same_both_ways(base +
+                            "[[phases]]\nkind = \"static\"\nend_time = 1\nbodies = [\"beam\"]\n"
+                            "load_steps = 4\nmax_iterations = 12\ntolerance = 1e-9\n"
+                            "gravity = [0, 0, -1]\n"
+                            "[[phases]]\nkind = \"explicit\"\nend_time = 2\n",
+                        "static_keys.toml");
+  expect_same_both_ways(base +
+                            "[[phases]]\nkind = \"relaxation\"\nend_time = 1\n"
+                            "[[phases]]\nkind = \"explicit\"\n",
+                        "relaxation_defaults.toml");
+  expect_same_both_ways(base +
+                            "[[phases]]\nkind = \"relaxation\"\nend_time = 1\ntolerance = 1e-4\n"
+                            "damping_factor = 0.99\ncheck_every = 100\ntime_step_factor = 0.5\n"
+                            "[[phases]]\nkind = \"explicit\"\n",
+                        "relaxation_keys.toml");
+}
+
 TEST(SceneBothWays, TablesLeftAtTheirDefaultsAreTheSameModelBothWays) {
   const std::string steel =
       "[materials.steel]\ndensity = 7.85e-3\nE = 2.0e5\nnu = 0.3\n"
