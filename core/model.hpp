@@ -45,6 +45,28 @@ struct BodyPoints {
   std::vector<double> half_size;
 };
 
+// The stress of a body's points now (Model::body_stresses), as a preload phase prints it at
+// the switch: the largest von Mises stress, and the range of the pressure -tr(sigma)/3
+// (trusses: their axial stress as the uniaxial tensor).
+struct BodyStress {
+  std::size_t points = 0;
+  double max_von_mises = 0.0;
+  double min_pressure = 0.0, max_pressure = 0.0;
+  // Folds in one point's stress.
+  void add(const SymTensor& s) {
+    const double v = von_mises(s), p = 0.0 - s.mean();  // 0 - 0 is +0, not -0
+    if (points == 0) {
+      max_von_mises = v;
+      min_pressure = max_pressure = p;
+    } else {
+      max_von_mises = std::max(max_von_mises, v);
+      min_pressure = std::min(min_pressure, p);
+      max_pressure = std::max(max_pressure, p);
+    }
+    ++points;
+  }
+};
+
 // What a static phase did (Model::run_static_phase), for the run's log.
 struct StaticPhaseOutcome {
   std::size_t nodes = 0, elements = 0;
@@ -145,6 +167,8 @@ class Model {
   // what the solve cannot take and SimulationError when no equilibrium is found. A model
   // without meshes has nothing a static phase solves (check_scene refuses such a scene).
   virtual StaticPhaseOutcome run_static_phase(const PhaseSpec& phase, std::ostream* log);
+  // Per scene body, the stress of its live points now (BodyStress).
+  virtual std::vector<BodyStress> body_stresses() const = 0;
 };
 
 // The energies of a contact that books its impulses' work as the sliding energy: Energies::sliding

@@ -243,6 +243,7 @@ void TimeLoop::run_preload_phase(const PhaseSpec& phase) {
   record(0.0);
   probes_->sample(model_, true);
   if (frames_) model_.write_fields(*frames_);
+  if (options_.phase_log) print_switch(phase);
   // The explicit phase's frames, rows and checkpoints fall due from here on, not at the times
   // the static phase passed over.
   if (rs.output_every > 0.0)
@@ -255,6 +256,27 @@ void TimeLoop::run_preload_phase(const PhaseSpec& phase) {
     while (next_checkpoint_ <= t * (1.0 + 1e-9)) next_checkpoint_ += rs.checkpoint_every;
   if (!options_.output_directory.empty())
     checkpoint(std::string("the end of the ") + to_string(phase.kind) + " phase");
+}
+
+void TimeLoop::print_switch(const PhaseSpec& phase) const {
+  const Energies e = energies();
+  char line[320];
+  std::snprintf(
+      line, sizeof line,
+      "the %s phase ends at t = %.6g: internal energy %.6g, kinetic %.6g, external "
+      "work %.6g%s; the explicit phase starts from these stresses:\n",
+      to_string(phase.kind), model_.time(), e.internal, e.kinetic, e.external_work,
+      phase.kind == PhaseKind::relaxation ? (", damped " + std::to_string(e.damped)).c_str() : "");
+  *options_.phase_log << line;
+  const std::vector<BodyStress> stress = model_.body_stresses();
+  for (std::size_t b = 0; b < stress.size() && b < scene_.bodies.size(); ++b) {
+    if (stress[b].points == 0) continue;
+    std::snprintf(line, sizeof line,
+                  "  %s: von Mises up to %.6g, pressure %.6g to %.6g (%zu points)\n",
+                  scene_.bodies[b].name.c_str(), stress[b].max_von_mises, stress[b].min_pressure,
+                  stress[b].max_pressure, stress[b].points);
+    *options_.phase_log << line;
+  }
 }
 
 void TimeLoop::run_relaxation(const PhaseSpec& phase) {

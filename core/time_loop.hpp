@@ -98,6 +98,9 @@ class TimeLoop {
   // bodies with an initial velocity held at rest and set moving at the end; the clock then
   // reads the phase's end.
   void run_relaxation(const PhaseSpec& phase);
+  // What the explicit phase starts from, to RunOptions::phase_log: the energies, and per body
+  // its largest von Mises stress and its range of pressure (Model::body_stresses).
+  void print_switch(const PhaseSpec& phase) const;
   void visit(StateArchive& archive);
   double elapsed() const;
   Vec3 mean_velocity(const Energies& e) const;

@@ -23,6 +23,7 @@
 // the nodes' v^{n+1/2}; rigid bodies take their impulses before step 4.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -61,6 +62,21 @@ class CoupledModel final : public core::Model {
     mpm_.set_body_velocity(body, v);
   }
   void hold_body(int body, bool hold) override { fe_.hold_body(body, hold); }
+  // Particles made from converted elements add to their hexahedra body's.
+  std::vector<core::BodyStress> body_stresses() const override {
+    std::vector<core::BodyStress> out = fe_.body_stresses();
+    const std::vector<core::BodyStress> particles = mpm_.body_stresses();
+    for (std::size_t b = 0; b < out.size(); ++b)
+      if (out[b].points == 0)
+        out[b] = particles[b];
+      else if (particles[b].points > 0) {
+        out[b].max_von_mises = std::max(out[b].max_von_mises, particles[b].max_von_mises);
+        out[b].min_pressure = std::min(out[b].min_pressure, particles[b].min_pressure);
+        out[b].max_pressure = std::max(out[b].max_pressure, particles[b].max_pressure);
+        out[b].points += particles[b].points;
+      }
+    return out;
+  }
   void set_clock(double time) override {
     fe_.set_clock(time);
     mpm_.set_clock(time);

@@ -193,6 +193,23 @@ std::vector<core::EventLog> FeModel::take_events() {
   return out;
 }
 
+std::vector<core::BodyStress> FeModel::body_stresses() const {
+  std::vector<core::BodyStress> out(scene_.bodies.size());
+  for (const ElementStore* el : {static_cast<const ElementStore*>(&solver_.hexahedra()),
+                                 static_cast<const ElementStore*>(&solver_.trusses())})
+    for (const ElementBatch& b : el->batches) {
+      if (b.rigid) continue;
+      for (std::size_t e = b.begin; e < b.end; ++e) {
+        if (!el->alive[e]) continue;
+        const std::size_t p0 =
+            b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
+        for (int g = 0; g < b.points_per_element; ++g)
+          out[static_cast<std::size_t>(b.body)].add(el->stress[p0 + static_cast<std::size_t>(g)]);
+      }
+    }
+  return out;
+}
+
 std::vector<std::string> FeModel::summary_warnings() const {
   std::vector<std::string> out;
   for (std::size_t b = 0; b < eroded_.size(); ++b) {

@@ -36,6 +36,13 @@ class MpmModel final : public core::Model {
     solver_.set_body_velocity(body, v);
   }
   void set_clock(double time) override { solver_.set_clock(time); }
+  std::vector<core::BodyStress> body_stresses() const override {
+    std::vector<core::BodyStress> out(scene_.bodies.size());
+    const Particles& p = solver_.particles();
+    for (std::size_t i = 0; i < p.size(); ++i)
+      out[static_cast<std::size_t>(p.body[i])].add(p.stress[i]);
+    return out;
+  }
   long step_count() const override { return solver_.step_count(); }
   double time() const override { return solver_.time(); }
   core::Energies energies() const override { return solver_.energies(); }

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 
 #include "afemp/errors.hpp"
@@ -78,9 +79,17 @@ TEST_P(StaticPhaseForms, ColumnPreloadedByItsWeightStaysAtRestInTheExplicitPhase
   const double energy_exact = std::pow(kRho * kG, 2) * kA * std::pow(kH, 3) / (6.0 * kE);
   const double swing = M_PI * std::sqrt(kE / kRho) / (2.0 * kH) * std::abs(u_exact);
 
-  Simulation sim(core::parse_scene(column(form.element, kStaticThenExplicit), "column.toml"));
+  std::ostringstream log;
+  SimulationOptions options;
+  options.phase_log = &log;
+  Simulation sim(core::parse_scene(column(form.element, kStaticThenExplicit), "column.toml"),
+                 options);
   EXPECT_NE(sim.describe().find("1. static, t 0 -> 1"), std::string::npos) << sim.describe();
   sim.run_to(1.0);  // the static phase: one step, whole
+  // Newton's iterations, then what the explicit phase starts from, are printed at the switch.
+  EXPECT_NE(log.str().find("static step 10/10 iteration 1"), std::string::npos) << log.str();
+  EXPECT_NE(log.str().find("the static phase ends at t = 1: internal energy"), std::string::npos);
+  EXPECT_NE(log.str().find("  column: von Mises up to"), std::string::npos) << log.str();
   EXPECT_DOUBLE_EQ(sim.time(), 1.0);
   EXPECT_EQ(sim.step_count(), 0);
   const double u_static = top_displacement(sim);
