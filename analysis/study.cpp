@@ -101,6 +101,11 @@ double measure(const MetricSpec& m, const MetricReference& reference, const core
           zero_crossing_frequency(p.time, p.series(static_cast<std::size_t>(p.column(m.quantity))));
       break;
     }
+    case MetricKind::force: {
+      const core::ProbeSeries& p = probe_series(summary, m.probes[0]);
+      value = p.at(p.rows() - 1, static_cast<std::size_t>(p.column(m.quantity)));
+      break;
+    }
   }
   values.push_back(value);
   return reference.scalar ? reference_error(value, *reference.scalar) : nan;

@@ -35,6 +35,8 @@ const char* to_string(MetricKind k) {
       return "wave_front";
     case MetricKind::frequency:
       return "frequency";
+    case MetricKind::force:
+      return "force";
   }
   return "?";
 }
@@ -110,8 +112,8 @@ const std::vector<MetricKey>& metric_keys() {
       {"threshold", {K::crater}},
       {"band", {K::hole}},
       {"probes", {K::wave_front}},
-      {"probe", {K::frequency}},
-      {"quantity", {K::wave_front, K::frequency}},
+      {"probe", {K::frequency, K::force}},
+      {"quantity", {K::wave_front, K::frequency, K::force}},
       {"fraction", {K::wave_front}},
       {"until", {K::wave_front}},
   };
@@ -193,8 +195,9 @@ MetricSpec read_metric(TableReader& r) {
   r.known({"kind", "name", "body", "component", "point", "normal", "ring", "threshold", "band",
            "probes", "probe", "quantity", "fraction", "until", "reference", "tolerance"});
   r.check_unknown();
-  m.kind = static_cast<MetricKind>(r.choice(
-      "kind", {"taylor", "velocity", "crater", "hole", "wave_front", "frequency"}, std::nullopt));
+  m.kind = static_cast<MetricKind>(
+      r.choice("kind", {"taylor", "velocity", "crater", "hole", "wave_front", "frequency", "force"},
+               std::nullopt));
   m.name = r.string("name", to_string(m.kind));
   if (m.name.empty() || m.name.find_first_of(",.\"\n") != std::string::npos)
     r.fail("name", "a metric name must be non-empty and hold no comma, dot, quote or newline");
@@ -241,6 +244,7 @@ MetricSpec read_metric(TableReader& r) {
       m.until = r.number("until", 0.0, Range::positive());
       break;
     case MetricKind::frequency:
+    case MetricKind::force:
       m.probes = {r.required_string("probe")};
       m.quantity = r.required_string("quantity");
       break;
@@ -445,9 +449,14 @@ StudyPlan parse_study(const std::string& text, const std::string& path) {
                                     [&](const ProbeSpec& probe) { return probe.name == name; });
         if (p == scene.probes.end())
           throw InputError(m.where,
-                           m.kind == MetricKind::frequency ? "metrics.probe" : "metrics.probes",
+                           m.kind == MetricKind::wave_front ? "metrics.probes" : "metrics.probe",
                            "metric \"" + m.name + "\" reads probe \"" + name + "\", which run \"" +
                                run.label + "\" (scene " + run.scene_path + ") does not have");
+        if (m.kind == MetricKind::force && p->kind != ProbeKind::force)
+          throw InputError(m.where, "metrics.probe",
+                           "a force metric reads a force probe (force = \"wall1\", a contact's "
+                           "name, ...); probe \"" +
+                               name + "\" is a " + to_string(p->kind) + " probe");
         const std::vector<std::string> columns = probe_columns(p->kind);
         if (std::find(columns.begin(), columns.end(), m.quantity) == columns.end())
           throw InputError(m.where, "metrics.quantity",
@@ -512,18 +521,30 @@ Scene build_run_scene(const StudyPlan& plan, const StudyRun& run) {
       } else if (n->is_array_of_tables()) {
         if (i + 2 >= segments.size())
           fail("'" + walked + "' is a list of tables: name the element and the key, '" + walked +
-               ".NAME.KEY'");
+               ".NAME.KEY' (or '" + walked + ".INDEX.KEY', counted from 0)");
         toml::array& a = *n->as_array();
+        const std::string& pick = segments[i + 1];
         std::vector<std::string> names;
         toml::table* found = nullptr;
         for (auto& e : a) {
           toml::table& et = *e.as_table();
           const std::string name = et["name"].value_or(std::string());
-          names.push_back(name);
-          if (name == segments[i + 1]) found = &et;
+          if (!name.empty()) names.push_back(name);
+          if (name == pick) found = &et;
         }
+        // Tables without names ([[constraints]], [[phases]]) are picked by their index, counted
+        // from 0 as the scene's messages count them ("constraints[2]").
+        const bool index =
+            pick.size() <= 9 && pick.find_first_not_of("0123456789") == std::string::npos;
+        if (!found && index && std::stoul(pick) < a.size())
+          found = a.get(std::stoul(pick))->as_table();
+        if (!found && names.empty())
+          fail("scene " + run.scene_path + " has no '" + walked + "' " +
+               (index ? "numbered " + pick : "named \"" + pick + "\"") +
+               "; its tables have no names: pick one by its index, 0 to " +
+               std::to_string(a.size() - 1));
         if (!found)
-          fail("scene " + run.scene_path + " has no '" + walked + "' named \"" + segments[i + 1] +
+          fail("scene " + run.scene_path + " has no '" + walked + "' named \"" + pick +
                "\"; it has " + join(names, true));
         t = found;
         ++i;

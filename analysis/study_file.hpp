@@ -23,6 +23,7 @@ enum class MetricKind {
   hole,        // the diameter of the hole in a plate (analysis/crater_metrics.hpp)
   wave_front,  // a front's speed from its arrival at probes (analysis/signal_metrics.hpp)
   frequency,   // a probe history's first natural frequency (analysis/signal_metrics.hpp)
+  force,       // a force probe's value at the end: a platen's or support's reaction
 };
 
 // A crater's reference depth and diameter.
@@ -52,14 +53,14 @@ struct MetricSpec {
   MetricKind kind = MetricKind::velocity;
   std::string name;    // column prefix, unique in the study
   std::string body;    // the scene body it measures (every run's scene must have it); empty
-                       // for wave_front and frequency, which read probes
+                       // for wave_front, frequency and force, which read probes
   int component = -1;  // velocity: 0, 1, 2 for x, y, z; -1 for the magnitude
   // crater, hole: the impact axis, through `point` along the unit `normal` of the struck face.
   Vec3 point, normal;
   double ring = 0.0, threshold = 0.0;  // crater: ring width, drop that marks the crater
   double band = 0.0;                   // hole: half thickness of the slab about the mid-plane
-  // wave_front: the probes along the path (two or more); frequency: one. Every run's scene
-  // must have them; `quantity` is the column read.
+  // wave_front: the probes along the path (two or more); frequency, force: one. Every run's
+  // scene must have them; `quantity` is the column read.
   std::vector<std::string> probes;
   std::string quantity;
   double fraction = 0.5;  // wave_front: the arrival threshold, a fraction of the peak
@@ -122,6 +123,8 @@ StudyPlan read_study(const std::string& path);
 StudyPlan parse_study(const std::string& text, const std::string& path);
 
 // The run's scene: its scene file with the overrides applied, checked by the scene parser.
+// An element of a list of tables is picked by its `name` ("bodies.bar.mesh.size") or, for
+// lists whose tables have none, by its index from 0 ("constraints.2.curve", "phases.0.end_time").
 // Errors name the study file, the run and the override.
 Scene build_run_scene(const StudyPlan& plan, const StudyRun& run);
 

@@ -5,6 +5,9 @@
 //  - crater and hole on targets of particles made from point lists with a spherical-cap crater
 //    (depth 1.5, rim radius 3) and a round hole (radius 2) cut into them, at rest for a few
 //    steps: the metrics give the cut geometry within one particle spacing;
+//  - force on a steel cube squeezed in a static phase on a frictionless wall: the wall's force
+//    is the uniaxial-stress closed form at small strain to 1e-9, for squeezes and load steps
+//    set by index ("constraints.2.velocity", "phases.0.load_steps");
 //  - a band's error is 0 inside it and the distance to the nearer bound relative to that bound
 //    outside; each run is measured against its own reference where its [[runs]] table gives
 //    one, the CSV says which, and the value plot draws the references beside the runs;
@@ -221,6 +224,99 @@ scene = "targets.toml"
   EXPECT_TRUE(row.ok()) << describe_row(result, row);
 }
 
+// A steel cube [0, 1]^3 of 2 x 2 x 2 B-bar hexahedra on a frictionless wall at z = 0, on the
+// symmetry planes x = 0 and y = 0, its top pressed down by u = 1e-3 (the velocity's curve
+// integrates to 1 over the static phase and is 0 after it), then 1 us of explicit phase at rest
+// in which the wall reports the force.
+const std::string squeezed_cube = R"(
+[run]
+end_time = 1.001
+[materials.steel]
+density = 7.85e-3
+E = 200e3
+nu = 0.3
+[[bodies]]
+name = "cube"
+discretisation = "hexahedra"
+element = "full"
+material = "steel"
+shape = { box = { min = [0, 0, 0], max = [1, 1, 1] } }
+mesh = { divisions = [2, 2, 2] }
+[[constraints]]
+nodes = { plane = { point = [0, 0, 0], normal = [1, 0, 0] } }
+fixed = ["x"]
+[[constraints]]
+nodes = { plane = { point = [0, 0, 0], normal = [0, 1, 0] } }
+fixed = ["y"]
+[[constraints]]
+nodes = { plane = { point = [0, 0, 1], normal = [0, 0, 1] } }
+velocity = [0, 0, -1e-3]
+components = ["z"]
+curve = [[0, 2], [1, 0]]
+[[walls]]
+point = [0, 0, 0]
+normal = [0, 0, 1]
+[[phases]]
+kind = "static"
+end_time = 1
+[[phases]]
+kind = "explicit"
+[[probes]]
+name = "base"
+force = "wall1"
+[[probes]]
+name = "corner"
+node = { body = "cube", near = [1, 1, 1] }
+)";
+
+// Uniaxial stress at small strain eps = u / H: sigma_zz = E eps, the free sides move out by
+// nu eps, so the explicit phase reads the force sigma_zz A (1 + nu eps)^2 through the wall.
+double cube_force(double u) {
+  const double eps = u / 1.0;
+  return 200e3 * eps * 1.0 * (1.0 + 0.3 * eps) * (1.0 + 0.3 * eps);
+}
+
+const std::string cube_study = R"(
+[study]
+threads = 1
+[[metrics]]
+kind = "force"
+name = "base"
+probe = "base"
+quantity = "fz"
+tolerance = 1e-9
+[[runs]]
+method = "static"
+scene = "cube.toml"
+resolution = [1, 4]
+set = { "phases.0.load_steps" = [1, 4], "constraints.2.velocity" = [[0, 0, -1e-3], [0, 0, -2e-3]] }
+reference = { base = [REF1, REF2] }
+)";
+
+std::string cube_study_text() {
+  char ref[2][32];
+  std::snprintf(ref[0], sizeof ref[0], "%.17g", cube_force(1e-3));
+  std::snprintf(ref[1], sizeof ref[1], "%.17g", cube_force(2e-3));
+  return replaced(replaced(cube_study, "REF1", ref[0]), "REF2", ref[1]);
+}
+
+TEST(StudyMetrics, ForceOfTheWallUnderACubeSqueezedInAStaticPhase) {
+  test::ScratchDir dir;
+  dir.write("cube.toml", squeezed_cube);
+  const analysis::StudyPlan plan = analysis::read_study(dir.write("study.toml", cube_study_text()));
+  const StudyResult result = run_study(plan);
+  ASSERT_EQ(result.value_columns, std::vector<std::string>{"base"});
+  ASSERT_EQ(result.rows.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const StudyRow& row = result.rows[k];
+    const double exact = cube_force(k == 0 ? 1e-3 : 2e-3);
+    std::printf("u %g: force %.12g N (closed form %.12g, error %.2e)\n", k == 0 ? 1e-3 : 2e-3,
+                row.values[0], exact, row.errors[0]);
+    EXPECT_TRUE(row.ok()) << describe_row(result, row);
+    EXPECT_NEAR(row.values[0], exact, 1e-9 * exact);
+  }
+}
+
 TEST(StudyMetrics, MistakesNameTheFileLineKeyAndWhatIsAllowed) {
   std::string e =
       study_error(replaced(bar_study, "quantity = \"vz\"\nuntil", "quantity = \"speed\"\nuntil"));
@@ -262,6 +358,25 @@ TEST(StudyMetrics, MistakesNameTheFileLineKeyAndWhatIsAllowed) {
   e = study_error(
       replaced(replaced(crater, "tolerance = 0.1\n", ""), "body = \"bar\"", "body = \"slab\""));
   EXPECT_NE(e.find("measures body \"slab\""), std::string::npos) << e;
+  // A force metric reads a force probe's column; unnamed tables are picked by an index in range.
+  auto cube_error = [](const std::string& from, const std::string& to) {
+    return study_error(replaced(replaced(cube_study_text(), from, to), "cube.toml", "bar.toml"),
+                       squeezed_cube);
+  };
+  e = cube_error("probe = \"base\"", "probe = \"corner\"");
+  EXPECT_NE(e.find("key 'metrics.probe': a force metric reads a force probe (force = \"wall1\", "
+                   "a contact's name, ...); probe \"corner\" is a node probe"),
+            std::string::npos)
+      << e;
+  e = cube_error("quantity = \"fz\"", "quantity = \"vz\"");
+  EXPECT_NE(e.find("probe \"base\" is a force probe; its columns are \"fx\", \"fy\", \"fz\""),
+            std::string::npos)
+      << e;
+  e = cube_error("constraints.2.velocity", "constraints.3.velocity");
+  EXPECT_NE(e.find("has no 'constraints' numbered 3; its tables have no names: pick one by its "
+                   "index, 0 to 2"),
+            std::string::npos)
+      << e;
 }
 
 TEST(StudyMetrics, BandErrorIsTheDistanceToTheNearerBoundRelativeToIt) {
