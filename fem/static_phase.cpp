@@ -87,12 +87,14 @@ StaticPhaseReport run_static_phase(FeSolver& solver, const core::Scene& scene,
   }
   // The walls, on the nodes of the problem they may touch (frictionless and at rest: the scene
   // check refuses the others on a solved body).
-  for (const WallState& w : solver.walls()) {
-    PlanarWall wall{w.spec, {}};
-    for (std::int32_t n : w.nodes)
+  for (std::size_t w = 0; w < solver.walls().size(); ++w) {
+    PlanarWall wall{solver.walls()[w].spec, {}};
+    for (std::int32_t n : solver.walls()[w].nodes)
       if (local[static_cast<std::size_t>(n)] >= 0)
         wall.nodes.push_back(local[static_cast<std::size_t>(n)]);
-    if (!wall.nodes.empty()) problem.walls.push_back(std::move(wall));
+    if (wall.nodes.empty()) continue;
+    problem.walls.push_back(std::move(wall));
+    map.walls.push_back(static_cast<std::int32_t>(w));
   }
   problem.mesh = &mesh;
   NewtonSettings settings;
@@ -230,6 +232,10 @@ double FeSolver::take_static_state(const StaticPhaseMap& map, const StaticResult
     element_force_[trusses_.first_slot + 2 * e] = fa;
     element_force_[trusses_.first_slot + 2 * e + 1] = fb;
   }
+  // The walls' reactions, for the history row at the switch (the explicit steps then find
+  // theirs from the impulses).
+  for (std::size_t k = 0; k < map.walls.size() && k < r.wall_force.size(); ++k)
+    wall_force_[static_cast<std::size_t>(map.walls[k])] = r.wall_force[k];
   external_work_ += work;
   time_ = time;
   for (ElementSet* set : sets_) set->initial_critical_steps(scene_, nodes_.position);

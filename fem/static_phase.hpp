@@ -17,10 +17,10 @@
 
 namespace afemp::fem {
 
-// Where the static problem's entries sit in the solver: per problem node, hexahedron and line,
-// the solver's node, hexahedron and truss.
+// Where the static problem's entries sit in the solver: per problem node, hexahedron, line and
+// wall, the solver's node, hexahedron, truss and [[walls]] entry.
 struct StaticPhaseMap {
-  std::vector<std::int32_t> nodes, hexahedra, trusses;
+  std::vector<std::int32_t> nodes, hexahedra, trusses, walls;
 };
 
 struct StaticPhaseReport {

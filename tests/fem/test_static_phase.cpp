@@ -281,9 +281,27 @@ TEST(StaticPhase, WallHoldsTheColumnInTheStaticPhase) {
                "fixed = [\"x\"]\n"
                "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 1, 0] } }\n"
                "fixed = [\"y\"]\n");
-  Simulation sim(core::parse_scene(text, "c.toml"));
+  const test::ScratchDir scratch;
+  SimulationOptions options;
+  options.output_directory = scratch.path().string();
+  Simulation sim(core::parse_scene(text, "c.toml"), options);
   sim.run_to(1.0);
   const double weight = kRho * kA * kH * kG;
+  // The history row at the switch reports the wall's reaction: the weight.
+  {
+    std::ifstream history(scratch.path() / "history.csv");
+    std::string header, row, last;
+    std::getline(history, header);
+    while (std::getline(history, row)) last = row;
+    auto field = [](const std::string& line, std::size_t k) {
+      std::size_t at = 0;
+      for (std::size_t i = 0; i < k; ++i) at = line.find(',', at) + 1;
+      return std::stod(line.substr(at, line.find(',', at) - at));
+    };
+    std::size_t column = 0;
+    for (std::size_t at = 0; at < header.find("wall1.fz"); at = header.find(',', at) + 1) ++column;
+    EXPECT_NEAR(field(last, column) / weight, 1.0, 1e-9) << header << "\n" << last;
+  }
   // Free base: the closed form rho g H^2 / 2E holds to the discretisation.
   const double u_exact = -kRho * kG * kH * kH / (2.0 * kE);
   EXPECT_NEAR(top_displacement(sim) / u_exact, 1.0, 2e-3);
