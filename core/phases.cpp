@@ -154,7 +154,7 @@ void check_phases(const Scene& scene, const PhaseFailure& fail) {
       fail(s->where, key + ".bodies",
            name +
                " is made of particles; a static phase solves meshes (particles are held "
-               "where they are: use it for the meshes alone)");
+               "where they are: use it for the meshes alone), a relaxation phase any body");
     if (body.rigid)
       fail(s->where, key + ".bodies", name + " is rigid; a static phase holds rigid bodies");
     if (body.bonded_to >= 0)
@@ -168,7 +168,8 @@ void check_phases(const Scene& scene, const PhaseFailure& fail) {
            name +
                " has one-point hexahedra with the viscous hourglass form, which resists "
                "rates only and has no stiffness; give it hourglass form \"stiffness\" or "
-               "\"assumed_strain\", or element = \"full\"");
+               "\"assumed_strain\", or element = \"full\", or preload the scene with "
+               "kind = \"relaxation\", which takes any body");
     if (body.prestress != 0.0)
       fail(s->where, key + ".bodies",
            name +
@@ -180,7 +181,8 @@ void check_phases(const Scene& scene, const PhaseFailure& fail) {
     } catch (const std::invalid_argument& e) {
       fail(s->where, key + ".bodies",
            name + ": " + e.what() +
-               "; list the bodies the phase solves without it (it is then held)");
+               "; list the bodies the phase solves without it (it is then held), or preload "
+               "the scene with kind = \"relaxation\", which takes any material");
     }
   }
   for (std::size_t w = 0; w < scene.walls.size(); ++w) {
