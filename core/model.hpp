@@ -67,14 +67,6 @@ struct BodyStress {
   }
 };
 
-// What a static phase did (Model::run_static_phase), for the run's log.
-struct StaticPhaseOutcome {
-  std::size_t nodes = 0, elements = 0;
-  int load_steps = 0, iterations = 0;  // Newton iterations over all load steps
-  double residual = 0.0;               // the last iteration's, over its force scale
-  double work = 0.0;                   // the loads' work, stored in the state
-};
-
 class Model {
  public:
   virtual ~Model() = default;
@@ -166,7 +158,7 @@ class Model {
   // phase's end. Each Newton iteration is printed to `log` when set. Throws InputError for
   // what the solve cannot take and SimulationError when no equilibrium is found. A model
   // without meshes has nothing a static phase solves (check_scene refuses such a scene).
-  virtual StaticPhaseOutcome run_static_phase(const PhaseSpec& phase, std::ostream* log);
+  virtual void run_static_phase(const PhaseSpec& phase, std::ostream* log);
   // Per scene body, the stress of its live points now (BodyStress).
   virtual std::vector<BodyStress> body_stresses() const = 0;
 };

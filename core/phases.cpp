@@ -260,7 +260,7 @@ std::string describe_phases(const Scene& scene) {
   return out;
 }
 
-StaticPhaseOutcome Model::run_static_phase(const PhaseSpec& phase, std::ostream* /*log*/) {
+void Model::run_static_phase(const PhaseSpec& phase, std::ostream* /*log*/) {
   throw InputError(phase.where, "phases[0]",
                    "a static phase solves mesh bodies, and this model has none (particles are "
                    "held in a static phase)");

@@ -126,11 +126,9 @@ class CoupledModel final : public core::Model {
   }
   void state(core::StateArchive& archive) override;
   // The meshes' static phase (the particles held); both clocks then read its end.
-  core::StaticPhaseOutcome run_static_phase(const core::PhaseSpec& phase,
-                                            std::ostream* log) override {
-    const core::StaticPhaseOutcome out = fe_.run_static_phase(phase, log);
+  void run_static_phase(const core::PhaseSpec& phase, std::ostream* log) override {
+    fe_.run_static_phase(phase, log);
     mpm().set_clock(phase.end_time);
-    return out;
   }
 
  private:

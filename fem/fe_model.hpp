@@ -76,8 +76,7 @@ class FeModel final : public core::Model {
   void hold_body(int body, bool hold) override { solver_.hold_body(body, hold); }
   std::vector<core::BodyStress> body_stresses() const override;
   // fem/static_phase.cpp.
-  core::StaticPhaseOutcome run_static_phase(const core::PhaseSpec& phase,
-                                            std::ostream* log) override;
+  void run_static_phase(const core::PhaseSpec& phase, std::ostream* log) override;
 
  private:
   const core::Scene& scene_;

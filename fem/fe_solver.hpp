@@ -203,9 +203,8 @@ class FeSolver {
   void set_clock(double time) { time_ = time; }
   // A static phase's solution as the state at `time` (fem/static_phase.cpp): the nodes of the
   // problem map moved by their displacement, its points' stresses, plastic strains and work,
-  // the hourglass forces and element forces of that state, and the work as external work,
-  // which it returns.
-  double take_static_state(const StaticPhaseMap& map, const StaticResult& result, double time);
+  // the hourglass forces and element forces of that state, and the work as external work.
+  void take_static_state(const StaticPhaseMap& map, const StaticResult& result, double time);
   // Saves or restores the solver's state (a checkpoint, core/state_archive.hpp; fe_state.cpp).
   // Restoring needs a solver built from the same scene; events must have been taken.
   void state(core::StateArchive& archive);

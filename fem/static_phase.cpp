@@ -20,8 +20,8 @@
 
 namespace afemp::fem {
 
-StaticPhaseReport run_static_phase(FeSolver& solver, const core::Scene& scene,
-                                   const core::PhaseSpec& phase, std::ostream* log) {
+std::vector<NewtonIteration> run_static_phase(FeSolver& solver, const core::Scene& scene,
+                                              const core::PhaseSpec& phase, std::ostream* log) {
   const std::vector<int> bodies = core::static_phase_bodies(scene, phase);
   std::vector<std::int32_t> part_of(scene.bodies.size(), -1);
   MeshData mesh;
@@ -115,29 +115,19 @@ StaticPhaseReport run_static_phase(FeSolver& solver, const core::Scene& scene,
     const StaticResult& last = e.details().last_converged;
     const double time = last.load_factor * phase.end_time;
     solver.take_static_state(map, last, time);
-    // The solve's message names its library field for that state; a run says where it went.
-    std::string why = e.what();
-    const std::string field = " state is in StaticFailure::details().last_converged";
-    if (const std::size_t at = why.find(field); at != std::string::npos)
-      why.replace(at, field.size(), " state is the model's: the run's last frame shows it");
-    throw core::SimulationError(0, time,
-                                "the static phase, load step " +
-                                    std::to_string(e.details().load_step) + " of " +
-                                    std::to_string(e.details().load_steps),
-                                "equilibrium", why);
+    throw core::SimulationError(
+        0, time,
+        "the static phase, load step " + std::to_string(e.details().load_step) + " of " +
+            std::to_string(e.details().load_steps),
+        "equilibrium", std::string(e.what()) + " as the model's: the run's last frame");
   } catch (const std::runtime_error& e) {
     throw core::SimulationError(0, 0.0, "the static phase", "equilibrium", e.what());
   }
-  StaticPhaseReport report;
-  report.work = solver.take_static_state(map, result, phase.end_time);
-  report.iterations = std::move(result.iterations);
-  report.nodes = map.nodes.size();
-  report.hexahedra = map.hexahedra.size();
-  report.trusses = map.trusses.size();
-  return report;
+  solver.take_static_state(map, result, phase.end_time);
+  return std::move(result.iterations);
 }
 
-double FeSolver::take_static_state(const StaticPhaseMap& map, const StaticResult& r, double time) {
+void FeSolver::take_static_state(const StaticPhaseMap& map, const StaticResult& r, double time) {
   for (std::size_t k = 0; k < map.nodes.size(); ++k) {
     const auto n = static_cast<std::size_t>(map.nodes[k]);
     nodes_.position[n] = nodes_.initial_position[n] + r.displacement[k];
@@ -239,28 +229,15 @@ double FeSolver::take_static_state(const StaticPhaseMap& map, const StaticResult
   external_work_ += work;
   time_ = time;
   for (ElementSet* set : sets_) set->initial_critical_steps(scene_, nodes_.position);
-  return work;
 }
 
-core::StaticPhaseOutcome FeModel::run_static_phase(const core::PhaseSpec& phase,
-                                                   std::ostream* log) {
-  const StaticPhaseReport r = fem::run_static_phase(solver_, scene_, phase, log);
-  for (const NewtonIteration& it : r.iterations) {
+void FeModel::run_static_phase(const core::PhaseSpec& phase, std::ostream* log) {
+  for (const NewtonIteration& it : fem::run_static_phase(solver_, scene_, phase, log)) {
     char buf[160];
     std::snprintf(buf, sizeof buf, "%d,%d,%.6e,%.6e,%.6e,%.6g", it.load_step, it.iteration,
                   it.residual, it.reference, it.energy, it.step_length);
     static_rows_.emplace_back(buf);
   }
-  core::StaticPhaseOutcome out;
-  out.nodes = r.nodes;
-  out.elements = r.hexahedra + r.trusses;
-  out.load_steps = phase.load_steps;
-  // Each load step's last row only checks its convergence.
-  out.iterations = static_cast<int>(r.iterations.size()) - phase.load_steps;
-  if (!r.iterations.empty() && r.iterations.back().reference > 0.0)
-    out.residual = r.iterations.back().residual / r.iterations.back().reference;
-  out.work = r.work;
-  return out;
 }
 
 }  // namespace afemp::fem

@@ -23,18 +23,13 @@ struct StaticPhaseMap {
   std::vector<std::int32_t> nodes, hexahedra, trusses, walls;
 };
 
-struct StaticPhaseReport {
-  std::vector<NewtonIteration> iterations;
-  double work = 0.0;  // the loads' work: the strain energy plus the plastic work stored
-  std::size_t nodes = 0, hexahedra = 0, trusses = 0;
-};
-
-// Solves the phase and hands its state to the solver, whose clock then reads phase.end_time.
+// Solves the phase and hands its state to the solver, whose clock then reads phase.end_time;
+// returns the Newton iterations.
 // Each Newton iteration is printed to `log` when set. Throws core::InputError (at the phase's
 // entry) for what the solve cannot take, and core::SimulationError when the equilibrium cannot
 // be found (a body its constraints leave free, named with its free modes; Newton that does not
 // converge, with the load step, the iteration and the residual).
-StaticPhaseReport run_static_phase(FeSolver& solver, const core::Scene& scene,
-                                   const core::PhaseSpec& phase, std::ostream* log);
+std::vector<NewtonIteration> run_static_phase(FeSolver& solver, const core::Scene& scene,
+                                              const core::PhaseSpec& phase, std::ostream* log);
 
 }  // namespace afemp::fem

@@ -833,9 +833,8 @@ StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& se
       const std::string what =
           step_failure("static solve", "load step", step, settings.load_steps, f,
                        settings.residual_tolerance, details.most_yielding) +
-          format(". Load factor %.4g; the last converged step's (load factor %.4g)", load,
-                 last.load_factor, 0.0) +
-          " state is in StaticFailure::details().last_converged";
+          format(". Load factor %.4g; the last converged step's (load factor %.4g) state is kept",
+                 load, last.load_factor, 0.0);
       throw StaticFailure(what, std::move(details));
     }
     body.commit();

@@ -102,4 +102,43 @@ inline Polar polar(const core::SymTensor& s, const core::Vec3& x) {
           s.xx * sn * sn + s.yy * c * c - 2.0 * s.xy * c * sn};
 }
 
+// The cantilever of the static tests: a steel beam 10 x 1 x 1 of n_x x n x n hexahedra
+// (`formulations`: one per part, or none for B-bar), its root face x = 0 held as beam theory
+// clamps it (u_x = 0 over the face, u_y = 0 only on the line y = h/2, u_z = 0 only on z = h/2),
+// a shear force P = 10 along z spread over the end face's nodes. Its end face's mean deflection,
+// and the Timoshenko beam's, delta = P L^3 / (3 E I) + P L / (kappa G A) with
+// kappa = 10 (1 + nu) / (12 + 11 nu) (Cowper 1966, rectangle), in its two parts.
+struct Cantilever {
+  double deflection, bending, shear;
+  double error() const { return deflection / (bending + shear) - 1.0; }
+};
+inline Cantilever cantilever(int n_x, int n, std::vector<HexahedronFormulation> formulations = {}) {
+  const double length = 10.0, h = 1.0, force = 10.0;
+  MeshData mesh = box_mesh(core::BoxShape{{0, 0, 0}, {length, h, h}}, {n_x, n, n});
+  mesh.part_names[0] = "beam";
+  const core::Material m = steel();
+  StaticProblem problem;
+  problem.mesh = &mesh;
+  problem.materials = {m};
+  problem.hexahedra = std::move(formulations);
+  for (std::int32_t node : node_set(mesh, "xmin")) {
+    problem.prescribed.push_back({node, 0, 0.0});
+    if (std::abs(mesh.nodes[node].y - 0.5 * h) < 1e-9) problem.prescribed.push_back({node, 1, 0.0});
+    if (std::abs(mesh.nodes[node].z - 0.5 * h) < 1e-9) problem.prescribed.push_back({node, 2, 0.0});
+  }
+  problem.nodal_forces.assign(mesh.nodes.size(), core::Vec3{});
+  const auto faces = faces_on_nodes(mesh, node_set(mesh, "xmax"));
+  for (const auto& face : faces)
+    for (std::int32_t node : face) problem.nodal_forces[node].z += force / (4.0 * faces.size());
+  const StaticResult r = solve_static(problem);
+  const std::vector<std::int32_t>& tip = node_set(mesh, "xmax");
+  double deflection = 0.0;
+  for (std::int32_t node : tip) deflection += r.displacement[node].z;
+  deflection /= static_cast<double>(tip.size());
+  const double nu = m.poisson_ratio, inertia = h * h * h * h / 12.0;
+  const double kappa = 10.0 * (1.0 + nu) / (12.0 + 11.0 * nu);
+  return {deflection, force * length * length * length / (3.0 * m.youngs_modulus * inertia),
+          force * length / (kappa * m.shear_modulus() * h * h)};
+}
+
 }  // namespace afemp::fem::test

@@ -204,34 +204,7 @@ TEST(StaticSolve, OnePointPatchTestIsExactOnADistortedMesh) {
 // clamps it, reference the Timoshenko beam): the relative error of the end face's mean
 // deflection with one-point elements and the given formulation on n_x x n x n elements.
 double cantilever_error(int n_x, int n, HexahedronFormulation formulation) {
-  const double length = 10.0, h = 1.0, force = 10.0;
-  MeshData mesh = box_mesh(core::BoxShape{{0, 0, 0}, {length, h, h}}, {n_x, n, n});
-  mesh.part_names[0] = "beam";
-  const core::Material m = steel();
-  StaticProblem problem;
-  problem.mesh = &mesh;
-  problem.materials = {m};
-  problem.hexahedra = {formulation};
-  for (std::int32_t node : test::node_set(mesh, "xmin")) {
-    problem.prescribed.push_back({node, 0, 0.0});
-    if (std::abs(mesh.nodes[node].y - 0.5 * h) < 1e-9) problem.prescribed.push_back({node, 1, 0.0});
-    if (std::abs(mesh.nodes[node].z - 0.5 * h) < 1e-9) problem.prescribed.push_back({node, 2, 0.0});
-  }
-  problem.nodal_forces.assign(mesh.nodes.size(), core::Vec3{});
-  const auto faces = faces_on_nodes(mesh, test::node_set(mesh, "xmax"));
-  for (const auto& face : faces)
-    for (std::int32_t node : face) problem.nodal_forces[node].z += force / (4.0 * faces.size());
-  const StaticResult r = solve_static(problem);
-
-  const std::vector<std::int32_t>& tip = test::node_set(mesh, "xmax");
-  double deflection = 0.0;
-  for (std::int32_t node : tip) deflection += r.displacement[node].z;
-  deflection /= static_cast<double>(tip.size());
-  const double nu = m.poisson_ratio, inertia = h * h * h * h / 12.0;
-  const double kappa = 10.0 * (1.0 + nu) / (12.0 + 11.0 * nu);
-  const double bending = force * length * length * length / (3.0 * m.youngs_modulus * inertia);
-  const double shear = force * length / (kappa * m.shear_modulus() * h * h);
-  const double error = deflection / (bending + shear) - 1.0;
+  const double error = test::cantilever(n_x, n, {formulation}).error();
   std::printf("cantilever %dx%dx%d, one-point, %s form, coefficient %g: error %+.3f %%\n", n_x, n,
               n, core::to_string(formulation.hourglass.form),
               formulation.hourglass.effective_coefficient(), 100.0 * error);
