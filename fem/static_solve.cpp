@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <ostream>
@@ -664,10 +665,15 @@ double newton(const Body& body, const NewtonSettings& settings, const char* log_
   };
   double reference = residual(u), first_energy = 0.0, last_energy = 0.0;
   bool moved = true;  // whether the last correction changed u: below round-off it cannot
+  // A residual this small is round-off (the sums that form it cancel to it): no iteration can
+  // lower it, nor the energy of its correction, whose ratio to a first energy that was itself
+  // small (a step the predictor nearly solved) may then stay above the energy tolerance.
+  constexpr double kRoundOff = 1e3 * std::numeric_limits<double>::epsilon();
   for (int k = 0;; ++k) {
     const double rnorm = norm(r), scale = reference;
     if (rnorm <= settings.residual_tolerance * reference &&
-        (k == 0 || last_energy <= settings.energy_tolerance * first_energy || !moved)) {
+        (k == 0 || last_energy <= settings.energy_tolerance * first_energy || !moved ||
+         rnorm <= kRoundOff * reference)) {
       record({step, round, k, rnorm, scale, 0.0, 0.0, contacts});
       return scale;
     }
@@ -868,9 +874,21 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
       ma(nodes), accel(nodes), nodal(nodes), predicted(nodes);
   if (!settings.initial_displacement.empty()) u = settings.initial_displacement;
   if (!settings.initial_velocity.empty()) v = settings.initial_velocity;
-  for (const PrescribedDisplacement& p : problem.prescribed) {  // held at their values
-    u[p.node][p.component] = p.value;
-    v[p.node][p.component] = 0.0;
+  // The prescribed dofs at their values at t = 0: held there at rest, or moving from there at
+  // their initial velocities.
+  std::vector<double> values(problem.prescribed.size());
+  for (std::size_t k = 0; k < values.size(); ++k) values[k] = problem.prescribed[k].value;
+  if (settings.prescribed_values) {
+    settings.prescribed_values(0.0, values);
+    if (values.size() != problem.prescribed.size())
+      throw std::invalid_argument("newmark solve: prescribed_values gave " +
+                                  std::to_string(values.size()) + " values for " +
+                                  std::to_string(problem.prescribed.size()) + " prescribed dofs");
+  }
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    const PrescribedDisplacement& p = problem.prescribed[k];
+    u[p.node][p.component] = values[k];
+    if (!settings.prescribed_values) v[p.node][p.component] = 0.0;
   }
   body.walls->start(u);
   body.walls->project(u);
@@ -945,6 +963,22 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
   }
   body.commit();
 
+  // The reactions at the prescribed dofs at the state reached, M a + f_int - f_ext there (not
+  // HHT's residual, whose internal force is a mix of the step's two ends), for their work.
+  std::vector<double> reaction(values.size()), reaction_before(values.size());
+  auto reactions = [&](std::vector<double>& out) {
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      const PrescribedDisplacement& p = problem.prescribed[k];
+      const auto n = static_cast<std::size_t>(p.node);
+      out[k] = body.in_element[n]
+                   ? ma[n][p.component] - force[n][p.component] - body.f_ext[n][p.component]
+                   : 0.0;
+    }
+  };
+  reactions(reaction);
+  double external_work = 0.0;
+  std::vector<core::Vec3> u_before(nodes);
+
   NewmarkResult out;
   out.states.push_back(energies(0.0));
   out.states.back().wall_force = body.walls->forces(nodal);
@@ -989,9 +1023,15 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
     }
   };
   for (int step = 1; step <= settings.steps; ++step) {
+    u_before = u;
     for (std::size_t n = 0; n < nodes; ++n)
       predicted[n] = u[n] + dt * v[n] + ((0.5 - beta) * dt * dt) * a[n];
     for (std::size_t n = 0; n < nodes; ++n) u[n] = predicted[n] + (beta * dt * dt) * a[n];
+    if (settings.prescribed_values) {
+      settings.prescribed_values(step * dt, values);
+      for (std::size_t k = 0; k < values.size(); ++k)
+        u[problem.prescribed[k].node][problem.prescribed[k].component] = values[k];
+    }
     try {
       settle(
           body, settings.newton, "newmark", step, settings.steps, assembly, cholesky, u, r, nodal,
@@ -1010,13 +1050,25 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
     body.walls->stop(v, a);
     force_n = force;
     body.commit();
+    // The work of the loads (constant) and of the reactions (linear over the step).
+    reaction_before.swap(reaction);
+    reactions(reaction);
+    for (std::size_t n = 0; n < nodes; ++n)
+      if (body.in_element[n]) external_work += core::dot(body.f_ext[n], u[n] - u_before[n]);
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      const PrescribedDisplacement& p = problem.prescribed[k];
+      external_work += 0.5 * (reaction_before[k] + reaction[k]) *
+                       (u[p.node][p.component] - u_before[p.node][p.component]);
+    }
     out.states.push_back(energies(step * dt));
+    out.states.back().external_work = external_work;
     out.states.back().wall_force = body.walls->forces(nodal);
     if (settings.observe) settings.observe(step * dt, u);
   }
   out.displacement = u;
   out.velocity = v;
   body.write_states(out.stress, out.plastic_strain, out.line_stress, out.line_plastic_strain);
+  body.write_work(u, out.work);
   return out;
 }
 

@@ -78,7 +78,9 @@ struct NewtonSettings {
   int load_steps = 1;
   int max_iterations = 25;  // per load step
   // A step has converged when ||r|| <= residual_tolerance * max(||f_ext||, ||reactions||) and
-  // the last iteration's |du . r| <= energy_tolerance * that of the step's first iteration.
+  // the last iteration's |du . r| <= energy_tolerance * that of the step's first iteration (or
+  // ||r|| is at round-off, below 1e3 machine epsilons of that scale, where no iteration can
+  // lower either).
   double residual_tolerance = 1e-10;
   double energy_tolerance = 1e-20;
   // Line search (Crisfield 1991, sec. 9.3): step length s accepted when
@@ -191,11 +193,17 @@ struct NewmarkSettings {
   double alpha = 0.0;  // HHT, in [-1/3, 0]
   // The Newton settings of every time step (load_steps is not used: a time step is one solve).
   NewtonSettings newton;
-  // Per node, or empty for zero; prescribed dofs are held at their values from t = 0 whatever
-  // these say. The initial displacement's stress is reached in one increment from the virgin
-  // state, and a_0 = M^-1 (f_ext - f_int(u_0)).
+  // Per node, or empty for zero; prescribed dofs start at their values at t = 0. The initial
+  // displacement's stress is reached in one increment from the virgin state, and
+  // a_0 = M^-1 (f_ext - f_int(u_0)) (zero on the prescribed dofs).
   std::vector<core::Vec3> initial_displacement;
   std::vector<core::Vec3> initial_velocity;
+  // The prescribed dofs' values at time t, in problem.prescribed's order, when set: a dof then
+  // moves as they say, its velocity starting at initial_velocity's (give the rate its motion
+  // starts with: Newmark's formulas carry a velocity that does not match it as an oscillation)
+  // and its acceleration following from Newmark's formulas. Unset: the prescribed dofs are held
+  // at problem.prescribed's values from t = 0, at rest.
+  std::function<void(double, std::vector<double>&)> prescribed_values;
   // Called at t = 0 and after every step with the time and the displacement, when set.
   std::function<void(double, const std::vector<core::Vec3>&)> observe;
 };
@@ -205,6 +213,12 @@ struct NewmarkState {
   double kinetic_energy = 0.0;  // v . M v / 2
   double strain_energy = 0.0;   // stored elastic energy, p^2 / 2K + s:s / 4G integrated,
                                 // one-point elements' hourglass energy and trusses' sigma^2 / 2E
+  // The work done on the body since t = 0: the loads' f_ext . u and the reactions' at the
+  // prescribed dofs (the trapezoidal rule over the steps, exact for the trapezoidal scheme's
+  // piecewise-linear reactions). Minus the kinetic energy and the points' stress work (the
+  // result's work) it is what the scheme dissipated: HHT's numerical damping, the nodes that
+  // arrived on walls and, for a linear body under the trapezoidal rule, round-off.
+  double external_work = 0.0;
   std::vector<core::Vec3> wall_force;  // per wall, as StaticResult's (with the inertia)
 };
 
@@ -216,6 +230,7 @@ struct NewmarkResult {
   std::vector<std::array<double, 8>> plastic_strain;
   std::vector<double> line_stress;
   std::vector<double> line_plastic_strain;
+  StaticWork work;                          // per point, at the end, as StaticResult's
   std::vector<NewmarkState> states;         // at t = 0 and after every step
   std::vector<NewtonIteration> iterations;  // load_step is the time step
 };
