@@ -153,12 +153,14 @@ class Model {
   // next through `archive`, or restores it into a model built from the same scene. Events must
   // have been taken (take_events) before saving.
   virtual void state(StateArchive& archive) = 0;
-  // The scene's static phase (core/phases.hpp), before any step: solves the equilibrium of the
-  // mesh bodies it names, takes the solution as the model's state and sets the clock to the
-  // phase's end. Each Newton iteration is printed to `log` when set. Throws InputError for
-  // what the solve cannot take and SimulationError when no equilibrium is found. A model
-  // without meshes has nothing a static phase solves (check_scene refuses such a scene).
-  virtual void run_static_phase(const PhaseSpec& phase, std::ostream* log);
+  // The scene's static or implicit phase (core/phases.hpp), before any step: solves the
+  // equilibrium (static) or the implicit dynamics (Newmark, HHT-alpha) of the mesh bodies it
+  // names, takes the solution as the model's state and sets the clock to the phase's end;
+  // returns the energy the phase dissipated (0 for a static phase; an implicit one's numerical
+  // damping, booked as Energies::damped). Each Newton iteration is printed to `log` when set.
+  // Throws InputError for what the solve cannot take and SimulationError when a solve fails. A
+  // model without meshes has nothing such a phase solves (check_scene refuses such a scene).
+  virtual double run_implicit_phase(const PhaseSpec& phase, std::ostream* log);
   // Per scene body, the stress of its live points now (BodyStress).
   virtual std::vector<BodyStress> body_stresses() const = 0;
 };

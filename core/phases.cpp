@@ -1,9 +1,9 @@
-// The phases of a scene (core/phases.hpp). afemp runs a static or relaxation phase before the
-// explicit one, or the explicit phase alone: the static solve (fem/static_solve.hpp) starts
-// from the virgin state of the meshes, so a static phase after an explicit one (from stresses,
-// plastic strains and a deformed mesh) or two static phases in a row are refused rather than
-// run from the wrong state; a relaxation after an explicit phase would damp away the motion that
-// phase computed.
+// The phases of a scene (core/phases.hpp). afemp runs a static, implicit or relaxation phase
+// before the explicit one, or the explicit phase alone: the static and implicit solves
+// (fem/static_solve.hpp) start from the virgin state of the meshes, so such a phase after an
+// explicit one (from stresses, plastic strains and a deformed mesh) or two in a row are
+// refused rather than run from the wrong state; a relaxation after an explicit phase would damp
+// away the motion that phase computed.
 #include "core/phases.hpp"
 
 #include <algorithm>
@@ -41,6 +41,8 @@ const char* to_string(PhaseKind k) {
   switch (k) {
     case PhaseKind::static_load:
       return "static";
+    case PhaseKind::implicit_dynamics:
+      return "implicit";
     case PhaseKind::relaxation:
       return "relaxation";
     case PhaseKind::explicit_dynamics:
@@ -107,10 +109,10 @@ void check_phases(const Scene& scene, const PhaseFailure& fail) {
   const bool explicit_only = n == 1 && scene.phases[0].kind == PhaseKind::explicit_dynamics;
   if (!explicit_only && !preload_phase(scene))
     fail(scene.phases[0].where, "phases",
-         "afemp runs a static or relaxation phase followed by the explicit phase, or the "
-         "explicit phase alone (the static solve starts from the undeformed, unstressed meshes, "
-         "so it cannot follow an explicit phase or another static one, and a relaxation would "
-         "damp away the motion an explicit phase computed)");
+         "afemp runs a static, implicit or relaxation phase followed by the explicit phase, or "
+         "the explicit phase alone (the static and implicit solves start from the undeformed, "
+         "unstressed meshes, so they cannot follow an explicit phase or each other, and a "
+         "relaxation would damp away the motion an explicit phase computed)");
   const PhaseSpec* s = preload_phase(scene);
   if (!s) return;
   const std::string key = "phases[0]";
@@ -128,10 +130,16 @@ void check_phases(const Scene& scene, const PhaseFailure& fail) {
       fail(s->where, key + ".time_step_factor", "allowed: " + r::relaxation_step_factor.describe());
     return;
   }
-  if (!r::load_steps.contains(s->load_steps))
+  const bool implicit = s->kind == PhaseKind::implicit_dynamics;
+  const std::string a_phase = implicit ? "an implicit phase" : "a static phase";
+  if (!implicit && !r::load_steps.contains(s->load_steps))
     fail(s->where, key + ".load_steps",
          "allowed: " + std::to_string(r::load_steps.lo) +
              " <= value <= " + std::to_string(r::load_steps.hi));
+  if (implicit && !r::implicit_time_step.contains(s->time_step))
+    fail(s->where, key + ".time_step", "allowed: " + r::implicit_time_step.describe());
+  if (implicit && !r::hht_alpha.contains(s->alpha))
+    fail(s->where, key + ".alpha", "allowed: " + r::hht_alpha.describe());
   if (!r::max_iterations.contains(s->max_iterations))
     fail(s->where, key + ".max_iterations",
          "allowed: " + std::to_string(r::max_iterations.lo) +
@@ -143,8 +151,9 @@ void check_phases(const Scene& scene, const PhaseFailure& fail) {
   const std::vector<int> bodies = static_phase_bodies(scene, *s);
   if (bodies.empty())
     fail(s->where, key + ".bodies",
-         "no body to solve: a static phase solves deformable mesh bodies (hexahedra, trusses) "
-         "that are not bonded to particles, and the scene has none");
+         "no body to solve: " + a_phase +
+             " solves deformable mesh bodies (hexahedra, trusses) that are not bonded to "
+             "particles, and the scene has none");
   for (int b : bodies) {
     if (b < 0 || static_cast<std::size_t>(b) >= scene.bodies.size())
       fail(s->where, key + ".bodies", "body index " + std::to_string(b) + " is not defined");
@@ -152,16 +161,15 @@ void check_phases(const Scene& scene, const PhaseFailure& fail) {
     const std::string name = "body \"" + body.name + "\"";
     if (body.discretisation == Discretisation::particles)
       fail(s->where, key + ".bodies",
-           name +
-               " is made of particles; a static phase solves meshes (particles are held "
-               "where they are: use it for the meshes alone), a relaxation phase any body");
+           name + " is made of particles; " + a_phase +
+               " solves meshes (particles are held where they are: use it for the meshes "
+               "alone), a relaxation phase any body");
     if (body.rigid)
-      fail(s->where, key + ".bodies", name + " is rigid; a static phase holds rigid bodies");
+      fail(s->where, key + ".bodies", name + " is rigid; " + a_phase + " holds rigid bodies");
     if (body.bonded_to >= 0)
       fail(s->where, key + ".bodies",
-           name +
-               " is bonded to particles, which a static phase holds: its nodes cannot move "
-               "without them");
+           name + " is bonded to particles, which " + a_phase +
+               " holds: its nodes cannot move without them");
     if (body.discretisation == Discretisation::hexahedra &&
         body.element == HexFormulation::one_point && body.hourglass.form == HourglassForm::viscous)
       fail(s->where, key + ".bodies",
@@ -172,10 +180,9 @@ void check_phases(const Scene& scene, const PhaseFailure& fail) {
                "kind = \"relaxation\", which takes any body");
     if (body.prestress != 0.0)
       fail(s->where, key + ".bodies",
-           name +
-               " is prestressed; the static solve starts from unstressed meshes: bring the "
-               "prestress into equilibrium with kind = \"relaxation\", or leave the body out "
-               "of bodies");
+           name + " is prestressed; the " + to_string(s->kind) +
+               " solve starts from unstressed meshes: bring the prestress into equilibrium "
+               "with kind = \"relaxation\", or leave the body out of bodies");
     try {
       check_small_strain_tangent(scene.materials[static_cast<std::size_t>(body.material)]);
     } catch (const std::invalid_argument& e) {
@@ -193,11 +200,11 @@ void check_phases(const Scene& scene, const PhaseFailure& fail) {
       if (on.empty() || std::find(on.begin(), on.end(), b) != on.end())
         fail(wall.where, "walls[" + std::to_string(w) + "]",
              "the wall acts on body \"" + scene.bodies[static_cast<std::size_t>(b)].name +
-                 "\", which the static phase solves, and " +
-                 (wall.friction != 0.0 ? "has friction" : "moves") +
-                 "; the static solve takes frictionless walls at rest (an exact contact "
-                 "constraint): give the wall friction 0 and no velocity, or hold the body by "
-                 "[[constraints]] in that phase");
+                 "\", which the " + to_string(s->kind) + " phase solves, and " +
+                 (wall.friction != 0.0 ? "has friction" : "moves") + "; the " + to_string(s->kind) +
+                 " solve takes frictionless walls at rest (an exact contact constraint): give "
+                 "the wall friction 0 and no velocity, or hold the body by [[constraints]] in "
+                 "that phase");
     }
   }
 }
@@ -212,10 +219,15 @@ std::string describe_phases(const Scene& scene) {
            " -> " + number(phase_end(scene, k)) + ": ";
     from = phase_end(scene, k);
     if (p.kind == PhaseKind::explicit_dynamics) {
-      out +=
-          "explicit dynamics of every body, with the stages below; it starts from the "
-          "state the phase before leaves (positions, stresses, plastic strains), the "
-          "bodies' initial velocities and the constraints' velocities\n";
+      const bool after_implicit = k > 0 && scene.phases[k - 1].kind == PhaseKind::implicit_dynamics;
+      out += after_implicit
+                 ? "explicit dynamics of every body, with the stages below; it starts from the "
+                   "state the implicit phase leaves (positions, stresses, plastic strains and "
+                   "the velocities of the bodies it solved), the other bodies' initial "
+                   "velocities and the constraints' velocities\n"
+                 : "explicit dynamics of every body, with the stages below; it starts from the "
+                   "state the phase before leaves (positions, stresses, plastic strains), the "
+                   "bodies' initial velocities and the constraints' velocities\n";
       continue;
     }
     if (p.kind == PhaseKind::relaxation) {
@@ -243,13 +255,31 @@ std::string describe_phases(const Scene& scene) {
       (in ? solved : held) += (in ? solved : held).empty() ? "" : ", ";
       (in ? solved : held) += scene.bodies[b].name;
     }
-    out += "the equilibrium of " + solved + " (Newton with the consistent tangent, " +
-           std::to_string(p.load_steps) + " load steps, |r| <= " + number(phase_tolerance(p)) +
-           " x the force scale in at most " + std::to_string(p.max_iterations) +
-           " iterations each, CHOLMOD); loads: gravity " +
-           vector_text(p.gravity ? *p.gravity : scene.run.gravity) +
-           ", the constraints' fixed components held and their velocities integrated over the "
-           "phase as displacements";
+    if (p.kind == PhaseKind::implicit_dynamics) {
+      const double span = phase_end(scene, k) - (k > 0 ? phase_end(scene, k - 1) : 0.0);
+      const long steps = static_cast<long>(std::ceil(span / p.time_step * (1.0 - 1e-12)));
+      out += "the implicit dynamics of " + solved + " (" +
+             (p.alpha == 0.0 ? std::string("Newmark's trapezoidal rule, no numerical damping")
+                             : "HHT-alpha, alpha " + number(p.alpha)) +
+             ", " + std::to_string(steps) + " steps of " + number(span / steps) +
+             ", the consistent mass; each step Newton with the consistent tangent, |r| <= " +
+             number(phase_tolerance(p)) + " x the force scale in at most " +
+             std::to_string(p.max_iterations) +
+             " iterations, CHOLMOD), from the bodies' initial velocities; loads, constant from "
+             "the phase's start: gravity " +
+             vector_text(p.gravity ? *p.gravity : scene.run.gravity) +
+             ", the constraints' fixed components held and their velocities followed; the "
+             "velocities at its end go on into the explicit phase, and what the scheme "
+             "dissipated is booked as damped energy";
+    } else {
+      out += "the equilibrium of " + solved + " (Newton with the consistent tangent, " +
+             std::to_string(p.load_steps) + " load steps, |r| <= " + number(phase_tolerance(p)) +
+             " x the force scale in at most " + std::to_string(p.max_iterations) +
+             " iterations each, CHOLMOD); loads: gravity " +
+             vector_text(p.gravity ? *p.gravity : scene.run.gravity) +
+             ", the constraints' fixed components held and their velocities integrated over the "
+             "phase as displacements";
+    }
     if (!scene.walls.empty()) out += "; the walls as frictionless contact (an exact active set)";
     if (!held.empty()) out += "; held where they are: " + held;
     out +=
@@ -260,10 +290,11 @@ std::string describe_phases(const Scene& scene) {
   return out;
 }
 
-void Model::run_static_phase(const PhaseSpec& phase, std::ostream* /*log*/) {
+double Model::run_implicit_phase(const PhaseSpec& phase, std::ostream* /*log*/) {
   throw InputError(phase.where, "phases[0]",
-                   "a static phase solves mesh bodies, and this model has none (particles are "
-                   "held in a static phase)");
+                   std::string("a ") + to_string(phase.kind) +
+                       " phase solves mesh bodies, and this model has none (particles are held "
+                       "in such a phase)");
 }
 
 }  // namespace afemp::core

@@ -11,8 +11,8 @@
 
 namespace afemp::core {
 
-// The static or relaxation phase that comes before the explicit one, or nullptr (a scene
-// without phases, or whose only phase is explicit).
+// The static, implicit or relaxation phase that comes before the explicit one, or nullptr (a
+// scene without phases, or whose only phase is explicit).
 const PhaseSpec* preload_phase(const Scene& scene);
 
 // When the explicit phase starts: the preload phase's end, or 0.
@@ -21,15 +21,16 @@ double explicit_start(const Scene& scene);
 // When phase k ends: its end_time, or for the last phase left at 0, [run] end_time.
 double phase_end(const Scene& scene, std::size_t k);
 
-// The phase's tolerance: its own, or its kind's default (static 1e-8, relaxation 1e-3).
+// The phase's tolerance: its own, or its kind's default (static and implicit 1e-8, relaxation
+// 1e-3).
 double phase_tolerance(const PhaseSpec& phase);
 
 // The bodies a relaxation phase holds at rest and sets moving at its end: those with an
 // initial velocity.
 std::vector<int> moving_bodies(const Scene& scene);
 
-// The bodies a static phase solves: its own list, or every deformable mesh body not bonded to
-// particles.
+// The bodies a static or implicit phase solves: its own list, or every deformable mesh body not
+// bonded to particles.
 std::vector<int> static_phase_bodies(const Scene& scene, const PhaseSpec& phase);
 
 // Checks the phases against the sequences afemp runs and the bodies they name; calls fail

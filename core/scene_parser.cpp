@@ -1946,16 +1946,22 @@ void read_phases(TableReader& r, Scene& scene, const std::string& path) {
   read_table_array(r, "phases", path, [&](TableReader& t) {
     PhaseSpec p;
     p.where = t.where();
-    static constexpr PhaseKind kinds[] = {PhaseKind::static_load, PhaseKind::relaxation,
-                                          PhaseKind::explicit_dynamics};
-    p.kind = kinds[t.choice("kind", {"static", "relaxation", "explicit"}, std::nullopt)];
+    static constexpr PhaseKind kinds[] = {PhaseKind::static_load, PhaseKind::implicit_dynamics,
+                                          PhaseKind::relaxation, PhaseKind::explicit_dynamics};
+    p.kind =
+        kinds[t.choice("kind", {"static", "implicit", "relaxation", "explicit"}, std::nullopt)];
     const bool last = scene.phases.size() + 1 == count;
     p.end_time = last ? t.number("end_time", p.end_time, scene_ranges::run::end_time)
                       : t.required_number("end_time", scene_ranges::run::end_time);
-    if (p.kind == PhaseKind::static_load) {
+    if (p.kind == PhaseKind::static_load || p.kind == PhaseKind::implicit_dynamics) {
       namespace ranges = scene_ranges::phase;
-      p.load_steps = static_cast<int>(
-          t.integer("load_steps", p.load_steps, ranges::load_steps.lo, ranges::load_steps.hi));
+      if (p.kind == PhaseKind::static_load) {
+        p.load_steps = static_cast<int>(
+            t.integer("load_steps", p.load_steps, ranges::load_steps.lo, ranges::load_steps.hi));
+      } else {
+        p.time_step = t.required_number("time_step", ranges::implicit_time_step);
+        p.alpha = t.number("alpha", p.alpha, ranges::hht_alpha);
+      }
       p.max_iterations =
           static_cast<int>(t.integer("max_iterations", p.max_iterations, ranges::max_iterations.lo,
                                      ranges::max_iterations.hi));

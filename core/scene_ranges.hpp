@@ -62,6 +62,8 @@ inline constexpr Range relaxation_tolerance{0.0, 0.1, true, false};  // DRTOL, (
 inline constexpr Range damping_factor{0.0, 1.0, true, true};         // DRFCTR, (0, 1)
 inline constexpr Count check_every{1, 1000000};                      // NRCYCK
 inline constexpr Range relaxation_step_factor = kStepFactor;         // TSSFDR, (0, 1]
+inline constexpr Range implicit_time_step = kPositive;
+inline constexpr Range hht_alpha{-1.0 / 3.0, 0.0, false, false};  // [-1/3, 0]
 }  // namespace phase
 
 namespace grid {

@@ -183,7 +183,8 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
   overlaps_ = std::make_unique<OverlapCheck>(scene);
   if (overlaps_->empty()) overlaps_.reset();
   const PhaseSpec* preload = preload_phase(scene_);
-  if (preload && preload->kind == PhaseKind::relaxation)
+  if (preload &&
+      (preload->kind == PhaseKind::relaxation || preload->kind == PhaseKind::implicit_dynamics))
     energy_columns_.push_back({"damped", &Energies::damped});
   if (!options_.restart_from.empty()) {
     restore(options_.restart_from);
@@ -228,10 +229,10 @@ Energies TimeLoop::energies() const {
 
 void TimeLoop::run_preload_phase(const PhaseSpec& phase) {
   try {
-    if (phase.kind == PhaseKind::static_load)
-      model_.run_static_phase(phase, options_.phase_log);
-    else
+    if (phase.kind == PhaseKind::relaxation)
       run_relaxation(phase);
+    else
+      damped_ += model_.run_implicit_phase(phase, options_.phase_log);
   } catch (const SimulationError&) {
     keep_failure();
     throw;
@@ -266,7 +267,7 @@ void TimeLoop::print_switch(const PhaseSpec& phase) const {
       "the %s phase ends at t = %.6g: internal energy %.6g, kinetic %.6g, external "
       "work %.6g%s; the explicit phase starts from these stresses:\n",
       to_string(phase.kind), model_.time(), e.internal, e.kinetic, e.external_work,
-      phase.kind == PhaseKind::relaxation ? (", damped " + std::to_string(e.damped)).c_str() : "");
+      phase.kind != PhaseKind::static_load ? (", damped " + std::to_string(e.damped)).c_str() : "");
   *options_.phase_log << line;
   const std::vector<BodyStress> stress = model_.body_stresses();
   for (std::size_t b = 0; b < stress.size() && b < scene_.bodies.size(); ++b) {

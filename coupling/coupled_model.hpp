@@ -125,10 +125,11 @@ class CoupledModel final : public core::Model {
     return fe_.points_inside(body, points);
   }
   void state(core::StateArchive& archive) override;
-  // The meshes' static phase (the particles held); both clocks then read its end.
-  void run_static_phase(const core::PhaseSpec& phase, std::ostream* log) override {
-    fe_.run_static_phase(phase, log);
+  // The meshes' static or implicit phase (the particles held); both clocks then read its end.
+  double run_implicit_phase(const core::PhaseSpec& phase, std::ostream* log) override {
+    const double dissipated = fe_.run_implicit_phase(phase, log);
     mpm().set_clock(phase.end_time);
+    return dissipated;
   }
 
  private:

@@ -185,11 +185,8 @@ std::vector<core::EventLog> FeModel::take_events() {
     log.rows.emplace_back(buf);
   }
   std::vector<core::EventLog> out{log};
-  if (!static_rows_.empty()) {
-    out.push_back(
-        {"static_phase.csv", "load_step,iteration,residual,force_scale,energy,step_length", {}});
-    out.back().rows.swap(static_rows_);
-  }
+  for (core::EventLog& rows : phase_logs_) out.push_back(std::move(rows));
+  phase_logs_.clear();
   return out;
 }
 

@@ -76,14 +76,15 @@ class FeModel final : public core::Model {
   void hold_body(int body, bool hold) override { solver_.hold_body(body, hold); }
   std::vector<core::BodyStress> body_stresses() const override;
   // fem/static_phase.cpp.
-  void run_static_phase(const core::PhaseSpec& phase, std::ostream* log) override;
+  double run_implicit_phase(const core::PhaseSpec& phase, std::ostream* log) override;
 
  private:
   const core::Scene& scene_;
   FeSolver solver_;
   long hourglass_warning_step_ = -1;
-  // The static phase's Newton iterations, for static_phase.csv (taken with the events).
-  std::vector<std::string> static_rows_;
+  // The static or implicit phase's Newton iterations (static_phase.csv, implicit_phase.csv)
+  // and the implicit phase's energies (implicit_energies.csv), taken with the events.
+  std::vector<core::EventLog> phase_logs_;
   std::vector<long> eroded_;  // elements eroded so far, per body (counted in take_events)
   // Derived fields, per frame.
   std::vector<core::Vec3> displacement_;

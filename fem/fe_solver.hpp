@@ -11,6 +11,7 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -203,8 +204,14 @@ class FeSolver {
   void set_clock(double time) { time_ = time; }
   // A static phase's solution as the state at `time` (fem/static_phase.cpp): the nodes of the
   // problem map moved by their displacement, its points' stresses, plastic strains and work,
-  // the hourglass forces and element forces of that state, and the work as external work.
-  void take_static_state(const StaticPhaseMap& map, const StaticResult& result, double time);
+  // the hourglass forces and element forces of that state, and the work as external work;
+  // returns that work.
+  double take_static_state(const StaticPhaseMap& map, const StaticResult& result, double time);
+  // The listed nodes' kinetic energy (lumped masses), and their velocities set (an implicit
+  // phase's end; fem/static_phase.cpp).
+  double kinetic_energy(std::span<const std::int32_t> nodes) const;
+  void set_velocities(std::span<const std::int32_t> nodes, std::span<const Vec3> velocity);
+  void add_external_work(double work) { external_work_ += work; }
   // Saves or restores the solver's state (a checkpoint, core/state_archive.hpp; fe_state.cpp).
   // Restoring needs a solver built from the same scene; events must have been taken.
   void state(core::StateArchive& archive);

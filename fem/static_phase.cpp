@@ -3,6 +3,7 @@
 // take_static_state is defined here, beside what it takes).
 #include "fem/static_phase.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -20,12 +21,26 @@
 
 namespace afemp::fem {
 
-std::vector<NewtonIteration> run_static_phase(FeSolver& solver, const core::Scene& scene,
-                                              const core::PhaseSpec& phase, std::ostream* log) {
-  const std::vector<int> bodies = core::static_phase_bodies(scene, phase);
-  std::vector<std::int32_t> part_of(scene.bodies.size(), -1);
+namespace {
+
+// The problem of a static or implicit phase: the bodies it solves taken out of the solver.
+struct PhaseProblem {
   MeshData mesh;
   StaticProblem problem;
+  StaticPhaseMap map;
+  // Per prescribed dof, its solver node.
+  std::vector<std::size_t> prescribed_node;
+};
+
+// Builds `out` (which the problem points into: build it in place); the prescribed dofs hold
+// the travel of the constraints' velocities over [0, travel_end].
+void build_problem(const FeSolver& solver, const core::Scene& scene, const core::PhaseSpec& phase,
+                   double travel_end, PhaseProblem& out) {
+  const std::vector<int> bodies = core::static_phase_bodies(scene, phase);
+  std::vector<std::int32_t> part_of(scene.bodies.size(), -1);
+  MeshData& mesh = out.mesh;
+  StaticProblem& problem = out.problem;
+  StaticPhaseMap& map = out.map;
   for (int b : bodies) {
     const core::BodySpec& body = scene.bodies[static_cast<std::size_t>(b)];
     part_of[static_cast<std::size_t>(b)] = static_cast<std::int32_t>(mesh.part_names.size());
@@ -35,7 +50,6 @@ std::vector<NewtonIteration> run_static_phase(FeSolver& solver, const core::Scen
   }
   const FeNodes& nodes = solver.nodes();
   const std::vector<std::int64_t>& labels = solver.mesh().node_labels;
-  StaticPhaseMap map;
   std::vector<std::int32_t> local(nodes.size(), -1);
   auto node = [&](std::int32_t n) {
     const auto i = static_cast<std::size_t>(n);
@@ -75,15 +89,17 @@ std::vector<NewtonIteration> run_static_phase(FeSolver& solver, const core::Scen
   // Loads: gravity on the explicit solver's lumped masses (so that the state handed back is
   // at rest under the same loads), a program's held nodal loads, and the constraints.
   const core::Vec3 gravity = phase.gravity ? *phase.gravity : scene.run.gravity;
-  const std::vector<core::Vec3> travel = solver.imposed_travel(0.0, phase.end_time);
+  const std::vector<core::Vec3> travel = solver.imposed_travel(0.0, travel_end);
   problem.nodal_forces.resize(map.nodes.size());
   for (std::size_t k = 0; k < map.nodes.size(); ++k) {
     const auto n = static_cast<std::size_t>(map.nodes[k]);
     problem.nodal_forces[k] = nodes.mass[n] * gravity;
     if (!nodes.external_force.empty()) problem.nodal_forces[k] += nodes.external_force[n];
     for (int a = 0; a < 3; ++a)
-      if (nodes.imposed[n] & (1u << a))
+      if (nodes.imposed[n] & (1u << a)) {
         problem.prescribed.push_back({static_cast<std::int32_t>(k), a, travel[n][a]});
+        out.prescribed_node.push_back(n);
+      }
   }
   // The walls, on the nodes of the problem they may touch (frictionless and at rest: the scene
   // check refuses the others on a solved body).
@@ -97,6 +113,16 @@ std::vector<NewtonIteration> run_static_phase(FeSolver& solver, const core::Scen
     map.walls.push_back(static_cast<std::int32_t>(w));
   }
   problem.mesh = &mesh;
+}
+
+}  // namespace
+
+std::vector<NewtonIteration> run_static_phase(FeSolver& solver, const core::Scene& scene,
+                                              const core::PhaseSpec& phase, std::ostream* log) {
+  PhaseProblem built;
+  build_problem(solver, scene, phase, phase.end_time, built);
+  const StaticProblem& problem = built.problem;
+  const StaticPhaseMap& map = built.map;
   NewtonSettings settings;
   settings.load_steps = phase.load_steps;
   settings.max_iterations = phase.max_iterations;
@@ -127,7 +153,81 @@ std::vector<NewtonIteration> run_static_phase(FeSolver& solver, const core::Scen
   return std::move(result.iterations);
 }
 
-void FeSolver::take_static_state(const StaticPhaseMap& map, const StaticResult& r, double time) {
+ImplicitPhaseOutcome run_implicit_phase(FeSolver& solver, const core::Scene& scene,
+                                        const core::PhaseSpec& phase, std::ostream* log) {
+  PhaseProblem built;
+  build_problem(solver, scene, phase, 0.0, built);
+  const StaticProblem& problem = built.problem;
+  const StaticPhaseMap& map = built.map;
+  const double start = solver.time();
+  const double span = phase.end_time - start;
+  NewmarkSettings settings;
+  settings.steps = static_cast<int>(std::ceil(span / phase.time_step * (1.0 - 1e-12)));
+  settings.time_step = span / settings.steps;
+  settings.alpha = phase.alpha;
+  settings.newton.max_iterations = phase.max_iterations;
+  settings.newton.residual_tolerance = core::phase_tolerance(phase);
+  settings.newton.energy_tolerance =
+      settings.newton.residual_tolerance * settings.newton.residual_tolerance;
+  settings.newton.log = log;
+  // The phase starts from the solver's velocities (the bodies' initial velocities); the
+  // constraints' components move by their velocities' travel, starting at their rate over the
+  // first step.
+  const FeNodes& nodes = solver.nodes();
+  settings.initial_velocity.resize(map.nodes.size());
+  for (std::size_t k = 0; k < map.nodes.size(); ++k)
+    settings.initial_velocity[k] = nodes.velocity[static_cast<std::size_t>(map.nodes[k])];
+  if (!problem.prescribed.empty()) {
+    const std::vector<core::Vec3> first = solver.imposed_travel(start, start + settings.time_step);
+    for (std::size_t k = 0; k < problem.prescribed.size(); ++k) {
+      const PrescribedDisplacement& p = problem.prescribed[k];
+      settings.initial_velocity[static_cast<std::size_t>(p.node)][p.component] =
+          first[built.prescribed_node[k]][p.component] / settings.time_step;
+    }
+    settings.prescribed_values = [&](double t, std::vector<double>& values) {
+      const std::vector<core::Vec3> travel = solver.imposed_travel(start, start + t);
+      for (std::size_t k = 0; k < problem.prescribed.size(); ++k)
+        values[k] = travel[built.prescribed_node[k]][problem.prescribed[k].component];
+    };
+  }
+  NewmarkResult result;
+  try {
+    result = solve_newmark(problem, settings);
+  } catch (const std::invalid_argument& e) {
+    throw core::InputError(phase.where, "phases[0]",
+                           std::string("the implicit phase: ") + e.what());
+  } catch (const std::runtime_error& e) {
+    throw core::SimulationError(
+        0, start, "the implicit phase", "equilibrium",
+        std::string(e.what()) + "; the model keeps its state from the phase's start");
+  }
+  // The state at the phase's end, then the velocities; the work the loads and constraints did
+  // over the phase is the external work, and what neither the stresses nor the motion hold is
+  // what the scheme dissipated.
+  StaticResult end;
+  end.load_factor = 1.0;
+  end.displacement = std::move(result.displacement);
+  end.stress = std::move(result.stress);
+  end.plastic_strain = std::move(result.plastic_strain);
+  end.line_stress = std::move(result.line_stress);
+  end.line_plastic_strain = std::move(result.line_plastic_strain);
+  end.work = std::move(result.work);
+  if (!result.states.empty()) end.wall_force = result.states.back().wall_force;
+  const double kinetic_before = solver.kinetic_energy(map.nodes);
+  const double stored = solver.take_static_state(map, end, phase.end_time);
+  solver.set_velocities(map.nodes, result.velocity);
+  const double kinetic_after = solver.kinetic_energy(map.nodes);
+  const double work = result.states.empty() ? 0.0 : result.states.back().external_work;
+  solver.add_external_work(work - stored);
+  ImplicitPhaseOutcome out;
+  out.dissipated = work - stored - (kinetic_after - kinetic_before);
+  out.time_step = settings.time_step;
+  out.iterations = std::move(result.iterations);
+  out.states = std::move(result.states);
+  return out;
+}
+
+double FeSolver::take_static_state(const StaticPhaseMap& map, const StaticResult& r, double time) {
   for (std::size_t k = 0; k < map.nodes.size(); ++k) {
     const auto n = static_cast<std::size_t>(map.nodes[k]);
     nodes_.position[n] = nodes_.initial_position[n] + r.displacement[k];
@@ -229,15 +329,58 @@ void FeSolver::take_static_state(const StaticPhaseMap& map, const StaticResult& 
   external_work_ += work;
   time_ = time;
   for (ElementSet* set : sets_) set->initial_critical_steps(scene_, nodes_.position);
+  return work;
 }
 
-void FeModel::run_static_phase(const core::PhaseSpec& phase, std::ostream* log) {
-  for (const NewtonIteration& it : fem::run_static_phase(solver_, scene_, phase, log)) {
-    char buf[160];
+double FeSolver::kinetic_energy(std::span<const std::int32_t> nodes) const {
+  double sum = 0.0;
+  for (std::int32_t k : nodes) {
+    const auto n = static_cast<std::size_t>(k);
+    sum += 0.5 * nodes_.mass[n] * core::dot(nodes_.velocity[n], nodes_.velocity[n]);
+  }
+  return sum;
+}
+
+void FeSolver::set_velocities(std::span<const std::int32_t> nodes,
+                              std::span<const core::Vec3> velocity) {
+  for (std::size_t k = 0; k < nodes.size(); ++k)
+    nodes_.velocity[static_cast<std::size_t>(nodes[k])] = velocity[k];
+}
+
+double FeModel::run_implicit_phase(const core::PhaseSpec& phase, std::ostream* log) {
+  char buf[200];
+  if (phase.kind == core::PhaseKind::static_load) {
+    core::EventLog rows{
+        "static_phase.csv", "load_step,iteration,residual,force_scale,energy,step_length", {}};
+    for (const NewtonIteration& it : fem::run_static_phase(solver_, scene_, phase, log)) {
+      std::snprintf(buf, sizeof buf, "%d,%d,%.6e,%.6e,%.6e,%.6g", it.load_step, it.iteration,
+                    it.residual, it.reference, it.energy, it.step_length);
+      rows.rows.emplace_back(buf);
+    }
+    phase_logs_.push_back(std::move(rows));
+    return 0.0;
+  }
+  const double start = solver_.time();
+  const ImplicitPhaseOutcome out = fem::run_implicit_phase(solver_, scene_, phase, log);
+  core::EventLog rows{
+      "implicit_phase.csv", "time_step,iteration,residual,force_scale,energy,step_length", {}};
+  for (const NewtonIteration& it : out.iterations) {
     std::snprintf(buf, sizeof buf, "%d,%d,%.6e,%.6e,%.6e,%.6g", it.load_step, it.iteration,
                   it.residual, it.reference, it.energy, it.step_length);
-    static_rows_.emplace_back(buf);
+    rows.rows.emplace_back(buf);
   }
+  core::EventLog energies{
+      "implicit_energies.csv", "time,kinetic,strain,external_work,plastic_and_dissipated", {}};
+  for (const NewmarkState& st : out.states) {
+    std::snprintf(buf, sizeof buf, "%.10e,%.10e,%.10e,%.10e,%.10e", start + st.time,
+                  st.kinetic_energy, st.strain_energy, st.external_work,
+                  st.external_work - st.kinetic_energy - st.strain_energy +
+                      out.states.front().kinetic_energy + out.states.front().strain_energy);
+    energies.rows.emplace_back(buf);
+  }
+  phase_logs_.push_back(std::move(rows));
+  phase_logs_.push_back(std::move(energies));
+  return out.dissipated;
 }
 
 }  // namespace afemp::fem

@@ -32,4 +32,24 @@ struct StaticPhaseMap {
 std::vector<NewtonIteration> run_static_phase(FeSolver& solver, const core::Scene& scene,
                                               const core::PhaseSpec& phase, std::ostream* log);
 
+// An implicit phase (kind "implicit": Newmark's trapezoidal rule, or HHT-alpha with the
+// phase's alpha) on the same problem, from the solver's state at the phase's start (the
+// virgin meshes, at the bodies' initial velocities), in equal steps no longer than the phase's
+// time_step; the constraints' components move by their velocities' travel. The state at the end
+// is handed to the solver as the static phase's is, with the velocities; the external work is
+// what the loads and the constraints did over the phase.
+struct ImplicitPhaseOutcome {
+  double time_step = 0.0;
+  // The work done on the solved bodies that neither their stresses (elastic and plastic work)
+  // nor their motion (the explicit solver's lumped kinetic energy) hold: HHT's numerical
+  // damping, the nodes that stopped on walls, and the consistent mass's kinetic energy against
+  // the lumped one's at the end.
+  double dissipated = 0.0;
+  std::vector<NewtonIteration> iterations;  // load_step is the time step
+  std::vector<NewmarkState> states;         // times from the phase's start
+};
+// Throws as run_static_phase.
+ImplicitPhaseOutcome run_implicit_phase(FeSolver& solver, const core::Scene& scene,
+                                        const core::PhaseSpec& phase, std::ostream* log);
+
 }  // namespace afemp::fem

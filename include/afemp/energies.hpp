@@ -55,7 +55,9 @@ struct Energies {
   double outflow = 0.0;
   double outflow_mass = 0.0;
   /// The kinetic energy a relaxation phase's damping took out of the motion (less what it gave
-  /// back setting the held bodies moving; core/time_loop.cpp, run_relaxation). Part of total().
+  /// back setting the held bodies moving; core/time_loop.cpp, run_relaxation), or what an
+  /// implicit phase's scheme dissipated (fem/static_phase.hpp, ImplicitPhaseOutcome). Part of
+  /// total().
   double damped = 0.0;
   Vec3 outflow_momentum{};
   std::vector<BodySums> bodies{};

@@ -477,7 +477,7 @@ struct DetonationSpec {
 /// explicit model damped to rest under the scene's loads, for what the static solve cannot take
 /// (particles, coupling, contact, any material); explicit: the explicit dynamics of the whole
 /// scene, as a scene without phases runs.
-enum class PhaseKind { static_load, relaxation, explicit_dynamics };
+enum class PhaseKind { static_load, implicit_dynamics, relaxation, explicit_dynamics };
 const char* to_string(PhaseKind k);
 
 /// One [[phases]] entry. The phases run in order on one clock: each from the end of the one
@@ -491,18 +491,23 @@ struct PhaseSpec {
   /// to |r| <= tolerance x the force scale in at most max_iterations iterations.
   int load_steps = 10;
   int max_iterations = 25;
-  /// static: the residual's (default 1e-8); relaxation: DRTOL, the kinetic energy's fraction of
-  /// its peak at convergence (default 1e-3). 0: the kind's default (phase_tolerance).
+  /// static and implicit: the residual's (default 1e-8); relaxation: DRTOL, the kinetic
+  /// energy's fraction of its peak at convergence (default 1e-3). 0: the kind's default
+  /// (phase_tolerance).
   double tolerance = 0.0;
+  /// implicit: the longest time step (the phase is cut into equal steps no longer) and HHT's
+  /// alpha in [-1/3, 0] (0: Newmark's trapezoidal rule, no numerical damping).
+  double time_step = 0.0;
+  double alpha = 0.0;
   /// relaxation: DRFCTR, the factor on every velocity after every step; NRCYCK, the steps
   /// between convergence checks; TSSFDR, the factor on the explicit model's stable step.
   double damping_factor = 0.995;
   long check_every = 250;
   double relaxation_step_factor = 1.0;
-  /// static: the phase's gravity; unset: [run] gravity.
+  /// static and implicit: the phase's gravity; unset: [run] gravity.
   std::optional<Vec3> gravity{};
-  /// static: the mesh bodies it solves (indices into Scene::bodies); empty: every deformable
-  /// mesh body not bonded to particles. The others are held where they are.
+  /// static and implicit: the mesh bodies it solves (indices into Scene::bodies); empty: every
+  /// deformable mesh body not bonded to particles. The others are held where they are.
   std::vector<int> bodies{};
   SourceLocation where{};
 };

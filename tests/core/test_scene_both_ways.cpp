@@ -763,7 +763,7 @@ class Builder {
     for (auto&& [k, v] : t) {
       const std::string key(k.str()), at = "phases." + key;
       if (key == "kind")
-        p.kind = named<PhaseKind>(str(v, at), 3, at);
+        p.kind = named<PhaseKind>(str(v, at), 4, at);
       else if (key == "end_time")
         p.end_time = num(v, at);
       else if (key == "load_steps")
@@ -782,6 +782,10 @@ class Builder {
         p.check_every = integer(v, at);
       else if (key == "time_step_factor")
         p.relaxation_step_factor = num(v, at);
+      else if (key == "time_step")
+        p.time_step = num(v, at);
+      else if (key == "alpha")
+        p.alpha = num(v, at);
       else
         unknown(at);
     }
@@ -1305,6 +1309,8 @@ void same_scene(const Scene& a, const Scene& b) {
     SAME(phases[k].damping_factor);
     SAME(phases[k].check_every);
     SAME(phases[k].relaxation_step_factor);
+    SAME(phases[k].time_step);
+    SAME(phases[k].alpha);
   }
   ASSERT_EQ(a.probes.size(), b.probes.size());
   for (std::size_t k = 0; k < a.probes.size(); ++k) {
@@ -1397,6 +1403,16 @@ TEST(SceneBothWays, PhasesAndPrestressAreTheSameModelBothWays) {
                             "damping_factor = 0.99\ncheck_every = 100\ntime_step_factor = 0.5\n"
                             "[[phases]]\nkind = \"explicit\"\n",
                         "relaxation_keys.toml");
+  expect_same_both_ways(base +
+                            "[[phases]]\nkind = \"implicit\"\nend_time = 1\ntime_step = 0.1\n"
+                            "bodies = [\"beam\"]\n[[phases]]\nkind = \"explicit\"\n",
+                        "implicit_defaults.toml");
+  expect_same_both_ways(base +
+                            "[[phases]]\nkind = \"implicit\"\nend_time = 1\ntime_step = 0.1\n"
+                            "alpha = -0.1\nmax_iterations = 12\ntolerance = 1e-9\n"
+                            "gravity = [0, 0, -1]\nbodies = [\"beam\"]\n"
+                            "[[phases]]\nkind = \"explicit\"\n",
+                        "implicit_keys.toml");
 }
 
 TEST(SceneBothWays, TablesLeftAtTheirDefaultsAreTheSameModelBothWays) {

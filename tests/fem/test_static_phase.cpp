@@ -433,14 +433,14 @@ TEST(StaticPhase, SceneErrorsNameTheKeyAndWhatIsAllowed) {
   using test::error_of;
   const std::string full = "element = \"full\"";
   EXPECT_NE(error_of(column(full, "[[phases]]\nkind = \"quasi\"\n"))
-                .find("allowed values: \"static\", \"relaxation\", \"explicit\""),
+                .find("allowed values: \"static\", \"implicit\", \"relaxation\", \"explicit\""),
             std::string::npos);
   EXPECT_NE(
       error_of(
           column(
               full,
               "[[phases]]\nkind = \"explicit\"\nend_time = 0.5\n[[phases]]\nkind = \"static\"\n"))
-          .find("afemp runs a static or relaxation phase followed by the explicit phase"),
+          .find("afemp runs a static, implicit or relaxation phase followed by the explicit"),
       std::string::npos);
   EXPECT_NE(error_of(column(full,
                             "[[phases]]\nkind = \"static\"\nend_time = 1.0\n[[phases]]\nkind = "
