@@ -181,7 +181,7 @@ RunEstimate Simulation::estimate() const {
   const Scene& scene = impl_->scene;
   RunEstimate e;
   e.time_step = model.stable_time_step();
-  e.steps = (scene.run.end_time - core::explicit_start(scene)) / e.time_step;
+  e.steps = core::explicit_span(scene) / e.time_step;
   e.planned_steps = core::planned_steps(scene, e.time_step);
   e.points = model.particle_count() + model.element_count();
   e.bytes = model.bytes();

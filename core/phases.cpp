@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 #include "afemp/errors.hpp"
@@ -51,16 +52,48 @@ const char* to_string(PhaseKind k) {
   return "?";
 }
 
-const PhaseSpec* preload_phase(const Scene& scene) {
-  return scene.phases.size() == 2 && scene.phases[0].kind != PhaseKind::explicit_dynamics &&
-                 scene.phases[1].kind == PhaseKind::explicit_dynamics
-             ? &scene.phases[0]
-             : nullptr;
+double phase_start(const Scene& scene, std::size_t k) {
+  return k == 0 ? 0.0 : phase_end(scene, k - 1);
 }
 
-double explicit_start(const Scene& scene) {
-  const PhaseSpec* p = preload_phase(scene);
-  return p ? p->end_time : 0.0;
+const PhaseSpec* phase_due(const Scene& scene, double t, std::size_t* index) {
+  for (std::size_t k = 0; k < scene.phases.size(); ++k) {
+    if (scene.phases[k].kind == PhaseKind::explicit_dynamics) continue;
+    const double start = phase_start(scene, k), end = phase_end(scene, k);
+    if (std::abs(t - start) <= 1e-12 * end && t < end) {
+      if (index) *index = k;
+      return &scene.phases[k];
+    }
+  }
+  return nullptr;
+}
+
+double next_phase_start(const Scene& scene, double t) {
+  for (std::size_t k = 0; k < scene.phases.size(); ++k) {
+    const double start = phase_start(scene, k);
+    if (scene.phases[k].kind != PhaseKind::explicit_dynamics && start > t * (1.0 + 1e-12))
+      return start;
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+double explicit_span(const Scene& scene) {
+  if (scene.phases.empty()) return scene.run.end_time;
+  double span = 0.0;
+  for (std::size_t k = 0; k < scene.phases.size(); ++k)
+    if (scene.phases[k].kind == PhaseKind::explicit_dynamics)
+      span += phase_end(scene, k) - phase_start(scene, k);
+  return span;
+}
+
+bool books_damped_energy(const Scene& scene) {
+  for (std::size_t k = 0; k < scene.phases.size(); ++k) {
+    const PhaseKind kind = scene.phases[k].kind;
+    if (kind == PhaseKind::relaxation || kind == PhaseKind::implicit_dynamics ||
+        (kind == PhaseKind::static_load && k > 0))
+      return true;
+  }
+  return false;
 }
 
 double phase_end(const Scene& scene, std::size_t k) {
@@ -106,106 +139,125 @@ void check_phases(const Scene& scene, const PhaseFailure& fail) {
                number(end));
   }
   if (n == 0) return;
-  const bool explicit_only = n == 1 && scene.phases[0].kind == PhaseKind::explicit_dynamics;
-  if (!explicit_only && !preload_phase(scene))
-    fail(scene.phases[0].where, "phases",
-         "afemp runs a static, implicit or relaxation phase followed by the explicit phase, or "
-         "the explicit phase alone (the static and implicit solves start from the undeformed, "
-         "unstressed meshes, so they cannot follow an explicit phase or each other, and a "
-         "relaxation would damp away the motion an explicit phase computed)");
-  const PhaseSpec* s = preload_phase(scene);
-  if (!s) return;
-  const std::string key = "phases[0]";
-  namespace r = scene_ranges::phase;
-  if (s->kind == PhaseKind::relaxation) {
-    if (s->tolerance != 0.0 && !r::relaxation_tolerance.contains(s->tolerance))
-      fail(s->where, key + ".tolerance", "allowed: " + r::relaxation_tolerance.describe());
-    if (!r::damping_factor.contains(s->damping_factor))
-      fail(s->where, key + ".damping_factor", "allowed: " + r::damping_factor.describe());
-    if (!r::check_every.contains(s->check_every))
-      fail(s->where, key + ".check_every",
-           "allowed: " + std::to_string(r::check_every.lo) +
-               " <= value <= " + std::to_string(r::check_every.hi));
-    if (!r::relaxation_step_factor.contains(s->relaxation_step_factor))
-      fail(s->where, key + ".time_step_factor", "allowed: " + r::relaxation_step_factor.describe());
-    return;
-  }
-  const bool implicit = s->kind == PhaseKind::implicit_dynamics;
-  const std::string a_phase = implicit ? "an implicit phase" : "a static phase";
-  if (!implicit && !r::load_steps.contains(s->load_steps))
-    fail(s->where, key + ".load_steps",
-         "allowed: " + std::to_string(r::load_steps.lo) +
-             " <= value <= " + std::to_string(r::load_steps.hi));
-  if (implicit && !r::implicit_time_step.contains(s->time_step))
-    fail(s->where, key + ".time_step", "allowed: " + r::implicit_time_step.describe());
-  if (implicit && !r::hht_alpha.contains(s->alpha))
-    fail(s->where, key + ".alpha", "allowed: " + r::hht_alpha.describe());
-  if (!r::max_iterations.contains(s->max_iterations))
-    fail(s->where, key + ".max_iterations",
-         "allowed: " + std::to_string(r::max_iterations.lo) +
-             " <= value <= " + std::to_string(r::max_iterations.hi));
-  if (s->tolerance != 0.0 && !r::tolerance.contains(s->tolerance))
-    fail(s->where, key + ".tolerance", "allowed: " + r::tolerance.describe());
-  if (s->gravity && !std::isfinite(s->gravity->x + s->gravity->y + s->gravity->z))
-    fail(s->where, key + ".gravity", "every component must be a finite number");
-  const std::vector<int> bodies = static_phase_bodies(scene, *s);
-  if (bodies.empty())
-    fail(s->where, key + ".bodies",
-         "no body to solve: " + a_phase +
-             " solves deformable mesh bodies (hexahedra, trusses) that are not bonded to "
-             "particles, and the scene has none");
-  for (int b : bodies) {
-    if (b < 0 || static_cast<std::size_t>(b) >= scene.bodies.size())
-      fail(s->where, key + ".bodies", "body index " + std::to_string(b) + " is not defined");
-    const BodySpec& body = scene.bodies[static_cast<std::size_t>(b)];
-    const std::string name = "body \"" + body.name + "\"";
-    if (body.discretisation == Discretisation::particles)
-      fail(s->where, key + ".bodies",
-           name + " is made of particles; " + a_phase +
-               " solves meshes (particles are held where they are: use it for the meshes "
-               "alone), a relaxation phase any body");
-    if (body.rigid)
-      fail(s->where, key + ".bodies", name + " is rigid; " + a_phase + " holds rigid bodies");
-    if (body.bonded_to >= 0)
-      fail(s->where, key + ".bodies",
-           name + " is bonded to particles, which " + a_phase +
-               " holds: its nodes cannot move without them");
-    if (body.discretisation == Discretisation::hexahedra &&
-        body.element == HexFormulation::one_point && body.hourglass.form == HourglassForm::viscous)
-      fail(s->where, key + ".bodies",
-           name +
-               " has one-point hexahedra with the viscous hourglass form, which resists "
-               "rates only and has no stiffness; give it hourglass form \"stiffness\" or "
-               "\"assumed_strain\", or element = \"full\", or preload the scene with "
-               "kind = \"relaxation\", which takes any body");
-    if (body.prestress != 0.0)
-      fail(s->where, key + ".bodies",
-           name + " is prestressed; the " + to_string(s->kind) +
-               " solve starts from unstressed meshes: bring the prestress into equilibrium "
-               "with kind = \"relaxation\", or leave the body out of bodies");
-    try {
-      check_small_strain_tangent(scene.materials[static_cast<std::size_t>(body.material)]);
-    } catch (const std::invalid_argument& e) {
-      fail(s->where, key + ".bodies",
-           name + ": " + e.what() +
-               "; list the bodies the phase solves without it (it is then held), or preload "
-               "the scene with kind = \"relaxation\", which takes any material");
+  auto check_solved = [&](const PhaseSpec* s, const std::string& key, std::size_t k) {
+    namespace r = scene_ranges::phase;
+    if (s->kind == PhaseKind::relaxation) {
+      if (s->tolerance != 0.0 && !r::relaxation_tolerance.contains(s->tolerance))
+        fail(s->where, key + ".tolerance", "allowed: " + r::relaxation_tolerance.describe());
+      if (!r::damping_factor.contains(s->damping_factor))
+        fail(s->where, key + ".damping_factor", "allowed: " + r::damping_factor.describe());
+      if (!r::check_every.contains(s->check_every))
+        fail(s->where, key + ".check_every",
+             "allowed: " + std::to_string(r::check_every.lo) +
+                 " <= value <= " + std::to_string(r::check_every.hi));
+      if (!r::relaxation_step_factor.contains(s->relaxation_step_factor))
+        fail(s->where, key + ".time_step_factor",
+             "allowed: " + r::relaxation_step_factor.describe());
+      return;
     }
-  }
-  for (std::size_t w = 0; w < scene.walls.size(); ++w) {
-    const WallSpec& wall = scene.walls[w];
-    if (wall.friction == 0.0 && norm(wall.velocity) == 0.0) continue;
+    const bool implicit = s->kind == PhaseKind::implicit_dynamics;
+    const std::string a_phase = implicit ? "an implicit phase" : "a static phase";
+    if (!implicit && !r::load_steps.contains(s->load_steps))
+      fail(s->where, key + ".load_steps",
+           "allowed: " + std::to_string(r::load_steps.lo) +
+               " <= value <= " + std::to_string(r::load_steps.hi));
+    if (implicit && !r::implicit_time_step.contains(s->time_step))
+      fail(s->where, key + ".time_step", "allowed: " + r::implicit_time_step.describe());
+    if (implicit && !r::hht_alpha.contains(s->alpha))
+      fail(s->where, key + ".alpha", "allowed: " + r::hht_alpha.describe());
+    if (!r::max_iterations.contains(s->max_iterations))
+      fail(s->where, key + ".max_iterations",
+           "allowed: " + std::to_string(r::max_iterations.lo) +
+               " <= value <= " + std::to_string(r::max_iterations.hi));
+    if (s->tolerance != 0.0 && !r::tolerance.contains(s->tolerance))
+      fail(s->where, key + ".tolerance", "allowed: " + r::tolerance.describe());
+    if (s->gravity && !std::isfinite(s->gravity->x + s->gravity->y + s->gravity->z))
+      fail(s->where, key + ".gravity", "every component must be a finite number");
+    const std::vector<int> bodies = static_phase_bodies(scene, *s);
+    if (bodies.empty())
+      fail(s->where, key + ".bodies",
+           "no body to solve: " + a_phase +
+               " solves deformable mesh bodies (hexahedra, trusses) that are not bonded to "
+               "particles, and the scene has none");
     for (int b : bodies) {
-      const std::vector<int>& on = wall.bodies;
-      if (on.empty() || std::find(on.begin(), on.end(), b) != on.end())
-        fail(wall.where, "walls[" + std::to_string(w) + "]",
-             "the wall acts on body \"" + scene.bodies[static_cast<std::size_t>(b)].name +
-                 "\", which the " + to_string(s->kind) + " phase solves, and " +
-                 (wall.friction != 0.0 ? "has friction" : "moves") + "; the " + to_string(s->kind) +
-                 " solve takes frictionless walls at rest (an exact contact constraint): give "
-                 "the wall friction 0 and no velocity, or hold the body by [[constraints]] in "
-                 "that phase");
+      if (b < 0 || static_cast<std::size_t>(b) >= scene.bodies.size())
+        fail(s->where, key + ".bodies", "body index " + std::to_string(b) + " is not defined");
+      const BodySpec& body = scene.bodies[static_cast<std::size_t>(b)];
+      const std::string name = "body \"" + body.name + "\"";
+      if (body.discretisation == Discretisation::particles)
+        fail(s->where, key + ".bodies",
+             name + " is made of particles; " + a_phase +
+                 " solves meshes (particles are held where they are: use it for the meshes "
+                 "alone), a relaxation phase any body");
+      if (body.rigid)
+        fail(s->where, key + ".bodies", name + " is rigid; " + a_phase + " holds rigid bodies");
+      if (body.bonded_to >= 0)
+        fail(s->where, key + ".bodies",
+             name + " is bonded to particles, which " + a_phase +
+                 " holds: its nodes cannot move without them");
+      if (body.discretisation == Discretisation::hexahedra &&
+          body.element == HexFormulation::one_point &&
+          body.hourglass.form == HourglassForm::viscous)
+        fail(s->where, key + ".bodies",
+             name +
+                 " has one-point hexahedra with the viscous hourglass form, which resists "
+                 "rates only and has no stiffness; give it hourglass form \"stiffness\" or "
+                 "\"assumed_strain\", or element = \"full\", or preload the scene with "
+                 "kind = \"relaxation\", which takes any body");
+      // A first static phase is a slow loading from the unstressed state, whose loads' work
+      // is the stress work; a prestress released on that path would be booked as negative
+      // work of the loads.
+      if (k == 0 && !implicit && body.prestress != 0.0)
+        fail(s->where, key + ".bodies",
+             name +
+                 " is prestressed; a first static phase loads the meshes slowly from the "
+                 "unstressed state: bring the prestress into equilibrium with kind = "
+                 "\"relaxation\" or \"implicit\", or leave the body out of bodies");
+      // The solve starts from the state the phase before leaves, but not from the hourglass
+      // forms' forces a one-point element carries.
+      if (k > 0 && body.discretisation == Discretisation::hexahedra &&
+          body.element == HexFormulation::one_point)
+        fail(s->where, key + ".bodies",
+             name + " has one-point hexahedra, whose hourglass forms' forces the " +
+                 to_string(s->kind) +
+                 " solve does not take from the phase before (it would start them unloaded); "
+                 "give the body element = \"full\" (B-bar), or run this phase first");
+      try {
+        check_small_strain_tangent(scene.materials[static_cast<std::size_t>(body.material)]);
+      } catch (const std::invalid_argument& e) {
+        fail(s->where, key + ".bodies",
+             name + ": " + e.what() +
+                 "; list the bodies the phase solves without it (it is then held), or preload "
+                 "the scene with kind = \"relaxation\", which takes any material");
+      }
     }
+    for (std::size_t w = 0; w < scene.walls.size(); ++w) {
+      const WallSpec& wall = scene.walls[w];
+      if (wall.friction == 0.0 && norm(wall.velocity) == 0.0) continue;
+      for (int b : bodies) {
+        const std::vector<int>& on = wall.bodies;
+        if (on.empty() || std::find(on.begin(), on.end(), b) != on.end())
+          fail(wall.where, "walls[" + std::to_string(w) + "]",
+               "the wall acts on body \"" + scene.bodies[static_cast<std::size_t>(b)].name +
+                   "\", which the " + to_string(s->kind) + " phase solves, and " +
+                   (wall.friction != 0.0 ? "has friction" : "moves") + "; the " +
+                   to_string(s->kind) +
+                   " solve takes frictionless walls at rest (an exact contact constraint): give "
+                   "the wall friction 0 and no velocity, or hold the body by [[constraints]] in "
+                   "that phase");
+      }
+    }
+  };
+  for (std::size_t k = 0; k < n; ++k) {
+    const PhaseSpec& p = scene.phases[k];
+    if (p.kind == PhaseKind::explicit_dynamics) continue;
+    const std::string key = "phases[" + std::to_string(k) + "]";
+    if (p.kind == PhaseKind::relaxation && k > 0)
+      fail(p.where, key + ".kind",
+           "a relaxation phase comes first: after another phase it would damp away the motion "
+           "that phase computed (a static phase after an explicit one finds the equilibrium and "
+           "puts the bodies it solves at rest)");
+    check_solved(&p, key, k);
   }
 }
 
@@ -264,9 +316,11 @@ std::string describe_phases(const Scene& scene) {
              ", " + std::to_string(steps) + " steps of " + number(span / steps) +
              ", the consistent mass; each step Newton with the consistent tangent, |r| <= " +
              number(phase_tolerance(p)) + " x the force scale in at most " +
-             std::to_string(p.max_iterations) +
-             " iterations, CHOLMOD), from the bodies' initial velocities; loads, constant from "
-             "the phase's start: gravity " +
+             std::to_string(p.max_iterations) + " iterations, CHOLMOD), " +
+             (k == 0 ? std::string("from the bodies' initial velocities")
+                     : "from the state the phase before leaves (positions, stresses, plastic "
+                       "strains, velocities)") +
+             "; loads, constant from the phase's start: gravity " +
              vector_text(p.gravity ? *p.gravity : scene.run.gravity) +
              ", the constraints' fixed components held and their velocities followed; the "
              "velocities at its end go on into the explicit phase, and what the scheme "
@@ -279,9 +333,16 @@ std::string describe_phases(const Scene& scene) {
              vector_text(p.gravity ? *p.gravity : scene.run.gravity) +
              ", the constraints' fixed components held and their velocities integrated over the "
              "phase as displacements";
+      if (k > 0)
+        out +=
+            "; from the state the phase before leaves (positions, stresses, plastic strains), "
+            "a small-strain step on the current geometry; the bodies it solves are at rest at "
+            "its end (their kinetic energy is booked as damped)";
     }
     if (!scene.walls.empty()) out += "; the walls as frictionless contact (an exact active set)";
-    if (!held.empty()) out += "; held where they are: " + held;
+    if (!held.empty())
+      out += "; held where they are" + std::string(k > 0 ? " (their velocities kept)" : "") + ": " +
+             held;
     out +=
         "; not in this phase: contacts, erosion, conversion, failure (damage), bulk "
         "viscosity, and rate and temperature effects (Johnson-Cook on its quasi-static "

@@ -11,12 +11,23 @@
 
 namespace afemp::core {
 
-// The static, implicit or relaxation phase that comes before the explicit one, or nullptr (a
-// scene without phases, or whose only phase is explicit).
-const PhaseSpec* preload_phase(const Scene& scene);
+// When phase k starts: the end of the phase before, or 0.
+double phase_start(const Scene& scene, std::size_t k);
 
-// When the explicit phase starts: the preload phase's end, or 0.
-double explicit_start(const Scene& scene);
+// The static, implicit or relaxation phase that starts at time t (the run has reached it and
+// not yet run it: each ends after it starts), or nullptr; its index in *index when given.
+const PhaseSpec* phase_due(const Scene& scene, double t, std::size_t* index = nullptr);
+
+// When the next static or implicit phase after time t starts (the explicit steps stop there),
+// or +infinity.
+double next_phase_start(const Scene& scene, double t);
+
+// How long the explicit phases last together: [run] end_time without phases.
+double explicit_span(const Scene& scene);
+
+// Whether the history has a `damped` column: a relaxation or implicit phase, or a static phase
+// after an explicit one (which puts the bodies it solves at rest).
+bool books_damped_energy(const Scene& scene);
 
 // When phase k ends: its end_time, or for the last phase left at 0, [run] end_time.
 double phase_end(const Scene& scene, std::size_t k);

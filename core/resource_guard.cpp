@@ -131,7 +131,7 @@ double estimated_wall_seconds(double point_steps, int threads) {
 }
 
 double planned_steps(const Scene& scene, double dt) {
-  const double steps = (scene.run.end_time - explicit_start(scene)) / dt;
+  const double steps = explicit_span(scene) / dt;
   return scene.run.max_steps > 0 ? std::min(steps, static_cast<double>(scene.run.max_steps))
                                  : steps;
 }
@@ -147,7 +147,7 @@ std::string wall_time_warning(double point_steps, int threads) {
 }
 
 std::vector<std::string> size_warnings(const Scene& scene, double points, double dt, int threads) {
-  const double steps = (scene.run.end_time - explicit_start(scene)) / dt;
+  const double steps = explicit_span(scene) / dt;
   if (steps > 1e9 && scene.run.max_steps <= 0) {
     char buf[512];
     std::snprintf(buf, sizeof buf,

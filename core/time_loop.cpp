@@ -182,10 +182,7 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
       energy_columns_(model.energy_columns()) {
   overlaps_ = std::make_unique<OverlapCheck>(scene);
   if (overlaps_->empty()) overlaps_.reset();
-  const PhaseSpec* preload = preload_phase(scene_);
-  if (preload &&
-      (preload->kind == PhaseKind::relaxation || preload->kind == PhaseKind::implicit_dynamics))
-    energy_columns_.push_back({"damped", &Energies::damped});
+  if (books_damped_energy(scene_)) energy_columns_.push_back({"damped", &Energies::damped});
   if (!options_.restart_from.empty()) {
     restore(options_.restart_from);
     return;
@@ -218,7 +215,6 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
   if (scene_.run.checkpoint_every > 0.0) next_checkpoint_ = scene_.run.checkpoint_every;
   if (scene_.run.checkpoint_wall_every > 0.0)
     next_checkpoint_wall_ = scene_.run.checkpoint_wall_every;
-  preload_pending_ = preload != nullptr;
 }
 
 Energies TimeLoop::energies() const {
@@ -227,7 +223,7 @@ Energies TimeLoop::energies() const {
   return e;
 }
 
-void TimeLoop::run_preload_phase(const PhaseSpec& phase) {
+void TimeLoop::run_phase(const PhaseSpec& phase) {
   try {
     if (phase.kind == PhaseKind::relaxation)
       run_relaxation(phase);
@@ -242,8 +238,10 @@ void TimeLoop::run_preload_phase(const PhaseSpec& phase) {
   last_time_ = t;
   dt_ = model_.stable_time_step();
   record(0.0);
+  last_step_recorded_ = true;
   probes_->sample(model_, true);
-  if (frames_) model_.write_fields(*frames_);
+  // A last phase's state is the run's final one, which finish() writes.
+  if (frames_ && !finished()) model_.write_fields(*frames_);
   if (options_.phase_log) print_switch(phase);
   // The explicit phase's frames, rows and checkpoints fall due from here on, not at the times
   // the static phase passed over.
@@ -255,19 +253,19 @@ void TimeLoop::run_preload_phase(const PhaseSpec& phase) {
     while (next_history_ <= t * (1.0 + 1e-9)) next_history_ += rs.history_interval;
   if (rs.checkpoint_every > 0.0)
     while (next_checkpoint_ <= t * (1.0 + 1e-9)) next_checkpoint_ += rs.checkpoint_every;
-  if (!options_.output_directory.empty())
+  if (!options_.output_directory.empty() && !finished())
     checkpoint(std::string("the end of the ") + to_string(phase.kind) + " phase");
 }
 
 void TimeLoop::print_switch(const PhaseSpec& phase) const {
   const Energies e = energies();
   char line[320];
-  std::snprintf(
-      line, sizeof line,
-      "the %s phase ends at t = %.6g: internal energy %.6g, kinetic %.6g, external "
-      "work %.6g%s; the explicit phase starts from these stresses:\n",
-      to_string(phase.kind), model_.time(), e.internal, e.kinetic, e.external_work,
-      phase.kind != PhaseKind::static_load ? (", damped " + std::to_string(e.damped)).c_str() : "");
+  std::snprintf(line, sizeof line,
+                "the %s phase ends at t = %.6g: internal energy %.6g, kinetic %.6g, external "
+                "work %.6g%s; %s these stresses:\n",
+                to_string(phase.kind), model_.time(), e.internal, e.kinetic, e.external_work,
+                books_damped_energy(scene_) ? (", damped " + std::to_string(e.damped)).c_str() : "",
+                finished() ? "the run ends with" : "the next phase starts from");
   *options_.phase_log << line;
   const std::vector<BodyStress> stress = model_.body_stresses();
   for (std::size_t b = 0; b < stress.size() && b < scene_.bodies.size(); ++b) {
@@ -380,14 +378,14 @@ bool TimeLoop::finished() const {
 }
 
 void TimeLoop::step(double until) {
-  if (preload_pending_) {
-    preload_pending_ = false;
-    run_preload_phase(*preload_phase(scene_));
+  if (const PhaseSpec* phase = phase_due(scene_, model_.time())) {
+    run_phase(*phase);
     return;
   }
   const RunSettings& rs = scene_.run;
   const double end = rs.end_time;
-  until = std::min(until, end);
+  // The explicit steps stop where the next static or implicit phase starts.
+  until = std::min({until, end, next_phase_start(scene_, model_.time())});
   const double stable = model_.stable_time_step();
   // The statistics describe the stable step; the last step may be cut to land on end.
   if (stable < sum_.min_dt) {

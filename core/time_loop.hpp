@@ -90,10 +90,11 @@ class TimeLoop {
 
  private:
   void restore(const std::string& path);
-  // The scene's static or relaxation phase (core/phases.hpp), the first step: the model solves
-  // or relaxes it, and its state at the phase's end gets a history row, a frame and a
-  // checkpoint.
-  void run_preload_phase(const PhaseSpec& phase);
+  // A static, implicit or relaxation phase (core/phases.hpp), one step of the loop when the
+  // clock reaches its start: the model solves or relaxes it, and its state at the phase's end
+  // gets a history row, a frame and a checkpoint (a last phase's: the run's final row and
+  // frame).
+  void run_phase(const PhaseSpec& phase);
   // Dynamic relaxation (core/dynamic_relaxation.hpp) with a history row at each check; the
   // bodies with an initial velocity held at rest and set moving at the end; the clock then
   // reads the phase's end.
@@ -139,9 +140,8 @@ class TimeLoop {
   double next_checkpoint_wall_ = 1e300;
   int checkpoints_written_ = 0;
   long restarted_at_ = 0;
-  bool stopped_ = false;          // RunOptions::stop_requested ended run()
-  bool preload_pending_ = false;  // the scene's static or relaxation phase is the next step
-  double damped_ = 0.0;           // Energies::damped
+  bool stopped_ = false;  // RunOptions::stop_requested ended run()
+  double damped_ = 0.0;   // Energies::damped
 };
 
 }  // namespace afemp::core

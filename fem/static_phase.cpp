@@ -32,8 +32,9 @@ struct PhaseProblem {
   std::vector<std::size_t> prescribed_node;
 };
 
-// Builds `out` (which the problem points into: build it in place); the prescribed dofs hold
-// the travel of the constraints' velocities over [0, travel_end].
+// Builds `out` (which the problem points into: build it in place) from the solver's state
+// now: the bodies where they are, their points' stresses and plastic strains; the prescribed
+// dofs hold the travel of the constraints' velocities from now to travel_end.
 void build_problem(const FeSolver& solver, const core::Scene& scene, const core::PhaseSpec& phase,
                    double travel_end, PhaseProblem& out) {
   const std::vector<int> bodies = core::static_phase_bodies(scene, phase);
@@ -56,6 +57,7 @@ void build_problem(const FeSolver& solver, const core::Scene& scene, const core:
     if (local[i] < 0) {
       local[i] = static_cast<std::int32_t>(map.nodes.size());
       map.nodes.push_back(n);
+      map.start.push_back(nodes.position[i]);
       mesh.nodes.push_back(nodes.position[i]);
       if (labels.size() == nodes.size()) mesh.node_labels.push_back(labels[i]);
     }
@@ -65,6 +67,7 @@ void build_problem(const FeSolver& solver, const core::Scene& scene, const core:
   for (const ElementBatch& batch : hexes.batches) {
     const std::int32_t part = part_of[static_cast<std::size_t>(batch.body)];
     if (part < 0) continue;
+    const auto points = static_cast<std::size_t>(batch.points_per_element);
     for (std::size_t e = batch.begin; e < batch.end; ++e) {
       if (!hexes.alive[e]) continue;
       Hexahedron h;
@@ -72,6 +75,16 @@ void build_problem(const FeSolver& solver, const core::Scene& scene, const core:
       mesh.hexahedra.push_back(h);
       mesh.hexahedron_part.push_back(part);
       map.hexahedra.push_back(static_cast<std::int32_t>(e));
+      // The points' state now: the solve starts from it.
+      const std::size_t p0 = batch.point_begin + (e - batch.begin) * points;
+      std::array<core::SymTensor, 8> stress{};
+      std::array<double, 8> plastic{};
+      for (std::size_t g = 0; g < points; ++g) {
+        stress[g] = hexes.stress[p0 + g];
+        plastic[g] = hexes.plastic_strain[p0 + g];
+      }
+      problem.initial_stress.push_back(stress);
+      problem.initial_plastic_strain.push_back(plastic);
     }
   }
   const TrussElements& trusses = solver.trusses();
@@ -84,12 +97,15 @@ void build_problem(const FeSolver& solver, const core::Scene& scene, const core:
       mesh.line_part.push_back(part);
       mesh.line_area.push_back(trusses.area0[e]);
       map.trusses.push_back(static_cast<std::int32_t>(e));
+      const std::size_t p = batch.point_begin + (e - batch.begin);
+      problem.initial_line_stress.push_back(trusses.stress[p].xx);
+      problem.initial_line_plastic_strain.push_back(trusses.plastic_strain[p]);
     }
   }
   // Loads: gravity on the explicit solver's lumped masses (so that the state handed back is
   // at rest under the same loads), a program's held nodal loads, and the constraints.
   const core::Vec3 gravity = phase.gravity ? *phase.gravity : scene.run.gravity;
-  const std::vector<core::Vec3> travel = solver.imposed_travel(0.0, travel_end);
+  const std::vector<core::Vec3> travel = solver.imposed_travel(solver.time(), travel_end);
   problem.nodal_forces.resize(map.nodes.size());
   for (std::size_t k = 0; k < map.nodes.size(); ++k) {
     const auto n = static_cast<std::size_t>(map.nodes[k]);
@@ -117,8 +133,9 @@ void build_problem(const FeSolver& solver, const core::Scene& scene, const core:
 
 }  // namespace
 
-std::vector<NewtonIteration> run_static_phase(FeSolver& solver, const core::Scene& scene,
-                                              const core::PhaseSpec& phase, std::ostream* log) {
+ImplicitPhaseOutcome run_static_phase(FeSolver& solver, const core::Scene& scene,
+                                      const core::PhaseSpec& phase, std::ostream* log) {
+  const double start = solver.time();
   PhaseProblem built;
   build_problem(solver, scene, phase, phase.end_time, built);
   const StaticProblem& problem = built.problem;
@@ -134,12 +151,12 @@ std::vector<NewtonIteration> run_static_phase(FeSolver& solver, const core::Scen
   try {
     result = solve_static(problem, settings);
   } catch (const std::invalid_argument& e) {
-    throw core::InputError(phase.where, "phases[0]", std::string("the static phase: ") + e.what());
+    throw core::InputError(phase.where, "phases", std::string("the static phase: ") + e.what());
   } catch (const StaticFailure& e) {
     // The last converged load step's state is the model's, so that the frame the run keeps
     // shows where the equilibrium was lost.
     const StaticResult& last = e.details().last_converged;
-    const double time = last.load_factor * phase.end_time;
+    const double time = start + last.load_factor * (phase.end_time - start);
     solver.take_static_state(map, last, time);
     throw core::SimulationError(
         0, time,
@@ -147,16 +164,34 @@ std::vector<NewtonIteration> run_static_phase(FeSolver& solver, const core::Scen
             std::to_string(e.details().load_steps),
         "equilibrium", std::string(e.what()) + " as the model's: the run's last frame");
   } catch (const std::runtime_error& e) {
-    throw core::SimulationError(0, 0.0, "the static phase", "equilibrium", e.what());
+    throw core::SimulationError(0, start, "the static phase", "equilibrium", e.what());
   }
-  solver.take_static_state(map, result, phase.end_time);
-  return std::move(result.iterations);
+  const double stored = solver.take_static_state(map, result, phase.end_time);
+  ImplicitPhaseOutcome out;
+  // After an explicit phase the equilibrium is at rest: the motion the solved bodies had is
+  // taken out. The loads (constant, as the explicit phase had them) did f . u, the constraints
+  // their reactions' work (by the trapezoidal rule between the start and the end), and what
+  // the stresses do not hold of that work and of the motion is booked as damped. A first phase
+  // is a slow loading from rest: its loads' work is the stress work take_static_state books,
+  // and the bodies keep their initial velocities.
+  if (start > 0.0) {
+    double work = 0.0;
+    for (std::size_t k = 0; k < map.nodes.size(); ++k)
+      work += core::dot(problem.nodal_forces[k], result.displacement[k]);
+    for (std::size_t k = 0; k < problem.prescribed.size(); ++k)
+      work += 0.5 * (result.start_reaction[k] + result.reaction[k]) * problem.prescribed[k].value;
+    out.dissipated = solver.kinetic_energy(map.nodes) + work - stored;
+    solver.add_external_work(work - stored);
+    solver.set_velocities(map.nodes, std::vector<core::Vec3>(map.nodes.size()));
+  }
+  out.iterations = std::move(result.iterations);
+  return out;
 }
 
 ImplicitPhaseOutcome run_implicit_phase(FeSolver& solver, const core::Scene& scene,
                                         const core::PhaseSpec& phase, std::ostream* log) {
   PhaseProblem built;
-  build_problem(solver, scene, phase, 0.0, built);
+  build_problem(solver, scene, phase, solver.time(), built);
   const StaticProblem& problem = built.problem;
   const StaticPhaseMap& map = built.map;
   const double start = solver.time();
@@ -194,8 +229,7 @@ ImplicitPhaseOutcome run_implicit_phase(FeSolver& solver, const core::Scene& sce
   try {
     result = solve_newmark(problem, settings);
   } catch (const std::invalid_argument& e) {
-    throw core::InputError(phase.where, "phases[0]",
-                           std::string("the implicit phase: ") + e.what());
+    throw core::InputError(phase.where, "phases", std::string("the implicit phase: ") + e.what());
   } catch (const std::runtime_error& e) {
     throw core::SimulationError(
         0, start, "the implicit phase", "equilibrium",
@@ -230,7 +264,7 @@ ImplicitPhaseOutcome run_implicit_phase(FeSolver& solver, const core::Scene& sce
 double FeSolver::take_static_state(const StaticPhaseMap& map, const StaticResult& r, double time) {
   for (std::size_t k = 0; k < map.nodes.size(); ++k) {
     const auto n = static_cast<std::size_t>(map.nodes[k]);
-    nodes_.position[n] = nodes_.initial_position[n] + r.displacement[k];
+    nodes_.position[n] = map.start[k] + r.displacement[k];
   }
   double work = 0.0;
   // A point's work goes to its internal energy; what its elastic energy does not hold is its
@@ -238,12 +272,15 @@ double FeSolver::take_static_state(const StaticPhaseMap& map, const StaticResult
   auto take_point = [&](ElementStore& el, std::size_t p, const core::Material& mat,
                         const core::SymTensor& stress, double plastic_strain, double w) {
     const double per_mass = w / mat.density;
+    const core::SymTensor before = el.stress[p];
+    const bool yielded = plastic_strain > el.plastic_strain[p];
     el.stress[p] = stress;
     el.plastic_strain[p] = plastic_strain;
     el.energy[p] += per_mass;
     work += el.point_mass[p] * per_mass;
-    if (plastic_strain > 0.0) {
-      const double plastic = per_mass - core::elastic_energy(mat, stress);
+    if (yielded) {
+      const double plastic =
+          per_mass - (core::elastic_energy(mat, stress) - core::elastic_energy(mat, before));
       plastic_work_ += el.point_mass[p] * plastic;
       if (!el.plastic_heat.empty()) el.plastic_heat[p] += plastic;
     }
@@ -352,13 +389,14 @@ double FeModel::run_implicit_phase(const core::PhaseSpec& phase, std::ostream* l
   if (phase.kind == core::PhaseKind::static_load) {
     core::EventLog rows{
         "static_phase.csv", "load_step,iteration,residual,force_scale,energy,step_length", {}};
-    for (const NewtonIteration& it : fem::run_static_phase(solver_, scene_, phase, log)) {
+    const ImplicitPhaseOutcome out = fem::run_static_phase(solver_, scene_, phase, log);
+    for (const NewtonIteration& it : out.iterations) {
       std::snprintf(buf, sizeof buf, "%d,%d,%.6e,%.6e,%.6e,%.6g", it.load_step, it.iteration,
                     it.residual, it.reference, it.energy, it.step_length);
       rows.rows.emplace_back(buf);
     }
     phase_logs_.push_back(std::move(rows));
-    return 0.0;
+    return out.dissipated;
   }
   const double start = solver_.time();
   const ImplicitPhaseOutcome out = fem::run_implicit_phase(solver_, scene_, phase, log);

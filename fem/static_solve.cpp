@@ -268,6 +268,10 @@ struct Body {
   std::vector<HourglassStiffness> hourglass;
   std::vector<std::array<core::SmallStrainPoint, 8>> converged;
   std::vector<std::array<core::SymTensor, 8>> strain;  // at the displacement last evaluated
+  // The elastic strain of the initial stress, added to B u (empty: a virgin start); trusses:
+  // line_strain0.
+  std::vector<std::array<core::SymTensor, 8>> strain0;
+  std::vector<double> line_strain0;
   std::vector<std::array<core::SmallStrainResult, 8>> current;
   // Per point, the stress of the last converged state and the work per unit volume int sigma :
   // d eps taken to it, by the trapezoidal rule over the converged states (trusses: line_work).
@@ -301,6 +305,8 @@ struct Body {
   // The consistent mass of element e, m_ab = rho sum_g w_g N_a(x_g) N_b(x_g) (each component).
   std::array<std::array<double, 8>, 8> mass(std::size_t e) const;
   void commit();
+  // Takes the problem's initial state as the converged one (Body's constructor).
+  void start_from_initial_state(const char* who);
   int points(std::size_t e) const { return one_point[e] < 0 ? 8 : 1; }
   void write_states(std::vector<std::array<core::SymTensor, 8>>& stress,
                     std::vector<std::array<double, 8>>& plastic_strain,
@@ -431,6 +437,7 @@ Body::Body(const StaticProblem& p, const char* who, bool check_support)
   line_strain.assign(mesh.lines.size(), 0.0);
   line_work.assign(mesh.lines.size(), 0.0);
   line_current.resize(mesh.lines.size());
+  start_from_initial_state(who);
 
   // Gravity's consistent nodal forces, integral of rho N_a g dV = sum_b M_ab g.
   if (core::dot(problem.gravity, problem.gravity) > 0.0) {
@@ -482,6 +489,7 @@ void Body::internal_forces(const std::vector<core::Vec3>& at, std::vector<core::
     if (one_point[e] >= 0) {
       const OnePointHex& geo = one_point_geometry[one_point[e]];
       strain[e][0] = strain_one_point(geo, ue);
+      if (!strain0.empty()) strain[e][0] += strain0[e][0];
       current[e][0] = core::small_strain_update(material, converged[e][0], strain[e][0]);
       add_stress_forces(geo, current[e][0].stress, fe);  // -f_int
       add_hourglass_forces(hourglass[one_point[e]], ue, fe);
@@ -491,6 +499,7 @@ void Body::internal_forces(const std::vector<core::Vec3>& at, std::vector<core::
     std::array<core::SymTensor, 8> sigma;
     for (int g = 0; g < 8; ++g) {
       strain[e][g] = strain_bbar(geometry[e], g, ue);
+      if (!strain0.empty()) strain[e][g] += strain0[e][g];
       current[e][g] = core::small_strain_update(material, converged[e][g], strain[e][g]);
       sigma[g] = current[e][g].stress;
     }
@@ -500,6 +509,7 @@ void Body::internal_forces(const std::vector<core::Vec3>& at, std::vector<core::
   for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
     const Line& n = mesh.lines[l];
     line_strain[l] = core::dot(line_axis[l], at[n[1]] - at[n[0]]) / line_length[l];
+    if (!line_strain0.empty()) line_strain[l] += line_strain0[l];
     line_current[l] = core::small_strain_bar_update(problem.materials[mesh.line_part[l]],
                                                     line_converged[l], line_strain[l]);
     const core::Vec3 f = (mesh.line_area[l] * line_current[l].stress) * line_axis[l];
@@ -560,6 +570,48 @@ void Body::assemble(SparseAssembly& assembly, double stiffness_factor, double ma
         }
     walls->transform(mesh.lines[l].data(), 2, kl.data());
     assembly.add(mesh.lines[l], kl);
+  }
+}
+
+void Body::start_from_initial_state(const char* who) {
+  const bool hexes = !problem.initial_stress.empty(), lines = !problem.initial_line_stress.empty();
+  if ((hexes && (problem.initial_stress.size() != elements ||
+                 problem.initial_plastic_strain.size() != elements)) ||
+      (lines && (problem.initial_line_stress.size() != mesh.lines.size() ||
+                 problem.initial_line_plastic_strain.size() != mesh.lines.size())))
+    throw std::invalid_argument(std::string(who) +
+                                ": the initial state needs a stress and a plastic strain per "
+                                "hexahedron and per line (or none)");
+  if (hexes) {
+    // The stress sigma_0 = s_0 + m_0 I is reached from the elastic strain
+    // eps_0 = m_0 / 3K I + s_0 / 2G (the bulk law K tr(eps) and the deviator kept).
+    strain0.resize(elements);
+    for (std::size_t e = 0; e < elements; ++e) {
+      const core::Material& m = problem.materials[mesh.hexahedron_part[e]];
+      const double k = m.bulk_modulus(), g = m.shear_modulus();
+      for (int p = 0; p < points(e); ++p) {
+        const core::SymTensor& sigma = problem.initial_stress[e][p];
+        const core::SymTensor dev = sigma.deviator();
+        strain0[e][p] =
+            (sigma.trace() / (9.0 * k)) * core::SymTensor::identity() + (1.0 / (2.0 * g)) * dev;
+        converged[e][p] = {strain0[e][p], dev, problem.initial_plastic_strain[e][p]};
+        strain[e][p] = strain0[e][p];
+        committed_stress[e][p] = sigma;
+        current[e][p].stress = sigma;
+        current[e][p].plastic_strain = problem.initial_plastic_strain[e][p];
+      }
+    }
+  }
+  if (lines) {
+    line_strain0.resize(mesh.lines.size());
+    for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
+      const double sigma = problem.initial_line_stress[l];
+      line_strain0[l] = sigma / problem.materials[mesh.line_part[l]].youngs_modulus;
+      line_converged[l] = {line_strain0[l], sigma, problem.initial_line_plastic_strain[l]};
+      line_strain[l] = line_strain0[l];
+      line_current[l].stress = sigma;
+      line_current[l].plastic_strain = problem.initial_line_plastic_strain[l];
+    }
   }
 }
 
@@ -796,15 +848,26 @@ StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& se
   double load = 0.0;
 
   // r = load f_ext - f_int(u) on the equations; returns max(||load f_ext||, ||reactions||).
+  // The loads at load factor `load`: load f_ext from a virgin start; from an initial state,
+  // (1 - load) f_int(0) + load f_ext, the start's own internal forces turned into the loads over
+  // the steps (LS-DYNA's springback imbalance), so that no step unloads what the state holds.
+  body.internal_forces(u, force);
+  const std::vector<core::Vec3> start_force = force;  // -f_int(0)
   auto residual = [&](const std::vector<core::Vec3>& at) {
     body.internal_forces(at, force);
     double external = 0.0;
     for (std::size_t n = 0; n < body.nodes; ++n) {
-      const core::Vec3 f = load * body.f_ext[n];
+      const core::Vec3 f = load * body.f_ext[n] - (1.0 - load) * start_force[n];
       external += core::dot(f, f);
       nodal[n] = f + force[n];
     }
     return std::sqrt(std::max(external, body.gather(nodal, r)));
+  };
+  // Per prescribed dof, f_int - f_ext there (the reaction) at the state that nodal holds.
+  auto reactions = [&](std::vector<double>& out) {
+    out.resize(problem.prescribed.size());
+    for (std::size_t k = 0; k < out.size(); ++k)
+      out[k] = -nodal[problem.prescribed[k].node][problem.prescribed[k].component];
   };
 
   SparseAssembly assembly(problem.mesh->hexahedra, problem.mesh->lines, body.equation,
@@ -816,6 +879,9 @@ StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& se
   last.displacement = u;
   body.write_states(last.stress, last.plastic_strain, last.line_stress, last.line_plastic_strain);
   last.wall_force.assign(body.walls->size(), core::Vec3{});
+  for (std::size_t n = 0; n < body.nodes; ++n) nodal[n] = body.f_ext[n] + start_force[n];
+  reactions(last.start_reaction);
+  last.reaction.assign(problem.prescribed.size(), 0.0);
   std::vector<NewtonIteration> iterations;
   for (int step = 1; step <= settings.load_steps; ++step) {
     load = static_cast<double>(step) / settings.load_steps;
@@ -849,6 +915,7 @@ StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& se
     body.write_states(last.stress, last.plastic_strain, last.line_stress, last.line_plastic_strain);
     body.write_work(u, last.work);
     last.wall_force = body.walls->forces(nodal);
+    reactions(last.reaction);
   }
   last.iterations = std::move(iterations);
   return last;
@@ -911,7 +978,7 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
   };
   auto energies = [&](double time) {
     mass_times(v, ma);
-    NewmarkState state{time, 0.0, 0.0, {}};
+    NewmarkState state{time, 0.0, 0.0, 0.0, {}};
     for (std::size_t n = 0; n < nodes; ++n) state.kinetic_energy += 0.5 * core::dot(v[n], ma[n]);
     // Stored elastic energy p^2 / (2K) + s:s / (4G) per unit volume, and a one-point element's
     // hourglass energy.

@@ -56,7 +56,8 @@ struct HexahedronFormulation {
   core::HourglassSettings hourglass{};  // one-point elements
 };
 
-// Everything at full load (load factor 1); load step s of n applies the factor s / n.
+// Everything at full load (load factor 1); load step s of n applies the factor s / n (from an
+// initial state, to the difference between the loads and the state's own internal forces).
 struct StaticProblem {
   const MeshData* mesh = nullptr;         // hexahedra and lines (trusses)
   std::vector<core::Material> materials;  // one per part, mesh->part_names order
@@ -68,6 +69,17 @@ struct StaticProblem {
   // The acceleration of gravity: the body force rho g, as consistent nodal forces
   // (integral of rho N_a g dV = sum_b M_ab g, M the consistent mass).
   core::Vec3 gravity{};
+  // The state the solve starts from, or empty for the virgin one: per hexahedron per Gauss point
+  // (fem/hexahedron_full.hpp's order; a one-point element's in the first) the stress and the
+  // plastic strain, per line (truss) its axial stress and plastic strain. The mesh's nodes are
+  // then where the body is at that state (an explicit phase's end), and the displacements,
+  // strains and work of the result are measured from there: a small-strain increment on the
+  // current geometry (an updated Lagrangian step, without the initial stress's geometric
+  // stiffness). One-point elements' hourglass forms start unloaded.
+  std::vector<std::array<core::SymTensor, 8>> initial_stress;
+  std::vector<std::array<double, 8>> initial_plastic_strain;
+  std::vector<double> initial_line_stress;
+  std::vector<double> initial_line_plastic_strain;
   // Fixed, frictionless rigid planes that the listed nodes may not cross; a node that touches a
   // wall at the start (of the solve, or of the Newmark run) rests on it, the others reach it as
   // they move. A prescribed component wins over a wall (the wall moves the others).
@@ -131,6 +143,9 @@ struct StaticResult {
   std::vector<double> line_stress;  // per line (truss), axial
   std::vector<double> line_plastic_strain;
   std::vector<core::Vec3> wall_force;  // per wall, its resultant force on the nodes
+  // Per prescribed dof (problem.prescribed's order), f_int - f_ext there: at the start (the
+  // initial state's, against the full loads) and at this state (the load factor's loads).
+  std::vector<double> start_reaction, reaction;
   StaticWork work;
   std::vector<NewtonIteration> iterations;
 };
