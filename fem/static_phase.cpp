@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -226,10 +227,18 @@ ImplicitPhaseOutcome run_implicit_phase(FeSolver& solver, const core::Scene& sce
     };
   }
   NewmarkResult result;
+  std::optional<std::string> failure;
+  double end_time = phase.end_time;
   try {
     result = solve_newmark(problem, settings);
   } catch (const std::invalid_argument& e) {
     throw core::InputError(phase.where, "phases", std::string("the implicit phase: ") + e.what());
+  } catch (const NewmarkFailure& e) {
+    // The last converged step's state is the model's (handed on below), so that the frame the
+    // run keeps shows where the step failed.
+    result = e.last_converged();
+    failure = e.what();
+    end_time = start + (result.states.empty() ? 0.0 : result.states.back().time);
   } catch (const std::runtime_error& e) {
     throw core::SimulationError(
         0, start, "the implicit phase", "equilibrium",
@@ -248,11 +257,14 @@ ImplicitPhaseOutcome run_implicit_phase(FeSolver& solver, const core::Scene& sce
   end.work = std::move(result.work);
   if (!result.states.empty()) end.wall_force = result.states.back().wall_force;
   const double kinetic_before = solver.kinetic_energy(map.nodes);
-  const double stored = solver.take_static_state(map, end, phase.end_time);
+  const double stored = solver.take_static_state(map, end, end_time);
   solver.set_velocities(map.nodes, result.velocity);
   const double kinetic_after = solver.kinetic_energy(map.nodes);
   const double work = result.states.empty() ? 0.0 : result.states.back().external_work;
   solver.add_external_work(work - stored);
+  if (failure)
+    throw core::SimulationError(0, end_time, "the implicit phase", "equilibrium",
+                                *failure + " as the model's: the run's last frame");
   ImplicitPhaseOutcome out;
   out.dissipated = work - stored - (kinetic_after - kinetic_before);
   out.time_step = settings.time_step;

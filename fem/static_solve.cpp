@@ -312,6 +312,11 @@ struct Body {
                     std::vector<std::array<double, 8>>& plastic_strain,
                     std::vector<double>& line_stress,
                     std::vector<double>& line_plastic_strain) const;
+  // The same of the last committed (converged) states.
+  void write_converged_states(std::vector<std::array<core::SymTensor, 8>>& stress,
+                              std::vector<std::array<double, 8>>& plastic_strain,
+                              std::vector<double>& line_stress,
+                              std::vector<double>& line_plastic_strain) const;
   // The element whose plastic strain the current states raised most above the converged ones.
   YieldingElement most_yielding() const;
   // The work per unit volume of each point and line, and each one-point element's stored
@@ -644,6 +649,26 @@ void Body::write_work(const std::vector<core::Vec3>& u, StaticWork& out) const {
   out.lines = line_work;
 }
 
+void Body::write_converged_states(std::vector<std::array<core::SymTensor, 8>>& stress,
+                                  std::vector<std::array<double, 8>>& plastic_strain,
+                                  std::vector<double>& line_stress,
+                                  std::vector<double>& line_plastic_strain) const {
+  stress.resize(elements);
+  plastic_strain.resize(elements);
+  for (std::size_t e = 0; e < elements; ++e)
+    for (int g = 0; g < 8; ++g) {
+      const int p = points(e) == 1 ? 0 : g;
+      stress[e][g] = committed_stress[e][p];
+      plastic_strain[e][g] = converged[e][p].plastic_strain;
+    }
+  line_stress.resize(mesh.lines.size());
+  line_plastic_strain.resize(mesh.lines.size());
+  for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
+    line_stress[l] = line_converged[l].stress;
+    line_plastic_strain[l] = line_converged[l].plastic_strain;
+  }
+}
+
 void Body::write_states(std::vector<std::array<core::SymTensor, 8>>& stress,
                         std::vector<std::array<double, 8>>& plastic_strain,
                         std::vector<double>& line_stress,
@@ -840,6 +865,10 @@ std::string step_failure(const char* who, const char* step_name, int step, int s
 StaticFailure::StaticFailure(const std::string& what, StaticFailureDetails details)
     : std::runtime_error(what),
       details_(std::make_shared<const StaticFailureDetails>(std::move(details))) {}
+
+NewmarkFailure::NewmarkFailure(const std::string& what, NewmarkResult last_converged)
+    : std::runtime_error(what),
+      last_(std::make_shared<const NewmarkResult>(std::move(last_converged))) {}
 
 StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& settings) {
   Body body(problem, "static solve", true);
@@ -1105,9 +1134,19 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
           residual, [&] { body.assemble(assembly, 1.0 + alpha, 1.0 / (beta * dt * dt)); },
           stop_on_walls, out.iterations);
     } catch (const NewtonFailure& f) {
-      throw std::runtime_error(step_failure("newmark solve", "time step", step, settings.steps, f,
-                                            settings.newton.residual_tolerance,
-                                            body.most_yielding()));
+      // The state after the last converged step: its displacements and velocities, and the
+      // points' converged states.
+      out.displacement = u_before;
+      out.velocity = v;
+      body.write_converged_states(out.stress, out.plastic_strain, out.line_stress,
+                                  out.line_plastic_strain);
+      body.write_work(u_before, out.work);
+      const std::string what =
+          step_failure("newmark solve", "time step", step, settings.steps, f,
+                       settings.newton.residual_tolerance, body.most_yielding()) +
+          "; the state after time step " + std::to_string(step - 1) +
+          format(" (t = %.6g) is kept", (step - 1) * dt, 0.0, 0.0);
+      throw NewmarkFailure(what, std::move(out));
     }
     for (std::size_t n = 0; n < nodes; ++n) {
       const core::Vec3 a_next = (1.0 / (beta * dt * dt)) * (u[n] - u_star[n]);

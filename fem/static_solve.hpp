@@ -250,6 +250,19 @@ struct NewmarkResult {
   std::vector<NewtonIteration> iterations;  // load_step is the time step
 };
 
+// A time step that failed (Newton did not converge, a tangent that is not positive definite, or
+// an active set that did not settle): its message names the step, the iteration, the residual
+// and the element that yields most; the result holds the state after the last converged step
+// (its states' last time), its iterations the failing step's too.
+class NewmarkFailure : public std::runtime_error {
+ public:
+  NewmarkFailure(const std::string& what, NewmarkResult last_converged);
+  const NewmarkResult& last_converged() const { return *last_; }
+
+ private:
+  std::shared_ptr<const NewmarkResult> last_;  // shared: copying stays noexcept
+};
+
 // Walls act as in the static solve, their active set settled within every time step. A node
 // that reaches a wall stops on it within the step (at the step's end its velocity and
 // acceleration along the normal are zero, as a prescribed dof's): a kinematic wall, which takes
@@ -257,8 +270,8 @@ struct NewmarkResult {
 // holds but for those arrivals. Nodes on or behind a wall at t = 0 start on it (moved onto its
 // plane).
 // Throws as solve_static (except for an unheld body, which the mass holds; a failing step is a
-// std::runtime_error naming the same), and std::invalid_argument for a time step that is not
-// positive or alpha outside [-1/3, 0].
+// NewmarkFailure), and std::invalid_argument for a time step that is not positive or alpha
+// outside [-1/3, 0].
 NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings& settings);
 
 // The faces of the mesh's hexahedra whose four nodes all lie in `nodes`, as kHexFaces orders

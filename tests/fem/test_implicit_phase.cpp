@@ -301,6 +301,42 @@ TEST(ImplicitPhase, PrestressedTendonReleasedAtOneEndShortensBySigmaLOverE) {
               e.damped, energy);
 }
 
+// A time step that does not converge (max_iterations = 1 cannot take the first plastic step:
+// the column, yield 100 MPa, yields at its base as its swing passes 1.27 times the static stress)
+// stops the run with the step, the iteration, the residual and the element that yields most;
+// the state after the last converged step is the model's, at its time, and the run's frame.
+TEST(ImplicitPhase, StepThatDoesNotConvergeStopsWithItAndKeepsTheLastConvergedState) {
+  const test::ScratchDir dir;
+  std::string text = column(
+      "[[phases]]\nkind = \"implicit\"\nend_time = 0.05\ntime_step = 0.0005\n"
+      "max_iterations = 1\n[[phases]]\nkind = \"explicit\"\n",
+      0.06);
+  text.replace(text.find("nu = 0.3\n"), 9,
+               "nu = 0.3\nstrength = { model = \"j2\", yield = 100 }\n");
+  SimulationOptions options;
+  options.output_directory = dir.str();
+  Simulation sim(core::parse_scene(text, "c.toml"), options);
+  try {
+    sim.run();
+    FAIL() << "no error";
+  } catch (const SimulationError& e) {
+    const std::string what = e.what();
+    std::printf("%s\n", what.c_str());
+    for (const char* part : {"the implicit phase", "newmark solve: time step", "iteration 1",
+                             "did not converge", "tolerance", "the element that yields most",
+                             "of part 'column'", "is kept", "the run's last frame"})
+      EXPECT_NE(what.find(part), std::string::npos) << part;
+    // The failing step is named; the model holds the step before, at rest from none of it.
+    const std::size_t at = what.find("time step ") + 10;
+    const int failed = std::stoi(what.substr(at));
+    EXPECT_GT(failed, 1);
+    EXPECT_NEAR(sim.time(), 0.0005 * (failed - 1), 1e-12);
+    EXPECT_LT(top_displacement(sim), 0.0);
+    for (double p : sim.hexahedra().plastic_strain) EXPECT_EQ(p, 0.0);
+  }
+  EXPECT_TRUE(std::filesystem::exists(dir / "fields.xmf"));
+}
+
 TEST(ImplicitPhase, SceneErrorsNameTheKeyAndWhatIsAllowed) {
   using test::error_of;
   EXPECT_NE(error_of(column("[[phases]]\nkind = \"implicit\"\nend_time = 0.05\n"
