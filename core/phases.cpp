@@ -271,15 +271,23 @@ std::string describe_phases(const Scene& scene) {
            " -> " + number(phase_end(scene, k)) + ": ";
     from = phase_end(scene, k);
     if (p.kind == PhaseKind::explicit_dynamics) {
-      const bool after_implicit = k > 0 && scene.phases[k - 1].kind == PhaseKind::implicit_dynamics;
-      out += after_implicit
-                 ? "explicit dynamics of every body, with the stages below; it starts from the "
-                   "state the implicit phase leaves (positions, stresses, plastic strains and "
-                   "the velocities of the bodies it solved), the other bodies' initial "
-                   "velocities and the constraints' velocities\n"
-                 : "explicit dynamics of every body, with the stages below; it starts from the "
-                   "state the phase before leaves (positions, stresses, plastic strains), the "
-                   "bodies' initial velocities and the constraints' velocities\n";
+      const PhaseKind before = k > 0 ? scene.phases[k - 1].kind : PhaseKind::explicit_dynamics;
+      out += "explicit dynamics of every body, with the stages below; it starts from ";
+      if (k == 0)
+        out += "the bodies' initial state and velocities";
+      else if (before == PhaseKind::implicit_dynamics)
+        out +=
+            "the state the implicit phase leaves (positions, stresses, plastic strains and the "
+            "velocities of the bodies it solved; the others keep theirs)";
+      else if (before == PhaseKind::static_load && k > 1)
+        out +=
+            "the state the static phase leaves (positions, stresses, plastic strains; the "
+            "bodies it solved at rest, the others with the velocities they had)";
+      else
+        out +=
+            "the state the phase before leaves (positions, stresses, plastic strains) and the "
+            "bodies' initial velocities";
+      out += ", and the constraints' velocities\n";
       continue;
     }
     if (p.kind == PhaseKind::relaxation) {
