@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "core/parallel.hpp"
+#include "core/phases.hpp"
 #include "core/state_archive.hpp"
 
 namespace afemp::core {
@@ -175,6 +176,25 @@ bool may_change(const std::string& key) {
   return allowed.contains(key);
 }
 
+// A static or implicit phase's solver settings may change while the phase has not started at
+// the checkpoint's time: a restart from the checkpoint written at its start (before a solve that
+// failed) runs it with the new ones.
+bool phase_setting_may_change(const std::string& key, double time, const Scene& now) {
+  static const std::set<std::string> settings = {"load_steps", "max_iterations", "tolerance",
+                                                 "time_step", "alpha"};
+  if (key.rfind("phases[", 0) != 0) return false;
+  const std::size_t close = key.find("].");
+  if (close == std::string::npos) return false;
+  std::size_t k = 0;
+  try {
+    k = static_cast<std::size_t>(std::stoul(key.substr(7, close - 7)));
+  } catch (const std::exception&) {
+    return false;
+  }
+  if (k >= now.phases.size() || !settings.contains(key.substr(close + 2))) return false;
+  return phase_start(now, k) >= time * (1.0 - 1e-12);
+}
+
 std::map<std::string, FlatValue> flat_scene(const std::string& text, const std::string& path) {
   std::map<std::string, FlatValue> out;
   if (text.empty()) return out;
@@ -194,8 +214,11 @@ std::vector<std::string> scene_changes(const CheckpointHeader& saved, const Scen
   const auto before = flat_scene(saved.scene_text, saved.scene_path);
   const auto after = flat_scene(now.source, now.path);
   const std::string file = now.path.empty() ? std::string("the scene") : now.path;
+  auto allowed = [&](const std::string& key) {
+    return may_change(key) || phase_setting_may_change(key, saved.time, now);
+  };
   for (const auto& [key, was] : before) {
-    if (may_change(key)) continue;
+    if (allowed(key)) continue;
     const auto it = after.find(key);
     if (it == after.end())
       out.push_back(key + ": " + was.text + " in the checkpoint, absent now");
@@ -204,7 +227,7 @@ std::vector<std::string> scene_changes(const CheckpointHeader& saved, const Scen
                     file + " line " + std::to_string(it->second.line) + ")");
   }
   for (const auto& [key, is] : after)
-    if (!may_change(key) && !before.contains(key))
+    if (!allowed(key) && !before.contains(key))
       out.push_back(key + ": absent in the checkpoint, " + is.text + " now (" + file + " line " +
                     std::to_string(is.line) + ")");
   for (std::size_t f = 0; f < saved.files.size(); ++f) {

@@ -224,6 +224,12 @@ Energies TimeLoop::energies() const {
 }
 
 void TimeLoop::run_phase(const PhaseSpec& phase) {
+  // Before a static or implicit phase that follows another: a checkpoint of the state it starts
+  // from, so that a solve that fails can be run again from there with other settings
+  // (docs/restart.md). A successful phase's checkpoint at its end (the same step) replaces it.
+  std::string start;
+  if (phase.kind != PhaseKind::relaxation && model_.time() > 0.0)
+    start = checkpoint(std::string("the start of the ") + to_string(phase.kind) + " phase");
   try {
     if (phase.kind == PhaseKind::relaxation)
       run_relaxation(phase);
@@ -231,6 +237,11 @@ void TimeLoop::run_phase(const PhaseSpec& phase) {
       damped_ += model_.run_implicit_phase(phase, options_.phase_log);
   } catch (const SimulationError&) {
     keep_failure();
+    if (!start.empty() && options_.phase_log)
+      *options_.phase_log << "the checkpoint " << start
+                          << " holds the state the phase started from: a restart from it runs the "
+                             "phase again, with other load_steps, max_iterations, tolerance, "
+                             "time_step or alpha if the scene now gives them\n";
     throw;
   }
   const RunSettings& rs = scene_.run;

@@ -215,5 +215,66 @@ TEST(PhaseSequence, RestartsBeforeAndAfterAPhaseBetweenExplicitOnesEndAsTheWhole
   std::printf("%d restarts end as the whole run\n", restarts);
 }
 
+// A static phase after an explicit one that fails (max_iterations = 1 cannot take the plastic
+// steps that three times the gravity asks of a column yielding at 200 MPa) stops the run and
+// leaves a checkpoint of the state it started from; the same scene with max_iterations = 25
+// restarts from it (a phase's solver settings may change until it starts) and ends as the run
+// that went through with 25 from the start.
+TEST(PhaseSequence, FailedStaticPhaseRunsAgainFromItsStartWithOtherSettings) {
+  const test::ScratchDir scratch;
+  const double t1 = 0.5 * kHalfPeriod, t2 = t1 + 0.01, end = t2 + 0.1 * kHalfPeriod;
+  auto scene_with = [&](int iterations) {
+    std::string text = column(
+        phase("explicit", t1) +
+            phase("static", t2,
+                  "gravity = [0, 0, -300]\nmax_iterations = " + std::to_string(iterations) + "\n") +
+            phase("explicit", 0.0),
+        end);
+    text.replace(text.find("nu = 0.3\n"), 9,
+                 "nu = 0.3\nstrength = { model = \"j2\", yield = 200, tangent_modulus = 2000 }\n");
+    return core::parse_scene(text, "c.toml");
+  };
+  const core::Scene failing = scene_with(1), passing = scene_with(25);
+  const std::filesystem::path run = scratch.path() / "run", whole = scratch.path() / "whole";
+  std::ostringstream log;
+  SimulationOptions a;
+  a.output_directory = run.string();
+  a.phase_log = &log;
+  try {
+    Simulation first(failing, a);
+    first.run();
+    FAIL() << "no error";
+  } catch (const SimulationError& e) {
+    EXPECT_NE(std::string(e.what()).find("did not converge in 1 iterations"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_NE(log.str().find("holds the state the phase started from"), std::string::npos)
+      << log.str();
+  const std::string checkpoint = restart_checkpoint(run.string(), passing);
+  EXPECT_NEAR(read_checkpoint_info(checkpoint).time, t1, 1e-12);
+  // Another change than a phase's solver settings is still refused.
+  core::Scene moved = scene_with(25);
+  moved.source.replace(moved.source.find("yield = 200"), 11, "yield = 250");
+  EXPECT_THROW(restart_checkpoint(run.string(), moved), CheckpointError);
+
+  SimulationOptions b;
+  b.output_directory = run.string();
+  b.restart_from = checkpoint;
+  Simulation second(passing, b);
+  second.run();
+  SimulationOptions c;
+  c.output_directory = whole.string();
+  Simulation through(passing, c);
+  through.run();
+  auto read = [](const std::filesystem::path& p) {
+    std::ifstream f(p);
+    return std::string(std::istreambuf_iterator<char>(f), {});
+  };
+  EXPECT_EQ(read(run / "history.csv"), read(whole / "history.csv"));
+  double plastic = 0.0;
+  for (double p : second.hexahedra().plastic_strain) plastic = std::max(plastic, p);
+  EXPECT_GT(plastic, 0.0);
+}
+
 }  // namespace
 }  // namespace afemp
