@@ -1,9 +1,9 @@
-// The phases of a scene (core/phases.hpp). afemp runs a static, implicit or relaxation phase
-// before the explicit one, or the explicit phase alone: the static and implicit solves
-// (fem/static_solve.hpp) start from the virgin state of the meshes, so such a phase after an
-// explicit one (from stresses, plastic strains and a deformed mesh) or two in a row are
-// refused rather than run from the wrong state; a relaxation after an explicit phase would damp
-// away the motion that phase computed.
+// The phases of a scene (core/phases.hpp). Static and implicit phases may come anywhere in
+// the sequence: the solves (fem/static_solve.hpp) start from the state the phase before leaves
+// (fem/static_phase.hpp). A relaxation phase comes first only: after another phase it would damp
+// away the motion that phase computed. The time loop runs a static, implicit or relaxation
+// phase as one step when its clock reaches the phase's start (phase_due), and stops the
+// explicit steps there (next_phase_start).
 #include "core/phases.hpp"
 
 #include <algorithm>

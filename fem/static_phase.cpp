@@ -1,6 +1,7 @@
-// A static phase on the FE solver (fem/static_phase.hpp): the problem taken out of the solver,
-// fem::solve_static, and the state handed back as the explicit solver's (FeSolver's member
-// take_static_state is defined here, beside what it takes).
+// Static and implicit phases on the FE solver (fem/static_phase.hpp): the problem taken out of
+// the solver with the state it starts from, fem::solve_static or fem::solve_newmark, and the
+// state handed back as the explicit solver's (FeSolver's members take_static_state,
+// kinetic_energy and set_velocities are defined here, beside what they take).
 #include "fem/static_phase.hpp"
 
 #include <cmath>
@@ -304,6 +305,8 @@ double FeSolver::take_static_state(const StaticPhaseMap& map, const StaticResult
     const core::BodySpec& body = scene_.bodies[static_cast<std::size_t>(b.body)];
     const auto points = static_cast<std::size_t>(b.points_per_element);
     const std::size_t p0 = b.point_begin + (e - b.begin) * points;
+    // x0: the initial geometry, from which a one-point element's hourglass state is measured
+    // (such elements are solved in a first phase only, which starts there: core/phases.cpp).
     HexVectors x0, x, u, f{};
     for (std::size_t a = 0; a < 8; ++a) {
       const auto n = static_cast<std::size_t>(hexes_.nodes[e][a]);

@@ -1,10 +1,12 @@
-// A scene's static phase (core/phases.hpp) on the FE solver: the mesh bodies it solves taken
-// out of the solver as a fem::StaticProblem (their nodes, hexahedra and trusses, the gravity of
-// their lumped masses, the constraints' fixed components and the displacements their imposed
-// velocities give over the phase), solved by fem::solve_static, and the result handed to the
-// explicit solver as its state at the phase's end: positions x = X + u, the points' stresses,
-// plastic strains and internal energies, the hourglass forms' forces, the element forces, and
-// the loads' work as external work, so that the energy balance spans the phases.
+// A scene's static or implicit phase (core/phases.hpp) on the FE solver: the mesh bodies it
+// solves taken out of the solver as a fem::StaticProblem (their nodes where they are, their
+// hexahedra and trusses with their points' stresses and plastic strains, the gravity of their
+// lumped masses, the constraints' fixed components and the displacements their imposed
+// velocities give over the phase), solved by fem::solve_static or fem::solve_newmark, and the
+// result handed to the explicit solver as its state at the phase's end: positions x = x_start
+// + u, the points' stresses, plastic strains and internal energies, the hourglass forms' forces,
+// the element forces (and an implicit phase's velocities), and the loads' work as external
+// work, so that the energy balance spans the phases.
 #pragma once
 
 #include <cstdint>
