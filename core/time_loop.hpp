@@ -41,8 +41,9 @@ struct RunOptions {
   // lengths then (rows, probe samples and frames written after it are dropped and written
   // again). Throws CheckpointError naming the scene keys that changed, if any.
   std::string restart_from;
-  // The static phase's Newton iterations are printed here, one line each, when set (they are
-  // written to OUTPUT/static_phase.csv in any case).
+  // The static and implicit phases' Newton iterations, a relaxation's checks and each phase's
+  // switch are printed here, one line each, when set (the iterations are written to
+  // OUTPUT/static_phase.csv and implicit_phase.csv in any case).
   std::ostream* phase_log = nullptr;
 };
 

@@ -401,27 +401,31 @@ void FeSolver::set_velocities(std::span<const std::int32_t> nodes,
 
 double FeModel::run_implicit_phase(const core::PhaseSpec& phase, std::ostream* log) {
   char buf[200];
-  if (phase.kind == core::PhaseKind::static_load) {
-    core::EventLog rows{
-        "static_phase.csv", "load_step,iteration,residual,force_scale,energy,step_length", {}};
-    const ImplicitPhaseOutcome out = fem::run_static_phase(solver_, scene_, phase, log);
-    for (const NewtonIteration& it : out.iterations) {
-      std::snprintf(buf, sizeof buf, "%d,%d,%.6e,%.6e,%.6e,%.6g", it.load_step, it.iteration,
-                    it.residual, it.reference, it.energy, it.step_length);
+  // The phase's number in the scene (from 1): a scene may have several of a kind, whose rows
+  // share a file.
+  const long number = &phase - scene_.phases.data() + 1;
+  auto write = [&](core::EventLog& rows, const std::vector<NewtonIteration>& iterations) {
+    for (const NewtonIteration& it : iterations) {
+      std::snprintf(buf, sizeof buf, "%ld,%d,%d,%.6e,%.6e,%.6e,%.6g", number, it.load_step,
+                    it.iteration, it.residual, it.reference, it.energy, it.step_length);
       rows.rows.emplace_back(buf);
     }
+  };
+  if (phase.kind == core::PhaseKind::static_load) {
+    core::EventLog rows{"static_phase.csv",
+                        "phase,load_step,iteration,residual,force_scale,energy,step_length",
+                        {}};
+    const ImplicitPhaseOutcome out = fem::run_static_phase(solver_, scene_, phase, log);
+    write(rows, out.iterations);
     phase_logs_.push_back(std::move(rows));
     return out.dissipated;
   }
   const double start = solver_.time();
   const ImplicitPhaseOutcome out = fem::run_implicit_phase(solver_, scene_, phase, log);
-  core::EventLog rows{
-      "implicit_phase.csv", "time_step,iteration,residual,force_scale,energy,step_length", {}};
-  for (const NewtonIteration& it : out.iterations) {
-    std::snprintf(buf, sizeof buf, "%d,%d,%.6e,%.6e,%.6e,%.6g", it.load_step, it.iteration,
-                  it.residual, it.reference, it.energy, it.step_length);
-    rows.rows.emplace_back(buf);
-  }
+  core::EventLog rows{"implicit_phase.csv",
+                      "phase,time_step,iteration,residual,force_scale,energy,step_length",
+                      {}};
+  write(rows, out.iterations);
   core::EventLog energies{
       "implicit_energies.csv", "time,kinetic,strain,external_work,plastic_and_dissipated", {}};
   for (const NewmarkState& st : out.states) {

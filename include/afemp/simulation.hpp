@@ -114,8 +114,9 @@ struct SimulationOptions {
   /// continues from restart_from). A program prints warnings() and estimate() first, as
   /// `afemp run` does, and what start() throws is then the run's, not the scene's.
   bool defer_start = false;
-  /// A scene's static phase prints each Newton iteration here when set (`afemp run`: standard
-  /// output); OUTPUT/static_phase.csv has them in any case.
+  /// A scene's static and implicit phases print each Newton iteration here when set, and every
+  /// phase what the next starts from (`afemp run`: standard output); OUTPUT/static_phase.csv
+  /// and implicit_phase.csv have the iterations in any case.
   std::ostream* phase_log = nullptr;
 };
 

@@ -244,7 +244,7 @@ TEST(ImplicitPhase, WritesItsIterationsAndEnergiesAndRestartsFromTheSwitch) {
               worst / work, work);
   std::ifstream iterations(dir.path() / "whole" / "implicit_phase.csv");
   std::getline(iterations, header);
-  EXPECT_EQ(header, "time_step,iteration,residual,force_scale,energy,step_length");
+  EXPECT_EQ(header, "phase,time_step,iteration,residual,force_scale,energy,step_length");
 
   const std::string checkpoint = newest_checkpoint((dir.path() / "whole").string());
   ASSERT_FALSE(checkpoint.empty());
