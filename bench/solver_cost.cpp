@@ -246,14 +246,12 @@ Run run_cholmod(const Options& o, const fem::SymmetricCsc& k, const std::vector<
     try {
       r.analyse = timed([&] { cholesky.analyse(k); }).wall;
     } catch (const std::runtime_error& e) {
-      // CHOLMOD_TOO_LARGE (-3) from the int interface past 2^31 - 1 values in L; the counts
-      // are those of the last ordering it tried, 8 bytes a value the least L would need.
+      // An analysis CHOLMOD could not finish (out of memory: status -2, too large: -3); the
+      // counts are those of the last ordering it tried, 8 bytes a value the least L would need.
       r.factor_nonzeros = cholesky.statistics().factor_nonzeros;
       r.flops = cholesky.statistics().flops;
       r.own_bytes = 8.0 * r.factor_nonzeros;
-      r.not_run =
-          std::string("not run: ") + e.what() +
-          " (-3 is CHOLMOD_TOO_LARGE: its int interface holds at most 2^31 - 1 values in L)";
+      r.not_run = std::string("not run: ") + e.what();
       return;
     }
     const fem::CholeskyStatistics s = cholesky.statistics();
@@ -261,9 +259,9 @@ Run run_cholmod(const Options& o, const fem::SymmetricCsc& k, const std::vector<
     r.factor_nonzeros = s.factor_nonzeros;
     r.flops = s.flops;
     // What factorise adds to the resident set: the supernodal values and CHOLMOD's permuted
-    // copy of K.
+    // copy of K (long indices: 16 bytes an entry).
     const double estimate =
-        8.0 * static_cast<double>(s.factor_values) + 12.0 * static_cast<double>(k.row.size());
+        8.0 * static_cast<double>(s.factor_values) + 16.0 * static_cast<double>(k.row.size());
     r.not_run = refusal(o, estimate, s.flops, rate);
     if (!r.not_run.empty()) {
       r.own_bytes = static_cast<double>(s.bytes_in_use) + estimate;

@@ -5,7 +5,9 @@
 #include <cholmod.h>
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace afemp::fem {
 
@@ -13,31 +15,37 @@ NotPositiveDefinite::NotPositiveDefinite(int column)
     : std::runtime_error("matrix not positive definite at column " + std::to_string(column)),
       column_(column) {}
 
+// CHOLMOD's long-integer interface (cholmod_l_*): its int one refuses a factor of 2^31 values or
+// more, which a 10^6-dof cube of hexahedra reaches (nnz(L) 2.25e9). The pattern is copied once
+// per analysis into the long indices it needs; the values are viewed in place.
 struct SparseCholesky::Impl {
   cholmod_common common;
   cholmod_factor* factor = nullptr;
   int size = 0;
+  std::vector<SuiteSparse_long> column_start, row;  // the analysed pattern
 
   Impl() {
-    cholmod_start(&common);
+    cholmod_l_start(&common);
     common.supernodal = CHOLMOD_SUPERNODAL;
     common.print = 0;  // failures come back as exceptions, not as CHOLMOD's messages
   }
   ~Impl() {
-    cholmod_free_factor(&factor, &common);
-    cholmod_finish(&common);
+    cholmod_l_free_factor(&factor, &common);
+    cholmod_l_finish(&common);
   }
 
-  // A CHOLMOD view of a (stype 1: the upper triangle holds the matrix).
-  static cholmod_sparse view(const SymmetricCsc& a) {
+  // A CHOLMOD view of a (stype 1: the upper triangle holds the matrix) on the analysed pattern.
+  cholmod_sparse view(const SymmetricCsc& a) const {
+    if (a.size != size || a.row.size() != row.size())
+      throw std::invalid_argument("sparse Cholesky: the matrix is not of the analysed pattern");
     cholmod_sparse s{};
     s.nrow = s.ncol = static_cast<std::size_t>(a.size);
     s.nzmax = a.row.size();
-    s.p = const_cast<int*>(a.column_start.data());
-    s.i = const_cast<int*>(a.row.data());
+    s.p = const_cast<SuiteSparse_long*>(column_start.data());
+    s.i = const_cast<SuiteSparse_long*>(row.data());
     s.x = const_cast<double*>(a.value.data());
     s.stype = 1;
-    s.itype = CHOLMOD_INT;
+    s.itype = CHOLMOD_LONG;
     s.xtype = CHOLMOD_REAL;
     s.dtype = CHOLMOD_DOUBLE;
     s.sorted = 1;
@@ -56,22 +64,24 @@ SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {}
 SparseCholesky::~SparseCholesky() = default;
 
 void SparseCholesky::analyse(const SymmetricCsc& a) {
-  cholmod_free_factor(&impl_->factor, &impl_->common);
-  cholmod_sparse s = Impl::view(a);
-  impl_->factor = cholmod_analyze(&s, &impl_->common);
-  impl_->check("analyse");
+  cholmod_l_free_factor(&impl_->factor, &impl_->common);
   impl_->size = a.size;
+  impl_->column_start.assign(a.column_start.begin(), a.column_start.end());
+  impl_->row.assign(a.row.begin(), a.row.end());
+  cholmod_sparse s = impl_->view(a);
+  impl_->factor = cholmod_l_analyze(&s, &impl_->common);
+  impl_->check("analyse");
 }
 
 void SparseCholesky::factorise(const SymmetricCsc& a) {
-  cholmod_sparse s = Impl::view(a);
-  cholmod_factorize(&s, impl_->factor, &impl_->common);
+  cholmod_sparse s = impl_->view(a);
+  cholmod_l_factorize(&s, impl_->factor, &impl_->common);
   impl_->check("factorise");
   // CHOLMOD's minor is the column of the factor's (permuted) order; report the matrix's.
   if (impl_->common.status == CHOLMOD_NOT_POSDEF) {
     const auto minor = static_cast<std::size_t>(impl_->factor->minor);
-    const int* perm = static_cast<const int*>(impl_->factor->Perm);
-    throw NotPositiveDefinite(perm ? perm[minor] : static_cast<int>(minor));
+    const auto* perm = static_cast<const SuiteSparse_long*>(impl_->factor->Perm);
+    throw NotPositiveDefinite(static_cast<int>(perm ? perm[minor] : static_cast<long>(minor)));
   }
 }
 
@@ -82,11 +92,11 @@ void SparseCholesky::solve(std::span<const double> b, std::span<double> x) const
   rhs.x = const_cast<double*>(b.data());
   rhs.xtype = CHOLMOD_REAL;
   rhs.dtype = CHOLMOD_DOUBLE;
-  cholmod_dense* sol = cholmod_solve(CHOLMOD_A, impl_->factor, &rhs, &impl_->common);
+  cholmod_dense* sol = cholmod_l_solve(CHOLMOD_A, impl_->factor, &rhs, &impl_->common);
   impl_->check("solve");
   const double* v = static_cast<const double*>(sol->x);
   std::copy(v, v + impl_->size, x.begin());
-  cholmod_free_dense(&sol, &impl_->common);
+  cholmod_l_free_dense(&sol, &impl_->common);
 }
 
 CholeskyStatistics SparseCholesky::statistics() const {

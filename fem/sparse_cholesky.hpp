@@ -1,6 +1,7 @@
 // Sparse Cholesky factorisation of a symmetric positive definite matrix by CHOLMOD (SuiteSparse,
 // supernodal; Chen, Davis, Hager & Rajamanickam, ACM TOMS 35 (2008) 22): the fill-reducing
-// ordering and symbolic factorisation once per pattern, the numeric factorisation per matrix.
+// ordering and symbolic factorisation once per pattern, the numeric factorisation per matrix,
+// through CHOLMOD's long-integer interface (a factor may hold 2^31 values or more).
 #pragma once
 
 #include <cstddef>
@@ -51,7 +52,8 @@ class SparseCholesky {
   // The ordering and symbolic factorisation of a's pattern; factorise() reuses it for every
   // matrix of that pattern (the values may differ).
   void analyse(const SymmetricCsc& a);
-  // L L^T = a (a of the analysed pattern). Throws NotPositiveDefinite.
+  // L L^T = a (a of the analysed pattern: std::invalid_argument otherwise). Throws
+  // NotPositiveDefinite.
   void factorise(const SymmetricCsc& a);
   // x = a^-1 b with the last factorisation (x and b of a's size; they may not overlap).
   void solve(std::span<const double> b, std::span<double> x) const;
