@@ -314,9 +314,10 @@ void TimeLoop::run_relaxation(const PhaseSpec& phase) {
         dt_ = model_.stable_time_step();
         record(dt_);
         if (options_.progress) {
+          // Against the phase's end: the relaxation stops there at the latest.
           const Energies e = energies();
-          options_.progress({model_.step_count(), model_.time(), dt_, scene_.run.end_time,
-                             elapsed(), energy_balance_error(e, sum_.initial, max_kinetic_)});
+          options_.progress({model_.step_count(), model_.time(), dt_, phase.end_time, elapsed(),
+                             energy_balance_error(e, sum_.initial, max_kinetic_)});
         }
         if (options_.phase_log)
           *options_.phase_log << "relaxation: step " << c.steps << ", t " << c.time
