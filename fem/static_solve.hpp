@@ -143,8 +143,9 @@ struct StaticResult {
   std::vector<double> line_stress;  // per line (truss), axial
   std::vector<double> line_plastic_strain;
   std::vector<core::Vec3> wall_force;  // per wall, its resultant force on the nodes
-  // Per prescribed dof (problem.prescribed's order), f_int - f_ext there: at the start (the
-  // initial state's, against the full loads) and at this state (the load factor's loads).
+  // Per prescribed dof (problem.prescribed's order), the support's force on the body there,
+  // f_int - f_ext: at the start (the initial state's, against the full loads) and at this state
+  // (the load factor's loads).
   std::vector<double> start_reaction, reaction;
   StaticWork work;
   std::vector<NewtonIteration> iterations;
