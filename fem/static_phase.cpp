@@ -136,7 +136,8 @@ void build_problem(const FeSolver& solver, const core::Scene& scene, const core:
 }  // namespace
 
 ImplicitPhaseOutcome run_static_phase(FeSolver& solver, const core::Scene& scene,
-                                      const core::PhaseSpec& phase, std::ostream* log) {
+                                      const core::PhaseSpec& phase, std::ostream* log,
+                                      std::vector<NewtonIteration>& failed) {
   const double start = solver.time();
   PhaseProblem built;
   build_problem(solver, scene, phase, phase.end_time, built);
@@ -158,6 +159,7 @@ ImplicitPhaseOutcome run_static_phase(FeSolver& solver, const core::Scene& scene
     // The last converged load step's state is the model's, so that the frame the run keeps
     // shows where the equilibrium was lost.
     const StaticResult& last = e.details().last_converged;
+    failed = last.iterations;
     const double time = start + last.load_factor * (phase.end_time - start);
     solver.take_static_state(map, last, time);
     throw core::SimulationError(
@@ -191,7 +193,8 @@ ImplicitPhaseOutcome run_static_phase(FeSolver& solver, const core::Scene& scene
 }
 
 ImplicitPhaseOutcome run_implicit_phase(FeSolver& solver, const core::Scene& scene,
-                                        const core::PhaseSpec& phase, std::ostream* log) {
+                                        const core::PhaseSpec& phase, std::ostream* log,
+                                        std::vector<NewtonIteration>& failed) {
   PhaseProblem built;
   build_problem(solver, scene, phase, solver.time(), built);
   const StaticProblem& problem = built.problem;
@@ -263,9 +266,11 @@ ImplicitPhaseOutcome run_implicit_phase(FeSolver& solver, const core::Scene& sce
   const double kinetic_after = solver.kinetic_energy(map.nodes);
   const double work = result.states.empty() ? 0.0 : result.states.back().external_work;
   solver.add_external_work(work - stored);
-  if (failure)
+  if (failure) {
+    failed = std::move(result.iterations);
     throw core::SimulationError(0, end_time, "the implicit phase", "equilibrium",
                                 *failure + " as the model's: the run's last frame");
+  }
   ImplicitPhaseOutcome out;
   out.dissipated = work - stored - (kinetic_after - kinetic_before);
   out.time_step = settings.time_step;
@@ -411,20 +416,36 @@ double FeModel::run_implicit_phase(const core::PhaseSpec& phase, std::ostream* l
       rows.rows.emplace_back(buf);
     }
   };
+  // A solve that fails leaves its iterations (the failing step's too) in `failed`, written
+  // with the events the run keeps.
+  std::vector<NewtonIteration> failed;
   if (phase.kind == core::PhaseKind::static_load) {
     core::EventLog rows{"static_phase.csv",
                         "phase,load_step,iteration,residual,force_scale,energy,step_length",
                         {}};
-    const ImplicitPhaseOutcome out = fem::run_static_phase(solver_, scene_, phase, log);
-    write(rows, out.iterations);
-    phase_logs_.push_back(std::move(rows));
-    return out.dissipated;
+    try {
+      const ImplicitPhaseOutcome out = fem::run_static_phase(solver_, scene_, phase, log, failed);
+      write(rows, out.iterations);
+      phase_logs_.push_back(std::move(rows));
+      return out.dissipated;
+    } catch (const core::SimulationError&) {
+      write(rows, failed);
+      phase_logs_.push_back(std::move(rows));
+      throw;
+    }
   }
   const double start = solver_.time();
-  const ImplicitPhaseOutcome out = fem::run_implicit_phase(solver_, scene_, phase, log);
   core::EventLog rows{"implicit_phase.csv",
                       "phase,time_step,iteration,residual,force_scale,energy,step_length",
                       {}};
+  ImplicitPhaseOutcome out;
+  try {
+    out = fem::run_implicit_phase(solver_, scene_, phase, log, failed);
+  } catch (const core::SimulationError&) {
+    write(rows, failed);
+    phase_logs_.push_back(std::move(rows));
+    throw;
+  }
   write(rows, out.iterations);
   core::EventLog energies{
       "implicit_energies.csv", "time,kinetic,strain,external_work,plastic_and_dissipated", {}};

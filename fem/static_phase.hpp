@@ -47,9 +47,11 @@ struct ImplicitPhaseOutcome {
 // printed to `log` when set. Throws core::InputError (at the phase's entry) for what the solve
 // cannot take, and core::SimulationError when the equilibrium cannot be found (a body its
 // constraints leave free, named with its free modes; Newton that does not converge, with the
-// load step, the iteration and the residual).
+// load step, the iteration and the residual), after which `failed` holds the Newton iterations
+// of the solve, the failing step's included.
 ImplicitPhaseOutcome run_static_phase(FeSolver& solver, const core::Scene& scene,
-                                      const core::PhaseSpec& phase, std::ostream* log);
+                                      const core::PhaseSpec& phase, std::ostream* log,
+                                      std::vector<NewtonIteration>& failed);
 
 // An implicit phase (kind "implicit": Newmark's trapezoidal rule, or HHT-alpha with the
 // phase's alpha) on the same problem, from the solver's state at the phase's start (as the
@@ -58,8 +60,10 @@ ImplicitPhaseOutcome run_static_phase(FeSolver& solver, const core::Scene& scene
 // components move by their velocities' travel. The state at the end is handed to the solver as
 // the static phase's is, with the velocities; the external work is what the loads and the
 // constraints did over the phase.
-// Throws as run_static_phase.
+// Throws as run_static_phase (a time step that does not converge leaves the state after the last
+// converged one as the solver's, and its iterations in `failed`).
 ImplicitPhaseOutcome run_implicit_phase(FeSolver& solver, const core::Scene& scene,
-                                        const core::PhaseSpec& phase, std::ostream* log);
+                                        const core::PhaseSpec& phase, std::ostream* log,
+                                        std::vector<NewtonIteration>& failed);
 
 }  // namespace afemp::fem

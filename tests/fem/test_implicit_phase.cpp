@@ -333,6 +333,11 @@ TEST(ImplicitPhase, StepThatDoesNotConvergeStopsWithItAndKeepsTheLastConvergedSt
     EXPECT_NEAR(sim.time(), 0.0005 * (failed - 1), 1e-12);
     EXPECT_LT(top_displacement(sim), 0.0);
     for (double p : sim.hexahedra().plastic_strain) EXPECT_EQ(p, 0.0);
+    // The phase's iterations, the failing step's included, are in its file.
+    std::ifstream in(dir / "implicit_phase.csv");
+    const std::string rows(std::istreambuf_iterator<char>(in), {});
+    EXPECT_NE(rows.find("\n1," + std::to_string(failed) + ",0,"), std::string::npos) << rows.size();
+    EXPECT_NE(rows.find("\n1," + std::to_string(failed - 1) + ",1,"), std::string::npos);
   }
   EXPECT_TRUE(std::filesystem::exists(dir / "fields.xmf"));
 }
