@@ -65,8 +65,9 @@ class TimeLoop {
   TimeLoop& operator=(const TimeLoop&) = delete;
   // Whether the run has reached scene.run.end_time, max_steps or [run] terminate.
   bool finished() const;
-  // One step at the stable step, cut to land on `until` (at most the end time). A scene's
-  // static or relaxation phase is the first step, whole whatever `until` says: the model then
+  // One step at the stable step, cut to land on `until` (at most the end time) and on the start
+  // of the next static or implicit phase. A scene's static, implicit or relaxation phase is one
+  // step when the clock stands at its start, whole whatever `until` says: the model then
   // stands at the phase's end.
   void step(double until);
   // Steps until finished(), calling after_step after each step, or until

@@ -55,9 +55,10 @@ struct Energies {
   double outflow = 0.0;
   double outflow_mass = 0.0;
   /// The kinetic energy a relaxation phase's damping took out of the motion (less what it gave
-  /// back setting the held bodies moving; core/time_loop.cpp, run_relaxation), or what an
-  /// implicit phase's scheme dissipated (fem/static_phase.hpp, ImplicitPhaseOutcome). Part of
-  /// total().
+  /// back setting the held bodies moving; core/time_loop.cpp, run_relaxation), what an
+  /// implicit phase's scheme dissipated, and what a static phase after another took out (the
+  /// motion it stops and what its path to the equilibrium lost; fem/static_phase.hpp,
+  /// ImplicitPhaseOutcome). Part of total().
   double damped = 0.0;
   Vec3 outflow_momentum{};
   std::vector<BodySums> bodies{};

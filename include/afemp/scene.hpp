@@ -481,14 +481,15 @@ enum class PhaseKind { static_load, implicit_dynamics, relaxation, explicit_dyna
 const char* to_string(PhaseKind k);
 
 /// One [[phases]] entry. The phases run in order on one clock: each from the end of the one
-/// before (the first from 0) to its end_time; the last ends at [run] end_time. Today a scene
-/// has at most one static or relaxation phase, first, then the explicit phase
-/// (core/phases.cpp says why).
+/// before (the first from 0) to its end_time; the last ends at [run] end_time. Static and
+/// implicit phases may come anywhere, each from the state the phase before leaves; a
+/// relaxation phase comes first only (core/phases.cpp says why).
 struct PhaseSpec {
   PhaseKind kind = PhaseKind::explicit_dynamics;
   double end_time = 0.0;  ///< the last phase may leave it at 0: [run] end_time
-  /// static: the loads reach their full value in load_steps equal steps, each solved by Newton
-  /// to |r| <= tolerance x the force scale in at most max_iterations iterations.
+  /// static: the loads reach their full value in load_steps equal steps (after another phase,
+  /// from the state's own internal forces), each solved by Newton to |r| <= tolerance x the
+  /// force scale in at most max_iterations iterations (implicit: per time step).
   int load_steps = 10;
   int max_iterations = 25;
   /// static and implicit: the residual's (default 1e-8); relaxation: DRTOL, the kinetic
