@@ -56,16 +56,17 @@ double phase_start(const Scene& scene, std::size_t k) {
   return k == 0 ? 0.0 : phase_end(scene, k - 1);
 }
 
-const PhaseSpec* phase_due(const Scene& scene, double t, std::size_t* index) {
+const PhaseSpec* phase_due(const Scene& scene, double t) {
   for (std::size_t k = 0; k < scene.phases.size(); ++k) {
     if (scene.phases[k].kind == PhaseKind::explicit_dynamics) continue;
     const double start = phase_start(scene, k), end = phase_end(scene, k);
-    if (std::abs(t - start) <= 1e-12 * end && t < end) {
-      if (index) *index = k;
-      return &scene.phases[k];
-    }
+    if (std::abs(t - start) <= 1e-12 * end && t < end) return &scene.phases[k];
   }
   return nullptr;
+}
+
+int implicit_steps(const PhaseSpec& phase, double span) {
+  return static_cast<int>(std::ceil(span / phase.time_step * (1.0 - 1e-12)));
 }
 
 double next_phase_start(const Scene& scene, double t) {
@@ -316,8 +317,8 @@ std::string describe_phases(const Scene& scene) {
       (in ? solved : held) += scene.bodies[b].name;
     }
     if (p.kind == PhaseKind::implicit_dynamics) {
-      const double span = phase_end(scene, k) - (k > 0 ? phase_end(scene, k - 1) : 0.0);
-      const long steps = static_cast<long>(std::ceil(span / p.time_step * (1.0 - 1e-12)));
+      const double span = phase_end(scene, k) - phase_start(scene, k);
+      const int steps = implicit_steps(p, span);
       out += "the implicit dynamics of " + solved + " (" +
              (p.alpha == 0.0 ? std::string("Newmark's trapezoidal rule, no numerical damping")
                              : "HHT-alpha, alpha " + number(p.alpha)) +
@@ -360,7 +361,7 @@ std::string describe_phases(const Scene& scene) {
 }
 
 double Model::run_implicit_phase(const PhaseSpec& phase, std::ostream* /*log*/) {
-  throw InputError(phase.where, "phases[0]",
+  throw InputError(phase.where, "phases",
                    std::string("a ") + to_string(phase.kind) +
                        " phase solves mesh bodies, and this model has none (particles are held "
                        "in such a phase)");

@@ -15,8 +15,12 @@ namespace afemp::core {
 double phase_start(const Scene& scene, std::size_t k);
 
 // The static, implicit or relaxation phase that starts at time t (the run has reached it and
-// not yet run it: each ends after it starts), or nullptr; its index in *index when given.
-const PhaseSpec* phase_due(const Scene& scene, double t, std::size_t* index = nullptr);
+// not yet run it: each ends after it starts), or nullptr.
+const PhaseSpec* phase_due(const Scene& scene, double t);
+
+// An implicit phase's time steps over `span`: the fewest equal steps no longer than its
+// time_step.
+int implicit_steps(const PhaseSpec& phase, double span);
 
 // When the next static or implicit phase after time t starts (the explicit steps stop there),
 // or +infinity.

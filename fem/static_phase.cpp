@@ -4,7 +4,6 @@
 // kinetic_energy and set_velocities are defined here, beside what they take).
 #include "fem/static_phase.hpp"
 
-#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <stdexcept>
@@ -133,6 +132,17 @@ void build_problem(const FeSolver& solver, const core::Scene& scene, const core:
   problem.mesh = &mesh;
 }
 
+// Newton's settings of the phase: its iterations and its tolerance on the residual, the energy
+// criterion's on |du . r|, which falls as the residual's square.
+NewtonSettings newton_settings(const core::PhaseSpec& phase, std::ostream* log) {
+  NewtonSettings settings;
+  settings.max_iterations = phase.max_iterations;
+  settings.residual_tolerance = core::phase_tolerance(phase);
+  settings.energy_tolerance = settings.residual_tolerance * settings.residual_tolerance;
+  settings.log = log;
+  return settings;
+}
+
 }  // namespace
 
 ImplicitPhaseOutcome run_static_phase(FeSolver& solver, const core::Scene& scene,
@@ -143,13 +153,8 @@ ImplicitPhaseOutcome run_static_phase(FeSolver& solver, const core::Scene& scene
   build_problem(solver, scene, phase, phase.end_time, built);
   const StaticProblem& problem = built.problem;
   const StaticPhaseMap& map = built.map;
-  NewtonSettings settings;
+  NewtonSettings settings = newton_settings(phase, log);
   settings.load_steps = phase.load_steps;
-  settings.max_iterations = phase.max_iterations;
-  settings.residual_tolerance = core::phase_tolerance(phase);
-  // |du . r| falls as the square of the residual: the same tolerance on the residual's scale.
-  settings.energy_tolerance = settings.residual_tolerance * settings.residual_tolerance;
-  settings.log = log;
   StaticResult result;
   try {
     result = solve_static(problem, settings);
@@ -202,14 +207,10 @@ ImplicitPhaseOutcome run_implicit_phase(FeSolver& solver, const core::Scene& sce
   const double start = solver.time();
   const double span = phase.end_time - start;
   NewmarkSettings settings;
-  settings.steps = static_cast<int>(std::ceil(span / phase.time_step * (1.0 - 1e-12)));
+  settings.steps = core::implicit_steps(phase, span);
   settings.time_step = span / settings.steps;
   settings.alpha = phase.alpha;
-  settings.newton.max_iterations = phase.max_iterations;
-  settings.newton.residual_tolerance = core::phase_tolerance(phase);
-  settings.newton.energy_tolerance =
-      settings.newton.residual_tolerance * settings.newton.residual_tolerance;
-  settings.newton.log = log;
+  settings.newton = newton_settings(phase, log);
   // The phase starts from the solver's velocities (the bodies' initial velocities); the
   // constraints' components move by their velocities' travel, starting at their rate over the
   // first step.
@@ -273,7 +274,6 @@ ImplicitPhaseOutcome run_implicit_phase(FeSolver& solver, const core::Scene& sce
   }
   ImplicitPhaseOutcome out;
   out.dissipated = work - stored - (kinetic_after - kinetic_before);
-  out.time_step = settings.time_step;
   out.iterations = std::move(result.iterations);
   out.states = std::move(result.states);
   return out;

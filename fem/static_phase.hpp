@@ -29,11 +29,11 @@ struct StaticPhaseMap {
 
 // What a static or implicit phase reports.
 struct ImplicitPhaseOutcome {
-  double time_step = 0.0;  // implicit
   // Implicit: the work done on the solved bodies that neither their stresses (elastic and
   // plastic work) nor their motion (the explicit solver's lumped kinetic energy) hold: HHT's
   // numerical damping, the nodes that stopped on walls, and the consistent mass's kinetic
-  // energy against the lumped one's at the end. Static: the kinetic energy taken out.
+  // energy against the lumped one's at the end. Static after another phase: the kinetic energy
+  // taken out and what the loads' work does not leave in the stresses (0 for a first phase).
   double dissipated = 0.0;
   std::vector<NewtonIteration> iterations;  // load_step is the time step
   std::vector<NewmarkState> states;         // times from the phase's start

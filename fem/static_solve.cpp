@@ -308,15 +308,11 @@ struct Body {
   // Takes the problem's initial state as the converged one (Body's constructor).
   void start_from_initial_state(const char* who);
   int points(std::size_t e) const { return one_point[e] < 0 ? 8 : 1; }
+  // The points' states last evaluated, or with converged_only the last committed ones.
   void write_states(std::vector<std::array<core::SymTensor, 8>>& stress,
                     std::vector<std::array<double, 8>>& plastic_strain,
-                    std::vector<double>& line_stress,
-                    std::vector<double>& line_plastic_strain) const;
-  // The same of the last committed (converged) states.
-  void write_converged_states(std::vector<std::array<core::SymTensor, 8>>& stress,
-                              std::vector<std::array<double, 8>>& plastic_strain,
-                              std::vector<double>& line_stress,
-                              std::vector<double>& line_plastic_strain) const;
+                    std::vector<double>& line_stress, std::vector<double>& line_plastic_strain,
+                    bool converged_only = false) const;
   // The element whose plastic strain the current states raised most above the converged ones.
   YieldingElement most_yielding() const;
   // The work per unit volume of each point and line, and each one-point element's stored
@@ -649,43 +645,25 @@ void Body::write_work(const std::vector<core::Vec3>& u, StaticWork& out) const {
   out.lines = line_work;
 }
 
-void Body::write_converged_states(std::vector<std::array<core::SymTensor, 8>>& stress,
-                                  std::vector<std::array<double, 8>>& plastic_strain,
-                                  std::vector<double>& line_stress,
-                                  std::vector<double>& line_plastic_strain) const {
-  stress.resize(elements);
-  plastic_strain.resize(elements);
-  for (std::size_t e = 0; e < elements; ++e)
-    for (int g = 0; g < 8; ++g) {
-      const int p = points(e) == 1 ? 0 : g;
-      stress[e][g] = committed_stress[e][p];
-      plastic_strain[e][g] = converged[e][p].plastic_strain;
-    }
-  line_stress.resize(mesh.lines.size());
-  line_plastic_strain.resize(mesh.lines.size());
-  for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
-    line_stress[l] = line_converged[l].stress;
-    line_plastic_strain[l] = line_converged[l].plastic_strain;
-  }
-}
-
 void Body::write_states(std::vector<std::array<core::SymTensor, 8>>& stress,
                         std::vector<std::array<double, 8>>& plastic_strain,
-                        std::vector<double>& line_stress,
-                        std::vector<double>& line_plastic_strain) const {
+                        std::vector<double>& line_stress, std::vector<double>& line_plastic_strain,
+                        bool converged_only) const {
   stress.resize(elements);
   plastic_strain.resize(elements);
   for (std::size_t e = 0; e < elements; ++e)
     for (int g = 0; g < 8; ++g) {
       const int p = points(e) == 1 ? 0 : g;
-      stress[e][g] = current[e][p].stress;
-      plastic_strain[e][g] = current[e][p].plastic_strain;
+      stress[e][g] = converged_only ? committed_stress[e][p] : current[e][p].stress;
+      plastic_strain[e][g] =
+          converged_only ? converged[e][p].plastic_strain : current[e][p].plastic_strain;
     }
   line_stress.resize(mesh.lines.size());
   line_plastic_strain.resize(mesh.lines.size());
   for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
-    line_stress[l] = line_current[l].stress;
-    line_plastic_strain[l] = line_current[l].plastic_strain;
+    line_stress[l] = converged_only ? line_converged[l].stress : line_current[l].stress;
+    line_plastic_strain[l] =
+        converged_only ? line_converged[l].plastic_strain : line_current[l].plastic_strain;
   }
 }
 
@@ -1138,8 +1116,8 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
       // points' converged states.
       out.displacement = u_before;
       out.velocity = v;
-      body.write_converged_states(out.stress, out.plastic_strain, out.line_stress,
-                                  out.line_plastic_strain);
+      body.write_states(out.stress, out.plastic_strain, out.line_stress, out.line_plastic_strain,
+                        true);
       body.write_work(u_before, out.work);
       const std::string what =
           step_failure("newmark solve", "time step", step, settings.steps, f,

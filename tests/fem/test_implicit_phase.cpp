@@ -23,37 +23,20 @@
 #include "afemp/run_directory.hpp"
 #include "afemp/simulation.hpp"
 #include "core/scene.hpp"
+#include "phase_test_support.hpp"
 #include "scene_errors.hpp"
 #include "scratch_dir.hpp"
 
 namespace afemp {
 namespace {
 
-constexpr double kRho = 7.85e-3, kE = 2.0e5, kG = 100.0, kH = 100.0;
+constexpr double kRho = test::kColumnDensity, kE = test::kColumnModulus, kG = test::kColumnGravity,
+                 kH = test::kColumnHeight;
+using test::top_displacement;
 
-// The column [0, 10]^2 x [0, 100] mm of 2 x 2 x 20 fully integrated hexahedra, its base held,
-// under g = 100 mm/ms^2 along -z from t = 0; `phases` the [[phases]] text.
+// The column (phase_test_support.hpp) of fully integrated hexahedra, under gravity from t = 0.
 std::string column(const std::string& phases, double end_time) {
-  return "[run]\nend_time = " + std::to_string(end_time) +
-         "\ngravity = [0, 0, -100]\nhistory_every = 1\n"
-         "[materials.steel]\ndensity = 7.85e-3\nE = 2.0e5\nnu = 0.3\n"
-         "[[bodies]]\nname = \"column\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-         "element = \"full\"\n"
-         "shape = { box = { min = [0, 0, 0], max = [10, 10, 100] } }\n"
-         "mesh = { divisions = [2, 2, 20] }\n"
-         "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }\n"
-         "fixed = [\"x\", \"y\", \"z\"]\n" +
-         phases;
-}
-
-// Mean z displacement of the nodes at the top (z = H; they move less than 1 mm).
-double top_displacement(Simulation& sim) {
-  const NodeFields n = sim.nodes();
-  double sum = 0.0;
-  int count = 0;
-  for (std::size_t i = 0; i < n.size(); ++i)
-    if (n.position[i].z > kH - 1.0) sum += n.position[i].z - kH, ++count;
-  return sum / count;
+  return test::column_scene("element = \"full\"", phases, end_time);
 }
 
 // The half period of the column's modes, 2H/c, and its static top displacement.

@@ -20,30 +20,22 @@
 #include "afemp/run_directory.hpp"
 #include "afemp/simulation.hpp"
 #include "core/scene.hpp"
+#include "phase_test_support.hpp"
 #include "scratch_dir.hpp"
 
 namespace afemp {
 namespace {
 
-constexpr double kRho = 7.85e-3, kE = 2.0e5, kG = 100.0, kH = 100.0;
+constexpr double kRho = test::kColumnDensity, kE = test::kColumnModulus, kG = test::kColumnGravity,
+                 kH = test::kColumnHeight;
 // The half period of the column's modes, 2H/c.
 const double kHalfPeriod = 2.0 * kH / std::sqrt(kE / kRho);
+using test::max_speed;
+using test::top_displacement;
 
-// The column [0, 10]^2 x [0, 100] mm of 2 x 2 x 20 fully integrated hexahedra, its base held,
-// under g = 100 mm/ms^2 along -z from t = 0; `phases` the [[phases]] text.
+// The column (phase_test_support.hpp) of fully integrated hexahedra, under gravity from t = 0.
 std::string column(const std::string& phases, double end_time, const std::string& run = "") {
-  char head[160];
-  std::snprintf(head, sizeof head, "[run]\nend_time = %.17g\ngravity = [0, 0, -100]\n", end_time);
-  return head + run +
-         "history_every = 1\n"
-         "[materials.steel]\ndensity = 7.85e-3\nE = 2.0e5\nnu = 0.3\n"
-         "[[bodies]]\nname = \"column\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n"
-         "element = \"full\"\n"
-         "shape = { box = { min = [0, 0, 0], max = [10, 10, 100] } }\n"
-         "mesh = { divisions = [2, 2, 20] }\n"
-         "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }\n"
-         "fixed = [\"x\", \"y\", \"z\"]\n" +
-         phases;
+  return test::column_scene("element = \"full\"", phases, end_time, run);
 }
 
 std::string phase(const char* kind, double end, const std::string& extra = "") {
@@ -53,23 +45,6 @@ std::string phase(const char* kind, double end, const std::string& extra = "") {
   else
     std::snprintf(text, sizeof text, "[[phases]]\nkind = \"%s\"\n", kind);
   return text + extra;
-}
-
-// Mean z displacement of the nodes at the top (z = H; they move less than 1 mm).
-double top_displacement(Simulation& sim) {
-  const NodeFields n = sim.nodes();
-  double sum = 0.0;
-  int count = 0;
-  for (std::size_t i = 0; i < n.size(); ++i)
-    if (n.position[i].z > kH - 1.0) sum += n.position[i].z - kH, ++count;
-  return sum / count;
-}
-
-double max_speed(Simulation& sim) {
-  const NodeFields n = sim.nodes();
-  double v = 0.0;
-  for (std::size_t i = 0; i < n.size(); ++i) v = std::max(v, norm(n.velocity[i]));
-  return v;
 }
 
 // The column swings under gravity applied at once (explicit, to 0.7 of its half period, moving

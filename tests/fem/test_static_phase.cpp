@@ -17,51 +17,25 @@
 #include "afemp/errors.hpp"
 #include "afemp/simulation.hpp"
 #include "core/scene.hpp"
+#include "phase_test_support.hpp"
 #include "scene_errors.hpp"
 #include "scratch_dir.hpp"
 
 namespace afemp {
 namespace {
 
-constexpr double kRho = 7.85e-3, kE = 2.0e5, kG = 100.0, kH = 100.0, kA = 100.0;
+constexpr double kRho = test::kColumnDensity, kE = test::kColumnModulus, kG = test::kColumnGravity,
+                 kH = test::kColumnHeight, kA = test::kColumnArea;
+using test::max_speed;
+using test::top_displacement;
 
-// The column [0, 10]^2 x [0, 100] mm of 2 x 2 x 20 hexahedra (`element` and `hourglass` lines),
-// its base held, under g = 100 mm/ms^2 along -z; `phases` the [[phases]] text.
+// The column (phase_test_support.hpp) with `element` and `hourglass` lines.
 std::string column(const std::string& element, const std::string& phases, double end_time = 1.1) {
-  return "[run]\nend_time = " + std::to_string(end_time) +
-         "\ngravity = [0, 0, -100]\nhistory_every = 1\n"
-         "[materials.steel]\ndensity = 7.85e-3\nE = 2.0e5\nnu = 0.3\n"
-         "[[bodies]]\nname = \"column\"\ndiscretisation = \"hexahedra\"\nmaterial = \"steel\"\n" +
-         element +
-         "\nshape = { box = { min = [0, 0, 0], max = [10, 10, 100] } }\n"
-         "mesh = { divisions = [2, 2, 20] }\n"
-         "[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }\n"
-         "fixed = [\"x\", \"y\", \"z\"]\n" +
-         phases;
+  return test::column_scene(element, phases, end_time);
 }
 
 const std::string kStaticThenExplicit =
     "[[phases]]\nkind = \"static\"\nend_time = 1.0\n[[phases]]\nkind = \"explicit\"\n";
-
-// Mean z displacement of the nodes at the top (z = H).
-double top_displacement(Simulation& sim) {
-  const NodeFields n = sim.nodes();
-  double sum = 0.0;
-  int count = 0;
-  // The top nodes are the highest ones: the column's nodes start on a 5 x 5 x 21 lattice.
-  double highest = -1e300;
-  for (std::size_t i = 0; i < n.size(); ++i) highest = std::max(highest, n.position[i].z);
-  for (std::size_t i = 0; i < n.size(); ++i)
-    if (n.position[i].z > highest - 1.0) sum += n.position[i].z - kH, ++count;
-  return sum / count;
-}
-
-double max_speed(Simulation& sim) {
-  const NodeFields n = sim.nodes();
-  double v = 0.0;
-  for (std::size_t i = 0; i < n.size(); ++i) v = std::max(v, norm(n.velocity[i]));
-  return v;
-}
 
 struct Form {
   const char* name;
