@@ -116,9 +116,33 @@ ParticleSurfaceContacts::FaceBins ParticleSurfaceContacts::bin_faces(Pair& pair,
       }
     reach[f] = 0.5 * std::max(core::norm(q[2] - q[0]), core::norm(q[3] - q[1]));
     const double grow = reach[f] + cell;  // a particle's half width is at most about a cell
+    Vec3 grown{grow, grow, grow};
+    // A flat parallelogram (a rigid body's or an undeformed mesh's face) maps linearly: the
+    // projection of a point that it holds falls in the face stretched by the edge tolerance,
+    // and the point lies along the constant normal from there, at most the reach and a half
+    // width away. Its box is that stretched face's, grown along each axis only by the normal's
+    // part there (a support under a slab tests the particles above it, not those a face's size
+    // beside it). A twisted face keeps the box grown every way.
+    const Vec3 twist = q[0] - q[1] + q[2] - q[3];
+    const double size = 2.0 * reach[f];
+    const double area = core::norm(pair.outward[f]);
+    if (core::norm(twist) <= 1e-9 * size && area > 0.0) {
+      const Vec3 centre = 0.25 * (q[0] + q[1] + q[2] + q[3]);
+      const Vec3 normal = (1.0 / area) * pair.outward[f];
+      const double slack = 1e-6 * size;  // round-off of the projection's two steps
+      constexpr double stretch = 1.0 + kEdgeTolerance;
+      for (int d = 0; d < 3; ++d) {
+        a[d] = b[d] = centre[d];
+        for (const Vec3& x : q) {
+          a[d] = std::min(a[d], centre[d] + stretch * (x[d] - centre[d]));
+          b[d] = std::max(b[d], centre[d] + stretch * (x[d] - centre[d]));
+        }
+        grown[d] = std::min(grow, grow * std::abs(normal[d]) + slack);
+      }
+    }
     for (int d = 0; d < 3; ++d) {
-      a[d] -= grow;
-      b[d] += grow;
+      a[d] -= grown[d];
+      b[d] += grown[d];
       lo[d] = std::min(lo[d], a[d]);
       hi[d] = std::max(hi[d], b[d]);
       largest = std::max(largest, b[d] - a[d]);
