@@ -36,6 +36,10 @@ bool solvable_default(const BodySpec& b) {
   return b.discretisation != Discretisation::particles && !b.rigid && b.bonded_to < 0;
 }
 
+bool listed(const std::vector<int>& bodies, int b) {
+  return std::find(bodies.begin(), bodies.end(), b) != bodies.end();
+}
+
 }  // namespace
 
 const char* to_string(PhaseKind k) {
@@ -115,10 +119,15 @@ std::vector<int> moving_bodies(const Scene& scene) {
 }
 
 std::vector<int> static_phase_bodies(const Scene& scene, const PhaseSpec& phase) {
-  if (!phase.bodies.empty()) return phase.bodies;
-  std::vector<int> out;
+  std::vector<int> out = phase.bodies;
+  if (out.empty())
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+      if (solvable_default(scene.bodies[b])) out.push_back(static_cast<int>(b));
+  // Trusses tied into a body of hexahedra the phase solves are solved with it.
   for (std::size_t b = 0; b < scene.bodies.size(); ++b)
-    if (solvable_default(scene.bodies[b])) out.push_back(static_cast<int>(b));
+    if (tied_into_hexahedra(scene, scene.bodies[b]) && listed(out, scene.bodies[b].bonded_to) &&
+        !listed(out, static_cast<int>(b)))
+      out.push_back(static_cast<int>(b));
   return out;
 }
 
@@ -192,10 +201,15 @@ void check_phases(const Scene& scene, const PhaseFailure& fail) {
                  "alone), a relaxation phase any body");
       if (body.rigid)
         fail(s->where, key + ".bodies", name + " is rigid; " + a_phase + " holds rigid bodies");
-      if (body.bonded_to >= 0)
+      if (bonded_to_particles(scene, body))
         fail(s->where, key + ".bodies",
              name + " is bonded to particles, which " + a_phase +
                  " holds: its nodes cannot move without them");
+      if (tied_into_hexahedra(scene, body) && !listed(bodies, body.bonded_to))
+        fail(s->where, key + ".bodies",
+             name + " is tied into \"" +
+                 scene.bodies[static_cast<std::size_t>(body.bonded_to)].name + "\", which " +
+                 a_phase + " does not solve: list that body (its tied trusses come with it)");
       if (body.discretisation == Discretisation::hexahedra &&
           body.element == HexFormulation::one_point &&
           body.hourglass.form == HourglassForm::viscous)

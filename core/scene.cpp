@@ -156,9 +156,21 @@ bool has_mesh(const Scene& scene) {
   return false;
 }
 
+bool bonded_to_particles(const Scene& scene, const BodySpec& body) {
+  return body.bonded_to >= 0 &&
+         scene.bodies[static_cast<std::size_t>(body.bonded_to)].discretisation ==
+             Discretisation::particles;
+}
+
+bool tied_into_hexahedra(const Scene& scene, const BodySpec& body) {
+  return body.bonded_to >= 0 &&
+         scene.bodies[static_cast<std::size_t>(body.bonded_to)].discretisation ==
+             Discretisation::hexahedra;
+}
+
 bool has_grid_coupling(const Scene& scene) {
   for (const BodySpec& b : scene.bodies)
-    if (b.bonded_to >= 0 || b.conversion) return true;
+    if (bonded_to_particles(scene, b) || b.conversion) return true;
   for (const ContactSpec& c : scene.contacts)
     if (c.method == ContactMethod::grid)
       for (int b : c.bodies)

@@ -14,6 +14,12 @@ namespace afemp::core {
 // Whether some body is made of particles / of a mesh (hexahedra or trusses).
 bool has_particles(const Scene& scene);
 bool has_mesh(const Scene& scene);
+// A mesh body's bond (`bonded_to`): to a body of particles (HFEMP: its nodes join that body's
+// velocity field on the grid), or trusses tied into a body of hexahedra (rebar in solid
+// elements: its nodes follow the host's elements, fem/embedded_nodes.hpp). False when unbonded.
+bool bonded_to_particles(const Scene& scene, const BodySpec& body);
+bool tied_into_hexahedra(const Scene& scene, const BodySpec& body);
+
 // Whether mesh nodes take part in the grid step: a mesh body bonded to particles, named in a
 // grid contact, or converting its elements into particles (coupling/).
 bool has_grid_coupling(const Scene& scene);

@@ -421,10 +421,27 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
     c.fail(b.where, key + ".area", "a truss line needs its cross-section area (> 0)");
   if (b.bonded_to >= 0) {
     if (static_cast<std::size_t>(b.bonded_to) >= scene.bodies.size() ||
-        scene.bodies[static_cast<std::size_t>(b.bonded_to)].discretisation != D::particles)
-      c.fail(b.where, key + ".bonded_to", "a mesh body bonds to a body of particles");
-    if (scene.mpm.scheme == UpdateScheme::USL || scene.mpm.scheme == UpdateScheme::USAVG)
+        &scene.bodies[static_cast<std::size_t>(b.bonded_to)] == &b)
+      c.fail(b.where, key + ".bonded_to", "names no other body of the scene");
+    const BodySpec& host = scene.bodies[static_cast<std::size_t>(b.bonded_to)];
+    if (host.discretisation == D::hexahedra) {
+      if (b.discretisation != D::trusses)
+        c.fail(b.where, key + ".bonded_to",
+               "only trusses are tied into hexahedra; a mesh body bonds to a body of particles");
+      if (host.rigid || host.bonded_to >= 0)
+        c.fail(b.where, key + ".bonded_to",
+               "trusses are tied into a deformable body of hexahedra that is bonded to nothing");
+      if (b.velocity.x != 0.0 || b.velocity.y != 0.0 || b.velocity.z != 0.0)
+        c.fail(b.where, key + ".velocity",
+               "a body tied into hexahedra moves with its host from the start; give the "
+               "velocity to \"" +
+                   host.name + "\"");
+    } else if (host.discretisation != D::particles) {
+      c.fail(b.where, key + ".bonded_to",
+             "a mesh body bonds to a body of particles, or trusses are tied into hexahedra");
+    } else if (scene.mpm.scheme == UpdateScheme::USL || scene.mpm.scheme == UpdateScheme::USAVG) {
       c.fail(b.where, key + ".bonded_to", "bonded coupling needs [mpm] scheme MUSL or USF");
+    }
   }
 }
 

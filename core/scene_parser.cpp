@@ -1329,8 +1329,11 @@ ConstraintSpec read_constraint(TableReader& r, const Scene& scene) {
                "\" is rigid; hold it with rigid = { fixed = [\"x\", ..., \"rz\"] } instead");
   if (c.body >= 0 && scene.bodies[static_cast<std::size_t>(c.body)].bonded_to >= 0)
     r.fail("body", "body \"" + scene.bodies[static_cast<std::size_t>(c.body)].name +
-                       "\" is bonded to particles and moves with the grid; constrain the grid "
-                       "([grid] boundary) instead");
+                       (bonded_to_particles(scene, scene.bodies[static_cast<std::size_t>(c.body)])
+                            ? "\" is bonded to particles and moves with the grid; constrain the "
+                              "grid ([grid] boundary) instead"
+                            : "\" is tied into hexahedra and moves with them; constrain its "
+                              "host's nodes instead"));
   if (r.has("fixed") == r.has("velocity"))
     r.fail("fixed",
            "give either fixed = [\"x\", \"y\", \"z\"] (a subset, or \"all\") or "
@@ -1390,9 +1393,14 @@ WallSpec read_wall(TableReader& r, const Scene& scene) {
                            "rigid body meets others through [[contact]], and is held by its "
                            "rigid.fixed components)");
     if (scene.bodies[static_cast<std::size_t>(w.bodies.back())].bonded_to >= 0)
-      r.fail("bodies", "body \"" + name +
-                           "\" is bonded to particles and moves with the grid; "
-                           "walls act on free mesh bodies (use a [grid] boundary wall face)");
+      r.fail(
+          "bodies",
+          "body \"" + name +
+              (bonded_to_particles(scene, scene.bodies[static_cast<std::size_t>(w.bodies.back())])
+                   ? "\" is bonded to particles and moves with the grid; walls act on free "
+                     "mesh bodies (use a [grid] boundary wall face)"
+                   : "\" is tied into hexahedra and moves with them; walls act on free mesh "
+                     "bodies (name its host)"));
   }
   return w;
 }
@@ -1507,7 +1515,7 @@ ContactSpec read_contact(TableReader& r, const Scene& scene) {
     if (body.bonded_to >= 0)
       r.fail("bodies", "body \"" + name + "\" is bonded to \"" +
                            scene.bodies[static_cast<std::size_t>(body.bonded_to)].name +
-                           "\" and moves in its velocity field; name that body in the contact");
+                           "\" and moves with it; name that body in the contact");
   }
   const BodySpec& a = scene.bodies[static_cast<std::size_t>(c.bodies[0])];
   const BodySpec& b = scene.bodies[static_cast<std::size_t>(c.bodies[1])];
@@ -1872,14 +1880,34 @@ void read_bonded_to(const toml::array& bodies, Scene& scene, const std::string& 
     TableReader br(t, "bodies." + scene.bodies[i].name, path);
     const std::string host = br.required_string("bonded_to");
     const int h = body_index(br, "bonded_to", host, scene, false);
-    if (scene.bodies[static_cast<std::size_t>(h)].discretisation != Discretisation::particles)
+    const BodySpec& hb = scene.bodies[static_cast<std::size_t>(h)];
+    const BodySpec& b = scene.bodies[i];
+    if (hb.discretisation == Discretisation::hexahedra) {
+      // Rebar tied into solid elements: trusses only, in a deformable host of its own.
+      if (b.discretisation != Discretisation::trusses)
+        br.fail("bonded_to", "body \"" + host +
+                                 "\" is a body of hexahedra; only trusses are tied into "
+                                 "hexahedra (rebar in solid elements); hexahedra bond to a body "
+                                 "of particles");
+      if (hb.rigid)
+        br.fail("bonded_to", "body \"" + host +
+                                 "\" is rigid; trusses are tied into deformable hexahedra (a "
+                                 "rigid body carries no stress for the rebar to share)");
+      const toml::table& ht = *bodies.get(static_cast<std::size_t>(h))->as_table();
+      if (ht.contains("bonded_to"))
+        br.fail("bonded_to", "body \"" + host +
+                                 "\" is bonded to another body itself; tie the trusses into a "
+                                 "body of hexahedra that moves on its own");
+    } else if (hb.discretisation != Discretisation::particles) {
       br.fail("bonded_to", "body \"" + host +
-                               "\" is a mesh; a mesh body bonds to a body of "
-                               "particles (its nodes join that body's velocity field on the grid)");
-    if (scene.mpm.scheme == UpdateScheme::USL || scene.mpm.scheme == UpdateScheme::USAVG)
+                               "\" is a body of trusses; a mesh body bonds to a body of "
+                               "particles (its nodes join that body's velocity field on the "
+                               "grid), and trusses may also be tied into a body of hexahedra");
+    } else if (scene.mpm.scheme == UpdateScheme::USL || scene.mpm.scheme == UpdateScheme::USAVG) {
       br.fail("bonded_to",
               "bonded coupling needs [mpm] scheme = \"MUSL\" (the default) or "
               "\"USF\"");
+    }
     scene.bodies[i].bonded_to = h;
   }
 }

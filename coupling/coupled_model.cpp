@@ -70,7 +70,7 @@ CoupledModel::CoupledModel(const core::Scene& scene)
     if (n.body[i] < 0) continue;
     const auto b = static_cast<std::size_t>(n.body[i]);
     const core::BodySpec& body = scene.bodies[b];
-    const bool bonded = body.bonded_to >= 0;
+    const bool bonded = core::bonded_to_particles(scene, body);
     if (!bonded && !in_contact[b]) continue;
     if (bonded && n.imposed[i])
       throw core::InputError(core::SourceLocation{scene.path, 0}, "constraints",
@@ -83,7 +83,7 @@ CoupledModel::CoupledModel(const core::Scene& scene)
   fe().set_grid_driven(driven_);
   bonds_body_.assign(nb, 0);
   for (std::size_t b = 0; b < nb; ++b)
-    if (scene.bodies[b].bonded_to >= 0) {
+    if (core::bonded_to_particles(scene, scene.bodies[b])) {
       bonded_bodies_.push_back(static_cast<int>(b));
       bonds_body_[b] = 1;
     }
@@ -448,7 +448,7 @@ std::string CoupledModel::describe() const {
                     : body.conversion->negative_jacobian ? "an inverting element stops the run"
                                                          : "none converts",
                     count > 0 ? "; the others are in grid contact (CFEMP)" : "");
-    } else if (body.bonded_to >= 0)
+    } else if (core::bonded_to_particles(scene_, body))
       core::appendf(out,
                     "  body %s: %zu nodes bonded to %s (HFEMP: they join its velocity field "
                     "and move with the grid)\n",
@@ -460,6 +460,12 @@ std::string CoupledModel::describe() const {
                     "contact corrections return to the nodes, elsewhere the FE update "
                     "alone)\n",
                     body.name.c_str(), count);
+    else if (core::tied_into_hexahedra(scene_, body))
+      core::appendf(out,
+                    "  body %s: tied into the hexahedra of %s (FE only: it meets the particles "
+                    "through its host)\n",
+                    body.name.c_str(),
+                    scene_.bodies[static_cast<std::size_t>(body.bonded_to)].name.c_str());
     else if (const std::string met = met_at_faces(static_cast<int>(b)); !met.empty())
       core::appendf(out,
                     "  body %s: meets %s at its faces (surface contact: the particles' "

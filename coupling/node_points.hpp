@@ -28,7 +28,8 @@ class NodePoints final : public mpm::GridPoints {
  public:
   // Contact nodes take their own (FE) update; a bonded_to body's nodes move with the grid.
   explicit NodePoints(const core::Scene& scene) {
-    for (const core::BodySpec& b : scene.bodies) updates_itself_.push_back(b.bonded_to < 0);
+    for (const core::BodySpec& b : scene.bodies)
+      updates_itself_.push_back(!core::bonded_to_particles(scene, b));
   }
 
   // Set by the caller before each step.

@@ -287,26 +287,31 @@ std::string FeModel::describe_mesh() const {
   std::string out;
   const MeshQualityReport q = mesh_quality(solver_.mesh());
   const FeNodes& n = solver_.nodes();
+  // The masses each body owns (a tied body's lent to its host's nodes counted as its own).
+  const core::Energies sums = solver_.energies();
   for (std::size_t b = 0; b < scene_.bodies.size(); ++b) {
     const core::BodySpec& body = scene_.bodies[b];
     if (body.discretisation == core::Discretisation::particles) continue;
     std::size_t nodes = 0;
-    double mass = 0.0;
     for (std::size_t i = 0; i < n.size(); ++i)
-      if (n.body[i] == static_cast<int>(b)) {
-        ++nodes;
-        mass += n.mass[i];
-      }
+      if (n.body[i] == static_cast<int>(b)) ++nodes;
+    const double mass = sums.bodies[b].mass;
     const bool hexes = body.discretisation == core::Discretisation::hexahedra;
     const ElementStore& el = hexes ? static_cast<const ElementStore&>(solver_.hexahedra())
                                    : static_cast<const ElementStore&>(solver_.trusses());
     std::size_t count = 0;
     for (const ElementBatch& batch : el.batches)
       if (batch.body == static_cast<int>(b)) count += batch.end - batch.begin;
-    core::appendf(out, "body %s: %zu %s of %s, %zu nodes, mass %.6g\n", body.name.c_str(), count,
+    core::appendf(out, "body %s: %zu %s of %s, %zu nodes, mass %.6g%s\n", body.name.c_str(), count,
                   hexes ? "hexahedra" : "trusses",
                   scene_.materials[static_cast<std::size_t>(body.material)].name.c_str(), nodes,
-                  mass);
+                  mass,
+                  core::tied_into_hexahedra(scene_, body)
+                      ? (", tied into the hexahedra of " +
+                         scene_.bodies[static_cast<std::size_t>(body.bonded_to)].name +
+                         " (its nodes follow them; their nodes carry its mass and forces)")
+                            .c_str()
+                      : "");
   }
   std::size_t imposed = 0;
   for (std::uint8_t m : n.imposed) imposed += m ? 1 : 0;

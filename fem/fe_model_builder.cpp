@@ -414,6 +414,12 @@ void FeSolver::build(const core::Scene& scene) {
   add_initial_stress_forces(scene, hexes_, nodes_.position, element_force_);
   add_prestress_forces(scene, trusses_, nodes_.position, element_force_);
   recompute_node_masses();
+  // Trusses tied into hexahedra lend their masses to their hosts' nodes and move with them.
+  embedded_ = tie_embedded_nodes(scene, nodes_, hexes_);
+  if (!embedded_.empty()) {
+    lend_embedded_masses(embedded_, nodes_, hexes_);
+    follow_hosts(embedded_, nodes_, hexes_);
+  }
   // 6. Critical steps of the initial state.
   for (ElementSet* set : sets_) set->initial_critical_steps(scene, nodes_.position);
   // Rigid bodies and penalty contacts (after the node masses).
@@ -652,6 +658,9 @@ void FeSolver::setup_walls(const core::Scene& scene) {
     for (std::size_t n = 0; n < nodes_.size(); ++n) {
       const int b = nodes_.body[n];
       if (b >= 0 && scene.bodies[static_cast<std::size_t>(b)].rigid) continue;  // deformable only
+      // A node tied into hexahedra moves with its host, which the wall holds.
+      if (b >= 0 && core::tied_into_hexahedra(scene, scene.bodies[static_cast<std::size_t>(b)]))
+        continue;
       if (w.bodies.empty() || std::find(w.bodies.begin(), w.bodies.end(), b) != w.bodies.end())
         state.nodes.push_back(static_cast<std::int32_t>(n));
     }
@@ -736,6 +745,7 @@ void FeSolver::recompute_node_masses() {
           nodes_.mass[static_cast<std::size_t>(nodes[corners * e + a])] +=
               el.mass[e] / static_cast<double>(corners);
   }
+  if (!embedded_.empty()) lend_embedded_masses(embedded_, nodes_, hexes_);
 }
 
 }  // namespace afemp::fem

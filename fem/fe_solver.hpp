@@ -21,6 +21,7 @@
 #include "core/materials/material.hpp"
 #include "core/scene.hpp"
 #include "fem/element_store.hpp"
+#include "fem/embedded_nodes.hpp"
 #include "fem/fe_step_plan.hpp"
 #include "fem/hexahedron.hpp"
 #include "fem/hexahedron_set.hpp"
@@ -172,6 +173,7 @@ class FeSolver {
   // Penalty contacts between meshes (their resultant forces of the last step) and rigid bodies.
   const std::vector<MeshContact>& mesh_contacts() const { return contacts_; }
   const std::vector<RigidBody>& rigid_bodies() const { return rigid_bodies_; }
+  const EmbeddedNodes& embedded_nodes() const { return embedded_; }
   // Wall seconds the contacts' search took (part of the mesh contact stage's).
   double contact_search_seconds() const { return contact_search_seconds_; }
   // The resultant force the walls exerted on the nodes over the last step (impulse / dt),
@@ -316,6 +318,7 @@ class FeSolver {
   // Rigid bodies, and per node the rigid body it belongs to (-1: none; empty without any).
   std::vector<RigidBody> rigid_bodies_;
   std::vector<std::int32_t> rigid_of_node_;
+  EmbeddedNodes embedded_;  // trusses tied into hexahedra
   // Element nodal forces, gathered per node through the incidence lists (no atomics): corner a
   // of element e of a set at its first_slot + corners e + a (hexahedra, then trusses).
   std::vector<Vec3> element_force_;

@@ -103,6 +103,9 @@ void FeSolver::state(StateArchive& a) {
     a.item("length0", trusses_.length0);
     a.item("area0", trusses_.area0);
   }
+  // The masses written are those after the tied nodes lent theirs; the tied nodes' own masses
+  // follow from the live elements again (the same sums, in the same order).
+  if (a.loading() && !embedded_.empty()) recompute_node_masses();
   a.item("wall_force", wall_force_);
   // The elements' corner forces of the last update: the next step's nodal update gathers them.
   a.item("element_force", element_force_);

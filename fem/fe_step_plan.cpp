@@ -4,6 +4,7 @@
 
 #include "core/appendf.hpp"
 #include "core/materials/model_descriptions.hpp"
+#include "core/scene.hpp"
 
 namespace afemp::fem {
 
@@ -103,6 +104,14 @@ FeStepPlan build_fe_step_plan(const core::Scene& scene, std::size_t imposed_node
                   "; absorbing boundary on %zu nodes: Lysmer-Kuhlemeyer dashpots rho c_L along "
                   "the face normal, rho c_S across it, applied implicitly",
                   absorbing_nodes);
+  for (const BodySpec& body : scene.bodies)
+    if (core::tied_into_hexahedra(scene, body))
+      core::appendf(forces,
+                    "; the nodes of %s tied into the hexahedra of %s: their lumped masses and "
+                    "forces carried by the host's nodes (N_a m, N_a f), their motion the host's, "
+                    "v = sum N_a v_a",
+                    body.name.c_str(),
+                    scene.bodies[static_cast<std::size_t>(body.bonded_to)].name.c_str());
   s.push_back({FeStageKind::nodal_update, "nodal update", forces});
   std::string rigid;
   for (const BodySpec& body : scene.bodies)

@@ -37,6 +37,7 @@ void FeSolver::update_nodes(double dt) {
   const std::size_t n = nodes_.size();
   const bool loads = !nodes_.external_force.empty();
   const bool rigid = !rigid_of_node_.empty();
+  const bool tied = !embedded_.empty();
   std::fill(thread_sums_.begin(), thread_sums_.end(), 0.0);
   for (auto& e : thread_errors_) e.clear();
   core::parallel_chunks(n, [&](std::size_t begin, std::size_t end, int t) {
@@ -53,7 +54,19 @@ void FeSolver::update_nodes(double dt) {
       if (!(m > 0.0)) continue;                       // no live element: out of the update
       if (nodes_.grid_driven[i]) continue;            // moved by the background grid (coupling/)
       if (rigid && rigid_of_node_[i] >= 0) continue;  // moved by its body (rigid_body_update.cpp)
-      const Vec3 f = node_force(i);
+      Vec3 f = node_force(i);
+      // A host node carries the forces of the tied nodes in its elements (their masses are
+      // in m): f_a += N_a f_s, the loads a program puts on them included.
+      if (tied)
+        for (std::int64_t k = embedded_.offsets[i]; k < embedded_.offsets[i + 1]; ++k) {
+          const auto [tie, corner] = embedded_.ties[static_cast<std::size_t>(k)];
+          if (!embedded_.bound(static_cast<std::size_t>(tie), hexes_)) continue;
+          const auto s = static_cast<std::size_t>(embedded_.node[static_cast<std::size_t>(tie)]);
+          const double w =
+              embedded_.weight[static_cast<std::size_t>(tie)][static_cast<std::size_t>(corner)];
+          f += w * node_force(s);
+          if (loads) f += w * nodes_.external_force[s];
+        }
       Vec3& v = nodes_.velocity[i];
       v += (dt_force / m) * f;
       if (gravity) {
@@ -118,6 +131,7 @@ void FeSolver::set_body_velocity(int body, const Vec3& v) {
     for (int a = 0; a < 3; ++a)
       if (!(nodes_.imposed[i] & (1u << a))) nodes_.velocity[i][a] = v[a];
   }
+  if (!embedded_.empty()) follow_hosts(embedded_, nodes_, hexes_);
   for (RigidBody& r : rigid_bodies_) {
     if (r.body != body) continue;
     for (int a = 0; a < 3; ++a)
@@ -217,6 +231,7 @@ void FeSolver::finish_step(double dt) {
       if (nodes_.mass[i] > 0.0 && !nodes_.grid_driven[i] && !(rigid && rigid_of_node_[i] >= 0))
         nodes_.position[i] += dt * nodes_.velocity[i];
   });
+  if (!embedded_.empty()) follow_hosts(embedded_, nodes_, hexes_);
   for (ElementSet* set : sets_) run_stage(set->stage(), [&] { set->update(*this, dt); });
   time_ += dt;
   ++steps_;
@@ -297,6 +312,7 @@ core::Energies FeSolver::energies() const {
     b.momentum += m * v;
     b.kinetic += kinetic;
   }
+  if (!embedded_.empty()) book_embedded_bodies(embedded_, nodes_, hexes_, out.bodies);
   for (const ElementSet* set : sets_) {
     const ElementStore& el = set->store();
     for (const ElementBatch& b : el.batches)

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 
 #include "fem/mesh.hpp"
 
@@ -125,74 +126,104 @@ class CellHash {
   std::vector<std::int32_t> items_;
 };
 
+// The live hexahedra of one body: their corners, boxes (reaching a little past their faces, so
+// that a point on a face between two elements is in both) and a cell hash over the boxes.
+class BodyElements {
+ public:
+  BodyElements(const HexElements& hexes, std::span<const Vec3> node_position, int body) {
+    double edges = 0.0;
+    for (const ElementBatch& b : hexes.batches) {
+      if (b.body != body) continue;
+      for (std::size_t e = b.begin; e < b.end; ++e) {
+        if (!hexes.alive[e]) continue;
+        Corners x;
+        Box box;
+        for (std::size_t a = 0; a < 8; ++a) {
+          x[a] = node_position[static_cast<std::size_t>(hexes.nodes[e][a])];
+          box.add(x[a]);
+        }
+        double edge = 0.0;
+        for (int d = 0; d < 3; ++d) edge = std::max(edge, box.hi[d] - box.lo[d]);
+        for (int d = 0; d < 3; ++d) {
+          box.lo[d] -= kOnFace * edge;
+          box.hi[d] += kOnFace * edge;
+        }
+        all_.add(box.lo);
+        all_.add(box.hi);
+        edges += edge;
+        corners_.push_back(x);
+        boxes_.push_back(box);
+        element_.push_back(static_cast<std::int32_t>(e));
+      }
+    }
+    if (corners_.empty()) return;
+    // Cells of the elements' mean size, coarser where that would make far more cells than
+    // elements (a thin shell).
+    double cell = edges / static_cast<double>(corners_.size());
+    auto cells = [&] {
+      double n = 1.0;
+      for (int d = 0; d < 3; ++d) n *= std::max(1.0, std::ceil((all_.hi[d] - all_.lo[d]) / cell));
+      return n;
+    };
+    while (cells() > 8.0 * static_cast<double>(corners_.size()) + 64.0) cell *= 2.0;
+    hash_.emplace(boxes_, all_, cell);
+  }
+
+  // f(element, xi) for each element that holds p (natural coordinates within the face
+  // tolerance), in the hash's order.
+  template <class F>
+  void for_each_holder(const Vec3& p, F&& f) const {
+    if (!hash_ || !all_.holds(p)) return;
+    for (const std::int32_t k : hash_->at(p)) {
+      const auto i = static_cast<std::size_t>(k);
+      std::array<double, 3> xi;
+      if (!boxes_[i].holds(p) || !natural_coordinates(corners_[i], p, xi)) continue;
+      bool in = true;
+      for (const double c : xi) in = in && std::abs(c) <= 1.0 + kOnFace;
+      if (in) f(element_[i], xi);
+    }
+  }
+
+ private:
+  std::vector<Corners> corners_;
+  std::vector<Box> boxes_;
+  std::vector<std::int32_t> element_;
+  Box all_;
+  std::optional<CellHash> hash_;
+};
+
 }  // namespace
 
 std::size_t points_inside(const HexElements& hexes, std::span<const Vec3> node_position, int body,
                           std::span<const Vec3> points) {
-  std::vector<Corners> corners;
-  std::vector<Box> boxes;
-  Box all;
-  double edges = 0.0;
-  for (const ElementBatch& b : hexes.batches) {
-    if (b.body != body) continue;
-    for (std::size_t e = b.begin; e < b.end; ++e) {
-      if (!hexes.alive[e]) continue;
-      Corners x;
-      Box box;
-      for (std::size_t a = 0; a < 8; ++a) {
-        x[a] = node_position[static_cast<std::size_t>(hexes.nodes[e][a])];
-        box.add(x[a]);
-      }
-      // A point on a face between two elements is in both: each box reaches past its faces.
-      double edge = 0.0;
-      for (int d = 0; d < 3; ++d) edge = std::max(edge, box.hi[d] - box.lo[d]);
-      for (int d = 0; d < 3; ++d) {
-        box.lo[d] -= kOnFace * edge;
-        box.hi[d] += kOnFace * edge;
-      }
-      all.add(box.lo);
-      all.add(box.hi);
-      edges += edge;
-      corners.push_back(x);
-      boxes.push_back(box);
-    }
-  }
-  if (corners.empty()) return 0;
-  // Cells of the elements' mean size, coarser where that would make far more cells than
-  // elements (a thin shell).
-  double cell = edges / static_cast<double>(corners.size());
-  auto cells = [&] {
-    double n = 1.0;
-    for (int d = 0; d < 3; ++d) n *= std::max(1.0, std::ceil((all.hi[d] - all.lo[d]) / cell));
-    return n;
-  };
-  while (cells() > 8.0 * static_cast<double>(corners.size()) + 64.0) cell *= 2.0;
-  const CellHash hash(boxes, all, cell);
-
+  const BodyElements elements(hexes, node_position, body);
   std::size_t inside = 0;
   for (const Vec3& p : points) {
-    if (!all.holds(p)) continue;
     // The elements that hold p, and how many of its coordinates lie on a face: inside the body
     // when they surround it (one element, or two across a face, four round an edge, eight round
     // a corner), on its surface when fewer do.
     int held = 0, on_faces = 0;
-    for (const std::int32_t e : hash.at(p)) {
-      const auto k = static_cast<std::size_t>(e);
-      std::array<double, 3> xi;
-      if (!boxes[k].holds(p) || !natural_coordinates(corners[k], p, xi)) continue;
+    elements.for_each_holder(p, [&](std::int32_t, const std::array<double, 3>& xi) {
       int faces = 0;
-      bool in = true;
-      for (const double c : xi) {
-        in = in && std::abs(c) <= 1.0 + kOnFace;
-        faces += std::abs(c) >= 1.0 - kOnFace ? 1 : 0;
-      }
-      if (!in) continue;
+      for (const double c : xi) faces += std::abs(c) >= 1.0 - kOnFace ? 1 : 0;
       ++held;
       on_faces = std::max(on_faces, faces);
-    }
+    });
     if (held > 0 && held >= (1 << on_faces)) ++inside;
   }
   return inside;
+}
+
+std::vector<HostPoint> locate_points(const HexElements& hexes, std::span<const Vec3> node_position,
+                                     int body, std::span<const Vec3> points) {
+  const BodyElements elements(hexes, node_position, body);
+  std::vector<HostPoint> out(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    elements.for_each_holder(points[i], [&](std::int32_t e, const std::array<double, 3>& xi) {
+      // The lowest-numbered holder (a point on a face between elements lies in each).
+      if (out[i].element < 0 || e < out[i].element) out[i] = {e, xi};
+    });
+  return out;
 }
 
 }  // namespace afemp::fem

@@ -5,7 +5,9 @@
 // that touch) do not count; points on a face, edge or corner between its elements do.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -18,5 +20,17 @@ namespace afemp::fem {
 // `node_position`.
 std::size_t points_inside(const HexElements& hexes, std::span<const core::Vec3> node_position,
                           int body, std::span<const core::Vec3> points);
+
+// Where a point lies in a body's hexahedra: the element (an index into the hexahedra) and the
+// point's natural coordinates there, or element -1 when no live element of the body holds it.
+struct HostPoint {
+  std::int32_t element = -1;
+  std::array<double, 3> xi{};
+};
+// For each of `points`: the live hexahedron of body `body` that holds it (the lowest-numbered
+// of those whose faces it lies on), found as points_inside finds them.
+std::vector<HostPoint> locate_points(const HexElements& hexes,
+                                     std::span<const core::Vec3> node_position, int body,
+                                     std::span<const core::Vec3> points);
 
 }  // namespace afemp::fem

@@ -3,12 +3,14 @@
 #include "fem/sparse_assembly.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 #include <utility>
 
 namespace afemp::fem {
 
 SparseAssembly::SparseAssembly(std::span<const Hexahedron> hexahedra, std::span<const Line> lines,
-                               std::vector<int> equation, int equations)
+                               std::vector<int> equation, int equations,
+                               std::span<const std::vector<std::int32_t>> coupled)
     : equation_(std::move(equation)) {
   const std::size_t nodes = equation_.size() / 3;
   std::vector<std::vector<int>> neighbours(nodes);  // nodes sharing an element, itself included
@@ -16,6 +18,8 @@ SparseAssembly::SparseAssembly(std::span<const Hexahedron> hexahedra, std::span<
     for (std::int32_t a : h) neighbours[a].insert(neighbours[a].end(), h.begin(), h.end());
   for (const Line& l : lines)
     for (std::int32_t a : l) neighbours[a].insert(neighbours[a].end(), l.begin(), l.end());
+  for (const std::vector<std::int32_t>& g : coupled)
+    for (std::int32_t a : g) neighbours[a].insert(neighbours[a].end(), g.begin(), g.end());
   std::vector<std::vector<int>> rows(equations);
   for (std::size_t n = 0; n < nodes; ++n) {
     std::vector<int>& near = neighbours[n];
@@ -53,8 +57,14 @@ void SparseAssembly::add(const Line& nodes, const LineMatrix& k) {
   add(nodes.data(), 6, k.data());
 }
 
+void SparseAssembly::add_group(std::span<const std::int32_t> nodes, const double* k) {
+  add(nodes.data(), 3 * static_cast<int>(nodes.size()), k);
+}
+
 void SparseAssembly::add(const std::int32_t* nodes, int n, const double* k) {
-  int eq[24];
+  std::array<int, 3 * 24> eq;  // a group: up to 24 nodes
+  if (n > static_cast<int>(eq.size()))
+    throw std::invalid_argument("sparse assembly: a group of more than 24 nodes");
   for (int a = 0; a < n / 3; ++a)
     for (int i = 0; i < 3; ++i) eq[3 * a + i] = equation_[3 * nodes[a] + i];
   for (int q = 0; q < n; ++q) {

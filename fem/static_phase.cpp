@@ -103,6 +103,18 @@ void build_problem(const FeSolver& solver, const core::Scene& scene, const core:
       problem.initial_line_plastic_strain.push_back(trusses.plastic_strain[p]);
     }
   }
+  // Trusses tied into the hexahedra solved: their nodes follow their hosts' (a node whose host
+  // eroded or converted moves with its trusses alone). Their lumped masses are their hosts'.
+  const EmbeddedNodes& ties = solver.embedded_nodes();
+  for (std::size_t k = 0; k < ties.size(); ++k) {
+    const auto s = static_cast<std::size_t>(ties.node[k]);
+    if (!ties.bound(k, hexes) || local[s] < 0) continue;
+    TiedNode t;
+    t.node = local[s];
+    for (std::size_t a = 0; a < 8; ++a) t.host[a] = node(ties.host_nodes[k][a]);
+    t.weight = ties.weight[k];
+    problem.tied.push_back(t);
+  }
   // Loads: gravity on the explicit solver's lumped masses (so that the state handed back is
   // at rest under the same loads), a program's held nodal loads, and the constraints.
   const core::Vec3 gravity = phase.gravity ? *phase.gravity : scene.run.gravity;

@@ -108,7 +108,7 @@ void symmetric_eigen(double (&a)[6][6], double (&v)[6][6]) {
 // comparable); a fixed dof holds its axis, a wall (supports: node, normal) its normal.
 void check_rigid_body_modes(const MeshData& mesh, const std::vector<char>& fixed,
                             const std::vector<std::pair<std::int32_t, core::Vec3>>& supports,
-                            bool walls) {
+                            bool walls, std::span<const TiedNode> tied) {
   std::vector<std::int32_t> parent(mesh.nodes.size());
   std::iota(parent.begin(), parent.end(), 0);
   auto root = [&](std::int32_t n) {
@@ -121,6 +121,10 @@ void check_rigid_body_modes(const MeshData& mesh, const std::vector<char>& fixed
   };
   for (const Hexahedron& h : mesh.hexahedra) join(h);
   for (const Line& l : mesh.lines) join(l);
+  for (const TiedNode& t : tied) {  // a tied node is one body with its host
+    join(t.host);
+    parent[root(t.node)] = root(t.host[0]);
+  }
   std::vector<std::vector<std::int32_t>> bodies(mesh.nodes.size());  // nodes, by root
   std::vector<std::vector<std::int32_t>> parts(mesh.nodes.size());   // parts, by root
   std::vector<char> seen(mesh.nodes.size(), 0);
@@ -285,6 +289,11 @@ struct Body {
   std::vector<core::SmallStrainBarResult> line_current;
   std::vector<double> line_work;
   std::optional<WallConstraints> walls;
+  // Per node, its index in problem.tied, or -1; per line, the nodes its matrix couples when a
+  // node of it is tied (its untied node and the hosts of its tied ones; empty otherwise).
+  std::vector<int> tie_of;
+  std::vector<std::vector<std::int32_t>> line_group;
+  mutable std::vector<core::Vec3> folded;
 
   // Validates the problem (`who` starts the messages); a static solve also needs the body held
   // against its rigid-body modes, by its prescribed dofs and the walls its nodes touch at the
@@ -295,8 +304,11 @@ struct Body {
   // components the walls hold; returns the sum of squares of what the prescribed and the held
   // components carry (the reactions).
   double gather(const std::vector<core::Vec3>& nodal, std::vector<double>& r) const;
-  // u += s du, du on the equations.
+  // u += s du, du on the equations; the tied nodes follow.
   void add_correction(const std::vector<double>& du, double s, std::vector<core::Vec3>& u) const;
+  // The tied nodes' values from their hosts', x_s = sum_a N_a x_a (displacements, velocities,
+  // accelerations alike: the constraint is linear).
+  void follow(std::vector<core::Vec3>& x) const;
   // force = -f_int(at) per node (external minus internal, without the loads), the current
   // states updated from the converged ones.
   void internal_forces(const std::vector<core::Vec3>& at, std::vector<core::Vec3>& force);
@@ -369,6 +381,23 @@ Body::Body(const StaticProblem& p, const char* who, bool check_support)
     throw std::invalid_argument(std::string(who) + ": nodal_forces needs one force per node");
 
   std::vector<char> fixed(3 * nodes, 0);
+  tie_of.assign(nodes, -1);
+  for (std::size_t k = 0; k < problem.tied.size(); ++k) {
+    const TiedNode& t = problem.tied[k];
+    bool in_range = t.node >= 0 && static_cast<std::size_t>(t.node) < nodes;
+    for (std::int32_t h : t.host)
+      in_range = in_range && h >= 0 && static_cast<std::size_t>(h) < nodes && h != t.node;
+    if (!in_range || tie_of[static_cast<std::size_t>(t.node)] >= 0)
+      throw std::invalid_argument(std::string(who) + ": tied node " + std::to_string(k) +
+                                  " names a node out of range, itself as a host, or a node "
+                                  "tied twice");
+    tie_of[static_cast<std::size_t>(t.node)] = static_cast<int>(k);
+  }
+  for (const TiedNode& t : problem.tied)
+    for (std::int32_t h : t.host)
+      if (tie_of[static_cast<std::size_t>(h)] >= 0)
+        throw std::invalid_argument(std::string(who) + ": a tied node's host node " +
+                                    std::to_string(h) + " is tied itself");
   in_element.assign(nodes, 0);
   for (const Hexahedron& h : mesh.hexahedra)
     for (std::int32_t a : h) in_element[a] = 1;
@@ -380,20 +409,24 @@ Body::Body(const StaticProblem& p, const char* who, bool check_support)
       throw std::invalid_argument(std::string(who) + ": prescribed displacement of node " +
                                   std::to_string(d.node) + ", component " +
                                   std::to_string(d.component) + " out of range");
+    if (tie_of[static_cast<std::size_t>(d.node)] >= 0)
+      throw std::invalid_argument(std::string(who) + ": node " + std::to_string(d.node) +
+                                  " is tied into a hexahedron and moves with it; prescribe its "
+                                  "host's nodes");
     fixed[3 * d.node + d.component] = 1;
   }
-  // A node of no element has no equations: no wall moves it.
+  // A node of no element has no equations: no wall moves it; nor a tied node (its host's do).
   std::vector<char> unmoved = fixed;
   for (std::size_t d = 0; d < 3 * nodes; ++d)
-    if (!in_element[d / 3]) unmoved[d] = 1;
+    if (!in_element[d / 3] || tie_of[d / 3] >= 0) unmoved[d] = 1;
   walls.emplace(mesh, problem.walls, std::move(unmoved), who);
   if (check_support) {
     walls->start(std::vector<core::Vec3>(nodes));
-    check_rigid_body_modes(mesh, fixed, walls->supports(), !walls->empty());
+    check_rigid_body_modes(mesh, fixed, walls->supports(), !walls->empty(), problem.tied);
   }
   equation.assign(3 * nodes, -1);
   for (std::size_t d = 0; d < 3 * nodes; ++d)
-    if (in_element[d / 3] && !fixed[d]) {
+    if (in_element[d / 3] && !fixed[d] && tie_of[d / 3] < 0) {
       equation[d] = static_cast<int>(dof_of.size());
       dof_of.push_back(static_cast<int>(d));
     }
@@ -434,6 +467,22 @@ Body::Body(const StaticProblem& p, const char* who, bool check_support)
     line_length.push_back(length);
     line_mass.push_back(m.density * area * length);
   }
+  line_group.resize(mesh.lines.size());
+  for (std::size_t l = 0; l < mesh.lines.size(); ++l) {
+    std::vector<std::int32_t>& g = line_group[l];
+    for (std::int32_t a : mesh.lines[l]) {
+      const int t = tie_of[static_cast<std::size_t>(a)];
+      if (t < 0) {
+        g.push_back(a);
+        continue;
+      }
+      for (std::int32_t h : problem.tied[static_cast<std::size_t>(t)].host)
+        if (std::find(g.begin(), g.end(), h) == g.end()) g.push_back(h);
+    }
+    if (tie_of[static_cast<std::size_t>(mesh.lines[l][0])] < 0 &&
+        tie_of[static_cast<std::size_t>(mesh.lines[l][1])] < 0)
+      g.clear();
+  }
   line_converged.resize(mesh.lines.size());
   line_strain.assign(mesh.lines.size(), 0.0);
   line_work.assign(mesh.lines.size(), 0.0);
@@ -452,7 +501,20 @@ Body::Body(const StaticProblem& p, const char* who, bool check_support)
   }
 }
 
-double Body::gather(const std::vector<core::Vec3>& nodal, std::vector<double>& r) const {
+double Body::gather(const std::vector<core::Vec3>& nodal_in, std::vector<double>& r) const {
+  // A tied node's force goes to its host's nodes, f_a += N_a f_s.
+  const std::vector<core::Vec3>* source = &nodal_in;
+  if (!problem.tied.empty()) {
+    folded = nodal_in;
+    for (const TiedNode& t : problem.tied) {
+      const core::Vec3 f = folded[static_cast<std::size_t>(t.node)];
+      for (std::size_t a = 0; a < 8; ++a)
+        folded[static_cast<std::size_t>(t.host[a])] += t.weight[a] * f;
+      folded[static_cast<std::size_t>(t.node)] = core::Vec3{};
+    }
+    source = &folded;
+  }
+  const std::vector<core::Vec3>& nodal = *source;
   double reactions = 0.0;
   for (std::size_t n = 0; n < nodes; ++n) {
     if (!in_element[n]) continue;
@@ -477,6 +539,15 @@ void Body::add_correction(const std::vector<double>& du, double s,
       if (!f->holds(i)) u[n] += (s * du[q]) * f->basis[i];
     } else
       u[n][i] += s * du[q];
+  }
+  follow(u);
+}
+
+void Body::follow(std::vector<core::Vec3>& x) const {
+  for (const TiedNode& t : problem.tied) {
+    core::Vec3 v;
+    for (std::size_t a = 0; a < 8; ++a) v += t.weight[a] * x[static_cast<std::size_t>(t.host[a])];
+    x[static_cast<std::size_t>(t.node)] = v;
   }
 }
 
@@ -569,8 +640,42 @@ void Body::assemble(SparseAssembly& assembly, double stiffness_factor, double ma
           kl[6 * (3 * a + i) + 3 * b + i] +=
               mass_factor * line_mass[l] * (a == b ? 2.0 : 1.0) / 6.0;
         }
-    walls->transform(mesh.lines[l].data(), 2, kl.data());
-    assembly.add(mesh.lines[l], kl);
+    const std::vector<std::int32_t>& g = line_group[l];
+    if (g.empty()) {
+      walls->transform(mesh.lines[l].data(), 2, kl.data());
+      assembly.add(mesh.lines[l], kl);
+      continue;
+    }
+    // A tied node's dofs are its host's, weighted: k_g = T^T k T, T the line's dofs from the
+    // group's (rows 3 a + i: its node's own column, or its host's with the weights).
+    const std::size_t m = g.size();
+    std::vector<double> t(6 * 3 * m, 0.0), kg(9 * m * m, 0.0);
+    for (std::size_t a = 0; a < 2; ++a) {
+      const std::int32_t node = mesh.lines[l][a];
+      const int tie = tie_of[static_cast<std::size_t>(node)];
+      auto put = [&](std::int32_t n, double w) {
+        const auto c = static_cast<std::size_t>(std::find(g.begin(), g.end(), n) - g.begin());
+        for (std::size_t i = 0; i < 3; ++i) t[(3 * a + i) * 3 * m + 3 * c + i] += w;
+      };
+      if (tie < 0)
+        put(node, 1.0);
+      else
+        for (std::size_t h = 0; h < 8; ++h)
+          put(problem.tied[static_cast<std::size_t>(tie)].host[h],
+              problem.tied[static_cast<std::size_t>(tie)].weight[h]);
+    }
+    for (std::size_t p = 0; p < 6; ++p)
+      for (std::size_t q = 0; q < 6; ++q) {
+        const double k = kl[6 * p + q];
+        if (k == 0.0) continue;
+        for (std::size_t r = 0; r < 3 * m; ++r) {
+          const double tr = t[p * 3 * m + r];
+          if (tr == 0.0) continue;
+          for (std::size_t c = 0; c < 3 * m; ++c) kg[3 * m * r + c] += tr * k * t[q * 3 * m + c];
+        }
+      }
+    walls->transform(g.data(), static_cast<int>(m), kg.data());
+    assembly.add_group(g, kg.data());
   }
 }
 
@@ -878,7 +983,7 @@ StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& se
   };
 
   SparseAssembly assembly(problem.mesh->hexahedra, problem.mesh->lines, body.equation,
-                          body.equations);
+                          body.equations, body.line_group);
   SparseCholesky cholesky;
   cholesky.analyse(assembly.matrix());
   // The state after the last converged step (the virgin one before the first).
@@ -894,6 +999,7 @@ StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& se
     load = static_cast<double>(step) / settings.load_steps;
     for (const PrescribedDisplacement& p : problem.prescribed)
       u[p.node][p.component] = load * p.value;
+    body.follow(u);
     try {
       settle(
           body, settings, "static", step, settings.load_steps, assembly, cholesky, u, r, nodal,
@@ -966,6 +1072,8 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
   }
   body.walls->start(u);
   body.walls->project(u);
+  body.follow(u);
+  body.follow(v);
   std::vector<double> r(body.equations);
 
   auto mass_times = [&](const std::vector<core::Vec3>& x, std::vector<core::Vec3>& mx) {
@@ -1017,7 +1125,7 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
   };
 
   SparseAssembly assembly(problem.mesh->hexahedra, problem.mesh->lines, body.equation,
-                          body.equations);
+                          body.equations, body.line_group);
   SparseCholesky cholesky;
   cholesky.analyse(assembly.matrix());
 
@@ -1106,6 +1214,7 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
       for (std::size_t k = 0; k < values.size(); ++k)
         u[problem.prescribed[k].node][problem.prescribed[k].component] = values[k];
     }
+    body.follow(u);
     try {
       settle(
           body, settings.newton, "newmark", step, settings.steps, assembly, cholesky, u, r, nodal,
@@ -1132,6 +1241,8 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
       a[n] = a_next;
     }
     body.walls->stop(v, a);
+    body.follow(v);
+    body.follow(a);
     force_n = force;
     body.commit();
     // The work of the loads (constant) and of the reactions (linear over the step).

@@ -28,6 +28,7 @@
 #include "afemp/scene.hpp"
 #include "afemp/tensor.hpp"
 #include "fem/mesh.hpp"
+#include "fem/sparse_assembly.hpp"
 #include "fem/wall_constraints.hpp"
 
 namespace afemp::fem {
@@ -64,6 +65,10 @@ struct StaticProblem {
   // One per part as materials, or empty: every hexahedron fully integrated (B-bar).
   std::vector<HexahedronFormulation> hexahedra;
   std::vector<PrescribedDisplacement> prescribed;
+  // Nodes of lines (trusses) tied into hexahedra (rebar in solid elements): each moves with its
+  // host's nodes and carries no equations; its forces go to them through the same weights (the
+  // constraint eliminated, u_s = sum_a N_a u_a). Not prescribed, on no wall.
+  std::vector<TiedNode> tied;
   std::vector<core::Vec3> nodal_forces;  // one per node, or empty
   std::vector<PressureFace> pressures;
   // The acceleration of gravity: the body force rho g, as consistent nodal forces

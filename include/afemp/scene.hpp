@@ -332,7 +332,9 @@ struct BodySpec {
   /// bonded to into equilibrium with it).
   double prestress = 0.0;
   /// Bonded coupling (HFEMP, Lian et al. 2013, §2.6): the particle body whose velocity field this
-  /// mesh body's nodes join; they move with the grid solution (perfect bond). -1: not bonded.
+  /// mesh body's nodes join; they move with the grid solution (perfect bond). Trusses may name a
+  /// body of hexahedra instead: their nodes are tied into its elements (rebar in solid elements,
+  /// LS-DYNA's *CONSTRAINED_BEAM_IN_SOLID). -1: not bonded.
   int bonded_to = -1;
   /// Particles: none is placed inside the shapes of these bodies (water around a charge).
   std::vector<int> outside{};

@@ -804,8 +804,10 @@ TEST(SceneParser, CouplingKeysNameTheKeyAndWhatIsAllowed) {
   std::string e = error_of(with_bond("slab"));
   EXPECT_NE(e.find("bodies.bar.bonded_to"), std::string::npos) << e;
   EXPECT_NE(e.find("unknown body \"slab\""), std::string::npos) << e;
-  e = error_of(with_bond("plate"));
-  EXPECT_NE(e.find("is a mesh; a mesh body bonds to a body of particles"), std::string::npos) << e;
+  // Trusses named into the plate's hexahedra are tied into them (rebar in solid elements).
+  const Scene tied = parse_scene(with_bond("plate"), "tied.toml");
+  EXPECT_TRUE(tied_into_hexahedra(tied, tied.bodies[1]));
+  EXPECT_FALSE(bonded_to_particles(tied, tied.bodies[1]));
   std::string usl = with_bond("ball");
   usl.insert(usl.find("[materials.steel]"), "[mpm]\nscheme = \"USL\"\n");
   e = error_of(usl);
