@@ -124,10 +124,11 @@ void FeSolver::scale_velocities(double factor) {
 
 void FeSolver::set_body_velocity(int body, const Vec3& v) {
   const bool rigid = !rigid_of_node_.empty();
+  // Nodes the grid drives (shared with elements converted into particles) are set too: the grid
+  // gives them their velocity at the next step, but the kinetic energy booked now (a relaxation
+  // phase gives a held projectile its velocity back) is read from them.
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
-    if (nodes_.body[i] != body || (rigid && rigid_of_node_[i] >= 0) ||
-        (!nodes_.grid_driven.empty() && nodes_.grid_driven[i]))
-      continue;
+    if (nodes_.body[i] != body || (rigid && rigid_of_node_[i] >= 0)) continue;
     for (int a = 0; a < 3; ++a)
       if (!(nodes_.imposed[i] & (1u << a))) nodes_.velocity[i][a] = v[a];
   }

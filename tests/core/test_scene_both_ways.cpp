@@ -561,7 +561,7 @@ class Builder {
     const std::string pre = "bodies." + b.name;
     for (auto&& [k, v] : t) {
       const std::string key(k.str()), at = pre + "." + key;
-      if (key == "name" || key == "outside" || key == "bonded_to")
+      if (key == "name" || key == "outside" || key == "bonded_to" || key == "overlap_allowed")
         continue;
       else if (key == "material")
         b.material = materials_.at(str(v, at));
@@ -681,6 +681,9 @@ class Builder {
       for (const std::string& name : strings(*n, "outside"))
         b.outside.push_back(body_named(s, name));
     if (const toml::node* n = t.get("bonded_to")) b.bonded_to = body_named(s, str(*n, "bonded_to"));
+    if (const toml::node* n = t.get("overlap_allowed"))
+      for (const std::string& name : strings(*n, "overlap_allowed"))
+        b.overlap_allowed.push_back(body_named(s, name));
   }
 
   NodeSelector selector(const toml::table& t, const std::string& at) {
@@ -1149,6 +1152,7 @@ void same_body(const BodySpec& a, const BodySpec& b, const std::string& at) {
   SAME(prestress);
   SAME(bonded_to);
   SAME(outside);
+  SAME(overlap_allowed);
   same_vec(a.velocity, b.velocity, at + ".velocity");
   SAME(temperature);
   SAME(internal_energy);
