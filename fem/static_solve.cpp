@@ -608,6 +608,7 @@ std::array<std::array<double, 8>, 8> Body::mass(std::size_t e) const {
 
 void Body::assemble(SparseAssembly& assembly, double stiffness_factor, double mass_factor) const {
   assembly.clear();
+  std::vector<double> t, kg;  // a tied line's T and T^T k T, reused line to line
   for (std::size_t e = 0; e < elements; ++e) {
     HexMatrix ke;
     if (one_point[e] >= 0) {
@@ -649,7 +650,8 @@ void Body::assemble(SparseAssembly& assembly, double stiffness_factor, double ma
     // A tied node's dofs are its host's, weighted: k_g = T^T k T, T the line's dofs from the
     // group's (rows 3 a + i: its node's own column, or its host's with the weights).
     const std::size_t m = g.size();
-    std::vector<double> t(6 * 3 * m, 0.0), kg(9 * m * m, 0.0);
+    t.assign(6 * 3 * m, 0.0);
+    kg.assign(9 * m * m, 0.0);
     for (std::size_t a = 0; a < 2; ++a) {
       const std::int32_t node = mesh.lines[l][a];
       const int tie = tie_of[static_cast<std::size_t>(node)];

@@ -44,6 +44,21 @@ inline double top_displacement(Simulation& sim) {
   return sum / count;
 }
 
+// The mean axial stress of the trusses whose middle lies between z0 and z1 (a tendon's middle,
+// away from the anchored ends that pass its force to the concrete over an element or two).
+inline double mean_truss_stress(Simulation& sim, double z0, double z1) {
+  const ElementFields t = sim.trusses();
+  const NodeFields n = sim.nodes();
+  double sum = 0.0;
+  int count = 0;
+  for (std::size_t e = 0; e < t.size(); ++e) {
+    const double z = 0.5 * (n.position[static_cast<std::size_t>(t.connectivity[2 * e])].z +
+                            n.position[static_cast<std::size_t>(t.connectivity[2 * e + 1])].z);
+    if (z > z0 && z < z1) sum += t.stress[t.first_point[e]].xx, ++count;
+  }
+  return sum / count;
+}
+
 inline double max_speed(Simulation& sim) {
   const NodeFields n = sim.nodes();
   double v = 0.0;

@@ -12,6 +12,7 @@
 
 #include "afemp/simulation.hpp"
 #include "core/scene.hpp"
+#include "phase_test_support.hpp"
 #include "scene_errors.hpp"
 #include "scratch_dir.hpp"
 
@@ -50,19 +51,9 @@ double top_displacement(Simulation& sim) {
   return sum / count;
 }
 
-// The mean axial stress of the tendon's trusses in the bar's middle half (25 < z < 75: away from
-// the anchored ends, which pass their force to the concrete over an element or two).
+// The tendon's mean stress in the bar's middle half.
 double middle_tendon_stress(Simulation& sim) {
-  const ElementFields t = sim.trusses();
-  const NodeFields n = sim.nodes();
-  double sum = 0.0;
-  int count = 0;
-  for (std::size_t e = 0; e < t.size(); ++e) {
-    const double z = 0.5 * (n.position[static_cast<std::size_t>(t.connectivity[2 * e])].z +
-                            n.position[static_cast<std::size_t>(t.connectivity[2 * e + 1])].z);
-    if (z > 25.0 && z < 75.0) sum += t.stress[t.first_point[e]].xx, ++count;
-  }
-  return sum / count;
+  return test::mean_truss_stress(sim, 25.0, 75.0);
 }
 
 // A column held at its base under gravity, relaxed (DRTOL 1e-5: a residue of about 0.3 % of

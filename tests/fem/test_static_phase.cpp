@@ -355,16 +355,7 @@ TEST(Prestress, RelaxationBringsABondedTendonIntoEquilibriumWithTheConcrete) {
   const double ratio = 2.0e5 * 20.0 / (3.0e4 * 400.0);
   const double expected = 600.0 / (1.0 + ratio);
   // The tendon's middle half (its ends pass their force to the concrete over a cell or two).
-  const ElementFields t = sim.trusses();
-  const NodeFields n = sim.nodes();
-  double sum = 0.0;
-  int count = 0;
-  for (std::size_t e = 0; e < t.size(); ++e) {
-    const double z = 0.5 * (n.position[static_cast<std::size_t>(t.connectivity[2 * e])].z +
-                            n.position[static_cast<std::size_t>(t.connectivity[2 * e + 1])].z);
-    if (z > 25.0 && z < 75.0) sum += t.stress[t.first_point[e]].xx, ++count;
-  }
-  const double mean = sum / count;
+  const double mean = test::mean_truss_stress(sim, 25.0, 75.0);
   EXPECT_NEAR(mean / expected, 1.0, 0.05) << "tendon " << mean << " MPa, closed form " << expected;
   std::printf(
       "bonded tendon relaxed: %.4g MPa at mid-length (closed form %.4g, %+.2f %%), "
