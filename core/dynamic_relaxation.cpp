@@ -37,7 +37,8 @@ RelaxationResult relax(Model& model, const RelaxationSettings& s,
     const bool last = dt >= s.end - check.time;
     if (last) dt = s.end - check.time;
     model.step(dt);
-    const double moving = model.energies().kinetic;
+    const Energies before = model.energies();
+    const double moving = before.kinetic;
     model.scale_velocities(s.factor);
     if (after_step) after_step();
     ++check.steps;
@@ -52,7 +53,10 @@ RelaxationResult relax(Model& model, const RelaxationSettings& s,
     if (check.ratio < s.tolerance) {
       model.scale_velocities(0.0);
       check.damped += check.kinetic - model.energies().kinetic;
-      return {check.steps, check.time, check.peak, check.ratio, check.damped, true};
+      RelaxationResult r{check.steps, check.time, check.peak, check.ratio, check.damped, true, {}};
+      for (const BodySums& b : before.bodies)
+        r.damping_force.push_back((-(1.0 - s.factor) / dt) * b.momentum);
+      return r;
     }
     if (last) {
       std::ostringstream why;

@@ -34,6 +34,7 @@
 
 #include <functional>
 #include <limits>
+#include <vector>
 
 #include "core/model.hpp"
 
@@ -81,6 +82,13 @@ struct RelaxationResult {
   // each the kinetic energy before it less that after), for the caller's energy balance.
   double damped = 0.0;
   bool converged = false;
+  // The force the damping put on each body (Energies::bodies' order) over the last step,
+  // -(1 - factor) p / dt with p the body's momentum before the scaling. A body at rest in
+  // equilibrium has none; a steady force the relaxation has not balanced (a support still
+  // giving way, a contact still pushing) leaves the body drifting at the damping's terminal
+  // velocity, where the damping holds that force: a kinetic energy far below DRTOL of the peak
+  // can hide it, so the caller reports it beside the convergence.
+  std::vector<Vec3> damping_force;
 };
 
 // Relaxes `model` from its current state: steps it at time_step_factor x its stable step,

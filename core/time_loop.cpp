@@ -327,6 +327,7 @@ void TimeLoop::run_relaxation(const PhaseSpec& phase) {
       },
       hold);
   damped_ = damped_start + r.damped;
+  if (options_.phase_log) print_damping_force(r);
   model_.set_clock(phase.end_time);
   before = model_.energies().kinetic;
   for (int b : moving) {
@@ -334,6 +335,42 @@ void TimeLoop::run_relaxation(const PhaseSpec& phase) {
     model_.set_body_velocity(b, scene_.bodies[static_cast<std::size_t>(b)].velocity);
   }
   damped_ -= model_.energies().kinetic - before;
+}
+
+// What the damping still held at convergence (RelaxationResult::damping_force): a steady force
+// the relaxation did not balance hides below any kinetic-energy tolerance, so it is printed
+// beside it, and flagged where its part along gravity passes 1 % of the body's weight (the
+// supports then carry the weight to no better than that). The bodies held at rest are left out
+// (what holds them is not the damping).
+void TimeLoop::print_damping_force(const RelaxationResult& r) const {
+  const Energies e = model_.energies();
+  const double g = norm(scene_.run.gravity);
+  const std::vector<int> held = moving_bodies(scene_);
+  char line[480];
+  for (std::size_t b = 0; b < r.damping_force.size() && b < scene_.bodies.size(); ++b) {
+    const Vec3& d = r.damping_force[b];
+    if (!(norm(d) > 0.0) || std::find(held.begin(), held.end(), static_cast<int>(b)) != held.end())
+      continue;
+    const double weight = b < e.bodies.size() ? e.bodies[b].mass * g : 0.0;
+    if (weight > 0.0) {
+      const double along = std::abs(dot(d, scene_.run.gravity)) / g;
+      const bool flag = along > 0.01 * weight;
+      std::snprintf(line, sizeof line,
+                    "  %s%s: the damping held (%.4g, %.4g, %.4g) at the last step, along gravity "
+                    "%.3g %% of its weight%s\n",
+                    flag ? "warning: " : "", scene_.bodies[b].name.c_str(), d.x, d.y, d.z,
+                    100.0 * along / weight,
+                    flag ? ": a force the relaxation has not balanced (a body drifting at the "
+                           "damping's terminal velocity keeps a kinetic energy far below the "
+                           "tolerance); a smaller tolerance lets it settle"
+                         : "");
+    } else {
+      std::snprintf(line, sizeof line,
+                    "  %s: the damping held (%.4g, %.4g, %.4g) at the last step\n",
+                    scene_.bodies[b].name.c_str(), d.x, d.y, d.z);
+    }
+    *options_.phase_log << line;
+  }
 }
 
 TimeLoop::~TimeLoop() = default;

@@ -23,6 +23,8 @@
 
 namespace afemp::core {
 
+struct RelaxationResult;
+
 struct RunOptions {
   std::string output_directory;  // empty: no output files at all (tests, benchmarks)
   bool write_fields = true;
@@ -101,6 +103,8 @@ class TimeLoop {
   // bodies with an initial velocity held at rest and set moving at the end; the clock then
   // reads the phase's end.
   void run_relaxation(const PhaseSpec& phase);
+  // To RunOptions::phase_log: the force the damping held on each body at convergence.
+  void print_damping_force(const RelaxationResult& r) const;
   // What the explicit phase starts from, to RunOptions::phase_log: the energies, and per body
   // its largest von Mises stress and its range of pressure (Model::body_stresses).
   void print_switch(const PhaseSpec& phase) const;
