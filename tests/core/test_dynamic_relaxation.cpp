@@ -180,7 +180,8 @@ TEST(DynamicRelaxation, ColumnOfHexahedraRelaxesToTheClosedFormAndTheStaticSolve
         << element;
   }
   // LS-DYNA's default DRTOL 1e-3 bounds the displacement left at sqrt(1e-3) = 3.2 %.
-  fem::FeModel model(hexahedra_column(0.0, "one-point", 1));
+  const core::Scene scene = hexahedra_column(0.0, "one-point", 1);  // the model keeps it
+  fem::FeModel model(scene);
   const core::RelaxationResult r = core::relax(model, {});
   const double top = relaxed_state(model.solver()).top;
   std::printf("DR column at DRTOL 1e-3: %ld steps, ratio %.3g, u_top %.6g (%+.3f %%)\n", r.steps,
