@@ -300,6 +300,16 @@ TEST(TiedRebar, BadInputNamesTheBodyAndWhatIsAllowed) {
                        "[[walls]]\npoint = [0, 0, 0]\nnormal = [0, 0, 1]\nbodies = [\"tendon\"]\n";
   EXPECT_NE(error_of(walled).find("walls act on free mesh bodies (name its host)"),
             std::string::npos);
+  // A static phase that lists the tied body without its host.
+  const std::string alone = run + bar(1.0, 1.0, 99.0, "") +
+                            "[[phases]]\nkind = \"static\"\nend_time = 0.005\nbodies = "
+                            "[\"tendon\"]\n[[phases]]\nkind = \"explicit\"\n";
+  const std::string why = test::checked_error_of(alone);
+  EXPECT_NE(why.find("phases[0].bodies"), std::string::npos) << why;
+  EXPECT_NE(why.find("body \"tendon\" is tied into \"bar\", which a static phase does not "
+                     "solve: list that body"),
+            std::string::npos)
+      << why;
 }
 
 }  // namespace
