@@ -456,9 +456,8 @@ kind = "explicit"
     if (n.body[i] == 1 && n.mass[i] > 0.0) EXPECT_EQ(n.velocity[i].z, -100.0) << "node " << i;
   const BodySums rod = sim.energies().bodies.at(1);
   std::printf(
-      "held rod: %ld relaxation steps, %d particles converted; momentum %.10g (m v %.10g), kinetic "
-      "%.10g (m v^2 "
-      "/ 2 %.10g)\n",
+      "held rod: %ld relaxation steps, %d particles converted; momentum %.10g (m v %.10g), "
+      "kinetic %.10g (m v^2 / 2 %.10g)\n",
       sim.step_count(), converted, rod.momentum.z, -100.0 * rod.mass, rod.kinetic,
       5000.0 * rod.mass);
   EXPECT_NEAR(rod.momentum.z / (-100.0 * rod.mass), 1.0, 1e-12);

@@ -150,7 +150,7 @@ TEST(RcSlab, PreloadedSlabStartsTheImpactFromItsRelaxedStresses) {
   const Energies e0 = sim.energies();
   const double weight = (e0.bodies.at(static_cast<std::size_t>(slab)).mass +
                          e0.bodies.at(static_cast<std::size_t>(rebar)).mass) *
-                        9.81e-3;
+                        core::norm(scene.run.gravity);
   std::printf(
       "relaxed in %ld steps: bars in the middle %.4g MPa (%.4g to %.4g; closed form %.4g, "
       "%+.2f %%), concrete sigma_xx %.4g, sigma_yy %.4g MPa (closed form %.4g: %+.2f, %+.2f %%)\n",
@@ -171,7 +171,8 @@ TEST(RcSlab, PreloadedSlabStartsTheImpactFromItsRelaxedStresses) {
     for (std::size_t r = 0; r < probe.rows(); ++r)
       if (probe.time[r] == switch_time) reaction += probe.at(r, static_cast<std::size_t>(rfz));
     for (std::size_t b = 0; b < scene.bodies.size(); ++b)
-      if (scene.bodies[b].name == probe.name) frame_weight += e0.bodies.at(b).mass * 9.81e-3;
+      if (scene.bodies[b].name == probe.name)
+        frame_weight += e0.bodies.at(b).mass * core::norm(scene.run.gravity);
   }
   ASSERT_GT(frame_weight, 0.0);
   reaction -= frame_weight;
