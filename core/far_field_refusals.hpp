@@ -24,14 +24,16 @@ inline std::optional<std::string> absolute_stress_lattice_refusal(const GridSett
 }
 
 // uGIMP: the static traction acts on the face plane's nodes, and the halo nodes beyond the
-// face would take the held particles' push with nothing to balance it.
+// face would take the held particles' push with nothing to balance it. The B-splines reach no
+// node beyond a face, but the balance has been measured with the linear hat only.
 inline std::optional<std::string> absolute_stress_shape_refusal(const GridSettings& grid,
                                                                 ShapeFunction shape) {
   if (!grid.far_field || !grid.far_field->absolute_stress || shape == ShapeFunction::linear)
     return std::nullopt;
   return "grid.far_field.stress = \"absolute\" balances the ambient pressure on the face "
          "plane's nodes, which needs shape_function = \"linear\" (uGIMP's halo nodes beyond the "
-         "face would take it unbalanced); allowed with \"gimp\": stress = \"gauge\"";
+         "face would take it unbalanced; the B-splines' balance is not verified); allowed "
+         "with the others: stress = \"gauge\"";
 }
 
 }  // namespace afemp::core

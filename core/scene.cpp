@@ -26,7 +26,17 @@ const char* to_string(UpdateScheme s) {
 }
 
 const char* to_string(ShapeFunction s) {
-  return s == ShapeFunction::gimp ? "gimp" : "linear";
+  switch (s) {
+    case ShapeFunction::linear:
+      return "linear";
+    case ShapeFunction::gimp:
+      return "gimp";
+    case ShapeFunction::bspline2:
+      return "bspline2";
+    case ShapeFunction::bspline3:
+      return "bspline3";
+  }
+  return "?";
 }
 
 const char* to_string(Transfer t) {

@@ -15,6 +15,7 @@
 #include "core/scene.hpp"
 #include "core/scene_parser.hpp"
 #include "core/scene_ranges.hpp"
+#include "core/shape_function_refusals.hpp"
 
 namespace afemp::core {
 
@@ -125,10 +126,11 @@ void check_grid(const Checker& c, const Scene& scene) {
           scene.bodies[static_cast<std::size_t>(b)].discretisation != Discretisation::particles)
         c.fail(w, "mpm.splitting.bodies", "only bodies of particles split");
   }
-  if (scene.mpm.transfer == Transfer::apic && scene.mpm.shape != ShapeFunction::gimp)
-    c.fail(w, "mpm.transfer",
-           "\"apic\" needs shape_function = \"gimp\" (the affine transfer is "
-           "unstable with linear weights); allowed with \"linear\": \"flip\"");
+  if (const std::optional<std::string> why =
+          apic_shape_refusal(scene.mpm.shape, scene.mpm.transfer))
+    c.fail(w, "mpm.transfer", *why);
+  if (const std::optional<std::string> why = spline_grid_refusal(g, scene.mpm.shape))
+    c.fail(w, "mpm.shape_function", *why);
   bool converts = false;
   for (const BodySpec& b : scene.bodies) converts = converts || b.conversion.has_value();
   for (int f = 0; f < 6; ++f)

@@ -18,6 +18,7 @@
 #include "core/materials/model_parameters.hpp"
 #include "core/phases.hpp"
 #include "core/scene_ranges.hpp"
+#include "core/shape_function_refusals.hpp"
 
 namespace afemp::core::scene_detail {
 
@@ -487,26 +488,23 @@ void read_mpm(TableReader& r, MpmSettings& mpm) {
   r.check_unknown();
   mpm.scheme = static_cast<UpdateScheme>(r.choice("scheme", {"USF", "USL", "MUSL", "USAVG"},
                                                   static_cast<std::size_t>(mpm.scheme), true));
-  mpm.shape = static_cast<ShapeFunction>(
-      r.choice("shape_function", {"linear", "gimp"}, static_cast<std::size_t>(mpm.shape)));
+  mpm.shape = static_cast<ShapeFunction>(r.choice("shape_function",
+                                                  {"linear", "gimp", "bspline2", "bspline3"},
+                                                  static_cast<std::size_t>(mpm.shape)));
   mpm.transfer = static_cast<Transfer>(
       r.choice("transfer", {"flip", "apic"}, static_cast<std::size_t>(mpm.transfer)));
   mpm.flip = r.number("flip", mpm.flip, scene_ranges::mpm::flip);
   if (mpm.transfer == Transfer::apic) {
-    // With the linear hat a node at the far side of a particle's cell gets a tiny mass but
-    // a full-size gradient; the affine transfer carries its velocity back undamped and the
-    // run blows up (measured: the Taylor bar at step 382). uGIMP's weights fade with their
-    // gradients, which is what the affine transfer needs.
-    if (mpm.shape != ShapeFunction::gimp)
-      r.fail("transfer",
-             "\"apic\" needs shape_function = \"gimp\" (the affine transfer is "
-             "unstable with linear weights); allowed with \"linear\": \"flip\"");
+    if (const std::optional<std::string> why = apic_shape_refusal(mpm.shape, mpm.transfer))
+      r.fail("transfer", *why);
     if (r.has("flip"))
       r.fail("flip",
              "the PIC/FLIP blend applies to transfer = \"flip\" only; remove it or set "
              "transfer = \"flip\"");
   }
   if (const std::optional<std::string> why = absolute_stress_shape_refusal(mpm.grid, mpm.shape))
+    r.fail("shape_function", *why);
+  if (const std::optional<std::string> why = spline_grid_refusal(mpm.grid, mpm.shape))
     r.fail("shape_function", *why);
   mpm.jaumann = r.boolean("jaumann", mpm.jaumann);
   if (const toml::table* t = r.optional_table("splitting")) {

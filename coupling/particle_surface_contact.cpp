@@ -50,10 +50,8 @@ void ParticleSurfaceContacts::resolve(const mpm::GridStepAccess& access) {
   for (std::size_t i = 0; i < n.size(); ++i)
     predicted_[i] = n.position[i] + access.dt * n.velocity[i];
   for (Pair& pair : pairs_) {
-    if (access.plan.shape == core::ShapeFunction::gimp)
-      resolve_pair<mpm::GimpStencil>(pair, access);
-    else
-      resolve_pair<mpm::LinearStencil>(pair, access);
+    mpm::with_shape(access.plan.shape,
+                    [&]<class Stencil>() { resolve_pair<Stencil>(pair, access); });
   }
 }
 

@@ -21,7 +21,8 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
     : scene_(scene),
       plan_(build_step_plan(scene)),
       particles_(std::move(particles)),
-      grid_(scene.mpm.grid, scene.mpm.shape == core::ShapeFunction::gimp ? 1 : 0) {
+      // uGIMP and the B-splines reach a node beyond the particle's cell on each side.
+      grid_(scene.mpm.grid, scene.mpm.shape == core::ShapeFunction::linear ? 0 : 1) {
   for (const auto& m : scene.materials) materials_.push_back(&m);
   grid_.enable_remap_field(scene.mpm.scheme == core::UpdateScheme::MUSL ||
                            scene.mpm.scheme == core::UpdateScheme::USAVG);
@@ -53,8 +54,9 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
   // the strain sweep streams, and nothing in the physics reads it.
   if (plan_.strain) particles_.keep(&Particles::strain, SymTensor{});
   // uGIMP: each particle's domain is the cube of its initial volume, at most one cell
-  // (a domain wider than a cell would reach a fourth node per axis).
-  if (plan_.shape == core::ShapeFunction::gimp) {
+  // (a domain wider than a cell would reach a fourth node per axis). The B-splines do not need
+  // it for their weights; the affine transfer's kinetic energy reads it (energies()).
+  if (plan_.shape != core::ShapeFunction::linear) {
     particles_.keep(&Particles::half_width, 0.0);
     for (std::size_t i = 0; i < particles_.size(); ++i)
       particles_.half_width[i] = gimp_half_width(particles_.volume[i]);
@@ -148,7 +150,7 @@ void MpmSolver::add_particles(const Particles& more) {
       field_self_updated_[static_cast<std::size_t>(
           field_of_body_[static_cast<std::size_t>(p.body[i])])] = 0;
   }
-  if (plan_.shape == core::ShapeFunction::gimp) velocity_gradient_.resize(p.size());
+  if (plan_.shape != core::ShapeFunction::linear) velocity_gradient_.resize(p.size());
   reorder_particles();
   signal_speed_ = std::max(signal_speed_, max_signal_speed());
 }

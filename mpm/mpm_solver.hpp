@@ -153,17 +153,18 @@ class MpmSolver {
   template <class Stencil, bool Affine>
   void kinematics_kernel(double dt, const StrainSweep& sweep);
   // Calls f.template operator()<Stencil, Affine>() for the scene's shape function and
-  // transfer (the parser allows the affine transfer with uGIMP only).
+  // transfer (the parser refuses the affine transfer with the linear hat).
   template <class F>
   void with_stencil(F&& f) {
-    if (plan_.shape == core::ShapeFunction::gimp) {
-      if (plan_.transfer == core::Transfer::apic)
-        f.template operator()<GimpStencil, true>();
+    const bool affine = plan_.transfer == core::Transfer::apic;
+    with_shape(plan_.shape, [&]<class Stencil>() {
+      if constexpr (std::is_same_v<Stencil, LinearStencil>)
+        f.template operator()<Stencil, false>();
+      else if (affine)
+        f.template operator()<Stencil, true>();
       else
-        f.template operator()<GimpStencil, false>();
-    } else {
-      f.template operator()<LinearStencil, false>();
-    }
+        f.template operator()<Stencil, false>();
+    });
   }
   // Turns a nodal momentum field into velocity (when divide_by_mass) and zeroes the
   // components the face conditions constrain.
@@ -231,7 +232,8 @@ class MpmSolver {
   std::vector<std::int64_t> layer_offsets_;
   std::vector<std::int64_t> scratch_offsets_;
   int sweep_axis_ = 2;
-  // uGIMP: the velocity gradient of each particle, from kinematics_kernel to the stress update.
+  // uGIMP, B-splines: the velocity gradient of each particle, from kinematics_kernel to the
+  // stress update.
   std::vector<core::Mat3> velocity_gradient_;
 
   // Velocity fields: the field of each body, and what happens where fields f and g meet at

@@ -1,7 +1,8 @@
 // Binning: the cell of every particle, the grid blocks that become active, and the colour
 // layers that let the particle-to-grid sweep run in parallel without atomics: particles of
 // layer L (cells with index L along the sweep axis) touch nodes L and L + 1 only with the
-// linear hat (L - 1 .. L + 2 with uGIMP), so layers two (four) apart never share a node
+// linear hat (L - 1 .. L + 2 with uGIMP and the B-splines), so layers two (four) apart never
+// share a node
 // (stencil.hpp). Within a layer, particles keep their memory order, so every node sums its
 // contributions in the same order for any thread count.
 #include <algorithm>

@@ -63,7 +63,7 @@ struct Particles {
   std::vector<std::int32_t> material;
   std::vector<std::int32_t> id;  // stable id, unchanged by reordering
   // Optional (kept only when the run asks for them: optional_fields below):
-  std::vector<double> half_width;  // uGIMP: half the particle's initial edge, in cells
+  std::vector<double> half_width;  // not linear: half the particle's initial edge, in cells
   std::vector<core::Mat3> affine;  // APIC: the affine velocity C_p (a velocity gradient)
   // Splitting: the particle's current length along x, y, z, and the length the particle it
   // came from started with (particle_splitting.cpp).

@@ -1,11 +1,13 @@
 // A particle's view of the grid for each shape function: the nodes it reaches, their weights,
 // gradients and storage slots. The transfer kernels are templates over these, so the linear
-// path keeps its 8-node loops and uGIMP gets 27-node ones, with no branch per node.
+// path keeps its 8-node loops, uGIMP and the quadratic B-spline get 27-node ones and the cubic
+// B-spline 64-node ones, with no branch per node.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "core/grid/background_grid.hpp"
@@ -39,27 +41,28 @@ struct LinearStencil {
   const Vec3& grad(int n) const { return weights.grad[static_cast<std::size_t>(n)]; }
 };
 
-// uGIMP (core/grid/gimp.hpp): 3 x 3 x 3 nodes around the particle.
-struct GimpStencil {
-  static constexpr int nodes = 27;
-  // Layer L reaches nodes L - 1 .. L + 2: layers four apart share none.
+// The weights that are products of one weight per axis: Span^3 nodes from base.
+template <int Span>
+struct TensorStencil {
+  static constexpr int nodes = Span * Span * Span;
+  // Layer L reaches nodes L - 1 .. L + 2 (uGIMP, quadratic and cubic B-splines): layers four
+  // apart share none.
   static constexpr int colours = 4;
-  using Slots = std::array<std::int32_t, 27>;
-  core::GimpWeights weights;
-  std::int64_t key;  // equal keys, equal nodes (the base node)
+  using Slots = std::array<std::int32_t, nodes>;
+  core::TensorWeights<Span> weights;
+  std::int64_t key = 0;  // equal keys, equal nodes (the base node)
 
-  GimpStencil(const core::BackgroundGrid& g, const Particles& p, std::size_t i, const Vec3& x) {
-    weights = g.gimp_weights(x, p.half_width[i]);
+  void set_key() {
     const auto& b = weights.base;
     key = (static_cast<std::int64_t>(b[2] + 1) << 42) |
           (static_cast<std::int64_t>(b[1] + 1) << 21) | static_cast<std::int64_t>(b[0] + 1);
   }
   void slots(const core::BackgroundGrid& g, Slots& out) const {
-    g.stencil_slots<3>(weights.base, out);
+    g.stencil_slots<Span>(weights.base, out);
   }
   std::array<int, 3> node(int n) const {
     const auto& b = weights.base;
-    return {b[0] + n % 3, b[1] + (n / 3) % 3, b[2] + n / 9};
+    return {b[0] + n % Span, b[1] + (n / Span) % Span, b[2] + n / (Span * Span)};
   }
   double w(int n) const { return weights.w[static_cast<std::size_t>(n)]; }
   const Vec3& grad(int n) const { return weights.grad[static_cast<std::size_t>(n)]; }
@@ -72,6 +75,43 @@ struct GimpStencil {
             weights.axis[2].inverse_moment};
   }
 };
+
+// uGIMP (core/grid/gimp.hpp): 3 x 3 x 3 nodes around the particle.
+struct GimpStencil : TensorStencil<3> {
+  GimpStencil(const core::BackgroundGrid& g, const Particles& p, std::size_t i, const Vec3& x) {
+    weights = g.gimp_weights(x, p.half_width[i]);
+    set_key();
+  }
+};
+
+// Quadratic (Order 2, 27 nodes) and cubic (Order 3, 64 nodes) B-splines, modified at the
+// grid's faces (core/grid/bspline.hpp).
+template <int Order>
+struct SplineStencil : TensorStencil<Order + 1> {
+  SplineStencil(const core::BackgroundGrid& g, const Particles&, std::size_t, const Vec3& x) {
+    this->weights = g.template spline_weights<Order>(x);
+    this->set_key();
+  }
+};
+
+// Calls f.template operator()<Stencil>() for a shape function.
+template <class F>
+void with_shape(core::ShapeFunction shape, F&& f) {
+  switch (shape) {
+    case core::ShapeFunction::linear:
+      f.template operator()<LinearStencil>();
+      break;
+    case core::ShapeFunction::gimp:
+      f.template operator()<GimpStencil>();
+      break;
+    case core::ShapeFunction::bspline2:
+      f.template operator()<SplineStencil<2>>();
+      break;
+    case core::ShapeFunction::bspline3:
+      f.template operator()<SplineStencil<3>>();
+      break;
+  }
+}
 
 // Calls f(i, stencil, slots) for every particle, threads splitting the particles statically
 // (each call writes only particle i: no race).

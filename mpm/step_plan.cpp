@@ -255,10 +255,21 @@ std::string StepPlan::describe() const {
       << (m.eos == "none" ? " (pressure from the bulk modulus)" : "") << ", thermal "
       << (m.thermal ? "on (plastic work heats)" : "off") << ", failure " << m.failure << "\n";
   }
-  o << "shape functions: "
-    << (shape == core::ShapeFunction::gimp ? "uGIMP (27 nodes per particle)"
-                                           : "linear hat (8 nodes)")
-    << "\n";
+  o << "shape functions: ";
+  switch (shape) {
+    case core::ShapeFunction::linear:
+      o << "linear hat (8 nodes)\n";
+      break;
+    case core::ShapeFunction::gimp:
+      o << "uGIMP (27 nodes per particle)\n";
+      break;
+    case core::ShapeFunction::bspline2:
+      o << "quadratic B-spline, modified at the grid faces (27 nodes per particle)\n";
+      break;
+    case core::ShapeFunction::bspline3:
+      o << "cubic B-spline, modified at the grid faces (64 nodes per particle)\n";
+      break;
+  }
   if (transfer == core::Transfer::apic)
     o << "particle velocity: APIC (affine velocity carried by each particle)\n";
   else

@@ -36,7 +36,8 @@ void MpmSolver::strain_stress_update(double dt, StrainPart part) {
   thread_sums_.assign(static_cast<std::size_t>(nt) * core::cache_line_doubles, 0.0);
   thread_bad_.assign(static_cast<std::size_t>(nt), -1);
   // The linear hat computes the kinematics inside the constitutive loop (one pass over the
-  // particles); uGIMP's 27-node stencil runs them in a pass of its own (kinematics_kernel)
+  // particles); the wider stencils (uGIMP, B-splines) run them in a pass of their own
+  // (kinematics_kernel)
   // and leaves L in velocity_gradient_, so the material loops are not duplicated per shape.
   const bool fused = plan_.shape == core::ShapeFunction::linear;
   if (!fused) {

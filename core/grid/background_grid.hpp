@@ -11,7 +11,9 @@
 #include <vector>
 
 #include "afemp/tensor.hpp"
+#include "core/grid/bspline.hpp"
 #include "core/grid/gimp.hpp"
+#include "core/grid/tensor_weights.hpp"
 #include "core/scene.hpp"
 
 namespace afemp::core {
@@ -24,18 +26,10 @@ struct CellWeights {
 };
 
 // uGIMP weights of the 3 x 3 x 3 nodes base + (a, b, c), node n = a + 3 b + 9 c (gimp.hpp).
-struct GimpWeights {
-  std::array<int, 3> base;
-  std::array<double, 27> w;
-  std::array<Vec3, 27> grad;
-  std::array<GimpAxis, 3> axis;
-  // x_I - x_p of node n.
-  Vec3 offset(int n) const {
-    return {axis[0].offset[static_cast<std::size_t>(n % 3)],
-            axis[1].offset[static_cast<std::size_t>((n / 3) % 3)],
-            axis[2].offset[static_cast<std::size_t>(n / 9)]};
-  }
-};
+using GimpWeights = TensorWeights<3>;
+// B-spline weights of the (Order + 1)^3 nodes a point reaches (bspline.hpp).
+template <int Order>
+using SplineWeights = TensorWeights<Order + 1>;
 
 class BackgroundGrid {
  public:
@@ -85,21 +79,19 @@ class BackgroundGrid {
   // uGIMP weights at x for a particle of half-width a h (0 < a <= 1/2).
   GimpWeights gimp_weights(const Vec3& x, double a) const {
     GimpWeights r;
-    for (int d = 0; d < 3; ++d) {
+    for (int d = 0; d < 3; ++d)
       r.axis[static_cast<std::size_t>(d)] = gimp_axis((x[d] - origin_[d]) * inv_h_, a, h_);
-      r.base[static_cast<std::size_t>(d)] = r.axis[static_cast<std::size_t>(d)].base;
-    }
-    const GimpAxis &ax = r.axis[0], &ay = r.axis[1], &az = r.axis[2];
-    for (std::size_t c = 0; c < 3; ++c)
-      for (std::size_t b = 0; b < 3; ++b) {
-        const double wyz = ay.w[b] * az.w[c];
-        const double gy = ay.grad[b] * az.w[c], gz = ay.w[b] * az.grad[c];
-        for (std::size_t i = 0; i < 3; ++i) {
-          const std::size_t n = i + 3 * b + 9 * c;
-          r.w[n] = ax.w[i] * wyz;
-          r.grad[n] = {ax.grad[i] * wyz, ax.w[i] * gy, ax.w[i] * gz};
-        }
-      }
+    r.multiply();
+    return r;
+  }
+  // Boundary-modified B-spline weights of order 2 or 3 at x (x inside the domain).
+  template <int Order>
+  SplineWeights<Order> spline_weights(const Vec3& x) const {
+    SplineWeights<Order> r;
+    for (int d = 0; d < 3; ++d)
+      r.axis[static_cast<std::size_t>(d)] = bspline_axis<Order>(
+          (x[d] - origin_[d]) * inv_h_, cells_[static_cast<std::size_t>(d)], h_);
+    r.multiply();
     return r;
   }
   Vec3 node_position(int i, int j, int k) const {

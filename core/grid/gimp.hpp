@@ -18,16 +18,12 @@
 #include <array>
 #include <cmath>
 
+#include "core/grid/tensor_weights.hpp"
+
 namespace afemp::core {
 
 // Weights of the three nodes base..base+2 along one axis.
-struct GimpAxis {
-  int base = 0;
-  std::array<double, 3> w{};       // S
-  std::array<double, 3> grad{};    // dS/dx_p
-  std::array<double, 3> offset{};  // x_I - x_p
-  double inverse_moment = 0.0;     // 1 / sum_I S (x_I - x_p)^2, the APIC D_p^-1 of this axis
-};
+using GimpAxis = AxisWeights<3>;
 
 // xi = (x_p - origin) / h, a = l_p / h in (0, 1/2], h the cell size.
 inline GimpAxis gimp_axis(double xi, double a, double h) {

@@ -23,9 +23,11 @@ namespace afemp::core {
 /// Lian et al. 2013, eqs 25-27; USAVG: half the strain increment from the start velocity before
 /// the forces, half from the remapped end velocity after (Wallstedt & Guilkey 2008).
 enum class UpdateScheme { USF, USL, MUSL, USAVG };
-/// Particle-grid weights: the trilinear hat of the node (Ma 2005, eq 2-5), or uGIMP, the hat
-/// averaged over the particle's cubic domain (Bardenhagen & Kober 2004), smooth across cells.
-enum class ShapeFunction { linear, gimp };
+/// Particle-grid weights: the trilinear hat of the node (Ma 2005, eq 2-5); uGIMP, the hat
+/// averaged over the particle's cubic domain (Bardenhagen & Kober 2004), smooth across cells;
+/// the quadratic and cubic B-splines (Steffen, Kirby & Berzins 2008), modified at the grid's
+/// faces.
+enum class ShapeFunction { linear, gimp, bspline2, bspline3 };
 /// How velocity travels between particles and grid: the FLIP/PIC blend, or the affine PIC of
 /// Jiang et al. 2015 (particles carry an affine velocity C_p; P2G maps v_p + C_p (x_I - x_p)).
 enum class Transfer { flip, apic };

@@ -88,5 +88,10 @@ TEST(Determinism, SameParticleBitsWithGimpAndAffineTransfer) {
   expect_same_bits("shape_function = \"gimp\"\ntransfer = \"apic\"\n");
 }
 
+// The cubic B-spline's 64-node stencil, with the affine transfer: the same reference.
+TEST(Determinism, SameParticleBitsWithCubicBsplineAndAffineTransfer) {
+  expect_same_bits("shape_function = \"bspline3\"\ntransfer = \"apic\"\n");
+}
+
 }  // namespace
 }  // namespace afemp::mpm

@@ -31,7 +31,8 @@ struct Method {
   const char* shape;
   const char* transfer = "";  // further [mpm] keys
 };
-const Method methods[] = {{"MUSL", "linear"}, {"USF", "linear"}, {"USF", "gimp"}, {"MUSL", "gimp"}};
+const Method methods[] = {{"MUSL", "linear"}, {"USF", "linear"},    {"USF", "gimp"},
+                          {"MUSL", "gimp"},   {"MUSL", "bspline2"}, {"MUSL", "bspline3"}};
 
 std::string two_blocks(const Method& method, const std::string& right_box,
                        const std::string& left_velocity, const std::string& right_velocity,
@@ -218,6 +219,9 @@ TEST(GridContact, ObliqueImpactWithFrictionConservesMomentumAndObeysCoulomb) {
         "oblique.toml"));
   };
   for (const Method& m : methods) {
+    // The B-splines' contact is checked head on (momentum, energy, impulse); the oblique runs
+    // (about 9 s each on 2 cores) stay with the linear hat and uGIMP.
+    if (std::string(m.shape).starts_with("bspline")) continue;
     const std::string scheme = std::string(m.scheme) + " " + m.shape;
     const ContactRun slip = oblique(m, 0.0), r = oblique(m, 0.3);
     const Vec3 j = r.left_momentum - r.left_momentum0;

@@ -141,41 +141,43 @@ TEST(Transfer, G2PConservesParticleMomentumForFlipAndPicInEveryScheme) {
   }
 }
 
-// The same two references with uGIMP weights (sum_I S_Ip = 1, sum_I grad S_Ip = 0 over the 27
-// nodes), with FLIP and with the affine transfer. With APIC the P2G maps
+// The same two references with uGIMP and B-spline weights (sum_I S_Ip = 1, sum_I grad S_Ip = 0
+// over the 27 or 64 nodes), with FLIP and with the affine transfer. With APIC the P2G maps
 // m S (v_p + C_p (x_I - x_p)), and sum_I S_Ip (x_I - x_p) = 0 (linear reproduction) keeps the
 // nodal momentum sum equal to sum m v_p for any C_p: the particles start with random C_p
 // (entries uniform in (-5, 5) per ms). Tolerance 1e-12 relative to sum m |v|.
-TEST(Transfer, GimpAndAffineTransfersConserveMassAndMomentumInEveryScheme) {
-  for (const char* scheme : schemes) {
-    for (const bool affine : {false, true}) {
-      SCOPED_TRACE(std::string(scheme) + (affine ? " gimp apic" : " gimp flip"));
-      const core::Scene scene =
-          random_body_scene(scheme, affine ? -1.0 : 1.0,
-                            std::string("shape_function = \"gimp\"\ntransfer = \"") +
-                                (affine ? "apic" : "flip") + "\"\n");
-      Particles initial = random_velocities(scene, 9);
-      if (affine) {
-        std::mt19937_64 rng(10);
-        std::uniform_real_distribution<double> u(-5.0, 5.0);
-        initial.affine.resize(initial.size());
-        for (auto& c : initial.affine)
-          for (auto& row : c.m)
-            for (double& x : row) x = u(rng);
-      }
-      const double mass = particle_mass(initial);
-      const Vec3 momentum = particle_momentum(initial);
-      const double scale = momentum_scale(initial);
-      MpmSolver solver(scene, initial);
-      solver.step(0.1 * solver.stable_time_step());
-      expect_grid_holds(solver, mass, momentum, scale);
-      for (int k = 0; k < 5; ++k) {
-        solver.step(solver.stable_time_step());
-        const Vec3 now = particle_momentum(solver.particles());
-        for (int a = 0; a < 3; ++a) ASSERT_NEAR(now[a], momentum[a], 1e-12 * scale) << "step " << k;
+TEST(Transfer, WideStencilsAndAffineTransfersConserveMassAndMomentumInEveryScheme) {
+  for (const char* shape : {"gimp", "bspline2", "bspline3"})
+    for (const char* scheme : schemes) {
+      for (const bool affine : {false, true}) {
+        SCOPED_TRACE(std::string(scheme) + " " + shape + (affine ? " apic" : " flip"));
+        const core::Scene scene =
+            random_body_scene(scheme, affine ? -1.0 : 1.0,
+                              std::string("shape_function = \"") + shape + "\"\ntransfer = \"" +
+                                  (affine ? "apic" : "flip") + "\"\n");
+        Particles initial = random_velocities(scene, 9);
+        if (affine) {
+          std::mt19937_64 rng(10);
+          std::uniform_real_distribution<double> u(-5.0, 5.0);
+          initial.affine.resize(initial.size());
+          for (auto& c : initial.affine)
+            for (auto& row : c.m)
+              for (double& x : row) x = u(rng);
+        }
+        const double mass = particle_mass(initial);
+        const Vec3 momentum = particle_momentum(initial);
+        const double scale = momentum_scale(initial);
+        MpmSolver solver(scene, initial);
+        solver.step(0.1 * solver.stable_time_step());
+        expect_grid_holds(solver, mass, momentum, scale);
+        for (int k = 0; k < 5; ++k) {
+          solver.step(solver.stable_time_step());
+          const Vec3 now = particle_momentum(solver.particles());
+          for (int a = 0; a < 3; ++a)
+            ASSERT_NEAR(now[a], momentum[a], 1e-12 * scale) << "step " << k;
+        }
       }
     }
-  }
 }
 
 // Reference: PIC (flip = 0) sets v_p = sum_I N_Ip v_I with v_I = sum_p N_Ip m_p v_p / m_I,

@@ -1,0 +1,50 @@
+// Shape-function choices a scene is refused for, shared by the parser (file, line and key) and
+// check_scene (scenes built in code).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "core/grid/bspline.hpp"
+#include "core/scene.hpp"
+
+namespace afemp::core {
+
+// B-splines reach Order + 1 nodes per axis and are modified in the cells next to each face
+// (core/grid/bspline.hpp): with fewer than bspline_min_cells cells along an axis every cell is
+// a face cell and the basis is no longer the B-spline.
+inline std::optional<std::string> spline_grid_refusal(const GridSettings& grid,
+                                                      ShapeFunction shape) {
+  if (!(grid.cell > 0.0)) return std::nullopt;  // no grid: refused elsewhere
+  int order = 0;
+  if (shape == ShapeFunction::bspline2) order = 2;
+  if (shape == ShapeFunction::bspline3) order = 3;
+  if (order == 0) return std::nullopt;
+  const int need = bspline_min_cells(order);
+  for (int a = 0; a < 3; ++a) {
+    // As BackgroundGrid counts them: a domain that is not a whole number of cells is extended.
+    const int cells =
+        std::max(1, static_cast<int>(std::ceil((grid.max[a] - grid.min[a]) / grid.cell - 1e-9)));
+    if (cells < need)
+      return std::string("\"") + to_string(shape) + "\" needs at least " + std::to_string(need) +
+             " cells along each axis (its support is " + std::to_string(order + 1) +
+             " nodes wide); the grid has " + std::to_string(cells) + " along " + "xyz"[a] +
+             "; allowed: a finer cell or a wider domain, or shape_function = \"linear\" or "
+             "\"gimp\"";
+  }
+  return std::nullopt;
+}
+
+// The affine transfer with the linear hat: a node at the far side of a particle's cell gets a
+// tiny mass but a full-size gradient; the affine transfer carries its velocity back undamped
+// and the run blows up (measured: the Taylor bar at step 382). uGIMP's and the B-splines'
+// weights fade with their gradients, which is what the affine transfer needs.
+inline std::optional<std::string> apic_shape_refusal(ShapeFunction shape, Transfer transfer) {
+  if (transfer != Transfer::apic || shape != ShapeFunction::linear) return std::nullopt;
+  return "\"apic\" needs shape_function = \"gimp\", \"bspline2\" or \"bspline3\" (the affine "
+         "transfer is unstable with linear weights); allowed with \"linear\": \"flip\"";
+}
+
+}  // namespace afemp::core
