@@ -131,6 +131,8 @@ void check_grid(const Checker& c, const Scene& scene) {
     c.fail(w, "mpm.transfer", *why);
   if (const std::optional<std::string> why = spline_grid_refusal(g, scene.mpm.shape))
     c.fail(w, "mpm.shape_function", *why);
+  if (const std::optional<std::string> why = absorbing_face_shape_refusal(g, scene.mpm.shape))
+    c.fail(w, "mpm.shape_function", *why);
   bool converts = false;
   for (const BodySpec& b : scene.bodies) converts = converts || b.conversion.has_value();
   for (int f = 0; f < 6; ++f)

@@ -506,6 +506,8 @@ void read_mpm(TableReader& r, MpmSettings& mpm) {
     r.fail("shape_function", *why);
   if (const std::optional<std::string> why = spline_grid_refusal(mpm.grid, mpm.shape))
     r.fail("shape_function", *why);
+  if (const std::optional<std::string> why = absorbing_face_shape_refusal(mpm.grid, mpm.shape))
+    r.fail("shape_function", *why);
   mpm.jaumann = r.boolean("jaumann", mpm.jaumann);
   if (const toml::table* t = r.optional_table("splitting")) {
     TableReader sr(*t, r.dotted("splitting"), r.file());
