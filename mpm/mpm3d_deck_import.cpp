@@ -270,8 +270,16 @@ class Mpm3dImport {
     } else if (k == "jaum") {
       jaumann_ = on_off();
     } else if (k == "gimp") {
-      gimp_ = true;
+      shape_ = "gimp";
       note(key_, "GIMP is written as afemp's uGIMP (the particle's cube kept at its initial size)",
+           true);
+    } else if (k == "bimp") {
+      // MPM3D-F90's NShape_Bspline: the quadratic B-spline, 27 nodes.
+      shape_ = "bspline2";
+      note(key_,
+           "B-spline MPM is written as afemp's quadratic B-spline (MPM3D-F90's is quadratic too, "
+           "centred half a cell off its nodes; afemp's is centred on them and modified at the "
+           "grid's faces)",
            true);
     } else if (k == "bulk") {
       bulk_ = std::array<double, 2>{words_.real(key_, "the quadratic coefficient"),
@@ -295,12 +303,12 @@ class Mpm3dImport {
       x.y = length();
       x.z = length();
       detonations_.push_back({x, words_.at()});
-    } else if (k == "bimp" || k == "sgmp" || k == "smoo" || k == "tlmp" || k == "uvfp") {
+    } else if (k == "sgmp" || k == "smoo" || k == "tlmp" || k == "uvfp") {
       // A different discretisation of the same physics: run with afemp's own, noted.
       note(key_,
-           "an MPM3D-F90 scheme afemp does not have (B-spline, staggered-grid, smoothed-stress, "
-           "total Lagrangian or mixed MPM): the deck runs with the scene's shape function and "
-           "scheme (docs/import.md)",
+           "an MPM3D-F90 scheme afemp does not have (staggered-grid, smoothed-stress, total "
+           "Lagrangian or mixed MPM): the deck runs with the scene's shape function and scheme "
+           "(docs/import.md)",
            true);
     } else if (k == "drda") {
       changes_run(key_, "dynamic relaxation (damping to a static solution) is not part of afemp");
@@ -870,7 +878,7 @@ class Mpm3dImport {
     }
     s += "\n[mpm]\nscheme = \"" + scheme_ + "\"" + (scheme_set_ ? "" : "  # MPM3D's default") +
          "\njaumann = " + (jaumann_ ? "true" : "false") + "\n";
-    if (gimp_) s += "shape_function = \"gimp\"\n";
+    if (!shape_.empty()) s += "shape_function = \"" + shape_ + "\"\n";
 
     std::set<long> used;
     for (const Body& b : bodies_) used.insert(b.material);
@@ -1016,7 +1024,8 @@ class Mpm3dImport {
   std::array<int, 6> faces_{};
   std::string scheme_ = "USL";  // neither MUSL nor USF: MPM3D updates the stress last
   bool scheme_set_ = false;
-  bool jaumann_ = true, gimp_ = false, contact_ = false;
+  bool jaumann_ = true, contact_ = false;
+  std::string shape_;  // gimp or bimp: the shape function written; empty: the default
   double friction_ = 0.0;
   core::SourceLocation contact_at_{};
   std::optional<std::array<double, 2>> bulk_;

@@ -196,7 +196,7 @@ TEST(Mpm3dDeckImport, WhatIsNotTranslatedIsListedWithItsLineAndInTheScene) {
 // node), a force on a body (load body) and damping change the run: the import stops at the
 // file, line and keyword unless allowed, and then the scene's [run] untranslated carries them.
 // A scheme switch (bimp: B-spline MPM) changes the discretisation, not the physics: noted as
-// approximated, the deck imports.
+// approximated, the deck imports with afemp's quadratic B-spline.
 TEST(Mpm3dDeckImport, UntranslatedInitialConditionsAndLoadsAreRefusedUnlessAllowed) {
   std::string deck = kDeck;
   deck.replace(deck.find("body 2 0 0 -1000\n"), 17, "body 2 0 0 -1000\nnode 3 0 0 -10\n");
@@ -232,6 +232,7 @@ TEST(Mpm3dDeckImport, UntranslatedInitialConditionsAndLoadsAreRefusedUnlessAllow
     noted = noted || (n.keyword == "bimp" && n.approximated && n.at.line == 34);
   EXPECT_TRUE(noted);
   EXPECT_TRUE(im.scene.run.untranslated.empty());
+  EXPECT_EQ(im.scene.mpm.shape, core::ShapeFunction::bspline2);
 }
 
 // Reference: 1 kg/m^3 = 1e-6 g/mm^3, 1 Pa = 1e-6 MPa, 1 m = 1000 mm, 1 s = 1000 ms, so the
