@@ -35,6 +35,10 @@ const char* to_string(ShapeFunction s) {
       return "bspline2";
     case ShapeFunction::bspline3:
       return "bspline3";
+    case ShapeFunction::cpdi1:
+      return "cpdi1";
+    case ShapeFunction::cpdi2:
+      return "cpdi2";
   }
   return "?";
 }

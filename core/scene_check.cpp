@@ -129,6 +129,9 @@ void check_grid(const Checker& c, const Scene& scene) {
   if (const std::optional<std::string> why =
           apic_shape_refusal(scene.mpm.shape, scene.mpm.transfer))
     c.fail(w, "mpm.transfer", *why);
+  if (scene.mpm.splitting)
+    if (const std::optional<std::string> why = cpdi_splitting_refusal(scene.mpm.shape))
+      c.fail(w, "mpm.splitting", *why);
   if (const std::optional<std::string> why = spline_grid_refusal(g, scene.mpm.shape))
     c.fail(w, "mpm.shape_function", *why);
   if (const std::optional<std::string> why = absorbing_face_shape_refusal(g, scene.mpm.shape))

@@ -488,9 +488,9 @@ void read_mpm(TableReader& r, MpmSettings& mpm) {
   r.check_unknown();
   mpm.scheme = static_cast<UpdateScheme>(r.choice("scheme", {"USF", "USL", "MUSL", "USAVG"},
                                                   static_cast<std::size_t>(mpm.scheme), true));
-  mpm.shape = static_cast<ShapeFunction>(r.choice("shape_function",
-                                                  {"linear", "gimp", "bspline2", "bspline3"},
-                                                  static_cast<std::size_t>(mpm.shape)));
+  mpm.shape = static_cast<ShapeFunction>(
+      r.choice("shape_function", {"linear", "gimp", "bspline2", "bspline3", "cpdi1", "cpdi2"},
+               static_cast<std::size_t>(mpm.shape)));
   mpm.transfer = static_cast<Transfer>(
       r.choice("transfer", {"flip", "apic"}, static_cast<std::size_t>(mpm.transfer)));
   mpm.flip = r.number("flip", mpm.flip, scene_ranges::mpm::flip);
@@ -510,6 +510,8 @@ void read_mpm(TableReader& r, MpmSettings& mpm) {
     r.fail("shape_function", *why);
   mpm.jaumann = r.boolean("jaumann", mpm.jaumann);
   if (const toml::table* t = r.optional_table("splitting")) {
+    if (const std::optional<std::string> why = cpdi_splitting_refusal(mpm.shape))
+      r.fail("splitting", *why);
     TableReader sr(*t, r.dotted("splitting"), r.file());
     sr.known({"alpha", "max_particles", "bodies", "axes"});  // bodies: resolved once read
     sr.check_unknown();

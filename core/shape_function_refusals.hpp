@@ -56,10 +56,32 @@ inline std::optional<std::string> absorbing_face_shape_refusal(const GridSetting
 // tiny mass but a full-size gradient; the affine transfer carries its velocity back undamped
 // and the run blows up (measured: the Taylor bar at step 382). uGIMP's and the B-splines'
 // weights fade with their gradients, which is what the affine transfer needs.
+// With CPDI the affine transfer is not built: its moment matrix D_p is full (the weights are
+// not products of one per axis) and afemp's APIC inverts the diagonal one only.
 inline std::optional<std::string> apic_shape_refusal(ShapeFunction shape, Transfer transfer) {
-  if (transfer != Transfer::apic || shape != ShapeFunction::linear) return std::nullopt;
-  return "\"apic\" needs shape_function = \"gimp\", \"bspline2\" or \"bspline3\" (the affine "
-         "transfer is unstable with linear weights); allowed with \"linear\": \"flip\"";
+  if (transfer != Transfer::apic) return std::nullopt;
+  if (shape == ShapeFunction::linear)
+    return "\"apic\" needs shape_function = \"gimp\", \"bspline2\" or \"bspline3\" (the "
+           "affine transfer is unstable with linear weights); allowed with \"linear\": \"flip\"";
+  if (shape == ShapeFunction::cpdi1 || shape == ShapeFunction::cpdi2)
+    return std::string("\"apic\" is not built for \"") + to_string(shape) +
+           "\" (CPDI's weights are not products of one per axis, and afemp's affine transfer "
+           "inverts the diagonal moment of those); allowed with \"" +
+           to_string(shape) +
+           "\": \"flip\", or \"apic\" with \"gimp\", \"bspline2\" or \"bspline3\"";
+  return std::nullopt;
+}
+
+// Particle splitting halves a particle's axis-aligned lengths; a CPDI domain is a deformed
+// parallelepiped or hexahedron that the split does not carry, so the two are not combined.
+inline std::optional<std::string> cpdi_splitting_refusal(ShapeFunction shape) {
+  if (shape != ShapeFunction::cpdi1 && shape != ShapeFunction::cpdi2) return std::nullopt;
+  return std::string(
+             "[mpm] splitting halves particles along x, y and z and does not split a "
+             "CPDI domain; with shape_function = \"") +
+         to_string(shape) +
+         "\" leave it out (a domain that outgrows its stencil stops the run, naming the "
+         "particle), or split with \"linear\", \"gimp\", \"bspline2\" or \"bspline3\"";
 }
 
 }  // namespace afemp::core

@@ -65,6 +65,7 @@ void MpmSolver::return_particles_past_faces() {
   Particles& p = particles_;
   const std::size_t n = p.size();
   const bool strain = !p.strain.empty(), affine = !p.affine.empty();
+  const bool domain = !p.domain.empty(), corners = !p.corners.empty();
   // A held particle goes just inside the plane, so that its cell is the last one.
   const double inset = 1e-9 * grid_.cell();
 #pragma omp parallel for schedule(static) if (core::worth_threads(n))
@@ -75,7 +76,10 @@ void MpmSolver::return_particles_past_faces() {
       const std::size_t f = x < plane[lo] ? lo : x > plane[hi] ? hi : 6;
       if (f == 6 || action[f] == Crossing::none) continue;
       if (action[f] == Crossing::hold) {
-        x = plane[f] + (f == lo ? inset : -inset);
+        const double held = plane[f] + (f == lo ? inset : -inset);
+        if (corners)  // CPDI2's domain goes with its particle
+          for (Vec3& c : p.corners[i]) c[a] += held - x;
+        x = held;
         continue;
       }
       x = 2.0 * plane[f] - x;
@@ -87,6 +91,24 @@ void MpmSolver::return_particles_past_faces() {
           if (k == a) continue;
           p.affine[i].m[a][k] = -p.affine[i].m[a][k];
           p.affine[i].m[k][a] = -p.affine[i].m[k][a];
+        }
+      }
+      // CPDI1's edge vectors r' = M r M: the same corners, mirrored, and det r kept positive.
+      if (domain)
+        for (int k = 0; k < 3; ++k) {
+          if (k == a) continue;
+          p.domain[i].m[a][k] = -p.domain[i].m[a][k];
+          p.domain[i].m[k][a] = -p.domain[i].m[k][a];
+        }
+      // CPDI2's corners mirrored, corner c taking the image of corner c with its natural
+      // coordinate along a reversed, so that the hexahedron keeps its orientation.
+      if (corners) {
+        std::array<Vec3, 8>& xc = p.corners[i];
+        const std::array<Vec3, 8> old = xc;
+        for (int c = 0; c < 8; ++c) {
+          Vec3& to = xc[static_cast<std::size_t>(c)];
+          to = old[static_cast<std::size_t>(c ^ (1 << a))];
+          to[a] = 2.0 * plane[f] - to[a];
         }
       }
     }

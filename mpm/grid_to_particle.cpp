@@ -23,7 +23,10 @@ void MpmSolver::g2p_kernel(double dt, bool move_positions) {
       update.add(st, k, g.velocity_new[s], g.velocity[s]);
     }
     update.store(p, i, st, flip);
-    if (move_positions) p.position[i] += dt * update.v_grid;
+    if (move_positions) {
+      p.position[i] += dt * update.v_grid;
+      move_domain(p, i, st, slot, field, g.velocity_new.data(), dt);
+    }
   });
 }
 

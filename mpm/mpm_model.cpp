@@ -45,8 +45,8 @@ core::PointBlock MpmModel::particle_block() {
       std::vector<double>& copy = integers_[integer++];
       copy.assign(a.begin(), a.end());
       fields.push_back(core::scalar_field(field.output, copy.data()));
-    } else {  // the field output has no full (unsymmetric) tensors: no Mat3 field names one
-      static_assert(std::is_same_v<T, core::Mat3>);
+    } else {  // the field output has no full (unsymmetric) tensors or corner sets: none names one
+      static_assert(std::is_same_v<T, core::Mat3> || std::is_same_v<T, std::array<Vec3, 8>>);
       throw std::logic_error(std::string("particle field ") + field.name + " cannot be written");
     }
   });

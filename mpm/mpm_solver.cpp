@@ -62,6 +62,20 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
       particles_.half_width[i] = gimp_half_width(particles_.volume[i]);
     velocity_gradient_.resize(particles_.size());  // the kinematics pass's output
   }
+  // CPDI: each particle's domain starts as the cube of its volume, unless the caller gave the
+  // particles domains of their own.
+  if (plan_.shape == core::ShapeFunction::cpdi1) {
+    const bool given = particles_.domain.size() == particles_.size();
+    particles_.keep(&Particles::domain, core::Mat3{});
+    if (!given)
+      for (std::size_t i = 0; i < particles_.size(); ++i) start_domain(i);
+  }
+  if (plan_.shape == core::ShapeFunction::cpdi2) {
+    const bool given = particles_.corners.size() == particles_.size();
+    particles_.keep(&Particles::corners, std::array<Vec3, 8>{});
+    if (!given)
+      for (std::size_t i = 0; i < particles_.size(); ++i) start_domain(i);
+  }
   // Splitting: each particle's lengths start as the edge of the cube of its volume.
   if (plan_.splitting) {
     particles_.keep(&Particles::length, Vec3{});
@@ -146,6 +160,7 @@ void MpmSolver::add_particles(const Particles& more) {
                             p.history_count);
     if (!p.half_width.empty()) p.half_width[i] = gimp_half_width(p.volume[i]);
     if (!p.length.empty()) start_lengths(i);
+    start_domain(i);
     if (!field_self_updated_.empty())
       field_self_updated_[static_cast<std::size_t>(
           field_of_body_[static_cast<std::size_t>(p.body[i])])] = 0;

@@ -158,7 +158,8 @@ class MpmSolver {
   void with_stencil(F&& f) {
     const bool affine = plan_.transfer == core::Transfer::apic;
     with_shape(plan_.shape, [&]<class Stencil>() {
-      if constexpr (std::is_same_v<Stencil, LinearStencil>)
+      if constexpr (std::is_same_v<Stencil, LinearStencil> ||
+                    requires { Stencil::tracks_corners; })  // APIC is refused for these
         f.template operator()<Stencil, false>();
       else if (affine)
         f.template operator()<Stencil, true>();
@@ -170,6 +171,9 @@ class MpmSolver {
   // components the face conditions constrain.
   void apply_velocity_conditions(std::vector<Vec3>& field, bool divide_by_mass);
   void strain_stress_update(double dt, StrainPart part);
+  // CPDI: stops the run at the first particle whose domain is inside out or reaches past its
+  // stencil (particle_binning.cpp).
+  void check_domains() const;
   // What the grid points' owner may read and write during a stage (grid_points.hpp).
   GridStepAccess access();
   // One thread's pass over a material batch (stress_update.cpp).
@@ -187,6 +191,18 @@ class MpmSolver {
   // follows the largest so far.
   double gimp_half_width(double volume) const {
     return std::min(0.5, particle_half_width(volume) * grid_.inverse_cell());
+  }
+  // CPDI: particle i's domain starts as the cube of its volume around it (core/grid/cpdi.hpp).
+  void start_domain(std::size_t i) {
+    Particles& p = particles_;
+    const double a = particle_half_width(p.volume[i]);
+    if (!p.domain.empty()) {
+      p.domain[i] = core::Mat3{};
+      for (int k = 0; k < 3; ++k) p.domain[i].m[k][k] = a;
+    }
+    if (!p.corners.empty())
+      for (int c = 0; c < 8; ++c)
+        p.corners[i][static_cast<std::size_t>(c)] = p.position[i] + a * core::cpdi_corner_sign(c);
   }
   void start_lengths(std::size_t i) {
     const double l = std::cbrt(particles_.volume[i]);

@@ -75,8 +75,67 @@ void MpmSolver::bin_particles() {
           static_cast<std::int32_t>(i);
   }
   raise_if_bad("position");
+  check_domains();
   if (points_) points_->bin(access(), cell_);
   grid_.activate(cell_);
+}
+
+// CPDI (core/grid/cpdi.hpp): every domain must have its corners in its particle's cell or the
+// neighbouring ones (the stencil's 4 x 4 x 4 nodes) and be the right way out. The lowest-index
+// particle that fails stops the run, the same one for any thread count.
+void MpmSolver::check_domains() const {
+  const bool tracked = plan_.shape == core::ShapeFunction::cpdi2;
+  if (plan_.shape != core::ShapeFunction::cpdi1 && !tracked) return;
+  const Particles& p = particles_;
+  const auto n = static_cast<std::int64_t>(p.size());
+  std::int64_t bad = n;
+#pragma omp parallel for schedule(static) reduction(min : bad) if (core::worth_threads(p.size()))
+  for (std::int64_t q = 0; q < n; ++q) {
+    const auto i = static_cast<std::size_t>(q);
+    const core::CpdiDomain d =
+        tracked ? core::cpdi2_domain(p.corners[i]) : core::cpdi1_domain(p.position[i], p.domain[i]);
+    int reach = 0;
+    if (d.inverted || !grid_.cpdi_within_reach(d, grid_.cell_of(p.position[i]), reach))
+      bad = std::min(bad, q);
+  }
+  if (bad == n) return;
+  const auto i = static_cast<std::size_t>(bad);
+  const core::CpdiDomain d =
+      tracked ? core::cpdi2_domain(p.corners[i]) : core::cpdi1_domain(p.position[i], p.domain[i]);
+  int reach = 0;
+  const auto cell = grid_.cell_of(p.position[i]);
+  grid_.cpdi_within_reach(d, cell, reach);
+  // The domain's extent along each axis, in cells.
+  Vec3 lo = d.x[0], hi = d.x[0];
+  for (const Vec3& c : d.x)
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], c[a]);
+      hi[a] = std::max(hi[a], c[a]);
+    }
+  std::ostringstream who, what;
+  who << "particle " << p.id[i] << " of body '"
+      << scene_.bodies[static_cast<std::size_t>(p.body[i])].name << "' at (" << p.position[i].x
+      << ", " << p.position[i].y << ", " << p.position[i].z << ")";
+  const char* name = tracked ? "CPDI2" : "CPDI1";
+  if (d.inverted) {
+    what << "its " << name << " domain turned inside out (volume " << d.volume
+         << "): the material was crushed or sheared through itself within the particle; a "
+            "smaller time_step_factor, or shape_function = \"gimp\" or \"bspline2\", which "
+            "carry no domain";
+  } else if (reach <= 1) {
+    what << "its " << name
+         << " domain reaches more than a cell past the grid's face (the grid stores one node "
+            "beyond it); enlarge [grid] min/max";
+  } else {
+    what << "its " << name << " domain (" << (hi.x - lo.x) * grid_.inverse_cell() << " x "
+         << (hi.y - lo.y) * grid_.inverse_cell() << " x " << (hi.z - lo.z) * grid_.inverse_cell()
+         << " cells) reaches " << reach
+         << " cells from the particle's cell; its corners must stay in that cell or its "
+            "neighbours (a stencil of 4 x 4 x 4 nodes) and on the grid. The material stretched "
+            "it that far: more particles per cell, or shape_function = \"gimp\" or "
+            "\"bspline2\", whose domains do not stretch";
+  }
+  throw core::SimulationError(steps_, time_, who.str(), "domain", what.str());
 }
 
 }  // namespace afemp::mpm

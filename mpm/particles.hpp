@@ -3,6 +3,7 @@
 // constitutive update runs per material batch.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -32,11 +33,11 @@ inline double particle_half_width(double volume) {
 enum class SplitRule : std::uint8_t {
   copy,   // intensive: each piece takes the parent's value (velocity, stress, temperature, ...)
   share,  // extensive (a scalar): each piece takes its share (mass, volume)
-  own,    // the splitter sets it (position, id, lengths, half width)
+  own,    // the splitter sets it (position, id, lengths, half width, CPDI domain)
 };
 enum class AddRule : std::uint8_t {
   carry,  // an added point takes its source's value, or the rest value where the source has none
-  own,    // the solver sets it from the others (id, half width, lengths)
+  own,    // the solver sets it from the others (id, half width, lengths, CPDI domain)
 };
 struct ParticleField {
   const char* name;    // the checkpoint's item
@@ -65,6 +66,12 @@ struct Particles {
   // Optional (kept only when the run asks for them: optional_fields below):
   std::vector<double> half_width;  // not linear: half the particle's initial edge, in cells
   std::vector<core::Mat3> affine;  // APIC: the affine velocity C_p (a velocity gradient)
+  // CPDI1: the domain's half edge vectors r_k (columns), corners x_p + sum +-r_k
+  // (core/grid/cpdi.hpp).
+  std::vector<core::Mat3> domain;
+  // CPDI2: the domain's eight tracked corners, corner c = a + 2 b + 4 k at natural coordinates
+  // (2a - 1, 2b - 1, 2k - 1).
+  std::vector<std::array<Vec3, 8>> corners;
   // Splitting: the particle's current length along x, y, z, and the length the particle it
   // came from started with (particle_splitting.cpp).
   std::vector<Vec3> length;
@@ -148,6 +155,8 @@ void for_each_particle_field(F&& f) {
   f(R{"viscous_heat", nullptr, 6, S::copy, A::carry, 0.0}, &Particles::viscous_heat);
   f(R{"light_time", nullptr, 7, S::copy, A::carry, 0.0}, &Particles::light_time);
   f(R{"burn", nullptr, 8, S::copy, A::carry, 1.0}, &Particles::burn);
+  f(R{"domain", nullptr, 9, S::own, A::own, 0.0}, &Particles::domain);
+  f(R{"corners", nullptr, 10, S::own, A::own, 0.0}, &Particles::corners);
 }
 
 template <class T>

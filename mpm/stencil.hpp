@@ -94,6 +94,84 @@ struct SplineStencil : TensorStencil<Order + 1> {
   }
 };
 
+// CPDI1 (Tracked false: the parallelepiped of Particles::domain around the particle) and CPDI2
+// (Tracked true: the hexahedron of Particles::corners), core/grid/cpdi.hpp: the 4 x 4 x 4 nodes
+// from the particle's cell - 1, reached through the eight corners' cells. Layer L reaches nodes
+// L - 1 .. L + 2, as the tensor stencils.
+template <bool Tracked>
+struct CpdiStencil {
+  static constexpr int nodes = core::CpdiWeights::nodes;
+  static constexpr int colours = 4;
+  static constexpr bool tracks_corners = Tracked;
+  using Slots = std::array<std::int32_t, nodes>;
+  core::CpdiWeights weights;
+  std::int64_t key = 0;  // equal keys, equal nodes (the box's first node)
+
+  static core::CpdiDomain domain(const Particles& p, std::size_t i, const Vec3& x) {
+    if constexpr (Tracked)
+      return core::cpdi2_domain(p.corners[i]);
+    else
+      return core::cpdi1_domain(x, p.domain[i]);
+  }
+  CpdiStencil(const core::BackgroundGrid& g, const Particles& p, std::size_t i, const Vec3& x) {
+    weights = g.cpdi_weights(domain(p, i, x), g.cell_of(x));
+    const auto& b = weights.base;
+    key = (static_cast<std::int64_t>(b[2] + 1) << 42) |
+          (static_cast<std::int64_t>(b[1] + 1) << 21) | static_cast<std::int64_t>(b[0] + 1);
+  }
+  void slots(const core::BackgroundGrid& g, Slots& out) const {
+    g.stencil_slots<core::CpdiWeights::span>(weights.base, out);
+  }
+  std::array<int, 3> node(int n) const {
+    const auto& b = weights.base;
+    constexpr int s = core::CpdiWeights::span;
+    return {b[0] + n % s, b[1] + (n / s) % s, b[2] + n / (s * s)};
+  }
+  double w(int n) const { return weights.w[static_cast<std::size_t>(n)]; }
+  const Vec3& grad(int n) const { return weights.grad[static_cast<std::size_t>(n)]; }
+  // sum_I N_I(x_c) v_I at corner c, from the nodal field v (slot + field).
+  Vec3 corner_velocity(int c, const Slots& slot, std::size_t field, const Vec3* v) const {
+    const auto k = static_cast<std::size_t>(c);
+    Vec3 out{};
+    for (int j = 0; j < 8; ++j) {
+      const auto n =
+          static_cast<std::size_t>(weights.corner_node[k] + core::CpdiWeights::box_offset(j));
+      out += weights.corner_w[k][static_cast<std::size_t>(j)] *
+             v[static_cast<std::size_t>(slot[n]) + field];
+    }
+    return out;
+  }
+};
+
+// Moves particle i's CPDI domain over dt with the nodal velocity v that moves the particle
+// (slots + field): CPDI1's edge vectors by the velocity gradient, r_k <- (I + dt L) r_k with
+// L = sum_I v_I (x) grad S_Ip (the incremental form of r_k = F r_k^0); CPDI2's corners by the
+// velocity interpolated at each, x_c <- x_c + dt sum_I N_I(x_c) v_I, and the particle to the
+// centroid of its new domain. Other stencils carry no domain.
+template <class Stencil>
+void move_domain(Particles& p, std::size_t i, const Stencil& st,
+                 const typename Stencil::Slots& slot, std::size_t field, const Vec3* v, double dt) {
+  if constexpr (requires { Stencil::tracks_corners; }) {
+    if constexpr (Stencil::tracks_corners) {
+      std::array<Vec3, 8>& x = p.corners[i];
+      for (int c = 0; c < 8; ++c)
+        x[static_cast<std::size_t>(c)] += dt * st.corner_velocity(c, slot, field, v);
+      p.position[i] = core::cpdi_centroid(core::cpdi2_domain(x));
+    } else {
+      core::Mat3 l;
+      for (int n = 0; n < Stencil::nodes; ++n)
+        core::add_outer(l, v[static_cast<std::size_t>(slot[static_cast<std::size_t>(n)]) + field],
+                        st.grad(n));
+      core::Mat3& r = p.domain[i];
+      const core::Mat3 r0 = r;
+      for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < 3; ++k)
+          r.m[a][k] +=
+              dt * (l.m[a][0] * r0.m[0][k] + l.m[a][1] * r0.m[1][k] + l.m[a][2] * r0.m[2][k]);
+    }
+  }
+}
+
 // Calls f.template operator()<Stencil>() for a shape function.
 template <class F>
 void with_shape(core::ShapeFunction shape, F&& f) {
@@ -109,6 +187,12 @@ void with_shape(core::ShapeFunction shape, F&& f) {
       break;
     case core::ShapeFunction::bspline3:
       f.template operator()<SplineStencil<3>>();
+      break;
+    case core::ShapeFunction::cpdi1:
+      f.template operator()<CpdiStencil<false>>();
+      break;
+    case core::ShapeFunction::cpdi2:
+      f.template operator()<CpdiStencil<true>>();
       break;
   }
 }

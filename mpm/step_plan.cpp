@@ -269,6 +269,14 @@ std::string StepPlan::describe() const {
     case core::ShapeFunction::bspline3:
       o << "cubic B-spline, modified at the grid faces (64 nodes per particle)\n";
       break;
+    case core::ShapeFunction::cpdi1:
+      o << "CPDI1, parallelepiped domains following the deformation gradient (8 corners, up to "
+           "64 nodes per particle; a domain reaching past its cell's neighbours stops the run)\n";
+      break;
+    case core::ShapeFunction::cpdi2:
+      o << "CPDI2, hexahedral domains with tracked corners (8 corners, up to 64 nodes per "
+           "particle; a domain reaching past its cell's neighbours stops the run)\n";
+      break;
   }
   if (transfer == core::Transfer::apic)
     o << "particle velocity: APIC (affine velocity carried by each particle)\n";

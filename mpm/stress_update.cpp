@@ -107,7 +107,10 @@ void MpmSolver::kinematics_kernel(double dt, const StrainSweep& sweep) {
     }
     velocity_gradient_[i] = l;
     if (sweep.flip_update) update.store(p, i, st, flip);
-    if (sweep.move) p.position[i] += dt * update.v_grid;
+    if (sweep.move) {
+      p.position[i] += dt * update.v_grid;
+      move_domain(p, i, st, slot, field, v_new, dt);
+    }
   });
 }
 

@@ -12,6 +12,7 @@
 
 #include "afemp/tensor.hpp"
 #include "core/grid/bspline.hpp"
+#include "core/grid/cpdi.hpp"
 #include "core/grid/gimp.hpp"
 #include "core/grid/tensor_weights.hpp"
 #include "core/scene.hpp"
@@ -93,6 +94,14 @@ class BackgroundGrid {
           (x[d] - origin_[d]) * inv_h_, cells_[static_cast<std::size_t>(d)], h_);
     r.multiply();
     return r;
+  }
+  // CPDI weights of domain d for a particle in cell c (cpdi.hpp).
+  CpdiWeights cpdi_weights(const CpdiDomain& d, const std::array<int, 3>& c) const {
+    return core::cpdi_weights(d, c, origin_, inv_h_);
+  }
+  // Whether domain d of a particle in cell c lies within the CPDI reach (cpdi.hpp).
+  bool cpdi_within_reach(const CpdiDomain& d, const std::array<int, 3>& c, int& away) const {
+    return core::cpdi_within_reach(d, c, origin_, inv_h_, cells_, away);
   }
   Vec3 node_position(int i, int j, int k) const {
     return {origin_.x + i * h_, origin_.y + j * h_, origin_.z + k * h_};

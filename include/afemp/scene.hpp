@@ -26,8 +26,10 @@ enum class UpdateScheme { USF, USL, MUSL, USAVG };
 /// Particle-grid weights: the trilinear hat of the node (Ma 2005, eq 2-5); uGIMP, the hat
 /// averaged over the particle's cubic domain (Bardenhagen & Kober 2004), smooth across cells;
 /// the quadratic and cubic B-splines (Steffen, Kirby & Berzins 2008), modified at the grid's
-/// faces.
-enum class ShapeFunction { linear, gimp, bspline2, bspline3 };
+/// faces; CPDI, the hat averaged over a domain that deforms with the material: a parallelepiped
+/// following the deformation gradient (cpdi1, Sadeghirad, Brannon & Burghardt 2011) or a
+/// hexahedron whose corners are tracked (cpdi2, Sadeghirad, Brannon & Guilkey 2013).
+enum class ShapeFunction { linear, gimp, bspline2, bspline3, cpdi1, cpdi2 };
 /// How velocity travels between particles and grid: the FLIP/PIC blend, or the affine PIC of
 /// Jiang et al. 2015 (particles carry an affine velocity C_p; P2G maps v_p + C_p (x_I - x_p)).
 enum class Transfer { flip, apic };

@@ -209,23 +209,18 @@ TEST(Restart, ARunStoppedAndRestartedEndsBitIdenticalToAnUninterruptedOne) {
   expect_same_run(full, parts);
 }
 
-// The cubic B-spline with the affine transfer: the particles' affine velocities and the half
-// widths its kinetic energy reads come back with the rest. The elastic copper bar on a wall face
-// (the spline's modified face cells), stopped after 40 of 80 steps and restarted: every frame
-// bit for bit, and the same final kinetic energy.
-TEST(Restart, ACubicBsplineApicRunRestartsBitIdentical) {
+// The elastic copper bar on a wall face with the [mpm] settings `method`, stopped after 40 of
+// 80 steps and restarted: every frame bit for bit, and the same final kinetic energy.
+void expect_restart_bit_identical(const std::string& method, const std::string& name) {
   const Threads threads(2);
   test::ScratchDir dir;
-  // The V1 bar, to 12 us at a fixed step (80 steps), with the cubic spline and APIC.
-  std::string text = std::string(
-                         "[mpm]\nscheme = \"MUSL\"\nshape_function = \"bspline3\"\n"
-                         "transfer = \"apic\"\n") +
-                     ::afemp::test::elastic_bar_scene;
+  // The V1 bar, to 12 us at a fixed step (80 steps).
+  std::string text = "[mpm]\nscheme = \"MUSL\"\n" + method + ::afemp::test::elastic_bar_scene;
   const std::string end = "end_time = 0.02\n";
   ASSERT_NE(text.find(end), std::string::npos);
   text.replace(text.find(end), end.size(),
                "end_time = 0.012\noutput_every = 0.004\ntime_step = 1.5e-4\n");
-  const core::Scene scene = core::parse_scene(text, "bspline.toml");
+  const core::Scene scene = core::parse_scene(text, name);
   const std::string full = dir.file("full"), parts = dir.file("parts");
   const core::RunSummary whole = run_scene(scene, full);
   ASSERT_EQ(whole.steps, 80);
@@ -237,6 +232,20 @@ TEST(Restart, ACubicBsplineApicRunRestartsBitIdentical) {
   EXPECT_EQ(second.steps, whole.steps);
   EXPECT_EQ(second.final.kinetic, whole.final.kinetic);
   expect_same_frames(full, parts, 10);
+}
+
+// The cubic B-spline with the affine transfer: the particles' affine velocities and the half
+// widths its kinetic energy reads come back with the rest; the bar strikes the spline's
+// modified face cells.
+TEST(Restart, ACubicBsplineApicRunRestartsBitIdentical) {
+  expect_restart_bit_identical("shape_function = \"bspline3\"\ntransfer = \"apic\"\n",
+                               "bspline.toml");
+}
+
+// CPDI: the parallelepipeds' edge vectors and the tracked corners come back with the rest.
+TEST(Restart, CpdiRunsRestartBitIdentical) {
+  expect_restart_bit_identical("shape_function = \"cpdi1\"\n", "cpdi1.toml");
+  expect_restart_bit_identical("shape_function = \"cpdi2\"\n", "cpdi2.toml");
 }
 
 // A TNT column stopped half burnt (step 100, t = 0.0019 ms, the front at about 13 mm of 30) and

@@ -60,20 +60,25 @@ void check_axis() {
     for (int k = 0; k <= Order; ++k) {
       const auto kk = static_cast<std::size_t>(k);
       const int node = a.base + k;
-      if (node < 0 || node > cells) EXPECT_EQ(a.w[kk], 0.0) << "node " << node << " xi " << xi;
+      if (node < 0 || node > cells) {
+        EXPECT_EQ(a.w[kk], 0.0) << "node " << node << " xi " << xi;
+      }
       EXPECT_GE(a.w[kk], 0.0);
       EXPECT_DOUBLE_EQ(a.offset[kk], (node - xi) * h);
       sum += a.w[kk], first += a.w[kk] * node * h;
       grad_sum += a.grad[kk], grad_first += a.grad[kk] * node * h;
       // Away from the faces: the uniform B-spline.
-      if (xi > Order && xi < cells - Order)
+      if (xi > Order && xi < cells - Order) {
         EXPECT_NEAR(a.w[kk], Order == 2 ? quadratic(xi - node) : cubic(xi - node), 1e-14);
+      }
       // The gradient is the weight's derivative.
       const double d = 1e-6;
       const double fd =
           (node_weight<Order>(xi + d, node).first - node_weight<Order>(xi - d, node).first) /
           (2.0 * d * h);
-      if (xi > d && xi < cells - d) EXPECT_NEAR(a.grad[kk], fd, 1e-6 / h) << "xi " << xi;
+      if (xi > d && xi < cells - d) {
+        EXPECT_NEAR(a.grad[kk], fd, 1e-6 / h) << "xi " << xi;
+      }
     }
     EXPECT_NEAR(sum, 1.0, 1e-14);
     EXPECT_NEAR(first, xi * h, 1e-13);
@@ -176,7 +181,7 @@ TEST(Bspline, GridTooSmallForTheSplineIsRefused) {
   const std::string text = scene("bspline3");
   const std::string e = test::error_of(text, "small.toml");
   const std::string at = "small.toml:" + std::to_string(test::line_of(text, "shape_function"));
-  for (const std::string part :
+  for (const std::string& part :
        {at, std::string("shape_function"), std::string("\"bspline3\" needs at least 3 cells"),
         std::string("2 along y")})
     EXPECT_NE(e.find(part), std::string::npos) << part << " in: " << e;

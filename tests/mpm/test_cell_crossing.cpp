@@ -5,8 +5,8 @@
 // zero; what the transfer puts there is its quadrature error. With the linear hat the gradient
 // jumps at every cell face, a cell holds two or three particles along an axis depending on
 // where the body is, and the interior force jumps each time a particle row crosses a face.
-// uGIMP integrates the hat over particle domains that tile the body, so it is exact; the
-// B-splines' gradients are continuous, so the error is small and smooth.
+// uGIMP and CPDI integrate the hat over particle domains that tile the body, so they are exact;
+// the B-splines' gradients are continuous, so the error is small and smooth.
 // References: the interior force is 0 (each shape's error measured against it, relative to
 // |sigma| h^2); V7's mark, each smooth shape 10x below the linear hat on the same cells; the
 // sum of all nodal forces is 0 (sum_I grad S_I = 0) and the momentum stays the initial one to
@@ -97,10 +97,10 @@ Crossing cross_cells(const std::string& shape, double stretch) {
 }
 
 // Measured (this test, 2-core Xeon): max interior |f| / (|sigma| h^2) over 20 steps
-//   stretch   linear   gimp     bspline2  bspline3
-//   1.05      0.41     2e-12    0.0155    6.8e-4
-//   1.15      0.85     4e-12    0.086     0.0105
-//   1.50      1.09     4e-12    0.173     0.040
+//   stretch   linear   gimp     bspline2  bspline3  cpdi1    cpdi2
+//   1.05      0.41     2e-12    0.0155    6.8e-4    2.0e-12  2.0e-12
+//   1.15      0.85     4e-12    0.086     0.0105    3.1e-12  3.1e-12
+//   1.50      1.09     4e-12    0.173     0.040     3.3e-12  3.3e-12
 // (body 12 x 8 x 8 cells before the stretch). V7's tenfold mark holds for every smooth shape
 // at 5 % stretch and for uGIMP and the cubic at every stretch; the quadratic B-spline's point
 // quadrature is 6 to 10 times below the linear hat from 15 % on, which this test states
@@ -108,7 +108,7 @@ Crossing cross_cells(const std::string& shape, double stretch) {
 TEST(CellCrossing, SmoothShapesCutTheLinearHatsInteriorForceNoise) {
   for (double stretch : {1.05, 1.15, 1.5}) {
     std::map<std::string, Crossing> r;
-    for (const char* shape : {"linear", "gimp", "bspline2", "bspline3"}) {
+    for (const char* shape : {"linear", "gimp", "bspline2", "bspline3", "cpdi1", "cpdi2"}) {
       r[shape] = cross_cells(shape, stretch);
       std::printf(
           "[ crossing %.2f %-8s ] max interior |f| / (|sigma| h^2) = %.3g, |sum f| / (|sigma| A) "
@@ -120,8 +120,10 @@ TEST(CellCrossing, SmoothShapesCutTheLinearHatsInteriorForceNoise) {
     // The linear hat's noise is a good part of one cell's force: the body must show it, or
     // the test measures nothing.
     EXPECT_GT(r["linear"].interior, 0.3);
-    // uGIMP's domains tile the body: exact to round-off.
+    // uGIMP's and CPDI's domains tile the body: exact to round-off.
     EXPECT_LT(r["gimp"].interior, 1e-10);
+    EXPECT_LT(r["cpdi1"].interior, 1e-10);
+    EXPECT_LT(r["cpdi2"].interior, 1e-10);
     EXPECT_LT(r["bspline3"].interior, 0.1 * r["linear"].interior);
     EXPECT_LT(r["bspline2"].interior, (stretch < 1.1 ? 0.1 : 0.2) * r["linear"].interior);
   }

@@ -93,5 +93,11 @@ TEST(Determinism, SameParticleBitsWithCubicBsplineAndAffineTransfer) {
   expect_same_bits("shape_function = \"bspline3\"\ntransfer = \"apic\"\n");
 }
 
+// CPDI2's tracked corners move per particle and sum into 64-node boxes (CPDI1 shares the boxes
+// and moves its edge vectors the same way): the same reference.
+TEST(Determinism, SameParticleBitsWithCpdi) {
+  expect_same_bits("shape_function = \"cpdi2\"\n");
+}
+
 }  // namespace
 }  // namespace afemp::mpm

@@ -115,10 +115,11 @@ TEST(ElasticBar, GimpWithFlipMeetsTheMarksAndApicIsReportedBeside) {
   EXPECT_GT(apic.end_error, -0.15);
 }
 
-// The quadratic and cubic B-splines with FLIP (MUSL, factor 0.3): the marks the linear hat
-// meets. The bar strikes the wall at the grid's face, where the bases are modified.
-TEST(ElasticBar, BsplinesMeetTheMarks) {
-  for (const char* shape : {"bspline2", "bspline3"}) {
+// The quadratic and cubic B-splines and CPDI with FLIP (MUSL, factor 0.3): the marks the
+// linear hat meets. The bar strikes the wall at the grid's face, where the B-splines' bases are
+// modified and CPDI's domains reach the node beyond it.
+TEST(ElasticBar, BsplinesAndCpdiMeetTheMarks) {
+  for (const char* shape : {"bspline2", "bspline3", "cpdi1", "cpdi2"}) {
     const Rebound r = run("MUSL", 0.3, std::string("shape_function = \"") + shape + "\"\n");
     std::printf("[ elastic bar %s ] rebound %.1f m/s, largest balance error %.2f %%\n", shape,
                 r.speed, 100.0 * r.max_error);

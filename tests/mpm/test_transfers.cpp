@@ -147,9 +147,10 @@ TEST(Transfer, G2PConservesParticleMomentumForFlipAndPicInEveryScheme) {
 // nodal momentum sum equal to sum m v_p for any C_p: the particles start with random C_p
 // (entries uniform in (-5, 5) per ms). Tolerance 1e-12 relative to sum m |v|.
 TEST(Transfer, WideStencilsAndAffineTransfersConserveMassAndMomentumInEveryScheme) {
-  for (const char* shape : {"gimp", "bspline2", "bspline3"})
+  for (const char* shape : {"gimp", "bspline2", "bspline3", "cpdi1", "cpdi2"})
     for (const char* scheme : schemes) {
       for (const bool affine : {false, true}) {
+        if (affine && std::string(shape).starts_with("cpdi")) continue;  // refused
         SCOPED_TRACE(std::string(scheme) + " " + shape + (affine ? " apic" : " flip"));
         const core::Scene scene =
             random_body_scene(scheme, affine ? -1.0 : 1.0,
