@@ -341,6 +341,25 @@ void warn_untranslated(const Scene& scene, Warner& warn) {
          "this scene does not run as the deck it was imported from: " + line);
 }
 
+// The total-Lagrangian form keeps each particle's reference neighbours for the whole run: a
+// material that fails or erodes cannot come apart in it (a penetration, a fragmenting plate),
+// and the failed points keep pulling on their reference neighbours through the grid.
+void warn_total_lagrangian_failure(const Scene& scene, Warner& warn) {
+  if (scene.mpm.formulation != Formulation::total_lagrangian) return;
+  for (const BodySpec& body : scene.bodies) {
+    if (body.material < 0) continue;
+    const Material& m = scene.materials[static_cast<std::size_t>(body.material)];
+    if (!m.fails()) continue;
+    warn(
+        body.where, "mpm.formulation",
+        "body \"" + body.name +
+            "\" has a failure model, and the total-Lagrangian form keeps each "
+            "particle's reference neighbours: failed material does not come apart (no perforation, "
+            "no fragments); use formulation = \"updated-lagrangian\" where it must");
+    break;
+  }
+}
+
 std::vector<SceneWarning> plausibility_warnings(const Scene& scene) {
   Warner warn(scene);
   warn_untranslated(scene, warn);
@@ -351,6 +370,7 @@ std::vector<SceneWarning> plausibility_warnings(const Scene& scene) {
   warn_unheld_cut_planes(scene, warn);
   warn_gauge_far_field_explosive(scene, warn);
   warn_absolute_far_field_prestress(scene, warn);
+  warn_total_lagrangian_failure(scene, warn);
   return warn.take();
 }
 

@@ -43,6 +43,10 @@ const char* to_string(ShapeFunction s) {
   return "?";
 }
 
+const char* to_string(Formulation f) {
+  return f == Formulation::total_lagrangian ? "total-lagrangian" : "updated-lagrangian";
+}
+
 const char* to_string(Transfer t) {
   return t == Transfer::apic ? "apic" : "flip";
 }

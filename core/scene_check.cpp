@@ -16,6 +16,7 @@
 #include "core/scene_parser.hpp"
 #include "core/scene_ranges.hpp"
 #include "core/shape_function_refusals.hpp"
+#include "core/total_lagrangian_refusals.hpp"
 
 namespace afemp::core {
 
@@ -132,6 +133,9 @@ void check_grid(const Checker& c, const Scene& scene) {
   if (scene.mpm.splitting)
     if (const std::optional<std::string> why = cpdi_splitting_refusal(scene.mpm.shape))
       c.fail(w, "mpm.splitting", *why);
+  if (const auto why = total_lagrangian_mpm_refusal(scene.mpm))
+    c.fail(w, "mpm." + why->first, why->second);
+  if (const auto why = total_lagrangian_scene_refusal(scene)) c.fail(w, why->first, why->second);
   if (const std::optional<std::string> why = spline_grid_refusal(g, scene.mpm.shape))
     c.fail(w, "mpm.shape_function", *why);
   if (const std::optional<std::string> why = absorbing_face_shape_refusal(g, scene.mpm.shape))

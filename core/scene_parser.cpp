@@ -19,6 +19,7 @@
 #include "core/phases.hpp"
 #include "core/scene_ranges.hpp"
 #include "core/shape_function_refusals.hpp"
+#include "core/total_lagrangian_refusals.hpp"
 
 namespace afemp::core::scene_detail {
 
@@ -484,7 +485,7 @@ void read_grid(TableReader& r, GridSettings& grid) {
 }
 
 void read_mpm(TableReader& r, MpmSettings& mpm) {
-  r.known({"scheme", "shape_function", "transfer", "flip", "jaumann", "splitting"});
+  r.known({"scheme", "shape_function", "transfer", "flip", "jaumann", "formulation", "splitting"});
   r.check_unknown();
   mpm.scheme = static_cast<UpdateScheme>(r.choice("scheme", {"USF", "USL", "MUSL", "USAVG"},
                                                   static_cast<std::size_t>(mpm.scheme), true));
@@ -509,6 +510,9 @@ void read_mpm(TableReader& r, MpmSettings& mpm) {
   if (const std::optional<std::string> why = absorbing_face_shape_refusal(mpm.grid, mpm.shape))
     r.fail("shape_function", *why);
   mpm.jaumann = r.boolean("jaumann", mpm.jaumann);
+  mpm.formulation =
+      static_cast<Formulation>(r.choice("formulation", {"updated-lagrangian", "total-lagrangian"},
+                                        static_cast<std::size_t>(mpm.formulation)));
   if (const toml::table* t = r.optional_table("splitting")) {
     if (const std::optional<std::string> why = cpdi_splitting_refusal(mpm.shape))
       r.fail("splitting", *why);
@@ -534,6 +538,7 @@ void read_mpm(TableReader& r, MpmSettings& mpm) {
     }
     mpm.splitting = s;
   }
+  if (const auto why = total_lagrangian_mpm_refusal(mpm)) r.fail(why->first, why->second);
 }
 
 // A strength model with a pressure law of its own (Holmquist-Johnson-Cook concrete) goes with

@@ -61,7 +61,8 @@ void MpmSolver::return_particles_past_faces() {
                                                              : Crossing::none;
     any = any || action[f] != Crossing::none;
   }
-  if (!any) return;
+  // Total-Lagrangian: the grid holds the reference configuration, which stays put.
+  if (!any || plan_.total_lagrangian) return;
   Particles& p = particles_;
   const std::size_t n = p.size();
   const bool strain = !p.strain.empty(), affine = !p.affine.empty();

@@ -60,8 +60,8 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
     particles_.keep(&Particles::half_width, 0.0);
     for (std::size_t i = 0; i < particles_.size(); ++i)
       particles_.half_width[i] = gimp_half_width(particles_.volume[i]);
-    velocity_gradient_.resize(particles_.size());  // the kinematics pass's output
   }
+  if (!fused_kinematics()) velocity_gradient_.resize(particles_.size());  // the pass's output
   // CPDI: each particle's domain starts as the cube of its volume, unless the caller gave the
   // particles domains of their own.
   if (plan_.shape == core::ShapeFunction::cpdi1) {
@@ -75,6 +75,20 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
     particles_.keep(&Particles::corners, std::array<Vec3, 8>{});
     if (!given)
       for (std::size_t i = 0; i < particles_.size(); ++i) start_domain(i);
+  }
+  // Total-Lagrangian: the particles' reference is where they start, F = I, unless the caller
+  // gave them a reference and a deformation of their own.
+  if (plan_.total_lagrangian) {
+    const bool given = particles_.reference_position.size() == particles_.size() &&
+                       particles_.deformation_gradient.size() == particles_.size();
+    particles_.keep(&Particles::reference_position, Vec3{});
+    particles_.keep(&Particles::deformation_gradient, core::Mat3{});
+    if (!given)
+      for (std::size_t i = 0; i < particles_.size(); ++i) {
+        particles_.reference_position[i] = particles_.position[i];
+        particles_.deformation_gradient[i] = core::Mat3{};
+        for (int a = 0; a < 3; ++a) particles_.deformation_gradient[i].m[a][a] = 1.0;
+      }
   }
   // Splitting: each particle's lengths start as the edge of the cube of its volume.
   if (plan_.splitting) {
@@ -165,7 +179,7 @@ void MpmSolver::add_particles(const Particles& more) {
       field_self_updated_[static_cast<std::size_t>(
           field_of_body_[static_cast<std::size_t>(p.body[i])])] = 0;
   }
-  if (plan_.shape != core::ShapeFunction::linear) velocity_gradient_.resize(p.size());
+  if (!fused_kinematics()) velocity_gradient_.resize(p.size());
   reorder_particles();
   signal_speed_ = std::max(signal_speed_, max_signal_speed());
 }
@@ -428,12 +442,13 @@ void MpmSolver::reorder_particles() {
   const std::size_t n = p.size();
   std::vector<std::int64_t> key(n);
   Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  const std::vector<Vec3>& x = weight_positions();
   for (std::size_t i = 0; i < n; ++i) {
-    const auto c = grid_.cell_of(p.position[i]);
+    const auto c = grid_.cell_of(x[i]);
     key[i] = grid_.inside(c) ? grid_.linear_cell(c) : 0;
     for (int a = 0; a < 3; ++a) {
-      lo[a] = std::min(lo[a], p.position[i][a]);
-      hi[a] = std::max(hi[a], p.position[i][a]);
+      lo[a] = std::min(lo[a], x[i][a]);
+      hi[a] = std::max(hi[a], x[i][a]);
     }
   }
   std::vector<std::int32_t> perm(n);
@@ -479,6 +494,11 @@ void MpmSolver::raise_if_bad(const char* field) const {
   if (f == "position" && std::isfinite(p.position[i].x) && std::isfinite(p.position[i].y) &&
       std::isfinite(p.position[i].z)) {
     what << "left the grid domain (the run stops; enlarge [grid] min/max)";
+  } else if (f == "stress" && !(p.volume[i] > 0.0) && plan_.total_lagrangian) {
+    check_deformation_gradients();  // names det F <= 0, the cause in this form
+    f = "volume";
+    what << "became " << p.volume[i] << ": the point was compressed through zero volume in one "
+         << "step; try a smaller time_step_factor";
   } else if (f == "stress" && !(p.volume[i] > 0.0)) {
     // The strain pass flags the point; a non-positive volume is the cause to name.
     f = "volume";

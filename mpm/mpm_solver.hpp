@@ -158,6 +158,11 @@ class MpmSolver {
   void with_stencil(F&& f) {
     const bool affine = plan_.transfer == core::Transfer::apic;
     with_shape(plan_.shape, [&]<class Stencil>() {
+      if (plan_.total_lagrangian) {  // APIC and CPDI are refused with it
+        if constexpr (!requires { Stencil::tracks_corners; })
+          f.template operator()<ReferenceStencil<Stencil>, false>();
+        return;
+      }
       if constexpr (std::is_same_v<Stencil, LinearStencil> ||
                     requires { Stencil::tracks_corners; })  // APIC is refused for these
         f.template operator()<Stencil, false>();
@@ -174,6 +179,7 @@ class MpmSolver {
   // CPDI: stops the run at the first particle whose domain is inside out or reaches past its
   // stencil (particle_binning.cpp).
   void check_domains() const;
+  void check_deformation_gradients() const;
   // What the grid points' owner may read and write during a stage (grid_points.hpp).
   GridStepAccess access();
   // One thread's pass over a material batch (stress_update.cpp).
@@ -203,6 +209,16 @@ class MpmSolver {
     if (!p.corners.empty())
       for (int c = 0; c < 8; ++c)
         p.corners[i][static_cast<std::size_t>(c)] = p.position[i] + a * core::cpdi_corner_sign(c);
+  }
+  // Where a particle's weights are taken: its reference position (total-Lagrangian) or its
+  // current one.
+  const std::vector<Vec3>& weight_positions() const {
+    return plan_.total_lagrangian ? particles_.reference_position : particles_.position;
+  }
+  // The linear hat's kinematics run inside the constitutive loop (stress_update.cpp); the other
+  // stencils, and every total-Lagrangian one, in a pass of their own.
+  bool fused_kinematics() const {
+    return plan_.shape == core::ShapeFunction::linear && !plan_.total_lagrangian;
   }
   void start_lengths(std::size_t i) {
     const double l = std::cbrt(particles_.volume[i]);

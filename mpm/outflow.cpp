@@ -54,7 +54,7 @@ void MpmSolver::remove_outflow() {
   }
   outflow_count_ += leaving;
   p.select(kept);
-  if (plan_.shape != core::ShapeFunction::linear) velocity_gradient_.resize(p.size());
+  if (!fused_kinematics()) velocity_gradient_.resize(p.size());
   // The kept particles keep their order, so each material batch stays contiguous and only its
   // bounds move; no re-sort (a full reorder on every step that lost a particle took a quarter
   // of V3's run).

@@ -40,7 +40,7 @@ void MpmSolver::bin_particles() {
     std::int64_t* mine = counts.data() + layers * static_cast<std::size_t>(t);
     std::int64_t bad = -1;
     for (std::size_t i = b; i < e; ++i) {
-      const Vec3& x = p.position[i];
+      const Vec3& x = weight_positions()[i];
       const bool finite = std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z);
       const auto c = finite ? grid_.cell_of(x) : std::array<int, 3>{-1, -1, -1};
       if (!grid_.inside(c)) {
@@ -84,6 +84,7 @@ void MpmSolver::bin_particles() {
 // neighbouring ones (the stencil's 4 x 4 x 4 nodes) and be the right way out. The lowest-index
 // particle that fails stops the run, the same one for any thread count.
 void MpmSolver::check_domains() const {
+  if (plan_.total_lagrangian) check_deformation_gradients();
   const bool tracked = plan_.shape == core::ShapeFunction::cpdi2;
   if (plan_.shape != core::ShapeFunction::cpdi1 && !tracked) return;
   const Particles& p = particles_;
@@ -136,6 +137,34 @@ void MpmSolver::check_domains() const {
             "\"bspline2\", whose domains do not stretch";
   }
   throw core::SimulationError(steps_, time_, who.str(), "domain", what.str());
+}
+
+// Total-Lagrangian: the reference weights hold a particle's neighbourhood as long as the map F
+// from it is one to one; det F <= 0 (the material turned inside out, as where a penetrator
+// shears it through itself) or a non-finite F stops the run at the lowest such particle.
+void MpmSolver::check_deformation_gradients() const {
+  const Particles& p = particles_;
+  const auto n = static_cast<std::int64_t>(p.size());
+  std::int64_t bad = n;
+#pragma omp parallel for schedule(static) reduction(min : bad) if (core::worth_threads(p.size()))
+  for (std::int64_t q = 0; q < n; ++q) {
+    const double j = core::determinant(p.deformation_gradient[static_cast<std::size_t>(q)]);
+    if (!(j > 0.0) || !std::isfinite(j)) bad = std::min(bad, q);
+  }
+  if (bad == n) return;
+  const auto i = static_cast<std::size_t>(bad);
+  std::ostringstream who, what;
+  who << "particle " << p.id[i] << " of body '"
+      << scene_.bodies[static_cast<std::size_t>(p.body[i])].name << "' at (" << p.position[i].x
+      << ", " << p.position[i].y << ", " << p.position[i].z << "), reference ("
+      << p.reference_position[i].x << ", " << p.reference_position[i].y << ", "
+      << p.reference_position[i].z << ")";
+  what << "det F = " << core::determinant(p.deformation_gradient[i])
+       << ": the material turned inside out where the particle is, and the total-Lagrangian "
+          "weights, taken in the reference configuration, no longer describe its neighbourhood; "
+          "formulation = \"updated-lagrangian\" follows such deformation (the "
+          "total-Lagrangian form is for solids that stay in one piece)";
+  throw core::SimulationError(steps_, time_, who.str(), "deformation gradient", what.str());
 }
 
 }  // namespace afemp::mpm

@@ -108,7 +108,7 @@ void MpmSolver::split_particles() {
     }
     ++split_count_;
   }
-  if (plan_.shape != core::ShapeFunction::linear) velocity_gradient_.resize(p.size());
+  if (!fused_kinematics()) velocity_gradient_.resize(p.size());
   reorder_particles();  // the material batches, and locality for the new particles
 }
 

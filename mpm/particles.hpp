@@ -72,6 +72,11 @@ struct Particles {
   // CPDI2: the domain's eight tracked corners, corner c = a + 2 b + 4 k at natural coordinates
   // (2a - 1, 2b - 1, 2k - 1).
   std::vector<std::array<Vec3, 8>> corners;
+  // Total-Lagrangian MPM: each particle's reference position X_p, where its weights are taken,
+  // and its deformation gradient F_p = dx/dX, which maps their gradients to the current
+  // configuration (mpm/stencil.hpp, ReferenceStencil).
+  std::vector<Vec3> reference_position;
+  std::vector<core::Mat3> deformation_gradient;
   // Splitting: the particle's current length along x, y, z, and the length the particle it
   // came from started with (particle_splitting.cpp).
   std::vector<Vec3> length;
@@ -157,6 +162,8 @@ void for_each_particle_field(F&& f) {
   f(R{"burn", nullptr, 8, S::copy, A::carry, 1.0}, &Particles::burn);
   f(R{"domain", nullptr, 9, S::own, A::own, 0.0}, &Particles::domain);
   f(R{"corners", nullptr, 10, S::own, A::own, 0.0}, &Particles::corners);
+  f(R{"reference_position", nullptr, 11, S::own, A::own, 0.0}, &Particles::reference_position);
+  f(R{"deformation_gradient", nullptr, 12, S::own, A::own, 0.0}, &Particles::deformation_gradient);
 }
 
 template <class T>

@@ -172,6 +172,30 @@ void move_domain(Particles& p, std::size_t i, const Stencil& st,
   }
 }
 
+// Total-Lagrangian MPM (de Vaucorbeil, Nguyen & Hutchinson 2020, "Total Lagrangian Material
+// Point Method", J. Comput. Phys. 407, eqs 14-20): the Base shape's weights at the particle's
+// reference position X_p, so they depend on X_p alone and never cross a cell, and their
+// gradients pushed to the current configuration, grad_x S_I = F^-T grad_X S_I. Then
+// -V sigma grad_x S_I = -V_0 P grad_X S_I (P = J sigma F^-T, the first Piola-Kirchhoff stress)
+// and sum_I v_I (x) grad_x S_I = dF/dt F^-1 = L: the transfer kernels run unchanged. The weights
+// are taken from X_p at each use rather than stored (27 to 64 weights and gradients, 0.9 to 2 KB
+// a particle, cost more to read back than to recompute); they are the same every time.
+template <class Base>
+struct ReferenceStencil : Base {
+  static constexpr bool reference = true;
+  ReferenceStencil(const core::BackgroundGrid& g, const Particles& p, std::size_t i, const Vec3&)
+      : Base(g, p, i, p.reference_position[i]) {
+    const core::Mat3& f = p.deformation_gradient[i];
+    const Vec3 f0{f.m[0][0], f.m[1][0], f.m[2][0]}, f1{f.m[0][1], f.m[1][1], f.m[2][1]},
+        f2{f.m[0][2], f.m[1][2], f.m[2][2]};
+    // F^-T v = (v_0 f1 x f2 + v_1 f2 x f0 + v_2 f0 x f1) / det F, f_a the columns of F.
+    const double inv = 1.0 / core::dot(f0, core::cross(f1, f2));
+    const Vec3 c0 = inv * core::cross(f1, f2), c1 = inv * core::cross(f2, f0),
+               c2 = inv * core::cross(f0, f1);
+    for (Vec3& d : this->weights.grad) d = d.x * c0 + d.y * c1 + d.z * c2;
+  }
+};
+
 // Calls f.template operator()<Stencil>() for a shape function.
 template <class F>
 void with_shape(core::ShapeFunction shape, F&& f) {

@@ -29,6 +29,7 @@ void set_options(StepPlan& plan, const core::Scene& scene) {
         scene.materials[static_cast<std::size_t>(b.material)].needs_strain())
       plan.strain = true;
   plan.splitting = scene.mpm.splitting.has_value();
+  plan.total_lagrangian = scene.mpm.formulation == core::Formulation::total_lagrangian;
   plan.jaumann = scene.mpm.jaumann;
   const core::Vec3& g = scene.run.gravity;
   plan.gravity = g.x != 0.0 || g.y != 0.0 || g.z != 0.0;
@@ -278,6 +279,12 @@ std::string StepPlan::describe() const {
            "particle; a domain reaching past its cell's neighbours stops the run)\n";
       break;
   }
+  if (total_lagrangian)
+    o << "formulation: total-Lagrangian (weights at the particles' reference positions, taken "
+         "from those alone; gradients mapped by each particle's deformation gradient F, updated "
+         "F <- (I + dt L) F; the grid stands for the reference configuration)\n";
+  else
+    o << "formulation: updated-Lagrangian (weights at the particles' current positions)\n";
   if (transfer == core::Transfer::apic)
     o << "particle velocity: APIC (affine velocity carried by each particle)\n";
   else

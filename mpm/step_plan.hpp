@@ -57,6 +57,9 @@ struct StepPlan {
   double flip = 1.0;       // PIC/FLIP blend of the particle velocity update (transfer flip)
   bool strain = false;     // the strain tensor is integrated (run.output_strain)
   bool splitting = false;  // particle lengths are tracked and long particles split
+  // Weights at the reference positions, gradients mapped by F (mpm/stencil.hpp,
+  // ReferenceStencil).
+  bool total_lagrangian = false;
   std::vector<Stage> stages;
   std::vector<MaterialPlan> materials;  // the materials of particles (bodies and conversions)
   bool gravity = false;                 // body force added in p2g_force

@@ -39,7 +39,7 @@ void MpmSolver::strain_stress_update(double dt, StrainPart part) {
   // particles); the wider stencils (uGIMP, B-splines) run them in a pass of their own
   // (kinematics_kernel)
   // and leaves L in velocity_gradient_, so the material loops are not duplicated per shape.
-  const bool fused = plan_.shape == core::ShapeFunction::linear;
+  const bool fused = fused_kinematics();
   if (!fused) {
     velocity_gradient_.resize(particles_.size());
     with_stencil(
@@ -106,6 +106,15 @@ void MpmSolver::kinematics_kernel(double dt, const StrainSweep& sweep) {
       if (sweep.move) update.add(st, k, v_new[s], v_old[s]);
     }
     velocity_gradient_[i] = l;
+    // Total-Lagrangian: F <- (I + dt L) F, the strain increment's own deformation.
+    if constexpr (requires { Stencil::reference; }) {
+      core::Mat3& f = p.deformation_gradient[i];
+      const core::Mat3 f0 = f;
+      for (int a = 0; a < 3; ++a)
+        for (int k = 0; k < 3; ++k)
+          f.m[a][k] += sweep.strain_dt *
+                       (l.m[a][0] * f0.m[0][k] + l.m[a][1] * f0.m[1][k] + l.m[a][2] * f0.m[2][k]);
+    }
     if (sweep.flip_update) update.store(p, i, st, flip);
     if (sweep.move) {
       p.position[i] += dt * update.v_grid;

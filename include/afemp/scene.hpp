@@ -33,6 +33,11 @@ enum class ShapeFunction { linear, gimp, bspline2, bspline3, cpdi1, cpdi2 };
 /// How velocity travels between particles and grid: the FLIP/PIC blend, or the affine PIC of
 /// Jiang et al. 2015 (particles carry an affine velocity C_p; P2G maps v_p + C_p (x_I - x_p)).
 enum class Transfer { flip, apic };
+/// Where the MPM's weights live: updated-Lagrangian, at the particles' current positions (the
+/// default); total-Lagrangian (de Vaucorbeil, Nguyen & Hutchinson 2020), at their reference
+/// positions, computed from those alone, with gradients mapped to the current configuration by
+/// each particle's deformation gradient.
+enum class Formulation { updated_lagrangian, total_lagrangian };
 /// free: nothing; fixed: all velocity components zero (the material sticks);
 /// symmetric: normal component zero (a symmetry plane; tension is carried across it);
 /// wall: a rigid frictionless wall the material may not cross but may leave (the normal
@@ -50,6 +55,7 @@ enum class Face { xmin = 0, xmax, ymin, ymax, zmin, zmax };
 const char* to_string(UpdateScheme s);
 const char* to_string(ShapeFunction s);
 const char* to_string(Transfer t);
+const char* to_string(Formulation f);
 const char* to_string(FaceCondition c);
 const char* to_string(Face f);
 
@@ -149,6 +155,7 @@ struct MpmSettings {
   Transfer transfer = Transfer::flip;           ///< FLIP/PIC blend or APIC
   double flip = 1.0;    ///< velocity update blend (transfer flip): 1 pure FLIP, 0 pure PIC
   bool jaumann = true;  ///< objective (Jaumann) stress rate
+  Formulation formulation = Formulation::updated_lagrangian;  ///< where the weights live
   std::optional<SplittingSettings> splitting{};  ///< adaptive particle splitting; none: off
   GridSettings grid{};                           ///< the background grid
 };

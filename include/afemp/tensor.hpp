@@ -72,6 +72,13 @@ constexpr void add_outer(Mat3& a, const Vec3& u, const Vec3& v) {
   }
 }
 
+/// det a.
+constexpr double determinant(const Mat3& a) {
+  return a.m[0][0] * (a.m[1][1] * a.m[2][2] - a.m[1][2] * a.m[2][1]) -
+         a.m[0][1] * (a.m[1][0] * a.m[2][2] - a.m[1][2] * a.m[2][0]) +
+         a.m[0][2] * (a.m[1][0] * a.m[2][1] - a.m[1][1] * a.m[2][0]);
+}
+
 constexpr Vec3 operator*(const Mat3& a, const Vec3& v) {
   return {a.m[0][0] * v.x + a.m[0][1] * v.y + a.m[0][2] * v.z,
           a.m[1][0] * v.x + a.m[1][1] * v.y + a.m[1][2] * v.z,
