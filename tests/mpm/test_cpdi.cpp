@@ -108,21 +108,27 @@ TEST(Cpdi, WeightsArePartitionOfUnityAndReproduceLinearFields) {
   EXPECT_TRUE(core::cpdi2_domain(x).inverted);
 }
 
+// A heavy body of Young's modulus e (12 x 8 x 8 cells centred on (20, 15, 15), two particles per
+// cell and axis; MUSL).
+core::Scene heavy_body(const std::string& shape, const std::string& e) {
+  return core::parse_scene(
+      "[run]\nend_time = 1.0\n"
+      "[grid]\ncell = 1.0\nmin = [0, 0, 0]\nmax = [40, 30, 30]\n"
+      "[mpm]\nscheme = \"MUSL\"\nshape_function = \"" +
+          shape + "\"\n[materials.heavy]\ndensity = 7.85e6\nE = " + e +
+          "\nnu = 0.3\n"
+          "[[bodies]]\nname = \"b\"\nmaterial = \"heavy\"\n"
+          "particles_per_cell = 2\n"
+          "shape = { box = { min = [14, 11, 11], max = [26, 19, 19] } }\n",
+      "heavy.toml");
+}
+
 // A body (12 x 8 x 8 cells, two particles per cell and axis) deformed by F, in a uniform
 // stress: the largest nodal force two cells inside it, over |sigma| h^2.
 double deformed_patch_force(const std::string& shape, const Mat3& f) {
   const SymTensor sigma{1.0, -0.5, 0.3, 0.2, -0.4, 0.6};
   const double sigma_norm = std::sqrt(core::double_dot(sigma, sigma));
-  const core::Scene scene = core::parse_scene(
-      "[run]\nend_time = 1.0\n"
-      "[grid]\ncell = 1.0\nmin = [0, 0, 0]\nmax = [40, 30, 30]\n"
-      "[mpm]\nscheme = \"MUSL\"\nshape_function = \"" +
-          shape +
-          "\"\n"
-          "[materials.heavy]\ndensity = 7.85e6\nE = 0.01\nnu = 0.3\n"
-          "[[bodies]]\nname = \"b\"\nmaterial = \"heavy\"\nparticles_per_cell = 2\n"
-          "shape = { box = { min = [14, 11, 11], max = [26, 19, 19] } }\n",
-      "patch.toml");
+  const core::Scene scene = heavy_body(shape, "0.01");
   Particles p = generate_particles(scene);
   const Vec3 centre{20.0, 15.0, 15.0};
   // F^-1 = cof(F)^T / det F, from the columns' cross products.
@@ -203,16 +209,7 @@ TEST(Cpdi, PatchTestInADeformedBodyIsExact) {
 // 5.0e-9 h (cpdi1) and 2.6e-9 h (cpdi2) against corner moves of 0.15 h; asserted 1e-6 h.
 void check_shear_follows_f(const std::string& shape) {
   SCOPED_TRACE(shape);
-  const core::Scene scene = core::parse_scene(
-      "[run]\nend_time = 1.0\n"
-      "[grid]\ncell = 1.0\nmin = [0, 0, 0]\nmax = [40, 30, 30]\n"
-      "[mpm]\nscheme = \"MUSL\"\nshape_function = \"" +
-          shape +
-          "\"\n"
-          "[materials.heavy]\ndensity = 7.85e6\nE = 1e-8\nnu = 0.3\n"
-          "[[bodies]]\nname = \"b\"\nmaterial = \"heavy\"\nparticles_per_cell = 2\n"
-          "shape = { box = { min = [14, 11, 11], max = [26, 19, 19] } }\n",
-      "shear.toml");
+  const core::Scene scene = heavy_body(shape, "1e-8");
   Particles p = generate_particles(scene);
   const double rate = 1.0, dt = 0.02;
   const int steps = 30;
