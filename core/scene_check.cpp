@@ -313,6 +313,16 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
            "material index " + std::to_string(b.material) + " is not defined; the scene has " +
                std::to_string(scene.materials.size()) + " materials");
   namespace range = scene_ranges::body;
+  // A hyperelastic model reads the deformation gradient, which particles carry and elements do
+  // not.
+  if (const Material& m = scene.materials[static_cast<std::size_t>(b.material)];
+      b.discretisation != D::particles && m.reads_deformation_gradient())
+    c.fail(b.where, key + ".material",
+           "the strength model of material \"" + m.name +
+               "\" is hyperelastic and reads the deformation gradient, and body \"" + b.name +
+               "\" is of " + to_string(b.discretisation) +
+               ", which do not carry one; give it to bodies of particles, or use a "
+               "hypoelastic model (elastic, j2, johnson-cook) for elements");
   check_shape(c, b, key);
   for (int o : b.overlap_allowed) {
     c.body(b.where, key + ".overlap_allowed", o, false);

@@ -78,17 +78,17 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
   }
   // Total-Lagrangian: the particles' reference is where they start, F = I, unless the caller
   // gave them a reference and a deformation of their own.
+  // A hyperelastic material's particles carry F as well, from I.
   if (plan_.total_lagrangian) {
-    const bool given = particles_.reference_position.size() == particles_.size() &&
-                       particles_.deformation_gradient.size() == particles_.size();
+    const bool given = particles_.reference_position.size() == particles_.size();
     particles_.keep(&Particles::reference_position, Vec3{});
+    if (!given) particles_.reference_position = particles_.position;
+  }
+  if (plan_.deformation_gradient) {
+    const bool given = particles_.deformation_gradient.size() == particles_.size();
     particles_.keep(&Particles::deformation_gradient, core::Mat3{});
     if (!given)
-      for (std::size_t i = 0; i < particles_.size(); ++i) {
-        particles_.reference_position[i] = particles_.position[i];
-        particles_.deformation_gradient[i] = core::Mat3{};
-        for (int a = 0; a < 3; ++a) particles_.deformation_gradient[i].m[a][a] = 1.0;
-      }
+      for (core::Mat3& f : particles_.deformation_gradient) f = identity_matrix();
   }
   // Splitting: each particle's lengths start as the edge of the cube of its volume.
   if (plan_.splitting) {
@@ -175,6 +175,7 @@ void MpmSolver::add_particles(const Particles& more) {
     if (!p.half_width.empty()) p.half_width[i] = gimp_half_width(p.volume[i]);
     if (!p.length.empty()) start_lengths(i);
     start_domain(i);
+    if (!p.deformation_gradient.empty()) p.deformation_gradient[i] = identity_matrix();
     if (!field_self_updated_.empty())
       field_self_updated_[static_cast<std::size_t>(
           field_of_body_[static_cast<std::size_t>(p.body[i])])] = 0;

@@ -218,7 +218,12 @@ class MpmSolver {
   // The linear hat's kinematics run inside the constitutive loop (stress_update.cpp); the other
   // stencils, and every total-Lagrangian one, in a pass of their own.
   bool fused_kinematics() const {
-    return plan_.shape == core::ShapeFunction::linear && !plan_.total_lagrangian;
+    return plan_.shape == core::ShapeFunction::linear && !plan_.deformation_gradient;
+  }
+  static core::Mat3 identity_matrix() {
+    core::Mat3 i;
+    for (int a = 0; a < 3; ++a) i.m[a][a] = 1.0;
+    return i;
   }
   void start_lengths(std::size_t i) {
     const double l = std::cbrt(particles_.volume[i]);

@@ -163,7 +163,7 @@ void for_each_particle_field(F&& f) {
   f(R{"domain", nullptr, 9, S::own, A::own, 0.0}, &Particles::domain);
   f(R{"corners", nullptr, 10, S::own, A::own, 0.0}, &Particles::corners);
   f(R{"reference_position", nullptr, 11, S::own, A::own, 0.0}, &Particles::reference_position);
-  f(R{"deformation_gradient", nullptr, 12, S::own, A::own, 0.0}, &Particles::deformation_gradient);
+  f(R{"deformation_gradient", nullptr, 12, S::copy, A::own, 0.0}, &Particles::deformation_gradient);
 }
 
 template <class T>

@@ -39,6 +39,10 @@ void set_options(StepPlan& plan, const core::Scene& scene) {
   for (const auto& b : scene.bodies)
     if (b.discretisation == core::Discretisation::particles || b.conversion)
       used.insert(b.material);
+  plan.deformation_gradient = plan.total_lagrangian;
+  for (int m : used)
+    if (scene.materials[static_cast<std::size_t>(m)].reads_deformation_gradient())
+      plan.deformation_gradient = true;
   for (int m : used) {
     const core::Material& mat = scene.materials[static_cast<std::size_t>(m)];
     plan.materials.push_back({mat.name, core::strength_description(mat.strength),

@@ -60,6 +60,8 @@ struct StepPlan {
   // Weights at the reference positions, gradients mapped by F (mpm/stencil.hpp,
   // ReferenceStencil).
   bool total_lagrangian = false;
+  // Particles carry F (total-Lagrangian, or a hyperelastic material among the particles').
+  bool deformation_gradient = false;
   std::vector<Stage> stages;
   std::vector<MaterialPlan> materials;  // the materials of particles (bodies and conversions)
   bool gravity = false;                 // body force added in p2g_force

@@ -96,6 +96,7 @@ void MpmSolver::kinematics_kernel(double dt, const StrainSweep& sweep) {
   const Vec3* v_old = g.velocity.data();
   const Vec3* v_new = g.velocity_new.data();
   const double flip = scene_.mpm.flip;
+  const bool track_f = plan_.deformation_gradient;
   for_each_particle_stencil<Stencil>(g, p, [&](std::size_t i, const Stencil& st, const auto& slot) {
     core::Mat3 l;                            // L = sum v (x) grad S
     VelocityUpdate<Stencil, Affine> update;  // USL: the G2P of grid_to_particle.cpp
@@ -106,8 +107,9 @@ void MpmSolver::kinematics_kernel(double dt, const StrainSweep& sweep) {
       if (sweep.move) update.add(st, k, v_new[s], v_old[s]);
     }
     velocity_gradient_[i] = l;
-    // Total-Lagrangian: F <- (I + dt L) F, the strain increment's own deformation.
-    if constexpr (requires { Stencil::reference; }) {
+    // F <- (I + dt L) F, the strain increment's own deformation (total-Lagrangian, or a
+    // hyperelastic material).
+    if (track_f) {
       core::Mat3& f = p.deformation_gradient[i];
       const core::Mat3 f0 = f;
       for (int a = 0; a < 3; ++a)
@@ -246,6 +248,8 @@ struct MpmSolver::StressPass {
     // A failure model reads and writes any model's damage.
     if constexpr (reads_damage || Fails) st.damage = p.damage[i];
     core::load_model_history<Strength>(st, p.history.data() + i * p.history_count);
+    if constexpr (requires { Strength::reads_deformation_gradient; })
+      st.deformation_gradient = &p.deformation_gradient[i];  // updated by kinematics_kernel
     st.energy = p.energy[i];
     st.density = p.mass[i] / volume;
     // A high explosive: its burn fraction at the step's end (core/programmed_burn.hpp).

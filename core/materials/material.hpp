@@ -86,6 +86,9 @@ struct PointState {
   double density = 0.0;  // current density rho^{k+1}
   double damage = 0.0;   // scalar damage D in [0, 1]
   double burn = 1.0;     // a high explosive's burn fraction F (core/programmed_burn.hpp)
+  // The deformation gradient at the end of the increment, for the models that read it
+  // (reads_deformation_gradient: hyperelastic); null for the others.
+  const Mat3* deformation_gradient = nullptr;
   // The strength model's own history variables (model_history_size of them are used).
   std::array<double, largest_model_history<StrengthModel>> history{};
 };

@@ -14,6 +14,7 @@
 #include "afemp/equations_of_state.hpp"
 #include "afemp/failure_models.hpp"
 #include "afemp/johnson_holmquist_ceramic.hpp"
+#include "afemp/neo_hookean.hpp"
 #include "afemp/strength_models.hpp"
 #include "afemp/user_material.hpp"
 
@@ -21,8 +22,9 @@ namespace afemp::core {
 
 /// The deviatoric half of a material: one of the built-in strength models, or a user model
 /// registered through afemp/user_material.hpp.
-using StrengthModel = std::variant<Elastic, J2Plasticity, JohnsonCook, HolmquistJohnsonCook,
-                                   UserStrength, Fluid, JohnsonHolmquist2, DruckerPrager>;
+using StrengthModel =
+    std::variant<Elastic, J2Plasticity, JohnsonCook, HolmquistJohnsonCook, UserStrength, Fluid,
+                 JohnsonHolmquist2, DruckerPrager, NeoHookean>;
 /// The volumetric half of a material: no EOS (hypoelastic bulk law) or one of the built-in EOS.
 using EquationOfState = std::variant<NoEos, LinearEos, MieGruneisen, LinearPolynomialEos,
                                      HjcCompaction, Jwl, Jh2Pressure>;
@@ -78,6 +80,17 @@ struct Material {
   /// Whether points of the material can fail.
   bool fails() const { return !std::holds_alternative<NoFailure>(failure); }
   /// The solvers integrate the strain tensor of its points (principal-strain failure).
+  /// Whether the strength model reads the deformation gradient (hyperelastic models), which only
+  /// particles carry.
+  bool reads_deformation_gradient() const {
+    return std::visit(
+        [](const auto& s) {
+          return requires {
+            std::decay_t<decltype(s)>::reads_deformation_gradient;
+          };
+        },
+        strength);
+  }
   bool needs_strain() const { return std::holds_alternative<PrincipalStrainFailure>(failure); }
 
   double shear_modulus() const { return youngs_modulus / (2.0 * (1.0 + poisson_ratio)); }
