@@ -172,14 +172,14 @@ void move_domain(Particles& p, std::size_t i, const Stencil& st,
   }
 }
 
-// Total-Lagrangian MPM (de Vaucorbeil, Nguyen & Hutchinson 2020, "Total Lagrangian Material
-// Point Method", J. Comput. Phys. 407, eqs 14-20): the Base shape's weights at the particle's
-// reference position X_p, so they depend on X_p alone and never cross a cell, and their
-// gradients pushed to the current configuration, grad_x S_I = F^-T grad_X S_I. Then
-// -V sigma grad_x S_I = -V_0 P grad_X S_I (P = J sigma F^-T, the first Piola-Kirchhoff stress)
-// and sum_I v_I (x) grad_x S_I = dF/dt F^-1 = L: the transfer kernels run unchanged. The weights
-// are taken from X_p at each use rather than stored (27 to 64 weights and gradients, 0.9 to 2 KB
-// a particle, cost more to read back than to recompute); they are the same every time.
+// Total-Lagrangian MPM (de Vaucorbeil, Nguyen & Hutchinson 2020; docs/references.md): the Base
+// shape's weights at the particle's reference position X_p, so they depend on X_p alone and never
+// cross a cell, and their gradients pushed to the current configuration,
+// grad_x S_I = F^-T grad_X S_I. Then -V sigma grad_x S_I = -V_0 P grad_X S_I (P = J sigma F^-T,
+// the first Piola-Kirchhoff stress) and sum_I v_I (x) grad_x S_I = dF/dt F^-1 = L: the transfer
+// kernels run unchanged. The weights are taken from X_p at each use, the same every time, rather
+// than stored (27 to 64 weights and gradients would be 0.9 to 2 KB a particle; which is faster
+// has not been measured).
 template <class Base>
 struct ReferenceStencil : Base {
   static constexpr bool reference = true;

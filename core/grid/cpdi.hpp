@@ -12,14 +12,14 @@
 //
 // CPDI1 (Sadeghirad, Brannon & Burghardt 2011, "A convected particle domain interpolation
 // technique to extend applicability of the material point method for problems involving massive
-// deformations", IJNME 86, eqs 29-31 in 3-D): the domain is a parallelepiped x_p + sum_k s_k r_k
-// (s_k = -1 or 1) whose edge vectors 2 r_k follow the deformation gradient, r_k = F r_k^0. The
+// deformations", IJNME 2011; docs/references.md): the domain is a parallelepiped x_p + sum_k s_k
+// r_k (s_k = -1 or 1) whose edge vectors 2 r_k follow the deformation gradient, r_k = F r_k^0. The
 // map is affine, so w_c = 1/8 and g_c = J^-T s_c / 8 with J = [r_1 r_2 r_3]:
 // J^-T s = (s_1 r_2 x r_3 + s_2 r_3 x r_1 + s_3 r_1 x r_2) / det J, the faces' area vectors.
 //
 // CPDI2 (Sadeghirad, Brannon & Guilkey 2013, "Second-order convected particle domain
 // interpolation (CPDI2) with enrichment for weak discontinuities at material interfaces",
-// IJNME 95, eqs 9-14, quadrilaterals in 2-D, here their 3-D counterpart, the trilinear
+// IJNME 2013, quadrilaterals in 2-D; here their 3-D counterpart, the trilinear
 // hexahedron): each corner is tracked, x_c += dt sum_I N_I(x_c) v_I, so the domain may take any
 // hexahedral shape. w_c and g_c are integrals of polynomials of degree at most three per natural
 // coordinate (phi_c times det J, and the cofactor of J times grad_xi phi_c), which 2 x 2 x 2

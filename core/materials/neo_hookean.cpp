@@ -1,7 +1,7 @@
 // Compressible neo-Hookean solid (afemp/neo_hookean.hpp). With W = mu / 2 (I1 J^(-2/3) - 3)
 // + K / 2 (J - 1)^2 (the mixed u-p TLMPM paper, Zhang et al. 2022, eqs 15-16; I3^(-1/3) =
 // J^(-2/3)), the Kirchhoff stress is tau = mu J^(-2/3) dev(B) + K J (J - 1) I (Simo & Hughes 1998,
-// §9.2, their isochoric split), and the Cauchy stress sigma = tau / J.
+// their isochoric split; docs/references.md), and the Cauchy stress sigma = tau / J.
 #include "afemp/neo_hookean.hpp"
 
 #include <cmath>
