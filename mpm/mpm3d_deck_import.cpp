@@ -306,9 +306,9 @@ class Mpm3dImport {
     } else if (k == "sgmp" || k == "smoo" || k == "tlmp" || k == "uvfp") {
       // A different discretisation of the same physics: run with afemp's own, noted.
       note(key_,
-           "an MPM3D-F90 scheme afemp does not have (staggered-grid, smoothed-stress, total "
-           "Lagrangian or mixed MPM): the deck runs with the scene's shape function and scheme "
-           "(docs/import.md)",
+           "an MPM3D-F90 scheme the import does not translate (staggered-grid, smoothed-stress, "
+           "total-Lagrangian or mixed MPM): the deck runs with the scene's shape function and "
+           "the updated-Lagrangian form (docs/import.md)",
            true);
     } else if (k == "drda") {
       changes_run(key_, "dynamic relaxation (damping to a static solution) is not part of afemp");
@@ -1025,7 +1025,7 @@ class Mpm3dImport {
   std::string scheme_ = "USL";  // neither MUSL nor USF: MPM3D updates the stress last
   bool scheme_set_ = false;
   bool jaumann_ = true, contact_ = false;
-  std::string shape_;  // gimp or bimp: the shape function written; empty: the default
+  std::string shape_;  // "gimp" or "bspline2" (bimp): the shape function written; empty: linear
   double friction_ = 0.0;
   core::SourceLocation contact_at_{};
   std::optional<std::array<double, 2>> bulk_;

@@ -495,12 +495,9 @@ void MpmSolver::raise_if_bad(const char* field) const {
   if (f == "position" && std::isfinite(p.position[i].x) && std::isfinite(p.position[i].y) &&
       std::isfinite(p.position[i].z)) {
     what << "left the grid domain (the run stops; enlarge [grid] min/max)";
-  } else if (f == "stress" && !(p.volume[i] > 0.0) && plan_.total_lagrangian) {
-    check_deformation_gradients();  // names det F <= 0, the cause in this form
-    f = "volume";
-    what << "became " << p.volume[i] << ": the point was compressed through zero volume in one "
-         << "step; try a smaller time_step_factor";
   } else if (f == "stress" && !(p.volume[i] > 0.0)) {
+    // Total-Lagrangian: det F <= 0 is the cause to name, when it is one.
+    if (plan_.total_lagrangian) check_deformation_gradients();
     // The strain pass flags the point; a non-positive volume is the cause to name.
     f = "volume";
     what << "became " << p.volume[i]

@@ -143,6 +143,14 @@ struct CpdiStencil {
   }
 };
 
+// m <- m + dt L m (m <- (I + dt L) m): CPDI1's edge vectors and the deformation gradient F.
+inline void add_velocity_gradient_step(core::Mat3& m, const core::Mat3& l, double dt) {
+  const core::Mat3 m0 = m;
+  for (int a = 0; a < 3; ++a)
+    for (int k = 0; k < 3; ++k)
+      m.m[a][k] += dt * (l.m[a][0] * m0.m[0][k] + l.m[a][1] * m0.m[1][k] + l.m[a][2] * m0.m[2][k]);
+}
+
 // Moves particle i's CPDI domain over dt with the nodal velocity v that moves the particle
 // (slots + field): CPDI1's edge vectors by the velocity gradient, r_k <- (I + dt L) r_k with
 // L = sum_I v_I (x) grad S_Ip (the incremental form of r_k = F r_k^0); CPDI2's corners by the
@@ -162,12 +170,7 @@ void move_domain(Particles& p, std::size_t i, const Stencil& st,
       for (int n = 0; n < Stencil::nodes; ++n)
         core::add_outer(l, v[static_cast<std::size_t>(slot[static_cast<std::size_t>(n)]) + field],
                         st.grad(n));
-      core::Mat3& r = p.domain[i];
-      const core::Mat3 r0 = r;
-      for (int a = 0; a < 3; ++a)
-        for (int k = 0; k < 3; ++k)
-          r.m[a][k] +=
-              dt * (l.m[a][0] * r0.m[0][k] + l.m[a][1] * r0.m[1][k] + l.m[a][2] * r0.m[2][k]);
+      add_velocity_gradient_step(p.domain[i], l, dt);
     }
   }
 }

@@ -109,14 +109,7 @@ void MpmSolver::kinematics_kernel(double dt, const StrainSweep& sweep) {
     velocity_gradient_[i] = l;
     // F <- (I + dt L) F, the strain increment's own deformation (total-Lagrangian, or a
     // hyperelastic material).
-    if (track_f) {
-      core::Mat3& f = p.deformation_gradient[i];
-      const core::Mat3 f0 = f;
-      for (int a = 0; a < 3; ++a)
-        for (int k = 0; k < 3; ++k)
-          f.m[a][k] += sweep.strain_dt *
-                       (l.m[a][0] * f0.m[0][k] + l.m[a][1] * f0.m[1][k] + l.m[a][2] * f0.m[2][k]);
-    }
+    if (track_f) add_velocity_gradient_step(p.deformation_gradient[i], l, sweep.strain_dt);
     if (sweep.flip_update) update.store(p, i, st, flip);
     if (sweep.move) {
       p.position[i] += dt * update.v_grid;
