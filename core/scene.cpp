@@ -47,6 +47,10 @@ const char* to_string(Formulation f) {
   return f == Formulation::total_lagrangian ? "total-lagrangian" : "updated-lagrangian";
 }
 
+const char* to_string(PressureField p) {
+  return p == PressureField::mixed ? "mixed" : "standard";
+}
+
 const char* to_string(Transfer t) {
   return t == Transfer::apic ? "apic" : "flip";
 }

@@ -11,6 +11,7 @@
 
 #include "core/far_field_refusals.hpp"
 #include "core/materials/initial_pressure.hpp"
+#include "core/mixed_pressure_refusals.hpp"
 #include "core/phases.hpp"
 #include "core/scene.hpp"
 #include "core/scene_parser.hpp"
@@ -136,6 +137,9 @@ void check_grid(const Checker& c, const Scene& scene) {
   if (const auto why = total_lagrangian_mpm_refusal(scene.mpm))
     c.fail(w, "mpm." + why->first, why->second);
   if (const auto why = total_lagrangian_scene_refusal(scene)) c.fail(w, why->first, why->second);
+  if (const auto why = mixed_pressure_mpm_refusal(scene.mpm))
+    c.fail(w, "mpm." + why->first, why->second);
+  if (const auto why = mixed_pressure_scene_refusal(scene)) c.fail(w, why->first, why->second);
   if (const std::optional<std::string> why = spline_grid_refusal(g, scene.mpm.shape))
     c.fail(w, "mpm.shape_function", *why);
   if (const std::optional<std::string> why = absorbing_face_shape_refusal(g, scene.mpm.shape))

@@ -16,6 +16,7 @@
 #include "core/far_field_refusals.hpp"
 #include "core/materials/initial_pressure.hpp"
 #include "core/materials/model_parameters.hpp"
+#include "core/mixed_pressure_refusals.hpp"
 #include "core/phases.hpp"
 #include "core/scene_ranges.hpp"
 #include "core/shape_function_refusals.hpp"
@@ -485,7 +486,8 @@ void read_grid(TableReader& r, GridSettings& grid) {
 }
 
 void read_mpm(TableReader& r, MpmSettings& mpm) {
-  r.known({"scheme", "shape_function", "transfer", "flip", "jaumann", "formulation", "splitting"});
+  r.known({"scheme", "shape_function", "transfer", "flip", "jaumann", "formulation", "pressure",
+           "splitting"});
   r.check_unknown();
   mpm.scheme = static_cast<UpdateScheme>(r.choice("scheme", {"USF", "USL", "MUSL", "USAVG"},
                                                   static_cast<std::size_t>(mpm.scheme), true));
@@ -513,6 +515,8 @@ void read_mpm(TableReader& r, MpmSettings& mpm) {
   mpm.formulation =
       static_cast<Formulation>(r.choice("formulation", {"updated-lagrangian", "total-lagrangian"},
                                         static_cast<std::size_t>(mpm.formulation)));
+  mpm.pressure = static_cast<PressureField>(
+      r.choice("pressure", {"standard", "mixed"}, static_cast<std::size_t>(mpm.pressure)));
   if (const toml::table* t = r.optional_table("splitting")) {
     if (const std::optional<std::string> why = cpdi_splitting_refusal(mpm.shape))
       r.fail("splitting", *why);
@@ -539,6 +543,7 @@ void read_mpm(TableReader& r, MpmSettings& mpm) {
     mpm.splitting = s;
   }
   if (const auto why = total_lagrangian_mpm_refusal(mpm)) r.fail(why->first, why->second);
+  if (const auto why = mixed_pressure_mpm_refusal(mpm)) r.fail(why->first, why->second);
 }
 
 // A strength model with a pressure law of its own (Holmquist-Johnson-Cook concrete) goes with

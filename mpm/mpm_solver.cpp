@@ -519,6 +519,7 @@ std::size_t MpmSolver::active_cells() const {
 std::size_t MpmSolver::bytes() const {
   return particles_.bytes() + grid_.bytes() + cell_.capacity() * sizeof(std::int64_t) +
          velocity_gradient_.capacity() * sizeof(core::Mat3) +
+         (mixed_pressure_.capacity() + pressure_nodes_.capacity()) * sizeof(double) +
          contact_normal_.capacity() * sizeof(Vec3) +
          (layer_.capacity() + layer_order_.capacity()) * sizeof(std::int32_t) +
          layer_offsets_.capacity() * sizeof(std::int64_t);

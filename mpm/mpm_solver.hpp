@@ -152,6 +152,11 @@ class MpmSolver {
   };
   template <class Stencil, bool Affine>
   void kinematics_kernel(double dt, const StrainSweep& sweep);
+  // Mixed u-p (mpm/mixed_pressure.cpp): mixed_pressure_ from det F over the reference grid;
+  // Constant: one pressure per cell (under the linear hat), else the linear hat.
+  void project_mixed_pressure();
+  template <int Colours, bool Constant>
+  void mixed_pressure_kernel();
   // Calls f.template operator()<Stencil, Affine>() for the scene's shape function and
   // transfer (the parser refuses the affine transfer with the linear hat).
   template <class F>
@@ -272,6 +277,10 @@ class MpmSolver {
   // uGIMP, B-splines: the velocity gradient of each particle, from kinematics_kernel to the
   // stress update.
   std::vector<core::Mat3> velocity_gradient_;
+  // Mixed u-p: each particle's projected pressure p_p (tension positive), read by its material
+  // in place of K (J - 1); and the nodal sums of the projection (3 per node slot).
+  std::vector<double> mixed_pressure_;
+  std::vector<double> pressure_nodes_;
 
   // Velocity fields: the field of each body, and what happens where fields f and g meet at
   // a node (law_[f * fields + g]): they stick (one velocity, as in a single field) unless the

@@ -30,6 +30,7 @@ void set_options(StepPlan& plan, const core::Scene& scene) {
       plan.strain = true;
   plan.splitting = scene.mpm.splitting.has_value();
   plan.total_lagrangian = scene.mpm.formulation == core::Formulation::total_lagrangian;
+  plan.mixed_pressure = scene.mpm.pressure == core::PressureField::mixed;
   plan.jaumann = scene.mpm.jaumann;
   const core::Vec3& g = scene.run.gravity;
   plan.gravity = g.x != 0.0 || g.y != 0.0 || g.z != 0.0;
@@ -238,6 +239,15 @@ StepPlan build_step_plan(const core::Scene& scene) {
   assign_velocity_fields(plan, scene);
   append_particle_stages(plan, scene);
   append_scheme_stages(plan, scene);
+  // The mixed u-p pressure is projected inside each stress stage, between the kinematics (F)
+  // and the constitutive update that reads it (mpm/mixed_pressure.cpp).
+  if (plan.mixed_pressure)
+    for (Stage& st : plan.stages)
+      if (st.kind == StageKind::strain_stress_start || st.kind == StageKind::strain_stress_update ||
+          st.kind == StageKind::g2p_velocity_strain_stress)
+        st.why +=
+            "; then the mixed u-p pressure, projected over the grid from det F before the "
+            "stress reads it";
   return plan;
 }
 
@@ -289,6 +299,12 @@ std::string StepPlan::describe() const {
          "F <- (I + dt L) F; the grid stands for the reference configuration)\n";
   else
     o << "formulation: updated-Lagrangian (weights at the particles' current positions)\n";
+  if (mixed_pressure)
+    o << "pressure: mixed displacement-pressure (Zhang et al. 2022): det F averaged to the nodes "
+         "and back, K (J - 1) projected to the nodes and back, with "
+      << (shape == core::ShapeFunction::linear ? "a constant per cell (under the linear hat)"
+                                               : "the linear hat at the reference positions")
+      << "; it replaces each point's K (J - 1)\n";
   if (transfer == core::Transfer::apic)
     o << "particle velocity: APIC (affine velocity carried by each particle)\n";
   else

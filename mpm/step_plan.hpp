@@ -62,6 +62,8 @@ struct StepPlan {
   bool total_lagrangian = false;
   // Particles carry F (total-Lagrangian, or a hyperelastic material among the particles').
   bool deformation_gradient = false;
+  // The mixed u-p pressure (mpm/mixed_pressure.cpp) replaces the points' own K (J - 1).
+  bool mixed_pressure = false;
   std::vector<Stage> stages;
   std::vector<MaterialPlan> materials;  // the materials of particles (bodies and conversions)
   bool gravity = false;                 // body force added in p2g_force

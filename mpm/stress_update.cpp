@@ -45,6 +45,9 @@ void MpmSolver::strain_stress_update(double dt, StrainPart part) {
     with_stencil(
         [&]<class Stencil, bool Affine>() { kinematics_kernel<Stencil, Affine>(dt, sweep); });
   }
+  // The mixed u-p pressure from the F just updated, before the materials read it (the
+  // staggered step of Zhang et al. 2022: displacement, then pressure, then stress).
+  if (plan_.mixed_pressure) project_mixed_pressure();
   for (const MaterialBatch& batch : batches_) {
     const core::Material& m = *materials_[static_cast<std::size_t>(batch.material)];
     core::visit_models(m, [&](const auto& strength, const auto& eos) {
@@ -158,6 +161,7 @@ struct MpmSolver::StressPass {
   const double h;
   const bool viscous;
   const core::BulkViscositySettings* viscosity;
+  const double* mixed;  // the projected pressures (mixed u-p), or null
   double work = 0.0, wave = 0.0, speed2 = 0.0, heat = 0.0, swept = 0.0;
   std::int64_t bad = -1;
 
@@ -184,7 +188,8 @@ struct MpmSolver::StressPass {
         burn_time(sweep_in.time_after),
         h(s.grid_.cell()),
         viscous(s.viscous_),
-        viscosity(s.bulk_viscosity_.data()) {}
+        viscosity(s.bulk_viscosity_.data()),
+        mixed(s.plan_.mixed_pressure ? s.mixed_pressure_.data() : nullptr) {}
 
   // L_ij = sum_I v_Ii dN_I/dx_j of particle i, its mean grid velocity v_bar and its velocity
   // v_p (updated here with USL's FLIP blend when fused, by kinematics_kernel otherwise).
@@ -243,6 +248,8 @@ struct MpmSolver::StressPass {
     core::load_model_history<Strength>(st, p.history.data() + i * p.history_count);
     if constexpr (requires { Strength::reads_deformation_gradient; })
       st.deformation_gradient = &p.deformation_gradient[i];  // updated by kinematics_kernel
+    if constexpr (requires { Strength::splits_volumetric_energy; })
+      if (mixed) st.mixed_pressure = mixed + i;
     st.energy = p.energy[i];
     st.density = p.mass[i] / volume;
     // A high explosive: its burn fraction at the step's end (core/programmed_burn.hpp).

@@ -89,6 +89,10 @@ struct PointState {
   // The deformation gradient at the end of the increment, for the models that read it
   // (reads_deformation_gradient: hyperelastic); null for the others.
   const Mat3* deformation_gradient = nullptr;
+  // The mixed displacement-pressure MPM's projected pressure p (tension positive) for the
+  // models whose energy splits off K / 2 (J - 1)^2 (splits_volumetric_energy): they take it in
+  // place of K (J - 1); null when the scene's pressure is the point's own.
+  const double* mixed_pressure = nullptr;
   // The strength model's own history variables (model_history_size of them are used).
   std::array<double, largest_model_history<StrengthModel>> history{};
 };

@@ -24,8 +24,9 @@ PointUpdate NeoHookean::update_point(const Material& material, const NoEos&, Poi
   // As in constitutive_update: work per unit mass over the volume the increment acts on.
   const double inv_rho_work = 1.0 / (point.density * (1.0 + d_eps.trace()));
   const SymTensor stress_old = point.stress;
-  point.stress =
-      (mu * std::pow(j, -5.0 / 3.0)) * b.deviator() + (k * (j - 1.0)) * SymTensor::identity();
+  // The mixed u-p MPM's projected pressure replaces K (J - 1) where it is on (eq 17 there).
+  const double p = point.mixed_pressure ? *point.mixed_pressure : k * (j - 1.0);
+  point.stress = (mu * std::pow(j, -5.0 / 3.0)) * b.deviator() + p * SymTensor::identity();
   point.energy += 0.5 * double_dot(stress_old + point.stress, d_eps) * inv_rho_work;
   return {};
 }

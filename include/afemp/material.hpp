@@ -14,6 +14,7 @@
 #include "afemp/equations_of_state.hpp"
 #include "afemp/failure_models.hpp"
 #include "afemp/johnson_holmquist_ceramic.hpp"
+#include "afemp/mooney_rivlin.hpp"
 #include "afemp/neo_hookean.hpp"
 #include "afemp/strength_models.hpp"
 #include "afemp/user_material.hpp"
@@ -24,7 +25,7 @@ namespace afemp::core {
 /// registered through afemp/user_material.hpp.
 using StrengthModel =
     std::variant<Elastic, J2Plasticity, JohnsonCook, HolmquistJohnsonCook, UserStrength, Fluid,
-                 JohnsonHolmquist2, DruckerPrager, NeoHookean>;
+                 JohnsonHolmquist2, DruckerPrager, NeoHookean, MooneyRivlin>;
 /// The volumetric half of a material: no EOS (hypoelastic bulk law) or one of the built-in EOS.
 using EquationOfState = std::variant<NoEos, LinearEos, MieGruneisen, LinearPolynomialEos,
                                      HjcCompaction, Jwl, Jh2Pressure>;
@@ -87,6 +88,18 @@ struct Material {
         [](const auto& s) {
           return requires {
             std::decay_t<decltype(s)>::reads_deformation_gradient;
+          };
+        },
+        strength);
+  }
+  /// Whether the strength model's energy splits as W_dev + K / 2 (J - 1)^2 with a deviatoric
+  /// stress of its own, so that the mixed displacement-pressure MPM may supply the pressure
+  /// (`[mpm] pressure = "mixed"`): the hyperelastic models.
+  bool splits_volumetric_energy() const {
+    return std::visit(
+        [](const auto& s) {
+          return requires {
+            std::decay_t<decltype(s)>::splits_volumetric_energy;
           };
         },
         strength);

@@ -39,6 +39,8 @@ struct NeoHookean {
   static constexpr bool reads_temperature = false;
   static constexpr bool reads_damage = false;
   static constexpr bool reads_deformation_gradient = true;
+  /// W = W_dev + K / 2 (J - 1)^2: the mixed u-p MPM may supply the pressure.
+  static constexpr bool splits_volumetric_energy = true;
 };
 
 }  // namespace afemp::core

@@ -38,6 +38,9 @@ enum class Transfer { flip, apic };
 /// positions, computed from those alone, with gradients mapped to the current configuration by
 /// each particle's deformation gradient.
 enum class Formulation { updated_lagrangian, total_lagrangian };
+/// Where the particles' pressure comes from: each point's own volumetric law, or the mixed
+/// displacement-pressure projection of the total-Lagrangian MPM (Zhang et al. 2022).
+enum class PressureField { standard, mixed };
 /// free: nothing; fixed: all velocity components zero (the material sticks);
 /// symmetric: normal component zero (a symmetry plane; tension is carried across it);
 /// wall: a rigid frictionless wall the material may not cross but may leave (the normal
@@ -56,6 +59,7 @@ const char* to_string(UpdateScheme s);
 const char* to_string(ShapeFunction s);
 const char* to_string(Transfer t);
 const char* to_string(Formulation f);
+const char* to_string(PressureField p);
 const char* to_string(FaceCondition c);
 const char* to_string(Face f);
 
@@ -156,6 +160,7 @@ struct MpmSettings {
   double flip = 1.0;    ///< velocity update blend (transfer flip): 1 pure FLIP, 0 pure PIC
   bool jaumann = true;  ///< objective (Jaumann) stress rate
   Formulation formulation = Formulation::updated_lagrangian;  ///< where the weights live
+  PressureField pressure = PressureField::standard;           ///< point-wise or mixed u-p pressure
   std::optional<SplittingSettings> splitting{};  ///< adaptive particle splitting; none: off
   GridSettings grid{};                           ///< the background grid
 };
@@ -571,6 +576,7 @@ using core::Discretisation;
 using core::ErosionSettings;
 using core::Face;
 using core::FaceCondition;
+using core::Formulation;
 using core::GeostaticStress;
 using core::GridSettings;
 using core::HexFormulation;
@@ -585,6 +591,7 @@ using core::NodeSelector;
 using core::PhaseKind;
 using core::PhaseSpec;
 using core::PointListShape;
+using core::PressureField;
 using core::RebarShape;
 using core::RigidSettings;
 using core::RunSettings;
