@@ -393,12 +393,13 @@ class Mpm3dImport {
       want({3}, "density, bulk modulus, viscosity");
     else if (m.type == "dpm")
       want({7}, "density, E, nu, q_fai, k_fai, q_psi, ten_f");
+    else if (m.type == "neoh")
+      want({3}, "density, E, nu");
     else
-      throw core::InputError(
-          m.at, key_,
-          "material type '" + m.type + "' has no afemp counterpart" +
-              (m.type == "neoh" ? " (neoh: afemp has no neo-Hookean hyperelastic model yet)" : "") +
-              "; translated: elas, pla1, pla2, john, sjc, sjcf, jcf, hiex, null, dpm");
+      throw core::InputError(m.at, key_,
+                             "material type '" + m.type +
+                                 "' has no afemp counterpart; translated: elas, pla1, pla2, "
+                                 "john, sjc, sjcf, jcf, hiex, null, dpm, neoh");
     if (m.type == "hiex" || m.type == "null") {
       // No strength (DataIn.f90's SetMaterial; Constitution.f90's M3DM6 and M3DM7): the EOS
       // of its seos gives the pressure.
@@ -422,6 +423,10 @@ class Mpm3dImport {
     m.nu = v[2];
     if (m.type == "elas") {
       m.strength = "{ model = \"elastic\" }";
+    } else if (m.type == "neoh") {
+      // Constitution.f90's M3DM10 and M3DM11: sigma = (mu (B - I) + lambda ln J I) / J, the
+      // neo-Hookean solid's log form.
+      m.strength = "{ model = \"neo-hookean\", form = \"log\" }";
     } else if (m.type == "dpm") {
       // Constitution.f90's M3DM9 (no EOS): the cone's constants as they are; its tension
       // cutoff min(ten_f, k_fai / q_fai), 0 without friction. Left out at or beyond the apex,

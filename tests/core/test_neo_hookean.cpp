@@ -138,5 +138,54 @@ TEST(NeoHookean, ItTakesNoEosAndElementsAreRefused) {
     EXPECT_NE(e.find(part), std::string::npos) << part << " in: " << e;
 }
 
+// The log form (MPM3D-F90's neoh): sigma = (1 / J) dW/dF F^T with
+// W = mu / 2 (I1 - 3) - mu ln J + lambda / 2 (ln J)^2, dW/dF by central differences (step 1e-6),
+// to 1e-7 of mu + K; small strain is the same linear elasticity as the split form's.
+TEST(NeoHookean, TheLogFormsStressIsTheDerivativeOfItsEnergy) {
+  Material m = rubber();
+  NeoHookean log_form;
+  log_form.form = NeoHookean::Form::log;
+  m.strength = log_form;
+  const double mu = m.shear_modulus(), k = m.bulk_modulus(), lambda = k - 2.0 * mu / 3.0;
+  auto energy = [&](const Mat3& f) {
+    double i1 = 0.0;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) i1 += f.m[i][j] * f.m[i][j];
+    const double lj = std::log(determinant(f));
+    return 0.5 * mu * (i1 - 3.0) - mu * lj + 0.5 * lambda * lj * lj;
+  };
+  const double a[3][3] = {{1.3, 0.2, -0.1}, {-0.15, 0.8, 0.25}, {0.05, 0.3, 1.1}};
+  Mat3 f;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) f.m[i][j] = a[i][j];
+  const Mat3 s = full(stress_at(m, f));
+  double worst = 0.0;
+  const double jac = determinant(f), h = 1e-6;
+  Mat3 p;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      Mat3 u = f, d = f;
+      u.m[i][j] += h, d.m[i][j] -= h;
+      p.m[i][j] = (energy(u) - energy(d)) / (2.0 * h);
+    }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double expected = 0.0;
+      for (int c = 0; c < 3; ++c) expected += p.m[i][c] * f.m[j][c];
+      worst = std::max(worst, std::abs(s.m[i][j] - expected / jac));
+    }
+  std::printf("[ neo-hookean log ] |sigma - (1/J) dW/dF F^T| %.2e of mu + K\n", worst / (mu + k));
+  EXPECT_LT(worst, 1e-7 * (mu + k));
+  // Small strain: both forms are linear elasticity with E and nu, to O(|e|^2).
+  const double e[3][3] = {{1e-6, 3e-7, 0}, {3e-7, -5e-7, 2e-7}, {0, 2e-7, 4e-7}};
+  Mat3 g;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) g.m[i][j] = (i == j ? 1.0 : 0.0) + e[i][j];
+  const SymTensor eps{e[0][0], e[1][1], e[2][2], e[1][2], e[0][2], e[0][1]};
+  const SymTensor linear = (2.0 * mu) * eps.deviator() + (k * eps.trace()) * SymTensor::identity();
+  const SymTensor small = stress_at(m, g);
+  EXPECT_LT(std::sqrt(double_dot(small - linear, small - linear)), 1e-11 * (mu + k));
+}
+
 }  // namespace
 }  // namespace afemp::core
