@@ -48,7 +48,7 @@ void set_options(StepPlan& plan, const core::Scene& scene) {
     const core::Material& mat = scene.materials[static_cast<std::size_t>(m)];
     plan.materials.push_back({mat.name, core::strength_description(mat.strength),
                               core::eos_description(mat.eos), mat.has_thermal_term(),
-                              core::failure_description(mat)});
+                              core::failure_description(mat), mat.reads_deformation_gradient()});
   }
 }
 
@@ -267,8 +267,12 @@ std::string StepPlan::describe() const {
   o << "constitutive update per material batch" << (jaumann ? " (Jaumann rate)" : "") << ":\n";
   for (const auto& m : materials) {
     o << "  " << m.material << ": strength " << m.strength << ", EOS " << m.eos
-      << (m.eos == "none" ? " (pressure from the bulk modulus)" : "") << ", thermal "
-      << (m.thermal ? "on (plastic work heats)" : "off") << ", failure " << m.failure << "\n";
+      << (m.eos != "none"  ? ""
+          : m.hyperelastic ? (mixed_pressure ? " (pressure: the mixed u-p projection)"
+                                             : " (pressure from its strain energy)")
+                           : " (pressure from the bulk modulus)")
+      << ", thermal " << (m.thermal ? "on (plastic work heats)" : "off") << ", failure "
+      << m.failure << "\n";
   }
   o << "shape functions: ";
   switch (shape) {

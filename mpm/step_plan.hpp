@@ -44,10 +44,11 @@ struct Stage {
 // What the constitutive stage does for one material: the composition it instantiates.
 struct MaterialPlan {
   std::string material;
-  std::string strength;  // the scene file's model name ("j2"), or the user model's
-  std::string eos;       // "none" (hypoelastic pressure) | "linear" | "mie-gruneisen" | ...
-  bool thermal = false;  // temperature integrated from plastic work
-  std::string failure;   // when a point fails (core::failure_description)
+  std::string strength;       // the scene file's model name ("j2"), or the user model's
+  std::string eos;            // "none" (hypoelastic pressure) | "linear" | "mie-gruneisen" | ...
+  bool thermal = false;       // temperature integrated from plastic work
+  std::string failure;        // when a point fails (core::failure_description)
+  bool hyperelastic = false;  // its pressure comes from its strain energy, not a bulk law
 };
 
 struct StepPlan {
