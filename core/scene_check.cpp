@@ -317,16 +317,23 @@ void check_body(const Checker& c, const Scene& scene, const BodySpec& b) {
            "material index " + std::to_string(b.material) + " is not defined; the scene has " +
                std::to_string(scene.materials.size()) + " materials");
   namespace range = scene_ranges::body;
-  // A hyperelastic model reads the deformation gradient, which particles carry and elements do
-  // not.
+  // A hyperelastic model reads the deformation gradient: particles carry it, hexahedra take it
+  // from their nodes; trusses have none, and a particle made from a hexahedron would start
+  // from an unstrained F.
   if (const Material& m = scene.materials[static_cast<std::size_t>(b.material)];
-      b.discretisation != D::particles && m.reads_deformation_gradient())
-    c.fail(b.where, key + ".material",
-           "the strength model of material \"" + m.name +
-               "\" is hyperelastic and reads the deformation gradient, and body \"" + b.name +
-               "\" is of " + to_string(b.discretisation) +
-               ", which do not carry one; give it to bodies of particles, or use a "
-               "hypoelastic model (elastic, j2, johnson-cook) for elements");
+      m.reads_deformation_gradient()) {
+    if (b.discretisation == D::trusses)
+      c.fail(b.where, key + ".material",
+             "the strength model of material \"" + m.name +
+                 "\" is hyperelastic and reads the deformation gradient, and body \"" + b.name +
+                 "\" is of trusses, which have none; give it to bodies of particles or "
+                 "hexahedra, or use a hypoelastic model (elastic, j2, johnson-cook) for trusses");
+    if (b.discretisation == D::hexahedra && b.conversion)
+      c.fail(b.where, key + ".conversion",
+             "body \"" + b.name + "\" has a hyperelastic material (\"" + m.name +
+                 "\"), whose hexahedra would convert into particles without their deformation "
+                 "gradient; leave conversion out, or use a hypoelastic model");
+  }
   check_shape(c, b, key);
   for (int o : b.overlap_allowed) {
     c.body(b.where, key + ".overlap_allowed", o, false);

@@ -45,6 +45,12 @@ std::string hexahedron_formulation(const core::Scene& scene, const BodySpec& bod
     core::appendf(out, ", bulk viscosity linear %g, quadratic %g", q.linear, q.quadratic);
   else
     out += ", no bulk viscosity";
+  // A hyperelastic strength reads F, which the element takes from its nodes
+  // (fem/hexahedron_deformation_gradient.hpp).
+  if (scene.materials[static_cast<std::size_t>(body.material)].reads_deformation_gradient())
+    out += body.element == core::HexFormulation::full
+               ? ", stress at each Gauss point's F-bar from the nodes"
+               : ", stress at the centre's F from the nodes";
   return out + ", material " + material_models(scene, body);
 }
 

@@ -21,6 +21,7 @@
 #include "core/parallel.hpp"
 #include "core/programmed_burn.hpp"
 #include "fem/fe_solver.hpp"
+#include "fem/hexahedron_deformation_gradient.hpp"
 #include "fem/hexahedron_full.hpp"
 #include "fem/hexahedron_lanes.hpp"
 #include "fem/hexahedron_one_point.hpp"
@@ -88,6 +89,9 @@ class HexahedronPasses {
  public:
   static constexpr int W = hexahedron_stage::kLanes;
   static constexpr bool user = core::is_user_strength<Strength>;
+  // A hyperelastic model reads each point's F, taken from the nodes (hexahedron_deformation_
+  // gradient.hpp): at the centre of a one-point element, F-bar at the Gauss points of a full one.
+  static constexpr bool reads_f = requires { Strength::reads_deformation_gradient; };
   using Pack = OnePointPack<W>;
   using UserChunk = core::UserChunkFor<Strength>;
 
@@ -131,13 +135,16 @@ class HexahedronPasses {
     double q_heat = 0.0;
   };
   AFEMP_INLINE inline PointStart begin_point(std::size_t p, const core::Mat3& l, double density,
-                                             double q_old) const;
+                                             double q_old, const core::Mat3* f = nullptr) const;
   template <std::size_t N>
   AFEMP_INLINE inline double end_point(TrialPoints<N>& out, std::size_t j, std::size_t p,
                                        PointStart& ps, const core::PointUpdate& u) const;
   template <std::size_t N>
   AFEMP_INLINE inline double update_point(TrialPoints<N>& out, std::size_t j, std::size_t p,
-                                          const core::Mat3& l, double density, double q_old) const;
+                                          const core::Mat3& l, double density, double q_old,
+                                          const core::Mat3* f = nullptr) const;
+  // The initial positions of element e's nodes (the reference of F).
+  HexVectors initial_nodes(std::size_t e) const;
   void hourglass_viscous(Pack& k) const;
   void hourglass_stiffness(Pack& k, int l) const;
   void hourglass_assumed_strain(Pack& k, int l) const;
@@ -239,8 +246,8 @@ void HexahedronPasses<S, E, Thermal, Fails>::sweep_full(std::size_t begin, std::
 
 template <class S, class E, bool Thermal, bool Fails>
 auto HexahedronPasses<S, E, Thermal, Fails>::begin_point(std::size_t p, const core::Mat3& l,
-                                                         double density, double q_old) const
-    -> PointStart {
+                                                         double density, double q_old,
+                                                         const core::Mat3* f) const -> PointStart {
   // The strain increment D dt and the spin increment W dt of the velocity gradient l.
   const double dt = dt_;
   const core::SymTensor d_eps = dt * core::sym_part(l);
@@ -251,6 +258,7 @@ auto HexahedronPasses<S, E, Thermal, Fails>::begin_point(std::size_t p, const co
                 d_eps};
   // A failure model reads and writes any model's damage.
   if constexpr (core::has_damage_state<S> || Fails) ps.st.damage = el_.damage[p];
+  ps.st.deformation_gradient = f;
   core::load_model_history<S>(ps.st, el_.history.data() + p * el_.history_count);
   ps.st.stress += core::jaumann_increment(ps.st.stress, w23, w13, w12);
   if (explosive_)
@@ -292,12 +300,21 @@ template <class S, class E, bool Thermal, bool Fails>
 template <std::size_t N>
 double HexahedronPasses<S, E, Thermal, Fails>::update_point(TrialPoints<N>& out, std::size_t j,
                                                             std::size_t p, const core::Mat3& l,
-                                                            double density, double q_old) const {
+                                                            double density, double q_old,
+                                                            const core::Mat3* f) const {
   static_assert(!user, "user models take the chunk of material()");
-  PointStart ps = begin_point(p, l, density, q_old);
+  PointStart ps = begin_point(p, l, density, q_old, f);
   const core::PointUpdate u =
       core::constitutive_update<S, E, Fails>(mat_, strength_, eos_, Thermal, ps.st, ps.d_eps, dt_);
   return end_point(out, j, p, ps, u);
+}
+
+template <class S, class E, bool Thermal, bool Fails>
+HexVectors HexahedronPasses<S, E, Thermal, Fails>::initial_nodes(std::size_t e) const {
+  HexVectors x0;
+  for (std::size_t a = 0; a < 8; ++a)
+    x0[a] = fe_.nodes_.initial_position[static_cast<std::size_t>(el_.nodes[e][a])];
+  return x0;
 }
 
 template <class S, class E, bool Thermal, bool Fails>
@@ -430,9 +447,15 @@ void HexahedronPasses<S, E, Thermal, Fails>::material(Pack& k, UserChunk& chunk)
       if (!k.element[l].live) continue;
       const std::size_t e = k.e0 + static_cast<std::size_t>(l);
       k.density[l] = el_.mass[e] / k.vol[l];
+      core::Mat3 f;
+      if constexpr (reads_f) {
+        HexVectors x;
+        for (std::size_t a = 0; a < 8; ++a) x[a] = {k.x[0][a][l], k.x[1][a][l], k.x[2][a][l]};
+        f = hexahedron_deformation_gradient(x, initial_nodes(e), 0.0, 0.0, 0.0);
+      }
       k.point.wave[l] =
           update_point(k.point, static_cast<std::size_t>(l), b_.point_begin + (e - b_.begin),
-                       lane_gradient(k, l), k.density[l], el_.bulk_q[e]);
+                       lane_gradient(k, l), k.density[l], el_.bulk_q[e], reads_f ? &f : nullptr);
     }
   }
 }
@@ -703,8 +726,23 @@ void HexahedronPasses<S, E, Thermal, Fails>::material(FullElement& k, UserChunk&
       k.wave = std::max(k.wave, end_point(k.point, g, k.p0 + g, pending[g], u));
     }
   } else {
-    for (std::size_t g = 0; g < 8; ++g)
-      k.wave = std::max(k.wave, update_point(k.point, g, k.p0 + g, gradient(g), k.density, q_old));
+    if constexpr (reads_f) {
+      // F-bar: each point's F scaled to the element's volume ratio, as B-bar takes the
+      // element's mean dilatation.
+      const HexVectors x0 = initial_nodes(k.e);
+      const double j_bar = k.now.volume / el_.volume0[k.e], r = 1.0 / std::sqrt(3.0);
+      for (std::size_t g = 0; g < 8; ++g) {
+        const double* n = kHexNatural[g];
+        const core::Mat3 f = f_bar(
+            hexahedron_deformation_gradient(k.x_new, x0, r * n[0], r * n[1], r * n[2]), j_bar);
+        k.wave =
+            std::max(k.wave, update_point(k.point, g, k.p0 + g, gradient(g), k.density, q_old, &f));
+      }
+    } else {
+      for (std::size_t g = 0; g < 8; ++g)
+        k.wave =
+            std::max(k.wave, update_point(k.point, g, k.p0 + g, gradient(g), k.density, q_old));
+    }
   }
 }
 

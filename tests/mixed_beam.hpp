@@ -125,11 +125,13 @@ inline Beam bend(const std::string& pressure, const std::string& shape, double c
 
 // The reference: the same beam of B-bar hexahedra (`element = "full"`), `across` the depth,
 // the material elastic (at these strains the neo-Hookean solid is linear elastic with the same
-// E and nu), the clamped face's nodes fixed and every node held in y.
-inline double bend_hexahedra(int across = 8) {
+// E and nu) unless `strength` gives the material's strength line, the clamped face's nodes fixed
+// and every node held in y.
+inline double bend_hexahedra(int across = 8, const std::string& strength = "") {
   const std::string text =
       "[run]\nend_time = 100.0\n"
-      "[materials.gel]\ndensity = 1100\nE = 17e6\nnu = 0.499\n"
+      "[materials.gel]\ndensity = 1100\nE = 17e6\nnu = 0.499\n" +
+      strength +
       "[[bodies]]\nname = \"beam\"\nmaterial = \"gel\"\ndiscretisation = \"hexahedra\"\n"
       "element = \"full\"\n"
       "shape = { box = { min = [-0.5, 0, 0], max = [0.5, 0.5, 4] } }\n"

@@ -81,8 +81,8 @@ struct Material {
   /// Whether points of the material can fail.
   bool fails() const { return !std::holds_alternative<NoFailure>(failure); }
   /// The solvers integrate the strain tensor of its points (principal-strain failure).
-  /// Whether the strength model reads the deformation gradient (hyperelastic models), which only
-  /// particles carry.
+  /// Whether the strength model reads the deformation gradient (hyperelastic models), which
+  /// particles carry and hexahedra take from their nodes.
   bool reads_deformation_gradient() const {
     return std::visit(
         [](const auto& s) {

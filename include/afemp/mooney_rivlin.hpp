@@ -20,8 +20,8 @@ struct NoEos;        // afemp/equations_of_state.hpp
 /// Cauchy stress is sigma = (2 / J) dev[(C10 + I1bar C01) Bbar - C01 Bbar^2] + K (J - 1) I.
 /// Its small-strain shear modulus is 2 (C10 + C01): the material's E and nu must give that
 /// shear modulus (an error says which E does), and K comes from them. C01 = 0 is the
-/// neo-Hookean solid. Like it, it reads F, takes no EOS and is refused on hexahedra and
-/// trusses.
+/// neo-Hookean solid. Like it, it reads F (particles and hexahedra), takes no EOS and is
+/// refused on trusses.
 struct MooneyRivlin {
   static constexpr std::string_view name = "mooney-rivlin";  ///< in the scene file
   double c10 = 0.0;                                          ///< C10 (stress), > 0

@@ -25,8 +25,9 @@ struct NoEos;        // afemp/equations_of_state.hpp
 /// Both are exact for any rotation (no objective rate involved) and linear elastic with E and
 /// nu for small strains; they part at finite strain. Its volumetric law is its own: the
 /// material takes no EOS. It reads the deformation gradient, which the MPM tracks on particles
-/// (both formulations); hexahedra and trusses do not carry one, and a scene that gives it to
-/// them is refused. Only the split form takes the mixed u-p pressure.
+/// (both formulations) and hexahedra take from their nodes (fem/hexahedron_deformation_
+/// gradient.hpp); trusses have none, and a scene that gives it to them is refused. Only the
+/// split form takes the mixed u-p pressure.
 struct NeoHookean {
   static constexpr std::string_view name = "neo-hookean";  ///< in the scene file
   enum class Form { split, log };
