@@ -10,8 +10,8 @@
 // *CONTROL_CONTACT, *PART_CONTACT, *DATABASE_BINARY_D3PLOT, *DEFINE_CURVE,
 // *BOUNDARY_PRESCRIBED_MOTION; Vol. II
 // for *MAT_ELASTIC (001), *MAT_PLASTIC_KINEMATIC (003), *MAT_JOHNSON_COOK (015), *MAT_RIGID (020),
-// *MAT_JOHNSON_HOLMQUIST_CONCRETE (111), *MAT_ADD_EROSION, *EOS_LINEAR_POLYNOMIAL (001) and
-// *EOS_GRUNEISEN (004).
+// *MAT_MOONEY-RIVLIN_RUBBER (027), *MAT_JOHNSON_HOLMQUIST_CONCRETE (111), *MAT_ADD_EROSION,
+// *EOS_LINEAR_POLYNOMIAL (001) and *EOS_GRUNEISEN (004).
 #include "fem/lsdyna_deck_import.hpp"
 
 #include <algorithm>
@@ -68,7 +68,8 @@ bool leaves_the_run(const std::string& name) {
 }
 
 struct Material {
-  std::string kind;  // "elastic", "plastic-kinematic", "johnson-cook", "hjc", "rigid"
+  std::string kind;  // "elastic", "plastic-kinematic", "johnson-cook", "mooney-rivlin", "hjc",
+                     // "rigid"
   core::SourceLocation at;
   std::string keyword;
   double density = 0;
@@ -262,6 +263,8 @@ class LsDynaImport {
       mat_elastic(k);
     } else if (is(n, {"MAT_PLASTIC_KINEMATIC", "MAT_003"})) {
       mat_plastic_kinematic(k);
+    } else if (is(n, {"MAT_MOONEY-RIVLIN_RUBBER", "MAT_027"})) {
+      mat_mooney_rivlin(k);
     } else if (is(n, {"MAT_JOHNSON_COOK", "MAT_015"})) {
       mat_johnson_cook(k);
     } else if (is(n, {"MAT_ADD_EROSION"})) {
@@ -377,6 +380,41 @@ class LsDynaImport {
     m.body = "strength = { model = \"elastic\" }\n";
     if (real(k, c, 0, 4, "DA") != 0.0 || real(k, c, 0, 5, "DB") != 0.0)
       note(k.at(), "DA and DB (axial and bending damping of beams)", false);
+  }
+
+  // MID RO PR A B REF / SGL SW ST LCID (Vol. II, *MAT_MOONEY-RIVLIN_RUBBER): afemp's
+  // Mooney-Rivlin solid with C10 = A, C01 = B and the same small-strain moduli, G = 2 (A + B) and
+  // PR, so E = 4 (A + B) (1 + PR). LS-DYNA's volumetric terms, C (III^-2 - 1) + D (III - 1)^2
+  // with C and D fixed by A, B and PR, become K / 2 (J - 1)^2 with K from E and PR: the same
+  // bulk modulus at small strain (approximated).
+  void mat_mooney_rivlin(const LsDynaKeyword& k) {
+    const auto c = data_cards(k);
+    Material& m = new_material(k, c, "mooney-rivlin");
+    m.nu = real(k, c, 0, 2, "PR");
+    const double a = real(k, c, 0, 3, "A", dim::stress), b = real(k, c, 0, 4, "B", dim::stress);
+    if (real(k, c, 0, 5, "REF") != 0.0)
+      throw core::InputError(card_at(k, c, 0).at(), key_,
+                             "REF " + num(real(k, c, 0, 5, "REF")) +
+                                 ": allowed 0; the reference geometry of "
+                                 "*INITIAL_FOAM_REFERENCE_GEOMETRY is not translated");
+    if (a <= 0.0 || b < 0.0)
+      throw core::InputError(
+          card_at(k, c, 0).at(), key_,
+          "A " + num(a) + ", B " + num(b) +
+              ": allowed A > 0 and B >= 0 (afemp's C10 and C01); the fit of A and B to a "
+              "uniaxial test curve (A = B = 0 with SGL, SW, ST and LCID) is not translated");
+    if (m.nu <= 0.0 || m.nu >= 0.5)
+      throw core::InputError(card_at(k, c, 0).at(), key_,
+                             "PR " + num(m.nu) +
+                                 ": allowed 0 < PR < 0.5 (0.49 to 0.499 "
+                                 "is usual for rubber)");
+    m.E = 4.0 * (a + b) * (1.0 + m.nu);
+    m.body =
+        "strength = { model = \"mooney-rivlin\", C10 = " + num(a) + ", C01 = " + num(b) + " }\n";
+    note(k.at(),
+         "the volumetric energy C (III^-2 - 1) + D (III - 1)^2 as K / 2 (J - 1)^2, K from "
+         "G = 2 (A + B) and PR: the same at small strain",
+         true);
   }
 
   // MID RO E PR N COUPLE M ALIAS / CMO CON1 CON2 / LCO or A1 A2 A3 V1 V2 V3 (Vol. II, *MAT_RIGID):
@@ -1162,8 +1200,8 @@ class LsDynaImport {
           p.card.at(), "*PART",
           "part " + std::to_string(p.id) + " names material " + std::to_string(p.material) +
               ", which is not defined; translated materials: *MAT_ELASTIC, "
-              "*MAT_PLASTIC_KINEMATIC, *MAT_JOHNSON_COOK, *MAT_JOHNSON_HOLMQUIST_CONCRETE, "
-              "*MAT_RIGID");
+              "*MAT_PLASTIC_KINEMATIC, *MAT_JOHNSON_COOK, *MAT_MOONEY-RIVLIN_RUBBER, "
+              "*MAT_JOHNSON_HOLMQUIST_CONCRETE, *MAT_RIGID");
     const Material& mat = m->second;
     const Eos* eos = nullptr;
     if (p.eos != 0) {
@@ -1184,6 +1222,12 @@ class LsDynaImport {
                           false});
       return s + mat.body;
     }
+    if (mat.kind == "mooney-rivlin" && eos != nullptr)
+      throw core::InputError(p.card.at(), "*PART",
+                             "part " + std::to_string(p.id) + " gives EOS " +
+                                 std::to_string(p.eos) +
+                                 " to *MAT_MOONEY-RIVLIN_RUBBER, whose pressure is its own: "
+                                 "allowed EOSID 0");
     double E = mat.E, nu = mat.nu;
     if (mat.kind == "johnson-cook") {
       if (eos == nullptr)
@@ -1308,7 +1352,28 @@ class LsDynaImport {
           "the deck gives no end time: ENDTIM of *CONTROL_TERMINATION is needed");
     s += "end_time = " + num(end_time_) + "\n";
     if (output_every_ > 0.0) s += "output_every = " + num(output_every_) + "\n";
-    if (tssfac_ > 0.0) s += "element_time_step_factor = " + num(std::min(tssfac_, 1.0)) + "\n";
+    // A nearly incompressible solid (PR above 0.495) rings beyond LS-DYNA's step rule in afemp's
+    // hexahedra: a twisting column at PR 0.499 gained energy at a factor of 0.9 and kept it at 0.5
+    // (docs/scene-format.md, element_time_step_factor; at 0.495 a block stayed stable at 0.9).
+    double factor = tssfac_ > 0.0 ? std::min(tssfac_, 1.0) : 0.0;
+    const Material* nearly_incompressible = nullptr;
+    for (const std::int64_t label : mesh.part_labels)
+      if (const auto p = parts_.find(label); p != parts_.end())
+        if (const auto m = materials_.find(p->second.material);
+            m != materials_.end() && m->second.kind != "rigid" && m->second.nu > 0.495 &&
+            (nearly_incompressible == nullptr || m->second.nu > nearly_incompressible->nu))
+          nearly_incompressible = &m->second;
+    if (nearly_incompressible != nullptr && (factor == 0.0 || factor > 0.5)) {
+      notes_.push_back({nearly_incompressible->at, nearly_incompressible->keyword,
+                        "PR " + num(nearly_incompressible->nu) +
+                            ": element_time_step_factor 0.5 in place of TSSFAC " +
+                            num(factor > 0.0 ? factor : 0.9) +
+                            " (afemp's hexahedra of a nearly incompressible solid ring at "
+                            "LS-DYNA's usual factor)",
+                        true});
+      factor = 0.5;
+    }
+    if (factor > 0.0) s += "element_time_step_factor = " + num(factor) + "\n";
     if (max_steps_ > 0) s += "max_steps = " + std::to_string(max_steps_) + "\n";
 
     // A material table for each (MID, EOSID) the parts use.

@@ -12,6 +12,7 @@
 #include "afemp/deck_import.hpp"
 #include "core/plausibility.hpp"
 #include "core/scene.hpp"
+#include "fem/fe_solver.hpp"
 #include "fem/lsdyna_deck_import.hpp"
 #include "mpm/test_support.hpp"
 #include "scratch_dir.hpp"
@@ -488,6 +489,59 @@ TEST(LsDynaDeckImport, RigidMaterialIsARigidBodyWithItsConstraints) {
   const std::string e = error_of(local);
   EXPECT_NE(e.find("bad.k:16:"), std::string::npos) << e;
   EXPECT_NE(e.find("CMO -1"), std::string::npos) << e;
+}
+
+// Reference: LS-DYNA Keyword User's Manual R13 Vol. II, *MAT_MOONEY-RIVLIN_RUBBER (MID RO PR A B
+// REF; shear modulus 2 (A + B)), and the incompressible Mooney-Rivlin solid in uniaxial
+// tension (Rivlin 1948; Treloar's form): sigma_zz - sigma_xx = 2 (l^2 - 1/l) (C10 + C01 / l).
+// The imported cube of rubber (A 0.2, B 0.05 MPa, PR 0.499), put at the isochoric stretch
+// l = 1.5, carries that stress difference at every point to 1e-9; the step factor is held to
+// 0.5, where a twisting column of this PR stays stable (tests/fem/test_hyperelastic_hexahedra).
+TEST(LsDynaDeckImport, MooneyRivlinRubberIsAfempsMooneyRivlinSolid) {
+  test::ScratchDir dir;
+  const std::string deck =
+      "*KEYWORD\n*CONTROL_TERMINATION\n1.0\n*PART\nrubber\n1,1,1\n*SECTION_SOLID\n1,1\n"
+      "*MAT_MOONEY-RIVLIN_RUBBER\n1,1.1e-3,0.499,0.2,0.05\n" +
+      cube_mesh() + "*END\n";
+  const Imported im = import_text(dir, deck, "mm-ms-g");
+  const core::Material& m = im.scene.materials[0];
+  const auto& mr = std::get<core::MooneyRivlin>(m.strength);
+  EXPECT_DOUBLE_EQ(mr.c10, 0.2);
+  EXPECT_DOUBLE_EQ(mr.c01, 0.05);
+  EXPECT_NEAR(m.shear_modulus(), 0.5, 1e-12);
+  // K = E / (3 (1 - 2 PR)) with E = 4 (A + B) (1 + PR).
+  EXPECT_NEAR(m.bulk_modulus(), 4.0 * 0.25 * 1.499 / (3.0 * 0.002), 1e-9);
+  EXPECT_DOUBLE_EQ(im.scene.run.element_time_step_factor, 0.5);
+  bool volumetric = false;
+  for (const core::DeckNote& n : im.deck.notes)
+    volumetric = volumetric || (n.approximated && n.what.find("III") != std::string::npos);
+  EXPECT_TRUE(volumetric);
+
+  FeSolver solver(im.scene);
+  const double l = 1.5, t = 1.0 / std::sqrt(l);
+  FeNodes& nodes = solver.mutable_nodes();
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const core::Vec3& x = nodes.initial_position[i];
+    nodes.position[i] = {t * x.x, t * x.y, l * x.z};
+  }
+  solver.step(1e-12);
+  const double expected = 2.0 * (l * l - 1.0 / l) * (0.2 + 0.05 / l);
+  for (const core::SymTensor& s : solver.hexahedra().stress) {
+    EXPECT_NEAR(s.zz - s.xx, expected, 1e-9 * expected);
+    EXPECT_NEAR(s.yy - s.xx, 0.0, 1e-9 * expected);
+  }
+
+  // A and B fitted to a curve (A = B = 0), and an EOS given to it, are refused.
+  std::string fitted = deck;
+  fitted.replace(fitted.find("0.2,0.05"), 8, "0.0,0.0");
+  std::string e = error_of(fitted);
+  EXPECT_NE(e.find("bad.k:10:"), std::string::npos) << e;
+  EXPECT_NE(e.find("LCID"), std::string::npos) << e;
+  std::string with_eos = deck;
+  with_eos.replace(with_eos.find("1,1,1\n"), 6, "1,1,1,1\n");
+  with_eos.replace(with_eos.find("*END"), 4, "*EOS_LINEAR_POLYNOMIAL\n1,0.0,2500.0\n*END");
+  e = error_of(with_eos);
+  EXPECT_NE(e.find("allowed EOSID 0"), std::string::npos) << e;
 }
 
 // Reference: LS-DYNA Keyword User's Manual R13 Vol. I, *BOUNDARY_PRESCRIBED_MOTION_SET (NSID
