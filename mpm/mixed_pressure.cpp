@@ -26,17 +26,15 @@ namespace {
 // The pressure basis of one particle: the slots and weights of the nodes N^q reaches (8 for
 // the linear hat, 1, the cell's first node, standing for the cell, for the constant).
 template <bool Constant>
-int pressure_basis(const core::BackgroundGrid& g, const Vec3& x, std::array<std::int32_t, 8>& slot,
-                   std::array<double, 8>& w) {
+void pressure_basis(const core::BackgroundGrid& g, const Vec3& x, std::array<std::int32_t, 8>& slot,
+                    std::array<double, 8>& w) {
   const std::array<int, 3> c = g.cell_of(x);
   g.node_slots(c, slot);
   if constexpr (Constant) {
     w[0] = 1.0;
-    return 1;
   } else {
     const core::CellWeights cw = g.weights(x, c);
     for (std::size_t n = 0; n < 8; ++n) w[n] = cw.w[n];
-    return 8;
   }
 }
 
@@ -49,33 +47,37 @@ void MpmSolver::mixed_pressure_kernel() {
   const std::vector<Vec3>& x = weight_positions();
   const std::size_t n = p.size();
   const std::size_t slots = g.slot_count();
+  constexpr std::size_t k = Constant ? 1 : 8;  // nodes of the pressure basis per particle
   // Per node slot: sum N V0, then J_I, then p_I.
   pressure_nodes_.assign(3 * slots, 0.0);
   double* weight = pressure_nodes_.data();
   double* ratio = weight + slots;
   double* pressure = ratio + slots;
   mixed_pressure_.resize(n);
+  pressure_slots_.resize(n);
+  pressure_weights_.resize(n);
   // Reference volume V0 = m / rho0 and bulk modulus K of each material.
-  std::vector<double> inv_rho0(materials_.size()), bulk(materials_.size());
+  pressure_inv_rho0_.resize(materials_.size());
+  pressure_bulk_.resize(materials_.size());
   for (std::size_t m = 0; m < materials_.size(); ++m) {
-    inv_rho0[m] = 1.0 / materials_[m]->density;
-    bulk[m] = materials_[m]->bulk_modulus();
+    pressure_inv_rho0_[m] = 1.0 / materials_[m]->density;
+    pressure_bulk_[m] = materials_[m]->bulk_modulus();
   }
   auto v0 = [&](std::size_t i) {
-    return p.mass[i] * inv_rho0[static_cast<std::size_t>(p.material[i])];
+    return p.mass[i] * pressure_inv_rho0_[static_cast<std::size_t>(p.material[i])];
   };
-  // Eq 22: det F weighted by N^q V0.
+  // Eq 22: det F weighted by N^q V0; each particle's basis kept for the sweeps below.
   sweep_layers<Colours>(layer_offsets_, [&](std::size_t b, std::size_t e) {
-    std::array<std::int32_t, 8> slot;
-    std::array<double, 8> w;
     for (std::size_t q = b; q < e; ++q) {
       const auto i = static_cast<std::size_t>(layer_order_[q]);
-      const int k = pressure_basis<Constant>(g, x[i], slot, w);
+      std::array<std::int32_t, 8>& slot = pressure_slots_[i];
+      std::array<double, 8>& w = pressure_weights_[i];
+      pressure_basis<Constant>(g, x[i], slot, w);
       const double vol = v0(i), j = core::determinant(p.deformation_gradient[i]);
-      for (int a = 0; a < k; ++a) {
-        const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(a)]);
-        weight[s] += w[static_cast<std::size_t>(a)] * vol;
-        ratio[s] += w[static_cast<std::size_t>(a)] * vol * j;
+      for (std::size_t a = 0; a < k; ++a) {
+        const auto s = static_cast<std::size_t>(slot[a]);
+        weight[s] += w[a] * vol;
+        ratio[s] += w[a] * vol * j;
       }
     }
   });
@@ -85,19 +87,16 @@ void MpmSolver::mixed_pressure_kernel() {
     if (weight[s] > 0.0) ratio[s] /= weight[s];
   // Eqs 23 and 21: Jbar_p back at the particle, K (Jbar_p - 1) weighted to the nodes.
   sweep_layers<Colours>(layer_offsets_, [&](std::size_t b, std::size_t e) {
-    std::array<std::int32_t, 8> slot;
-    std::array<double, 8> w;
     for (std::size_t q = b; q < e; ++q) {
       const auto i = static_cast<std::size_t>(layer_order_[q]);
-      const int k = pressure_basis<Constant>(g, x[i], slot, w);
+      const std::array<std::int32_t, 8>& slot = pressure_slots_[i];
+      const std::array<double, 8>& w = pressure_weights_[i];
       double jbar = 0.0;
-      for (int a = 0; a < k; ++a)
-        jbar += w[static_cast<std::size_t>(a)] *
-                ratio[static_cast<std::size_t>(slot[static_cast<std::size_t>(a)])];
-      const double load = v0(i) * bulk[static_cast<std::size_t>(p.material[i])] * (jbar - 1.0);
-      for (int a = 0; a < k; ++a)
-        pressure[static_cast<std::size_t>(slot[static_cast<std::size_t>(a)])] +=
-            w[static_cast<std::size_t>(a)] * load;
+      for (std::size_t a = 0; a < k; ++a) jbar += w[a] * ratio[static_cast<std::size_t>(slot[a])];
+      const double load =
+          v0(i) * pressure_bulk_[static_cast<std::size_t>(p.material[i])] * (jbar - 1.0);
+      for (std::size_t a = 0; a < k; ++a)
+        pressure[static_cast<std::size_t>(slot[a])] += w[a] * load;
     }
   });
 #pragma omp parallel for schedule(static) if (threads)
@@ -106,13 +105,10 @@ void MpmSolver::mixed_pressure_kernel() {
       // Eq 24: p_p.
 #pragma omp parallel for schedule(static) if (core::worth_threads(n))
   for (std::size_t i = 0; i < n; ++i) {
-    std::array<std::int32_t, 8> slot;
-    std::array<double, 8> w;
-    const int k = pressure_basis<Constant>(g, x[i], slot, w);
+    const std::array<std::int32_t, 8>& slot = pressure_slots_[i];
+    const std::array<double, 8>& w = pressure_weights_[i];
     double pp = 0.0;
-    for (int a = 0; a < k; ++a)
-      pp += w[static_cast<std::size_t>(a)] *
-            pressure[static_cast<std::size_t>(slot[static_cast<std::size_t>(a)])];
+    for (std::size_t a = 0; a < k; ++a) pp += w[a] * pressure[static_cast<std::size_t>(slot[a])];
     mixed_pressure_[i] = pp;
   }
 }

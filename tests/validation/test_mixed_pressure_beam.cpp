@@ -50,7 +50,9 @@ TEST(MixedPressureBeam, ConvergesToTheBbarPeriodWhereThePointWisePressureLocks) 
     // against +0.14 % and +0.35 %: the quadratic B-spline locks mildly, and less as it refines).
     EXPECT_LT(point.period, reference) << shape;
     EXPECT_GT(std::abs(point.period / reference - 1.0), 3.0 * mixed_error) << shape;
-    if (std::string(shape) == "linear") EXPECT_LT(point.period / reference, 0.8);
+    if (std::string(shape) == "linear") {
+      EXPECT_LT(point.period / reference, 0.8);
+    }
   }
 }
 
