@@ -9,7 +9,6 @@
 #include <optional>
 #include <string>
 #include <utility>
-#include <variant>
 
 #include "core/scene.hpp"
 
@@ -37,21 +36,14 @@ inline std::optional<std::pair<std::string, std::string>> mixed_pressure_scene_r
   for (const BodySpec& b : scene.bodies) {
     if (b.discretisation != Discretisation::particles) continue;
     const Material& m = scene.materials[static_cast<std::size_t>(b.material)];
-    const auto* nh = std::get_if<NeoHookean>(&m.strength);
-    if (nh && nh->form == NeoHookean::Form::log)
-      return std::pair{"materials." + m.name + ".strength",
-                       "material \"" + m.name + "\" of body \"" + b.name +
-                           "\" is the neo-Hookean solid's log form, whose volumetric energy "
-                           "lambda / 2 (ln J)^2 - mu ln J is not K / 2 (J - 1)^2 for [mpm] "
-                           "pressure = \"mixed\" to replace; allowed: form = \"split\", or "
-                           "pressure = \"standard\""};
     if (!m.splits_volumetric_energy())
       return std::pair{"materials." + m.name + ".strength",
                        "material \"" + m.name + "\" of body \"" + b.name +
                            "\" has no volumetric energy K / 2 (J - 1)^2 of its own for [mpm] "
-                           "pressure = \"mixed\" to replace; allowed: strength model "
-                           "\"neo-hookean\" or \"mooney-rivlin\" (without an eos), or pressure = "
-                           "\"standard\""};
+                           "pressure = \"mixed\" to replace (the neo-Hookean solid's log form has "
+                           "lambda / 2 (ln J)^2 - mu ln J); allowed: strength model "
+                           "\"neo-hookean\" with form = \"split\" or \"mooney-rivlin\" (without "
+                           "an eos), or pressure = \"standard\""};
   }
   return std::nullopt;
 }

@@ -281,12 +281,6 @@ class MpmSolver {
   // in place of K (J - 1); and the nodal sums of the projection (3 per node slot).
   std::vector<double> mixed_pressure_;
   std::vector<double> pressure_nodes_;
-  // Its pressure basis at each particle, found once per step by the first sweep and read by the
-  // other two (8 slots and weights per particle; the constant basis uses the first), and each
-  // material's 1 / rho0 and K.
-  std::vector<std::array<std::int32_t, 8>> pressure_slots_;
-  std::vector<std::array<double, 8>> pressure_weights_;
-  std::vector<double> pressure_inv_rho0_, pressure_bulk_;
 
   // Velocity fields: the field of each body, and what happens where fields f and g meet at
   // a node (law_[f * fields + g]): they stick (one velocity, as in a single field) unless the
@@ -375,6 +369,13 @@ class MpmSolver {
   mutable std::int64_t bad_particle_ = -1;
   mutable const char* bad_field_ = "";
   static constexpr long reorder_interval = 100;
+  // Mixed u-p (kept last, clear of the members the other stages read each step): its pressure
+  // basis at each particle, found once per step by the first sweep and read by the other two
+  // (8 slots and weights per particle; the constant basis uses the first), and each material's
+  // 1 / rho0 and K.
+  std::vector<std::array<std::int32_t, 8>> pressure_slots_;
+  std::vector<std::array<double, 8>> pressure_weights_;
+  std::vector<double> pressure_inv_rho0_, pressure_bulk_;
 };
 
 }  // namespace afemp::mpm

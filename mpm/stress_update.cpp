@@ -248,8 +248,8 @@ struct MpmSolver::StressPass {
     core::load_model_history<Strength>(st, p.history.data() + i * p.history_count);
     if constexpr (requires { Strength::reads_deformation_gradient; })
       st.deformation_gradient = &p.deformation_gradient[i];  // updated by kinematics_kernel
-    if constexpr (requires { Strength::splits_volumetric_energy; })
-      if (mixed) st.mixed_pressure = mixed + i;
+    if constexpr (requires(const Strength& s) { s.splits_volumetric_energy(); })
+      if (mixed) st.mixed_pressure = mixed + i;  // the refusals let only a splitting one take it
     st.energy = p.energy[i];
     st.density = p.mass[i] / volume;
     // A high explosive: its burn fraction at the step's end (core/programmed_burn.hpp).

@@ -94,13 +94,15 @@ struct Material {
   }
   /// Whether the strength model's energy splits as W_dev + K / 2 (J - 1)^2 with a deviatoric
   /// stress of its own, so that the mixed displacement-pressure MPM may supply the pressure
-  /// (`[mpm] pressure = "mixed"`): the hyperelastic models.
+  /// (`[mpm] pressure = "mixed"`): the hyperelastic models that say so (the neo-Hookean solid's
+  /// split form, Mooney-Rivlin).
   bool splits_volumetric_energy() const {
     return std::visit(
         [](const auto& s) {
-          return requires {
-            std::decay_t<decltype(s)>::splits_volumetric_energy;
-          };
+          if constexpr (requires { s.splits_volumetric_energy(); })
+            return s.splits_volumetric_energy();
+          else
+            return false;
         },
         strength);
   }

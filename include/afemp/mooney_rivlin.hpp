@@ -39,7 +39,7 @@ struct MooneyRivlin {
   static constexpr bool reads_damage = false;
   static constexpr bool reads_deformation_gradient = true;
   /// W = W_dev + K / 2 (J - 1)^2: the mixed u-p MPM may supply the pressure.
-  static constexpr bool splits_volumetric_energy = true;
+  bool splits_volumetric_energy() const { return true; }
 };
 
 }  // namespace afemp::core

@@ -48,9 +48,9 @@ struct NeoHookean {
   static constexpr bool reads_temperature = false;
   static constexpr bool reads_damage = false;
   static constexpr bool reads_deformation_gradient = true;
-  /// W = W_dev + K / 2 (J - 1)^2 (the split form; the mixed pressure's refusal reads `form`):
-  /// the mixed u-p MPM may supply the pressure.
-  static constexpr bool splits_volumetric_energy = true;
+  /// Whether W = W_dev + K / 2 (J - 1)^2, so that the mixed u-p MPM may supply the pressure:
+  /// the split form's; the log form's volumetric energy is lambda / 2 (ln J)^2 - mu ln J.
+  bool splits_volumetric_energy() const { return form == Form::split; }
 };
 
 }  // namespace afemp::core

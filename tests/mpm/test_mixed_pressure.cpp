@@ -182,7 +182,7 @@ TEST(MixedPressure, WhatTheMixedPressureCannotReplaceIsRefused) {
   e = test::checked_error_of(elastic, "mixed.toml");
   for (const std::string& part :
        {std::string("materials.m.strength"), std::string("no volumetric energy"),
-        std::string("\"neo-hookean\" or \"mooney-rivlin\"")})
+        std::string("\"neo-hookean\" with form = \"split\" or \"mooney-rivlin\"")})
     EXPECT_NE(e.find(part), std::string::npos) << part << " in: " << e;
   // The neo-Hookean log form's volumetric energy is not K / 2 (J - 1)^2.
   std::string log_form = head + tl + nh + body;
