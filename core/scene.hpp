@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,13 @@ std::string contact_name(const Scene& scene, const ContactSpec& contact);
 // The bulk viscosity of a body: its own, or the default (on for hexahedra and for particles
 // whose material has an equation of state).
 BulkViscositySettings bulk_viscosity_of(const Scene& scene, const BodySpec& body);
+
+// What a [[loads]] entry may not do on its body (a truss or bonded body, a traction or a
+// non-box region on particles): the key and why, or nothing. The parser and check_scene ask.
+struct LoadRefusal {
+  std::string key, message;
+};
+std::optional<LoadRefusal> load_refusal(const Scene& scene, const LoadSpec& load);
 
 // Checks a scene built in code as the parser checks a file (core/scene_check.cpp): throws
 // InputError naming the object and field by their dotted scene-file key and what is allowed.

@@ -488,6 +488,36 @@ BulkViscositySettings bulk_viscosity_of(const Scene& scene, const BodySpec& body
   return BulkViscositySettings{0.0, 0.0};
 }
 
+std::optional<LoadRefusal> load_refusal(const Scene& scene, const LoadSpec& load) {
+  if (load.body < 0 || static_cast<std::size_t>(load.body) >= scene.bodies.size()) return {};
+  const BodySpec& b = scene.bodies[static_cast<std::size_t>(load.body)];
+  const std::string name = "body \"" + b.name + "\"";
+  if (b.discretisation == Discretisation::trusses)
+    return LoadRefusal{"body", name +
+                                   " is a body of trusses, which has no faces to load; loads "
+                                   "act on hexahedra (a traction on their faces) and on "
+                                   "particles (a force they share)"};
+  if (b.bonded_to >= 0)
+    return LoadRefusal{"body", name +
+                                   " is bonded to particles and moves with the grid; load "
+                                   "the particle body instead"};
+  if (b.conversion)
+    return LoadRefusal{"body", name +
+                                   " converts elements into particles, whose nodes then move "
+                                   "with the grid and would drop the load on their faces; "
+                                   "load a body without `conversion`"};
+  if (b.discretisation == Discretisation::particles) {
+    if (load.region.kind != NodeSelector::Kind::box)
+      return LoadRefusal{"particles", "particles are selected by a box = { min, max }"};
+    if (load.traction)
+      return LoadRefusal{"traction", name +
+                                         " is made of particles, which carry no surface "
+                                         "area: give the total force = [fx, fy, fz] that "
+                                         "the particles in the box share by mass"};
+  }
+  return {};
+}
+
 void check_scene(const Scene& scene) {
   const Checker c(scene);
   check_run(c, scene.run);
@@ -516,6 +546,16 @@ void check_scene(const Scene& scene) {
     if (s.nodes.kind == NodeSelector::Kind::plane)
       c.range(s.where, key + ".plane.tolerance", s.nodes.tolerance,
               scene_ranges::selector_tolerance);
+  }
+  for (std::size_t k = 0; k < scene.loads.size(); ++k) {
+    const LoadSpec& l = scene.loads[k];
+    const std::string key = "loads[" + std::to_string(k) + "]";
+    c.body(l.where, key + ".body", l.body, false);
+    if (const std::optional<LoadRefusal> why = load_refusal(scene, l))
+      c.fail(l.where, key + "." + why->key, why->message);
+    for (std::size_t i = 1; i < l.curve.size(); ++i)
+      if (!(l.curve[i][0] > l.curve[i - 1][0]))
+        c.fail(l.where, key + ".curve", "the times must increase");
   }
   for (std::size_t k = 0; k < scene.walls.size(); ++k) {
     const WallSpec& wl = scene.walls[k];

@@ -1946,6 +1946,35 @@ AbsorbingSpec read_absorbing(TableReader& t, const Scene& scene) {
   return a;
 }
 
+// One [[loads]] entry: the body, the region of its faces or particles, the traction or total
+// force, and its curve; what the body's kind allows is load_refusal's (scene_check.cpp).
+LoadSpec read_load(TableReader& t, const Scene& scene) {
+  t.known({"body", "nodes", "particles", "traction", "force", "curve"});
+  t.check_unknown();
+  LoadSpec l;
+  l.where = t.where();
+  l.body = body_index(t, "body", t.required_string("body"), scene, false);
+  const bool particles =
+      scene.bodies[static_cast<std::size_t>(l.body)].discretisation == Discretisation::particles;
+  const char* region = particles ? "particles" : "nodes";
+  const char* other = particles ? "nodes" : "particles";
+  if (t.has(other))
+    t.fail(other, std::string("body \"") + scene.bodies[static_cast<std::size_t>(l.body)].name +
+                      "\" is " + (particles ? "made of particles" : "a mesh body") +
+                      "; its load's region is `" + region + " = { ... }`");
+  TableReader rr(t.required_table(region), t.dotted(region), t.file());
+  l.region = read_selector(rr);
+  if (t.has("traction") == t.has("force"))
+    t.fail("traction",
+           "give either traction = [tx, ty, tz] (per unit initial area) or force = [fx, fy, fz] "
+           "(the total)");
+  l.traction = t.has("traction");
+  l.value = t.required_vec3(l.traction ? "traction" : "force");
+  if (t.has("curve")) l.curve = read_curve(t, "curve");
+  if (const std::optional<LoadRefusal> why = load_refusal(scene, l)) t.fail(why->key, why->message);
+  return l;
+}
+
 // After each [[contact]]: at most 31 bodies in grid contact (one velocity field each).
 void check_grid_contact_bodies(TableReader& t, const Scene& scene) {
   std::vector<bool> named(scene.bodies.size(), false);
@@ -2114,8 +2143,8 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
   Scene scene;
   scene.path = path;
   TableReader r(root, "", path);
-  r.known({"run", "grid", "mpm", "materials", "bodies", "constraints", "absorbing", "walls",
-           "contact", "reference", "probes", "detonations", "phases"});
+  r.known({"run", "grid", "mpm", "materials", "bodies", "constraints", "absorbing", "loads",
+           "walls", "contact", "reference", "probes", "detonations", "phases"});
   r.check_unknown();
 
   {
@@ -2147,6 +2176,8 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
                    [&](TableReader& t) { scene.constraints.push_back(read_constraint(t, scene)); });
   read_table_array(r, "absorbing", path,
                    [&](TableReader& t) { scene.absorbing.push_back(read_absorbing(t, scene)); });
+  read_table_array(r, "loads", path,
+                   [&](TableReader& t) { scene.loads.push_back(read_load(t, scene)); });
   read_table_array(r, "walls", path,
                    [&](TableReader& t) { scene.walls.push_back(read_wall(t, scene)); });
   read_table_array(r, "contact", path, [&](TableReader& t) {

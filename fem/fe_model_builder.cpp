@@ -409,6 +409,7 @@ void FeSolver::build(const core::Scene& scene) {
   // The face links the surface searches sweep (erosion and conversion redo them often).
   link_faces(hexes_);
   setup_absorbing_boundaries(scene, meshes);
+  setup_loads(scene, meshes);
   setup_walls(scene);
   build_incidence();
   add_initial_stress_forces(scene, hexes_, nodes_.position, element_force_);
@@ -651,6 +652,24 @@ void FeSolver::setup_absorbing_boundaries(const core::Scene& scene, const BodyMe
   }
 }
 
+// Loads on hexahedra: the nodes each selects (surface_loads.cpp takes the faces).
+void FeSolver::setup_loads(const core::Scene& scene, const BodyMeshes& meshes) {
+  const SurfaceFaces surface =
+      scene.loads.empty() ? SurfaceFaces{}
+                          : boundary_faces(sets_, std::vector<char>(scene.bodies.size(), 1));
+  for (std::size_t k = 0; k < scene.loads.size(); ++k) {
+    const core::LoadSpec& l = scene.loads[k];
+    if (scene.bodies[static_cast<std::size_t>(l.body)].discretisation !=
+        core::Discretisation::hexahedra)
+      continue;  // particles: mpm/particle_loads.cpp
+    std::vector<char> selected(nodes_.size(), 0);
+    meshes.for_selected(
+        scene, nodes_.initial_position, l.region, l.body, [](const BodySpec&) { return true; },
+        [&](std::size_t n) { selected[n] = 1; });
+    setup_load(k, selected, surface);
+  }
+}
+
 // 4. Walls: every node of the bodies they name.
 void FeSolver::setup_walls(const core::Scene& scene) {
   for (const core::WallSpec& w : scene.walls) {
@@ -713,13 +732,14 @@ void FeSolver::setup_mesh_contacts(const core::Scene& scene) {
 
 // The step's plan, and the per-thread and per-body arrays the step fills.
 void FeSolver::setup_step_arrays(const core::Scene& scene) {
-  std::size_t curved = 0;
+  std::size_t curved = 0, loaded = 0;
   for (const VelocityCurve& vc : velocity_curves_) curved += vc.components.size();
+  for (const NodalLoad& l : nodal_loads_) loaded += l.nodes.size();
   plan_ = build_fe_step_plan(
       scene,
       static_cast<std::size_t>(std::count_if(nodes_.imposed.begin(), nodes_.imposed.end(),
                                              [](std::uint8_t m) { return m != 0; })),
-      curved, absorbing_nodes_.size());
+      curved, absorbing_nodes_.size(), loaded);
   stage_seconds_.assign(plan_.stages.size(), 0.0);
   thread_sums_.assign(static_cast<std::size_t>(core::thread_count()) * core::cache_line_doubles,
                       0.0);

@@ -200,6 +200,9 @@ class FeSolver {
   // The travel each imposed velocity component gives its node over [t0, t1]: the integral of
   // the constraint's velocity times its curve (nodal_update.cpp); 0 for free components.
   std::vector<Vec3> imposed_travel(double t0, double t1) const;
+  // The nodal forces of the scene's [[loads]] on hexahedra at time t, per node (empty without
+  // any; surface_loads.cpp): what a static or implicit phase holds.
+  std::vector<Vec3> scene_loads_at(double t) const;
   // core::Model::set_body_velocity and set_clock (nodal_update.cpp).
   void set_body_velocity(int body, const Vec3& v);
   void hold_body(int body, bool hold);
@@ -359,6 +362,24 @@ class FeSolver {
   void setup_absorbing(const core::AbsorbingSpec& spec, const std::vector<char>& selected,
                        const SurfaceFaces& surface);
   void absorb(double dt);
+  // [[loads]] on hexahedra (surface_loads.cpp): each load's nodes and their forces at factor 1
+  // (a total force already spread over the faces' area), and the sum of every load at the
+  // step's start time, per node (empty without loads), which the nodal update applies.
+  struct NodalLoad {
+    std::size_t scene_load = 0;  // index in scene_.loads (its curve)
+    std::vector<std::uint32_t> nodes;
+    std::vector<Vec3> force;
+    double area = 0.0;  // the loaded faces' initial area
+  };
+  std::vector<NodalLoad> nodal_loads_;
+  std::vector<Vec3> load_force_;
+  void setup_loads(const core::Scene& scene, const BodyMeshes& meshes);
+  // Load k's nodal forces from the boundary faces of `surface` whose four nodes are selected.
+  void setup_load(std::size_t k, const std::vector<char>& selected, const SurfaceFaces& surface);
+  void apply_loads(double t);
+  // The loads' work for the change of their curves over the step, (f^{n+1} - f^n) / 2 .
+  // v^{n+1/2} dt (the nodal update books f^n's).
+  void book_load_change(double dt);
   double previous_dt_ = 0.0;
   long steps_ = 0;
   double time_ = 0.0;

@@ -92,13 +92,19 @@ std::string conversion_criteria(const BodySpec& body) {
 }  // namespace
 
 FeStepPlan build_fe_step_plan(const core::Scene& scene, std::size_t imposed_nodes,
-                              std::size_t curved_components, std::size_t absorbing_nodes) {
+                              std::size_t curved_components, std::size_t absorbing_nodes,
+                              std::size_t loaded_nodes) {
   FeStepPlan plan;
   auto& s = plan.stages;
   const core::Vec3& g = scene.run.gravity;
   std::string forces = "element forces gathered per node";
   if (g.x != 0.0 || g.y != 0.0 || g.z != 0.0) forces += ", gravity m g";
   forces += " and any loads a program sets give v^{n+1/2} = v^{n-1/2} + dt f / m";
+  if (loaded_nodes > 0)
+    core::appendf(forces,
+                  "; [[loads]]: surface tractions on %zu nodes, t times each face's integral of "
+                  "N_a over its initial area, at each step's start time",
+                  loaded_nodes);
   if (imposed_nodes > 0)
     core::appendf(forces, "; imposed velocity components on %zu nodes (constraints)",
                   imposed_nodes);

@@ -42,8 +42,10 @@ struct FeStepPlan {
 // imposed_nodes: the nodes with an imposed velocity component, from the scene's constraints
 // and from a mesh file's (which only the built mesh knows).
 // imposed_nodes: nodes with an imposed velocity component; curved_components: node components
-// whose imposed velocity follows a curve; absorbing_nodes: nodes of absorbing boundaries.
+// whose imposed velocity follows a curve; absorbing_nodes: nodes of absorbing boundaries;
+// loaded_nodes: nodes the faces of [[loads]] load (fem/surface_loads.cpp).
 FeStepPlan build_fe_step_plan(const core::Scene& scene, std::size_t imposed_nodes,
-                              std::size_t curved_components = 0, std::size_t absorbing_nodes = 0);
+                              std::size_t curved_components = 0, std::size_t absorbing_nodes = 0,
+                              std::size_t loaded_nodes = 0);
 
 }  // namespace afemp::fem

@@ -35,7 +35,16 @@ void FeSolver::update_nodes(double dt) {
   const Vec3 g = scene_.run.gravity;
   const bool gravity = g.x != 0.0 || g.y != 0.0 || g.z != 0.0;
   const std::size_t n = nodes_.size();
-  const bool loads = !nodes_.external_force.empty();
+  // A program's held loads and the scene's [[loads]] at this step's start.
+  const bool program_loads = !nodes_.external_force.empty();
+  const bool scene_loads = !load_force_.empty();
+  const bool loads = program_loads || scene_loads;
+  auto load = [&](std::size_t s) {
+    Vec3 f;
+    if (program_loads) f += nodes_.external_force[s];
+    if (scene_loads) f += load_force_[s];
+    return f;
+  };
   const bool rigid = !rigid_of_node_.empty();
   const bool tied = !embedded_.empty();
   std::fill(thread_sums_.begin(), thread_sums_.end(), 0.0);
@@ -65,14 +74,15 @@ void FeSolver::update_nodes(double dt) {
           const double w =
               embedded_.weight[static_cast<std::size_t>(tie)][static_cast<std::size_t>(corner)];
           f += w * node_force(s);
-          if (loads) f += w * nodes_.external_force[s];
+          if (loads) f += w * load(s);
         }
       Vec3& v = nodes_.velocity[i];
       v += (dt_force / m) * f;
       if (gravity) {
         v += dt_force * g;
       }
-      if (loads) v += (dt_force / m) * nodes_.external_force[i];
+      const Vec3 f_load = loads ? load(i) : Vec3{};
+      if (loads) v += (dt_force / m) * f_load;
       if (const std::uint8_t imposed = nodes_.imposed[i]) {
         for (int a = 0; a < 3; ++a)
           if (imposed & (1u << a)) {
@@ -83,7 +93,7 @@ void FeSolver::update_nodes(double dt) {
           }
       }
       if (gravity) work += m * core::dot(g, v) * dt;
-      if (loads) work += core::dot(nodes_.external_force[i], v) * dt;
+      if (loads) work += core::dot(f_load, v) * dt;
       if (!std::isfinite(v.x + v.y + v.z) && thread_errors_[static_cast<std::size_t>(t)].empty()) {
         thread_errors_[static_cast<std::size_t>(t)] = "node " + std::to_string(i);
         thread_error_field_[static_cast<std::size_t>(t)] = "velocity";
@@ -202,6 +212,8 @@ void FeSolver::begin_step(double dt) {
   // A curved prescribed velocity takes its value at the step's mid-time, the time of the
   // v^{n+1/2} that moves the nodes.
   if (!velocity_curves_.empty()) apply_velocity_curves(time_ + 0.5 * dt);
+  // Loads, as gravity, at the step's start: the force that changes v^{n-1/2} into v^{n+1/2}.
+  if (!nodal_loads_.empty()) apply_loads(time_);
   run_stage(FeStageKind::nodal_update, [&] {
     for (std::int32_t k : contact_nodes_)
       velocity_start_[static_cast<std::size_t>(k)] = nodes_.velocity[static_cast<std::size_t>(k)];
@@ -213,6 +225,7 @@ void FeSolver::begin_step(double dt) {
         w.start[k] = nodes_.velocity[static_cast<std::size_t>(w.nodes[k])];
     }
     update_nodes(dt);
+    if (!nodal_loads_.empty()) book_load_change(dt);
     if (!absorbing_nodes_.empty()) absorb(dt);
   });
   run_stage(FeStageKind::rigid_bodies, [&] { advance_rigid_bodies(dt); });

@@ -33,24 +33,30 @@ void FeSolver::setup_rigid_bodies() {
 void FeSolver::advance_rigid_bodies(double dt) {
   const double dt_force = force_step(dt);
   const Vec3 g = scene_.run.gravity;
+  // A program's held loads and the scene's [[loads]] on a node.
+  auto load = [&](std::size_t i) {
+    Vec3 f;
+    if (!nodes_.external_force.empty()) f += nodes_.external_force[i];
+    if (!load_force_.empty()) f += load_force_[i];
+    return f;
+  };
   for (RigidBody& r : rigid_bodies_) {
     Vec3 force = r.mass * g, moment;
     for (std::size_t k = 0; k < r.nodes.size(); ++k) {
       const auto i = static_cast<std::size_t>(r.nodes[k]);
-      Vec3 f;
-      if (!nodes_.external_force.empty()) f += nodes_.external_force[i];
+      const Vec3 f = load(i);
       force += f;
       moment += core::cross(nodes_.position[i] - r.centre, f);
     }
     external_work_ += advance_momenta(r, force, moment, dt_force);
-    // Gravity and loads work on the body's motion over the step ahead (as in the nodal update).
-    Vec3 loads = r.mass * g;
-    if (!nodes_.external_force.empty())
-      for (std::int32_t k : r.nodes) loads += nodes_.external_force[static_cast<std::size_t>(k)];
-    external_work_ += core::dot(loads, r.velocity) * dt;
-    for (std::size_t k = 0; k < r.nodes.size(); ++k)
-      nodes_.velocity[static_cast<std::size_t>(r.nodes[k])] =
-          point_velocity(r, nodes_.position[static_cast<std::size_t>(r.nodes[k])] - r.centre);
+    // Gravity and loads work on the body's motion over the step ahead (as in the nodal update):
+    // each load at its node's velocity, so that the work of a load's moment is booked too.
+    external_work_ += core::dot(r.mass * g, r.velocity) * dt;
+    for (std::size_t k = 0; k < r.nodes.size(); ++k) {
+      const auto i = static_cast<std::size_t>(r.nodes[k]);
+      nodes_.velocity[i] = point_velocity(r, nodes_.position[i] - r.centre);
+      external_work_ += core::dot(load(i), nodes_.velocity[i]) * dt;
+    }
   }
 }
 

@@ -119,11 +119,15 @@ void build_problem(const FeSolver& solver, const core::Scene& scene, const core:
   // at rest under the same loads), a program's held nodal loads, and the constraints.
   const core::Vec3 gravity = phase.gravity ? *phase.gravity : scene.run.gravity;
   const std::vector<core::Vec3> travel = solver.imposed_travel(solver.time(), travel_end);
+  // The scene's [[loads]] as they stand at the phase's end, where the constraints' travel is
+  // taken too.
+  const std::vector<core::Vec3> loads = solver.scene_loads_at(travel_end);
   problem.nodal_forces.resize(map.nodes.size());
   for (std::size_t k = 0; k < map.nodes.size(); ++k) {
     const auto n = static_cast<std::size_t>(map.nodes[k]);
     problem.nodal_forces[k] = nodes.mass[n] * gravity;
     if (!nodes.external_force.empty()) problem.nodal_forces[k] += nodes.external_force[n];
+    if (!loads.empty()) problem.nodal_forces[k] += loads[n];
     for (int a = 0; a < 3; ++a)
       if (nodes.imposed[n] & (1u << a)) {
         problem.prescribed.push_back({static_cast<std::int32_t>(k), a, travel[n][a]});
@@ -212,12 +216,31 @@ ImplicitPhaseOutcome run_static_phase(FeSolver& solver, const core::Scene& scene
 ImplicitPhaseOutcome run_implicit_phase(FeSolver& solver, const core::Scene& scene,
                                         const core::PhaseSpec& phase, std::ostream* log,
                                         std::vector<NewtonIteration>& failed) {
-  PhaseProblem built;
-  build_problem(solver, scene, phase, solver.time(), built);
-  const StaticProblem& problem = built.problem;
-  const StaticPhaseMap& map = built.map;
   const double start = solver.time();
   const double span = phase.end_time - start;
+  // The phase holds the loads it starts with (build_problem takes them at `start`).
+  for (std::size_t k = 0; k < scene.loads.size(); ++k) {
+    if (scene.bodies[static_cast<std::size_t>(scene.loads[k].body)].discretisation !=
+        core::Discretisation::hexahedra)
+      continue;
+    const std::vector<std::array<double, 2>>& curve = scene.loads[k].curve;
+    const double f0 = core::curve_factor(curve, start);
+    bool varies = core::curve_factor(curve, phase.end_time) != f0;
+    for (const auto& point : curve)
+      varies = varies || (point[0] > start && point[0] < phase.end_time && point[1] != f0);
+    if (varies)
+      throw core::InputError(
+          phase.where, "phases",
+          "the implicit phase holds the loads it starts with, and the curve of [[loads]] entry " +
+              std::to_string(k + 1) + " changes between " + std::to_string(start) + " and " +
+              std::to_string(phase.end_time) +
+              "; let an explicit phase carry the changing load, or keep its factor constant "
+              "over the implicit phase");
+  }
+  PhaseProblem built;
+  build_problem(solver, scene, phase, start, built);
+  const StaticProblem& problem = built.problem;
+  const StaticPhaseMap& map = built.map;
   NewmarkSettings settings;
   settings.steps = core::implicit_steps(phase, span);
   settings.time_step = span / settings.steps;

@@ -184,6 +184,7 @@ void MpmSolver::grid_momentum_update(double dt) {
   }
   for (int t = 0; t < nt; ++t)
     external_work_ += thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles];
+  if (!load_acceleration_.empty()) book_particle_load_work(dt);
 }
 
 }  // namespace afemp::mpm

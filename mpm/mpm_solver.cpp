@@ -132,6 +132,7 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
     particles_.keep(&Particles::viscous_heat, 0.0);
   }
   setup_absorbing_faces();
+  setup_particle_loads();
   if (const std::optional<core::FarField>& far = scene.mpm.grid.far_field)
     (far->absolute_stress ? face_pressure_ : ambient_pressure_) = far->pressure;
   // Walls that name particle bodies act on them here (particle_wall_contact.cpp).

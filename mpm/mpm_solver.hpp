@@ -119,6 +119,12 @@ class MpmSolver {
   void grid_momentum_update(double dt);
   void grid_to_particle(double dt, bool move_positions);
   void remap_to_grid();
+  // [[loads]] on particles (particle_loads.cpp): marks the particles each load's box holds,
+  // adds their forces N_I f_p to the nodes after the internal force, and books their work at
+  // the nodes' mean velocity over the step once the grid is updated.
+  void setup_particle_loads();
+  void add_particle_loads();
+  void book_particle_load_work(double dt);
   // Grid contact (grid_contact.cpp): each contact field's normal and reach at the nodes it
   // shares, then the correction of one nodal velocity field.
   void contact_surfaces();
@@ -340,6 +346,9 @@ class MpmSolver {
   Vec3 outflow_momentum_{};
   long outflow_count_ = 0;
   long split_count_ = 0;  // splits so far (one particle into 2, 4 or 8 counts once)
+  // [[loads]] on particles: per load (1 + its index is Particles::load), the force per unit
+  // mass at factor 1, F / M over the mass M its particles start with.
+  std::vector<Vec3> load_acceleration_;
 
   // Particle walls: per scene wall, the bodies it acts on (empty: none of this solver's), its
   // force over the last step; the work of their impulses (Energies::sliding, friction); the

@@ -123,6 +123,7 @@ void MpmSolver::particle_to_grid(bool mass_momentum, bool force) {
       p2g_kernel<Stencil, Affine, false, true, false>();
     }
   });
+  if (force && !load_acceleration_.empty()) add_particle_loads();
   if (points_) points_->to_grid(access(), mass_momentum, force);
 }
 

@@ -77,6 +77,9 @@ struct Particles {
   // configuration (mpm/stencil.hpp, ReferenceStencil).
   std::vector<Vec3> reference_position;
   std::vector<core::Mat3> deformation_gradient;
+  // [[loads]] on particles: 1 + the index of the scene's load the particle shares, 0 for none;
+  // kept only when a load acts on particles (particle_loads.cpp).
+  std::vector<std::int32_t> load;
   // Splitting: the particle's current length along x, y, z, and the length the particle it
   // came from started with (particle_splitting.cpp).
   std::vector<Vec3> length;
@@ -164,6 +167,7 @@ void for_each_particle_field(F&& f) {
   f(R{"corners", nullptr, 10, S::own, A::own, 0.0}, &Particles::corners);
   f(R{"reference_position", nullptr, 11, S::own, A::own, 0.0}, &Particles::reference_position);
   f(R{"deformation_gradient", nullptr, 12, S::copy, A::own, 0.0}, &Particles::deformation_gradient);
+  f(R{"load", nullptr, 13, S::copy, A::carry, 0.0}, &Particles::load);
 }
 
 template <class T>

@@ -34,6 +34,10 @@ void set_options(StepPlan& plan, const core::Scene& scene) {
   plan.jaumann = scene.mpm.jaumann;
   const core::Vec3& g = scene.run.gravity;
   plan.gravity = g.x != 0.0 || g.y != 0.0 || g.z != 0.0;
+  for (const core::LoadSpec& l : scene.loads)
+    if (scene.bodies[static_cast<std::size_t>(l.body)].discretisation ==
+        core::Discretisation::particles)
+      ++plan.particle_loads;
 
   // The materials of particles: the particle bodies' and those of hexahedra that convert.
   std::set<int> used;
@@ -155,8 +159,11 @@ void append_scheme_stages(StepPlan& plan, const core::Scene& scene) {
             "grid contact on the updated velocity: normal stop, Coulomb friction, separation "
             "(Lian et al. 2013, eqs 38-42)");
 
-  const std::string force_why = plan.gravity ? "internal force -V sigma.grad N and gravity m N g"
-                                             : "internal force -V sigma.grad N (no body force)";
+  std::string force_why = plan.gravity ? "internal force -V sigma.grad N and gravity m N g"
+                                       : "internal force -V sigma.grad N (no body force)";
+  if (plan.particle_loads > 0)
+    force_why += "; the [[loads]] on particles, N f_p (" + std::to_string(plan.particle_loads) +
+                 (plan.particle_loads == 1 ? " load" : " loads") + " shared by mass)";
   const Stage grid_update = grid_update_stage(scene);
   const bool particle_walls = core::has_particle_walls(scene) || core::has_surface_contact(scene);
   const Stage walls = walls_stage(scene);

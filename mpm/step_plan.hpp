@@ -68,6 +68,7 @@ struct StepPlan {
   std::vector<Stage> stages;
   std::vector<MaterialPlan> materials;  // the materials of particles (bodies and conversions)
   bool gravity = false;                 // body force added in p2g_force
+  std::size_t particle_loads = 0;       // [[loads]] on particles, added in p2g_force
   bool jaumann = true;
   int velocity_fields = 1;  // one shared field: bodies stick (no contact stage)
   // Grid contact: the velocity field of each body (all 0 with one field), and one line per

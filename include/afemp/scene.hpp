@@ -423,6 +423,26 @@ inline double curve_factor(const std::vector<std::array<double, 2>>& curve, doub
   return curve.back()[1];
 }
 
+/// A load on one body ([[loads]], core/scene_parser.cpp). On hexahedra, a dead surface
+/// traction on the boundary faces whose four nodes `region` holds (LS-DYNA's *LOAD_SEGMENT_SET
+/// with a traction vector, Abaqus's *DSLOAD TRVEC), given per unit initial area or as a total
+/// force spread over the faces' area, and handed to the nodes by the faces' bilinear shape
+/// functions (fem/surface_loads.cpp). On particles, a total force shared among the particles
+/// of the body that start inside `region` (a box) in proportion to their mass, as Uintah's and
+/// CB-Geo's particle loads do (mpm/particle_loads.cpp): a particle carries no surface area of
+/// its own, so only the total is exact. Its work is booked as external work.
+struct LoadSpec {
+  int body = -1;  ///< the loaded body (hexahedra or particles)
+  /// Hexahedra: the loaded faces' nodes (box, plane or set); particles: a box.
+  NodeSelector region{};
+  bool traction = true;  ///< value is a traction (per unit initial area), else a total force
+  Vec3 value{};
+  /// The load's history: value times the factor interpolated linearly at each step's start
+  /// time (curve_factor); empty: constant.
+  std::vector<std::array<double, 2>> curve{};
+  SourceLocation where{};
+};
+
 /// An absorbing (non-reflecting) boundary on mesh nodes: the viscous boundary of Lysmer &
 /// Kuhlemeyer (1969), LS-DYNA's *BOUNDARY_NON_REFLECTING, on the boundary faces of hexahedra
 /// whose four nodes the selector holds (fem/absorbing_boundary.cpp).
@@ -548,6 +568,7 @@ struct Scene {
   std::vector<BodySpec> bodies{};
   std::vector<ConstraintSpec> constraints{};
   std::vector<AbsorbingSpec> absorbing{};  ///< [[absorbing]]: non-reflecting mesh boundaries
+  std::vector<LoadSpec> loads{};           ///< [[loads]]: tractions and forces on bodies
   std::vector<WallSpec> walls{};
   std::vector<ContactSpec> contacts{};
   std::vector<DetonationSpec> detonations{};  ///< [[detonations]]: what lights the explosives
@@ -583,6 +604,7 @@ using core::HexFormulation;
 using core::HourglassForm;
 using core::HourglassSettings;
 using core::LineShape;
+using core::LoadSpec;
 using core::MeshArrays;
 using core::MeshDensity;
 using core::MeshFileShape;
