@@ -9,6 +9,7 @@
 #include "core/decks/deck_units.hpp"
 #include "core/materials/initial_pressure.hpp"
 #include "core/materials/material.hpp"
+#include "core/nearly_incompressible.hpp"
 
 namespace afemp::core {
 
@@ -382,24 +383,23 @@ void warn_mixed_pressure_compressible(const Scene& scene, Warner& warn) {
   }
 }
 
-// Hexahedra of a nearly incompressible solid at more than half LS-DYNA's step rule: a twisting
-// column of neo-Hookean gel at nu = 0.499 (B-bar hexahedra 4 across) gained 128 % of its energy
-// at the default 0.9 and kept it to 2e-3 at 0.5 (tests/fem/test_hyperelastic_hexahedra.cpp);
-// a block at nu = 0.495 stayed stable at 0.9 (docs/studies/README.md).
+// Hexahedra of a nearly incompressible solid at more than half LS-DYNA's step rule
+// (core/nearly_incompressible.hpp).
 void warn_nearly_incompressible_step(const Scene& scene, Warner& warn) {
-  if (scene.run.element_time_step_factor <= 0.5) return;
+  if (scene.run.element_time_step_factor <= nearly_incompressible::element_step_factor) return;
   for (const BodySpec& body : scene.bodies) {
     if (body.material < 0 || body.discretisation != Discretisation::hexahedra || body.rigid)
       continue;
     const Material& m = scene.materials[static_cast<std::size_t>(body.material)];
-    if (m.poisson_ratio <= 0.495) continue;
+    if (m.poisson_ratio <= nearly_incompressible::poisson_ratio) continue;
     warn(body.where, "run.element_time_step_factor",
          "body \"" + body.name + "\" is of hexahedra of material \"" + m.name +
              "\" with nu = " + num(m.poisson_ratio) + ", and the element step factor is " +
              num(scene.run.element_time_step_factor) +
              ": hexahedra of a nearly incompressible solid ring above half the usual step (a "
              "twisting column at nu = 0.499 gained 128 % of its energy at 0.9); give [run] "
-             "element_time_step_factor = 0.5");
+             "element_time_step_factor = " +
+             num(nearly_incompressible::element_step_factor));
     break;
   }
 }

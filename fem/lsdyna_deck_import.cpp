@@ -22,6 +22,7 @@
 
 #include "core/decks/deck_units.hpp"
 #include "core/decks/scene_text.hpp"
+#include "core/nearly_incompressible.hpp"
 #include "fem/lsdyna_keywords.hpp"
 #include "fem/mesh_import.hpp"
 
@@ -1352,26 +1353,27 @@ class LsDynaImport {
           "the deck gives no end time: ENDTIM of *CONTROL_TERMINATION is needed");
     s += "end_time = " + num(end_time_) + "\n";
     if (output_every_ > 0.0) s += "output_every = " + num(output_every_) + "\n";
-    // A nearly incompressible solid (PR above 0.495) rings beyond LS-DYNA's step rule in afemp's
-    // hexahedra: a twisting column at PR 0.499 gained energy at a factor of 0.9 and kept it at 0.5
-    // (docs/scene-format.md, element_time_step_factor; at 0.495 a block stayed stable at 0.9).
+    // A nearly incompressible solid rings beyond LS-DYNA's step rule in afemp's hexahedra
+    // (core/nearly_incompressible.hpp): its factor is held to the one they need.
+    namespace ni = core::nearly_incompressible;
     double factor = tssfac_ > 0.0 ? std::min(tssfac_, 1.0) : 0.0;
     const Material* nearly_incompressible = nullptr;
     for (const std::int64_t label : mesh.part_labels)
       if (const auto p = parts_.find(label); p != parts_.end())
         if (const auto m = materials_.find(p->second.material);
-            m != materials_.end() && m->second.kind != "rigid" && m->second.nu > 0.495 &&
+            m != materials_.end() && m->second.kind != "rigid" &&
+            m->second.nu > ni::poisson_ratio &&
             (nearly_incompressible == nullptr || m->second.nu > nearly_incompressible->nu))
           nearly_incompressible = &m->second;
-    if (nearly_incompressible != nullptr && (factor == 0.0 || factor > 0.5)) {
+    if (nearly_incompressible != nullptr && (factor == 0.0 || factor > ni::element_step_factor)) {
       notes_.push_back({nearly_incompressible->at, nearly_incompressible->keyword,
-                        "PR " + num(nearly_incompressible->nu) +
-                            ": element_time_step_factor 0.5 in place of TSSFAC " +
+                        "PR " + num(nearly_incompressible->nu) + ": element_time_step_factor " +
+                            num(ni::element_step_factor) + " in place of TSSFAC " +
                             num(factor > 0.0 ? factor : 0.9) +
                             " (afemp's hexahedra of a nearly incompressible solid ring at "
                             "LS-DYNA's usual factor)",
                         true});
-      factor = 0.5;
+      factor = ni::element_step_factor;
     }
     if (factor > 0.0) s += "element_time_step_factor = " + num(factor) + "\n";
     if (max_steps_ > 0) s += "max_steps = " + std::to_string(max_steps_) + "\n";
