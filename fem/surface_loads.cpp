@@ -1,14 +1,16 @@
 // Surface loads on hexahedra ([[loads]], core::LoadSpec): a dead traction t on the boundary
 // faces whose four nodes the load's region holds, LS-DYNA's *LOAD_SEGMENT_SET with a traction
 // vector and Abaqus's *DSLOAD TRVEC. Each face hands its nodes the consistent forces
-// f_a = t ∫ N_a dA over its initial area (Zienkiewicz, Taylor & Zhu 2013, §8.5: the load
-// vector of a distributed surface load), N_a the bilinear shape functions of the face, by 2 x 2
+// f_a = t ∫ N_a dA over its initial area (the load vector of a distributed surface load,
+// Zienkiewicz, Taylor & Zhu 2013), N_a the bilinear shape functions of the face, by 2 x 2
 // Gauss points, exact for a flat face: the forces sum to t A and their moment about any point
 // is that of t A at the face's centroid. A total force F is the traction F / A over the faces'
 // area A. The nodal update applies factor(t) f_a at each step's start time t, as it applies
-// gravity, and books f . v^{n+1/2} dt as external work. Dead loads: the faces' area and
-// direction stay those of the initial mesh (small rotations of the loaded faces; a follower
-// pressure is not built).
+// gravity. The work is booked by the trapezoidal rule in time, (f^n + f^{n+1}) / 2 . v^{n+1/2}
+// dt, as Belytschko, Liu & Moran (2000) book external work for their energy balance: a ramped
+// load's work is then not short by (df/dt) dt / 2 per unit of travel (the nodal update books
+// f^n's part, book_load_change the rest). Dead loads: the faces' area and direction stay those
+// of the initial mesh (small rotations of the loaded faces; a follower pressure is not built).
 #include <cmath>
 
 #include "afemp/errors.hpp"

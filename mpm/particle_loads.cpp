@@ -3,8 +3,8 @@
 // carries no surface of its own, so the load is given as its total, as Uintah's pressure
 // loads (the force over the particles of a region) and CB-Geo's particle tractions are; on a
 // layer of equal particles at a flat face it is a uniform traction F / A. It enters the grid as
-// a body force does, f_I += N_I(x_p) f_p (Sulsky, Chen & Schreyer 1994, eq 19's external
-// force), at each step's start time with the load's curve, and its work over the step is
+// a body force does, f_I += N_I(x_p) f_p (the external force's nodal share in Sulsky, Chen
+// & Schreyer 1994), at each step's start time with the load's curve, and its work over the step is
 // f_p . sum_I N_I (v_I + v_I^new) / 2 dt, the work of the nodal forces at the nodes' mean
 // velocity (as gravity's is booked, grid_momentum_update.cpp). A particle that splits hands
 // the load on to its pieces by mass; one that leaves through an outflow face takes its share
