@@ -16,13 +16,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <string>
 
 #include "core/scene.hpp"
 #include "fem/fe_solver.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
+#include "pressure_checkerboard.hpp"
 
 namespace afemp::test::cooks_membrane {
 
@@ -214,43 +214,16 @@ inline Result run_particles(const std::string& pressure, double cell,
   r.deflection = det(m0) / det(normal);
   r.points = q.size();
   // The pressure, cell by cell in the panel's plane (x, y) at the particles' reference
-  // positions: largest |p_c - mean of its 4 neighbours| over the range, where all four exist.
-  std::map<std::array<int, 2>, std::pair<double, int>> cells;
-  for (std::size_t i = 0; i < q.size(); ++i) {
-    const Vec3& x0 = q.reference_position[i];
-    auto& [sum, count] = cells[{static_cast<int>(std::floor(x0.x / cell)),
-                                static_cast<int>(std::floor(x0.y / cell))}];
-    sum -= q.stress[i].trace() / 3.0;
-    ++count;
-  }
-  double lo = 1e300, hi = -1e300, jump = 0.0;
-  for (const auto& [c, v] : cells) {
-    lo = std::min(lo, v.first / v.second);
-    hi = std::max(hi, v.first / v.second);
-  }
-  // Whether cell c lies wholly inside the panel (its mean is not that of a sliver at an edge).
+  // positions, among the cells wholly inside the panel (a cell's mean is not that of a sliver at
+  // an edge), away from the clamped edge, whose corners are singular.
   auto whole = [cell](const std::array<int, 2>& c) {
     const double x0 = c[0] * cell, y0 = c[1] * cell;
     return x0 >= 0.0 && x0 + cell <= 48.0 && y0 >= 44.0 / 48.0 * (x0 + cell) &&
            y0 + cell <= 44.0 + 16.0 / 48.0 * x0;
   };
-  for (const auto& [c, v] : cells) {
-    // Cells next to the clamped edge are left out: its corners are singular.
-    if (c[0] < 2 || !whole(c)) continue;
-    double sum = 0.0;
-    int count = 0;
-    for (const std::array<int, 2> d : {std::array<int, 2>{c[0] - 1, c[1]},
-                                       {c[0] + 1, c[1]},
-                                       {c[0], c[1] - 1},
-                                       {c[0], c[1] + 1}}) {
-      const auto it = cells.find(d);
-      if (it == cells.end() || !whole(d)) continue;
-      sum += it->second.first / it->second.second;
-      ++count;
-    }
-    if (count == 4) jump = std::max(jump, std::abs(v.first / v.second - sum / count));
-  }
-  r.checkerboard = jump / (hi - lo);
+  r.checkerboard = pressure_checkerboard<2>(
+      q, cell, {0, 1}, Vec3{}, [&](const std::array<int, 2>& c) { return c[0] >= 2 && whole(c); },
+      whole);
   return r;
 }
 

@@ -6,13 +6,13 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <string>
 
 #include "core/scene.hpp"
 #include "fem/fe_solver.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
+#include "pressure_checkerboard.hpp"
 
 namespace afemp::test::mixed_beam {
 
@@ -83,35 +83,11 @@ inline Beam bend(const std::string& pressure, const std::string& shape, double c
     u /= m;
     // The pressure at the largest deflection (a quarter period), cell by cell (x, z).
     if (u < largest && b.checkerboard == 0.0) {
-      std::map<std::array<int, 2>, std::pair<double, int>> cells;
-      for (std::size_t i = 0; i < q.size(); ++i) {
-        const Vec3& x0 = q.reference_position[i];
-        auto& [sum, count] = cells[{static_cast<int>(std::floor((x0.x + 1.0) / cell)),
-                                    static_cast<int>(std::floor(x0.z / cell))}];
-        sum -= q.stress[i].trace() / 3.0;
-        ++count;
-      }
-      double lo = 1e300, hi = -1e300, jump = 0.0;
-      for (const auto& [c, v] : cells) {
-        lo = std::min(lo, v.first / v.second);
-        hi = std::max(hi, v.first / v.second);
-      }
-      for (const auto& [c, v] : cells) {
-        double sum = 0.0;
-        int n = 0;
-        for (const std::array<int, 2> d : {std::array<int, 2>{c[0] - 1, c[1]},
-                                           {c[0] + 1, c[1]},
-                                           {c[0], c[1] - 1},
-                                           {c[0], c[1] + 1}}) {
-          const auto it = cells.find(d);
-          if (it == cells.end()) continue;
-          sum += it->second.first / it->second.second;
-          ++n;
-        }
-        // Cells two from the clamped face are left out: its corners are singular.
-        if (n == 4 && c[1] >= 2) jump = std::max(jump, std::abs(v.first / v.second - sum / n));
-      }
-      b.checkerboard = jump / (hi - lo);
+      // Cells two from the clamped face are left out: its corners are singular.
+      b.checkerboard = pressure_checkerboard<2>(
+          q, cell, {0, 2}, Vec3{-1.0, 0.0, 0.0},
+          [](const std::array<int, 2>& c) { return c[1] >= 2; },
+          [](const std::array<int, 2>&) { return true; });
     }
     largest = std::max(largest, u);
     if (last > 0.0 && u <= 0.0) {

@@ -12,7 +12,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -20,6 +19,7 @@
 #include "fem/fe_solver.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
+#include "pressure_checkerboard.hpp"
 
 namespace afemp::test::twisting_column {
 
@@ -158,40 +158,6 @@ inline double corner_uz(const mpm::Particles& q, double cell) {
   return x[0];
 }
 
-// The pressure checkerboard of History::checkerboard.
-inline double pressure_checkerboard(const mpm::Particles& q, double cell) {
-  std::map<std::array<int, 3>, std::pair<double, int>> cells;
-  for (std::size_t i = 0; i < q.size(); ++i) {
-    const Vec3& x0 = q.reference_position[i];
-    auto& [sum, count] =
-        cells[{static_cast<int>(std::floor(x0.x / cell)), static_cast<int>(std::floor(x0.y / cell)),
-               static_cast<int>(std::floor(x0.z / cell))}];
-    sum -= q.stress[i].trace() / 3.0;
-    ++count;
-  }
-  double lo = 1e300, hi = -1e300, jump = 0.0;
-  for (const auto& [c, v] : cells) {
-    lo = std::min(lo, v.first / v.second);
-    hi = std::max(hi, v.first / v.second);
-  }
-  for (const auto& [c, v] : cells) {
-    if ((c[2] + 1) * cell <= 1.0) continue;
-    double sum = 0.0;
-    int count = 0;
-    for (int a = 0; a < 3; ++a)
-      for (const int d : {-1, 1}) {
-        std::array<int, 3> n = c;
-        n[static_cast<std::size_t>(a)] += d;
-        const auto it = cells.find(n);
-        if (it == cells.end()) continue;
-        sum += it->second.first / it->second.second;
-        ++count;
-      }
-    if (count == 6) jump = std::max(jump, std::abs(v.first / v.second - sum / count));
-  }
-  return jump / (hi - lo);
-}
-
 // The particles: `per_cell` per cell per direction on cells of `cell` m, in the
 // total-Lagrangian MPM with `shape`; `pressure` "mixed" or "standard". The grid covers the
 // column's reference configuration and no more (`margin` cells beyond its free faces, 0 by
@@ -225,7 +191,10 @@ inline History run_particles(double cell, int per_cell, const std::string& shape
         return top_twist(solver.particles().position, solver.particles().reference_position);
       });
   h.points = p.size();
-  h.checkerboard = pressure_checkerboard(solver.particles(), cell);
+  h.checkerboard = pressure_checkerboard<3>(
+      solver.particles(), cell, {0, 1, 2}, Vec3{},
+      [cell](const std::array<int, 3>& c) { return (c[2] + 1) * cell > 1.0; },
+      [](const std::array<int, 3>&) { return true; });
   return h;
 }
 
