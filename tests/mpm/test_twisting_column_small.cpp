@@ -4,10 +4,11 @@
 // and 0.05394 rad). The total-Lagrangian MPM with quadratic B-splines on cells of 0.125 m (8
 // across, the grid's faces on the column's) and the B-bar hexahedra 8 across, at nu = 0.3 (the
 // nearly incompressible runs carry the label `validation`: tests/validation/
-// test_twisting_column.cpp). Measured (2026-12-01, 20 s on 2 threads): hexahedra +0.60 % and +0.53
-// % (12 across: +0.2 %, +0.2 %), the MPM +4.8 % and -0.5 %, its half period +18.8 % on cells of
-// 0.25 m. Pass: hexahedra within 1.5 %, the MPM's peak within 2 % and its half period within 6 %,
-// its error at 0.125 m below half that at 0.25 m (it converges), energy kept to 1 %.
+// test_twisting_column.cpp). Measured (2026-12-01, 20 s on 2 threads): the hexahedra's half
+// period +0.60 % and peak +0.53 % (12 across: +0.14 % and +0.11 %), the MPM's +4.8 % and
+// -0.5 %, its half period +18.8 % on cells of 0.25 m. Pass: hexahedra within 1.5 %, the MPM's
+// peak within 2 % and its half period within 6 %, its error at 0.125 m below half that at
+// 0.25 m (it converges), energy kept to 1 %.
 #include <gtest/gtest.h>
 
 #include <cmath>
