@@ -17,6 +17,7 @@
 #include "fem/hexahedron_deformation_gradient.hpp"
 #include "mixed_beam.hpp"
 #include "scene_errors.hpp"
+#include "twisting_column.hpp"
 
 namespace afemp::fem {
 namespace {
@@ -200,15 +201,12 @@ TEST(HyperelasticHexahedra, ABeamBendsWithTheElasticPeriod) {
   EXPECT_NEAR(neo_hookean / elastic, 1.0, 2e-3);
 }
 
-// The twisting column of the nearly incompressible solid-dynamics benchmarks (the mixed u-p
-// TLMPM paper, Zhang et al. 2022, after its reference, Kadapa 2019): a 1 x 1 x 6 m column of gel
-// (rho 1100, E 17 MPa, nu 0.499), its base fixed, started with v0 = omega (-y, x, 0)
-// sin(pi z / 12) about its axis. At omega = 100 rad/s (the corners at up to 70 m/s, the shear
-// wave speed 72 m/s) it twists through large strains; the top corner moves 0.3-0.4 m along z.
-Vec3 twist_velocity(const Vec3& x, double omega) {
-  const double s = omega * std::sin(M_PI * x.z / 12.0);
-  return {-x.y * s, x.x * s, 0.0};
-}
+// The twisting column of the nearly incompressible solid-dynamics benchmarks
+// (tests/twisting_column.hpp): a 1 x 1 x 6 m column of gel (rho 1100, E 17 MPa, nu 0.499), its
+// base fixed, started with v0 = omega (-y, x, 0) sin(pi z / 12) about its axis. At omega =
+// 100 rad/s (the corners at up to 70 m/s, the shear wave speed 72 m/s) it twists through large
+// strains; the top corner moves 0.3-0.4 m along z.
+namespace tc = test::twisting_column;
 
 struct Twist {
   double largest_uz = 0.0;  // of the top corner (0.5, 0.5, 6)
@@ -217,27 +215,9 @@ struct Twist {
 
 // B-bar (F-bar) hexahedra `across` on a side, to 0.3 s, at `factor` times LS-DYNA's step.
 Twist twist_hexahedra(int across, double omega, double factor) {
-  char run[96];
-  std::snprintf(run, sizeof run, "[run]\nend_time = 100.0\nelement_time_step_factor = %g\n",
-                factor);
-  const std::string text =
-      std::string(run) +
-      "[materials.gel]\ndensity = 1100\nE = 17e6\nnu = 0.499\n"
-      "strength = { model = \"neo-hookean\" }\n"
-      "[[bodies]]\nname = \"column\"\nmaterial = \"gel\"\ndiscretisation = \"hexahedra\"\n"
-      "element = \"full\"\nshape = { box = { min = [-0.5, -0.5, 0], max = [0.5, 0.5, 6] } }\n"
-      "mesh = { divisions = [" +
-      std::to_string(across) + ", " + std::to_string(across) + ", " + std::to_string(6 * across) +
-      "] }\n[[constraints]]\nnodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }\n"
-      "fixed = [\"all\"]\n";
-  const core::Scene scene = core::parse_scene(text, "twisting_column.toml");
+  const core::Scene scene = tc::hexahedra_scene(across, 0.499, factor);  // held by reference
   FeSolver solver(scene);
-  FeNodes& nodes = solver.mutable_nodes();
-  std::size_t corner = 0;
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    if (nodes.position[i].z > 0.0) nodes.velocity[i] = twist_velocity(nodes.position[i], omega);
-    if (core::norm(nodes.position[i] - Vec3{0.5, 0.5, 6}) < 1e-9) corner = i;
-  }
+  const std::size_t corner = tc::start_twisting(solver.mutable_nodes(), omega);
   Twist t;
   const double e0 = solver.energies().total();
   while (solver.time() < 0.3) {
