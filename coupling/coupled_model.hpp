@@ -43,6 +43,7 @@ class CoupledModel final : public core::Model {
  public:
   // Throws core::InputError when a constraint holds a bonded node.
   explicit CoupledModel(const core::Scene& scene);
+  explicit CoupledModel(core::Scene&&) = delete;  // kept by reference: a temporary would dangle
 
   fem::FeSolver& fe() { return fe_.solver(); }
   const fem::FeSolver& fe() const { return fe_.solver(); }

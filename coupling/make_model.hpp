@@ -10,5 +10,7 @@
 namespace afemp::coupling {
 
 std::unique_ptr<core::Model> make_model(const core::Scene& scene);
+// The model keeps a reference to the scene: a temporary one would dangle.
+std::unique_ptr<core::Model> make_model(core::Scene&&) = delete;
 
 }  // namespace afemp::coupling

@@ -16,6 +16,7 @@ namespace afemp::fem {
 class FeModel final : public core::Model {
  public:
   explicit FeModel(const core::Scene& scene);
+  explicit FeModel(core::Scene&&) = delete;  // kept by reference: a temporary would dangle
   FeSolver& solver() { return solver_; }
   const FeSolver& solver() const { return solver_; }
 

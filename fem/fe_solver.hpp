@@ -104,6 +104,8 @@ struct WallState {
 class FeSolver {
  public:
   explicit FeSolver(const core::Scene& scene);
+  // The solver keeps a reference to the scene: a temporary one would dangle.
+  explicit FeSolver(core::Scene&&) = delete;
   // The list of element sets points into the solver.
   FeSolver(const FeSolver&) = delete;
   FeSolver& operator=(const FeSolver&) = delete;

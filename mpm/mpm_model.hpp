@@ -25,6 +25,7 @@ std::vector<std::string> unbooked_particle_energies(const core::Scene& scene);
 class MpmModel final : public core::Model {
  public:
   explicit MpmModel(const core::Scene& scene);
+  explicit MpmModel(core::Scene&&) = delete;  // kept by reference: a temporary would dangle
   MpmSolver& solver() { return solver_; }
   const MpmSolver& solver() const { return solver_; }
 

@@ -38,6 +38,8 @@ class MpmSolver {
  public:
   // Particles of one material are made contiguous here (the order changes; ids do not).
   MpmSolver(const core::Scene& scene, Particles particles);
+  // The solver keeps a reference to the scene: a temporary one would dangle.
+  MpmSolver(core::Scene&&, Particles) = delete;
 
   const StepPlan& plan() const { return plan_; }
   const Particles& particles() const { return particles_; }

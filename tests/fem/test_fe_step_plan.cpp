@@ -79,7 +79,8 @@ velocity = [0, 0, -10]
 )";
 
 FeStepPlan plan_of(const std::string& text) {
-  return FeSolver(core::parse_scene(text, "plan.toml")).plan();
+  const core::Scene scene = core::parse_scene(text, "plan.toml");
+  return FeSolver(scene).plan();
 }
 
 // Reference: only the nodal update and the hexahedra; the held face's nodes are the imposed
@@ -184,7 +185,8 @@ TEST(FeStepPlan, AfempCheckPrintsThePlanTheSolverRuns) {
     const std::string path = std::string(AFEMP_SOURCE_DIR) + "/examples/" + example;
     const mpm::test::CommandResult r = mpm::test::run_afemp("check \"" + path + "\"", dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    const std::string described = FeSolver(core::read_scene(path)).plan().describe();
+    const core::Scene scene = core::read_scene(path);
+    const std::string described = FeSolver(scene).plan().describe();
     EXPECT_NE(r.out.find(described), std::string::npos) << "printed:\n"
                                                         << r.out << "\nplan:\n"
                                                         << described;
