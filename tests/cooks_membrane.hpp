@@ -19,6 +19,7 @@
 #include <string>
 
 #include "core/scene.hpp"
+#include "corner_fit.hpp"
 #include "fem/fe_solver.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
@@ -189,29 +190,9 @@ inline Result run_particles(const std::string& pressure, double cell,
   const mpm::Particles& q = solver.particles();
   for (std::size_t i = 0; i < q.size(); ++i)
     if (q.id[i] == corner_id) r.nearest = q.position[i].y - q.reference_position[i].y;
-  // The corner's own: u_y = a + b (X - 48) + c (Y - 60) fitted by least squares to the particles
-  // within 1.5 cells of the corner (reference positions, in the panel's plane), a at the corner.
-  double normal[3][3] = {}, rhs[3] = {};
-  for (std::size_t i = 0; i < q.size(); ++i) {
-    const Vec3& x0 = q.reference_position[i];
-    const double dx = x0.x - 48.0, dy = x0.y - 60.0;
-    if (dx * dx + dy * dy > 2.25 * cell * cell) continue;
-    const double row[3] = {1.0, dx, dy}, u = q.position[i].y - x0.y;
-    for (int a = 0; a < 3; ++a) {
-      rhs[a] += row[a] * u;
-      for (int b = 0; b < 3; ++b) normal[a][b] += row[a] * row[b];
-    }
-  }
-  // Cramer's rule for a of the 3 x 3 normal equations.
-  auto det = [](const double m[3][3]) {
-    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-  };
-  double m0[3][3];
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) m0[a][b] = b == 0 ? rhs[a] : normal[a][b];
-  r.deflection = det(m0) / det(normal);
+  // The corner's own: u_y fitted linearly to the particles within 1.5 cells of the corner
+  // (reference positions, in the panel's plane), its value at the corner.
+  r.deflection = fitted_displacement<2>(q, Vec3{48.0, 60.0, 0.0}, 1.5 * cell, 1);
   r.points = q.size();
   // The pressure, cell by cell in the panel's plane (x, y) at the particles' reference
   // positions, among the cells wholly inside the panel (a cell's mean is not that of a sliver at

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/scene.hpp"
+#include "corner_fit.hpp"
 #include "fem/fe_solver.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
@@ -139,35 +140,6 @@ inline History run_hexahedra(int across, double omega, double nu = 0.499) {
   return h;
 }
 
-// Point A's z-displacement from particles: u_z = a + b dX + c dY + d dZ fitted by least
-// squares to the particles within 1.5 cells of the corner (reference positions), a at it.
-inline double corner_uz(const mpm::Particles& q, double cell) {
-  double normal[4][4] = {}, rhs[4] = {};
-  for (std::size_t i = 0; i < q.size(); ++i) {
-    const Vec3 d = q.reference_position[i] - Vec3{0.5, 0.5, 6.0};
-    if (core::norm(d) > 1.5 * cell) continue;
-    const double row[4] = {1.0, d.x, d.y, d.z}, u = q.position[i].z - q.reference_position[i].z;
-    for (int a = 0; a < 4; ++a) {
-      rhs[a] += row[a] * u;
-      for (int b = 0; b < 4; ++b) normal[a][b] += row[a] * row[b];
-    }
-  }
-  // Gaussian elimination (the normal matrix is symmetric positive definite).
-  for (int k = 0; k < 4; ++k)
-    for (int r = k + 1; r < 4; ++r) {
-      const double f = normal[r][k] / normal[k][k];
-      for (int c = k; c < 4; ++c) normal[r][c] -= f * normal[k][c];
-      rhs[r] -= f * rhs[k];
-    }
-  double x[4];
-  for (int k = 3; k >= 0; --k) {
-    double s = rhs[k];
-    for (int c = k + 1; c < 4; ++c) s -= normal[k][c] * x[c];
-    x[k] = s / normal[k][k];
-  }
-  return x[0];
-}
-
 // The particles: `per_cell` per cell per direction on cells of `cell` m, in the
 // total-Lagrangian MPM with `shape`; `pressure` "mixed" or "standard". The grid covers the
 // column's reference configuration and no more (`margin` cells beyond its free faces, 0 by
@@ -196,7 +168,10 @@ inline History run_particles(double cell, int per_cell, const std::string& shape
   mpm::Particles& p = solver.mutable_particles();
   for (std::size_t i = 0; i < p.size(); ++i) p.velocity[i] = initial_velocity(p.position[i], omega);
   History h = run_to_end(
-      solver, [&] { return corner_uz(solver.particles(), cell); },
+      solver,
+      [&] {
+        return fitted_displacement<3>(solver.particles(), Vec3{0.5, 0.5, kLength}, 1.5 * cell, 2);
+      },
       [&] {
         return top_twist(solver.particles().position, solver.particles().reference_position);
       });
