@@ -6,8 +6,9 @@
 // contact between bodies (two bodies meet where they are, not where they started), elements
 // and rebar coupled through the grid, particle walls. A fixed or symmetric face holds the
 // material on the reference face, which is what such a face means for a body that starts on
-// it. Splitting and CPDI deform the particle domains the reference weights stand for, and the
-// affine transfer reads offsets x_I - x_p that are current-configuration distances.
+// it. Splitting and CPDI deform the particle domains the reference weights stand for. The
+// affine transfer is not refused: there its offsets are the reference ones, X_I - X_p, and its
+// affine velocity the velocity's gradient in the reference configuration.
 #pragma once
 
 #include <optional>
@@ -28,11 +29,6 @@ inline std::optional<std::pair<std::string, std::string>> total_lagrangian_mpm_r
                      std::string("\"") + to_string(mpm.shape) + "\" with " + tl +
                          ": CPDI deforms the domains that the reference weights stand for; "
                          "allowed: \"linear\", \"gimp\", \"bspline2\", \"bspline3\""};
-  if (mpm.transfer == Transfer::apic)
-    return std::pair{std::string("transfer"),
-                     "\"apic\" with " + tl +
-                         ": the affine transfer reads current distances x_I - x_p, which the "
-                         "reference grid does not have; allowed: \"flip\""};
   if (mpm.splitting)
     return std::pair{std::string("splitting"),
                      "splitting with " + tl +

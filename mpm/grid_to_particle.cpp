@@ -3,7 +3,8 @@
 // particle here with the updated grid velocity (eq 2-35); USL and MUSL move it in the
 // strain pass, whose weights must still be those of the step's start position. With the
 // affine transfer (APIC, Jiang et al. 2015, eqs 8-10) the particle takes the grid velocity
-// v_p = sum S v_new and its affine part C_p = sum S v_new (x_I - x_p)^T D_p^-1.
+// v_p = sum S v_new and its affine part C_p = sum S v_new (x_I - x_p)^T D_p^-1 (X_I - X_p, the
+// velocity's gradient in the reference configuration, in the total-Lagrangian form).
 #include "core/parallel.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/stencil.hpp"

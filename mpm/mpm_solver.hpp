@@ -171,9 +171,15 @@ class MpmSolver {
   void with_stencil(F&& f) {
     const bool affine = plan_.transfer == core::Transfer::apic;
     with_shape(plan_.shape, [&]<class Stencil>() {
-      if (plan_.total_lagrangian) {  // APIC and CPDI are refused with it
-        if constexpr (!requires { Stencil::tracks_corners; })
+      if (plan_.total_lagrangian) {  // CPDI is refused with it
+        if constexpr (!requires { Stencil::tracks_corners; }) {
+          if constexpr (!std::is_same_v<Stencil, LinearStencil>)
+            if (affine) {
+              f.template operator()<ReferenceStencil<Stencil>, true>();
+              return;
+            }
           f.template operator()<ReferenceStencil<Stencil>, false>();
+        }
         return;
       }
       if constexpr (std::is_same_v<Stencil, LinearStencil> ||

@@ -1,7 +1,8 @@
 // Particle-to-grid transfers (Ma 2005, eqs 2-29..2-31, 2-10, 2-11, 2-37): lumped nodal mass,
 // momentum, internal force -V sigma.grad N and body force m N g, summed without atomics by
 // sweeping the colour layers of particle_binning.cpp (one colour at a time). With the affine
-// transfer the momentum is m N (v_p + C_p (x_I - x_p)) (Jiang et al. 2015).
+// transfer the momentum is m N (v_p + C_p (x_I - x_p)) (Jiang et al. 2015), with the reference
+// offsets X_I - X_p in the total-Lagrangian form (its stencil's offsets).
 #include "core/parallel.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/stencil.hpp"

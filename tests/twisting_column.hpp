@@ -145,11 +145,11 @@ inline History run_hexahedra(int across, double omega, double nu = 0.499) {
 // column's reference configuration and no more (`margin` cells beyond its free faces, 0 by
 // default): its faces are the column's, the base z = 0 a fixed face, the others free, where the
 // B-splines are modified so that their face nodes carry the surface. With a free surface inside
-// a cell instead, the quadratic B-spline's torsion is wrong (docs/scene-format.md,
-// `formulation`).
+// a cell instead, the FLIP transfer bends the quadratic B-spline's torsion and the affine one
+// (`transfer` "apic") does not (docs/scene-format.md, `formulation`).
 inline History run_particles(double cell, int per_cell, const std::string& shape,
                              const std::string& pressure, double omega, double nu = 0.499,
-                             int margin = 0) {
+                             int margin = 0, const std::string& transfer = "flip") {
   char grid[240];
   const double m = margin * cell;
   std::snprintf(grid, sizeof grid,
@@ -159,8 +159,8 @@ inline History run_particles(double cell, int per_cell, const std::string& shape
       "[run]\nend_time = 100.0\n[grid]\n" + std::string(grid) +
       "boundary = { zmin = \"fixed\" }\n"
       "[mpm]\nformulation = \"total-lagrangian\"\nshape_function = \"" +
-      shape + "\"\npressure = \"" + pressure + "\"\n" + material(nu) +
-      "[[bodies]]\nname = \"column\"\nmaterial = \"gel\"\nparticles_per_cell = " +
+      shape + "\"\npressure = \"" + pressure + "\"\ntransfer = \"" + transfer + "\"\n" +
+      material(nu) + "[[bodies]]\nname = \"column\"\nmaterial = \"gel\"\nparticles_per_cell = " +
       std::to_string(per_cell) +
       "\nshape = { box = { min = [-0.5, -0.5, 0], max = [0.5, 0.5, 6] } }\n";
   const core::Scene scene = core::parse_scene(text, "twisting_column.toml");

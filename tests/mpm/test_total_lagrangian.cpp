@@ -183,8 +183,6 @@ TEST(TotalLagrangian, WhatHasNoMeaningInTheReferenceConfigurationIsRefused) {
   const std::string base = bar(tl);
   const Case cases[] = {
       {tl + "shape_function = \"cpdi1\"\n", "", "shape_function", "CPDI deforms the domains"},
-      {tl + "shape_function = \"bspline2\"\ntransfer = \"apic\"\n", "", "transfer",
-       "current distances"},
   };
   for (const Case& c : cases) {
     const std::string text = bar(c.mpm);
