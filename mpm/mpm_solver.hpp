@@ -165,30 +165,31 @@ class MpmSolver {
   void project_mixed_pressure();
   template <int Colours, bool Constant>
   void mixed_pressure_kernel();
-  // Calls f.template operator()<Stencil, Affine>() for the scene's shape function and
-  // transfer (the parser refuses the affine transfer with the linear hat).
+  // Calls f.template operator()<Stencil, Affine>() for the scene's shape function, form and
+  // transfer: the total-Lagrangian form reads its stencil over the reference configuration
+  // (ReferenceStencil), and the affine transfer is taken by every stencil but the linear hat
+  // and CPDI (the parser refuses it with them, and CPDI with the total-Lagrangian form, so
+  // neither combination is instantiated).
   template <class F>
   void with_stencil(F&& f) {
     const bool affine = plan_.transfer == core::Transfer::apic;
     with_shape(plan_.shape, [&]<class Stencil>() {
-      if (plan_.total_lagrangian) {  // CPDI is refused with it
-        if constexpr (!requires { Stencil::tracks_corners; }) {
-          if constexpr (!std::is_same_v<Stencil, LinearStencil>)
-            if (affine) {
-              f.template operator()<ReferenceStencil<Stencil>, true>();
-              return;
-            }
-          f.template operator()<ReferenceStencil<Stencil>, false>();
-        }
-        return;
-      }
-      if constexpr (std::is_same_v<Stencil, LinearStencil> ||
-                    requires { Stencil::tracks_corners; })  // APIC is refused for these
-        f.template operator()<Stencil, false>();
-      else if (affine)
-        f.template operator()<Stencil, true>();
-      else
-        f.template operator()<Stencil, false>();
+      constexpr bool cpdi = requires {
+        Stencil::tracks_corners;
+      };
+      constexpr bool takes_affine = !cpdi && !std::is_same_v<Stencil, LinearStencil>;
+      const auto run = [&]<class S>() {
+        if constexpr (takes_affine)
+          if (affine) {
+            f.template operator()<S, true>();
+            return;
+          }
+        f.template operator()<S, false>();
+      };
+      if (!plan_.total_lagrangian)
+        run.template operator()<Stencil>();
+      else if constexpr (!cpdi)
+        run.template operator()<ReferenceStencil<Stencil>>();
     });
   }
   // Turns a nodal momentum field into velocity (when divide_by_mass) and zeroes the

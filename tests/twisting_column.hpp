@@ -196,6 +196,10 @@ inline double peak_twist(const History& h) {
   return *std::max_element(h.twist.begin(), h.twist.end());
 }
 
+inline double lowest_twist(const History& h) {
+  return *std::min_element(h.twist.begin(), h.twist.end());
+}
+
 // The difference of two u_z histories over their common samples, against b's: the largest
 // |a - b| over b's largest |value| (`max`), and the root of the summed squares over b's (`rms`).
 struct Difference {

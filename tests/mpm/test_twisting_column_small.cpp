@@ -68,13 +68,12 @@ TEST(TwistingColumn, TheAffineTransferKeepsTheTorsionWithAFreeSurfaceInsideACell
   double largest = 0.0;
   for (std::size_t k = 0; k < std::min(aligned.twist.size(), beyond.twist.size()); ++k)
     largest = std::max(largest, std::abs(aligned.twist[k] - beyond.twist[k]));
-  const double low = *std::min_element(beyond.twist.begin(), beyond.twist.end());
+  const double low = lowest_twist(beyond);
   std::printf(
       "[ twist ] a cell beyond the column: APIC peak %.4f / %.4f rad (faces aligned %.4f / %.4f), "
       "largest difference %.4f rad; FLIP %.4f / %.4f rad; Saint-Venant %.4f rad\n",
-      peak_twist(beyond), low, peak_twist(aligned),
-      *std::min_element(aligned.twist.begin(), aligned.twist.end()), largest, peak_twist(flip),
-      *std::min_element(flip.twist.begin(), flip.twist.end()), peak);
+      peak_twist(beyond), low, peak_twist(aligned), lowest_twist(aligned), largest,
+      peak_twist(flip), lowest_twist(flip), peak);
   EXPECT_LT(largest, 0.1 * peak_twist(aligned));
   EXPECT_LT(low, -0.04);
   EXPECT_NEAR(peak_twist(beyond) / peak, 1.0, 0.12);
