@@ -8,8 +8,10 @@
 #include <algorithm>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -39,6 +41,27 @@ void refuse_deck(const std::string& path) {
                    std::string("this is an ") + to_string(format) +
                        " deck, not a scene; import it with `afemp import " + path +
                        " -o SCENE.toml` and run the scene (docs/import.md)");
+}
+
+// Started by mpirun or mpiexec as one of several processes, each afemp would run the whole
+// scene and write the same output files over each other's: refused before anything is read or
+// written. afemp does not divide a run among MPI ranks yet; one process uses the machine's
+// cores through OpenMP. The launchers' environment says how many processes were started:
+// OMPI_COMM_WORLD_SIZE (Open MPI), PMI_SIZE (MPICH's Hydra, Intel MPI, Slurm's PMI),
+// MV2_COMM_WORLD_SIZE (MVAPICH2). One process under a launcher runs as usual.
+void refuse_several_processes() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "MV2_COMM_WORLD_SIZE"}) {
+    const char* value = std::getenv(name);
+    if (value == nullptr) continue;
+    char* end = nullptr;
+    const long size = std::strtol(value, &end, 10);
+    if (end == value || size <= 1) continue;
+    throw std::runtime_error(
+        "started as one of " + std::to_string(size) + " MPI processes (" + name + "=" + value +
+        "), but afemp does not divide a run among MPI ranks: every process would run the whole "
+        "scene and write the same output over the others'. Run one afemp without mpirun; it uses "
+        "the machine's cores through OpenMP (--threads N, or OMP_NUM_THREADS)");
+  }
 }
 
 void print_warnings(const std::vector<std::string>& warnings) {
@@ -271,6 +294,7 @@ int main(int argc, char** argv) {
   skip_hdf5_exit_cleanup();
   if (!*study_cmd) set_thread_count(threads);
   try {
+    refuse_several_processes();
     if (*run_cmd) return run(scene_path, out_dir, restart_dir);
     if (*study_cmd) return study(scene_path, out_dir, threads);
     if (*import_cmd) return import_command(scene_path, out_dir, import_options);

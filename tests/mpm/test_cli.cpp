@@ -82,6 +82,43 @@ TEST(Cli, RunWritesFieldsAndHistoryStartingFromTheSceneKineticEnergy) {
   EXPECT_NEAR(h.rows.back()[h.column("kinetic")], kinetic, 1e-10 * kinetic);
 }
 
+// Reference: apps/main.cpp: afemp started by a launcher as one of several MPI processes (Open
+// MPI's mpirun sets OMPI_COMM_WORLD_SIZE, MPICH's PMI_SIZE) refuses, exit status 1, naming the
+// count and the variable, before it reads the scene or writes anything (each process would run
+// the whole scene and write over the others' output); one process under a launcher runs as
+// usual, its first history row the scene's kinetic energy (as the test above).
+TEST(Cli, RunRefusesToBeOneOfSeveralMpiProcessesAndWritesNothing) {
+  test::ScratchDir dir;
+  const std::string path = dir.write("tiny.toml",
+                                     "[run]\nend_time = 1.0\nmax_steps = 5\n"
+                                     "[grid]\ncell = 1.0\nmin = [-4, -4, -4]\nmax = [8, 8, 8]\n"
+                                     "[materials.steel]\ndensity = 7.85e-3\nE = 200e3\nnu = 0.3\n"
+                                     "[[bodies]]\nname = \"cube\"\nmaterial = \"steel\"\n"
+                                     "particles_per_cell = 2\nvelocity = [3, -4, 12]\n"
+                                     "shape = { box = { min = [0, 0, 0], max = [2, 2, 2] } }\n");
+  for (const char* variable : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}) {
+    const std::string out = dir.file(std::string("out_") + variable);
+    const test::CommandResult r =
+        test::run_captured(std::string(variable) + "=4 \"" + AFEMP_BINARY + "\" run \"" + path +
+                               "\" -o \"" + out + "\" --threads 1",
+                           dir);
+    EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+    EXPECT_NE(r.err.find("one of 4 MPI processes"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(std::string(variable) + "=4"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << "nothing written";
+  }
+  const std::string out = dir.file("out_one");
+  const test::CommandResult one =
+      test::run_captured("OMPI_COMM_WORLD_SIZE=1 \"" + std::string(AFEMP_BINARY) + "\" run \"" +
+                             path + "\" -o \"" + out + "\" --threads 1",
+                         dir);
+  ASSERT_EQ(one.exit_code, 0) << one.out << one.err;
+  const core::CsvTable h = core::read_csv(out + "/history.csv");
+  ASSERT_GE(h.rows.size(), 1u);
+  const double mass = 7.85e-3 * 64 * 0.125;
+  EXPECT_NEAR(h.rows[0][h.column("kinetic")], 0.5 * mass * 169.0, 1e-10 * 0.5 * mass * 169.0);
+}
+
 // Reference: `afemp check` prints the wall time estimate at the nominal 1.5e6 point-steps per
 // thread and second, and warns of a run of days: 512 particles (a 4-cell cube at 2 per cell per
 // direction) at dt = 5.1226e-5 ms to t = 40,000 ms make 7.8e8 steps, 4.0e11 point-steps, 3.1 days
