@@ -1,0 +1,48 @@
+// The MPI ranks a run divides among (MPI_COMM_WORLD), and what the domain decomposition needs of
+// MPI: reductions whose order is fixed (rank 0's value first), so that every rank holds the same
+// bits and a run on N ranks repeats itself, and the exchange of byte buffers among neighbours. No
+// MPI type appears here: the modules that use it need no MPI headers.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace afemp::core {
+
+// Starts MPI (threads funneled: a rank's OpenMP threads make no MPI call) and ends it; one per
+// process, in main, before any other call here.
+class MpiSession {
+ public:
+  MpiSession(int& argc, char**& argv);
+  ~MpiSession();
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+};
+
+int rank_index();  // this process's rank
+int rank_count();
+
+// The sum of one value per rank, added in rank order: ((v_0 + v_1) + v_2) + ... on every rank.
+double sum_in_rank_order(double value);
+// The same for each element (every rank passes as many).
+void sum_in_rank_order(std::span<double> values);
+double min_over_ranks(double value);
+std::int64_t sum_over_ranks(std::int64_t value);
+
+struct RankMessage {
+  int rank = 0;  // to (outgoing) or from (incoming)
+  std::vector<std::byte> bytes;
+};
+
+// Every rank calls it with what it sends (at most one message per rank); each receives
+// what was sent to it, ordered by sender, the ranks that sent it nothing left out.
+std::vector<RankMessage> exchange(std::span<const RankMessage> outgoing);
+
+// Ends the run on every rank (MPI_Abort) after printing why on this one: a rank that failed
+// cannot wait for the others in a collective call.
+[[noreturn]] void abort_ranks(const std::string& why, int exit_code);
+
+}  // namespace afemp::core
