@@ -90,14 +90,11 @@ void BackgroundGrid::resize_fields() {
 }
 
 std::array<int, 3> BackgroundGrid::node_of_slot(std::size_t slot) const {
-  const std::int64_t block = active_blocks_[slot / block_nodes];
+  const std::array<int, 3> b = block_coord(active_blocks_[slot / block_nodes]);
   const int local = static_cast<int>(slot % block_nodes);
-  const std::int64_t bx = blocks_[0], by = blocks_[1];
-  const int bi = static_cast<int>(block % bx), bj = static_cast<int>((block / bx) % by),
-            bk = static_cast<int>(block / (bx * by));
-  return {bi * block_edge + local % block_edge - halo_,
-          bj * block_edge + (local / block_edge) % block_edge - halo_,
-          bk * block_edge + local / (block_edge * block_edge) - halo_};
+  return {b[0] * block_edge + local % block_edge - halo_,
+          b[1] * block_edge + (local / block_edge) % block_edge - halo_,
+          b[2] * block_edge + local / (block_edge * block_edge) - halo_};
 }
 
 std::size_t BackgroundGrid::bytes() const {

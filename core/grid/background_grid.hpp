@@ -166,6 +166,20 @@ class BackgroundGrid {
   std::size_t active_block_count() const { return active_blocks_.size(); }
   // Grid node (i, j, k) of a slot.
   std::array<int, 3> node_of_slot(std::size_t slot) const;
+  // Active block a (slots a x 64 ..) by its index in the block directory (ascending in a), the
+  // block coordinates of an index (block (i, j, k) stores nodes 4i - halo .. 4i + 3 - halo along
+  // x, and so on), and the active number of a directory index (-1: inactive).
+  std::int64_t active_block(std::size_t a) const { return active_blocks_[a]; }
+  std::array<int, 3> block_coord(std::int64_t block) const {
+    const std::int64_t bx = blocks_[0], by = blocks_[1];
+    return {static_cast<int>(block % bx), static_cast<int>((block / bx) % by),
+            static_cast<int>(block / (bx * by))};
+  }
+  std::int32_t active_number(std::int64_t block) const {
+    return block >= 0 && static_cast<std::size_t>(block) < directory_.size()
+               ? directory_[static_cast<std::size_t>(block)]
+               : -1;
+  }
   // Calls f(slot, node) for every slot of every active block; blocks split statically among
   // the threads of an enclosing parallel region (call from inside one, or serially).
   template <class F>

@@ -17,14 +17,15 @@ struct Bisection {
   std::span<const double> weights;
   BlockPartition& result;
 
-  // Blocks `ids` to ranks [first, first + count).
-  void split(std::vector<std::size_t>& ids, int first, int count) {
+  // Blocks `ids` to ranks [first, first + count); returns the child that names them (a cut's
+  // index, or -1 - rank).
+  int split(std::vector<std::size_t>& ids, int first, int count) {
     if (count == 1) {
       for (std::size_t i : ids) {
         result.owner[i] = first;
         result.load[static_cast<std::size_t>(first)] += weights[i];
       }
-      return;
+      return -1 - first;
     }
     BlockCoord lo = blocks[ids.front()], hi = lo;
     for (std::size_t i : ids)
@@ -62,10 +63,15 @@ struct Bisection {
         cut = k + 1;
       }
     }
+    const auto index = static_cast<int>(result.cuts.size());
+    result.cuts.push_back({static_cast<int>(axis), blocks[ids[cut]], 0, 0});
     std::vector<std::size_t> upper(ids.begin() + static_cast<std::ptrdiff_t>(cut), ids.end());
     ids.resize(cut);
-    split(ids, first, lower);
-    split(upper, first + lower, count - lower);
+    const int lower_child = split(ids, first, lower);
+    const int upper_child = split(upper, first + lower, count - lower);
+    result.cuts[static_cast<std::size_t>(index)].lower = lower_child;
+    result.cuts[static_cast<std::size_t>(index)].upper = upper_child;
+    return index;
   }
 };
 
@@ -91,6 +97,24 @@ BlockPartition bisect_blocks(std::span<const BlockCoord> blocks, std::span<const
   std::iota(ids.begin(), ids.end(), std::size_t{0});
   Bisection{blocks, weights, result}.split(ids, 0, ranks);
   return result;
+}
+
+int BlockPartition::rank_of(const BlockCoord& b) const {
+  int node = cuts.empty() ? -1 : 0;
+  while (node >= 0) {
+    const Cut& c = cuts[static_cast<std::size_t>(node)];
+    const auto axis = static_cast<std::size_t>(c.axis);
+    bool below = false;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::size_t a = (axis + k) % 3;
+      if (b[a] != c.first_upper[a]) {
+        below = b[a] < c.first_upper[a];
+        break;
+      }
+    }
+    node = below ? c.lower : c.upper;
+  }
+  return -1 - node;
 }
 
 std::vector<RankHalo> rank_halos(std::span<const BlockCoord> blocks, std::span<const int> owner,

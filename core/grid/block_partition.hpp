@@ -14,10 +14,22 @@ namespace afemp::core {
 
 using BlockCoord = std::array<int, 3>;
 
-// Owner rank of each block, in the order given, and each rank's summed weight.
+// Owner rank of each block, in the order given, and each rank's summed weight; and the cuts, so
+// that any block, one with no weight included (a block only the halo of another reaches), has a
+// rank: rank_of.
 struct BlockPartition {
   std::vector<int> owner;
   std::vector<double> load;
+  // A cut sends a block below it to `lower`, else to `upper`: below when its coordinates, taken
+  // in the order (axis, axis + 1, axis + 2) mod 3, come before `first_upper`'s. A child is a cut's
+  // index, or, when negative, the rank -1 - child.
+  struct Cut {
+    int axis = 0;
+    BlockCoord first_upper{};
+    int lower = -1, upper = -1;
+  };
+  std::vector<Cut> cuts;  // cuts[0] the first; empty for one rank
+  int rank_of(const BlockCoord& b) const;
 };
 
 // Splits the blocks among `ranks` ranks (blocks.size() >= ranks >= 1; weights >= 0, one per

@@ -75,7 +75,8 @@ TEST(BlockPartition, ARowCutInTwoSharesTwoLayersOfBlocks) {
 // Reference: the loads sum to the total weight (every block owned by one rank), and each cut
 // misses its share by at most half the heaviest block, so after ceil(log2 5) = 3 levels a
 // rank's load is within 3 heaviest blocks of total / 5; the split depends on the blocks, not on
-// the order they are given in.
+// the order they are given in; the cuts give every block its owner, and a block below every
+// block (above every block) rank 0 (the last rank).
 TEST(BlockPartition, UnequalWeightsBalanceWithinTheHeaviestBlockPerLevelInAnyOrder) {
   std::vector<BlockCoord> blocks = lattice(10, 6, 3);
   std::vector<double> weights(blocks.size());
@@ -88,7 +89,13 @@ TEST(BlockPartition, UnequalWeightsBalanceWithinTheHeaviestBlockPerLevelInAnyOrd
   EXPECT_NEAR(std::accumulate(p.load.begin(), p.load.end(), 0.0), total, 1e-9 * total);
   for (double load : p.load) EXPECT_LE(std::abs(load - total / 5), 3.0 * heaviest) << load;
   std::map<BlockCoord, int> owner;
-  for (std::size_t i = 0; i < blocks.size(); ++i) owner[blocks[i]] = p.owner[i];
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    owner[blocks[i]] = p.owner[i];
+    EXPECT_EQ(p.rank_of(blocks[i]), p.owner[i]) << "the cuts give each block its owner";
+  }
+  // Beyond the blocks (a halo block): the rank of the nearest side of every cut.
+  EXPECT_EQ(p.rank_of({-1, -1, -1}), 0);
+  EXPECT_EQ(p.rank_of({10, 6, 3}), 4);
 
   std::vector<std::size_t> order(blocks.size());
   std::iota(order.begin(), order.end(), std::size_t{0});

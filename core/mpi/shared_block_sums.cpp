@@ -1,0 +1,131 @@
+// Shared blocks' nodal sums across ranks (shared_block_sums.hpp). A message holds, per block,
+// its directory index and then each array's values of the block's 64 nodes field by field.
+#include "core/mpi/shared_block_sums.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <map>
+#include <vector>
+
+#include "core/mpi/ranks.hpp"
+
+namespace afemp::core {
+namespace {
+
+constexpr std::size_t block_nodes = BackgroundGrid::block_nodes;
+
+// Doubles per block over all arrays and fields.
+std::size_t block_values(const BackgroundGrid& g, std::span<const NodalArray> arrays) {
+  std::size_t n = 0;
+  for (const NodalArray& a : arrays)
+    n += static_cast<std::size_t>(a.components) * block_nodes *
+         static_cast<std::size_t>(g.field_count());
+  return n;
+}
+
+// Copies active block a's values out of the grid (to) or into it (from).
+void copy_block(const BackgroundGrid& g, std::span<const NodalArray> arrays, std::size_t a,
+                double* to, const double* from) {
+  for (const NodalArray& array : arrays) {
+    const auto c = static_cast<std::size_t>(array.components);
+    for (int f = 0; f < g.field_count(); ++f) {
+      double* at =
+          array.data + (static_cast<std::size_t>(f) * g.slot_count() + a * block_nodes) * c;
+      const std::size_t n = block_nodes * c;
+      if (to != nullptr) {
+        std::memcpy(to, at, n * sizeof(double));
+        to += n;
+      } else {
+        std::memcpy(at, from, n * sizeof(double));
+        from += n;
+      }
+    }
+  }
+}
+
+// Appends one block's record: its directory index, then its values.
+void append(std::vector<std::byte>& bytes, std::int64_t block, const std::vector<double>& values) {
+  const auto* b = reinterpret_cast<const std::byte*>(&block);
+  bytes.insert(bytes.end(), b, b + sizeof block);
+  const auto* v = reinterpret_cast<const std::byte*>(values.data());
+  bytes.insert(bytes.end(), v, v + values.size() * sizeof(double));
+}
+
+// The per-rank buffers that are not empty, as messages; exchanged.
+std::vector<RankMessage> send(std::vector<std::vector<std::byte>>& to) {
+  std::vector<RankMessage> out;
+  for (std::size_t r = 0; r < to.size(); ++r)
+    if (!to[r].empty()) out.push_back({static_cast<int>(r), std::move(to[r])});
+  return exchange(out);
+}
+
+}  // namespace
+
+void sum_shared_blocks(BackgroundGrid& grid, std::span<const NodalArray> arrays,
+                       const BlockPartition& partition) {
+  const int ranks = rank_count(), me = rank_index();
+  if (ranks == 1) return;
+  const std::size_t per = block_values(grid, arrays);
+  const std::size_t record = sizeof(std::int64_t) + per * sizeof(double);
+  std::vector<std::vector<std::byte>> to(static_cast<std::size_t>(ranks));
+  std::vector<double> values(per);
+  for (std::size_t a = 0; a < grid.active_block_count(); ++a) {
+    const std::int64_t block = grid.active_block(a);
+    const int home = partition.rank_of(grid.block_coord(block));
+    if (home == me) continue;
+    copy_block(grid, arrays, a, values.data(), nullptr);
+    append(to[static_cast<std::size_t>(home)], block, values);
+  }
+  const std::vector<RankMessage> in = send(to);
+
+  // Each owned block's partial sums, by rank: the senders' in the order received (ascending
+  // rank), this rank's own inserted at its place.
+  struct Part {
+    int rank;
+    const double* values;
+  };
+  std::map<std::int64_t, std::vector<Part>> parts;
+  std::size_t records = 0;
+  for (const RankMessage& m : in) records += m.bytes.size() / record;
+  std::vector<double> received(records * per), own;
+  double* next = received.data();
+  for (const RankMessage& m : in)
+    for (std::size_t at = 0; at < m.bytes.size(); at += record, next += per) {
+      std::int64_t block = 0;
+      std::memcpy(&block, m.bytes.data() + at, sizeof block);
+      std::memcpy(next, m.bytes.data() + at + sizeof block, per * sizeof(double));
+      parts[block].push_back({m.rank, next});
+    }
+  own.resize(parts.size() * per);
+  std::vector<std::vector<std::byte>> reply(static_cast<std::size_t>(ranks));
+  std::vector<double> total(per);
+  std::size_t k = 0;
+  for (auto& [block, list] : parts) {
+    const std::int32_t a = grid.active_number(block);
+    if (a >= 0) {
+      double* mine = own.data() + k * per;
+      copy_block(grid, arrays, static_cast<std::size_t>(a), mine, nullptr);
+      list.push_back({me, mine});
+      std::stable_sort(list.begin(), list.end(),
+                       [](const Part& x, const Part& y) { return x.rank < y.rank; });
+    }
+    ++k;
+    std::copy_n(list.front().values, per, total.data());
+    for (std::size_t p = 1; p < list.size(); ++p)
+      for (std::size_t i = 0; i < per; ++i) total[i] += list[p].values[i];
+    if (a >= 0) copy_block(grid, arrays, static_cast<std::size_t>(a), nullptr, total.data());
+    for (const Part& p : list)
+      if (p.rank != me) append(reply[static_cast<std::size_t>(p.rank)], block, total);
+  }
+  for (const RankMessage& m : send(reply))
+    for (std::size_t at = 0; at < m.bytes.size(); at += record) {
+      std::int64_t block = 0;
+      std::memcpy(&block, m.bytes.data() + at, sizeof block);
+      std::memcpy(values.data(), m.bytes.data() + at + sizeof block, per * sizeof(double));
+      copy_block(grid, arrays, static_cast<std::size_t>(grid.active_number(block)), nullptr,
+                 values.data());
+    }
+}
+
+}  // namespace afemp::core

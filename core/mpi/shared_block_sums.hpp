@@ -1,0 +1,27 @@
+// The nodal sums of the blocks that several ranks' particles reach, made whole on every rank
+// that holds them: each rank sends its partial sums of every active block another rank owns
+// (BlockPartition::rank_of) to that rank, the owner adds the partial sums of each block in rank
+// order (its own at its place) and sends the totals back. A node is then the same on every
+// rank, and a run on N ranks repeats itself bit for bit; the order differs from one rank's
+// (rank count independence holds to round-off, not to the bit).
+#pragma once
+
+#include <span>
+
+#include "core/grid/background_grid.hpp"
+#include "core/grid/block_partition.hpp"
+
+namespace afemp::core {
+
+// A nodal array of the grid: fields x slots entries of `components` doubles each (mass 1,
+// momentum and force 3), as BackgroundGrid stores them.
+struct NodalArray {
+  double* data = nullptr;
+  int components = 1;
+};
+
+// Collective: every rank calls it with the same arrays, after its own particles' sums.
+void sum_shared_blocks(BackgroundGrid& grid, std::span<const NodalArray> arrays,
+                       const BlockPartition& partition);
+
+}  // namespace afemp::core
