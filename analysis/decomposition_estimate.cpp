@@ -34,6 +34,7 @@ std::vector<DecompositionEstimate> estimate_decomposition(const core::Model& mod
       }
     cell = std::cbrt((hi.x - origin.x) * (hi.y - origin.y) * (hi.z - origin.z) /
                      static_cast<double>(points.size()));
+    if (!(cell > 0.0)) throw std::invalid_argument("the scene's nodes span no volume");
   }
   const double edge = core::BackgroundGrid::block_edge * cell;
   std::map<core::BlockCoord, double> weight;

@@ -76,7 +76,8 @@ struct Bisection {
 };
 
 std::uint64_t key_of(const BlockCoord& b) {
-  // Blocks of a grid with a billion cells per axis at most, shifted past the halo's -1.
+  // 21 bits per axis (grids of up to 2^21 - 2 blocks, 8 million cells, along each), shifted
+  // past the halo's -1.
   const auto u = [](int v) { return static_cast<std::uint64_t>(static_cast<std::int64_t>(v) + 1); };
   return (u(b[2]) << 42) | (u(b[1]) << 21) | u(b[0]);
 }

@@ -5,10 +5,9 @@
 
 #include <mpi.h>
 
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace afemp::core {
 namespace {
@@ -125,13 +124,6 @@ std::vector<RankMessage> exchange(std::span<const RankMessage> outgoing) {
   check(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE),
         "MPI_Waitall");
   return incoming;
-}
-
-void abort_ranks(const std::string& why, int exit_code) {
-  std::fprintf(stderr, "afemp: rank %d: %s\n", rank_index(), why.c_str());
-  std::fflush(stderr);
-  MPI_Abort(MPI_COMM_WORLD, exit_code);
-  std::abort();
 }
 
 }  // namespace afemp::core

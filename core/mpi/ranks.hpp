@@ -7,7 +7,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
-#include <string>
 #include <vector>
 
 namespace afemp::core {
@@ -40,9 +39,5 @@ struct RankMessage {
 // Every rank calls it with what it sends (at most one message per rank); each receives
 // what was sent to it, ordered by sender, the ranks that sent it nothing left out.
 std::vector<RankMessage> exchange(std::span<const RankMessage> outgoing);
-
-// Ends the run on every rank (MPI_Abort) after printing why on this one: a rank that failed
-// cannot wait for the others in a collective call.
-[[noreturn]] void abort_ranks(const std::string& why, int exit_code);
 
 }  // namespace afemp::core
