@@ -58,25 +58,27 @@ int main(int argc, char** argv) {
     if (partition.rank_of(g.block_coord(g.active_block(a))) != me) ++shared;
 
   using clock = std::chrono::steady_clock;
+  // Calls f(slot, m N, V grad N) for each of particle i's 8 nodes (the linear hat).
+  const auto each_node = [&](std::size_t i, auto&& f) {
+    const auto c = g.cell_of(all.position[i]);
+    const core::CellWeights w = g.weights(all.position[i], c);
+    std::array<std::int32_t, 8> slots;
+    g.node_slots(c, slots);
+    for (std::size_t n = 0; n < 8; ++n)
+      f(static_cast<std::size_t>(slots[n]), all.mass[i] * w.w[n], all.volume[i] * w.grad[n]);
+  };
   std::vector<double> scatter_s, sum_s;
   for (int rep = 0; rep < 50; ++rep) {
     const auto t0 = clock::now();
     std::fill(g.mass.begin(), g.mass.end(), 0.0);
     std::fill(g.momentum.begin(), g.momentum.end(), core::Vec3{});
     std::fill(g.force.begin(), g.force.end(), core::Vec3{});
-    for (std::size_t i : mine) {
-      const auto c = g.cell_of(all.position[i]);
-      const core::CellWeights w = g.weights(all.position[i], c);
-      std::array<std::int32_t, 8> slots;
-      g.node_slots(c, slots);
-      for (std::size_t n = 0; n < 8; ++n) {
-        const auto s = static_cast<std::size_t>(slots[n]);
-        const double mw = all.mass[i] * w.w[n];
+    for (std::size_t i : mine)
+      each_node(i, [&](std::size_t s, double mw, const core::Vec3& vg) {
         g.mass[s] += mw;
         g.momentum[s] += mw * all.velocity[i];
-        g.force[s] -= all.volume[i] * w.grad[n];
-      }
-    }
+        g.force[s] -= vg;
+      });
     const auto t1 = clock::now();
     core::sum_shared_blocks(g, arrays, partition);
     const auto t2 = clock::now();
@@ -107,35 +109,21 @@ int main(int argc, char** argv) {
     std::fill(qm.begin(), qm.end(), 0);
     std::fill(qp.begin(), qp.end(), 0);
     std::fill(qf.begin(), qf.end(), 0);
-    for (std::size_t i : mine) {
-      const auto c = g.cell_of(all.position[i]);
-      const core::CellWeights w = g.weights(all.position[i], c);
-      std::array<std::int32_t, 8> slots;
-      g.node_slots(c, slots);
-      for (std::size_t n = 0; n < 8; ++n) {
-        const auto s = static_cast<std::size_t>(slots[n]);
-        const double mw = all.mass[i] * w.w[n];
+    for (std::size_t i : mine)
+      each_node(i, [&](std::size_t s, double mw, const core::Vec3& vg) {
         qm[s] += std::llrint(mw * scale[0]);
         for (int k = 0; k < 3; ++k) {
           qp[3 * s + static_cast<std::size_t>(k)] +=
               std::llrint(mw * all.velocity[i][k] * scale[1]);
-          qf[3 * s + static_cast<std::size_t>(k)] -=
-              std::llrint(all.volume[i] * w.grad[n][k] * scale[2]);
+          qf[3 * s + static_cast<std::size_t>(k)] -= std::llrint(vg[k] * scale[2]);
         }
-      }
-    }
+      });
     fixed_s.push_back(std::chrono::duration<double>(clock::now() - t0).count());
   }
   // The fixed-point masses against the same scatter in doubles (before any shared block's sum).
   std::vector<double> mass(g.mass.size(), 0.0);
-  for (std::size_t i : mine) {
-    const auto c = g.cell_of(all.position[i]);
-    const core::CellWeights w = g.weights(all.position[i], c);
-    std::array<std::int32_t, 8> slots;
-    g.node_slots(c, slots);
-    for (std::size_t n = 0; n < 8; ++n)
-      mass[static_cast<std::size_t>(slots[n])] += all.mass[i] * w.w[n];
-  }
+  for (std::size_t i : mine)
+    each_node(i, [&](std::size_t s, double mw, const core::Vec3&) { mass[s] += mw; });
   double mass_difference = 0.0, largest_mass = 0.0;
   for (std::size_t s = 0; s < mass.size(); ++s) {
     largest_mass = std::max(largest_mass, mass[s]);
