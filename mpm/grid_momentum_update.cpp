@@ -136,6 +136,9 @@ void MpmSolver::grid_momentum_update(double dt) {
 
     g.for_each_slot([&](std::size_t slot, const std::array<int, 3>& node) {
       const NodeConstraint c = constraints(node);
+      // On ranks, a node of a shared block is updated on every rank that holds it and its work
+      // booked by the block's owner alone.
+      const double booked = books_node(slot) ? 1.0 : 0.0;
       for (int f = 0; f < fields; ++f) {  // each velocity field on its own (contact after)
         const std::size_t s = slot + static_cast<std::size_t>(f) * stride;
         const double m = g.mass[s];
@@ -153,13 +156,13 @@ void MpmSolver::grid_momentum_update(double dt) {
         g.velocity_new[s] = v_new;
         // An absorbing face damps the stored velocity; the gravity work and the shared-field
         // shift below take the undamped one, as before the damping.
-        if (c.damped) work += absorb(m, c.damping, dt, v, g.velocity_new[s]);
-        if (c.far) work += far_field(node, f, c.far, m, dt, v, g.velocity_new[s]);
+        if (c.damped) work += booked * absorb(m, c.damping, dt, v, g.velocity_new[s]);
+        if (c.far) work += booked * far_field(node, f, c.far, m, dt, v, g.velocity_new[s]);
         // A field of self-updating points only: their owner counted its gravity work.
         const bool counted =
             !field_self_updated_.empty() && field_self_updated_[static_cast<std::size_t>(f)];
         if (!shared || !(shared_.mass[s] > 0.0)) {
-          if (body_force && !counted) work += 0.5 * dt * m * core::dot(gravity, v + v_new);
+          if (body_force && !counted) work += booked * 0.5 * dt * m * core::dot(gravity, v + v_new);
           continue;
         }
         // Contact nodes share this field with particles or bonded nodes of their body: the
@@ -174,7 +177,7 @@ void MpmSolver::grid_momentum_update(double dt) {
                     c, vo, vo_new);
           start = vo - v;
           updated = vo_new - v_new;
-          if (body_force) work += 0.5 * dt * mo * core::dot(gravity, vo + vo_new);
+          if (body_force) work += booked * 0.5 * dt * mo * core::dot(gravity, vo + vo_new);
         }
         shared_.start[s] = start;
         shared_.updated[s] = updated;

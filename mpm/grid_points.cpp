@@ -17,6 +17,8 @@ void MpmSolver::set_grid_points(GridPoints* points) {
     throw std::invalid_argument(
         "points on the grid beside the particles need the MUSL or USF scheme (the scene "
         "parser says so too)");
+  if (points && ranks_)
+    throw std::invalid_argument("points on the grid cannot join a run divided among ranks yet");
   points_ = points;
   field_self_updated_.clear();
   if (!points) return;

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <numeric>
 #include <sstream>
+#include <stdexcept>
 
 #include "afemp/errors.hpp"
 #include "core/detonation_paths.hpp"
@@ -152,6 +153,8 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
 
 void MpmSolver::add_particles(const Particles& more) {
   if (more.size() == 0) return;
+  if (ranks_)
+    throw std::invalid_argument("particles cannot be added to a run divided among ranks yet");
   Particles& p = particles_;
   std::int32_t next_id = next_particle_id();
   const std::size_t n0 = p.size();
@@ -228,7 +231,10 @@ std::int32_t MpmSolver::next_particle_id() const {
 
 double MpmSolver::stable_time_step() const {
   if (scene_.run.fixed_time_step > 0.0) return scene_.run.fixed_time_step;
-  return scene_.run.time_step_factor * grid_.cell() / signal_speed_;
+  const double speed =
+      ranks_ ? ranks_->max_over_ranks(signal_wave_) + ranks_->max_over_ranks(signal_flow_)
+             : signal_speed_;
+  return scene_.run.time_step_factor * grid_.cell() / speed;
 }
 
 void MpmSolver::step(double dt) {
@@ -304,6 +310,7 @@ void MpmSolver::step(double dt) {
   }
   time_ += dt;
   ++steps_;
+  if (ranks_) migrate_particles();
 }
 
 void MpmSolver::scale_velocities(double factor) {
@@ -342,6 +349,21 @@ double MpmSolver::max_signal_speed() const {
     speed2 = std::max(speed2, core::dot(p.velocity[i], p.velocity[i]));
   }
   return wave + std::sqrt(speed2);
+}
+
+double MpmSolver::max_signal_parts() {
+  const Particles& p = particles_;
+  double wave = 0.0, speed2 = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const core::Material& m = *materials_[static_cast<std::size_t>(p.material[i])];
+    const core::PointState st{p.stress[i], p.plastic_strain[i], p.temperature[i], p.energy[i],
+                              p.mass[i] / p.volume[i]};
+    wave = std::max(wave, core::wave_speed(m, st));
+    speed2 = std::max(speed2, core::dot(p.velocity[i], p.velocity[i]));
+  }
+  signal_wave_ = wave;
+  signal_flow_ = std::sqrt(speed2);
+  return signal_wave_ + signal_flow_;
 }
 
 std::string MpmSolver::time_step_setter() const {
@@ -428,6 +450,28 @@ Energies MpmSolver::energies() const {
   out.plastic = plastic_work_;
   out.viscous = viscous_work_;
   out.external_work = external_work_;
+  // On ranks: every rank's sums and accumulators added in rank order (the stages that book the
+  // other accumulators do not run on ranks).
+  if (ranks_) {
+    std::vector<double> sums{out.kinetic, out.internal, out.plastic, out.viscous,
+                             out.external_work};
+    for (const BodySums& b : out.bodies)
+      sums.insert(sums.end(),
+                  {b.mass, b.momentum.x, b.momentum.y, b.momentum.z, b.kinetic, b.internal});
+    ranks_->sum_in_rank_order(sums);
+    out.kinetic = sums[0];
+    out.internal = sums[1];
+    out.plastic = sums[2];
+    out.viscous = sums[3];
+    out.external_work = sums[4];
+    for (std::size_t k = 0; k < nb; ++k) {
+      const double* b = sums.data() + 5 + 6 * k;
+      out.bodies[k].mass = b[0];
+      out.bodies[k].momentum = Vec3{b[1], b[2], b[3]};
+      out.bodies[k].kinetic = b[4];
+      out.bodies[k].internal = b[5];
+    }
+  }
   out.contact = contact_energy_;
   out.outflow = outflow_energy_;
   out.outflow_mass = outflow_mass_;

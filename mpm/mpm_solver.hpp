@@ -8,10 +8,14 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <span>
+#include <string>
 #include <vector>
 
 #include "afemp/energies.hpp"
 #include "core/grid/background_grid.hpp"
+#include "core/grid/block_partition.hpp"
+#include "core/rank_link.hpp"
 #include "core/scene.hpp"
 #include "mpm/absorbing_faces.hpp"
 #include "mpm/grid_points.hpp"
@@ -108,6 +112,22 @@ class MpmSolver {
   // Saves or restores the solver's state (a checkpoint, core/state_archive.hpp; mpm_state.cpp).
   // Restoring needs a solver built from the same scene.
   void state(core::StateArchive& archive);
+  // Divides the run among the ranks of `link` (core/rank_link.hpp; mpm/domain_decomposition.cpp).
+  // Collective. The particles this solver was built with must be the whole run's, the same on
+  // every rank (a scene's generation): the grid blocks that hold particles are split by
+  // recursive coordinate bisection weighted by their particles (core/grid/block_partition.hpp)
+  // and each rank keeps the particles of its blocks. From then on every scatter is followed by
+  // the shared blocks' sums, the particles whose block has another rank move to it after each
+  // step, the stable step is the smallest over the ranks and energies() sums in rank order.
+  // Throws std::invalid_argument, on every rank alike, for a scene with a stage that does not
+  // run on ranks yet (naming it) and for more ranks than blocks that hold particles.
+  void divide_among_ranks(core::RankLink& link);
+  bool on_ranks() const { return ranks_ != nullptr; }
+  const core::BlockPartition& partition() const { return partition_; }
+  // Wall seconds spent summing shared blocks and moving particles between ranks, and the
+  // particles this rank has sent to others so far.
+  double rank_seconds() const { return rank_seconds_; }
+  long particles_sent() const { return particles_sent_; }
   // Active grid cells of the last binning.
   std::size_t active_cells() const;
   // Bytes held by particles, grid and solver scratch.
@@ -209,6 +229,18 @@ class MpmSolver {
   void strain_stress_batch(const MaterialBatch& batch, const Strength& strength, const Eos& eos,
                            double dt, const StrainSweep& sweep, int thread_slot_offset);
   void reorder_particles();
+  // On ranks (domain_decomposition.cpp): what keeps a scene on one rank (empty: nothing), the
+  // shared blocks' sums of the given nodal arrays after a scatter, which active blocks this rank
+  // owns (after each binning), and the particles sent to the rank of their block after a step.
+  std::string ranks_refusal() const;
+  void sum_shared_blocks(std::span<const core::NodalArray> arrays);
+  void mark_owned_blocks();
+  void migrate_particles();
+  // Whether the node of `slot` belongs to a block this rank owns: its nodal sums (external
+  // work) are booked by one rank only.
+  bool books_node(std::size_t slot) const {
+    return owned_block_.empty() || owned_block_[slot / core::BackgroundGrid::block_nodes] != 0;
+  }
   // The material batches from the particles' order (materials contiguous).
   void rebuild_batches();
   // Per-particle data made from a particle's volume, the same at the start, for particles
@@ -273,7 +305,10 @@ class MpmSolver {
   template <class Stencil>
   void particle_wall_kernel(std::size_t wall, double dt);
   void raise_if_bad(const char* field) const;
+  // max_p c_p + max_p |v_p| over this process's particles; max_signal_parts sets the two parts
+  // as well.
   double max_signal_speed() const;
+  double max_signal_parts();
 
   const core::Scene& scene_;
   StepPlan plan_;
@@ -371,11 +406,22 @@ class MpmSolver {
   std::vector<double> wall_weights_, wall_inverse_mass_, wall_gap_, wall_normal_impulse_;
   std::vector<Vec3> wall_tangent_impulse_;
 
+  // The ranks the run is divided among (nullptr: this process runs all of it), the blocks'
+  // owners, and per active block whether this rank owns it (empty off ranks).
+  core::RankLink* ranks_ = nullptr;
+  core::BlockPartition partition_;
+  std::vector<char> owned_block_;
+  double rank_seconds_ = 0.0;
+  long particles_sent_ = 0;
+
   // Accumulators and state.
   double plastic_work_ = 0.0;
   double viscous_work_ = 0.0;  // heat of the bulk viscosity (Energies::viscous)
   double external_work_ = 0.0;
   double signal_speed_ = 0.0;  // max c + max |v| at the last stress update
+  // Its two parts, max c and max |v|: on ranks each is the largest over the ranks (their sum
+  // may come from two ranks; the sum of one rank's parts would not be the whole run's).
+  double signal_wave_ = 0.0, signal_flow_ = 0.0;
   long steps_ = 0;
   double time_ = 0.0;
   std::vector<long> stage_counts_;

@@ -126,6 +126,22 @@ void MpmSolver::particle_to_grid(bool mass_momentum, bool force) {
   });
   if (force && !load_acceleration_.empty()) add_particle_loads();
   if (points_) points_->to_grid(access(), mass_momentum, force);
+  if (ranks_) {
+    core::BackgroundGrid& g = grid_;
+    const core::NodalArray mass{g.mass.data(), 1},
+        momentum{reinterpret_cast<double*>(g.momentum.data()), 3},
+        nodal_force{reinterpret_cast<double*>(g.force.data()), 3};
+    if (mass_momentum && force) {
+      const core::NodalArray arrays[] = {mass, momentum, nodal_force};
+      sum_shared_blocks(arrays);
+    } else if (mass_momentum) {
+      const core::NodalArray arrays[] = {mass, momentum};
+      sum_shared_blocks(arrays);
+    } else {
+      const core::NodalArray arrays[] = {nodal_force};
+      sum_shared_blocks(arrays);
+    }
+  }
 }
 
 template <class Stencil, bool Affine>
@@ -152,6 +168,10 @@ void MpmSolver::remap_kernel() {
     }
   });
   if (points_) points_->remap(access());
+  if (ranks_) {
+    const core::NodalArray remapped[] = {{reinterpret_cast<double*>(g.velocity_remap.data()), 3}};
+    sum_shared_blocks(remapped);
+  }
   apply_velocity_conditions(g.velocity_remap, true);
   // A wall node held this step (its v or v_new pointed into the wall) did not move
   // normally (positions move with v_new): its remapped normal velocity is zeroed too, or

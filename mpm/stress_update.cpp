@@ -88,7 +88,9 @@ void MpmSolver::strain_stress_update(double dt, StrainPart part) {
   viscous_work_ += heat;
   // A far field's ambient pressure does -p_inf dV on the particles (absorbing_faces.hpp).
   if (ambient_pressure_ != 0.0) external_work_ -= ambient_pressure_ * swept;
-  signal_speed_ = wave + std::sqrt(speed2);
+  signal_wave_ = wave;
+  signal_flow_ = std::sqrt(speed2);
+  signal_speed_ = signal_wave_ + signal_flow_;
   raise_if_bad("stress");
 }
 

@@ -175,6 +175,11 @@ class BackgroundGrid {
     return {static_cast<int>(block % bx), static_cast<int>((block / bx) % by),
             static_cast<int>(block / (bx * by))};
   }
+  // The block that stores cell c's lowest node: the cell's block, by which a run divided among
+  // ranks gives each particle its rank (mpm/domain_decomposition.cpp).
+  std::array<int, 3> block_of_cell(const std::array<int, 3>& c) const {
+    return {(c[0] + halo_) / block_edge, (c[1] + halo_) / block_edge, (c[2] + halo_) / block_edge};
+  }
   std::int32_t active_number(std::int64_t block) const {
     return block >= 0 && static_cast<std::size_t>(block) < directory_.size()
                ? directory_[static_cast<std::size_t>(block)]

@@ -9,6 +9,8 @@
 #include <span>
 #include <vector>
 
+#include "core/rank_link.hpp"
+
 namespace afemp::core {
 
 // Starts MPI (threads funneled: a rank's OpenMP threads make no MPI call) and ends it; one per
@@ -30,11 +32,6 @@ double sum_in_rank_order(double value);
 void sum_in_rank_order(std::span<double> values);
 double min_over_ranks(double value);
 std::int64_t sum_over_ranks(std::int64_t value);
-
-struct RankMessage {
-  int rank = 0;  // to (outgoing) or from (incoming)
-  std::vector<std::byte> bytes;
-};
 
 // Every rank calls it with what it sends (at most one message per rank); each receives
 // what was sent to it, ordered by sender, the ranks that sent it nothing left out.

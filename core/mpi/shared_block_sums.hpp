@@ -10,15 +10,9 @@
 
 #include "core/grid/background_grid.hpp"
 #include "core/grid/block_partition.hpp"
+#include "core/rank_link.hpp"
 
 namespace afemp::core {
-
-// A nodal array of the grid: fields x slots entries of `components` doubles each (mass 1,
-// momentum and force 3), as BackgroundGrid stores them.
-struct NodalArray {
-  double* data = nullptr;
-  int components = 1;
-};
 
 // Collective: every rank calls it with the same arrays, after its own particles' sums.
 void sum_shared_blocks(BackgroundGrid& grid, std::span<const NodalArray> arrays,

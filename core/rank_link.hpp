@@ -1,0 +1,49 @@
+// What a solver divided among MPI ranks asks of the other ranks, with no MPI type in sight: the
+// library (libafemp) holds the solvers' side of the decomposition and needs no MPI; programs
+// that run on ranks link core/mpi/ (afemp_ranks) and hand the solver an MpiRankLink
+// (core/mpi/mpi_rank_link.hpp). Every call is collective: every rank makes the same calls in
+// the same order.
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "core/grid/block_partition.hpp"
+
+namespace afemp::core {
+
+class BackgroundGrid;
+
+// A byte buffer to a rank (outgoing) or from one (incoming).
+struct RankMessage {
+  int rank = 0;
+  std::vector<std::byte> bytes;
+};
+
+// A nodal array of the grid: fields x slots entries of `components` doubles each (mass 1,
+// momentum and force 3), as BackgroundGrid stores them.
+struct NodalArray {
+  double* data = nullptr;
+  int components = 1;
+};
+
+class RankLink {
+ public:
+  virtual ~RankLink() = default;
+  virtual int rank() const = 0;   // this process's rank
+  virtual int ranks() const = 0;  // how many
+  // After each rank's own scatter: the nodal sums of every block that several ranks' particles
+  // reach made whole, the same bits on every rank that holds the block
+  // (core/mpi/shared_block_sums.hpp).
+  virtual void sum_shared_blocks(BackgroundGrid& grid, std::span<const NodalArray> arrays,
+                                 const BlockPartition& partition) = 0;
+  // Each element summed over the ranks in rank order (the same bits on every rank).
+  virtual void sum_in_rank_order(std::span<double> values) = 0;
+  virtual double max_over_ranks(double value) = 0;
+  // Every rank sends at most one message to each other rank and receives what was sent to it,
+  // ordered by sender.
+  virtual std::vector<RankMessage> exchange(std::span<const RankMessage> outgoing) = 0;
+};
+
+}  // namespace afemp::core

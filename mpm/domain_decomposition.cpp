@@ -1,0 +1,152 @@
+// The MPM run divided among ranks by the grid's blocks (Berger & Bokhari 1987 for the recursive
+// coordinate bisection, core/grid/block_partition.hpp): a particle lives on the rank of its
+// cell's block; each rank scatters its own particles and the blocks that several ranks reach are
+// summed across them (core/rank_link.hpp), so that the grid update, G2P and the stress update run
+// unchanged on each rank; after each step the particles that crossed into another rank's block
+// move there through the point-state schema (particle_migration.hpp). docs/parallel.md has the
+// design.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+#include "mpm/mpm_solver.hpp"
+#include "mpm/particle_migration.hpp"
+
+namespace afemp::mpm {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+bool finite(const Vec3& x) {
+  return std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z);
+}
+
+}  // namespace
+
+std::string MpmSolver::ranks_refusal() const {
+  std::vector<std::string> what;
+  for (const Stage& s : plan_.stages) switch (s.kind) {
+      case StageKind::outflow:
+      case StageKind::split_particles:
+      case StageKind::contact_surfaces:
+      case StageKind::particle_walls:
+        what.push_back("the stage '" + s.name + "'");
+        break;
+      default:
+        break;
+    }
+  if (plan_.velocity_fields > 1 &&
+      what.end() == std::find(what.begin(), what.end(), "the stage 'contact surfaces'"))
+    what.push_back("several velocity fields");
+  if (plan_.mixed_pressure) what.push_back("the mixed pressure ([mpm] pressure = \"mixed\")");
+  if (plan_.particle_loads > 0) what.push_back("[[loads]] on particles");
+  if (scene_.mpm.grid.has_face(core::FaceCondition::absorbing) || scene_.mpm.grid.far_field)
+    what.push_back("absorbing or far-field faces");
+  if (points_ != nullptr) what.push_back("mesh nodes on the grid (a coupling)");
+  if (what.empty()) return "";
+  std::string text = "this MPM run cannot be divided among ranks yet: ";
+  for (std::size_t k = 0; k < what.size(); ++k)
+    text += (k == 0 ? "" : k + 1 == what.size() ? " and " : ", ") + what[k];
+  return text + " run on one rank only (docs/parallel.md)";
+}
+
+void MpmSolver::divide_among_ranks(core::RankLink& link) {
+  if (const std::string why = ranks_refusal(); !why.empty()) throw std::invalid_argument(why);
+  // Every rank holds the same particles here, so every rank finds the same blocks and weights,
+  // and the same partition.
+  const std::vector<Vec3>& x = weight_positions();
+  std::map<core::BlockCoord, double> count;
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    const auto c = finite(x[i]) ? grid_.cell_of(x[i]) : std::array<int, 3>{-1, -1, -1};
+    if (!grid_.inside(c))
+      throw std::invalid_argument("particle " + std::to_string(particles_.id[i]) +
+                                  " lies outside the grid: no rank can hold it");
+    count[grid_.block_of_cell(c)] += 1.0;
+  }
+  const int ranks = link.ranks();
+  if (count.size() < static_cast<std::size_t>(ranks))
+    throw std::invalid_argument(
+        std::to_string(ranks) + " ranks for " + std::to_string(count.size()) +
+        " grid blocks that hold particles (a block is 4 x 4 x 4 nodes): at most " +
+        std::to_string(count.size()) + " ranks, or a finer grid");
+  std::vector<core::BlockCoord> blocks;
+  std::vector<double> weights;
+  for (const auto& [b, n] : count) {
+    blocks.push_back(b);
+    weights.push_back(n);
+  }
+  partition_ = core::bisect_blocks(blocks, weights, ranks);
+  ranks_ = &link;
+  const int me = link.rank();
+  std::vector<std::int32_t> kept;
+  for (std::size_t i = 0; i < particles_.size(); ++i)
+    if (partition_.rank_of(grid_.block_of_cell(grid_.cell_of(x[i]))) == me)
+      kept.push_back(static_cast<std::int32_t>(i));
+  particles_.select(kept);
+  if (!fused_kinematics()) velocity_gradient_.resize(particles_.size());
+  reorder_particles();
+  signal_speed_ = max_signal_parts();
+}
+
+void MpmSolver::mark_owned_blocks() {
+  if (ranks_ == nullptr) return;
+  const int me = ranks_->rank();
+  owned_block_.resize(grid_.active_block_count());
+  for (std::size_t a = 0; a < owned_block_.size(); ++a)
+    owned_block_[a] = partition_.rank_of(grid_.block_coord(grid_.active_block(a))) == me ? 1 : 0;
+}
+
+void MpmSolver::sum_shared_blocks(std::span<const core::NodalArray> arrays) {
+  const auto t0 = std::chrono::steady_clock::now();
+  ranks_->sum_shared_blocks(grid_, arrays, partition_);
+  rank_seconds_ += seconds_since(t0);
+}
+
+void MpmSolver::migrate_particles() {
+  const auto t0 = std::chrono::steady_clock::now();
+  Particles& p = particles_;
+  const int me = ranks_->rank();
+  const std::vector<Vec3>& x = weight_positions();
+  std::vector<std::vector<std::int32_t>> to(static_cast<std::size_t>(ranks_->ranks()));
+  std::vector<std::int32_t> kept;
+  kept.reserve(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    // A point outside the grid stays: the next binning stops the run naming it.
+    const auto c = finite(x[i]) ? grid_.cell_of(x[i]) : std::array<int, 3>{-1, -1, -1};
+    const int r = grid_.inside(c) ? partition_.rank_of(grid_.block_of_cell(c)) : me;
+    (r == me ? kept : to[static_cast<std::size_t>(r)]).push_back(static_cast<std::int32_t>(i));
+  }
+  std::vector<core::RankMessage> out;
+  for (std::size_t r = 0; r < to.size(); ++r)
+    if (!to[r].empty()) out.push_back({static_cast<int>(r), pack_particles(p, to[r])});
+  const std::vector<core::RankMessage> in = ranks_->exchange(out);
+  particles_sent_ += static_cast<long>(p.size() - kept.size());
+  const bool changed = kept.size() != p.size() || !in.empty();
+  if (kept.size() != p.size()) p.select(kept);
+  for (const core::RankMessage& m : in) unpack_particles(p, m.bytes);
+  if (changed) {
+    if (!fused_kinematics()) velocity_gradient_.resize(p.size());
+    // The material batches need each material contiguous: arrivals of a material the end of
+    // the arrays does not hold are sorted in, keeping every other order (cell order returns at
+    // the next reordering).
+    if (std::is_sorted(p.material.begin(), p.material.end())) {
+      rebuild_batches();
+    } else {
+      std::vector<std::int32_t> perm(p.size());
+      for (std::size_t i = 0; i < perm.size(); ++i) perm[i] = static_cast<std::int32_t>(i);
+      std::stable_sort(perm.begin(), perm.end(), [&](std::int32_t a, std::int32_t b) {
+        return p.material[static_cast<std::size_t>(a)] < p.material[static_cast<std::size_t>(b)];
+      });
+      p.permute(perm);
+      rebuild_batches();
+    }
+  }
+  rank_seconds_ += seconds_since(t0);
+}
+
+}  // namespace afemp::mpm
