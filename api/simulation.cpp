@@ -14,6 +14,7 @@
 #include "core/parallel.hpp"
 #include "core/phases.hpp"
 #include "core/plausibility.hpp"
+#include "core/rank_link.hpp"
 #include "core/resource_guard.hpp"
 #include "core/scene.hpp"
 #include "core/time_loop.hpp"
@@ -62,7 +63,21 @@ struct Simulation::Impl {
       mpm = &c->mpm();
       fe = &c->fe();
     }
+    if (options.ranks) divide(*options.ranks);
     if (!options.defer_start) start();
+  }
+
+  // A run divided among MPI ranks: particle scenes only, from their start.
+  void divide(core::RankLink& link) {
+    auto* particles = dynamic_cast<mpm::MpmModel*>(model.get());
+    if (particles == nullptr)
+      throw std::invalid_argument(
+          "this scene has meshes (hexahedra, trusses, rigid bodies): only scenes of particles "
+          "alone can be divided among MPI ranks yet (docs/parallel.md); run it in one process");
+    if (!options.restart_from.empty())
+      throw std::invalid_argument(
+          "a run divided among MPI ranks cannot restart from a checkpoint yet (docs/parallel.md)");
+    particles->divide_among_ranks(link);
   }
 
   // The time loop: the initial state written, or the checkpoint's taken.
@@ -77,6 +92,8 @@ struct Simulation::Impl {
     run.checkpoint_requested = options.checkpoint_requested;
     run.restart_from = options.restart_from;
     run.phase_log = options.phase_log;
+    if (core::RankLink* link = options.ranks)
+      run.agree = [link](double value) { return link->max_over_ranks(value); };
     loop = std::make_unique<core::TimeLoop>(*model, scene, run);
   }
 

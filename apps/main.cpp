@@ -10,7 +10,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <iostream>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -20,6 +22,11 @@
 #include "analysis/study.hpp"
 #include "analysis/study_file.hpp"
 #include "apps/progress_line.hpp"
+#include "core/rank_link.hpp"
+#ifdef AFEMP_HAVE_MPI
+#include "core/mpi/mpi_rank_link.hpp"
+#include "core/mpi/ranks.hpp"
+#endif
 
 namespace {
 
@@ -43,28 +50,82 @@ void refuse_deck(const std::string& path) {
                        " -o SCENE.toml` and run the scene (docs/import.md)");
 }
 
-// Started by mpirun or mpiexec as one of several processes, each afemp would run the whole
-// scene and write the same output files over each other's: refused before anything is read or
-// written. afemp does not divide a run among MPI ranks yet; one process uses the machine's
-// cores through OpenMP. The launchers' environment says how many processes were started:
-// OMPI_COMM_WORLD_SIZE (Open MPI), PMI_SIZE (MPICH's Hydra, Intel MPI, Slurm's PMI),
-// MV2_COMM_WORLD_SIZE (MVAPICH2). One process under a launcher runs as usual.
-void refuse_several_processes() {
+// This process's rank and the ranks of a run divided among MPI ranks (0 of 1 otherwise): rank 0
+// alone prints and writes the run's files.
+int this_rank = 0, rank_total = 1;
+
+// How many processes mpirun or mpiexec started, from the launchers' environment: Open MPI's
+// OMPI_COMM_WORLD_SIZE, PMI_SIZE (MPICH's Hydra, Intel MPI, Slurm's PMI), MV2_COMM_WORLD_SIZE
+// (MVAPICH2); 1 without a launcher.
+struct Launch {
+  long size = 1;
+  std::string variable, value;
+};
+
+Launch launch() {
   for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "MV2_COMM_WORLD_SIZE"}) {
     const char* value = std::getenv(name);
     if (value == nullptr) continue;
     char* end = nullptr;
     const long size = std::strtol(value, &end, 10);
     if (end == value || size <= 1) continue;
-    throw std::runtime_error(
-        "started as one of " + std::to_string(size) + " MPI processes (" + name + "=" + value +
-        "), but afemp does not divide a run among MPI ranks: every process would run the whole "
-        "scene and write the same output over the others'. Run one afemp without mpirun; it uses "
-        "the machine's cores through OpenMP (--threads N, or OMP_NUM_THREADS)");
+    return {size, name, value};
   }
+  return {};
 }
 
+// Whether this process is one of several that Open MPI's launcher started for `afemp run`,
+// which divides the run among them (docs/parallel.md). Any other start as one of several
+// processes is refused before anything is read or written: each process would run the whole
+// scene and write the same files over the others'.
+bool divided_run(bool run_command) {
+  const Launch l = launch();
+  if (l.size <= 1) return false;
+  const std::string started = "started as one of " + std::to_string(l.size) + " MPI processes (" +
+                              l.variable + "=" + l.value + "), but ";
+#ifdef AFEMP_HAVE_MPI
+  if (l.variable != "OMPI_COMM_WORLD_SIZE")
+    throw std::runtime_error(started +
+                             "this afemp is built with Open MPI: start it with Open MPI's "
+                             "mpirun or mpiexec (Debian's openmpi-bin)");
+  if (!run_command)
+    throw std::runtime_error(started +
+                             "only `afemp run` divides among MPI ranks: run the other "
+                             "commands as one process, without mpirun");
+  return true;
+#else
+  (void)run_command;
+  throw std::runtime_error(
+      started +
+      "this afemp is built without MPI (AFEMP_MPI=OFF): every process would run the whole scene "
+      "and write the same output over the others'. Run one afemp without mpirun; it uses the "
+      "machine's cores through OpenMP (--threads N, or OMP_NUM_THREADS)");
+#endif
+}
+
+// The output directory of a rank other than 0 in a divided run: its loop writes there what
+// rank 0 writes in the run's directory (frames of none of the particles; the same history),
+// and the directory goes when the run ends.
+struct RankScratch {
+  std::string path;
+  RankScratch() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "afemp-rank-XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr)
+      throw std::runtime_error("cannot create a scratch directory " + pattern + " for rank " +
+                               std::to_string(this_rank));
+    path = pattern;
+  }
+  ~RankScratch() { remove(); }
+  RankScratch(const RankScratch&) = delete;
+  RankScratch& operator=(const RankScratch&) = delete;
+  void remove() {
+    std::error_code ec;
+    if (!path.empty()) std::filesystem::remove_all(path, ec);
+  }
+};
+
 void print_warnings(const std::vector<std::string>& warnings) {
+  if (this_rank != 0) return;
   for (const std::string& w : warnings) std::fprintf(stderr, "afemp: warning: %s\n", w.c_str());
 }
 
@@ -96,8 +157,37 @@ int check(const std::string& path) {
   return 0;
 }
 
-int run(const std::string& path, std::string out_dir, const std::string& restart_dir) {
+// Who prints: "afemp", or on a rank other than 0 of a divided run "afemp (rank K of N)".
+std::string who() {
+  return this_rank == 0 ? "afemp"
+                        : "afemp (rank " + std::to_string(this_rank) + " of " +
+                              std::to_string(rank_total) + ")";
+}
+
+// A divided run that failed after its start may have failed on one rank alone, while the others
+// wait for it in a sum: every rank is stopped (MPI_Abort) once this one has said why; the files
+// rank 0 wrote so far stay. A run in one process just returns the code.
+int stop_ranks(int code, RankScratch* scratch) {
+#ifdef AFEMP_HAVE_MPI
+  if (rank_total > 1) {
+    std::fflush(stdout);
+    std::fflush(stderr);
+    if (scratch) scratch->remove();
+    core::abort_ranks(code);
+  }
+#endif
+  (void)scratch;
+  return code;
+}
+
+// `ranks`: the link of a run divided among MPI ranks (docs/parallel.md), else nullptr.
+int run(const std::string& path, std::string out_dir, const std::string& restart_dir,
+        core::RankLink* ranks) {
   refuse_deck(path);
+  if (ranks && !restart_dir.empty())
+    throw std::runtime_error("--restart " + restart_dir +
+                             ": a run divided among MPI ranks cannot restart from a checkpoint "
+                             "yet (docs/parallel.md); continue it as one process, without mpirun");
   Scene read = afemp::read_scene(path);
   std::string checkpoint;
   if (!restart_dir.empty()) {
@@ -111,22 +201,41 @@ int run(const std::string& path, std::string out_dir, const std::string& restart
     checkpoint = restart_checkpoint(restart_dir, read);
   }
   if (out_dir.empty()) out_dir = default_output_directory(path);
+  std::unique_ptr<RankScratch> scratch;
+  if (this_rank != 0) scratch = std::make_unique<RankScratch>();
   apps::ProgressReporter progress(stdout);
   SimulationOptions options;
-  options.output_directory = out_dir;
+  options.output_directory = scratch ? scratch->path : out_dir;
   options.restart_from = checkpoint;
   options.progress = [&](const Progress& pr) { progress(pr); };
   options.progress_seconds = progress.interval();
   options.stop_requested = [] { return interrupt_signal() != 0; };
   options.checkpoint_requested = [] { return take_checkpoint_request(); };
   options.phase_log = &std::cout;
+  if (ranks) {
+    // Every rank stops at the same step once any has the signal; no checkpoint is written.
+    options.stop_requested = [ranks] {
+      return ranks->max_over_ranks(interrupt_signal() != 0 ? 1.0 : 0.0) > 0.0;
+    };
+    options.checkpoint_requested = nullptr;
+    options.ranks = ranks;
+  }
   // Started below, once the warnings and the plan are printed: what start() throws is the
   // run's (an output directory that cannot be written), reported as the run's.
   options.defer_start = true;
   Simulation sim(std::move(read), options);
   const Scene& scene = sim.scene();
   print_warnings(sim.warnings());
-  if (checkpoint.empty()) {
+  if (ranks) {
+    print_warnings(sim.estimate().warnings);
+    std::printf("afemp run %s -> %s (%d MPI ranks x %d thread(s))\n", path.c_str(), out_dir.c_str(),
+                rank_total, thread_count());
+    if (this_rank == 0)
+      std::fprintf(stderr,
+                   "afemp: note: a run divided among MPI ranks writes no checkpoints yet "
+                   "([run] checkpoint_every and checkpoint_wall_every are not kept; "
+                   "docs/parallel.md)\n");
+  } else if (checkpoint.empty()) {
     print_warnings(sim.estimate().warnings);
     std::printf("afemp run %s -> %s (%d thread(s))\n", path.c_str(), out_dir.c_str(),
                 thread_count());
@@ -148,6 +257,7 @@ int run(const std::string& path, std::string out_dir, const std::string& restart
     const RunSummary s = sim.run();
     progress.finish();
     apps::print_summary(stdout, scene, s);
+    if (s.interrupted && this_rank != 0) return 128 + interrupt_signal();
     if (s.interrupted) {
       const int signal = interrupt_signal();
       std::fprintf(stderr,
@@ -172,25 +282,33 @@ int run(const std::string& path, std::string out_dir, const std::string& restart
     if (!s.checks_passed()) return exit_check_failed;
   } catch (const SimulationError& e) {
     progress.finish();
-    std::fprintf(stderr, "afemp: simulation stopped: %s\n", e.what());
-    std::fprintf(stderr, "afemp: output written so far is kept in %s\n", out_dir.c_str());
-    return exit_simulation_error;
-  } catch (const InputError&) {
-    throw;
+    std::fprintf(stderr, "%s: simulation stopped: %s\n", who().c_str(), e.what());
+    std::fprintf(stderr, "%s: output written so far is kept in %s\n", who().c_str(),
+                 out_dir.c_str());
+    return stop_ranks(exit_simulation_error, scratch.get());
+  } catch (const InputError& e) {
+    if (rank_total == 1) throw;
+    std::fprintf(stderr, "%s: %s\n", who().c_str(), e.what());
+    return stop_ranks(exit_input_error, scratch.get());
   } catch (const std::runtime_error& e) {
     // Output that cannot be written (a full disk, a removed directory): what was written stays.
     progress.finish();
     const std::string what = e.what();
     std::fprintf(
-        stderr, "afemp: run stopped: %s%s\n", what.c_str(),
+        stderr, "%s: run stopped: %s%s\n", who().c_str(), what.c_str(),
         what.find("it is full") == std::string::npos ? disk_full_note(out_dir).c_str() : "");
     const std::vector<std::string> saved = list_checkpoints(out_dir);
-    std::fprintf(stderr, "afemp: output written so far is kept in %s; %s\n", out_dir.c_str(),
+    std::fprintf(stderr, "%s: output written so far is kept in %s; %s\n", who().c_str(),
+                 out_dir.c_str(),
                  saved.empty() ? "no checkpoint was written"
                                : ("the newest checkpoint is " + saved.back() + " (afemp run " +
                                   path + " --restart " + out_dir + ")")
                                      .c_str());
-    return exit_output_error;
+    return stop_ranks(exit_output_error, scratch.get());
+  } catch (const std::exception& e) {
+    if (rank_total == 1) throw;
+    std::fprintf(stderr, "%s: %s\n", who().c_str(), e.what());
+    return stop_ranks(exit_input_error, scratch.get());
   }
   return 0;
 }
@@ -293,17 +411,45 @@ int main(int argc, char** argv) {
   std::signal(SIGXFSZ, SIG_IGN);
   skip_hdf5_exit_cleanup();
   if (!*study_cmd) set_thread_count(threads);
+  bool divided = false;
   try {
-    refuse_several_processes();
-    if (*run_cmd) return run(scene_path, out_dir, restart_dir);
+    divided = divided_run(static_cast<bool>(*run_cmd));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "afemp: %s\n", e.what());
+    return exit_input_error;
+  }
+  core::RankLink* ranks = nullptr;
+#ifdef AFEMP_HAVE_MPI
+  // A run divided among MPI ranks: every rank reads the scene and runs the loop; rank 0 prints
+  // and writes the run's files, the others' standard output goes nowhere.
+  std::unique_ptr<core::MpiSession> session;
+  core::MpiRankLink link;
+  if (divided) {
+    try {
+      session = std::make_unique<core::MpiSession>(argc, argv);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "afemp: %s\n", e.what());
+      return exit_input_error;
+    }
+    ranks = &link;
+    this_rank = link.rank();
+    rank_total = link.ranks();
+    if (this_rank != 0 && std::freopen("/dev/null", "w", stdout) == nullptr) std::fclose(stdout);
+  }
+#endif
+  (void)divided;
+  // The errors caught here come before a divided run starts its loop, on every rank alike:
+  // rank 0 says why.
+  try {
+    if (*run_cmd) return run(scene_path, out_dir, restart_dir, ranks);
     if (*study_cmd) return study(scene_path, out_dir, threads);
     if (*import_cmd) return import_command(scene_path, out_dir, import_options);
     return check(scene_path);
   } catch (const InputError& e) {
-    std::fprintf(stderr, "afemp: %s\n", e.what());
+    if (this_rank == 0) std::fprintf(stderr, "afemp: %s\n", e.what());
     return exit_input_error;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "afemp: %s\n", e.what());
+    if (this_rank == 0) std::fprintf(stderr, "afemp: %s\n", e.what());
     return exit_input_error;
   }
 }

@@ -180,6 +180,12 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
       probes_(std::make_unique<ProbeRecorder>(model, scene.probes, options.output_directory,
                                               !options.restart_from.empty())),
       energy_columns_(model.energy_columns()) {
+  if (options_.agree) {
+    // On ranks every decision is made alike: the progress comes at the shortest interval any
+    // rank asks (one printing to a terminal asks more often), on every rank.
+    options_.progress_seconds = -options_.agree(-options_.progress_seconds);
+    if (!options_.progress) options_.progress = [](const Progress&) {};
+  }
   overlaps_ = std::make_unique<OverlapCheck>(scene);
   if (overlaps_->empty()) overlaps_.reset();
   if (books_damped_energy(scene_)) energy_columns_.push_back({"damped", &Energies::damped});
@@ -376,8 +382,9 @@ void TimeLoop::print_damping_force(const RelaxationResult& r) const {
 TimeLoop::~TimeLoop() = default;
 
 double TimeLoop::elapsed() const {
-  return wall_offset_ +
-         std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const double t = wall_offset_ +
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  return options_.agree ? options_.agree(t) : t;
 }
 
 // [run] terminate: the body's centre of mass moves with its mean velocity p / m, integrated
@@ -483,7 +490,7 @@ void TimeLoop::step(double until) {
     next_checkpoint_wall_ = elapsed() + rs.checkpoint_wall_every;
   }
   if (options_.checkpoint_requested && options_.checkpoint_requested()) reason = "SIGUSR1";
-  if (!reason.empty() && !finished()) checkpoint(reason);
+  if (!reason.empty() && !finished() && !options_.agree) checkpoint(reason);
   if (options_.progress && elapsed() >= next_progress_) {
     const Energies e = energies();
     options_.progress({k, model_.time(), dt_, end, elapsed(),
@@ -494,7 +501,7 @@ void TimeLoop::step(double until) {
 
 void TimeLoop::keep_failure() {
   if (events_) events_->write(model_.take_events());
-  if (!frames_) return;
+  if (!frames_ || options_.agree) return;
   try {
     model_.write_fields(*frames_);
   } catch (const std::exception&) {
@@ -594,6 +601,9 @@ double next_after(double t, double every) {
 
 std::string TimeLoop::checkpoint(const std::string& reason) {
   if (options_.output_directory.empty()) return "";
+  if (options_.agree)
+    throw CheckpointError(
+        "a run divided among MPI ranks writes no checkpoints yet (docs/parallel.md)");
   // The model's pending events go to their files first: its state holds none.
   if (events_) events_->write(model_.take_events());
   const std::string& dir = options_.output_directory;

@@ -47,6 +47,12 @@ struct RunOptions {
   // switch are printed here, one line each, when set (the iterations are written to
   // OUTPUT/static_phase.csv and implicit_phase.csv in any case).
   std::ostream* phase_log = nullptr;
+  // Set when the model is divided among MPI ranks (docs/parallel.md): every rank runs this loop
+  // in step, its model's calls collective. `agree` gives the value every rank takes for one each
+  // rank passes (the largest): the wall time the progress and the wall-time checkpoints go by,
+  // so that every rank decides alike. Such a run writes no checkpoints yet, and a failure no
+  // last frame (the ranks that did not fail cannot join its gather).
+  std::function<double(double)> agree;
 };
 
 class EventFiles;

@@ -149,4 +149,41 @@ void MpmSolver::migrate_particles() {
   rank_seconds_ += seconds_since(t0);
 }
 
+Particles MpmSolver::gathered_particles(bool on_every_rank) const {
+  const Particles& p = particles_;
+  std::vector<std::int32_t> all(p.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<std::int32_t>(i);
+  Particles out;
+  out.optional_fields = p.optional_fields;
+  out.history_count = p.history_count;
+  const std::vector<std::byte> mine = pack_particles(p, all);
+  const int me = ranks_ ? ranks_->rank() : 0;
+  if (ranks_) {
+    std::vector<core::RankMessage> send;
+    for (int r = 0; r < ranks_->ranks(); ++r)
+      if (r != me && (on_every_rank || r == 0)) send.push_back({r, mine});
+    const std::vector<core::RankMessage> in = ranks_->exchange(send);
+    if (me != 0 && !on_every_rank) return out;
+    // In rank order, this rank's own at its place (the order only breaks ties of the sort).
+    bool own_done = false;
+    for (const core::RankMessage& m : in) {
+      if (!own_done && m.rank > me) {
+        unpack_particles(out, mine);
+        own_done = true;
+      }
+      unpack_particles(out, m.bytes);
+    }
+    if (!own_done) unpack_particles(out, mine);
+  } else {
+    unpack_particles(out, mine);
+  }
+  std::vector<std::int32_t> order(out.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::int32_t>(i);
+  std::stable_sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
+    return out.id[static_cast<std::size_t>(a)] < out.id[static_cast<std::size_t>(b)];
+  });
+  out.permute(order);
+  return out;
+}
+
 }  // namespace afemp::mpm

@@ -18,15 +18,31 @@ MpmModel::MpmModel(const core::Scene& scene)
       solver_(scene, generate_particles(scene)),
       history_names_(core::history_field_names(scene)) {}
 
+void MpmModel::divide_among_ranks(core::RankLink& link) {
+  // Probes sample the particle they name, which a rank may not hold; a relaxation phase prints
+  // each body's stresses from its points (body_stresses).
+  const std::string what = !scene_.probes.empty() && !scene_.phases.empty()
+                               ? "[[probes]] and [[phases]]"
+                           : !scene_.probes.empty() ? "[[probes]]"
+                           : !scene_.phases.empty() ? "[[phases]]"
+                                                    : "";
+  if (!what.empty())
+    throw std::invalid_argument("this MPM run cannot be divided among ranks yet: " + what +
+                                " run on one rank only (docs/parallel.md)");
+  total_particles_ = solver_.particles().size();
+  solver_.divide_among_ranks(link);
+}
+
 void MpmModel::write_fields(core::FieldWriter& writer) {
-  const core::PointBlock block = particle_block();
+  if (solver_.on_ranks()) gathered_ = solver_.gathered_particles(false);
+  const core::PointBlock block =
+      particle_block(solver_.on_ranks() ? gathered_ : solver_.particles());
   writer.write_frame(solver_.time(), solver_.step_count(), block.n_points, block.positions,
                      block.fields);
 }
 
 // The fields the schema names for output (particles.hpp), then those derived from them.
-core::PointBlock MpmModel::particle_block() {
-  const Particles& p = solver_.particles();
+core::PointBlock MpmModel::particle_block(const Particles& p) {
   const std::size_t n = p.size();
   std::vector<core::FieldView>& fields = fields_;
   fields.clear();
@@ -206,7 +222,8 @@ std::string MpmModel::describe() const {
 }
 
 core::BodyPoints MpmModel::body_points(int body) const {
-  const Particles& p = solver_.particles();
+  const Particles whole = solver_.on_ranks() ? solver_.gathered_particles(true) : Particles{};
+  const Particles& p = solver_.on_ranks() ? whole : solver_.particles();
   core::BodyPoints out;
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.body[i] != body) continue;
@@ -217,7 +234,8 @@ core::BodyPoints MpmModel::body_points(int body) const {
 }
 
 std::vector<std::string> MpmModel::summary_warnings() const {
-  const Particles& p = solver_.particles();
+  const Particles whole = solver_.on_ranks() ? solver_.gathered_particles(true) : Particles{};
+  const Particles& p = solver_.on_ranks() ? whole : solver_.particles();
   std::vector<std::size_t> failed(scene_.bodies.size(), 0), all(scene_.bodies.size(), 0);
   for (std::size_t i = 0; i < p.size(); ++i) {
     const auto b = static_cast<std::size_t>(p.body[i]);

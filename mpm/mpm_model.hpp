@@ -55,7 +55,9 @@ class MpmModel final : public core::Model {
   std::vector<std::string> unbooked_energies() const override {
     return unbooked_particle_energies(scene_);
   }
-  std::size_t particle_count() const override { return solver_.particles().size(); }
+  std::size_t particle_count() const override {
+    return solver_.on_ranks() ? total_particles_ : solver_.particles().size();
+  }
   std::size_t element_count() const override { return 0; }
   void write_fields(core::FieldWriter& writer) override;
   std::vector<core::StageTiming> stage_timings() const override;
@@ -73,7 +75,12 @@ class MpmModel final : public core::Model {
   std::vector<std::string> summary_warnings() const override;
   void state(core::StateArchive& archive) override;
   // The particles' block of one output frame (valid until the next call).
-  core::PointBlock particle_block();
+  core::PointBlock particle_block() { return particle_block(solver_.particles()); }
+  // Divides the run among MPI ranks (MpmSolver::divide_among_ranks; docs/parallel.md). Output
+  // frames then hold every rank's particles in id order, written by rank 0 (the others write
+  // frames of none); the particle count, the body points and the summary's warnings are the
+  // whole run's. Throws std::invalid_argument for what does not divide yet, naming it.
+  void divide_among_ranks(core::RankLink& link);
 
  private:
   const core::Scene& scene_;
@@ -84,6 +91,10 @@ class MpmModel final : public core::Model {
   std::vector<std::string> history_names_;     // core::history_field_names
   std::vector<core::FieldView> fields_;
   ParticleProbes probes_;
+  std::size_t total_particles_ = 0;  // on ranks: every rank's (no stage that divides adds any)
+  Particles gathered_;               // on ranks: the particles of the frame being written
+
+  core::PointBlock particle_block(const Particles& p);
 };
 
 }  // namespace afemp::mpm

@@ -128,6 +128,9 @@ class MpmSolver {
   // particles this rank has sent to others so far.
   double rank_seconds() const { return rank_seconds_; }
   long particles_sent() const { return particles_sent_; }
+  // Every rank's particles in id order, on rank 0 alone or on every rank (collective); off ranks,
+  // this process's particles in id order. For output and the end-of-run measures, not for steps.
+  Particles gathered_particles(bool on_every_rank) const;
   // Active grid cells of the last binning.
   std::size_t active_cells() const;
   // Bytes held by particles, grid and solver scratch.

@@ -5,6 +5,7 @@
 
 #include <mpi.h>
 
+#include <cstdlib>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -70,6 +71,11 @@ void sum_in_rank_order(std::span<double> values) {
       values[i] = sum;
     }
   check(MPI_Bcast(values.data(), n, MPI_DOUBLE, 0, MPI_COMM_WORLD), "MPI_Bcast");
+}
+
+void abort_ranks(int code) {
+  MPI_Abort(MPI_COMM_WORLD, code);
+  std::abort();  // MPI_Abort does not return; should it, this process still stops
 }
 
 double min_over_ranks(double value) {

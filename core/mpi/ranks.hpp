@@ -37,4 +37,8 @@ std::int64_t sum_over_ranks(std::int64_t value);
 // what was sent to it, ordered by sender, the ranks that sent it nothing left out.
 std::vector<RankMessage> exchange(std::span<const RankMessage> outgoing);
 
+// Stops every rank of the run with exit status `code` (MPI_Abort): a rank that failed alone
+// while the others wait for it in a sum.
+[[noreturn]] void abort_ranks(int code);
+
 }  // namespace afemp::core

@@ -20,6 +20,10 @@
 #include "afemp/scene.hpp"
 #include "afemp/tensor.hpp"
 
+namespace afemp::core {
+class RankLink;  // core/rank_link.hpp (not installed): a run divided among MPI ranks
+}
+
 namespace afemp {
 
 /// Reads and checks a scene file (docs/scene-format.md). Throws InputError naming the file,
@@ -118,6 +122,11 @@ struct SimulationOptions {
   /// phase what the next starts from (`afemp run`: standard output); OUTPUT/static_phase.csv
   /// and implicit_phase.csv have the iterations in any case.
   std::ostream* phase_log = nullptr;
+  /// A run divided among MPI ranks (docs/parallel.md): every rank builds the Simulation with
+  /// the same scene and its link to the others, and makes the same calls in the same order. Only
+  /// particle scenes divide so far (std::invalid_argument names what does not); a restart and
+  /// checkpoints are not available on ranks yet. nullptr: this process runs the whole scene.
+  core::RankLink* ranks = nullptr;
 };
 
 /// The threads a run uses: OpenMP's (OMP_NUM_THREADS, or every core), or set_thread_count's; 1

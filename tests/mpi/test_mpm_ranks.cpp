@@ -9,6 +9,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "copper_bar_on_wall.hpp"
 #include "core/mpi/mpi_rank_link.hpp"
 #include "core/mpi/ranks.hpp"
 #include "core/scene.hpp"
@@ -18,33 +19,9 @@
 namespace afemp::mpm {
 namespace {
 
-// A quarter of a copper bar (Johnson-Cook) at 200 m/s onto a wall at z = 0, symmetric faces at
-// x = 0 and y = 0, about 2,300 particles; `mpm` adds [mpm] lines, `run` [run] lines.
+// The bar with the given [mpm] lines (and [run] lines beside its end time).
 std::string bar_scene(const std::string& mpm, const std::string& run = "") {
-  return R"([run]
-end_time = 0.01
-)" + run +
-         R"(
-[materials.copper]
-density = 8.93e-3
-E = 117e3
-nu = 0.35
-strength = { model = "johnson-cook", A = 157, B = 425, n = 1.0, C = 0.0 }
-[grid]
-cell = 1.0
-min = [0, 0, 0]
-max = [10, 10, 28]
-boundary = { xmin = "symmetric", ymin = "symmetric", zmin = "wall" }
-[mpm]
-)" + mpm +
-         R"(
-[[bodies]]
-name = "bar"
-material = "copper"
-shape = { cylinder = { base = [0, 0, 0], axis = [0, 0, 1], radius = 3.8, length = 25.4 } }
-velocity = [0, 0, -200]
-particles_per_cell = 2
-)";
+  return test::copper_bar_on_wall("end_time = 0.01\n" + run, mpm);
 }
 
 struct Run {

@@ -1,0 +1,36 @@
+// A quarter of a copper bar (Johnson-Cook, the Taylor bar's OFHC copper) at 200 m/s onto a wall
+// at z = 0, symmetric faces at x = 0 and y = 0, cells of 1 mm and 2 particles per direction:
+// about 2,300 particles that cross the grid's blocks within 100 steps, the divided-run tests'
+// scene (header only; not a test file itself).
+#pragma once
+
+#include <string>
+
+namespace afemp::test {
+
+// `run`: the [run] table's lines (end_time at least); `mpm`: the [mpm] table's.
+inline std::string copper_bar_on_wall(const std::string& run, const std::string& mpm) {
+  return "[run]\n" + run + R"(
+[materials.copper]
+density = 8.93e-3
+E = 117e3
+nu = 0.35
+strength = { model = "johnson-cook", A = 157, B = 425, n = 1.0, C = 0.0 }
+[grid]
+cell = 1.0
+min = [0, 0, 0]
+max = [10, 10, 28]
+boundary = { xmin = "symmetric", ymin = "symmetric", zmin = "wall" }
+[mpm]
+)" + mpm +
+         R"(
+[[bodies]]
+name = "bar"
+material = "copper"
+shape = { cylinder = { base = [0, 0, 0], axis = [0, 0, 1], radius = 3.8, length = 25.4 } }
+velocity = [0, 0, -200]
+particles_per_cell = 2
+)";
+}
+
+}  // namespace afemp::test
