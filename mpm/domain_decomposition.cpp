@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <stdexcept>
 
 #include "mpm/mpm_solver.hpp"
@@ -24,6 +25,17 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 bool finite(const Vec3& x) {
   return std::isfinite(x.x) && std::isfinite(x.y) && std::isfinite(x.z);
+}
+
+// The cell of a point, or {-1, -1, -1} for a point that is not finite (outside every grid).
+std::array<int, 3> cell_of_point(const core::BackgroundGrid& g, const Vec3& x) {
+  return finite(x) ? g.cell_of(x) : std::array<int, 3>{-1, -1, -1};
+}
+
+std::vector<std::int32_t> first_indices(std::size_t n) {
+  std::vector<std::int32_t> all(n);
+  std::iota(all.begin(), all.end(), 0);
+  return all;
 }
 
 }  // namespace
@@ -62,7 +74,7 @@ void MpmSolver::divide_among_ranks(core::RankLink& link) {
   const std::vector<Vec3>& x = weight_positions();
   std::map<core::BlockCoord, double> count;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
-    const auto c = finite(x[i]) ? grid_.cell_of(x[i]) : std::array<int, 3>{-1, -1, -1};
+    const auto c = cell_of_point(grid_, x[i]);
     if (!grid_.inside(c))
       throw std::invalid_argument("particle " + std::to_string(particles_.id[i]) +
                                   " lies outside the grid: no rank can hold it");
@@ -117,7 +129,7 @@ void MpmSolver::migrate_particles() {
   kept.reserve(p.size());
   for (std::size_t i = 0; i < p.size(); ++i) {
     // A point outside the grid stays: the next binning stops the run naming it.
-    const auto c = finite(x[i]) ? grid_.cell_of(x[i]) : std::array<int, 3>{-1, -1, -1};
+    const auto c = cell_of_point(grid_, x[i]);
     const int r = grid_.inside(c) ? partition_.rank_of(grid_.block_of_cell(c)) : me;
     (r == me ? kept : to[static_cast<std::size_t>(r)]).push_back(static_cast<std::int32_t>(i));
   }
@@ -137,8 +149,7 @@ void MpmSolver::migrate_particles() {
     if (std::is_sorted(p.material.begin(), p.material.end())) {
       rebuild_batches();
     } else {
-      std::vector<std::int32_t> perm(p.size());
-      for (std::size_t i = 0; i < perm.size(); ++i) perm[i] = static_cast<std::int32_t>(i);
+      std::vector<std::int32_t> perm = first_indices(p.size());
       std::stable_sort(perm.begin(), perm.end(), [&](std::int32_t a, std::int32_t b) {
         return p.material[static_cast<std::size_t>(a)] < p.material[static_cast<std::size_t>(b)];
       });
@@ -151,8 +162,7 @@ void MpmSolver::migrate_particles() {
 
 Particles MpmSolver::gathered_particles(bool on_every_rank) const {
   const Particles& p = particles_;
-  std::vector<std::int32_t> all(p.size());
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<std::int32_t>(i);
+  const std::vector<std::int32_t> all = first_indices(p.size());
   Particles out;
   out.optional_fields = p.optional_fields;
   out.history_count = p.history_count;
@@ -177,8 +187,7 @@ Particles MpmSolver::gathered_particles(bool on_every_rank) const {
   } else {
     unpack_particles(out, mine);
   }
-  std::vector<std::int32_t> order(out.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::int32_t>(i);
+  std::vector<std::int32_t> order = first_indices(out.size());
   std::stable_sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
     return out.id[static_cast<std::size_t>(a)] < out.id[static_cast<std::size_t>(b)];
   });

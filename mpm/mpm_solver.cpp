@@ -9,6 +9,8 @@
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 #include "afemp/errors.hpp"
 #include "core/detonation_paths.hpp"
@@ -335,34 +337,34 @@ void MpmSolver::set_body_velocity(int body, const Vec3& v) {
   }
 }
 
-double MpmSolver::max_signal_speed() const {
-  const Particles& p = particles_;
+namespace {
+
+// The largest wave speed c_p and the largest speed |v_p| over the particles.
+std::pair<double, double> signal_maxima(const Particles& p,
+                                        const std::vector<const core::Material*>& materials) {
   double wave = 0.0, speed2 = 0.0;
 #pragma omp parallel for schedule(static) \
     reduction(max                         \
               : wave, speed2) if (core::worth_threads(p.size()))
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const core::Material& m = *materials_[static_cast<std::size_t>(p.material[i])];
+    const core::Material& m = *materials[static_cast<std::size_t>(p.material[i])];
     core::PointState st{p.stress[i], p.plastic_strain[i], p.temperature[i], p.energy[i],
                         p.mass[i] / p.volume[i]};
     wave = std::max(wave, core::wave_speed(m, st));
     speed2 = std::max(speed2, core::dot(p.velocity[i], p.velocity[i]));
   }
-  return wave + std::sqrt(speed2);
+  return {wave, std::sqrt(speed2)};
+}
+
+}  // namespace
+
+double MpmSolver::max_signal_speed() const {
+  const auto [wave, speed] = signal_maxima(particles_, materials_);
+  return wave + speed;
 }
 
 double MpmSolver::max_signal_parts() {
-  const Particles& p = particles_;
-  double wave = 0.0, speed2 = 0.0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const core::Material& m = *materials_[static_cast<std::size_t>(p.material[i])];
-    const core::PointState st{p.stress[i], p.plastic_strain[i], p.temperature[i], p.energy[i],
-                              p.mass[i] / p.volume[i]};
-    wave = std::max(wave, core::wave_speed(m, st));
-    speed2 = std::max(speed2, core::dot(p.velocity[i], p.velocity[i]));
-  }
-  signal_wave_ = wave;
-  signal_flow_ = std::sqrt(speed2);
+  std::tie(signal_wave_, signal_flow_) = signal_maxima(particles_, materials_);
   return signal_wave_ + signal_flow_;
 }
 
