@@ -23,7 +23,7 @@ std::string newest_checkpoint(const std::string& run_directory) {
 
 CheckpointInfo read_checkpoint_info(const std::string& checkpoint) {
   const core::CheckpointHeader h = core::read_checkpoint_header(checkpoint);
-  return {h.step, h.time, h.threads, h.reason};
+  return {h.step, h.time, h.threads, h.reason, h.ranks};
 }
 
 std::string restart_checkpoint(const std::string& run_directory, const Scene& scene) {

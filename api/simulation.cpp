@@ -67,16 +67,14 @@ struct Simulation::Impl {
     if (!options.defer_start) start();
   }
 
-  // A run divided among MPI ranks: particle scenes only, from their start.
+  // A run divided among MPI ranks: particle scenes only (from their start or a checkpoint,
+  // which the time loop then reads on every rank).
   void divide(core::RankLink& link) {
     auto* particles = dynamic_cast<mpm::MpmModel*>(model.get());
     if (particles == nullptr)
       throw std::invalid_argument(
           "this scene has meshes (hexahedra, trusses, rigid bodies): only scenes of particles "
           "alone can be divided among MPI ranks yet (docs/parallel.md); run it in one process");
-    if (!options.restart_from.empty())
-      throw std::invalid_argument(
-          "a run divided among MPI ranks cannot restart from a checkpoint yet (docs/parallel.md)");
     particles->divide_among_ranks(link);
   }
 
@@ -92,8 +90,11 @@ struct Simulation::Impl {
     run.checkpoint_requested = options.checkpoint_requested;
     run.restart_from = options.restart_from;
     run.phase_log = options.phase_log;
-    if (core::RankLink* link = options.ranks)
+    if (core::RankLink* link = options.ranks) {
       run.agree = [link](double value) { return link->max_over_ranks(value); };
+      run.rank = link->rank();
+      run.ranks = link->ranks();
+    }
     loop = std::make_unique<core::TimeLoop>(*model, scene, run);
   }
 

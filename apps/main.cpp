@@ -184,10 +184,6 @@ int stop_ranks(int code, RankScratch* scratch) {
 int run(const std::string& path, std::string out_dir, const std::string& restart_dir,
         core::RankLink* ranks) {
   refuse_deck(path);
-  if (ranks && !restart_dir.empty())
-    throw std::runtime_error("--restart " + restart_dir +
-                             ": a run divided among MPI ranks cannot restart from a checkpoint "
-                             "yet (docs/parallel.md); continue it as one process, without mpirun");
   Scene read = afemp::read_scene(path);
   std::string checkpoint;
   if (!restart_dir.empty()) {
@@ -213,11 +209,13 @@ int run(const std::string& path, std::string out_dir, const std::string& restart
   options.checkpoint_requested = [] { return take_checkpoint_request(); };
   options.phase_log = &std::cout;
   if (ranks) {
-    // Every rank stops at the same step once any has the signal; no checkpoint is written.
+    // Every rank stops, or writes a checkpoint, at the same step once any has the signal.
     options.stop_requested = [ranks] {
       return ranks->max_over_ranks(interrupt_signal() != 0 ? 1.0 : 0.0) > 0.0;
     };
-    options.checkpoint_requested = nullptr;
+    options.checkpoint_requested = [ranks] {
+      return ranks->max_over_ranks(take_checkpoint_request() ? 1.0 : 0.0) > 0.0;
+    };
     options.ranks = ranks;
   }
   // Started below, once the warnings and the plan are printed: what start() throws is the
@@ -226,15 +224,18 @@ int run(const std::string& path, std::string out_dir, const std::string& restart
   Simulation sim(std::move(read), options);
   const Scene& scene = sim.scene();
   print_warnings(sim.warnings());
-  if (ranks) {
+  if (ranks && checkpoint.empty()) {
     print_warnings(sim.estimate().warnings);
     std::printf("afemp run %s -> %s (%d MPI ranks x %d thread(s))\n", path.c_str(), out_dir.c_str(),
                 rank_total, thread_count());
-    if (this_rank == 0)
-      std::fprintf(stderr,
-                   "afemp: note: a run divided among MPI ranks writes no checkpoints yet "
-                   "([run] checkpoint_every and checkpoint_wall_every are not kept; "
-                   "docs/parallel.md)\n");
+  } else if (ranks) {
+    // A checkpoint holds the whole run, whatever wrote it: it is divided anew among these ranks.
+    const CheckpointInfo h = read_checkpoint_info(checkpoint);
+    std::printf(
+        "afemp run %s -> %s (%d MPI ranks x %d thread(s)), continuing from %s (step %ld, "
+        "t = %.6g; written by %d rank(s) x %d thread(s))\n",
+        path.c_str(), out_dir.c_str(), rank_total, thread_count(), checkpoint.c_str(), h.step,
+        h.time, h.ranks, h.threads);
   } else if (checkpoint.empty()) {
     print_warnings(sim.estimate().warnings);
     std::printf("afemp run %s -> %s (%d thread(s))\n", path.c_str(), out_dir.c_str(),
@@ -243,7 +244,12 @@ int run(const std::string& path, std::string out_dir, const std::string& restart
     const CheckpointInfo h = read_checkpoint_info(checkpoint);
     std::printf("afemp run %s -> %s (%d thread(s)), continuing from %s (step %ld, t = %.6g)\n",
                 path.c_str(), out_dir.c_str(), thread_count(), checkpoint.c_str(), h.step, h.time);
-    if (h.threads != thread_count())
+    if (h.ranks > 1)
+      std::fprintf(stderr,
+                   "afemp: note: the checkpoint was written by %d MPI ranks; this process runs the "
+                   "whole of it (the results go on to round-off, not bit for bit)\n",
+                   h.ranks);
+    else if (h.threads != thread_count())
       std::fprintf(stderr,
                    "afemp: warning: the checkpoint was written with %d thread(s), this run has "
                    "%d: the results go on correctly but not bit for bit as an uninterrupted run "

@@ -72,6 +72,7 @@ void visit_header(StateArchive& a, CheckpointHeader& h) {
   a.item("files", h.files);
   a.item("file_hash", h.file_hash);
   a.item("threads", h.threads);
+  if (!a.loading() || a.has("ranks")) a.item("ranks", h.ranks);
   a.item("step", h.step);
   a.item("time", h.time);
   a.item("reason", h.reason);

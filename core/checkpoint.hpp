@@ -2,9 +2,9 @@
 // file, RUN_DIR/checkpoints/step_NNNNNNNNNNNN.h5, written beside its final name and renamed
 // over it, so that a run killed while writing leaves the previous checkpoint as it was. It
 // holds a header (the format, the scene's text and the hashes of the files it reads, the
-// thread count, step and time), the model's state (Model::state), the time loop's bookkeeping
-// and the output bookkeeping (frames written, the byte length of the history, probe and event
-// files) that a restart truncates those files to before it appends.
+// thread and rank counts, step and time), the model's state (Model::state), the time loop's
+// bookkeeping and the output bookkeeping (frames written, the byte length of the history, probe and
+// event files) that a restart truncates those files to before it appends.
 #pragma once
 
 #include <cstdint>
@@ -27,6 +27,9 @@ struct CheckpointHeader {
   std::vector<std::string> files;        // files the scene reads (meshes, point lists)
   std::vector<std::uint64_t> file_hash;  // FNV-1a of each at the checkpoint (0: unreadable)
   std::int32_t threads = 0;
+  // The MPI ranks of the run that wrote it (1: one process); a later item, 1 when absent. A
+  // checkpoint is one process's whatever wrote it, and restarts on any count.
+  std::int32_t ranks = 1;
   long step = 0;
   double time = 0.0;
   std::string reason;  // "interval", "wall time", "SIGUSR1", "SIGINT", ...

@@ -19,7 +19,14 @@ struct Fault {
     const char* colon = std::strchr(spec, ':');
     if (colon == nullptr) return;
     name.assign(spec, colon);
-    remaining = std::strtol(colon + 1, nullptr, 10);
+    char* end = nullptr;
+    remaining = std::strtol(colon + 1, &end, 10);
+    if (end != nullptr && *end == '@') {
+      const char* rank = std::getenv("OMPI_COMM_WORLD_RANK");
+      if (rank == nullptr) rank = std::getenv("PMI_RANK");
+      if (rank == nullptr || std::strtol(rank, nullptr, 10) != std::strtol(end + 1, nullptr, 10))
+        remaining = 0;
+    }
   }
 };
 

@@ -153,6 +153,11 @@ class Model {
   // next through `archive`, or restores it into a model built from the same scene. Events must
   // have been taken (take_events) before saving.
   virtual void state(StateArchive& archive) = 0;
+  // Before state() saves a checkpoint of a model divided among MPI ranks: gathers what the
+  // checkpoint holds onto rank 0 (collective: every rank calls it, and the state() that follows
+  // calls no other rank), so that rank 0 writes the file one process would and a failed write
+  // on rank 0 leaves no rank waiting inside a gather. Nothing for a model in one process.
+  virtual void prepare_checkpoint() {}
   // The scene's static or implicit phase (core/phases.hpp), before any step: solves the
   // equilibrium (static) or the implicit dynamics (Newmark, HHT-alpha) of the mesh bodies it
   // names, takes the solution as the model's state and sets the clock to the phase's end;

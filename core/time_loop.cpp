@@ -456,6 +456,7 @@ void TimeLoop::step(double until) {
     keep_failure();
     throw;
   }
+  fault_point("step");
   const long k = model_.step_count();
   const double t = model_.time();
   // A history row every history_every steps, or at the first step end at or past each multiple
@@ -490,7 +491,7 @@ void TimeLoop::step(double until) {
     next_checkpoint_wall_ = elapsed() + rs.checkpoint_wall_every;
   }
   if (options_.checkpoint_requested && options_.checkpoint_requested()) reason = "SIGUSR1";
-  if (!reason.empty() && !finished() && !options_.agree) checkpoint(reason);
+  if (!reason.empty() && !finished()) checkpoint(reason);
   if (options_.progress && elapsed() >= next_progress_) {
     const Energies e = energies();
     options_.progress({k, model_.time(), dt_, end, elapsed(),
@@ -601,32 +602,45 @@ double next_after(double t, double every) {
 
 std::string TimeLoop::checkpoint(const std::string& reason) {
   if (options_.output_directory.empty()) return "";
-  if (options_.agree)
-    throw CheckpointError(
-        "a run divided among MPI ranks writes no checkpoints yet (docs/parallel.md)");
   // The model's pending events go to their files first: its state holds none.
   if (events_) events_->write(model_.take_events());
+  // On ranks, what calls the other ranks comes first (the model's state gathered onto rank 0,
+  // the wall time agreed): rank 0's write then calls none, so that a write failing there leaves
+  // no rank waiting in a gather, and whether it failed is agreed at the end.
+  model_.prepare_checkpoint();
+  saving_wall_ = elapsed();
+  const auto failed_elsewhere = [this](bool failed) {
+    return options_.agree && options_.agree(failed ? 1.0 : 0.0) > 0.0 && !failed;
+  };
+  if (options_.rank != 0) {
+    if (failed_elsewhere(false))
+      throw CheckpointError("rank 0 could not write the checkpoint (its message says why)");
+    return "";
+  }
   const std::string& dir = options_.output_directory;
   const std::string path = checkpoint_path(dir, model_.step_count());
   const std::string tmp = path + ".tmp";
+  std::string error;
   std::error_code ec;
   std::filesystem::create_directories(checkpoint_directory(dir), ec);
-  if (ec) throw CheckpointError(checkpoint_directory(dir) + ": cannot create: " + ec.message());
-  try {
-    StateArchive a(tmp, StateArchive::Mode::save);
-    CheckpointHeader h = checkpoint_header(scene_, model_.step_count(), model_.time(), reason);
-    visit_header(a, h);
-    model_.state(a);
-    fault_point("checkpoint");
-    visit(a);
-    a.close();
-    sync_file(tmp);
-    std::filesystem::rename(tmp, path);
-  } catch (const std::exception& e) {
-    std::filesystem::remove(tmp, ec);
-    throw CheckpointError(std::string(e.what()) + disk_full_note(dir) +
-                          "; the previous checkpoints are kept");
-  }
+  if (ec) error = checkpoint_directory(dir) + ": cannot create: " + ec.message();
+  if (error.empty()) try {
+      StateArchive a(tmp, StateArchive::Mode::save);
+      CheckpointHeader h = checkpoint_header(scene_, model_.step_count(), model_.time(), reason);
+      h.ranks = options_.ranks;
+      visit_header(a, h);
+      model_.state(a);
+      fault_point("checkpoint");
+      visit(a);
+      a.close();
+      sync_file(tmp);
+      std::filesystem::rename(tmp, path);
+    } catch (const std::exception& e) {
+      std::filesystem::remove(tmp, ec);
+      error = std::string(e.what()) + disk_full_note(dir) + "; the previous checkpoints are kept";
+    }
+  failed_elsewhere(!error.empty());
+  if (!error.empty()) throw CheckpointError(error);
   ++checkpoints_written_;
   std::vector<std::string> all = list_checkpoints(dir);
   for (std::size_t k = 0; k + static_cast<std::size_t>(scene_.run.checkpoint_keep) < all.size();
@@ -685,7 +699,7 @@ void TimeLoop::visit(StateArchive& a) {
     a.item("dt", dt_);
     a.item("last_error", last_error_);
     a.item("last_step_recorded", last_step_recorded_);
-    double wall = elapsed();
+    double wall = saving_wall_;
     a.item("wall_seconds", wall);
     if (a.loading()) wall_offset_ = wall;
     // The next output, history row and checkpoint times, with the settings they were made
@@ -721,15 +735,17 @@ void TimeLoop::visit(StateArchive& a) {
   a.item("fields_index", index);
   a.item("history_bytes", history_bytes);
   a.item("history_rows", history_rows);
+  // A rank's scratch copy of the output starts anew: the run's files are rank 0's.
+  const bool resume = options_.rank == 0;
   if (a.loading() && !options_.output_directory.empty()) {
     OutputPaths paths;
     paths.directory = options_.output_directory;
     if (options_.write_fields)
-      frames_ = has_fields
+      frames_ = has_fields && resume
                     ? std::make_unique<FieldWriter>(paths.directory, paths.fields_stem, index)
                     : std::make_unique<FieldWriter>(paths.directory, paths.fields_stem);
     const bool outflow = scene_.mpm.grid.has_face(FaceCondition::outflow);
-    if (history_bytes > 0)
+    if (history_bytes > 0 && resume)
       history_ =
           std::make_unique<HistoryWriter>(history_path(paths), history_bodies(scene_), outflow,
                                           history_extra(energy_columns_, model_),
@@ -740,7 +756,7 @@ void TimeLoop::visit(StateArchive& a) {
     events_ = std::make_unique<EventFiles>(paths.directory);
   }
   EventFiles none("");
-  (events_ ? *events_ : none).state(a);
+  (events_ && resume ? *events_ : none).state(a);
   probes_->state(a);
 }
 

@@ -50,9 +50,14 @@ struct RunOptions {
   // Set when the model is divided among MPI ranks (docs/parallel.md): every rank runs this loop
   // in step, its model's calls collective. `agree` gives the value every rank takes for one each
   // rank passes (the largest): the wall time the progress and the wall-time checkpoints go by,
-  // so that every rank decides alike. Such a run writes no checkpoints yet, and a failure no
-  // last frame (the ranks that did not fail cannot join its gather).
+  // whether a checkpoint was written, so that every rank decides alike. A failure writes no last
+  // frame (the ranks that did not fail cannot join its gather).
   std::function<double(double)> agree;
+  // This process's rank and the ranks (with agree). Rank 0 writes the run's files and its
+  // checkpoints, the whole model's as one process's (Model::prepare_checkpoint); another rank's
+  // output_directory is a scratch copy nobody reads, which a restart starts anew rather than
+  // continues, and it writes no checkpoint.
+  int rank = 0, ranks = 1;
 };
 
 class EventFiles;
@@ -147,6 +152,7 @@ class TimeLoop {
   double next_history_ = 0.0;       // [run] history_interval: the next row's time
   std::size_t next_listed_ = 0;     // [run] output_times: the next listed frame
   bool last_step_recorded_ = true;  // the last step wrote a history row (the start did)
+  double saving_wall_ = 0.0;        // the agreed wall seconds a checkpoint saves
   double wall_offset_ = 0.0;        // wall seconds of the run before a restart
   double next_checkpoint_ = 1e300;  // [run] checkpoint_every: the next one's time
   double next_checkpoint_wall_ = 1e300;

@@ -69,8 +69,18 @@ std::string MpmSolver::ranks_refusal() const {
 
 void MpmSolver::divide_among_ranks(core::RankLink& link) {
   if (const std::string why = ranks_refusal(); !why.empty()) throw std::invalid_argument(why);
-  // Every rank holds the same particles here, so every rank finds the same blocks and weights,
-  // and the same partition.
+  ranks_ = &link;
+  try {
+    keep_own_particles();
+  } catch (...) {
+    ranks_ = nullptr;
+    throw;
+  }
+}
+
+void MpmSolver::keep_own_particles() {
+  // Every rank holds the same particles here (a scene's generation, a checkpoint's), so every
+  // rank finds the same blocks and weights, and the same partition.
   const std::vector<Vec3>& x = weight_positions();
   std::map<core::BlockCoord, double> count;
   for (std::size_t i = 0; i < particles_.size(); ++i) {
@@ -80,7 +90,7 @@ void MpmSolver::divide_among_ranks(core::RankLink& link) {
                                   " lies outside the grid: no rank can hold it");
     count[grid_.block_of_cell(c)] += 1.0;
   }
-  const int ranks = link.ranks();
+  const int ranks = ranks_->ranks();
   if (count.size() < static_cast<std::size_t>(ranks))
     throw std::invalid_argument(
         std::to_string(ranks) + " ranks for " + std::to_string(count.size()) +
@@ -93,8 +103,8 @@ void MpmSolver::divide_among_ranks(core::RankLink& link) {
     weights.push_back(n);
   }
   partition_ = core::bisect_blocks(blocks, weights, ranks);
-  ranks_ = &link;
-  const int me = link.rank();
+  whole_count_ = particles_.size();
+  const int me = ranks_->rank();
   std::vector<std::int32_t> kept;
   for (std::size_t i = 0; i < particles_.size(); ++i)
     if (partition_.rank_of(grid_.block_of_cell(grid_.cell_of(x[i]))) == me)

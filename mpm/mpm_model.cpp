@@ -29,7 +29,6 @@ void MpmModel::divide_among_ranks(core::RankLink& link) {
   if (!what.empty())
     throw std::invalid_argument("this MPM run cannot be divided among ranks yet: " + what +
                                 " run on one rank only (docs/parallel.md)");
-  total_particles_ = solver_.particles().size();
   solver_.divide_among_ranks(link);
 }
 

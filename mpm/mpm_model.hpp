@@ -56,7 +56,7 @@ class MpmModel final : public core::Model {
     return unbooked_particle_energies(scene_);
   }
   std::size_t particle_count() const override {
-    return solver_.on_ranks() ? total_particles_ : solver_.particles().size();
+    return solver_.on_ranks() ? solver_.whole_particle_count() : solver_.particles().size();
   }
   std::size_t element_count() const override { return 0; }
   void write_fields(core::FieldWriter& writer) override;
@@ -74,6 +74,7 @@ class MpmModel final : public core::Model {
   // Per body with failed particles (damage 1): how many of its particles failed.
   std::vector<std::string> summary_warnings() const override;
   void state(core::StateArchive& archive) override;
+  void prepare_checkpoint() override { solver_.prepare_checkpoint(); }
   // The particles' block of one output frame (valid until the next call).
   core::PointBlock particle_block() { return particle_block(solver_.particles()); }
   // Divides the run among MPI ranks (MpmSolver::divide_among_ranks; docs/parallel.md). Output
@@ -91,8 +92,7 @@ class MpmModel final : public core::Model {
   std::vector<std::string> history_names_;     // core::history_field_names
   std::vector<core::FieldView> fields_;
   ParticleProbes probes_;
-  std::size_t total_particles_ = 0;  // on ranks: every rank's (no stage that divides adds any)
-  Particles gathered_;               // on ranks: the particles of the frame being written
+  Particles gathered_;  // on ranks: the particles of the frame being written
 
   core::PointBlock particle_block(const Particles& p);
 };

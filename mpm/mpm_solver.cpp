@@ -150,7 +150,7 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
       wall_bodies_[w][static_cast<std::size_t>(b)] = 1;
     }
   reorder_particles();
-  signal_speed_ = max_signal_speed();
+  signal_speed_ = max_signal_parts();
 }
 
 void MpmSolver::add_particles(const Particles& more) {

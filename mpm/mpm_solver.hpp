@@ -110,8 +110,14 @@ class MpmSolver {
   // active_cells() and bytes() describe the first step (`afemp check`).
   void prepare() { bin_particles(); }
   // Saves or restores the solver's state (a checkpoint, core/state_archive.hpp; mpm_state.cpp).
-  // Restoring needs a solver built from the same scene.
+  // Restoring needs a solver built from the same scene. On ranks the checkpoint is one
+  // process's: saving writes what prepare_checkpoint() gathered (rank 0's file is the one that
+  // counts), and restoring reads every particle on every rank and divides them anew, by a
+  // partition of their present positions, among this run's ranks, however many wrote it.
   void state(core::StateArchive& archive);
+  // Before state() saves on ranks (collective): every rank's particles gathered onto rank 0 in
+  // id order, the accumulators summed in rank order, the signal speed's two parts' maxima.
+  void prepare_checkpoint();
   // Divides the run among the ranks of `link` (core/rank_link.hpp; mpm/domain_decomposition.cpp).
   // Collective. The particles this solver was built with must be the whole run's, the same on
   // every rank (a scene's generation): the grid blocks that hold particles are split by
@@ -123,6 +129,9 @@ class MpmSolver {
   // run on ranks yet (naming it) and for more ranks than blocks that hold particles.
   void divide_among_ranks(core::RankLink& link);
   bool on_ranks() const { return ranks_ != nullptr; }
+  // On ranks: how many particles the ranks hold together (no stage that divides adds or
+  // removes any).
+  std::size_t whole_particle_count() const { return whole_count_; }
   const core::BlockPartition& partition() const { return partition_; }
   // Wall seconds spent summing shared blocks and moving particles between ranks, and the
   // particles this rank has sent to others so far.
@@ -236,6 +245,11 @@ class MpmSolver {
   // shared blocks' sums of the given nodal arrays after a scatter, which active blocks this rank
   // owns (after each binning), and the particles sent to the rank of their block after a step.
   std::string ranks_refusal() const;
+  // The particles this process holds, every rank's, divided among the ranks of ranks_ by the
+  // recursive bisection of the blocks that hold them (a partition made anew, the same on every
+  // rank): this rank keeps its own, in their present order, and the material batches, the
+  // cell order and the signal speed's parts are its own.
+  void keep_own_particles();
   void sum_shared_blocks(std::span<const core::NodalArray> arrays);
   void mark_owned_blocks();
   void migrate_particles();
@@ -416,6 +430,14 @@ class MpmSolver {
   std::vector<char> owned_block_;
   double rank_seconds_ = 0.0;
   long particles_sent_ = 0;
+  std::size_t whole_count_ = 0;
+  // What prepare_checkpoint() gathered for state() to save (on rank 0: every particle).
+  struct RankCheckpoint {
+    Particles whole;
+    double plastic_work = 0.0, viscous_work = 0.0, external_work = 0.0;
+    double signal_wave = 0.0, signal_flow = 0.0;
+    bool ready = false;
+  } rank_checkpoint_;
 
   // Accumulators and state.
   double plastic_work_ = 0.0;

@@ -1,5 +1,6 @@
 // The MPM solver's part of a checkpoint (core/state_archive.hpp): the particles in their
-// present order, and every member that carries over from one step to the next. What the
+// present order (a run divided among ranks: every rank's, in id order), and every member that
+// carries over from one step to the next. What the
 // constructor derives from the scene (plan, grid, contact laws, absorbing faces) is rebuilt by
 // constructing the solver from the same scene; the grid itself holds nothing between steps
 // (every step starts by clearing and rebinning it).
@@ -18,23 +19,63 @@ void visit_particles(core::StateArchive& a, Particles& p) {
   a.item("history_count", p.history_count);
 }
 
+void MpmSolver::prepare_checkpoint() {
+  if (ranks_ == nullptr) return;
+  RankCheckpoint& c = rank_checkpoint_;
+  c.whole = gathered_particles(false);
+  std::vector<double> sums{plastic_work_, viscous_work_, external_work_};
+  ranks_->sum_in_rank_order(sums);
+  c.plastic_work = sums[0];
+  c.viscous_work = sums[1];
+  c.external_work = sums[2];
+  c.signal_wave = ranks_->max_over_ranks(signal_wave_);
+  c.signal_flow = ranks_->max_over_ranks(signal_flow_);
+  c.ready = true;
+}
+
 void MpmSolver::state(core::StateArchive& a) {
-  // A rank's particles alone would not restart the run; the checkpoint of a divided run
-  // gathers them first (docs/parallel.md), which is not built yet.
-  if (ranks_) throw std::invalid_argument("a run divided among ranks cannot be checkpointed yet");
+  // On ranks, a checkpoint holds the whole run as one process's would: saving writes what
+  // prepare_checkpoint() gathered (the other accumulators belong to stages that do not run on
+  // ranks); restoring reads it whole on every rank and divides it among this run's ranks.
+  const bool whole_on_ranks = ranks_ != nullptr && !a.loading();
+  if (whole_on_ranks && !rank_checkpoint_.ready)
+    throw std::logic_error("MpmSolver::state: prepare_checkpoint() first on ranks");
+  RankCheckpoint& c = rank_checkpoint_;
   const core::StateArchive::Group group(a, "mpm");
-  visit_particles(a, particles_);
+  visit_particles(a, whole_on_ranks ? c.whole : particles_);
   a.item("steps", steps_);
   a.item("time", time_);
   a.item("step_dt", step_dt_);
-  a.item("signal_speed", signal_speed_);
+  // The signal speed the next stable step comes from, and its two parts (whose maxima over the
+  // ranks make it on ranks; a later item: a checkpoint without them has its sum alone).
+  double signal[3] = {signal_speed_, signal_wave_, signal_flow_};
+  if (whole_on_ranks) signal[0] = (signal[1] = c.signal_wave) + (signal[2] = c.signal_flow);
+  a.item("signal_speed", signal[0]);
+  if (!a.loading() || a.has("signal_wave")) {
+    a.item("signal_wave", signal[1]);
+    a.item("signal_flow", signal[2]);
+  }
+  // Parts that do not make the speed (an older checkpoint; a speed raised by particles added
+  // in one process): the whole speed as the wave's, which the step on ranks then equals.
+  if (a.loading() && !(signal[1] + signal[2] == signal[0])) {
+    signal[1] = signal[0];
+    signal[2] = 0.0;
+  }
   a.item("sweep_axis", sweep_axis_);
-  a.item("velocity_gradient", velocity_gradient_);
+  // Scratch of one step (the kinematics pass's L): a divided run saves none.
+  std::vector<core::Mat3> no_gradient;
+  a.item("velocity_gradient", whole_on_ranks ? no_gradient : velocity_gradient_);
   a.item("field_self_updated", field_self_updated_);
   a.item("contact_energy", contact_energy_);
-  a.item("plastic_work", plastic_work_);
-  a.item("viscous_work", viscous_work_);
-  a.item("external_work", external_work_);
+  double work[3] = {plastic_work_, viscous_work_, external_work_};
+  if (whole_on_ranks) {
+    work[0] = c.plastic_work;
+    work[1] = c.viscous_work;
+    work[2] = c.external_work;
+  }
+  a.item("plastic_work", work[0]);
+  a.item("viscous_work", work[1]);
+  a.item("external_work", work[2]);
   a.item("outflow_mass", outflow_mass_);
   a.item("outflow_energy", outflow_energy_);
   a.item("outflow_momentum", outflow_momentum_);
@@ -47,13 +88,33 @@ void MpmSolver::state(core::StateArchive& a) {
   a.item("stage_counts", stage_counts_);
   a.item("stage_seconds", stage_seconds_);
   a.item("reorder_seconds", reorder_seconds_);
-  if (a.loading()) {
-    if (stage_counts_.size() != plan_.stages.size())
-      throw core::CheckpointError(
-          a.where("stage_counts") + ": " + std::to_string(stage_counts_.size()) +
-          " stages, the scene's plan has " + std::to_string(plan_.stages.size()));
-    rebuild_batches();
+  if (whole_on_ranks) {
+    c = RankCheckpoint{};  // the gathered copy goes
+    return;
   }
+  if (!a.loading()) return;
+  if (stage_counts_.size() != plan_.stages.size())
+    throw core::CheckpointError(
+        a.where("stage_counts") + ": " + std::to_string(stage_counts_.size()) +
+        " stages, the scene's plan has " + std::to_string(plan_.stages.size()));
+  signal_speed_ = signal[0];
+  signal_wave_ = signal[1];
+  signal_flow_ = signal[2];
+  plastic_work_ = work[0];
+  viscous_work_ = work[1];
+  external_work_ = work[2];
+  if (ranks_ == nullptr) {
+    rebuild_batches();
+    if (!fused_kinematics()) velocity_gradient_.resize(particles_.size());
+    return;
+  }
+  // Every rank read every particle and the run's sums: the sums go on rank 0 alone (energies()
+  // adds them in rank order), the particles to the ranks of a partition made anew.
+  keep_own_particles();
+  signal_speed_ = signal[0];
+  signal_wave_ = signal[1];
+  signal_flow_ = signal[2];
+  if (ranks_->rank() != 0) plastic_work_ = viscous_work_ = external_work_ = 0.0;
 }
 
 }  // namespace afemp::mpm

@@ -47,6 +47,9 @@ struct CheckpointInfo {
   /// What asked for it: "checkpoint_every", "checkpoint_wall_every", "SIGUSR1", "stopped" (a
   /// run stopped by SimulationOptions::stop_requested) or "program" (Simulation::checkpoint).
   std::string reason{};
+  /// MPI ranks of the run that wrote it (1: one process). The checkpoint holds the whole run
+  /// whatever the count, and restarts in one process or on any count of ranks.
+  int ranks = 1;
 };
 
 /// Reads a checkpoint's header. Throws CheckpointError when it cannot be read.

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -13,6 +15,7 @@
 #include "core/mpi/mpi_rank_link.hpp"
 #include "core/mpi/ranks.hpp"
 #include "core/scene.hpp"
+#include "core/state_archive.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
 
@@ -115,6 +118,86 @@ TEST(MpiMpmRanks, UsfGimpApicGivesOneProcessFigures) {
 TEST(MpiMpmRanks, UslQuadraticSplineWithGravityGivesOneProcessFigures) {
   expect_same_as_one_process(
       bar_scene("scheme = \"USL\"\nshape_function = \"bspline2\"\n", "gravity = [0, 0, -5e3]\n"));
+}
+
+// Reference: the uninterrupted one-process run (150 steps; USL with the quadratic B-spline and
+// gravity, whose nodal work each rank books for its own blocks). The divided run's checkpoint
+// after 70 steps is written by rank 0 alone (MpmSolver::prepare_checkpoint gathers every
+// particle and sums every rank's work). A solver divided among this run's ranks and one in a
+// single process each read it and take the remaining 80 steps: both hold every particle once,
+// and their energies stay within 1e-10 of the initial kinetic energy of the uninterrupted run's
+// at every step (round-off: the partition is made anew from the particles' present blocks).
+TEST(MpiMpmRanks, CheckpointOfTheDividedRunRestartsOnRanksAndInOneProcess) {
+  const core::Scene scene = core::parse_scene(
+      bar_scene("scheme = \"USL\"\nshape_function = \"bspline2\"\n", "gravity = [0, 0, -5e3]\n"),
+      "bar.toml");
+  constexpr int first = 70, rest = 80;
+  const auto whole = run(scene, nullptr, first + rest);
+  core::MpiRankLink link;
+  // Rank 0 names the file and tells the others (the same path on every rank).
+  std::string path;
+  if (core::rank_index() == 0) {
+    std::string pattern =
+        (std::filesystem::temp_directory_path() / "afemp-mpi-checkpoint-XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    path = pattern + "/step_70.h5";
+  }
+  {
+    std::vector<core::RankMessage> out;
+    if (core::rank_index() == 0)
+      for (int r = 1; r < core::rank_count(); ++r)
+        out.push_back({r, std::vector<std::byte>(
+                              reinterpret_cast<const std::byte*>(path.data()),
+                              reinterpret_cast<const std::byte*>(path.data()) + path.size())});
+    for (const core::RankMessage& m : link.exchange(out))
+      path.assign(reinterpret_cast<const char*>(m.bytes.data()), m.bytes.size());
+  }
+  {
+    MpmSolver divided(scene, generate_particles(scene));
+    divided.divide_among_ranks(link);
+    for (int k = 0; k < first; ++k) divided.step(divided.stable_time_step());
+    divided.prepare_checkpoint();
+    if (core::rank_index() == 0) {
+      core::StateArchive a(path, core::StateArchive::Mode::save);
+      divided.state(a);
+      a.close();
+    }
+    core::sum_in_rank_order(0.0);  // the file is whole before any rank reads it
+  }
+  const double e0 = whole.energies.front().kinetic;
+  const auto expect_rest = [&](MpmSolver& solver, const char* what) {
+    for (int k = first; k < first + rest; ++k) {
+      solver.step(solver.stable_time_step());
+      const Energies& a = whole.energies[static_cast<std::size_t>(k)];
+      const Energies b = solver.energies();
+      EXPECT_NEAR(b.kinetic, a.kinetic, 1e-10 * e0) << what << ", step " << k;
+      EXPECT_NEAR(b.internal, a.internal, 1e-10 * e0) << what << ", step " << k;
+      EXPECT_NEAR(b.plastic, a.plastic, 1e-10 * e0) << what << ", step " << k;
+      EXPECT_NEAR(b.external_work, a.external_work, 1e-10 * e0) << what << ", step " << k;
+    }
+    EXPECT_EQ(solver.step_count(), first + rest) << what;
+  };
+  MpmSolver again(scene, generate_particles(scene));
+  again.divide_among_ranks(link);
+  {
+    core::StateArchive a(path, core::StateArchive::Mode::load);
+    again.state(a);
+  }
+  EXPECT_EQ(core::sum_over_ranks(static_cast<std::int64_t>(again.particles().size())),
+            static_cast<std::int64_t>(whole.particles.size()));
+  EXPECT_EQ(again.whole_particle_count(), whole.particles.size());
+  expect_rest(again, "on ranks");
+  MpmSolver alone(scene, generate_particles(scene));
+  {
+    core::StateArchive a(path, core::StateArchive::Mode::load);
+    alone.state(a);
+  }
+  EXPECT_EQ(alone.particles().size(), whole.particles.size());
+  expect_rest(alone, "in one process");
+  EXPECT_GT(whole.energies.back().external_work, 0.0);  // gravity did work
+  core::sum_in_rank_order(0.0);
+  if (core::rank_index() == 0)
+    std::filesystem::remove_all(std::filesystem::path(path).parent_path());
 }
 
 // Reference: what does not run on ranks yet is refused on every rank, naming it, before any

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "afemp/run_directory.hpp"
 #include "copper_bar_on_wall.hpp"
 #include "core/output/history.hpp"
 #include "test_support.hpp"
@@ -169,6 +170,31 @@ int frames_of(const std::string& xmf, std::size_t n) {
   return count;
 }
 
+// Every value of a run's history within `tolerance` of its column's largest magnitude in the
+// reference history (the same rows and columns).
+void expect_history_near(const std::string& reference, const std::string& run, double tolerance) {
+  const core::CsvTable h1 = core::read_csv(reference);
+  const core::CsvTable h2 = core::read_csv(run);
+  ASSERT_EQ(h1.header, h2.header);
+  ASSERT_EQ(h1.rows.size(), h2.rows.size()) << run;
+  for (std::size_t c = 0; c < h1.header.size(); ++c) {
+    double scale = 0.0;
+    for (const auto& row : h1.rows) scale = std::max(scale, std::abs(row[c]));
+    for (std::size_t r = 0; r < h1.rows.size(); ++r)
+      EXPECT_NEAR(h2.rows[r][c], h1.rows[r][c], tolerance * scale)
+          << run << ": " << h1.header[c] << ", row " << r;
+  }
+}
+
+// The copper bar on a wall for `steps` steps (about 6e-5 ms each), MUSL, a history row every 5
+// steps, frames every 0.004 ms and checkpoints every 0.002 ms (steps 34 and 67).
+std::string bar_steps(int steps) {
+  return afemp::test::copper_bar_on_wall(
+      "end_time = 1.0\nmax_steps = " + std::to_string(steps) +
+          "\noutput_every = 0.004\nhistory_every = 5\ncheckpoint_every = 0.002\n",
+      "scheme = \"MUSL\"\n");
+}
+
 // Reference: the same scene run as one process. `mpiexec -n 2 afemp run` divides it among two
 // ranks (docs/parallel.md): one "afemp run" line (rank 1 prints nothing), every history value
 // within 1e-10 of its column's largest magnitude of the one-process run's (round-off: the shared
@@ -204,17 +230,9 @@ TEST(Cli, RunDividedAmongTwoMpiRanksGivesTheOneProcessHistoryAndFrames) {
         << "rank 1's scratch directory is removed: " << entry.path();
 
   const core::CsvTable h1 = core::read_csv(one + "/history.csv");
-  const core::CsvTable h2 = core::read_csv(two + "/history.csv");
-  ASSERT_EQ(h1.header, h2.header);
-  ASSERT_EQ(h1.rows.size(), h2.rows.size());
   ASSERT_GE(h1.rows.size(), 20u);
-  EXPECT_EQ(h2.rows.back()[h2.column("step")], 100.0);
-  for (std::size_t c = 0; c < h1.header.size(); ++c) {
-    double scale = 0.0;
-    for (const auto& row : h1.rows) scale = std::max(scale, std::abs(row[c]));
-    for (std::size_t r = 0; r < h1.rows.size(); ++r)
-      EXPECT_NEAR(h2.rows[r][c], h1.rows[r][c], 1e-10 * scale) << h1.header[c] << ", row " << r;
-  }
+  EXPECT_EQ(h1.rows.back()[h1.column("step")], 100.0);
+  expect_history_near(one + "/history.csv", two + "/history.csv", 1e-10);
   EXPECT_GT(h1.rows.back()[h1.column("plastic")], 0.0);  // the foot yields
   // Every frame of the divided run holds every particle, as the one-process run's do (the
   // positions, velocities and other vectors of each frame).
@@ -226,8 +244,8 @@ TEST(Cli, RunDividedAmongTwoMpiRanksGivesTheOneProcessHistoryAndFrames) {
 }
 
 // Reference: what does not divide is refused on every rank before anything is written, rank 0
-// naming it once: a scene with hexahedra; a restart.
-TEST(Cli, RunOnMpiRanksRefusesMeshesAndRestartsWritingNothing) {
+// naming it once: a scene with hexahedra.
+TEST(Cli, RunOnMpiRanksRefusesMeshesWritingNothing) {
   test::ScratchDir dir;
   const std::string path =
       dir.write("mesh.toml",
@@ -246,15 +264,94 @@ TEST(Cli, RunOnMpiRanksRefusesMeshesAndRestartsWritingNothing) {
             r.err.rfind("only scenes of particles alone"))
       << "said once: " << r.err;
   EXPECT_FALSE(std::filesystem::exists(out)) << "nothing written";
-  const std::string cube = dir.write("cube.toml", tiny_cube);
-  const test::CommandResult restart =
-      test::run_captured(mpiexec(2) + "\"" + AFEMP_BINARY + "\" run \"" + cube +
-                             "\" --threads 1 --restart \"" + out + "\"",
+}
+
+// Reference: the uninterrupted run in one process (100 steps). The bar on 4 ranks stops at step
+// 50 with a checkpoint at step 34, written by rank 0 as one process's (every particle, the sums
+// of every rank). Continued from it on 2 ranks, and a copy of it in one process, both end with
+// the one-process history within 1e-10 of each column's largest magnitude (round-off: the
+// partition is made anew, the shared nodes add in another order) and all its frames; the header
+// names the 4 ranks that wrote it. Changed in a key a restart may not change, the scene is
+// refused on every rank, rank 0 saying so once, and the run's files stay as they were.
+TEST(Cli, RunOnFourMpiRanksRestartsOnTwoAndInOneProcessAsTheUninterruptedRun) {
+  test::ScratchDir dir;
+  const std::string path = dir.write("bar.toml", bar_steps(100));
+  const std::string half = dir.write("half.toml", bar_steps(50));
+  const std::string one = dir.file("one"), four = dir.file("four"), copy = dir.file("copy");
+  const std::string afemp = "\"" + std::string(AFEMP_BINARY) + "\"";
+  const test::CommandResult a =
+      test::run_captured(afemp + " run \"" + path + "\" --threads 1 -o \"" + one + "\"", dir);
+  ASSERT_EQ(a.exit_code, 0) << a.out << a.err;
+  const test::CommandResult b = test::run_captured(
+      mpiexec(4) + afemp + " run \"" + half + "\" --threads 1 -o \"" + four + "\"", dir);
+  ASSERT_EQ(b.exit_code, 0) << b.out << b.err;
+  const std::vector<std::string> saved = afemp::list_checkpoints(four);
+  ASSERT_EQ(saved.size(), 1u);
+  const CheckpointInfo info = afemp::read_checkpoint_info(saved[0]);
+  EXPECT_EQ(info.step, 34);
+  EXPECT_EQ(info.ranks, 4);
+  std::filesystem::copy(four, copy, std::filesystem::copy_options::recursive);
+
+  const std::string changed = dir.write(
+      "changed.toml",
+      std::regex_replace(bar_steps(100), std::regex("density = 8.93e-3"), "density = 8.9e-3"));
+  const std::string before = read_text(four + "/history.csv");
+  const test::CommandResult refused = test::run_captured(
+      mpiexec(2) + afemp + " run \"" + changed + "\" --threads 1 --restart \"" + four + "\"", dir);
+  EXPECT_NE(refused.exit_code, 0) << refused.out << refused.err;
+  const std::string why = "the scene changed since the checkpoint";
+  EXPECT_NE(refused.err.find(why), std::string::npos) << refused.err;
+  EXPECT_EQ(refused.err.find(why), refused.err.rfind(why)) << "said once: " << refused.err;
+  EXPECT_EQ(read_text(four + "/history.csv"), before) << "the run's files untouched";
+
+  const test::CommandResult two = test::run_captured(
+      mpiexec(2) + afemp + " run \"" + path + "\" --threads 1 --restart \"" + four + "\"", dir);
+  ASSERT_EQ(two.exit_code, 0) << two.out << two.err;
+  EXPECT_NE(two.out.find("2 MPI ranks x 1 thread(s)), continuing from"), std::string::npos)
+      << two.out;
+  EXPECT_NE(two.out.find("written by 4 rank(s)"), std::string::npos) << two.out;
+  const test::CommandResult alone = test::run_captured(
+      afemp + " run \"" + path + "\" --threads 1 --restart \"" + copy + "\"", dir);
+  ASSERT_EQ(alone.exit_code, 0) << alone.out << alone.err;
+  EXPECT_NE(alone.err.find("written by 4 MPI ranks"), std::string::npos) << alone.err;
+
+  const std::size_t particles = first_frame_points(one + "/fields.xmf");
+  EXPECT_GT(particles, 2000u);
+  for (const std::string& run : {four, copy}) {
+    expect_history_near(one + "/history.csv", run + "/history.csv", 1e-10);
+    EXPECT_EQ(frames_of(run + "/fields.xmf", particles), frames_of(one + "/fields.xmf", particles))
+        << run;
+  }
+}
+
+// Reference: the uninterrupted run in one process. Rank 1 of 2 is killed at step 60 (SIGKILL,
+// as the kernel's OOM killer would; AFEMP_FAULT, core/fault_injection.hpp): the launcher stops
+// rank 0 too and says which rank died, the run's files end before step 60 with the checkpoint of
+// step 34, and `--restart` on 2 ranks ends with the one-process history within 1e-10.
+TEST(Cli, ARankThatDiesStopsTheRunAndItsLastCheckpointRestarts) {
+  test::ScratchDir dir;
+  const std::string path = dir.write("bar.toml", bar_steps(100));
+  const std::string one = dir.file("one"), two = dir.file("two");
+  const std::string afemp = "\"" + std::string(AFEMP_BINARY) + "\"";
+  const test::CommandResult a =
+      test::run_captured(afemp + " run \"" + path + "\" --threads 1 -o \"" + one + "\"", dir);
+  ASSERT_EQ(a.exit_code, 0) << a.out << a.err;
+  const test::CommandResult dies =
+      test::run_captured("AFEMP_FAULT=step:60@1 " + mpiexec(2) + "-x AFEMP_FAULT " + afemp +
+                             " run \"" + path + "\" --threads 1 -o \"" + two + "\"",
                          dir);
-  EXPECT_NE(restart.exit_code, 0) << restart.out << restart.err;
-  EXPECT_NE(restart.err.find("cannot restart from a checkpoint yet"), std::string::npos)
-      << restart.err;
-  EXPECT_FALSE(std::filesystem::exists(out)) << "nothing written";
+  EXPECT_NE(dies.exit_code, 0) << dies.out << dies.err;
+  EXPECT_NE((dies.out + dies.err).find("rank 1"), std::string::npos) << dies.out << dies.err;
+  const core::CsvTable cut = core::read_csv(two + "/history.csv");
+  ASSERT_FALSE(cut.rows.empty());
+  EXPECT_LT(cut.rows.back()[cut.column("step")], 60.5);
+  const std::vector<std::string> saved = afemp::list_checkpoints(two);
+  ASSERT_EQ(saved.size(), 1u);
+  EXPECT_EQ(afemp::read_checkpoint_info(saved[0]).step, 34);
+  const test::CommandResult again = test::run_captured(
+      mpiexec(2) + afemp + " run \"" + path + "\" --threads 1 --restart \"" + two + "\"", dir);
+  ASSERT_EQ(again.exit_code, 0) << again.out << again.err;
+  expect_history_near(one + "/history.csv", two + "/history.csv", 1e-10);
 }
 #endif
 
