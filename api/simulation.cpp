@@ -75,7 +75,7 @@ struct Simulation::Impl {
       throw std::invalid_argument(
           "this scene has meshes (hexahedra, trusses, rigid bodies): only scenes of particles "
           "alone can be divided among MPI ranks yet (docs/parallel.md); run it in one process");
-    particles->divide_among_ranks(link);
+    particles->divide_among_ranks(link, options.balance);
   }
 
   // The time loop: the initial state written, or the checkpoint's taken.

@@ -182,7 +182,7 @@ int stop_ranks(int code, RankScratch* scratch) {
 
 // `ranks`: the link of a run divided among MPI ranks (docs/parallel.md), else nullptr.
 int run(const std::string& path, std::string out_dir, const std::string& restart_dir,
-        core::RankLink* ranks) {
+        core::RankLink* ranks, const RankBalance& balance) {
   refuse_deck(path);
   Scene read = afemp::read_scene(path);
   std::string checkpoint;
@@ -217,6 +217,7 @@ int run(const std::string& path, std::string out_dir, const std::string& restart
       return ranks->max_over_ranks(take_checkpoint_request() ? 1.0 : 0.0) > 0.0;
     };
     options.ranks = ranks;
+    options.balance = balance;
   }
   // Started below, once the warnings and the plan are printed: what start() throws is the
   // run's (an output directory that cannot be written), reported as the run's.
@@ -385,6 +386,20 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--restart", restart_dir,
                       "continue the run in this directory from its newest checkpoint "
                       "(docs/restart.md)");
+  std::string balance = "particles";
+  RankBalance rank_balance;
+  run_cmd
+      ->add_option("--balance", balance,
+                   "under mpirun: what the ranks' loads are kept even by as the material "
+                   "moves: particles (the default; a run repeats itself bit for bit), time "
+                   "(each rank's measured seconds: faster where particles differ in cost, "
+                   "repeats to round-off) or off (docs/parallel.md)")
+      ->check(CLI::IsMember({"particles", "time", "off"}));
+  run_cmd
+      ->add_option("--imbalance", rank_balance.imbalance,
+                   "under mpirun: rebalance when the slowest rank's cost exceeds the ranks' mean "
+                   "by this factor, checked every 100 steps (default 1.1)")
+      ->check(CLI::Range(1.0, 100.0));
 
   auto* check_cmd = app.add_subcommand("check", "read and validate a scene, print the plan");
   check_cmd->add_option("SCENE", scene_path, "scene file (TOML)")->required();
@@ -447,7 +462,10 @@ int main(int argc, char** argv) {
   // The errors caught here come before a divided run starts its loop, on every rank alike:
   // rank 0 says why.
   try {
-    if (*run_cmd) return run(scene_path, out_dir, restart_dir, ranks);
+    rank_balance.cost = balance == "time"  ? RankBalance::Cost::time
+                        : balance == "off" ? RankBalance::Cost::off
+                                           : RankBalance::Cost::particles;
+    if (*run_cmd) return run(scene_path, out_dir, restart_dir, ranks, rank_balance);
     if (*study_cmd) return study(scene_path, out_dir, threads);
     if (*import_cmd) return import_command(scene_path, out_dir, import_options);
     return check(scene_path);

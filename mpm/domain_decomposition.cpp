@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <numeric>
 #include <stdexcept>
@@ -67,8 +68,14 @@ std::string MpmSolver::ranks_refusal() const {
   return text + " run on one rank only (docs/parallel.md)";
 }
 
-void MpmSolver::divide_among_ranks(core::RankLink& link) {
+void MpmSolver::divide_among_ranks(core::RankLink& link, const core::RankBalance& balance) {
   if (const std::string why = ranks_refusal(); !why.empty()) throw std::invalid_argument(why);
+  if (balance.cost != core::RankBalance::Cost::off &&
+      (balance.every < 1 || !(balance.imbalance >= 1.0)))
+    throw std::invalid_argument("rank balance: every " + std::to_string(balance.every) +
+                                " steps above " + std::to_string(balance.imbalance) +
+                                " x the mean: give every >= 1 and an imbalance >= 1");
+  balance_ = balance;
   ranks_ = &link;
   try {
     keep_own_particles();
@@ -113,6 +120,79 @@ void MpmSolver::keep_own_particles() {
   if (!fused_kinematics()) velocity_gradient_.resize(particles_.size());
   reorder_particles();
   signal_speed_ = max_signal_parts();
+  balance_stage_mark_ = std::accumulate(stage_seconds_.begin(), stage_seconds_.end(), 0.0);
+  balance_sum_mark_ = sum_seconds_;
+}
+
+void MpmSolver::balance_ranks() {
+  const auto t0 = std::chrono::steady_clock::now();
+  const int ranks = ranks_->ranks(), me = ranks_->rank();
+  const auto r = static_cast<std::size_t>(me), n = static_cast<std::size_t>(ranks);
+  // This rank's cost since the last check, and its particles: every rank's, on every rank.
+  const double stages = std::accumulate(stage_seconds_.begin(), stage_seconds_.end(), 0.0);
+  const double seconds = (stages - balance_stage_mark_) - (sum_seconds_ - balance_sum_mark_);
+  balance_stage_mark_ = stages;
+  balance_sum_mark_ = sum_seconds_;
+  const bool by_time = balance_.cost == core::RankBalance::Cost::time;
+  std::vector<double> each(2 * n, 0.0);
+  each[r] = by_time ? std::max(seconds, 0.0) : static_cast<double>(particles_.size());
+  each[n + r] = static_cast<double>(particles_.size());
+  ranks_->sum_in_rank_order(each);
+  double total = 0.0, worst = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    total += each[k];
+    worst = std::max(worst, each[k]);
+  }
+  const double mean = total / static_cast<double>(ranks);
+  last_imbalance_ = mean > 0.0 ? worst / mean : 1.0;
+  if (!(last_imbalance_ > balance_.imbalance)) {
+    balance_seconds_ += seconds_since(t0);
+    return;
+  }
+  // Each block weighted by its particles times its rank's cost per particle (every particle of
+  // a block lives on the block's rank), sent to every rank, so that every rank splits the same
+  // blocks with the same weights into the same partition.
+  const double per_particle = each[n + r] > 0.0 ? each[r] / each[n + r] : 0.0;
+  std::map<core::BlockCoord, double> weight;
+  const std::vector<Vec3>& x = weight_positions();
+  for (std::size_t i = 0; i < particles_.size(); ++i) {
+    const auto c = cell_of_point(grid_, x[i]);
+    if (grid_.inside(c)) weight[grid_.block_of_cell(c)] += per_particle;
+  }
+  std::vector<std::byte> mine;
+  for (const auto& [b, w] : weight) {
+    const std::byte* at = reinterpret_cast<const std::byte*>(b.data());
+    mine.insert(mine.end(), at, at + sizeof(core::BlockCoord));
+    at = reinterpret_cast<const std::byte*>(&w);
+    mine.insert(mine.end(), at, at + sizeof(double));
+  }
+  std::vector<core::RankMessage> out;
+  for (int k = 0; k < ranks; ++k)
+    if (k != me) out.push_back({k, mine});
+  for (const core::RankMessage& m : ranks_->exchange(out))
+    for (std::size_t at = 0; at + sizeof(core::BlockCoord) + sizeof(double) <= m.bytes.size();
+         at += sizeof(core::BlockCoord) + sizeof(double)) {
+      core::BlockCoord b;
+      double w = 0.0;
+      std::memcpy(b.data(), m.bytes.data() + at, sizeof b);
+      std::memcpy(&w, m.bytes.data() + at + sizeof b, sizeof w);
+      weight[b] += w;
+    }
+  // Fewer blocks than ranks hold particles now (the material gathered): the partition stays.
+  if (weight.size() < n) {
+    balance_seconds_ += seconds_since(t0);
+    return;
+  }
+  std::vector<core::BlockCoord> blocks;
+  std::vector<double> weights;
+  for (const auto& [b, w] : weight) {
+    blocks.push_back(b);
+    weights.push_back(w);
+  }
+  partition_ = core::bisect_blocks(blocks, weights, ranks);
+  ++rebalances_;
+  migrate_particles();
+  balance_seconds_ += seconds_since(t0);
 }
 
 void MpmSolver::mark_owned_blocks() {
@@ -126,7 +206,9 @@ void MpmSolver::mark_owned_blocks() {
 void MpmSolver::sum_shared_blocks(std::span<const core::NodalArray> arrays) {
   const auto t0 = std::chrono::steady_clock::now();
   ranks_->sum_shared_blocks(grid_, arrays, partition_);
-  rank_seconds_ += seconds_since(t0);
+  const double seconds = seconds_since(t0);
+  rank_seconds_ += seconds;
+  sum_seconds_ += seconds;
 }
 
 void MpmSolver::migrate_particles() {

@@ -18,7 +18,7 @@ MpmModel::MpmModel(const core::Scene& scene)
       solver_(scene, generate_particles(scene)),
       history_names_(core::history_field_names(scene)) {}
 
-void MpmModel::divide_among_ranks(core::RankLink& link) {
+void MpmModel::divide_among_ranks(core::RankLink& link, const core::RankBalance& balance) {
   // Probes sample the particle they name, which a rank may not hold; a relaxation phase prints
   // each body's stresses from its points (body_stresses).
   const std::string what = !scene_.probes.empty() && !scene_.phases.empty()
@@ -29,7 +29,7 @@ void MpmModel::divide_among_ranks(core::RankLink& link) {
   if (!what.empty())
     throw std::invalid_argument("this MPM run cannot be divided among ranks yet: " + what +
                                 " run on one rank only (docs/parallel.md)");
-  solver_.divide_among_ranks(link);
+  solver_.divide_among_ranks(link, balance);
 }
 
 void MpmModel::write_fields(core::FieldWriter& writer) {
@@ -92,6 +92,14 @@ std::vector<core::StageTiming> MpmModel::stage_timings() const {
   const auto& stages = solver_.plan().stages;
   for (std::size_t i = 0; i < stages.size(); ++i)
     out.push_back({stages[i].name, solver_.stage_counts()[i], solver_.stage_seconds()[i]});
+  // On ranks (this rank's): moving particles to their ranks after each step, and the
+  // rebalances (their count in the name: the summary prints names and seconds).
+  if (solver_.on_ranks()) {
+    out.push_back({"migration", solver_.step_count(), solver_.migration_seconds()});
+    const long n = solver_.rebalances();
+    out.push_back({"rebalance (" + std::to_string(n) + (n == 1 ? " time)" : " times)"), n,
+                   solver_.balance_seconds()});
+  }
   return out;
 }
 

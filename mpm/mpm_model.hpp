@@ -81,7 +81,7 @@ class MpmModel final : public core::Model {
   // frames then hold every rank's particles in id order, written by rank 0 (the others write
   // frames of none); the particle count, the body points and the summary's warnings are the
   // whole run's. Throws std::invalid_argument for what does not divide yet, naming it.
-  void divide_among_ranks(core::RankLink& link);
+  void divide_among_ranks(core::RankLink& link, const core::RankBalance& balance = {});
 
  private:
   const core::Scene& scene_;

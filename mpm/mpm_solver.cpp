@@ -312,7 +312,13 @@ void MpmSolver::step(double dt) {
   }
   time_ += dt;
   ++steps_;
-  if (ranks_) migrate_particles();
+  if (ranks_) {
+    const auto t0 = clock::now();
+    migrate_particles();
+    migration_seconds_ += std::chrono::duration<double>(clock::now() - t0).count();
+    if (balance_.cost != core::RankBalance::Cost::off && steps_ % balance_.every == 0)
+      balance_ranks();
+  }
 }
 
 void MpmSolver::scale_velocities(double factor) {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "afemp/energies.hpp"
+#include "afemp/run.hpp"
 #include "core/grid/background_grid.hpp"
 #include "core/grid/block_partition.hpp"
 #include "core/rank_link.hpp"
@@ -127,7 +128,8 @@ class MpmSolver {
   // step, the stable step is the smallest over the ranks and energies() sums in rank order.
   // Throws std::invalid_argument, on every rank alike, for a scene with a stage that does not
   // run on ranks yet (naming it) and for more ranks than blocks that hold particles.
-  void divide_among_ranks(core::RankLink& link);
+  // `balance` says how the ranks' loads are kept even as the material moves (afemp/run.hpp).
+  void divide_among_ranks(core::RankLink& link, const core::RankBalance& balance = {});
   bool on_ranks() const { return ranks_ != nullptr; }
   // On ranks: how many particles the ranks hold together (no stage that divides adds or
   // removes any).
@@ -137,6 +139,13 @@ class MpmSolver {
   // particles this rank has sent to others so far.
   double rank_seconds() const { return rank_seconds_; }
   long particles_sent() const { return particles_sent_; }
+  // Of those, the seconds moving particles after the steps (rebalances apart); the rebalances
+  // made and their seconds (the costs compared at each check, the partition, the moves); the
+  // slowest rank's cost over the mean at the last check (0 before one).
+  double migration_seconds() const { return migration_seconds_; }
+  long rebalances() const { return rebalances_; }
+  double balance_seconds() const { return balance_seconds_; }
+  double last_imbalance() const { return last_imbalance_; }
   // Every rank's particles in id order, on rank 0 alone or on every rank (collective); off ranks,
   // this process's particles in id order. For output and the end-of-run measures, not for steps.
   Particles gathered_particles(bool on_every_rank) const;
@@ -250,6 +259,10 @@ class MpmSolver {
   // rank): this rank keeps its own, in their present order, and the material batches, the
   // cell order and the signal speed's parts are its own.
   void keep_own_particles();
+  // Every balance.every steps on ranks: each rank's cost since the last check compared with the
+  // mean over the ranks, and above balance.imbalance times it the blocks split anew by their
+  // costs and the particles moved (domain_decomposition.cpp).
+  void balance_ranks();
   void sum_shared_blocks(std::span<const core::NodalArray> arrays);
   void mark_owned_blocks();
   void migrate_particles();
@@ -431,6 +444,12 @@ class MpmSolver {
   double rank_seconds_ = 0.0;
   long particles_sent_ = 0;
   std::size_t whole_count_ = 0;
+  core::RankBalance balance_{};
+  double sum_seconds_ = 0.0, migration_seconds_ = 0.0, balance_seconds_ = 0.0;
+  double last_imbalance_ = 0.0;
+  long rebalances_ = 0;
+  // The stage seconds and shared-sum seconds at the last check (a rank's cost is the change).
+  double balance_stage_mark_ = 0.0, balance_sum_mark_ = 0.0;
   // What prepare_checkpoint() gathered for state() to save (on rank 0: every particle).
   struct RankCheckpoint {
     Particles whole;

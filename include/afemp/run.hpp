@@ -13,6 +13,21 @@
 
 namespace afemp::core {
 
+/// How a run divided among MPI ranks keeps its ranks' loads even (docs/parallel.md): every
+/// `every` steps each rank's cost since the last check is compared with the ranks' mean; above
+/// `imbalance` times the mean, the grid's blocks are split among the ranks anew, each block
+/// weighted by its particles times its rank's cost per particle, and the particles move to their
+/// new ranks. The cost: a rank's particle count (a run then repeats itself bit for bit), or the
+/// wall seconds of its stages less those spent summing shared nodes with the other ranks
+/// (which include waiting for them): faster where particles differ in cost (plastic flow,
+/// damage), but a run then depends on the timings, to round-off. Nothing in one process.
+struct RankBalance {
+  enum class Cost { off, particles, time };
+  Cost cost = Cost::particles;
+  double imbalance = 1.1;
+  long every = 100;
+};
+
 /// Wall seconds and calls of one named stage of a model's step.
 struct StageTiming {
   std::string name{};
@@ -110,6 +125,7 @@ struct RunSummary {
 // The public names, in namespace afemp.
 namespace afemp {
 using core::Progress;
+using core::RankBalance;
 using core::ReferenceCheck;
 using core::RunEstimate;
 using core::RunSummary;

@@ -129,6 +129,8 @@ struct SimulationOptions {
   /// names the same file on every rank, and a checkpoint restarts on any rank count, or in one
   /// process. nullptr: this process runs the whole scene.
   core::RankLink* ranks = nullptr;
+  /// How such a run rebalances its ranks as the material moves (RankBalance).
+  RankBalance balance{};
 };
 
 /// The threads a run uses: OpenMP's (OMP_NUM_THREADS, or every core), or set_thread_count's; 1

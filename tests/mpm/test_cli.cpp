@@ -241,6 +241,18 @@ TEST(Cli, RunDividedAmongTwoMpiRanksGivesTheOneProcessHistoryAndFrames) {
   const int frames = frames_of(one + "/fields.xmf", particles);
   EXPECT_GE(frames, 6);
   EXPECT_EQ(frames_of(two + "/fields.xmf", particles), frames);
+
+  // Rebalanced by measured time at step 100 (an imbalance of 1: any rank above the mean), the
+  // run still ends with the one-process history, and the summary counts the rebalance.
+  const std::string timed = dir.file("timed");
+  const test::CommandResult c =
+      test::run_captured(mpiexec(2) + "\"" + AFEMP_BINARY + "\"" + args + "\"" + timed +
+                             "\" --balance time --imbalance 1",
+                         dir);
+  ASSERT_EQ(c.exit_code, 0) << c.out << c.err;
+  EXPECT_NE(c.out.find("rebalance (1 time)"), std::string::npos) << c.out;
+  expect_history_near(one + "/history.csv", timed + "/history.csv", 1e-10);
+  EXPECT_EQ(frames_of(timed + "/fields.xmf", particles), frames);
 }
 
 // Reference: what does not divide is refused on every rank before anything is written, rank 0
