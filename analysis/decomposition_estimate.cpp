@@ -50,6 +50,14 @@ std::vector<DecompositionEstimate> estimate_decomposition(const core::Model& mod
     blocks.push_back(b);
     weights.push_back(w);
   }
+  return estimate_blocks(blocks, weights, rank_counts);
+}
+
+std::vector<DecompositionEstimate> estimate_blocks(std::span<const core::BlockCoord> blocks,
+                                                   std::span<const double> weights,
+                                                   std::span<const int> rank_counts) {
+  double points = 0.0;
+  for (double w : weights) points += w;
   std::vector<DecompositionEstimate> out;
   for (int ranks : rank_counts) {
     if (ranks < 1 || static_cast<std::size_t>(ranks) > blocks.size()) continue;
@@ -57,10 +65,10 @@ std::vector<DecompositionEstimate> estimate_decomposition(const core::Model& mod
     const std::vector<core::RankHalo> halo = core::rank_halos(blocks, part.owner, ranks);
     DecompositionEstimate e;
     e.ranks = ranks;
-    e.points = points.size();
+    e.points = static_cast<std::size_t>(std::llround(points));
     e.blocks = blocks.size();
     e.max_points = *std::max_element(part.load.begin(), part.load.end());
-    e.mean_points = static_cast<double>(points.size()) / ranks;
+    e.mean_points = points / ranks;
     double shared = 0.0;
     for (const core::RankHalo& h : halo) {
       e.max_reached = std::max(e.max_reached, h.reached);

@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "core/grid/block_partition.hpp"
 #include "core/model.hpp"
 #include "core/scene.hpp"
 
@@ -29,5 +30,10 @@ struct DecompositionEstimate {
 std::vector<DecompositionEstimate> estimate_decomposition(const core::Model& model,
                                                           const core::Scene& scene,
                                                           std::span<const int> rank_counts);
+// The same for given blocks and their points (weights), as the scaling model's boxes of blocks
+// take it (analysis/scaling_model.hpp).
+std::vector<DecompositionEstimate> estimate_blocks(std::span<const core::BlockCoord> blocks,
+                                                   std::span<const double> weights,
+                                                   std::span<const int> rank_counts);
 
 }  // namespace afemp::analysis
