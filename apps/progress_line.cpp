@@ -83,7 +83,8 @@ void print_summary(std::FILE* out, const Scene& scene, const RunSummary& s) {
   } else
     std::fprintf(out, "  points           %zu particles, %zu elements, %.3g point-steps/s\n",
                  s.particles, s.elements, s.point_steps_per_second);
-  std::fprintf(out, "  stage seconds   ");
+  std::fprintf(out, s.ranks > 1 ? "  stage seconds    (rank 0 of %d)" : "  stage seconds   ",
+               s.ranks);
   for (std::size_t i = 0; i < s.stages.size(); ++i)
     std::fprintf(out, " %s %.2f%s", s.stages[i].name.c_str(), s.stages[i].seconds,
                  i + 1 < s.stages.size() ? "," : "\n");

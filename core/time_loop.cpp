@@ -177,8 +177,10 @@ TimeLoop::TimeLoop(Model& model, const Scene& scene, const RunOptions& options)
       options_(options),
       start_(std::chrono::steady_clock::now()),
       // First: a probe naming a node or element the mesh lacks stops the run before any output.
-      probes_(std::make_unique<ProbeRecorder>(model, scene.probes, options.output_directory,
-                                              !options.restart_from.empty())),
+      // On ranks, rank 0 alone writes the probe files (the others sample with it).
+      probes_(std::make_unique<ProbeRecorder>(
+          model, scene.probes, options.rank == 0 ? options.output_directory : std::string(),
+          !options.restart_from.empty())),
       energy_columns_(model.energy_columns()) {
   if (options_.agree) {
     // On ranks every decision is made alike: the progress comes at the shortest interval any
@@ -554,6 +556,7 @@ RunSummary TimeLoop::finish() {
   sum.final = energies();
   sum.energy_error = last_error_;
   sum.stages = model_.stage_timings();
+  sum.ranks = options_.ranks;
   sum.field_frames = frames_ ? frames_->frames() : 0;
   if (sum.min_dt > sum.max_dt) sum.min_dt = sum.max_dt = dt_;
   sum.warnings = warnings_.summary(model_, sum.initial, sum.final, sum.energy_error);

@@ -252,6 +252,27 @@ void MpmSolver::migrate_particles() {
   rank_seconds_ += seconds_since(t0);
 }
 
+std::vector<double> MpmSolver::values_of_every_rank(std::span<const double> values) const {
+  std::vector<double> all(values.begin(), values.end());
+  if (ranks_ == nullptr) return all;
+  const int ranks = ranks_->ranks(), me = ranks_->rank();
+  const auto* bytes = reinterpret_cast<const std::byte*>(values.data());
+  const std::vector<std::byte> mine(bytes, bytes + values.size_bytes());
+  std::vector<core::RankMessage> out;
+  for (int r = 0; r < ranks; ++r)
+    if (r != me) out.push_back({r, mine});
+  all.assign(values.size() * static_cast<std::size_t>(ranks), 0.0);
+  std::copy(values.begin(), values.end(),
+            all.begin() + static_cast<std::ptrdiff_t>(values.size()) * me);
+  for (const core::RankMessage& m : ranks_->exchange(out)) {
+    if (m.bytes.size() != values.size_bytes())
+      throw std::logic_error("values_of_every_rank: ranks passed arrays of different lengths");
+    std::memcpy(all.data() + values.size() * static_cast<std::size_t>(m.rank), m.bytes.data(),
+                m.bytes.size());
+  }
+  return all;
+}
+
 Particles MpmSolver::gathered_particles(bool on_every_rank) const {
   const Particles& p = particles_;
   const std::vector<std::int32_t> all = first_indices(p.size());

@@ -19,17 +19,27 @@ MpmModel::MpmModel(const core::Scene& scene)
       history_names_(core::history_field_names(scene)) {}
 
 void MpmModel::divide_among_ranks(core::RankLink& link, const core::RankBalance& balance) {
-  // Probes sample the particle they name, which a rank may not hold; a relaxation phase prints
-  // each body's stresses from its points (body_stresses).
-  const std::string what = !scene_.probes.empty() && !scene_.phases.empty()
-                               ? "[[probes]] and [[phases]]"
-                           : !scene_.probes.empty() ? "[[probes]]"
-                           : !scene_.phases.empty() ? "[[phases]]"
-                                                    : "";
-  if (!what.empty())
-    throw std::invalid_argument("this MPM run cannot be divided among ranks yet: " + what +
-                                " run on one rank only (docs/parallel.md)");
+  // A relaxation phase prints each body's stresses from its points (body_stresses).
+  if (!scene_.phases.empty())
+    throw std::invalid_argument(
+        "this MPM run cannot be divided among ranks yet: [[phases]] run on one rank only "
+        "(docs/parallel.md)");
   solver_.divide_among_ranks(link, balance);
+}
+
+void MpmModel::resolve_probes(std::span<const core::ProbeSpec> probes) {
+  if (!solver_.on_ranks()) {
+    probes_.resolve(probes, solver_.particles(), scene_);
+    return;
+  }
+  // An index counts the body's particles in id order, a point finds the nearest of them: among
+  // every rank's, the same on every rank.
+  probes_.resolve(probes, solver_.gathered_particles(true), scene_);
+}
+
+void MpmModel::sample_probes(std::span<double> out) const {
+  probes_.sample(solver_.particles(), out);
+  if (solver_.on_ranks()) probes_.merge_ranks(solver_.values_of_every_rank(out), out);
 }
 
 void MpmModel::write_fields(core::FieldWriter& writer) {

@@ -64,12 +64,10 @@ class MpmModel final : public core::Model {
   // Bins the particles first so that the active cells and memory describe the first step.
   std::string describe() const override;
   std::size_t bytes() const override { return solver_.bytes(); }
-  void resolve_probes(std::span<const core::ProbeSpec> probes) override {
-    probes_.resolve(probes, solver_.particles(), scene_);
-  }
-  void sample_probes(std::span<double> out) const override {
-    probes_.sample(solver_.particles(), out);
-  }
+  // On ranks (collective): resolved among every rank's particles, sampled on each rank and
+  // merged on every rank (ParticleProbes::merge_ranks).
+  void resolve_probes(std::span<const core::ProbeSpec> probes) override;
+  void sample_probes(std::span<double> out) const override;
   core::BodyPoints body_points(int body) const override;
   // Per body with failed particles (damage 1): how many of its particles failed.
   std::vector<std::string> summary_warnings() const override;

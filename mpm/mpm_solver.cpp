@@ -390,16 +390,36 @@ std::string MpmSolver::time_step_setter() const {
       fastest_speed = speed;
     }
   }
-  if (fastest == p.size()) return "";
-  const Vec3& x = p.position[fastest];
-  char buf[256];
-  std::snprintf(buf, sizeof buf,
-                "particle %d of body '%s' at (%.4g, %.4g, %.4g) (wave speed %.4g + speed %.4g "
-                "over the cell %.4g)",
-                p.id[fastest],
-                scene_.bodies[static_cast<std::size_t>(p.body[fastest])].name.c_str(), x.x, x.y,
-                x.z, fastest_wave, fastest_speed, grid_.cell());
-  return buf;
+  char buf[256] = "";
+  if (fastest != p.size()) {
+    const Vec3& x = p.position[fastest];
+    std::snprintf(buf, sizeof buf,
+                  "particle %d of body '%s' at (%.4g, %.4g, %.4g) (wave speed %.4g + speed %.4g "
+                  "over the cell %.4g)",
+                  p.id[fastest],
+                  scene_.bodies[static_cast<std::size_t>(p.body[fastest])].name.c_str(), x.x, x.y,
+                  x.z, fastest_wave, fastest_speed, grid_.cell());
+  }
+  if (ranks_ == nullptr) return buf;
+  // On ranks (collective): the fastest over every rank's, described by the lowest rank that
+  // holds it, its text sent to every rank.
+  const double mine = fastest == p.size() ? -1.0 : fastest_wave + fastest_speed;
+  const double best = ranks_->max_over_ranks(mine);
+  const int me = ranks_->rank();
+  const int teller = static_cast<int>(-ranks_->max_over_ranks(mine == best ? -me : -1e9));
+  std::vector<core::RankMessage> out;
+  if (me == teller) {
+    const std::string text = buf;
+    for (int r = 0; r < ranks_->ranks(); ++r)
+      if (r != me)
+        out.push_back({r, std::vector<std::byte>(
+                              reinterpret_cast<const std::byte*>(text.data()),
+                              reinterpret_cast<const std::byte*>(text.data()) + text.size())});
+  }
+  std::string text = buf;
+  for (const core::RankMessage& m : ranks_->exchange(out))
+    text.assign(reinterpret_cast<const char*>(m.bytes.data()), m.bytes.size());
+  return text;
 }
 
 Energies MpmSolver::energies() const {

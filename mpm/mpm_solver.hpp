@@ -62,7 +62,8 @@ class MpmSolver {
   // Stable step: factor * h / (max_p c_p + max_p |v_p|), or the scene's fixed step.
   double stable_time_step() const;
   // The particle with the largest c_p + |v_p|, which bounds that step: its id, body and
-  // position, both speeds and the cell, for the run summary (core::Model::time_step_setter).
+  // position, both speeds and the cell, for the run summary (core::Model::time_step_setter). On
+  // ranks (collective): the fastest of every rank's, the same text on every rank.
   std::string time_step_setter() const;
   // Advances by dt running each stage of the plan once. Throws core::SimulationError naming
   // the step, particle and field when a value becomes NaN/Inf or a particle leaves the grid.
@@ -149,6 +150,9 @@ class MpmSolver {
   // Every rank's particles in id order, on rank 0 alone or on every rank (collective); off ranks,
   // this process's particles in id order. For output and the end-of-run measures, not for steps.
   Particles gathered_particles(bool on_every_rank) const;
+  // Every rank's `values` (the same length on each), one after the other in rank order, on every
+  // rank (collective); off ranks, `values` itself.
+  std::vector<double> values_of_every_rank(std::span<const double> values) const;
   // Active grid cells of the last binning.
   std::size_t active_cells() const;
   // Bytes held by particles, grid and solver scratch.

@@ -2,6 +2,7 @@
 #include "mpm/particle_probes.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 
@@ -75,6 +76,26 @@ void ParticleProbes::sample(const Particles& p, std::span<double> out) const {
                                                     p.velocity[i], p.position[i]),
                             p.position[i], v);
       }
+    }
+  }
+}
+
+void ParticleProbes::merge_ranks(std::span<const double> all, std::span<double> out) const {
+  const std::size_t width = out.size();
+  const std::size_t ranks = width > 0 ? all.size() / width : 0;
+  for (std::size_t k = 0; k < specs_.size(); ++k) {
+    const core::ProbeSpec& s = specs_[k];
+    if (s.kind != core::ProbeKind::particle && s.kind != core::ProbeKind::extreme) continue;
+    double* v = out.data() + k * core::probe_stride;
+    std::fill(v, v + core::probe_stride, std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t r = 0; r < ranks; ++r) {
+      const double* w = all.data() + r * width + k * core::probe_stride;
+      if (std::isnan(w[0])) continue;  // not this rank's particle; no point of it in the box
+      if (s.kind == core::ProbeKind::particle) {
+        std::copy(w, w + core::probe_stride, v);
+        break;
+      }
+      core::merge_extreme(s, w[0], core::Vec3{w[1], w[2], w[3]}, v);
     }
   }
 }

@@ -22,6 +22,10 @@ class ParticleProbes {
                const core::Scene& scene);
   // Particle probes and the particles' part of each extreme into out (probe_stride per probe).
   void sample(const Particles& p, std::span<double> out) const;
+  // A run divided among ranks: every rank's samples (`all`, one out array per rank in rank order,
+  // each filled by sample() on its rank's particles) merged into out: a particle probe's row from
+  // the rank that holds the particle, each extreme over every rank's (ties to the lower rank).
+  void merge_ranks(std::span<const double> all, std::span<double> out) const;
 
  private:
   std::vector<core::ProbeSpec> specs_;

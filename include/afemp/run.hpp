@@ -88,6 +88,8 @@ struct RunSummary {
   double energy_error = 0.0;      ///< at the end
   double max_energy_error = 0.0;  ///< largest magnitude over the history rows
   std::vector<StageTiming> stages{};
+  int ranks =
+      1;  ///< MPI ranks the run was divided among; with more than one, `stages` are rank 0's
   std::size_t field_frames = 0;
   /// Set when [run] terminate stopped the run before end_time: what ended it.
   std::string terminated{};

@@ -196,17 +196,27 @@ std::string bar_steps(int steps) {
 }
 
 // Reference: the same scene run as one process. `mpiexec -n 2 afemp run` divides it among two
-// ranks (docs/parallel.md): one "afemp run" line (rank 1 prints nothing), every history value
-// within 1e-10 of its column's largest magnitude of the one-process run's (round-off: the shared
-// nodes add in another order), every frame with every particle (written by rank 0), and no
-// scratch directory of rank 1 left behind. A copper bar on a wall, 2,300 particles, 100 steps,
+// ranks (docs/parallel.md): one "afemp run" line (rank 1 prints nothing), every history and
+// probe value within 1e-10 of its column's largest magnitude of the one-process run's (round-off:
+// the shared nodes add in another order), every frame with every particle (written by rank 0), and
+// no scratch directory of rank 1 left behind. A copper bar on a wall, 2,300 particles, 100 steps,
 // moving across the ranks' blocks.
 TEST(Cli, RunDividedAmongTwoMpiRanksGivesTheOneProcessHistoryAndFrames) {
   test::ScratchDir dir;
   const std::string path = dir.write(
-      "bar.toml", afemp::test::copper_bar_on_wall(
-                      "end_time = 1.0\nmax_steps = 100\noutput_every = 0.004\nhistory_every = 5\n",
-                      "scheme = \"MUSL\"\n"));
+      "bar.toml",
+      afemp::test::copper_bar_on_wall(
+          "end_time = 1.0\nmax_steps = 100\noutput_every = 0.004\nhistory_every = 5\n",
+          "scheme = \"MUSL\"\n") +
+          // The probes sample particles on whichever rank holds them, and extremes
+          // over every rank's: the top of the bar, a particle by index, the largest
+          // pressure, the lowest point.
+          "[[probes]]\nname = \"top\"\nparticle = { body = \"bar\", near = [0, 0, 25.4] }\n"
+          "[[probes]]\nname = \"p100\"\nparticle = { body = \"bar\", index = 100 }\n"
+          "[[probes]]\nname = \"peak\"\nextreme = { field = \"pressure\", of = \"max\", "
+          "box = { min = [0, 0, 0], max = [10, 10, 28] } }\n"
+          "[[probes]]\nname = \"lowest\"\nextreme = { field = \"z\", of = \"min\", "
+          "box = { min = [0, 0, 0], max = [10, 10, 28] } }\n");
   const std::string one = dir.file("one"), two = dir.file("two");
   const std::string args = " run \"" + path + "\" --threads 1 -o ";
   const test::CommandResult a =
@@ -234,6 +244,23 @@ TEST(Cli, RunDividedAmongTwoMpiRanksGivesTheOneProcessHistoryAndFrames) {
   EXPECT_EQ(h1.rows.back()[h1.column("step")], 100.0);
   expect_history_near(one + "/history.csv", two + "/history.csv", 1e-10);
   EXPECT_GT(h1.rows.back()[h1.column("plastic")], 0.0);  // the foot yields
+  for (const char* probe : {"top", "p100"})
+    expect_history_near(one + "/probes/" + probe + ".csv", two + "/probes/" + probe + ".csv",
+                        1e-10);
+  // An extreme's value (where several points hold it to round-off, which one is named may
+  // differ: its position is not compared).
+  for (const char* probe : {"peak", "lowest"}) {
+    const core::CsvTable a = core::read_csv(one + "/probes/" + probe + ".csv");
+    const core::CsvTable b = core::read_csv(two + "/probes/" + probe + ".csv");
+    ASSERT_EQ(a.rows.size(), b.rows.size()) << probe;
+    ASSERT_GE(a.rows.size(), 20u) << probe;
+    const std::size_t c = a.column("value");
+    double scale = 0.0;
+    for (const auto& row : a.rows) scale = std::max(scale, std::abs(row[c]));
+    for (std::size_t r = 0; r < a.rows.size(); ++r)
+      EXPECT_NEAR(b.rows[r][c], a.rows[r][c], 1e-10 * scale) << probe << ", row " << r;
+  }
+  EXPECT_GT(core::read_csv(one + "/probes/peak.csv").rows.back()[1], 100.0);  // MPa, at the foot
   // Every frame of the divided run holds every particle, as the one-process run's do (the
   // positions, velocities and other vectors of each frame).
   const std::size_t particles = first_frame_points(one + "/fields.xmf");
