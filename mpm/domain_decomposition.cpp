@@ -33,6 +33,18 @@ std::array<int, 3> cell_of_point(const core::BackgroundGrid& g, const Vec3& x) {
   return finite(x) ? g.cell_of(x) : std::array<int, 3>{-1, -1, -1};
 }
 
+// The blocks of `weight` split among `ranks` by recursive bisection of their weights, in the
+// map's order of blocks: every rank that passes the same map finds the same partition.
+core::BlockPartition bisect_weighted(const std::map<core::BlockCoord, double>& weight, int ranks) {
+  std::vector<core::BlockCoord> blocks;
+  std::vector<double> weights;
+  for (const auto& [b, w] : weight) {
+    blocks.push_back(b);
+    weights.push_back(w);
+  }
+  return core::bisect_blocks(blocks, weights, ranks);
+}
+
 std::vector<std::int32_t> first_indices(std::size_t n) {
   std::vector<std::int32_t> all(n);
   std::iota(all.begin(), all.end(), 0);
@@ -103,13 +115,7 @@ void MpmSolver::keep_own_particles() {
         std::to_string(ranks) + " ranks for " + std::to_string(count.size()) +
         " grid blocks that hold particles (a block is 4 x 4 x 4 nodes): at most " +
         std::to_string(count.size()) + " ranks, or a finer grid");
-  std::vector<core::BlockCoord> blocks;
-  std::vector<double> weights;
-  for (const auto& [b, n] : count) {
-    blocks.push_back(b);
-    weights.push_back(n);
-  }
-  partition_ = core::bisect_blocks(blocks, weights, ranks);
+  partition_ = bisect_weighted(count, ranks);
   whole_count_ = particles_.size();
   const int me = ranks_->rank();
   std::vector<std::int32_t> kept;
@@ -183,13 +189,7 @@ void MpmSolver::balance_ranks() {
     balance_seconds_ += seconds_since(t0);
     return;
   }
-  std::vector<core::BlockCoord> blocks;
-  std::vector<double> weights;
-  for (const auto& [b, w] : weight) {
-    blocks.push_back(b);
-    weights.push_back(w);
-  }
-  partition_ = core::bisect_blocks(blocks, weights, ranks);
+  partition_ = bisect_weighted(weight, ranks);
   ++rebalances_;
   migrate_particles();
   balance_seconds_ += seconds_since(t0);
