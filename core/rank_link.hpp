@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "core/grid/block_partition.hpp"
@@ -44,6 +45,29 @@ class RankLink {
   // Every rank sends at most one message to each other rank and receives what was sent to it,
   // ordered by sender.
   virtual std::vector<RankMessage> exchange(std::span<const RankMessage> outgoing) = 0;
+
+  // Every rank's `mine` into every[r], indexed by rank (this rank's own copied at its place): on
+  // every rank, or with to_rank_0 on rank 0 alone (the other ranks get their own, the rest
+  // empty). The buffers are resized in place, so that a gather repeated each step allocates
+  // nothing once their sizes settle.
+  virtual void gather_into(std::span<const std::byte> mine,
+                           std::vector<std::vector<std::byte>>& every, bool to_rank_0) = 0;
+  // The same into new buffers.
+  std::vector<std::vector<std::byte>> gather(std::span<const std::byte> mine,
+                                             bool to_rank_0 = false) {
+    std::vector<std::vector<std::byte>> every;
+    gather_into(mine, every, to_rank_0);
+    return every;
+  }
 };
+
+// The bytes of a text or of an array of plain values, for RankLink::gather and exchange.
+inline std::span<const std::byte> bytes_of(std::string_view text) {
+  return std::as_bytes(std::span<const char>(text.data(), text.size()));
+}
+template <class T>
+std::span<const std::byte> bytes_of(std::span<const T> values) {
+  return std::as_bytes(values);
+}
 
 }  // namespace afemp::core

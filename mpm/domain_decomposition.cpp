@@ -150,8 +150,8 @@ void MpmSolver::balance_ranks() {
     worst = std::max(worst, each[k]);
   }
   const double mean = total / static_cast<double>(ranks);
-  last_imbalance_ = mean > 0.0 ? worst / mean : 1.0;
-  if (!(last_imbalance_ > balance_.imbalance)) {
+  const double imbalance = mean > 0.0 ? worst / mean : 1.0;
+  if (!(imbalance > balance_.imbalance)) {
     balance_seconds_ += seconds_since(t0);
     return;
   }
@@ -172,18 +172,19 @@ void MpmSolver::balance_ranks() {
     at = reinterpret_cast<const std::byte*>(&w);
     mine.insert(mine.end(), at, at + sizeof(double));
   }
-  std::vector<core::RankMessage> out;
-  for (int k = 0; k < ranks; ++k)
-    if (k != me) out.push_back({k, mine});
-  for (const core::RankMessage& m : ranks_->exchange(out))
-    for (std::size_t at = 0; at + sizeof(core::BlockCoord) + sizeof(double) <= m.bytes.size();
+  const std::vector<std::vector<std::byte>> every = ranks_->gather(mine);
+  for (int k = 0; k < ranks; ++k) {
+    if (k == me) continue;
+    const std::vector<std::byte>& in = every[static_cast<std::size_t>(k)];
+    for (std::size_t at = 0; at + sizeof(core::BlockCoord) + sizeof(double) <= in.size();
          at += sizeof(core::BlockCoord) + sizeof(double)) {
       core::BlockCoord b;
       double w = 0.0;
-      std::memcpy(b.data(), m.bytes.data() + at, sizeof b);
-      std::memcpy(&w, m.bytes.data() + at + sizeof b, sizeof w);
+      std::memcpy(b.data(), in.data() + at, sizeof b);
+      std::memcpy(&w, in.data() + at + sizeof b, sizeof w);
       weight[b] += w;
     }
+  }
   // Fewer blocks than ranks hold particles now (the material gathered): the partition stays.
   if (weight.size() < n) {
     balance_seconds_ += seconds_since(t0);
@@ -253,22 +254,14 @@ void MpmSolver::migrate_particles() {
 }
 
 std::vector<double> MpmSolver::values_of_every_rank(std::span<const double> values) const {
-  std::vector<double> all(values.begin(), values.end());
-  if (ranks_ == nullptr) return all;
-  const int ranks = ranks_->ranks(), me = ranks_->rank();
-  const auto* bytes = reinterpret_cast<const std::byte*>(values.data());
-  const std::vector<std::byte> mine(bytes, bytes + values.size_bytes());
-  std::vector<core::RankMessage> out;
-  for (int r = 0; r < ranks; ++r)
-    if (r != me) out.push_back({r, mine});
-  all.assign(values.size() * static_cast<std::size_t>(ranks), 0.0);
-  std::copy(values.begin(), values.end(),
-            all.begin() + static_cast<std::ptrdiff_t>(values.size()) * me);
-  for (const core::RankMessage& m : ranks_->exchange(out)) {
-    if (m.bytes.size() != values.size_bytes())
+  if (ranks_ == nullptr) return {values.begin(), values.end()};
+  std::vector<double> all;
+  all.reserve(values.size() * static_cast<std::size_t>(ranks_->ranks()));
+  for (const std::vector<std::byte>& in : ranks_->gather(core::bytes_of(values))) {
+    if (in.size() != values.size_bytes())
       throw std::logic_error("values_of_every_rank: ranks passed arrays of different lengths");
-    std::memcpy(all.data() + values.size() * static_cast<std::size_t>(m.rank), m.bytes.data(),
-                m.bytes.size());
+    const auto* at = reinterpret_cast<const double*>(in.data());
+    all.insert(all.end(), at, at + values.size());
   }
   return all;
 }
@@ -280,23 +273,11 @@ Particles MpmSolver::gathered_particles(bool on_every_rank) const {
   out.optional_fields = p.optional_fields;
   out.history_count = p.history_count;
   const std::vector<std::byte> mine = pack_particles(p, all);
-  const int me = ranks_ ? ranks_->rank() : 0;
   if (ranks_) {
-    std::vector<core::RankMessage> send;
-    for (int r = 0; r < ranks_->ranks(); ++r)
-      if (r != me && (on_every_rank || r == 0)) send.push_back({r, mine});
-    const std::vector<core::RankMessage> in = ranks_->exchange(send);
-    if (me != 0 && !on_every_rank) return out;
-    // In rank order, this rank's own at its place (the order only breaks ties of the sort).
-    bool own_done = false;
-    for (const core::RankMessage& m : in) {
-      if (!own_done && m.rank > me) {
-        unpack_particles(out, mine);
-        own_done = true;
-      }
-      unpack_particles(out, m.bytes);
-    }
-    if (!own_done) unpack_particles(out, mine);
+    // In rank order (the order only breaks ties of the sort).
+    const std::vector<std::vector<std::byte>> every = ranks_->gather(mine, !on_every_rank);
+    if (ranks_->rank() != 0 && !on_every_rank) return out;
+    for (const std::vector<std::byte>& in : every) unpack_particles(out, in);
   } else {
     unpack_particles(out, mine);
   }

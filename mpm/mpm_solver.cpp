@@ -407,18 +407,10 @@ std::string MpmSolver::time_step_setter() const {
   const double best = ranks_->max_over_ranks(mine);
   const int me = ranks_->rank();
   const int teller = static_cast<int>(-ranks_->max_over_ranks(mine == best ? -me : -1e9));
-  std::vector<core::RankMessage> out;
-  if (me == teller) {
-    const std::string text = buf;
-    for (int r = 0; r < ranks_->ranks(); ++r)
-      if (r != me)
-        out.push_back({r, std::vector<std::byte>(
-                              reinterpret_cast<const std::byte*>(text.data()),
-                              reinterpret_cast<const std::byte*>(text.data()) + text.size())});
-  }
-  std::string text = buf;
-  for (const core::RankMessage& m : ranks_->exchange(out))
-    text.assign(reinterpret_cast<const char*>(m.bytes.data()), m.bytes.size());
+  const std::string mine_text = me == teller ? std::string(buf) : std::string();
+  const std::vector<std::byte> told =
+      ranks_->gather(core::bytes_of(mine_text))[static_cast<std::size_t>(teller)];
+  const std::string text(reinterpret_cast<const char*>(told.data()), told.size());
   return text;
 }
 

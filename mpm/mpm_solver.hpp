@@ -146,7 +146,6 @@ class MpmSolver {
   double migration_seconds() const { return migration_seconds_; }
   long rebalances() const { return rebalances_; }
   double balance_seconds() const { return balance_seconds_; }
-  double last_imbalance() const { return last_imbalance_; }
   // Every rank's particles in id order, on rank 0 alone or on every rank (collective); off ranks,
   // this process's particles in id order. For output and the end-of-run measures, not for steps.
   Particles gathered_particles(bool on_every_rank) const;
@@ -450,7 +449,6 @@ class MpmSolver {
   std::size_t whole_count_ = 0;
   core::RankBalance balance_{};
   double sum_seconds_ = 0.0, migration_seconds_ = 0.0, balance_seconds_ = 0.0;
-  double last_imbalance_ = 0.0;
   long rebalances_ = 0;
   // The stage seconds and shared-sum seconds at the last check (a rank's cost is the change).
   double balance_stage_mark_ = 0.0, balance_sum_mark_ = 0.0;

@@ -32,4 +32,9 @@ std::vector<RankMessage> MpiRankLink::exchange(std::span<const RankMessage> outg
   return core::exchange(outgoing);
 }
 
+void MpiRankLink::gather_into(std::span<const std::byte> mine,
+                              std::vector<std::vector<std::byte>>& every, bool to_rank_0) {
+  gather_bytes(mine, every, to_rank_0);
+}
+
 }  // namespace afemp::core

@@ -15,6 +15,8 @@ class MpiRankLink final : public RankLink {
   void sum_in_rank_order(std::span<double> values) override;
   double max_over_ranks(double value) override;
   std::vector<RankMessage> exchange(std::span<const RankMessage> outgoing) override;
+  void gather_into(std::span<const std::byte> mine, std::vector<std::vector<std::byte>>& every,
+                   bool to_rank_0) override;
 };
 
 }  // namespace afemp::core

@@ -132,4 +132,43 @@ std::vector<RankMessage> exchange(std::span<const RankMessage> outgoing) {
   return incoming;
 }
 
+void gather_bytes(std::span<const std::byte> mine, std::vector<std::vector<std::byte>>& every,
+                  bool to_rank_0) {
+  const int ranks = rank_count(), me = rank_index();
+  const auto mine_size = static_cast<std::int64_t>(mine.size());
+  std::vector<std::int64_t> sizes(static_cast<std::size_t>(ranks), 0);
+  if (to_rank_0)
+    check(MPI_Gather(&mine_size, 1, MPI_INT64_T, sizes.data(), 1, MPI_INT64_T, 0, MPI_COMM_WORLD),
+          "MPI_Gather");
+  else
+    check(MPI_Allgather(&mine_size, 1, MPI_INT64_T, sizes.data(), 1, MPI_INT64_T, MPI_COMM_WORLD),
+          "MPI_Allgather");
+  every.resize(static_cast<std::size_t>(ranks));
+  const bool receives = !to_rank_0 || me == 0;
+  std::vector<MPI_Request> requests;
+  for (int r = 0; r < ranks; ++r) {
+    std::vector<std::byte>& in = every[static_cast<std::size_t>(r)];
+    if (r == me) {
+      in.assign(mine.begin(), mine.end());
+    } else if (!receives) {
+      in.clear();
+    } else {
+      in.resize(static_cast<std::size_t>(sizes[static_cast<std::size_t>(r)]));
+      requests.emplace_back();
+      check(MPI_Irecv(in.data(), as_count(in.size()), MPI_BYTE, r, 1, MPI_COMM_WORLD,
+                      &requests.back()),
+            "MPI_Irecv");
+    }
+  }
+  for (int r = 0; r < ranks; ++r) {
+    if (r == me || (to_rank_0 && r != 0)) continue;
+    requests.emplace_back();
+    check(MPI_Isend(mine.data(), as_count(mine.size()), MPI_BYTE, r, 1, MPI_COMM_WORLD,
+                    &requests.back()),
+          "MPI_Isend");
+  }
+  check(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE),
+        "MPI_Waitall");
+}
+
 }  // namespace afemp::core

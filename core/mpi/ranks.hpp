@@ -37,6 +37,12 @@ std::int64_t sum_over_ranks(std::int64_t value);
 // what was sent to it, ordered by sender, the ranks that sent it nothing left out.
 std::vector<RankMessage> exchange(std::span<const RankMessage> outgoing);
 
+// Every rank's `mine` into every[r] (RankLink::gather_into): on every rank, or with to_rank_0
+// on rank 0 alone. The buffers are resized in place, so that a gather repeated each step
+// allocates nothing once their sizes settle.
+void gather_bytes(std::span<const std::byte> mine, std::vector<std::vector<std::byte>>& every,
+                  bool to_rank_0);
+
 // Stops every rank of the run with exit status `code` (MPI_Abort): a rank that failed alone
 // while the others wait for it in a sum.
 [[noreturn]] void abort_ranks(int code);

@@ -19,6 +19,7 @@
 #include "core/state_archive.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
+#include "shared_scratch.hpp"
 
 namespace afemp::mpm {
 namespace {
@@ -142,24 +143,8 @@ TEST(MpiMpmRanks, CheckpointOfTheDividedRunRestartsOnRanksAndInOneProcess) {
   constexpr int first = 70, rest = 80;
   const auto whole = run(scene, nullptr, first + rest);
   core::MpiRankLink link;
-  // Rank 0 names the file and tells the others (the same path on every rank).
-  std::string path;
-  if (core::rank_index() == 0) {
-    std::string pattern =
-        (std::filesystem::temp_directory_path() / "afemp-mpi-checkpoint-XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    path = pattern + "/step_70.h5";
-  }
-  {
-    std::vector<core::RankMessage> out;
-    if (core::rank_index() == 0)
-      for (int r = 1; r < core::rank_count(); ++r)
-        out.push_back({r, std::vector<std::byte>(
-                              reinterpret_cast<const std::byte*>(path.data()),
-                              reinterpret_cast<const std::byte*>(path.data()) + path.size())});
-    for (const core::RankMessage& m : link.exchange(out))
-      path.assign(reinterpret_cast<const char*>(m.bytes.data()), m.bytes.size());
-  }
+  const std::string path = test::shared_scratch_file(link, "step_70.h5");
+  ASSERT_FALSE(path.empty()) << "rank 0 could not make a scratch directory";
   {
     MpmSolver divided(scene, generate_particles(scene));
     divided.divide_among_ranks(link);
@@ -203,9 +188,7 @@ TEST(MpiMpmRanks, CheckpointOfTheDividedRunRestartsOnRanksAndInOneProcess) {
   EXPECT_EQ(alone.particles().size(), whole.particles.size());
   expect_rest(alone, "in one process");
   EXPECT_GT(whole.energies.back().external_work, 0.0);  // gravity did work
-  core::sum_in_rank_order(0.0);
-  if (core::rank_index() == 0)
-    std::filesystem::remove_all(std::filesystem::path(path).parent_path());
+  test::remove_shared_scratch(link, path);
 }
 
 // Reference: the one-process run (150 steps). Rebalanced every 10 steps whatever the imbalance

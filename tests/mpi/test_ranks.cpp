@@ -1,6 +1,6 @@
 // The MPI ranks (core/mpi/ranks.hpp) on 1 to 4 ranks: sums added in rank order hold the serial
-// fold's bits on every rank, and an exchange delivers what was sent, to the byte. Every check is
-// an EXPECT: a rank that failed one still takes part in the collective calls that follow.
+// fold's bits on every rank, and an exchange and a gather deliver what was sent, to the byte. Every
+// check is an EXPECT: a rank that failed one still takes part in the collective calls that follow.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -81,6 +81,33 @@ TEST(MpiRanks, AnExchangeDeliversEveryMessageToTheByte) {
     }
   }
   EXPECT_EQ(sum_over_ranks(received), sum_over_ranks(sent));
+}
+
+// Rank r's bytes for a gather: 1000 (r + 1) + 7 k bytes of value (r + 1) x 31 + k mod 256, so
+// that each rank's differ in length and content from call to call.
+std::vector<std::byte> gather_bytes_of(int r, int k) {
+  return std::vector<std::byte>(static_cast<std::size_t>(1000 * (r + 1) + 7 * k),
+                                static_cast<std::byte>(((r + 1) * 31 + k) % 256));
+}
+
+// Reference: every rank's bytes, as sent. Gathered to every rank, each rank holds every rank's at
+// its index; to rank 0, rank 0 holds them all and another rank its own alone. Three calls into
+// the same buffers, the sizes changing between them (the buffers are reused, not appended to).
+TEST(MpiRanks, AGatherDeliversEveryRanksBytesToEveryRankOrToRankZero) {
+  const int n = rank_count(), me = rank_index();
+  std::vector<std::vector<std::byte>> every;
+  for (int k = 0; k < 3; ++k) {
+    const bool to_rank_0 = k == 1;
+    gather_bytes(gather_bytes_of(me, k), every, to_rank_0);
+    EXPECT_EQ(every.size(), static_cast<std::size_t>(n));
+    for (int r = 0; r < n && r < static_cast<int>(every.size()); ++r) {
+      const std::vector<std::byte>& got = every[static_cast<std::size_t>(r)];
+      if (to_rank_0 && me != 0 && r != me)
+        EXPECT_TRUE(got.empty()) << "call " << k << ", from rank " << r;
+      else
+        EXPECT_EQ(got, gather_bytes_of(r, k)) << "call " << k << ", from rank " << r;
+    }
+  }
 }
 
 }  // namespace
