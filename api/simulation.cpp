@@ -67,15 +67,17 @@ struct Simulation::Impl {
     if (!options.defer_start) start();
   }
 
-  // A run divided among MPI ranks: particle scenes only (from their start or a checkpoint,
-  // which the time loop then reads on every rank).
+  // A run divided among MPI ranks: scenes of particles alone (divided by the grid's blocks) or
+  // of meshes alone (divided by elements), from their start or a checkpoint, which the time
+  // loop then reads on every rank.
   void divide(core::RankLink& link) {
-    auto* particles = dynamic_cast<mpm::MpmModel*>(model.get());
-    if (particles == nullptr)
-      throw std::invalid_argument(
-          "this scene has meshes (hexahedra, trusses, rigid bodies): only scenes of particles "
-          "alone can be divided among MPI ranks yet (docs/parallel.md); run it in one process");
-    particles->divide_among_ranks(link, options.balance);
+    if (auto* particles = dynamic_cast<mpm::MpmModel*>(model.get()))
+      return particles->divide_among_ranks(link, options.balance);
+    if (auto* meshes = dynamic_cast<fem::FeModel*>(model.get()))
+      return meshes->divide_among_ranks(link);
+    throw std::invalid_argument(
+        "this scene couples meshes with particles: only scenes of particles alone or of meshes "
+        "alone can be divided among MPI ranks yet (docs/parallel.md); run it in one process");
   }
 
   // The time loop: the initial state written, or the checkpoint's taken.

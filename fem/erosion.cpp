@@ -51,7 +51,7 @@ void FeSolver::collect_erosions(ElementSet& set) {
       el.alive[e] = 0;
       eroded_energy_ += energy;
       events_.push_back({time_, set.kind(), static_cast<std::int64_t>(e - batch->begin),
-                         batch->body, thread_failure_[t][k], energy, el.mass[e]});
+                         batch->body, thread_failure_[t][k], energy, el.mass[e], e});
       erosion_this_step_ = true;
     }
     set.eroded(thread_erosions_[t]);
@@ -76,7 +76,7 @@ void FeSolver::finish_erosion() {
     if (before[i] > 0.0 && nodes_.mass[i] == 0.0 && !converted_node_[i]) {
       const Vec3& v = nodes_.velocity[i];
       events_.push_back({time_, "node", static_cast<std::int64_t>(i), nodes_.body[i],
-                         "no element left", 0.5 * before[i] * core::dot(v, v), before[i]});
+                         "no element left", 0.5 * before[i] * core::dot(v, v), before[i], i});
     }
   std::fill(converted_node_.begin(), converted_node_.end(), 0);
   // Eroding contact: the surfaces now include the faces the lost elements exposed.

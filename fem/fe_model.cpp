@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <type_traits>
@@ -31,7 +32,23 @@ FeModel::FeModel(const core::Scene& scene)
       history_names_(core::history_field_names(scene)) {}
 
 void FeModel::write_fields(core::FieldWriter& writer) {
+  solver_.gather_elements();  // on MPI ranks: rank 0 writes every rank's elements
   writer.write_frame(solver_.time(), solver_.step_count(), {}, mesh_blocks());
+}
+
+void FeModel::divide_among_ranks(core::RankLink& link) {
+  // A phase's static or implicit solve assembles the whole mesh on one process, and a
+  // relaxation prints each body's stresses from its points (body_stresses).
+  if (!scene_.phases.empty())
+    throw std::invalid_argument(
+        "this FE run cannot be divided among ranks yet: [[phases]] run on one rank only "
+        "(docs/parallel.md)");
+  solver_.divide_among_ranks(link);
+}
+
+void FeModel::sample_probes(std::span<double> out) const {
+  if (probes_.reads_elements()) solver_.gather_elements();  // on ranks: rank 0 samples them all
+  probes_.sample(solver_, out);
 }
 
 const std::vector<core::MeshBlock>& FeModel::mesh_blocks() {
@@ -159,20 +176,25 @@ std::vector<core::StageTiming> FeModel::stage_timings() const {
   const std::vector<FeStage>& stages = solver_.plan().stages;
   for (std::size_t i = 0; i < stages.size(); ++i)
     out.push_back({stages[i].name, solver_.step_count(), solver_.stage_seconds()[i]});
+  if (solver_.on_ranks())
+    out.push_back(
+        {"element results to every rank", solver_.step_count(), solver_.exchange_seconds()});
   return out;
 }
 
 std::vector<core::EventLog> FeModel::take_events() {
   const core::Energies e = solver_.energies();
   // Only once the hourglass energy matters at all (not round-off in the first steps).
+  // On MPI ranks the energies and the records are collective; rank 0 warns and writes them.
   if (hourglass_warning_step_ < 0 && e.hourglass > 0.1 * e.internal &&
       e.hourglass > 1e-3 * (e.kinetic + e.internal + e.hourglass)) {
     hourglass_warning_step_ = solver_.step_count();
-    std::fprintf(stderr,
-                 "afemp: warning: at step %ld the hourglass energy %.4g exceeds 10 %% of the "
-                 "internal energy %.4g: refine the mesh, use the stiffness form or full "
-                 "integration\n",
-                 solver_.step_count(), e.hourglass, e.internal);
+    if (solver_.rank() == 0)
+      std::fprintf(stderr,
+                   "afemp: warning: at step %ld the hourglass energy %.4g exceeds 10 %% of the "
+                   "internal energy %.4g: refine the mesh, use the stiffness form or full "
+                   "integration\n",
+                   solver_.step_count(), e.hourglass, e.internal);
   }
   core::EventLog log{"erosion.csv", "time,kind,id,body,reason,energy,mass", {}};
   for (const ErosionEvent& ev : solver_.take_erosion_events()) {

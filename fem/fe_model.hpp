@@ -45,7 +45,8 @@ class FeModel final : public core::Model {
   void resolve_probes(std::span<const core::ProbeSpec> probes) override {
     probes_.resolve(probes, solver_, scene_);
   }
-  void sample_probes(std::span<double> out) const override { probes_.sample(solver_, out); }
+  // On MPI ranks (collective): rank 0 gathers the elements' state first when a probe reads it.
+  void sample_probes(std::span<double> out) const override;
   // Penalty contacts book the work of their impulses as the sliding energy (mesh_contact.cpp).
   std::vector<core::EnergyColumn> energy_columns() const override;
   // Per penalty contact NAME: NAME.fx, .fy, .fz (the force on its first body), NAME.normal and
@@ -70,6 +71,11 @@ class FeModel final : public core::Model {
     return fem::points_inside(solver_.hexahedra(), solver_.nodes().position, body, points);
   }
   void state(core::StateArchive& archive) override;
+  void prepare_checkpoint() override { solver_.prepare_checkpoint(); }
+  // Divides the run among MPI ranks (FeSolver::divide_among_ranks; docs/parallel.md): every
+  // rank moves every node, its own elements' points live on it; rank 0 writes the frames,
+  // probes, records and checkpoints one process would.
+  void divide_among_ranks(core::RankLink& link);
   void set_body_velocity(int body, const core::Vec3& v) override {
     solver_.set_body_velocity(body, v);
   }

@@ -14,11 +14,13 @@
 #include <span>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <variant>
 #include <vector>
 
 #include "afemp/energies.hpp"
 #include "core/materials/material.hpp"
+#include "core/parallel.hpp"
 #include "core/scene.hpp"
 #include "fem/element_store.hpp"
 #include "fem/embedded_nodes.hpp"
@@ -31,8 +33,9 @@
 #include "fem/truss_set.hpp"
 
 namespace afemp::core {
+class RankLink;
 class StateArchive;
-}
+}  // namespace afemp::core
 
 namespace afemp::fem {
 
@@ -71,6 +74,9 @@ struct ErosionEvent {
   // and kinetic energy, which its elements' records already count.
   double energy = 0.0;
   double mass = 0.0;
+  // The element in its set, or the node: with the kind, the order one process makes the
+  // records of a step in (the records of a run on MPI ranks are put in that order).
+  std::size_t index = 0;
 };
 
 // A hexahedron that left the mesh without eroding: its body's `conversion` criteria met inside
@@ -163,6 +169,9 @@ class FeSolver {
     return f;
   }
   core::Energies energies() const;
+  // The records since the last call, by step, then hexahedra, trusses and nodes, each by index
+  // (the order the sweeps met them in depends on the packs of elements and the threads). On
+  // MPI ranks (collective): every rank's, on rank 0 alone.
   std::vector<ErosionEvent> take_erosion_events();
   // Hexahedra retired (their body's `conversion` criteria met) since the last call, in the
   // order they retired; the caller makes what replaces them from the arrays and the nodes.
@@ -222,6 +231,27 @@ class FeSolver {
   // Saves or restores the solver's state (a checkpoint, core/state_archive.hpp; fe_state.cpp).
   // Restoring needs a solver built from the same scene; events must have been taken.
   void state(core::StateArchive& archive);
+
+  // MPI ranks (element_division.cpp; docs/parallel.md): each rank updates a share of every
+  // batch of elements (runs of 64 dealt round the ranks) and, after the element stages, sends its
+  // elements' corner forces, critical steps, volumes and alive flags to every rank, so that every
+  // rank moves every node as one process does, to the bit; the state of an element's points stays
+  // on its rank. Energies sum the ranks' element parts in rank order, the erosion records are
+  // gathered on rank 0 (take_erosion_events), and every call below that reads the element state is
+  // collective. A scene with a static, implicit or relaxation phase (FeModel) or coupled to
+  // particles (api/simulation.cpp) is refused before it is divided.
+  void divide_among_ranks(core::RankLink& link);
+  bool on_ranks() const { return ranks_ != nullptr; }
+  int rank() const;
+  // Collective: rank 0's copies of the other ranks' elements take their points' state, bulk
+  // viscosity and hourglass forces (for the frame, the probes or the checkpoint rank 0 writes).
+  // It changes nothing any rank's update reads; nothing in one process.
+  void gather_elements() const;
+  // Collective, before state() saves on ranks: the elements gathered on rank 0 and the running
+  // sums of the element stages added in rank order (core::Model::prepare_checkpoint).
+  void prepare_checkpoint();
+  // Wall seconds spent sending the element results between ranks.
+  double exchange_seconds() const { return exchange_seconds_; }
 
  private:
   // The live element with the smallest critical step: its set, batch and index (set nullptr:
@@ -388,6 +418,36 @@ class FeSolver {
   bool erosion_this_step_ = false;
   std::vector<ErosionEvent> events_;
   std::vector<RetiredElement> retired_;  // not yet taken
+  // MPI ranks (element_division.cpp): the link, this rank and their count, the element results
+  // sent after the element stages, and the element stages' running sums prepare_checkpoint
+  // added over the ranks (for state() to save).
+  core::RankLink* ranks_ = nullptr;
+  int rank_ = 0, rank_count_ = 1;
+  // Rank r's share of batch b: runs of kRankRun elements dealt round the ranks (run k to rank
+  // k mod N), so that a region dearer than the rest (a plastic foot, an eroding crater) is
+  // shared by every rank; the whole batch in one process. for_each_share calls f(first, last)
+  // for each of rank r's runs; sweep_share calls f(first, last, thread) over this rank's
+  // elements split among the threads (core::parallel_chunks over its element count).
+  static constexpr std::size_t kRankRun = 64;
+  template <class F>
+  void for_each_share(const ElementBatch& b, int r, F&& f) const;
+  template <class F>
+  void sweep_share(const ElementBatch& b, F&& f) const;
+  void share_element_results();
+  // The element parts of `e` (internal, plastic, viscous, hourglass, stabilisation, eroded,
+  // each body's internal) added over the ranks in rank order.
+  void sum_element_energies(core::Energies& e) const;
+  std::vector<ErosionEvent> gather_erosion_events(std::vector<ErosionEvent> mine) const;
+  static void sort_erosion_events(std::vector<ErosionEvent>& events);
+  double exchange_seconds_ = 0.0;
+  // The bytes sent and received between ranks, kept from step to step: a step allocates none.
+  std::vector<std::byte> rank_send_;
+  std::vector<std::vector<std::byte>> rank_receive_;
+  struct RankSums {
+    double plastic = 0.0, viscous = 0.0, hourglass = 0.0, stabilisation = 0.0, eroded = 0.0;
+    std::vector<double> body_stabilisation;
+    bool ready = false;
+  } rank_sums_;
   RetirementDomain retirement_;
   std::vector<std::uint8_t> converted_node_;  // a node of an element converted this step
   std::vector<std::vector<std::size_t>> thread_conversions_;
@@ -410,6 +470,41 @@ void FeSolver::run_stage(FeStageKind kind, F&& f) {
   f();
   stage_seconds_[static_cast<std::size_t>(i)] +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+template <class F>
+void FeSolver::for_each_share(const ElementBatch& b, int r, F&& f) const {
+  if (ranks_ == nullptr) {
+    f(b.begin, b.end);
+    return;
+  }
+  const std::size_t stride = kRankRun * static_cast<std::size_t>(rank_count_);
+  for (std::size_t lo = b.begin + kRankRun * static_cast<std::size_t>(r); lo < b.end; lo += stride)
+    f(lo, std::min(lo + kRankRun, b.end));
+}
+
+template <class F>
+void FeSolver::sweep_share(const ElementBatch& b, F&& f) const {
+  const std::size_t n = b.end - b.begin;
+  if (ranks_ == nullptr) {
+    core::parallel_chunks(
+        n, [&](std::size_t lo, std::size_t hi, int t) { f(b.begin + lo, b.begin + hi, t); });
+    return;
+  }
+  const std::size_t runs = n / kRankRun, rest = n % kRankRun;
+  const auto ranks = static_cast<std::size_t>(rank_count_), r = static_cast<std::size_t>(rank_);
+  // This rank's elements: its whole runs, and the last, shorter run when it is its.
+  const std::size_t own = (runs > r ? (runs - r + ranks - 1) / ranks : 0) * kRankRun +
+                          (rest > 0 && runs % ranks == r ? rest : 0);
+  // Its k-th element lies in its run k / kRankRun, the batch's run (k / kRankRun) N + r.
+  core::parallel_chunks(own, [&](std::size_t lo, std::size_t hi, int t) {
+    while (lo < hi) {
+      const std::size_t first = b.begin + ((lo / kRankRun) * ranks + r) * kRankRun + lo % kRankRun;
+      const std::size_t take = std::min(hi - lo, kRankRun - lo % kRankRun);
+      f(first, first + take, t);
+      lo += take;
+    }
+  });
 }
 
 template <class Update>

@@ -5,6 +5,7 @@
 // comes from constructing the solver from the same scene.
 #include <stdexcept>
 
+#include "core/rank_link.hpp"
 #include "core/state_archive.hpp"
 #include "fem/fe_solver.hpp"
 
@@ -146,12 +147,32 @@ void FeSolver::state(StateArchive& a) {
       visit_rigid(a, rigid_bodies_[r]);
     }
   }
-  a.item("plastic_work", plastic_work_);
-  a.item("viscous_work", viscous_work_);
-  a.item("hourglass_work", hourglass_work_);
-  a.item("stabilisation_work", stabilisation_work_);
-  a.item("body_stabilisation", body_stabilisation_);
-  a.item("eroded_energy", eroded_energy_);
+  // The element stages' running sums: on MPI ranks a checkpoint holds the whole run's, which
+  // prepare_checkpoint() added over the ranks (each rank's are its own elements'); restored on
+  // ranks, rank 0 holds them and the others add from zero.
+  const bool whole_on_ranks = ranks_ != nullptr && !a.loading();
+  if (whole_on_ranks && !rank_sums_.ready)
+    throw std::logic_error("FeSolver::state: prepare_checkpoint() first on ranks");
+  RankSums own{plastic_work_,       viscous_work_,  hourglass_work_,
+               stabilisation_work_, eroded_energy_, body_stabilisation_};
+  RankSums& sums = whole_on_ranks ? rank_sums_ : own;
+  a.item("plastic_work", sums.plastic);
+  a.item("viscous_work", sums.viscous);
+  a.item("hourglass_work", sums.hourglass);
+  a.item("stabilisation_work", sums.stabilisation);
+  a.item("body_stabilisation", sums.body_stabilisation);
+  a.item("eroded_energy", sums.eroded);
+  if (whole_on_ranks) rank_sums_.ready = false;
+  if (a.loading()) {
+    if (ranks_ != nullptr && ranks_->rank() != 0) own = RankSums{};
+    plastic_work_ = own.plastic;
+    viscous_work_ = own.viscous;
+    hourglass_work_ = own.hourglass;
+    stabilisation_work_ = own.stabilisation;
+    eroded_energy_ = own.eroded;
+    body_stabilisation_ = own.body_stabilisation;
+    if (body_stabilisation_.empty()) body_stabilisation_.assign(scene_.bodies.size(), 0.0);
+  }
   a.item("external_work", external_work_);
   a.item("absorbing_start", absorbing_start_);
   a.item("previous_dt", previous_dt_);

@@ -18,11 +18,12 @@ template <class Strength, class Eos, bool Thermal, bool Fails>
 void FeSolver::hexahedron_batch(const ElementBatch& b, const Strength& strength, const Eos& eos,
                                 double dt) {
   const HexahedronPasses<Strength, Eos, Thermal, Fails> passes(*this, b, strength, eos, dt);
-  core::parallel_chunks(b.end - b.begin, [&](std::size_t lo, std::size_t hi, int t) {
+  // This rank's elements (all of them in one process), split among the threads.
+  sweep_share(b, [&](std::size_t first, std::size_t last, int t) {
     if (b.points_per_element == 8)
-      passes.sweep_full(b.begin + lo, b.begin + hi, t);
+      passes.sweep_full(first, last, t);
     else
-      passes.sweep_one_point(b.begin + lo, b.begin + hi, t);
+      passes.sweep_one_point(first, last, t);
   });
 }
 

@@ -101,6 +101,12 @@ void MeshProbes::resolve(std::span<const core::ProbeSpec> probes, const FeSolver
   }
 }
 
+bool MeshProbes::reads_elements() const {
+  return std::any_of(specs_.begin(), specs_.end(), [](const core::ProbeSpec& s) {
+    return s.kind == core::ProbeKind::element || s.kind == core::ProbeKind::extreme;
+  });
+}
+
 void MeshProbes::sample(const FeSolver& fe, std::span<double> out) const {
   const FeNodes& nodes = fe.nodes();
   for (std::size_t k = 0; k < specs_.size(); ++k) {

@@ -25,6 +25,8 @@ class MeshProbes {
   // Node and element probes and the elements' part of each extreme into out (probe_stride per
   // probe). An element that is gone (eroded, converted) leaves its NaN.
   void sample(const FeSolver& fe, std::span<double> out) const;
+  // Whether a probe reads the elements' state (an element probe, or an extreme).
+  bool reads_elements() const;
 
  private:
   std::vector<core::ProbeSpec> specs_;

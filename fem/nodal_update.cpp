@@ -247,6 +247,7 @@ void FeSolver::finish_step(double dt) {
   });
   if (!embedded_.empty()) follow_hosts(embedded_, nodes_, hexes_);
   for (ElementSet* set : sets_) run_stage(set->stage(), [&] { set->update(*this, dt); });
+  if (ranks_) share_element_results();
   time_ += dt;
   ++steps_;
   previous_dt_ = dt;
@@ -327,20 +328,24 @@ core::Energies FeSolver::energies() const {
     b.kinetic += kinetic;
   }
   if (!embedded_.empty()) book_embedded_bodies(embedded_, nodes_, hexes_, out.bodies);
+  // The elements' part: on MPI ranks each rank's own elements and the running sums of its
+  // element stages, added over the ranks in rank order below.
   for (const ElementSet* set : sets_) {
     const ElementStore& el = set->store();
     for (const ElementBatch& b : el.batches)
-      for (std::size_t e = b.begin; e < b.end; ++e) {
-        if (!el.alive[e]) continue;
-        const std::size_t p0 =
-            b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
-        double internal = 0.0;
-        for (int g = 0; g < b.points_per_element; ++g)
-          internal += el.point_mass[p0 + static_cast<std::size_t>(g)] *
-                      el.energy[p0 + static_cast<std::size_t>(g)];
-        out.internal += internal;
-        out.bodies[static_cast<std::size_t>(b.body)].internal += internal;
-      }
+      for_each_share(b, rank_, [&](std::size_t first, std::size_t last) {
+        for (std::size_t e = first; e < last; ++e) {
+          if (!el.alive[e]) continue;
+          const std::size_t p0 =
+              b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
+          double internal = 0.0;
+          for (int g = 0; g < b.points_per_element; ++g)
+            internal += el.point_mass[p0 + static_cast<std::size_t>(g)] *
+                        el.energy[p0 + static_cast<std::size_t>(g)];
+          out.internal += internal;
+          out.bodies[static_cast<std::size_t>(b.body)].internal += internal;
+        }
+      });
   }
   out.plastic = plastic_work_;
   out.viscous = viscous_work_;
@@ -349,10 +354,11 @@ core::Energies FeSolver::energies() const {
   out.internal += stabilisation_work_;
   for (std::size_t b = 0; b < body_stabilisation_.size(); ++b)
     out.bodies[b].internal += body_stabilisation_[b];
+  out.eroded = eroded_energy_;
+  if (ranks_) sum_element_energies(out);
   out.sliding = sliding_energy_;
   for (const MeshContact& c : contacts_) out.friction += c.friction_work;
   out.wall = wall_energy_;
-  out.eroded = eroded_energy_;
   out.external_work = external_work_;
   return out;
 }
@@ -367,6 +373,8 @@ void FeSolver::set_grid_driven(const std::vector<std::uint8_t>& driven) {
 std::vector<ErosionEvent> FeSolver::take_erosion_events() {
   std::vector<ErosionEvent> out;
   out.swap(events_);
+  if (ranks_) return gather_erosion_events(std::move(out));  // collective: rank 0's are all
+  sort_erosion_events(out);
   return out;
 }
 

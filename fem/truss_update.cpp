@@ -120,9 +120,7 @@ void FeSolver::truss_batch(const ElementBatch& b, const Strength& strength, cons
       }
     }
   };
-  core::parallel_chunks(b.end - b.begin, [&](std::size_t lo, std::size_t hi, int t) {
-    sweep(b.begin + lo, b.begin + hi, t);
-  });
+  sweep_share(b, sweep);  // this rank's elements (all of them in one process)
 }
 
 void TrussSet::update(FeSolver& fe, double dt) {

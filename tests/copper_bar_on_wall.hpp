@@ -1,10 +1,12 @@
 // A quarter of a copper bar (Johnson-Cook, the Taylor bar's OFHC copper) at 200 m/s onto a wall
 // at z = 0, symmetric faces at x = 0 and y = 0, cells of 1 mm and 2 particles per direction:
 // about 2,300 particles that cross the grid's blocks within 100 steps, the divided-run tests'
-// scene (header only; not a test file itself).
+// scene (header only; not a test file itself). Also a bar of hexahedra that erodes at a wall.
 #pragma once
 
 #include <string>
+
+#include "core/material_fixtures.hpp"
 
 namespace afemp::test {
 
@@ -30,6 +32,31 @@ material = "copper"
 shape = { cylinder = { base = [0, 0, 0], axis = [0, 0, 1], radius = 3.8, length = 25.4 } }
 velocity = [0, 0, -200]
 particles_per_cell = 2
+)";
+}
+
+// A copper bar of one-point hexahedra (a quarter, 0.5 mm elements) onto a rigid wall at 400 m/s
+// with Johnson-Cook, Mie-Grueneisen, gravity and erosion at a plastic strain of 0.5: every stage
+// of the FE step; its foot erodes within 100 steps.
+inline std::string eroding_copper_bar_of_hexahedra() {
+  return std::string("[run]\n") + core::fixtures::kDeterminismCopperToml + R"(
+[[bodies]]
+name = "bar"
+discretisation = "hexahedra"
+material = "copper"
+shape = { cylinder = { base = [0, 0, 0.01], radius = 4, length = 20 } }
+mesh = { size = 0.5, sectors = 1 }
+velocity = [0, 0, -400]
+erosion = { plastic_strain = 0.5 }
+[[constraints]]
+nodes = { plane = { point = [0, 0, 0], normal = [1, 0, 0] } }
+fixed = ["x"]
+[[constraints]]
+nodes = { plane = { point = [0, 0, 0], normal = [0, 1, 0] } }
+fixed = ["y"]
+[[walls]]
+point = [0, 0, 0]
+normal = [0, 0, 1]
 )";
 }
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "core/material_fixtures.hpp"
+#include "copper_bar_on_wall.hpp"
 #include "core/parallel.hpp"
 #include "core/scene.hpp"
 #include "fem/fe_solver.hpp"
@@ -17,25 +17,7 @@ namespace afemp::fem {
 namespace {
 
 // A copper bar onto a rigid wall with Johnson-Cook, Mie-Grueneisen and erosion: every stage.
-const std::string scene_text = std::string("[run]\n") + core::fixtures::kDeterminismCopperToml + R"(
-[[bodies]]
-name = "bar"
-discretisation = "hexahedra"
-material = "copper"
-shape = { cylinder = { base = [0, 0, 0.01], radius = 4, length = 20 } }
-mesh = { size = 0.5, sectors = 1 }
-velocity = [0, 0, -400]
-erosion = { plastic_strain = 0.5 }
-[[constraints]]
-nodes = { plane = { point = [0, 0, 0], normal = [1, 0, 0] } }
-fixed = ["x"]
-[[constraints]]
-nodes = { plane = { point = [0, 0, 0], normal = [0, 1, 0] } }
-fixed = ["y"]
-[[walls]]
-point = [0, 0, 0]
-normal = [0, 0, 1]
-)";
+const std::string scene_text = test::eroding_copper_bar_of_hexahedra();
 
 struct State {
   std::vector<core::Vec3> position;
