@@ -110,8 +110,7 @@ void FeSolver::share_element_results() {
   each_slice(me, pack, pack, [&](ElementSet&, std::size_t, auto s) { pack(s); });
   ranks_->gather_into(mine, rank_receive_, false);
   const std::vector<std::vector<std::byte>>& every = rank_receive_;
-  std::vector<std::size_t> lost;
-  std::vector<std::uint8_t> flags;
+  std::vector<std::size_t> lost;  // allocates only when an element eroded
   for (int r = 0; r < ranks; ++r) {
     if (r == me) continue;
     const std::span<const std::byte> in = every[static_cast<std::size_t>(r)];
@@ -120,13 +119,16 @@ void FeSolver::share_element_results() {
     // An element whose flag went down eroded on its rank (which booked its energy and wrote
     // its record): here it leaves the mesh's surfaces and the node masses (finish_erosion).
     each_slice(r, read, read, [&](ElementSet& set, std::size_t lo, std::span<std::uint8_t> alive) {
-      flags.resize(alive.size());
-      read_slice(in, at, std::span<std::uint8_t>(flags), r);
+      if (at + alive.size() > in.size())
+        throw std::logic_error("fem element division: rank " + std::to_string(r) +
+                               " sent fewer element values than its share");
       lost.clear();
       for (std::size_t k = 0; k < alive.size(); ++k) {
-        if (alive[k] != 0 && flags[k] == 0) lost.push_back(lo + k);
-        alive[k] = flags[k];
+        const auto flag = static_cast<std::uint8_t>(in[at + k]);
+        if (alive[k] != 0 && flag == 0) lost.push_back(lo + k);
+        alive[k] = flag;
       }
+      at += alive.size();
       if (!lost.empty()) {
         set.eroded(lost);
         erosion_this_step_ = true;
