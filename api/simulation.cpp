@@ -67,17 +67,17 @@ struct Simulation::Impl {
     if (!options.defer_start) start();
   }
 
-  // A run divided among MPI ranks: scenes of particles alone (divided by the grid's blocks) or
-  // of meshes alone (divided by elements), from their start or a checkpoint, which the time
-  // loop then reads on every rank.
+  // A run divided among MPI ranks: particles by the grid's blocks, meshes by their elements,
+  // and in a coupled scene both, from their start or a checkpoint, which the time loop then
+  // reads on every rank.
   void divide(core::RankLink& link) {
     if (auto* particles = dynamic_cast<mpm::MpmModel*>(model.get()))
       return particles->divide_among_ranks(link, options.balance);
     if (auto* meshes = dynamic_cast<fem::FeModel*>(model.get()))
       return meshes->divide_among_ranks(link);
-    throw std::invalid_argument(
-        "this scene couples meshes with particles: only scenes of particles alone or of meshes "
-        "alone can be divided among MPI ranks yet (docs/parallel.md); run it in one process");
+    if (auto* coupled = dynamic_cast<coupling::CoupledModel*>(model.get()))
+      return coupled->divide_among_ranks(link, options.balance);
+    throw std::logic_error("Simulation: a model of no known kind to divide among ranks");
   }
 
   // The time loop: the initial state written, or the checkpoint's taken.

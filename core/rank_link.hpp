@@ -23,10 +23,12 @@ struct RankMessage {
 };
 
 // A nodal array of the grid: fields x slots entries of `components` doubles each (mass 1,
-// momentum and force 3), as BackgroundGrid stores them.
+// momentum and force 3), as BackgroundGrid stores them. The ranks' parts of a node are added,
+// or for `largest` (grid contact's reach, a maximum over the particles) the largest is kept.
 struct NodalArray {
   double* data = nullptr;
   int components = 1;
+  bool largest = false;
 };
 
 class RankLink {
@@ -34,9 +36,9 @@ class RankLink {
   virtual ~RankLink() = default;
   virtual int rank() const = 0;   // this process's rank
   virtual int ranks() const = 0;  // how many
-  // After each rank's own scatter: the nodal sums of every block that several ranks' particles
-  // reach made whole, the same bits on every rank that holds the block
-  // (core/mpi/shared_block_sums.hpp).
+  // After each rank's own scatter: the nodal sums (or maxima, NodalArray::largest) of every
+  // block that several ranks' particles reach made whole, the same bits on every rank that holds
+  // the block (core/mpi/shared_block_sums.hpp).
   virtual void sum_shared_blocks(BackgroundGrid& grid, std::span<const NodalArray> arrays,
                                  const BlockPartition& partition) = 0;
   // Each element summed over the ranks in rank order (the same bits on every rank).

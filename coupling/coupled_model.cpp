@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <stdexcept>
 #include <string>
 
 #include "afemp/errors.hpp"
@@ -354,19 +355,8 @@ void CoupledModel::force_values(std::vector<double>& out) const {
   mpm::append_grid_contact_values(out, mpm());
   if (bonded_bodies_.empty()) return;
   // The trusses' axial forces, by body.
-  const std::size_t nb = scene_.bodies.size();
-  std::vector<double> most(nb, -std::numeric_limits<double>::infinity());
-  std::vector<double> least(nb, std::numeric_limits<double>::infinity());
-  const fem::TrussElements& t = fe().trusses();
-  const fem::FeNodes& n = fe().nodes();
-  for (const fem::ElementBatch& b : t.batches)
-    for (std::size_t e = b.begin; e < b.end; ++e) {
-      if (!t.alive[e]) continue;
-      const double axial = t.axial_force(b, e, n.position);
-      const auto body = static_cast<std::size_t>(b.body);
-      most[body] = std::max(most[body], axial);
-      least[body] = std::min(least[body], axial);
-    }
+  std::vector<double> most, least;
+  fe().truss_axial_range(most, least);
   for (int b : bonded_bodies_) {
     const auto k = static_cast<std::size_t>(b);
     const core::Vec3& f = bond_force_[k];
@@ -375,7 +365,26 @@ void CoupledModel::force_values(std::vector<double>& out) const {
   }
 }
 
+void CoupledModel::divide_among_ranks(core::RankLink& link, const core::RankBalance& balance) {
+  std::vector<std::string> what;
+  for (const core::BodySpec& body : scene_.bodies)
+    if (body.conversion)
+      what.push_back("elements converted into particles (AFEMP: body \"" + body.name + "\")");
+  if (surface_contacts_)
+    what.push_back("surface contact of particles at mesh faces ([[contact]] method \"surface\")");
+  if (!scene_.phases.empty()) what.push_back("[[phases]]");
+  if (!what.empty()) {
+    std::string text = "this coupled run cannot be divided among ranks yet: ";
+    for (std::size_t k = 0; k < what.size(); ++k)
+      text += (k == 0 ? "" : k + 1 == what.size() ? " and " : ", ") + what[k];
+    throw std::invalid_argument(text + " run on one rank only (docs/parallel.md)");
+  }
+  mpm_.divide_among_ranks(link, balance);  // refuses what the particles' stages cannot divide
+  fe_.divide_among_ranks(link);
+}
+
 void CoupledModel::write_fields(core::FieldWriter& writer) {
+  fe().gather_elements();  // on ranks: rank 0 writes every rank's elements and particles
   const core::PointBlock points[] = {mpm_.particle_block()};
   writer.write_frame(time(), step_count(), points, fe_.mesh_blocks());
 }

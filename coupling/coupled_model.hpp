@@ -126,6 +126,17 @@ class CoupledModel final : public core::Model {
     return fe_.points_inside(body, points);
   }
   void state(core::StateArchive& archive) override;
+  void prepare_checkpoint() override {
+    fe_.prepare_checkpoint();
+    mpm_.prepare_checkpoint();
+  }
+  // Divides the run among MPI ranks (docs/parallel.md): the particles by the grid's blocks
+  // (MpmModel::divide_among_ranks), the elements in runs dealt round the ranks with every node
+  // on every rank (FeModel::divide_among_ranks); a node on the grid is scattered by the rank of
+  // its block and its result sent to every rank (NodePoints), so the contact and bonded
+  // couplings divide with them. Throws std::invalid_argument naming what does not divide yet:
+  // elements converted into particles, surface contact, [[phases]].
+  void divide_among_ranks(core::RankLink& link, const core::RankBalance& balance = {});
   // The meshes' static or implicit phase (the particles held); both clocks then read its end.
   double run_implicit_phase(const core::PhaseSpec& phase, std::ostream* log) override {
     const double dissipated = fe_.run_implicit_phase(phase, log);

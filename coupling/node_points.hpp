@@ -8,7 +8,9 @@
 //     and the grid step only returns the velocity change grid contact made at the nodes
 //     around them, interpolated to each node: sum N_I dv_I. Since the field's nodal mass is
 //     sum_n N_I m_n, the nodes receive exactly the impulse the contact gave their field.
-// A node outside the grid takes no part in the step (contact) or stops the run (bonded).
+// A node outside the grid takes no part in the step (contact) or stops the run (bonded). On MPI
+// ranks a node is scattered by the rank that owns its cell's block, and every rank receives
+// every node's result (from_grid), so the FE nodes stay the same on every rank.
 // They join the MPM solver's step through its neutral grid-points hook (mpm/grid_points.hpp);
 // the transfers are in node_transfers.cpp.
 #pragma once
@@ -78,7 +80,12 @@ class NodePoints final : public mpm::GridPoints {
   void remap(const mpm::GridStepAccess& access) override;
 
  private:
+  // On ranks, after from_grid: every rank's points' velocity and motion to every rank.
+  void share_results(core::RankLink& ranks);
+
   std::vector<char> updates_itself_;  // per scene body
+  std::vector<std::byte> mine_;       // share_results' buffers, kept from step to step
+  std::vector<std::vector<std::byte>> every_;
 };
 
 }  // namespace afemp::coupling

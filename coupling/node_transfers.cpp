@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 #include "afemp/errors.hpp"
@@ -53,7 +54,7 @@ void NodePoints::bin(const GridStepAccess& a, std::vector<std::int64_t>& cells) 
     const Vec3& x = position[k];
     const auto c = g.cell_of(x);
     const bool inside = std::isfinite(x.x + x.y + x.z) && g.inside(c);
-    on_grid[k] = inside && mass[k] > 0.0;
+    on_grid[k] = inside && mass[k] > 0.0 && a.holds(c);
     if (on_grid[k]) cells.push_back(g.linear_cell(c));
     // A contact node off the grid moves by the FE update alone; a bonded one has lost its host.
     if (!inside && bonded[k] && mass[k] > 0.0) {
@@ -143,6 +144,34 @@ void NodePoints::from_grid(const GridStepAccess& a) {
       q.motion[k] = dv;
     }
   });
+  if (a.ranks) share_results(*a.ranks);
+}
+
+void NodePoints::share_results(core::RankLink& ranks) {
+  // Each rank sends the velocity and motion of the points it took (those of its blocks; a point
+  // lies in one rank's block), and takes every other rank's.
+  struct Result {
+    std::uint64_t point;
+    Vec3 velocity, motion;
+  };
+  mine_.clear();
+  for (std::size_t k = 0; k < size(); ++k) {
+    if (!on_grid[k] || !(mass[k] > 0.0)) continue;
+    const Result r{k, velocity[k], motion[k]};
+    const auto* at = reinterpret_cast<const std::byte*>(&r);
+    mine_.insert(mine_.end(), at, at + sizeof r);
+  }
+  ranks.gather_into(mine_, every_, false);
+  for (std::size_t from = 0; from < every_.size(); ++from) {
+    if (static_cast<int>(from) == ranks.rank()) continue;
+    const std::vector<std::byte>& in = every_[from];
+    for (std::size_t at = 0; at + sizeof(Result) <= in.size(); at += sizeof(Result)) {
+      Result r;
+      std::memcpy(&r, in.data() + at, sizeof r);
+      velocity[r.point] = r.velocity;
+      motion[r.point] = r.motion;
+    }
+  }
 }
 
 void NodePoints::remap(const GridStepAccess& a) {

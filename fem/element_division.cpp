@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <type_traits>
 
@@ -264,6 +265,28 @@ void FeSolver::sort_erosion_events(std::vector<ErosionEvent>& events) {
     if (ka != kb) return ka < kb;
     return a.index < b.index;
   });
+}
+
+void FeSolver::truss_axial_range(std::vector<double>& most, std::vector<double>& least) const {
+  const std::size_t nb = scene_.bodies.size();
+  most.assign(nb, -std::numeric_limits<double>::infinity());
+  least.assign(nb, std::numeric_limits<double>::infinity());
+  const auto& t = trusses_;
+  for (const ElementBatch& b : t.batches)
+    for_each_share(b, rank_, [&](std::size_t first, std::size_t last) {
+      for (std::size_t e = first; e < last; ++e) {
+        if (!t.alive[e]) continue;
+        const double axial = t.axial_force(b, e, nodes_.position);
+        const auto body = static_cast<std::size_t>(b.body);
+        most[body] = std::max(most[body], axial);
+        least[body] = std::min(least[body], axial);
+      }
+    });
+  if (ranks_ == nullptr) return;
+  for (std::size_t body = 0; body < nb; ++body) {
+    most[body] = ranks_->max_over_ranks(most[body]);
+    least[body] = -ranks_->max_over_ranks(-least[body]);
+  }
 }
 
 }  // namespace afemp::fem

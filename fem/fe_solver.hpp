@@ -247,6 +247,10 @@ class FeSolver {
   // viscosity and hourglass forces (for the frame, the probes or the checkpoint rank 0 writes).
   // It changes nothing any rank's update reads; nothing in one process.
   void gather_elements() const;
+  // Per scene body, the axial forces of its live trusses at their extremes: most[b] the largest
+  // (tension positive), least[b] the smallest; -inf and +inf for a body with none. On ranks
+  // (collective) over every rank's trusses: a truss's stress lives on its rank.
+  void truss_axial_range(std::vector<double>& most, std::vector<double>& least) const;
   // Collective, before state() saves on ranks: the elements gathered on rank 0 and the running
   // sums of the element stages added in rank order (core::Model::prepare_checkpoint).
   void prepare_checkpoint();

@@ -58,21 +58,16 @@ std::string MpmSolver::ranks_refusal() const {
   for (const Stage& s : plan_.stages) switch (s.kind) {
       case StageKind::outflow:
       case StageKind::split_particles:
-      case StageKind::contact_surfaces:
       case StageKind::particle_walls:
         what.push_back("the stage '" + s.name + "'");
         break;
       default:
         break;
     }
-  if (plan_.velocity_fields > 1 &&
-      what.end() == std::find(what.begin(), what.end(), "the stage 'contact surfaces'"))
-    what.push_back("several velocity fields");
   if (plan_.mixed_pressure) what.push_back("the mixed pressure ([mpm] pressure = \"mixed\")");
   if (plan_.particle_loads > 0) what.push_back("[[loads]] on particles");
   if (scene_.mpm.grid.has_face(core::FaceCondition::absorbing) || scene_.mpm.grid.far_field)
     what.push_back("absorbing or far-field faces");
-  if (points_ != nullptr) what.push_back("mesh nodes on the grid (a coupling)");
   if (what.empty()) return "";
   std::string text = "this MPM run cannot be divided among ranks yet: ";
   for (std::size_t k = 0; k < what.size(); ++k)

@@ -142,8 +142,12 @@ void MpmSolver::contact_surfaces_kernel() {
       g.mass_gradient[s[static_cast<std::size_t>(n)]] += p.mass[i] * st.grad(n);
   });
   if (points_) points_->contact_surfaces(access(), true);
-    // Each field's outward normal against the fields it meets at the node, where it meets one
-    // it is in contact with; zero elsewhere.
+  if (ranks_) {  // the gradients of the blocks that several ranks' particles reach made whole
+    const core::NodalArray gradient[] = {{reinterpret_cast<double*>(g.mass_gradient.data()), 3}};
+    sum_shared_blocks(gradient);
+  }
+  // Each field's outward normal against the fields it meets at the node, where it meets one
+  // it is in contact with; zero elsewhere.
 #pragma omp parallel if (core::worth_threads(stride))
   g.for_each_slot([&](std::size_t slot, const std::array<int, 3>& node) {
     int present[max_fields];
@@ -190,6 +194,10 @@ void MpmSolver::contact_surfaces_kernel() {
     }
   });
   if (points_) points_->contact_surfaces(access(), false);
+  if (ranks_) {  // the farthest reach over every rank's particles
+    const core::NodalArray reach[] = {{g.reach.data(), 1, true}};
+    sum_shared_blocks(reach);
+  }
 }
 
 void MpmSolver::contact_surfaces() {
@@ -288,7 +296,8 @@ void MpmSolver::grid_contact(ContactPass pass) {
           // What the contact dissipates: the impulse's work on the interface at the mean of
           // the relative velocity at the start and after the correction. Its normal part is
           // >= 0, since the pair does not separate at the start and does not approach after.
-          if (update) {
+          // On ranks a node that several ranks hold is booked by its block's owner.
+          if (update && books_node(slot)) {
             dissipated -= 0.5 * core::dot(impulse, rel_start + v[a] - v[b]);
             const int k = contact_of_pair_[static_cast<std::size_t>(fa * fields + fb)];
             const double sign = k > 0 ? 1.0 : -1.0;  // the impulse on a, or on b (minus it)
@@ -313,6 +322,13 @@ void MpmSolver::grid_contact(ContactPass pass) {
       sum.tangential += f.tangential;
     }
     grid_contact_force_[k] = {inv_dt * sum.normal, inv_dt * sum.tangential};
+  }
+  // On ranks each rank booked the nodes of its own blocks: the forces are the ranks' sum, in
+  // rank order (the same on every rank).
+  if (ranks_ && contacts > 0) {
+    static_assert(sizeof(InterfaceForce) == 6 * sizeof(double));
+    ranks_->sum_in_rank_order(
+        std::span<double>(reinterpret_cast<double*>(grid_contact_force_.data()), 6 * contacts));
   }
 }
 

@@ -17,8 +17,6 @@ void MpmSolver::set_grid_points(GridPoints* points) {
     throw std::invalid_argument(
         "points on the grid beside the particles need the MUSL or USF scheme (the scene "
         "parser says so too)");
-  if (points && ranks_)
-    throw std::invalid_argument("points on the grid cannot join a run divided among ranks yet");
   points_ = points;
   field_self_updated_.clear();
   if (!points) return;
@@ -48,7 +46,9 @@ GridStepAccess MpmSolver::access() {
                         shared_,
                         step_dt_,
                         steps_,
-                        time_};
+                        time_,
+                        ranks_ ? &partition_ : nullptr,
+                        ranks_};
 }
 
 void MpmSolver::apply_shared_shifts() {

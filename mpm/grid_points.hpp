@@ -12,6 +12,8 @@
 
 #include "afemp/tensor.hpp"
 #include "core/grid/background_grid.hpp"
+#include "core/grid/block_partition.hpp"
+#include "core/rank_link.hpp"
 #include "core/scene.hpp"
 #include "mpm/particles.hpp"
 #include "mpm/step_plan.hpp"
@@ -55,6 +57,16 @@ struct GridStepAccess {
   double dt;    // this step's
   long step;    // steps done before this one
   double time;  // at the step's start
+  // A run divided among MPI ranks (docs/parallel.md), else nullptr: the partition of the grid's
+  // blocks and this rank. A point is scattered by the rank that owns its cell's block, as a
+  // particle is; the solver then sums the shared blocks, so the grid holds the whole sums.
+  const core::BlockPartition* partition = nullptr;
+  core::RankLink* ranks = nullptr;
+
+  // Whether this rank scatters a point in `cell` (every point in one process).
+  bool holds(const std::array<int, 3>& cell) const {
+    return partition == nullptr || partition->rank_of(grid.block_of_cell(cell)) == ranks->rank();
+  }
 
   // Offset of a body's velocity field in the nodal arrays.
   std::size_t field_offset(int body) const {
@@ -72,6 +84,8 @@ class GridPoints {
   virtual bool updates_itself(int body) const = 0;
   // Binning: appends the linear cell of each point on the grid to `cells` (their grid blocks
   // become active); throws core::SimulationError for a point that must not leave the grid.
+  // On ranks each rank takes the points of its own blocks (GridStepAccess::holds) into the
+  // scatters, and from_grid hands every rank the result of every point (collective).
   virtual void bin(const GridStepAccess& access, std::vector<std::int64_t>& cells) = 0;
   // Mass and momentum (mass_momentum) and force (force) into the grid.
   virtual void to_grid(const GridStepAccess& access, bool mass_momentum, bool force) = 0;

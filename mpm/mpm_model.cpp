@@ -42,10 +42,14 @@ void MpmModel::sample_probes(std::span<double> out) const {
   if (solver_.on_ranks()) probes_.merge_ranks(solver_.values_of_every_rank(out), out);
 }
 
+core::PointBlock MpmModel::particle_block() {
+  if (!solver_.on_ranks()) return particle_block(solver_.particles());
+  gathered_ = solver_.gathered_particles(false);
+  return particle_block(gathered_);
+}
+
 void MpmModel::write_fields(core::FieldWriter& writer) {
-  if (solver_.on_ranks()) gathered_ = solver_.gathered_particles(false);
-  const core::PointBlock block =
-      particle_block(solver_.on_ranks() ? gathered_ : solver_.particles());
+  const core::PointBlock block = particle_block();
   writer.write_frame(solver_.time(), solver_.step_count(), block.n_points, block.positions,
                      block.fields);
 }

@@ -74,7 +74,9 @@ class MpmModel final : public core::Model {
   void state(core::StateArchive& archive) override;
   void prepare_checkpoint() override { solver_.prepare_checkpoint(); }
   // The particles' block of one output frame (valid until the next call).
-  core::PointBlock particle_block() { return particle_block(solver_.particles()); }
+  // On ranks (collective): every rank's particles, gathered on rank 0 in id order (the block
+  // is empty on the other ranks, whose frames are not kept).
+  core::PointBlock particle_block();
   // Divides the run among MPI ranks (MpmSolver::divide_among_ranks; docs/parallel.md). Output
   // frames then hold every rank's particles in id order, written by rank 0 (the others write
   // frames of none); the particle count, the body points and the summary's warnings are the

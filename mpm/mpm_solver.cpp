@@ -473,8 +473,8 @@ Energies MpmSolver::energies() const {
   // On ranks: every rank's sums and accumulators added in rank order (the stages that book the
   // other accumulators do not run on ranks).
   if (ranks_) {
-    std::vector<double> sums{out.kinetic, out.internal, out.plastic, out.viscous,
-                             out.external_work};
+    std::vector<double> sums{out.kinetic, out.internal,      out.plastic,
+                             out.viscous, out.external_work, contact_energy_};
     for (const BodySums& b : out.bodies)
       sums.insert(sums.end(),
                   {b.mass, b.momentum.x, b.momentum.y, b.momentum.z, b.kinetic, b.internal});
@@ -484,15 +484,16 @@ Energies MpmSolver::energies() const {
     out.plastic = sums[2];
     out.viscous = sums[3];
     out.external_work = sums[4];
+    out.contact = sums[5];
     for (std::size_t k = 0; k < nb; ++k) {
-      const double* b = sums.data() + 5 + 6 * k;
+      const double* b = sums.data() + 6 + 6 * k;
       out.bodies[k].mass = b[0];
       out.bodies[k].momentum = Vec3{b[1], b[2], b[3]};
       out.bodies[k].kinetic = b[4];
       out.bodies[k].internal = b[5];
     }
   }
-  out.contact = contact_energy_;
+  if (!ranks_) out.contact = contact_energy_;
   out.outflow = outflow_energy_;
   out.outflow_mass = outflow_mass_;
   out.outflow_momentum = outflow_momentum_;

@@ -455,7 +455,7 @@ class MpmSolver {
   // What prepare_checkpoint() gathered for state() to save (on rank 0: every particle).
   struct RankCheckpoint {
     Particles whole;
-    double plastic_work = 0.0, viscous_work = 0.0, external_work = 0.0;
+    double plastic_work = 0.0, viscous_work = 0.0, external_work = 0.0, contact_energy = 0.0;
     double signal_wave = 0.0, signal_flow = 0.0;
     bool ready = false;
   } rank_checkpoint_;

@@ -23,11 +23,12 @@ void MpmSolver::prepare_checkpoint() {
   if (ranks_ == nullptr) return;
   RankCheckpoint& c = rank_checkpoint_;
   c.whole = gathered_particles(false);
-  std::vector<double> sums{plastic_work_, viscous_work_, external_work_};
+  std::vector<double> sums{plastic_work_, viscous_work_, external_work_, contact_energy_};
   ranks_->sum_in_rank_order(sums);
   c.plastic_work = sums[0];
   c.viscous_work = sums[1];
   c.external_work = sums[2];
+  c.contact_energy = sums[3];
   c.signal_wave = ranks_->max_over_ranks(signal_wave_);
   c.signal_flow = ranks_->max_over_ranks(signal_flow_);
   c.ready = true;
@@ -66,7 +67,8 @@ void MpmSolver::state(core::StateArchive& a) {
   std::vector<core::Mat3> no_gradient;
   a.item("velocity_gradient", whole_on_ranks ? no_gradient : velocity_gradient_);
   a.item("field_self_updated", field_self_updated_);
-  a.item("contact_energy", contact_energy_);
+  double contact = whole_on_ranks ? c.contact_energy : contact_energy_;
+  a.item("contact_energy", contact);
   double work[3] = {plastic_work_, viscous_work_, external_work_};
   if (whole_on_ranks) {
     work[0] = c.plastic_work;
@@ -103,6 +105,7 @@ void MpmSolver::state(core::StateArchive& a) {
   plastic_work_ = work[0];
   viscous_work_ = work[1];
   external_work_ = work[2];
+  contact_energy_ = contact;
   if (ranks_ == nullptr) {
     rebuild_batches();
     if (!fused_kinematics()) velocity_gradient_.resize(particles_.size());
@@ -114,7 +117,7 @@ void MpmSolver::state(core::StateArchive& a) {
   signal_speed_ = signal[0];
   signal_wave_ = signal[1];
   signal_flow_ = signal[2];
-  if (ranks_->rank() != 0) plastic_work_ = viscous_work_ = external_work_ = 0.0;
+  if (ranks_->rank() != 0) plastic_work_ = viscous_work_ = external_work_ = contact_energy_ = 0.0;
 }
 
 }  // namespace afemp::mpm

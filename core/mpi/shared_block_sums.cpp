@@ -44,6 +44,22 @@ void copy_block(const BackgroundGrid& g, std::span<const NodalArray> arrays, std
   }
 }
 
+// Adds a rank's part of a block into `total` (the same layout as copy_block's), or keeps the
+// larger value for an array of maxima.
+void combine(const BackgroundGrid& g, std::span<const NodalArray> arrays, double* total,
+             const double* part) {
+  for (const NodalArray& array : arrays) {
+    const std::size_t n =
+        block_nodes * static_cast<std::size_t>(array.components * g.field_count());
+    if (array.largest)
+      for (std::size_t i = 0; i < n; ++i) total[i] = std::max(total[i], part[i]);
+    else
+      for (std::size_t i = 0; i < n; ++i) total[i] += part[i];
+    total += n;
+    part += n;
+  }
+}
+
 // Appends one block's record: its directory index, then its values.
 void append(std::vector<std::byte>& bytes, std::int64_t block, const std::vector<double>& values) {
   const auto* b = reinterpret_cast<const std::byte*>(&block);
@@ -113,7 +129,7 @@ void sum_shared_blocks(BackgroundGrid& grid, std::span<const NodalArray> arrays,
     ++k;
     std::copy_n(list.front().values, per, total.data());
     for (std::size_t p = 1; p < list.size(); ++p)
-      for (std::size_t i = 0; i < per; ++i) total[i] += list[p].values[i];
+      combine(grid, arrays, total.data(), list[p].values);
     if (a >= 0) copy_block(grid, arrays, static_cast<std::size_t>(a), nullptr, total.data());
     for (const Part& p : list)
       if (p.rank != me) append(reply[static_cast<std::size_t>(p.rank)], block, total);

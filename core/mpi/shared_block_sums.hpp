@@ -1,7 +1,8 @@
 // The nodal sums of the blocks that several ranks' particles reach, made whole on every rank
 // that holds them: each rank sends its partial sums of every active block another rank owns
 // (BlockPartition::rank_of) to that rank, the owner adds the partial sums of each block in rank
-// order (its own at its place) and sends the totals back. A node is then the same on every
+// order (its own at its place; the largest kept instead for an array of maxima,
+// NodalArray::largest) and sends the totals back. A node is then the same on every
 // rank, and a run on N ranks repeats itself bit for bit; the order differs from one rank's
 // (rank count independence holds to round-off, not to the bit).
 #pragma once

@@ -123,9 +123,9 @@ struct SimulationOptions {
   /// and implicit_phase.csv have the iterations in any case.
   std::ostream* phase_log = nullptr;
   /// A run divided among MPI ranks (docs/parallel.md): every rank builds the Simulation with
-  /// the same scene and its link to the others, and makes the same calls in the same order. Scenes
-  /// of particles alone and of meshes alone divide so far (std::invalid_argument names what does
-  /// not). Rank 0 writes
+  /// the same scene and its link to the others, and makes the same calls in the same order.
+  /// Particles divide by the grid's blocks, meshes by their elements, coupled scenes both
+  /// (std::invalid_argument names what does not divide yet). Rank 0 writes
   /// the output and the checkpoints, each the whole run's as one process's; restart_from then
   /// names the same file on every rank, and a checkpoint restarts on any rank count, or in one
   /// process. nullptr: this process runs the whole scene.

@@ -17,6 +17,7 @@
 #include "afemp/run_directory.hpp"
 #include "copper_bar_on_wall.hpp"
 #include "core/output/history.hpp"
+#include "striker_on_plate.hpp"
 #include "taylor_bar_scene.hpp"
 #include "test_support.hpp"
 
@@ -354,9 +355,50 @@ TEST(Cli, MeshRunDividedAmongMpiRanksGivesTheOneProcessHistoryProbesAndErosion) 
   }
 }
 
+// Reference: the coupled run in one process (120 steps): the striker of hexahedra onto the plate
+// of particles in grid contact (CFEMP), a rod of trusses bonded into the plate (HFEMP), with a
+// node probe on the striker, a particle probe in the plate and an extreme over both. On 2 and 3
+// ranks: every history value (energies, the contact's and the bond's forces) within 1e-10 of
+// its column's largest magnitude, the probes the same, every frame with every particle.
+TEST(Cli, CoupledRunDividedAmongMpiRanksGivesTheOneProcessHistoryAndProbes) {
+  test::ScratchDir dir;
+  std::string scene = afemp::test::striker_on_plate(
+      true, "end_time = 1.0\nmax_steps = 120\noutput_every = 0.004\nhistory_every = 5\n");
+  scene +=
+      "[[probes]]\nname = \"tail\"\nnode = { body = \"striker\", near = [0, 0, 12.2] }\n"
+      "[[probes]]\nname = \"below\"\nparticle = { body = \"plate\", near = [0.5, 0.5, 0.5] }\n"
+      "[[probes]]\nname = \"peak\"\nextreme = { field = \"von_mises\", of = \"max\", "
+      "box = { min = [0, 0, 0], max = [16, 16, 14] } }\n";
+  const std::string path = dir.write("coupled.toml", scene);
+  const std::string afemp = "\"" + std::string(AFEMP_BINARY) + "\"";
+  const std::string one = dir.file("one");
+  const test::CommandResult a =
+      test::run_captured(afemp + " run \"" + path + "\" --threads 1 -o \"" + one + "\"", dir);
+  ASSERT_EQ(a.exit_code, 0) << a.out << a.err;
+  const core::CsvTable h1 = core::read_csv(one + "/history.csv");
+  EXPECT_EQ(h1.rows.back()[h1.column("step")], 120.0);
+  EXPECT_GT(h1.rows.back()[h1.column("contact")], 0.0);  // the contact acted
+  const std::size_t points = first_frame_points(one + "/fields.xmf");
+  const int frames = frames_of(one + "/fields.xmf", points);
+  EXPECT_GE(frames, 2);
+  for (int ranks : {2, 3}) {
+    const std::string out = dir.file("ranks" + std::to_string(ranks));
+    const test::CommandResult b = test::run_captured(
+        mpiexec(ranks) + afemp + " run \"" + path + "\" --threads 1 -o \"" + out + "\"", dir);
+    ASSERT_EQ(b.exit_code, 0) << b.out << b.err;
+    EXPECT_NE(b.out.find(std::to_string(ranks) + " MPI ranks x 1 thread(s)"), std::string::npos)
+        << b.out;
+    expect_history_near(one + "/history.csv", out + "/history.csv", 1e-10);
+    for (const char* probe : {"tail", "below", "peak"})
+      expect_history_near(one + "/probes/" + probe + ".csv", out + "/probes/" + probe + ".csv",
+                          1e-10);
+    EXPECT_EQ(frames_of(out + "/fields.xmf", points), frames);
+  }
+}
+
 // Reference: what does not divide is refused on every rank before anything is written, rank 0
-// naming it once: a scene that couples a mesh with particles.
-TEST(Cli, RunOnMpiRanksRefusesCoupledScenesWritingNothing) {
+// naming it once: a scene whose hexahedra convert into particles (AFEMP).
+TEST(Cli, RunOnMpiRanksRefusesConversionIntoParticlesWritingNothing) {
   test::ScratchDir dir;
   const std::string path =
       dir.write("mesh.toml",
@@ -366,17 +408,18 @@ TEST(Cli, RunOnMpiRanksRefusesCoupledScenesWritingNothing) {
                 "[[bodies]]\nname = \"cube\"\nmaterial = \"steel\"\n"
                 "discretisation = \"hexahedra\"\nmesh = { size = 1.0 }\nvelocity = [3, 0, 0]\n"
                 "shape = { box = { min = [0, 0, 0], max = [2, 2, 2] } }\n"
+                "conversion = { plastic_strain = 0.5 }\n"
                 "[[bodies]]\nname = \"block\"\nmaterial = \"steel\"\n"
-                "shape = { box = { min = [3, 0, 0], max = [5, 2, 2] } }\n");
+                "shape = { box = { min = [3, 0, 0], max = [5, 2, 2] } }\n"
+                "[mpm]\nscheme = \"MUSL\"\n");
   const std::string out = dir.file("out");
   const test::CommandResult r = test::run_captured(
       mpiexec(2) + "\"" + AFEMP_BINARY + "\" run \"" + path + "\" --threads 1 -o \"" + out + "\"",
       dir);
   EXPECT_NE(r.exit_code, 0) << r.out << r.err;
-  EXPECT_NE(r.err.find("couples meshes with particles"), std::string::npos) << r.err;
-  EXPECT_EQ(r.err.find("couples meshes with particles"),
-            r.err.rfind("couples meshes with particles"))
-      << "said once: " << r.err;
+  const std::string why = "elements converted into particles (AFEMP: body \"cube\")";
+  EXPECT_NE(r.err.find(why), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(why), r.err.rfind(why)) << "said once: " << r.err;
   EXPECT_FALSE(std::filesystem::exists(out)) << "nothing written";
 }
 
