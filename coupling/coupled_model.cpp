@@ -81,6 +81,14 @@ CoupledModel::CoupledModel(const core::Scene& scene)
                                  "the grid; restrict the constraint to other bodies (body = ...)");
     add_point(i, bonded, surface_body_[b] != 0);
   }
+  // Where the meshes meet the grid, now or once their elements convert: a run divided among
+  // ranks weighs these nodes' blocks in its partition.
+  for (std::size_t i = 0; i < n.size(); ++i)
+    if (n.body[i] >= 0) {
+      const core::BodySpec& body = scene.bodies[static_cast<std::size_t>(n.body[i])];
+      if (point_of_node_[i] >= 0 || body.conversion)
+        points_.partition_points.push_back(n.position[i]);
+    }
   fe().set_grid_driven(driven_);
   bonds_body_.assign(nb, 0);
   for (std::size_t b = 0; b < nb; ++b)
@@ -210,10 +218,19 @@ void CoupledModel::load_points(double dt) {
   // Bonded nodes' element forces act over the FE update's force step, as on the free nodes of
   // the same elements, so the impulses across the bond cancel when the step changes.
   const double force_scale = fe().force_step(dt) / dt;
+  // A node on a face of the grid within round-off (below it by 1e-20, say: the order of a sum
+  // decides) is taken onto the face, as FeSolver::inside_retirement_domain counts it inside.
+  const core::GridSettings& g = scene_.mpm.grid;
+  const double margin = 1e-9 * g.cell;
   for (std::size_t k = 0; k < fe_node_.size(); ++k) {
     const std::size_t i = fe_node_[k];
     const double m = n.mass[i];
     points_.position[k] = n.position[i];
+    for (int a = 0; a < 3; ++a) {
+      double& x = points_.position[k][a];
+      if (x < g.min[a] && x >= g.min[a] - margin) x = g.min[a];
+      if (x > g.max[a] && x <= g.max[a] + margin) x = g.max[a];
+    }
     points_.mass[k] = m;
     if (points_.bonded[k]) {
       points_.velocity[k] = n.velocity[i];
@@ -367,9 +384,6 @@ void CoupledModel::force_values(std::vector<double>& out) const {
 
 void CoupledModel::divide_among_ranks(core::RankLink& link, const core::RankBalance& balance) {
   std::vector<std::string> what;
-  for (const core::BodySpec& body : scene_.bodies)
-    if (body.conversion)
-      what.push_back("elements converted into particles (AFEMP: body \"" + body.name + "\")");
   if (surface_contacts_)
     what.push_back("surface contact of particles at mesh faces ([[contact]] method \"surface\")");
   if (!scene_.phases.empty()) what.push_back("[[phases]]");

@@ -134,8 +134,10 @@ class CoupledModel final : public core::Model {
   // (MpmModel::divide_among_ranks), the elements in runs dealt round the ranks with every node
   // on every rank (FeModel::divide_among_ranks); a node on the grid is scattered by the rank of
   // its block and its result sent to every rank (NodePoints), so the contact and bonded
-  // couplings divide with them. Throws std::invalid_argument naming what does not divide yet:
-  // elements converted into particles, surface contact, [[phases]].
+  // couplings divide with them; the hexahedra that convert into particles (AFEMP) are sent
+  // with their points' state to every rank, which makes the same particles of them and keeps
+  // those of its blocks. Throws std::invalid_argument naming what does not divide yet: surface
+  // contact, [[phases]].
   void divide_among_ranks(core::RankLink& link, const core::RankBalance& balance = {});
   // The meshes' static or implicit phase (the particles held); both clocks then read its end.
   double run_implicit_phase(const core::PhaseSpec& phase, std::ostream* log) override {

@@ -73,6 +73,10 @@ class NodePoints final : public mpm::GridPoints {
   bool updates_itself(int b) const override {
     return updates_itself_[static_cast<std::size_t>(b)] != 0;
   }
+  // The nodes of the mesh bodies that meet the grid (in contact, bonded or converting), as
+  // the owner set them at the start: the blocks where their points are, or will be.
+  std::vector<Vec3> partition_points;
+  std::span<const Vec3> positions() const override { return partition_points; }
   void bin(const mpm::GridStepAccess& access, std::vector<std::int64_t>& cells) override;
   void to_grid(const mpm::GridStepAccess& access, bool mass_momentum, bool force) override;
   void contact_surfaces(const mpm::GridStepAccess& access, bool gradient) override;

@@ -86,6 +86,8 @@ void NodePoints::to_grid(const GridStepAccess& a, bool mass_momentum, bool force
     for_each_node_point(q, a, [&](std::size_t k, const LinearStencil&, const auto& slots) {
       shared.any = shared.any || shares(k, slots[0]);
     });
+    // On ranks every rank keeps the shares when any does (their blocks' sums are made whole).
+    if (a.ranks) shared.any = a.ranks->max_over_ranks(shared.any ? 1.0 : 0.0) > 0.0;
     if (shared.any) {
       shared.mass.assign(g.field_slot_count(), 0.0);
       shared.start.assign(g.field_slot_count(), Vec3{});

@@ -18,6 +18,7 @@
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <string_view>
 #include <type_traits>
 
 #include "core/rank_link.hpp"
@@ -139,7 +140,65 @@ void FeSolver::share_element_results() {
       throw std::logic_error("fem element division: rank " + std::to_string(r) +
                              " sent more element values than its share");
   }
+  share_retirements();
   exchange_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void FeSolver::share_retirements() {
+  bool converts = false;
+  for (const core::BodySpec& body : scene_.bodies) converts = converts || body.conversion;
+  if (!converts || !retirement_.set) return;
+  // Rank r's records: per hexahedron it retired this step, its index, id, body, time, reason
+  // and its points' arrays (the schema's), which the particles made of it inherit.
+  HexElements& el = hexes_;
+  auto points = [&](std::size_t e, auto&& f) {
+    const ElementBatch& b = batch_of(el, e);
+    const auto ppe = static_cast<std::size_t>(b.points_per_element);
+    const std::size_t p0 = b.point_begin + (e - b.begin) * ppe;
+    for_each_point_field(el, [&](const PointField&, auto& a, std::size_t width) {
+      if (!a.empty()) f(std::span(a).subspan(p0 * width, ppe * width));
+    });
+  };
+  std::vector<std::byte>& mine = rank_send_;
+  mine.clear();
+  for (const RetiredElement& ev : retired_) {
+    put(mine, static_cast<std::uint64_t>(ev.element));
+    put(mine, ev.id);
+    put(mine, ev.body);
+    put(mine, ev.time);
+    const std::string_view reason(ev.reason);
+    put(mine, static_cast<std::uint64_t>(reason.size()));
+    append_bytes(mine, core::bytes_of(reason));
+    points(ev.element, [&](auto s) { append_bytes(mine, std::as_bytes(s)); });
+  }
+  ranks_->gather_into(mine, rank_receive_, false);
+  const int me = rank();
+  for (int r = 0; r < ranks_->ranks(); ++r) {
+    if (r == me) continue;
+    const std::span<const std::byte> in = rank_receive_[static_cast<std::size_t>(r)];
+    for (std::size_t at = 0; at < in.size();) {
+      RetiredElement ev;
+      ev.element = static_cast<std::size_t>(take<std::uint64_t>(in, at));
+      ev.id = take<std::int64_t>(in, at);
+      ev.body = take<int>(in, at);
+      ev.time = take<double>(in, at);
+      const auto length = static_cast<std::size_t>(take<std::uint64_t>(in, at));
+      if (at + length > in.size() || ev.element >= el.size())
+        throw std::logic_error("fem element division: a cut retirement record from rank " +
+                               std::to_string(r));
+      ev.reason =
+          reasons_.emplace(reinterpret_cast<const char*>(in.data() + at), length).first->c_str();
+      at += length;
+      points(ev.element, [&](auto s) { read_slice(in, at, s, r); });
+      for (std::size_t a = 0; a < 8; ++a)
+        converted_node_[static_cast<std::size_t>(el.nodes[ev.element][a])] = 1;
+      el.bulk_q[ev.element] = 0.0;
+      retired_.push_back(ev);
+    }
+  }
+  std::stable_sort(
+      retired_.begin(), retired_.end(),
+      [](const RetiredElement& a, const RetiredElement& b) { return a.element < b.element; });
 }
 
 void FeSolver::gather_elements() const {

@@ -14,10 +14,14 @@ namespace afemp::fem {
 
 bool FeSolver::inside_retirement_domain(std::size_t e) const {
   if (!retirement_.set) return false;
+  // A node on the domain's face (a mesh on the grid's wall face) counts as inside within a
+  // round-off margin: whether it lies 1e-18 below the face or on it is the order of a sum
+  // (another thread or rank count), and the element's conversion must not hang on that.
+  const double margin = 1e-9 * retirement_.cell;
   for (std::size_t a = 0; a < 8; ++a) {
     const Vec3& x = nodes_.position[static_cast<std::size_t>(hexes_.nodes[e][a])];
     for (int k = 0; k < 3; ++k)
-      if (!(x[k] >= retirement_.min[k] && x[k] <= retirement_.max[k]))
+      if (!(x[k] >= retirement_.min[k] - margin && x[k] <= retirement_.max[k] + margin))
         return false;  // its points are inside
   }
   return true;

@@ -11,6 +11,7 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <set>
 #include <span>
 #include <string>
 #include <type_traits>
@@ -438,6 +439,11 @@ class FeSolver {
   template <class F>
   void sweep_share(const ElementBatch& b, F&& f) const;
   void share_element_results();
+  // After the element results, where a body converts (AFEMP): every rank's hexahedra retired
+  // this step, with their points' state, to every rank, so that every rank holds the same
+  // retired list (by element index) to make the same particles of, and marks their nodes.
+  void share_retirements();
+  std::set<std::string> reasons_;  // received retirement reasons, whose c_str() records keep
   // The element parts of `e` (internal, plastic, viscous, hourglass, stabilisation, eroded,
   // each body's internal) added over the ranks in rank order.
   void sum_element_energies(core::Energies& e) const;

@@ -104,11 +104,18 @@ void MpmSolver::keep_own_particles() {
                                   " lies outside the grid: no rank can hold it");
     count[grid_.block_of_cell(c)] += 1.0;
   }
+  // Mesh nodes on the grid (a coupling) weigh as particles: the rank of their block scatters
+  // them, and a converting mesh's particles appear there.
+  if (points_)
+    for (const Vec3& y : points_->positions()) {
+      const auto c = cell_of_point(grid_, y);
+      if (grid_.inside(c)) count[grid_.block_of_cell(c)] += 1.0;
+    }
   const int ranks = ranks_->ranks();
   if (count.size() < static_cast<std::size_t>(ranks))
     throw std::invalid_argument(
         std::to_string(ranks) + " ranks for " + std::to_string(count.size()) +
-        " grid blocks that hold particles (a block is 4 x 4 x 4 nodes): at most " +
+        " grid blocks that hold particles or mesh nodes (a block is 4 x 4 x 4 nodes): at most " +
         std::to_string(count.size()) + " ranks, or a finer grid");
   partition_ = bisect_weighted(count, ranks);
   whole_count_ = particles_.size();

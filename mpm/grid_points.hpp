@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "afemp/tensor.hpp"
@@ -82,6 +83,10 @@ class GridPoints {
   // The body's points take their own update: their owner counts their gravity work, and a
   // field that holds only such points and no particle leaves it out of the grid's.
   virtual bool updates_itself(int body) const = 0;
+  // Where the points meet the grid, for a run divided among ranks: their blocks weigh in the
+  // partition as a particle's do (a scene whose particles all come from converted elements
+  // starts with none).
+  virtual std::span<const Vec3> positions() const = 0;
   // Binning: appends the linear cell of each point on the grid to `cells` (their grid blocks
   // become active); throws core::SimulationError for a point that must not leave the grid.
   // On ranks each rank takes the points of its own blocks (GridStepAccess::holds) into the

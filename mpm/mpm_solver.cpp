@@ -153,19 +153,34 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
   signal_speed_ = max_signal_parts();
 }
 
+namespace {
+std::pair<double, double> signal_maxima(const Particles& p,
+                                        const std::vector<const core::Material*>& materials);
+}  // namespace
+
 void MpmSolver::add_particles(const Particles& more) {
   if (more.size() == 0) return;
-  if (ranks_)
-    throw std::invalid_argument("particles cannot be added to a run divided among ranks yet");
   Particles& p = particles_;
+  // On ranks every rank passes the same particles: the ids follow the largest over the ranks
+  // (one process's), and each rank keeps those in its own blocks.
   std::int32_t next_id = next_particle_id();
+  if (ranks_) next_id = static_cast<std::int32_t>(ranks_->max_over_ranks(next_id));
   const std::size_t n0 = p.size();
   p.reserve(n0 + more.size());
   for (std::size_t k = 0; k < more.size(); ++k) {
+    const std::int32_t id = next_id++;
+    if (!field_self_updated_.empty())
+      field_self_updated_[static_cast<std::size_t>(
+          field_of_body_[static_cast<std::size_t>(more.body[k])])] = 0;
+    if (ranks_) {  // a point outside the grid goes to rank 0, whose binning then stops the run
+      const auto c = grid_.cell_of(more.position[k]);
+      if ((grid_.inside(c) ? partition_.rank_of(grid_.block_of_cell(c)) : 0) != ranks_->rank())
+        continue;
+    }
+    const std::size_t i = p.size();
     p.push_back(more.position[k], more.velocity[k], more.mass[k], more.volume[k],
                 more.temperature[k], more.body[k], more.material[k]);
-    const std::size_t i = n0 + k;
-    p.id[i] = next_id++;
+    p.id[i] = id;
     // What the source points hold (AddRule::carry); the fields they lack keep their rest value.
     for_each_particle_field([&](const ParticleField& field, auto member) {
       auto& to = p.*member;
@@ -182,13 +197,24 @@ void MpmSolver::add_particles(const Particles& more) {
     if (!p.length.empty()) start_lengths(i);
     start_domain(i);
     if (!p.deformation_gradient.empty()) p.deformation_gradient[i] = identity_matrix();
-    if (!field_self_updated_.empty())
-      field_self_updated_[static_cast<std::size_t>(
-          field_of_body_[static_cast<std::size_t>(p.body[i])])] = 0;
   }
   if (!fused_kinematics()) velocity_gradient_.resize(p.size());
   reorder_particles();
-  signal_speed_ = std::max(signal_speed_, max_signal_speed());
+  if (!ranks_) {
+    signal_speed_ = std::max(signal_speed_, max_signal_speed());
+    return;
+  }
+  whole_count_ += more.size();
+  // The stable step on ranks comes from the largest wave speed and speed over the ranks: raised
+  // as one process raises its sum, the same on every rank.
+  const auto [wave, flow] = signal_maxima(particles_, materials_);
+  const double before = ranks_->max_over_ranks(signal_wave_) + ranks_->max_over_ranks(signal_flow_);
+  const double w = ranks_->max_over_ranks(wave), f = ranks_->max_over_ranks(flow);
+  if (w + f > before) {
+    signal_wave_ = w;
+    signal_flow_ = f;
+    signal_speed_ = w + f;
+  }
 }
 
 // Detonation products start with the EOS's detonation energy E0 (per unit reference volume):

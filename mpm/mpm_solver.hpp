@@ -102,7 +102,8 @@ class MpmSolver {
   // Appends particles made during the run (hexahedra converted into particles, coupling/):
   // their ids continue after the largest so far, the arrays the scene asks for are filled as
   // each field's AddRule says (particles.hpp: what `more` holds is carried, the solver sets the
-  // uGIMP half width and the lengths), and the material batches are rebuilt.
+  // uGIMP half width and the lengths), and the material batches are rebuilt. On ranks
+  // (collective) every rank passes the same particles and keeps those of its own blocks.
   void add_particles(const Particles& more);
   // The grid's stable step for points moving at `speed` (the scene's factor applied).
   double stable_time_step_for_speed(double speed) const {
@@ -132,8 +133,8 @@ class MpmSolver {
   // `balance` says how the ranks' loads are kept even as the material moves (afemp/run.hpp).
   void divide_among_ranks(core::RankLink& link, const core::RankBalance& balance = {});
   bool on_ranks() const { return ranks_ != nullptr; }
-  // On ranks: how many particles the ranks hold together (no stage that divides adds or
-  // removes any).
+  // On ranks: how many particles the ranks hold together (only conversion adds any, on every
+  // rank alike; no stage that divides removes any).
   std::size_t whole_particle_count() const { return whole_count_; }
   const core::BlockPartition& partition() const { return partition_; }
   // Wall seconds spent summing shared blocks and moving particles between ranks, and the

@@ -3,6 +3,8 @@
 // sweeping the colour layers of particle_binning.cpp (one colour at a time). With the affine
 // transfer the momentum is m N (v_p + C_p (x_I - x_p)) (Jiang et al. 2015), with the reference
 // offsets X_I - X_p in the total-Lagrangian form (its stencil's offsets).
+#include <array>
+
 #include "core/parallel.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/stencil.hpp"
@@ -127,20 +129,22 @@ void MpmSolver::particle_to_grid(bool mass_momentum, bool force) {
   if (force && !load_acceleration_.empty()) add_particle_loads();
   if (points_) points_->to_grid(access(), mass_momentum, force);
   if (ranks_) {
+    // The grid's sums, and those of the self-updating points' share of a field that also holds
+    // particles (grid_points.hpp: a converting body's contact nodes), which they scattered.
     core::BackgroundGrid& g = grid_;
-    const core::NodalArray mass{g.mass.data(), 1},
-        momentum{reinterpret_cast<double*>(g.momentum.data()), 3},
-        nodal_force{reinterpret_cast<double*>(g.force.data()), 3};
-    if (mass_momentum && force) {
-      const core::NodalArray arrays[] = {mass, momentum, nodal_force};
-      sum_shared_blocks(arrays);
-    } else if (mass_momentum) {
-      const core::NodalArray arrays[] = {mass, momentum};
-      sum_shared_blocks(arrays);
-    } else {
-      const core::NodalArray arrays[] = {nodal_force};
-      sum_shared_blocks(arrays);
+    std::array<core::NodalArray, 6> arrays;
+    std::size_t n = 0;
+    if (mass_momentum) {
+      arrays[n++] = {g.mass.data(), 1};
+      arrays[n++] = {reinterpret_cast<double*>(g.momentum.data()), 3};
     }
+    if (force) arrays[n++] = {reinterpret_cast<double*>(g.force.data()), 3};
+    if (shared_.any && mass_momentum) {
+      arrays[n++] = {shared_.mass.data(), 1};
+      arrays[n++] = {reinterpret_cast<double*>(shared_.start.data()), 3};
+    }
+    if (shared_.any && force) arrays[n++] = {reinterpret_cast<double*>(shared_.updated.data()), 3};
+    sum_shared_blocks(std::span<const core::NodalArray>(arrays.data(), n));
   }
 }
 

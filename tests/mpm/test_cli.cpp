@@ -397,8 +397,8 @@ TEST(Cli, CoupledRunDividedAmongMpiRanksGivesTheOneProcessHistoryAndProbes) {
 }
 
 // Reference: what does not divide is refused on every rank before anything is written, rank 0
-// naming it once: a scene whose hexahedra convert into particles (AFEMP).
-TEST(Cli, RunOnMpiRanksRefusesConversionIntoParticlesWritingNothing) {
+// naming it once: a scene whose particles meet a mesh's faces (surface contact).
+TEST(Cli, RunOnMpiRanksRefusesSurfaceContactWritingNothing) {
   test::ScratchDir dir;
   const std::string path =
       dir.write("mesh.toml",
@@ -408,16 +408,15 @@ TEST(Cli, RunOnMpiRanksRefusesConversionIntoParticlesWritingNothing) {
                 "[[bodies]]\nname = \"cube\"\nmaterial = \"steel\"\n"
                 "discretisation = \"hexahedra\"\nmesh = { size = 1.0 }\nvelocity = [3, 0, 0]\n"
                 "shape = { box = { min = [0, 0, 0], max = [2, 2, 2] } }\n"
-                "conversion = { plastic_strain = 0.5 }\n"
                 "[[bodies]]\nname = \"block\"\nmaterial = \"steel\"\n"
                 "shape = { box = { min = [3, 0, 0], max = [5, 2, 2] } }\n"
-                "[mpm]\nscheme = \"MUSL\"\n");
+                "[[contact]]\nbodies = [\"cube\", \"block\"]\nmethod = \"surface\"\n");
   const std::string out = dir.file("out");
   const test::CommandResult r = test::run_captured(
       mpiexec(2) + "\"" + AFEMP_BINARY + "\" run \"" + path + "\" --threads 1 -o \"" + out + "\"",
       dir);
   EXPECT_NE(r.exit_code, 0) << r.out << r.err;
-  const std::string why = "elements converted into particles (AFEMP: body \"cube\")";
+  const std::string why = "surface contact of particles at mesh faces";
   EXPECT_NE(r.err.find(why), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find(why), r.err.rfind(why)) << "said once: " << r.err;
   EXPECT_FALSE(std::filesystem::exists(out)) << "nothing written";
