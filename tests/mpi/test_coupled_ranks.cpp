@@ -149,6 +149,24 @@ void expect_forces(const std::vector<std::vector<double>>& whole,
   }
 }
 
+// The mesh nodes within `tolerance` of the one-process run's at every step, and every rank's
+// copy of them at the end every other rank's, to the bit.
+void expect_same_nodes(const CoupledRun& whole, const CoupledRun& divided, double tolerance,
+                       core::RankLink& link) {
+  ASSERT_EQ(divided.nodes.size(), whole.nodes.size());
+  double worst = 0.0;
+  for (std::size_t k = 0; k < whole.nodes.size(); ++k)
+    for (std::size_t i = 0; i < whole.nodes[k].size(); ++i)
+      worst = std::max(worst, core::norm(divided.nodes[k][i] - whole.nodes[k][i]));
+  EXPECT_LE(worst, tolerance);
+  const std::vector<core::Vec3>& mine = divided.nodes.back();
+  for (const std::vector<std::byte>& theirs :
+       link.gather(core::bytes_of(std::span<const core::Vec3>(mine)))) {
+    ASSERT_EQ(theirs.size(), mine.size() * sizeof(core::Vec3));
+    EXPECT_EQ(std::memcmp(theirs.data(), mine.data(), theirs.size()), 0);
+  }
+}
+
 TEST(MpiCoupledRanks, GridContactBetweenParticleBodiesGivesOneProcessFigures) {
   const core::Scene scene = core::parse_scene(particles_in_contact, "contact.toml");
   constexpr int steps = 100;
@@ -175,18 +193,7 @@ TEST(MpiCoupledRanks, ContactAndBondedMeshNodesGiveOneProcessFigures) {
   expect_energies(whole.energies, divided.energies, again.energies);
   expect_forces(whole.forces, divided.forces);
   const double h = scene.mpm.grid.cell;
-  double worst = 0.0;
-  for (std::size_t k = 0; k < whole.nodes.size(); ++k)
-    for (std::size_t i = 0; i < whole.nodes[k].size(); ++i)
-      worst = std::max(worst, core::norm(divided.nodes[k][i] - whole.nodes[k][i]));
-  EXPECT_LE(worst, 1e-10 * h);
-  // Every rank's copy of the nodes is every other rank's, to the bit.
-  const std::vector<core::Vec3>& mine = divided.nodes.back();
-  for (const std::vector<std::byte>& theirs :
-       link.gather(core::bytes_of(std::span<const core::Vec3>(mine)))) {
-    ASSERT_EQ(theirs.size(), mine.size() * sizeof(core::Vec3));
-    EXPECT_EQ(std::memcmp(theirs.data(), mine.data(), theirs.size()), 0);
-  }
+  expect_same_nodes(whole, divided, 1e-10 * h, link);
   expect_same_particles(whole.particles, divided.particles, 1e-10 * h);
   // The striker was stopped by the contact, and the bonded rod moved with the plate.
   const core::Energies& end = whole.energies.back();
@@ -279,17 +286,7 @@ TEST(MpiCoupledRanks, ConvertingHexahedraGiveOneProcessParticlesAndFigures) {
     EXPECT_NEAR(divided.energies[k].converted, whole.energies[k].converted, 1e-10 * e0)
         << "step " << k;
   const double h = scene.mpm.grid.cell;
-  double worst = 0.0;
-  for (std::size_t k = 0; k < whole.nodes.size(); ++k)
-    for (std::size_t i = 0; i < whole.nodes[k].size(); ++i)
-      worst = std::max(worst, core::norm(divided.nodes[k][i] - whole.nodes[k][i]));
-  EXPECT_LE(worst, 1e-10 * h);
-  const std::vector<core::Vec3>& mine = divided.nodes.back();
-  for (const std::vector<std::byte>& theirs :
-       link.gather(core::bytes_of(std::span<const core::Vec3>(mine)))) {
-    ASSERT_EQ(theirs.size(), mine.size() * sizeof(core::Vec3));
-    EXPECT_EQ(std::memcmp(theirs.data(), mine.data(), theirs.size()), 0);
-  }
+  expect_same_nodes(whole, divided, 1e-10 * h, link);
   // Elements did convert: 8 particles each beside the plate's 4,608.
   EXPECT_GT(whole.particles.size(), 4608u + 8u);
   expect_same_particles(whole.particles, divided.particles, 1e-10 * h);
