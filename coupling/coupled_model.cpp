@@ -20,6 +20,7 @@
 
 #include "afemp/errors.hpp"
 #include "core/appendf.hpp"
+#include "core/grid/grid_face_margin.hpp"
 #include "coupling/element_conversion.hpp"
 
 namespace afemp::coupling {
@@ -218,10 +219,10 @@ void CoupledModel::load_points(double dt) {
   // Bonded nodes' element forces act over the FE update's force step, as on the free nodes of
   // the same elements, so the impulses across the bond cancel when the step changes.
   const double force_scale = fe().force_step(dt) / dt;
-  // A node on a face of the grid within round-off (below it by 1e-20, say: the order of a sum
-  // decides) is taken onto the face, as FeSolver::inside_retirement_domain counts it inside.
+  // A node on a face of the grid within round-off (core/grid/grid_face_margin.hpp) is taken onto
+  // the face, as FeSolver::inside_retirement_domain counts it inside.
   const core::GridSettings& g = scene_.mpm.grid;
-  const double margin = 1e-9 * g.cell;
+  const double margin = core::kGridFaceMargin * g.cell;
   for (std::size_t k = 0; k < fe_node_.size(); ++k) {
     const std::size_t i = fe_node_[k];
     const double m = n.mass[i];

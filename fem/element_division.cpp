@@ -145,9 +145,7 @@ void FeSolver::share_element_results() {
 }
 
 void FeSolver::share_retirements() {
-  bool converts = false;
-  for (const core::BodySpec& body : scene_.bodies) converts = converts || body.conversion;
-  if (!converts || !retirement_.set) return;
+  if (!retirement_.set) return;  // no converting body (set_retirement_domain)
   // Rank r's records: per hexahedron it retired this step, its index, id, body, time, reason
   // and its points' arrays (the schema's), which the particles made of it inherit.
   HexElements& el = hexes_;

@@ -7,17 +7,26 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/grid/grid_face_margin.hpp"
 #include "fem/fe_solver.hpp"
 #include "fem/mesh_quality.hpp"
 
 namespace afemp::fem {
 
+void FeSolver::set_retirement_domain(const RetirementDomain& domain) {
+  retirement_ = domain;
+  // Only the hexahedra of a converting body retire: without one, the domain stays unset and
+  // the step (and on ranks the retirements' exchange) skips them.
+  bool converts = false;
+  for (const core::BodySpec& body : scene_.bodies) converts = converts || body.conversion;
+  retirement_.set = domain.set && converts;
+}
+
 bool FeSolver::inside_retirement_domain(std::size_t e) const {
   if (!retirement_.set) return false;
   // A node on the domain's face (a mesh on the grid's wall face) counts as inside within a
-  // round-off margin: whether it lies 1e-18 below the face or on it is the order of a sum
-  // (another thread or rank count), and the element's conversion must not hang on that.
-  const double margin = 1e-9 * retirement_.cell;
+  // round-off margin (core/grid/grid_face_margin.hpp).
+  const double margin = core::kGridFaceMargin * retirement_.cell;
   for (std::size_t a = 0; a < 8; ++a) {
     const Vec3& x = nodes_.position[static_cast<std::size_t>(hexes_.nodes[e][a])];
     for (int k = 0; k < 3; ++k)

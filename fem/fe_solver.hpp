@@ -178,7 +178,7 @@ class FeSolver {
   // order they retired; the caller makes what replaces them from the arrays and the nodes.
   std::vector<RetiredElement> take_retired_elements();
   // Where hexahedra may retire (see RetirementDomain); the coupled model sets the grid's.
-  void set_retirement_domain(const RetirementDomain& domain) { retirement_ = domain; }
+  void set_retirement_domain(const RetirementDomain& domain);  // unset unless a body converts
   // Whether hexahedron e lies inside the retirement domain (where it may retire).
   bool inside_retirement_domain(std::size_t e) const;
   std::size_t bytes() const;

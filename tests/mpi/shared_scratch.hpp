@@ -1,4 +1,5 @@
-// A scratch file every rank of an MPI test names alike (header only; not a test file itself).
+// A scratch file every rank of an MPI test names alike, and a divided model's checkpoint written
+// there and read back (header only; not a test file itself).
 #pragma once
 
 #include <stdlib.h>  // mkdtemp
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "core/rank_link.hpp"
+#include "core/state_archive.hpp"
 
 namespace afemp::test {
 
@@ -29,6 +31,26 @@ inline std::string shared_scratch_file(core::RankLink& link, const std::string& 
 inline void remove_shared_scratch(core::RankLink& link, const std::string& path) {
   link.max_over_ranks(0.0);
   if (link.rank() == 0) std::filesystem::remove_all(std::filesystem::path(path).parent_path());
+}
+
+// Collective: the divided model's checkpoint (prepare_checkpoint() on every rank, then rank 0
+// writes it alone, as one process's file); every rank returns once the file is whole.
+template <class Model>
+void save_checkpoint(core::RankLink& link, Model& model, const std::string& path) {
+  model.prepare_checkpoint();
+  if (link.rank() == 0) {
+    core::StateArchive a(path, core::StateArchive::Mode::save);
+    model.state(a);
+    a.close();
+  }
+  link.max_over_ranks(0.0);
+}
+
+// The checkpoint read into a model (divided among ranks or not).
+template <class Model>
+void load_checkpoint(Model& model, const std::string& path) {
+  core::StateArchive a(path, core::StateArchive::Mode::load);
+  model.state(a);
 }
 
 }  // namespace afemp::test

@@ -17,7 +17,6 @@
 #include "core/mpi/mpi_rank_link.hpp"
 #include "core/mpi/ranks.hpp"
 #include "core/scene.hpp"
-#include "core/state_archive.hpp"
 #include "coupling/coupled_model.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
@@ -220,13 +219,7 @@ TEST(MpiCoupledRanks, CheckpointOfTheDividedRunRestartsOnRanksAndInOneProcess) {
     divided.divide_among_ranks(link);
     CoupledRun r;
     advance(divided, r, first);
-    divided.prepare_checkpoint();
-    if (core::rank_index() == 0) {
-      core::StateArchive a(path, core::StateArchive::Mode::save);
-      divided.state(a);
-      a.close();
-    }
-    core::sum_in_rank_order(0.0);  // the file is whole before any rank reads it
+    test::save_checkpoint(link, divided, path);
   }
   const double e0 = whole.energies.front().kinetic;
   const double h = scene.mpm.grid.cell;
@@ -250,16 +243,10 @@ TEST(MpiCoupledRanks, CheckpointOfTheDividedRunRestartsOnRanksAndInOneProcess) {
   };
   CoupledModel again(scene);
   again.divide_among_ranks(link);
-  {
-    core::StateArchive a(path, core::StateArchive::Mode::load);
-    again.state(a);
-  }
+  test::load_checkpoint(again, path);
   expect_rest(again, "on ranks");
   CoupledModel alone(scene);
-  {
-    core::StateArchive a(path, core::StateArchive::Mode::load);
-    alone.state(a);
-  }
+  test::load_checkpoint(alone, path);
   expect_rest(alone, "in one process");
   test::remove_shared_scratch(link, path);
 }

@@ -17,7 +17,6 @@
 #include "core/mpi/mpi_rank_link.hpp"
 #include "core/mpi/ranks.hpp"
 #include "core/scene.hpp"
-#include "core/state_archive.hpp"
 #include "fem/fe_solver.hpp"
 #include "shared_scratch.hpp"
 
@@ -171,13 +170,7 @@ TEST(MpiFeRanks, CheckpointOfTheDividedRunRestartsOnRanksAndInOneProcess) {
     divided.divide_among_ranks(link);
     FeRun r;
     advance(divided, r, first);
-    divided.prepare_checkpoint();
-    if (core::rank_index() == 0) {
-      core::StateArchive a(path, core::StateArchive::Mode::save);
-      divided.state(a);
-      a.close();
-    }
-    core::sum_in_rank_order(0.0);  // the file is whole before any rank reads it
+    test::save_checkpoint(link, divided, path);
   }
   const double e0 = whole.energies.front().kinetic;
   const auto expect_rest = [&](FeSolver& solver, const char* what) {
@@ -197,16 +190,10 @@ TEST(MpiFeRanks, CheckpointOfTheDividedRunRestartsOnRanksAndInOneProcess) {
   };
   FeSolver again(scene);
   again.divide_among_ranks(link);
-  {
-    core::StateArchive a(path, core::StateArchive::Mode::load);
-    again.state(a);
-  }
+  test::load_checkpoint(again, path);
   expect_rest(again, "on ranks");
   FeSolver alone(scene);
-  {
-    core::StateArchive a(path, core::StateArchive::Mode::load);
-    alone.state(a);
-  }
+  test::load_checkpoint(alone, path);
   expect_rest(alone, "in one process");
   test::remove_shared_scratch(link, path);
 }

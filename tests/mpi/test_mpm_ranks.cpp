@@ -16,7 +16,6 @@
 #include "core/mpi/mpi_rank_link.hpp"
 #include "core/mpi/ranks.hpp"
 #include "core/scene.hpp"
-#include "core/state_archive.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
 #include "shared_scratch.hpp"
@@ -149,13 +148,7 @@ TEST(MpiMpmRanks, CheckpointOfTheDividedRunRestartsOnRanksAndInOneProcess) {
     MpmSolver divided(scene, generate_particles(scene));
     divided.divide_among_ranks(link);
     for (int k = 0; k < first; ++k) divided.step(divided.stable_time_step());
-    divided.prepare_checkpoint();
-    if (core::rank_index() == 0) {
-      core::StateArchive a(path, core::StateArchive::Mode::save);
-      divided.state(a);
-      a.close();
-    }
-    core::sum_in_rank_order(0.0);  // the file is whole before any rank reads it
+    test::save_checkpoint(link, divided, path);
   }
   const double e0 = whole.energies.front().kinetic;
   const auto expect_rest = [&](MpmSolver& solver, const char* what) {
@@ -172,19 +165,13 @@ TEST(MpiMpmRanks, CheckpointOfTheDividedRunRestartsOnRanksAndInOneProcess) {
   };
   MpmSolver again(scene, generate_particles(scene));
   again.divide_among_ranks(link);
-  {
-    core::StateArchive a(path, core::StateArchive::Mode::load);
-    again.state(a);
-  }
+  test::load_checkpoint(again, path);
   EXPECT_EQ(core::sum_over_ranks(static_cast<std::int64_t>(again.particles().size())),
             static_cast<std::int64_t>(whole.particles.size()));
   EXPECT_EQ(again.whole_particle_count(), whole.particles.size());
   expect_rest(again, "on ranks");
   MpmSolver alone(scene, generate_particles(scene));
-  {
-    core::StateArchive a(path, core::StateArchive::Mode::load);
-    alone.state(a);
-  }
+  test::load_checkpoint(alone, path);
   EXPECT_EQ(alone.particles().size(), whole.particles.size());
   expect_rest(alone, "in one process");
   EXPECT_GT(whole.energies.back().external_work, 0.0);  // gravity did work
