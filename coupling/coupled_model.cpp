@@ -384,16 +384,10 @@ void CoupledModel::force_values(std::vector<double>& out) const {
 }
 
 void CoupledModel::divide_among_ranks(core::RankLink& link, const core::RankBalance& balance) {
-  std::vector<std::string> what;
-  if (surface_contacts_)
-    what.push_back("surface contact of particles at mesh faces ([[contact]] method \"surface\")");
-  if (!scene_.phases.empty()) what.push_back("[[phases]]");
-  if (!what.empty()) {
-    std::string text = "this coupled run cannot be divided among ranks yet: ";
-    for (std::size_t k = 0; k < what.size(); ++k)
-      text += (k == 0 ? "" : k + 1 == what.size() ? " and " : ", ") + what[k];
-    throw std::invalid_argument(text + " run on one rank only (docs/parallel.md)");
-  }
+  if (!scene_.phases.empty())
+    throw std::invalid_argument(
+        "this coupled run cannot be divided among ranks yet: [[phases]] run on one rank only "
+        "(docs/parallel.md)");
   mpm_.divide_among_ranks(link, balance);  // refuses what the particles' stages cannot divide
   fe_.divide_among_ranks(link);
 }

@@ -8,7 +8,6 @@
 #include "core/contact_impulse.hpp"
 #include "fem/face_projection.hpp"
 #include "fem/fe_solver.hpp"
-#include "mpm/face_constraints.hpp"
 #include "mpm/stencil.hpp"
 
 namespace afemp::coupling {
@@ -81,9 +80,10 @@ void ParticleSurfaceContacts::resolve_pair(Pair& pair, const mpm::GridStepAccess
   if (pair.faces.nodes.empty()) return;
   const FaceBins bins = bin_faces(pair, access.grid.cell());
   find_hits<Stencil>(pair, access, bins);
-  if (hits_.empty()) return;
-  sweep_hits<Stencil>(pair, access);
-  report_forces<Stencil>(pair, access.grid, access.dt);
+  if (hits_.size() == 0) return;
+  sweep_hits(pair, access.dt);
+  hits_.write_back(access.grid);
+  report_forces(pair, access.dt);
 }
 
 // Outward normals and the boxes of the faces at the predicted positions; each face holds a
@@ -204,7 +204,7 @@ AFEMP_INLINE inline bool ParticleSurfaceContacts::nearest_face(const Pair& pair,
 
 // Hits: each particle of the body whose predicted boundary lies behind a face, at its
 // predicted position (this step's grid velocity at it), with its live stencil nodes and
-// weights (slots_, weights_).
+// weights; on ranks, every rank's (collective).
 template <class Stencil>
 AFEMP_INLINE inline void ParticleSurfaceContacts::find_hits(const Pair& pair,
                                                             const mpm::GridStepAccess& access,
@@ -213,9 +213,9 @@ AFEMP_INLINE inline void ParticleSurfaceContacts::find_hits(const Pair& pair,
   core::BackgroundGrid& g = access.grid;
   const mpm::Particles& p = access.particles;
   const double dt = access.dt;
-  hits_.clear();
-  slots_.clear();
-  weights_.clear();
+  hits_.begin(K);
+  slots_.resize(K);
+  weights_.resize(K);
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.body[i] != pair.particles) continue;
     const Vec3& x0 = p.position[i];
@@ -236,44 +236,18 @@ AFEMP_INLINE inline void ParticleSurfaceContacts::find_hits(const Pair& pair,
     const double r = mpm::particle_half_width(p.volume[i]);
     Hit best;
     if (!nearest_face(pair, bins, x, r, best)) continue;
-    best.particle = static_cast<std::uint32_t>(i);
+    best.id = p.id[i];
+    best.position = x0;
     best.radius = r;
-    best.stencil = slots_.size();
     for (int k = 0; k < K; ++k) {
       const auto s = static_cast<std::int64_t>(slot[static_cast<std::size_t>(k)] + field);
       const bool live = st.w(k) > 0.0 && g.mass[static_cast<std::size_t>(s)] > 0.0;
-      slots_.push_back(live ? s : -1);
-      weights_.push_back(live ? st.w(k) : 0.0);
+      slots_[static_cast<std::size_t>(k)] = live ? s : -1;
+      weights_[static_cast<std::size_t>(k)] = live ? st.w(k) : 0.0;
     }
-    hits_.push_back(best);
+    hits_.add(best, slots_, weights_, g);
   }
-}
-
-// A hit particle's velocity from its live stencil nodes, sum N_I v_I.
-template <int K>
-AFEMP_INLINE inline Vec3 ParticleSurfaceContacts::particle_velocity(
-    const Hit& h, const core::BackgroundGrid& g) const {
-  Vec3 v;
-  for (int k = 0; k < K; ++k) {
-    const std::int64_t s = slots_[h.stencil + static_cast<std::size_t>(k)];
-    if (s >= 0)
-      v += weights_[h.stencil + static_cast<std::size_t>(k)] *
-           g.velocity_new[static_cast<std::size_t>(s)];
-  }
-  return v;
-}
-
-// A hit particle's inverse mass sum N_I^2 / m_I over its live stencil nodes.
-template <int K>
-AFEMP_INLINE inline double ParticleSurfaceContacts::particle_inverse_mass(
-    const Hit& h, const core::BackgroundGrid& g) const {
-  double w = 0.0;
-  for (int k = 0; k < K; ++k) {
-    const std::int64_t s = slots_[h.stencil + static_cast<std::size_t>(k)];
-    const double wk = weights_[h.stencil + static_cast<std::size_t>(k)];
-    if (s >= 0) w += wk * wk / g.mass[static_cast<std::size_t>(s)];
-  }
-  return w;
+  hits_.finish(g, access.ranks);
 }
 
 // The face point of a hit at the predicted positions, and its velocity.
@@ -289,35 +263,18 @@ AFEMP_INLINE inline void ParticleSurfaceContacts::face_state(const Hit& h, doubl
   }
 }
 
-// Projected Gauss-Seidel sweeps in particle order (core/contact_impulse.hpp): J n spread over
-// the particle's grid nodes by their weights (the grid's face constraints kept), -N_a J n on
-// the face's nodes.
-template <class Stencil>
-AFEMP_INLINE inline void ParticleSurfaceContacts::sweep_hits(const Pair& pair,
-                                                             const mpm::GridStepAccess& access) {
-  constexpr int K = Stencil::nodes;
-  core::BackgroundGrid& g = access.grid;
-  const mpm::Particles& p = access.particles;
+// Projected Gauss-Seidel sweeps in id order (core/contact_impulse.hpp): J n spread over the
+// particle's grid nodes by their weights (the grid's face constraints kept), -N_a J n on the
+// face's nodes.
+void ParticleSurfaceContacts::sweep_hits(const Pair& pair, double dt) {
   const fem::FeNodes& nodes = fe_.nodes();
-  const double dt = access.dt;
-  const mpm::FaceConstraints constraints(g);
-  auto push_particle = [&](const Hit& h, const Vec3& impulse) {
-    for (int k = 0; k < K; ++k) {
-      const std::int64_t s = slots_[h.stencil + static_cast<std::size_t>(k)];
-      if (s < 0) continue;
-      const auto su = static_cast<std::size_t>(s);
-      Vec3& v = g.velocity_new[su];
-      v += (weights_[h.stencil + static_cast<std::size_t>(k)] / g.mass[su]) * impulse;
-      const mpm::NodeConstraint c = constraints(g.node_of_slot(su % g.slot_count()));
-      if (c.any()) mpm::constrain(v, c.mask_for(v));
-    }
-  };
   const double s_pen = pair.spec.penalty, mu = pair.spec.friction;
   for (int sweep = 0; sweep < kSweeps; ++sweep)
-    for (Hit& h : hits_) {
+    for (std::size_t c = 0; c < hits_.size(); ++c) {
+      Hit& h = hits_[c];
       const Vec3& nrm = h.normal;
       if (sweep == 0) {  // the inverse masses hold through the sweeps
-        h.w = particle_inverse_mass<K>(h, g);
+        h.w = hits_.particle_inverse_mass(c);
         for (int a = 0; a < 4; ++a) {
           const auto q = static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)]);
           const double na = h.shape[static_cast<std::size_t>(a)];
@@ -328,10 +285,10 @@ AFEMP_INLINE inline void ParticleSurfaceContacts::sweep_hits(const Pair& pair,
       const double w = h.w;
       const std::array<double, 4>& wa = h.w_face;
       if (!(w > 0.0)) continue;
-      const Vec3 xp = p.position[h.particle];
+      const Vec3 xp = h.position;
       Vec3 x_face, v_face;
       face_state(h, dt, x_face, v_face);
-      const Vec3 vp = particle_velocity<K>(h, g);  // nothing is pushed before the friction reads it
+      const Vec3 vp = hits_.particle_velocity(c);  // nothing is pushed before the friction reads it
       const double gap = core::dot(nrm, xp + dt * vp - x_face) - h.radius;
       if (sweep == 0) {
         Vec3 x_now;
@@ -348,7 +305,7 @@ AFEMP_INLINE inline void ParticleSurfaceContacts::sweep_hits(const Pair& pair,
       if (mu > 0.0)
         impulse += core::add_friction_impulse(h.tangential_impulse, h.normal_impulse, mu,
                                               vp - v_face, nrm, w);
-      push_particle(h, impulse);
+      hits_.push(c, impulse);
       for (int a = 0; a < 4; ++a)
         fe_.push_contact_impulse(static_cast<std::size_t>(h.face[static_cast<std::size_t>(a)]),
                                  wa[static_cast<std::size_t>(a)], nrm,
@@ -357,19 +314,17 @@ AFEMP_INLINE inline void ParticleSurfaceContacts::sweep_hits(const Pair& pair,
 }
 
 // Resultants on the particle body (impulse over the step) and friction's work (the
-// tangential impulse against the slip it left).
-template <class Stencil>
-AFEMP_INLINE inline void ParticleSurfaceContacts::report_forces(Pair& pair,
-                                                                const core::BackgroundGrid& g,
-                                                                double dt) const {
-  for (const Hit& h : hits_) {
+// tangential impulse against the slip it left): whole on every rank, which swept every hit.
+void ParticleSurfaceContacts::report_forces(Pair& pair, double dt) const {
+  for (std::size_t c = 0; c < hits_.size(); ++c) {
+    const Hit& h = hits_[c];
     pair.normal_force += (h.normal_impulse / dt) * h.normal;
     pair.tangential_force += (1.0 / dt) * h.tangential_impulse;
     if (pair.spec.friction > 0.0) {
       Vec3 x_face, v_face;
       face_state(h, dt, x_face, v_face);
-      pair.friction_work -= core::slip_work(
-          h.tangential_impulse, particle_velocity<Stencil::nodes>(h, g) - v_face, h.normal);
+      pair.friction_work -=
+          core::slip_work(h.tangential_impulse, hits_.particle_velocity(c) - v_face, h.normal);
     }
   }
 }

@@ -11,9 +11,11 @@
 // (w_a a free node's 1/m, a rigid body's effective inverse mass at the node): the node-to-surface
 // scheme of the mesh contacts (fem/mesh_contact.hpp; Taylor & Flanagan 1989) with the particle's
 // domain as the slave, and the nodal form of a contact force on a particle (Sulsky, Chen &
-// Schreyer 1994, eq 20). Projected Gauss-Seidel sweeps in particle order resolve the pairs that
-// share nodes (J >= 0: the bodies separate freely), Coulomb friction limits the tangential
-// impulse to mu J. The faces are rebuilt when elements erode or convert.
+// Schreyer 1994, eq 20). Projected Gauss-Seidel sweeps in the order of the particles' ids resolve
+// the pairs that share nodes (J >= 0: the bodies separate freely), Coulomb friction limits the
+// tangential impulse to mu J. The faces are rebuilt when elements erode or convert. On MPI ranks
+// each rank finds the hits of its own particles, and every rank sweeps every rank's hits
+// (mpm/contact_nodes.hpp): the mesh, on every rank, takes the same impulses everywhere.
 #pragma once
 
 #include <array>
@@ -24,6 +26,7 @@
 
 #include "afemp/scene.hpp"
 #include "fem/surface_faces.hpp"
+#include "mpm/contact_nodes.hpp"
 #include "mpm/grid_points.hpp"
 
 namespace afemp::core {
@@ -62,18 +65,18 @@ class ParticleSurfaceContacts final : public mpm::SurfaceContacts {
   void state(core::StateArchive& archive);
 
  private:
-  // One particle held by one face this step.
+  // One particle held by one face this step: the particle (its id and position at the step's
+  // start), the face point and normal, the impulses, and the inverse masses along the normal
+  // (the pair's: the particle's sum N^2 / m_I plus the face nodes' shares; each face node's).
   struct Hit {
-    std::uint32_t particle = 0;
+    std::int64_t id = 0;
+    Vec3 position;
     double radius = 0.0;
     std::array<std::int32_t, 4> face{};
     std::array<double, 4> shape{};
     Vec3 normal;
     double target = 0.0, normal_impulse = 0.0;
     Vec3 tangential_impulse;
-    std::size_t stencil = 0;  // offset of its slots and weights
-    // Inverse masses along the normal: the pair's (the particle's sum N^2 / m_I plus the face
-    // nodes' shares), and each face node's.
     double w = 0.0;
     std::array<double, 4> w_face{};
   };
@@ -94,24 +97,19 @@ class ParticleSurfaceContacts final : public mpm::SurfaceContacts {
                     Hit& best) const;
   template <class Stencil>
   void find_hits(const Pair& pair, const mpm::GridStepAccess& access, const FaceBins& bins);
-  template <int K>
-  Vec3 particle_velocity(const Hit& h, const core::BackgroundGrid& g) const;
-  template <int K>
-  double particle_inverse_mass(const Hit& h, const core::BackgroundGrid& g) const;
   void face_state(const Hit& h, double dt, Vec3& x_face, Vec3& v_face) const;
-  template <class Stencil>
-  void sweep_hits(const Pair& pair, const mpm::GridStepAccess& access);
-  template <class Stencil>
-  void report_forces(Pair& pair, const core::BackgroundGrid& g, double dt) const;
+  void sweep_hits(const Pair& pair, double dt);
+  void report_forces(Pair& pair, double dt) const;
 
   fem::FeSolver& fe_;
   std::vector<Pair> pairs_;
-  // Scratch: predicted node positions, face bins, hits and their stencils.
+  // Scratch: predicted node positions, face bins, one stencil's slots and weights; the hits
+  // with their grid nodes (on MPI ranks, every rank's: mpm/contact_nodes.hpp).
   std::vector<Vec3> predicted_;
   std::vector<std::array<Vec3, 2>> face_box_;  // each face's box, grown by its reach and a cell
   std::vector<double> face_reach_;
   std::vector<std::pair<std::int64_t, std::int32_t>> bin_entries_;  // (bin, face), sorted
-  std::vector<Hit> hits_;
+  mpm::ContactNodes<Hit> hits_;
   std::vector<std::int64_t> slots_;
   std::vector<double> weights_;
 };

@@ -58,7 +58,6 @@ std::string MpmSolver::ranks_refusal() const {
   for (const Stage& s : plan_.stages) switch (s.kind) {
       case StageKind::outflow:
       case StageKind::split_particles:
-      case StageKind::particle_walls:
         what.push_back("the stage '" + s.name + "'");
         break;
       default:

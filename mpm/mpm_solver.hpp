@@ -19,6 +19,7 @@
 #include "core/rank_link.hpp"
 #include "core/scene.hpp"
 #include "mpm/absorbing_faces.hpp"
+#include "mpm/contact_nodes.hpp"
 #include "mpm/grid_points.hpp"
 #include "mpm/particles.hpp"
 #include "mpm/stencil.hpp"
@@ -430,15 +431,19 @@ class MpmSolver {
 
   // Particle walls: per scene wall, the bodies it acts on (empty: none of this solver's), its
   // force over the last step; the work of their impulses (Energies::sliding, friction); the
-  // contact scratch of one wall (candidates and their gaps at the step's start, their stencils'
-  // slots and weights, impulses).
+  // contacts of one wall (each candidate's gap at the step's start, its inverse mass and
+  // impulses, with its stencil's nodes; on ranks every rank's).
   std::vector<std::vector<char>> wall_bodies_;
   std::vector<Vec3> wall_force_;
   double wall_sliding_ = 0.0, wall_friction_ = 0.0;
-  std::vector<std::uint32_t> wall_candidates_;
+  struct WallContact {
+    std::int64_t id = 0;
+    double gap = 0.0, inverse_mass = 0.0, normal_impulse = 0.0;
+    Vec3 tangent_impulse;
+  };
+  ContactNodes<WallContact> wall_contacts_;
   std::vector<std::int64_t> wall_slots_;
-  std::vector<double> wall_weights_, wall_inverse_mass_, wall_gap_, wall_normal_impulse_;
-  std::vector<Vec3> wall_tangent_impulse_;
+  std::vector<double> wall_weights_;
 
   // The ranks the run is divided among (nullptr: this process runs all of it), the blocks'
   // owners, and per active block whether this rank owns it (empty off ranks).

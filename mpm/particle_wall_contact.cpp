@@ -10,8 +10,9 @@
 // *RIGIDWALL_PLANAR applied to the particle's boundary instead of a node). The particle's
 // velocity moves by J sum N^2 / m_I, so J = dv_n / (sum N^2 / m_I) closes its own gap; the
 // particles that share nodes are resolved by projected Gauss-Seidel sweeps on accumulated
-// impulses (core/contact_impulse.hpp; J >= 0, so contact may release), in particle order
-// (deterministic). Coulomb friction limits the tangential impulse to mu J. A penetration
+// impulses (core/contact_impulse.hpp; J >= 0, so contact may release), in the order of the
+// particles' ids (mpm/contact_nodes.hpp: on MPI ranks every rank sweeps every rank's contacts).
+// Coulomb friction limits the tangential impulse to mu J. A penetration
 // present at the step's start (an overlap in the scene) recedes by a tenth per step instead of
 // being removed at once.
 // Face conditions keep priority: a component a grid face holds stays held. Energy: a moving
@@ -55,105 +56,78 @@ void MpmSolver::particle_wall_kernel(std::size_t w, double dt) {
   const std::vector<char>& acts = wall_bodies_[w];
   constexpr int K = Stencil::nodes;
 
-  // Candidates: particles of the wall's bodies within one cell plus their reach this step.
-  // Each keeps its gap at the step's start, n . (x - x_wall) - r.
-  wall_candidates_.clear();
-  wall_gap_.clear();
+  // Candidates: particles of the wall's bodies within one cell plus their reach this step,
+  // each with its gap at the step's start, n . (x - x_wall) - r, and its live stencil nodes.
+  ContactNodes<WallContact>& cs = wall_contacts_;
+  cs.begin(K);
+  wall_slots_.resize(K);
+  wall_weights_.resize(K);
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!acts[static_cast<std::size_t>(p.body[i])]) continue;
     const double gap = core::dot(p.position[i] - start_point, n) - particle_half_width(p.volume[i]);
     const double reach = g.cell() + dt * (core::norm(p.velocity[i]) + wall_speed);
-    if (gap < reach) {
-      wall_candidates_.push_back(static_cast<std::uint32_t>(i));
-      wall_gap_.push_back(gap);
-    }
-  }
-  const std::size_t nc = wall_candidates_.size();
-  if (nc == 0) return;
-  wall_slots_.resize(nc * K);
-  wall_weights_.resize(nc * K);
-  wall_inverse_mass_.resize(nc);
-  wall_normal_impulse_.assign(nc, 0.0);
-  wall_tangent_impulse_.assign(nc, Vec3{});
-  for (std::size_t c = 0; c < nc; ++c) {
-    const std::size_t i = wall_candidates_[c];
+    if (!(gap < reach)) continue;
     const Stencil st(g, p, i, p.position[i]);
     typename Stencil::Slots slot;
     st.slots(g, slot);
     const std::size_t field = field_offset(i);
-    double inverse_mass = 0.0;
     for (int k = 0; k < K; ++k) {
       const double wk = st.w(k);
       const auto s = static_cast<std::int64_t>(slot[static_cast<std::size_t>(k)]) +
                      static_cast<std::int64_t>(field);
-      const double m = g.mass[static_cast<std::size_t>(s)];
-      const bool live = wk > 0.0 && m > 0.0;
-      wall_slots_[c * K + static_cast<std::size_t>(k)] = live ? s : -1;
-      wall_weights_[c * K + static_cast<std::size_t>(k)] = live ? wk : 0.0;
-      if (live) inverse_mass += wk * wk / m;
+      const bool live = wk > 0.0 && g.mass[static_cast<std::size_t>(s)] > 0.0;
+      wall_slots_[static_cast<std::size_t>(k)] = live ? s : -1;
+      wall_weights_[static_cast<std::size_t>(k)] = live ? wk : 0.0;
     }
-    wall_inverse_mass_[c] = inverse_mass;
+    WallContact contact;
+    contact.id = p.id[i];
+    contact.gap = gap;
+    cs.add(contact, wall_slots_, wall_weights_, g);
   }
+  cs.finish(g, ranks_);  // on ranks: every rank's, in id order
+  const std::size_t nc = cs.size();
+  if (nc == 0) return;
+  for (std::size_t c = 0; c < nc; ++c) cs[c].inverse_mass = cs.particle_inverse_mass(c);
 
-  const FaceConstraints constraints(g);
   Vec3 impulse_sum{};
-  auto v_of = [&](std::size_t c) {
-    Vec3 v{};
-    for (int k = 0; k < K; ++k) {
-      const std::int64_t s = wall_slots_[c * K + static_cast<std::size_t>(k)];
-      if (s >= 0)
-        v += wall_weights_[c * K + static_cast<std::size_t>(k)] *
-             g.velocity_new[static_cast<std::size_t>(s)];
-    }
-    return v;
-  };
-  // Gives the particle's nodes the impulse J (N_k J each), the face conditions kept.
-  auto apply = [&](std::size_t c, const Vec3& impulse) {
-    for (int k = 0; k < K; ++k) {
-      const std::int64_t s = wall_slots_[c * K + static_cast<std::size_t>(k)];
-      if (s < 0) continue;
-      const auto su = static_cast<std::size_t>(s);
-      const double m = g.mass[su];
-      Vec3& v = g.velocity_new[su];
-      const Vec3 before = v;
-      v += (wall_weights_[c * K + static_cast<std::size_t>(k)] / m) * impulse;
-      const NodeConstraint nc_k = constraints(g.node_of_slot(su % g.slot_count()));
-      if (nc_k.any()) constrain(v, nc_k.mask_for(v));
-      impulse_sum += m * (v - before);
-    }
-  };
   for (int sweep = 0; sweep < kSweeps; ++sweep) {
     for (std::size_t c = 0; c < nc; ++c) {
-      if (!(wall_inverse_mass_[c] > 0.0)) continue;
-      const Vec3 v = v_of(c);
+      WallContact& h = cs[c];
+      if (!(h.inverse_mass > 0.0)) continue;
+      const Vec3 v = cs.particle_velocity(c);
       // The predicted gap (the wall moves dt v_wall), and the one allowed at the step's end.
-      const double gap = wall_gap_[c] + dt * core::dot(v - spec.velocity, n);
-      const double allowed = kRecede * std::min(wall_gap_[c], 0.0);
+      const double gap = h.gap + dt * core::dot(v - spec.velocity, n);
+      const double allowed = kRecede * std::min(h.gap, 0.0);
       // The normal velocity change that puts the boundary at the allowed gap; accumulated
       // impulses stay >= 0 (a wall pushes, never pulls).
-      const double dj = core::add_normal_impulse(wall_normal_impulse_[c], allowed - gap, dt,
-                                                 wall_inverse_mass_[c]);
-      if (dj != 0.0) apply(c, dj * n);
+      const double dj =
+          core::add_normal_impulse(h.normal_impulse, allowed - gap, dt, h.inverse_mass);
+      if (dj != 0.0) impulse_sum += cs.push(c, dj * n);
       if (!(spec.friction > 0.0)) continue;
       // Stick: the impulse that stops the slip the nodes have after the normal one, within the
       // Coulomb cone mu J.
-      const Vec3 djt = core::add_friction_impulse(wall_tangent_impulse_[c], wall_normal_impulse_[c],
-                                                  spec.friction, v_of(c) - spec.velocity, n,
-                                                  wall_inverse_mass_[c]);
-      if (core::dot(djt, djt) > 0.0) apply(c, djt);
+      const Vec3 djt =
+          core::add_friction_impulse(h.tangent_impulse, h.normal_impulse, spec.friction,
+                                     cs.particle_velocity(c) - spec.velocity, n, h.inverse_mass);
+      if (core::dot(djt, djt) > 0.0) impulse_sum += cs.push(c, djt);
     }
   }
+  cs.write_back(g);
   // Friction's dissipation over the step: the final tangential impulses against the slip they
   // left (zero where the particle sticks).
   double dissipated = 0.0;
   if (spec.friction > 0.0)
     for (std::size_t c = 0; c < nc; ++c) {
-      if (!(wall_inverse_mass_[c] > 0.0)) continue;
-      dissipated -= core::slip_work(wall_tangent_impulse_[c], v_of(c) - spec.velocity, n);
+      if (!(cs[c].inverse_mass > 0.0)) continue;
+      dissipated -=
+          core::slip_work(cs[c].tangent_impulse, cs.particle_velocity(c) - spec.velocity, n);
     }
+  // Every rank swept every contact: the dissipation and force are whole on each, and the work,
+  // which energies() adds over the ranks, is booked by rank 0.
   wall_sliding_ += dissipated;
   wall_friction_ += dissipated;
-  external_work_ += core::dot(impulse_sum, spec.velocity);
+  if (ranks_ == nullptr || ranks_->rank() == 0)
+    external_work_ += core::dot(impulse_sum, spec.velocity);
   wall_force_[w] = (1.0 / dt) * impulse_sum;
 }
 
