@@ -245,7 +245,7 @@ AFEMP_INLINE inline void ParticleSurfaceContacts::find_hits(const Pair& pair,
       slots_[static_cast<std::size_t>(k)] = live ? s : -1;
       weights_[static_cast<std::size_t>(k)] = live ? st.w(k) : 0.0;
     }
-    hits_.add(best, slots_, weights_, g);
+    hits_.add(best, slots_, weights_);
   }
   hits_.finish(g, access.ranks);
 }

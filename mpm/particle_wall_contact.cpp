@@ -82,7 +82,7 @@ void MpmSolver::particle_wall_kernel(std::size_t w, double dt) {
     WallContact contact;
     contact.id = p.id[i];
     contact.gap = gap;
-    cs.add(contact, wall_slots_, wall_weights_, g);
+    cs.add(contact, wall_slots_, wall_weights_);
   }
   cs.finish(g, ranks_);  // on ranks: every rank's, in id order
   const std::size_t nc = cs.size();
