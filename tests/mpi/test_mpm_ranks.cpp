@@ -28,6 +28,17 @@ std::string bar_scene(const std::string& mpm, const std::string& run = "") {
   return test::copper_bar_on_wall("end_time = 0.01\n" + run, mpm);
 }
 
+// A rigid wall at the particles under the bar's foot, moving up at 5 m/s, with friction 0.3: it
+// holds the foot's particles before the grid's wall face does, and resists their spreading.
+const std::string moving_wall = R"(
+[[walls]]
+point = [0, 0, 0]
+normal = [0, 0, 1]
+velocity = [0, 0, 5]
+friction = 0.3
+bodies = ["bar"]
+)";
+
 struct Run {
   std::vector<Energies> energies;  // after each step
   Particles particles;             // this rank's at the end
@@ -129,7 +140,9 @@ TEST(MpiMpmRanks, UslQuadraticSplineWithGravityGivesOneProcessFigures) {
 }
 
 // Reference: the uninterrupted one-process run (150 steps; USL with the quadratic B-spline and
-// gravity, whose nodal work each rank books for its own blocks). The divided run's checkpoint
+// gravity, whose nodal work each rank books for its own blocks, onto a rigid wall at the
+// particles that moves up at 5 m/s with friction 0.3, whose work rank 0 books and whose
+// dissipation every rank holds whole). The divided run's checkpoint
 // after 70 steps is written by rank 0 alone (MpmSolver::prepare_checkpoint gathers every
 // particle and sums every rank's work). A solver divided among this run's ranks and one in a
 // single process each read it and take the remaining 80 steps: both hold every particle once,
@@ -137,7 +150,8 @@ TEST(MpiMpmRanks, UslQuadraticSplineWithGravityGivesOneProcessFigures) {
 // at every step (round-off: the partition is made anew from the particles' present blocks).
 TEST(MpiMpmRanks, CheckpointOfTheDividedRunRestartsOnRanksAndInOneProcess) {
   const core::Scene scene = core::parse_scene(
-      bar_scene("scheme = \"USL\"\nshape_function = \"bspline2\"\n", "gravity = [0, 0, -5e3]\n"),
+      bar_scene("scheme = \"USL\"\nshape_function = \"bspline2\"\n", "gravity = [0, 0, -5e3]\n") +
+          moving_wall,
       "bar.toml");
   constexpr int first = 70, rest = 80;
   const auto whole = run(scene, nullptr, first + rest);
@@ -160,6 +174,7 @@ TEST(MpiMpmRanks, CheckpointOfTheDividedRunRestartsOnRanksAndInOneProcess) {
       EXPECT_NEAR(b.internal, a.internal, 1e-10 * e0) << what << ", step " << k;
       EXPECT_NEAR(b.plastic, a.plastic, 1e-10 * e0) << what << ", step " << k;
       EXPECT_NEAR(b.external_work, a.external_work, 1e-10 * e0) << what << ", step " << k;
+      EXPECT_NEAR(b.friction, a.friction, 1e-10 * e0) << what << ", step " << k;
     }
     EXPECT_EQ(solver.step_count(), first + rest) << what;
   };
@@ -174,7 +189,8 @@ TEST(MpiMpmRanks, CheckpointOfTheDividedRunRestartsOnRanksAndInOneProcess) {
   test::load_checkpoint(alone, path);
   EXPECT_EQ(alone.particles().size(), whole.particles.size());
   expect_rest(alone, "in one process");
-  EXPECT_GT(whole.energies.back().external_work, 0.0);  // gravity did work
+  EXPECT_GT(whole.energies.back().external_work, 0.0);   // gravity did work
+  EXPECT_GT(whole.energies.back().friction, 1e-6 * e0);  // the wall's friction dissipated
   test::remove_shared_scratch(link, path);
 }
 
@@ -227,21 +243,13 @@ TEST(MpiMpmRanks, RebalancingByCountAndByTimeKeepsTheOneProcessFigures) {
   }
 }
 
-// Reference: the one-process run. The bar's particles meet a rigid wall ([[walls]] at
-// particles) under its foot that moves up at 5 m/s, with friction 0.3 (it holds the foot's
-// particles before the grid's wall face does, and resists their spreading): every rank sweeps
+// Reference: the one-process run. The bar's particles meet the moving wall with friction
+// ([[walls]] at particles, above): every rank sweeps
 // every rank's contacts in the order of their ids. Beside the figures above (the wall's work is
 // external work), the wall's force within 1e-9 of its largest and friction's dissipation within
 // 1e-10 of the initial kinetic energy at every step; the wall pushed and friction dissipated.
 TEST(MpiMpmRanks, ParticleWallWithFrictionGivesOneProcessFigures) {
-  const std::string text = bar_scene("scheme = \"MUSL\"\n") + R"(
-[[walls]]
-point = [0, 0, 0]
-normal = [0, 0, 1]
-velocity = [0, 0, 5]
-friction = 0.3
-bodies = ["bar"]
-)";
+  const std::string text = bar_scene("scheme = \"MUSL\"\n") + moving_wall;
   expect_same_as_one_process(text);
   const core::Scene scene = core::parse_scene(text, "wall.toml");
   struct Wall {
