@@ -25,10 +25,14 @@ struct RankMessage {
 // A nodal array of the grid: fields x slots entries of `components` doubles each (mass 1,
 // momentum and force 3), as BackgroundGrid stores them. The ranks' parts of a node are added,
 // or for `largest` (grid contact's reach, a maximum over the particles) the largest is kept.
+// `fixed`: the entries are 128-bit fixed-point values (core/exact_sum.hpp), two doubles'
+// width each (components counts doubles: 2 a value), added as integers, whose sums do not
+// depend on their order.
 struct NodalArray {
   double* data = nullptr;
   int components = 1;
   bool largest = false;
+  bool fixed = false;
 };
 
 class RankLink {

@@ -13,6 +13,7 @@
 #include "core/materials/initial_pressure.hpp"
 #include "core/mixed_pressure_refusals.hpp"
 #include "core/phases.hpp"
+#include "core/reproducible_refusals.hpp"
 #include "core/scene.hpp"
 #include "core/scene_parser.hpp"
 #include "core/scene_ranges.hpp"
@@ -630,6 +631,8 @@ void check_scene(const Scene& scene) {
     c.range(scene.detonations[k].where, "detonations[" + std::to_string(k) + "].time",
             scene.detonations[k].time, scene_ranges::detonation_time);
   scene_detail::check_explosives(scene);
+  if (const std::optional<std::string> why = reproducible_refusal(scene))
+    c.fail(scene.run.reproducible_where, "run.reproducible", *why);
   for (const VelocityReference& v : scene.velocity_references) {
     c.body(v.where, "reference.velocity.body", v.body, false);
     if (v.value == 0.0) c.fail(v.where, "reference.velocity.value", "must not be 0");

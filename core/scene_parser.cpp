@@ -18,6 +18,7 @@
 #include "core/materials/model_parameters.hpp"
 #include "core/mixed_pressure_refusals.hpp"
 #include "core/phases.hpp"
+#include "core/reproducible_refusals.hpp"
 #include "core/scene_ranges.hpp"
 #include "core/shape_function_refusals.hpp"
 #include "core/total_lagrangian_refusals.hpp"
@@ -392,6 +393,7 @@ void read_run(TableReader& r, RunSettings& run) {
            "checkpoint_every",
            "checkpoint_wall_every",
            "checkpoint_keep",
+           "reproducible",
            "untranslated"});
   r.check_unknown();
   namespace range = scene_ranges::run;
@@ -443,6 +445,8 @@ void read_run(TableReader& r, RunSettings& run) {
   run.checkpoint_keep =
       static_cast<int>(r.integer("checkpoint_keep", run.checkpoint_keep, range::checkpoint_keep.lo,
                                  range::checkpoint_keep.hi));
+  run.reproducible = r.boolean("reproducible", run.reproducible);
+  run.reproducible_where = r.where("reproducible");
 }
 
 void read_grid(TableReader& r, GridSettings& grid) {
@@ -2196,6 +2200,8 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
   read_table_array(r, "probes", path,
                    [&](TableReader& t) { scene.probes.push_back(read_probe(t, scene)); });
   read_phases(r, scene, path);
+  if (const std::optional<std::string> why = reproducible_refusal(scene))
+    throw InputError(scene.run.reproducible_where, "run.reproducible", *why);
   return scene;
 }
 

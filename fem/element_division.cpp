@@ -84,6 +84,7 @@ void FeSolver::divide_among_ranks(core::RankLink& link) {
     plastic_work_ = viscous_work_ = hourglass_work_ = stabilisation_work_ = eroded_energy_ = 0.0;
     std::fill(body_stabilisation_.begin(), body_stabilisation_.end(), 0.0);
   }
+  start_exact_sums();
 }
 
 void FeSolver::share_element_results() {
@@ -259,6 +260,11 @@ void FeSolver::sum_element_energies(core::Energies& e) const {
 void FeSolver::prepare_checkpoint() {
   if (ranks_ == nullptr) return;
   gather_elements();
+  if (reproducible()) {
+    rank_sums_ = exact_rank_sums(true);
+    rank_sums_.ready = true;
+    return;
+  }
   std::vector<double> sums{plastic_work_, viscous_work_, hourglass_work_, stabilisation_work_,
                            eroded_energy_};
   sums.insert(sums.end(), body_stabilisation_.begin(), body_stabilisation_.end());

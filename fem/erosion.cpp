@@ -41,6 +41,10 @@ void FeSolver::collect_erosions(ElementSet& set) {
         if (!el.plastic_heat.empty()) {
           plastic_work_ -= el.point_mass[p] * el.plastic_heat[p];
           viscous_work_ -= el.point_mass[p] * el.viscous_heat[p];
+          if (reproducible()) {
+            exact_[exact_plastic].add(-(el.point_mass[p] * el.plastic_heat[p]));
+            exact_[exact_viscous].add(-(el.point_mass[p] * el.viscous_heat[p]));
+          }
         }
       }
       // The element's mass leaves its nodes (a lumped share each) at their velocity v^{n+1/2}.
@@ -50,6 +54,7 @@ void FeSolver::collect_erosions(ElementSet& set) {
       }
       el.alive[e] = 0;
       eroded_energy_ += energy;
+      if (reproducible()) exact_[exact_eroded].add(energy);
       events_.push_back({time_, set.kind(), static_cast<std::int64_t>(e - batch->begin),
                          batch->body, thread_failure_[t][k], energy, el.mass[e], e});
       erosion_this_step_ = true;

@@ -744,6 +744,8 @@ void FeSolver::setup_step_arrays(const core::Scene& scene) {
   thread_sums_.assign(static_cast<std::size_t>(core::thread_count()) * core::cache_line_doubles,
                       0.0);
   body_stabilisation_.assign(scene.bodies.size(), 0.0);
+  if (scene.run.reproducible) exact_mirror_.resize(thread_sums_.size());
+  start_exact_sums();
   thread_erosions_.resize(static_cast<std::size_t>(core::thread_count()));
   thread_conversions_.resize(static_cast<std::size_t>(core::thread_count()));
   thread_conversion_reason_.resize(static_cast<std::size_t>(core::thread_count()));

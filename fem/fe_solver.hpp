@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "afemp/energies.hpp"
+#include "core/exact_sum.hpp"
 #include "core/materials/material.hpp"
 #include "core/parallel.hpp"
 #include "core/scene.hpp"
@@ -436,6 +437,10 @@ class FeSolver {
   static constexpr std::size_t kRankRun = 64;
   template <class F>
   void for_each_share(const ElementBatch& b, int r, F&& f) const;
+  // f(store, batch, first point) for each live element of this rank's share (every element in
+  // one process), in element order.
+  template <class F>
+  void for_each_live_element(F&& f) const;
   template <class F>
   void sweep_share(const ElementBatch& b, F&& f) const;
   void share_element_results();
@@ -466,6 +471,37 @@ class FeSolver {
   std::vector<double> stage_seconds_;
   // Per-thread partial sums (padded), combined in thread order.
   std::vector<double> thread_sums_;
+  // The reproducible mode ([run] reproducible; fem/reproducible_energies.cpp): sums that do not
+  // depend on the thread count or on how the elements are shared among ranks. book() adds a
+  // term to a thread's sum and to the exact sum that mirrors it (one a thread_sums_ entry);
+  // exact_threads(k) is entry k's exact sum over the threads. The elements' running sums are
+  // kept exactly per rank too (exact_, exact_body_stabilisation_), from the doubles'
+  // values where a run starts, is divided or restarts (start_exact_sums).
+  bool reproducible() const { return scene_.run.reproducible; }
+  void book(double* sums, std::size_t k, double x) const {
+    sums[k] += x;
+    if (!exact_mirror_.empty())
+      exact_mirror_[static_cast<std::size_t>(sums - thread_sums_.data()) + k].add(x);
+  }
+  core::ExactSum exact_threads(std::size_t k) const;
+  void clear_exact_threads(std::size_t k) const;
+  void start_exact_sums();
+  // The running sums from the exact ones, over the ranks where `over_ranks` (collective).
+  RankSums exact_rank_sums(bool over_ranks) const;
+  core::Energies reproducible_energies() const;
+  // energies()' part that every rank sums alike over every node: kinetic energy, mass and
+  // momentum, the contacts' and walls' energies, the external work.
+  core::Energies nodal_energies() const;
+  mutable std::vector<core::ExactSum> exact_mirror_;
+  enum ExactEntry : std::size_t {
+    exact_plastic,
+    exact_viscous,
+    exact_hourglass,
+    exact_stabilisation,
+    exact_eroded
+  };
+  std::array<core::ExactSum, 5> exact_;
+  std::vector<core::ExactSum> exact_body_stabilisation_;
   std::vector<std::vector<std::size_t>> thread_erosions_;
   std::vector<std::vector<const char*>> thread_failure_;
   std::vector<std::string> thread_errors_;       // entity of the first bad value per thread
@@ -491,6 +527,20 @@ void FeSolver::for_each_share(const ElementBatch& b, int r, F&& f) const {
   const std::size_t stride = kRankRun * static_cast<std::size_t>(rank_count_);
   for (std::size_t lo = b.begin + kRankRun * static_cast<std::size_t>(r); lo < b.end; lo += stride)
     f(lo, std::min(lo + kRankRun, b.end));
+}
+
+template <class F>
+void FeSolver::for_each_live_element(F&& f) const {
+  for (const ElementSet* set : sets_) {
+    const ElementStore& el = set->store();
+    for (const ElementBatch& b : el.batches)
+      for_each_share(b, rank_, [&](std::size_t first, std::size_t last) {
+        for (std::size_t e = first; e < last; ++e)
+          if (el.alive[e])
+            f(el, b,
+              b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element));
+      });
+  }
 }
 
 template <class F>

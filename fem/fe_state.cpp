@@ -155,6 +155,7 @@ void FeSolver::state(StateArchive& a) {
     throw std::logic_error("FeSolver::state: prepare_checkpoint() first on ranks");
   RankSums own{plastic_work_,       viscous_work_,  hourglass_work_,
                stabilisation_work_, eroded_energy_, body_stabilisation_};
+  if (reproducible() && !a.loading() && !whole_on_ranks) own = exact_rank_sums(false);
   RankSums& sums = whole_on_ranks ? rank_sums_ : own;
   a.item("plastic_work", sums.plastic);
   a.item("viscous_work", sums.viscous);
@@ -172,6 +173,7 @@ void FeSolver::state(StateArchive& a) {
     eroded_energy_ = own.eroded;
     body_stabilisation_ = own.body_stabilisation;
     if (body_stabilisation_.empty()) body_stabilisation_.assign(scene_.bodies.size(), 0.0);
+    start_exact_sums();
   }
   a.item("external_work", external_work_);
   a.item("absorbing_start", absorbing_start_);

@@ -323,8 +323,8 @@ void HexahedronPasses<S, E, Thermal, Fails>::commit_point(std::size_t p, const T
                                                           std::size_t j, double* sums) const {
   using namespace hexahedron_stage;
   HexElements& el = el_;
-  sums[kPlastic] += el.point_mass[p] * in.plastic_work[j];
-  sums[kViscous] += el.point_mass[p] * in.q_heat[j];
+  fe_.book(sums, kPlastic, el.point_mass[p] * in.plastic_work[j]);
+  fe_.book(sums, kViscous, el.point_mass[p] * in.q_heat[j]);
   if (!el.plastic_heat.empty()) {  // elements may erode (the same for every point)
     el.plastic_heat[p] += in.plastic_work[j];
     el.viscous_heat[p] += in.q_heat[j];
@@ -624,11 +624,11 @@ void HexahedronPasses<S, E, Thermal, Fails>::commit_hourglass(std::size_t e, con
   using namespace hexahedron_stage;
   if (q_hg_ <= 0.0) return;
   if (hg_form_ == core::HourglassForm::assumed_strain) {
-    sums[kStabilisation] += dt_ * te.hourglass_term;
+    fe_.book(sums, kStabilisation, dt_ * te.hourglass_term);
   } else if (hg_form_ == core::HourglassForm::stiffness) {
-    sums[kHourglass] += te.hourglass_term;
+    fe_.book(sums, kHourglass, te.hourglass_term);
   } else {
-    sums[kHourglass] += 0.5 * dt_force_ * (el_.hourglass_power[e] + te.hourglass_term);
+    fe_.book(sums, kHourglass, 0.5 * dt_force_ * (el_.hourglass_power[e] + te.hourglass_term));
     el_.hourglass_power[e] = te.hourglass_power;
   }
   el_.hourglass_force[e] = te.hourglass;

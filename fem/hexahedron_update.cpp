@@ -34,6 +34,7 @@ void HexahedronSet::update(FeSolver& fe, double dt) {
 void FeSolver::update_hexahedra(double dt) {
   using namespace hexahedron_stage;
   std::fill(thread_sums_.begin(), thread_sums_.end(), 0.0);
+  for (core::ExactSum& s : exact_mirror_) s.clear();
   for (auto& e : thread_errors_) e.clear();
   // The stabilisation energy per body (part of its internal energy): the threads' sums
   // grow batch by batch, so a batch's share is the growth over its sweep.
@@ -51,6 +52,12 @@ void FeSolver::update_hexahedra(double dt) {
         else
           hexahedron_batch<S, E, Thermal, false>(b, s, e, dt);
         body_stabilisation_[static_cast<std::size_t>(b.body)] += stabilisation() - before;
+        if (reproducible()) {  // the batch's stabilisation exactly, then cleared for the next
+          const core::ExactSum batch = exact_threads(kStabilisation);
+          exact_body_stabilisation_[static_cast<std::size_t>(b.body)] += batch;
+          exact_[exact_stabilisation] += batch;
+          clear_exact_threads(kStabilisation);
+        }
         raise_thread_errors();
         collect_erosions(hexes_);
         collect_retirements();
@@ -61,6 +68,11 @@ void FeSolver::update_hexahedra(double dt) {
     viscous_work_ += s[kViscous];
     hourglass_work_ += s[kHourglass];
     stabilisation_work_ += s[kStabilisation];
+  }
+  if (reproducible()) {
+    exact_[exact_plastic] += exact_threads(kPlastic);
+    exact_[exact_viscous] += exact_threads(kViscous);
+    exact_[exact_hourglass] += exact_threads(kHourglass);
   }
 }
 

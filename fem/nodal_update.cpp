@@ -49,8 +49,15 @@ void FeSolver::update_nodes(double dt) {
   const bool tied = !embedded_.empty();
   std::fill(thread_sums_.begin(), thread_sums_.end(), 0.0);
   for (auto& e : thread_errors_) e.clear();
+  for (core::ExactSum& s : exact_mirror_) s.clear();
   core::parallel_chunks(n, [&](std::size_t begin, std::size_t end, int t) {
     double work = 0.0;
+    // The reproducible mode: each term also into the exact sum mirroring the thread's entry 1.
+    double* sums = &thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles];
+    auto add_work = [&](double term) {
+      work += term;
+      if (!exact_mirror_.empty()) book(sums, 1, term);
+    };
     for (std::size_t i = begin; i < end; ++i) {
       // The element forces of a node a few ahead, so that their loads overlap this node's
       // (the sums keep their order: the same bits).
@@ -88,20 +95,24 @@ void FeSolver::update_nodes(double dt) {
           if (imposed & (1u << a)) {
             // The reaction impulse m (v_imposed - v) does work at the imposed velocity.
             const double target = nodes_.imposed_velocity[i][a];
-            work += m * (target - v[a]) * target;
+            add_work(m * (target - v[a]) * target);
             v[a] = target;
           }
       }
-      if (gravity) work += m * core::dot(g, v) * dt;
-      if (loads) work += core::dot(f_load, v) * dt;
+      if (gravity) add_work(m * core::dot(g, v) * dt);
+      if (loads) add_work(core::dot(f_load, v) * dt);
       if (!std::isfinite(v.x + v.y + v.z) && thread_errors_[static_cast<std::size_t>(t)].empty()) {
         thread_errors_[static_cast<std::size_t>(t)] = "node " + std::to_string(i);
         thread_error_field_[static_cast<std::size_t>(t)] = "velocity";
       }
     }
-    thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles] = work;
+    sums[0] = work;
   });
   raise_thread_errors();
+  if (reproducible()) {  // every rank moves every node: the same exact sum on each
+    external_work_ += exact_threads(1).value();
+    return;
+  }
   for (std::size_t t = 0; t < thread_errors_.size(); ++t)
     external_work_ += thread_sums_[t * core::cache_line_doubles];
 }
@@ -313,7 +324,7 @@ std::string FeSolver::time_step_setter() const {
   return element_name(s) + why;
 }
 
-core::Energies FeSolver::energies() const {
+core::Energies FeSolver::nodal_energies() const {
   core::Energies out;
   out.bodies.resize(scene_.bodies.size());
   for (std::size_t i = 0; i < nodes_.size(); ++i) {
@@ -328,25 +339,26 @@ core::Energies FeSolver::energies() const {
     b.kinetic += kinetic;
   }
   if (!embedded_.empty()) book_embedded_bodies(embedded_, nodes_, hexes_, out.bodies);
+  out.sliding = sliding_energy_;
+  for (const MeshContact& c : contacts_) out.friction += c.friction_work;
+  out.wall = wall_energy_;
+  out.external_work = external_work_;
+  return out;
+}
+
+core::Energies FeSolver::energies() const {
+  if (reproducible()) return reproducible_energies();
+  core::Energies out = nodal_energies();
   // The elements' part: on MPI ranks each rank's own elements and the running sums of its
   // element stages, added over the ranks in rank order below.
-  for (const ElementSet* set : sets_) {
-    const ElementStore& el = set->store();
-    for (const ElementBatch& b : el.batches)
-      for_each_share(b, rank_, [&](std::size_t first, std::size_t last) {
-        for (std::size_t e = first; e < last; ++e) {
-          if (!el.alive[e]) continue;
-          const std::size_t p0 =
-              b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
-          double internal = 0.0;
-          for (int g = 0; g < b.points_per_element; ++g)
-            internal += el.point_mass[p0 + static_cast<std::size_t>(g)] *
-                        el.energy[p0 + static_cast<std::size_t>(g)];
-          out.internal += internal;
-          out.bodies[static_cast<std::size_t>(b.body)].internal += internal;
-        }
-      });
-  }
+  for_each_live_element([&](const ElementStore& el, const ElementBatch& b, std::size_t p0) {
+    double internal = 0.0;
+    for (int g = 0; g < b.points_per_element; ++g)
+      internal += el.point_mass[p0 + static_cast<std::size_t>(g)] *
+                  el.energy[p0 + static_cast<std::size_t>(g)];
+    out.internal += internal;
+    out.bodies[static_cast<std::size_t>(b.body)].internal += internal;
+  });
   out.plastic = plastic_work_;
   out.viscous = viscous_work_;
   out.hourglass = hourglass_work_;
@@ -356,10 +368,6 @@ core::Energies FeSolver::energies() const {
     out.bodies[b].internal += body_stabilisation_[b];
   out.eroded = eroded_energy_;
   if (ranks_) sum_element_energies(out);
-  out.sliding = sliding_energy_;
-  for (const MeshContact& c : contacts_) out.friction += c.friction_work;
-  out.wall = wall_energy_;
-  out.external_work = external_work_;
   return out;
 }
 

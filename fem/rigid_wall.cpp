@@ -29,6 +29,7 @@ void FeSolver::apply_walls(double dt) {
     const Vec3 wall_point = s.point + (time_ + dt) * s.velocity;
     const std::size_t n = w.nodes.size();
     std::fill(thread_sums_.begin(), thread_sums_.end(), 0.0);
+    for (core::ExactSum& e : exact_mirror_) e.clear();
     const double dt_force = force_step(dt);
     const double before_dt = motion_before_step(dt);
     auto sweep = [&](std::size_t begin, std::size_t end, int t) {
@@ -69,6 +70,13 @@ void FeSolver::apply_walls(double dt) {
         work += core::dot(j, s.velocity);
         done += core::dot(j, before_dt * w.start[k] + dt * v);
         impulse += j;
+        if (!exact_mirror_.empty()) {  // the reproducible mode: each term exactly, in the
+          // mirror of entries 1-3 (impulse), 5 (work) and 6 (done), which the sums below overwrite
+          double* mine = &thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles];
+          for (std::size_t a = 0; a < 3; ++a) book(mine, 1 + a, j[static_cast<int>(a)]);
+          book(mine, 5, core::dot(j, s.velocity));
+          book(mine, 6, core::dot(j, before_dt * w.start[k] + dt * v));
+        }
       }
       double* sums = &thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles];
       sums[0] = work;
@@ -85,6 +93,11 @@ void FeSolver::apply_walls(double dt) {
       work += sums[0];
       impulse += Vec3{sums[1], sums[2], sums[3]};
       done += sums[4];
+    }
+    if (reproducible()) {  // every rank sweeps every wall node: the same exact sums on each
+      work = exact_threads(5).value();
+      done = exact_threads(6).value();
+      impulse = Vec3{exact_threads(1).value(), exact_threads(2).value(), exact_threads(3).value()};
     }
     external_work_ += work;
     wall_energy_ += work - done / (before_dt + dt);

@@ -44,7 +44,7 @@ void FeSolver::truss_batch(const ElementBatch& b, const Strength& strength, cons
   auto complete = [&](std::size_t e, const std::array<Vec3, 4>& xv, const core::PointState& st,
                       const core::UniaxialUpdate& u, int t, double* sums) AFEMP_INLINE {
     const std::size_t p = b.point_begin + (e - b.begin);
-    sums[0] += el.point_mass[p] * u.point.plastic_work;
+    book(sums, 0, el.point_mass[p] * u.point.plastic_work);
     if (!el.plastic_heat.empty()) el.plastic_heat[p] += u.point.plastic_work;
     el.stress[p] = st.stress;
     el.plastic_strain[p] = st.plastic_strain;
@@ -129,6 +129,7 @@ void TrussSet::update(FeSolver& fe, double dt) {
 
 void FeSolver::update_trusses(double dt) {
   std::fill(thread_sums_.begin(), thread_sums_.end(), 0.0);
+  for (core::ExactSum& s : exact_mirror_) s.clear();
   for (auto& e : thread_errors_) e.clear();
   for_each_batch(
       trusses_, [&]<class S, class E, bool Thermal>(const ElementBatch& b, const S& s, const E& e) {
@@ -138,6 +139,7 @@ void FeSolver::update_trusses(double dt) {
       });
   for (std::size_t t = 0; t < thread_errors_.size(); ++t)
     plastic_work_ += thread_sums_[t * core::cache_line_doubles];
+  if (reproducible()) exact_[exact_plastic] += exact_threads(0);
 }
 
 }  // namespace afemp::fem

@@ -137,12 +137,31 @@ void MpmSolver::contact_surfaces_kernel() {
     });
   };
   // Eq 37 per field: grad m = sum_p m_p grad S_I(x_p), pointing out of the body.
-  scatter_contact_particles([&](std::size_t i, const Stencil& st, const auto& s) {
-    for (int n = 0; n < Stencil::nodes; ++n)
-      g.mass_gradient[s[static_cast<std::size_t>(n)]] += p.mass[i] * st.grad(n);
-  });
+  // The reproducible mode: in fixed point (reproducible_sums.cpp), with no mesh points.
+  const bool exact = reproducible();
+  if (exact) {
+    start_fixed_scatter(FixedScatter::gradient);
+    FixedNodes& fixed = fixed_;
+    scatter_contact_particles([&](std::size_t i, const Stencil& st, const auto& s) {
+      bool ok = true;
+      for (int n = 0; n < Stencil::nodes; ++n) {
+        const std::size_t k = s[static_cast<std::size_t>(n)];
+        const Vec3 term = p.mass[i] * st.grad(n);
+        for (std::size_t a = 0; a < 3; ++a)
+          fixed.gradient[3 * k + a] +=
+              core::to_fixed(term[static_cast<int>(a)], fixed.gradient_scale, ok);
+      }
+      if (!ok) fixed_ok_[static_cast<std::size_t>(core::thread_index())] = 0;
+    });
+    finish_fixed_scatter(FixedScatter::gradient);
+  } else {
+    scatter_contact_particles([&](std::size_t i, const Stencil& st, const auto& s) {
+      for (int n = 0; n < Stencil::nodes; ++n)
+        g.mass_gradient[s[static_cast<std::size_t>(n)]] += p.mass[i] * st.grad(n);
+    });
+  }
   if (points_) points_->contact_surfaces(access(), true);
-  if (ranks_) {  // the gradients of the blocks that several ranks' particles reach made whole
+  if (ranks_ && !exact) {  // the gradients of the blocks that several ranks' particles reach
     const core::NodalArray gradient[] = {{reinterpret_cast<double*>(g.mass_gradient.data()), 3}};
     sum_shared_blocks(gradient);
   }
@@ -226,87 +245,110 @@ void MpmSolver::grid_contact(ContactPass pass) {
   // (MUSL) only the remapped one.
   const std::size_t contacts = grid_contact_force_.size();
   if (update) contact_force_scratch_.assign(static_cast<std::size_t>(nt) * contacts, {});
+  // The reproducible mode: per thread the exact sums of the dissipation and of each contact's
+  // normal and tangential impulses (1 + 6 x contacts).
+  const std::size_t per = 1 + 6 * contacts;
+  core::ExactSum* exact = update && reproducible() ? exact_thread_sums(per) : nullptr;
 #pragma omp parallel num_threads(nt) if (core::worth_threads(stride))
   {
     double dissipated = 0.0;
+    core::ExactSum* exact_sums =
+        exact ? exact + per * static_cast<std::size_t>(core::thread_index()) : nullptr;
     InterfaceForce* forces = update ? contact_force_scratch_.data() +
                                           static_cast<std::size_t>(core::thread_index()) * contacts
                                     : nullptr;
-    g.for_each_slot([&](std::size_t slot, const std::array<int, 3>& node) {
-      int present[max_fields];
-      int count = 0;
-      for (int f = 0; f < fields; ++f)
-        if (g.mass[slot + static_cast<std::size_t>(f) * stride] > 0.0) present[count++] = f;
-      // Pairs in a fixed order: each correction conserves momentum, so their sequence does
-      // too (a node rarely holds more than two fields).
-      for (int ka = 0; ka < count; ++ka)
-        for (int kb = ka + 1; kb < count; ++kb) {
-          const int fa = present[ka], fb = present[kb];
-          const std::size_t a = slot + static_cast<std::size_t>(fa) * stride;
-          const std::size_t b = slot + static_cast<std::size_t>(fb) * stride;
-          const double ma = g.mass[a], mb = g.mass[b];
-          const PairLaw& law = law_[static_cast<std::size_t>(fa * fields + fb)];
-          if (!law.contact) {
-            // Sticking fields share the start velocity too, or the FLIP increment v_new - v
-            // of each would differ from the one shared field's.
-            const double inv = 1.0 / (ma + mb);
-            const Vec3 cm = inv * (ma * v[a] + mb * v[b]);
+    // One instance with the reproducible mode's exact sums and one without, so that the plain
+    // one keeps its arithmetic (a term shared with the exact sums rounds otherwise).
+    auto sweep = [&]<bool Exact>() {
+      g.for_each_slot([&](std::size_t slot, const std::array<int, 3>& node) {
+        int present[max_fields];
+        int count = 0;
+        for (int f = 0; f < fields; ++f)
+          if (g.mass[slot + static_cast<std::size_t>(f) * stride] > 0.0) present[count++] = f;
+        // Pairs in a fixed order: each correction conserves momentum, so their sequence does
+        // too (a node rarely holds more than two fields).
+        for (int ka = 0; ka < count; ++ka)
+          for (int kb = ka + 1; kb < count; ++kb) {
+            const int fa = present[ka], fb = present[kb];
+            const std::size_t a = slot + static_cast<std::size_t>(fa) * stride;
+            const std::size_t b = slot + static_cast<std::size_t>(fb) * stride;
+            const double ma = g.mass[a], mb = g.mass[b];
+            const PairLaw& law = law_[static_cast<std::size_t>(fa * fields + fb)];
+            if (!law.contact) {
+              // Sticking fields share the start velocity too, or the FLIP increment v_new - v
+              // of each would differ from the one shared field's.
+              const double inv = 1.0 / (ma + mb);
+              const Vec3 cm = inv * (ma * v[a] + mb * v[b]);
+              if (record) {
+                contact_change_[a] += cm - v[a];
+                contact_change_[b] += cm - v[b];
+              }
+              v[a] = cm;
+              v[b] = cm;
+              if (update) {
+                const Vec3 cm_old = inv * (ma * g.velocity[a] + mb * g.velocity[b]);
+                g.velocity[a] = cm_old;
+                g.velocity[b] = cm_old;
+              }
+              continue;
+            }
+            // One normal for the pair, pointing from a into b.
+            const Vec3 n = pair_normal(g.mass_gradient[a], ma, g.mass_gradient[b], mb, node, g);
+            const double gap = -(g.reach[a] + g.reach[b]);
+            if (!(gap <= law.distance_factor * h)) continue;  // eq 42: not touching yet
+            // Separation is free (eq 39). In the update pass it is judged on the start
+            // velocities as well, the particles' own (mass-averaged): the updated velocity of a
+            // field with little mass at the node carries f dt / m, which can point into the
+            // other body while its particles move away from it. The particles' kinetic energy
+            // changes by J . (v_a - v_b) at first order, with the start velocities, so an
+            // impulse J there would create energy (as the contact of Ma 2005 did).
+            const Vec3 rel_start = g.velocity[a] - g.velocity[b];
+            if (update && core::dot(rel_start, n) < 0.0) continue;
+            const Vec3 rel = v[a] - v[b];
+            if (!(core::dot(rel, n) > 0.0)) continue;
+            // The stick impulse's normal part (eq 41 times dt) and its tangential part cut to
+            // the Coulomb limit: equal and opposite on the two fields. The particles receive it
+            // through the FLIP increment v_new - v (the start velocity is left as it was), and
+            // the strain of every scheme is taken from corrected velocities.
+            const Vec3 stick = -(ma * mb / (ma + mb)) * rel;
+            const double pn = core::dot(stick, n);  // < 0: pushes a back
+            Vec3 t = stick - pn * n;
+            core::coulomb_cap(t, law.friction * std::abs(pn));
+            const Vec3 impulse = pn * n + t;
+            v[a] += (1.0 / ma) * impulse;
+            v[b] -= (1.0 / mb) * impulse;
             if (record) {
-              contact_change_[a] += cm - v[a];
-              contact_change_[b] += cm - v[b];
+              contact_change_[a] += (1.0 / ma) * impulse;
+              contact_change_[b] -= (1.0 / mb) * impulse;
             }
-            v[a] = cm;
-            v[b] = cm;
-            if (update) {
-              const Vec3 cm_old = inv * (ma * g.velocity[a] + mb * g.velocity[b]);
-              g.velocity[a] = cm_old;
-              g.velocity[b] = cm_old;
+            // What the contact dissipates: the impulse's work on the interface at the mean of
+            // the relative velocity at the start and after the correction. Its normal part is
+            // >= 0, since the pair does not separate at the start and does not approach after.
+            // On ranks a node that several ranks hold is booked by its block's owner.
+            if (update && books_node(slot)) {
+              dissipated -= 0.5 * core::dot(impulse, rel_start + v[a] - v[b]);
+              const int k = contact_of_pair_[static_cast<std::size_t>(fa * fields + fb)];
+              const double sign = k > 0 ? 1.0 : -1.0;  // the impulse on a, or on b (minus it)
+              const auto c = static_cast<std::size_t>(k > 0 ? k - 1 : -1 - k);
+              InterfaceForce& f = forces[c];
+              f.normal += (sign * pn) * n;
+              f.tangential += sign * t;
+              if constexpr (Exact) {
+                exact_sums[0].add(-0.5 * core::dot(impulse, rel_start + v[a] - v[b]));
+                core::ExactSum* e = exact_sums + 1 + 6 * c;
+                for (int j = 0; j < 3; ++j) {
+                  e[j].add((sign * pn) * n[j]);
+                  e[3 + j].add(sign * t[j]);
+                }
+              }
             }
-            continue;
           }
-          // One normal for the pair, pointing from a into b.
-          const Vec3 n = pair_normal(g.mass_gradient[a], ma, g.mass_gradient[b], mb, node, g);
-          const double gap = -(g.reach[a] + g.reach[b]);
-          if (!(gap <= law.distance_factor * h)) continue;  // eq 42: not touching yet
-          // Separation is free (eq 39). In the update pass it is judged on the start
-          // velocities as well, the particles' own (mass-averaged): the updated velocity of a
-          // field with little mass at the node carries f dt / m, which can point into the
-          // other body while its particles move away from it. The particles' kinetic energy
-          // changes by J . (v_a - v_b) at first order, with the start velocities, so an
-          // impulse J there would create energy (as the contact of Ma 2005 did).
-          const Vec3 rel_start = g.velocity[a] - g.velocity[b];
-          if (update && core::dot(rel_start, n) < 0.0) continue;
-          const Vec3 rel = v[a] - v[b];
-          if (!(core::dot(rel, n) > 0.0)) continue;
-          // The stick impulse's normal part (eq 41 times dt) and its tangential part cut to
-          // the Coulomb limit: equal and opposite on the two fields. The particles receive it
-          // through the FLIP increment v_new - v (the start velocity is left as it was), and
-          // the strain of every scheme is taken from corrected velocities.
-          const Vec3 stick = -(ma * mb / (ma + mb)) * rel;
-          const double pn = core::dot(stick, n);  // < 0: pushes a back
-          Vec3 t = stick - pn * n;
-          core::coulomb_cap(t, law.friction * std::abs(pn));
-          const Vec3 impulse = pn * n + t;
-          v[a] += (1.0 / ma) * impulse;
-          v[b] -= (1.0 / mb) * impulse;
-          if (record) {
-            contact_change_[a] += (1.0 / ma) * impulse;
-            contact_change_[b] -= (1.0 / mb) * impulse;
-          }
-          // What the contact dissipates: the impulse's work on the interface at the mean of
-          // the relative velocity at the start and after the correction. Its normal part is
-          // >= 0, since the pair does not separate at the start and does not approach after.
-          // On ranks a node that several ranks hold is booked by its block's owner.
-          if (update && books_node(slot)) {
-            dissipated -= 0.5 * core::dot(impulse, rel_start + v[a] - v[b]);
-            const int k = contact_of_pair_[static_cast<std::size_t>(fa * fields + fb)];
-            const double sign = k > 0 ? 1.0 : -1.0;  // the impulse on a, or on b (minus it)
-            InterfaceForce& f = forces[static_cast<std::size_t>(k > 0 ? k - 1 : -1 - k)];
-            f.normal += (sign * pn) * n;
-            f.tangential += sign * t;
-          }
-        }
-    });
+      });
+    };
+    if (exact_sums)
+      sweep.template operator()<true>();
+    else
+      sweep.template operator()<false>();
     thread_sums_[static_cast<std::size_t>(core::thread_index()) * core::cache_line_doubles] =
         dissipated;
   }
@@ -314,6 +356,17 @@ void MpmSolver::grid_contact(ContactPass pass) {
     contact_energy_ += thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles];
   if (!update) return;
   const double inv_dt = 1.0 / step_dt_;
+  if (exact) {  // the threads' exact sums, then the ranks'
+    std::vector<core::ExactSum> sums(per);
+    add_exact_thread_sums(per, sums.data());
+    exact_[exact_contact] += sums[0];
+    const std::vector<double> impulse = core::exact_values(ranks_, std::span(sums).subspan(1));
+    for (std::size_t k = 0; k < contacts; ++k) {
+      const double* e = impulse.data() + 6 * k;
+      grid_contact_force_[k] = {inv_dt * Vec3{e[0], e[1], e[2]}, inv_dt * Vec3{e[3], e[4], e[5]}};
+    }
+    return;
+  }
   for (std::size_t k = 0; k < contacts; ++k) {
     InterfaceForce sum;
     for (int t = 0; t < nt; ++t) {

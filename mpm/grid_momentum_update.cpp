@@ -125,14 +125,22 @@ void MpmSolver::grid_momentum_update(double dt) {
   const bool body_force = plan_.gravity;
   const int nt = core::thread_count();
   thread_sums_.assign(static_cast<std::size_t>(nt) * core::cache_line_doubles, 0.0);
+  core::ExactSum* exact = reproducible() ? exact_thread_sums(1) : nullptr;
   wall_contact_.assign(g.field_slot_count(), 0);
   const std::size_t stride = g.slot_count();
   const int fields = g.field_count();
   const bool shared = shared_.any;
 #pragma omp parallel num_threads(nt) if (core::worth_threads(g.slot_count()))
   {
-    // Body-force work f_ext . (v + v_new) / 2 dt, and the absorbing faces' (negative).
+    // Body-force work f_ext . (v + v_new) / 2 dt, and the absorbing faces' (negative; not in
+    // the reproducible mode, whose exact sum takes the body force's).
     double work = 0.0;
+    core::ExactSum* exact_work =
+        exact ? exact + static_cast<std::size_t>(core::thread_index()) : nullptr;
+    auto book_gravity = [&](double term) {
+      work += term;
+      if (exact_work) exact_work->add(term);
+    };
 
     g.for_each_slot([&](std::size_t slot, const std::array<int, 3>& node) {
       const NodeConstraint c = constraints(node);
@@ -162,7 +170,8 @@ void MpmSolver::grid_momentum_update(double dt) {
         const bool counted =
             !field_self_updated_.empty() && field_self_updated_[static_cast<std::size_t>(f)];
         if (!shared || !(shared_.mass[s] > 0.0)) {
-          if (body_force && !counted) work += booked * 0.5 * dt * m * core::dot(gravity, v + v_new);
+          if (body_force && !counted)
+            book_gravity(booked * 0.5 * dt * m * core::dot(gravity, v + v_new));
           continue;
         }
         // Contact nodes share this field with particles or bonded nodes of their body: the
@@ -177,7 +186,7 @@ void MpmSolver::grid_momentum_update(double dt) {
                     c, vo, vo_new);
           start = vo - v;
           updated = vo_new - v_new;
-          if (body_force) work += booked * 0.5 * dt * mo * core::dot(gravity, vo + vo_new);
+          if (body_force) book_gravity(booked * 0.5 * dt * mo * core::dot(gravity, vo + vo_new));
         }
         shared_.start[s] = start;
         shared_.updated[s] = updated;
@@ -187,6 +196,7 @@ void MpmSolver::grid_momentum_update(double dt) {
   }
   for (int t = 0; t < nt; ++t)
     external_work_ += thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles];
+  if (exact) add_exact_thread_sums(1, exact_.data() + exact_external);
   if (!load_acceleration_.empty()) book_particle_load_work(dt);
 }
 

@@ -440,7 +440,27 @@ std::string MpmSolver::time_step_setter() const {
   return text;
 }
 
+double MpmSolver::particle_kinetic_energy(std::size_t i, bool affine) const {
+  const Particles& p = particles_;
+  const Vec3& v = p.velocity[i];
+  const double m = p.mass[i];
+  double kinetic = 0.5 * m * core::dot(v, v);
+  // APIC: the affine part of the velocity carries kinetic energy too. Over the particle's cube
+  // of half-width l the field v_p + C_p (x - x_p) holds 1/2 m (|v_p|^2 + l^2 / 3 |C_p|^2) (the
+  // cube's second moment is l^2 / 3 per axis).
+  if (affine) {
+    const double l = p.half_width[i] * grid_.cell();
+    const core::Mat3& c = p.affine[i];
+    double sum = 0.0;
+    for (int r = 0; r < 3; ++r)
+      for (int a = 0; a < 3; ++a) sum += c.m[r][a] * c.m[r][a];
+    kinetic += 0.5 * m * (l * l / 3.0) * sum;
+  }
+  return kinetic;
+}
+
 Energies MpmSolver::energies() const {
+  if (reproducible()) return reproducible_energies();
   const Particles& p = particles_;
   const std::size_t nb = scene_.bodies.size();
   const std::size_t width = 2 + 6 * nb;  // kinetic, internal, then per body: mass, momentum,
@@ -456,18 +476,7 @@ Energies MpmSolver::energies() const {
     for (std::size_t i = b; i < e; ++i) {
       const Vec3& v = p.velocity[i];
       const double m = p.mass[i];
-      double kinetic = 0.5 * m * core::dot(v, v);
-      // APIC: the affine part of the velocity carries kinetic energy too. Over the
-      // particle's cube of half-width l the field v_p + C_p (x - x_p) holds
-      // 1/2 m (|v_p|^2 + l^2 / 3 |C_p|^2) (the cube's second moment is l^2 / 3 per axis).
-      if (affine) {
-        const double l = p.half_width[i] * grid_.cell();
-        const core::Mat3& c = p.affine[i];
-        double sum = 0.0;
-        for (int r = 0; r < 3; ++r)
-          for (int a = 0; a < 3; ++a) sum += c.m[r][a] * c.m[r][a];
-        kinetic += 0.5 * m * (l * l / 3.0) * sum;
-      }
+      const double kinetic = particle_kinetic_energy(i, affine);
       acc[0] += kinetic;
       acc[1] += m * p.energy[i];
       double* body = acc + 2 + 6 * static_cast<std::size_t>(p.body[i]);

@@ -14,6 +14,7 @@
 
 #include "afemp/energies.hpp"
 #include "afemp/run.hpp"
+#include "core/exact_sum.hpp"
 #include "core/grid/background_grid.hpp"
 #include "core/grid/block_partition.hpp"
 #include "core/rank_link.hpp"
@@ -188,9 +189,11 @@ class MpmSolver {
   }
   // The kernels behind them, one instance per shape function and transfer (defined and
   // instantiated in the stage's file).
-  template <class Stencil, bool Affine, bool MassMomentum, bool Force, bool Gravity>
+  // Exact: the reproducible mode's fixed-point sums (reproducible_sums.cpp), a kernel of its own
+  // so that the plain one keeps its loop.
+  template <class Stencil, bool Affine, bool MassMomentum, bool Force, bool Gravity, bool Exact>
   void p2g_kernel();
-  template <class Stencil, bool Affine>
+  template <class Stencil, bool Affine, bool Exact>
   void remap_kernel();
   template <class Stencil, bool Affine>
   void g2p_kernel(double dt, bool move_positions);
@@ -269,6 +272,21 @@ class MpmSolver {
   // costs and the particles moved (domain_decomposition.cpp).
   void balance_ranks();
   void sum_shared_blocks(std::span<const core::NodalArray> arrays);
+  // The reproducible mode ([run] reproducible; mpm/reproducible_sums.cpp): which scatter is
+  // summed in fixed point; its scales from bounds on this step's terms agreed over the ranks,
+  // and its arrays cleared; then the shared blocks' sums of the fixed-point arrays and the
+  // grid's doubles made from them (a term past its bound stops the run).
+  enum class FixedScatter { mass_momentum_force, mass_momentum, force, remap, gradient };
+  void start_fixed_scatter(FixedScatter what);
+  void finish_fixed_scatter(FixedScatter what);
+  bool reproducible() const { return scene_.run.reproducible; }
+  // Per-thread exact sums of a stage, `per` of them a thread, cleared.
+  core::ExactSum* exact_thread_sums(std::size_t per);
+  // Each thread's first `per` exact sums added into `into` (per of them).
+  void add_exact_thread_sums(std::size_t per, core::ExactSum* into);
+  Energies reproducible_energies() const;
+  // Particle i's kinetic energy, its affine velocity's (APIC) included.
+  double particle_kinetic_energy(std::size_t i, bool affine) const;
   void mark_owned_blocks();
   void migrate_particles();
   // Whether the node of `slot` belongs to a block this rank owns: its nodal sums (external
@@ -465,6 +483,19 @@ class MpmSolver {
     double signal_wave = 0.0, signal_flow = 0.0;
     bool ready = false;
   } rank_checkpoint_;
+
+  // The reproducible mode: the grid's nodal sums in fixed point (per field slot, 1 or 3 a slot as
+  // the grid's doubles), their scales, each thread's flag that no term passed its bound; this
+  // rank's running energies summed exactly (the doubles below are kept too), and the
+  // threads' exact sums of a stage.
+  struct FixedNodes {
+    std::vector<core::Fixed> mass, momentum, force, remap, gradient;
+    core::FixedScale mass_scale, momentum_scale, force_scale, gradient_scale;
+  } fixed_;
+  std::vector<char> fixed_ok_;
+  enum ExactEntry : std::size_t { exact_plastic, exact_viscous, exact_external, exact_contact };
+  std::array<core::ExactSum, 4> exact_;
+  std::vector<core::ExactSum> exact_threads_;
 
   // Accumulators and state.
   double plastic_work_ = 0.0;

@@ -24,7 +24,12 @@ void MpmSolver::prepare_checkpoint() {
   RankCheckpoint& c = rank_checkpoint_;
   c.whole = gathered_particles(false);
   std::vector<double> sums{plastic_work_, viscous_work_, external_work_, contact_energy_};
-  ranks_->sum_in_rank_order(sums);
+  if (reproducible()) {  // the exact sums (the same order: plastic, viscous, external, contact)
+    std::array<core::ExactSum, 4> exact = exact_;
+    sums = core::exact_values(ranks_, exact);
+  } else {
+    ranks_->sum_in_rank_order(sums);
+  }
   c.plastic_work = sums[0];
   c.viscous_work = sums[1];
   c.external_work = sums[2];
@@ -68,8 +73,14 @@ void MpmSolver::state(core::StateArchive& a) {
   a.item("velocity_gradient", whole_on_ranks ? no_gradient : velocity_gradient_);
   a.item("field_self_updated", field_self_updated_);
   double contact = whole_on_ranks ? c.contact_energy : contact_energy_;
+  if (reproducible() && !a.loading() && !whole_on_ranks) contact = exact_[exact_contact].value();
   a.item("contact_energy", contact);
   double work[3] = {plastic_work_, viscous_work_, external_work_};
+  if (reproducible() && !a.loading() && !whole_on_ranks) {  // one process: the exact sums
+    work[0] = exact_[exact_plastic].value();
+    work[1] = exact_[exact_viscous].value();
+    work[2] = exact_[exact_external].value();
+  }
   if (whole_on_ranks) {
     work[0] = c.plastic_work;
     work[1] = c.viscous_work;
@@ -106,6 +117,14 @@ void MpmSolver::state(core::StateArchive& a) {
   viscous_work_ = work[1];
   external_work_ = work[2];
   contact_energy_ = contact;
+  // The reproducible mode's exact works start from the checkpoint's (rank 0's alone on ranks).
+  for (core::ExactSum& e : exact_) e.clear();
+  if (ranks_ == nullptr || ranks_->rank() == 0) {
+    exact_[exact_plastic].add(work[0]);
+    exact_[exact_viscous].add(work[1]);
+    exact_[exact_external].add(work[2]);
+    exact_[exact_contact].add(contact);
+  }
   if (ranks_ == nullptr) {
     rebuild_batches();
     if (!fused_kinematics()) velocity_gradient_.resize(particles_.size());

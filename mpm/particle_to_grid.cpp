@@ -22,18 +22,24 @@ inline Vec3 node_momentum(const Stencil& s, int n, double m, const Vec3& mv, con
     return s.w(n) * mv;
 }
 
-template <class Stencil, bool Affine, bool MassMomentum, bool Force, bool Gravity>
+template <class Stencil, bool Affine, bool MassMomentum, bool Force, bool Gravity, bool Exact>
 void MpmSolver::p2g_kernel() {
   core::BackgroundGrid& g = grid_;
   const std::size_t slots = g.field_slot_count();
+  // The reproducible mode: each particle's terms added to the fixed-point sums one by one
+  // (reproducible_sums.cpp), which start_fixed_scatter cleared.
+  constexpr bool exact = Exact;
+  if constexpr (!exact) {
 #pragma omp parallel for schedule(static) if (core::worth_threads(slots))
-  for (std::size_t s = 0; s < slots; ++s) {
-    if constexpr (MassMomentum) {
-      g.mass[s] = 0.0;
-      g.momentum[s] = {};
+    for (std::size_t s = 0; s < slots; ++s) {
+      if constexpr (MassMomentum) {
+        g.mass[s] = 0.0;
+        g.momentum[s] = {};
+      }
+      if constexpr (Force) g.force[s] = {};
     }
-    if constexpr (Force) g.force[s] = {};
   }
+  FixedNodes& fixed = fixed_;
   const Particles& p = particles_;
   const Vec3 gravity = scene_.run.gravity;
   const double ambient = ambient_pressure_;
@@ -49,10 +55,25 @@ void MpmSolver::p2g_kernel() {
     typename Stencil::Slots slot{};
     std::int64_t current = -1;
     std::size_t current_field = 0;
+    bool ok = true;
     auto flush = [&] {
       if (current < 0) return;
       for (std::size_t n = 0; n < N; ++n) {
         const auto k = static_cast<std::size_t>(slot[n]) + current_field;
+        if constexpr (exact) {
+          if constexpr (MassMomentum) {
+            fixed.mass[k] += core::to_fixed(mass[n], fixed.mass_scale, ok);
+            fixed.momentum[3 * k] += core::to_fixed(mx[n], fixed.momentum_scale, ok);
+            fixed.momentum[3 * k + 1] += core::to_fixed(my[n], fixed.momentum_scale, ok);
+            fixed.momentum[3 * k + 2] += core::to_fixed(mz[n], fixed.momentum_scale, ok);
+          }
+          if constexpr (Force) {
+            fixed.force[3 * k] += core::to_fixed(fx[n], fixed.force_scale, ok);
+            fixed.force[3 * k + 1] += core::to_fixed(fy[n], fixed.force_scale, ok);
+            fixed.force[3 * k + 2] += core::to_fixed(fz[n], fixed.force_scale, ok);
+          }
+          continue;
+        }
         if constexpr (MassMomentum) {
           g.mass[k] += mass[n];
           g.momentum[k] += Vec3{mx[n], my[n], mz[n]};
@@ -64,7 +85,8 @@ void MpmSolver::p2g_kernel() {
       const auto i = static_cast<std::size_t>(layer_order_[q]);
       const Stencil st(g, p, i, p.position[i]);
       const std::size_t field = field_offset(i);
-      if (st.key != current || field != current_field) {
+      // Each particle's terms on their own in the reproducible mode (not a run's sums).
+      if (exact || st.key != current || field != current_field) {
         flush();
         current = st.key;
         current_field = field;
@@ -107,25 +129,42 @@ void MpmSolver::p2g_kernel() {
       }
     }
     flush();
+    if (!ok) fixed_ok_[static_cast<std::size_t>(core::thread_index())] = 0;
   });
 }
 
 void MpmSolver::particle_to_grid(bool mass_momentum, bool force) {
-  // Every combination a plan asks for, each a loop with no branch per particle.
+  const FixedScatter fixed = mass_momentum && force ? FixedScatter::mass_momentum_force
+                             : mass_momentum        ? FixedScatter::mass_momentum
+                                                    : FixedScatter::force;
+  if (reproducible()) start_fixed_scatter(fixed);
+  // Every combination a plan asks for, each a loop with no branch per particle (the
+  // reproducible mode's kernels for the stencils it takes: not CPDI).
   with_stencil([&]<class Stencil, bool Affine>() {
+    auto kernel = [&]<bool MassMomentum, bool Force, bool Gravity>() {
+      constexpr bool cpdi = requires {
+        Stencil::tracks_corners;
+      };
+      if constexpr (!cpdi)
+        if (reproducible())
+          return p2g_kernel<Stencil, Affine, MassMomentum, Force, Gravity, true>();
+      p2g_kernel<Stencil, Affine, MassMomentum, Force, Gravity, false>();
+    };
     if (mass_momentum && force) {
       if (plan_.gravity)
-        p2g_kernel<Stencil, Affine, true, true, true>();
+        kernel.template operator()<true, true, true>();
       else
-        p2g_kernel<Stencil, Affine, true, true, false>();
+        kernel.template operator()<true, true, false>();
     } else if (mass_momentum) {
-      p2g_kernel<Stencil, Affine, true, false, false>();
+      kernel.template operator()<true, false, false>();
     } else if (plan_.gravity) {
-      p2g_kernel<Stencil, Affine, false, true, true>();
+      kernel.template operator()<false, true, true>();
     } else {
-      p2g_kernel<Stencil, Affine, false, true, false>();
+      kernel.template operator()<false, true, false>();
     }
   });
+  // The reproducible mode has neither loads nor mesh points (core/reproducible_refusals.hpp).
+  if (reproducible()) return finish_fixed_scatter(fixed);
   if (force && !load_acceleration_.empty()) add_particle_loads();
   if (points_) points_->to_grid(access(), mass_momentum, force);
   if (ranks_) {
@@ -148,16 +187,23 @@ void MpmSolver::particle_to_grid(bool mass_momentum, bool force) {
   }
 }
 
-template <class Stencil, bool Affine>
+template <class Stencil, bool Affine, bool Exact>
 void MpmSolver::remap_kernel() {
   // MUSL (eq 2-37): the updated particle momentum, mapped with the weights of the step's
   // start positions, gives the nodal velocity the strain rate is computed from.
   core::BackgroundGrid& g = grid_;
   const std::size_t slots = g.field_slot_count();
+  constexpr bool exact = Exact;
+  if constexpr (exact) {
+    start_fixed_scatter(FixedScatter::remap);
+  } else {
 #pragma omp parallel for schedule(static) if (core::worth_threads(slots))
-  for (std::size_t s = 0; s < slots; ++s) g.velocity_remap[s] = {};
+    for (std::size_t s = 0; s < slots; ++s) g.velocity_remap[s] = {};
+  }
+  FixedNodes& fixed = fixed_;
   const Particles& p = particles_;
   sweep_layers<Stencil::colours>(layer_offsets_, [&](std::size_t b, std::size_t e) {
+    bool ok = true;
     for (std::size_t q = b; q < e; ++q) {
       const auto i = static_cast<std::size_t>(layer_order_[q]);
       const Stencil st(g, p, i, p.position[i]);
@@ -166,13 +212,23 @@ void MpmSolver::remap_kernel() {
       const std::size_t field = field_offset(i);
       const double m = p.mass[i];
       const Vec3 mv = m * p.velocity[i];
-      for (int n = 0; n < Stencil::nodes; ++n)
-        g.velocity_remap[static_cast<std::size_t>(slot[static_cast<std::size_t>(n)]) + field] +=
-            node_momentum<Stencil, Affine>(st, n, m, mv, p, i);
+      for (int n = 0; n < Stencil::nodes; ++n) {
+        const std::size_t k = static_cast<std::size_t>(slot[static_cast<std::size_t>(n)]) + field;
+        const Vec3 mo = node_momentum<Stencil, Affine>(st, n, m, mv, p, i);
+        if constexpr (exact) {
+          for (std::size_t a = 0; a < 3; ++a)
+            fixed.remap[3 * k + a] +=
+                core::to_fixed(mo[static_cast<int>(a)], fixed.momentum_scale, ok);
+        } else {
+          g.velocity_remap[k] += mo;
+        }
+      }
     }
+    if (!ok) fixed_ok_[static_cast<std::size_t>(core::thread_index())] = 0;
   });
-  if (points_) points_->remap(access());
-  if (ranks_) {
+  if constexpr (exact) finish_fixed_scatter(FixedScatter::remap);
+  if (points_ && !exact) points_->remap(access());
+  if (ranks_ && !exact) {
     const core::NodalArray remapped[] = {{reinterpret_cast<double*>(g.velocity_remap.data()), 3}};
     sum_shared_blocks(remapped);
   }
@@ -186,7 +242,14 @@ void MpmSolver::remap_kernel() {
 }
 
 void MpmSolver::remap_to_grid() {
-  with_stencil([&]<class Stencil, bool Affine>() { remap_kernel<Stencil, Affine>(); });
+  with_stencil([&]<class Stencil, bool Affine>() {
+    constexpr bool cpdi = requires {
+      Stencil::tracks_corners;
+    };
+    if constexpr (!cpdi)
+      if (reproducible()) return remap_kernel<Stencil, Affine, true>();
+    remap_kernel<Stencil, Affine, false>();
+  });
 }
 
 }  // namespace afemp::mpm

@@ -126,8 +126,10 @@ void MpmSolver::particle_wall_kernel(std::size_t w, double dt) {
   // which energies() adds over the ranks, is booked by rank 0.
   wall_sliding_ += dissipated;
   wall_friction_ += dissipated;
-  if (ranks_ == nullptr || ranks_->rank() == 0)
+  if (ranks_ == nullptr || ranks_->rank() == 0) {
     external_work_ += core::dot(impulse_sum, spec.velocity);
+    if (reproducible()) exact_[exact_external].add(core::dot(impulse_sum, spec.velocity));
+  }
   wall_force_[w] = (1.0 / dt) * impulse_sum;
 }
 

@@ -34,6 +34,7 @@ void MpmSolver::strain_stress_update(double dt, StrainPart part) {
   }
   const int nt = core::thread_count();
   thread_sums_.assign(static_cast<std::size_t>(nt) * core::cache_line_doubles, 0.0);
+  if (reproducible()) exact_thread_sums(2);
   thread_bad_.assign(static_cast<std::size_t>(nt), -1);
   // The linear hat computes the kinematics inside the constitutive loop (one pass over the
   // particles); the wider stencils (uGIMP, B-splines) run them in a pass of their own
@@ -86,6 +87,7 @@ void MpmSolver::strain_stress_update(double dt, StrainPart part) {
   }
   plastic_work_ += work;
   viscous_work_ += heat;
+  if (reproducible()) add_exact_thread_sums(2, exact_.data() + exact_plastic);
   // A far field's ambient pressure does -p_inf dV on the particles (absorbing_faces.hpp).
   if (ambient_pressure_ != 0.0) external_work_ -= ambient_pressure_ * swept;
   signal_wave_ = wave;
@@ -165,6 +167,9 @@ struct MpmSolver::StressPass {
   const core::BulkViscositySettings* viscosity;
   const double* mixed;  // the projected pressures (mixed u-p), or null
   double work = 0.0, wave = 0.0, speed2 = 0.0, heat = 0.0, swept = 0.0;
+  // The reproducible mode: the thread's exact sums of the plastic work and the viscous heat
+  // (reproducible_sums.cpp); null otherwise.
+  core::ExactSum* exact = nullptr;
   std::int64_t bad = -1;
 
   StressPass(MpmSolver& s, const core::Material& m, const Strength& strength_in, const Eos& eos_in,
@@ -290,7 +295,9 @@ struct MpmSolver::StressPass {
       Vec3& l = p.length[i];
       l = Vec3{l.x * (1.0 + d_eps.xx), l.y * (1.0 + d_eps.yy), l.z * (1.0 + d_eps.zz)};
     }
-    work += p.mass[i] * u.plastic_work;
+    const double plastic = p.mass[i] * u.plastic_work;
+    work += plastic;
+    if (exact) exact[0].add(plastic);
     if (track_heat) p.plastic_heat[i] += u.plastic_work;
     bound(i, x, v_bar, v_p, d_eps, st);
   }
@@ -305,6 +312,7 @@ struct MpmSolver::StressPass {
       const double q_heat = core::bulk_viscous_heat(p.bulk_q[i], d_eps.trace(), st.density);
       st.energy += q_heat;
       heat += p.mass[i] * q_heat;
+      if (exact) exact[1].add(p.mass[i] * q_heat);
       if (track_heat) p.viscous_heat[i] += q_heat;
       const core::ViscousState vs =
           core::bulk_viscosity(viscosity[static_cast<std::size_t>(p.body[i])], st.density, h,
@@ -377,6 +385,8 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
     StressPass<Strength, Eos, Thermal, Fused, Fails> pass(*this, material, strength, eos, step_dt,
                                                           sweep);
     const int t = core::thread_index();
+    if (!exact_threads_.empty() && reproducible())
+      pass.exact = exact_threads_.data() + 2 * static_cast<std::size_t>(t);
     const auto [b, e] = core::static_range(batch.end - batch.begin, t, core::team_size());
     if constexpr (core::is_user_strength<Strength>)
       pass.run_user_chunks(batch.begin + b, batch.begin + e);

@@ -60,4 +60,36 @@ normal = [0, 0, 1]
 )";
 }
 
+// Two bodies onto a wall: a block of fully integrated (8-point) hexahedra of steel at 300 m/s
+// that yields and erodes, and a rod of 160 trusses (three runs of 64, dealt round the ranks).
+// `run`: lines added to the [run] table (end_time = 1.0 given).
+inline std::string block_and_rod_on_wall(const std::string& run = "") {
+  return "[run]\nend_time = 1.0\n" + run + R"([materials.steel]
+density = 7.85e-3
+E = 200e3
+nu = 0.3
+strength = { model = "johnson-cook", A = 350, B = 275, n = 0.36 }
+[[bodies]]
+name = "block"
+discretisation = "hexahedra"
+material = "steel"
+element = "full"
+shape = { box = { min = [0, 0, 0.05], max = [4, 4, 6] } }
+mesh = { size = 0.5 }
+velocity = [0, 0, -300]
+erosion = { plastic_strain = 0.2 }
+[[bodies]]
+name = "rod"
+discretisation = "trusses"
+material = "steel"
+shape = { line = { from = [6, 0, 0.05], to = [6, 0, 16] } }
+mesh = { size = 0.1 }
+area = 0.1
+velocity = [0, 0, -300]
+[[walls]]
+point = [0, 0, 0]
+normal = [0, 0, 1]
+)";
+}
+
 }  // namespace afemp::test

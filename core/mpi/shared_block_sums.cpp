@@ -8,6 +8,7 @@
 #include <map>
 #include <vector>
 
+#include "core/exact_sum.hpp"
 #include "core/mpi/ranks.hpp"
 
 namespace afemp::core {
@@ -51,10 +52,19 @@ void combine(const BackgroundGrid& g, std::span<const NodalArray> arrays, double
   for (const NodalArray& array : arrays) {
     const std::size_t n =
         block_nodes * static_cast<std::size_t>(array.components * g.field_count());
-    if (array.largest)
+    if (array.largest) {
       for (std::size_t i = 0; i < n; ++i) total[i] = std::max(total[i], part[i]);
-    else
+    } else if (array.fixed) {  // pairs of doubles' bytes holding one 128-bit integer each
+      for (std::size_t i = 0; i < n; i += 2) {
+        Fixed a = 0, b = 0;
+        std::memcpy(&a, total + i, sizeof a);
+        std::memcpy(&b, part + i, sizeof b);
+        a += b;
+        std::memcpy(total + i, &a, sizeof a);
+      }
+    } else {
       for (std::size_t i = 0; i < n; ++i) total[i] += part[i];
+    }
     total += n;
     part += n;
   }

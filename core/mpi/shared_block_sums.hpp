@@ -4,7 +4,8 @@
 // order (its own at its place; the largest kept instead for an array of maxima,
 // NodalArray::largest) and sends the totals back. A node is then the same on every
 // rank, and a run on N ranks repeats itself bit for bit; the order differs from one rank's
-// (rank count independence holds to round-off, not to the bit).
+// (rank count independence holds to round-off, not to the bit), except for the fixed-point
+// arrays of the reproducible mode (NodalArray::fixed), whose integer sums hold it to the bit.
 #pragma once
 
 #include <span>

@@ -107,6 +107,12 @@ struct RunSettings {
   double checkpoint_every = 0.0;
   double checkpoint_wall_every = 1800.0;
   int checkpoint_keep = 2;
+  /// Sums that do not depend on their order (docs/parallel.md, "Determinism"): the grid's nodal
+  /// sums in 128-bit fixed point, the energies and forces exact, so that a run gives the same
+  /// bits on any number of MPI ranks and threads (core/exact_sum.hpp). Scenes of particles or of
+  /// meshes (core/reproducible_refusals.hpp says what is refused).
+  bool reproducible = false;
+  SourceLocation reproducible_where{};  ///< the key's line (messages)
 };
 
 /// What lies beyond the absorbing faces of a grid (mpm/absorbing_faces.hpp): an unbounded fluid

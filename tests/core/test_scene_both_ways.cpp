@@ -371,6 +371,8 @@ class Builder {
         r.checkpoint_wall_every = num(v, at);
       else if (key == "checkpoint_keep")
         r.checkpoint_keep = static_cast<int>(integer(v, at));
+      else if (key == "reproducible")
+        r.reproducible = boolean(v, at);
       else if (key == "terminate") {
         RunSettings::Termination term;
         const toml::table& tt = table(v, at);
@@ -1200,6 +1202,7 @@ void same_scene(const Scene& a, const Scene& b) {
     SAME(run.checkpoint_every);
     SAME(run.checkpoint_wall_every);
     SAME(run.checkpoint_keep);
+    SAME(run.reproducible);
   }
   {
     const std::string at = "grid, mpm";

@@ -26,36 +26,8 @@ namespace {
 // The eroding copper bar of hexahedra (copper_bar_on_wall.hpp): its foot erodes within 100 steps.
 const std::string eroding_bar = test::eroding_copper_bar_of_hexahedra();
 
-// Two bodies onto a wall: a block of fully integrated (8-point) hexahedra that yields and
-// erodes, and a rod of 160 trusses (three runs of 64, dealt round the ranks).
-const std::string block_and_rod = R"([run]
-end_time = 1.0
-[materials.steel]
-density = 7.85e-3
-E = 200e3
-nu = 0.3
-strength = { model = "johnson-cook", A = 350, B = 275, n = 0.36 }
-[[bodies]]
-name = "block"
-discretisation = "hexahedra"
-material = "steel"
-element = "full"
-shape = { box = { min = [0, 0, 0.05], max = [4, 4, 6] } }
-mesh = { size = 0.5 }
-velocity = [0, 0, -300]
-erosion = { plastic_strain = 0.2 }
-[[bodies]]
-name = "rod"
-discretisation = "trusses"
-material = "steel"
-shape = { line = { from = [6, 0, 0.05], to = [6, 0, 16] } }
-mesh = { size = 0.1 }
-area = 0.1
-velocity = [0, 0, -300]
-[[walls]]
-point = [0, 0, 0]
-normal = [0, 0, 1]
-)";
+// Two bodies onto a wall (copper_bar_on_wall.hpp).
+const std::string block_and_rod = test::block_and_rod_on_wall();
 
 struct FeRun {
   std::vector<core::Energies> energies;           // after each step

@@ -285,6 +285,61 @@ TEST(Cli, RunDividedAmongTwoMpiRanksGivesTheOneProcessHistoryAndFrames) {
   EXPECT_EQ(frames_of(timed + "/fields.xmf", particles), frames);
 }
 
+// The reproducible mode ([run] reproducible = true): the bar of particles with probes of a
+// particle and an extreme, run in one process at one thread and at two, and on 2 and 3 ranks;
+// an eroding bar of hexahedra at two threads and on 2 ranks. Reference: the one-process files,
+// byte for byte: the history and every probe (the mode's sums do not depend on their order,
+// docs/parallel.md "The reproducible mode"). The particle scene without the mode on 2 ranks
+// differs from one process (in the last bits: the mode is what makes them equal).
+TEST(Cli, ReproducibleRunGivesTheSameFilesOnAnyRankAndThreadCount) {
+  test::ScratchDir dir;
+  const std::string probes =
+      "[[probes]]\nname = \"top\"\nparticle = { body = \"bar\", near = [0, 0, 25.4] }\n"
+      "[[probes]]\nname = \"peak\"\nextreme = { field = \"pressure\", of = \"max\", "
+      "box = { min = [0, 0, 0], max = [10, 10, 28] } }\n";
+  const std::string run = "end_time = 1.0\nmax_steps = 100\nhistory_every = 5\n";
+  const std::string path = dir.write(
+      "bar.toml",
+      afemp::test::copper_bar_on_wall(run + "reproducible = true\n", "scheme = \"MUSL\"\n") +
+          probes);
+  const std::string plain =
+      dir.write("plain.toml", afemp::test::copper_bar_on_wall(run, "scheme = \"MUSL\"\n") + probes);
+  auto afemp = [&](const std::string& launcher, const std::string& scene, const std::string& out,
+                   int threads) {
+    const test::CommandResult r = test::run_captured(
+        launcher + "\"" + std::string(AFEMP_BINARY) + "\" run \"" + scene + "\" --threads " +
+            std::to_string(threads) + " -o \"" + dir.file(out) + "\"",
+        dir);
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+    return dir.file(out);
+  };
+  const std::string one = afemp("", path, "one", 1);
+  const std::string history = read_text(one + "/history.csv");
+  ASSERT_GT(std::count(history.begin(), history.end(), '\n'), 20);
+  for (const std::string& other : {afemp("", path, "threads", 2), afemp(mpiexec(2), path, "two", 1),
+                                   afemp(mpiexec(3), path, "three", 1)}) {
+    EXPECT_EQ(read_text(other + "/history.csv"), history) << other;
+    for (const char* probe : {"/probes/top.csv", "/probes/peak.csv"})
+      EXPECT_EQ(read_text(other + probe), read_text(one + probe)) << other << probe;
+  }
+  const std::string plain_one = afemp("", plain, "plain_one", 1);
+  const std::string plain_two = afemp(mpiexec(2), plain, "plain_two", 1);
+  EXPECT_NE(read_text(plain_two + "/history.csv"), read_text(plain_one + "/history.csv"));
+  expect_history_near(one + "/history.csv", plain_one + "/history.csv", 1e-10);
+
+  // A mesh: the coarse Taylor bar of one-point hexahedra, eroding, 150 steps, on 2 ranks and
+  // at 2 threads: the history byte for byte.
+  std::string mesh = afemp::test::taylor_bar_scene(true);
+  mesh.replace(mesh.find("end_time = 0.01"), 15,
+               "end_time = 1.0\nmax_steps = 150\nhistory_every = 5\nreproducible = true");
+  mesh.replace(mesh.find("velocity = [0, 0, -190]"), 23,
+               "velocity = [0, 0, -400]\nerosion = { plastic_strain = 0.8 }");
+  const std::string mesh_path = dir.write("mesh.toml", mesh);
+  const std::string mesh_history = read_text(afemp("", mesh_path, "mesh_one", 1) + "/history.csv");
+  EXPECT_EQ(read_text(afemp("", mesh_path, "mesh_threads", 2) + "/history.csv"), mesh_history);
+  EXPECT_EQ(read_text(afemp(mpiexec(2), mesh_path, "mesh_two", 1) + "/history.csv"), mesh_history);
+}
+
 // Reference: the same scene run as one process. A mesh scene divides by its elements, every
 // rank moving every node (docs/parallel.md): the coarse Taylor bar of one-point hexahedra with
 // erosion, 150 steps on 2 and 3 ranks. Every history value within 1e-10 of its column's largest

@@ -1,0 +1,52 @@
+// What the reproducible mode ([run] reproducible = true; docs/parallel.md, "The reproducible
+// mode") covers: the stages whose sums it makes independent of their order. A scene that asks for
+// it with a stage whose sums it does not cover is refused, naming that stage, by the parser (at the
+// key's line) and by the check of a scene built in code alike.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "afemp/scene.hpp"
+
+namespace afemp::core {
+
+inline std::optional<std::string> reproducible_refusal(const Scene& scene) {
+  if (!scene.run.reproducible) return std::nullopt;
+  std::string what;
+  const BodySpec* mesh = nullptr;
+  bool particles = false;
+  for (const BodySpec& b : scene.bodies) {
+    if (b.discretisation == Discretisation::particles)
+      particles = true;
+    else if (mesh == nullptr)
+      mesh = &b;
+  }
+  const MpmSettings& m = scene.mpm;
+  if (mesh != nullptr && particles)
+    what = "meshes and particles together (body \"" + mesh->name +
+           "\" beside particles): the couplings' sums on the grid are not made independent of "
+           "their order yet";
+  else if (particles && (m.shape == ShapeFunction::cpdi1 || m.shape == ShapeFunction::cpdi2))
+    what =
+        "the CPDI shape functions (mpm.shape_function): their gradients have no bound the "
+        "nodal sums' fixed point can be scaled by";
+  else if (particles && m.pressure == PressureField::mixed)
+    what = "the mixed pressure (mpm.pressure = \"mixed\")";
+  else if (particles && m.splitting)
+    what = "particle splitting (mpm.splitting)";
+  else if (particles && (m.grid.has_face(FaceCondition::outflow) ||
+                         m.grid.has_face(FaceCondition::absorbing) || m.grid.far_field))
+    what = "outflow, absorbing or far-field faces (grid.boundary)";
+  else if (particles && !scene.loads.empty())
+    what = "[[loads]] on particles";
+  else if (!scene.phases.empty())
+    what = "[[phases]]";
+  if (what.empty()) return std::nullopt;
+  return "the reproducible mode (results bit-identical on any rank and thread count) covers "
+         "scenes of meshes, and scenes of particles with the linear hat, uGIMP or the "
+         "B-splines, walls and grid contact; this scene has " +
+         what + "; allowed: reproducible = false, or a scene without it (docs/parallel.md)";
+}
+
+}  // namespace afemp::core

@@ -1,0 +1,60 @@
+// The reproducible mode's scope ([run] reproducible = true; core/reproducible_refusals.hpp): a
+// scene that asks for it with a stage whose sums it does not make independent of their order
+// is refused at the key's line, naming the stage; a scene built in code the same way through
+// the scene check. Reference: the rule itself (what mpm/reproducible_sums.cpp covers).
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "copper_bar_on_wall.hpp"
+#include "core/scene.hpp"
+#include "scene_errors.hpp"
+#include "striker_on_plate.hpp"
+
+namespace afemp::core {
+namespace {
+
+std::string bar(const std::string& mpm) {
+  return test::copper_bar_on_wall("end_time = 0.01\nreproducible = true\n", mpm);
+}
+
+TEST(ReproducibleMode, ParticleAndMeshScenesAreTaken) {
+  const Scene s = parse_scene(bar("scheme = \"USL\"\nshape_function = \"bspline3\"\n"), "s.toml");
+  EXPECT_TRUE(s.run.reproducible);
+  EXPECT_NO_THROW(check_scene(s));
+  const Scene mesh = parse_scene(test::block_and_rod_on_wall("reproducible = true\n"), "m.toml");
+  EXPECT_TRUE(mesh.run.reproducible);
+  EXPECT_NO_THROW(check_scene(mesh));
+  EXPECT_FALSE(
+      parse_scene(test::copper_bar_on_wall("end_time = 0.01\n", ""), "s.toml").run.reproducible);
+}
+
+TEST(ReproducibleMode, RefusesWhatItsSumsDoNotCoverAtTheKeysLine) {
+  const std::string cpdi = bar("shape_function = \"cpdi1\"\n");
+  const std::string e = test::error_of(cpdi);
+  EXPECT_NE(e.find("scene.toml:" + std::to_string(test::line_of(cpdi, "reproducible")) +
+                   ": key 'run.reproducible'"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(e.find("CPDI"), std::string::npos) << e;
+  EXPECT_NE(e.find("allowed: reproducible = false"), std::string::npos) << e;
+  const std::string coupled =
+      test::error_of(test::striker_on_plate(true, "end_time = 1.0\nreproducible = true\n"));
+  EXPECT_NE(coupled.find("meshes and particles together (body \"striker\""), std::string::npos)
+      << coupled;
+}
+
+TEST(ReproducibleMode, TheSceneCheckRefusesAsTheParserDoes) {
+  Scene s = parse_scene(bar(""), "s.toml");
+  s.mpm.splitting = SplittingSettings{};
+  try {
+    check_scene(s);
+    ADD_FAILURE() << "splitting taken in the reproducible mode";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("particle splitting"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("run.reproducible"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace afemp::core

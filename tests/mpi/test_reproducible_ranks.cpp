@@ -1,0 +1,334 @@
+// The reproducible mode ([run] reproducible = true; mpm/reproducible_sums.cpp,
+// fem/reproducible_energies.cpp) on 1 to 4 ranks: the grid's nodal sums in fixed point and the
+// energies and forces summed exactly, so that a run of particles or of meshes divided among any
+// number of ranks gives one process's figures to the bit, at one thread and at two. Reference: the
+// same scene in one process (every rank runs it whole); and, to show the mode computes the same
+// physics, the run without the mode, within the round-off of its other order of summation (1e-10 of
+// the initial kinetic energy, as the divided runs' tests of test_mpm_ranks.cpp).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <unordered_map>
+
+#include "copper_bar_on_wall.hpp"
+#include "core/mpi/mpi_rank_link.hpp"
+#include "core/mpi/ranks.hpp"
+#include "core/parallel.hpp"
+#include "core/scene.hpp"
+#include "fem/fe_solver.hpp"
+#include "mpm/mpm_solver.hpp"
+#include "mpm/particle_generation.hpp"
+#include "shared_scratch.hpp"
+#include "striker_on_plate.hpp"
+
+namespace afemp::test {
+
+// The runs a test of the mode compares: one process at one thread (the reference), at two
+// threads (on one rank; under more ranks the 2 cores are taken, and it is the first again), the
+// run divided among the ranks, and one process without the mode. `run(scene, link, steps,
+// threads)` makes each.
+template <class R>
+struct FourRuns {
+  R whole, threads, divided, plain;
+};
+
+template <class R, class F>
+FourRuns<R> four_runs(const std::string& text, int steps, F run) {
+  const core::Scene scene = core::parse_scene(text, "scene.toml");
+  EXPECT_TRUE(scene.run.reproducible);
+  FourRuns<R> r;
+  r.whole = run(scene, nullptr, steps, 1);
+  r.threads = core::rank_count() == 1 ? run(scene, nullptr, steps, 2) : r.whole;
+  core::MpiRankLink link;
+  r.divided = run(scene, &link, steps, 1);
+  core::Scene plain = scene;
+  plain.run.reproducible = false;
+  r.plain = run(plain, nullptr, steps, 1);
+  return r;
+}
+
+}  // namespace afemp::test
+
+namespace afemp::mpm {
+namespace {
+
+struct ParticleRun {
+  std::vector<Energies> energies;         // after each step
+  std::vector<std::vector<Vec3>> forces;  // after each step: walls' forces, then grid contacts'
+  Particles particles;                    // this rank's at the end
+};
+
+ParticleRun run(const core::Scene& scene, core::RankLink* link, int steps, int threads) {
+  core::set_thread_count(threads);
+  MpmSolver solver(scene, generate_particles(scene));
+  if (link) solver.divide_among_ranks(*link, {});
+  ParticleRun r;
+  for (int k = 0; k < steps; ++k) {
+    solver.step(solver.stable_time_step());
+    r.energies.push_back(solver.energies());
+    std::vector<Vec3> f = solver.wall_forces();
+    for (const MpmSolver::InterfaceForce& c : solver.grid_contact_forces())
+      f.insert(f.end(), {c.normal, c.tangential});
+    r.forces.push_back(f);
+  }
+  r.particles = solver.particles();
+  core::set_thread_count(1);
+  return r;
+}
+
+// How many of the particles' positions, velocities, stresses and plastic strains differ from
+// those of the particle of the same id in `whole` (every particle of `p` is in `whole`).
+long differences(const Particles& p, const Particles& whole) {
+  std::unordered_map<std::int32_t, std::size_t> at;
+  for (std::size_t i = 0; i < whole.size(); ++i) at[whole.id[i]] = i;
+  long differ = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const std::size_t j = at.at(p.id[i]);
+    for (int c = 0; c < 3; ++c)
+      differ +=
+          (p.position[i][c] != whole.position[j][c]) + (p.velocity[i][c] != whole.velocity[j][c]);
+    const core::SymTensor &a = p.stress[i], &b = whole.stress[j];
+    differ += !(a.xx == b.xx && a.yy == b.yy && a.zz == b.zz && a.xy == b.xy && a.yz == b.yz &&
+                a.xz == b.xz);
+    differ += p.plastic_strain[i] != whole.plastic_strain[j];
+  }
+  return differ;
+}
+
+// Every figure energies() gives, bit for bit.
+void expect_same_bits(const Energies& a, const Energies& b, int step) {
+  EXPECT_EQ(b.kinetic, a.kinetic) << "step " << step;
+  EXPECT_EQ(b.internal, a.internal) << "step " << step;
+  EXPECT_EQ(b.plastic, a.plastic) << "step " << step;
+  EXPECT_EQ(b.viscous, a.viscous) << "step " << step;
+  EXPECT_EQ(b.external_work, a.external_work) << "step " << step;
+  EXPECT_EQ(b.contact, a.contact) << "step " << step;
+  EXPECT_EQ(b.friction, a.friction) << "step " << step;
+  ASSERT_EQ(b.bodies.size(), a.bodies.size());
+  for (std::size_t k = 0; k < a.bodies.size(); ++k) {
+    EXPECT_EQ(b.bodies[k].mass, a.bodies[k].mass) << "step " << step;
+    EXPECT_EQ(b.bodies[k].kinetic, a.bodies[k].kinetic) << "step " << step;
+    EXPECT_EQ(b.bodies[k].internal, a.bodies[k].internal) << "step " << step;
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(b.bodies[k].momentum[c], a.bodies[k].momentum[c]) << "step " << step;
+  }
+}
+
+// The mode on ranks (and on one rank at two threads) against one process at one thread, bit
+// for bit: every
+// energy and force after every step, and every particle's position, velocity, stress and
+// plastic strain at the end (each rank's particles against the one-process particle of its
+// id; every particle on one rank). And the mode against the run without it: energies within
+// 1e-10 of the initial kinetic energy at every step.
+void expect_bit_identical(const std::string& text, int steps) {
+  const auto [whole, threads, divided, plain] = test::four_runs<ParticleRun>(text, steps, run);
+
+  const double e0 = whole.energies.front().kinetic;
+  ASSERT_GT(e0, 0.0);
+  for (int k = 0; k < steps; ++k) {
+    const auto s = static_cast<std::size_t>(k);
+    expect_same_bits(whole.energies[s], threads.energies[s], k);
+    expect_same_bits(whole.energies[s], divided.energies[s], k);
+    ASSERT_EQ(divided.forces[s].size(), whole.forces[s].size());
+    for (std::size_t f = 0; f < whole.forces[s].size(); ++f)
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_EQ(threads.forces[s][f][c], whole.forces[s][f][c]) << "step " << k;
+        EXPECT_EQ(divided.forces[s][f][c], whole.forces[s][f][c]) << "step " << k;
+      }
+    const Energies& a = plain.energies[s];
+    const Energies& b = whole.energies[s];
+    EXPECT_NEAR(b.kinetic, a.kinetic, 1e-10 * e0) << "step " << k;
+    EXPECT_NEAR(b.internal, a.internal, 1e-10 * e0) << "step " << k;
+    EXPECT_NEAR(b.plastic, a.plastic, 1e-10 * e0) << "step " << k;
+    EXPECT_NEAR(b.external_work, a.external_work, 1e-10 * e0) << "step " << k;
+    EXPECT_NEAR(b.contact, a.contact, 1e-10 * e0) << "step " << k;
+  }
+  EXPECT_GT(whole.energies.back().plastic, 0.01 * e0);  // the material did yield
+
+  for (const ParticleRun* r : {&threads, &divided})
+    EXPECT_EQ(differences(r->particles, whole.particles), 0)
+        << "values that differ from one process's";
+  EXPECT_EQ(core::sum_over_ranks(static_cast<std::int64_t>(divided.particles.size())),
+            static_cast<std::int64_t>(whole.particles.size()));
+}
+
+std::string bar(const std::string& mpm, const std::string& run = "") {
+  return test::copper_bar_on_wall("end_time = 0.01\nreproducible = true\n" + run, mpm);
+}
+
+TEST(MpiReproducible, MuslLinearHatIsBitIdenticalOnAnyRankCount) {
+  expect_bit_identical(bar("scheme = \"MUSL\"\n"), 100);
+}
+
+TEST(MpiReproducible, UsfGimpApicIsBitIdenticalOnAnyRankCount) {
+  expect_bit_identical(bar("scheme = \"USF\"\nshape_function = \"gimp\"\ntransfer = \"apic\"\n"),
+                       100);
+}
+
+// Gravity's work is booked at the nodes, each by its block's owner, and summed exactly.
+TEST(MpiReproducible, UslQuadraticSplineWithGravityIsBitIdenticalOnAnyRankCount) {
+  expect_bit_identical(
+      bar("scheme = \"USL\"\nshape_function = \"bspline2\"\n", "gravity = [0, 0, -5e3]\n"), 100);
+}
+
+// A rigid wall at the particles moving up at 5 m/s with friction 0.3: its contacts are swept
+// in the particles' id order on every rank (mpm/contact_nodes.hpp), on nodes that are now the
+// same bits.
+TEST(MpiReproducible, ParticleWallWithFrictionIsBitIdenticalOnAnyRankCount) {
+  expect_bit_identical(bar("scheme = \"MUSL\"\n") + R"(
+[[walls]]
+point = [0, 0, 0]
+normal = [0, 0, 1]
+velocity = [0, 0, 5]
+friction = 0.3
+bodies = ["bar"]
+)",
+                       100);
+}
+
+// The checkpoint of the divided run after 70 steps (the bar with the quadratic B-spline and
+// gravity onto the moving wall with friction), continued for 80 steps on this run's ranks and in
+// one process. Reference: each other, bit for bit (a restart from N ranks on M gives one
+// result): every energy after every step and every particle at the end; and the uninterrupted
+// run: its particles' bits (the checkpoint holds their state whole), its energies within 1e-10
+// of the initial kinetic energy (the running works pass through the checkpoint as doubles).
+TEST(MpiReproducible, CheckpointContinuesBitForBitOnRanksAndInOneProcess) {
+  const core::Scene scene = core::parse_scene(
+      bar("scheme = \"USL\"\nshape_function = \"bspline2\"\n", "gravity = [0, 0, -5e3]\n") +
+          R"(
+[[walls]]
+point = [0, 0, 0]
+normal = [0, 0, 1]
+velocity = [0, 0, 5]
+friction = 0.3
+bodies = ["bar"]
+)",
+      "bar.toml");
+  constexpr int first = 70, rest = 80;
+  const ParticleRun whole = run(scene, nullptr, first + rest, 1);
+  core::MpiRankLink link;
+  const std::string path = test::shared_scratch_file(link, "step_70.h5");
+  ASSERT_FALSE(path.empty()) << "rank 0 could not make a scratch directory";
+  {
+    MpmSolver divided(scene, generate_particles(scene));
+    divided.divide_among_ranks(link);
+    for (int k = 0; k < first; ++k) divided.step(divided.stable_time_step());
+    test::save_checkpoint(link, divided, path);
+  }
+  auto continued = [&](MpmSolver& solver) {
+    test::load_checkpoint(solver, path);
+    ParticleRun r;
+    for (int k = 0; k < rest; ++k) {
+      solver.step(solver.stable_time_step());
+      r.energies.push_back(solver.energies());
+    }
+    r.particles = solver.particles();
+    return r;
+  };
+  MpmSolver again(scene, generate_particles(scene));
+  again.divide_among_ranks(link);
+  const ParticleRun on_ranks = continued(again);
+  MpmSolver alone(scene, generate_particles(scene));
+  const ParticleRun in_one = continued(alone);
+  const double e0 = whole.energies.front().kinetic;
+  for (int k = 0; k < rest; ++k) {
+    const auto s = static_cast<std::size_t>(k);
+    expect_same_bits(in_one.energies[s], on_ranks.energies[s], first + k);
+    const Energies& a = whole.energies[static_cast<std::size_t>(first + k)];
+    EXPECT_NEAR(in_one.energies[s].kinetic, a.kinetic, 1e-10 * e0) << "step " << first + k;
+    EXPECT_NEAR(in_one.energies[s].plastic, a.plastic, 1e-10 * e0) << "step " << first + k;
+    EXPECT_NEAR(in_one.energies[s].external_work, a.external_work, 1e-10 * e0)
+        << "step " << first + k;
+    EXPECT_NEAR(in_one.energies[s].friction, a.friction, 1e-10 * e0) << "step " << first + k;
+  }
+  EXPECT_EQ(differences(on_ranks.particles, in_one.particles), 0);
+  EXPECT_EQ(differences(in_one.particles, whole.particles), 0);
+  test::remove_shared_scratch(link, path);
+}
+
+// The striker of particles in grid contact with friction 0.2 with the plate: the mass
+// gradients in fixed point, the contact's dissipation and force summed exactly.
+TEST(MpiReproducible, GridContactWithFrictionIsBitIdenticalOnAnyRankCount) {
+  expect_bit_identical(test::striker_on_plate(false, "end_time = 1.0\nreproducible = true\n"), 100);
+}
+
+}  // namespace
+}  // namespace afemp::mpm
+
+namespace afemp::fem {
+namespace {
+
+struct FeRun {
+  std::vector<core::Energies> energies;       // after each step
+  std::vector<std::vector<core::Vec3>> wall;  // the walls' forces after each step
+  std::vector<core::Vec3> position;           // the nodes at the end
+};
+
+FeRun run(const core::Scene& scene, core::RankLink* link, int steps, int threads) {
+  core::set_thread_count(threads);
+  FeSolver solver(scene);
+  if (link) solver.divide_among_ranks(*link);
+  FeRun r;
+  for (int k = 0; k < steps; ++k) {
+    solver.step(solver.stable_time_step());
+    r.energies.push_back(solver.energies());
+    r.wall.push_back(solver.wall_forces());
+  }
+  r.position = solver.nodes().position;
+  core::set_thread_count(1);
+  return r;
+}
+
+// As expect_bit_identical above, for meshes divided by their elements: every energy (the
+// element energies and works, gravity's and the wall's work, the eroded energy) and the walls'
+// forces after every step the bits of one process at one thread, on ranks and (on one rank)
+// at two threads; the nodes at the end too; and within 1e-10 of the initial kinetic energy of
+// the run without the mode.
+void expect_mesh_bit_identical(const std::string& text, int steps) {
+  const auto [whole, threads, divided, plain] = test::four_runs<FeRun>(text, steps, run);
+  const double e0 = whole.energies.front().kinetic;
+  ASSERT_GT(e0, 0.0);
+  for (int k = 0; k < steps; ++k) {
+    const auto s = static_cast<std::size_t>(k);
+    for (const FeRun* r : {&threads, &divided}) {
+      const core::Energies& a = whole.energies[s];
+      const core::Energies& b = r->energies[s];
+      mpm::expect_same_bits(a, b, k);
+      EXPECT_EQ(b.hourglass, a.hourglass) << "step " << k;
+      EXPECT_EQ(b.stabilisation, a.stabilisation) << "step " << k;
+      EXPECT_EQ(b.eroded, a.eroded) << "step " << k;
+      EXPECT_EQ(b.wall, a.wall) << "step " << k;
+      ASSERT_EQ(r->wall[s].size(), whole.wall[s].size());
+      for (std::size_t w = 0; w < whole.wall[s].size(); ++w)
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(r->wall[s][w][c], whole.wall[s][w][c]) << k;
+    }
+    const core::Energies& a = plain.energies[s];
+    const core::Energies& b = whole.energies[s];
+    EXPECT_NEAR(b.internal, a.internal, 1e-10 * e0) << "step " << k;
+    EXPECT_NEAR(b.plastic, a.plastic, 1e-10 * e0) << "step " << k;
+    EXPECT_NEAR(b.eroded, a.eroded, 1e-10 * e0) << "step " << k;
+    EXPECT_NEAR(b.external_work, a.external_work, 1e-10 * e0) << "step " << k;
+    EXPECT_EQ(b.kinetic, a.kinetic) << "the nodes are the mode's and the plain run's alike";
+  }
+  EXPECT_GT(whole.energies.back().plastic, 0.01 * e0);  // the material yielded
+  EXPECT_GT(whole.energies.back().eroded, 0.0);         // and eroded
+  for (const FeRun* r : {&threads, &divided})
+    for (std::size_t i = 0; i < whole.position.size(); ++i)
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(r->position[i][c], whole.position[i][c]) << i;
+}
+
+// One-point hexahedra with gravity, symmetry constraints, a rigid wall and erosion.
+TEST(MpiReproducible, ErodingOnePointHexahedraAreBitIdenticalOnAnyRankCount) {
+  std::string text = test::eroding_copper_bar_of_hexahedra();
+  text.replace(0, 6, "[run]\nreproducible = true\n");
+  expect_mesh_bit_identical(text, 100);
+}
+
+// Fully integrated hexahedra that erode beside a rod of trusses, onto a rigid wall.
+TEST(MpiReproducible, FullHexahedraAndTrussesAreBitIdenticalOnAnyRankCount) {
+  expect_mesh_bit_identical(test::block_and_rod_on_wall("reproducible = true\n"), 120);
+}
+
+}  // namespace
+}  // namespace afemp::fem
