@@ -136,8 +136,9 @@ class CoupledModel final : public core::Model {
   // its block and its result sent to every rank (NodePoints), so the contact and bonded
   // couplings divide with them; the hexahedra that convert into particles (AFEMP) are sent
   // with their points' state to every rank, which makes the same particles of them and keeps
-  // those of its blocks. Throws std::invalid_argument naming what does not divide yet: surface
-  // contact, [[phases]].
+  // those of its blocks; the contacts of particles with mesh faces (surface contact) are sent
+  // to every rank and swept by each in the particles' id order (mpm/contact_nodes.hpp). Throws
+  // std::invalid_argument naming what does not divide yet: [[phases]].
   void divide_among_ranks(core::RankLink& link, const core::RankBalance& balance = {});
   // The meshes' static or implicit phase (the particles held); both clocks then read its end.
   double run_implicit_phase(const core::PhaseSpec& phase, std::ostream* log) override {
