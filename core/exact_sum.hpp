@@ -65,10 +65,6 @@ class ExactSum {
   }
 
   void add(const ExactSum& other);
-  ExactSum& operator+=(double x) {
-    add(x);
-    return *this;
-  }
   ExactSum& operator+=(const ExactSum& other) {
     add(other);
     return *this;

@@ -27,12 +27,14 @@ struct RankMessage {
 // or for `largest` (grid contact's reach, a maximum over the particles) the largest is kept.
 // `fixed`: the entries are 128-bit fixed-point values (core/exact_sum.hpp), two doubles'
 // width each (components counts doubles: 2 a value), added as integers, whose sums do not
-// depend on their order.
+// depend on their order. `one_field`: slots entries only (an array the velocity fields share,
+// the mixed pressure's), not fields x slots.
 struct NodalArray {
   double* data = nullptr;
   int components = 1;
   bool largest = false;
   bool fixed = false;
+  bool one_field = false;
 };
 
 class RankLink {
@@ -42,9 +44,11 @@ class RankLink {
   virtual int ranks() const = 0;  // how many
   // After each rank's own scatter: the nodal sums (or maxima, NodalArray::largest) of every
   // block that several ranks' particles reach made whole, the same bits on every rank that holds
-  // the block (core/mpi/shared_block_sums.hpp).
+  // the block (core/mpi/shared_block_sums.hpp). `books`, where given (one entry per active
+  // block), is set to whether this rank books the block's nodes (their work, their state kept
+  // whole): the owner where it holds the block, else the lowest rank that holds it.
   virtual void sum_shared_blocks(BackgroundGrid& grid, std::span<const NodalArray> arrays,
-                                 const BlockPartition& partition) = 0;
+                                 const BlockPartition& partition, std::vector<char>* books) = 0;
   // Each element summed over the ranks in rank order (the same bits on every rank).
   virtual void sum_in_rank_order(std::span<double> values) = 0;
   virtual double max_over_ranks(double value) = 0;

@@ -53,29 +53,7 @@ std::vector<std::int32_t> first_indices(std::size_t n) {
 
 }  // namespace
 
-std::string MpmSolver::ranks_refusal() const {
-  std::vector<std::string> what;
-  for (const Stage& s : plan_.stages) switch (s.kind) {
-      case StageKind::outflow:
-      case StageKind::split_particles:
-        what.push_back("the stage '" + s.name + "'");
-        break;
-      default:
-        break;
-    }
-  if (plan_.mixed_pressure) what.push_back("the mixed pressure ([mpm] pressure = \"mixed\")");
-  if (plan_.particle_loads > 0) what.push_back("[[loads]] on particles");
-  if (scene_.mpm.grid.has_face(core::FaceCondition::absorbing) || scene_.mpm.grid.far_field)
-    what.push_back("absorbing or far-field faces");
-  if (what.empty()) return "";
-  std::string text = "this MPM run cannot be divided among ranks yet: ";
-  for (std::size_t k = 0; k < what.size(); ++k)
-    text += (k == 0 ? "" : k + 1 == what.size() ? " and " : ", ") + what[k];
-  return text + " run on one rank only (docs/parallel.md)";
-}
-
 void MpmSolver::divide_among_ranks(core::RankLink& link, const core::RankBalance& balance) {
-  if (const std::string why = ranks_refusal(); !why.empty()) throw std::invalid_argument(why);
   if (balance.cost != core::RankBalance::Cost::off &&
       (balance.every < 1 || !(balance.imbalance >= 1.0)))
     throw std::invalid_argument("rank balance: every " + std::to_string(balance.every) +
@@ -207,7 +185,9 @@ void MpmSolver::mark_owned_blocks() {
 
 void MpmSolver::sum_shared_blocks(std::span<const core::NodalArray> arrays) {
   const auto t0 = std::chrono::steady_clock::now();
-  ranks_->sum_shared_blocks(grid_, arrays, partition_);
+  // The sums also say which blocks this rank books (owned_block_): its own, and those whose
+  // owner holds none of their nodes and this rank is the lowest that does.
+  ranks_->sum_shared_blocks(grid_, arrays, partition_, &owned_block_);
   const double seconds = seconds_since(t0);
   rank_seconds_ += seconds;
   sum_seconds_ += seconds;

@@ -95,16 +95,63 @@ double MpmSolver::far_field(const std::array<int, 3>& node, int field, unsigned 
     const double cosine = r > 0.0 ? std::max(fn.sign * d[a] / r, 0.1) : 1.0;
     fn.impedance = af.impedance / cosine;
     fn.rate = r > 0.0 ? af.c_longitudinal / r : 0.0;
-    const std::size_t per_field = static_cast<std::size_t>(n[static_cast<std::size_t>(b)]) *
-                                  static_cast<std::size_t>(n[static_cast<std::size_t>(c)]);
-    double& lag = far_lag_[static_cast<std::size_t>(face)]
-                          [static_cast<std::size_t>(field) * per_field +
-                           static_cast<std::size_t>(node[static_cast<std::size_t>(b)]) *
-                               static_cast<std::size_t>(n[static_cast<std::size_t>(c)]) +
-                           static_cast<std::size_t>(node[static_cast<std::size_t>(c)])];
+    double& lag = far_lag_[static_cast<std::size_t>(face)][far_lag_index(face, node, field)];
     work += far_field_update(fn, m, dt, v[a], v_new[a], lag);
   }
   return work;
+}
+
+std::size_t MpmSolver::far_lag_index(int face, const std::array<int, 3>& node, int field) const {
+  const int a = face / 2;
+  const auto b = static_cast<std::size_t>((a + 1) % 3), c = static_cast<std::size_t>((a + 2) % 3);
+  const std::array<int, 3> n = grid_.nodes();
+  const std::size_t per_field = static_cast<std::size_t>(n[b]) * static_cast<std::size_t>(n[c]);
+  return static_cast<std::size_t>(field) * per_field +
+         static_cast<std::size_t>(node[b]) * static_cast<std::size_t>(n[c]) +
+         static_cast<std::size_t>(node[c]);
+}
+
+void MpmSolver::share_far_field_lags() {
+  // Each lag and a flag that a rank booked it, summed over the ranks: one rank adds the lag
+  // (the others zeros, so the sum is its bits), and a lag no rank holds stays as it was, as
+  // on every rank before.
+  std::vector<double> values;
+  std::array<std::size_t, 7> start{};
+  for (std::size_t face = 0; face < 6; ++face) {
+    start[face + 1] = start[face] + (absorbing_[face].far ? 2 * far_lag_[face].size() : 0);
+  }
+  if (start[6] == 0) return;
+  values.assign(start[6], 0.0);
+  const core::BackgroundGrid& g = grid_;
+  const FaceConstraints constraints(g, &absorbing_);
+  const std::size_t stride = g.slot_count();
+  g.for_each_slot([&](std::size_t slot, const std::array<int, 3>& node) {
+    const NodeConstraint c = constraints(node);
+    if (!c.far || !books_node(slot)) return;
+    for (int face = 0; face < 6; ++face) {
+      if (!((c.far >> face) & 1u)) continue;
+      const auto f6 = static_cast<std::size_t>(face);
+      const std::size_t size = far_lag_[f6].size();
+      bool on_plane = true;  // not a halo node beside the face (uGIMP), which holds no lag
+      for (int axis : {(face / 2 + 1) % 3, (face / 2 + 2) % 3}) {
+        const auto u = static_cast<std::size_t>(axis);
+        on_plane = on_plane && node[u] >= 0 && node[u] < g.nodes()[u];
+      }
+      if (!on_plane) continue;
+      for (int f = 0; f < g.field_count(); ++f) {
+        if (!(g.mass[slot + static_cast<std::size_t>(f) * stride] > 0.0)) continue;
+        const std::size_t k = far_lag_index(face, node, f);
+        values[start[f6] + k] = far_lag_[f6][k];
+        values[start[f6] + size + k] = 1.0;
+      }
+    }
+  });
+  ranks_->sum_in_rank_order(values);
+  for (std::size_t face = 0; face < 6; ++face) {
+    const std::size_t size = far_lag_[face].size();
+    for (std::size_t k = 0; k < size && start[face + 1] > start[face]; ++k)
+      if (values[start[face] + size + k] > 0.0) far_lag_[face][k] = values[start[face] + k];
+  }
 }
 
 void MpmSolver::grid_momentum_update(double dt) {
@@ -197,6 +244,7 @@ void MpmSolver::grid_momentum_update(double dt) {
   for (int t = 0; t < nt; ++t)
     external_work_ += thread_sums_[static_cast<std::size_t>(t) * core::cache_line_doubles];
   if (exact) add_exact_thread_sums(1, exact_.data() + exact_external);
+  if (ranks_) share_far_field_lags();
   if (!load_acceleration_.empty()) book_particle_load_work(dt);
 }
 

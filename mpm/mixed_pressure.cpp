@@ -14,7 +14,8 @@
 // mixed_pressure). Under a uniform deformation every average returns its input, so the scheme
 // is the point-wise one there (tests/mpm/test_mixed_pressure.cpp). The scatters sweep the
 // colour layers of the displacement stencil, which reach every node of N^q: sums without
-// atomics, in the same order at any thread count.
+// atomics, in the same order at any thread count. On ranks each rank sweeps its own particles
+// and the nodes' sums are made whole over the shared blocks before each division.
 #include "core/parallel.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/stencil.hpp"
@@ -81,6 +82,13 @@ void MpmSolver::mixed_pressure_kernel() {
       }
     }
   });
+  // On ranks the nodes' sums are made whole before they are divided (one velocity field's
+  // slots each: the pressure is shared by the fields).
+  if (ranks_) {
+    const core::NodalArray sums[] = {{weight, 1, false, false, true},
+                                     {ratio, 1, false, false, true}};
+    sum_shared_blocks(sums);
+  }
   [[maybe_unused]] const bool threads = core::worth_threads(slots);
 #pragma omp parallel for schedule(static) if (threads)
   for (std::size_t s = 0; s < slots; ++s)
@@ -99,6 +107,10 @@ void MpmSolver::mixed_pressure_kernel() {
         pressure[static_cast<std::size_t>(slot[a])] += w[a] * load;
     }
   });
+  if (ranks_) {
+    const core::NodalArray sums[] = {{pressure, 1, false, false, true}};
+    sum_shared_blocks(sums);
+  }
 #pragma omp parallel for schedule(static) if (threads)
   for (std::size_t s = 0; s < slots; ++s)
     if (weight[s] > 0.0) pressure[s] /= weight[s];

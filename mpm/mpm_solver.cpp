@@ -505,11 +505,24 @@ Energies MpmSolver::energies() const {
   out.plastic = plastic_work_;
   out.viscous = viscous_work_;
   out.external_work = external_work_;
-  // On ranks: every rank's sums and accumulators added in rank order (the stages that book the
-  // other accumulators do not run on ranks).
+  out.outflow = outflow_energy_;
+  out.outflow_mass = outflow_mass_;
+  out.outflow_momentum = outflow_momentum_;
+  // On ranks: every rank's sums and accumulators added in rank order (a particle wall's sliding
+  // and friction are whole on every rank: particle_wall_contact.cpp).
   if (ranks_) {
-    std::vector<double> sums{out.kinetic, out.internal,      out.plastic,
-                             out.viscous, out.external_work, contact_energy_};
+    std::vector<double> sums{out.kinetic,
+                             out.internal,
+                             out.plastic,
+                             out.viscous,
+                             out.external_work,
+                             contact_energy_,
+                             out.outflow,
+                             out.outflow_mass,
+                             out.outflow_momentum.x,
+                             out.outflow_momentum.y,
+                             out.outflow_momentum.z};
+    constexpr std::size_t whole = 11;
     for (const BodySums& b : out.bodies)
       sums.insert(sums.end(),
                   {b.mass, b.momentum.x, b.momentum.y, b.momentum.z, b.kinetic, b.internal});
@@ -520,8 +533,11 @@ Energies MpmSolver::energies() const {
     out.viscous = sums[3];
     out.external_work = sums[4];
     out.contact = sums[5];
+    out.outflow = sums[6];
+    out.outflow_mass = sums[7];
+    out.outflow_momentum = Vec3{sums[8], sums[9], sums[10]};
     for (std::size_t k = 0; k < nb; ++k) {
-      const double* b = sums.data() + 6 + 6 * k;
+      const double* b = sums.data() + whole + 6 * k;
       out.bodies[k].mass = b[0];
       out.bodies[k].momentum = Vec3{b[1], b[2], b[3]};
       out.bodies[k].kinetic = b[4];
@@ -529,9 +545,6 @@ Energies MpmSolver::energies() const {
     }
   }
   if (!ranks_) out.contact = contact_energy_;
-  out.outflow = outflow_energy_;
-  out.outflow_mass = outflow_mass_;
-  out.outflow_momentum = outflow_momentum_;
   out.sliding = wall_sliding_;
   out.friction = wall_friction_;
   return out;

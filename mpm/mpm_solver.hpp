@@ -130,8 +130,8 @@ class MpmSolver {
   // and each rank keeps the particles of its blocks. From then on every scatter is followed by
   // the shared blocks' sums, the particles whose block has another rank move to it after each
   // step, the stable step is the smallest over the ranks and energies() sums in rank order.
-  // Throws std::invalid_argument, on every rank alike, for a scene with a stage that does not
-  // run on ranks yet (naming it) and for more ranks than blocks that hold particles.
+  // Throws std::invalid_argument, on every rank alike, for more ranks than blocks that hold
+  // particles.
   // `balance` says how the ranks' loads are kept even as the material moves (afemp/run.hpp).
   void divide_among_ranks(core::RankLink& link, const core::RankBalance& balance = {});
   bool on_ranks() const { return ranks_ != nullptr; }
@@ -258,10 +258,9 @@ class MpmSolver {
   void strain_stress_batch(const MaterialBatch& batch, const Strength& strength, const Eos& eos,
                            double dt, const StrainSweep& sweep, int thread_slot_offset);
   void reorder_particles();
-  // On ranks (domain_decomposition.cpp): what keeps a scene on one rank (empty: nothing), the
-  // shared blocks' sums of the given nodal arrays after a scatter, which active blocks this rank
-  // owns (after each binning), and the particles sent to the rank of their block after a step.
-  std::string ranks_refusal() const;
+  // On ranks (domain_decomposition.cpp): the shared blocks' sums of the given nodal arrays
+  // after a scatter, which active blocks this rank owns (after each binning), and the particles
+  // sent to the rank of their block after a step.
   // The particles this process holds, every rank's, divided among the ranks of ranks_ by the
   // recursive bisection of the blocks that hold them (a partition made anew, the same on every
   // rank): this rank keeps its own, in their present order, and the material batches, the
@@ -289,8 +288,9 @@ class MpmSolver {
   double particle_kinetic_energy(std::size_t i, bool affine) const;
   void mark_owned_blocks();
   void migrate_particles();
-  // Whether the node of `slot` belongs to a block this rank owns: its nodal sums (external
-  // work) are booked by one rank only.
+  // Whether this rank books the node of `slot`: its nodal sums (external work) are booked by
+  // one rank only, the block's owner, or the lowest rank holding it where the owner holds none
+  // of it (set by each shared sum: core/mpi/shared_block_sums.hpp).
   bool books_node(std::size_t slot) const {
     return owned_block_.empty() || owned_block_[slot / core::BackgroundGrid::block_nodes] != 0;
   }
@@ -350,6 +350,12 @@ class MpmSolver {
   // field `field`: its normal components of v_new and its lags; returns the work.
   double far_field(const std::array<int, 3>& node, int field, unsigned faces, double m, double dt,
                    const Vec3& v, Vec3& v_new);
+  // Where the lag of `node` and `field` on far-field face `face` lies in far_lag_[face].
+  std::size_t far_lag_index(int face, const std::array<int, 3>& node, int field) const;
+  // On ranks, after the momentum update: each far-field lag taken from the rank that books its
+  // node, so that every rank keeps every node's lag as one process does (the lag is a node's
+  // state from step to step, and a rank may hold a node in one step and not the next).
+  void share_far_field_lags();
   // Splitting (particle_splitting.cpp): particles whose length along an axis reached 2 alpha
   // times their initial length split along those axes.
   void split_particles();
@@ -481,6 +487,9 @@ class MpmSolver {
     Particles whole;
     double plastic_work = 0.0, viscous_work = 0.0, external_work = 0.0, contact_energy = 0.0;
     double signal_wave = 0.0, signal_flow = 0.0;
+    double outflow_mass = 0.0, outflow_energy = 0.0;
+    Vec3 outflow_momentum;
+    long outflow_count = 0, split_count = 0;
     bool ready = false;
   } rank_checkpoint_;
 

@@ -34,6 +34,20 @@ void MpmSolver::prepare_checkpoint() {
   c.viscous_work = sums[1];
   c.external_work = sums[2];
   c.contact_energy = sums[3];
+  // What the outflow faces took and the splits so far, every rank's (counts below 2^53).
+  std::vector<double> more{outflow_mass_,
+                           outflow_energy_,
+                           outflow_momentum_.x,
+                           outflow_momentum_.y,
+                           outflow_momentum_.z,
+                           static_cast<double>(outflow_count_),
+                           static_cast<double>(split_count_)};
+  ranks_->sum_in_rank_order(more);
+  c.outflow_mass = more[0];
+  c.outflow_energy = more[1];
+  c.outflow_momentum = Vec3{more[2], more[3], more[4]};
+  c.outflow_count = static_cast<long>(more[5]);
+  c.split_count = static_cast<long>(more[6]);
   c.signal_wave = ranks_->max_over_ranks(signal_wave_);
   c.signal_flow = ranks_->max_over_ranks(signal_flow_);
   c.ready = true;
@@ -41,8 +55,9 @@ void MpmSolver::prepare_checkpoint() {
 
 void MpmSolver::state(core::StateArchive& a) {
   // On ranks, a checkpoint holds the whole run as one process's would: saving writes what
-  // prepare_checkpoint() gathered (the other accumulators belong to stages that do not run on
-  // ranks); restoring reads it whole on every rank and divides it among this run's ranks.
+  // prepare_checkpoint() gathered (the particle walls' force, sliding and friction and the
+  // far-field lags are whole on every rank as they are); restoring reads it whole on every rank
+  // and divides it among this run's ranks.
   const bool whole_on_ranks = ranks_ != nullptr && !a.loading();
   if (whole_on_ranks && !rank_checkpoint_.ready)
     throw std::logic_error("MpmSolver::state: prepare_checkpoint() first on ranks");
@@ -89,11 +104,12 @@ void MpmSolver::state(core::StateArchive& a) {
   a.item("plastic_work", work[0]);
   a.item("viscous_work", work[1]);
   a.item("external_work", work[2]);
-  a.item("outflow_mass", outflow_mass_);
-  a.item("outflow_energy", outflow_energy_);
-  a.item("outflow_momentum", outflow_momentum_);
-  a.item("outflow_count", outflow_count_);
-  a.item("split_count", split_count_);
+  a.item("outflow_mass", whole_on_ranks ? c.outflow_mass : outflow_mass_);
+  a.item("outflow_energy", whole_on_ranks ? c.outflow_energy : outflow_energy_);
+  a.item("outflow_momentum", whole_on_ranks ? c.outflow_momentum : outflow_momentum_);
+  a.item("outflow_count", whole_on_ranks ? c.outflow_count : outflow_count_);
+  a.item("split_count", whole_on_ranks ? c.split_count : split_count_);
+  // The far-field lags: whole on every rank (share_far_field_lags).
   a.item("far_field_lag", far_lag_);
   a.item("wall_force", wall_force_);
   a.item("wall_sliding", wall_sliding_);
@@ -136,7 +152,12 @@ void MpmSolver::state(core::StateArchive& a) {
   signal_speed_ = signal[0];
   signal_wave_ = signal[1];
   signal_flow_ = signal[2];
-  if (ranks_->rank() != 0) plastic_work_ = viscous_work_ = external_work_ = contact_energy_ = 0.0;
+  if (ranks_->rank() != 0) {
+    plastic_work_ = viscous_work_ = external_work_ = contact_energy_ = 0.0;
+    outflow_mass_ = outflow_energy_ = 0.0;
+    outflow_momentum_ = {};
+    outflow_count_ = split_count_ = 0;
+  }
 }
 
 }  // namespace afemp::mpm

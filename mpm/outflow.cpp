@@ -34,6 +34,13 @@ void MpmSolver::remove_outflow() {
   long leaving = 0;
 #pragma omp parallel for schedule(static) reduction(+ : leaving) if (core::worth_threads(n))
   for (std::size_t i = 0; i < n; ++i) leaving += left_through_outflow(p.position[i]) ? 1 : 0;
+  // On ranks each rank takes out its own particles and books them (energies() sums the ranks'
+  // books); the whole run's count falls by every rank's.
+  if (ranks_) {
+    std::vector<double> count{static_cast<double>(leaving)};
+    ranks_->sum_in_rank_order(count);
+    whole_count_ -= static_cast<std::size_t>(count[0]);
+  }
   if (leaving == 0) return;
   // In particle order, on one thread: the same sums for any thread count.
   std::vector<std::int32_t> kept;

@@ -11,18 +11,23 @@
 // particle's: a half (length alpha l0 just after the split) splits again only when it has
 // doubled in turn, so spacing stays below 2 alpha l0 along every axis. The halves sit at the
 // centres of the parent's halves, x +- l_a / 4 along each split axis. A split that would take
-// the particle count past max_particles stops the run. `axes` limits the axes a particle may
-// split along (all three by default): a shaped charge's liner splits along its jet's axis only
-// (docs/scene-format.md says why).
+// the particle count past max_particles stops the run. The pieces take new ids in the order of
+// their parents' ids, over every rank's parents on ranks: the same ids on any rank count. `axes`
+// limits the axes a particle may split along (all three by default): a shaped charge's liner splits
+// along its jet's axis only (docs/scene-format.md says why).
 #include <algorithm>
 #include <bit>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <type_traits>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "afemp/errors.hpp"
 #include "core/parallel.hpp"
+#include "core/rank_link.hpp"
 #include "mpm/mpm_solver.hpp"
 
 namespace afemp::mpm {
@@ -49,14 +54,47 @@ void MpmSolver::split_particles() {
     axes[i] = static_cast<std::uint8_t>(bits);
     added += (std::size_t{1} << std::popcount(bits)) - 1;
   }
-  if (added == 0) return;
-  if (n + added > settings.max_particles)
+  if (added == 0 && ranks_ == nullptr) return;  // on ranks, the others may split
+  // The new pieces' ids follow their parents' ids in order, over every rank's parents: the
+  // same ids on any rank count (ids in memory order would follow the ranks' partition).
+  std::vector<std::int32_t> parents;  // id, then the pieces it adds, of each that splits
+  for (std::size_t i = 0; i < n; ++i)
+    if (axes[i] != 0) parents.insert(parents.end(), {p.id[i], (1 << std::popcount(axes[i])) - 1});
+  std::size_t whole = n;
+  if (ranks_) {
+    const std::vector<std::vector<std::byte>> every =
+        ranks_->gather(core::bytes_of(std::span<const std::int32_t>(parents)));
+    parents.clear();
+    for (const std::vector<std::byte>& b : every) {
+      const std::size_t k = parents.size();
+      parents.resize(k + b.size() / sizeof(std::int32_t));
+      std::memcpy(parents.data() + k, b.data(), b.size());
+    }
+    whole = whole_count_;
+  }
+  std::size_t whole_added = 0;
+  for (std::size_t k = 1; k < parents.size(); k += 2)
+    whole_added += static_cast<std::size_t>(parents[k]);
+  if (whole_added == 0) return;
+  if (whole + whole_added > settings.max_particles)
     throw core::SimulationError(
-        steps_, time_, "the particles (" + std::to_string(n) + ")", "particle count",
-        "splitting would make " + std::to_string(n + added) + " particles, more than " +
+        steps_, time_, "the particles (" + std::to_string(whole) + ")", "particle count",
+        "splitting would make " + std::to_string(whole + whole_added) + " particles, more than " +
             "[mpm] splitting max_particles = " + std::to_string(settings.max_particles) +
             "; raise it, or use a coarser start or a larger alpha");
-  std::int32_t next_id = next_particle_id();
+  std::int32_t new_id = next_particle_id();
+  if (ranks_) new_id = static_cast<std::int32_t>(ranks_->max_over_ranks(new_id));
+  std::vector<std::pair<std::int32_t, std::int32_t>> order;  // parent id, pieces added
+  for (std::size_t k = 0; k + 1 < parents.size(); k += 2)
+    order.emplace_back(parents[k], parents[k + 1]);
+  std::sort(order.begin(), order.end());
+  std::unordered_map<std::int32_t, std::int32_t> first_id;  // of a parent's new pieces
+  for (const auto& [id, pieces] : order) {
+    first_id[id] = new_id;
+    new_id += pieces;
+  }
+  if (ranks_) whole_count_ += whole_added;
+  if (added == 0) return;
   p.resize(n + added);  // new entries are filled below from their parent
   const std::size_t hc = p.history_count;
   std::size_t next = n;
@@ -70,6 +108,7 @@ void MpmSolver::split_particles() {
     for (int a = 0; a < 3; ++a)
       if (bits & (1u << a)) half[a] *= 0.5;
     const Vec3 centre = p.position[i];
+    std::int32_t next_id = first_id.at(p.id[i]);
     for (int k = 0; k < pieces; ++k) {
       // Piece k: along the j-th split axis, the lower (bit j of k clear) or upper half.
       Vec3 offset;

@@ -71,4 +71,45 @@ inline std::string sandwich_column(double end_time, double z_min, double z_max, 
          (splitting ? "splitting = {}\n" : "");
 }
 
+// An eighth of a sphere of radius 5 mm of `inner` in water, on a 15 mm grid of 1 mm cells whose
+// outer faces open onto water at 10 MPa. Units mm, ms, g, MPa.
+inline std::string sphere_in_water(const std::string& inner_material,
+                                   const std::string& inner_keys) {
+  return R"(
+[run]
+end_time = 1.0
+[grid]
+cell = 1.0
+min = [0, 0, 0]
+max = [15, 15, 15]
+boundary = { xmin = "symmetric", ymin = "symmetric", zmin = "symmetric", xmax = "absorbing", ymax = "absorbing", zmax = "absorbing" }
+far_field = { centre = [0, 0, 0], pressure = 10.0 }
+[mpm]
+scheme = "USAVG"
+[materials.gas]
+density = 1.0e-5
+strength = { model = "fluid" }
+eos = { model = "linear-polynomial", C4 = 0.4, C5 = 0.4 }
+)" + water_material() +
+         R"(
+[[bodies]]
+name = "inner"
+material = ")" +
+         inner_material + R"("
+shape = { sphere = { centre = [0, 0, 0], radius = 5 } }
+)" + inner_keys +
+         R"(
+[[bodies]]
+name = "water"
+material = "water"
+shape = { box = { min = [0, 0, 0], max = [15, 15, 15] } }
+outside = ["inner"]
+particles_per_cell = 1
+pressure = 10.0
+[[contact]]
+bodies = ["inner", "water"]
+method = "weld"
+)";
+}
+
 }  // namespace afemp::test

@@ -15,8 +15,8 @@ int MpiRankLink::ranks() const {
 }
 
 void MpiRankLink::sum_shared_blocks(BackgroundGrid& grid, std::span<const NodalArray> arrays,
-                                    const BlockPartition& partition) {
-  core::sum_shared_blocks(grid, arrays, partition);
+                                    const BlockPartition& partition, std::vector<char>* books) {
+  core::sum_shared_blocks(grid, arrays, partition, books);
 }
 
 void MpiRankLink::sum_in_rank_order(std::span<double> values) {

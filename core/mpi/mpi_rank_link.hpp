@@ -11,7 +11,7 @@ class MpiRankLink final : public RankLink {
   int rank() const override;
   int ranks() const override;
   void sum_shared_blocks(BackgroundGrid& grid, std::span<const NodalArray> arrays,
-                         const BlockPartition& partition) override;
+                         const BlockPartition& partition, std::vector<char>* books) override;
   void sum_in_rank_order(std::span<double> values) override;
   double max_over_ranks(double value) override;
   std::vector<RankMessage> exchange(std::span<const RankMessage> outgoing) override;

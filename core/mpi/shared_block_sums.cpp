@@ -16,12 +16,17 @@ namespace {
 
 constexpr std::size_t block_nodes = BackgroundGrid::block_nodes;
 
+// The velocity fields an array holds: the grid's, or one (NodalArray::one_field).
+int fields_of(const BackgroundGrid& g, const NodalArray& a) {
+  return a.one_field ? 1 : g.field_count();
+}
+
 // Doubles per block over all arrays and fields.
 std::size_t block_values(const BackgroundGrid& g, std::span<const NodalArray> arrays) {
   std::size_t n = 0;
   for (const NodalArray& a : arrays)
     n += static_cast<std::size_t>(a.components) * block_nodes *
-         static_cast<std::size_t>(g.field_count());
+         static_cast<std::size_t>(fields_of(g, a));
   return n;
 }
 
@@ -30,7 +35,7 @@ void copy_block(const BackgroundGrid& g, std::span<const NodalArray> arrays, std
                 double* to, const double* from) {
   for (const NodalArray& array : arrays) {
     const auto c = static_cast<std::size_t>(array.components);
-    for (int f = 0; f < g.field_count(); ++f) {
+    for (int f = 0; f < fields_of(g, array); ++f) {
       double* at =
           array.data + (static_cast<std::size_t>(f) * g.slot_count() + a * block_nodes) * c;
       const std::size_t n = block_nodes * c;
@@ -51,7 +56,7 @@ void combine(const BackgroundGrid& g, std::span<const NodalArray> arrays, double
              const double* part) {
   for (const NodalArray& array : arrays) {
     const std::size_t n =
-        block_nodes * static_cast<std::size_t>(array.components * g.field_count());
+        block_nodes * static_cast<std::size_t>(array.components * fields_of(g, array));
     if (array.largest) {
       for (std::size_t i = 0; i < n; ++i) total[i] = std::max(total[i], part[i]);
     } else if (array.fixed) {  // pairs of doubles' bytes holding one 128-bit integer each
@@ -89,8 +94,13 @@ std::vector<RankMessage> send(std::vector<std::vector<std::byte>>& to) {
 }  // namespace
 
 void sum_shared_blocks(BackgroundGrid& grid, std::span<const NodalArray> arrays,
-                       const BlockPartition& partition) {
+                       const BlockPartition& partition, std::vector<char>* books) {
   const int ranks = rank_count(), me = rank_index();
+  if (books) {
+    books->resize(grid.active_block_count());
+    for (std::size_t a = 0; a < books->size(); ++a)
+      (*books)[a] = partition.rank_of(grid.block_coord(grid.active_block(a))) == me ? 1 : 0;
+  }
   if (ranks == 1) return;
   const std::size_t per = block_values(grid, arrays);
   const std::size_t record = sizeof(std::int64_t) + per * sizeof(double);
@@ -141,16 +151,23 @@ void sum_shared_blocks(BackgroundGrid& grid, std::span<const NodalArray> arrays,
     for (std::size_t p = 1; p < list.size(); ++p)
       combine(grid, arrays, total.data(), list[p].values);
     if (a >= 0) copy_block(grid, arrays, static_cast<std::size_t>(a), nullptr, total.data());
+    // A block this rank owns but does not hold is booked by the lowest rank that holds it
+    // (list is in rank order): its reply names the block as -(index + 1).
     for (const Part& p : list)
-      if (p.rank != me) append(reply[static_cast<std::size_t>(p.rank)], block, total);
+      if (p.rank != me)
+        append(reply[static_cast<std::size_t>(p.rank)],
+               a < 0 && p.rank == list.front().rank ? -block - 1 : block, total);
   }
   for (const RankMessage& m : send(reply))
     for (std::size_t at = 0; at < m.bytes.size(); at += record) {
       std::int64_t block = 0;
       std::memcpy(&block, m.bytes.data() + at, sizeof block);
+      const bool booked_here = block < 0;
+      if (booked_here) block = -block - 1;
       std::memcpy(values.data(), m.bytes.data() + at + sizeof block, per * sizeof(double));
-      copy_block(grid, arrays, static_cast<std::size_t>(grid.active_number(block)), nullptr,
-                 values.data());
+      const auto a = static_cast<std::size_t>(grid.active_number(block));
+      copy_block(grid, arrays, a, nullptr, values.data());
+      if (books && booked_here) (*books)[a] = 1;
     }
 }
 

@@ -16,8 +16,12 @@
 
 namespace afemp::core {
 
-// Collective: every rank calls it with the same arrays, after its own particles' sums.
+// Collective: every rank calls it with the same arrays, after its own particles' sums. With
+// `books` (resized to the active blocks), each of this rank's blocks is marked 1 where this rank
+// books its nodes: the block's owner where it holds the block, else the lowest rank that holds
+// it (an owner whose own particles do not reach the block holds no node of it, and the nodal
+// work there would be booked by nobody). Every node that some rank holds is then booked once.
 void sum_shared_blocks(BackgroundGrid& grid, std::span<const NodalArray> arrays,
-                       const BlockPartition& partition);
+                       const BlockPartition& partition, std::vector<char>* books = nullptr);
 
 }  // namespace afemp::core

@@ -282,19 +282,10 @@ TEST(MpiMpmRanks, ParticleWallWithFrictionGivesOneProcessFigures) {
   EXPECT_GT(whole.friction.back(), 1e-6 * kinetic0) << "friction dissipated";
 }
 
-// Reference: what does not run on ranks yet is refused on every rank, naming it, before any
-// particle moves; more ranks than blocks that hold particles too.
-TEST(MpiMpmRanks, RefusesWhatItCannotDivide) {
+// Reference: more ranks than blocks that hold particles are refused on every rank, naming the
+// blocks, before any particle moves.
+TEST(MpiMpmRanks, RefusesMoreRanksThanBlocks) {
   core::MpiRankLink link;
-  const core::Scene split =
-      core::parse_scene(bar_scene("scheme = \"MUSL\"\nsplitting = {}\n"), "split.toml");
-  MpmSolver with_splitting(split, generate_particles(split));
-  try {
-    with_splitting.divide_among_ranks(link);
-    ADD_FAILURE() << "particle splitting was divided among ranks";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("split particles"), std::string::npos) << e.what();
-  }
   std::string small = bar_scene("scheme = \"MUSL\"\n");
   small.replace(small.find("radius = 3.8, length = 25.4"), 27, "radius = 1.0, length = 2.0");
   const core::Scene one_block = core::parse_scene(small, "small.toml");

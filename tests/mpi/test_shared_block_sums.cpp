@@ -58,7 +58,10 @@ void scatter(BackgroundGrid& g, const std::vector<Point>& points) {
 // Reference: one rank's scatter of all 4096 points, here on every rank. The masses are sums of
 // integers times products of 1/4 and 3/4, exact in any order: equal to the bit. The momenta
 // (v not binary fractions) within 1e-14 of the largest. Every block of that scatter is held by
-// some rank, and its masses sum to the particles' (12,286) exactly.
+// some rank, and its masses sum to the particles' (12,286) exactly; every block is booked by
+// exactly one rank that holds it (the blocks just past the cube's high faces hold no point and
+// are reached by the points of the cells below them: their owner need not hold them), so that
+// the masses of the booked nodes, summed over the ranks, are the particles'.
 TEST(MpiSharedBlockSums, EveryNodeHoldsOneRanksSumOfAllParticles) {
   const int n = rank_count(), me = rank_index();
   GridSettings settings;
@@ -90,7 +93,9 @@ TEST(MpiSharedBlockSums, EveryNodeHoldsOneRanksSumOfAllParticles) {
   scatter(g, mine);
   const NodalArray arrays[] = {{g.mass.data(), 1},
                                {reinterpret_cast<double*>(g.momentum.data()), 3}};
-  sum_shared_blocks(g, arrays, partition);
+  std::vector<char> books;
+  sum_shared_blocks(g, arrays, partition, &books);
+  ASSERT_EQ(books.size(), g.active_block_count());
 
   double largest = 0.0;
   for (const Vec3& m : whole.momentum) largest = std::max(largest, norm(m));
@@ -111,6 +116,19 @@ TEST(MpiSharedBlockSums, EveryNodeHoldsOneRanksSumOfAllParticles) {
   EXPECT_EQ(outside, 0) << "a block one rank's scatter does not reach";
   EXPECT_EQ(wrong_mass, 0);
   EXPECT_EQ(wrong_momentum, 0);
+  // Each block booked once, by a rank that holds it; the booked nodes hold the whole mass.
+  std::vector<double> booked(whole.active_block_count(), 0.0);
+  std::vector<double> booked_mass{0.0};
+  for (std::size_t b = 0; b < g.active_block_count(); ++b) {
+    if (!books[b]) continue;
+    booked[static_cast<std::size_t>(whole.active_number(g.active_block(b)))] += 1.0;
+    for (std::size_t s = 0; s < BackgroundGrid::block_nodes; ++s)
+      booked_mass[0] += g.mass[b * BackgroundGrid::block_nodes + s];
+  }
+  sum_in_rank_order(booked);
+  sum_in_rank_order(booked_mass);
+  EXPECT_EQ(std::count(booked.begin(), booked.end(), 1.0),
+            static_cast<std::ptrdiff_t>(booked.size()));
   // Every block of one rank's scatter is on some rank, and holds the particles' mass.
   sum_in_rank_order(held);
   EXPECT_EQ(std::count(held.begin(), held.end(), 0.0), 0);
@@ -118,6 +136,7 @@ TEST(MpiSharedBlockSums, EveryNodeHoldsOneRanksSumOfAllParticles) {
   for (const Point& p : all) total += p.m;
   for (double m : whole.mass) on_grid += m;
   EXPECT_EQ(on_grid, total);
+  EXPECT_EQ(booked_mass[0], total);
 }
 
 }  // namespace

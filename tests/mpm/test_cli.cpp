@@ -452,15 +452,16 @@ TEST(Cli, CoupledRunDividedAmongMpiRanksGivesTheOneProcessHistoryAndProbes) {
 }
 
 // Reference: what does not divide is refused on every rank before anything is written, rank 0
-// naming it once: a coupled scene whose particles split (its particles meet a mesh's faces in
-// surface contact, which divides).
-TEST(Cli, RunOnMpiRanksRefusesParticleSplittingWritingNothing) {
+// naming it once: a coupled scene (its particles meet a mesh's faces in surface contact, which
+// divides) that starts with a relaxation phase.
+TEST(Cli, RunOnMpiRanksRefusesPhasesWritingNothing) {
   test::ScratchDir dir;
   const std::string path =
       dir.write("mesh.toml",
                 "[run]\nend_time = 1.0\nmax_steps = 5\n"
                 "[grid]\ncell = 1.0\nmin = [-2, -2, -2]\nmax = [8, 4, 4]\n"
-                "[mpm]\nsplitting = {}\n"
+                "[[phases]]\nkind = \"relaxation\"\nend_time = 0.5\n"
+                "[[phases]]\nkind = \"explicit\"\nend_time = 1.0\n"
                 "[materials.steel]\ndensity = 7.85e-3\nE = 200e3\nnu = 0.3\n"
                 "[[bodies]]\nname = \"cube\"\nmaterial = \"steel\"\n"
                 "discretisation = \"hexahedra\"\nmesh = { size = 1.0 }\nvelocity = [3, 0, 0]\n"
@@ -473,7 +474,7 @@ TEST(Cli, RunOnMpiRanksRefusesParticleSplittingWritingNothing) {
       mpiexec(2) + "\"" + AFEMP_BINARY + "\" run \"" + path + "\" --threads 1 -o \"" + out + "\"",
       dir);
   EXPECT_NE(r.exit_code, 0) << r.out << r.err;
-  const std::string why = "the stage 'split particles'";
+  const std::string why = "[[phases]] run on one rank only";
   EXPECT_NE(r.err.find(why), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find(why), r.err.rfind(why)) << "said once: " << r.err;
   EXPECT_FALSE(std::filesystem::exists(out)) << "nothing written";

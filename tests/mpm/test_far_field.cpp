@@ -23,46 +23,6 @@
 namespace afemp::mpm {
 namespace {
 
-// An eighth of a sphere of radius 5 mm of `inner` in water, on a 15 mm grid of 1 mm cells whose
-// outer faces open onto water at 10 MPa. Units mm, ms, g, MPa.
-std::string sphere_in_water(const std::string& inner_material, const std::string& inner_keys) {
-  return R"(
-[run]
-end_time = 1.0
-[grid]
-cell = 1.0
-min = [0, 0, 0]
-max = [15, 15, 15]
-boundary = { xmin = "symmetric", ymin = "symmetric", zmin = "symmetric", xmax = "absorbing", ymax = "absorbing", zmax = "absorbing" }
-far_field = { centre = [0, 0, 0], pressure = 10.0 }
-[mpm]
-scheme = "USAVG"
-[materials.gas]
-density = 1.0e-5
-strength = { model = "fluid" }
-eos = { model = "linear-polynomial", C4 = 0.4, C5 = 0.4 }
-)" + test::water_material() +
-         R"(
-[[bodies]]
-name = "inner"
-material = ")" +
-         inner_material + R"("
-shape = { sphere = { centre = [0, 0, 0], radius = 5 } }
-)" + inner_keys +
-         R"(
-[[bodies]]
-name = "water"
-material = "water"
-shape = { box = { min = [0, 0, 0], max = [15, 15, 15] } }
-outside = ["inner"]
-particles_per_cell = 1
-pressure = 10.0
-[[contact]]
-bodies = ["inner", "water"]
-method = "weld"
-)";
-}
-
 // Water that starts at the far field's 10 MPa and should stay still: after 200 steps every
 // speed below 1e-9 mm/ms and every pressure at 10 MPa within 1e-9 (roundoff).
 void expect_still_after_200_steps(const core::Scene& scene, const Particles& start) {
@@ -88,7 +48,7 @@ void expect_still_after_200_steps(const core::Scene& scene, const Particles& sta
 // 30 us.
 TEST(FarField, WaterAtTheAmbientPressureStaysAtRest) {
   const core::Scene scene =
-      core::parse_scene(sphere_in_water("water", "pressure = 10.0"), "still.toml");
+      core::parse_scene(test::sphere_in_water("water", "pressure = 10.0"), "still.toml");
   const Particles start = generate_particles(scene);
   // The EOS gives the ambient pressure at the compressed density the body starts at.
   const double mu = start.mass[start.size() - 1] / (1.0e-3 * start.volume[start.size() - 1]) - 1.0;
@@ -107,7 +67,7 @@ TEST(FarField, WaterAtTheAmbientPressureStaysAtRest) {
 // mass (a free surface at 15 mm) the period would be sqrt(1 - R / 15 mm) = 0.81 of it.
 TEST(FarField, GasBubblePulsatesAtTheMinnaertFrequency) {
   const core::Scene scene = core::parse_scene(
-      sphere_in_water("gas", "internal_energy = 2.5e6\npressure = 10.5"), "bubble.toml");
+      test::sphere_in_water("gas", "internal_energy = 2.5e6\npressure = 10.5"), "bubble.toml");
   MpmSolver solver(scene, generate_particles(scene));
   const core::Energies e0 = solver.energies();
   // Downward crossings of the gas's mean pressure through the ambient, linearly interpolated:
@@ -156,7 +116,7 @@ std::string absolute(std::string text) {
 // at rest to roundoff: every speed below 1e-9 mm/ms over 200 steps, the pressure within 1e-9.
 TEST(FarField, AbsoluteStressHoldsStillWaterAtRest) {
   const core::Scene scene =
-      core::parse_scene(absolute(sphere_in_water("water", "pressure = 10.0")), "still.toml");
+      core::parse_scene(absolute(test::sphere_in_water("water", "pressure = 10.0")), "still.toml");
   expect_still_after_200_steps(scene, generate_particles(scene));
 }
 
@@ -192,7 +152,7 @@ double rayleigh_time(double fraction, double r0, double rho, double p) {
 // 2 pi rho R^3 Rdot^2 (1 - R / b), lacks the shell beyond b, and the collapse takes about
 // sqrt(1 - a / b) = 0.82 of the time.
 TEST(FarField, AbsoluteStressCollapsesACavityInRayleighsTime) {
-  std::string text = absolute(sphere_in_water("air", "internal_energy = 2.0833e5"));
+  std::string text = absolute(test::sphere_in_water("air", "internal_energy = 2.0833e5"));
   const std::string water_eos = "gamma0 = 0.28 }";
   text.replace(text.find(water_eos), water_eos.size(), water_eos + "\npressure_cutoff = 0.0");
   const core::Scene scene = core::parse_scene(text + R"(
@@ -242,7 +202,7 @@ eos = { model = "linear-polynomial", C4 = 0.4, C5 = 0.4 }
 }
 
 TEST(FarField, InputErrorsNameTheKey) {
-  const std::string ok = sphere_in_water("water", "pressure = 10.0");
+  const std::string ok = test::sphere_in_water("water", "pressure = 10.0");
   // No absorbing face for the far field to act through.
   std::string text = ok;
   const std::string faces = R"(xmax = "absorbing", ymax = "absorbing", zmax = "absorbing")";
@@ -325,9 +285,9 @@ std::vector<std::string> warning_keys(const std::string& text, const std::string
 // A gas near the ambient under the absolute stress (bulk modulus gamma p = 1.4 p, below 10 p)
 // gets a warning naming its pressure; the water (K = 2712 MPa at 10 MPa) gets none.
 TEST(FarField, AbsoluteStressWarnsOfAPrestressedGas) {
-  EXPECT_EQ(warning_keys(absolute(sphere_in_water("gas",
-                                                  "internal_energy = 2.5e6\n"
-                                                  "pressure = 10.5\nparticles_per_cell = 2")),
+  EXPECT_EQ(warning_keys(absolute(test::sphere_in_water("gas",
+                                                        "internal_energy = 2.5e6\n"
+                                                        "pressure = 10.5\nparticles_per_cell = 2")),
                          "bubble.toml"),
             std::vector<std::string>{"bodies.inner.pressure"});
 }
@@ -343,7 +303,7 @@ shape = { sphere = { centre = [10, 10, 10], radius = 1 } }
 [[detonations]]
 point = [10, 10, 10]
 )";
-  const std::string water = sphere_in_water("water", "pressure = 10.0");
+  const std::string water = test::sphere_in_water("water", "pressure = 10.0");
   EXPECT_EQ(warning_keys(water + charge, "charge.toml"),
             std::vector<std::string>{"grid.far_field.stress"});
   EXPECT_EQ(warning_keys(absolute(water) + charge, "charge.toml"), std::vector<std::string>{});
