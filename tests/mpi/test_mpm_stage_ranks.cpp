@@ -21,6 +21,7 @@
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
 #include "shared_scratch.hpp"
+#include "stretched_column.hpp"
 
 namespace afemp::mpm {
 namespace {
@@ -212,30 +213,9 @@ TEST(MpiMpmStageRanks, MixedPressureGivesOneProcessFigures) {
 // jet): its particles split from about step 130, each rank its own, the pieces taking ids in
 // the order of their parents' ids over every rank, so that every piece has its one-process id.
 TEST(MpiMpmStageRanks, ParticleSplittingGivesOneProcessFiguresAndIds) {
-  const core::Scene scene = parsed(R"(
-[run]
-end_time = 1.0
-[grid]
-cell = 0.5
-min = [-1, -1, -20]
-max = [2, 2, 30]
-[mpm]
-shape_function = "gimp"
-flip = 0.95
-splitting = { alpha = 0.9 }
-[materials.aluminium]
-density = 2.7e-3
-E = 7.0e4
-nu = 0.33
-strength = { model = "j2", yield = 5 }
-[[bodies]]
-name = "column"
-material = "aluminium"
-shape = { box = { min = [0, 0, 0], max = [1, 1, 10] } }
-)");
+  const core::Scene scene = parsed(test::column("splitting = { alpha = 0.9 }"));
   Particles start = generate_particles(scene);
-  for (std::size_t i = 0; i < start.size(); ++i)
-    start.velocity[i] = {0.0, 0.0, 200.0 * (start.position[i].z - 5.0)};
+  test::stretch_column(start);
   const StageRun whole = expect_same_as_one_process(scene, start, 250);
   EXPECT_GT(whole.splits, 50);
   EXPECT_GT(whole.particles.size(), start.size() + 50);

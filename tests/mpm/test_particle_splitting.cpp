@@ -14,43 +14,12 @@
 #include "core/scene.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
+#include "stretched_column.hpp"
 
 namespace afemp::mpm {
 namespace {
 
-// A nearly strengthless aluminium bar 1 x 1 x 10 mm (yield 5 MPa, free sides; cell 0.5 mm,
-// 2 particles per cell per direction, uGIMP, 5 % PIC) stretched by its own inertia, like a
-// jet: v_z = 1000 (z - 5) / 5 m/s, so its ends fly apart at 1000 m/s, until it spans 4x its
-// length (about 18 us). rho v^2 = 2700 MPa dwarfs the yield, so the stretch stays close to
-// uniform; plastic flow keeps the volume, so the section narrows to about half its width.
-// Measured as well (not asserted): with pure FLIP 3 layers open even with splitting (the
-// particles leave their lattice and the strain-tracked length lags their spacing), and with
-// a yield of 50 MPa 5 open (the perfectly plastic bar necks and separates: fragments, which
-// splitting must not fill).
-std::string column(const std::string& splitting, const std::string& more_bodies = "") {
-  return R"(
-[run]
-end_time = 1.0
-[grid]
-cell = 0.5
-min = [-1, -1, -20]
-max = [2, 2, 30]
-[mpm]
-shape_function = "gimp"
-flip = 0.95
-)" + splitting +
-         R"(
-[materials.aluminium]
-density = 2.7e-3
-E = 7.0e4
-nu = 0.33
-strength = { model = "j2", yield = 5 }
-[[bodies]]
-name = "column"
-material = "aluminium"
-shape = { box = { min = [0, 0, 0], max = [1, 1, 10] } }
-)" + more_bodies;
-}
+using test::column;
 
 struct Stretch {
   std::size_t particles = 0;
@@ -66,8 +35,7 @@ Stretch stretch(const std::string& splitting, const std::string& more_bodies = "
   const core::Scene scene = core::parse_scene(column(splitting, more_bodies), "column.toml");
   MpmSolver solver(scene, generate_particles(scene));
   Particles& p = solver.mutable_particles();
-  for (std::size_t i = 0; i < p.size(); ++i)  // the column (a second body stays at rest)
-    if (p.body[i] == 0) p.velocity[i] = {0.0, 0.0, 200.0 * (p.position[i].z - 5.0)};
+  test::stretch_column(p);  // the column (a second body stays at rest)
   const core::Energies e0 = solver.energies();
   const auto start = std::chrono::steady_clock::now();
   // Until the particles span 4x their initial 9.75 mm (or 30 us).
@@ -137,8 +105,7 @@ TEST(ParticleSplitting, OnlyTheBodiesNamedSplit) {
       column("splitting = { alpha = 0.9, bodies = [\"column\"] }", block), "named.toml");
   MpmSolver solver(scene, generate_particles(scene));
   Particles& p = solver.mutable_particles();
-  for (std::size_t i = 0; i < p.size(); ++i)
-    if (p.body[i] == 0) p.velocity[i] = {0.0, 0.0, 200.0 * (p.position[i].z - 5.0)};
+  test::stretch_column(p);
   const std::size_t start = p.size();
   while (solver.time() < 10e-3 && solver.particles().size() == start)
     solver.step(solver.stable_time_step());
@@ -187,9 +154,7 @@ TEST(ParticleSplitting, ACapOnTheParticleCountStopsTheRunWithAClearMessage) {
   const core::Scene scene =
       core::parse_scene(column("splitting = { alpha = 0.9, max_particles = 1000 }"), "cap.toml");
   MpmSolver solver(scene, generate_particles(scene));
-  Particles& p = solver.mutable_particles();
-  for (std::size_t i = 0; i < p.size(); ++i)
-    p.velocity[i] = {0.0, 0.0, 200.0 * (p.position[i].z - 5.0)};
+  test::stretch_column(solver.mutable_particles());
   try {
     while (solver.time() < 30e-3) solver.step(solver.stable_time_step());
     FAIL() << "the particle count passed max_particles";
