@@ -33,7 +33,7 @@ struct StepCostModel {
   double crossing = 0.0;           // points sent per step, a fraction of a rank's points
   double point_bytes = 0.0;        // one point through the point-state schema
   int scatters = 2;                // scatters followed by the shared sums (MUSL: P2G, remap)
-  int energy_values = 11;          // values the energies sum (5 + 6 per body)
+  int energy_values = 17;          // values the energies sum (11 + 6 per body; one body)
   // Assumed: the interconnect, per rank.
   double latency = 0.0;                   // seconds per message
   double bandwidth = 0.0;                 // bytes per second

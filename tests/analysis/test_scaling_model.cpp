@@ -29,6 +29,7 @@ TEST(ScalingModel, AStepIsTheSumOfItsTermsAsWorkedByHand) {
   m.scan_seconds = 1e-8;
   m.crossing = 0.01;
   m.point_bytes = 400.0;
+  m.energy_values = 11;
   m.latency = 2e-6;
   m.bandwidth = 1e9;
   const StepEstimate e = estimate_step(d, m);
