@@ -175,14 +175,6 @@ void MpmSolver::balance_ranks() {
   balance_seconds_ += seconds_since(t0);
 }
 
-void MpmSolver::mark_owned_blocks() {
-  if (ranks_ == nullptr) return;
-  const int me = ranks_->rank();
-  owned_block_.resize(grid_.active_block_count());
-  for (std::size_t a = 0; a < owned_block_.size(); ++a)
-    owned_block_[a] = partition_.rank_of(grid_.block_coord(grid_.active_block(a))) == me ? 1 : 0;
-}
-
 void MpmSolver::sum_shared_blocks(std::span<const core::NodalArray> arrays) {
   const auto t0 = std::chrono::steady_clock::now();
   // The sums also say which blocks this rank books (owned_block_): its own, and those whose

@@ -259,8 +259,8 @@ class MpmSolver {
                            double dt, const StrainSweep& sweep, int thread_slot_offset);
   void reorder_particles();
   // On ranks (domain_decomposition.cpp): the shared blocks' sums of the given nodal arrays
-  // after a scatter, which active blocks this rank owns (after each binning), and the particles
-  // sent to the rank of their block after a step.
+  // after a scatter (which also mark the blocks this rank books, owned_block_), and the
+  // particles sent to the rank of their block after a step.
   // The particles this process holds, every rank's, divided among the ranks of ranks_ by the
   // recursive bisection of the blocks that hold them (a partition made anew, the same on every
   // rank): this rank keeps its own, in their present order, and the material batches, the
@@ -286,11 +286,11 @@ class MpmSolver {
   Energies reproducible_energies() const;
   // Particle i's kinetic energy, its affine velocity's (APIC) included.
   double particle_kinetic_energy(std::size_t i, bool affine) const;
-  void mark_owned_blocks();
   void migrate_particles();
   // Whether this rank books the node of `slot`: its nodal sums (external work) are booked by
   // one rank only, the block's owner, or the lowest rank holding it where the owner holds none
-  // of it (set by each shared sum: core/mpi/shared_block_sums.hpp).
+  // of it (set by each shared sum, core/mpi/shared_block_sums.hpp; the first of a step, P2G's,
+  // comes before any node is booked).
   bool books_node(std::size_t slot) const {
     return owned_block_.empty() || owned_block_[slot / core::BackgroundGrid::block_nodes] != 0;
   }

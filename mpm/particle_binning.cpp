@@ -78,7 +78,6 @@ void MpmSolver::bin_particles() {
   check_domains();
   if (points_) points_->bin(access(), cell_);
   grid_.activate(cell_);
-  mark_owned_blocks();
 }
 
 // CPDI (core/grid/cpdi.hpp): every domain must have its corners in its particle's cell or the
