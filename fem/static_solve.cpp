@@ -992,6 +992,7 @@ StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& se
   StaticResult last;
   last.displacement = u;
   body.write_states(last.stress, last.plastic_strain, last.line_stress, last.line_plastic_strain);
+  body.write_work(u, last.work);  // none yet: a first load step that fails hands on this state
   last.wall_force.assign(body.walls->size(), core::Vec3{});
   for (std::size_t n = 0; n < body.nodes; ++n) nodal[n] = body.f_ext[n] + start_force[n];
   reactions(last.start_reaction);

@@ -314,6 +314,34 @@ TEST(StaticPhase, LoadPastTheLimitStopsWithTheStepAndKeepsTheLastState) {
   std::printf("past the limit: %s\n", what.c_str());
 }
 
+// A first load step that cannot converge (a tolerance no residual reaches) stops the phase the
+// same way, the model left as the phase started (it once read the unconverged step's missing
+// work and crashed): at rest and unloaded, at t = 0, its frame written.
+TEST(StaticPhase, AFirstLoadStepThatFailsStopsWithTheStateThePhaseStartedFrom) {
+  const std::string text = column("element = \"full\"",
+                                  "[[phases]]\nkind = \"static\"\nend_time = 1.0\n"
+                                  "max_iterations = 2\ntolerance = 1e-30\n"
+                                  "[[phases]]\nkind = \"explicit\"\n");
+  const test::ScratchDir scratch;
+  SimulationOptions options;
+  options.output_directory = scratch.path().string();
+  Simulation sim(core::parse_scene(text, "c.toml"), options);
+  std::string what;
+  try {
+    sim.run();
+  } catch (const SimulationError& e) {
+    what = e.what();
+  }
+  EXPECT_NE(what.find("load step 1 of 10"), std::string::npos) << what;
+  EXPECT_NE(what.find("did not converge in 2 iterations"), std::string::npos) << what;
+  EXPECT_NE(what.find("load factor 0"), std::string::npos) << what;
+  EXPECT_EQ(sim.time(), 0.0);
+  EXPECT_EQ(top_displacement(sim), 0.0);
+  EXPECT_EQ(sim.energies().internal, 0.0);
+  EXPECT_TRUE(std::filesystem::exists(scratch.path() / "fields.h5"));
+  EXPECT_TRUE(std::filesystem::exists(scratch.path() / "static_phase.csv"));
+}
+
 // A prestressed tendon (bodies.prestress) held at both ends stays at rest with its stress,
 // holding the elastic energy sigma^2 A L / 2E.
 TEST(Prestress, TendonHeldAtBothEndsKeepsItsStress) {
