@@ -96,6 +96,12 @@ struct Simulation::Impl {
       run.agree = [link](double value) { return link->max_over_ranks(value); };
       run.rank = link->rank();
       run.ranks = link->ranks();
+      // A static or implicit phase is solved on rank 0 in a model of its own (TimeLoop).
+      run.whole_model = [this] { return coupling::make_model(scene); };
+      run.from_rank_0 = [link](std::vector<std::byte>& bytes) {
+        link->broadcast_from_rank_0(bytes);
+      };
+      run.add_over_ranks = [link](std::span<double> values) { link->sum_in_rank_order(values); };
     }
     loop = std::make_unique<core::TimeLoop>(*model, scene, run);
   }

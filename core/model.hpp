@@ -166,7 +166,8 @@ class Model {
   // Throws InputError for what the solve cannot take and SimulationError when a solve fails. A
   // model without meshes has nothing such a phase solves (check_scene refuses such a scene).
   virtual double run_implicit_phase(const PhaseSpec& phase, std::ostream* log);
-  // Per scene body, the stress of its live points now (BodyStress).
+  // Per scene body, the stress of its live points now (BodyStress); on ranks, of this rank's
+  // points (the time loop folds the ranks' together).
   virtual std::vector<BodyStress> body_stresses() const = 0;
 };
 

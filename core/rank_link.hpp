@@ -62,6 +62,8 @@ class RankLink {
   // nothing once their sizes settle.
   virtual void gather_into(std::span<const std::byte> mine,
                            std::vector<std::vector<std::byte>>& every, bool to_rank_0) = 0;
+  // Rank 0's `bytes` on every rank (the other ranks' replaced).
+  virtual void broadcast_from_rank_0(std::vector<std::byte>& bytes) = 0;
   // The same into new buffers.
   std::vector<std::vector<std::byte>> gather(std::span<const std::byte> mine,
                                              bool to_rank_0 = false) {

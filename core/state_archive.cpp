@@ -82,6 +82,62 @@ StateArchive::StateArchive(std::string path, Mode mode) : path_(std::move(path))
   names_.push_back("");
 }
 
+namespace {
+
+// The core driver's file access, nothing written to disk.
+Handle memory_fapl(const std::string& name) {
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+  if (fapl.get() < 0 || H5Pset_fapl_core(fapl.get(), std::size_t{1} << 20, false) < 0)
+    throw CheckpointError(name + ": cannot set up an in-memory archive: " + hdf5::hdf5_reason());
+  return fapl;
+}
+
+}  // namespace
+
+StateArchive::StateArchive(std::string name, InMemory)
+    : path_(std::move(name)), mode_(Mode::save), in_memory_(true) {
+  const QuietErrors quiet;
+  const Handle fapl = memory_fapl(path_);
+  file_ = H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
+  if (file_ < 0) throw CheckpointError(path_ + ": cannot create in memory: " + hdf5::hdf5_reason());
+  groups_.push_back(file_);
+  names_.push_back("");
+}
+
+StateArchive::StateArchive(std::string name, std::span<const std::byte> image)
+    : path_(std::move(name)), mode_(Mode::load), in_memory_(true) {
+  const QuietErrors quiet;
+  const Handle fapl = memory_fapl(path_);
+  // The image is copied into the driver's own buffer (the default flags).
+  if (H5Pset_file_image(fapl.get(), const_cast<std::byte*>(image.data()), image.size()) < 0)
+    throw CheckpointError(path_ + ": cannot take its image: " + hdf5::hdf5_reason());
+  file_ = H5Fopen(path_.c_str(), H5F_ACC_RDONLY, fapl.get());
+  if (file_ < 0) throw CheckpointError(path_ + ": cannot open its image: " + hdf5::hdf5_reason());
+  groups_.push_back(file_);
+  names_.push_back("");
+}
+
+std::vector<std::byte> StateArchive::image() {
+  if (!in_memory_ || mode_ != Mode::save || file_ < 0)
+    throw std::logic_error("StateArchive::image: an open in-memory save only");
+  const QuietErrors quiet;
+  for (std::size_t g = groups_.size(); g-- > 1;) H5Gclose(static_cast<hid_t>(groups_[g]));
+  groups_.resize(1);
+  names_.resize(1);
+  std::vector<std::byte> bytes;
+  ssize_t n = H5Fflush(file_, H5F_SCOPE_LOCAL) < 0 ? -1 : H5Fget_file_image(file_, nullptr, 0);
+  if (n >= 0) {
+    bytes.resize(static_cast<std::size_t>(n));
+    n = H5Fget_file_image(file_, bytes.data(), bytes.size());
+  }
+  const std::string reason = n < 0 ? hdf5::hdf5_reason() : std::string();
+  H5Fclose(static_cast<hid_t>(file_));
+  file_ = -1;
+  groups_.clear();
+  if (n < 0) throw CheckpointError(path_ + ": cannot take its image: " + reason);
+  return bytes;
+}
+
 StateArchive::~StateArchive() {
   const QuietErrors quiet;
   for (std::size_t g = groups_.size(); g-- > 1;) H5Gclose(static_cast<hid_t>(groups_[g]));

@@ -128,6 +128,12 @@ class StateArchive {
   enum class Mode { save, load };
   // save: creates `path` (replacing it); load: opens it for reading.
   StateArchive(std::string path, Mode mode);
+  // In memory, no file (HDF5's core driver): an archive saved this way gives its bytes, the
+  // file it would have written, with image(); one loaded reads such bytes. `name` stands for
+  // the path in messages. (The whole state handed from rank to rank: core/time_loop.cpp.)
+  struct InMemory {};
+  StateArchive(std::string name, InMemory);
+  StateArchive(std::string name, std::span<const std::byte> image);
   ~StateArchive();
   StateArchive(const StateArchive&) = delete;
   StateArchive& operator=(const StateArchive&) = delete;
@@ -195,6 +201,8 @@ class StateArchive {
   // Saving: writes everything out and closes the file; throws CheckpointError on a write
   // error (a full disk). The destructor closes without checking.
   void close();
+  // An in-memory save's bytes: writes everything out and closes it (as close()).
+  std::vector<std::byte> image();
   // "file: /group/name" for messages.
   std::string where(const char* name) const;
 
@@ -213,6 +221,7 @@ class StateArchive {
   std::int64_t file_ = -1;            // hid_t
   std::vector<std::int64_t> groups_;  // open groups, innermost last
   std::vector<std::string> names_;    // their names
+  bool in_memory_ = false;
 };
 
 }  // namespace afemp::core

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -241,6 +242,8 @@ void TimeLoop::run_phase(const PhaseSpec& phase) {
   try {
     if (phase.kind == PhaseKind::relaxation)
       run_relaxation(phase);
+    else if (options_.ranks > 1)
+      damped_ += solve_phase_on_rank_0(phase);
     else
       damped_ += model_.run_implicit_phase(phase, options_.phase_log);
   } catch (const SimulationError&) {
@@ -261,7 +264,7 @@ void TimeLoop::run_phase(const PhaseSpec& phase) {
   probes_->sample(model_, true);
   // A last phase's state is the run's final one, which finish() writes.
   if (frames_ && !finished()) model_.write_fields(*frames_);
-  if (options_.phase_log) print_switch(phase);
+  if (options_.phase_log || options_.ranks > 1) print_switch(phase);
   // The explicit phase's frames, rows and checkpoints fall due from here on, not at the times
   // the static phase passed over.
   if (rs.output_every > 0.0)
@@ -276,8 +279,91 @@ void TimeLoop::run_phase(const PhaseSpec& phase) {
     checkpoint(std::string("the end of the ") + to_string(phase.kind) + " phase");
 }
 
+double TimeLoop::solve_phase_on_rank_0(const PhaseSpec& phase) {
+  if (!options_.whole_model || !options_.from_rank_0)
+    throw std::logic_error("TimeLoop: a phase on ranks needs RunOptions::whole_model, from_rank_0");
+  // The state holds no pending events: they go to their files first (rank 0's).
+  const std::vector<EventLog> pending = model_.take_events();
+  if (events_) events_->write(pending);
+  model_.prepare_checkpoint();
+  enum Outcome : char { solved, simulation_error, other_error };
+  char outcome = solved;
+  double damped = 0.0;
+  std::string why;
+  std::exception_ptr error;
+  std::vector<std::byte> state;
+  const std::string kind = to_string(phase.kind);
+  std::unique_ptr<Model> whole;
+  if (options_.rank == 0) try {
+      std::vector<std::byte> before;
+      {
+        StateArchive a("the state the " + kind + " phase starts from", StateArchive::InMemory{});
+        model_.state(a);
+        before = a.image();
+      }
+      whole = options_.whole_model();
+      StateArchive in("the state the " + kind + " phase starts from", before);
+      whole->state(in);
+      damped = whole->run_implicit_phase(phase, options_.phase_log);
+      const std::vector<EventLog> rows = whole->take_events();
+      if (events_) events_->write(rows);
+      StateArchive out("the state the " + kind + " phase ends in", StateArchive::InMemory{});
+      whole->state(out);
+      state = out.image();
+    } catch (const std::exception& e) {
+      outcome = dynamic_cast<const SimulationError*>(&e) ? simulation_error : other_error;
+      why = e.what();
+      error = std::current_exception();
+      // The iterations of a solve that failed go to their file, as in one process.
+      if (whole && events_) try {
+          events_->write(whole->take_events());
+        } catch (const std::exception&) {
+        }
+    }
+  // What came of it (the outcome, the damped energy, rank 0's message), then the state.
+  std::vector<std::byte> head(1 + sizeof damped + why.size());
+  head[0] = static_cast<std::byte>(outcome);
+  std::memcpy(head.data() + 1, &damped, sizeof damped);
+  std::memcpy(head.data() + 1 + sizeof damped, why.data(), why.size());
+  options_.from_rank_0(head);
+  outcome = static_cast<char>(head[0]);
+  std::memcpy(&damped, head.data() + 1, sizeof damped);
+  why.assign(reinterpret_cast<const char*>(head.data()) + 1 + sizeof damped,
+             head.size() - 1 - sizeof damped);
+  if (error) std::rethrow_exception(error);
+  if (outcome == simulation_error)
+    throw SimulationError(model_.step_count(), model_.time(), "rank 0's " + kind + " phase",
+                          "solve", "rank 0 says why: " + why);
+  if (outcome != solved)
+    throw std::runtime_error("the " + kind + " phase failed on rank 0, which says why: " + why);
+  options_.from_rank_0(state);
+  StateArchive a("the state the " + kind + " phase ends in", state);
+  model_.state(a);
+  return damped;
+}
+
 void TimeLoop::print_switch(const PhaseSpec& phase) const {
   const Energies e = energies();
+  std::vector<BodyStress> stress = model_.body_stresses();
+  if (options_.ranks > 1) {
+    // Every rank's points: their count summed, the extremes of the ranks that have any.
+    std::vector<double> points, most;
+    for (const BodyStress& b : stress) {
+      const bool any = b.points > 0;
+      points.push_back(static_cast<double>(b.points));
+      most.insert(most.end(), {any ? b.max_von_mises : -1e300, any ? -b.min_pressure : -1e300,
+                               any ? b.max_pressure : -1e300});
+    }
+    options_.add_over_ranks(points);
+    for (double& v : most) v = options_.agree(v);
+    for (std::size_t b = 0; b < stress.size(); ++b) {
+      stress[b].points = static_cast<std::size_t>(points[b]);
+      stress[b].max_von_mises = most[3 * b];
+      stress[b].min_pressure = -most[3 * b + 1];
+      stress[b].max_pressure = most[3 * b + 2];
+    }
+  }
+  if (!options_.phase_log) return;
   char line[320];
   std::snprintf(line, sizeof line,
                 "the %s phase ends at t = %.6g: internal energy %.6g, kinetic %.6g, external "
@@ -286,7 +372,6 @@ void TimeLoop::print_switch(const PhaseSpec& phase) const {
                 books_damped_energy(scene_) ? (", damped " + std::to_string(e.damped)).c_str() : "",
                 finished() ? "the run ends with" : "the next phase starts from");
   *options_.phase_log << line;
-  const std::vector<BodyStress> stress = model_.body_stresses();
   for (std::size_t b = 0; b < stress.size() && b < scene_.bodies.size(); ++b) {
     if (stress[b].points == 0) continue;
     std::snprintf(line, sizeof line,
@@ -335,7 +420,7 @@ void TimeLoop::run_relaxation(const PhaseSpec& phase) {
       },
       hold);
   damped_ = damped_start + r.damped;
-  if (options_.phase_log) print_damping_force(r);
+  if (options_.phase_log || options_.ranks > 1) print_damping_force(r);
   model_.set_clock(phase.end_time);
   before = model_.energies().kinetic;
   for (int b : moving) {
@@ -351,7 +436,8 @@ void TimeLoop::run_relaxation(const PhaseSpec& phase) {
 // supports then carry the weight to no better than that). The bodies held at rest are left out
 // (what holds them is not the damping).
 void TimeLoop::print_damping_force(const RelaxationResult& r) const {
-  const Energies e = model_.energies();
+  const Energies e = model_.energies();  // collective on ranks
+  if (!options_.phase_log) return;
   const double g = norm(scene_.run.gravity);
   const std::vector<int> held = moving_bodies(scene_);
   char line[480];

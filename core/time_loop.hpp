@@ -58,6 +58,13 @@ struct RunOptions {
   // output_directory is a scratch copy nobody reads, which a restart starts anew rather than
   // continues, and it writes no checkpoint.
   int rank = 0, ranks = 1;
+  // On ranks, for a static or implicit phase, whose sparse solve assembles the whole model in
+  // one process (TimeLoop::solve_phase_on_rank_0): a new model of the scene, undivided, that
+  // rank 0 solves the phase in, and rank 0's bytes handed to every rank (the others' replaced).
+  std::function<std::unique_ptr<Model>()> whole_model;
+  std::function<void(std::vector<std::byte>&)> from_rank_0;
+  // On ranks: each value summed over the ranks (the same on every rank).
+  std::function<void(std::span<double>)> add_over_ranks;
 };
 
 class EventFiles;
@@ -114,10 +121,17 @@ class TimeLoop {
   // bodies with an initial velocity held at rest and set moving at the end; the clock then
   // reads the phase's end.
   void run_relaxation(const PhaseSpec& phase);
+  // A static or implicit phase on ranks: rank 0 gathers the state (as for a checkpoint), solves
+  // the phase in an undivided model of its own (RunOptions::whole_model), writes its events and
+  // hands the state it ends in to every rank, which each takes its part of as a restart does.
+  // Returns the energy the phase dissipated. A solve that fails throws on every rank: rank 0
+  // its own error, the others one that names it.
+  double solve_phase_on_rank_0(const PhaseSpec& phase);
   // To RunOptions::phase_log: the force the damping held on each body at convergence.
   void print_damping_force(const RelaxationResult& r) const;
   // What the explicit phase starts from, to RunOptions::phase_log: the energies, and per body
-  // its largest von Mises stress and its range of pressure (Model::body_stresses).
+  // its largest von Mises stress and its range of pressure (Model::body_stresses, every rank's:
+  // on ranks it is called on every rank, collective, whatever its phase_log).
   void print_switch(const PhaseSpec& phase) const;
   void visit(StateArchive& archive);
   double elapsed() const;

@@ -384,10 +384,6 @@ void CoupledModel::force_values(std::vector<double>& out) const {
 }
 
 void CoupledModel::divide_among_ranks(core::RankLink& link, const core::RankBalance& balance) {
-  if (!scene_.phases.empty())
-    throw std::invalid_argument(
-        "this coupled run cannot be divided among ranks yet: [[phases]] run on one rank only "
-        "(docs/parallel.md)");
   mpm_.divide_among_ranks(link, balance);  // refuses what the particles' stages cannot divide
   fe_.divide_among_ranks(link);
 }

@@ -137,8 +137,8 @@ class CoupledModel final : public core::Model {
   // couplings divide with them; the hexahedra that convert into particles (AFEMP) are sent
   // with their points' state to every rank, which makes the same particles of them and keeps
   // those of its blocks; the contacts of particles with mesh faces (surface contact) are sent
-  // to every rank and swept by each in the particles' id order (mpm/contact_nodes.hpp). Throws
-  // std::invalid_argument naming what does not divide yet: [[phases]].
+  // to every rank and swept by each in the particles' id order (mpm/contact_nodes.hpp). A static
+  // or implicit phase is solved on rank 0 (core::TimeLoop::solve_phase_on_rank_0).
   void divide_among_ranks(core::RankLink& link, const core::RankBalance& balance = {});
   // The meshes' static or implicit phase (the particles held); both clocks then read its end.
   double run_implicit_phase(const core::PhaseSpec& phase, std::ostream* log) override {

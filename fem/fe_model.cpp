@@ -37,12 +37,8 @@ void FeModel::write_fields(core::FieldWriter& writer) {
 }
 
 void FeModel::divide_among_ranks(core::RankLink& link) {
-  // A phase's static or implicit solve assembles the whole mesh on one process, and a
-  // relaxation prints each body's stresses from its points (body_stresses).
-  if (!scene_.phases.empty())
-    throw std::invalid_argument(
-        "this FE run cannot be divided among ranks yet: [[phases]] run on one rank only "
-        "(docs/parallel.md)");
+  // A phase's static or implicit solve assembles the whole mesh in one process: on ranks rank 0
+  // solves it in an undivided model of its own (core::TimeLoop::solve_phase_on_rank_0).
   solver_.divide_among_ranks(link);
 }
 
@@ -219,7 +215,7 @@ std::vector<core::BodyStress> FeModel::body_stresses() const {
     for (const ElementBatch& b : el->batches) {
       if (b.rigid) continue;
       for (std::size_t e = b.begin; e < b.end; ++e) {
-        if (!el->alive[e]) continue;
+        if (!el->alive[e] || !solver_.owns_element(b, e)) continue;
         const std::size_t p0 =
             b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
         for (int g = 0; g < b.points_per_element; ++g)

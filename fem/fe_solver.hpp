@@ -240,11 +240,18 @@ class FeSolver {
   // rank moves every node as one process does, to the bit; the state of an element's points stays
   // on its rank. Energies sum the ranks' element parts in rank order, the erosion records are
   // gathered on rank 0 (take_erosion_events), and every call below that reads the element state is
-  // collective. A scene with a static, implicit or relaxation phase (FeModel) or coupled to
-  // particles (api/simulation.cpp) is refused before it is divided.
+  // collective. A static or implicit phase is solved on rank 0 in an undivided model
+  // (core::TimeLoop::solve_phase_on_rank_0), whose state every rank then takes.
   void divide_among_ranks(core::RankLink& link);
   bool on_ranks() const { return ranks_ != nullptr; }
   int rank() const;
+  // Whether element e of batch b is this rank's, the one that keeps its points' state (every
+  // element in one process).
+  bool owns_element(const ElementBatch& b, std::size_t e) const {
+    return ranks_ == nullptr ||
+           ((e - b.begin) / kRankRun) % static_cast<std::size_t>(rank_count_) ==
+               static_cast<std::size_t>(rank_);
+  }
   // Collective: rank 0's copies of the other ranks' elements take their points' state, bulk
   // viscosity and hourglass forces (for the frame, the probes or the checkpoint rank 0 writes).
   // It changes nothing any rank's update reads; nothing in one process.

@@ -19,11 +19,6 @@ MpmModel::MpmModel(const core::Scene& scene)
       history_names_(core::history_field_names(scene)) {}
 
 void MpmModel::divide_among_ranks(core::RankLink& link, const core::RankBalance& balance) {
-  // A relaxation phase prints each body's stresses from its points (body_stresses).
-  if (!scene_.phases.empty())
-    throw std::invalid_argument(
-        "this MPM run cannot be divided among ranks yet: [[phases]] run on one rank only "
-        "(docs/parallel.md)");
   solver_.divide_among_ranks(link, balance);
 }
 

@@ -37,4 +37,8 @@ void MpiRankLink::gather_into(std::span<const std::byte> mine,
   gather_bytes(mine, every, to_rank_0);
 }
 
+void MpiRankLink::broadcast_from_rank_0(std::vector<std::byte>& bytes) {
+  broadcast_bytes(bytes);
+}
+
 }  // namespace afemp::core

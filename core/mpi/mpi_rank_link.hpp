@@ -17,6 +17,7 @@ class MpiRankLink final : public RankLink {
   std::vector<RankMessage> exchange(std::span<const RankMessage> outgoing) override;
   void gather_into(std::span<const std::byte> mine, std::vector<std::vector<std::byte>>& every,
                    bool to_rank_0) override;
+  void broadcast_from_rank_0(std::vector<std::byte>& bytes) override;
 };
 
 }  // namespace afemp::core

@@ -5,6 +5,7 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <limits>
 #include <stdexcept>
@@ -169,6 +170,17 @@ void gather_bytes(std::span<const std::byte> mine, std::vector<std::vector<std::
   }
   check(MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE),
         "MPI_Waitall");
+}
+
+void broadcast_bytes(std::vector<std::byte>& bytes) {
+  auto size = static_cast<std::int64_t>(bytes.size());
+  check(MPI_Bcast(&size, 1, MPI_INT64_T, 0, MPI_COMM_WORLD), "MPI_Bcast");
+  bytes.resize(static_cast<std::size_t>(size));
+  constexpr std::size_t piece = std::size_t{1} << 30;
+  for (std::size_t at = 0; at < bytes.size(); at += piece)
+    check(MPI_Bcast(bytes.data() + at, as_count(std::min(piece, bytes.size() - at)), MPI_BYTE, 0,
+                    MPI_COMM_WORLD),
+          "MPI_Bcast");
 }
 
 }  // namespace afemp::core

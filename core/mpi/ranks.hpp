@@ -43,6 +43,9 @@ std::vector<RankMessage> exchange(std::span<const RankMessage> outgoing);
 void gather_bytes(std::span<const std::byte> mine, std::vector<std::vector<std::byte>>& every,
                   bool to_rank_0);
 
+// Rank 0's `bytes` on every rank, in pieces of at most 2^30 bytes (MPI's counts are ints).
+void broadcast_bytes(std::vector<std::byte>& bytes);
+
 // Stops every rank of the run with exit status `code` (MPI_Abort): a rank that failed alone
 // while the others wait for it in a sum.
 [[noreturn]] void abort_ranks(int code);

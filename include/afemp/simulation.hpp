@@ -120,7 +120,8 @@ struct SimulationOptions {
   bool defer_start = false;
   /// A scene's static and implicit phases print each Newton iteration here when set, and every
   /// phase what the next starts from (`afemp run`: standard output); OUTPUT/static_phase.csv
-  /// and implicit_phase.csv have the iterations in any case.
+  /// and implicit_phase.csv have the iterations in any case. On ranks rank 0 solves a static or
+  /// implicit phase and alone prints its iterations.
   std::ostream* phase_log = nullptr;
   /// A run divided among MPI ranks (docs/parallel.md): every rank builds the Simulation with
   /// the same scene and its link to the others, and makes the same calls in the same order.

@@ -8,7 +8,10 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -121,6 +124,52 @@ TEST(StateArchive, EveryKindOfItemReadsBackBitForBit) {
   const std::vector<double> raw = read_dataset(path, "model/v", &dims);
   EXPECT_EQ(dims, (std::vector<std::size_t>{2, 3}));
   EXPECT_EQ(raw[5], 7e300);
+}
+
+// In memory (how a state goes from rank to rank): the image is the file a save would write,
+// readable from the bytes and, written out, as a checkpoint file; no file appears on the way;
+// bytes that are no HDF5 file are refused with the archive's name.
+TEST(StateArchive, AnInMemoryImageReadsBackAsItsBytesAndAsAFile) {
+  test::ScratchDir dir;
+  std::vector<Vec3> v{{1, 2, 3}, {4.5, -6, 7e300}};
+  double time = 0.1 + 0.2;
+  std::vector<std::byte> image;
+  {
+    StateArchive a("the state", StateArchive::InMemory{});
+    const StateArchive::Group g(a, "model");
+    a.item("v", v);
+    a.item("time", time);
+    image = a.image();
+  }
+  EXPECT_GT(image.size(), 100u);
+  EXPECT_FALSE(std::filesystem::exists("the state"));
+  const std::string path = dir.file("image.h5");
+  {
+    std::ofstream out(path, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(image.data()),
+              static_cast<std::streamsize>(image.size()));
+  }
+  for (int from_file = 0; from_file < 2; ++from_file) {
+    std::vector<Vec3> v1;
+    double time1 = 0.0;
+    std::unique_ptr<StateArchive> a =
+        from_file ? std::make_unique<StateArchive>(path, StateArchive::Mode::load)
+                  : std::make_unique<StateArchive>("the state", image);
+    const StateArchive::Group g(*a, "model");
+    a->item("v", v1);
+    a->item("time", time1);
+    ASSERT_EQ(v1.size(), 2u) << from_file;
+    EXPECT_EQ(v1[1].z, 7e300);
+    EXPECT_EQ(time1, 0.1 + 0.2);
+  }
+  std::vector<std::byte> junk(image.size(), std::byte{7});
+  try {
+    StateArchive a("the state", junk);
+    FAIL() << "junk read as an archive";
+  } catch (const CheckpointError& e) {
+    EXPECT_NE(std::string(e.what()).find("the state: cannot open its image"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(StateArchive, AMissingOrMismatchedItemIsRefusedNamingFileAndItem) {

@@ -17,6 +17,7 @@
 #include "afemp/run_directory.hpp"
 #include "copper_bar_on_wall.hpp"
 #include "core/output/history.hpp"
+#include "fem/phase_test_support.hpp"
 #include "striker_on_plate.hpp"
 #include "taylor_bar_scene.hpp"
 #include "test_support.hpp"
@@ -451,33 +452,74 @@ TEST(Cli, CoupledRunDividedAmongMpiRanksGivesTheOneProcessHistoryAndProbes) {
   }
 }
 
-// Reference: what does not divide is refused on every rank before anything is written, rank 0
-// naming it once: a coupled scene (its particles meet a mesh's faces in surface contact, which
-// divides) that starts with a relaxation phase.
-TEST(Cli, RunOnMpiRanksRefusesPhasesWritingNothing) {
+// Reference: the run in one process. A steel column (fem/phase_test_support.hpp) solved static
+// under its weight, then run explicitly: on 2 ranks rank 0 solves the phase in an undivided
+// model and every rank takes its state. The history's energies and the top's velocity within
+// 1e-10 of their largest magnitude (the explicit steps add the ranks' elements in rank order;
+// the sparse solve's round-off follows the BLAS threads, which the launcher's binding changes),
+// and static_phase.csv written by rank 0 with the one-process iterations. A solve that cannot
+// converge (tolerance 1e-30) stops every rank with the one-process exit status, rank 0 giving
+// the solver's message and its iterations' file, the other rank naming rank 0's.
+TEST(Cli, RunOnMpiRanksSolvesAStaticPhaseOnRankZeroAsOneProcessDoes) {
   test::ScratchDir dir;
+  const std::string phases =
+      "[[phases]]\nkind = \"static\"\nend_time = 1.0\nload_steps = 2\n"
+      "[[phases]]\nkind = \"explicit\"\n";
   const std::string path =
-      dir.write("mesh.toml",
-                "[run]\nend_time = 1.0\nmax_steps = 5\n"
-                "[grid]\ncell = 1.0\nmin = [-2, -2, -2]\nmax = [8, 4, 4]\n"
-                "[[phases]]\nkind = \"relaxation\"\nend_time = 0.5\n"
-                "[[phases]]\nkind = \"explicit\"\nend_time = 1.0\n"
-                "[materials.steel]\ndensity = 7.85e-3\nE = 200e3\nnu = 0.3\n"
-                "[[bodies]]\nname = \"cube\"\nmaterial = \"steel\"\n"
-                "discretisation = \"hexahedra\"\nmesh = { size = 1.0 }\nvelocity = [3, 0, 0]\n"
-                "shape = { box = { min = [0, 0, 0], max = [2, 2, 2] } }\n"
-                "[[bodies]]\nname = \"block\"\nmaterial = \"steel\"\n"
-                "shape = { box = { min = [3, 0, 0], max = [5, 2, 2] } }\n"
-                "[[contact]]\nbodies = [\"cube\", \"block\"]\nmethod = \"surface\"\n");
-  const std::string out = dir.file("out");
-  const test::CommandResult r = test::run_captured(
-      mpiexec(2) + "\"" + AFEMP_BINARY + "\" run \"" + path + "\" --threads 1 -o \"" + out + "\"",
-      dir);
-  EXPECT_NE(r.exit_code, 0) << r.out << r.err;
-  const std::string why = "[[phases]] run on one rank only";
-  EXPECT_NE(r.err.find(why), std::string::npos) << r.err;
-  EXPECT_EQ(r.err.find(why), r.err.rfind(why)) << "said once: " << r.err;
-  EXPECT_FALSE(std::filesystem::exists(out)) << "nothing written";
+      dir.write("column.toml", afemp::test::column_scene("element = \"full\"", phases, 1.01));
+  const std::string afemp = "\"" + std::string(AFEMP_BINARY) + "\"";
+  const std::string one = dir.file("one"), two = dir.file("two");
+  const test::CommandResult a =
+      test::run_captured(afemp + " run \"" + path + "\" --threads 1 -o \"" + one + "\"", dir);
+  ASSERT_EQ(a.exit_code, 0) << a.out << a.err;
+  const test::CommandResult b = test::run_captured(
+      mpiexec(2) + afemp + " run \"" + path + "\" --threads 1 -o \"" + two + "\"", dir);
+  ASSERT_EQ(b.exit_code, 0) << b.out << b.err;
+  EXPECT_NE(b.out.find("the static phase ends at t = 1"), std::string::npos) << b.out;
+
+  const core::CsvTable h1 = core::read_csv(one + "/history.csv");
+  const core::CsvTable h2 = core::read_csv(two + "/history.csv");
+  ASSERT_EQ(h1.header, h2.header);
+  ASSERT_EQ(h1.rows.size(), h2.rows.size());
+  EXPECT_GT(h1.rows.size(), 10u);
+  for (const char* name : {"time", "kinetic", "internal", "external_work", "column.vz"}) {
+    const std::size_t c = h1.column(name);
+    double scale = 0.0;
+    for (const auto& row : h1.rows) scale = std::max(scale, std::abs(row[c]));
+    EXPECT_GT(scale, 0.0) << name;
+    for (std::size_t r = 0; r < h1.rows.size(); ++r)
+      EXPECT_NEAR(h2.rows[r][c], h1.rows[r][c], 1e-10 * scale) << name << ", row " << r;
+  }
+  const core::CsvTable s1 = core::read_csv(one + "/static_phase.csv");
+  const core::CsvTable s2 = core::read_csv(two + "/static_phase.csv");
+  ASSERT_EQ(s1.header, s2.header);
+  ASSERT_EQ(s1.rows.size(), s2.rows.size());
+  EXPECT_GE(s1.rows.size(), 2u);  // a row per Newton iteration, two load steps
+
+  const std::string bad = dir.write(
+      "bad.toml", afemp::test::column_scene("element = \"full\"",
+                                            "[[phases]]\nkind = \"static\"\nend_time = 1.0\n"
+                                            "max_iterations = 2\ntolerance = 1e-30\n"
+                                            "[[phases]]\nkind = \"explicit\"\n",
+                                            1.01));
+  const std::string bad_one = dir.file("bad_one"), bad_two = dir.file("bad_two");
+  const test::CommandResult c =
+      test::run_captured(afemp + " run \"" + bad + "\" --threads 1 -o \"" + bad_one + "\"", dir);
+  EXPECT_EQ(c.exit_code, 3) << c.out << c.err;
+  const test::CommandResult d = test::run_captured(
+      mpiexec(2) + afemp + " run \"" + bad + "\" --threads 1 -o \"" + bad_two + "\"", dir);
+  EXPECT_EQ(d.exit_code, c.exit_code) << d.out << d.err;
+  const std::string why = "did not converge in 2 iterations";
+  EXPECT_NE(c.err.find(why), std::string::npos) << c.err;
+  EXPECT_NE(d.err.find("afemp: simulation stopped: step 0 (t = 0): the static phase"),
+            std::string::npos)
+      << d.err;
+  EXPECT_NE(d.err.find("afemp (rank 1 of 2): simulation stopped: step 0 (t = 0): rank 0's "
+                       "static phase, field 'solve': rank 0 says why"),
+            std::string::npos)
+      << d.err;
+  EXPECT_EQ(core::read_csv(bad_two + "/static_phase.csv").rows.size(),
+            core::read_csv(bad_one + "/static_phase.csv").rows.size());
 }
 
 // Reference: the uninterrupted run in one process (100 steps). The bar on 4 ranks stops at step
