@@ -288,6 +288,23 @@ TEST(StaticPhase, WallHoldsTheColumnInTheStaticPhase) {
               top_displacement(sim), u_exact, weight, fastest / swing);
 }
 
+// A run's options writing its files into `scratch`.
+SimulationOptions writing_to(const test::ScratchDir& scratch) {
+  SimulationOptions options;
+  options.output_directory = scratch.path().string();
+  return options;
+}
+
+// Runs `sim` until a SimulationError stops it: its message ("" for a run that ended).
+std::string run_until_stopped(Simulation& sim) {
+  try {
+    sim.run();
+  } catch (const SimulationError& e) {
+    return e.what();
+  }
+  return "";
+}
+
 // Past the limit load the static phase stops with the load step, the residual and the element
 // that yields most; the last converged step's state is the model's and its frame is written.
 TEST(StaticPhase, LoadPastTheLimitStopsWithTheStepAndKeepsTheLastState) {
@@ -298,15 +315,8 @@ TEST(StaticPhase, LoadPastTheLimitStopsWithTheStepAndKeepsTheLastState) {
   text.replace(text.find("nu = 0.3\n"), 9,
                "nu = 0.3\nstrength = { model = \"j2\", yield = 100, tangent_modulus = 0 }\n");
   const test::ScratchDir scratch;
-  SimulationOptions options;
-  options.output_directory = scratch.path().string();
-  Simulation sim(core::parse_scene(text, "c.toml"), options);
-  std::string what;
-  try {
-    sim.run();
-  } catch (const SimulationError& e) {
-    what = e.what();
-  }
+  Simulation sim(core::parse_scene(text, "c.toml"), writing_to(scratch));
+  const std::string what = run_until_stopped(sim);
   EXPECT_NE(what.find("the static phase, load step"), std::string::npos) << what;
   EXPECT_NE(what.find("yields most"), std::string::npos) << what;
   EXPECT_TRUE(std::filesystem::exists(scratch.path() / "history.csv"));
@@ -323,15 +333,8 @@ TEST(StaticPhase, AFirstLoadStepThatFailsStopsWithTheStateThePhaseStartedFrom) {
                                   "max_iterations = 2\ntolerance = 1e-30\n"
                                   "[[phases]]\nkind = \"explicit\"\n");
   const test::ScratchDir scratch;
-  SimulationOptions options;
-  options.output_directory = scratch.path().string();
-  Simulation sim(core::parse_scene(text, "c.toml"), options);
-  std::string what;
-  try {
-    sim.run();
-  } catch (const SimulationError& e) {
-    what = e.what();
-  }
+  Simulation sim(core::parse_scene(text, "c.toml"), writing_to(scratch));
+  const std::string what = run_until_stopped(sim);
   EXPECT_NE(what.find("load step 1 of 10"), std::string::npos) << what;
   EXPECT_NE(what.find("did not converge in 2 iterations"), std::string::npos) << what;
   EXPECT_NE(what.find("load factor 0"), std::string::npos) << what;
