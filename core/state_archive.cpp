@@ -121,9 +121,7 @@ std::vector<std::byte> StateArchive::image() {
   if (!in_memory_ || mode_ != Mode::save || file_ < 0)
     throw std::logic_error("StateArchive::image: an open in-memory save only");
   const QuietErrors quiet;
-  for (std::size_t g = groups_.size(); g-- > 1;) H5Gclose(static_cast<hid_t>(groups_[g]));
-  groups_.resize(1);
-  names_.resize(1);
+  close_groups();
   std::vector<std::byte> bytes;
   ssize_t n = H5Fflush(file_, H5F_SCOPE_LOCAL) < 0 ? -1 : H5Fget_file_image(file_, nullptr, 0);
   if (n >= 0) {
@@ -148,9 +146,7 @@ StateArchive::~StateArchive() {
 void StateArchive::close() {
   if (file_ < 0) return;
   const QuietErrors quiet;
-  for (std::size_t g = groups_.size(); g-- > 1;) H5Gclose(static_cast<hid_t>(groups_[g]));
-  groups_.resize(1);
-  names_.resize(1);
+  close_groups();
   const herr_t flushed = mode_ == Mode::save ? H5Fflush(file_, H5F_SCOPE_LOCAL) : 0;
   // The flush's reason (a full disk) before the close clears the error stack: a close after a
   // failed flush fails too, with an internal error of the metadata cache that says nothing.
@@ -161,6 +157,12 @@ void StateArchive::close() {
   if (flushed < 0 || closed < 0)
     throw CheckpointError(
         path_ + ": cannot write checkpoint: " + (flushed < 0 ? flush_reason : hdf5::hdf5_reason()));
+}
+
+void StateArchive::close_groups() {
+  for (std::size_t g = groups_.size(); g-- > 1;) H5Gclose(static_cast<hid_t>(groups_[g]));
+  groups_.resize(1);
+  names_.resize(1);
 }
 
 std::string StateArchive::where(const char* name) const {

@@ -209,6 +209,7 @@ class StateArchive {
  private:
   void push_group(const std::string& name);
   void pop_group();
+  void close_groups();  // every group but the file's root
   void write(const char* name, const void* data, state_detail::Scalar scalar, std::size_t n,
              std::size_t components);
   std::size_t stored_count(const char* name, state_detail::Scalar scalar,

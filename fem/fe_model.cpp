@@ -210,18 +210,11 @@ std::vector<core::EventLog> FeModel::take_events() {
 
 std::vector<core::BodyStress> FeModel::body_stresses() const {
   std::vector<core::BodyStress> out(scene_.bodies.size());
-  for (const ElementStore* el : {static_cast<const ElementStore*>(&solver_.hexahedra()),
-                                 static_cast<const ElementStore*>(&solver_.trusses())})
-    for (const ElementBatch& b : el->batches) {
-      if (b.rigid) continue;
-      for (std::size_t e = b.begin; e < b.end; ++e) {
-        if (!el->alive[e] || !solver_.owns_element(b, e)) continue;
-        const std::size_t p0 =
-            b.point_begin + (e - b.begin) * static_cast<std::size_t>(b.points_per_element);
-        for (int g = 0; g < b.points_per_element; ++g)
-          out[static_cast<std::size_t>(b.body)].add(el->stress[p0 + static_cast<std::size_t>(g)]);
-      }
-    }
+  solver_.for_each_live_element([&](const ElementStore& el, const ElementBatch& b, std::size_t p0) {
+    if (b.rigid) return;
+    for (int g = 0; g < b.points_per_element; ++g)
+      out[static_cast<std::size_t>(b.body)].add(el.stress[p0 + static_cast<std::size_t>(g)]);
+  });
   return out;
 }
 

@@ -245,13 +245,10 @@ class FeSolver {
   void divide_among_ranks(core::RankLink& link);
   bool on_ranks() const { return ranks_ != nullptr; }
   int rank() const;
-  // Whether element e of batch b is this rank's, the one that keeps its points' state (every
-  // element in one process).
-  bool owns_element(const ElementBatch& b, std::size_t e) const {
-    return ranks_ == nullptr ||
-           ((e - b.begin) / kRankRun) % static_cast<std::size_t>(rank_count_) ==
-               static_cast<std::size_t>(rank_);
-  }
+  // f(store, batch, first point) for each live element of this rank's share (every element in
+  // one process), in element order: the points whose state this rank keeps.
+  template <class F>
+  void for_each_live_element(F&& f) const;
   // Collective: rank 0's copies of the other ranks' elements take their points' state, bulk
   // viscosity and hourglass forces (for the frame, the probes or the checkpoint rank 0 writes).
   // It changes nothing any rank's update reads; nothing in one process.
@@ -444,10 +441,6 @@ class FeSolver {
   static constexpr std::size_t kRankRun = 64;
   template <class F>
   void for_each_share(const ElementBatch& b, int r, F&& f) const;
-  // f(store, batch, first point) for each live element of this rank's share (every element in
-  // one process), in element order.
-  template <class F>
-  void for_each_live_element(F&& f) const;
   template <class F>
   void sweep_share(const ElementBatch& b, F&& f) const;
   void share_element_results();
