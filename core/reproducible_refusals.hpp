@@ -14,20 +14,13 @@ namespace afemp::core {
 inline std::optional<std::string> reproducible_refusal(const Scene& scene) {
   if (!scene.run.reproducible) return std::nullopt;
   std::string what;
-  const BodySpec* mesh = nullptr;
+  // Particles: a body of them, or hexahedra that convert into them. The couplings' mesh nodes
+  // add their terms into the grid's fixed-point sums as particles do (mpm/grid_points.hpp).
   bool particles = false;
-  for (const BodySpec& b : scene.bodies) {
-    if (b.discretisation == Discretisation::particles)
-      particles = true;
-    else if (mesh == nullptr)
-      mesh = &b;
-  }
+  for (const BodySpec& b : scene.bodies)
+    particles = particles || b.discretisation == Discretisation::particles || b.conversion;
   const MpmSettings& m = scene.mpm;
-  if (mesh != nullptr && particles)
-    what = "meshes and particles together (body \"" + mesh->name +
-           "\" beside particles): the couplings' sums on the grid are not made independent of "
-           "their order yet";
-  else if (particles && (m.shape == ShapeFunction::cpdi1 || m.shape == ShapeFunction::cpdi2))
+  if (particles && (m.shape == ShapeFunction::cpdi1 || m.shape == ShapeFunction::cpdi2))
     what =
         "the CPDI shape functions (mpm.shape_function): their gradients have no bound the "
         "nodal sums' fixed point can be scaled by";
@@ -44,8 +37,8 @@ inline std::optional<std::string> reproducible_refusal(const Scene& scene) {
     what = "[[phases]]";
   if (what.empty()) return std::nullopt;
   return "the reproducible mode (results bit-identical on any rank and thread count) covers "
-         "scenes of meshes, and scenes of particles with the linear hat, uGIMP or the "
-         "B-splines, walls and grid contact; this scene has " +
+         "scenes of meshes, of particles with the linear hat, uGIMP or the B-splines, walls and "
+         "grid contact, and of both coupled; this scene has " +
          what + "; allowed: reproducible = false, or a scene without it (docs/parallel.md)";
 }
 

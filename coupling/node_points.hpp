@@ -79,6 +79,8 @@ class NodePoints final : public mpm::GridPoints {
   std::span<const Vec3> positions() const override { return partition_points; }
   void bin(const mpm::GridStepAccess& access, std::vector<std::int64_t>& cells) override;
   void to_grid(const mpm::GridStepAccess& access, bool mass_momentum, bool force) override;
+  void raise_fixed_bounds(const mpm::GridStepAccess& access,
+                          mpm::FixedBounds& bounds) const override;
   void contact_surfaces(const mpm::GridStepAccess& access, bool gradient) override;
   void from_grid(const mpm::GridStepAccess& access) override;
   void remap(const mpm::GridStepAccess& access) override;

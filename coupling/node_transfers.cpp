@@ -46,7 +46,43 @@ void for_each_node_point(const NodePoints& q, const GridStepAccess& a, F&& f) {
   }
 }
 
+// The reproducible mode (mpm/grid_points.hpp, FixedGridSums): a point's term into a fixed-point
+// sum, a scalar or a vector's three components at the slot.
+void add_fixed(std::vector<core::Fixed>& sum, std::size_t slot, double term,
+               const core::FixedScale& scale, bool& ok) {
+  sum[slot] += core::to_fixed(term, scale, ok);
+}
+
+void add_fixed(std::vector<core::Fixed>& sum, std::size_t slot, const Vec3& term,
+               const core::FixedScale& scale, bool& ok) {
+  for (int c = 0; c < 3; ++c)
+    sum[3 * slot + static_cast<std::size_t>(c)] += core::to_fixed(term[c], scale, ok);
+}
+
+double largest_component(const Vec3& v) {
+  return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+}
+
 }  // namespace
+
+void NodePoints::raise_fixed_bounds(const GridStepAccess& a, mpm::FixedBounds& b) const {
+  // A weight is at most 1 and a weight's gradient at most 1 / h a component (the trilinear
+  // hat); 2 / h as for the particles. The momentum's bound covers the remapped momentum, whose
+  // terms remap() adds: a contact node's m v + dt f + m dv.
+  const double gravity = largest_component(a.scene.run.gravity);
+  const double grad = 2.0 * a.grid.inverse_cell();
+  for (std::size_t k = 0; k < size(); ++k) {
+    const double m = mass[k];
+    if (!(m > 0.0)) continue;
+    const Vec3 remapped =
+        bonded[k] ? m * velocity[k] : m * velocity[k] + a.dt * force[k] + m * motion[k];
+    b.mass = std::max(b.mass, m);
+    b.momentum =
+        std::max({b.momentum, m * largest_component(velocity[k]), largest_component(remapped)});
+    b.force = std::max(b.force, largest_component(force[k]) + m * gravity);
+    b.gradient = std::max(b.gradient, m * grad);
+  }
+}
 
 void NodePoints::bin(const GridStepAccess& a, std::vector<std::int64_t>& cells) {
   const core::BackgroundGrid& g = a.grid;
@@ -75,6 +111,7 @@ void NodePoints::to_grid(const GridStepAccess& a, bool mass_momentum, bool force
   NodePoints& q = *this;
   core::BackgroundGrid& g = a.grid;
   mpm::SelfUpdatedShare& shared = a.share;
+  mpm::FixedGridSums* fixed = a.fixed;  // the reproducible mode's sums, or nullptr
   const Vec3 gravity = a.scene.run.gravity;
   const std::size_t stride = g.slot_count();
   // Contact nodes in a field that also holds particles or bonded nodes (SelfUpdatedShare).
@@ -92,15 +129,28 @@ void NodePoints::to_grid(const GridStepAccess& a, bool mass_momentum, bool force
       shared.mass.assign(g.field_slot_count(), 0.0);
       shared.start.assign(g.field_slot_count(), Vec3{});
       shared.updated.assign(g.field_slot_count(), Vec3{});
+      if (fixed) {
+        fixed->share_mass.assign(g.field_slot_count(), 0);
+        fixed->share_start.assign(3 * g.field_slot_count(), 0);
+        fixed->share_updated.assign(3 * g.field_slot_count(), 0);
+      }
     }
   }
+  bool ok = true;
   for_each_node_point(q, a, [&](std::size_t k, const LinearStencil& st, const auto& slots) {
     const double m = q.mass[k];
     const bool in_shared = shared.any && shares(k, slots[0]);
     for (int n = 0; n < LinearStencil::nodes; ++n) {
       const std::size_t s = slots[static_cast<std::size_t>(n)];
       const double w = st.w(n);
-      if (mass_momentum) {
+      if (mass_momentum && fixed) {
+        add_fixed(fixed->mass, s, w * m, fixed->mass_scale, ok);
+        add_fixed(fixed->momentum, s, (w * m) * q.velocity[k], fixed->momentum_scale, ok);
+        if (in_shared) {
+          add_fixed(fixed->share_mass, s, w * m, fixed->mass_scale, ok);
+          add_fixed(fixed->share_start, s, (w * m) * q.velocity[k], fixed->momentum_scale, ok);
+        }
+      } else if (mass_momentum) {
         g.mass[s] += w * m;
         g.momentum[s] += (w * m) * q.velocity[k];
         if (in_shared) {
@@ -108,14 +158,20 @@ void NodePoints::to_grid(const GridStepAccess& a, bool mass_momentum, bool force
           shared.start[s] += (w * m) * q.velocity[k];
         }
       }
-      if (force_too) {
+      // Contact nodes bring their gravity in the FE update's force; bonded ones get it here.
+      const bool gravity_here = q.bonded[k] && a.plan.gravity;
+      if (force_too && fixed) {
+        add_fixed(fixed->force, s, w * q.force[k], fixed->force_scale, ok);
+        if (in_shared) add_fixed(fixed->share_updated, s, w * q.force[k], fixed->force_scale, ok);
+        if (gravity_here) add_fixed(fixed->force, s, (w * m) * gravity, fixed->force_scale, ok);
+      } else if (force_too) {
         g.force[s] += w * q.force[k];
         if (in_shared) shared.updated[s] += w * q.force[k];
-        // Contact nodes bring their gravity in the FE update's force.
-        if (q.bonded[k] && a.plan.gravity) g.force[s] += (w * m) * gravity;
+        if (gravity_here) g.force[s] += (w * m) * gravity;
       }
     }
   });
+  if (fixed && !ok) fixed->points_ok = false;
 }
 
 void NodePoints::from_grid(const GridStepAccess& a) {
@@ -179,21 +235,31 @@ void NodePoints::share_results(core::RankLink& ranks) {
 void NodePoints::remap(const GridStepAccess& a) {
   NodePoints& q = *this;
   core::BackgroundGrid& g = a.grid;
+  mpm::FixedGridSums* fixed = a.fixed;
+  bool ok = true;
   for_each_node_point(q, a, [&](std::size_t k, const LinearStencil& st, const auto& slots) {
     const double m = q.mass[k];
     // The updated momentum: bonded nodes hold their updated velocity; a contact node's is the
     // FE update's v^{n+1/2} plus the contact change.
     const Vec3 mv =
         q.bonded[k] ? m * q.velocity[k] : m * q.velocity[k] + a.dt * q.force[k] + m * q.motion[k];
-    for (int n = 0; n < LinearStencil::nodes; ++n)
-      g.velocity_remap[slots[static_cast<std::size_t>(n)]] += st.w(n) * mv;
+    for (int n = 0; n < LinearStencil::nodes; ++n) {
+      const std::size_t s = slots[static_cast<std::size_t>(n)];
+      if (fixed)
+        add_fixed(fixed->remap, s, st.w(n) * mv, fixed->momentum_scale, ok);
+      else
+        g.velocity_remap[s] += st.w(n) * mv;
+    }
   });
+  if (fixed && !ok) fixed->points_ok = false;
 }
 
 void NodePoints::contact_surfaces(const GridStepAccess& a, bool gradient) {
   NodePoints& q = *this;
   core::BackgroundGrid& g = a.grid;
   const std::size_t stride = g.slot_count();
+  mpm::FixedGridSums* fixed = gradient ? a.fixed : nullptr;
+  bool ok = true;
   for_each_node_point(q, a, [&](std::size_t k, const LinearStencil& st, const auto& slots) {
     if (!a.field_in_contact[slots[0] / stride]) return;
     const double m = q.mass[k];
@@ -201,8 +267,12 @@ void NodePoints::contact_surfaces(const GridStepAccess& a, bool gradient) {
       const std::size_t s = slots[static_cast<std::size_t>(n)];
       if (gradient) {
         // m n / h: the size of a mass gradient, for fields that also hold particles.
-        g.mass_gradient[s] +=
+        const Vec3 term =
             q.surface[k] ? (st.w(n) * m * g.inverse_cell()) * q.normal[k] : m * st.grad(n);
+        if (fixed)
+          add_fixed(fixed->gradient, s, term, fixed->gradient_scale, ok);
+        else
+          g.mass_gradient[s] += term;
         continue;
       }
       const Vec3& towards = a.contact_normal[s];
@@ -217,6 +287,7 @@ void NodePoints::contact_surfaces(const GridStepAccess& a, bool gradient) {
       if (r > g.reach[s]) g.reach[s] = r;
     }
   });
+  if (fixed && !ok) fixed->points_ok = false;
 }
 
 }  // namespace afemp::coupling

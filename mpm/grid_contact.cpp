@@ -137,7 +137,7 @@ void MpmSolver::contact_surfaces_kernel() {
     });
   };
   // Eq 37 per field: grad m = sum_p m_p grad S_I(x_p), pointing out of the body.
-  // The reproducible mode: in fixed point (reproducible_sums.cpp), with no mesh points.
+  // The reproducible mode: in fixed point (reproducible_sums.cpp), the mesh points' terms too.
   const bool exact = reproducible();
   if (exact) {
     start_fixed_scatter(FixedScatter::gradient);
@@ -153,14 +153,15 @@ void MpmSolver::contact_surfaces_kernel() {
       }
       if (!ok) fixed_ok_[static_cast<std::size_t>(core::thread_index())] = 0;
     });
+    if (points_) points_->contact_surfaces(access(), true);
     finish_fixed_scatter(FixedScatter::gradient);
   } else {
     scatter_contact_particles([&](std::size_t i, const Stencil& st, const auto& s) {
       for (int n = 0; n < Stencil::nodes; ++n)
         g.mass_gradient[s[static_cast<std::size_t>(n)]] += p.mass[i] * st.grad(n);
     });
+    if (points_) points_->contact_surfaces(access(), true);
   }
-  if (points_) points_->contact_surfaces(access(), true);
   if (ranks_ && !exact) {  // the gradients of the blocks that several ranks' particles reach
     const core::NodalArray gradient[] = {{reinterpret_cast<double*>(g.mass_gradient.data()), 3}};
     sum_shared_blocks(gradient);

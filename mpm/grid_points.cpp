@@ -48,7 +48,8 @@ GridStepAccess MpmSolver::access() {
                         steps_,
                         time_,
                         ranks_ ? &partition_ : nullptr,
-                        ranks_};
+                        ranks_,
+                        reproducible() ? &fixed_ : nullptr};
 }
 
 void MpmSolver::apply_shared_shifts() {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "afemp/tensor.hpp"
+#include "core/exact_sum.hpp"
 #include "core/grid/background_grid.hpp"
 #include "core/grid/block_partition.hpp"
 #include "core/rank_link.hpp"
@@ -36,6 +37,25 @@ struct SelfUpdatedShare {
   bool any = false;  // some self-updating point maps into a shared field this step
   std::vector<double> mass;
   std::vector<Vec3> start, updated;
+};
+
+// The reproducible mode's nodal sums ([run] reproducible; mpm/reproducible_sums.cpp): per field
+// slot, 1 or 3 a slot as the grid's doubles, in 128-bit fixed point with this scatter's scales;
+// the self-updating points' share of a field (SelfUpdatedShare) the same way. The particles add
+// their terms, then the points theirs (GridPoints); the solver adds the ranks' parts and makes
+// the doubles once the sums are whole. `points_ok` false: a point's term passed its bound.
+struct FixedGridSums {
+  std::vector<core::Fixed> mass, momentum, force, remap, gradient;
+  std::vector<core::Fixed> share_mass, share_start, share_updated;
+  core::FixedScale mass_scale, momentum_scale, force_scale, gradient_scale;
+  bool points_ok = true;
+};
+
+// The largest term a particle or point gives a node in each of the fixed-point sums, from
+// which their scales are set: mass, momentum (the remapped momentum's too), force, mass
+// gradient.
+struct FixedBounds {
+  double mass = 0.0, momentum = 0.0, force = 0.0, gradient = 0.0;
 };
 
 // What the solver lends the points' owner for one stage.
@@ -63,6 +83,9 @@ struct GridStepAccess {
   // particle is; the solver then sums the shared blocks, so the grid holds the whole sums.
   const core::BlockPartition* partition = nullptr;
   core::RankLink* ranks = nullptr;
+  // The reproducible mode: the points add their terms here instead of into the grid's doubles
+  // (and the share's), before the solver makes the sums whole; nullptr without the mode.
+  FixedGridSums* fixed = nullptr;
 
   // Whether this rank scatters a point in `cell` (every point in one process).
   bool holds(const std::array<int, 3>& cell) const {
@@ -94,6 +117,9 @@ class GridPoints {
   virtual void bin(const GridStepAccess& access, std::vector<std::int64_t>& cells) = 0;
   // Mass and momentum (mass_momentum) and force (force) into the grid.
   virtual void to_grid(const GridStepAccess& access, bool mass_momentum, bool force) = 0;
+  // The reproducible mode: raises `bounds` to the largest term any point gives a node (the same
+  // on every rank: from every point, not only this rank's).
+  virtual void raise_fixed_bounds(const GridStepAccess& access, FixedBounds& bounds) const = 0;
   // Grid contact's surfaces: the mass gradient (gradient), then the reach along the normals.
   virtual void contact_surfaces(const GridStepAccess& access, bool gradient) = 0;
   // The updated grid velocities back to the points (after contact's update pass).

@@ -493,14 +493,11 @@ class MpmSolver {
     bool ready = false;
   } rank_checkpoint_;
 
-  // The reproducible mode: the grid's nodal sums in fixed point (per field slot, 1 or 3 a slot as
-  // the grid's doubles), their scales, each thread's flag that no term passed its bound; this
-  // rank's running energies summed exactly (the doubles below are kept too), and the
-  // threads' exact sums of a stage.
-  struct FixedNodes {
-    std::vector<core::Fixed> mass, momentum, force, remap, gradient;
-    core::FixedScale mass_scale, momentum_scale, force_scale, gradient_scale;
-  } fixed_;
+  // The reproducible mode: the grid's nodal sums in fixed point (grid_points.hpp), each thread's
+  // flag that no term passed its bound; this rank's running energies summed exactly (the doubles
+  // below are kept too), and the threads' exact sums of a stage.
+  using FixedNodes = FixedGridSums;
+  FixedNodes fixed_;
   std::vector<char> fixed_ok_;
   enum ExactEntry : std::size_t { exact_plastic, exact_viscous, exact_external, exact_contact };
   std::array<core::ExactSum, 4> exact_;

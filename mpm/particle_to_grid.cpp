@@ -163,10 +163,11 @@ void MpmSolver::particle_to_grid(bool mass_momentum, bool force) {
       kernel.template operator()<false, true, false>();
     }
   });
-  // The reproducible mode has neither loads nor mesh points (core/reproducible_refusals.hpp).
+  // The mesh points add theirs into the fixed-point sums before they are made whole; the
+  // reproducible mode has no loads on particles (core/reproducible_refusals.hpp).
+  if (points_) points_->to_grid(access(), mass_momentum, force);
   if (reproducible()) return finish_fixed_scatter(fixed);
   if (force && !load_acceleration_.empty()) add_particle_loads();
-  if (points_) points_->to_grid(access(), mass_momentum, force);
   if (ranks_) {
     // The grid's sums, and those of the self-updating points' share of a field that also holds
     // particles (grid_points.hpp: a converting body's contact nodes), which they scattered.
@@ -226,8 +227,8 @@ void MpmSolver::remap_kernel() {
     }
     if (!ok) fixed_ok_[static_cast<std::size_t>(core::thread_index())] = 0;
   });
+  if (points_) points_->remap(access());
   if constexpr (exact) finish_fixed_scatter(FixedScatter::remap);
-  if (points_ && !exact) points_->remap(access());
   if (ranks_ && !exact) {
     const core::NodalArray remapped[] = {{reinterpret_cast<double*>(g.velocity_remap.data()), 3}};
     sum_shared_blocks(remapped);

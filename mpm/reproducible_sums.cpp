@@ -10,10 +10,13 @@
 // The fixed point's scale: per array and per scatter, from a bound on the terms over every
 // rank's particles (the largest mass, momentum, internal and body force, mass gradient a
 // particle can give a node), so that the largest term is near 2^62 and a term is cut below
-// 2^-61 of the bound; a term 2^54 past its bound stops the run (core::to_fixed).
+// 2^-61 of the bound; a term 2^54 past its bound stops the run (core::to_fixed). The mesh points
+// on the grid (grid_points.hpp: the couplings' FE nodes) add their terms into the same sums,
+// their bounds raising the scales, before the sums are made whole.
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
 
 #include "afemp/errors.hpp"
 #include "core/parallel.hpp"
@@ -65,10 +68,13 @@ void MpmSolver::start_fixed_scatter(FixedScatter what) {
     const double s = largest_component(p.stress[i]) + std::fabs(p.bulk_q[i] - ambient);
     b2 = std::max(b2, 3.0 * p.volume[i] * s * grad + m * gravity);
   }
-  bound[0] = b0;
-  bound[1] = b1;
-  bound[2] = b2;
-  bound[3] = b0 * grad;
+  // The mesh points' terms (grid_points.hpp: the couplings' FE nodes), from every point.
+  FixedBounds points;
+  if (points_) points_->raise_fixed_bounds(access(), points);
+  bound[0] = std::max(b0, points.mass);
+  bound[1] = std::max(b1, points.momentum);
+  bound[2] = std::max(b2, points.force);
+  bound[3] = std::max(b0 * grad, points.gradient);
   if (ranks_)
     for (double& b : bound) b = ranks_->max_over_ranks(b);
   FixedNodes& f = fixed_;
@@ -95,6 +101,7 @@ void MpmSolver::start_fixed_scatter(FixedScatter what) {
     f.gradient.assign(3 * slots, 0);
   }
   fixed_ok_.assign(static_cast<std::size_t>(core::thread_count()), 1);
+  f.points_ok = true;
 }
 
 void MpmSolver::finish_fixed_scatter(FixedScatter what) {
@@ -104,7 +111,7 @@ void MpmSolver::finish_fixed_scatter(FixedScatter what) {
       what == FixedScatter::mass_momentum_force || what == FixedScatter::mass_momentum;
   const bool force = what == FixedScatter::mass_momentum_force || what == FixedScatter::force;
   // A term past its bound on any rank stops every rank, the same step.
-  double bad = std::count(fixed_ok_.begin(), fixed_ok_.end(), 0) > 0 ? 1.0 : 0.0;
+  double bad = std::count(fixed_ok_.begin(), fixed_ok_.end(), 0) > 0 || !f.points_ok ? 1.0 : 0.0;
   if (ranks_) bad = ranks_->max_over_ranks(bad);
   if (bad > 0.0) {
     const char* array = what == FixedScatter::remap      ? "remapped momentum"
@@ -112,12 +119,16 @@ void MpmSolver::finish_fixed_scatter(FixedScatter what) {
                                                          : "mass, momentum or force";
     throw core::SimulationError(
         steps_, time_, "the grid's nodal sums", array,
-        "a particle's term passed 2^54 times the bound its fixed-point sum was scaled by "
-        "([run] reproducible = true): a non-finite or runaway stress or velocity; the run "
-        "without the reproducible mode would show which particle");
+        std::string(f.points_ok ? "a particle's" : "a mesh node's") +
+            " term passed 2^54 times the bound its fixed-point sum was scaled by ([run] "
+            "reproducible = true): a non-finite or runaway stress, force or velocity; the run "
+            "without the reproducible mode would show which " +
+            (f.points_ok ? "particle" : "node"));
   }
+  // The self-updating points' share of a field (grid_points.hpp), scattered with the sums.
+  const bool share = shared_.any && what != FixedScatter::remap && what != FixedScatter::gradient;
   if (ranks_) {
-    std::array<core::NodalArray, 3> arrays;
+    std::array<core::NodalArray, 6> arrays;
     std::size_t n = 0;
     auto add = [&](std::vector<core::Fixed>& v, int per_slot) {
       arrays[n++] = {reinterpret_cast<double*>(v.data()), 2 * per_slot, false, true};
@@ -129,6 +140,11 @@ void MpmSolver::finish_fixed_scatter(FixedScatter what) {
     if (force) add(f.force, 3);
     if (what == FixedScatter::remap) add(f.remap, 3);
     if (what == FixedScatter::gradient) add(f.gradient, 3);
+    if (share && mass_momentum) {
+      add(f.share_mass, 1);
+      add(f.share_start, 3);
+    }
+    if (share && force) add(f.share_updated, 3);
     sum_shared_blocks(std::span<const core::NodalArray>(arrays.data(), n));
   }
   const std::size_t slots = g.field_slot_count();
@@ -147,6 +163,11 @@ void MpmSolver::finish_fixed_scatter(FixedScatter what) {
     if (what == FixedScatter::remap) g.velocity_remap[s] = vector_of(f.remap, s, f.momentum_scale);
     if (what == FixedScatter::gradient)
       g.mass_gradient[s] = vector_of(f.gradient, s, f.gradient_scale);
+    if (share && mass_momentum) {
+      shared_.mass[s] = core::from_fixed(f.share_mass[s], f.mass_scale);
+      shared_.start[s] = vector_of(f.share_start, s, f.momentum_scale);
+    }
+    if (share && force) shared_.updated[s] = vector_of(f.share_updated, s, f.force_scale);
   }
 }
 

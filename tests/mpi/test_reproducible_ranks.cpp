@@ -1,13 +1,15 @@
 // The reproducible mode ([run] reproducible = true; mpm/reproducible_sums.cpp,
 // fem/reproducible_energies.cpp) on 1 to 4 ranks: the grid's nodal sums in fixed point and the
-// energies and forces summed exactly, so that a run of particles or of meshes divided among any
-// number of ranks gives one process's figures to the bit, at one thread and at two. Reference: the
+// energies and forces summed exactly, so that a run of particles, of meshes or of both coupled
+// divided among any number of ranks gives one process's figures to the bit, at one thread and at
+// two. Reference: the
 // same scene in one process (every rank runs it whole); and, to show the mode computes the same
 // physics, the run without the mode, within the round-off of its other order of summation (1e-10 of
 // the initial kinetic energy, as the divided runs' tests of test_mpm_ranks.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <unordered_map>
 
@@ -16,6 +18,7 @@
 #include "core/mpi/ranks.hpp"
 #include "core/parallel.hpp"
 #include "core/scene.hpp"
+#include "coupling/coupled_model.hpp"
 #include "fem/fe_solver.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
@@ -332,3 +335,112 @@ TEST(MpiReproducible, FullHexahedraAndTrussesAreBitIdenticalOnAnyRankCount) {
 
 }  // namespace
 }  // namespace afemp::fem
+
+namespace afemp::coupling {
+namespace {
+
+struct CoupledRun {
+  std::vector<core::Energies> energies;        // after each step
+  std::vector<std::vector<double>> forces;     // the history's force columns after each step
+  std::vector<std::vector<core::Vec3>> nodes;  // the FE nodes after each step
+  mpm::Particles particles;                    // this rank's at the end
+};
+
+CoupledRun run(const core::Scene& scene, core::RankLink* link, int steps, int threads) {
+  core::set_thread_count(threads);
+  CoupledModel model(scene);
+  if (link) model.divide_among_ranks(*link);
+  CoupledRun r;
+  for (int k = 0; k < steps; ++k) {
+    model.step(model.stable_time_step());
+    r.energies.push_back(model.energies());
+    r.forces.emplace_back();
+    model.force_values(r.forces.back());
+    r.nodes.push_back(model.fe().nodes().position);
+  }
+  r.particles = model.mpm().particles();
+  core::set_thread_count(1);
+  return r;
+}
+
+// The couplings in the mode: the mesh nodes' terms join the grid's fixed-point sums (mesh
+// points, mpm/grid_points.hpp). As the particles' and the meshes' tests above: every energy (the
+// hourglass, converted and sliding energies too) and every force column of the history after
+// every step, and every mesh node after every step, the bits of one process at one thread, on
+// ranks and (on one rank) at two threads; every particle at the end likewise (a converted one
+// against the one-process particle of its id); and within 1e-10 of the initial kinetic energy of
+// the run without the mode. `caught`: the contact's dissipation is booked as contact energy
+// (grid contact), else as sliding energy (surface contact's friction).
+CoupledRun expect_coupled_bit_identical(const std::string& text, int steps, bool caught = true) {
+  const auto [whole, threads, divided, plain] = test::four_runs<CoupledRun>(text, steps, run);
+  const double e0 = whole.energies.front().kinetic;
+  EXPECT_GT(e0, 0.0);
+  for (int k = 0; k < steps; ++k) {
+    const auto s = static_cast<std::size_t>(k);
+    for (const CoupledRun* r : {&threads, &divided}) {
+      const core::Energies& a = whole.energies[s];
+      const core::Energies& b = r->energies[s];
+      mpm::expect_same_bits(a, b, k);
+      EXPECT_EQ(b.hourglass, a.hourglass) << "step " << k;
+      EXPECT_EQ(b.converted, a.converted) << "step " << k;
+      EXPECT_EQ(b.sliding, a.sliding) << "step " << k;
+      EXPECT_EQ(r->forces[s], whole.forces[s]) << "step " << k;
+      EXPECT_EQ(r->nodes[s].size(), whole.nodes[s].size());
+      if (r->nodes[s].size() == whole.nodes[s].size())
+        EXPECT_EQ(std::memcmp(r->nodes[s].data(), whole.nodes[s].data(),
+                              whole.nodes[s].size() * sizeof(core::Vec3)),
+                  0)
+            << "the mesh nodes after step " << k;
+    }
+    const core::Energies& a = plain.energies[s];
+    const core::Energies& b = whole.energies[s];
+    EXPECT_NEAR(b.kinetic, a.kinetic, 1e-10 * e0) << "step " << k;
+    EXPECT_NEAR(b.internal, a.internal, 1e-10 * e0) << "step " << k;
+    EXPECT_NEAR(b.plastic, a.plastic, 1e-10 * e0) << "step " << k;
+    EXPECT_NEAR(b.contact, a.contact, 1e-10 * e0) << "step " << k;
+    EXPECT_NEAR(b.sliding, a.sliding, 1e-10 * e0) << "step " << k;
+    EXPECT_NEAR(b.converted, a.converted, 1e-10 * e0) << "step " << k;
+  }
+  // The run met what it is for: the contact took energy out, the plate yielded.
+  EXPECT_GT(caught ? whole.energies.back().contact : whole.energies.back().sliding, 1e-3 * e0);
+  EXPECT_GT(whole.energies.back().plastic, 1e-2 * e0);
+  for (const CoupledRun* r : {&threads, &divided})
+    EXPECT_EQ(mpm::differences(r->particles, whole.particles), 0)
+        << "values that differ from one process's";
+  EXPECT_EQ(core::sum_over_ranks(static_cast<std::int64_t>(divided.particles.size())),
+            static_cast<std::int64_t>(whole.particles.size()));
+  return whole;
+}
+
+const std::string coupled_scene =
+    test::striker_on_plate(true, "end_time = 1.0\nreproducible = true\n");
+
+// The striker's hexahedra in grid contact with the plate's particles (CFEMP) beside a rod of
+// trusses bonded into the plate (HFEMP).
+TEST(MpiReproducible, ContactAndBondedMeshNodesAreBitIdenticalOnAnyRankCount) {
+  expect_coupled_bit_identical(coupled_scene, 100);
+}
+
+// The striker's hexahedra converting into particles as they yield (AFEMP): the nodes they
+// shared with live elements bond to the new particles, whose field the contact nodes share.
+TEST(MpiReproducible, ConvertingHexahedraAreBitIdenticalOnAnyRankCount) {
+  std::string text = coupled_scene;
+  const std::string mesh = "mesh = { size = 1.0, sectors = 1 }";
+  text.replace(text.find(mesh), mesh.size(),
+               mesh + "\nconversion = { plastic_strain = 0.05, points = 2 }");
+  const CoupledRun whole = expect_coupled_bit_identical(text, 100);
+  ASSERT_GT(whole.particles.size(), 4608u + 8u) << "elements converted (8 particles each)";
+  EXPECT_GT(whole.energies.back().converted, 0.0);
+}
+
+// The striker's hexahedra meeting the plate's particles at its faces (surface contact with
+// friction 0.2).
+TEST(MpiReproducible, SurfaceContactIsBitIdenticalOnAnyRankCount) {
+  std::string text = coupled_scene;
+  const std::string pair = "bodies = [\"striker\", \"plate\"]";
+  text.replace(text.find(pair), pair.size(), pair + "\nmethod = \"surface\"\nfriction = 0.2");
+  expect_coupled_bit_identical(text, 100, false);
+}
+
+}  // namespace
+}  // namespace afemp::coupling

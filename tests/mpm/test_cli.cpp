@@ -288,7 +288,8 @@ TEST(Cli, RunDividedAmongTwoMpiRanksGivesTheOneProcessHistoryAndFrames) {
 
 // The reproducible mode ([run] reproducible = true): the bar of particles with probes of a
 // particle and an extreme, run in one process at one thread and at two, and on 2 and 3 ranks;
-// an eroding bar of hexahedra at two threads and on 2 ranks. Reference: the one-process files,
+// an eroding bar of hexahedra, and a striker of converting hexahedra on a plate of particles,
+// at two threads and on 2 ranks. Reference: the one-process files,
 // byte for byte: the history and every probe (the mode's sums do not depend on their order,
 // docs/parallel.md "The reproducible mode"). The particle scene without the mode on 2 ranks
 // differs from one process (in the last bits: the mode is what makes them equal).
@@ -339,6 +340,24 @@ TEST(Cli, ReproducibleRunGivesTheSameFilesOnAnyRankAndThreadCount) {
   const std::string mesh_history = read_text(afemp("", mesh_path, "mesh_one", 1) + "/history.csv");
   EXPECT_EQ(read_text(afemp("", mesh_path, "mesh_threads", 2) + "/history.csv"), mesh_history);
   EXPECT_EQ(read_text(afemp(mpiexec(2), mesh_path, "mesh_two", 1) + "/history.csv"), mesh_history);
+
+  // Meshes and particles coupled: the striker's hexahedra in grid contact with the plate's
+  // particles, converting as they yield, beside trusses bonded into the plate, 100 steps on 2
+  // ranks and at 2 threads: the history (the contact's and the bond's forces, the converted
+  // energy) byte for byte.
+  std::string coupled = afemp::test::striker_on_plate(
+      true, "end_time = 1.0\nmax_steps = 100\nhistory_every = 5\nreproducible = true\n");
+  const std::string hexes = "mesh = { size = 1.0, sectors = 1 }";
+  coupled.replace(coupled.find(hexes), hexes.size(),
+                  hexes + "\nconversion = { plastic_strain = 0.05, points = 2 }");
+  const std::string coupled_path = dir.write("coupled.toml", coupled);
+  const std::string coupled_history =
+      read_text(afemp("", coupled_path, "coupled_one", 1) + "/history.csv");
+  ASSERT_GT(std::count(coupled_history.begin(), coupled_history.end(), '\n'), 20);
+  EXPECT_EQ(read_text(afemp("", coupled_path, "coupled_threads", 2) + "/history.csv"),
+            coupled_history);
+  EXPECT_EQ(read_text(afemp(mpiexec(2), coupled_path, "coupled_two", 1) + "/history.csv"),
+            coupled_history);
 }
 
 // Reference: the same scene run as one process. A mesh scene divides by its elements, every
@@ -457,9 +476,9 @@ TEST(Cli, CoupledRunDividedAmongMpiRanksGivesTheOneProcessHistoryAndProbes) {
 // model and every rank takes its state. The history's energies and the top's velocity within
 // 1e-10 of their largest magnitude (the explicit steps add the ranks' elements in rank order;
 // the sparse solve's round-off follows the BLAS threads, which the launcher's binding changes),
-// and static_phase.csv written by rank 0 with the one-process iterations. A solve that cannot
-// converge (tolerance 1e-30) stops every rank with the one-process exit status, rank 0 giving
-// the solver's message and its iterations' file, the other rank naming rank 0's.
+// and static_phase.csv written by rank 0 with the one-process iterations. A
+// solve that cannot converge (tolerance 1e-30) stops every rank with the one-process exit status,
+// rank 0 giving the solver's message and its iterations' file, the other rank naming rank 0's.
 TEST(Cli, RunOnMpiRanksSolvesAStaticPhaseOnRankZeroAsOneProcessDoes) {
   test::ScratchDir dir;
   const std::string phases =
