@@ -3,13 +3,35 @@
 #include "fem/sparse_cholesky.hpp"
 
 #include <cholmod.h>
+#include <dlfcn.h>
 
 #include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "core/parallel.hpp"
+
 namespace afemp::fem {
+
+namespace {
+
+// The supernodal factorisation and the solve call the BLAS for their dense blocks. OpenBLAS,
+// which scripts/install-deps makes the system BLAS, runs a pool of its own threads there, as
+// many as the process may use cores (or OPENBLAS_NUM_THREADS), and the blocks' rounding follows
+// their number: a run's phase then gave other bits in a process that a launcher bound to one
+// core (each MPI rank) than unbound. Its count is set to the run's (--threads, OpenMP's), so
+// that a solve gives the same bits for the same thread count however the process is placed.
+// openblas_set_num_threads is OpenBLAS's own call (OpenBLAS README, "Setting the number of
+// threads at runtime"); under another BLAS it is absent and nothing is set.
+void blas_threads_as_the_run() {
+  using SetThreads = void (*)(int);
+  static const auto set =
+      reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  if (set) set(core::thread_count());
+}
+
+}  // namespace
 
 NotPositiveDefinite::NotPositiveDefinite(int column)
     : std::runtime_error("matrix not positive definite at column " + std::to_string(column)),
@@ -75,6 +97,7 @@ void SparseCholesky::analyse(const SymmetricCsc& a) {
 
 void SparseCholesky::factorise(const SymmetricCsc& a) {
   cholmod_sparse s = impl_->view(a);
+  blas_threads_as_the_run();
   cholmod_l_factorize(&s, impl_->factor, &impl_->common);
   impl_->check("factorise");
   // CHOLMOD's minor is the column of the factor's (permuted) order; report the matrix's.
@@ -92,6 +115,7 @@ void SparseCholesky::solve(std::span<const double> b, std::span<double> x) const
   rhs.x = const_cast<double*>(b.data());
   rhs.xtype = CHOLMOD_REAL;
   rhs.dtype = CHOLMOD_DOUBLE;
+  blas_threads_as_the_run();
   cholmod_dense* sol = cholmod_l_solve(CHOLMOD_A, impl_->factor, &rhs, &impl_->common);
   impl_->check("solve");
   const double* v = static_cast<const double*>(sol->x);
