@@ -386,11 +386,12 @@ CoupledRun expect_coupled_bit_identical(const std::string& text, int steps, bool
       EXPECT_EQ(b.sliding, a.sliding) << "step " << k;
       EXPECT_EQ(r->forces[s], whole.forces[s]) << "step " << k;
       EXPECT_EQ(r->nodes[s].size(), whole.nodes[s].size());
-      if (r->nodes[s].size() == whole.nodes[s].size())
+      if (r->nodes[s].size() == whole.nodes[s].size()) {
         EXPECT_EQ(std::memcmp(r->nodes[s].data(), whole.nodes[s].data(),
                               whole.nodes[s].size() * sizeof(core::Vec3)),
                   0)
             << "the mesh nodes after step " << k;
+      }
     }
     const core::Energies& a = plain.energies[s];
     const core::Energies& b = whole.energies[s];
