@@ -17,6 +17,7 @@
 #include "core/mpi/mpi_rank_link.hpp"
 #include "core/mpi/ranks.hpp"
 #include "core/scene.hpp"
+#include "coupled_run.hpp"
 #include "coupling/coupled_model.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
@@ -31,23 +32,8 @@ namespace {
 const std::string particles_in_contact = test::striker_on_plate(false);
 const std::string meshes_on_the_grid = test::striker_on_plate(true);
 
-struct CoupledRun {
-  std::vector<core::Energies> energies;        // after each step
-  std::vector<std::vector<double>> forces;     // the history's force columns after each step
-  std::vector<std::vector<core::Vec3>> nodes;  // the FE nodes after each step
-  mpm::Particles particles;                    // this rank's at the end
-};
-
-void advance(CoupledModel& model, CoupledRun& r, int steps) {
-  for (int k = 0; k < steps; ++k) {
-    model.step(model.stable_time_step());
-    r.energies.push_back(model.energies());
-    r.forces.emplace_back();
-    model.force_values(r.forces.back());
-    r.nodes.push_back(model.fe().nodes().position);
-  }
-  r.particles = model.mpm().particles();
-}
+using test::advance;
+using test::CoupledRun;
 
 CoupledRun run(const core::Scene& scene, core::RankLink* link, int steps) {
   CoupledModel model(scene);

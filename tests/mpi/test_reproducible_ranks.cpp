@@ -18,6 +18,7 @@
 #include "core/mpi/ranks.hpp"
 #include "core/parallel.hpp"
 #include "core/scene.hpp"
+#include "coupled_run.hpp"
 #include "coupling/coupled_model.hpp"
 #include "fem/fe_solver.hpp"
 #include "mpm/mpm_solver.hpp"
@@ -339,26 +340,14 @@ TEST(MpiReproducible, FullHexahedraAndTrussesAreBitIdenticalOnAnyRankCount) {
 namespace afemp::coupling {
 namespace {
 
-struct CoupledRun {
-  std::vector<core::Energies> energies;        // after each step
-  std::vector<std::vector<double>> forces;     // the history's force columns after each step
-  std::vector<std::vector<core::Vec3>> nodes;  // the FE nodes after each step
-  mpm::Particles particles;                    // this rank's at the end
-};
+using test::CoupledRun;
 
 CoupledRun run(const core::Scene& scene, core::RankLink* link, int steps, int threads) {
   core::set_thread_count(threads);
   CoupledModel model(scene);
   if (link) model.divide_among_ranks(*link);
   CoupledRun r;
-  for (int k = 0; k < steps; ++k) {
-    model.step(model.stable_time_step());
-    r.energies.push_back(model.energies());
-    r.forces.emplace_back();
-    model.force_values(r.forces.back());
-    r.nodes.push_back(model.fe().nodes().position);
-  }
-  r.particles = model.mpm().particles();
+  test::advance(model, r, steps);
   core::set_thread_count(1);
   return r;
 }
