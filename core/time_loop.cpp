@@ -247,7 +247,9 @@ void TimeLoop::run_phase(const PhaseSpec& phase) {
     else
       damped_ += model_.run_implicit_phase(phase, options_.phase_log);
   } catch (const SimulationError&) {
-    keep_failure();
+    // A static or implicit phase on ranks fails on every rank at once (rank 0's solve, its
+    // outcome sent to every rank), so its frame can be written together.
+    keep_failure(phase.kind != PhaseKind::relaxation && options_.ranks > 1);
     if (!start.empty() && options_.phase_log)
       *options_.phase_log << "the checkpoint " << start
                           << " holds the state the phase started from: a restart from it runs the "
@@ -319,17 +321,35 @@ double TimeLoop::solve_phase_on_rank_0(const PhaseSpec& phase) {
           events_->write(whole->take_events());
         } catch (const std::exception&) {
         }
+      // A solve that failed leaves in its model the state one process's model keeps (the last
+      // converged load or time step), which every rank takes below, so that the frame the run
+      // keeps (keep_failure, on every rank) shows it as one process's does.
+      if (whole && outcome == simulation_error) try {
+          StateArchive out("the state the " + kind + " phase failed in", StateArchive::InMemory{});
+          whole->state(out);
+          state = out.image();
+        } catch (const std::exception&) {
+          state.clear();
+        }
     }
-  // What came of it (the outcome, the damped energy, rank 0's message), then the state.
-  std::vector<std::byte> head(1 + sizeof damped + why.size());
+  // What came of it (the outcome, whether a failed solve's state follows, the damped energy,
+  // rank 0's message), then the state.
+  const std::size_t text = 2 + sizeof damped;
+  std::vector<std::byte> head(text + why.size());
   head[0] = static_cast<std::byte>(outcome);
-  std::memcpy(head.data() + 1, &damped, sizeof damped);
-  std::memcpy(head.data() + 1 + sizeof damped, why.data(), why.size());
+  head[1] = static_cast<std::byte>(outcome != solved && !state.empty());
+  std::memcpy(head.data() + 2, &damped, sizeof damped);
+  std::memcpy(head.data() + text, why.data(), why.size());
   options_.from_rank_0(head);
   outcome = static_cast<char>(head[0]);
-  std::memcpy(&damped, head.data() + 1, sizeof damped);
-  why.assign(reinterpret_cast<const char*>(head.data()) + 1 + sizeof damped,
-             head.size() - 1 - sizeof damped);
+  const bool failed_state = head[1] != std::byte{0};
+  std::memcpy(&damped, head.data() + 2, sizeof damped);
+  why.assign(reinterpret_cast<const char*>(head.data()) + text, head.size() - text);
+  if (failed_state) {
+    options_.from_rank_0(state);
+    StateArchive a("the state the " + kind + " phase failed in", state);
+    model_.state(a);
+  }
   if (error) std::rethrow_exception(error);
   if (outcome == simulation_error)
     throw SimulationError(model_.step_count(), model_.time(), "rank 0's " + kind + " phase",
@@ -509,7 +529,9 @@ double TimeLoop::record(double dt) {
   const double limit = scene_.run.energy_error_limit;
   rows_beyond_ = limit > 0.0 && !(std::abs(err) <= limit) ? rows_beyond_ + 1 : 0;
   if (rows_beyond_ >= 3) {
-    keep_failure();
+    // The error is the whole run's (on ranks summed in rank order and sent to every rank, the
+    // same bits everywhere): every rank stops at this row, and their frame is written together.
+    keep_failure(options_.ranks > 1);
     throw_energy_runaway(model_, scene_, e, sum_.initial, err);
   }
   return err;
@@ -588,14 +610,18 @@ void TimeLoop::step(double until) {
   }
 }
 
-void TimeLoop::keep_failure() {
+void TimeLoop::keep_failure(bool every_rank) {
   if (events_) events_->write(model_.take_events());
-  if (!frames_ || options_.agree) return;
+  // On ranks a frame is a gather that every rank joins: a rank that fails alone cannot write one.
+  if (!frames_ || (options_.agree && !every_rank)) return;
   try {
     model_.write_fields(*frames_);
   } catch (const std::exception&) {
     // The run's error is what the user must see; the frames written before stay valid.
   }
+  // The other ranks wait until rank 0 has written the frame: the first rank to stop stops them
+  // all (MPI_Abort, apps/main.cpp), which would cut rank 0's write short.
+  if (every_rank && options_.agree) options_.agree(0.0);
 }
 
 void TimeLoop::run(const std::function<void()>& after_step) {

@@ -50,8 +50,9 @@ struct RunOptions {
   // Set when the model is divided among MPI ranks (docs/parallel.md): every rank runs this loop
   // in step, its model's calls collective. `agree` gives the value every rank takes for one each
   // rank passes (the largest): the wall time the progress and the wall-time checkpoints go by,
-  // whether a checkpoint was written, so that every rank decides alike. A failure writes no last
-  // frame (the ranks that did not fail cannot join its gather).
+  // whether a checkpoint was written, so that every rank decides alike. A failure on one rank
+  // writes no last frame (the ranks that did not fail cannot join its gather); one every rank
+  // meets at once (the energy guard, a failed static or implicit phase) writes it together.
   std::function<double(double)> agree;
   // This process's rank and the ranks (with agree). Rank 0 writes the run's files and its
   // checkpoints, the whole model's as one process's (Model::prepare_checkpoint); another rank's
@@ -140,8 +141,9 @@ class TimeLoop {
   double record(double dt);
   // A run stopped as unstable (SimulationError from the model or the energy guard): the
   // model's events so far, and a last frame of the state it stopped in, NaN and all, so that
-  // where it went bad can be seen; then the error goes on.
-  void keep_failure();
+  // where it went bad can be seen; then the error goes on. On ranks only when every rank fails
+  // at once (every_rank: the energy guard, a static or implicit phase solved on rank 0).
+  void keep_failure(bool every_rank = false);
 
   Model& model_;
   const Scene& scene_;

@@ -174,6 +174,16 @@ int frames_of(const std::string& xmf, std::size_t n) {
   return count;
 }
 
+// The times of an XDMF index's frames, as written.
+std::vector<std::string> frame_times(const std::string& xmf_text) {
+  std::vector<std::string> times;
+  const std::regex time("<Time Value=\"([^\"]*)\"");
+  for (auto it = std::sregex_iterator(xmf_text.begin(), xmf_text.end(), time);
+       it != std::sregex_iterator(); ++it)
+    times.push_back((*it)[1].str());
+  return times;
+}
+
 // Every value of a run's history within `tolerance` of its column's largest magnitude in the
 // reference history (the same rows and columns).
 void expect_history_near(const std::string& reference, const std::string& run, double tolerance) {
@@ -478,7 +488,8 @@ TEST(Cli, CoupledRunDividedAmongMpiRanksGivesTheOneProcessHistoryAndProbes) {
 // and static_phase.csv written by rank 0 byte for byte as one process writes it (the sparse
 // solve's BLAS runs the run's thread count, not as many as the launcher's binding leaves it). A
 // solve that cannot converge (tolerance 1e-30) stops every rank with the one-process exit status,
-// rank 0 giving the solver's message and its iterations' file, the other rank naming rank 0's.
+// rank 0 giving the solver's message and its iterations' file, the other rank naming rank 0's,
+// and the run's last frame (the state the solve failed in) written as one process writes it.
 TEST(Cli, RunOnMpiRanksSolvesAStaticPhaseOnRankZeroAsOneProcessDoes) {
   test::ScratchDir dir;
   const std::string phases =
@@ -540,6 +551,88 @@ TEST(Cli, RunOnMpiRanksSolvesAStaticPhaseOnRankZeroAsOneProcessDoes) {
       << d.err;
   EXPECT_EQ(core::read_csv(bad_two + "/static_phase.csv").rows.size(),
             core::read_csv(bad_one + "/static_phase.csv").rows.size());
+  // The message names "the run's last frame": the start's frame and the failed solve's (the last
+  // converged load step's state), on ranks as in one process, the same times.
+  const std::string failed = read_text(bad_one + "/fields.xmf");
+  EXPECT_EQ(frame_times(failed).size(), 2u) << failed;
+  EXPECT_EQ(frame_times(read_text(bad_two + "/fields.xmf")), frame_times(failed));
+  EXPECT_EQ(first_frame_points(bad_two + "/fields.xmf"),
+            first_frame_points(bad_one + "/fields.xmf"));
+
+  // An implicit phase that fails after some of its steps converged (yield 100 MPa, one iteration
+  // a step: ImplicitPhase.StepThatDoesNotConverge...): the run's last frame is the last converged
+  // step's state at its time, which rank 0 sends to every rank; the same frames, the last after t =
+  // 0.
+  std::string yielding = afemp::test::column_scene(
+      "element = \"full\"",
+      "[[phases]]\nkind = \"implicit\"\nend_time = 0.05\ntime_step = 0.0005\n"
+      "max_iterations = 1\n[[phases]]\nkind = \"explicit\"\n",
+      0.06);
+  yielding.replace(yielding.find("nu = 0.3\n"), 9,
+                   "nu = 0.3\nstrength = { model = \"j2\", yield = 100 }\n");
+  const std::string implicit = dir.write("implicit.toml", yielding);
+  const std::string im_one = dir.file("im_one"), im_two = dir.file("im_two");
+  const test::CommandResult e = test::run_captured(
+      afemp + " run \"" + implicit + "\" --threads 1 -o \"" + im_one + "\"", dir);
+  EXPECT_EQ(e.exit_code, 3) << e.out << e.err;
+  EXPECT_NE(e.err.find("the run's last frame"), std::string::npos) << e.err;
+  const test::CommandResult f = test::run_captured(
+      mpiexec(2) + afemp + " run \"" + implicit + "\" --threads 1 -o \"" + im_two + "\"", dir);
+  EXPECT_EQ(f.exit_code, 3) << f.out << f.err;
+  const std::vector<std::string> im_times = frame_times(read_text(im_one + "/fields.xmf"));
+  ASSERT_EQ(im_times.size(), 2u);
+  EXPECT_GT(std::stod(im_times.back()), 0.0);
+  EXPECT_EQ(frame_times(read_text(im_two + "/fields.xmf")), im_times);
+  EXPECT_EQ(read_text(im_two + "/implicit_phase.csv"), read_text(im_one + "/implicit_phase.csv"));
+}
+
+// Reference: the run in one process. A block of one-point hexahedra at nu = 0.499 with viscous
+// hourglass control and the default element step factor 0.9 is past its stability limit (the
+// stability suite: +3234 % without the guard) and the energy guard stops it as unstable. On 2
+// ranks the guard's energy balance is the whole run's, the same on every rank: both stop with the
+// one-process exit status 3 and the field 'energy balance' at the same step, and the ranks write
+// the run's last frame together, so the frames are one process's, at the same times, the state
+// the run stopped in last.
+TEST(Cli, RunOnMpiRanksStoppedByTheEnergyGuardKeepsTheLastFrameAsOneProcessDoes) {
+  test::ScratchDir dir;
+  const std::string path = dir.write("unstable.toml", R"([run]
+end_time = 0.01
+output_every = 0.002
+[materials.rubber]
+density = 1.0e-3
+E = 100.0
+nu = 0.499
+[[bodies]]
+name = "block"
+discretisation = "hexahedra"
+material = "rubber"
+shape = { box = { min = [-4, -4, 0], max = [4, 4, 8] } }
+mesh = { size = 1.0 }
+velocity = [0, 0, -20]
+element = "one-point"
+[[constraints]]
+nodes = { plane = { point = [0, 0, 0], normal = [0, 0, 1] } }
+fixed = ["z"]
+)");
+  const std::string afemp = "\"" + std::string(AFEMP_BINARY) + "\"";
+  const std::string one = dir.file("one"), two = dir.file("two");
+  const test::CommandResult a =
+      test::run_captured(afemp + " run \"" + path + "\" --threads 1 -o \"" + one + "\"", dir);
+  EXPECT_EQ(a.exit_code, 3) << a.out << a.err;
+  const test::CommandResult b = test::run_captured(
+      mpiexec(2) + afemp + " run \"" + path + "\" --threads 1 -o \"" + two + "\"", dir);
+  EXPECT_EQ(b.exit_code, 3) << b.out << b.err;
+  std::smatch m1, m2;
+  const std::regex stopped("simulation stopped: step ([0-9]+) .*field 'energy balance'");
+  ASSERT_TRUE(std::regex_search(a.err, m1, stopped)) << a.err;
+  ASSERT_TRUE(std::regex_search(b.err, m2, stopped)) << b.err;
+  EXPECT_EQ(m2[1].str(), m1[1].str()) << "the step the guard stopped at";
+  const std::string frames = read_text(one + "/fields.xmf");
+  const std::vector<std::string> times = frame_times(frames);
+  ASSERT_GE(times.size(), 2u) << frames;
+  EXPECT_EQ(frame_times(read_text(two + "/fields.xmf")), times);
+  EXPECT_EQ(core::read_csv(two + "/history.csv").rows.size(),
+            core::read_csv(one + "/history.csv").rows.size());
 }
 
 // Reference: the uninterrupted run in one process (100 steps). The bar on 4 ranks stops at step
