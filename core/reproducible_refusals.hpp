@@ -33,12 +33,13 @@ inline std::optional<std::string> reproducible_refusal(const Scene& scene) {
     what = "outflow, absorbing or far-field faces (grid.boundary)";
   else if (particles && !scene.loads.empty())
     what = "[[loads]] on particles";
-  else if (!scene.phases.empty())
-    what = "[[phases]]";
+  // [[phases]] need nothing: a relaxation is explicit steps, and a static or implicit phase's
+  // solve is serial but for the BLAS, which the mode runs on one thread (fem/static_phase.cpp),
+  // and on ranks it is rank 0's one-process solve.
   if (what.empty()) return std::nullopt;
   return "the reproducible mode (results bit-identical on any rank and thread count) covers "
          "scenes of meshes, of particles with the linear hat, uGIMP or the B-splines, walls and "
-         "grid contact, and of both coupled; this scene has " +
+         "grid contact, and of both coupled, their [[phases]] too; this scene has " +
          what + "; allowed: reproducible = false, or a scene without it (docs/parallel.md)";
 }
 

@@ -23,12 +23,13 @@ namespace {
 // core (each MPI rank) than unbound. Its count is set to the run's (--threads, OpenMP's), so
 // that a solve gives the same bits for the same thread count however the process is placed.
 // openblas_set_num_threads is OpenBLAS's own call (OpenBLAS README, "Setting the number of
-// threads at runtime"); under another BLAS it is absent and nothing is set.
-void blas_threads_as_the_run() {
+// threads at runtime"); under another BLAS it is absent and nothing is set. A count asked for
+// (the reproducible mode's 1) replaces the run's.
+void set_blas_threads(int asked) {
   using SetThreads = void (*)(int);
   static const auto set =
       reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-  if (set) set(core::thread_count());
+  if (set) set(asked > 0 ? asked : core::thread_count());
 }
 
 }  // namespace
@@ -45,6 +46,7 @@ struct SparseCholesky::Impl {
   cholmod_factor* factor = nullptr;
   int size = 0;
   std::vector<SuiteSparse_long> column_start, row;  // the analysed pattern
+  int blas_threads = 0;
 
   Impl() {
     cholmod_l_start(&common);
@@ -82,7 +84,9 @@ struct SparseCholesky::Impl {
   }
 };
 
-SparseCholesky::SparseCholesky() : impl_(std::make_unique<Impl>()) {}
+SparseCholesky::SparseCholesky(int blas_threads) : impl_(std::make_unique<Impl>()) {
+  impl_->blas_threads = blas_threads;
+}
 SparseCholesky::~SparseCholesky() = default;
 
 void SparseCholesky::analyse(const SymmetricCsc& a) {
@@ -97,7 +101,7 @@ void SparseCholesky::analyse(const SymmetricCsc& a) {
 
 void SparseCholesky::factorise(const SymmetricCsc& a) {
   cholmod_sparse s = impl_->view(a);
-  blas_threads_as_the_run();
+  set_blas_threads(impl_->blas_threads);
   cholmod_l_factorize(&s, impl_->factor, &impl_->common);
   impl_->check("factorise");
   // CHOLMOD's minor is the column of the factor's (permuted) order; report the matrix's.
@@ -115,7 +119,7 @@ void SparseCholesky::solve(std::span<const double> b, std::span<double> x) const
   rhs.x = const_cast<double*>(b.data());
   rhs.xtype = CHOLMOD_REAL;
   rhs.dtype = CHOLMOD_DOUBLE;
-  blas_threads_as_the_run();
+  set_blas_threads(impl_->blas_threads);
   cholmod_dense* sol = cholmod_l_solve(CHOLMOD_A, impl_->factor, &rhs, &impl_->common);
   impl_->check("solve");
   const double* v = static_cast<const double*>(sol->x);

@@ -44,7 +44,9 @@ struct CholeskyStatistics {
 
 class SparseCholesky {
  public:
-  SparseCholesky();
+  // blas_threads: the BLAS's threads in factorise() and solve() (OpenBLAS); 0 the run's
+  // (core::thread_count(), --threads).
+  explicit SparseCholesky(int blas_threads = 0);
   ~SparseCholesky();
   SparseCholesky(const SparseCholesky&) = delete;
   SparseCholesky& operator=(const SparseCholesky&) = delete;

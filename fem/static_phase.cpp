@@ -150,12 +150,14 @@ void build_problem(const FeSolver& solver, const core::Scene& scene, const core:
 
 // Newton's settings of the phase: its iterations and its tolerance on the residual, the energy
 // criterion's on |du . r|, which falls as the residual's square.
-NewtonSettings newton_settings(const core::PhaseSpec& phase, std::ostream* log) {
+NewtonSettings newton_settings(const core::Scene& scene, const core::PhaseSpec& phase,
+                               std::ostream* log) {
   NewtonSettings settings;
   settings.max_iterations = phase.max_iterations;
   settings.residual_tolerance = core::phase_tolerance(phase);
   settings.energy_tolerance = settings.residual_tolerance * settings.residual_tolerance;
   settings.log = log;
+  if (scene.run.reproducible) settings.blas_threads = 1;
   return settings;
 }
 
@@ -169,7 +171,7 @@ ImplicitPhaseOutcome run_static_phase(FeSolver& solver, const core::Scene& scene
   build_problem(solver, scene, phase, phase.end_time, built);
   const StaticProblem& problem = built.problem;
   const StaticPhaseMap& map = built.map;
-  NewtonSettings settings = newton_settings(phase, log);
+  NewtonSettings settings = newton_settings(scene, phase, log);
   settings.load_steps = phase.load_steps;
   StaticResult result;
   try {
@@ -245,7 +247,7 @@ ImplicitPhaseOutcome run_implicit_phase(FeSolver& solver, const core::Scene& sce
   settings.steps = core::implicit_steps(phase, span);
   settings.time_step = span / settings.steps;
   settings.alpha = phase.alpha;
-  settings.newton = newton_settings(phase, log);
+  settings.newton = newton_settings(scene, phase, log);
   // The phase starts from the solver's velocities (the bodies' initial velocities); the
   // constraints' components move by their velocities' travel, starting at their rate over the
   // first step.

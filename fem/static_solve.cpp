@@ -986,7 +986,7 @@ StaticResult solve_static(const StaticProblem& problem, const NewtonSettings& se
 
   SparseAssembly assembly(problem.mesh->hexahedra, problem.mesh->lines, body.equation,
                           body.equations, body.line_group);
-  SparseCholesky cholesky;
+  SparseCholesky cholesky(settings.blas_threads);
   cholesky.analyse(assembly.matrix());
   // The state after the last converged step (the virgin one before the first).
   StaticResult last;
@@ -1129,7 +1129,7 @@ NewmarkResult solve_newmark(const StaticProblem& problem, const NewmarkSettings&
 
   SparseAssembly assembly(problem.mesh->hexahedra, problem.mesh->lines, body.equation,
                           body.equations, body.line_group);
-  SparseCholesky cholesky;
+  SparseCholesky cholesky(settings.newton.blas_threads);
   cholesky.analyse(assembly.matrix());
 
   // a_0 = M^-1 (f_ext - f_int(u_0)) on the free dofs (zero along the walls' held normals).

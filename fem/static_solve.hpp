@@ -109,6 +109,10 @@ struct NewtonSettings {
   // (a node crossed a wall's plane, or a wall pulled on a node it held).
   int max_contact_rounds = 20;
   std::ostream* log = nullptr;  // one line per iteration when set
+  // The BLAS's threads in the sparse factorisation and solve (SparseCholesky): 0 the run's
+  // (--threads). The dense blocks' rounding follows their number, so the reproducible mode
+  // ([run] reproducible) gives 1: the same bits at any thread count.
+  int blas_threads = 0;
 };
 
 // One Newton iteration: the residual norm before its solve, |du . r| of its correction (0 on

@@ -14,6 +14,8 @@
 
 #include "afemp/simulation.hpp"
 #include "core/mpi/mpi_rank_link.hpp"
+#include "core/mpi/ranks.hpp"
+#include "core/parallel.hpp"
 #include "core/scene.hpp"
 #include "fem/phase_test_support.hpp"
 
@@ -93,19 +95,67 @@ void expect_same_as_one_process(const std::string& text, double tolerance, bool 
   EXPECT_EQ(stress_lines(divided.log), lines);
 }
 
+// The reproducible mode ([run] reproducible = true) through the phases: on ranks, and in one
+// process at two threads (on one rank; under more the 2 cores are taken), against one process at
+// one thread. Reference: the same bits (the mode's promise, docs/parallel.md), every step at the
+// same time, every energy and each body's momentum after every step, the mesh's nodes at the end.
+void expect_reproducible(const std::string& scene) {
+  std::string text = scene;
+  text.replace(text.find("[run]\n"), 6, "[run]\nreproducible = true\n");
+  const int threads = core::thread_count();
+  core::set_thread_count(1);
+  const PhaseRun whole = run(text, nullptr);
+  core::MpiRankLink link;
+  const PhaseRun divided = run(text, &link);
+  PhaseRun two = divided;
+  if (core::rank_count() == 1) {
+    core::set_thread_count(2);
+    two = run(text, nullptr);
+  }
+  core::set_thread_count(threads);
+  for (const PhaseRun* r : std::vector<const PhaseRun*>{&divided, &two}) {
+    const char* which = r == &divided ? "on ranks" : "at two threads";
+    ASSERT_EQ(r->times.size(), whole.times.size()) << which;
+    for (std::size_t k = 0; k < whole.times.size(); ++k) {
+      const Energies& a = whole.energies[k];
+      const Energies& b = r->energies[k];
+      ASSERT_EQ(r->times[k], whole.times[k]) << which << ", step " << k;
+      ASSERT_EQ(b.kinetic, a.kinetic) << which << ", step " << k;
+      ASSERT_EQ(b.internal, a.internal) << which << ", step " << k;
+      ASSERT_EQ(b.external_work, a.external_work) << which << ", step " << k;
+      ASSERT_EQ(b.damped, a.damped) << which << ", step " << k;
+      ASSERT_EQ(b.bodies.size(), a.bodies.size());
+      for (std::size_t i = 0; i < a.bodies.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+          ASSERT_EQ(b.bodies[i].momentum[c], a.bodies[i].momentum[c])
+              << which << ", step " << k << ", body " << i;
+    }
+    ASSERT_EQ(r->position.size(), whole.position.size());
+    EXPECT_FALSE(whole.position.empty());
+    for (std::size_t i = 0; i < whole.position.size(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        ASSERT_EQ(r->position[i][c], whole.position[i][c]) << which << ", node " << i;
+        ASSERT_EQ(r->velocity[i][c], whole.velocity[i][c]) << which << ", node " << i;
+      }
+  }
+}
+
 // The steel column under its weight (fem/phase_test_support.hpp): solved static, run explicit,
 // then implicit (HHT-alpha, from the explicit phase's motion) and explicit again. Bit for bit:
 // the solves are rank 0's one-process solves, and a divided mesh's steps are one process's
 // (MpiFeRanks); the energies add the ranks' elements in rank order (tolerance 1e-12).
-TEST(MpiPhases, StaticImplicitAndExplicitPhasesOfAColumnAreOneProcesssToTheBit) {
-  const std::string text = test::column_scene(
+std::string column_in_phases() {
+  return test::column_scene(
       "element = \"full\"",
       "[[phases]]\nkind = \"static\"\nend_time = 1.0\nload_steps = 2\n"
       "[[phases]]\nkind = \"explicit\"\nend_time = 1.01\n"
       "[[phases]]\nkind = \"implicit\"\nend_time = 1.05\ntime_step = 0.01\nalpha = -0.1\n"
       "[[phases]]\nkind = \"explicit\"\n",
       1.06);
-  expect_same_as_one_process(text, 1e-12, true);
+}
+
+TEST(MpiPhases, StaticImplicitAndExplicitPhasesOfAColumnAreOneProcesssToTheBit) {
+  expect_same_as_one_process(column_in_phases(), 1e-12, true);
 }
 
 // A block of particles on the grid's floor relaxes under its weight (each rank damps its own
@@ -113,8 +163,8 @@ TEST(MpiPhases, StaticImplicitAndExplicitPhasesOfAColumnAreOneProcesssToTheBit) 
 // steel cube of hexahedra, held at rest through the relaxation, meets it in grid contact and
 // bounces (the coupled model; 1,382 explicit steps). Tolerance 1e-10: the shared grid nodes add
 // in another order on ranks.
-TEST(MpiPhases, RelaxationThenExplicitOfParticlesAndAMeshGiveOneProcessFigures) {
-  const std::string text = R"([run]
+std::string particles_relaxed_then_struck() {
+  return R"([run]
 end_time = 12.0
 gravity = [0, 0, -9.81e-3]
 [grid]
@@ -151,7 +201,18 @@ kind = "explicit"
 [[contact]]
 bodies = ["cube", "soil"]
 )";
-  expect_same_as_one_process(text, 1e-10, false);
+}
+
+TEST(MpiPhases, RelaxationThenExplicitOfParticlesAndAMeshGiveOneProcessFigures) {
+  expect_same_as_one_process(particles_relaxed_then_struck(), 1e-10, false);
+}
+
+// Both scenes above in the reproducible mode: the column's static and implicit solves (the BLAS
+// on one thread) and the particles' relaxation and impact give the bits of one process at one
+// thread on any rank count and at two threads.
+TEST(MpiPhases, ReproducibleModeGivesOneProcesssBitsThroughEveryPhase) {
+  expect_reproducible(column_in_phases());
+  expect_reproducible(particles_relaxed_then_struck());
 }
 
 }  // namespace
