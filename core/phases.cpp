@@ -29,7 +29,15 @@ std::string number(double v) {
 }
 
 std::string vector_text(const Vec3& v) {
-  return "(" + number(v.x) + ", " + number(v.y) + ", " + number(v.z) + ")";
+  // Appended in turn: GCC 12's -Wrestrict warns, falsely, on "(" + std::string&& inlined here.
+  std::string text = "(";
+  text += number(v.x);
+  text += ", ";
+  text += number(v.y);
+  text += ", ";
+  text += number(v.z);
+  text += ")";
+  return text;
 }
 
 bool solvable_default(const BodySpec& b) {

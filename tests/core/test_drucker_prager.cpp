@@ -156,7 +156,9 @@ TEST(DruckerPrager, ReturnsOntoTheConeAlongThePotentialAtThreePressures) {
       const SymTensor d_eps_p = de_p + (dv_p / 3.0) * SymTensor::identity();
       const double w = 0.5 * double_dot(before + p.stress, d_eps_p) / m.density;
       EXPECT_NEAR(u.plastic_work, w, 1e-12 * std::abs(w));
-      if (psi == 0.0) EXPECT_NEAR(p.stress.mean(), -p0, 1e-15 * p0);
+      if (psi == 0.0) {
+        EXPECT_NEAR(p.stress.mean(), -p0, 1e-15 * p0);
+      }
     }
   }
   // The same path in 200 small steps ends on the cone as well, the pressure rising with psi,

@@ -483,8 +483,11 @@ kind = "explicit"
     }
   ASSERT_GT(converted, 0) << "no nose element converted: the case tests nothing";
   const NodeFields n = sim.nodes();
-  for (std::size_t i = 0; i < n.size(); ++i)
-    if (n.body[i] == 1 && n.mass[i] > 0.0) EXPECT_EQ(n.velocity[i].z, -100.0) << "node " << i;
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    if (n.body[i] == 1 && n.mass[i] > 0.0) {
+      EXPECT_EQ(n.velocity[i].z, -100.0) << "node " << i;
+    }
+  }
   const BodySums rod = sim.energies().bodies.at(1);
   std::printf(
       "held rod: %ld relaxation steps, %d particles converted; momentum %.10g (m v %.10g), "

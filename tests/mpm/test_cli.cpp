@@ -264,15 +264,15 @@ TEST(Cli, RunDividedAmongTwoMpiRanksGivesTheOneProcessHistoryAndFrames) {
   // An extreme's value (where several points hold it to round-off, which one is named may
   // differ: its position is not compared).
   for (const char* probe : {"peak", "lowest"}) {
-    const core::CsvTable a = core::read_csv(one + "/probes/" + probe + ".csv");
-    const core::CsvTable b = core::read_csv(two + "/probes/" + probe + ".csv");
-    ASSERT_EQ(a.rows.size(), b.rows.size()) << probe;
-    ASSERT_GE(a.rows.size(), 20u) << probe;
-    const std::size_t c = a.column("value");
+    const core::CsvTable p1 = core::read_csv(one + "/probes/" + probe + ".csv");
+    const core::CsvTable p2 = core::read_csv(two + "/probes/" + probe + ".csv");
+    ASSERT_EQ(p1.rows.size(), p2.rows.size()) << probe;
+    ASSERT_GE(p1.rows.size(), 20u) << probe;
+    const std::size_t c = p1.column("value");
     double scale = 0.0;
-    for (const auto& row : a.rows) scale = std::max(scale, std::abs(row[c]));
-    for (std::size_t r = 0; r < a.rows.size(); ++r)
-      EXPECT_NEAR(b.rows[r][c], a.rows[r][c], 1e-10 * scale) << probe << ", row " << r;
+    for (const auto& row : p1.rows) scale = std::max(scale, std::abs(row[c]));
+    for (std::size_t r = 0; r < p1.rows.size(); ++r)
+      EXPECT_NEAR(p2.rows[r][c], p1.rows[r][c], 1e-10 * scale) << probe << ", row " << r;
   }
   EXPECT_GT(core::read_csv(one + "/probes/peak.csv").rows.back()[1], 100.0);  // MPa, at the foot
   // Every frame of the divided run holds every particle, as the one-process run's do (the
