@@ -31,8 +31,6 @@ inline std::optional<std::string> reproducible_refusal(const Scene& scene) {
   else if (particles && (m.grid.has_face(FaceCondition::outflow) ||
                          m.grid.has_face(FaceCondition::absorbing) || m.grid.far_field))
     what = "outflow, absorbing or far-field faces (grid.boundary)";
-  else if (particles && !scene.loads.empty())
-    what = "[[loads]] on particles";
   // [[phases]] need nothing: a relaxation is explicit steps, and a static or implicit phase's
   // solve is serial but for the BLAS, which the mode runs on one thread (fem/static_phase.cpp),
   // and on ranks it is rank 0's one-process solve.

@@ -174,6 +174,9 @@ class MpmSolver {
   void setup_particle_loads();
   void add_particle_loads();
   void book_particle_load_work(double dt);
+  // The largest component of the force particle i's load gives it now (0 without one): the
+  // reproducible mode's force bound (reproducible_sums.cpp).
+  double largest_particle_load(std::size_t i) const;
   // Grid contact (grid_contact.cpp): each contact field's normal and reach at the nodes it
   // shares, then the correction of one nodal velocity field.
   void contact_surfaces();

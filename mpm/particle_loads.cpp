@@ -8,7 +8,12 @@
 // f_p . sum_I N_I (v_I + v_I^new) / 2 dt, the work of the nodal forces at the nodes' mean
 // velocity (as gravity's is booked, grid_momentum_update.cpp). A particle that splits hands
 // the load on to its pieces by mass; one that leaves through an outflow face takes its share
-// out of the total.
+// out of the total. In the reproducible mode the nodal shares go into the grid's fixed-point
+// force sums (reproducible_sums.cpp, whose force bound counts them) and the work into an exact
+// sum, so that neither depends on the particles' order or rank.
+#include <algorithm>
+#include <cmath>
+
 #include "afemp/errors.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/stencil.hpp"
@@ -56,6 +61,8 @@ void MpmSolver::add_particle_loads() {
   std::vector<Vec3> a(load_acceleration_.size());
   for (std::size_t k = 0; k < a.size(); ++k)
     a[k] = core::curve_factor(scene_.loads[k].curve, time_) * load_acceleration_[k];
+  FixedNodes* fixed = reproducible() ? &fixed_ : nullptr;
+  bool ok = true;
   // Serial: the loaded particles are few (a face's layer), and the sums keep their order.
   with_stencil([&]<class Stencil, bool>() {
     typename Stencil::Slots slot{};
@@ -65,16 +72,35 @@ void MpmSolver::add_particle_loads() {
       const Stencil st(g, p, i, p.position[i]);
       st.slots(g, slot);
       const std::size_t field = field_offset(i);
-      for (int n = 0; n < Stencil::nodes; ++n)
-        g.force[static_cast<std::size_t>(slot[static_cast<std::size_t>(n)]) + field] += st.w(n) * f;
+      for (int n = 0; n < Stencil::nodes; ++n) {
+        const std::size_t k = static_cast<std::size_t>(slot[static_cast<std::size_t>(n)]) + field;
+        const Vec3 share = st.w(n) * f;
+        if (!fixed) {
+          g.force[k] += share;
+          continue;
+        }
+        for (std::size_t c = 0; c < 3; ++c)
+          fixed->force[3 * k + c] +=
+              core::to_fixed(share[static_cast<int>(c)], fixed->force_scale, ok);
+      }
     }
   });
+  if (!ok) fixed_ok_[0] = 0;
+}
+
+double MpmSolver::largest_particle_load(std::size_t i) const {
+  const Particles& p = particles_;
+  if (load_acceleration_.empty() || p.load[i] == 0) return 0.0;
+  const auto k = static_cast<std::size_t>(p.load[i] - 1);
+  const Vec3 a = core::curve_factor(scene_.loads[k].curve, time_) * load_acceleration_[k];
+  return p.mass[i] * std::max({std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)});
 }
 
 void MpmSolver::book_particle_load_work(double dt) {
   const core::BackgroundGrid& g = grid_;
   const Particles& p = particles_;
   double work = 0.0;
+  core::ExactSum* exact = reproducible() ? &exact_[exact_external] : nullptr;
   with_stencil([&]<class Stencil, bool>() {
     typename Stencil::Slots slot{};
     for (std::size_t i = 0; i < p.size(); ++i) {
@@ -91,6 +117,7 @@ void MpmSolver::book_particle_load_work(double dt) {
         mean += (0.5 * st.w(n)) * (g.velocity[s] + g.velocity_new[s]);
       }
       work += core::dot(f, mean) * dt;
+      if (exact) exact->add(core::dot(f, mean) * dt);
     }
   });
   external_work_ += work;

@@ -163,11 +163,11 @@ void MpmSolver::particle_to_grid(bool mass_momentum, bool force) {
       kernel.template operator()<false, true, false>();
     }
   });
-  // The mesh points add theirs into the fixed-point sums before they are made whole; the
-  // reproducible mode has no loads on particles (core/reproducible_refusals.hpp).
+  // The mesh points and the loads on particles add theirs into the fixed-point sums before they
+  // are made whole (in the reproducible mode).
   if (points_) points_->to_grid(access(), mass_momentum, force);
-  if (reproducible()) return finish_fixed_scatter(fixed);
   if (force && !load_acceleration_.empty()) add_particle_loads();
+  if (reproducible()) return finish_fixed_scatter(fixed);
   if (ranks_) {
     // The grid's sums, and those of the self-updating points' share of a field that also holds
     // particles (grid_points.hpp: a converting body's contact nodes), which they scattered.

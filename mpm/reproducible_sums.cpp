@@ -64,9 +64,9 @@ void MpmSolver::start_fixed_scatter(FixedScatter what) {
       for (const auto& row : p.affine[i].m)
         for (const double e : row) c = std::max(c, std::fabs(e));
     b1 = std::max(b1, m * (largest_component(p.velocity[i]) + 6.0 * h * c));
-    // -V (sigma - (q - p_amb) I) grad S + m S g, three terms a component.
+    // -V (sigma - (q - p_amb) I) grad S + m S g, three terms a component; a load's m a S.
     const double s = largest_component(p.stress[i]) + std::fabs(p.bulk_q[i] - ambient);
-    b2 = std::max(b2, 3.0 * p.volume[i] * s * grad + m * gravity);
+    b2 = std::max({b2, 3.0 * p.volume[i] * s * grad + m * gravity, largest_particle_load(i)});
   }
   // The mesh points' terms (grid_points.hpp: the couplings' FE nodes), from every point.
   FixedBounds points;
@@ -190,7 +190,7 @@ void MpmSolver::add_exact_thread_sums(std::size_t per, core::ExactSum* into) {
 
 Energies MpmSolver::reproducible_energies() const {
   // energies() with every sum exact: per thread, then over the threads, the running works
-  // and the ranks. The stages the mode refuses (outflow, loads, far fields) book nothing.
+  // and the ranks. The stages the mode refuses (outflow, far fields) book nothing.
   const Particles& p = particles_;
   const std::size_t nb = scene_.bodies.size();
   const std::size_t width = 2 + 6 * nb;  // as energies(): kinetic, internal, per body 6

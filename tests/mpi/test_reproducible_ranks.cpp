@@ -176,6 +176,20 @@ TEST(MpiReproducible, UslQuadraticSplineWithGravityIsBitIdenticalOnAnyRankCount)
       bar("scheme = \"USL\"\nshape_function = \"bspline2\"\n", "gravity = [0, 0, -5e3]\n"), 100);
 }
 
+// The bar pushed at its top by 2 kN rising from zero over 0.01 ms (a load on particles): its
+// nodal shares go into the fixed-point force sums on whichever rank holds the loaded particles,
+// its work into an exact sum.
+TEST(MpiReproducible, LoadOnParticlesIsBitIdenticalOnAnyRankCount) {
+  expect_bit_identical(bar("scheme = \"MUSL\"\n") + R"(
+[[loads]]
+body = "bar"
+particles = { box = { min = [0, 0, 24.5], max = [10, 10, 26] } }
+force = [0, 0, -2000]
+curve = [[0, 0], [0.01, 1]]
+)",
+                       100);
+}
+
 // A rigid wall at the particles moving up at 5 m/s with friction 0.3: its contacts are swept
 // in the particles' id order on every rank (mpm/contact_nodes.hpp), on nodes that are now the
 // same bits.
