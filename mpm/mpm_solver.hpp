@@ -502,8 +502,17 @@ class MpmSolver {
   using FixedNodes = FixedGridSums;
   FixedNodes fixed_;
   std::vector<char> fixed_ok_;
-  enum ExactEntry : std::size_t { exact_plastic, exact_viscous, exact_external, exact_contact };
-  std::array<core::ExactSum, 4> exact_;
+  // The works, then what the outflow faces took (mass, energy, momentum).
+  enum ExactEntry : std::size_t {
+    exact_plastic,
+    exact_viscous,
+    exact_external,
+    exact_contact,
+    exact_outflow_mass,
+    exact_outflow_energy,
+    exact_outflow_momentum  // x, y, z
+  };
+  std::array<core::ExactSum, exact_outflow_momentum + 3> exact_;
   std::vector<core::ExactSum> exact_threads_;
 
   // Accumulators and state.

@@ -24,8 +24,9 @@ void MpmSolver::prepare_checkpoint() {
   RankCheckpoint& c = rank_checkpoint_;
   c.whole = gathered_particles(false);
   std::vector<double> sums{plastic_work_, viscous_work_, external_work_, contact_energy_};
-  if (reproducible()) {  // the exact sums (the same order: plastic, viscous, external, contact)
-    std::array<core::ExactSum, 4> exact = exact_;
+  if (reproducible()) {  // the exact sums (the same order: plastic, viscous, external, contact;
+                         // then the outflow's mass, energy and momentum)
+    auto exact = exact_;
     sums = core::exact_values(ranks_, exact);
   } else {
     ranks_->sum_in_rank_order(sums);
@@ -43,6 +44,8 @@ void MpmSolver::prepare_checkpoint() {
                            static_cast<double>(outflow_count_),
                            static_cast<double>(split_count_)};
   ranks_->sum_in_rank_order(more);
+  if (reproducible())
+    for (std::size_t k = 0; k < 5; ++k) more[k] = sums[exact_outflow_mass + k];
   c.outflow_mass = more[0];
   c.outflow_energy = more[1];
   c.outflow_momentum = Vec3{more[2], more[3], more[4]};
@@ -104,9 +107,23 @@ void MpmSolver::state(core::StateArchive& a) {
   a.item("plastic_work", work[0]);
   a.item("viscous_work", work[1]);
   a.item("external_work", work[2]);
-  a.item("outflow_mass", whole_on_ranks ? c.outflow_mass : outflow_mass_);
-  a.item("outflow_energy", whole_on_ranks ? c.outflow_energy : outflow_energy_);
-  a.item("outflow_momentum", whole_on_ranks ? c.outflow_momentum : outflow_momentum_);
+  double outflow_mass = whole_on_ranks ? c.outflow_mass : outflow_mass_;
+  double outflow_energy = whole_on_ranks ? c.outflow_energy : outflow_energy_;
+  Vec3 outflow_momentum = whole_on_ranks ? c.outflow_momentum : outflow_momentum_;
+  if (reproducible() && !a.loading() && !whole_on_ranks) {  // one process: the exact sums
+    outflow_mass = exact_[exact_outflow_mass].value();
+    outflow_energy = exact_[exact_outflow_energy].value();
+    for (std::size_t k = 0; k < 3; ++k)
+      outflow_momentum[static_cast<int>(k)] = exact_[exact_outflow_momentum + k].value();
+  }
+  a.item("outflow_mass", outflow_mass);
+  a.item("outflow_energy", outflow_energy);
+  a.item("outflow_momentum", outflow_momentum);
+  if (a.loading()) {
+    outflow_mass_ = outflow_mass;
+    outflow_energy_ = outflow_energy;
+    outflow_momentum_ = outflow_momentum;
+  }
   a.item("outflow_count", whole_on_ranks ? c.outflow_count : outflow_count_);
   a.item("split_count", whole_on_ranks ? c.split_count : split_count_);
   // The far-field lags: whole on every rank (share_far_field_lags).
@@ -140,6 +157,10 @@ void MpmSolver::state(core::StateArchive& a) {
     exact_[exact_viscous].add(work[1]);
     exact_[exact_external].add(work[2]);
     exact_[exact_contact].add(contact);
+    exact_[exact_outflow_mass].add(outflow_mass_);
+    exact_[exact_outflow_energy].add(outflow_energy_);
+    for (std::size_t k = 0; k < 3; ++k)
+      exact_[exact_outflow_momentum + k].add(outflow_momentum_[static_cast<int>(k)]);
   }
   if (ranks_ == nullptr) {
     rebuild_batches();

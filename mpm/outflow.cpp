@@ -5,7 +5,9 @@
 // part: it is taken out of the particle arrays, and its mass, momentum, kinetic and internal
 // energy are booked (Energies::outflow*), so mass + outflow mass and the energy balance
 // still close; its plastic work and viscous heat leave the plastic and viscous totals. A particle
-// beyond any other face stops the run as before (binning names it).
+// beyond any other face stops the run as before (binning names it). In the reproducible mode
+// the books are summed exactly too (reproducible_sums.cpp), so that they do not depend on which
+// rank a particle leaves from.
 #include <cmath>
 #include <vector>
 
@@ -43,6 +45,7 @@ void MpmSolver::remove_outflow() {
   }
   if (leaving == 0) return;
   // In particle order, on one thread: the same sums for any thread count.
+  const bool exact = reproducible();
   std::vector<std::int32_t> kept;
   kept.reserve(n - static_cast<std::size_t>(leaving));
   for (std::size_t i = 0; i < n; ++i) {
@@ -58,6 +61,13 @@ void MpmSolver::remove_outflow() {
     // Its plastic work and viscous heat leave the totals with it.
     plastic_work_ -= m * p.plastic_heat[i];
     viscous_work_ -= m * p.viscous_heat[i];
+    if (!exact) continue;
+    exact_[exact_outflow_mass].add(m);
+    for (int c = 0; c < 3; ++c)
+      exact_[exact_outflow_momentum + static_cast<std::size_t>(c)].add(m * v[c]);
+    exact_[exact_outflow_energy].add(0.5 * m * core::dot(v, v) + m * p.energy[i]);
+    exact_[exact_plastic].add(-(m * p.plastic_heat[i]));
+    exact_[exact_viscous].add(-(m * p.viscous_heat[i]));
   }
   outflow_count_ += leaving;
   p.select(kept);

@@ -190,7 +190,7 @@ void MpmSolver::add_exact_thread_sums(std::size_t per, core::ExactSum* into) {
 
 Energies MpmSolver::reproducible_energies() const {
   // energies() with every sum exact: per thread, then over the threads, the running works
-  // and the ranks. The stages the mode refuses (outflow, far fields) book nothing.
+  // and the ranks.
   const Particles& p = particles_;
   const std::size_t nb = scene_.bodies.size();
   const std::size_t width = 2 + 6 * nb;  // as energies(): kinetic, internal, per body 6
@@ -239,6 +239,10 @@ Energies MpmSolver::reproducible_energies() const {
   out.viscous = v[width + exact_viscous];
   out.external_work = v[width + exact_external];
   out.contact = v[width + exact_contact];
+  out.outflow = v[width + exact_outflow_energy];
+  out.outflow_mass = v[width + exact_outflow_mass];
+  const double* taken = v.data() + width + exact_outflow_momentum;
+  out.outflow_momentum = Vec3{taken[0], taken[1], taken[2]};
   out.sliding = wall_sliding_;
   out.friction = wall_friction_;
   return out;
