@@ -28,8 +28,6 @@ inline std::optional<std::string> reproducible_refusal(const Scene& scene) {
     what = "the mixed pressure (mpm.pressure = \"mixed\")";
   else if (particles && m.splitting)
     what = "particle splitting (mpm.splitting)";
-  else if (particles && (m.grid.has_face(FaceCondition::absorbing) || m.grid.far_field))
-    what = "absorbing or far-field faces (grid.boundary)";
   // [[phases]] need nothing: a relaxation is explicit steps, and a static or implicit phase's
   // solve is serial but for the BLAS, which the mode runs on one thread (fem/static_phase.cpp),
   // and on ranks it is rank 0's one-process solve.

@@ -179,8 +179,8 @@ void MpmSolver::grid_momentum_update(double dt) {
   const bool shared = shared_.any;
 #pragma omp parallel num_threads(nt) if (core::worth_threads(g.slot_count()))
   {
-    // Body-force work f_ext . (v + v_new) / 2 dt, and the absorbing faces' (negative; not in
-    // the reproducible mode, whose exact sum takes the body force's).
+    // Body-force work f_ext . (v + v_new) / 2 dt, and the absorbing and far-field faces'
+    // (negative where they take energy out); summed exactly too in the reproducible mode.
     double work = 0.0;
     core::ExactSum* exact_work =
         exact ? exact + static_cast<std::size_t>(core::thread_index()) : nullptr;
@@ -188,6 +188,7 @@ void MpmSolver::grid_momentum_update(double dt) {
       work += term;
       if (exact_work) exact_work->add(term);
     };
+    auto book_face = book_gravity;
 
     g.for_each_slot([&](std::size_t slot, const std::array<int, 3>& node) {
       const NodeConstraint c = constraints(node);
@@ -211,8 +212,8 @@ void MpmSolver::grid_momentum_update(double dt) {
         g.velocity_new[s] = v_new;
         // An absorbing face damps the stored velocity; the gravity work and the shared-field
         // shift below take the undamped one, as before the damping.
-        if (c.damped) work += booked * absorb(m, c.damping, dt, v, g.velocity_new[s]);
-        if (c.far) work += booked * far_field(node, f, c.far, m, dt, v, g.velocity_new[s]);
+        if (c.damped) book_face(booked * absorb(m, c.damping, dt, v, g.velocity_new[s]));
+        if (c.far) book_face(booked * far_field(node, f, c.far, m, dt, v, g.velocity_new[s]));
         // A field of self-updating points only: their owner counted its gravity work.
         const bool counted =
             !field_self_updated_.empty() && field_self_updated_[static_cast<std::size_t>(f)];

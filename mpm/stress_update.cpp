@@ -34,7 +34,10 @@ void MpmSolver::strain_stress_update(double dt, StrainPart part) {
   }
   const int nt = core::thread_count();
   thread_sums_.assign(static_cast<std::size_t>(nt) * core::cache_line_doubles, 0.0);
-  if (reproducible()) exact_thread_sums(2);
+  // The mode's per-thread exact sums: plastic work, viscous heat, the ambient pressure's work
+  // (added below into exact_plastic, exact_viscous, exact_external, which follow each other).
+  static_assert(exact_viscous == exact_plastic + 1 && exact_external == exact_plastic + 2);
+  if (reproducible()) exact_thread_sums(3);
   thread_bad_.assign(static_cast<std::size_t>(nt), -1);
   // The linear hat computes the kinematics inside the constitutive loop (one pass over the
   // particles); the wider stencils (uGIMP, B-splines) run them in a pass of their own
@@ -87,7 +90,7 @@ void MpmSolver::strain_stress_update(double dt, StrainPart part) {
   }
   plastic_work_ += work;
   viscous_work_ += heat;
-  if (reproducible()) add_exact_thread_sums(2, exact_.data() + exact_plastic);
+  if (reproducible()) add_exact_thread_sums(3, exact_.data() + exact_plastic);
   // A far field's ambient pressure does -p_inf dV on the particles (absorbing_faces.hpp).
   if (ambient_pressure_ != 0.0) external_work_ -= ambient_pressure_ * swept;
   signal_wave_ = wave;
@@ -167,9 +170,10 @@ struct MpmSolver::StressPass {
   const core::BulkViscositySettings* viscosity;
   const double* mixed;  // the projected pressures (mixed u-p), or null
   double work = 0.0, wave = 0.0, speed2 = 0.0, heat = 0.0, swept = 0.0;
-  // The reproducible mode: the thread's exact sums of the plastic work and the viscous heat
-  // (reproducible_sums.cpp); null otherwise.
+  // The reproducible mode: the thread's exact sums of the plastic work, the viscous heat and
+  // the far field's ambient pressure work -p_inf dV (reproducible_sums.cpp); null otherwise.
   core::ExactSum* exact = nullptr;
+  const double ambient;
   std::int64_t bad = -1;
 
   StressPass(MpmSolver& s, const core::Material& m, const Strength& strength_in, const Eos& eos_in,
@@ -196,7 +200,8 @@ struct MpmSolver::StressPass {
         h(s.grid_.cell()),
         viscous(s.viscous_),
         viscosity(s.bulk_viscosity_.data()),
-        mixed(s.plan_.mixed_pressure ? s.mixed_pressure_.data() : nullptr) {}
+        mixed(s.plan_.mixed_pressure ? s.mixed_pressure_.data() : nullptr),
+        ambient(s.ambient_pressure_) {}
 
   // L_ij = sum_I v_Ii dN_I/dx_j of particle i, its mean grid velocity v_bar and its velocity
   // v_p (updated here with USL's FLIP blend when fused, by kinematics_kernel otherwise).
@@ -246,6 +251,7 @@ struct MpmSolver::StressPass {
     }
     const double volume = p.volume[i] * (1.0 + d_eps.trace());
     swept += volume - p.volume[i];
+    if (exact && ambient != 0.0) exact[2].add(-ambient * (volume - p.volume[i]));
     p.volume[i] = volume;
     // History an elastic batch never reads stays in memory: less to stream per point.
     if constexpr (reads_plastic_strain) st.plastic_strain = p.plastic_strain[i];
@@ -386,7 +392,7 @@ void MpmSolver::strain_stress_batch(const MaterialBatch& batch, const Strength& 
                                                           sweep);
     const int t = core::thread_index();
     if (!exact_threads_.empty() && reproducible())
-      pass.exact = exact_threads_.data() + 2 * static_cast<std::size_t>(t);
+      pass.exact = exact_threads_.data() + 3 * static_cast<std::size_t>(t);
     const auto [b, e] = core::static_range(batch.end - batch.begin, t, core::team_size());
     if constexpr (core::is_user_strength<Strength>)
       pass.run_user_chunks(batch.begin + b, batch.begin + e);
