@@ -26,8 +26,6 @@ inline std::optional<std::string> reproducible_refusal(const Scene& scene) {
         "nodal sums' fixed point can be scaled by";
   else if (particles && m.pressure == PressureField::mixed)
     what = "the mixed pressure (mpm.pressure = \"mixed\")";
-  else if (particles && m.splitting)
-    what = "particle splitting (mpm.splitting)";
   // [[phases]] need nothing: a relaxation is explicit steps, and a static or implicit phase's
   // solve is serial but for the BLAS, which the mode runs on one thread (fem/static_phase.cpp),
   // and on ranks it is rank 0's one-process solve.

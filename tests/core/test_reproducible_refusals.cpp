@@ -39,12 +39,12 @@ TEST(ReproducibleMode, ParticleAndMeshScenesAreTaken) {
 // Hexahedra that convert into particles bring the particles' stages, and their refusals.
 TEST(ReproducibleMode, HexahedraThatConvertMeetTheParticlesRefusals) {
   Scene s = parse_scene(test::block_and_rod_on_wall("reproducible = true\n"), "m.toml");
-  s.mpm.splitting = SplittingSettings{};
-  EXPECT_FALSE(reproducible_refusal(s)) << "splitting has no particles to split";
+  s.mpm.pressure = PressureField::mixed;
+  EXPECT_FALSE(reproducible_refusal(s)) << "the mixed pressure has no particles to act on";
   s.bodies.front().conversion = ConversionSettings{};
   const std::optional<std::string> why = reproducible_refusal(s);
   ASSERT_TRUE(why);
-  EXPECT_NE(why->find("particle splitting"), std::string::npos) << *why;
+  EXPECT_NE(why->find("the mixed pressure"), std::string::npos) << *why;
 }
 
 TEST(ReproducibleMode, RefusesWhatItsSumsDoNotCoverAtTheKeysLine) {
@@ -60,12 +60,12 @@ TEST(ReproducibleMode, RefusesWhatItsSumsDoNotCoverAtTheKeysLine) {
 
 TEST(ReproducibleMode, TheSceneCheckRefusesAsTheParserDoes) {
   Scene s = parse_scene(bar(""), "s.toml");
-  s.mpm.splitting = SplittingSettings{};
+  s.mpm.shape = ShapeFunction::cpdi1;
   try {
     check_scene(s);
-    ADD_FAILURE() << "splitting taken in the reproducible mode";
+    ADD_FAILURE() << "CPDI taken in the reproducible mode";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("particle splitting"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("CPDI"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("run.reproducible"), std::string::npos) << e.what();
   }
 }

@@ -25,6 +25,7 @@
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
 #include "shared_scratch.hpp"
+#include "stretched_column.hpp"
 #include "striker_on_plate.hpp"
 
 namespace afemp::test {
@@ -64,9 +65,10 @@ struct ParticleRun {
   Particles particles;                    // this rank's at the end
 };
 
-ParticleRun run(const core::Scene& scene, core::RankLink* link, int steps, int threads) {
+ParticleRun run_from(const core::Scene& scene, Particles start, core::RankLink* link, int steps,
+                     int threads) {
   core::set_thread_count(threads);
-  MpmSolver solver(scene, generate_particles(scene));
+  MpmSolver solver(scene, std::move(start));
   if (link) solver.divide_among_ranks(*link, {});
   ParticleRun r;
   for (int k = 0; k < steps; ++k) {
@@ -80,6 +82,17 @@ ParticleRun run(const core::Scene& scene, core::RankLink* link, int steps, int t
   r.particles = solver.particles();
   core::set_thread_count(1);
   return r;
+}
+
+ParticleRun run(const core::Scene& scene, core::RankLink* link, int steps, int threads) {
+  return run_from(scene, generate_particles(scene), link, steps, threads);
+}
+
+// The splitting tests' column, stretched (tests/stretched_column.hpp).
+ParticleRun run_stretched(const core::Scene& scene, core::RankLink* link, int steps, int threads) {
+  Particles start = generate_particles(scene);
+  test::stretch_column(start);
+  return run_from(scene, std::move(start), link, steps, threads);
 }
 
 // How many of the particles' positions, velocities, stresses and plastic strains differ from
@@ -131,8 +144,11 @@ void expect_same_bits(const Energies& a, const Energies& b, int step) {
 // id; every particle on one rank). And the mode against the run without it: energies within
 // 1e-10 of the initial kinetic plus internal energy at every step. `yields`: the bar strikes
 // something and yields (its plastic work past 1 % of that energy).
-void expect_bit_identical(const std::string& text, int steps, bool yields = true) {
-  const auto [whole, threads, divided, plain] = test::four_runs<ParticleRun>(text, steps, run);
+using Runner = ParticleRun (*)(const core::Scene&, core::RankLink*, int, int);
+
+void expect_bit_identical(const std::string& text, int steps, bool yields = true,
+                          Runner runner = run) {
+  const auto [whole, threads, divided, plain] = test::four_runs<ParticleRun>(text, steps, runner);
 
   // The scale: the initial kinetic plus internal energy (a body struck, or a gas bubble at rest).
   const double e0 = whole.energies.front().kinetic + whole.energies.front().internal;
@@ -283,6 +299,18 @@ TEST(MpiReproducible, FarFieldFacesAreBitIdenticalOnAnyRankCount) {
   std::string text = test::sphere_in_water("gas", "internal_energy = 2.5e6\npressure = 10.5");
   text.replace(text.find("[run]\n"), 6, "[run]\nreproducible = true\n");
   expect_bit_identical(text, 100, false);
+}
+
+// An aluminium column stretched by its own inertia (the splitting tests' jet): its particles
+// split from about step 130, each rank its own, the pieces with their one-process ids; the
+// pieces' masses and states follow their parents', whose bits are one process's.
+TEST(MpiReproducible, ParticleSplittingIsBitIdenticalOnAnyRankCount) {
+  std::string text = test::column("splitting = { alpha = 0.9 }");
+  text.replace(text.find("[run]\n"), 6, "[run]\nreproducible = true\n");
+  expect_bit_identical(text, 250, false, run_stretched);
+  const core::Scene scene = core::parse_scene(text, "column.toml");
+  const std::size_t start = generate_particles(scene).size();
+  EXPECT_GT(run_stretched(scene, nullptr, 250, 1).particles.size(), start + 50) << "pieces";
 }
 
 // A rigid wall at the particles moving up at 5 m/s with friction 0.3: its contacts are swept
