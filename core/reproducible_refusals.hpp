@@ -24,8 +24,6 @@ inline std::optional<std::string> reproducible_refusal(const Scene& scene) {
     what =
         "the CPDI shape functions (mpm.shape_function): their gradients have no bound the "
         "nodal sums' fixed point can be scaled by";
-  else if (particles && m.pressure == PressureField::mixed)
-    what = "the mixed pressure (mpm.pressure = \"mixed\")";
   // [[phases]] need nothing: a relaxation is explicit steps, and a static or implicit phase's
   // solve is serial but for the BLAS, which the mode runs on one thread (fem/static_phase.cpp),
   // and on ranks it is rank 0's one-process solve.

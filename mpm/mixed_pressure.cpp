@@ -15,7 +15,16 @@
 // is the point-wise one there (tests/mpm/test_mixed_pressure.cpp). The scatters sweep the
 // colour layers of the displacement stencil, which reach every node of N^q: sums without
 // atomics, in the same order at any thread count. On ranks each rank sweeps its own particles
-// and the nodes' sums are made whole over the shared blocks before each division.
+// and the nodes' sums are made whole over the shared blocks before each division. In the
+// reproducible mode the three sums are 128-bit fixed point (core/exact_sum.hpp), each scaled by
+// a bound on its terms over every rank's particles (V0, V0 |J|, |K V0 (Jbar - 1)|), so that they
+// do not depend on the particles' order or rank either (docs/parallel.md).
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "afemp/errors.hpp"
+#include "core/exact_sum.hpp"
 #include "core/parallel.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/stencil.hpp"
@@ -67,8 +76,54 @@ void MpmSolver::mixed_pressure_kernel() {
   auto v0 = [&](std::size_t i) {
     return p.mass[i] * pressure_inv_rho0_[static_cast<std::size_t>(p.material[i])];
   };
+  // The reproducible mode: fixed-point sums (per node slot: sum N V0, sum N V0 J, sum N load),
+  // each thread's flag that no term passed its bound.
+  const bool exact = reproducible();
+  core::FixedScale scale[3];
+  core::Fixed* fixed = nullptr;
+  std::vector<char> ok(static_cast<std::size_t>(core::thread_count()), 1);
+  auto bound_over_ranks = [&](double b) { return ranks_ ? ranks_->max_over_ranks(b) : b; };
+  // Makes sums[0, count) whole over the ranks' shared blocks and turns them into the doubles
+  // at `into`; stops the run where a term passed its bound.
+  auto finish_fixed = [&](int first, int count, double* into) {
+    double bad = std::count(ok.begin(), ok.end(), 0) > 0 ? 1.0 : 0.0;
+    if (ranks_) bad = ranks_->max_over_ranks(bad);
+    if (bad > 0.0)
+      throw core::SimulationError(
+          steps_, time_, "the mixed pressure's nodal sums",
+          first == 2 ? "pressure" : "volume ratio",
+          "a particle's term passed 2^54 times the bound its fixed-point sum was scaled by ([run] "
+          "reproducible = true): a non-finite or runaway deformation; the run without the "
+          "reproducible mode would show which particle");
+    core::Fixed* from = fixed + static_cast<std::size_t>(first) * slots;
+    if (ranks_) {
+      std::vector<core::NodalArray> arrays;
+      for (int a = 0; a < count; ++a)
+        arrays.push_back({reinterpret_cast<double*>(from + static_cast<std::size_t>(a) * slots), 2,
+                          false, true, true});
+      sum_shared_blocks(arrays);
+    }
+    for (int a = 0; a < count; ++a)
+      for (std::size_t s = 0; s < slots; ++s)
+        into[static_cast<std::size_t>(a) * slots + s] =
+            core::from_fixed(from[static_cast<std::size_t>(a) * slots + s], scale[first + a]);
+  };
+  if (exact) {
+    pressure_fixed_.assign(3 * slots, 0);
+    fixed = pressure_fixed_.data();
+    double b0 = 0.0, b1 = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : b0, b1) if (core::worth_threads(n))
+    for (std::size_t i = 0; i < n; ++i) {
+      const double vol = v0(i);
+      b0 = std::max(b0, vol);
+      b1 = std::max(b1, vol * std::fabs(core::determinant(p.deformation_gradient[i])));
+    }
+    scale[0] = core::fixed_scale(bound_over_ranks(b0));
+    scale[1] = core::fixed_scale(bound_over_ranks(b1));
+  }
   // Eq 22: det F weighted by N^q V0; each particle's basis kept for the sweeps below.
   sweep_layers<Colours>(layer_offsets_, [&](std::size_t b, std::size_t e) {
+    bool fine = true;
     for (std::size_t q = b; q < e; ++q) {
       const auto i = static_cast<std::size_t>(layer_order_[q]);
       std::array<std::int32_t, 8>& slot = pressure_slots_[i];
@@ -77,14 +132,22 @@ void MpmSolver::mixed_pressure_kernel() {
       const double vol = v0(i), j = core::determinant(p.deformation_gradient[i]);
       for (std::size_t a = 0; a < k; ++a) {
         const auto s = static_cast<std::size_t>(slot[a]);
+        if (exact) {
+          fixed[s] += core::to_fixed(w[a] * vol, scale[0], fine);
+          fixed[slots + s] += core::to_fixed(w[a] * vol * j, scale[1], fine);
+          continue;
+        }
         weight[s] += w[a] * vol;
         ratio[s] += w[a] * vol * j;
       }
     }
+    if (!fine) ok[static_cast<std::size_t>(core::thread_index())] = 0;
   });
   // On ranks the nodes' sums are made whole before they are divided (one velocity field's
   // slots each: the pressure is shared by the fields).
-  if (ranks_) {
+  if (exact) {
+    finish_fixed(0, 2, weight);
+  } else if (ranks_) {
     const core::NodalArray sums[] = {{weight, 1, false, false, true},
                                      {ratio, 1, false, false, true}};
     sum_shared_blocks(sums);
@@ -94,20 +157,44 @@ void MpmSolver::mixed_pressure_kernel() {
   for (std::size_t s = 0; s < slots; ++s)
     if (weight[s] > 0.0) ratio[s] /= weight[s];
   // Eqs 23 and 21: Jbar_p back at the particle, K (Jbar_p - 1) weighted to the nodes.
+  auto load_of = [&](std::size_t i) {
+    const std::array<std::int32_t, 8>& slot = pressure_slots_[i];
+    const std::array<double, 8>& w = pressure_weights_[i];
+    double jbar = 0.0;
+    for (std::size_t a = 0; a < k; ++a) jbar += w[a] * ratio[static_cast<std::size_t>(slot[a])];
+    return v0(i) * pressure_bulk_[static_cast<std::size_t>(p.material[i])] * (jbar - 1.0);
+  };
+  if (exact) {  // the loads first, for their bound
+    pressure_load_.resize(n);
+    double b2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : b2) if (core::worth_threads(n))
+    for (std::size_t i = 0; i < n; ++i) {
+      pressure_load_[i] = load_of(i);
+      b2 = std::max(b2, std::fabs(pressure_load_[i]));
+    }
+    scale[2] = core::fixed_scale(bound_over_ranks(b2));
+  }
   sweep_layers<Colours>(layer_offsets_, [&](std::size_t b, std::size_t e) {
+    bool fine = true;
     for (std::size_t q = b; q < e; ++q) {
       const auto i = static_cast<std::size_t>(layer_order_[q]);
       const std::array<std::int32_t, 8>& slot = pressure_slots_[i];
       const std::array<double, 8>& w = pressure_weights_[i];
-      double jbar = 0.0;
-      for (std::size_t a = 0; a < k; ++a) jbar += w[a] * ratio[static_cast<std::size_t>(slot[a])];
-      const double load =
-          v0(i) * pressure_bulk_[static_cast<std::size_t>(p.material[i])] * (jbar - 1.0);
+      if (exact) {
+        for (std::size_t a = 0; a < k; ++a)
+          fixed[2 * slots + static_cast<std::size_t>(slot[a])] +=
+              core::to_fixed(w[a] * pressure_load_[i], scale[2], fine);
+        continue;
+      }
+      const double load = load_of(i);
       for (std::size_t a = 0; a < k; ++a)
         pressure[static_cast<std::size_t>(slot[a])] += w[a] * load;
     }
+    if (!fine) ok[static_cast<std::size_t>(core::thread_index())] = 0;
   });
-  if (ranks_) {
+  if (exact) {
+    finish_fixed(2, 1, pressure);
+  } else if (ranks_) {
     const core::NodalArray sums[] = {{pressure, 1, false, false, true}};
     sum_shared_blocks(sums);
   }

@@ -393,6 +393,10 @@ class MpmSolver {
   // in place of K (J - 1); and the nodal sums of the projection (3 per node slot).
   std::vector<double> mixed_pressure_;
   std::vector<double> pressure_nodes_;
+  // The reproducible mode's: the same three sums in fixed point, and each particle's load
+  // K V0 (Jbar - 1), whose bound sets the third's scale (mixed_pressure.cpp).
+  std::vector<core::Fixed> pressure_fixed_;
+  std::vector<double> pressure_load_;
 
   // Velocity fields: the field of each body, and what happens where fields f and g meet at
   // a node (law_[f * fields + g]): they stick (one velocity, as in a single field) unless the

@@ -39,12 +39,12 @@ TEST(ReproducibleMode, ParticleAndMeshScenesAreTaken) {
 // Hexahedra that convert into particles bring the particles' stages, and their refusals.
 TEST(ReproducibleMode, HexahedraThatConvertMeetTheParticlesRefusals) {
   Scene s = parse_scene(test::block_and_rod_on_wall("reproducible = true\n"), "m.toml");
-  s.mpm.pressure = PressureField::mixed;
-  EXPECT_FALSE(reproducible_refusal(s)) << "the mixed pressure has no particles to act on";
+  s.mpm.shape = ShapeFunction::cpdi1;
+  EXPECT_FALSE(reproducible_refusal(s)) << "CPDI has no particles to act on";
   s.bodies.front().conversion = ConversionSettings{};
   const std::optional<std::string> why = reproducible_refusal(s);
   ASSERT_TRUE(why);
-  EXPECT_NE(why->find("the mixed pressure"), std::string::npos) << *why;
+  EXPECT_NE(why->find("CPDI"), std::string::npos) << *why;
 }
 
 TEST(ReproducibleMode, RefusesWhatItsSumsDoNotCoverAtTheKeysLine) {

@@ -22,6 +22,7 @@
 #include "coupling/coupled_model.hpp"
 #include "explosive_scenes.hpp"
 #include "fem/fe_solver.hpp"
+#include "mixed_beam.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
 #include "shared_scratch.hpp"
@@ -144,6 +145,11 @@ void expect_same_bits(const Energies& a, const Energies& b, int step) {
 // id; every particle on one rank). And the mode against the run without it: energies within
 // 1e-10 of the initial kinetic plus internal energy at every step. `yields`: the bar strikes
 // something and yields (its plastic work past 1 % of that energy).
+// The nearly incompressible beam of the mixed u-p tests, started in its first bending mode.
+ParticleRun run_beam(const core::Scene& scene, core::RankLink* link, int steps, int threads) {
+  return run_from(scene, test::mixed_beam::beam_particles(scene), link, steps, threads);
+}
+
 using Runner = ParticleRun (*)(const core::Scene&, core::RankLink*, int, int);
 
 void expect_bit_identical(const std::string& text, int steps, bool yields = true,
@@ -311,6 +317,19 @@ TEST(MpiReproducible, ParticleSplittingIsBitIdenticalOnAnyRankCount) {
   const core::Scene scene = core::parse_scene(text, "column.toml");
   const std::size_t start = generate_particles(scene).size();
   EXPECT_GT(run_stretched(scene, nullptr, 250, 1).particles.size(), start + 50) << "pieces";
+}
+
+// The nearly incompressible beam of the mixed u-p total-Lagrangian MPM (neo-Hookean gel at
+// nu = 0.499), bending: the projection's three nodal sums (N V0, N V0 J, N K V0 (Jbar - 1)) in
+// fixed point, under the quadratic B-spline (the pressure on the linear hat) and under the
+// linear hat (the pressure constant per cell).
+TEST(MpiReproducible, MixedPressureIsBitIdenticalOnAnyRankCount) {
+  for (const char* shape : {"bspline2", "linear"}) {
+    SCOPED_TRACE(shape);
+    std::string text = test::mixed_beam::beam_scene("mixed", shape, 0.25);
+    text.replace(text.find("[run]\n"), 6, "[run]\nreproducible = true\n");
+    expect_bit_identical(text, 100, false, run_beam);
+  }
 }
 
 // A rigid wall at the particles moving up at 5 m/s with friction 0.3: its contacts are swept
