@@ -244,18 +244,21 @@ TEST(MpiReproducible, OutflowFaceIsBitIdenticalOnAnyRankCount) {
   EXPECT_GT(e.outflow, 0.0);
 }
 
-// The outflow bar's checkpoint of step 50 on ranks (particles have left by then), continued to
-// step 100 on the ranks and in one process: the two the same bits, every energy and outflow book
-// after every step; the books the uninterrupted run's to 1e-14 (the checkpoint holds each exact
-// sum rounded once).
-TEST(MpiReproducible, OutflowBooksContinueFromACheckpointOnRanksAndInOneProcess) {
-  const core::Scene scene = core::parse_scene(outflow_bar(), "bar.toml");
-  constexpr int first = 50, rest = 50;
-  const ParticleRun whole = run(scene, nullptr, first + rest, 1);
-  ASSERT_GT(whole.energies[first - 1].outflow_mass, 0.0) << "none left before the checkpoint";
+// The divided run's checkpoint after `first` steps (in a scratch file every rank reads),
+// continued for `rest` steps on this run's ranks and in one process; and the uninterrupted run in
+// one process.
+struct Continued {
+  ParticleRun whole, on_ranks, in_one;
+};
+
+Continued continue_from_checkpoint(const core::Scene& scene, int first, int rest,
+                                   const std::string& file) {
+  Continued c;
+  c.whole = run(scene, nullptr, first + rest, 1);
   core::MpiRankLink link;
-  const std::string path = test::shared_scratch_file(link, "outflow_50.h5");
-  ASSERT_FALSE(path.empty()) << "rank 0 could not make a scratch directory";
+  const std::string path = test::shared_scratch_file(link, file);
+  EXPECT_FALSE(path.empty()) << "rank 0 could not make a scratch directory";
+  if (path.empty()) return c;
   {
     MpmSolver divided(scene, generate_particles(scene));
     divided.divide_among_ranks(link);
@@ -269,13 +272,29 @@ TEST(MpiReproducible, OutflowBooksContinueFromACheckpointOnRanksAndInOneProcess)
       solver.step(solver.stable_time_step());
       r.energies.push_back(solver.energies());
     }
+    r.particles = solver.particles();
     return r;
   };
   MpmSolver again(scene, generate_particles(scene));
   again.divide_among_ranks(link);
-  const ParticleRun on_ranks = continued(again);
+  c.on_ranks = continued(again);
   MpmSolver alone(scene, generate_particles(scene));
-  const ParticleRun in_one = continued(alone);
+  c.in_one = continued(alone);
+  test::remove_shared_scratch(link, path);
+  return c;
+}
+
+// The outflow bar's checkpoint of step 50 on ranks (particles have left by then), continued to
+// step 100 on the ranks and in one process: the two the same bits, every energy and outflow book
+// after every step; the books the uninterrupted run's to 1e-14 (the checkpoint holds each exact
+// sum rounded once).
+TEST(MpiReproducible, OutflowBooksContinueFromACheckpointOnRanksAndInOneProcess) {
+  const core::Scene scene = core::parse_scene(outflow_bar(), "bar.toml");
+  constexpr int first = 50, rest = 50;
+  const auto [whole, on_ranks, in_one] =
+      continue_from_checkpoint(scene, first, rest, "outflow_50.h5");
+  ASSERT_GT(whole.energies[first - 1].outflow_mass, 0.0) << "none left before the checkpoint";
+  ASSERT_EQ(in_one.energies.size(), static_cast<std::size_t>(rest));
   for (int k = 0; k < rest; ++k) {
     const auto s = static_cast<std::size_t>(k);
     expect_same_bits(in_one.energies[s], on_ranks.energies[s], first + k);
@@ -286,7 +305,6 @@ TEST(MpiReproducible, OutflowBooksContinueFromACheckpointOnRanksAndInOneProcess)
     EXPECT_NEAR(b.outflow_momentum.z, a.outflow_momentum.z, 1e-14 * std::abs(a.outflow_momentum.z))
         << "step " << first + k;
   }
-  test::remove_shared_scratch(link, path);
 }
 
 // The bar up to the grid's top, an absorbing face there (its dashpots take energy out once the
@@ -366,31 +384,8 @@ bodies = ["bar"]
 )",
       "bar.toml");
   constexpr int first = 70, rest = 80;
-  const ParticleRun whole = run(scene, nullptr, first + rest, 1);
-  core::MpiRankLink link;
-  const std::string path = test::shared_scratch_file(link, "step_70.h5");
-  ASSERT_FALSE(path.empty()) << "rank 0 could not make a scratch directory";
-  {
-    MpmSolver divided(scene, generate_particles(scene));
-    divided.divide_among_ranks(link);
-    for (int k = 0; k < first; ++k) divided.step(divided.stable_time_step());
-    test::save_checkpoint(link, divided, path);
-  }
-  auto continued = [&](MpmSolver& solver) {
-    test::load_checkpoint(solver, path);
-    ParticleRun r;
-    for (int k = 0; k < rest; ++k) {
-      solver.step(solver.stable_time_step());
-      r.energies.push_back(solver.energies());
-    }
-    r.particles = solver.particles();
-    return r;
-  };
-  MpmSolver again(scene, generate_particles(scene));
-  again.divide_among_ranks(link);
-  const ParticleRun on_ranks = continued(again);
-  MpmSolver alone(scene, generate_particles(scene));
-  const ParticleRun in_one = continued(alone);
+  const auto [whole, on_ranks, in_one] = continue_from_checkpoint(scene, first, rest, "step_70.h5");
+  ASSERT_EQ(in_one.energies.size(), static_cast<std::size_t>(rest));
   const double e0 = whole.energies.front().kinetic;
   for (int k = 0; k < rest; ++k) {
     const auto s = static_cast<std::size_t>(k);
@@ -404,7 +399,6 @@ bodies = ["bar"]
   }
   EXPECT_EQ(differences(on_ranks.particles, in_one.particles), 0);
   EXPECT_EQ(differences(in_one.particles, whole.particles), 0);
-  test::remove_shared_scratch(link, path);
 }
 
 // The striker of particles in grid contact with friction 0.2 with the plate: the mass
