@@ -81,7 +81,7 @@ void MpmSolver::mixed_pressure_kernel() {
   const bool exact = reproducible();
   core::FixedScale scale[3];
   core::Fixed* fixed = nullptr;
-  std::vector<char> ok(static_cast<std::size_t>(core::thread_count()), 1);
+  std::vector<char> ok(exact ? static_cast<std::size_t>(core::thread_count()) : 0, 1);
   auto bound_over_ranks = [&](double b) { return ranks_ ? ranks_->max_over_ranks(b) : b; };
   // Makes sums[0, count) whole over the ranks' shared blocks and turns them into the doubles
   // at `into`; stops the run where a term passed its bound.
