@@ -184,11 +184,10 @@ void MpmSolver::grid_momentum_update(double dt) {
     double work = 0.0;
     core::ExactSum* exact_work =
         exact ? exact + static_cast<std::size_t>(core::thread_index()) : nullptr;
-    auto book_gravity = [&](double term) {
+    auto book_work = [&](double term) {
       work += term;
       if (exact_work) exact_work->add(term);
     };
-    auto book_face = book_gravity;
 
     g.for_each_slot([&](std::size_t slot, const std::array<int, 3>& node) {
       const NodeConstraint c = constraints(node);
@@ -212,14 +211,14 @@ void MpmSolver::grid_momentum_update(double dt) {
         g.velocity_new[s] = v_new;
         // An absorbing face damps the stored velocity; the gravity work and the shared-field
         // shift below take the undamped one, as before the damping.
-        if (c.damped) book_face(booked * absorb(m, c.damping, dt, v, g.velocity_new[s]));
-        if (c.far) book_face(booked * far_field(node, f, c.far, m, dt, v, g.velocity_new[s]));
+        if (c.damped) book_work(booked * absorb(m, c.damping, dt, v, g.velocity_new[s]));
+        if (c.far) book_work(booked * far_field(node, f, c.far, m, dt, v, g.velocity_new[s]));
         // A field of self-updating points only: their owner counted its gravity work.
         const bool counted =
             !field_self_updated_.empty() && field_self_updated_[static_cast<std::size_t>(f)];
         if (!shared || !(shared_.mass[s] > 0.0)) {
           if (body_force && !counted)
-            book_gravity(booked * 0.5 * dt * m * core::dot(gravity, v + v_new));
+            book_work(booked * 0.5 * dt * m * core::dot(gravity, v + v_new));
           continue;
         }
         // Contact nodes share this field with particles or bonded nodes of their body: the
@@ -234,7 +233,7 @@ void MpmSolver::grid_momentum_update(double dt) {
                     c, vo, vo_new);
           start = vo - v;
           updated = vo_new - v_new;
-          if (body_force) book_gravity(booked * 0.5 * dt * mo * core::dot(gravity, vo + vo_new));
+          if (body_force) book_work(booked * 0.5 * dt * mo * core::dot(gravity, vo + vo_new));
         }
         shared_.start[s] = start;
         shared_.updated[s] = updated;

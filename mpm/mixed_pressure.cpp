@@ -21,9 +21,7 @@
 // do not depend on the particles' order or rank either (docs/parallel.md).
 #include <algorithm>
 #include <cmath>
-#include <string>
 
-#include "afemp/errors.hpp"
 #include "core/exact_sum.hpp"
 #include "core/parallel.hpp"
 #include "mpm/mpm_solver.hpp"
@@ -86,15 +84,9 @@ void MpmSolver::mixed_pressure_kernel() {
   // Makes sums[0, count) whole over the ranks' shared blocks and turns them into the doubles
   // at `into`; stops the run where a term passed its bound.
   auto finish_fixed = [&](int first, int count, double* into) {
-    double bad = std::count(ok.begin(), ok.end(), 0) > 0 ? 1.0 : 0.0;
-    if (ranks_) bad = ranks_->max_over_ranks(bad);
-    if (bad > 0.0)
-      throw core::SimulationError(
-          steps_, time_, "the mixed pressure's nodal sums",
-          first == 2 ? "pressure" : "volume ratio",
-          "a particle's term passed 2^54 times the bound its fixed-point sum was scaled by ([run] "
-          "reproducible = true): a non-finite or runaway deformation; the run without the "
-          "reproducible mode would show which particle");
+    stop_past_fixed_bound(std::count(ok.begin(), ok.end(), 0) > 0 ? 1 : 0,
+                          "the mixed pressure's nodal sums",
+                          first == 2 ? "pressure" : "volume ratio", "deformation");
     core::Fixed* from = fixed + static_cast<std::size_t>(first) * slots;
     if (ranks_) {
       std::vector<core::NodalArray> arrays;

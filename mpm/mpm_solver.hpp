@@ -281,6 +281,11 @@ class MpmSolver {
   enum class FixedScatter { mass_momentum_force, mass_momentum, force, remap, gradient };
   void start_fixed_scatter(FixedScatter what);
   void finish_fixed_scatter(FixedScatter what);
+  // Stops every rank where a fixed-point term passed its bound on any (`passed`: 0 none, 1 a
+  // particle's, 2 a mesh node's), naming the sums, the array and what ran away
+  // (reproducible_sums.cpp).
+  void stop_past_fixed_bound(int passed, const char* sums, const char* array,
+                             const char* runaway) const;
   bool reproducible() const { return scene_.run.reproducible; }
   // Per-thread exact sums of a stage, `per` of them a thread, cleared.
   core::ExactSum* exact_thread_sums(std::size_t per);

@@ -110,25 +110,13 @@ void MpmSolver::finish_fixed_scatter(FixedScatter what) {
   const bool mass_momentum =
       what == FixedScatter::mass_momentum_force || what == FixedScatter::mass_momentum;
   const bool force = what == FixedScatter::mass_momentum_force || what == FixedScatter::force;
-  // A term past its bound on any rank stops every rank, the same step, each naming what did
-  // (1: a particle's, 2: a mesh node's term, on some rank).
-  double bad = !f.points_ok                                            ? 2.0
-               : std::count(fixed_ok_.begin(), fixed_ok_.end(), 0) > 0 ? 1.0
-                                                                       : 0.0;
-  if (ranks_) bad = ranks_->max_over_ranks(bad);
-  if (bad > 0.0) {
-    const bool node = bad > 1.0;
-    const char* array = what == FixedScatter::remap      ? "remapped momentum"
-                        : what == FixedScatter::gradient ? "mass gradient"
-                                                         : "mass, momentum or force";
-    throw core::SimulationError(
-        steps_, time_, "the grid's nodal sums", array,
-        std::string(node ? "a mesh node's" : "a particle's") +
-            " term passed 2^54 times the bound its fixed-point sum was scaled by ([run] "
-            "reproducible = true): a non-finite or runaway stress, force or velocity; the run "
-            "without the reproducible mode would show which " +
-            (node ? "node" : "particle"));
-  }
+  const char* array = what == FixedScatter::remap      ? "remapped momentum"
+                      : what == FixedScatter::gradient ? "mass gradient"
+                                                       : "mass, momentum or force";
+  stop_past_fixed_bound(!f.points_ok                                            ? 2
+                        : std::count(fixed_ok_.begin(), fixed_ok_.end(), 0) > 0 ? 1
+                                                                                : 0,
+                        "the grid's nodal sums", array, "stress, force or velocity");
   // The self-updating points' share of a field (grid_points.hpp), scattered with the sums.
   const bool share = shared_.any && what != FixedScatter::remap && what != FixedScatter::gradient;
   if (ranks_) {
@@ -173,6 +161,23 @@ void MpmSolver::finish_fixed_scatter(FixedScatter what) {
     }
     if (share && force) shared_.updated[s] = vector_of(f.share_updated, s, f.force_scale);
   }
+}
+
+void MpmSolver::stop_past_fixed_bound(int passed, const char* sums, const char* array,
+                                      const char* runaway) const {
+  // A term past its bound on any rank stops every rank, the same step, each naming what did
+  // (1: a particle's, 2: a mesh node's term, on some rank; the larger wins).
+  double bad = passed;
+  if (ranks_) bad = ranks_->max_over_ranks(bad);
+  if (!(bad > 0.0)) return;
+  const bool node = bad > 1.0;
+  throw core::SimulationError(
+      steps_, time_, sums, array,
+      std::string(node ? "a mesh node's" : "a particle's") +
+          " term passed 2^54 times the bound its fixed-point sum was scaled by ([run] "
+          "reproducible = true): a non-finite or runaway " +
+          runaway + "; the run without the reproducible mode would show which " +
+          (node ? "node" : "particle"));
 }
 
 core::ExactSum* MpmSolver::exact_thread_sums(std::size_t per) {
