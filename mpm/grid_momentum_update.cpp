@@ -115,7 +115,7 @@ void MpmSolver::share_far_field_lags() {
   // Each lag and a flag that a rank booked it, summed over the ranks: one rank adds the lag
   // (the others zeros, so the sum is its bits), and a lag no rank holds stays as it was, as
   // on every rank before.
-  std::vector<double> values;
+  std::vector<double>& values = far_lag_shared_;
   std::array<std::size_t, 7> start{};
   for (std::size_t face = 0; face < 6; ++face) {
     start[face + 1] = start[face] + (absorbing_[face].far ? 2 * far_lag_[face].size() : 0);

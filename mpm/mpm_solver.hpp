@@ -454,6 +454,9 @@ class MpmSolver {
   // Far-field faces: the lag w of each node on the face plane, per velocity field
   // (field-major, then the two other axes in cyclic order); empty for the other faces.
   std::vector<std::vector<double>> far_lag_ = std::vector<std::vector<double>>(6);
+  // On ranks: the lags and their flags summed over the ranks each step (share_far_field_lags),
+  // kept between steps so that the step allocates nothing.
+  std::vector<double> far_lag_shared_;
   // A far field's ambient pressure: taken off the stress in the internal force (gauge), or
   // applied to the far-field faces' nodes as a static traction (absolute); 0 where unused.
   double ambient_pressure_ = 0.0, face_pressure_ = 0.0;

@@ -9,6 +9,7 @@
 // the books are summed exactly too (reproducible_sums.cpp), so that they do not depend on which
 // rank a particle leaves from.
 #include <cmath>
+#include <span>
 #include <vector>
 
 #include "core/parallel.hpp"
@@ -39,9 +40,9 @@ void MpmSolver::remove_outflow() {
   // On ranks each rank takes out its own particles and books them (energies() sums the ranks'
   // books); the whole run's count falls by every rank's.
   if (ranks_) {
-    std::vector<double> count{static_cast<double>(leaving)};
-    ranks_->sum_in_rank_order(count);
-    whole_count_ -= static_cast<std::size_t>(count[0]);
+    double count = static_cast<double>(leaving);  // a step's sum: no buffer to allocate
+    ranks_->sum_in_rank_order(std::span<double>(&count, 1));
+    whole_count_ -= static_cast<std::size_t>(count);
   }
   if (leaving == 0) return;
   // In particle order, on one thread: the same sums for any thread count.
