@@ -58,4 +58,25 @@ LinerElement per_tip_element(const ConicalCharge& q) {
   return best;
 }
 
+MergedTip per_merged_tip(const ConicalCharge& q) {
+  const double inner_apex = q.apex_z + q.wall / std::sin(q.half_angle);
+  const double step = 0.01;
+  const double fastest = per_tip_element(q).z;
+  MergedTip tip;
+  double momentum = 0.0;
+  for (int k = 1; inner_apex + k * step < q.base_z; ++k) {
+    const LinerElement e = per_liner_element(q, inner_apex + k * step);
+    if (e.z > fastest && e.collapse.jet_velocity < tip.velocity) break;
+    // The ring's liner mass per radian over the step, and its jet's share.
+    const double ring = 0.5 * q.liner_density *
+                        (e.outer_radius * e.outer_radius - e.inner_radius * e.inner_radius) * step;
+    const double s = std::sin(0.5 * e.collapse.beta);
+    tip.jet_mass += ring * s * s;
+    momentum += ring * s * s * e.collapse.jet_velocity;
+    tip.velocity = momentum / tip.jet_mass;
+    tip.last_z = e.z;
+  }
+  return tip;
+}
+
 }  // namespace afemp::analysis

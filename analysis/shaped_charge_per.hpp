@@ -75,4 +75,19 @@ LinerElement per_liner_element(const ConicalCharge& charge, double z);
 // inner apex (where the liner first has a cavity) to the base.
 LinerElement per_tip_element(const ConicalCharge& charge);
 
+// The tip as the elements' inelastic merger: ahead of the fastest element the jets are slower
+// (an inverse velocity gradient), so the elements behind overtake them and, mass and momentum
+// kept, gather into one tip. Each element's jet is its liner ring's share sin^2(beta / 2) (PER
+// 1952; Walters & Zukas 1989, ch. 3). Taken from the inner apex back, element by element every
+// 0.01 mm: every element up to the fastest joins, and beyond it each element whose jet is
+// still faster than the gathered tip; the first that is not ends the tip, as none behind it
+// catches up (the jet velocity falls from there on). This is the tip's velocity once the
+// merger is complete, with no break-up before it.
+struct MergedTip {
+  double last_z = 0.0;    // the last element that joins
+  double jet_mass = 0.0;  // the tip's mass per radian of the charge (the full charge: 2 pi times)
+  double velocity = 0.0;  // its mass-weighted jet velocity
+};
+MergedTip per_merged_tip(const ConicalCharge& charge);
+
 }  // namespace afemp::analysis
