@@ -47,20 +47,23 @@ LinerElement per_liner_element(const ConicalCharge& q, double z) {
   return e;
 }
 
+double per_inner_apex(const ConicalCharge& q) {
+  return q.apex_z + q.wall / std::sin(q.half_angle);
+}
+
 LinerElement per_tip_element(const ConicalCharge& q) {
-  const double inner_apex = q.apex_z + q.wall / std::sin(q.half_angle);
-  const double step = 0.01;
+  const double inner_apex = per_inner_apex(q);
   LinerElement best;
-  for (int k = 1; inner_apex + k * step < q.base_z; ++k) {
-    const LinerElement e = per_liner_element(q, inner_apex + k * step);
+  for (int k = 1; inner_apex + k * per_element_step < q.base_z; ++k) {
+    const LinerElement e = per_liner_element(q, inner_apex + k * per_element_step);
     if (e.collapse.jet_velocity > best.collapse.jet_velocity) best = e;
   }
   return best;
 }
 
 MergedTip per_merged_tip(const ConicalCharge& q) {
-  const double inner_apex = q.apex_z + q.wall / std::sin(q.half_angle);
-  const double step = 0.01;
+  const double inner_apex = per_inner_apex(q);
+  const double step = per_element_step;
   const double fastest = per_tip_element(q).z;
   MergedTip tip;
   double momentum = 0.0;

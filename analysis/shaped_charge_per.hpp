@@ -71,15 +71,20 @@ struct LinerElement {
 // The element at height z (a shell element: beyond the solid apex, where r_i > 0).
 LinerElement per_liner_element(const ConicalCharge& charge, double z);
 
-// The tip estimate: the element of the fastest steady jet, sampled every 0.01 mm of z from the
-// inner apex (where the liner first has a cavity) to the base.
+// The inner apex, where the liner first has a cavity: the outer apex plus the wall over
+// sin(alpha). The estimates below sample the elements every `per_element_step` of z from it
+// (the first one step beyond it) to the base.
+double per_inner_apex(const ConicalCharge& charge);
+inline constexpr double per_element_step = 0.01;
+
+// The tip estimate: the element of the fastest steady jet.
 LinerElement per_tip_element(const ConicalCharge& charge);
 
 // The tip as the elements' inelastic merger: ahead of the fastest element the jets are slower
 // (an inverse velocity gradient), so the elements behind overtake them and, mass and momentum
 // kept, gather into one tip. Each element's jet is its liner ring's share sin^2(beta / 2) (PER
-// 1952; Walters & Zukas 1989, ch. 3). Taken from the inner apex back, element by element every
-// 0.01 mm: every element up to the fastest joins, and beyond it each element whose jet is
+// 1952; Walters & Zukas 1989, ch. 3). Taken from the inner apex back, element by element:
+// every element up to the fastest joins, and beyond it each element whose jet is
 // still faster than the gathered tip; the first that is not ends the tip, as none behind it
 // catches up (the jet velocity falls from there on). This is the tip's velocity once the
 // merger is complete, with no break-up before it.

@@ -97,19 +97,21 @@ TEST(ShapedChargePer, TheMergedTipKeepsTheElementsMomentum) {
   EXPECT_NEAR(2.0 * std::numbers::pi * tip.jet_mass, 0.5661, 0.0005);
   EXPECT_NEAR(tip.velocity, 7020.6, 1.0);
   // Momentum: the tip's is the sum of its elements' (each ring's jet share sin^2(beta / 2)).
-  const double inner_apex = q.apex_z + q.wall / std::sin(q.half_angle);
+  const double inner_apex = per_inner_apex(q);
   double mass = 0.0, momentum = 0.0;
-  for (int k = 1; inner_apex + k * 0.01 <= tip.last_z + 1e-9; ++k) {
-    const LinerElement e = per_liner_element(q, inner_apex + k * 0.01);
+  for (int k = 1; inner_apex + k * per_element_step <= tip.last_z + 1e-9; ++k) {
+    const LinerElement e = per_liner_element(q, inner_apex + k * per_element_step);
     const double share = std::pow(std::sin(0.5 * e.collapse.beta), 2);
-    const double ring =
-        0.5 * q.liner_density * (std::pow(e.outer_radius, 2) - std::pow(e.inner_radius, 2)) * 0.01;
+    const double ring = 0.5 * q.liner_density *
+                        (std::pow(e.outer_radius, 2) - std::pow(e.inner_radius, 2)) *
+                        per_element_step;
     mass += share * ring, momentum += share * ring * e.collapse.jet_velocity;
   }
   EXPECT_NEAR(tip.jet_mass, mass, 1e-12 * mass);
   EXPECT_NEAR(tip.velocity, momentum / mass, 1e-9 * tip.velocity);
   // It ends where the next element's jet no longer catches it, and it is slower than the fastest.
-  EXPECT_LT(per_liner_element(q, tip.last_z + 0.01).collapse.jet_velocity, tip.velocity);
+  EXPECT_LT(per_liner_element(q, tip.last_z + per_element_step).collapse.jet_velocity,
+            tip.velocity);
   EXPECT_GE(per_liner_element(q, tip.last_z).collapse.jet_velocity, tip.velocity);
   EXPECT_LT(tip.velocity, per_tip_element(q).collapse.jet_velocity);
 }
