@@ -36,6 +36,7 @@
 
 #include "afemp/energies.hpp"
 #include "core/scene.hpp"
+#include "example_text.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
 
@@ -53,9 +54,11 @@ struct JetAt14 {
 };
 
 JetAt14 collapse(const std::string& cell) {
-  // The example's liner, copper and scheme (examples/shaped_charge/scene.toml); the grid runs
-  // to z = 180 mm, beyond the jet's body at 14 us (a few of the apex's fastest particles reach
-  // it by 10 us and leave, booked as outflow).
+  // The example's liner, its copper and its [mpm] table (scheme, splitting), taken from
+  // examples/shaped_charge/scene.toml; the grid runs to z = 180 mm, beyond the jet's body at
+  // 14 us (a few of the apex's fastest particles reach it by 10 us and leave, booked as
+  // outflow).
+  const std::string example = test::example_text("shaped_charge/scene.toml");
   const std::string text = R"([run]
 units = "mm-ms-g"
 end_time = 0.014
@@ -64,20 +67,9 @@ cell = )" + cell + R"(
 min = [0, 0, 10]
 max = [24, 24, 180]
 boundary = { xmin = "symmetric", ymin = "symmetric", xmax = "outflow", ymax = "outflow", zmin = "outflow", zmax = "outflow" }
-[mpm]
-scheme = "USAVG"
-splitting = { bodies = ["liner"], axes = ["z"] }
-[materials.copper]
-density = 8.93e-3
-E = 124e3
-nu = 0.35
-strength = { model = "j2", yield = 120 }
-eos = { model = "mie-gruneisen", c0 = 3940, s = 1.49, gamma0 = 2.0 }
-[[bodies]]
-name = "liner"
-material = "copper"
-shape = { cone = { base = [0, 0, 50], axis = [0, 0, -1], radius = 20, top_radius = 0, length = 34.641, wall = 2 } }
-)";
+)" + test::table(example, "[mpm]") +
+                           test::table(example, "[materials.copper]") +
+                           test::table(example, "[[bodies]]", "name = \"liner\"");
   const core::Scene scene = core::parse_scene(text, "birkhoff.toml");
   Particles start = generate_particles(scene);
   for (std::size_t i = 0; i < start.size(); ++i) {  // V0 along the wall's inward normal
