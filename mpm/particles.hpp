@@ -143,7 +143,7 @@ void for_each_particle_field(F&& f) {
   using A = AddRule;
   f(R{"position", nullptr, -1, S::own, A::carry, 0.0}, &Particles::position);
   f(R{"velocity", "velocity", -1, S::copy, A::carry, 0.0}, &Particles::velocity);
-  f(R{"mass", nullptr, -1, S::share, A::carry, 0.0}, &Particles::mass);
+  f(R{"mass", "mass", -1, S::share, A::carry, 0.0}, &Particles::mass);
   f(R{"volume", nullptr, -1, S::share, A::carry, 0.0}, &Particles::volume);
   f(R{"stress", "stress", -1, S::copy, A::carry, 0.0}, &Particles::stress);
   f(R{"strain", "strain", 0, S::copy, A::carry, 0.0}, &Particles::strain);

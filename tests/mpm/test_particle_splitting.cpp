@@ -9,11 +9,15 @@
 #include <cstdio>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "afemp/errors.hpp"
+#include "core/output/field_writer.hpp"
 #include "core/scene.hpp"
+#include "mpm/mpm_model.hpp"
 #include "mpm/mpm_solver.hpp"
 #include "mpm/particle_generation.hpp"
+#include "scratch_dir.hpp"
 #include "stretched_column.hpp"
 
 namespace afemp::mpm {
@@ -91,6 +95,37 @@ TEST(ParticleSplitting, ColumnStretchedFourTimesStaysContinuousWithMassAndMoment
   EXPECT_GT(on.particles, 3 * off.particles);
   EXPECT_LT(on.mass_error, 1e-12);
   EXPECT_LT(on.momentum_error, 1e-12);
+}
+
+// The field output writes each particle's mass (`mass`), so a reader can weigh what it
+// selects (a jet's slices, a fragment): after splits, the frame's masses are the pieces' own,
+// and they sum to the column's mass (conservation; the shares are exact powers of two).
+TEST(ParticleSplitting, TheFieldOutputWritesEachPiecesMass) {
+  const core::Scene scene = core::parse_scene(column("splitting = { alpha = 0.9 }"), "column.toml");
+  MpmModel model(scene);
+  MpmSolver& solver = model.solver();
+  const double mass = solver.energies().bodies[0].mass;
+  const std::size_t n0 = solver.particles().size();
+  test::stretch_column(solver.mutable_particles());
+  while (solver.split_count() == 0 && solver.time() < 30e-3) solver.step(solver.stable_time_step());
+  ASSERT_GT(solver.split_count(), 0);
+  const test::ScratchDir dir;
+  {
+    core::FieldWriter writer(dir.str());
+    model.write_fields(writer);
+  }
+  std::vector<std::size_t> dims;
+  const std::vector<double> written =
+      core::read_dataset(dir.file("fields.h5"), "/frame_000000/particles/node/mass", &dims);
+  const Particles& p = solver.particles();
+  ASSERT_EQ(written.size(), p.size());
+  EXPECT_GT(p.size(), n0);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    EXPECT_EQ(written[i], p.mass[i]) << i;
+    if (p.body[i] == 0) sum += written[i];
+  }
+  EXPECT_NEAR(sum, mass, 1e-12 * mass);
 }
 
 // [mpm] splitting.bodies: only the bodies named split. A column not named keeps its particles
