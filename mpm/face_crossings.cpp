@@ -47,6 +47,12 @@ enum class Crossing : unsigned char { none, mirror, hold };
 
 }  // namespace
 
+bool MpmSolver::returns_past_face(std::size_t f) const {
+  // Total-Lagrangian: the grid holds the reference configuration, which stays put.
+  return !plan_.total_lagrangian &&
+         (grid_.settings().faces[f] == core::FaceCondition::symmetric || absorbing_[f].far);
+}
+
 void MpmSolver::return_particles_past_faces() {
   const core::GridSettings& g = grid_.settings();
   std::array<Crossing, 6> action{};
@@ -56,13 +62,12 @@ void MpmSolver::return_particles_past_faces() {
     const std::size_t a = f / 2;
     plane[f] = f % 2 == 0 ? g.min[static_cast<int>(a)]
                           : g.min[static_cast<int>(a)] + grid_.cells()[a] * grid_.cell();
-    action[f] = g.faces[f] == core::FaceCondition::symmetric ? Crossing::mirror
-                : absorbing_[f].far                          ? Crossing::hold
-                                                             : Crossing::none;
+    action[f] = !returns_past_face(f)                          ? Crossing::none
+                : g.faces[f] == core::FaceCondition::symmetric ? Crossing::mirror
+                                                               : Crossing::hold;
     any = any || action[f] != Crossing::none;
   }
-  // Total-Lagrangian: the grid holds the reference configuration, which stays put.
-  if (!any || plan_.total_lagrangian) return;
+  if (!any) return;
   Particles& p = particles_;
   const std::size_t n = p.size();
   const bool strain = !p.strain.empty(), affine = !p.affine.empty();

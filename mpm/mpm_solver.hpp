@@ -345,12 +345,15 @@ class MpmSolver {
   std::int32_t next_particle_id() const;
   void setup_explosives();
   // Outflow faces (outflow.cpp): whether a position lies beyond the grid through outflow
-  // faces only, and the removal of such particles at the start of a step.
+  // faces, past no face that stops the run (one that returns particles does not count), and
+  // the removal of such particles at the start of a step.
   bool left_through_outflow(const Vec3& x) const;
   void remove_outflow();
   // Particles carried past a symmetric face are mirrored back, past a far-field face put back
-  // on its plane (face_crossings.cpp).
+  // on its plane (face_crossings.cpp), at the start of binning; whether face f (xmin, xmax,
+  // ...) returns them so (never in the total-Lagrangian form, whose grid does not move).
   void return_particles_past_faces();
+  bool returns_past_face(std::size_t f) const;
   // Absorbing faces (absorbing_faces.cpp): their wave speeds from the material that meets
   // each; throws core::InputError naming the face if none or several.
   void setup_absorbing_faces();

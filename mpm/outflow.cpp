@@ -4,8 +4,10 @@
 // domain, x_min <= x_p <= x_max. A particle beyond a face declared "outflow" stops taking
 // part: it is taken out of the particle arrays, and its mass, momentum, kinetic and internal
 // energy are booked (Energies::outflow*), so mass + outflow mass and the energy balance
-// still close; its plastic work and viscous heat leave the plastic and viscous totals. A particle
-// beyond any other face stops the run as before (binning names it). In the reproducible mode
+// still close; its plastic work and viscous heat leave the plastic and viscous totals. So does
+// one beyond an outflow face that is also past a symmetric or far-field face (at their corner),
+// which binning would bring back past the latter only. A particle beyond any other face stops
+// the run as before (binning names it). In the reproducible mode
 // the books are summed exactly too (reproducible_sums.cpp), so that they do not depend on which
 // rank a particle leaves from.
 #include <cmath>
@@ -25,8 +27,14 @@ bool MpmSolver::left_through_outflow(const Vec3& x) const {
     const auto k = static_cast<std::size_t>(a);
     const int side = c[k] < 0 ? 0 : c[k] >= grid_.cells()[k] ? 1 : -1;
     if (side < 0) continue;
-    if (!outflow_[static_cast<std::size_t>(2 * a + side)]) return false;  // a closed face
-    beyond = true;
+    const auto f = static_cast<std::size_t>(2 * a + side);
+    // Past a symmetric or far-field face as well (a jet's particle on a quarter model's axis
+    // at the outflow face at its end): binning would bring it back past that face, still
+    // beyond the outflow face, and stop the run; it leaves here instead.
+    if (outflow_[f])
+      beyond = true;
+    else if (!returns_past_face(f))
+      return false;  // past a face that stops the run: binning names it
   }
   return beyond;
 }
