@@ -7,9 +7,8 @@
 // still close; its plastic work and viscous heat leave the plastic and viscous totals. So does
 // one beyond an outflow face that is also past a symmetric or far-field face (at their corner),
 // which binning would bring back past the latter only. A particle beyond any other face stops
-// the run as before (binning names it). In the reproducible mode
-// the books are summed exactly too (reproducible_sums.cpp), so that they do not depend on which
-// rank a particle leaves from.
+// the run as before (binning names it). In the reproducible mode the books are summed exactly
+// too (reproducible_sums.cpp), so that they do not depend on which rank a particle leaves from.
 #include <cmath>
 #include <span>
 #include <vector>
