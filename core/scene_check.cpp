@@ -9,6 +9,7 @@
 #include <string>
 #include <variant>
 
+#include "core/axisymmetric_refusals.hpp"
 #include "core/far_field_refusals.hpp"
 #include "core/materials/initial_pressure.hpp"
 #include "core/mixed_pressure_refusals.hpp"
@@ -633,6 +634,8 @@ void check_scene(const Scene& scene) {
   scene_detail::check_explosives(scene);
   if (const std::optional<std::string> why = reproducible_refusal(scene))
     c.fail(scene.run.reproducible_where, "run.reproducible", *why);
+  if (const std::optional<AxisymmetricRefusal> no = axisymmetric_refusal(scene))
+    c.fail(no->where, no->key, no->why);
   for (const VelocityReference& v : scene.velocity_references) {
     c.body(v.where, "reference.velocity.body", v.body, false);
     if (v.value == 0.0) c.fail(v.where, "reference.velocity.value", "must not be 0");

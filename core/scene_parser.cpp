@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/axisymmetric_refusals.hpp"
 #include "core/far_field_refusals.hpp"
 #include "core/materials/initial_pressure.hpp"
 #include "core/materials/model_parameters.hpp"
@@ -450,13 +451,28 @@ void read_run(TableReader& r, RunSettings& run) {
 }
 
 void read_grid(TableReader& r, GridSettings& grid) {
-  r.known({"cell", "min", "max", "boundary", "far_field"});
+  r.known({"cell", "min", "max", "boundary", "far_field", "axisymmetric"});
   r.check_unknown();
   grid.cell = r.required_number("cell", scene_ranges::grid::cell);
   grid.min = r.required_vec3("min");
   grid.max = r.required_vec3("max");
+  grid.axisymmetric = r.boolean("axisymmetric", false);
+  if (grid.axisymmetric) {
+    // The r-z plane: x the radius from the axis, no extent across it (the hoop direction).
+    if (grid.min.y != 0.0 || grid.max.y != 0.0)
+      r.fail("min",
+             "an axisymmetric grid lies in the r-z plane y = 0: give min and max as "
+             "[r, 0, z] (their y components " +
+                 format_number(grid.min.y) + " and " + format_number(grid.max.y) + " must be 0)");
+    if (grid.min.x != 0.0)
+      r.fail("min",
+             "an axisymmetric grid starts at the axis: min's x component (the radius) "
+             "must be 0, not " +
+                 format_number(grid.min.x));
+    grid.faces[static_cast<std::size_t>(Face::xmin)] = FaceCondition::symmetric;
+  }
   for (int a = 0; a < 3; ++a)
-    if (!(grid.max[a] > grid.min[a]))
+    if (!(grid.max[a] > grid.min[a]) && !(grid.axisymmetric && a == 1))
       r.fail("max", "max must exceed min in every component; component " + std::to_string(a) +
                         ": max " + format_number(grid.max[a]) + " <= min " +
                         format_number(grid.min[a]));
@@ -470,7 +486,20 @@ void read_grid(TableReader& r, GridSettings& grid) {
       grid.faces[static_cast<std::size_t>(f)] = static_cast<FaceCondition>(
           br.choice(face_names[f], {"free", "fixed", "symmetric", "wall", "outflow", "absorbing"},
                     static_cast<std::size_t>(grid.faces[static_cast<std::size_t>(f)])));
+    if (grid.axisymmetric) {
+      for (std::string_view hoop : {"ymin", "ymax"})
+        if (br.has(hoop))
+          br.fail(hoop,
+                  "an axisymmetric grid has no faces across the r-z plane (y is the hoop "
+                  "direction); remove it");
+      if (grid.faces[static_cast<std::size_t>(Face::xmin)] != FaceCondition::symmetric)
+        br.fail("xmin",
+                "the x = 0 face of an axisymmetric grid is the axis: it must be "
+                "\"symmetric\" (the default there)");
+    }
   }
+  // One cell across the plane, the particles at its middle (mpm/axisymmetric.hpp).
+  if (grid.axisymmetric) make_axisymmetric(grid);
   if (const toml::table* t = r.optional_table("far_field")) {
     TableReader fr(*t, r.dotted("far_field"), r.file());
     fr.known({"centre", "pressure", "stress"});
@@ -2202,6 +2231,8 @@ Scene scene_from_toml(const toml::table& root, const std::string& path) {
   read_phases(r, scene, path);
   if (const std::optional<std::string> why = reproducible_refusal(scene))
     throw InputError(scene.run.reproducible_where, "run.reproducible", *why);
+  if (const std::optional<AxisymmetricRefusal> no = axisymmetric_refusal(scene))
+    throw InputError(no->where, no->key, no->why);
   return scene;
 }
 

@@ -59,6 +59,10 @@ void MpmSolver::divide_among_ranks(core::RankLink& link, const core::RankBalance
     throw std::invalid_argument("rank balance: every " + std::to_string(balance.every) +
                                 " steps above " + std::to_string(balance.imbalance) +
                                 " x the mean: give every >= 1 and an imbalance >= 1");
+  if (axisymmetric_)
+    throw core::InputError(scene_.grid_where, "grid.axisymmetric",
+                           "an axisymmetric grid runs on one process (its rings are not divided "
+                           "among ranks); run it without mpirun");
   balance_ = balance;
   ranks_ = &link;
   try {

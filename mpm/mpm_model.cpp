@@ -244,7 +244,10 @@ core::BodyPoints MpmModel::body_points(int body) const {
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.body[i] != body) continue;
     out.position.push_back(p.position[i]);
-    out.half_size.push_back(0.5 * std::cbrt(p.volume[i]));  // a particle fills a cube of its volume
+    // A particle fills a cube of its volume, or an axisymmetric ring's square of its r-z area.
+    out.half_size.push_back(0.5 * (scene_.mpm.grid.axisymmetric
+                                       ? ring_particle_edge(p.volume[i], p.position[i].x)
+                                       : std::cbrt(p.volume[i])));
   }
   return out;
 }

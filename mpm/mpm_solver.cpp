@@ -27,6 +27,7 @@ MpmSolver::MpmSolver(const core::Scene& scene, Particles particles)
       // uGIMP and the B-splines reach a node beyond the particle's cell on each side.
       grid_(scene.mpm.grid, scene.mpm.shape == core::ShapeFunction::linear ? 0 : 1) {
   for (const auto& m : scene.materials) materials_.push_back(&m);
+  axisymmetric_ = scene.mpm.grid.axisymmetric;
   grid_.enable_remap_field(scene.mpm.scheme == core::UpdateScheme::MUSL ||
                            scene.mpm.scheme == core::UpdateScheme::USAVG);
   // Grid contact: one velocity field per contact body and one shared by the rest.
@@ -244,7 +245,7 @@ void MpmSolver::setup_explosives() {
     x.push_back(p.position[i]);
     D.push_back(m.burn->detonation_velocity);
     body.push_back(p.body[i]);
-    spacing = std::max(spacing, std::cbrt(p.volume[i]));
+    spacing = std::max(spacing, particle_edge(i));
     p.burn[i] = 0.0;
   }
   const std::vector<double> t = core::explosive_lighting_times(x, D, body, spacing, scene_);

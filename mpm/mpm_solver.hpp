@@ -20,6 +20,7 @@
 #include "core/rank_link.hpp"
 #include "core/scene.hpp"
 #include "mpm/absorbing_faces.hpp"
+#include "mpm/axisymmetric.hpp"
 #include "mpm/contact_nodes.hpp"
 #include "mpm/grid_points.hpp"
 #include "mpm/particles.hpp"
@@ -338,8 +339,14 @@ class MpmSolver {
     for (int a = 0; a < 3; ++a) i.m[a][a] = 1.0;
     return i;
   }
+  // A particle's edge: the cube root of its volume, or of an axisymmetric ring's its r-z
+  // area's square root (mpm/axisymmetric.hpp).
+  double particle_edge(std::size_t i) const {
+    return axisymmetric_ ? ring_particle_edge(particles_.volume[i], particles_.position[i].x)
+                         : std::cbrt(particles_.volume[i]);
+  }
   void start_lengths(std::size_t i) {
-    const double l = std::cbrt(particles_.volume[i]);
+    const double l = particle_edge(i);
     particles_.length[i] = particles_.length0[i] = Vec3{l, l, l};
   }
   std::int32_t next_particle_id() const;
@@ -448,6 +455,9 @@ class MpmSolver {
   // core/bulk_viscosity.hpp), and whether any body has it.
   std::vector<core::BulkViscositySettings> bulk_viscosity_;
   bool viscous_ = false;
+  // The axisymmetric form ([grid] axisymmetric; mpm/axisymmetric.hpp): the hoop terms in the
+  // internal force and the strain rate.
+  bool axisymmetric_ = false;
 
   // Outflow faces (xmin, xmax, ymin, ymax, zmin, zmax), and what left through them.
   std::array<bool, 6> outflow_{};

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/materials/initial_pressure.hpp"
+#include "mpm/axisymmetric.hpp"
 #include "mpm/sphere_shells.hpp"
 
 namespace afemp::mpm {
@@ -163,6 +164,8 @@ void generate_lattice(const Test& shape, const GridSettings& grid, const BodySpe
   const double mass = material.density * volume;
   const double temperature = initial_temperature(body, material);
   const Aabb box = shape.bounds();
+  // Axisymmetric (mpm/axisymmetric.hpp): one row of rings across, on y = 0.
+  const bool rings = grid.axisymmetric;
 
   std::array<long long, 3> first{}, last{};
   double candidates = 1.0;
@@ -174,6 +177,7 @@ void generate_lattice(const Test& shape, const GridSettings& grid, const BodySpe
     double f = lo, l = hi;
     if (face_condition(grid, a, false) == FaceCondition::symmetric) f = std::max(f, 0.0);
     if (face_condition(grid, a, true) == FaceCondition::symmetric) l = std::min(l, grid_last);
+    if (rings && a == 1) f = l = 0.0;
     // A shape wholly beyond a symmetric face leaves an empty range; zero-particle check below.
     if (l < f) return;
     candidates *= (l - f + 1.0);
@@ -189,10 +193,16 @@ void generate_lattice(const Test& shape, const GridSettings& grid, const BodySpe
     for (long long j = first[1]; j <= last[1]; ++j) {
       for (long long i = first[0]; i <= last[0]; ++i) {
         const Vec3 x{grid.min.x + (static_cast<double>(i) + 0.5) * d,
-                     grid.min.y + (static_cast<double>(j) + 0.5) * d,
+                     rings ? 0.0 : grid.min.y + (static_cast<double>(j) + 0.5) * d,
                      grid.min.z + (static_cast<double>(k) + 0.5) * d};
         if (!shape.inside(x)) continue;
         if (!keep_in_grid(x, grid, body.where, key, "lattice point")) continue;
+        if (rings) {
+          const double v = ring_volume(x.x, d * d);
+          out.push_back(x, body.velocity, material.density * v, v, temperature, body_id,
+                        body.material);
+          continue;
+        }
         out.push_back(x, body.velocity, mass, volume, temperature, body_id, body.material);
       }
     }
@@ -298,11 +308,19 @@ void generate_point_list(const PointListShape& shape, const GridSettings& grid,
                      "read error in points file of body '" + body.name + "'");
 }
 
+// A box of an axisymmetric grid stands for its r-z section, whatever its y extent: it takes
+// the particles on y = 0 (mpm/axisymmetric.hpp).
+BoxShape ring_section(BoxShape s, const GridSettings& grid) {
+  if (grid.axisymmetric) s.min.y = -1.0, s.max.y = 1.0;
+  return s;
+}
+
 // Whether x lies inside a box, cylinder or sphere shape (the parser lets `outside` name no
 // other). A walled cone counts with its hollow: a charge outside a liner leaves the liner's
 // cavity empty.
-bool inside_shape(const core::Shape& shape, const Vec3& x) {
-  if (const auto* s = std::get_if<BoxShape>(&shape)) return BoxTest{*s}.inside(x);
+bool inside_shape(const core::Shape& shape, const Vec3& x, const GridSettings& grid) {
+  if (const auto* s = std::get_if<BoxShape>(&shape))
+    return BoxTest{ring_section(*s, grid)}.inside(x);
   if (const auto* s = std::get_if<CylinderShape>(&shape)) {
     CylinderShape solid = *s;
     solid.wall = 0.0;
@@ -332,7 +350,7 @@ Particles generate_particles(const core::Scene& scene) {
         [&](const auto& s) {
           using S = std::decay_t<decltype(s)>;
           if constexpr (std::is_same_v<S, BoxShape>)
-            generate_lattice(BoxTest{s}, grid, body, body_id, material, out);
+            generate_lattice(BoxTest{ring_section(s, grid)}, grid, body, body_id, material, out);
           else if constexpr (std::is_same_v<S, CylinderShape>) {
             if (!(norm(s.axis) > 0.0))
               throw InputError(body.where, "bodies." + body.name + ".shape.cylinder.axis",
@@ -357,8 +375,8 @@ Particles generate_particles(const core::Scene& scene) {
         bool inside = false;
         for (int o : body.outside)
           if (p >= before)
-            inside = inside ||
-                     inside_shape(scene.bodies[static_cast<std::size_t>(o)].shape, out.position[p]);
+            inside = inside || inside_shape(scene.bodies[static_cast<std::size_t>(o)].shape,
+                                            out.position[p], grid);
         if (!inside) kept.push_back(static_cast<std::int32_t>(p));
       }
       out.select(kept);

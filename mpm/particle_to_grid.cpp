@@ -43,6 +43,7 @@ void MpmSolver::p2g_kernel() {
   const Particles& p = particles_;
   const Vec3 gravity = scene_.run.gravity;
   const double ambient = ambient_pressure_;
+  const bool axisymmetric = axisymmetric_;
   constexpr int N = Stencil::nodes;
   // Particles of one cell mostly follow each other (the arrays are kept in cell order), so
   // each sweep sums a run of particles that reach the same nodes locally and adds the sums
@@ -103,6 +104,9 @@ void MpmSolver::p2g_kernel() {
       // 0 otherwise.
       const core::SymTensor sv =
           p.volume[i] * (p.stress[i] - (p.bulk_q[i] - ambient) * core::SymTensor::identity());
+      // Axisymmetric: the hoop stress's radial pull V sigma_thth N / r (mpm/axisymmetric.hpp;
+      // sigma_yy is the hoop stress); 0 otherwise.
+      const double hoop = axisymmetric ? sv.yy / p.position[i].x : 0.0;
 #pragma omp simd
       for (int n = 0; n < N; ++n) {
         const double wn = st.w(n);
@@ -116,7 +120,7 @@ void MpmSolver::p2g_kernel() {
         }
         if constexpr (Force) {
           const Vec3& d = st.grad(n);
-          fx[k] -= sv.xx * d.x + sv.xy * d.y + sv.xz * d.z;
+          fx[k] -= sv.xx * d.x + sv.xy * d.y + sv.xz * d.z + hoop * wn;
           fy[k] -= sv.xy * d.x + sv.yy * d.y + sv.yz * d.z;
           fz[k] -= sv.xz * d.x + sv.yz * d.y + sv.zz * d.z;
           if constexpr (Gravity) {

@@ -111,11 +111,15 @@ void MpmSolver::kinematics_kernel(double dt, const StrainSweep& sweep) {
     core::Mat3 l;                            // L = sum v (x) grad S
     VelocityUpdate<Stencil, Affine> update;  // USL: the G2P of grid_to_particle.cpp
     const std::size_t field = field_offset(i);
+    double v_r = 0.0;  // axisymmetric: the particle's radial velocity
     for (int k = 0; k < Stencil::nodes; ++k) {
       const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]) + field;
       core::add_outer(l, sweep.strain_velocity[s], st.grad(k));
+      if (axisymmetric_) v_r += st.w(k) * sweep.strain_velocity[s].x;
       if (sweep.move) update.add(st, k, v_new[s], v_old[s]);
     }
+    // The hoop rate v_r / r (mpm/axisymmetric.hpp), as L_yy.
+    if (axisymmetric_) l.m[1][1] += v_r / p.position[i].x;
     velocity_gradient_[i] = l;
     // F <- (I + dt L) F, the strain increment's own deformation (total-Lagrangian, or a
     // hyperelastic material).
@@ -167,6 +171,7 @@ struct MpmSolver::StressPass {
   const double burn_time;
   const double h;
   const bool viscous;
+  const bool axisymmetric;  // the hoop rate (mpm/axisymmetric.hpp)
   const core::BulkViscositySettings* viscosity;
   const double* mixed;  // the projected pressures (mixed u-p), or null
   double work = 0.0, wave = 0.0, speed2 = 0.0, heat = 0.0, swept = 0.0;
@@ -199,6 +204,7 @@ struct MpmSolver::StressPass {
         burn_time(sweep_in.time_after),
         h(s.grid_.cell()),
         viscous(s.viscous_),
+        axisymmetric(s.axisymmetric_),
         viscosity(s.bulk_viscosity_.data()),
         mixed(s.plan_.mixed_pressure ? s.mixed_pressure_.data() : nullptr),
         ambient(s.ambient_pressure_) {}
@@ -216,6 +222,7 @@ struct MpmSolver::StressPass {
       g.node_slots(cell_index, slot);
       const std::size_t field = solver.field_offset(i);
       Vec3 dv;
+      double v_r = 0.0;  // axisymmetric: the particle's radial velocity
       for (int k = 0; k < 8; ++k) {
         const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]) + field;
         const Vec3 v = sweep.strain_velocity[s];
@@ -226,9 +233,12 @@ struct MpmSolver::StressPass {
           l.m[r][2] += v[r] * d.z;
         }
         const double wk = w.w[static_cast<std::size_t>(k)];
+        if (axisymmetric) v_r += wk * v.x;
         if (sweep.move) v_bar += wk * v_new[s];
         if (sweep.flip_update) dv += wk * (v_new[s] - v_old[s]);
       }
+      // The hoop rate v_r / r (mpm/axisymmetric.hpp), as L_yy.
+      if (axisymmetric) l.m[1][1] += v_r / x.x;
       if (sweep.flip_update) {
         v_p = flip * (v_p + dv) + (1.0 - flip) * v_bar;
         p.velocity[i] = v_p;

@@ -139,6 +139,11 @@ struct GridSettings {
   /// Set: the absorbing faces open onto an unbounded fluid (FarField); unset: plane-wave
   /// (Lysmer-Kuhlemeyer) faces at zero pressure.
   std::optional<FarField> far_field{};
+  /// Axisymmetric about the z axis (mpm/axisymmetric.hpp): x is the radius r >= 0, the
+  /// particles lie in the r-z plane y = 0 and each stands for its ring (volume and mass
+  /// 2 pi r A); the grid is one cell thick across it (y from -h/2 to h/2, both faces
+  /// symmetric) and its x = 0 face, the axis, symmetric.
+  bool axisymmetric = false;
   /// Whether some face has condition c.
   bool has_face(FaceCondition c) const {
     for (FaceCondition f : faces)
@@ -146,6 +151,19 @@ struct GridSettings {
     return false;
   }
 };
+
+/// Makes `grid` the axisymmetric grid its cell and its r-z extent (min.x = 0 to max.x, min.z
+/// to max.z) describe: `axisymmetric` set, y from -cell/2 to cell/2, the faces xmin (the
+/// axis), ymin and ymax symmetric. The parser does this for `axisymmetric = true`; a scene
+/// built in code calls it once cell, min and max are set.
+inline void make_axisymmetric(GridSettings& grid) {
+  grid.axisymmetric = true;
+  grid.min.y = -0.5 * grid.cell;
+  grid.max.y = 0.5 * grid.cell;
+  grid.faces[static_cast<std::size_t>(Face::xmin)] = FaceCondition::symmetric;
+  grid.faces[static_cast<std::size_t>(Face::ymin)] = FaceCondition::symmetric;
+  grid.faces[static_cast<std::size_t>(Face::ymax)] = FaceCondition::symmetric;
+}
 
 /// Adaptive multi-axis particle splitting (the 2020 Journal of Harbin Engineering University
 /// paper on MPM for explosion and impact, eqs 14-17): a particle whose length along an axis

@@ -413,9 +413,12 @@ class Builder {
             unknown(at + "." + f);
         }
         g.far_field = far;
+      } else if (key == "axisymmetric") {
+        g.axisymmetric = boolean(v, at);
       } else
         unknown(at);
     }
+    if (g.axisymmetric) make_axisymmetric(g);
   }
 
   void mpm(const toml::table& t, MpmSettings& m) {
@@ -1223,6 +1226,7 @@ void same_scene(const Scene& a, const Scene& b) {
     same_vec(a.mpm.grid.min, b.mpm.grid.min, "grid.min");
     same_vec(a.mpm.grid.max, b.mpm.grid.max, "grid.max");
     SAME(mpm.grid.faces);
+    SAME(mpm.grid.axisymmetric);
     ASSERT_EQ(a.mpm.grid.far_field.has_value(), b.mpm.grid.far_field.has_value());
     if (a.mpm.grid.far_field) {
       same_vec(a.mpm.grid.far_field->centre, b.mpm.grid.far_field->centre, "far_field.centre");
