@@ -32,6 +32,16 @@ double shape_volume(const Shape& shape) {
   return 0.0;
 }
 
+// The area of a shape's r-z section about the z axis (an axisymmetric grid's particles).
+double section_area(const Shape& shape) {
+  if (const auto* b = std::get_if<BoxShape>(&shape))
+    return std::abs((b->max.x - std::max(b->min.x, 0.0)) * (b->max.z - b->min.z));
+  if (const auto* c = std::get_if<CylinderShape>(&shape))
+    return c->length * (c->top_radius >= 0.0 ? 0.5 * (c->radius + c->top_radius) : c->radius);
+  if (const auto* s = std::get_if<SphereShape>(&shape)) return 0.5 * pi * s->radius * s->radius;
+  return 0.0;
+}
+
 std::string gib(double bytes) {
   char buf[48];
   std::snprintf(buf, sizeof buf, "%.3g GiB", bytes / (1024.0 * 1024.0 * 1024.0));
@@ -50,7 +60,10 @@ SizeEstimate estimate_size(const Scene& scene) {
         points = static_cast<double>(list->points.size());
       } else if (scene.has_grid && scene.mpm.grid.cell > 0.0) {
         const double spacing = scene.mpm.grid.cell / body.particles_per_cell;
-        points = shape_volume(body.shape) / (spacing * spacing * spacing);
+        // Axisymmetric: one ring per r-z square (mpm/axisymmetric.hpp).
+        points = scene.mpm.grid.axisymmetric
+                     ? section_area(body.shape) / (spacing * spacing)
+                     : shape_volume(body.shape) / (spacing * spacing * spacing);
       }
       e.particles += points;
     } else if (const auto* mesh = std::get_if<MeshFileShape>(&body.shape)) {

@@ -42,6 +42,16 @@ TEST(ResourceGuard, TheEstimateIsTheShapeVolumeOverTheSpacingCubed) {
   EXPECT_EQ(estimate_size(m).elements, 60.0);
 }
 
+// Reference: an axisymmetric grid's particles are rings, one per r-z square: the cylinder's
+// section 3.8 x 25.4 over (0.5 / 2)^2 = 1544.3 (the generator makes 1530), within 1e-12.
+TEST(ResourceGuard, AnAxisymmetricEstimateIsTheSectionOverTheSpacingSquared) {
+  std::string text = taylor(0.5, 2);
+  text.replace(text.find("max = [10, 10, 26]"), 18, "max = [10, 0, 26]\naxisymmetric = true");
+  const SizeEstimate e = estimate_size(parse_scene(text, "taylor.toml"));
+  const double expected = 3.8 * 25.4 / (0.25 * 0.25);
+  EXPECT_NEAR(e.particles, expected, 1e-12 * expected);
+}
+
 // Reference: the scene of the issue (cells of 0.05 mm, 8 particles per cell per direction:
 // about 4.7e9 particles, over 1.3 TiB) is refused before anything is allocated, at the body's
 // line, naming both memory figures; it takes no time (no particle is made).
