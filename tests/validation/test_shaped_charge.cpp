@@ -1,8 +1,9 @@
 // The shaped charge of examples/shaped_charge, validation case V9 (validation label): a
 // 60-degree copper liner, 2 mm thick, driven by a 40 mm PBX 9501 charge, quarter model, 20 us.
 // Three runs: 0.75 mm cells (the example) with and without splitting, and 0.6 mm cells with
-// splitting. Each ctest test is a process of its own, so under ctest the 0.75 mm run with
-// splitting runs in both; `afemp_validation --gtest_filter='ShapedCharge.*'` runs it once.
+// splitting; and the axisymmetric form of the charge (axisymmetric.toml) at four cell sizes. Each
+// ctest test is a process of its own, so under ctest the 0.75 mm run with splitting runs in both;
+// `afemp_validation --gtest_filter='ShapedCharge.*'` runs it once.
 //
 // References and marks (docs/validation.md, V9):
 // - The jet's tip velocity against the PER estimate worked from the charge's geometry alone
@@ -300,6 +301,46 @@ TEST(ShapedCharge, TipVelocityConvergesWithin15PercentOfThePerEstimate) {
     // 0.1 % of the liner's mass.
     EXPECT_GE(jet.at20.front, jet.head.z) << cell << " mm";
     EXPECT_LT(jet.head.needle_mass, 0.001 * jet.liner_mass) << cell << " mm";
+    EXPECT_LT(std::abs(jet.energy_error), 0.03) << cell << " mm";
+    coarser = &jet;
+  }
+}
+
+// V9 with the axisymmetric model (examples/shaped_charge/axisymmetric.toml: the same charge in
+// its r-z plane, each particle a ring, no splitting, which an axisymmetric grid refuses) at
+// 0.4, 0.3, 0.25 and 0.2 mm cells, the head measured as above (the liner's mass is the whole
+// ring's; the threshold is the same share of it). Reference and marks as above: converged
+// (each finer run within 3 % of the coarser) and the energy balance within 3 % are asserted.
+// The PER mark is printed, not asserted: the heads lie 23-27 % under the estimate and fall
+// slowly with the cell (examples/shaped_charge/README.md, "The axisymmetric model"), so V9's
+// 15 % is not met by this model either.
+TEST(ShapedCharge, AxisymmetricTipVelocityConverges) {
+  const double reference = per_estimate().collapse.jet_velocity;
+  const std::string example = test::example_text("shaped_charge/axisymmetric.toml");
+  const Jet* coarser = nullptr;
+  static std::map<std::string, Jet> runs;
+  for (const char* cell : {"0.4", "0.3", "0.25", "0.2"}) {
+    const std::string text =
+        std::string(cell) == "0.25"
+            ? example
+            : test::replaced(example, "cell = 0.25", "cell = " + std::string(cell));
+    const Jet& jet = runs[cell] = run_jet(text);
+    std::printf(
+        "V9 axisymmetric, %s mm: the head at z = %.0f mm, vz %.0f m/s, %+.1f %% of the PER "
+        "estimate (mark 15 %%, not asserted)",
+        cell, jet.head.z, jet.head.vz, 100.0 * (jet.head.vz / reference - 1.0));
+    if (coarser)
+      std::printf("; change from the coarser %+.1f %% (mark 3 %%)",
+                  100.0 * (jet.head.vz / coarser->head.vz - 1.0));
+    std::printf(
+        "; the needle ahead %.2f mg; on the axis continuous to z = %.1f mm (%d empty cells "
+        "to the tip at %.1f); %zu particles at the end; energy balance %+.2f %%; %.0f s\n",
+        1e3 * jet.head.needle_mass, jet.at20.front, jet.at20.empty, jet.at20.tip, jet.particles,
+        100.0 * jet.energy_error, jet.seconds);
+    std::fflush(stdout);
+    if (coarser) {
+      EXPECT_LT(std::abs(jet.head.vz / coarser->head.vz - 1.0), 0.03) << cell << " mm";
+    }
     EXPECT_LT(std::abs(jet.energy_error), 0.03) << cell << " mm";
     coarser = &jet;
   }
