@@ -104,9 +104,6 @@ void MpmSolver::p2g_kernel() {
       // 0 otherwise.
       const core::SymTensor sv =
           p.volume[i] * (p.stress[i] - (p.bulk_q[i] - ambient) * core::SymTensor::identity());
-      // Axisymmetric: the hoop stress's radial pull V sigma_thth N / r (mpm/axisymmetric.hpp;
-      // sigma_yy is the hoop stress); 0 otherwise.
-      const double hoop = axisymmetric ? sv.yy / p.position[i].x : 0.0;
 #pragma omp simd
       for (int n = 0; n < N; ++n) {
         const double wn = st.w(n);
@@ -120,7 +117,7 @@ void MpmSolver::p2g_kernel() {
         }
         if constexpr (Force) {
           const Vec3& d = st.grad(n);
-          fx[k] -= sv.xx * d.x + sv.xy * d.y + sv.xz * d.z + hoop * wn;
+          fx[k] -= sv.xx * d.x + sv.xy * d.y + sv.xz * d.z;
           fy[k] -= sv.xy * d.x + sv.yy * d.y + sv.yz * d.z;
           fz[k] -= sv.xz * d.x + sv.yz * d.y + sv.zz * d.z;
           if constexpr (Gravity) {
@@ -129,6 +126,14 @@ void MpmSolver::p2g_kernel() {
             fy[k] += mw * gravity.y;
             fz[k] += mw * gravity.z;
           }
+        }
+      }
+      // Axisymmetric: the hoop stress's radial pull V sigma_thth N / r (mpm/axisymmetric.hpp;
+      // sigma_yy is the hoop stress), in a loop of its own so that the 3-D one stays as it was.
+      if constexpr (Force) {
+        if (axisymmetric) {
+          const double hoop = sv.yy / p.position[i].x;
+          for (int n = 0; n < N; ++n) fx[static_cast<std::size_t>(n)] -= hoop * st.w(n);
         }
       }
     }

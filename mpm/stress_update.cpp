@@ -222,7 +222,6 @@ struct MpmSolver::StressPass {
       g.node_slots(cell_index, slot);
       const std::size_t field = solver.field_offset(i);
       Vec3 dv;
-      double v_r = 0.0;  // axisymmetric: the particle's radial velocity
       for (int k = 0; k < 8; ++k) {
         const auto s = static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]) + field;
         const Vec3 v = sweep.strain_velocity[s];
@@ -233,12 +232,21 @@ struct MpmSolver::StressPass {
           l.m[r][2] += v[r] * d.z;
         }
         const double wk = w.w[static_cast<std::size_t>(k)];
-        if (axisymmetric) v_r += wk * v.x;
         if (sweep.move) v_bar += wk * v_new[s];
         if (sweep.flip_update) dv += wk * (v_new[s] - v_old[s]);
       }
-      // The hoop rate v_r / r (mpm/axisymmetric.hpp), as L_yy.
-      if (axisymmetric) l.m[1][1] += v_r / x.x;
+      // The hoop rate v_r / r (mpm/axisymmetric.hpp), as L_yy, v_r the particle's radial
+      // velocity (a loop of its own, so that the 3-D one stays as it was).
+      if (axisymmetric) {
+        double v_r = 0.0;
+        for (int k = 0; k < 8; ++k)
+          v_r += w.w[static_cast<std::size_t>(k)] *
+                 sweep
+                     .strain_velocity[static_cast<std::size_t>(slot[static_cast<std::size_t>(k)]) +
+                                      field]
+                     .x;
+        l.m[1][1] += v_r / x.x;
+      }
       if (sweep.flip_update) {
         v_p = flip * (v_p + dv) + (1.0 - flip) * v_bar;
         p.velocity[i] = v_p;
