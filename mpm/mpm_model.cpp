@@ -204,6 +204,10 @@ std::string MpmModel::describe() const {
                 g.cell(), g.cells()[0], g.cells()[1], g.cells()[2], scene.mpm.grid.min.x,
                 scene.mpm.grid.max.x, scene.mpm.grid.min.y, scene.mpm.grid.max.y,
                 scene.mpm.grid.min.z, scene.mpm.grid.max.z);
+  if (scene.mpm.grid.axisymmetric)
+    out +=
+        "axisymmetric about the z axis: x is the radius, each particle a ring (volume and mass "
+        "2 pi r A); the internal force and the strain take the hoop terms (mpm/axisymmetric.hpp)\n";
   out += "faces:";
   for (int f = 0; f < 6; ++f)
     core::appendf(out, " %s=%s", core::to_string(static_cast<core::Face>(f)),
