@@ -66,7 +66,7 @@ TEST(Axisymmetric, RingsHoldTheSolidsVolumeAndMass) {
 // stress E (r - R) / R pulls each ring back by sigma / (rho r) (the hoop force), and only the
 // hoop rate v_r / r strains it so. With nu = 0 the radial and axial waves do not load the hoop
 // mode. The wall's thickness changes T by about (t / R)^2 / 12 (0.02 % here). Tolerance 1.5 %
-// on the period from the mean radial velocity's sign changes, and 5 % on the amplitude p R / E.
+// on the period from the mean radial velocity's sign changes, and 5 % on the swing 2 p R / E.
 TEST(Axisymmetric, AThinRingBreathesWithItsClosedFormPeriod) {
   const core::Scene scene = core::parse_scene(ring_scene("", "pressure = 200\n"), "ring.toml");
   MpmSolver solver(scene, generate_particles(scene));
