@@ -22,7 +22,8 @@
 // off the axis, r / h, with it, so the grid barely feels its stress and its state can run away.
 // A shaped charge's liner split along z left many pieces within 0.002 mm of the axis whose
 // wave speeds reached 6e5 m/s and more, and splitting is refused (core/axisymmetric_refusals.hpp);
-// unsplit, the same liner ran to 0.2 mm cells without it (examples/shaped_charge/README.md).
+// unsplit, the same liner ran to 0.15 mm cells without it, but not to 0.1 mm, where the run went
+// unstable at 19.3 us (examples/shaped_charge/README.md).
 #pragma once
 
 #include <cmath>
