@@ -29,6 +29,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "afemp/tensor.hpp"
+
 namespace afemp::mpm {
 
 // The volume of the ring an r-z area `area` at radius r turns out.
@@ -39,6 +41,12 @@ inline double ring_volume(double r, double area) {
 // The r-z edge of a square particle of ring volume `volume` at radius r (> 0).
 inline double ring_particle_edge(double volume, double r) {
   return std::sqrt(volume / (2.0 * std::numbers::pi * r));
+}
+
+// A particle's edge: the cube root of its volume, or on an axisymmetric grid the square root of
+// its ring's r-z area (x.x is its radius).
+inline double particle_edge(double volume, const core::Vec3& x, bool axisymmetric) {
+  return axisymmetric ? ring_particle_edge(volume, x.x) : std::cbrt(volume);
 }
 
 }  // namespace afemp::mpm

@@ -249,9 +249,8 @@ core::BodyPoints MpmModel::body_points(int body) const {
     if (p.body[i] != body) continue;
     out.position.push_back(p.position[i]);
     // A particle fills a cube of its volume, or an axisymmetric ring's square of its r-z area.
-    out.half_size.push_back(0.5 * (scene_.mpm.grid.axisymmetric
-                                       ? ring_particle_edge(p.volume[i], p.position[i].x)
-                                       : std::cbrt(p.volume[i])));
+    out.half_size.push_back(
+        0.5 * particle_edge(p.volume[i], p.position[i], scene_.mpm.grid.axisymmetric));
   }
   return out;
 }

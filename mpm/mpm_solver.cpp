@@ -509,6 +509,12 @@ Energies MpmSolver::energies() const {
   out.outflow = outflow_energy_;
   out.outflow_mass = outflow_mass_;
   out.outflow_momentum = outflow_momentum_;
+  // Axisymmetric: a ring's momentum across the axis sums to zero (its particles' x velocity is
+  // radial), so the bodies' and the outflow's x and y momenta are zero, not the sums of v_r.
+  if (axisymmetric_) {
+    for (BodySums& b : out.bodies) b.momentum.x = b.momentum.y = 0.0;
+    out.outflow_momentum.x = out.outflow_momentum.y = 0.0;
+  }
   // On ranks: every rank's sums and accumulators added in rank order (a particle wall's sliding
   // and friction are whole on every rank: particle_wall_contact.cpp).
   if (ranks_) {

@@ -339,11 +339,9 @@ class MpmSolver {
     for (int a = 0; a < 3; ++a) i.m[a][a] = 1.0;
     return i;
   }
-  // A particle's edge: the cube root of its volume, or of an axisymmetric ring's its r-z
-  // area's square root (mpm/axisymmetric.hpp).
+  // Particle i's edge (mpm/axisymmetric.hpp).
   double particle_edge(std::size_t i) const {
-    return axisymmetric_ ? ring_particle_edge(particles_.volume[i], particles_.position[i].x)
-                         : std::cbrt(particles_.volume[i]);
+    return mpm::particle_edge(particles_.volume[i], particles_.position[i], axisymmetric_);
   }
   void start_lengths(std::size_t i) {
     const double l = particle_edge(i);

@@ -121,6 +121,9 @@ TEST(Axisymmetric, TheTaylorBarMatchesTheExperimentWithinThreePercentMeanError) 
       100.0 * s.energy_error, s.particles, s.steps, s.wall_seconds);
   EXPECT_LE(s.taylor_error, 0.03);
   EXPECT_LT(s.max_energy_error, 0.02);
+  // A ring has no net momentum across the axis (its particles' x velocity is radial).
+  EXPECT_EQ(s.final.bodies.at(0).momentum.x, 0.0);
+  EXPECT_NE(s.final.bodies.at(0).momentum.z, 0.0);
 }
 
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
