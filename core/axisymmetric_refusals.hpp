@@ -1,9 +1,9 @@
 // What the axisymmetric grid ([grid] axisymmetric = true; mpm/axisymmetric.hpp) takes: bodies of
 // particles whose shapes turn about the z axis, welded to each other or on one field, loaded by
 // axial gravity, axial initial velocities, grid faces and detonations on the axis, with the linear
-// hat and the FLIP/PIC transfer in the updated-Lagrangian form, without splitting. Anything else
-// has no axisymmetric form here and is refused, naming the key, by the parser and by the check of a
-// scene built in code alike.
+// hat and the FLIP/PIC transfer in the updated-Lagrangian form, splitting along z only. Anything
+// else has no axisymmetric form here and is refused, naming the key, by the parser and by the check
+// of a scene built in code alike.
 #pragma once
 
 #include <cmath>
@@ -53,14 +53,14 @@ inline std::optional<AxisymmetricRefusal> axisymmetric_refusal(const Scene& scen
     return refuse(grid_at, "mpm.formulation", "the total-Lagrangian formulation");
   if (m.pressure != PressureField::standard)
     return refuse(grid_at, "mpm.pressure", "the mixed u-p pressure");
-  // Split along z, a shaped charge's liner leaves pieces of ever smaller mass on the axis whose
-  // states run away (mpm/axisymmetric.hpp): at 0.3 mm cells its stable step fell 111-fold, at
-  // 0.25 mm 1.3e5-fold.
-  if (m.splitting)
-    return AxisymmetricRefusal{grid_at, "mpm.splitting",
-                               "particle splitting has no axisymmetric form here: the pieces it "
-                               "leaves on the axis run away and the time step collapses; remove "
-                               "it, or use a 3-D (quarter) model"};
+  // A ring splits along z only: halves along x would share its mass equally at radii that
+  // hold different ring volumes, and along y they would leave the plane. Near the axis it does
+  // not split at all (mpm/particle_splitting.cpp).
+  if (m.splitting && (m.splitting->axes[0] || m.splitting->axes[1]))
+    return AxisymmetricRefusal{grid_at, "mpm.splitting.axes",
+                               "an axisymmetric grid splits rings along z only (axes = [\"z\"]): "
+                               "along x the halves would take equal masses at radii of unequal "
+                               "ring volume, along y they would leave the r-z plane"};
   if (scene.run.gravity.x != 0.0 || scene.run.gravity.y != 0.0)
     return refuse(grid_at, "run.gravity", "gravity across the axis");
   if (scene.run.reproducible)

@@ -20,10 +20,11 @@
 // velocity over the cell. The axis has its limit all the same: a particle carried onto it
 // keeps its mass while its ring's volume, 2 pi r A, shrinks with r, and its weight at the nodes
 // off the axis, r / h, with it, so the grid barely feels its stress and its state can run away.
-// A shaped charge's liner split along z left many pieces within 0.002 mm of the axis whose
-// wave speeds reached 6e5 m/s and more, and splitting is refused (core/axisymmetric_refusals.hpp);
-// unsplit, the same liner ran to 0.15 mm cells without it, but not to 0.1 mm, where the run went
-// unstable at 19.3 us (examples/shaped_charge/README.md).
+// A shaped charge's liner split along z everywhere left many pieces within 0.002 mm of the axis
+// whose wave speeds reached 6e5 m/s and more, so a ring does not split within one cell of the axis
+// (mpm/particle_splitting.cpp): so split, the liner ran to 0.2 mm cells with the step holding.
+// Unsplit, it ran to 0.15 mm cells, but not to 0.1 mm, where the run went unstable at 19.3 us
+// (examples/shaped_charge/README.md).
 #pragma once
 
 #include <cmath>

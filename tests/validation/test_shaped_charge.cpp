@@ -307,7 +307,7 @@ TEST(ShapedCharge, TipVelocityConvergesWithin15PercentOfThePerEstimate) {
 }
 
 // V9 with the axisymmetric model (examples/shaped_charge/axisymmetric.toml: the same charge in
-// its r-z plane, each particle a ring, no splitting, which an axisymmetric grid refuses) at
+// its r-z plane, each particle a ring, unsplit as the example is) at
 // 0.4, 0.3, 0.25 and 0.2 mm cells, the head measured as above (the liner's mass is the whole
 // ring's; the threshold is the same share of it). Reference and marks as above: converged
 // (each finer run within 3 % of the coarser) and the energy balance within 3 % are asserted.
