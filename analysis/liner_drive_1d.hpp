@@ -44,7 +44,7 @@ struct Ring1d {
 
 struct Drive1dSettings {
   double zones_per_length = 10.0;  // zones per unit of radius, in every ring
-  double courant = 0.25;
+  double courant = 0.1;            // the step over the smallest zone's crossing time
   double end_time = 0.0;
   // The drive ends when the driven ring's inner surface comes within this of the axis, or its
   // outer surface reaches `stop_outer_radius` (0: never), or at end_time.

@@ -51,7 +51,7 @@ Ring1d steel() {
 // (docs/explosives.md).
 constexpr double gurney_sqrt_2e = 2900.0;
 
-double cylinder_test(double zones_per_mm, double& energy_ratio) {
+double cylinder_test(double zones_per_mm, double& energy_ratio, bool all_at_once = false) {
   Ring1d x = pbx9501(), c = copper();
   x.inner = 0.0;
   x.outer = c.inner = 12.7;
@@ -60,7 +60,7 @@ double cylinder_test(double zones_per_mm, double& energy_ratio) {
   s.zones_per_length = zones_per_mm;
   s.end_time = 0.1;
   s.stop_outer_radius = 3.0 * 15.3;
-  s.lighting_time = [](double r) { return r / 8800.0; };
+  s.lighting_time = [all_at_once](double r) { return all_at_once ? -1.0 : r / 8800.0; };
   const Drive1dResult run = cylindrical_drive_1d({x, c}, 1, s);
   energy_ratio = run.energy_ratio;
   return run.history.back().mean_velocity;
@@ -78,17 +78,22 @@ TEST(LinerDrive1d, CylinderTestReachesGurneysVelocityAndKeepsEnergy) {
       "cylinder test: %.0f and %.0f m/s at 10 and 20 zones per mm; Gurney %.0f m/s; "
       "energy kept to %.2e, %.2e\n",
       v10, v20, gurney, energy10 - 1.0, energy20 - 1.0);
-  // Within 8 %: Gurney's formulas hold to a few per cent, and sqrt(2E) is PBX 9404's (+5.0 %
-  // here when written). The programmed burn's front costs about 1 % of the energy.
+  // Within 8 %: Gurney's formulas hold to a few per cent, and sqrt(2E) is PBX 9404's (+5.3 %
+  // here when written). The programmed burn's front costs 0.4 % of the energy.
   EXPECT_NEAR(v20 / gurney, 1.0, 0.08);
   EXPECT_NEAR(v10 / v20, 1.0, 0.005);
-  EXPECT_NEAR(energy20, 1.0, 0.015);
+  EXPECT_NEAR(energy20, 1.0, 0.01);
+  // Lit all at once, with no burning front, the scheme keeps energy to its time-centring.
+  double energy_at_once = 0.0;
+  (void)cylinder_test(10.0, energy_at_once, true);
+  std::printf("lit all at once: energy kept to %.2e\n", energy_at_once - 1.0);
+  EXPECT_NEAR(energy_at_once, 1.0, 1e-3);
 }
 
 TEST(LinerDrive1d, ARingFarFromTheAxisMeetsTheFlatTampedSandwich) {
   // A copper ring 2 mm thick at a radius of 2 m under 13 mm of PBX 9501 and 2 mm of steel, lit
   // at the liner's face and burning outwards at D. Far from the axis the slice is Gurney's flat
-  // tamped sandwich (Kennedy 1970), to 8 % as above (+5.9 % when written).
+  // tamped sandwich (Kennedy 1970), to 8 % as above (+6.1 % when written).
   Ring1d l = copper(), x = pbx9501(), c = steel();
   const double r0 = 2000.0;
   l.inner = r0;
@@ -107,7 +112,7 @@ TEST(LinerDrive1d, ARingFarFromTheAxisMeetsTheFlatTampedSandwich) {
   std::printf("flat tamped sandwich: the ring at %.0f m/s after %.1f mm; Gurney %.0f m/s\n", v,
               r0 - run.history.back().inner_radius, sandwich);
   EXPECT_NEAR(v / sandwich, 1.0, 0.08);
-  EXPECT_NEAR(run.energy_ratio, 1.0, 0.015);
+  EXPECT_NEAR(run.energy_ratio, 1.0, 0.01);
 }
 
 TEST(LinerDrive1d, TheExampleLinerMeetsTheAxisFarBelowThePerEstimatesVelocity) {
