@@ -11,6 +11,7 @@
 
 #include "analysis/liner_drive_1d.hpp"
 #include "analysis/shaped_charge_per.hpp"
+#include "conical_charge_example.hpp"
 
 namespace afemp::analysis {
 namespace {
@@ -30,21 +31,19 @@ Ring1d pbx9501() {
   x.detonation_velocity = 8800.0;
   return x;
 }
+Ring1d mie_gruneisen(double density, double c0, double s, double gamma0) {
+  Ring1d m;
+  m.density = density;
+  m.c0 = c0;
+  m.s = s;
+  m.gamma0 = gamma0;
+  return m;
+}
 Ring1d copper() {
-  Ring1d c;
-  c.density = 8.93e-3;
-  c.c0 = 3940.0;
-  c.s = 1.49;
-  c.gamma0 = 2.0;
-  return c;
+  return mie_gruneisen(8.93e-3, 3940.0, 1.49, 2.0);
 }
 Ring1d steel() {
-  Ring1d c;
-  c.density = 7.85e-3;
-  c.c0 = 4569.0;
-  c.s = 1.49;
-  c.gamma0 = 2.17;
-  return c;
+  return mie_gruneisen(7.85e-3, 4569.0, 1.49, 2.17);
 }
 
 // Cooper (1996) gives sqrt(2E) = 2.90 km/s for PBX 9404, the nearest explosive in his table
@@ -116,19 +115,7 @@ TEST(LinerDrive1d, ARingFarFromTheAxisMeetsTheFlatTampedSandwich) {
 }
 
 TEST(LinerDrive1d, TheExampleLinerMeetsTheAxisFarBelowThePerEstimatesVelocity) {
-  ConicalCharge q;
-  q.charge_radius = 20.0;
-  q.case_thickness = 2.0;
-  q.apex_z = 50.0 - 34.641;
-  q.half_angle = std::atan(20.0 / 34.641);
-  q.wall = 2.0;
-  q.base_z = 50.0;
-  q.explosive_density = 1.84e-3;
-  q.liner_density = 8.93e-3;
-  q.case_density = 7.85e-3;
-  q.detonation_velocity = 8800.0;
-  q.cj_pressure = 3.7e4;
-  q.gurney_velocity = gurney_sqrt_2e;
+  const ConicalCharge q = test::example_charge();  // sqrt(2E) 2900 m/s, as above
   std::printf(
       "z (mm) | r_i | the estimate's V0 | 1-D largest | at the axis (us) | ratio | PER "
       "jet with the 1-D V0\n");
