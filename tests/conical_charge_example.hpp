@@ -1,9 +1,11 @@
-// examples/shaped_charge's charge as analysis/shaped_charge_per.hpp describes it, for the
-// tests of the PER estimate and of the liner's drive (tests/analysis).
+// examples/shaped_charge's charge as analysis/shaped_charge_per.hpp describes it, and its
+// materials as analysis/liner_drive_1d.hpp takes them, for the tests of the PER estimate and of
+// the liner's drive.
 #pragma once
 
 #include <cmath>
 
+#include "analysis/liner_drive_1d.hpp"
 #include "analysis/shaped_charge_per.hpp"
 
 namespace afemp::analysis::test {
@@ -27,6 +29,36 @@ inline ConicalCharge example_charge() {
   q.cj_pressure = 3.7e4;
   q.gurney_velocity = 2900.0;
   return q;
+}
+
+// examples/shaped_charge's materials (mm, ms, g, MPa): PBX 9501's JWL (Dobratz & Crawford
+// 1985), copper and steel by Steinberg's Mie-Grueneisen constants.
+inline Ring1d pbx9501() {
+  Ring1d x;
+  x.kind = Ring1d::Kind::jwl;
+  x.density = 1.84e-3;
+  x.A = 8.524e5;
+  x.B = 1.802e4;
+  x.R1 = 4.6;
+  x.R2 = 1.3;
+  x.omega = 0.38;
+  x.E0 = 1.02e4;
+  x.detonation_velocity = 8800.0;
+  return x;
+}
+inline Ring1d mie_gruneisen(double density, double c0, double s, double gamma0) {
+  Ring1d m;
+  m.density = density;
+  m.c0 = c0;
+  m.s = s;
+  m.gamma0 = gamma0;
+  return m;
+}
+inline Ring1d copper() {
+  return mie_gruneisen(8.93e-3, 3940.0, 1.49, 2.0);
+}
+inline Ring1d steel() {
+  return mie_gruneisen(7.85e-3, 4569.0, 1.49, 2.17);
 }
 
 }  // namespace afemp::analysis::test

@@ -16,35 +16,9 @@
 namespace afemp::analysis {
 namespace {
 
-// examples/shaped_charge's materials (mm, ms, g, MPa): PBX 9501's JWL (Dobratz & Crawford
-// 1985), copper and steel by Steinberg's Mie-Grueneisen constants.
-Ring1d pbx9501() {
-  Ring1d x;
-  x.kind = Ring1d::Kind::jwl;
-  x.density = 1.84e-3;
-  x.A = 8.524e5;
-  x.B = 1.802e4;
-  x.R1 = 4.6;
-  x.R2 = 1.3;
-  x.omega = 0.38;
-  x.E0 = 1.02e4;
-  x.detonation_velocity = 8800.0;
-  return x;
-}
-Ring1d mie_gruneisen(double density, double c0, double s, double gamma0) {
-  Ring1d m;
-  m.density = density;
-  m.c0 = c0;
-  m.s = s;
-  m.gamma0 = gamma0;
-  return m;
-}
-Ring1d copper() {
-  return mie_gruneisen(8.93e-3, 3940.0, 1.49, 2.0);
-}
-Ring1d steel() {
-  return mie_gruneisen(7.85e-3, 4569.0, 1.49, 2.17);
-}
+using test::copper;
+using test::pbx9501;
+using test::steel;
 
 // Cooper (1996) gives sqrt(2E) = 2.90 km/s for PBX 9404, the nearest explosive in his table
 // (docs/explosives.md).
