@@ -311,7 +311,7 @@ TEST(ShapedCharge, TipVelocityConvergesWithin15PercentOfThePerEstimate) {
 // 0.4, 0.3, 0.25 and 0.2 mm cells, the head measured as above (the liner's mass is the whole
 // ring's; the threshold is the same share of it). Reference and marks as above: converged
 // (each finer run within 3 % of the coarser) and the energy balance within 3 % are asserted.
-// The PER mark is printed, not asserted: the heads lie 23-27 % under the estimate and fall
+// The PER mark is printed, not asserted: the heads lie 23-26 % under the estimate and fall
 // slowly with the cell (examples/shaped_charge/README.md, "The axisymmetric model"), so V9's
 // 15 % is not met by this model either.
 TEST(ShapedCharge, AxisymmetricTipVelocityConverges) {
