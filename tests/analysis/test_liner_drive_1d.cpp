@@ -93,7 +93,7 @@ TEST(LinerDrive1d, TheExampleLinerMeetsTheAxisFarBelowThePerEstimatesVelocity) {
   std::printf(
       "z (mm) | r_i | the estimate's V0 | 1-D largest | at the axis (us) | ratio | PER "
       "jet with the 1-D V0\n");
-  double fastest_jet = 0.0;
+  double fastest_jet = 0.0, tip_coarse = 0.0;
   for (double z : {21.0, 22.5, 23.71, 25.0, 27.0, 30.0, 32.5, 35.0, 40.0, 45.0}) {
     const SliceDrive d = liner_slice_drive(q, pbx9501(), copper(), steel(), z, 10.0);
     ASSERT_TRUE(d.reached_axis) << z;
@@ -102,15 +102,15 @@ TEST(LinerDrive1d, TheExampleLinerMeetsTheAxisFarBelowThePerEstimatesVelocity) {
                 d.element.inner_radius, d.element.collapse_velocity, d.largest_velocity,
                 d.axis_velocity, 1e3 * d.axis_time, ratio, d.jet.jet_velocity);
     fastest_jet = std::max(fastest_jet, d.jet.jet_velocity);
+    if (z == 23.71) tip_coarse = d.largest_velocity;
     // Where the estimate's tip element lies (23.71 mm) and ahead of it, the ring reaches under
     // a third of the estimate's velocity (0.22-0.24 when written); to 35 mm, under 70 %
     // (0.30-0.67); towards the base, where the explosive is thin and the way long, under 90 %.
     EXPECT_LT(ratio, z < 24.0 ? 1.0 / 3.0 : (z <= 35.0 ? 0.7 : 0.9)) << z;
   }
-  // The same element at twice the zones: the figures are the scheme's, not its zoning's.
-  const SliceDrive coarse = liner_slice_drive(q, pbx9501(), copper(), steel(), 23.71, 10.0);
+  // The tip element at twice the zones: the figures are the scheme's, not its zoning's.
   const SliceDrive fine = liner_slice_drive(q, pbx9501(), copper(), steel(), 23.71, 20.0);
-  EXPECT_NEAR(coarse.largest_velocity / fine.largest_velocity, 1.0, 0.02);
+  EXPECT_NEAR(tip_coarse / fine.largest_velocity, 1.0, 0.02);
   const LinerElement tip = per_tip_element(q);
   std::printf(
       "PER with the 1-D collapse velocities: fastest jet %.0f m/s; with Gurney's "

@@ -205,6 +205,48 @@ method = "weld"
   EXPECT_GT(s.min_dt, 0.5 * s.max_dt);
 }
 
+// Reference: the splitting rule itself (mpm/particle_splitting.cpp). A rod of rings at rest,
+// every ring's length along z set to twice its start: at the next step each ring one cell or
+// more from the axis splits in two along z (two rings at its radius, half its mass each) and
+// each ring nearer the axis stays whole. Counted exactly.
+TEST(Axisymmetric, RingsWithinOneCellOfTheAxisDoNotSplit) {
+  const core::Scene scene = core::parse_scene(R"([run]
+end_time = 1
+[grid]
+cell = 0.25
+min = [0, 0, -1]
+max = [3, 0, 3]
+axisymmetric = true
+[mpm]
+splitting = { axes = ["z"] }
+[materials.m]
+density = 1e-3
+E = 100
+nu = 0.3
+[[bodies]]
+name = "rod"
+material = "m"
+shape = { cylinder = { base = [0, 0, 0], radius = 1.5, length = 2 } }
+)",
+                                              "rod.toml");
+  MpmSolver solver(scene, generate_particles(scene));
+  Particles& p = solver.mutable_particles();
+  const std::size_t start = p.size();
+  std::size_t near = 0;
+  for (std::size_t i = 0; i < start; ++i) {
+    p.length[i].z = 2.0 * p.length0[i].z;
+    if (p.position[i].x < 0.25) ++near;
+  }
+  ASSERT_GT(near, 0u);
+  solver.step(solver.stable_time_step());
+  const Particles& after = solver.particles();
+  std::size_t near_after = 0;
+  for (std::size_t i = 0; i < after.size(); ++i)
+    if (after.position[i].x < 0.25) ++near_after;
+  EXPECT_EQ(after.size(), start + (start - near));
+  EXPECT_EQ(near_after, near);
+}
+
 // Reference: an independent code. The example shaped charge's slice at z = 23.71 mm (the PER
 // estimate's tip element; docs/explosives.md) as a band 0.8 mm tall between symmetric faces: a
 // copper ring from r 2.512 to 4.822 mm, PBX 9501 to 20 mm, steel to 22, welded, lit from the
